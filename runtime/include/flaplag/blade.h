@@ -1,0 +1,89 @@
+// flaplag — blade mode shapes, spanwise integrals and generalized masses.
+//
+// Uniform mass and stiffness along the span (paper 4.1).  x0 = x0bar in [0, 1] is the elastic
+// span coordinate by l; derivatives are d/dx0bar.  Mass is nondimensionalised by I_b (inertia of
+// the elastic part about its root, Appendix B), so the uniform mass per unit length is
+// mbar = m l^3 / I_b = 3.
+#pragma once
+
+#include <Eigen/Dense>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "flaplag/model_api.h"
+
+namespace flaplag {
+
+// One mode shape with its first three derivatives on [0, 1].
+class ModeShape {
+ public:
+  virtual ~ModeShape() = default;
+  // derivative order d in 0..3
+  virtual double value(int d, double x0) const = 0;
+};
+
+// Eq 4.1: eta = gamma = -(1/3) [1 - 4 x0 - (1 - x0)^4], eta(1) = 1.  Satisfies all cantilever
+// boundary conditions.  It is the first nonrotating *assumed* mode, used for flap and lag.
+std::shared_ptr<const ModeShape> assumed_mode_shape();
+
+// Nonrotating clamped-free uniform cantilever mode j (1-based, j <= 5 supported well beyond),
+// normalised to tip value +2 * (-1)^(j+1) ... see modes.cc; derivatives are numerically stable.
+std::shared_ptr<const ModeShape> cantilever_mode(int j);
+// beta_j, roots of 1 + cos(beta) cosh(beta) = 0.
+double cantilever_root(int j);
+
+struct ModeSet {
+  std::vector<std::shared_ptr<const ModeShape>> flap;  // eta_k, k = 0..M-1
+  std::vector<std::shared_ptr<const ModeShape>> lag;   // gamma_m, m = 0..N-1
+  std::vector<double> omega_flap;                      // rotating frequencies by Omega [M]
+  std::vector<double> omega_lag;                       // [N]
+  // Nondimensional bending stiffnesses k = EI / (Omega^2 l I_b); 0 when not known (assumed modes)
+  double stiffness_flap = 0.0;  // (EI)_y
+  double stiffness_lag = 0.0;   // (EI)_z
+  std::string kind;             // "assumed" or "exact"
+};
+
+// The paper's assumed-mode blade: one flap and one lag mode (eq 4.1) with the given rotating
+// frequencies; no stiffness information (elastic coupling is neglected with assumed modes).
+ModeSet assumed_modes(double omega_flap, double omega_lag);
+
+// Geometry of the aerodynamic span: x = e1 + lr * x0 by R, tip-loss limits A <= x0 <= B.
+struct SpanGeometry {
+  double e1 = 0.0;  // hinge offset by R
+  double lr = 1.0;  // l / R
+  double tip_loss_a = 0.0;
+  double tip_loss_b = 1.0;
+};
+
+// int_{x0_lo}^{x0_hi} x^p prod(factors) dx0  (Gauss quadrature, exact for the polynomial modes).
+double aero_integral(const model::AeroIntegral& spec, const ModeSet& modes, const SpanGeometry& g,
+                     double x0_lo, double x0_hi);
+
+// Values of all aerodynamic integrals for the normal region (A..B) and for the reversed-flow
+// sector: -int_A^{x0(mu)} + int_{x0(mu)}^B for mu < 1, and -int_A^B for mu >= 1 (eqs D.3-D.6),
+// with x0(mu) = (mu - e1)/lr clamped to [A, B].
+std::vector<double> aero_integrals_normal(const model::ModelDescriptor& m, const ModeSet& modes,
+                                          const SpanGeometry& g);
+std::vector<double> aero_integrals_reversed(const model::ModelDescriptor& m, const ModeSet& modes,
+                                            const SpanGeometry& g, double mu);
+
+// Structural generalized masses (see model_api.h); mbar = 3, e1_over_l = e1 / l.
+double structural_integral(const model::StructuralIntegral& spec, const ModeSet& modes,
+                           double e1_over_l, double mbar = 3.0);
+std::vector<double> structural_integrals(const model::ModelDescriptor& m, const ModeSet& modes,
+                                         double e1_over_l, double mbar = 3.0);
+
+// Elastic coupling (Appendix E, eqs E.3-E.8) for collective pitch theta:
+//   Es_F[i][k]  = (k_z - k_y) sin^2(theta)         int eta_i'' eta_k''
+//   Es_L[i][m]  = (k_z - k_y) sin^2(theta)         int gamma_i'' gamma_m''
+//   Ecs_FL[i][m] = (k_z - k_y) sin(theta)cos(theta) int eta_i'' gamma_m''
+//   Ecs_LF[i][k] = (k_z - k_y) sin(theta)cos(theta) int gamma_i'' eta_k''
+// with k = EI / (Omega^2 l I_b).  All zero when the ModeSet carries no stiffness.
+struct ElasticCoupling {
+  Eigen::MatrixXd es_flap, es_lag, ecs_flap_lag, ecs_lag_flap;
+};
+ElasticCoupling elastic_coupling(const ModeSet& modes, double theta);
+ElasticCoupling no_elastic_coupling(const ModeSet& modes);
+
+}  // namespace flaplag

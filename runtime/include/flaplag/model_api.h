@@ -1,0 +1,123 @@
+// flaplag — the contract between generated model code and the runtime.
+//
+// The generator (generator/, GiNaC, build time) writes one translation unit per ordering spec
+// that fills a ModelDescriptor.  Everything the generated code needs comes in through
+// CoefficientInputs; everything it computes goes out through plain arrays, so the generated
+// code depends on nothing but this header.
+//
+// Nondimensionalisation (paper, list of symbols): lengths associated with aerodynamics by R,
+// elastic ones by l; frequencies by Omega; masses by I_b (blade inertia about the root);
+// psi = Omega t, period 2*pi.  Generalized coordinates g_k (flap), h_m (lag) are the modal
+// amplitudes of eqs 2.11-2.12 (w_e = l eta_k g_k, v_e = -l gamma_m h_m: h > 0 is lag).
+//
+// State ordering (eq 2.36 generalised to M flap and N lag modes):
+//   y = [dg'_1..dg'_M, dg_1..dg_M, dh'_1..dh'_N, dh_1..dh_N]     (' = d/dpsi, d = Delta)
+// Equation ordering (rows of the generalized force): flap 1..M, then lag 1..N.
+#pragma once
+
+namespace flaplag::model {
+
+// Spanwise functions that can appear in an integrand.  Derivatives are d/d(x0bar).
+enum class Factor : int {
+  Eta = 0,         // eta_k(x0)          flap mode shape
+  EtaPrime = 1,    // eta_k'(x0)
+  Gamma = 2,       // gamma_m(x0)        lag mode shape
+  GammaPrime = 3,  // gamma_m'(x0)
+  X0 = 4,          // x0bar              (structural integrals only; mode ignored)
+  Arm = 5,         // x0bar + e1/l       centrifugal arm (structural integrals only; mode ignored)
+};
+
+struct FactorRef {
+  Factor kind;
+  int mode;  // 0-based mode index (flap mode for Eta*, lag mode for Gamma*), 0 for X0/Arm
+};
+
+// Aerodynamic spanwise integral  I = int x^p * prod(factors) dx0bar  over the aerodynamic span
+// (tip-loss limits A..B, split at x = mu in the reversed-flow sector, Appendix D), where
+// x = e1/R + (l/R) x0bar is the station radius by R.
+struct AeroIntegral {
+  const char* name;        // canonical, e.g. "x^2 eta1 eta1'"
+  const char* ident;       // C identifier form, e.g. "x2_eta1_deta1"
+  int x_power;
+  int n_factors;
+  FactorRef factors[4];
+  const char* paper_name;  // Appendix B name, e.g. "F6_11", or "" when the paper has none
+};
+
+// Structural (inertial) generalized mass, nondimensionalised by I_b:
+//   I = int_0^1 mbar^outer_mass * prod(outer)(x) * J(x) dx0bar,
+//   J(x) = 1                                              (inner == None)
+//        = int_x^1 mbar^inner_mass * prod(inner)(x1) dx1   (inner == Tail: tension integrals)
+//        = int_0^x mbar^inner_mass * prod(inner)(x1) dx1   (inner == Head: foreshortening u)
+// mbar = m l^3 / I_b (= 3 for a uniform blade with e1 = 0).
+enum class Inner : int { None = 0, Tail = 1, Head = 2 };
+
+struct StructuralIntegral {
+  const char* name;   // canonical, e.g. "int eta1' eta1' [int_x^1 m gamma1]"
+  const char* ident;  // C identifier form
+  int outer_mass;
+  int n_outer;
+  FactorRef outer[4];
+  Inner inner;
+  int inner_mass;
+  int n_inner;
+  FactorRef inner_factors[4];
+  const char* paper_name;  // Appendix B name ("B3_11", "P_111", "M_F1", ...) or ""
+};
+
+// Inputs of the generated coefficient functions.  Arrays are row-major.
+struct CoefficientInputs {
+  double lock;      // gamma, Lock number (normal flow)
+  double lr;        // l/R
+  double theta;     // collective pitch [rad]
+  double inflow;    // lambda, positive down, by Omega R
+  double precone;   // beta_P [rad]
+  double droop;     // beta_D [rad]
+  double cdo_a;     // C_Do / a
+  double mu;        // advance ratio
+  const double* g0;            // [M] hover static flap amplitudes
+  const double* h0;            // [N] hover static lag amplitudes
+  const double* omega_flap;    // [M] rotating flap frequencies by Omega
+  const double* omega_lag;     // [N] rotating lag frequencies by Omega
+  const double* damping_flap;  // [M] eta_SF, viscous structural damping ratio
+  const double* damping_lag;   // [N] eta_SL
+  const double* es_flap;       // [M*M] Ebar^s_ik   (Appendix E, eq E.5)
+  const double* es_lag;        // [N*N] Ebar^s_im   (eq E.7)
+  const double* ecs_flap_lag;  // [M*N] Ebar^cs_im  (eq E.6), flap row i, lag column m
+  const double* ecs_lag_flap;  // [N*M] Ebar^cs_ik  (eq E.8), lag row i, flap column k
+  const double* aero;          // [n_aero] values of the AeroIntegral list, for one flow region
+  const double* structural;    // [n_structural] values of the StructuralIntegral list
+};
+
+// Outputs.  n = M + N equations, 2n states, H harmonics.
+// Harmonic index h: 0 -> 1, 2k-1 -> cos(k psi), 2k -> sin(k psi).
+// The equations of motion are  mass * q'' = sum_h phi_h(psi) (force[h] * y + forcing[h]).
+struct CoefficientOutputs {
+  double* mass;     // [n*n]     generalized mass matrix (inertia of the modal accelerations)
+  double* force;    // [H*n*2n]  linear coefficient of the state y in the generalized force
+  double* forcing;  // [H*n]     state-independent part (evaluated at g0, h0; includes hover load)
+};
+
+// Hover static equilibrium (eqs 2.27-2.32): S * q0 = c, q0 = [g0_1..g0_M, h0_1..h0_N].
+struct EquilibriumOutputs {
+  double* S;  // [n*n]
+  double* c;  // [n]
+};
+
+struct ModelDescriptor {
+  const char* name;         // model name, e.g. "paper"
+  const char* spec_file;    // spec file name, e.g. "paper.toml"
+  const char* spec_text;    // the spec as parsed (canonical TOML)
+  const char* summary;      // one line: orders, term classes, modes
+  int flap_modes;           // M
+  int lag_modes;            // N
+  int n_harmonics;          // H
+  int n_aero;
+  const AeroIntegral* aero;
+  int n_structural;
+  const StructuralIntegral* structural;
+  void (*coefficients)(const CoefficientInputs&, const CoefficientOutputs&);
+  void (*equilibrium)(const CoefficientInputs&, const EquilibriumOutputs&);
+};
+
+}  // namespace flaplag::model
