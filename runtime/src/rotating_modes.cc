@@ -141,7 +141,7 @@ double solve_kappa(const Galerkin& gal, BendingDirection dir, double omega) {
         std::string("first rotating ") + direction_name(dir) +
             " frequency must exceed the k -> 0 (centrifugal stiffening only) limit " +
             format_value(std::sqrt(std::max(lambda0, 0.0))) + " of the " + std::to_string(gal.n) +
-            "-function cantilever basis");
+            "-function cantilever basis (a larger n_basis lowers the limit)");
   }
   double lo = 0.0;
   double hi = std::numeric_limits<double>::infinity();
