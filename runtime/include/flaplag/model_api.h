@@ -15,6 +15,8 @@
 // Equation ordering (rows of the generalized force): flap 1..M, then lag 1..N.
 #pragma once
 
+#include <vector>
+
 namespace flaplag::model {
 
 // Spanwise functions that can appear in an integrand.  Derivatives are d/d(x0bar).
@@ -119,5 +121,8 @@ struct ModelDescriptor {
   void (*coefficients)(const CoefficientInputs&, const CoefficientOutputs&);
   void (*equilibrium)(const CoefficientInputs&, const EquilibriumOutputs&);
 };
+
+// All models compiled into this build (generated registry), in spec-file order.
+std::vector<const ModelDescriptor*> registered_models();
 
 }  // namespace flaplag::model

@@ -1,0 +1,115 @@
+// flaplag-derive — symbolic derivation of the linearized flap-lag equations (NASA CR-132431).
+//
+// Pipeline: displacement field (2.13-2.15) and velocities (2.22-2.23) -> loads L_z, L_y
+// (2.20-2.21) truncated by eps_D order after every product -> Galerkin projection (2.18-2.19)
+// -> structural/inertial residuals from the loads P_x, P_y, P_z (2.4-2.6) with tension by parts
+// -> linearization about the hover equilibrium (2.26) -> harmonic form in psi.
+//
+// The result is a list of terms per output slot, each a rational factor times powers of named
+// scalars times one spanwise integral.  Terms carry their eps order, origin and radial-flow flag
+// for the audit report.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "flaplag_derive/spec.h"
+
+namespace flaplag::derive {
+
+enum class FactorKind { Eta = 0, EtaPrime = 1, Gamma = 2, GammaPrime = 3, X0 = 4, Arm = 5 };
+
+struct ShapeFactor {
+  FactorKind kind;
+  int mode;  // 0-based
+  bool operator<(const ShapeFactor& o) const {
+    return kind != o.kind ? kind < o.kind : mode < o.mode;
+  }
+  bool operator==(const ShapeFactor& o) const { return kind == o.kind && mode == o.mode; }
+};
+
+struct AeroIntegralKey {
+  int x_power = 0;
+  std::vector<ShapeFactor> factors;  // sorted
+  bool operator<(const AeroIntegralKey& o) const {
+    return x_power != o.x_power ? x_power < o.x_power : factors < o.factors;
+  }
+};
+
+enum class InnerKind { None = 0, Tail = 1, Head = 2 };
+
+struct StructuralIntegralKey {
+  int outer_mass = 0;
+  std::vector<ShapeFactor> outer;  // sorted
+  InnerKind inner = InnerKind::None;
+  int inner_mass = 0;
+  std::vector<ShapeFactor> inner_factors;  // sorted
+  bool operator<(const StructuralIntegralKey& o) const;
+};
+
+struct IntegralInfo {
+  std::string name;        // human: "x^2 eta1 eta1'"
+  std::string ident;       // C identifier
+  std::string paper_name;  // Appendix B name(s) or ""
+};
+
+// Named scalar inputs of the generated functions.
+struct ScalarInfo {
+  std::string name;   // e.g. "theta", "g0_1", "es_flap_1_1"
+  std::string cexpr;  // e.g. "in.theta", "in.g0[0]"
+  GiNaC::symbol sym;
+};
+
+enum class IntegralRef { None, Aero, Structural };
+
+struct Term {
+  GiNaC::numeric coef;                       // exact rational
+  std::vector<std::pair<int, int>> scalars;  // (scalar index, power), sorted by index
+  IntegralRef ref = IntegralRef::None;
+  int integral = -1;  // index into aero or structural list
+  int eps_order = 0;
+  std::string origin;  // load product or structural mechanism
+  bool radial_flow = false;
+  std::string paper_name;  // paper coefficient for this term (role-aware)
+};
+
+struct Slot {
+  std::vector<Term> terms;
+  GiNaC::ex value;  // sum of the terms, in scalar symbols and integral symbols
+};
+
+struct DerivedModel {
+  OrderingSpec spec;
+  int M = 1, N = 1, H = 1;  // modes, harmonics
+  int n() const { return M + N; }
+  std::vector<ScalarInfo> scalars;
+  std::vector<AeroIntegralKey> aero_keys;
+  std::vector<IntegralInfo> aero;
+  std::vector<GiNaC::symbol> aero_syms;
+  std::vector<StructuralIntegralKey> structural_keys;
+  std::vector<IntegralInfo> structural;
+  std::vector<GiNaC::symbol> structural_syms;
+
+  std::vector<Slot> mass;     // [n*n]
+  std::vector<Slot> force;    // [H*n*2n]
+  std::vector<Slot> forcing;  // [H*n]
+  std::vector<Slot> S;        // [n*n]
+  std::vector<Slot> c;        // [n]
+  // Centrifugal stiffness terms replaced by the modal stiffness M w^2 (orthogonality, eqs A.2,
+  // A.4), with the equation each belongs to and the coordinate it multiplies.
+  std::vector<Term> absorbed;
+  std::vector<int> absorbed_equation;
+  std::vector<int> absorbed_state;
+
+  std::string state_name(int col) const;     // "dg1'", "dg1", "dh1'", "dh1"
+  std::string equation_name(int row) const;  // "flap 1", "lag 1"
+  static std::string harmonic_name(int h);   // "1", "cos psi", "sin psi", "cos 2psi", ...
+};
+
+// Derive the model for a spec.  Deterministic.
+DerivedModel derive_model(const OrderingSpec& spec);
+
+}  // namespace flaplag::derive
