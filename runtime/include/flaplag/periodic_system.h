@@ -29,6 +29,11 @@ struct PeriodicSystem {
   double sector_begin = 0.0;  // radians, 0 <= begin < end <= 2*pi
   double sector_end = 0.0;
 
+  // Throws InvalidInput unless n >= 1, every harmonic is n x n (f: n or absent) and finite, the
+  // normal (and, with a sector, the reversed) set has at least the constant harmonic, and
+  // 0 <= sector_begin < sector_end <= 2 pi.
+  void validate() const;
+
   // Region at psi (psi reduced to [0, 2 pi)).
   bool in_sector(double psi) const;
   const HarmonicSet& region(double psi) const;

@@ -1,0 +1,186 @@
+// PeriodicSystem: harmonic basis, exact interval means (eqs 4.2-4.5), regions, trace integral.
+#include "flaplag/periodic_system.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "flaplag/errors.h"
+#include "test_util.h"
+
+namespace flaplag {
+namespace {
+
+using testing::AbsClose;
+using testing::RelClose;
+
+constexpr double kPi = 3.141592653589793238462643383280;
+constexpr double kTwoPi = 2.0 * kPi;
+
+// Composite Gauss-Legendre (5 points on each of `panels` panels): independent of the closed
+// forms under test, and exact to rounding for the smooth integrands used here.
+double quad(const std::function<double(double)>& g, double a, double b, int panels = 50) {
+  static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                              0.9061798459386640};
+  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                              0.4786286704993665, 0.2369268850561891};
+  const double hp = (b - a) / panels;
+  double s = 0.0;
+  for (int p = 0; p < panels; ++p) {
+    const double c = a + (p + 0.5) * hp;
+    for (int i = 0; i < 5; ++i) s += w[i] * g(c + 0.5 * hp * x[i]);
+  }
+  return s * 0.5 * hp;
+}
+
+// Deterministic O(1) matrix with entries depending on a seed.
+Eigen::MatrixXd pattern(int n, int seed) {
+  Eigen::MatrixXd m(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) m(i, j) = std::sin(1.7 * seed + 2.3 * i + 0.9 * j + 0.1 * i * j);
+  return m;
+}
+
+PeriodicSystem sector_system(int n, int harmonics) {
+  PeriodicSystem s;
+  s.n = n;
+  for (int h = 0; h < harmonics; ++h) {
+    s.normal.A.push_back(pattern(n, h) / (1.0 + h));
+    s.reversed.A.push_back(pattern(n, 100 + h) / (1.0 + h));
+    s.normal.f.push_back(Eigen::VectorXd::Constant(n, 0.5 + h));
+    s.reversed.f.push_back(Eigen::VectorXd::Constant(n, -1.0 - h));
+  }
+  s.has_sector = true;
+  s.sector_begin = 1.25 * kPi;
+  s.sector_end = 1.75 * kPi;
+  return s;
+}
+
+TEST(HarmonicBasis, IndexConvention) {
+  const double psi = 0.731;
+  EXPECT_EQ(1.0, harmonic_basis(0, psi));
+  for (int k = 1; k <= 4; ++k) {
+    EXPECT_TRUE(RelClose(std::cos(k * psi), harmonic_basis(2 * k - 1, psi), 1e-15));
+    EXPECT_TRUE(RelClose(std::sin(k * psi), harmonic_basis(2 * k, psi), 1e-15));
+  }
+  EXPECT_THROW(harmonic_basis(-1, psi), InvalidInput);
+}
+
+TEST(HarmonicMean, MatchesQuadratureForAllHarmonics) {
+  const double intervals[][2] = {
+      {0.0, kTwoPi / 50}, {0.3, 1.9}, {4.0, 6.2}, {1.0, 1.0 + 0x1p-20}};  // exact length
+  for (const auto& iv : intervals) {
+    for (int h = 0; h <= 10; ++h) {
+      const double ref =
+          quad([&](double p) { return harmonic_basis(h, p); }, iv[0], iv[1]) / (iv[1] - iv[0]);
+      EXPECT_TRUE(AbsClose(ref, harmonic_mean(h, iv[0], iv[1]), 1e-14))
+          << "h = " << h << " on [" << iv[0] << ", " << iv[1] << "]";
+    }
+  }
+}
+
+TEST(HarmonicMean, PaperFormulas42To45) {
+  // eqs 4.2-4.5 as printed: sin/cos(psi_avg) (2/D) sin(D/2), sin/cos(2 psi_avg) (1/D) sin D.
+  const double a = 0.4, b = 0.4 + kTwoPi / 50, m = 0.5 * (a + b), D = b - a;
+  EXPECT_TRUE(RelClose(std::sin(m) * 2.0 / D * std::sin(D / 2), harmonic_mean(2, a, b), 1e-14));
+  EXPECT_TRUE(RelClose(std::cos(m) * 2.0 / D * std::sin(D / 2), harmonic_mean(1, a, b), 1e-14));
+  EXPECT_TRUE(RelClose(std::sin(2 * m) / D * std::sin(D), harmonic_mean(4, a, b), 1e-14));
+  EXPECT_TRUE(RelClose(std::cos(2 * m) / D * std::sin(D), harmonic_mean(3, a, b), 1e-14));
+  // Degenerate interval: the point value.
+  EXPECT_TRUE(RelClose(std::cos(3 * a), harmonic_mean(5, a, a), 1e-15));
+}
+
+TEST(PeriodicSystem, RegionsAndEdges) {
+  const PeriodicSystem s = sector_system(2, 3);
+  EXPECT_FALSE(s.in_sector(0.0));
+  EXPECT_TRUE(s.in_sector(s.sector_begin));  // [begin, end)
+  EXPECT_FALSE(s.in_sector(s.sector_end));
+  EXPECT_TRUE(s.in_sector(1.5 * kPi));
+  EXPECT_TRUE(s.in_sector(1.5 * kPi - kTwoPi));  // reduced to [0, 2 pi)
+  EXPECT_TRUE(s.in_sector(1.5 * kPi + 3 * kTwoPi));
+  EXPECT_EQ(&s.reversed, &s.region(1.5 * kPi));
+  EXPECT_EQ(&s.normal, &s.region(0.5 * kPi));
+  const std::vector<double> bp = s.breakpoints();
+  ASSERT_EQ(2u, bp.size());
+  EXPECT_EQ(s.sector_begin, bp[0]);
+  EXPECT_EQ(s.sector_end, bp[1]);
+
+  PeriodicSystem t = s;
+  t.sector_begin = 0.0;  // an edge at 0 or 2 pi is no breakpoint
+  t.sector_end = kTwoPi;
+  EXPECT_TRUE(t.breakpoints().empty());
+  t.has_sector = false;
+  EXPECT_FALSE(t.in_sector(1.5 * kPi));
+}
+
+TEST(PeriodicSystem, EvaluatesHarmonicSums) {
+  const PeriodicSystem s = sector_system(3, 5);
+  for (double psi : {0.2, 2.0, 1.5 * kPi}) {
+    const HarmonicSet& set = s.region(psi);
+    Eigen::MatrixXd ref = Eigen::MatrixXd::Zero(3, 3);
+    Eigen::VectorXd fref = Eigen::VectorXd::Zero(3);
+    for (int h = 0; h < 5; ++h) {
+      ref += harmonic_basis(h, psi) * set.A[h];
+      fref += harmonic_basis(h, psi) * set.f[h];
+    }
+    EXPECT_LT((s.A(psi) - ref).norm(), 1e-14 * ref.norm());
+    EXPECT_LT((s.f(psi) - fref).norm(), 1e-14 * fref.norm());
+  }
+}
+
+TEST(PeriodicSystem, IntervalMeanMatchesQuadrature) {
+  const PeriodicSystem s = sector_system(2, 7);
+  const double intervals[][2] = {{0.1, 0.9}, {4.0, 5.4}, {5.6, kTwoPi}};  // normal, sector, normal
+  for (const auto& iv : intervals) {
+    const Eigen::MatrixXd m = s.A_mean(iv[0], iv[1]);
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) {
+        const double ref =
+            quad([&](double p) { return s.A(p)(i, j); }, iv[0], iv[1]) / (iv[1] - iv[0]);
+        EXPECT_TRUE(AbsClose(ref, m(i, j), 1e-13));
+      }
+  }
+}
+
+TEST(PeriodicSystem, TraceIntegralWithSector) {
+  const PeriodicSystem s = sector_system(3, 9);
+  // Quadrature on the three smooth pieces.
+  auto tr = [&](double p) { return s.A(p).trace(); };
+  const double ref = quad(tr, 0.0, s.sector_begin) + quad(tr, s.sector_begin, s.sector_end) +
+                     quad(tr, s.sector_end, kTwoPi);
+  EXPECT_TRUE(RelClose(ref, s.trace_integral(), 1e-13, 1.0));
+
+  PeriodicSystem t = s;
+  t.has_sector = false;
+  EXPECT_TRUE(RelClose(kTwoPi * s.normal.A[0].trace(), t.trace_integral(), 1e-15));
+}
+
+TEST(PeriodicSystem, ValidateRejectsMalformedSystems) {
+  PeriodicSystem s = sector_system(2, 3);
+  EXPECT_NO_THROW(s.validate());
+  PeriodicSystem bad = s;
+  bad.n = 0;
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.normal.A[1] = Eigen::MatrixXd::Zero(3, 3);
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.reversed.A.clear();
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.sector_end = bad.sector_begin;
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.sector_end = 7.0;
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.normal.A[0](0, 0) = std::nan("");
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.normal.f[0] = Eigen::VectorXd::Zero(5);
+  EXPECT_THROW(bad.validate(), InvalidInput);
+}
+
+}  // namespace
+}  // namespace flaplag

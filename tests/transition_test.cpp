@@ -1,0 +1,294 @@
+// Transition matrix Phi(2 pi, 0): RK4, Hsu (eqs 3.21-3.28) and Magnus4 against closed forms
+// and against each other; observed orders of convergence; sector-edge splitting.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "flaplag/errors.h"
+#include "flaplag/floquet.h"
+#include "test_util.h"
+
+namespace flaplag {
+namespace {
+
+using testing::RelClose;
+
+constexpr double kPi = 3.141592653589793238462643383280;
+constexpr double kTwoPi = 2.0 * kPi;
+
+double max_abs(const Eigen::MatrixXd& m) { return m.cwiseAbs().maxCoeff(); }
+double rel_err(const Eigen::MatrixXd& ref, const Eigen::MatrixXd& x) {
+  return max_abs(x - ref) / max_abs(ref);
+}
+
+PeriodicSystem constant_system(const Eigen::MatrixXd& A) {
+  PeriodicSystem s;
+  s.n = static_cast<int>(A.rows());
+  s.normal.A = {A};
+  return s;
+}
+
+// A rotor-like hover matrix, y = [g', g, h', h]: lightly damped flap (omega ~ 1.17) and lag
+// (omega ~ 1.28) oscillators with weak coupling.
+Eigen::MatrixXd rotor_a0() {
+  Eigen::MatrixXd A(4, 4);
+  A << -0.3, -1.3914, -0.1, -0.3,  //
+      1.0, 0.0, 0.0, 0.0,          //
+      0.05, 0.2, -0.04, -1.6388,   //
+      0.0, 0.0, 1.0, 0.0;
+  return A;
+}
+
+// The Taylor polynomial of degree J, sum_{j<=J} X^j / j!, written out independently.
+Eigen::MatrixXd taylor(const Eigen::MatrixXd& X, int J) {
+  Eigen::MatrixXd E = Eigen::MatrixXd::Identity(X.rows(), X.cols()), term = E;
+  for (int j = 1; j <= J; ++j) {
+    term = term * X / j;
+    E += term;
+  }
+  return E;
+}
+
+TEST(Transition, ConstantMatrixAllMethods) {
+  const Eigen::MatrixXd A = rotor_a0();
+  const PeriodicSystem s = constant_system(A);
+  const Eigen::MatrixXd exact = (kTwoPi * A).exp();
+
+  // Magnus is exact for constant A (Omega = h A), Hsu with enough Taylor terms as well.
+  EXPECT_LT(rel_err(exact, transition_matrix_magnus4(s, 7).phi), 1e-13);
+  EXPECT_LT(rel_err(exact, transition_matrix_hsu(s, 50, 20)), 1e-13);
+  // For constant A one RK4 step is the degree-4 Taylor polynomial of hA, and so is one Hsu
+  // interval with J = 4: both equal T4(2 pi A / N)^N.
+  Eigen::MatrixXd p = Eigen::MatrixXd::Identity(4, 4);
+  const Eigen::MatrixXd t4 = taylor(kTwoPi / 50 * A, 4);
+  for (int i = 0; i < 50; ++i) p = t4 * p;
+  EXPECT_LT(rel_err(p, transition_matrix_rk4(s, 50)), 1e-13);
+  EXPECT_LT(rel_err(p, transition_matrix_hsu(s, 50, 4)), 1e-13);
+  // ... which converges to the exponential at fourth order.
+  const double e50 = rel_err(exact, transition_matrix_rk4(s, 50));
+  const double e100 = rel_err(exact, transition_matrix_rk4(s, 100));
+  EXPECT_GT(std::log2(e50 / e100), 3.7);
+  EXPECT_LT(std::log2(e50 / e100), 4.3);
+  // Taylor orders J = 1, 2, 3 follow the same closed form.
+  for (int J = 1; J <= 3; ++J) {
+    Eigen::MatrixXd q = Eigen::MatrixXd::Identity(4, 4);
+    const Eigen::MatrixXd tj = taylor(kTwoPi / 40 * A, J);
+    for (int i = 0; i < 40; ++i) q = tj * q;
+    EXPECT_LT(rel_err(q, transition_matrix_hsu(s, 40, J)), 1e-13) << "J = " << J;
+  }
+}
+
+// y' = (a + b cos psi + c sin 2 psi + d cos 4 psi) y per component: Phi = exp(2 pi a).
+// Diagonal systems commute, so Hsu with exact interval means and converged Taylor series is
+// exact for any K: prod exp(Delta_k C_k) = exp(int A).  Dimensions 1, 2, 3, 4 exercise the
+// generic and the fixed-size kernels.
+TEST(Transition, DiagonalPeriodicClosedForm) {
+  for (int n : {1, 2, 3, 4}) {
+    PeriodicSystem s;
+    s.n = n;
+    s.normal.A.assign(9, Eigen::MatrixXd::Zero(n, n));
+    Eigen::MatrixXd exact = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < n; ++i) {
+      const double a = -0.1 * (i + 1);
+      s.normal.A[0](i, i) = a;
+      s.normal.A[1](i, i) = 0.8 + 0.1 * i;  // cos psi
+      s.normal.A[4](i, i) = -0.6;           // sin 2 psi
+      s.normal.A[7](i, i) = 0.3;            // cos 4 psi
+      exact(i, i) = std::exp(kTwoPi * a);
+    }
+    EXPECT_LT(rel_err(exact, transition_matrix_hsu(s, 7, 30)), 1e-13) << "n = " << n;
+    EXPECT_LT(rel_err(exact, transition_matrix_magnus4(s, 50).phi), 1e-11) << "n = " << n;
+    const double r1 = rel_err(exact, transition_matrix_rk4(s, 200));
+    const double r2 = rel_err(exact, transition_matrix_rk4(s, 400));
+    EXPECT_GT(std::log2(r1 / r2), 3.5) << "n = " << n;
+    EXPECT_LT(std::log2(r1 / r2), 4.5) << "n = " << n;
+  }
+}
+
+// Scalar sector-switched system: a + b cos psi outside [s0, s1), a' + c sin 3 psi inside.
+// Phi = exp(int A) with the integral split at the edges.  Without splitting the steps at the
+// edges every method would drop to first order.
+PeriodicSystem switched_scalar(double s0, double s1) {
+  PeriodicSystem s;
+  s.n = 1;
+  s.normal.A = {Eigen::MatrixXd::Constant(1, 1, -0.05), Eigen::MatrixXd::Constant(1, 1, 0.7)};
+  s.reversed.A.assign(7, Eigen::MatrixXd::Zero(1, 1));
+  s.reversed.A[0](0, 0) = 0.4;
+  s.reversed.A[6](0, 0) = 1.1;  // sin 3 psi
+  s.has_sector = true;
+  s.sector_begin = s0;
+  s.sector_end = s1;
+  return s;
+}
+
+double switched_exact(double s0, double s1) {
+  auto normal = [](double a, double b) {
+    return -0.05 * (b - a) + 0.7 * (std::sin(b) - std::sin(a));
+  };
+  const double inside = 0.4 * (s1 - s0) - 1.1 / 3.0 * (std::cos(3 * s1) - std::cos(3 * s0));
+  return std::exp(normal(0.0, s0) + inside + normal(s1, kTwoPi));
+}
+
+TEST(Transition, SectorEdgesAreSplit) {
+  // Edges off the grid (0.31 and 0.77 of a step), and edges on grid points.
+  const double step = kTwoPi / 50;
+  for (auto [s0, s1] : {std::pair{37.31 * step, 43.77 * step}, std::pair{30 * step, 45 * step}}) {
+    const PeriodicSystem s = switched_scalar(s0, s1);
+    const double exact = switched_exact(s0, s1);
+    EXPECT_TRUE(RelClose(exact, transition_matrix_hsu(s, 50, 30)(0, 0), 1e-13));
+    // Magnus: the Richardson estimate bounds the error, and the extrapolated result converges
+    // at sixth order (the 4th-order method is symmetric: errors in h^4, h^6).
+    const TransitionResult m50 = transition_matrix_magnus4(s, 50);
+    const TransitionResult m100 = transition_matrix_magnus4(s, 100);
+    EXPECT_LE(std::abs(m50.phi(0, 0) - exact), m50.error_estimate);
+    EXPECT_LE(std::abs(m100.phi(0, 0) - exact), m100.error_estimate);
+    EXPECT_GT(std::log2(std::abs(m50.phi(0, 0) - exact) / std::abs(m100.phi(0, 0) - exact)), 5.0);
+    const double e50 = std::abs(transition_matrix_rk4(s, 50)(0, 0) - exact);
+    const double e100 = std::abs(transition_matrix_rk4(s, 100)(0, 0) - exact);
+    EXPECT_GT(std::log2(e50 / e100), 3.5) << "RK4 order with the sector";
+  }
+}
+
+// Damped Mathieu equation y'' + 2 xi y' + (delta + eps cos psi) y = 0, state [y', y].
+PeriodicSystem mathieu(double delta, double eps, double xi) {
+  PeriodicSystem s;
+  s.n = 2;
+  Eigen::MatrixXd a0(2, 2), a1 = Eigen::MatrixXd::Zero(2, 2);
+  a0 << -2 * xi, -delta, 1, 0;
+  a1(0, 1) = -eps;
+  s.normal.A = {a0, a1};
+  return s;
+}
+
+double max_zeta(const Eigen::MatrixXd& phi, double tr) {
+  double z = -1e300;
+  for (const FloquetExponent& e : floquet_exponents(phi, tr).exponents) z = std::max(z, e.zeta);
+  return z;
+}
+
+// Inside the first instability tongue (delta near 1/4) the multipliers are real and distinct,
+// so zeta_max is a smooth function of Phi and its error shows the order of each method.
+TEST(Transition, MathieuMethodsAgreeAndConverge) {
+  const PeriodicSystem s = mathieu(0.26, 0.4, 0.02);
+  const double tr = s.trace_integral();
+  const TransitionResult ref = transition_matrix_magnus4(s, 800);
+  const double z_ref = max_zeta(ref.phi, tr);
+  ASSERT_GT(z_ref, 0.0);  // really inside the tongue
+
+  double hsu[3], rk4[3];
+  const int K[3] = {50, 100, 200};
+  for (int i = 0; i < 3; ++i) {
+    hsu[i] = std::abs(max_zeta(transition_matrix_hsu(s, K[i], 4), tr) - z_ref);
+    rk4[i] = std::abs(max_zeta(transition_matrix_rk4(s, K[i]), tr) - z_ref);
+  }
+  // eq 3.29: Hsu is second order in Delta (J >= 2).
+  for (int i = 0; i < 2; ++i) {
+    const double order = std::log2(hsu[i] / hsu[i + 1]);
+    EXPECT_GT(order, 1.7) << "Hsu K = " << K[i];
+    EXPECT_LT(order, 2.3) << "Hsu K = " << K[i];
+    const double order4 = std::log2(rk4[i] / rk4[i + 1]);
+    EXPECT_GT(order4, 3.5) << "RK4 N = " << K[i];
+    EXPECT_LT(order4, 4.5) << "RK4 N = " << K[i];
+  }
+  // All methods agree with the reference to their accuracy at 200 steps.
+  EXPECT_TRUE(RelClose(z_ref, max_zeta(transition_matrix_hsu(s, 200, 4), tr), 1e-3));
+  EXPECT_TRUE(RelClose(z_ref, max_zeta(transition_matrix_rk4(s, 200), tr), 1e-7));
+  EXPECT_TRUE(RelClose(z_ref, max_zeta(transition_matrix_magnus4(s, 50).phi, tr), 1e-9));
+}
+
+TEST(Transition, MagnusOrderAndErrorEstimate) {
+  const PeriodicSystem s = mathieu(1.3, 0.9, 0.05);
+  const Eigen::MatrixXd ref = transition_matrix_magnus4(s, 1600).phi;
+  const TransitionResult m25 = transition_matrix_magnus4(s, 25);
+  const TransitionResult m50 = transition_matrix_magnus4(s, 50);
+  // The Richardson estimate measures the 4th-order Magnus error: it falls by ~2^4 per halving.
+  const double order = std::log2(m25.error_estimate / m50.error_estimate);
+  EXPECT_GT(order, 3.5);
+  EXPECT_LT(order, 4.5);
+  // ... and bounds the true error of the returned (extrapolated) matrix.
+  for (const TransitionResult* m : {&m25, &m50}) {
+    const double err = max_abs(m->phi - ref);
+    EXPECT_LE(err, m->error_estimate);
+    EXPECT_GT(m->error_estimate, 0.0);
+  }
+}
+
+// A rotor-like 4x4 system: harmonics to 4/rev, a reversed-flow sector at [5 pi/4, 7 pi/4),
+// entries of O(1), the largest (first harmonic of the flap stiffness) about 4.
+PeriodicSystem rotor_like() {
+  PeriodicSystem s;
+  s.n = 4;
+  auto fill = [](HarmonicSet& set, double sign) {
+    set.A.assign(9, Eigen::MatrixXd::Zero(4, 4));
+    set.A[0] = rotor_a0();
+    for (int h = 1; h < 9; ++h) {
+      const double w = 1.0 / ((h + 1) / 2);
+      set.A[h](0, 0) = sign * 0.4 * w * std::cos(h);
+      set.A[h](0, 1) = 1.2 * w * std::sin(1.3 * h);
+      set.A[h](0, 3) = 0.5 * w * std::cos(0.7 * h);
+      set.A[h](2, 0) = 0.2 * w * std::sin(2.1 * h);
+      set.A[h](2, 1) = sign * 0.8 * w * std::cos(1.9 * h);
+      set.A[h](2, 2) = 0.1 * w * std::sin(0.4 * h);
+      set.A[h](2, 3) = 0.5 * w * std::cos(2.9 * h);
+    }
+    set.A[1](0, 1) = 3.0;
+  };
+  fill(s.normal, 1.0);
+  fill(s.reversed, -1.0);
+  s.has_sector = true;
+  s.sector_begin = 1.25 * kPi;
+  s.sector_end = 1.75 * kPi;
+  return s;
+}
+
+TEST(Transition, RotorLikeReferenceAccuracy) {
+  const PeriodicSystem s = rotor_like();
+  const Eigen::MatrixXd ref = transition_matrix_magnus4(s, 1000).phi;
+  const TransitionResult m = transition_matrix_magnus4(s, 50);
+  // The documented accuracy of the reference method at 50 steps (transition.cc).
+  EXPECT_LT(rel_err(ref, m.phi), 1e-8);
+  EXPECT_LE(max_abs(m.phi - ref), m.error_estimate);
+  // Liouville: det Phi = exp(int tr A) holds to the accuracy of the method.
+  EXPECT_LT(floquet_exponents(m.phi, s.trace_integral()).liouville_residual, 1e-9);
+  // The paper's methods converge to it at their orders despite the jumps at the sector edges.
+  const double h1 = rel_err(ref, transition_matrix_hsu(s, 100, 4));
+  const double h2 = rel_err(ref, transition_matrix_hsu(s, 200, 4));
+  EXPECT_GT(std::log2(h1 / h2), 1.7);
+  EXPECT_LT(std::log2(h1 / h2), 2.3);
+  const double r1 = rel_err(ref, transition_matrix_rk4(s, 200));
+  const double r2 = rel_err(ref, transition_matrix_rk4(s, 400));
+  EXPECT_GT(std::log2(r1 / r2), 3.5);
+  EXPECT_LT(std::log2(r1 / r2), 4.5);
+}
+
+TEST(Transition, DispatchAndNames) {
+  const PeriodicSystem s = mathieu(1.3, 0.9, 0.05);
+  TransitionOptions o;
+  o.method = TransitionMethod::RK4;
+  o.steps = 30;
+  EXPECT_EQ(transition_matrix_rk4(s, 30), transition_matrix(s, o).phi);
+  EXPECT_EQ(0.0, transition_matrix(s, o).error_estimate);
+  o.method = TransitionMethod::Hsu;
+  o.terms = 3;
+  EXPECT_EQ(transition_matrix_hsu(s, 30, 3), transition_matrix(s, o).phi);
+  o.method = TransitionMethod::Magnus4;
+  EXPECT_EQ(transition_matrix_magnus4(s, 30).phi, transition_matrix(s, o).phi);
+  EXPECT_STREQ("rk4", method_name(TransitionMethod::RK4));
+  EXPECT_STREQ("hsu", method_name(TransitionMethod::Hsu));
+  EXPECT_STREQ("magnus", method_name(TransitionMethod::Magnus4));
+}
+
+TEST(Transition, InvalidArgumentsThrow) {
+  const PeriodicSystem s = mathieu(1.3, 0.9, 0.05);
+  EXPECT_THROW(transition_matrix_rk4(s, 0), InvalidInput);
+  EXPECT_THROW(transition_matrix_hsu(s, 0, 4), InvalidInput);
+  EXPECT_THROW(transition_matrix_hsu(s, 50, 0), InvalidInput);
+  EXPECT_THROW(transition_matrix_magnus4(s, -1), InvalidInput);
+  PeriodicSystem bad = s;
+  bad.normal.A[1] = Eigen::MatrixXd::Zero(3, 3);
+  EXPECT_THROW(transition_matrix_hsu(bad, 50, 4), InvalidInput);
+}
+
+}  // namespace
+}  // namespace flaplag
