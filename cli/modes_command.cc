@@ -1,0 +1,145 @@
+// `flaplag modes`: the Fig 9 relation between first rotating and nonrotating frequencies, and
+// the exact rotating modes of one blade (frequencies, stiffnesses, shapes, Rayleigh checks).
+#include <algorithm>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "flaplag/rotating_modes.h"
+#include "output.h"
+
+namespace flaplag::cli {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+std::string index_name(const char* base, std::size_t k) { return base + std::to_string(k + 1); }
+
+}  // namespace
+
+std::string run_modes(const Request& r) {
+  const RotorParameters& p = r.params;
+  ExactModeOptions opt;
+  opt.n_basis = r.basis;
+  opt.flap_modes = r.flap_modes;
+  opt.lag_modes = r.lag_modes;
+  opt.e1_over_l = p.e1 / p.length_ratio;
+  opt.paper_1974_shapes = p.paper_1974_shapes;
+
+  // fig9_table spaces n points evenly on [lo, hi]: hi is the last multiple of STEP in the range
+  // (the command line guarantees at least two points).
+  const double hi9 = r.fig9_from + (r.fig9_points - 1) * r.fig9_step;
+  const auto flap9 = fig9_table(BendingDirection::Flap, r.fig9_from, hi9, r.fig9_points, opt);
+  const auto lag9 = fig9_table(BendingDirection::Lag, r.fig9_from, hi9, r.fig9_points, opt);
+
+  const ExactModes ex = exact_rotating_modes(p.omega_flap, p.omega_lag, opt);
+  const ModeSet& ms = ex.modes;
+  std::vector<double> rayleigh_flap, rayleigh_lag;
+  for (const auto& s : ms.flap) {
+    rayleigh_flap.push_back(
+        rayleigh_frequency(BendingDirection::Flap, *s, ms.stiffness_flap, opt.e1_over_l, opt.mbar));
+  }
+  for (const auto& s : ms.lag) {
+    rayleigh_lag.push_back(
+        rayleigh_frequency(BendingDirection::Lag, *s, ms.stiffness_lag, opt.e1_over_l, opt.mbar));
+  }
+  std::vector<double> x0(static_cast<std::size_t>(r.shape_points));
+  for (std::size_t i = 0; i < x0.size(); ++i) {
+    x0[i] = static_cast<double>(i) / static_cast<double>(x0.size() - 1);
+  }
+
+  if (r.json) {
+    Json j;
+    j["command"] = "modes";
+    j["basis"] = r.basis;
+    j["e1_over_l"] = opt.e1_over_l;
+    j["paper_1974_shapes"] = opt.paper_1974_shapes;
+    Json fig9 = Json::array();
+    for (std::size_t i = 0; i < flap9.size(); ++i) {
+      fig9.push_back(Json{{"nonrotating", flap9[i].nonrotating},
+                          {"flap_rotating", flap9[i].rotating},
+                          {"lag_rotating", i < lag9.size() ? lag9[i].rotating : 0.0}});
+    }
+    j["fig9"] = fig9;
+    auto direction = [&](const char* base, double given, double nonrot, double k,
+                         const std::vector<double>& all, const std::vector<double>& returned,
+                         const std::vector<double>& rayleigh,
+                         const std::vector<std::shared_ptr<const ModeShape>>& shapes) {
+      Json d;
+      d["rotating_first"] = given;
+      d["nonrotating_first"] = nonrot;
+      d["stiffness"] = k;
+      d["rotating_all"] = all;
+      Json modes = Json::array();
+      for (std::size_t m = 0; m < shapes.size(); ++m) {
+        Json mode;
+        mode["name"] = index_name(base, m);
+        mode["omega"] = m < returned.size() ? returned[m] : 0.0;
+        mode["rayleigh_omega"] = rayleigh[m];
+        for (int der = 0; der <= 3; ++der) {
+          Json col = Json::array();
+          for (double x : x0) col.push_back(shapes[m]->value(der, x));
+          mode[der == 0 ? "value" : "d" + std::to_string(der)] = col;
+        }
+        modes.push_back(mode);
+      }
+      d["modes"] = modes;
+      return d;
+    };
+    j["x0"] = x0;
+    j["flap"] = direction("eta", p.omega_flap, ex.omega_flap_nonrotating, ms.stiffness_flap,
+                          ex.omega_flap_all, ms.omega_flap, rayleigh_flap, ms.flap);
+    j["lag"] = direction("gamma", p.omega_lag, ex.omega_lag_nonrotating, ms.stiffness_lag,
+                         ex.omega_lag_all, ms.omega_lag, rayleigh_lag, ms.lag);
+    return j.dump(2) + "\n";
+  }
+
+  std::string out = "Fig 9: first rotating vs first nonrotating frequency, by Omega\n(" +
+                    std::to_string(r.basis) +
+                    " cantilever functions per direction, e1/l = " + num(opt.e1_over_l) + ")\n";
+  TextTable t9({"nonrotating", "flap rotating", "lag rotating"});
+  for (std::size_t i = 0; i < flap9.size(); ++i) {
+    t9.add_row({num(flap9[i].nonrotating), num(flap9[i].rotating),
+                i < lag9.size() ? num(lag9[i].rotating) : "-"});
+  }
+  out += t9.render() + "\n";
+
+  out += "Exact rotating modes of the blade";
+  if (opt.paper_1974_shapes)
+    out += "\n(1974 sign convention: the shapes are NOT modes of the blade)";
+  out += "\n";
+  TextTable tb({"", "flap", "lag"});
+  tb.add_row({"first rotating frequency", num(p.omega_flap), num(p.omega_lag)});
+  tb.add_row({"first nonrotating frequency", num(ex.omega_flap_nonrotating),
+              num(ex.omega_lag_nonrotating)});
+  tb.add_row({"stiffness EI/(Omega^2 l I_b)", num(ms.stiffness_flap), num(ms.stiffness_lag)});
+  const std::size_t n_all = std::max(ex.omega_flap_all.size(), ex.omega_lag_all.size());
+  for (std::size_t m = 0; m < n_all; ++m) {
+    tb.add_row({"rotating frequency " + std::to_string(m + 1),
+                m < ex.omega_flap_all.size() ? num(ex.omega_flap_all[m]) : "-",
+                m < ex.omega_lag_all.size() ? num(ex.omega_lag_all[m]) : "-"});
+  }
+  // The Rayleigh quotient of a true mode is its frequency; a wrong shape shows up here.
+  const std::size_t n_shapes = std::max(rayleigh_flap.size(), rayleigh_lag.size());
+  for (std::size_t m = 0; m < n_shapes; ++m) {
+    tb.add_row({"Rayleigh frequency of shape " + std::to_string(m + 1),
+                m < rayleigh_flap.size() ? num(rayleigh_flap[m]) : "-",
+                m < rayleigh_lag.size() ? num(rayleigh_lag[m]) : "-"});
+  }
+  out += tb.render() + "\nMode shapes (tip value 1)\n";
+  std::vector<std::string> header{"x0"};
+  for (std::size_t m = 0; m < ms.flap.size(); ++m) header.push_back(index_name("eta", m));
+  for (std::size_t m = 0; m < ms.lag.size(); ++m) header.push_back(index_name("gamma", m));
+  TextTable ts(header);
+  for (double x : x0) {
+    std::vector<std::string> row{num(x)};
+    for (const auto& s : ms.flap) row.push_back(num(s->value(0, x)));
+    for (const auto& s : ms.lag) row.push_back(num(s->value(0, x)));
+    ts.add_row(row);
+  }
+  return out + ts.render();
+}
+
+}  // namespace flaplag::cli
