@@ -1,0 +1,241 @@
+#include "flaplag/analysis.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "flaplag/continuation.h"
+#include "flaplag/errors.h"
+#include "system_builder.h"
+
+namespace flaplag {
+
+const char* status_name(Status s) {
+  switch (s) {
+    case Status::Ok:
+      return "ok";
+    case Status::Warning:
+      return "warning";
+    case Status::Failed:
+      return "failed";
+  }
+  return "?";
+}
+
+const char* kind_name(InstabilityKind k) {
+  return k == InstabilityKind::Flutter ? "flutter" : "periodic";
+}
+
+const std::vector<const model::ModelDescriptor*>& compiled_models() {
+  static const std::vector<const model::ModelDescriptor*> models = [] {
+    auto v = model::registered_models();
+    std::sort(v.begin(), v.end(),
+              [](const model::ModelDescriptor* a, const model::ModelDescriptor* b) {
+                return std::string(a->name) < std::string(b->name);
+              });
+    return v;
+  }();
+  return models;
+}
+
+const model::ModelDescriptor& find_model(const std::string& name) {
+  for (const auto* m : compiled_models()) {
+    if (name == m->name) return *m;
+  }
+  std::string known;
+  for (const auto* m : compiled_models())
+    known += (known.empty() ? "" : ", ") + std::string(m->name);
+  throw InvalidInput("--model", name, "unknown model (compiled: " + known + ")");
+}
+
+namespace {
+
+Status to_status(ContinuationStatus s) {
+  switch (s) {
+    case ContinuationStatus::Ok:
+      return Status::Ok;
+    case ContinuationStatus::Warning:
+      return Status::Warning;
+    case ContinuationStatus::Failed:
+      return Status::Failed;
+  }
+  return Status::Failed;
+}
+
+void check_mu(double mu, const char* name) {
+  if (!std::isfinite(mu) || mu < 0.0) {
+    throw InvalidInput(name, format_value(mu), "advance ratio must be finite and >= 0");
+  }
+}
+
+std::vector<ModeExponent> to_modes(const std::vector<LabelledExponent>& v) {
+  std::vector<ModeExponent> out;
+  for (const auto& e : v) out.push_back({e.label, e.zeta, e.omega, e.multiplier});
+  std::stable_sort(out.begin(), out.end(), [](const ModeExponent& a, const ModeExponent& b) {
+    return a.label != b.label ? a.label < b.label : a.omega > b.omega;
+  });
+  return out;
+}
+
+}  // namespace
+
+struct Analysis::Impl {
+  Impl(const RotorParameters& p, const TransitionOptions& o)
+      : options(o), builder(p, find_model(p.model)) {
+    if (o.steps < 1) throw InvalidInput("--steps", std::to_string(o.steps), "must be >= 1");
+    if (o.terms < 1) throw InvalidInput("--terms", std::to_string(o.terms), "must be >= 1");
+    hover = builder.hover();
+    const auto& m = builder.model();
+    hover_modes = label_hover_modes(hover.A0, m.flap_modes, m.lag_modes);
+    hover.eigenvalues = hover_modes.eigenvalues;
+    hover.labels = hover_modes.labels;
+    if (hover_modes.status != ContinuationStatus::Ok && hover.status == Status::Ok) {
+      hover.status = to_status(hover_modes.status);
+      hover.message = hover_modes.message;
+    }
+  }
+
+  FloquetResult floquet(double mu) const {
+    const PeriodicSystem sys = builder.system(mu);
+    const TransitionResult tr = transition_matrix(sys, options);
+    return floquet_exponents(tr.phi, sys.trace_integral());
+  }
+
+  FloquetFunction function() const {
+    return [this](double mu) { return floquet(mu); };
+  }
+
+  TransitionOptions options;
+  detail::SystemBuilder builder;
+  HoverResult hover;
+  HoverModes hover_modes;
+};
+
+Analysis::Analysis(const RotorParameters& params, const TransitionOptions& options)
+    : impl_(std::make_unique<Impl>(params, options)) {}
+Analysis::~Analysis() = default;
+Analysis::Analysis(Analysis&&) noexcept = default;
+Analysis& Analysis::operator=(Analysis&&) noexcept = default;
+
+const RotorParameters& Analysis::parameters() const { return impl_->builder.params(); }
+const TransitionOptions& Analysis::options() const { return impl_->options; }
+const model::ModelDescriptor& Analysis::model() const { return impl_->builder.model(); }
+const ModeSet& Analysis::modes() const { return impl_->builder.modes(); }
+const HoverResult& Analysis::hover() const { return impl_->hover; }
+
+PeriodicSystem Analysis::system(double mu) const {
+  check_mu(mu, "--mu");
+  return impl_->builder.system(mu);
+}
+
+SystemSnapshot Analysis::snapshot(double mu, double psi) const {
+  check_mu(mu, "--mu");
+  if (!std::isfinite(psi)) throw InvalidInput("--psi", format_value(psi), "must be finite");
+  SystemSnapshot s;
+  s.mu = mu;
+  s.psi = psi;
+  const PeriodicSystem sys = impl_->builder.system(mu);
+  const bool reversed = sys.has_sector && sys.in_sector(psi);
+  s.region = reversed ? "reversed" : "normal";
+  s.A = sys.A(psi);
+  s.f = sys.f(psi);
+  const auto& m = impl_->builder.model();
+  const auto& normal = impl_->builder.normal_integrals();
+  const std::vector<double> region = reversed ? impl_->builder.reversed_integrals(mu) : normal;
+  for (int j = 0; j < m.n_aero; ++j) {
+    std::string name = std::string("int ") + m.aero[j].name + " dx0";
+    if (m.aero[j].paper_name[0] != '\0') name += " (" + std::string(m.aero[j].paper_name) + ")";
+    s.aero_integrals.emplace_back(name, normal[j]);
+    s.aero_integrals_region.emplace_back(name, region[j]);
+  }
+  const auto& st = impl_->builder.structural_values();
+  for (int j = 0; j < m.n_structural; ++j) {
+    std::string name = std::string("int ") + m.structural[j].name + " dx0";
+    if (m.structural[j].paper_name[0] != '\0') {
+      name += " (" + std::string(m.structural[j].paper_name) + ")";
+    }
+    s.structural_integrals.emplace_back(name, st[j]);
+  }
+  return s;
+}
+
+PointResult Analysis::point(double mu, double scan_step) const {
+  check_mu(mu, "--mu");
+  if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
+    throw InvalidInput("--step", format_value(scan_step), "must be finite and > 0");
+  }
+  const ExponentSweep sw =
+      sweep_exponents(impl_->hover_modes, impl_->function(), mu, mu, scan_step);
+  PointResult r;
+  r.mu = mu;
+  r.status = to_status(sw.status);
+  r.message = sw.message;
+  if (sw.points.empty()) {
+    r.status = Status::Failed;
+    if (r.message.empty()) r.message = "continuation from hover failed";
+    return r;
+  }
+  const SweepPoint& p = sw.points.back();
+  r.exponents = to_modes(p.exponents);
+  r.liouville_residual = p.liouville_residual;
+  r.stable = p.stable;
+  if (impl_->options.method == TransitionMethod::Magnus4) {
+    r.error_estimate = transition_matrix(impl_->builder.system(mu), impl_->options).error_estimate;
+  }
+  return r;
+}
+
+SweepResult Analysis::sweep(double mu0, double mu1, double step) const {
+  check_mu(mu0, "--mu (start)");
+  check_mu(mu1, "--mu (end)");
+  if (!(step > 0.0) || !std::isfinite(step)) {
+    throw InvalidInput("--mu (step)", format_value(step), "step must be finite and > 0");
+  }
+  if (!(mu1 > mu0)) {
+    throw InvalidInput("--mu", format_value(mu0) + ":" + format_value(mu1),
+                       "empty or reversed range (end must exceed start)");
+  }
+  const ExponentSweep sw = sweep_exponents(impl_->hover_modes, impl_->function(), mu0, mu1, step);
+  SweepResult r;
+  r.status = to_status(sw.status);
+  r.message = sw.message;
+  for (const auto& p : sw.points) {
+    PointResult q;
+    q.mu = p.mu;
+    q.exponents = to_modes(p.exponents);
+    q.liouville_residual = p.liouville_residual;
+    q.stable = p.stable;
+    q.status = to_status(p.status);
+    q.message = p.message;
+    r.points.push_back(std::move(q));
+  }
+  return r;
+}
+
+CriticalResult Analysis::critical(const CriticalOptions& opt) const {
+  if (!(opt.mu_max > 0.0) || !std::isfinite(opt.mu_max)) {
+    throw InvalidInput("--mu-max", format_value(opt.mu_max), "must be finite and > 0");
+  }
+  if (!(opt.scan_step > 0.0) || !std::isfinite(opt.scan_step)) {
+    throw InvalidInput("--scan-step", format_value(opt.scan_step), "must be finite and > 0");
+  }
+  if (!(opt.tolerance > 0.0) || !std::isfinite(opt.tolerance)) {
+    throw InvalidInput("--tolerance", format_value(opt.tolerance), "must be finite and > 0");
+  }
+  CriticalSearchOptions o;
+  o.mu_max = opt.mu_max;
+  o.step = opt.scan_step;
+  o.tolerance = opt.tolerance;
+  const CriticalSearchResult c = find_critical(impl_->hover_modes, impl_->function(), o);
+  CriticalResult r;
+  r.found = c.found;
+  r.mu_c = c.mu_c;
+  r.mode = c.label;
+  r.omega = c.omega;
+  r.kind = c.kind == CrossingKind::Flutter ? InstabilityKind::Flutter : InstabilityKind::Periodic;
+  r.mu_max = c.mu_max;
+  r.status = to_status(c.status);
+  r.message = c.message;
+  return r;
+}
+
+}  // namespace flaplag
