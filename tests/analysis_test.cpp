@@ -1,0 +1,186 @@
+// The rotor analysis layer: operating point, hover equilibrium, periodic system, methods.
+#include "flaplag/analysis.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "flaplag/errors.h"
+#include "test_util.h"
+
+using flaplag::Analysis;
+using flaplag::RotorParameters;
+using flaplag::TransitionMethod;
+using flaplag::TransitionOptions;
+using flaplag::testing::AbsClose;
+using flaplag::testing::RelClose;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+TransitionOptions method(TransitionMethod m, int steps, int terms = 4) {
+  TransitionOptions o;
+  o.method = m;
+  o.steps = steps;
+  o.terms = terms;
+  return o;
+}
+}  // namespace
+
+// Eq 2.24 and eqs 2.29-2.32 for the assumed mode, with the spanwise integrals done by hand:
+// F1 = int x^2 eta = 71/315, F2 = int x eta = 13/45, M_F = 3 int eta^2 = 104/135.
+TEST(Hover, EquilibriumMatchesHandComputedAssumedModeValues) {
+  RotorParameters p;
+  Analysis an(p, {});
+  const double sa = p.solidity * p.lift_slope;
+  const double lambda = sa / 16.0 * (std::sqrt(1.0 + 24.0 * p.theta / sa) - 1.0);
+  EXPECT_TRUE(RelClose(lambda, an.hover().inflow, 1e-14));
+  const double g0 = p.lock / 2.0 * (71.0 / 315.0 * p.theta - 13.0 / 45.0 * lambda) /
+                    (104.0 / 135.0 * p.omega_flap * p.omega_flap);
+  EXPECT_TRUE(RelClose(g0, an.hover().q0(0), 1e-12));
+  EXPECT_TRUE(an.hover().stable);
+}
+
+// At mu = 0 the forcing is the hover balance and vanishes.
+TEST(Hover, ForcingVanishesAtTheEquilibrium) {
+  Analysis an(RotorParameters{}, {});
+  const auto sys = an.system(0.0);
+  for (const auto& f : sys.normal.f) EXPECT_LT(f.norm(), 1e-14);
+}
+
+// Floquet exponents at mu = 0 equal eig(A0) for every method (steps chosen so that each
+// method's own truncation error is below 1e-10: RK4 needs N ~ 4000, Hsu J ~ 16).
+TEST(Hover, ExponentsEqualEigenvaluesOfA0ForAllMethods) {
+  for (const auto& opt :
+       {method(TransitionMethod::Magnus4, 50), method(TransitionMethod::Hsu, 50, 16),
+        method(TransitionMethod::RK4, 4000)}) {
+    Analysis an(RotorParameters{}, opt);
+    const auto pt = an.point(0.0);
+    ASSERT_EQ(pt.exponents.size(), an.hover().eigenvalues.size());
+    for (const auto& e : pt.exponents) {
+      double best = 1e300;
+      for (const auto& lam : an.hover().eigenvalues) {
+        best = std::min(best, std::abs(std::complex<double>(e.zeta, e.omega) - lam));
+      }
+      EXPECT_LT(best, 1e-10) << flaplag::method_name(opt.method) << " " << e.label << " zeta "
+                             << e.zeta << " omega " << e.omega;
+    }
+  }
+}
+
+TEST(Floquet, LiouvilleResidualOfTheReferenceMethodIsBelow1e10) {
+  Analysis an(RotorParameters{}, method(TransitionMethod::Magnus4, 50));
+  for (double mu : {0.3, 0.7, 1.2}) {
+    const auto pt = an.point(mu, 0.05);
+    EXPECT_LT(pt.liouville_residual, 1e-10) << "mu = " << mu;
+    EXPECT_LT(pt.error_estimate, 1e-8) << "mu = " << mu;
+  }
+}
+
+// Hsu's method (eq 3.29): the error of zeta falls like K^-2.
+TEST(Floquet, HsuErrorInZetaFallsLikeKToTheMinusTwo) {
+  RotorParameters p;
+  const double mu = 0.6;
+  Analysis ref(p, method(TransitionMethod::Magnus4, 400));
+  const auto r = ref.point(mu, 0.05);
+  auto lag_zeta = [](const flaplag::PointResult& pt) {
+    double z = -1e300;
+    for (const auto& e : pt.exponents) {
+      if (e.label == "lag") z = std::max(z, e.zeta);
+    }
+    return z;
+  };
+  const double z_ref = lag_zeta(r);
+  double err[3];
+  int j = 0;
+  for (int K : {50, 100, 200}) {
+    Analysis an(p, method(TransitionMethod::Hsu, K, 4));
+    err[j++] = std::abs(lag_zeta(an.point(mu, 0.05)) - z_ref);
+  }
+  const double order1 = std::log2(err[0] / err[1]), order2 = std::log2(err[1] / err[2]);
+  EXPECT_NEAR(order1, 2.0, 0.3) << err[0] << " " << err[1];
+  EXPECT_NEAR(order2, 2.0, 0.3) << err[1] << " " << err[2];
+}
+
+// Appendix D: sector centred at 3 pi/2, width pi/2 below mu = 1, eq D.2 above (continuous at 1).
+TEST(ReversedFlow, SectorGeometry) {
+  Analysis an(RotorParameters{}, {});
+  const auto s05 = an.system(0.5);
+  ASSERT_TRUE(s05.has_sector);
+  EXPECT_TRUE(AbsClose(1.5 * kPi - kPi / 4, s05.sector_begin, 1e-15));
+  EXPECT_TRUE(AbsClose(1.5 * kPi + kPi / 4, s05.sector_end, 1e-15));
+  const auto s2 = an.system(2.0);
+  const double a = std::asin(0.5);
+  const double alpha = kPi - 2 * a + 4 * a - std::sqrt(3.0);
+  EXPECT_TRUE(AbsClose(alpha, s2.sector_end - s2.sector_begin, 1e-14));
+  const auto s1 = an.system(1.0);
+  EXPECT_TRUE(AbsClose(kPi / 2, s1.sector_end - s1.sector_begin, 1e-14));
+  // mu >= 1: the whole span reversed, so every aerodynamic integral changes sign
+  const auto snap = an.snapshot(1.5, 1.5 * kPi);
+  EXPECT_EQ(snap.region, "reversed");
+  for (size_t j = 0; j < snap.aero_integrals.size(); ++j) {
+    EXPECT_DOUBLE_EQ(snap.aero_integrals_region[j].second, -snap.aero_integrals[j].second);
+  }
+  RotorParameters p;
+  p.reversed_flow = false;
+  EXPECT_FALSE(Analysis(p, {}).system(0.5).has_sector);
+}
+
+// Outside the sector, at mu < 1 the reversed region does not change the hover constant part.
+TEST(ReversedFlow, NormalRegionOutsideTheSector) {
+  Analysis an(RotorParameters{}, {});
+  EXPECT_EQ(an.snapshot(0.5, 0.5).region, "normal");
+  EXPECT_EQ(an.snapshot(0.5, 1.5 * kPi).region, "reversed");
+}
+
+struct BadParam {
+  const char* name;
+  void (*set)(RotorParameters&);
+  const char* option;
+};
+
+class InvalidParameters : public ::testing::TestWithParam<BadParam> {};
+
+TEST_P(InvalidParameters, ThrowInvalidInputNamingTheOption) {
+  RotorParameters p;
+  GetParam().set(p);
+  try {
+    Analysis an(p, {});
+    FAIL() << "accepted";
+  } catch (const flaplag::InvalidInput& e) {
+    EXPECT_EQ(e.name(), GetParam().option) << e.what();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Rotor, InvalidParameters,
+    ::testing::Values(
+        BadParam{"NegativeLock", [](RotorParameters& p) { p.lock = -1; }, "--gamma"},
+        BadParam{"NanTheta", [](RotorParameters& p) { p.theta = std::nan(""); }, "--theta"},
+        BadParam{"ZeroLagFrequency", [](RotorParameters& p) { p.omega_lag = 0; }, "--omega-lag"},
+        BadParam{"NegativeDamping", [](RotorParameters& p) { p.damping_lag = -0.1; },
+                 "--damping-lag"},
+        BadParam{"UnknownModel", [](RotorParameters& p) { p.model = "nope"; }, "--model"},
+        BadParam{"MultiModeNeedsExactModes", [](RotorParameters& p) { p.model = "paper-2x2"; },
+                 "--modes"}),
+    [](const auto& tp) { return std::string(tp.param.name); });
+
+TEST(InvalidArguments, NegativeMuAndBadRanges) {
+  Analysis an(RotorParameters{}, {});
+  EXPECT_THROW(an.system(-0.1), flaplag::InvalidInput);
+  EXPECT_THROW(an.point(std::nan("")), flaplag::InvalidInput);
+  EXPECT_THROW(an.sweep(0.5, 0.2, 0.1), flaplag::InvalidInput);
+  EXPECT_THROW(an.sweep(0.5, 0.5, 0.1), flaplag::InvalidInput);
+  EXPECT_THROW(an.sweep(0.0, 0.5, 0.0), flaplag::InvalidInput);
+  EXPECT_THROW(Analysis(RotorParameters{}, method(TransitionMethod::Hsu, 0)),
+               flaplag::InvalidInput);
+  EXPECT_THROW(Analysis(RotorParameters{}, method(TransitionMethod::Hsu, 50, 0)),
+               flaplag::InvalidInput);
+}
+
+TEST(Models, PaperModelsAreCompiled) {
+  for (const char* name : {"paper", "no-radial-flow", "lag-order-2", "paper-2x2"}) {
+    EXPECT_NO_THROW(flaplag::find_model(name)) << name;
+  }
+}
