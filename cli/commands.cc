@@ -114,7 +114,7 @@ std::string header_text(const Analysis& an) {
   kv.add("model", std::string(m.name) + " (" + m.spec_file + "): " + m.summary);
   std::string blade =
       an.modes().kind == "exact" ? "exact rotating mode shapes" : "assumed mode shape (eq 4.1)";
-  if (p.paper_1974_shapes && an.modes().kind == "exact") blade += ", 1974 sign convention";
+  if (p.paper_1974_shapes && an.modes().kind == "exact") blade += " (1974 shapes)";
   blade += ", " + std::to_string(m.flap_modes) + " flap x " + std::to_string(m.lag_modes) +
            " lag; elastic coupling " + (coupling_on(an) ? "on" : "off") + "; reversed flow " +
            (p.reversed_flow ? "on" : "off");

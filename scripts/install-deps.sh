@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 (bookworm) packages flaplag needs to build, test and benchmark.
+# Non-interactive; run as root (re-runs itself with sudo when that is available).
+set -euo pipefail
+
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then
+    exec sudo -- "$0" "$@"
+  fi
+  echo "install-deps.sh: must run as root" >&2
+  exit 1
+fi
+
+export DEBIAN_FRONTEND=noninteractive
+apt-get update
+# GiNaC (with CLN) runs the symbolic derivation at build time; toml++ reads the ordering specs;
+# Eigen, CLI11 and nlohmann-json are the runtime and the command line; GoogleTest and Google
+# Benchmark are the tests and bench/.
+apt-get install -y --no-install-recommends \
+  build-essential \
+  cmake \
+  pkg-config \
+  libginac-dev \
+  libcln-dev \
+  libeigen3-dev \
+  libgtest-dev \
+  libbenchmark-dev \
+  libcli11-dev \
+  nlohmann-json3-dev \
+  libtomlplusplus-dev
