@@ -73,6 +73,11 @@ int run(int argc, char** argv) {
   } catch (const flaplag::InvalidInput& e) {
     // The runtime names fields ("omega_lag"); users know options ("--omega-lag").
     const std::string option = flaplag::option_for(e.name());
+    if (option.empty() || option[0] != '-') {
+      // Not an option but a quantity derived from several (e.g. a non-finite coefficient of
+      // A(psi) for an extreme mu or gamma): say that it comes from the inputs as a whole.
+      return report(std::string(e.what()) + " (for the parameters given)", kBadInput);
+    }
     const std::string* typed = cl.typed(option);
     const std::string value = typed != nullptr && !typed->empty() ? *typed : e.value();
     return report(option + " = " + value + ": " + flaplag::cli::reason_of(e), kBadInput);
