@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <ostream>
 #include <string>
 
 #include "flaplag/analysis.h"
@@ -103,6 +104,9 @@ struct PaperCase {
 };
 
 std::string case_name(const ::testing::TestParamInfo<PaperCase>& info) { return info.param.name; }
+
+// Readable ctest names instead of gtest's byte dump.
+void PrintTo(const PaperCase& c, std::ostream* os) { *os << c.name; }
 
 class PaperExactModes : public ::testing::TestWithParam<PaperCase> {};
 
@@ -206,6 +210,9 @@ struct ReversedFlowCase {
   bool shapes_1974;
   double mu_c_rf, mu_c_norf;
 };
+
+// Readable ctest names instead of gtest's byte dump.
+void PrintTo(const ReversedFlowCase& c, std::ostream* os) { *os << c.name; }
 
 class FigureEleven : public ::testing::TestWithParam<ReversedFlowCase> {};
 
@@ -335,6 +342,9 @@ struct ModesCase {
   bool coupling, shapes_1974;
   double mu_c, omega;
 };
+
+// Readable ctest names instead of gtest's byte dump.
+void PrintTo(const ModesCase& c, std::ostream* os) { *os << c.name; }
 
 class ModeConvergence : public ::testing::TestWithParam<ModesCase> {};
 
