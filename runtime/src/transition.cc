@@ -49,43 +49,58 @@ struct Segment {
 
 // N equal steps over [0, 2 pi]; a step containing a sector edge strictly inside is split.
 std::vector<Segment> make_grid(const PeriodicSystem& sys, int steps) {
-  const std::vector<double> edges = sys.breakpoints();
   const double d = kTwoPi / steps;
+  double edges[2];
+  int n_edges = 0;
+  for (double e : sys.breakpoints()) edges[n_edges++] = e;
+  // Midpoints lie in (0, 2 pi): no reduction needed (cheaper than in_sector's fmod).
+  auto reversed = [&](double mid) {
+    return sys.has_sector && mid >= sys.sector_begin && mid < sys.sector_end;
+  };
+  // An edge within rounding of a grid point needs no split: the midpoint rule picks the region
+  // of each neighbouring step correctly.
+  const double slack = 1e-12 * kTwoPi;
   std::vector<Segment> out;
-  out.reserve(static_cast<std::size_t>(steps) + 2 * edges.size());
+  out.reserve(static_cast<std::size_t>(steps + n_edges));
   for (int i = 0; i < steps; ++i) {
     const double a = i * d;
     const double b = (i + 1 == steps) ? kTwoPi : (i + 1) * d;
-    // An edge within rounding of a grid point needs no split: the midpoint rule picks the
-    // region of each neighbouring step correctly.
-    const double slack = 1e-12 * kTwoPi;
-    std::vector<double> cuts;
-    for (double e : edges)
-      if (e > a + slack && e < b - slack) cuts.push_back(e);
-    if (cuts.empty()) {
-      out.push_back({a, b, sys.in_sector(0.5 * (a + b)), i});
-      continue;
-    }
     double lo = a;
-    cuts.push_back(b);
-    for (double c : cuts) {
-      out.push_back({lo, c, sys.in_sector(0.5 * (lo + c)), -1});
-      lo = c;
+    bool split = false;
+    for (int k = 0; k < n_edges; ++k) {
+      if (edges[k] > a + slack && edges[k] < b - slack) {
+        out.push_back({lo, edges[k], reversed(0.5 * (lo + edges[k])), -1});
+        lo = edges[k];
+        split = true;
+      }
     }
+    out.push_back({lo, b, reversed(0.5 * (lo + b)), split ? -1 : i});
   }
   return out;
 }
 
-// Harmonic basis values (point values, or interval means when scaled by sinc factors) for
-// H harmonics from z = e^{i psi}: c[2k-1] = Re z^k = cos k psi, c[2k] = Im z^k = sin k psi.
-void basis_from_rotor(std::complex<double> z, int H, double* c) {
-  c[0] = 1.0;
-  std::complex<double> w = z;
+// Harmonic basis values for h = 1 .. H-1 from z = e^{i psi}, scaled by damp[k] for order k:
+// col[2k-2] = cos(k psi) damp[k], col[2k-1] = sin(k psi) damp[k].  damp = 1 gives point
+// values, damp[k] = sinc(k d/2) interval means over [psi - d/2, psi + d/2] (eqs 4.2-4.5).
+void fill_basis(std::complex<double> z, int H, const double* damp, double* col) {
+  // Plain real arithmetic for w *= z: |w| = |z| = 1, so the inf/nan recovery of the complex
+  // operator is never needed.
+  const double zr = z.real(), zi = z.imag();
+  double wr = zr, wi = zi;
   for (int h = 1; h < H; h += 2) {
-    c[h] = w.real();
-    if (h + 1 < H) c[h + 1] = w.imag();
-    w *= z;
+    const double s = damp[(h + 1) / 2];
+    col[h - 1] = wr * s;
+    if (h + 1 < H) col[h] = wi * s;
+    const double t = wr * zr - wi * zi;
+    wi = wr * zi + wi * zr;
+    wr = t;
   }
+}
+
+// z * w in plain real arithmetic: the operands are unit phasors, so the inf/nan recovery of
+// std::complex's operator* (a measurable cost in the inner loops) is never needed.
+inline std::complex<double> rotate(std::complex<double> z, std::complex<double> w) {
+  return {z.real() * w.real() - z.imag() * w.imag(), z.real() * w.imag() + z.imag() * w.real()};
 }
 
 // Rotation recurrence over the points psi_j = j * d, reseeded exactly every kReseed points.
@@ -93,19 +108,16 @@ class Rotor {
  public:
   explicit Rotor(double d) : d_(d), step_(std::polar(1.0, d)) {}
   std::complex<double> at(int j) {
-    if (j != next_) {
-      seed(j);
-    } else if (j % kReseed == 0) {
-      seed(j);
+    if (j != next_ || j % kReseed == 0) {
+      z_ = std::polar(1.0, j * d_);
     } else {
-      z_ *= step_;
+      z_ = rotate(z_, step_);
     }
     next_ = j + 1;
     return z_;
   }
 
  private:
-  void seed(int j) { z_ = std::polar(1.0, j * d_); }
   double d_;
   std::complex<double> step_;
   std::complex<double> z_{1.0, 0.0};
@@ -118,39 +130,31 @@ class Kernel {
   using Mat = Eigen::Matrix<double, N, N>;
 
   explicit Kernel(const PeriodicSystem& sys) : sys_(sys), n_(sys.n) {
-    copy(sys.normal, normal_);
-    if (sys.has_sector) copy(sys.reversed, reversed_);
-    const std::size_t hmax = std::max(normal_.size(), reversed_.size());
-    basis_.resize(hmax);
+    const HarmonicSet* sets[2] = {&sys.normal, sys.has_sector ? &sys.reversed : nullptr};
+    idx_.reserve(static_cast<std::size_t>(n_) * n_);
+    for (Eigen::Index l = 0; l < static_cast<Eigen::Index>(n_) * n_; ++l) {
+      bool varies = false;
+      for (const HarmonicSet* set : sets)
+        if (set)
+          for (std::size_t h = 1; h < set->A.size(); ++h) varies |= set->A[h](l) != 0.0;
+      if (varies) idx_.push_back(l);
+    }
+    const Eigen::Index m = static_cast<Eigen::Index>(idx_.size());
+    for (int r = 0; r < 2; ++r) {
+      if (!sets[r]) continue;
+      Region& g = region_[r];
+      g.H = static_cast<int>(sets[r]->A.size());
+      g.A0 = sets[r]->A[0];
+      g.V = Eigen::MatrixXd::Zero((m + 3) / 4 * 4, g.H - 1);
+      for (int h = 1; h < g.H; ++h)
+        for (Eigen::Index e = 0; e < m; ++e) g.V(e, h - 1) = sets[r]->A[h](idx_[e]);
+    }
+    basis_.resize(static_cast<std::size_t>(std::max(region_[0].H, region_[1].H)));
+    w_.resize((idx_.size() + 3) / 4 * 4);
+    ones_.assign(static_cast<std::size_t>(max_order()) + 1, 1.0);
   }
 
   Mat identity() const { return Mat::Identity(n_, n_); }
-
-  // out = sum_h c[h] A_h of the region.
-  void combine(bool reversed, const double* c, Mat& out) const {
-    const std::vector<Mat>& set = reversed ? reversed_ : normal_;
-    out = c[0] * set[0];
-    for (std::size_t h = 1; h < set.size(); ++h) out += c[h] * set[h];
-  }
-  int harmonics(bool reversed) const {
-    return static_cast<int>(reversed ? reversed_.size() : normal_.size());
-  }
-
-  // A at psi with the harmonics of the given region (one-sided value at an edge).
-  void point(bool reversed, double psi, Mat& out) {
-    basis_from_rotor(std::polar(1.0, psi), harmonics(reversed), basis_.data());
-    combine(reversed, basis_.data(), out);
-  }
-  void point(bool reversed, std::complex<double> z, Mat& out) {
-    basis_from_rotor(z, harmonics(reversed), basis_.data());
-    combine(reversed, basis_.data(), out);
-  }
-  // Exact mean of A over [a, b] inside one region (eqs 4.2-4.5 generalised).
-  void mean(bool reversed, double a, double b, Mat& out) {
-    const int H = harmonics(reversed);
-    for (int h = 0; h < H; ++h) basis_[h] = harmonic_mean(h, a, b);
-    combine(reversed, basis_.data(), out);
-  }
 
   // Hsu, eqs 3.21-3.28: constant C_k = exact interval mean of A, exp(Delta C_k) by J Taylor
   // terms, H(K) = prod exp(Delta_k C_k) with later intervals multiplied from the left (3.25).
@@ -158,24 +162,23 @@ class Kernel {
     const std::vector<Segment> grid = make_grid(sys_, K);
     const double d = kTwoPi / K;
     // Means of cos k psi, sin k psi over an equal interval are the midpoint values times
-    // sinc(k d / 2) (eqs 4.2-4.5): one table for the whole grid.
-    const int H = std::max(harmonics(false), harmonics(true));
-    std::vector<double> damp(static_cast<std::size_t>(H), 1.0);
-    for (int h = 1; h < H; ++h) damp[h] = sinc(((h + 1) / 2) * 0.5 * d);
+    // sinc(k d / 2) (eqs 4.2-4.5): one damping table for the whole grid.
+    std::vector<double> damp, dsub;
+    sinc_table(0.5 * d, damp);
     Rotor mid(d);
     const std::complex<double> half = std::polar(1.0, 0.5 * d);
-
     Mat Phi = identity();
-    Mat C(n_, n_), X(n_, n_), X2(n_, n_), T(n_, n_), E(n_, n_), P(n_, n_);
+    Mat X(n_, n_), X2(n_, n_), T(n_, n_), E(n_, n_), P(n_, n_);
     for (const Segment& s : grid) {
+      const double delta = s.b - s.a;
+      // X = Delta C_k with C_k the exact mean of A over the substep.
       if (s.node >= 0) {
-        basis_from_rotor(mid.at(s.node) * half, harmonics(s.reversed), basis_.data());
-        for (int h = 1; h < harmonics(s.reversed); ++h) basis_[h] *= damp[h];
-        combine(s.reversed, basis_.data(), C);
+        evaluate(s.reversed, rotate(mid.at(s.node), half), damp.data(), delta, X);
       } else {
-        mean(s.reversed, s.a, s.b, C);
+        // A substep cut at a sector edge: the same formula with its own width.
+        sinc_table(0.5 * delta, dsub);
+        evaluate(s.reversed, std::polar(1.0, 0.5 * (s.a + s.b)), dsub.data(), delta, X);
       }
-      X = (s.b - s.a) * C;
       taylor(X, J, X2, T, E);
       P.noalias() = E * Phi;
       Phi = P;
@@ -186,32 +189,34 @@ class Kernel {
   // Classical RK4 on the matrix ODE Phi' = A Phi (paper 3.3.2, all columns at once).
   Mat rk4(int steps) {
     const std::vector<Segment> grid = make_grid(sys_, steps);
-    Rotor rot(0.5 * kTwoPi / steps);  // grid points and step midpoints: psi_j = j * d / 2
+    // A is needed at the start (unless it equals the previous end), the midpoint and the end of
+    // every substep; on unsplit steps these are the points psi_j = j d/2.
+    const double* damp = ones_.data();
+    Rotor rot(0.5 * kTwoPi / steps);
     Mat Phi = identity();
     Mat Aa(n_, n_), Am(n_, n_), Ab(n_, n_), Y(n_, n_), k1(n_, n_), k2(n_, n_), k3(n_, n_),
         k4(n_, n_);
-    bool have_end = false;
-    bool end_reversed = false;
-    for (const Segment& s : grid) {
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      const Segment& s = grid[i];
       const double h = s.b - s.a;
-      // A at the start: reuse the previous end value when the region is the same.
-      if (have_end && end_reversed == s.reversed) {
-        Aa = Ab;
-      } else if (s.node >= 0) {
-        point(s.reversed, rot.at(2 * s.node), Aa);
-      } else {
-        point(s.reversed, s.a, Aa);
-      }
+      const bool reuse = i > 0 && grid[i - 1].reversed == s.reversed;
       if (s.node >= 0) {
-        point(s.reversed, rot.at(2 * s.node + 1), Am);
-        point(s.reversed, rot.at(2 * s.node + 2), Ab);
+        if (reuse) {
+          Aa = Ab;
+        } else {
+          evaluate(s.reversed, rot.at(2 * s.node), damp, 1.0, Aa);
+        }
+        evaluate(s.reversed, rot.at(2 * s.node + 1), damp, 1.0, Am);
+        evaluate(s.reversed, rot.at(2 * s.node + 2), damp, 1.0, Ab);
       } else {
-        point(s.reversed, 0.5 * (s.a + s.b), Am);
-        point(s.reversed, s.b, Ab);
+        if (reuse) {
+          Aa = Ab;
+        } else {
+          evaluate(s.reversed, std::polar(1.0, s.a), damp, 1.0, Aa);
+        }
+        evaluate(s.reversed, std::polar(1.0, 0.5 * (s.a + s.b)), damp, 1.0, Am);
+        evaluate(s.reversed, std::polar(1.0, s.b), damp, 1.0, Ab);
       }
-      have_end = true;
-      end_reversed = s.reversed;
-
       k1.noalias() = Aa * Phi;
       Y = Phi + (0.5 * h) * k1;
       k2.noalias() = Am * Y;
@@ -247,9 +252,64 @@ class Kernel {
   }
 
  private:
-  void copy(const HarmonicSet& set, std::vector<Mat>& out) const {
-    out.clear();
-    for (const Eigen::MatrixXd& m : set.A) out.emplace_back(m);
+  struct Region {
+    int H = 1;
+    Mat A0;
+    Eigen::MatrixXd V;  // m (padded to 4k) x (H-1): coefficients (h >= 1) of varying entries
+  };
+
+  int max_order() const { return std::max(region_[0].H, region_[1].H) / 2; }
+
+  // table[k] = sinc(k x), k = 0 .. max order; sin(k x) from the powers of e^{ix}.
+  void sinc_table(double x, std::vector<double>& table) const {
+    const int kmax = max_order();
+    table.resize(static_cast<std::size_t>(kmax) + 1);
+    table[0] = 1.0;
+    const std::complex<double> step = std::polar(1.0, x);
+    std::complex<double> w = step;
+    for (int k = 1; k <= kmax; ++k, w = rotate(w, step))
+      table[k] = (std::abs(k * x) < 1e-4) ? sinc(k * x) : w.imag() / (k * x);
+  }
+
+  // out = scale * A: the constant harmonic plus the entries that vary with psi, each a dot
+  // product of its harmonic coefficients (h >= 1) with the basis of z = e^{i psi} scaled by
+  // damp (fill_basis).
+  void evaluate(bool reversed, std::complex<double> z, const double* damp, double scale, Mat& out) {
+    const Region& g = region_[reversed];
+    out = scale * g.A0;
+    const Eigen::Index m = static_cast<Eigen::Index>(idx_.size());
+    const int hb = g.H - 1;
+    if (m == 0 || hb < 1) return;
+    fill_basis(z, g.H, damp, basis_.data());
+    // w = V b in blocks of four entries whose partial sums stay in registers (a loop over h
+    // that reloads w from memory is bound by store-to-load latency).  V's rows are padded to a
+    // multiple of four.
+    const double* b = basis_.data();
+    const double* v = g.V.data();
+    double* w = w_.data();
+    const Eigen::Index mp = g.V.rows();
+    for (Eigen::Index e = 0; e < mp; e += 4) {
+      double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0;
+      for (int h = 0; h < hb; ++h) {
+        const double* vh = v + h * mp + e;
+        const double bh = b[h];
+        a0 += vh[0] * bh;
+        a1 += vh[1] * bh;
+        a2 += vh[2] * bh;
+        a3 += vh[3] * bh;
+      }
+      w[e] = a0;
+      w[e + 1] = a1;
+      w[e + 2] = a2;
+      w[e + 3] = a3;
+    }
+    double* o = out.data();
+    for (Eigen::Index e = 0; e < m; ++e) o[idx_[e]] += scale * w[e];
+  }
+
+  // A at psi with the harmonics of the given region (one-sided value at an edge).
+  void point(bool reversed, double psi, Mat& out) {
+    evaluate(reversed, std::polar(1.0, psi), ones_.data(), 1.0, out);
   }
 
   // E = sum_{j=0}^{J} X^j / j!  (eq 3.27).  J <= 4 by Paterson-Stockmeyer (at most two
@@ -292,8 +352,10 @@ class Kernel {
 
   const PeriodicSystem& sys_;
   int n_;
-  std::vector<Mat> normal_, reversed_;
-  std::vector<double> basis_;
+  std::vector<Eigen::Index> idx_;  // column-major indices of the entries that vary with psi
+  Region region_[2];
+  std::vector<double> basis_, w_;  // workspace of evaluate()
+  std::vector<double> ones_;       // damping factors of point values
 };
 
 // Runs `fn` with the kernel of the right dimension and returns a MatrixXd.
