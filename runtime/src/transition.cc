@@ -7,13 +7,16 @@
 // that is the one-sided limit, which is what the integrators need.
 //
 // Speed: the dimension is a template parameter (fixed-size, stack-allocated Eigen matrices for
-// n = 2, 4, 6, 8; dynamic matrices with preallocated temporaries otherwise), and the harmonic
-// basis on the equal grid comes from a rotation recurrence e^{i(j+1)d} = e^{ijd} e^{id} instead
-// of sin/cos calls (re-seeded exactly every kReseed points so rounding cannot accumulate).
+// n = 2, 4, 6, 8; dynamic matrices with preallocated temporaries otherwise); only the entries
+// of A that vary with psi are summed over the harmonics (in the rotor equations about half of
+// them); the harmonic basis on the equal grid comes from a rotation recurrence
+// e^{i(j+1)d} = e^{ijd} e^{id} instead of sin/cos calls (reseeded exactly every kReseed points
+// so that rounding cannot accumulate); Hsu's J = 4 Taylor polynomial takes two matrix products
+// (Paterson-Stockmeyer) plus one for the accumulated product.  Nothing in the interval loops
+// allocates.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <string>
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
@@ -79,50 +82,51 @@ std::vector<Segment> make_grid(const PeriodicSystem& sys, int steps) {
   return out;
 }
 
+// Unit phasors e^{i psi} = (cos psi, sin psi) are kept as plain doubles rather than
+// std::complex: the complex operator* carries inf/nan recovery that unit phasors never need,
+// and packing the two parts through memory costs store-forwarding stalls in the inner loops.
+struct Phasor {
+  double c, s;
+};
+inline Phasor phasor(double psi) { return {std::cos(psi), std::sin(psi)}; }
+
+// e^{i (offset + j d)}, j = 0 .. count-1, interleaved (cos, sin), by the rotation recurrence
+// e^{i(j+1)d} = e^{ijd} e^{id}, reseeded exactly every kReseed points so that rounding cannot
+// accumulate: two sin/cos evaluations per kReseed points instead of two per point.
+std::vector<double> phasor_grid(double offset, double d, int count) {
+  std::vector<double> out(2 * static_cast<std::size_t>(count));
+  const Phasor step = phasor(d);
+  double c = 1.0, s = 0.0;
+  for (int j = 0; j < count; ++j) {
+    if (j % kReseed == 0) {
+      const Phasor z = phasor(offset + j * d);
+      c = z.c;
+      s = z.s;
+    } else {
+      const double t = c * step.c - s * step.s;
+      s = c * step.s + s * step.c;
+      c = t;
+    }
+    out[2 * j] = c;
+    out[2 * j + 1] = s;
+  }
+  return out;
+}
+
 // Harmonic basis values for h = 1 .. H-1 from z = e^{i psi}, scaled by damp[k] for order k:
 // col[2k-2] = cos(k psi) damp[k], col[2k-1] = sin(k psi) damp[k].  damp = 1 gives point
 // values, damp[k] = sinc(k d/2) interval means over [psi - d/2, psi + d/2] (eqs 4.2-4.5).
-void fill_basis(std::complex<double> z, int H, const double* damp, double* col) {
-  // Plain real arithmetic for w *= z: |w| = |z| = 1, so the inf/nan recovery of the complex
-  // operator is never needed.
-  const double zr = z.real(), zi = z.imag();
-  double wr = zr, wi = zi;
+inline void fill_basis(double zc, double zs, int H, const double* damp, double* col) {
+  double wc = zc, ws = zs;
   for (int h = 1; h < H; h += 2) {
-    const double s = damp[(h + 1) / 2];
-    col[h - 1] = wr * s;
-    if (h + 1 < H) col[h] = wi * s;
-    const double t = wr * zr - wi * zi;
-    wi = wr * zi + wi * zr;
-    wr = t;
+    const double f = damp[(h + 1) / 2];
+    col[h - 1] = wc * f;
+    if (h + 1 < H) col[h] = ws * f;
+    const double t = wc * zc - ws * zs;
+    ws = wc * zs + ws * zc;
+    wc = t;
   }
 }
-
-// z * w in plain real arithmetic: the operands are unit phasors, so the inf/nan recovery of
-// std::complex's operator* (a measurable cost in the inner loops) is never needed.
-inline std::complex<double> rotate(std::complex<double> z, std::complex<double> w) {
-  return {z.real() * w.real() - z.imag() * w.imag(), z.real() * w.imag() + z.imag() * w.real()};
-}
-
-// Rotation recurrence over the points psi_j = j * d, reseeded exactly every kReseed points.
-class Rotor {
- public:
-  explicit Rotor(double d) : d_(d), step_(std::polar(1.0, d)) {}
-  std::complex<double> at(int j) {
-    if (j != next_ || j % kReseed == 0) {
-      z_ = std::polar(1.0, j * d_);
-    } else {
-      z_ = rotate(z_, step_);
-    }
-    next_ = j + 1;
-    return z_;
-  }
-
- private:
-  double d_;
-  std::complex<double> step_;
-  std::complex<double> z_{1.0, 0.0};
-  int next_ = -1;
-};
 
 template <int N>
 class Kernel {
@@ -165,19 +169,19 @@ class Kernel {
     // sinc(k d / 2) (eqs 4.2-4.5): one damping table for the whole grid.
     std::vector<double> damp, dsub;
     sinc_table(0.5 * d, damp);
-    Rotor mid(d);
-    const std::complex<double> half = std::polar(1.0, 0.5 * d);
+    const std::vector<double> mids = phasor_grid(0.5 * d, d, K);  // interval midpoints
     Mat Phi = identity();
     Mat X(n_, n_), X2(n_, n_), T(n_, n_), E(n_, n_), P(n_, n_);
     for (const Segment& s : grid) {
       const double delta = s.b - s.a;
       // X = Delta C_k with C_k the exact mean of A over the substep.
       if (s.node >= 0) {
-        evaluate(s.reversed, rotate(mid.at(s.node), half), damp.data(), delta, X);
+        evaluate(s.reversed, mids[2 * s.node], mids[2 * s.node + 1], damp.data(), delta, X);
       } else {
         // A substep cut at a sector edge: the same formula with its own width.
         sinc_table(0.5 * delta, dsub);
-        evaluate(s.reversed, std::polar(1.0, 0.5 * (s.a + s.b)), dsub.data(), delta, X);
+        const Phasor z = phasor(0.5 * (s.a + s.b));
+        evaluate(s.reversed, z.c, z.s, dsub.data(), delta, X);
       }
       taylor(X, J, X2, T, E);
       P.noalias() = E * Phi;
@@ -192,7 +196,14 @@ class Kernel {
     // A is needed at the start (unless it equals the previous end), the midpoint and the end of
     // every substep; on unsplit steps these are the points psi_j = j d/2.
     const double* damp = ones_.data();
-    Rotor rot(0.5 * kTwoPi / steps);
+    const std::vector<double> pts = phasor_grid(0.0, 0.5 * kTwoPi / steps, 2 * steps + 1);
+    auto at = [&](int j, Mat& out, bool reversed) {
+      evaluate(reversed, pts[2 * j], pts[2 * j + 1], damp, 1.0, out);
+    };
+    auto at_psi = [&](double psi, Mat& out, bool reversed) {
+      const Phasor z = phasor(psi);
+      evaluate(reversed, z.c, z.s, damp, 1.0, out);
+    };
     Mat Phi = identity();
     Mat Aa(n_, n_), Am(n_, n_), Ab(n_, n_), Y(n_, n_), k1(n_, n_), k2(n_, n_), k3(n_, n_),
         k4(n_, n_);
@@ -204,18 +215,18 @@ class Kernel {
         if (reuse) {
           Aa = Ab;
         } else {
-          evaluate(s.reversed, rot.at(2 * s.node), damp, 1.0, Aa);
+          at(2 * s.node, Aa, s.reversed);
         }
-        evaluate(s.reversed, rot.at(2 * s.node + 1), damp, 1.0, Am);
-        evaluate(s.reversed, rot.at(2 * s.node + 2), damp, 1.0, Ab);
+        at(2 * s.node + 1, Am, s.reversed);
+        at(2 * s.node + 2, Ab, s.reversed);
       } else {
         if (reuse) {
           Aa = Ab;
         } else {
-          evaluate(s.reversed, std::polar(1.0, s.a), damp, 1.0, Aa);
+          at_psi(s.a, Aa, s.reversed);
         }
-        evaluate(s.reversed, std::polar(1.0, 0.5 * (s.a + s.b)), damp, 1.0, Am);
-        evaluate(s.reversed, std::polar(1.0, s.b), damp, 1.0, Ab);
+        at_psi(0.5 * (s.a + s.b), Am, s.reversed);
+        at_psi(s.b, Ab, s.reversed);
       }
       k1.noalias() = Aa * Phi;
       Y = Phi + (0.5 * h) * k1;
@@ -260,27 +271,24 @@ class Kernel {
 
   int max_order() const { return std::max(region_[0].H, region_[1].H) / 2; }
 
-  // table[k] = sinc(k x), k = 0 .. max order; sin(k x) from the powers of e^{ix}.
+  // table[k] = sinc(k x), k = 0 .. max order (a few sin calls per grid, not per interval).
   void sinc_table(double x, std::vector<double>& table) const {
     const int kmax = max_order();
     table.resize(static_cast<std::size_t>(kmax) + 1);
     table[0] = 1.0;
-    const std::complex<double> step = std::polar(1.0, x);
-    std::complex<double> w = step;
-    for (int k = 1; k <= kmax; ++k, w = rotate(w, step))
-      table[k] = (std::abs(k * x) < 1e-4) ? sinc(k * x) : w.imag() / (k * x);
+    for (int k = 1; k <= kmax; ++k) table[k] = sinc(k * x);
   }
 
   // out = scale * A: the constant harmonic plus the entries that vary with psi, each a dot
   // product of its harmonic coefficients (h >= 1) with the basis of z = e^{i psi} scaled by
   // damp (fill_basis).
-  void evaluate(bool reversed, std::complex<double> z, const double* damp, double scale, Mat& out) {
+  void evaluate(bool reversed, double zc, double zs, const double* damp, double scale, Mat& out) {
     const Region& g = region_[reversed];
     out = scale * g.A0;
     const Eigen::Index m = static_cast<Eigen::Index>(idx_.size());
     const int hb = g.H - 1;
     if (m == 0 || hb < 1) return;
-    fill_basis(z, g.H, damp, basis_.data());
+    fill_basis(zc, zs, g.H, damp, basis_.data());
     // w = V b in blocks of four entries whose partial sums stay in registers (a loop over h
     // that reloads w from memory is bound by store-to-load latency).  V's rows are padded to a
     // multiple of four.
@@ -309,13 +317,14 @@ class Kernel {
 
   // A at psi with the harmonics of the given region (one-sided value at an edge).
   void point(bool reversed, double psi, Mat& out) {
-    evaluate(reversed, std::polar(1.0, psi), ones_.data(), 1.0, out);
+    const Phasor z = phasor(psi);
+    evaluate(reversed, z.c, z.s, ones_.data(), 1.0, out);
   }
 
   // E = sum_{j=0}^{J} X^j / j!  (eq 3.27).  J <= 4 by Paterson-Stockmeyer (at most two
   // products), beyond by Horner.
   void taylor(const Mat& X, int J, Mat& X2, Mat& T, Mat& E) const {
-    E = identity();
+    E = identity();  // exp(X) ~ I + ...
     switch (J) {
       case 1:
         E += X;
