@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "flaplag/continuation.h"
 #include "flaplag/errors.h"
@@ -67,6 +68,12 @@ void check_mu(double mu, const char* name) {
   }
 }
 
+std::string snap12(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.12g", v);
+  return buf;
+}
+
 std::vector<ModeExponent> to_modes(const std::vector<LabelledExponent>& v) {
   std::vector<ModeExponent> out;
   for (const auto& e : v) out.push_back({e.label, e.zeta, e.omega, e.multiplier});
@@ -92,12 +99,46 @@ struct Analysis::Impl {
       hover.status = to_status(hover_modes.status);
       hover.message = hover_modes.message;
     }
+    // Fixed-step methods resolve a mode only when |lambda| * step is well inside their
+    // stability region; a stiff blade (high frequencies) needs more steps.
+    double rho = 0.0;
+    for (const auto& lam : hover.eigenvalues) rho = std::max(rho, std::abs(lam));
+    const double h = 2.0 * 3.14159265358979323846 / o.steps;
+    if (o.method != TransitionMethod::Magnus4 && rho * h > 1.0) {
+      resolution_warning =
+          "step too coarse for the fastest hover mode (|lambda| = " + format_value(rho) +
+          " per rev, |lambda| * step = " + format_value(rho * h) + " > 1): increase --steps";
+    }
+  }
+
+  // Adds the resolution warning to a result's status and message.
+  template <class R>
+  void flag(R& r) const {
+    if (resolution_warning.empty()) return;
+    if (r.status == Status::Ok) r.status = Status::Warning;
+    r.message = r.message.empty() ? resolution_warning : r.message + "; " + resolution_warning;
+  }
+
+  // The reference method refines itself: the Magnus steps double until the Richardson error
+  // estimate of Phi is below kReferenceTolerance (or kMaxReferenceSteps is reached), so that
+  // "reference" means converged, whatever --steps asked for.
+  static constexpr double kReferenceTolerance = 1e-12;
+  static constexpr int kMaxReferenceSteps = 12800;
+
+  TransitionResult transition(const PeriodicSystem& sys) const {
+    TransitionResult tr = transition_matrix(sys, options);
+    if (options.method != TransitionMethod::Magnus4) return tr;
+    TransitionOptions o = options;
+    while (tr.error_estimate > kReferenceTolerance && o.steps * 2 <= kMaxReferenceSteps) {
+      o.steps *= 2;
+      tr = transition_matrix(sys, o);
+    }
+    return tr;
   }
 
   FloquetResult floquet(double mu) const {
     const PeriodicSystem sys = builder.system(mu);
-    const TransitionResult tr = transition_matrix(sys, options);
-    return floquet_exponents(tr.phi, sys.trace_integral());
+    return floquet_exponents(transition(sys).phi, sys.trace_integral());
   }
 
   FloquetFunction function() const {
@@ -108,6 +149,7 @@ struct Analysis::Impl {
   detail::SystemBuilder builder;
   HoverResult hover;
   HoverModes hover_modes;
+  std::string resolution_warning;
 };
 
 Analysis::Analysis(const RotorParameters& params, const TransitionOptions& options)
@@ -179,8 +221,9 @@ PointResult Analysis::point(double mu, double scan_step) const {
   r.liouville_residual = p.liouville_residual;
   r.stable = p.stable;
   if (impl_->options.method == TransitionMethod::Magnus4) {
-    r.error_estimate = transition_matrix(impl_->builder.system(mu), impl_->options).error_estimate;
+    r.error_estimate = impl_->transition(impl_->builder.system(mu)).error_estimate;
   }
+  impl_->flag(r);
   return r;
 }
 
@@ -200,7 +243,8 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step) const {
   r.message = sw.message;
   for (const auto& p : sw.points) {
     PointResult q;
-    q.mu = p.mu;
+    // mu0 + k step accumulates rounding (0.7999999999999999); report the decimal grid value.
+    q.mu = std::stod(snap12(p.mu));
     q.exponents = to_modes(p.exponents);
     q.liouville_residual = p.liouville_residual;
     q.stable = p.stable;
@@ -208,6 +252,7 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step) const {
     q.message = p.message;
     r.points.push_back(std::move(q));
   }
+  impl_->flag(r);
   return r;
 }
 
@@ -235,6 +280,7 @@ CriticalResult Analysis::critical(const CriticalOptions& opt) const {
   r.mu_max = c.mu_max;
   r.status = to_status(c.status);
   r.message = c.message;
+  impl_->flag(r);
   return r;
 }
 

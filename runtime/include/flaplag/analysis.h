@@ -33,7 +33,8 @@ struct HoverResult {
   Eigen::VectorXd q0;                       // [g0_1..g0_M, h0_1..h0_N]
   Eigen::MatrixXd A0;                       // constant A at mu = 0
   std::vector<std::complex<double>> eigenvalues;  // eig(A0), per rev
-  std::vector<std::string> labels;          // "flap"/"lag" (+index when M or N > 1) per eigenvalue
+  std::vector<std::string> labels;          // "flap"/"lag" per eigenvalue ("flap1", "flap2",
+                                            // ... when the model has several modes of a kind)
   bool stable = true;
   Status status = Status::Ok;
   std::string message;
@@ -41,7 +42,7 @@ struct HoverResult {
 
 // One labelled characteristic exponent.
 struct ModeExponent {
-  std::string label;  // "flap", "lag" ("flap2", "lag2", ... for higher modes)
+  std::string label;  // "flap", "lag" ("flap1", "flap2", ... when there are several modes)
   double zeta = 0.0;  // real part, per rev
   double omega = 0.0; // imaginary part, per rev, integer fixed by continuation from hover
   std::complex<double> multiplier;
