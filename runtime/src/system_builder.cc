@@ -222,29 +222,35 @@ model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) co
 // A rows: velocity rows get mass^-1 * generalized force; displacement rows the identity.
 void SystemBuilder::assemble(double mu, const std::vector<double>& aero, HarmonicSet& out) const {
   const int n = n_, ns = 2 * n_;
-  std::vector<double> mass(n * n), force(H_ * n * ns), forcing(H_ * n);
-  model_->coefficients(inputs(mu, aero.data()), {mass.data(), force.data(), forcing.data()});
-  Eigen::MatrixXd Mm(n, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) Mm(i, j) = mass[i * n + j];
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Mm);
+  std::vector<double> buffer(n * n + H_ * n * ns + H_ * n);
+  double* mass = buffer.data();
+  double* force = mass + n * n;
+  double* forcing = force + H_ * n * ns;
+  model_->coefficients(inputs(mu, aero.data()), {mass, force, forcing});
+  if (mass_inverse_.rows() != n) {
+    // The generalized mass depends on the structural integrals only: factor it once.
+    Eigen::MatrixXd Mm(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) Mm(i, j) = mass[i * n + j];
+    mass_inverse_ = Mm.inverse();
+  }
   // state column of the rate / displacement of coordinate j
   auto rate_col = [&](int j) { return j < M_ ? j : 2 * M_ + (j - M_); };
   auto disp_col = [&](int j) { return j < M_ ? M_ + j : 2 * M_ + N_ + (j - M_); };
   out.A.assign(H_, Eigen::MatrixXd::Zero(ns, ns));
   out.f.assign(H_, Eigen::VectorXd::Zero(ns));
   for (int h = 0; h < H_; ++h) {
-    Eigen::MatrixXd Q(n, ns);
-    Eigen::VectorXd F(n);
+    Eigen::MatrixXd& A = out.A[h];
+    Eigen::VectorXd& f = out.f[h];
     for (int i = 0; i < n; ++i) {
-      F(i) = forcing[h * n + i];
-      for (int c = 0; c < ns; ++c) Q(i, c) = force[(h * n + i) * ns + c];
-    }
-    const Eigen::MatrixXd MQ = lu.solve(Q);
-    const Eigen::VectorXd MF = lu.solve(F);
-    for (int i = 0; i < n; ++i) {
-      out.A[h].row(rate_col(i)) = MQ.row(i);
-      out.f[h](rate_col(i)) = MF(i);
+      const int row = rate_col(i);
+      for (int j = 0; j < n; ++j) {
+        const double mij = mass_inverse_(i, j);
+        if (mij == 0.0) continue;
+        const double* q = force + (h * n + j) * ns;
+        for (int c = 0; c < ns; ++c) A(row, c) += mij * q[c];
+        f(row) += mij * forcing[h * n + j];
+      }
     }
   }
   for (int j = 0; j < n; ++j) out.A[0](disp_col(j), rate_col(j)) = 1.0;

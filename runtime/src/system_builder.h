@@ -70,7 +70,8 @@ class SystemBuilder {
   std::vector<double> aero_normal_, structural_;
   AeroAntiderivatives antiderivatives_;
   std::vector<double> g0_, h0_;
-  Eigen::VectorXd hover_forcing_;  // forcing[0] at mu = 0, normal flow, at the equilibrium
+  Eigen::VectorXd hover_forcing_;         // forcing[0] at mu = 0, normal flow, at the equilibrium
+  mutable Eigen::MatrixXd mass_inverse_;  // set by the first assemble() (in the constructor)
   HoverResult hover_;
 };
 
