@@ -43,6 +43,41 @@ void BM_RotorPointRK4_N50(benchmark::State& state) {
 }
 BENCHMARK(BM_RotorPointRK4_N50);
 
+// The 1974 program's RK4 (paper 4.2, step 2a): the equations are integrated four times, once
+// per column of Phi, and A(psi) is rebuilt from its harmonics at every stage.  This is the
+// RK4 of the paper's Fig 4 CPU-time comparison, kept here only to reproduce that comparison;
+// flaplag's own RK4 (BM_RotorPointRK4_N50, transition_bench) advances all columns at once.
+void BM_RotorPhi_RK4_N50_ColumnByColumn1974(benchmark::State& state) {
+  const auto an = typical();
+  const auto sys = an.system(0.7);
+  const int n = sys.n, N = 50;
+  const double h = 2.0 * 3.14159265358979323846 / N;
+  for (auto _ : state) {
+    Eigen::MatrixXd phi(n, n);
+    for (int col = 0; col < n; ++col) {
+      Eigen::VectorXd y = Eigen::VectorXd::Unit(n, col);
+      for (int k = 0; k < N; ++k) {
+        const double psi = k * h;
+        const Eigen::VectorXd k1 = sys.A(psi) * y;
+        const Eigen::VectorXd k2 = sys.A(psi + 0.5 * h) * (y + 0.5 * h * k1);
+        const Eigen::VectorXd k3 = sys.A(psi + 0.5 * h) * (y + 0.5 * h * k2);
+        const Eigen::VectorXd k4 = sys.A(psi + h) * (y + h * k3);
+        y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+      }
+      phi.col(col) = y;
+    }
+    benchmark::DoNotOptimize(phi);
+  }
+}
+BENCHMARK(BM_RotorPhi_RK4_N50_ColumnByColumn1974);
+
+void BM_RotorPhi_Hsu_K50_J4(benchmark::State& state) {
+  const auto an = typical();
+  const auto sys = an.system(0.7);
+  for (auto _ : state) benchmark::DoNotOptimize(flaplag::transition_matrix_hsu(sys, 50, 4));
+}
+BENCHMARK(BM_RotorPhi_Hsu_K50_J4);
+
 void BM_RotorSystem_Build(benchmark::State& state) {
   const auto an = typical();
   for (auto _ : state) benchmark::DoNotOptimize(an.system(0.7));
