@@ -56,7 +56,7 @@ TEST(HoverModes, LabelsFlapAndLag) {
   const HoverModes h = label_hover_modes(
       oscillators(1.2, stiffness(1.2, 1.17), 0.04, stiffness(0.04, 1.28), 0.05), 1, 1);
   ASSERT_EQ(4u, h.labels.size());
-  EXPECT_EQ(ContinuationStatus::Ok, h.status);
+  EXPECT_EQ(Status::Ok, h.status);
   for (std::size_t k = 0; k < 4; ++k) {
     // The weak coupling shifts the frequencies only slightly: 1.17 is flap, 1.28 lag.
     const double w = std::abs(h.eigenvalues[k].imag());
@@ -98,7 +98,7 @@ TEST(ExponentTracker, KeepsLabelsThroughCrossingAndIntegerWrap) {
   };
   const HoverModes hover = label_hover_modes(A(0.0), 1, 1);
   const ExponentSweep sw = sweep_exponents(hover, constant_family(A), 0.0, 0.6, 0.01);
-  EXPECT_EQ(ContinuationStatus::Ok, sw.status) << sw.message;
+  EXPECT_EQ(Status::Ok, sw.status) << sw.message;
   ASSERT_EQ(61u, sw.points.size());
   for (const SweepPoint& p : sw.points) {
     for (double sign : {1.0, -1.0}) {
@@ -127,11 +127,11 @@ TEST(FindCritical, FlutterCrossingOfConstantFamily) {
   const CriticalSearchResult r =
       find_critical(label_hover_modes(A(0.0), 1, 1), constant_family(A), {});
   ASSERT_TRUE(r.found) << r.message;
-  EXPECT_EQ(ContinuationStatus::Ok, r.status) << r.message;
+  EXPECT_EQ(Status::Ok, r.status) << r.message;
   EXPECT_TRUE(AbsClose(0.5037, r.mu_c, 1e-5));
   EXPECT_EQ("lag", r.label);
   EXPECT_TRUE(AbsClose(1.28, std::abs(r.omega), 1e-9));
-  EXPECT_EQ(CrossingKind::Flutter, r.kind);
+  EXPECT_EQ(InstabilityKind::Flutter, r.kind);
   EXPECT_LT(r.evaluations, 51 + 30);  // the scan plus a Brent refinement
 }
 
@@ -144,7 +144,7 @@ TEST(FindCritical, StableUpToMuMaxAndUnstableHover) {
   const CriticalSearchResult r =
       find_critical(label_hover_modes(stable(0.0), 1, 1), constant_family(stable), opt);
   EXPECT_FALSE(r.found);
-  EXPECT_EQ(ContinuationStatus::Ok, r.status);
+  EXPECT_EQ(Status::Ok, r.status);
   EXPECT_EQ(0.3, r.mu_max);
   EXPECT_EQ(30, r.evaluations);
 
@@ -156,7 +156,7 @@ TEST(FindCritical, StableUpToMuMaxAndUnstableHover) {
   EXPECT_TRUE(u.found);
   EXPECT_EQ(0.0, u.mu_c);
   EXPECT_EQ("lag", u.label);
-  EXPECT_EQ(ContinuationStatus::Warning, u.status);
+  EXPECT_EQ(Status::Warning, u.status);
 }
 
 // Damped Mathieu equation g'' + 2 xi g' + (delta + mu cos psi) g = 0 (one flap mode) near
@@ -195,19 +195,19 @@ TEST(FindCritical, MathieuTongueIsPeriodicType) {
   ASSERT_TRUE(r.found) << r.message;
   EXPECT_TRUE(AbsClose(lo, r.mu_c, 1e-5));
   EXPECT_EQ("flap", r.label);
-  EXPECT_EQ(CrossingKind::Periodic, r.kind);
+  EXPECT_EQ(InstabilityKind::Periodic, r.kind);
   EXPECT_EQ(0.5, std::abs(r.omega));  // locked exactly: the multiplier is real
 }
 
 TEST(Continuation, ClassifyCrossing) {
-  EXPECT_EQ(CrossingKind::Periodic, classify_crossing(0.0));
-  EXPECT_EQ(CrossingKind::Periodic, classify_crossing(-1.5));
-  EXPECT_EQ(CrossingKind::Periodic, classify_crossing(2.0004));
-  EXPECT_EQ(CrossingKind::Flutter, classify_crossing(1.286));
-  EXPECT_EQ(CrossingKind::Flutter, classify_crossing(0.49));
-  EXPECT_STREQ("periodic", crossing_kind_name(CrossingKind::Periodic));
-  EXPECT_STREQ("flutter", crossing_kind_name(CrossingKind::Flutter));
-  EXPECT_STREQ("warning", continuation_status_name(ContinuationStatus::Warning));
+  EXPECT_EQ(InstabilityKind::Periodic, classify_crossing(0.0));
+  EXPECT_EQ(InstabilityKind::Periodic, classify_crossing(-1.5));
+  EXPECT_EQ(InstabilityKind::Periodic, classify_crossing(2.0004));
+  EXPECT_EQ(InstabilityKind::Flutter, classify_crossing(1.286));
+  EXPECT_EQ(InstabilityKind::Flutter, classify_crossing(0.49));
+  EXPECT_STREQ("periodic", kind_name(InstabilityKind::Periodic));
+  EXPECT_STREQ("flutter", kind_name(InstabilityKind::Flutter));
+  EXPECT_STREQ("warning", status_name(Status::Warning));
 }
 
 TEST(Continuation, SweepStartsAboveHoverAndIncludesEnd) {
@@ -240,10 +240,10 @@ TEST(Continuation, FailuresAreReportedNotThrown) {
   const HoverModes hover = label_hover_modes(A(0.0), 1, 1);
   const CriticalSearchResult r = find_critical(hover, nan_after, {});
   EXPECT_FALSE(r.found);
-  EXPECT_EQ(ContinuationStatus::Failed, r.status);
+  EXPECT_EQ(Status::Failed, r.status);
   EXPECT_FALSE(r.message.empty());
   const ExponentSweep sw = sweep_exponents(hover, nan_after, 0.0, 0.3, 0.05);
-  EXPECT_EQ(ContinuationStatus::Failed, sw.status);
+  EXPECT_EQ(Status::Failed, sw.status);
   EXPECT_EQ(4u, sw.points.size());  // 0, 0.05, 0.1 and the failed 0.15
 }
 

@@ -10,22 +10,6 @@
 
 namespace flaplag {
 
-const char* status_name(Status s) {
-  switch (s) {
-    case Status::Ok:
-      return "ok";
-    case Status::Warning:
-      return "warning";
-    case Status::Failed:
-      return "failed";
-  }
-  return "?";
-}
-
-const char* kind_name(InstabilityKind k) {
-  return k == InstabilityKind::Flutter ? "flutter" : "periodic";
-}
-
 const std::vector<const model::ModelDescriptor*>& compiled_models() {
   static const std::vector<const model::ModelDescriptor*> models = [] {
     auto v = model::registered_models();
@@ -49,18 +33,6 @@ const model::ModelDescriptor& find_model(const std::string& name) {
 }
 
 namespace {
-
-Status to_status(ContinuationStatus s) {
-  switch (s) {
-    case ContinuationStatus::Ok:
-      return Status::Ok;
-    case ContinuationStatus::Warning:
-      return Status::Warning;
-    case ContinuationStatus::Failed:
-      return Status::Failed;
-  }
-  return Status::Failed;
-}
 
 void check_mu(double mu, const char* name) {
   if (!std::isfinite(mu) || mu < 0.0) {
@@ -95,8 +67,8 @@ struct Analysis::Impl {
     hover_modes = label_hover_modes(hover.A0, m.flap_modes, m.lag_modes);
     hover.eigenvalues = hover_modes.eigenvalues;
     hover.labels = hover_modes.labels;
-    if (hover_modes.status != ContinuationStatus::Ok && hover.status == Status::Ok) {
-      hover.status = to_status(hover_modes.status);
+    if (hover_modes.status != Status::Ok && hover.status == Status::Ok) {
+      hover.status = hover_modes.status;
       hover.message = hover_modes.message;
     }
     // Fixed-step methods resolve a mode only when |lambda| * step is well inside their
@@ -209,7 +181,7 @@ PointResult Analysis::point(double mu, double scan_step) const {
       sweep_exponents(impl_->hover_modes, impl_->function(), mu, mu, scan_step);
   PointResult r;
   r.mu = mu;
-  r.status = to_status(sw.status);
+  r.status = sw.status;
   r.message = sw.message;
   if (sw.points.empty()) {
     r.status = Status::Failed;
@@ -239,7 +211,7 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step) const {
   }
   const ExponentSweep sw = sweep_exponents(impl_->hover_modes, impl_->function(), mu0, mu1, step);
   SweepResult r;
-  r.status = to_status(sw.status);
+  r.status = sw.status;
   r.message = sw.message;
   for (const auto& p : sw.points) {
     PointResult q;
@@ -248,7 +220,7 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step) const {
     q.exponents = to_modes(p.exponents);
     q.liouville_residual = p.liouville_residual;
     q.stable = p.stable;
-    q.status = to_status(p.status);
+    q.status = p.status;
     q.message = p.message;
     r.points.push_back(std::move(q));
   }
@@ -276,9 +248,9 @@ CriticalResult Analysis::critical(const CriticalOptions& opt) const {
   r.mu_c = c.mu_c;
   r.mode = c.label;
   r.omega = c.omega;
-  r.kind = c.kind == CrossingKind::Flutter ? InstabilityKind::Flutter : InstabilityKind::Periodic;
+  r.kind = c.kind;
   r.mu_max = c.mu_max;
-  r.status = to_status(c.status);
+  r.status = c.status;
   r.message = c.message;
   impl_->flag(r);
   return r;

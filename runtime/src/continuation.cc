@@ -32,9 +32,7 @@ void require(bool ok, const char* name, double value, const char* reason) {
   if (!ok) throw InvalidInput(name, fmt17(value), reason);
 }
 
-ContinuationStatus worse(ContinuationStatus a, ContinuationStatus b) {
-  return static_cast<int>(a) >= static_cast<int>(b) ? a : b;
-}
+Status worse(Status a, Status b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
 
 // Minimum-cost assignment of rows (tracked modes) to columns (new exponents).
 class Assignment {
@@ -104,26 +102,26 @@ struct Trial {
 
 }  // namespace
 
-const char* continuation_status_name(ContinuationStatus s) {
+const char* status_name(Status s) {
   switch (s) {
-    case ContinuationStatus::Ok:
+    case Status::Ok:
       return "ok";
-    case ContinuationStatus::Warning:
+    case Status::Warning:
       return "warning";
-    case ContinuationStatus::Failed:
+    case Status::Failed:
       return "failed";
   }
   return "unknown";
 }
 
-const char* crossing_kind_name(CrossingKind k) {
-  return k == CrossingKind::Periodic ? "periodic" : "flutter";
+const char* kind_name(InstabilityKind k) {
+  return k == InstabilityKind::Periodic ? "periodic" : "flutter";
 }
 
-CrossingKind classify_crossing(double omega, double tolerance) {
+InstabilityKind classify_crossing(double omega, double tolerance) {
   const double twice = 2.0 * omega;
-  return std::abs(twice - std::round(twice)) <= 2.0 * tolerance ? CrossingKind::Periodic
-                                                                : CrossingKind::Flutter;
+  return std::abs(twice - std::round(twice)) <= 2.0 * tolerance ? InstabilityKind::Periodic
+                                                                : InstabilityKind::Flutter;
 }
 
 HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_modes) {
@@ -140,7 +138,7 @@ HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_
   HoverModes out;
   Eigen::EigenSolver<Eigen::MatrixXd> es(A0, true);
   if (es.info() != Eigen::Success) {
-    out.status = ContinuationStatus::Failed;
+    out.status = Status::Failed;
     out.message = "eigen-decomposition of the hover matrix did not converge";
     return out;
   }
@@ -191,7 +189,7 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
   for (const FloquetExponent& e : next.exponents) {
     if (!std::isfinite(e.multiplier.real()) || !std::isfinite(e.multiplier.imag()) ||
         e.eigenvector.size() != vectors_[0].size() || !e.eigenvector.allFinite()) {
-      report.status = ContinuationStatus::Failed;
+      report.status = Status::Failed;
       report.message = "non-finite multipliers or eigenvectors; tracking state unchanged";
       report.min_similarity = 0.0;
       return report;
@@ -250,7 +248,7 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
   mu_ = mu;
   has_previous_ = std::isfinite(mu);
   if (report.min_similarity < kAmbiguousSimilarity) {
-    report.status = ContinuationStatus::Warning;
+    report.status = Status::Warning;
     report.message = "ambiguous mode identification (eigenvector similarity " +
                      fmt(report.min_similarity) + "); consider a smaller step";
   }
@@ -280,8 +278,8 @@ CriticalSearchResult find_critical(const HoverModes& hover, const FloquetFunctio
 
   CriticalSearchResult out;
   out.mu_max = opt.mu_max;
-  if (hover.status == ContinuationStatus::Failed) {
-    out.status = ContinuationStatus::Failed;
+  if (hover.status == Status::Failed) {
+    out.status = Status::Failed;
     out.message = "hover modes unavailable: " + hover.message;
     return out;
   }
@@ -302,7 +300,7 @@ CriticalSearchResult find_critical(const HoverModes& hover, const FloquetFunctio
   ExponentTracker tracker(hover);
   if (tracker.max_zeta() > opt.zeta_tolerance) {
     crossing(tracker, 0.0);
-    out.status = ContinuationStatus::Warning;
+    out.status = Status::Warning;
     out.message = "unstable in hover (" + out.label + ", zeta = " + fmt(tracker.max_zeta()) + ")";
     return out;
   }
@@ -315,7 +313,7 @@ CriticalSearchResult find_critical(const HoverModes& hover, const FloquetFunctio
     return t;
   };
   auto failed = [&](const Trial& t) {
-    out.status = ContinuationStatus::Failed;
+    out.status = Status::Failed;
     out.message = "at mu = " + fmt(t.mu) + ": " + t.report.message;
     out.exponents = t.tracker.exponents();
     return out;
@@ -326,9 +324,8 @@ CriticalSearchResult find_critical(const HoverModes& hover, const FloquetFunctio
   for (int i = 1; i <= steps; ++i) {
     const double mu = std::min(i * opt.step, opt.mu_max);
     Trial hi = evaluate(tracker, mu);
-    if (hi.report.status == ContinuationStatus::Failed) return failed(hi);
-    if (hi.report.status == ContinuationStatus::Warning)
-      note("at mu = " + fmt(mu) + ": " + hi.report.message);
+    if (hi.report.status == Status::Failed) return failed(hi);
+    if (hi.report.status == Status::Warning) note("at mu = " + fmt(mu) + ": " + hi.report.message);
     if (hi.f <= 0.0) {
       tracker = std::move(hi.tracker);
       prev_mu = mu;
@@ -381,22 +378,22 @@ CriticalSearchResult find_critical(const HoverModes& hover, const FloquetFunctio
       a = b;
       const double next = b.mu + (std::abs(d) > tol1 ? d : (xm > 0.0 ? tol1 : -tol1));
       b = evaluate(tracker, next);
-      if (b.report.status == ContinuationStatus::Failed) return failed(b);
-      if (b.report.status == ContinuationStatus::Warning)
+      if (b.report.status == Status::Failed) return failed(b);
+      if (b.report.status == Status::Warning)
         note("at mu = " + fmt(next) + ": " + b.report.message);
     }
     // b is the estimate of mu_c; the mode that crossed is the most unstable one on the
     // unstable side of the final bracket [b, c].
     const Trial& unstable = b.f > 0.0 ? b : c;
     crossing(unstable.tracker, b.mu);
-    out.status = warnings.empty() ? ContinuationStatus::Ok : ContinuationStatus::Warning;
+    out.status = warnings.empty() ? Status::Ok : Status::Warning;
     out.message = "unstable above mu_c = " + fmt(b.mu) + " (" + out.label + ", " +
-                  crossing_kind_name(out.kind) + ", omega = " + fmt(out.omega) + ")";
+                  kind_name(out.kind) + ", omega = " + fmt(out.omega) + ")";
     if (!warnings.empty()) out.message += "; " + warnings;
     return out;
   }
   out.exponents = tracker.exponents();
-  out.status = warnings.empty() ? ContinuationStatus::Ok : ContinuationStatus::Warning;
+  out.status = warnings.empty() ? Status::Ok : Status::Warning;
   out.message = "stable up to mu_max = " + fmt(opt.mu_max);
   if (!warnings.empty()) out.message += "; " + warnings;
   return out;
@@ -410,8 +407,8 @@ ExponentSweep sweep_exponents(const HoverModes& hover, const FloquetFunction& fl
   if (!floquet) throw InvalidInput("floquet", "empty", "a FloquetFunction is required");
 
   ExponentSweep out;
-  if (hover.status == ContinuationStatus::Failed) {
-    out.status = ContinuationStatus::Failed;
+  if (hover.status == Status::Failed) {
+    out.status = Status::Failed;
     out.message = "hover modes unavailable: " + hover.message;
     return out;
   }
@@ -421,13 +418,13 @@ ExponentSweep sweep_exponents(const HoverModes& hover, const FloquetFunction& fl
   for (int i = 1; i < pre; ++i) {
     const double mu = mu0 * i / pre;
     const TrackReport r = tracker.advance(floquet(mu), mu);
-    if (r.status == ContinuationStatus::Failed) {
-      out.status = ContinuationStatus::Failed;
+    if (r.status == Status::Failed) {
+      out.status = Status::Failed;
       out.message = "continuation to mu0 failed at mu = " + fmt(mu) + ": " + r.message;
       return out;
     }
-    if (r.status == ContinuationStatus::Warning && out.message.empty()) {
-      out.status = ContinuationStatus::Warning;
+    if (r.status == Status::Warning && out.message.empty()) {
+      out.status = Status::Warning;
       out.message = "at mu = " + fmt(mu) + ": " + r.message;
     }
   }
@@ -448,15 +445,15 @@ ExponentSweep sweep_exponents(const HoverModes& hover, const FloquetFunction& fl
     p.status = r.status;
     p.message = r.message;
     p.liouville_residual = fr.liouville_residual;
-    if (r.status == ContinuationStatus::Failed) {
+    if (r.status == Status::Failed) {
       out.points.push_back(std::move(p));
-      out.status = ContinuationStatus::Failed;
+      out.status = Status::Failed;
       out.message = "at mu = " + fmt(mu) + ": " + r.message;
       return out;
     }
     p.exponents = tracker.exponents();
     p.stable = tracker.max_zeta() <= 0.0;
-    if (r.status == ContinuationStatus::Warning && out.message.empty())
+    if (r.status == Status::Warning && out.message.empty())
       out.message = "at mu = " + fmt(mu) + ": " + r.message;
     out.status = worse(out.status, r.status);
     out.points.push_back(std::move(p));

@@ -21,20 +21,18 @@
 #include "flaplag/model_api.h"
 #include "flaplag/parameters.h"
 #include "flaplag/periodic_system.h"
+#include "flaplag/status.h"
 
 namespace flaplag {
 
-enum class Status { Ok, Warning, Failed };
-const char* status_name(Status s);  // "ok", "warning", "failed"
-
 // Hover static equilibrium (eqs 2.29-2.32) and hover stability.
 struct HoverResult {
-  double inflow = 0.0;                      // lambda, eq 2.24
-  Eigen::VectorXd q0;                       // [g0_1..g0_M, h0_1..h0_N]
-  Eigen::MatrixXd A0;                       // constant A at mu = 0
+  double inflow = 0.0;                            // lambda, eq 2.24
+  Eigen::VectorXd q0;                             // [g0_1..g0_M, h0_1..h0_N]
+  Eigen::MatrixXd A0;                             // constant A at mu = 0
   std::vector<std::complex<double>> eigenvalues;  // eig(A0), per rev
-  std::vector<std::string> labels;          // "flap"/"lag" per eigenvalue ("flap1", "flap2",
-                                            // ... when the model has several modes of a kind)
+  std::vector<std::string> labels;                // "flap"/"lag" per eigenvalue ("flap1", "flap2",
+                                                  // ... when the model has several modes of a kind)
   bool stable = true;
   Status status = Status::Ok;
   std::string message;
@@ -42,9 +40,9 @@ struct HoverResult {
 
 // One labelled characteristic exponent.
 struct ModeExponent {
-  std::string label;  // "flap", "lag" ("flap1", "flap2", ... when there are several modes)
-  double zeta = 0.0;  // real part, per rev
-  double omega = 0.0; // imaginary part, per rev, integer fixed by continuation from hover
+  std::string label;   // "flap", "lag" ("flap1", "flap2", ... when there are several modes)
+  double zeta = 0.0;   // real part, per rev
+  double omega = 0.0;  // imaginary part, per rev, integer fixed by continuation from hover
   std::complex<double> multiplier;
 };
 
@@ -64,9 +62,6 @@ struct SweepResult {
   std::string message;
 };
 
-enum class InstabilityKind { Flutter, Periodic };
-const char* kind_name(InstabilityKind k);  // "flutter", "periodic"
-
 struct CriticalOptions {
   double mu_max = 2.0;      // scan limit
   double scan_step = 0.01;  // continuation / scan step in mu
@@ -74,10 +69,10 @@ struct CriticalOptions {
 };
 
 struct CriticalResult {
-  bool found = false;       // false: stable up to mu_max
+  bool found = false;  // false: stable up to mu_max
   double mu_c = 0.0;
-  std::string mode;         // "flap"/"lag"
-  double omega = 0.0;       // per rev at mu_c
+  std::string mode;    // "flap"/"lag"
+  double omega = 0.0;  // per rev at mu_c
   InstabilityKind kind = InstabilityKind::Flutter;
   double mu_max = 0.0;
   Status status = Status::Ok;
@@ -90,8 +85,8 @@ struct SystemSnapshot {
   std::string region;  // "normal" or "reversed"
   Eigen::MatrixXd A;
   Eigen::VectorXd f;
-  std::vector<std::pair<std::string, double>> aero_integrals;        // normal region values
-  std::vector<std::pair<std::string, double>> aero_integrals_region; // values used at psi
+  std::vector<std::pair<std::string, double>> aero_integrals;         // normal region values
+  std::vector<std::pair<std::string, double>> aero_integrals_region;  // values used at psi
   std::vector<std::pair<std::string, double>> structural_integrals;
 };
 
@@ -108,7 +103,7 @@ class Analysis {
   const ModeSet& modes() const;
 
   const HoverResult& hover() const;
-  PeriodicSystem system(double mu) const;          // throws InvalidInput for mu < 0 or NaN
+  PeriodicSystem system(double mu) const;  // throws InvalidInput for mu < 0 or NaN
   SystemSnapshot snapshot(double mu, double psi) const;
 
   // Exponents at mu with labels from continuation (steps of at most scan_step from hover).

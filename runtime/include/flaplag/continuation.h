@@ -22,19 +22,12 @@
 #include <vector>
 
 #include "flaplag/floquet.h"
+#include "flaplag/status.h"
 
 namespace flaplag {
 
-enum class ContinuationStatus { Ok, Warning, Failed };
-const char* continuation_status_name(ContinuationStatus s);  // "ok", "warning", "failed"
-
-// Flutter: complex multiplier pair leaves the unit circle.  Periodic: a real multiplier does
-// (omega an integer or half-integer per rev, "periodic-coefficient type" instability).
-enum class CrossingKind { Flutter, Periodic };
-const char* crossing_kind_name(CrossingKind k);  // "flutter", "periodic"
-
 // Periodic when omega is within `tolerance` of an integer or half-integer.
-CrossingKind classify_crossing(double omega, double tolerance = 1e-3);
+InstabilityKind classify_crossing(double omega, double tolerance = 1e-3);
 
 struct LabelledExponent {
   std::string label;   // "flap", "lag" ("flap2", "lag2", ... when M or N > 1)
@@ -48,7 +41,7 @@ struct HoverModes {
   std::vector<std::complex<double>> eigenvalues;  // eig(A0), per rev
   std::vector<Eigen::VectorXcd> eigenvectors;     // unit 2-norm
   std::vector<std::string> labels;
-  ContinuationStatus status = ContinuationStatus::Ok;
+  Status status = Status::Ok;
   std::string message;
 };
 
@@ -61,7 +54,7 @@ HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_
 // Outcome of one continuation step.
 struct TrackReport {
   double min_similarity = 1.0;  // smallest |v_old^H v_new| in the chosen assignment
-  ContinuationStatus status = ContinuationStatus::Ok;
+  Status status = Status::Ok;
   std::string message;
 };
 
@@ -118,11 +111,11 @@ struct CriticalSearchResult {
   double mu_c = 0.0;
   std::string label;   // label of the mode that crossed
   double omega = 0.0;  // its omega at mu_c, per rev
-  CrossingKind kind = CrossingKind::Flutter;
+  InstabilityKind kind = InstabilityKind::Flutter;
   double mu_max = 0.0;
   std::vector<LabelledExponent> exponents;  // at mu_c (found) or at the last mu scanned
   int evaluations = 0;                      // calls of the FloquetFunction
-  ContinuationStatus status = ContinuationStatus::Ok;
+  Status status = Status::Ok;
   std::string message;
 };
 
@@ -140,13 +133,13 @@ struct SweepPoint {
   std::vector<LabelledExponent> exponents;  // hover order
   double liouville_residual = 0.0;
   bool stable = true;  // all zeta <= 0
-  ContinuationStatus status = ContinuationStatus::Ok;
+  Status status = Status::Ok;
   std::string message;
 };
 
 struct ExponentSweep {
   std::vector<SweepPoint> points;
-  ContinuationStatus status = ContinuationStatus::Ok;  // worst over the points
+  Status status = Status::Ok;  // worst over the points
   std::string message;
 };
 
