@@ -21,8 +21,8 @@ inline ::testing::AssertionResult RelClose(double expected, double actual, doubl
 inline ::testing::AssertionResult AbsClose(double expected, double actual, double tol) {
   const double err = std::abs(actual - expected);
   if (err <= tol) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "expected " << expected << ", actual " << actual
-                                       << ", |error| " << err << " > " << tol;
+  return ::testing::AssertionFailure()
+         << "expected " << expected << ", actual " << actual << ", |error| " << err << " > " << tol;
 }
 
 }  // namespace flaplag::testing

@@ -38,8 +38,8 @@ struct FactorRef {
 // (tip-loss limits A..B, split at x = mu in the reversed-flow sector, Appendix D), where
 // x = e1/R + (l/R) x0bar is the station radius by R.
 struct AeroIntegral {
-  const char* name;        // canonical, e.g. "x^2 eta1 eta1'"
-  const char* ident;       // C identifier form, e.g. "x2_eta1_deta1"
+  const char* name;   // canonical, e.g. "x^2 eta1 eta1'"
+  const char* ident;  // C identifier form, e.g. "x2_eta1_deta1"
   int x_power;
   int n_factors;
   FactorRef factors[4];
@@ -69,14 +69,14 @@ struct StructuralIntegral {
 
 // Inputs of the generated coefficient functions.  Arrays are row-major.
 struct CoefficientInputs {
-  double lock;      // gamma, Lock number (normal flow)
-  double lr;        // l/R
-  double theta;     // collective pitch [rad]
-  double inflow;    // lambda, positive down, by Omega R
-  double precone;   // beta_P [rad]
-  double droop;     // beta_D [rad]
-  double cdo_a;     // C_Do / a
-  double mu;        // advance ratio
+  double lock;                 // gamma, Lock number (normal flow)
+  double lr;                   // l/R
+  double theta;                // collective pitch [rad]
+  double inflow;               // lambda, positive down, by Omega R
+  double precone;              // beta_P [rad]
+  double droop;                // beta_D [rad]
+  double cdo_a;                // C_Do / a
+  double mu;                   // advance ratio
   const double* g0;            // [M] hover static flap amplitudes
   const double* h0;            // [N] hover static lag amplitudes
   const double* omega_flap;    // [M] rotating flap frequencies by Omega
@@ -107,13 +107,13 @@ struct EquilibriumOutputs {
 };
 
 struct ModelDescriptor {
-  const char* name;         // model name, e.g. "paper"
-  const char* spec_file;    // spec file name, e.g. "paper.toml"
-  const char* spec_text;    // the spec as parsed (canonical TOML)
-  const char* summary;      // one line: orders, term classes, modes
-  int flap_modes;           // M
-  int lag_modes;            // N
-  int n_harmonics;          // H
+  const char* name;       // model name, e.g. "paper"
+  const char* spec_file;  // spec file name, e.g. "paper.toml"
+  const char* spec_text;  // the spec as parsed (canonical TOML)
+  const char* summary;    // one line: orders, term classes, modes
+  int flap_modes;         // M
+  int lag_modes;          // N
+  int n_harmonics;        // H
   int n_aero;
   const AeroIntegral* aero;
   int n_structural;

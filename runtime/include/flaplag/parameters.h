@@ -12,26 +12,27 @@ namespace flaplag {
 enum class ModeKind { Assumed, Exact };
 
 struct RotorParameters {
-  std::string model = "paper";  // compiled ordering model (see `flaplag models`)
-  double lock = 10.0;           // gamma, Lock number based on normal flow (> 0)
-  double solidity = 0.05;       // sigma (> 0), used by the inflow, eq 2.24
+  std::string model = "paper";            // compiled ordering model (see `flaplag models`)
+  double lock = 10.0;                     // gamma, Lock number based on normal flow (> 0)
+  double solidity = 0.05;                 // sigma (> 0), used by the inflow, eq 2.24
   double lift_slope = 6.283185307179586;  // a (> 0)
-  double cdo = 0.01;            // profile drag coefficient C_Do (>= 0)
-  double theta = 0.15;          // collective pitch [rad]
-  double precone = 0.0;         // beta_P [rad]
-  double droop = 0.0;           // beta_D [rad]
-  double omega_flap = 1.175;    // first rotating flap frequency by Omega (> 0)
-  double omega_lag = 1.28303;   // first rotating lag frequency by Omega (> 0)
-  double damping_flap = 0.0;    // eta_SF, viscous structural damping ratio (>= 0)
-  double damping_lag = 0.0;     // eta_SL (>= 0)
-  double length_ratio = 1.0;    // l / R (> 0, <= 1)
-  double tip_loss_a = 0.0;      // A-bar, inner aerodynamic limit in x0bar
-  double tip_loss_b = 1.0;      // B-bar, outer aerodynamic limit in x0bar
-  double e1 = 0.0;              // root offset by R (>= 0)
-  bool reversed_flow = true;    // Appendix D sector model
+  double cdo = 0.01;                      // profile drag coefficient C_Do (>= 0)
+  double theta = 0.15;                    // collective pitch [rad]
+  double precone = 0.0;                   // beta_P [rad]
+  double droop = 0.0;                     // beta_D [rad]
+  double omega_flap = 1.175;              // first rotating flap frequency by Omega (> 0)
+  double omega_lag = 1.28303;             // first rotating lag frequency by Omega (> 0)
+  double damping_flap = 0.0;              // eta_SF, viscous structural damping ratio (>= 0)
+  double damping_lag = 0.0;               // eta_SL (>= 0)
+  double length_ratio = 1.0;              // l / R (> 0, <= 1)
+  double tip_loss_a = 0.0;                // A-bar, inner aerodynamic limit in x0bar
+  double tip_loss_b = 1.0;                // B-bar, outer aerodynamic limit in x0bar
+  double e1 = 0.0;                        // root offset by R (>= 0)
+  bool reversed_flow = true;              // Appendix D sector model
   ModeKind modes = ModeKind::Assumed;
-  bool elastic_coupling = true;    // Appendix E; applies to exact modes only (paper 4.1(a))
-  bool paper_1974_shapes = false;  // exact modes rebuilt with the 1974 sign slip (docs/validation.md)
+  bool elastic_coupling = true;  // Appendix E; applies to exact modes only (paper 4.1(a))
+  bool paper_1974_shapes =
+      false;  // exact modes rebuilt with the 1974 sign slip (docs/validation.md)
 };
 
 // Throws InvalidInput naming the first offending field and its value.

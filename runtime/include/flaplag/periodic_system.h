@@ -22,9 +22,9 @@ double harmonic_basis(int h, double psi);
 double harmonic_mean(int h, double a, double b);
 
 struct PeriodicSystem {
-  int n = 0;                  // state dimension
-  HarmonicSet normal;         // normal-flow region
-  HarmonicSet reversed;       // reversed-flow sector (ignored when !has_sector)
+  int n = 0;             // state dimension
+  HarmonicSet normal;    // normal-flow region
+  HarmonicSet reversed;  // reversed-flow sector (ignored when !has_sector)
   bool has_sector = false;
   double sector_begin = 0.0;  // radians, 0 <= begin < end <= 2*pi
   double sector_end = 0.0;
