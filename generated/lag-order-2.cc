@@ -54,63 +54,124 @@ const model::StructuralIntegral kStructural[] = {
 
 const char kSpecText[] = "description = \"Paper model with lag loads only to O(eps^2) (Fig 8)\"\n[modes]\nflap = 1\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 2\n[terms]\nradial_flow = true\n";
 
+// Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
+struct Symbols {
+  explicit Symbols(const model::CoefficientInputs& in);
+  double lock;
+  double lr;
+  double theta;
+  double inflow;
+  double precone;
+  double droop;
+  double cdo_a;
+  double mu;
+  double g0_1;
+  double h0_1;
+  double omega_flap_1;
+  double damping_flap_1;
+  double omega_lag_1;
+  double damping_lag_1;
+  double es_flap_1_1;
+  double ecs_flap_lag_1_1;
+  double es_lag_1_1;
+  double ecs_lag_flap_1_1;
+  double A_eta1;  // F3_1
+  double A_eta1_eta1;  // F9_11
+  double A_eta1_eta1_dgam1;  // F24_111
+  double A_eta1_deta1;  // F7_11
+  double A_eta1_deta1_gam1;  // F14_111/L17_111
+  double A_eta1_deta1_dgam1;  // F23_111
+  double A_eta1_gam1;  // F11_11/L8_11
+  double A_eta1_dgam1;  // F22_11
+  double A_deta1_deta1_gam1;  // L24_111
+  double A_deta1_gam1;  // L11_11
+  double A_gam1;  // L2_1
+  double A_x1_eta1;  // F2_1
+  double A_x1_eta1_eta1;  // F8_11
+  double A_x1_eta1_deta1;  // F6_11
+  double A_x1_eta1_gam1;  // F10_11/L7_11
+  double A_x1_eta1_dgam1;  // F21_11
+  double A_x1_deta1_gam1;  // L10_11
+  double A_x1_gam1;  // L1_1
+  double A_x2_eta1;  // F1_1
+  double A_x2_gam1;  // L4_1
+  double S_deta1__tail_m_gam1;  // B3_11
+  double S_deta1__tail_m_arm;  // B1_1
+  double S_deta1_deta1__tail_m_gam1;  // P_111
+  double S_deta1_deta1__tail_m_arm;  // centrifugal stiffness (absorbed)
+  double S_dgam1__tail_m_gam1;  // B8_11
+  double S_dgam1__tail_m_arm;  // B10_1
+  double S_dgam1_dgam1__tail_m_gam1;  // S_111
+  double S_dgam1_dgam1__tail_m_arm;  // centrifugal stiffness (absorbed)
+  double S_m_eta1_eta1;  // M_F11
+  double S_m_eta1_gam1;  // B7_11
+  double S_m_gam1__head_deta1_deta1;  // Meta_111
+  double S_m_gam1__head_dgam1_dgam1;  // Mgamma_111
+  double S_m_gam1_gam1;  // M_L11
+  double S_m_gam1_x0;  // B11_1
+};
+
+Symbols::Symbols(const model::CoefficientInputs& in) {
+  lock = in.lock;
+  lr = in.lr;
+  theta = in.theta;
+  inflow = in.inflow;
+  precone = in.precone;
+  droop = in.droop;
+  cdo_a = in.cdo_a;
+  mu = in.mu;
+  g0_1 = in.g0[0];
+  h0_1 = in.h0[0];
+  omega_flap_1 = in.omega_flap[0];
+  damping_flap_1 = in.damping_flap[0];
+  omega_lag_1 = in.omega_lag[0];
+  damping_lag_1 = in.damping_lag[0];
+  es_flap_1_1 = in.es_flap[0];
+  ecs_flap_lag_1_1 = in.ecs_flap_lag[0];
+  es_lag_1_1 = in.es_lag[0];
+  ecs_lag_flap_1_1 = in.ecs_lag_flap[0];
+  A_eta1 = in.aero[0];
+  A_eta1_eta1 = in.aero[1];
+  A_eta1_eta1_dgam1 = in.aero[2];
+  A_eta1_deta1 = in.aero[3];
+  A_eta1_deta1_gam1 = in.aero[4];
+  A_eta1_deta1_dgam1 = in.aero[5];
+  A_eta1_gam1 = in.aero[6];
+  A_eta1_dgam1 = in.aero[7];
+  A_deta1_deta1_gam1 = in.aero[8];
+  A_deta1_gam1 = in.aero[9];
+  A_gam1 = in.aero[10];
+  A_x1_eta1 = in.aero[11];
+  A_x1_eta1_eta1 = in.aero[12];
+  A_x1_eta1_deta1 = in.aero[13];
+  A_x1_eta1_gam1 = in.aero[14];
+  A_x1_eta1_dgam1 = in.aero[15];
+  A_x1_deta1_gam1 = in.aero[16];
+  A_x1_gam1 = in.aero[17];
+  A_x2_eta1 = in.aero[18];
+  A_x2_gam1 = in.aero[19];
+  S_deta1__tail_m_gam1 = in.structural[0];
+  S_deta1__tail_m_arm = in.structural[1];
+  S_deta1_deta1__tail_m_gam1 = in.structural[2];
+  S_deta1_deta1__tail_m_arm = in.structural[3];
+  S_dgam1__tail_m_gam1 = in.structural[4];
+  S_dgam1__tail_m_arm = in.structural[5];
+  S_dgam1_dgam1__tail_m_gam1 = in.structural[6];
+  S_dgam1_dgam1__tail_m_arm = in.structural[7];
+  S_m_eta1_eta1 = in.structural[8];
+  S_m_eta1_gam1 = in.structural[9];
+  S_m_gam1__head_deta1_deta1 = in.structural[10];
+  S_m_gam1__head_dgam1_dgam1 = in.structural[11];
+  S_m_gam1_gam1 = in.structural[12];
+  S_m_gam1_x0 = in.structural[13];
+}
+
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 2, states 2n = 4, harmonics H = 5.
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
-  [[maybe_unused]] const double lock = in.lock;
-  [[maybe_unused]] const double lr = in.lr;
-  [[maybe_unused]] const double theta = in.theta;
-  [[maybe_unused]] const double inflow = in.inflow;
-  [[maybe_unused]] const double precone = in.precone;
-  [[maybe_unused]] const double droop = in.droop;
-  [[maybe_unused]] const double cdo_a = in.cdo_a;
-  [[maybe_unused]] const double mu = in.mu;
-  [[maybe_unused]] const double g0_1 = in.g0[0];
-  [[maybe_unused]] const double h0_1 = in.h0[0];
-  [[maybe_unused]] const double omega_flap_1 = in.omega_flap[0];
-  [[maybe_unused]] const double damping_flap_1 = in.damping_flap[0];
-  [[maybe_unused]] const double omega_lag_1 = in.omega_lag[0];
-  [[maybe_unused]] const double damping_lag_1 = in.damping_lag[0];
-  [[maybe_unused]] const double es_flap_1_1 = in.es_flap[0];
-  [[maybe_unused]] const double ecs_flap_lag_1_1 = in.ecs_flap_lag[0];
-  [[maybe_unused]] const double es_lag_1_1 = in.es_lag[0];
-  [[maybe_unused]] const double ecs_lag_flap_1_1 = in.ecs_lag_flap[0];
-  [[maybe_unused]] const double A_eta1 = in.aero[0];  // F3_1
-  [[maybe_unused]] const double A_eta1_eta1 = in.aero[1];  // F9_11
-  [[maybe_unused]] const double A_eta1_eta1_dgam1 = in.aero[2];  // F24_111
-  [[maybe_unused]] const double A_eta1_deta1 = in.aero[3];  // F7_11
-  [[maybe_unused]] const double A_eta1_deta1_gam1 = in.aero[4];  // F14_111/L17_111
-  [[maybe_unused]] const double A_eta1_deta1_dgam1 = in.aero[5];  // F23_111
-  [[maybe_unused]] const double A_eta1_gam1 = in.aero[6];  // F11_11/L8_11
-  [[maybe_unused]] const double A_eta1_dgam1 = in.aero[7];  // F22_11
-  [[maybe_unused]] const double A_deta1_deta1_gam1 = in.aero[8];  // L24_111
-  [[maybe_unused]] const double A_deta1_gam1 = in.aero[9];  // L11_11
-  [[maybe_unused]] const double A_gam1 = in.aero[10];  // L2_1
-  [[maybe_unused]] const double A_x1_eta1 = in.aero[11];  // F2_1
-  [[maybe_unused]] const double A_x1_eta1_eta1 = in.aero[12];  // F8_11
-  [[maybe_unused]] const double A_x1_eta1_deta1 = in.aero[13];  // F6_11
-  [[maybe_unused]] const double A_x1_eta1_gam1 = in.aero[14];  // F10_11/L7_11
-  [[maybe_unused]] const double A_x1_eta1_dgam1 = in.aero[15];  // F21_11
-  [[maybe_unused]] const double A_x1_deta1_gam1 = in.aero[16];  // L10_11
-  [[maybe_unused]] const double A_x1_gam1 = in.aero[17];  // L1_1
-  [[maybe_unused]] const double A_x2_eta1 = in.aero[18];  // F1_1
-  [[maybe_unused]] const double A_x2_gam1 = in.aero[19];  // L4_1
-  [[maybe_unused]] const double S_deta1__tail_m_gam1 = in.structural[0];  // B3_11
-  [[maybe_unused]] const double S_deta1__tail_m_arm = in.structural[1];  // B1_1
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_gam1 = in.structural[2];  // P_111
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_arm = in.structural[3];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_dgam1__tail_m_gam1 = in.structural[4];  // B8_11
-  [[maybe_unused]] const double S_dgam1__tail_m_arm = in.structural[5];  // B10_1
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_gam1 = in.structural[6];  // S_111
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_arm = in.structural[7];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_m_eta1_eta1 = in.structural[8];  // M_F11
-  [[maybe_unused]] const double S_m_eta1_gam1 = in.structural[9];  // B7_11
-  [[maybe_unused]] const double S_m_gam1__head_deta1_deta1 = in.structural[10];  // Meta_111
-  [[maybe_unused]] const double S_m_gam1__head_dgam1_dgam1 = in.structural[11];  // Mgamma_111
-  [[maybe_unused]] const double S_m_gam1_gam1 = in.structural[12];  // M_L11
-  [[maybe_unused]] const double S_m_gam1_x0 = in.structural[13];  // B11_1
+  const Symbols s(in);
   // mass: flap 1, dg1'''
   out.mass[0] =
-      S_m_eta1_eta1;
+      s.S_m_eta1_eta1;
   // mass: flap 1, dh1'''
   out.mass[1] =
       0.0;
@@ -119,106 +180,106 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // mass: lag 1, dh1'''
   out.mass[3] =
-      S_m_gam1_gam1;
+      s.S_m_gam1_gam1;
   // force[1]: flap 1, dg1'
   out.force[0] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * A_x1_eta1_eta1
-      - (2.0) * omega_flap_1 * damping_flap_1 * S_m_eta1_eta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta1
+      - (2.0) * s.omega_flap_1 * s.damping_flap_1 * s.S_m_eta1_eta1;
   // force[1]: flap 1, dg1
   out.force[1] =
-      -es_flap_1_1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta1_deta1_dgam1
-      - omega_flap_1 * omega_flap_1 * S_m_eta1_eta1;
+      -s.es_flap_1_1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1
+      - s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
   // force[1]: flap 1, dh1'
   out.force[2] =
-      (1.0 / 2.0) * lock * lr * lr * lr * inflow * A_eta1_gam1
-      - lock * lr * lr * lr * theta * A_x1_eta1_gam1
-      + (2.0) * precone * S_deta1__tail_m_gam1
-      + (2.0) * droop * S_deta1__tail_m_gam1
-      + (2.0) * g0_1 * S_deta1_deta1__tail_m_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
+      + (2.0) * s.precone * s.S_deta1__tail_m_gam1
+      + (2.0) * s.droop * s.S_deta1__tail_m_gam1
+      + (2.0) * s.g0_1 * s.S_deta1_deta1__tail_m_gam1;
   // force[1]: flap 1, dh1
   out.force[3] =
-      ecs_flap_lag_1_1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta1_dgam1;
+      s.ecs_flap_lag_1_1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
   // force[1]: lag 1, dg1'
   out.force[4] =
-      -lock * lr * lr * lr * inflow * A_eta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * theta * A_x1_eta1_gam1
-      - (2.0) * precone * S_m_eta1_gam1
-      - (2.0) * droop * S_m_eta1_gam1
-      - (2.0) * g0_1 * S_m_gam1__head_deta1_deta1;
+      -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
+      - (2.0) * s.precone * s.S_m_eta1_gam1
+      - (2.0) * s.droop * s.S_m_eta1_gam1
+      - (2.0) * s.g0_1 * s.S_m_gam1__head_deta1_deta1;
   // force[1]: lag 1, dg1
   out.force[5] =
-      ecs_lag_flap_1_1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta1_gam1;
+      s.ecs_lag_flap_1_1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1;
   // force[1]: lag 1, dh1'
   out.force[6] =
-      (2.0) * theta * droop * S_dgam1__tail_m_gam1
-      + (2.0) * h0_1 * S_dgam1_dgam1__tail_m_gam1
-      - (2.0) * h0_1 * S_m_gam1__head_dgam1_dgam1
-      - (2.0) * omega_lag_1 * damping_lag_1 * S_m_gam1_gam1;
+      (2.0) * s.theta * s.droop * s.S_dgam1__tail_m_gam1
+      + (2.0) * s.h0_1 * s.S_dgam1_dgam1__tail_m_gam1
+      - (2.0) * s.h0_1 * s.S_m_gam1__head_dgam1_dgam1
+      - (2.0) * s.omega_lag_1 * s.damping_lag_1 * s.S_m_gam1_gam1;
   // force[1]: lag 1, dh1
   out.force[7] =
-      es_lag_1_1
-      - omega_lag_1 * omega_lag_1 * S_m_gam1_gam1;
+      s.es_lag_1_1
+      - s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
   // forcing[1]: flap 1
   out.forcing[0] =
-      -g0_1 * es_flap_1_1
-      + h0_1 * ecs_flap_lag_1_1
-      + (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_eta1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_1 * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_1 * A_eta1_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * inflow * A_x1_eta1
-      + (1.0 / 2.0) * lock * lr * lr * theta * A_x2_eta1
-      - precone * S_deta1__tail_m_arm
-      - droop * S_deta1__tail_m_arm
-      - g0_1 * omega_flap_1 * omega_flap_1 * S_m_eta1_eta1;
+      -s.g0_1 * s.es_flap_1_1
+      + s.h0_1 * s.ecs_flap_lag_1_1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta1
+      - s.precone * s.S_deta1__tail_m_arm
+      - s.droop * s.S_deta1__tail_m_arm
+      - s.g0_1 * s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
   // forcing[1]: lag 1
   out.forcing[1] =
-      g0_1 * ecs_lag_flap_1_1
-      + h0_1 * es_lag_1_1
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * g0_1 * A_deta1_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_1 * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_1 * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * inflow * inflow * A_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * droop * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * precone * precone * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * droop * droop * mu * mu * A_gam1
-      + (1.0 / 4.0) * lock * lr * lr * cdo_a * mu * mu * A_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * inflow * A_x1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * cdo_a * A_x2_gam1
-      - theta * droop * S_dgam1__tail_m_arm
-      - h0_1 * omega_lag_1 * omega_lag_1 * S_m_gam1_gam1
-      + theta * droop * S_m_gam1_x0;
+      s.g0_1 * s.ecs_lag_flap_1_1
+      + s.h0_1 * s.es_lag_1_1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.droop * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.precone * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.droop * s.mu * s.mu * s.A_gam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.A_x2_gam1
+      - s.theta * s.droop * s.S_dgam1__tail_m_arm
+      - s.h0_1 * s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1
+      + s.theta * s.droop * s.S_m_gam1_x0;
   // force[cos psi]: flap 1, dg1'
   out.force[8] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * h0_1 * A_eta1_eta1_dgam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta1_dgam1;
   // force[cos psi]: flap 1, dg1
   out.force[9] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * A_x1_eta1_deta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta1_deta1;
   // force[cos psi]: flap 1, dh1'
   out.force[10] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * g0_1 * A_eta1_deta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * precone * mu * A_eta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * droop * mu * A_eta1_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1;
   // force[cos psi]: flap 1, dh1
   out.force[11] =
-      (1.0 / 2.0) * lock * lr * lr * inflow * mu * A_eta1_dgam1
-      - lock * lr * lr * theta * mu * A_x1_eta1_dgam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1_dgam1
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1_dgam1;
   // force[cos psi]: lag 1, dg1'
   out.force[12] =
-      -lock * lr * lr * lr * mu * g0_1 * A_eta1_deta1_gam1
-      - lock * lr * lr * lr * precone * mu * A_eta1_gam1
-      - lock * lr * lr * lr * droop * mu * A_eta1_gam1;
+      -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1;
   // force[cos psi]: lag 1, dg1
   out.force[13] =
-      -lock * lr * lr * inflow * mu * A_deta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * A_x1_deta1_gam1;
+      -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta1_gam1;
   // force[cos psi]: lag 1, dh1'
   out.force[14] =
       0.0;
@@ -227,34 +288,34 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // forcing[cos psi]: flap 1
   out.forcing[2] =
-      (1.0 / 2.0) * lock * lr * lr * inflow * mu * h0_1 * A_eta1_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * A_x1_eta1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * A_x1_eta1
-      - (1.0 / 2.0) * lock * lr * lr * mu * g0_1 * A_x1_eta1_deta1
-      - lock * lr * lr * theta * mu * h0_1 * A_x1_eta1_dgam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_1 * s.A_eta1_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.A_x1_eta1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.A_x1_eta1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_1 * s.A_x1_eta1_deta1
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_x1_eta1_dgam1;
   // forcing[cos psi]: lag 1
   out.forcing[3] =
-      -lock * lr * lr * inflow * mu * g0_1 * A_deta1_gam1
-      - lock * lr * lr * inflow * precone * mu * A_gam1
-      - lock * lr * lr * inflow * droop * mu * A_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * g0_1 * A_x1_deta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * precone * mu * A_x1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * droop * mu * A_x1_gam1;
+      -s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_1 * s.A_deta1_gam1
+      - s.lock * s.lr * s.lr * s.inflow * s.precone * s.mu * s.A_gam1
+      - s.lock * s.lr * s.lr * s.inflow * s.droop * s.mu * s.A_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_x1_deta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_x1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_x1_gam1;
   // force[sin psi]: flap 1, dg1'
   out.force[16] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * mu * A_eta1_eta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta1;
   // force[sin psi]: flap 1, dg1
   out.force[17] =
       0.0;
   // force[sin psi]: flap 1, dh1'
   out.force[18] =
-      -lock * lr * lr * lr * theta * mu * A_eta1_gam1;
+      -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
   // force[sin psi]: flap 1, dh1
   out.force[19] =
       0.0;
   // force[sin psi]: lag 1, dg1'
   out.force[20] =
-      (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * A_eta1_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
   // force[sin psi]: lag 1, dg1
   out.force[21] =
       0.0;
@@ -266,34 +327,34 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // forcing[sin psi]: flap 1
   out.forcing[4] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * mu * A_eta1
-      + lock * lr * lr * theta * mu * A_x1_eta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1
+      + s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1;
   // forcing[sin psi]: lag 1
   out.forcing[5] =
-      (1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * A_gam1
-      + lock * lr * lr * cdo_a * mu * A_x1_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1
+      + s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1;
   // force[cos 2psi]: flap 1, dg1'
   out.force[24] =
       0.0;
   // force[cos 2psi]: flap 1, dg1
   out.force[25] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta1_deta1_dgam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1;
   // force[cos 2psi]: flap 1, dh1'
   out.force[26] =
       0.0;
   // force[cos 2psi]: flap 1, dh1
   out.force[27] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta1_dgam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
   // force[cos 2psi]: lag 1, dg1'
   out.force[28] =
       0.0;
   // force[cos 2psi]: lag 1, dg1
   out.force[29] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta1_gam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1;
   // force[cos 2psi]: lag 1, dh1'
   out.force[30] =
       0.0;
@@ -302,37 +363,37 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // forcing[cos 2psi]: flap 1
   out.forcing[6] =
-      -(1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_eta1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_1 * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_1 * A_eta1_dgam1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1;
   // forcing[cos 2psi]: lag 1
   out.forcing[7] =
-      -(1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * g0_1 * A_deta1_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_1 * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_1 * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * droop * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * precone * precone * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * droop * droop * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * cdo_a * mu * mu * A_gam1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.droop * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.precone * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.droop * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1;
   // force[sin 2psi]: flap 1, dg1'
   out.force[32] =
       0.0;
   // force[sin 2psi]: flap 1, dg1
   out.force[33] =
-      -(1.0 / 4.0) * lock * lr * lr * mu * mu * A_eta1_deta1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta1_deta1;
   // force[sin 2psi]: flap 1, dh1'
   out.force[34] =
       0.0;
   // force[sin 2psi]: flap 1, dh1
   out.force[35] =
-      -(1.0 / 2.0) * lock * lr * lr * theta * mu * mu * A_eta1_dgam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1_dgam1;
   // force[sin 2psi]: lag 1, dg1'
   out.force[36] =
       0.0;
   // force[sin 2psi]: lag 1, dg1
   out.force[37] =
-      (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_deta1_gam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta1_gam1;
   // force[sin 2psi]: lag 1, dh1'
   out.force[38] =
       0.0;
@@ -341,92 +402,41 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // forcing[sin 2psi]: flap 1
   out.forcing[8] =
-      -(1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta1
-      - (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta1
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta1_deta1
-      - (1.0 / 2.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_eta1_dgam1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1;
   // forcing[sin 2psi]: lag 1
   out.forcing[9] =
-      (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam1
-      + (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam1
-      + (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1;
 }
 
 // Hover static equilibrium S q0 = c (eqs 2.27-2.32).
 void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOutputs& out) {
-  [[maybe_unused]] const double lock = in.lock;
-  [[maybe_unused]] const double lr = in.lr;
-  [[maybe_unused]] const double theta = in.theta;
-  [[maybe_unused]] const double inflow = in.inflow;
-  [[maybe_unused]] const double precone = in.precone;
-  [[maybe_unused]] const double droop = in.droop;
-  [[maybe_unused]] const double cdo_a = in.cdo_a;
-  [[maybe_unused]] const double mu = in.mu;
-  [[maybe_unused]] const double g0_1 = in.g0[0];
-  [[maybe_unused]] const double h0_1 = in.h0[0];
-  [[maybe_unused]] const double omega_flap_1 = in.omega_flap[0];
-  [[maybe_unused]] const double damping_flap_1 = in.damping_flap[0];
-  [[maybe_unused]] const double omega_lag_1 = in.omega_lag[0];
-  [[maybe_unused]] const double damping_lag_1 = in.damping_lag[0];
-  [[maybe_unused]] const double es_flap_1_1 = in.es_flap[0];
-  [[maybe_unused]] const double ecs_flap_lag_1_1 = in.ecs_flap_lag[0];
-  [[maybe_unused]] const double es_lag_1_1 = in.es_lag[0];
-  [[maybe_unused]] const double ecs_lag_flap_1_1 = in.ecs_lag_flap[0];
-  [[maybe_unused]] const double A_eta1 = in.aero[0];  // F3_1
-  [[maybe_unused]] const double A_eta1_eta1 = in.aero[1];  // F9_11
-  [[maybe_unused]] const double A_eta1_eta1_dgam1 = in.aero[2];  // F24_111
-  [[maybe_unused]] const double A_eta1_deta1 = in.aero[3];  // F7_11
-  [[maybe_unused]] const double A_eta1_deta1_gam1 = in.aero[4];  // F14_111/L17_111
-  [[maybe_unused]] const double A_eta1_deta1_dgam1 = in.aero[5];  // F23_111
-  [[maybe_unused]] const double A_eta1_gam1 = in.aero[6];  // F11_11/L8_11
-  [[maybe_unused]] const double A_eta1_dgam1 = in.aero[7];  // F22_11
-  [[maybe_unused]] const double A_deta1_deta1_gam1 = in.aero[8];  // L24_111
-  [[maybe_unused]] const double A_deta1_gam1 = in.aero[9];  // L11_11
-  [[maybe_unused]] const double A_gam1 = in.aero[10];  // L2_1
-  [[maybe_unused]] const double A_x1_eta1 = in.aero[11];  // F2_1
-  [[maybe_unused]] const double A_x1_eta1_eta1 = in.aero[12];  // F8_11
-  [[maybe_unused]] const double A_x1_eta1_deta1 = in.aero[13];  // F6_11
-  [[maybe_unused]] const double A_x1_eta1_gam1 = in.aero[14];  // F10_11/L7_11
-  [[maybe_unused]] const double A_x1_eta1_dgam1 = in.aero[15];  // F21_11
-  [[maybe_unused]] const double A_x1_deta1_gam1 = in.aero[16];  // L10_11
-  [[maybe_unused]] const double A_x1_gam1 = in.aero[17];  // L1_1
-  [[maybe_unused]] const double A_x2_eta1 = in.aero[18];  // F1_1
-  [[maybe_unused]] const double A_x2_gam1 = in.aero[19];  // L4_1
-  [[maybe_unused]] const double S_deta1__tail_m_gam1 = in.structural[0];  // B3_11
-  [[maybe_unused]] const double S_deta1__tail_m_arm = in.structural[1];  // B1_1
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_gam1 = in.structural[2];  // P_111
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_arm = in.structural[3];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_dgam1__tail_m_gam1 = in.structural[4];  // B8_11
-  [[maybe_unused]] const double S_dgam1__tail_m_arm = in.structural[5];  // B10_1
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_gam1 = in.structural[6];  // S_111
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_arm = in.structural[7];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_m_eta1_eta1 = in.structural[8];  // M_F11
-  [[maybe_unused]] const double S_m_eta1_gam1 = in.structural[9];  // B7_11
-  [[maybe_unused]] const double S_m_gam1__head_deta1_deta1 = in.structural[10];  // Meta_111
-  [[maybe_unused]] const double S_m_gam1__head_dgam1_dgam1 = in.structural[11];  // Mgamma_111
-  [[maybe_unused]] const double S_m_gam1_gam1 = in.structural[12];  // M_L11
-  [[maybe_unused]] const double S_m_gam1_x0 = in.structural[13];  // B11_1
+  const Symbols s(in);
   out.S[0] =
-      es_flap_1_1
-      + omega_flap_1 * omega_flap_1 * S_m_eta1_eta1;
+      s.es_flap_1_1
+      + s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
   out.S[1] =
-      -ecs_flap_lag_1_1;
+      -s.ecs_flap_lag_1_1;
   out.c[0] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * A_x1_eta1
-      + (1.0 / 2.0) * lock * lr * lr * theta * A_x2_eta1
-      - precone * S_deta1__tail_m_arm
-      - droop * S_deta1__tail_m_arm;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta1
+      - s.precone * s.S_deta1__tail_m_arm
+      - s.droop * s.S_deta1__tail_m_arm;
   out.S[2] =
-      -ecs_lag_flap_1_1;
+      -s.ecs_lag_flap_1_1;
   out.S[3] =
-      -es_lag_1_1
-      + omega_lag_1 * omega_lag_1 * S_m_gam1_gam1;
+      -s.es_lag_1_1
+      + s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
   out.c[1] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * inflow * A_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * inflow * A_x1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * cdo_a * A_x2_gam1
-      - theta * droop * S_dgam1__tail_m_arm
-      + theta * droop * S_m_gam1_x0;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.A_x2_gam1
+      - s.theta * s.droop * s.S_dgam1__tail_m_arm
+      + s.theta * s.droop * s.S_m_gam1_x0;
 }
 
 }  // namespace

@@ -104,133 +104,252 @@ const model::StructuralIntegral kStructural[] = {
 
 const char kSpecText[] = "description = \"Paper ordering with two flap modes and one lag mode (exact rotating modes)\"\n[modes]\nflap = 2\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
 
+// Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
+struct Symbols {
+  explicit Symbols(const model::CoefficientInputs& in);
+  double lock;
+  double lr;
+  double theta;
+  double inflow;
+  double precone;
+  double droop;
+  double cdo_a;
+  double mu;
+  double g0_1;
+  double g0_2;
+  double h0_1;
+  double omega_flap_1;
+  double damping_flap_1;
+  double omega_flap_2;
+  double damping_flap_2;
+  double omega_lag_1;
+  double damping_lag_1;
+  double es_flap_1_1;
+  double es_flap_1_2;
+  double ecs_flap_lag_1_1;
+  double es_flap_2_1;
+  double es_flap_2_2;
+  double ecs_flap_lag_2_1;
+  double es_lag_1_1;
+  double ecs_lag_flap_1_1;
+  double ecs_lag_flap_1_2;
+  double A_eta1;  // F3_1
+  double A_eta1_eta1;  // F9_11
+  double A_eta1_eta1_dgam1;  // F24_111
+  double A_eta1_eta2;  // F9_12/F9_21
+  double A_eta1_eta2_dgam1;  // F24_121/F24_211
+  double A_eta1_deta1;  // F7_11
+  double A_eta1_deta1_gam1;  // F14_111/L17_111
+  double A_eta1_deta1_dgam1;  // F23_111
+  double A_eta1_deta2;  // F7_12
+  double A_eta1_deta2_gam1;  // F14_121/L17_121
+  double A_eta1_deta2_dgam1;  // F23_121
+  double A_eta1_gam1;  // F11_11/L8_11
+  double A_eta1_gam1_dgam1;  // L22_111
+  double A_eta1_dgam1;  // F22_11
+  double A_eta2;  // F3_2
+  double A_eta2_eta2;  // F9_22
+  double A_eta2_eta2_dgam1;  // F24_221
+  double A_eta2_deta1;  // F7_21
+  double A_eta2_deta1_gam1;  // F14_211/L17_112
+  double A_eta2_deta1_dgam1;  // F23_211
+  double A_eta2_deta2;  // F7_22
+  double A_eta2_deta2_gam1;  // F14_221/L17_122
+  double A_eta2_deta2_dgam1;  // F23_221
+  double A_eta2_gam1;  // F11_21/L8_12
+  double A_eta2_gam1_dgam1;  // L22_121
+  double A_eta2_dgam1;  // F22_21
+  double A_deta1_deta1_gam1;  // L24_111
+  double A_deta1_deta2_gam1;  // L24_112
+  double A_deta1_gam1;  // L11_11
+  double A_deta1_gam1_gam1;  // L16_111
+  double A_deta1_gam1_dgam1;  // L21_111
+  double A_deta2_deta2_gam1;  // L24_122
+  double A_deta2_gam1;  // L11_12
+  double A_deta2_gam1_gam1;  // L16_121
+  double A_deta2_gam1_dgam1;  // L21_121
+  double A_gam1;  // L2_1
+  double A_gam1_gam1;  // L13_11
+  double A_gam1_dgam1;  // L20_11
+  double A_x1_eta1;  // F2_1
+  double A_x1_eta1_eta1;  // F8_11
+  double A_x1_eta1_eta2;  // F8_12/F8_21
+  double A_x1_eta1_deta1;  // F6_11
+  double A_x1_eta1_deta2;  // F6_12
+  double A_x1_eta1_gam1;  // F10_11/L7_11
+  double A_x1_eta1_dgam1;  // F21_11
+  double A_x1_eta2;  // F2_2
+  double A_x1_eta2_eta2;  // F8_22
+  double A_x1_eta2_deta1;  // F6_21
+  double A_x1_eta2_deta2;  // F6_22
+  double A_x1_eta2_gam1;  // F10_21/L7_12
+  double A_x1_eta2_dgam1;  // F21_21
+  double A_x1_deta1_gam1;  // L10_11
+  double A_x1_deta2_gam1;  // L10_12
+  double A_x1_gam1;  // L1_1
+  double A_x1_gam1_gam1;  // L14_11
+  double A_x1_gam1_dgam1;  // L23_11
+  double A_x2_eta1;  // F1_1
+  double A_x2_eta2;  // F1_2
+  double A_x2_gam1;  // L4_1
+  double S_deta1__tail_m_gam1;  // B3_11
+  double S_deta1__tail_m_arm;  // B1_1
+  double S_deta1_deta1__tail_m_gam1;  // P_111
+  double S_deta1_deta1__tail_m_arm;  // centrifugal stiffness (absorbed)
+  double S_deta1_deta2__tail_m_gam1;  // P_121/P_211
+  double S_deta1_deta2__tail_m_arm;  // centrifugal stiffness (absorbed)
+  double S_deta2__tail_m_gam1;  // B3_21
+  double S_deta2__tail_m_arm;  // B1_2
+  double S_deta2_deta2__tail_m_gam1;  // P_221
+  double S_deta2_deta2__tail_m_arm;  // centrifugal stiffness (absorbed)
+  double S_dgam1__tail_m_gam1;  // B8_11
+  double S_dgam1__tail_m_arm;  // B10_1
+  double S_dgam1_dgam1__tail_m_gam1;  // S_111
+  double S_dgam1_dgam1__tail_m_arm;  // centrifugal stiffness (absorbed)
+  double S_m_eta1_eta1;  // M_F11
+  double S_m_eta1_eta2;  // M_F12/M_F21
+  double S_m_eta1_gam1;  // B7_11
+  double S_m_eta2_eta2;  // M_F22
+  double S_m_eta2_gam1;  // B7_12
+  double S_m_gam1__head_deta1_deta1;  // Meta_111
+  double S_m_gam1__head_deta1_deta2;  // Meta_112
+  double S_m_gam1__head_deta2_deta2;  // Meta_122
+  double S_m_gam1__head_dgam1_dgam1;  // Mgamma_111
+  double S_m_gam1_gam1;  // M_L11
+  double S_m_gam1_x0;  // B11_1
+};
+
+Symbols::Symbols(const model::CoefficientInputs& in) {
+  lock = in.lock;
+  lr = in.lr;
+  theta = in.theta;
+  inflow = in.inflow;
+  precone = in.precone;
+  droop = in.droop;
+  cdo_a = in.cdo_a;
+  mu = in.mu;
+  g0_1 = in.g0[0];
+  g0_2 = in.g0[1];
+  h0_1 = in.h0[0];
+  omega_flap_1 = in.omega_flap[0];
+  damping_flap_1 = in.damping_flap[0];
+  omega_flap_2 = in.omega_flap[1];
+  damping_flap_2 = in.damping_flap[1];
+  omega_lag_1 = in.omega_lag[0];
+  damping_lag_1 = in.damping_lag[0];
+  es_flap_1_1 = in.es_flap[0];
+  es_flap_1_2 = in.es_flap[1];
+  ecs_flap_lag_1_1 = in.ecs_flap_lag[0];
+  es_flap_2_1 = in.es_flap[2];
+  es_flap_2_2 = in.es_flap[3];
+  ecs_flap_lag_2_1 = in.ecs_flap_lag[1];
+  es_lag_1_1 = in.es_lag[0];
+  ecs_lag_flap_1_1 = in.ecs_lag_flap[0];
+  ecs_lag_flap_1_2 = in.ecs_lag_flap[1];
+  A_eta1 = in.aero[0];
+  A_eta1_eta1 = in.aero[1];
+  A_eta1_eta1_dgam1 = in.aero[2];
+  A_eta1_eta2 = in.aero[3];
+  A_eta1_eta2_dgam1 = in.aero[4];
+  A_eta1_deta1 = in.aero[5];
+  A_eta1_deta1_gam1 = in.aero[6];
+  A_eta1_deta1_dgam1 = in.aero[7];
+  A_eta1_deta2 = in.aero[8];
+  A_eta1_deta2_gam1 = in.aero[9];
+  A_eta1_deta2_dgam1 = in.aero[10];
+  A_eta1_gam1 = in.aero[11];
+  A_eta1_gam1_dgam1 = in.aero[12];
+  A_eta1_dgam1 = in.aero[13];
+  A_eta2 = in.aero[14];
+  A_eta2_eta2 = in.aero[15];
+  A_eta2_eta2_dgam1 = in.aero[16];
+  A_eta2_deta1 = in.aero[17];
+  A_eta2_deta1_gam1 = in.aero[18];
+  A_eta2_deta1_dgam1 = in.aero[19];
+  A_eta2_deta2 = in.aero[20];
+  A_eta2_deta2_gam1 = in.aero[21];
+  A_eta2_deta2_dgam1 = in.aero[22];
+  A_eta2_gam1 = in.aero[23];
+  A_eta2_gam1_dgam1 = in.aero[24];
+  A_eta2_dgam1 = in.aero[25];
+  A_deta1_deta1_gam1 = in.aero[26];
+  A_deta1_deta2_gam1 = in.aero[27];
+  A_deta1_gam1 = in.aero[28];
+  A_deta1_gam1_gam1 = in.aero[29];
+  A_deta1_gam1_dgam1 = in.aero[30];
+  A_deta2_deta2_gam1 = in.aero[31];
+  A_deta2_gam1 = in.aero[32];
+  A_deta2_gam1_gam1 = in.aero[33];
+  A_deta2_gam1_dgam1 = in.aero[34];
+  A_gam1 = in.aero[35];
+  A_gam1_gam1 = in.aero[36];
+  A_gam1_dgam1 = in.aero[37];
+  A_x1_eta1 = in.aero[38];
+  A_x1_eta1_eta1 = in.aero[39];
+  A_x1_eta1_eta2 = in.aero[40];
+  A_x1_eta1_deta1 = in.aero[41];
+  A_x1_eta1_deta2 = in.aero[42];
+  A_x1_eta1_gam1 = in.aero[43];
+  A_x1_eta1_dgam1 = in.aero[44];
+  A_x1_eta2 = in.aero[45];
+  A_x1_eta2_eta2 = in.aero[46];
+  A_x1_eta2_deta1 = in.aero[47];
+  A_x1_eta2_deta2 = in.aero[48];
+  A_x1_eta2_gam1 = in.aero[49];
+  A_x1_eta2_dgam1 = in.aero[50];
+  A_x1_deta1_gam1 = in.aero[51];
+  A_x1_deta2_gam1 = in.aero[52];
+  A_x1_gam1 = in.aero[53];
+  A_x1_gam1_gam1 = in.aero[54];
+  A_x1_gam1_dgam1 = in.aero[55];
+  A_x2_eta1 = in.aero[56];
+  A_x2_eta2 = in.aero[57];
+  A_x2_gam1 = in.aero[58];
+  S_deta1__tail_m_gam1 = in.structural[0];
+  S_deta1__tail_m_arm = in.structural[1];
+  S_deta1_deta1__tail_m_gam1 = in.structural[2];
+  S_deta1_deta1__tail_m_arm = in.structural[3];
+  S_deta1_deta2__tail_m_gam1 = in.structural[4];
+  S_deta1_deta2__tail_m_arm = in.structural[5];
+  S_deta2__tail_m_gam1 = in.structural[6];
+  S_deta2__tail_m_arm = in.structural[7];
+  S_deta2_deta2__tail_m_gam1 = in.structural[8];
+  S_deta2_deta2__tail_m_arm = in.structural[9];
+  S_dgam1__tail_m_gam1 = in.structural[10];
+  S_dgam1__tail_m_arm = in.structural[11];
+  S_dgam1_dgam1__tail_m_gam1 = in.structural[12];
+  S_dgam1_dgam1__tail_m_arm = in.structural[13];
+  S_m_eta1_eta1 = in.structural[14];
+  S_m_eta1_eta2 = in.structural[15];
+  S_m_eta1_gam1 = in.structural[16];
+  S_m_eta2_eta2 = in.structural[17];
+  S_m_eta2_gam1 = in.structural[18];
+  S_m_gam1__head_deta1_deta1 = in.structural[19];
+  S_m_gam1__head_deta1_deta2 = in.structural[20];
+  S_m_gam1__head_deta2_deta2 = in.structural[21];
+  S_m_gam1__head_dgam1_dgam1 = in.structural[22];
+  S_m_gam1_gam1 = in.structural[23];
+  S_m_gam1_x0 = in.structural[24];
+}
+
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 3, states 2n = 6, harmonics H = 5.
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
-  [[maybe_unused]] const double lock = in.lock;
-  [[maybe_unused]] const double lr = in.lr;
-  [[maybe_unused]] const double theta = in.theta;
-  [[maybe_unused]] const double inflow = in.inflow;
-  [[maybe_unused]] const double precone = in.precone;
-  [[maybe_unused]] const double droop = in.droop;
-  [[maybe_unused]] const double cdo_a = in.cdo_a;
-  [[maybe_unused]] const double mu = in.mu;
-  [[maybe_unused]] const double g0_1 = in.g0[0];
-  [[maybe_unused]] const double g0_2 = in.g0[1];
-  [[maybe_unused]] const double h0_1 = in.h0[0];
-  [[maybe_unused]] const double omega_flap_1 = in.omega_flap[0];
-  [[maybe_unused]] const double damping_flap_1 = in.damping_flap[0];
-  [[maybe_unused]] const double omega_flap_2 = in.omega_flap[1];
-  [[maybe_unused]] const double damping_flap_2 = in.damping_flap[1];
-  [[maybe_unused]] const double omega_lag_1 = in.omega_lag[0];
-  [[maybe_unused]] const double damping_lag_1 = in.damping_lag[0];
-  [[maybe_unused]] const double es_flap_1_1 = in.es_flap[0];
-  [[maybe_unused]] const double es_flap_1_2 = in.es_flap[1];
-  [[maybe_unused]] const double ecs_flap_lag_1_1 = in.ecs_flap_lag[0];
-  [[maybe_unused]] const double es_flap_2_1 = in.es_flap[2];
-  [[maybe_unused]] const double es_flap_2_2 = in.es_flap[3];
-  [[maybe_unused]] const double ecs_flap_lag_2_1 = in.ecs_flap_lag[1];
-  [[maybe_unused]] const double es_lag_1_1 = in.es_lag[0];
-  [[maybe_unused]] const double ecs_lag_flap_1_1 = in.ecs_lag_flap[0];
-  [[maybe_unused]] const double ecs_lag_flap_1_2 = in.ecs_lag_flap[1];
-  [[maybe_unused]] const double A_eta1 = in.aero[0];  // F3_1
-  [[maybe_unused]] const double A_eta1_eta1 = in.aero[1];  // F9_11
-  [[maybe_unused]] const double A_eta1_eta1_dgam1 = in.aero[2];  // F24_111
-  [[maybe_unused]] const double A_eta1_eta2 = in.aero[3];  // F9_12/F9_21
-  [[maybe_unused]] const double A_eta1_eta2_dgam1 = in.aero[4];  // F24_121/F24_211
-  [[maybe_unused]] const double A_eta1_deta1 = in.aero[5];  // F7_11
-  [[maybe_unused]] const double A_eta1_deta1_gam1 = in.aero[6];  // F14_111/L17_111
-  [[maybe_unused]] const double A_eta1_deta1_dgam1 = in.aero[7];  // F23_111
-  [[maybe_unused]] const double A_eta1_deta2 = in.aero[8];  // F7_12
-  [[maybe_unused]] const double A_eta1_deta2_gam1 = in.aero[9];  // F14_121/L17_121
-  [[maybe_unused]] const double A_eta1_deta2_dgam1 = in.aero[10];  // F23_121
-  [[maybe_unused]] const double A_eta1_gam1 = in.aero[11];  // F11_11/L8_11
-  [[maybe_unused]] const double A_eta1_gam1_dgam1 = in.aero[12];  // L22_111
-  [[maybe_unused]] const double A_eta1_dgam1 = in.aero[13];  // F22_11
-  [[maybe_unused]] const double A_eta2 = in.aero[14];  // F3_2
-  [[maybe_unused]] const double A_eta2_eta2 = in.aero[15];  // F9_22
-  [[maybe_unused]] const double A_eta2_eta2_dgam1 = in.aero[16];  // F24_221
-  [[maybe_unused]] const double A_eta2_deta1 = in.aero[17];  // F7_21
-  [[maybe_unused]] const double A_eta2_deta1_gam1 = in.aero[18];  // F14_211/L17_112
-  [[maybe_unused]] const double A_eta2_deta1_dgam1 = in.aero[19];  // F23_211
-  [[maybe_unused]] const double A_eta2_deta2 = in.aero[20];  // F7_22
-  [[maybe_unused]] const double A_eta2_deta2_gam1 = in.aero[21];  // F14_221/L17_122
-  [[maybe_unused]] const double A_eta2_deta2_dgam1 = in.aero[22];  // F23_221
-  [[maybe_unused]] const double A_eta2_gam1 = in.aero[23];  // F11_21/L8_12
-  [[maybe_unused]] const double A_eta2_gam1_dgam1 = in.aero[24];  // L22_121
-  [[maybe_unused]] const double A_eta2_dgam1 = in.aero[25];  // F22_21
-  [[maybe_unused]] const double A_deta1_deta1_gam1 = in.aero[26];  // L24_111
-  [[maybe_unused]] const double A_deta1_deta2_gam1 = in.aero[27];  // L24_112
-  [[maybe_unused]] const double A_deta1_gam1 = in.aero[28];  // L11_11
-  [[maybe_unused]] const double A_deta1_gam1_gam1 = in.aero[29];  // L16_111
-  [[maybe_unused]] const double A_deta1_gam1_dgam1 = in.aero[30];  // L21_111
-  [[maybe_unused]] const double A_deta2_deta2_gam1 = in.aero[31];  // L24_122
-  [[maybe_unused]] const double A_deta2_gam1 = in.aero[32];  // L11_12
-  [[maybe_unused]] const double A_deta2_gam1_gam1 = in.aero[33];  // L16_121
-  [[maybe_unused]] const double A_deta2_gam1_dgam1 = in.aero[34];  // L21_121
-  [[maybe_unused]] const double A_gam1 = in.aero[35];  // L2_1
-  [[maybe_unused]] const double A_gam1_gam1 = in.aero[36];  // L13_11
-  [[maybe_unused]] const double A_gam1_dgam1 = in.aero[37];  // L20_11
-  [[maybe_unused]] const double A_x1_eta1 = in.aero[38];  // F2_1
-  [[maybe_unused]] const double A_x1_eta1_eta1 = in.aero[39];  // F8_11
-  [[maybe_unused]] const double A_x1_eta1_eta2 = in.aero[40];  // F8_12/F8_21
-  [[maybe_unused]] const double A_x1_eta1_deta1 = in.aero[41];  // F6_11
-  [[maybe_unused]] const double A_x1_eta1_deta2 = in.aero[42];  // F6_12
-  [[maybe_unused]] const double A_x1_eta1_gam1 = in.aero[43];  // F10_11/L7_11
-  [[maybe_unused]] const double A_x1_eta1_dgam1 = in.aero[44];  // F21_11
-  [[maybe_unused]] const double A_x1_eta2 = in.aero[45];  // F2_2
-  [[maybe_unused]] const double A_x1_eta2_eta2 = in.aero[46];  // F8_22
-  [[maybe_unused]] const double A_x1_eta2_deta1 = in.aero[47];  // F6_21
-  [[maybe_unused]] const double A_x1_eta2_deta2 = in.aero[48];  // F6_22
-  [[maybe_unused]] const double A_x1_eta2_gam1 = in.aero[49];  // F10_21/L7_12
-  [[maybe_unused]] const double A_x1_eta2_dgam1 = in.aero[50];  // F21_21
-  [[maybe_unused]] const double A_x1_deta1_gam1 = in.aero[51];  // L10_11
-  [[maybe_unused]] const double A_x1_deta2_gam1 = in.aero[52];  // L10_12
-  [[maybe_unused]] const double A_x1_gam1 = in.aero[53];  // L1_1
-  [[maybe_unused]] const double A_x1_gam1_gam1 = in.aero[54];  // L14_11
-  [[maybe_unused]] const double A_x1_gam1_dgam1 = in.aero[55];  // L23_11
-  [[maybe_unused]] const double A_x2_eta1 = in.aero[56];  // F1_1
-  [[maybe_unused]] const double A_x2_eta2 = in.aero[57];  // F1_2
-  [[maybe_unused]] const double A_x2_gam1 = in.aero[58];  // L4_1
-  [[maybe_unused]] const double S_deta1__tail_m_gam1 = in.structural[0];  // B3_11
-  [[maybe_unused]] const double S_deta1__tail_m_arm = in.structural[1];  // B1_1
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_gam1 = in.structural[2];  // P_111
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_arm = in.structural[3];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_deta1_deta2__tail_m_gam1 = in.structural[4];  // P_121/P_211
-  [[maybe_unused]] const double S_deta1_deta2__tail_m_arm = in.structural[5];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_deta2__tail_m_gam1 = in.structural[6];  // B3_21
-  [[maybe_unused]] const double S_deta2__tail_m_arm = in.structural[7];  // B1_2
-  [[maybe_unused]] const double S_deta2_deta2__tail_m_gam1 = in.structural[8];  // P_221
-  [[maybe_unused]] const double S_deta2_deta2__tail_m_arm = in.structural[9];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_dgam1__tail_m_gam1 = in.structural[10];  // B8_11
-  [[maybe_unused]] const double S_dgam1__tail_m_arm = in.structural[11];  // B10_1
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_gam1 = in.structural[12];  // S_111
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_arm = in.structural[13];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_m_eta1_eta1 = in.structural[14];  // M_F11
-  [[maybe_unused]] const double S_m_eta1_eta2 = in.structural[15];  // M_F12/M_F21
-  [[maybe_unused]] const double S_m_eta1_gam1 = in.structural[16];  // B7_11
-  [[maybe_unused]] const double S_m_eta2_eta2 = in.structural[17];  // M_F22
-  [[maybe_unused]] const double S_m_eta2_gam1 = in.structural[18];  // B7_12
-  [[maybe_unused]] const double S_m_gam1__head_deta1_deta1 = in.structural[19];  // Meta_111
-  [[maybe_unused]] const double S_m_gam1__head_deta1_deta2 = in.structural[20];  // Meta_112
-  [[maybe_unused]] const double S_m_gam1__head_deta2_deta2 = in.structural[21];  // Meta_122
-  [[maybe_unused]] const double S_m_gam1__head_dgam1_dgam1 = in.structural[22];  // Mgamma_111
-  [[maybe_unused]] const double S_m_gam1_gam1 = in.structural[23];  // M_L11
-  [[maybe_unused]] const double S_m_gam1_x0 = in.structural[24];  // B11_1
+  const Symbols s(in);
   // mass: flap 1, dg1'''
   out.mass[0] =
-      S_m_eta1_eta1;
+      s.S_m_eta1_eta1;
   // mass: flap 1, dg2'''
   out.mass[1] =
-      S_m_eta1_eta2;
+      s.S_m_eta1_eta2;
   // mass: flap 1, dh1'''
   out.mass[2] =
       0.0;
   // mass: flap 2, dg1'''
   out.mass[3] =
-      S_m_eta1_eta2;
+      s.S_m_eta1_eta2;
   // mass: flap 2, dg2'''
   out.mass[4] =
-      S_m_eta2_eta2;
+      s.S_m_eta2_eta2;
   // mass: flap 2, dh1'''
   out.mass[5] =
       0.0;
@@ -242,283 +361,283 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // mass: lag 1, dh1'''
   out.mass[8] =
-      S_m_gam1_gam1;
+      s.S_m_gam1_gam1;
   // force[1]: flap 1, dg1'
   out.force[0] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * A_x1_eta1_eta1
-      - (2.0) * omega_flap_1 * damping_flap_1 * S_m_eta1_eta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta1
+      - (2.0) * s.omega_flap_1 * s.damping_flap_1 * s.S_m_eta1_eta1;
   // force[1]: flap 1, dg2'
   out.force[1] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * A_x1_eta1_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta2;
   // force[1]: flap 1, dg1
   out.force[2] =
-      -es_flap_1_1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta1_deta1_dgam1
-      - omega_flap_1 * omega_flap_1 * S_m_eta1_eta1;
+      -s.es_flap_1_1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1
+      - s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
   // force[1]: flap 1, dg2
   out.force[3] =
-      -es_flap_1_2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta1_deta2_dgam1;
+      -s.es_flap_1_2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta2_dgam1;
   // force[1]: flap 1, dh1'
   out.force[4] =
-      (1.0 / 2.0) * lock * lr * lr * lr * inflow * A_eta1_gam1
-      - lock * lr * lr * lr * theta * A_x1_eta1_gam1
-      + (2.0) * precone * S_deta1__tail_m_gam1
-      + (2.0) * droop * S_deta1__tail_m_gam1
-      + (2.0) * g0_1 * S_deta1_deta1__tail_m_gam1
-      + (2.0) * g0_2 * S_deta1_deta2__tail_m_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
+      + (2.0) * s.precone * s.S_deta1__tail_m_gam1
+      + (2.0) * s.droop * s.S_deta1__tail_m_gam1
+      + (2.0) * s.g0_1 * s.S_deta1_deta1__tail_m_gam1
+      + (2.0) * s.g0_2 * s.S_deta1_deta2__tail_m_gam1;
   // force[1]: flap 1, dh1
   out.force[5] =
-      ecs_flap_lag_1_1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta1_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta1_dgam1;
+      s.ecs_flap_lag_1_1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
   // force[1]: flap 2, dg1'
   out.force[6] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * A_x1_eta1_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta2;
   // force[1]: flap 2, dg2'
   out.force[7] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * A_x1_eta2_eta2
-      - (2.0) * omega_flap_2 * damping_flap_2 * S_m_eta2_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta2_eta2
+      - (2.0) * s.omega_flap_2 * s.damping_flap_2 * s.S_m_eta2_eta2;
   // force[1]: flap 2, dg1
   out.force[8] =
-      -es_flap_2_1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta2_deta1_dgam1;
+      -s.es_flap_2_1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta1_dgam1;
   // force[1]: flap 2, dg2
   out.force[9] =
-      -es_flap_2_2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta2_deta2_dgam1
-      - omega_flap_2 * omega_flap_2 * S_m_eta2_eta2;
+      -s.es_flap_2_2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta2_dgam1
+      - s.omega_flap_2 * s.omega_flap_2 * s.S_m_eta2_eta2;
   // force[1]: flap 2, dh1'
   out.force[10] =
-      (1.0 / 2.0) * lock * lr * lr * lr * inflow * A_eta2_gam1
-      - lock * lr * lr * lr * theta * A_x1_eta2_gam1
-      + (2.0) * g0_1 * S_deta1_deta2__tail_m_gam1
-      + (2.0) * precone * S_deta2__tail_m_gam1
-      + (2.0) * droop * S_deta2__tail_m_gam1
-      + (2.0) * g0_2 * S_deta2_deta2__tail_m_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta2_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta2_gam1
+      + (2.0) * s.g0_1 * s.S_deta1_deta2__tail_m_gam1
+      + (2.0) * s.precone * s.S_deta2__tail_m_gam1
+      + (2.0) * s.droop * s.S_deta2__tail_m_gam1
+      + (2.0) * s.g0_2 * s.S_deta2_deta2__tail_m_gam1;
   // force[1]: flap 2, dh1
   out.force[11] =
-      ecs_flap_lag_2_1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta2_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta2_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta2_dgam1;
+      s.ecs_flap_lag_2_1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2_dgam1;
   // force[1]: lag 1, dg1'
   out.force[12] =
-      -lock * lr * lr * lr * inflow * A_eta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * theta * A_x1_eta1_gam1
-      - (2.0) * precone * S_m_eta1_gam1
-      - (2.0) * droop * S_m_eta1_gam1
-      - (2.0) * g0_1 * S_m_gam1__head_deta1_deta1
-      - (2.0) * g0_2 * S_m_gam1__head_deta1_deta2;
+      -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
+      - (2.0) * s.precone * s.S_m_eta1_gam1
+      - (2.0) * s.droop * s.S_m_eta1_gam1
+      - (2.0) * s.g0_1 * s.S_m_gam1__head_deta1_deta1
+      - (2.0) * s.g0_2 * s.S_m_gam1__head_deta1_deta2;
   // force[1]: lag 1, dg2'
   out.force[13] =
-      -lock * lr * lr * lr * inflow * A_eta2_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * theta * A_x1_eta2_gam1
-      - (2.0) * precone * S_m_eta2_gam1
-      - (2.0) * droop * S_m_eta2_gam1
-      - (2.0) * g0_1 * S_m_gam1__head_deta1_deta2
-      - (2.0) * g0_2 * S_m_gam1__head_deta2_deta2;
+      -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta2_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta2_gam1
+      - (2.0) * s.precone * s.S_m_eta2_gam1
+      - (2.0) * s.droop * s.S_m_eta2_gam1
+      - (2.0) * s.g0_1 * s.S_m_gam1__head_deta1_deta2
+      - (2.0) * s.g0_2 * s.S_m_gam1__head_deta2_deta2;
   // force[1]: lag 1, dg1
   out.force[14] =
-      ecs_lag_flap_1_1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_2 * A_deta1_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta1_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_deta1_gam1_dgam1;
+      s.ecs_lag_flap_1_1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta1_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam1_dgam1;
   // force[1]: lag 1, dg2
   out.force[15] =
-      ecs_lag_flap_1_2
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_2 * A_deta2_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta2_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_deta2_gam1_dgam1;
+      s.ecs_lag_flap_1_2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta2_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta2_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta2_gam1_dgam1;
   // force[1]: lag 1, dh1'
   out.force[16] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * theta * inflow * A_gam1_gam1
-      - lock * lr * lr * lr * cdo_a * A_x1_gam1_gam1
-      + (2.0) * theta * droop * S_dgam1__tail_m_gam1
-      + (2.0) * h0_1 * S_dgam1_dgam1__tail_m_gam1
-      - (2.0) * h0_1 * S_m_gam1__head_dgam1_dgam1
-      - (2.0) * omega_lag_1 * damping_lag_1 * S_m_gam1_gam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam1_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam1_gam1
+      + (2.0) * s.theta * s.droop * s.S_dgam1__tail_m_gam1
+      + (2.0) * s.h0_1 * s.S_dgam1_dgam1__tail_m_gam1
+      - (2.0) * s.h0_1 * s.S_m_gam1__head_dgam1_dgam1
+      - (2.0) * s.omega_lag_1 * s.damping_lag_1 * s.S_m_gam1_gam1;
   // force[1]: lag 1, dh1
   out.force[17] =
-      es_lag_1_1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * A_deta2_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam1_dgam1
-      - omega_lag_1 * omega_lag_1 * S_m_gam1_gam1;
+      s.es_lag_1_1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam1
+      - s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
   // forcing[1]: flap 1
   out.forcing[0] =
-      -g0_1 * es_flap_1_1
-      - g0_2 * es_flap_1_2
-      + h0_1 * ecs_flap_lag_1_1
-      + (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_eta1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * h0_1 * A_eta1_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_1 * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_1 * A_eta1_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * inflow * A_x1_eta1
-      + (1.0 / 2.0) * lock * lr * lr * theta * A_x2_eta1
-      - precone * S_deta1__tail_m_arm
-      - droop * S_deta1__tail_m_arm
-      - g0_1 * omega_flap_1 * omega_flap_1 * S_m_eta1_eta1;
+      -s.g0_1 * s.es_flap_1_1
+      - s.g0_2 * s.es_flap_1_2
+      + s.h0_1 * s.ecs_flap_lag_1_1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_eta1_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta1
+      - s.precone * s.S_deta1__tail_m_arm
+      - s.droop * s.S_deta1__tail_m_arm
+      - s.g0_1 * s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
   // forcing[1]: flap 2
   out.forcing[1] =
-      -g0_1 * es_flap_2_1
-      - g0_2 * es_flap_2_2
-      + h0_1 * ecs_flap_lag_2_1
-      + (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_eta2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_1 * A_eta2_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * h0_1 * A_eta2_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_1 * A_eta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_1 * A_eta2_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * inflow * A_x1_eta2
-      + (1.0 / 2.0) * lock * lr * lr * theta * A_x2_eta2
-      - precone * S_deta2__tail_m_arm
-      - droop * S_deta2__tail_m_arm
-      - g0_2 * omega_flap_2 * omega_flap_2 * S_m_eta2_eta2;
+      -s.g0_1 * s.es_flap_2_1
+      - s.g0_2 * s.es_flap_2_2
+      + s.h0_1 * s.ecs_flap_lag_2_1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta2_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_eta2_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta2
+      - s.precone * s.S_deta2__tail_m_arm
+      - s.droop * s.S_deta2__tail_m_arm
+      - s.g0_2 * s.omega_flap_2 * s.omega_flap_2 * s.S_m_eta2_eta2;
   // forcing[1]: lag 1
   out.forcing[2] =
-      g0_1 * ecs_lag_flap_1_1
-      + g0_2 * ecs_lag_flap_1_2
-      + h0_1 * es_lag_1_1
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * g0_1 * A_deta1_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * g0_2 * A_deta1_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_1 * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_1 * A_deta1_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * h0_1 * A_deta1_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * g0_2 * A_deta2_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_2 * A_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_2 * A_deta2_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * h0_1 * A_deta2_gam1_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * inflow * inflow * A_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * droop * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * precone * precone * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * droop * droop * mu * mu * A_gam1
-      + (1.0 / 4.0) * lock * lr * lr * cdo_a * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * h0_1 * A_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * h0_1 * A_gam1_dgam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * inflow * A_x1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * cdo_a * A_x2_gam1
-      - theta * droop * S_dgam1__tail_m_arm
-      - h0_1 * omega_lag_1 * omega_lag_1 * S_m_gam1_gam1
-      + theta * droop * S_m_gam1_x0;
+      s.g0_1 * s.ecs_lag_flap_1_1
+      + s.g0_2 * s.ecs_lag_flap_1_2
+      + s.h0_1 * s.es_lag_1_1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_2 * s.A_deta1_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_deta1_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.g0_2 * s.A_deta2_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_deta2_gam1_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.droop * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.precone * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.droop * s.mu * s.mu * s.A_gam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.A_x2_gam1
+      - s.theta * s.droop * s.S_dgam1__tail_m_arm
+      - s.h0_1 * s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1
+      + s.theta * s.droop * s.S_m_gam1_x0;
   // force[cos psi]: flap 1, dg1'
   out.force[18] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * h0_1 * A_eta1_eta1_dgam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta1_dgam1;
   // force[cos psi]: flap 1, dg2'
   out.force[19] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * h0_1 * A_eta1_eta2_dgam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta2_dgam1;
   // force[cos psi]: flap 1, dg1
   out.force[20] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * A_x1_eta1_deta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta1_deta1;
   // force[cos psi]: flap 1, dg2
   out.force[21] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * A_x1_eta1_deta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta1_deta2;
   // force[cos psi]: flap 1, dh1'
   out.force[22] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * g0_1 * A_eta1_deta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * mu * g0_2 * A_eta1_deta2_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * precone * mu * A_eta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * droop * mu * A_eta1_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta1_deta2_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1;
   // force[cos psi]: flap 1, dh1
   out.force[23] =
-      (1.0 / 2.0) * lock * lr * lr * inflow * mu * A_eta1_dgam1
-      - lock * lr * lr * theta * mu * A_x1_eta1_dgam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1_dgam1
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1_dgam1;
   // force[cos psi]: flap 2, dg1'
   out.force[24] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * h0_1 * A_eta1_eta2_dgam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta2_dgam1;
   // force[cos psi]: flap 2, dg2'
   out.force[25] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * h0_1 * A_eta2_eta2_dgam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta2_eta2_dgam1;
   // force[cos psi]: flap 2, dg1
   out.force[26] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * A_x1_eta2_deta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta2_deta1;
   // force[cos psi]: flap 2, dg2
   out.force[27] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * A_x1_eta2_deta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta2_deta2;
   // force[cos psi]: flap 2, dh1'
   out.force[28] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * g0_1 * A_eta2_deta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * mu * g0_2 * A_eta2_deta2_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * precone * mu * A_eta2_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * droop * mu * A_eta2_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta2_deta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta2_deta2_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta2_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta2_gam1;
   // force[cos psi]: flap 2, dh1
   out.force[29] =
-      (1.0 / 2.0) * lock * lr * lr * inflow * mu * A_eta2_dgam1
-      - lock * lr * lr * theta * mu * A_x1_eta2_dgam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta2_dgam1
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta2_dgam1;
   // force[cos psi]: lag 1, dg1'
   out.force[30] =
-      -lock * lr * lr * lr * mu * g0_1 * A_eta1_deta1_gam1
-      - lock * lr * lr * lr * mu * g0_2 * A_eta1_deta2_gam1
-      - lock * lr * lr * lr * precone * mu * A_eta1_gam1
-      - lock * lr * lr * lr * droop * mu * A_eta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * h0_1 * A_eta1_gam1_dgam1;
+      -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta1_deta2_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta1_gam1_dgam1;
   // force[cos psi]: lag 1, dg2'
   out.force[31] =
-      -lock * lr * lr * lr * mu * g0_1 * A_eta2_deta1_gam1
-      - lock * lr * lr * lr * mu * g0_2 * A_eta2_deta2_gam1
-      - lock * lr * lr * lr * precone * mu * A_eta2_gam1
-      - lock * lr * lr * lr * droop * mu * A_eta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * h0_1 * A_eta2_gam1_dgam1;
+      -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta2_deta1_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta2_deta2_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta2_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta2_gam1_dgam1;
   // force[cos psi]: lag 1, dg1
   out.force[32] =
-      -lock * lr * lr * inflow * mu * A_deta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * A_x1_deta1_gam1;
+      -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta1_gam1;
   // force[cos psi]: lag 1, dg2
   out.force[33] =
-      -lock * lr * lr * inflow * mu * A_deta2_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * A_x1_deta2_gam1;
+      -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta2_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta2_gam1;
   // force[cos psi]: lag 1, dh1'
   out.force[34] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * theta * mu * g0_1 * A_deta1_gam1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * g0_2 * A_deta2_gam1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * precone * mu * A_gam1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * droop * mu * A_gam1_gam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_2 * s.A_deta2_gam1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam1_gam1;
   // force[cos psi]: lag 1, dh1
   out.force[35] =
-      -(1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * A_gam1_dgam1
-      - lock * lr * lr * cdo_a * mu * A_x1_gam1_dgam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1_dgam1
+      - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1_dgam1;
   // forcing[cos psi]: flap 1
   out.forcing[3] =
-      (1.0 / 2.0) * lock * lr * lr * inflow * mu * h0_1 * A_eta1_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * A_x1_eta1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * A_x1_eta1
-      - (1.0 / 2.0) * lock * lr * lr * mu * g0_1 * A_x1_eta1_deta1
-      - (1.0 / 2.0) * lock * lr * lr * mu * g0_2 * A_x1_eta1_deta2
-      - lock * lr * lr * theta * mu * h0_1 * A_x1_eta1_dgam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_1 * s.A_eta1_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.A_x1_eta1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.A_x1_eta1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_1 * s.A_x1_eta1_deta1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_2 * s.A_x1_eta1_deta2
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_x1_eta1_dgam1;
   // forcing[cos psi]: flap 2
   out.forcing[4] =
-      (1.0 / 2.0) * lock * lr * lr * inflow * mu * h0_1 * A_eta2_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * A_x1_eta2
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * A_x1_eta2
-      - (1.0 / 2.0) * lock * lr * lr * mu * g0_1 * A_x1_eta2_deta1
-      - (1.0 / 2.0) * lock * lr * lr * mu * g0_2 * A_x1_eta2_deta2
-      - lock * lr * lr * theta * mu * h0_1 * A_x1_eta2_dgam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_1 * s.A_eta2_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.A_x1_eta2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.A_x1_eta2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_1 * s.A_x1_eta2_deta1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_2 * s.A_x1_eta2_deta2
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_x1_eta2_dgam1;
   // forcing[cos psi]: lag 1
   out.forcing[5] =
-      -lock * lr * lr * inflow * mu * g0_1 * A_deta1_gam1
-      - lock * lr * lr * inflow * mu * g0_2 * A_deta2_gam1
-      - lock * lr * lr * inflow * precone * mu * A_gam1
-      - lock * lr * lr * inflow * droop * mu * A_gam1
-      - (1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * h0_1 * A_gam1_dgam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * g0_1 * A_x1_deta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * g0_2 * A_x1_deta2_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * precone * mu * A_x1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * droop * mu * A_x1_gam1
-      - lock * lr * lr * cdo_a * mu * h0_1 * A_x1_gam1_dgam1;
+      -s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_1 * s.A_deta1_gam1
+      - s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_2 * s.A_deta2_gam1
+      - s.lock * s.lr * s.lr * s.inflow * s.precone * s.mu * s.A_gam1
+      - s.lock * s.lr * s.lr * s.inflow * s.droop * s.mu * s.A_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.h0_1 * s.A_gam1_dgam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_x1_deta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.g0_2 * s.A_x1_deta2_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_x1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_x1_gam1
+      - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_1 * s.A_x1_gam1_dgam1;
   // force[sin psi]: flap 1, dg1'
   out.force[36] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * mu * A_eta1_eta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta1;
   // force[sin psi]: flap 1, dg2'
   out.force[37] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * mu * A_eta1_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta2;
   // force[sin psi]: flap 1, dg1
   out.force[38] =
       0.0;
@@ -527,16 +646,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin psi]: flap 1, dh1'
   out.force[40] =
-      -lock * lr * lr * lr * theta * mu * A_eta1_gam1;
+      -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
   // force[sin psi]: flap 1, dh1
   out.force[41] =
       0.0;
   // force[sin psi]: flap 2, dg1'
   out.force[42] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * mu * A_eta1_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta2;
   // force[sin psi]: flap 2, dg2'
   out.force[43] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * mu * A_eta2_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta2_eta2;
   // force[sin psi]: flap 2, dg1
   out.force[44] =
       0.0;
@@ -545,16 +664,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin psi]: flap 2, dh1'
   out.force[46] =
-      -lock * lr * lr * lr * theta * mu * A_eta2_gam1;
+      -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta2_gam1;
   // force[sin psi]: flap 2, dh1
   out.force[47] =
       0.0;
   // force[sin psi]: lag 1, dg1'
   out.force[48] =
-      (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * A_eta1_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
   // force[sin psi]: lag 1, dg2'
   out.force[49] =
-      (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * A_eta2_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta2_gam1;
   // force[sin psi]: lag 1, dg1
   out.force[50] =
       0.0;
@@ -563,22 +682,22 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin psi]: lag 1, dh1'
   out.force[52] =
-      -lock * lr * lr * lr * cdo_a * mu * A_gam1_gam1;
+      -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam1_gam1;
   // force[sin psi]: lag 1, dh1
   out.force[53] =
       0.0;
   // forcing[sin psi]: flap 1
   out.forcing[6] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * mu * A_eta1
-      + lock * lr * lr * theta * mu * A_x1_eta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1
+      + s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1;
   // forcing[sin psi]: flap 2
   out.forcing[7] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * mu * A_eta2
-      + lock * lr * lr * theta * mu * A_x1_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta2
+      + s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta2;
   // forcing[sin psi]: lag 1
   out.forcing[8] =
-      (1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * A_gam1
-      + lock * lr * lr * cdo_a * mu * A_x1_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1
+      + s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1;
   // force[cos 2psi]: flap 1, dg1'
   out.force[54] =
       0.0;
@@ -587,19 +706,19 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[cos 2psi]: flap 1, dg1
   out.force[56] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta1_deta1_dgam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1;
   // force[cos 2psi]: flap 1, dg2
   out.force[57] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta1_deta2_dgam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta2_dgam1;
   // force[cos 2psi]: flap 1, dh1'
   out.force[58] =
       0.0;
   // force[cos 2psi]: flap 1, dh1
   out.force[59] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta1_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta1_dgam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
   // force[cos 2psi]: flap 2, dg1'
   out.force[60] =
       0.0;
@@ -608,19 +727,19 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[cos 2psi]: flap 2, dg1
   out.force[62] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta2_deta1_dgam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta1_dgam1;
   // force[cos 2psi]: flap 2, dg2
   out.force[63] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta2_deta2_dgam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta2_dgam1;
   // force[cos 2psi]: flap 2, dh1'
   out.force[64] =
       0.0;
   // force[cos 2psi]: flap 2, dh1
   out.force[65] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta2_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta2_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta2_dgam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2_dgam1;
   // force[cos 2psi]: lag 1, dg1'
   out.force[66] =
       0.0;
@@ -629,58 +748,58 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[cos 2psi]: lag 1, dg1
   out.force[68] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_2 * A_deta1_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta1_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_deta1_gam1_dgam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta1_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam1_dgam1;
   // force[cos 2psi]: lag 1, dg2
   out.force[69] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_2 * A_deta2_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta2_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_deta2_gam1_dgam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta2_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta2_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta2_gam1_dgam1;
   // force[cos 2psi]: lag 1, dh1'
   out.force[70] =
       0.0;
   // force[cos 2psi]: lag 1, dh1
   out.force[71] =
-      -(1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * A_deta2_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam1_dgam1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam1;
   // forcing[cos 2psi]: flap 1
   out.forcing[9] =
-      -(1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_eta1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * h0_1 * A_eta1_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_1 * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_1 * A_eta1_dgam1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_eta1_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1;
   // forcing[cos 2psi]: flap 2
   out.forcing[10] =
-      -(1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_eta2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_1 * A_eta2_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * h0_1 * A_eta2_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_1 * A_eta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_1 * A_eta2_dgam1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta2_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_eta2_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1;
   // forcing[cos 2psi]: lag 1
   out.forcing[11] =
-      -(1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * g0_1 * A_deta1_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * g0_2 * A_deta1_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_1 * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_1 * A_deta1_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * h0_1 * A_deta1_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * g0_2 * A_deta2_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_2 * A_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_2 * A_deta2_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * h0_1 * A_deta2_gam1_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * droop * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * precone * precone * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * droop * droop * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * cdo_a * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * h0_1 * A_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * h0_1 * A_gam1_dgam1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_2 * s.A_deta1_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_deta1_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.g0_2 * s.A_deta2_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_deta2_gam1_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.droop * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.precone * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.droop * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1;
   // force[sin 2psi]: flap 1, dg1'
   out.force[72] =
       0.0;
@@ -689,16 +808,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin 2psi]: flap 1, dg1
   out.force[74] =
-      -(1.0 / 4.0) * lock * lr * lr * mu * mu * A_eta1_deta1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta1_deta1;
   // force[sin 2psi]: flap 1, dg2
   out.force[75] =
-      -(1.0 / 4.0) * lock * lr * lr * mu * mu * A_eta1_deta2;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta1_deta2;
   // force[sin 2psi]: flap 1, dh1'
   out.force[76] =
       0.0;
   // force[sin 2psi]: flap 1, dh1
   out.force[77] =
-      -(1.0 / 2.0) * lock * lr * lr * theta * mu * mu * A_eta1_dgam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1_dgam1;
   // force[sin 2psi]: flap 2, dg1'
   out.force[78] =
       0.0;
@@ -707,16 +826,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin 2psi]: flap 2, dg1
   out.force[80] =
-      -(1.0 / 4.0) * lock * lr * lr * mu * mu * A_eta2_deta1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta2_deta1;
   // force[sin 2psi]: flap 2, dg2
   out.force[81] =
-      -(1.0 / 4.0) * lock * lr * lr * mu * mu * A_eta2_deta2;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta2_deta2;
   // force[sin 2psi]: flap 2, dh1'
   out.force[82] =
       0.0;
   // force[sin 2psi]: flap 2, dh1
   out.force[83] =
-      -(1.0 / 2.0) * lock * lr * lr * theta * mu * mu * A_eta2_dgam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta2_dgam1;
   // force[sin 2psi]: lag 1, dg1'
   out.force[84] =
       0.0;
@@ -725,188 +844,79 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin 2psi]: lag 1, dg1
   out.force[86] =
-      (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_deta1_gam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta1_gam1;
   // force[sin 2psi]: lag 1, dg2
   out.force[87] =
-      (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_deta2_gam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta2_gam1;
   // force[sin 2psi]: lag 1, dh1'
   out.force[88] =
       0.0;
   // force[sin 2psi]: lag 1, dh1
   out.force[89] =
-      -(1.0 / 2.0) * lock * lr * lr * cdo_a * mu * mu * A_gam1_dgam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1_dgam1;
   // forcing[sin 2psi]: flap 1
   out.forcing[12] =
-      -(1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta1
-      - (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta1
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta1_deta1
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta1_deta2
-      - (1.0 / 2.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_eta1_dgam1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1;
   // forcing[sin 2psi]: flap 2
   out.forcing[13] =
-      -(1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta2
-      - (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta2
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta2_deta1
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta2_deta2
-      - (1.0 / 2.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_eta2_dgam1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1;
   // forcing[sin 2psi]: lag 1
   out.forcing[14] =
-      (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam1
-      + (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * A_deta2_gam1
-      + (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam1
-      + (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam1
-      - (1.0 / 2.0) * lock * lr * lr * cdo_a * mu * mu * h0_1 * A_gam1_dgam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1;
 }
 
 // Hover static equilibrium S q0 = c (eqs 2.27-2.32).
 void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOutputs& out) {
-  [[maybe_unused]] const double lock = in.lock;
-  [[maybe_unused]] const double lr = in.lr;
-  [[maybe_unused]] const double theta = in.theta;
-  [[maybe_unused]] const double inflow = in.inflow;
-  [[maybe_unused]] const double precone = in.precone;
-  [[maybe_unused]] const double droop = in.droop;
-  [[maybe_unused]] const double cdo_a = in.cdo_a;
-  [[maybe_unused]] const double mu = in.mu;
-  [[maybe_unused]] const double g0_1 = in.g0[0];
-  [[maybe_unused]] const double g0_2 = in.g0[1];
-  [[maybe_unused]] const double h0_1 = in.h0[0];
-  [[maybe_unused]] const double omega_flap_1 = in.omega_flap[0];
-  [[maybe_unused]] const double damping_flap_1 = in.damping_flap[0];
-  [[maybe_unused]] const double omega_flap_2 = in.omega_flap[1];
-  [[maybe_unused]] const double damping_flap_2 = in.damping_flap[1];
-  [[maybe_unused]] const double omega_lag_1 = in.omega_lag[0];
-  [[maybe_unused]] const double damping_lag_1 = in.damping_lag[0];
-  [[maybe_unused]] const double es_flap_1_1 = in.es_flap[0];
-  [[maybe_unused]] const double es_flap_1_2 = in.es_flap[1];
-  [[maybe_unused]] const double ecs_flap_lag_1_1 = in.ecs_flap_lag[0];
-  [[maybe_unused]] const double es_flap_2_1 = in.es_flap[2];
-  [[maybe_unused]] const double es_flap_2_2 = in.es_flap[3];
-  [[maybe_unused]] const double ecs_flap_lag_2_1 = in.ecs_flap_lag[1];
-  [[maybe_unused]] const double es_lag_1_1 = in.es_lag[0];
-  [[maybe_unused]] const double ecs_lag_flap_1_1 = in.ecs_lag_flap[0];
-  [[maybe_unused]] const double ecs_lag_flap_1_2 = in.ecs_lag_flap[1];
-  [[maybe_unused]] const double A_eta1 = in.aero[0];  // F3_1
-  [[maybe_unused]] const double A_eta1_eta1 = in.aero[1];  // F9_11
-  [[maybe_unused]] const double A_eta1_eta1_dgam1 = in.aero[2];  // F24_111
-  [[maybe_unused]] const double A_eta1_eta2 = in.aero[3];  // F9_12/F9_21
-  [[maybe_unused]] const double A_eta1_eta2_dgam1 = in.aero[4];  // F24_121/F24_211
-  [[maybe_unused]] const double A_eta1_deta1 = in.aero[5];  // F7_11
-  [[maybe_unused]] const double A_eta1_deta1_gam1 = in.aero[6];  // F14_111/L17_111
-  [[maybe_unused]] const double A_eta1_deta1_dgam1 = in.aero[7];  // F23_111
-  [[maybe_unused]] const double A_eta1_deta2 = in.aero[8];  // F7_12
-  [[maybe_unused]] const double A_eta1_deta2_gam1 = in.aero[9];  // F14_121/L17_121
-  [[maybe_unused]] const double A_eta1_deta2_dgam1 = in.aero[10];  // F23_121
-  [[maybe_unused]] const double A_eta1_gam1 = in.aero[11];  // F11_11/L8_11
-  [[maybe_unused]] const double A_eta1_gam1_dgam1 = in.aero[12];  // L22_111
-  [[maybe_unused]] const double A_eta1_dgam1 = in.aero[13];  // F22_11
-  [[maybe_unused]] const double A_eta2 = in.aero[14];  // F3_2
-  [[maybe_unused]] const double A_eta2_eta2 = in.aero[15];  // F9_22
-  [[maybe_unused]] const double A_eta2_eta2_dgam1 = in.aero[16];  // F24_221
-  [[maybe_unused]] const double A_eta2_deta1 = in.aero[17];  // F7_21
-  [[maybe_unused]] const double A_eta2_deta1_gam1 = in.aero[18];  // F14_211/L17_112
-  [[maybe_unused]] const double A_eta2_deta1_dgam1 = in.aero[19];  // F23_211
-  [[maybe_unused]] const double A_eta2_deta2 = in.aero[20];  // F7_22
-  [[maybe_unused]] const double A_eta2_deta2_gam1 = in.aero[21];  // F14_221/L17_122
-  [[maybe_unused]] const double A_eta2_deta2_dgam1 = in.aero[22];  // F23_221
-  [[maybe_unused]] const double A_eta2_gam1 = in.aero[23];  // F11_21/L8_12
-  [[maybe_unused]] const double A_eta2_gam1_dgam1 = in.aero[24];  // L22_121
-  [[maybe_unused]] const double A_eta2_dgam1 = in.aero[25];  // F22_21
-  [[maybe_unused]] const double A_deta1_deta1_gam1 = in.aero[26];  // L24_111
-  [[maybe_unused]] const double A_deta1_deta2_gam1 = in.aero[27];  // L24_112
-  [[maybe_unused]] const double A_deta1_gam1 = in.aero[28];  // L11_11
-  [[maybe_unused]] const double A_deta1_gam1_gam1 = in.aero[29];  // L16_111
-  [[maybe_unused]] const double A_deta1_gam1_dgam1 = in.aero[30];  // L21_111
-  [[maybe_unused]] const double A_deta2_deta2_gam1 = in.aero[31];  // L24_122
-  [[maybe_unused]] const double A_deta2_gam1 = in.aero[32];  // L11_12
-  [[maybe_unused]] const double A_deta2_gam1_gam1 = in.aero[33];  // L16_121
-  [[maybe_unused]] const double A_deta2_gam1_dgam1 = in.aero[34];  // L21_121
-  [[maybe_unused]] const double A_gam1 = in.aero[35];  // L2_1
-  [[maybe_unused]] const double A_gam1_gam1 = in.aero[36];  // L13_11
-  [[maybe_unused]] const double A_gam1_dgam1 = in.aero[37];  // L20_11
-  [[maybe_unused]] const double A_x1_eta1 = in.aero[38];  // F2_1
-  [[maybe_unused]] const double A_x1_eta1_eta1 = in.aero[39];  // F8_11
-  [[maybe_unused]] const double A_x1_eta1_eta2 = in.aero[40];  // F8_12/F8_21
-  [[maybe_unused]] const double A_x1_eta1_deta1 = in.aero[41];  // F6_11
-  [[maybe_unused]] const double A_x1_eta1_deta2 = in.aero[42];  // F6_12
-  [[maybe_unused]] const double A_x1_eta1_gam1 = in.aero[43];  // F10_11/L7_11
-  [[maybe_unused]] const double A_x1_eta1_dgam1 = in.aero[44];  // F21_11
-  [[maybe_unused]] const double A_x1_eta2 = in.aero[45];  // F2_2
-  [[maybe_unused]] const double A_x1_eta2_eta2 = in.aero[46];  // F8_22
-  [[maybe_unused]] const double A_x1_eta2_deta1 = in.aero[47];  // F6_21
-  [[maybe_unused]] const double A_x1_eta2_deta2 = in.aero[48];  // F6_22
-  [[maybe_unused]] const double A_x1_eta2_gam1 = in.aero[49];  // F10_21/L7_12
-  [[maybe_unused]] const double A_x1_eta2_dgam1 = in.aero[50];  // F21_21
-  [[maybe_unused]] const double A_x1_deta1_gam1 = in.aero[51];  // L10_11
-  [[maybe_unused]] const double A_x1_deta2_gam1 = in.aero[52];  // L10_12
-  [[maybe_unused]] const double A_x1_gam1 = in.aero[53];  // L1_1
-  [[maybe_unused]] const double A_x1_gam1_gam1 = in.aero[54];  // L14_11
-  [[maybe_unused]] const double A_x1_gam1_dgam1 = in.aero[55];  // L23_11
-  [[maybe_unused]] const double A_x2_eta1 = in.aero[56];  // F1_1
-  [[maybe_unused]] const double A_x2_eta2 = in.aero[57];  // F1_2
-  [[maybe_unused]] const double A_x2_gam1 = in.aero[58];  // L4_1
-  [[maybe_unused]] const double S_deta1__tail_m_gam1 = in.structural[0];  // B3_11
-  [[maybe_unused]] const double S_deta1__tail_m_arm = in.structural[1];  // B1_1
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_gam1 = in.structural[2];  // P_111
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_arm = in.structural[3];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_deta1_deta2__tail_m_gam1 = in.structural[4];  // P_121/P_211
-  [[maybe_unused]] const double S_deta1_deta2__tail_m_arm = in.structural[5];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_deta2__tail_m_gam1 = in.structural[6];  // B3_21
-  [[maybe_unused]] const double S_deta2__tail_m_arm = in.structural[7];  // B1_2
-  [[maybe_unused]] const double S_deta2_deta2__tail_m_gam1 = in.structural[8];  // P_221
-  [[maybe_unused]] const double S_deta2_deta2__tail_m_arm = in.structural[9];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_dgam1__tail_m_gam1 = in.structural[10];  // B8_11
-  [[maybe_unused]] const double S_dgam1__tail_m_arm = in.structural[11];  // B10_1
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_gam1 = in.structural[12];  // S_111
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_arm = in.structural[13];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_m_eta1_eta1 = in.structural[14];  // M_F11
-  [[maybe_unused]] const double S_m_eta1_eta2 = in.structural[15];  // M_F12/M_F21
-  [[maybe_unused]] const double S_m_eta1_gam1 = in.structural[16];  // B7_11
-  [[maybe_unused]] const double S_m_eta2_eta2 = in.structural[17];  // M_F22
-  [[maybe_unused]] const double S_m_eta2_gam1 = in.structural[18];  // B7_12
-  [[maybe_unused]] const double S_m_gam1__head_deta1_deta1 = in.structural[19];  // Meta_111
-  [[maybe_unused]] const double S_m_gam1__head_deta1_deta2 = in.structural[20];  // Meta_112
-  [[maybe_unused]] const double S_m_gam1__head_deta2_deta2 = in.structural[21];  // Meta_122
-  [[maybe_unused]] const double S_m_gam1__head_dgam1_dgam1 = in.structural[22];  // Mgamma_111
-  [[maybe_unused]] const double S_m_gam1_gam1 = in.structural[23];  // M_L11
-  [[maybe_unused]] const double S_m_gam1_x0 = in.structural[24];  // B11_1
+  const Symbols s(in);
   out.S[0] =
-      es_flap_1_1
-      + omega_flap_1 * omega_flap_1 * S_m_eta1_eta1;
+      s.es_flap_1_1
+      + s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
   out.S[1] =
-      es_flap_1_2;
+      s.es_flap_1_2;
   out.S[2] =
-      -ecs_flap_lag_1_1;
+      -s.ecs_flap_lag_1_1;
   out.c[0] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * A_x1_eta1
-      + (1.0 / 2.0) * lock * lr * lr * theta * A_x2_eta1
-      - precone * S_deta1__tail_m_arm
-      - droop * S_deta1__tail_m_arm;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta1
+      - s.precone * s.S_deta1__tail_m_arm
+      - s.droop * s.S_deta1__tail_m_arm;
   out.S[3] =
-      es_flap_2_1;
+      s.es_flap_2_1;
   out.S[4] =
-      es_flap_2_2
-      + omega_flap_2 * omega_flap_2 * S_m_eta2_eta2;
+      s.es_flap_2_2
+      + s.omega_flap_2 * s.omega_flap_2 * s.S_m_eta2_eta2;
   out.S[5] =
-      -ecs_flap_lag_2_1;
+      -s.ecs_flap_lag_2_1;
   out.c[1] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * A_x1_eta2
-      + (1.0 / 2.0) * lock * lr * lr * theta * A_x2_eta2
-      - precone * S_deta2__tail_m_arm
-      - droop * S_deta2__tail_m_arm;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta2
+      - s.precone * s.S_deta2__tail_m_arm
+      - s.droop * s.S_deta2__tail_m_arm;
   out.S[6] =
-      -ecs_lag_flap_1_1;
+      -s.ecs_lag_flap_1_1;
   out.S[7] =
-      -ecs_lag_flap_1_2;
+      -s.ecs_lag_flap_1_2;
   out.S[8] =
-      -es_lag_1_1
-      + omega_lag_1 * omega_lag_1 * S_m_gam1_gam1;
+      -s.es_lag_1_1
+      + s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
   out.c[2] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * inflow * A_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * inflow * A_x1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * cdo_a * A_x2_gam1
-      - theta * droop * S_dgam1__tail_m_arm
-      + theta * droop * S_m_gam1_x0;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.A_x2_gam1
+      - s.theta * s.droop * s.S_dgam1__tail_m_arm
+      + s.theta * s.droop * s.S_m_gam1_x0;
 }
 
 }  // namespace

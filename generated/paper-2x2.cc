@@ -188,218 +188,431 @@ const model::StructuralIntegral kStructural[] = {
 
 const char kSpecText[] = "description = \"Paper ordering with two flap and two lag modes (exact rotating modes)\"\n[modes]\nflap = 2\nlag = 2\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
 
+// Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
+struct Symbols {
+  explicit Symbols(const model::CoefficientInputs& in);
+  double lock;
+  double lr;
+  double theta;
+  double inflow;
+  double precone;
+  double droop;
+  double cdo_a;
+  double mu;
+  double g0_1;
+  double g0_2;
+  double h0_1;
+  double h0_2;
+  double omega_flap_1;
+  double damping_flap_1;
+  double omega_flap_2;
+  double damping_flap_2;
+  double omega_lag_1;
+  double damping_lag_1;
+  double omega_lag_2;
+  double damping_lag_2;
+  double es_flap_1_1;
+  double es_flap_1_2;
+  double ecs_flap_lag_1_1;
+  double ecs_flap_lag_1_2;
+  double es_flap_2_1;
+  double es_flap_2_2;
+  double ecs_flap_lag_2_1;
+  double ecs_flap_lag_2_2;
+  double es_lag_1_1;
+  double es_lag_1_2;
+  double ecs_lag_flap_1_1;
+  double ecs_lag_flap_1_2;
+  double es_lag_2_1;
+  double es_lag_2_2;
+  double ecs_lag_flap_2_1;
+  double ecs_lag_flap_2_2;
+  double A_eta1;  // F3_1
+  double A_eta1_eta1;  // F9_11
+  double A_eta1_eta1_dgam1;  // F24_111
+  double A_eta1_eta1_dgam2;  // F24_112
+  double A_eta1_eta2;  // F9_12/F9_21
+  double A_eta1_eta2_dgam1;  // F24_121/F24_211
+  double A_eta1_eta2_dgam2;  // F24_122/F24_212
+  double A_eta1_deta1;  // F7_11
+  double A_eta1_deta1_gam1;  // F14_111/L17_111
+  double A_eta1_deta1_gam2;  // F14_112/L17_211
+  double A_eta1_deta1_dgam1;  // F23_111
+  double A_eta1_deta1_dgam2;  // F23_112
+  double A_eta1_deta2;  // F7_12
+  double A_eta1_deta2_gam1;  // F14_121/L17_121
+  double A_eta1_deta2_gam2;  // F14_122/L17_221
+  double A_eta1_deta2_dgam1;  // F23_121
+  double A_eta1_deta2_dgam2;  // F23_122
+  double A_eta1_gam1;  // F11_11/L8_11
+  double A_eta1_gam1_dgam1;  // L22_111
+  double A_eta1_gam1_dgam2;  // L22_112
+  double A_eta1_gam2;  // F11_12/L8_21
+  double A_eta1_gam2_dgam1;  // L22_211
+  double A_eta1_gam2_dgam2;  // L22_212
+  double A_eta1_dgam1;  // F22_11
+  double A_eta1_dgam2;  // F22_12
+  double A_eta2;  // F3_2
+  double A_eta2_eta2;  // F9_22
+  double A_eta2_eta2_dgam1;  // F24_221
+  double A_eta2_eta2_dgam2;  // F24_222
+  double A_eta2_deta1;  // F7_21
+  double A_eta2_deta1_gam1;  // F14_211/L17_112
+  double A_eta2_deta1_gam2;  // F14_212/L17_212
+  double A_eta2_deta1_dgam1;  // F23_211
+  double A_eta2_deta1_dgam2;  // F23_212
+  double A_eta2_deta2;  // F7_22
+  double A_eta2_deta2_gam1;  // F14_221/L17_122
+  double A_eta2_deta2_gam2;  // F14_222/L17_222
+  double A_eta2_deta2_dgam1;  // F23_221
+  double A_eta2_deta2_dgam2;  // F23_222
+  double A_eta2_gam1;  // F11_21/L8_12
+  double A_eta2_gam1_dgam1;  // L22_121
+  double A_eta2_gam1_dgam2;  // L22_122
+  double A_eta2_gam2;  // F11_22/L8_22
+  double A_eta2_gam2_dgam1;  // L22_221
+  double A_eta2_gam2_dgam2;  // L22_222
+  double A_eta2_dgam1;  // F22_21
+  double A_eta2_dgam2;  // F22_22
+  double A_deta1_deta1_gam1;  // L24_111
+  double A_deta1_deta1_gam2;  // L24_211
+  double A_deta1_deta2_gam1;  // L24_112
+  double A_deta1_deta2_gam2;  // L24_212
+  double A_deta1_gam1;  // L11_11
+  double A_deta1_gam1_gam1;  // L16_111
+  double A_deta1_gam1_gam2;  // L16_112/L16_211
+  double A_deta1_gam1_dgam1;  // L21_111
+  double A_deta1_gam1_dgam2;  // L21_112
+  double A_deta1_gam2;  // L11_21
+  double A_deta1_gam2_gam2;  // L16_212
+  double A_deta1_gam2_dgam1;  // L21_211
+  double A_deta1_gam2_dgam2;  // L21_212
+  double A_deta2_deta2_gam1;  // L24_122
+  double A_deta2_deta2_gam2;  // L24_222
+  double A_deta2_gam1;  // L11_12
+  double A_deta2_gam1_gam1;  // L16_121
+  double A_deta2_gam1_gam2;  // L16_122/L16_221
+  double A_deta2_gam1_dgam1;  // L21_121
+  double A_deta2_gam1_dgam2;  // L21_122
+  double A_deta2_gam2;  // L11_22
+  double A_deta2_gam2_gam2;  // L16_222
+  double A_deta2_gam2_dgam1;  // L21_221
+  double A_deta2_gam2_dgam2;  // L21_222
+  double A_gam1;  // L2_1
+  double A_gam1_gam1;  // L13_11
+  double A_gam1_gam2;  // L13_12/L13_21
+  double A_gam1_dgam1;  // L20_11
+  double A_gam1_dgam2;  // L20_12
+  double A_gam2;  // L2_2
+  double A_gam2_gam2;  // L13_22
+  double A_gam2_dgam1;  // L20_21
+  double A_gam2_dgam2;  // L20_22
+  double A_x1_eta1;  // F2_1
+  double A_x1_eta1_eta1;  // F8_11
+  double A_x1_eta1_eta2;  // F8_12/F8_21
+  double A_x1_eta1_deta1;  // F6_11
+  double A_x1_eta1_deta2;  // F6_12
+  double A_x1_eta1_gam1;  // F10_11/L7_11
+  double A_x1_eta1_gam2;  // F10_12/L7_21
+  double A_x1_eta1_dgam1;  // F21_11
+  double A_x1_eta1_dgam2;  // F21_12
+  double A_x1_eta2;  // F2_2
+  double A_x1_eta2_eta2;  // F8_22
+  double A_x1_eta2_deta1;  // F6_21
+  double A_x1_eta2_deta2;  // F6_22
+  double A_x1_eta2_gam1;  // F10_21/L7_12
+  double A_x1_eta2_gam2;  // F10_22/L7_22
+  double A_x1_eta2_dgam1;  // F21_21
+  double A_x1_eta2_dgam2;  // F21_22
+  double A_x1_deta1_gam1;  // L10_11
+  double A_x1_deta1_gam2;  // L10_21
+  double A_x1_deta2_gam1;  // L10_12
+  double A_x1_deta2_gam2;  // L10_22
+  double A_x1_gam1;  // L1_1
+  double A_x1_gam1_gam1;  // L14_11
+  double A_x1_gam1_gam2;  // L14_12/L14_21
+  double A_x1_gam1_dgam1;  // L23_11
+  double A_x1_gam1_dgam2;  // L23_12
+  double A_x1_gam2;  // L1_2
+  double A_x1_gam2_gam2;  // L14_22
+  double A_x1_gam2_dgam1;  // L23_21
+  double A_x1_gam2_dgam2;  // L23_22
+  double A_x2_eta1;  // F1_1
+  double A_x2_eta2;  // F1_2
+  double A_x2_gam1;  // L4_1
+  double A_x2_gam2;  // L4_2
+  double S_deta1__tail_m_gam1;  // B3_11
+  double S_deta1__tail_m_gam2;  // B3_12
+  double S_deta1__tail_m_arm;  // B1_1
+  double S_deta1_deta1__tail_m_gam1;  // P_111
+  double S_deta1_deta1__tail_m_gam2;  // P_112
+  double S_deta1_deta1__tail_m_arm;  // centrifugal stiffness (absorbed)
+  double S_deta1_deta2__tail_m_gam1;  // P_121/P_211
+  double S_deta1_deta2__tail_m_gam2;  // P_122/P_212
+  double S_deta1_deta2__tail_m_arm;  // centrifugal stiffness (absorbed)
+  double S_deta2__tail_m_gam1;  // B3_21
+  double S_deta2__tail_m_gam2;  // B3_22
+  double S_deta2__tail_m_arm;  // B1_2
+  double S_deta2_deta2__tail_m_gam1;  // P_221
+  double S_deta2_deta2__tail_m_gam2;  // P_222
+  double S_deta2_deta2__tail_m_arm;  // centrifugal stiffness (absorbed)
+  double S_dgam1__tail_m_gam1;  // B8_11
+  double S_dgam1__tail_m_gam2;  // B8_12
+  double S_dgam1__tail_m_arm;  // B10_1
+  double S_dgam1_dgam1__tail_m_gam1;  // S_111
+  double S_dgam1_dgam1__tail_m_gam2;  // S_112
+  double S_dgam1_dgam1__tail_m_arm;  // centrifugal stiffness (absorbed)
+  double S_dgam1_dgam2__tail_m_gam1;  // S_121/S_211
+  double S_dgam1_dgam2__tail_m_gam2;  // S_122/S_212
+  double S_dgam1_dgam2__tail_m_arm;  // centrifugal stiffness (absorbed)
+  double S_dgam2__tail_m_gam1;  // B8_21
+  double S_dgam2__tail_m_gam2;  // B8_22
+  double S_dgam2__tail_m_arm;  // B10_2
+  double S_dgam2_dgam2__tail_m_gam1;  // S_221
+  double S_dgam2_dgam2__tail_m_gam2;  // S_222
+  double S_dgam2_dgam2__tail_m_arm;  // centrifugal stiffness (absorbed)
+  double S_m_eta1_eta1;  // M_F11
+  double S_m_eta1_eta2;  // M_F12/M_F21
+  double S_m_eta1_gam1;  // B7_11
+  double S_m_eta1_gam2;  // B7_21
+  double S_m_eta2_eta2;  // M_F22
+  double S_m_eta2_gam1;  // B7_12
+  double S_m_eta2_gam2;  // B7_22
+  double S_m_gam1__head_deta1_deta1;  // Meta_111
+  double S_m_gam1__head_deta1_deta2;  // Meta_112
+  double S_m_gam1__head_deta2_deta2;  // Meta_122
+  double S_m_gam1__head_dgam1_dgam1;  // Mgamma_111
+  double S_m_gam1__head_dgam1_dgam2;  // Mgamma_112
+  double S_m_gam1__head_dgam2_dgam2;  // Mgamma_122
+  double S_m_gam1_gam1;  // M_L11
+  double S_m_gam1_gam2;  // M_L12/M_L21
+  double S_m_gam1_x0;  // B11_1
+  double S_m_gam2__head_deta1_deta1;  // Meta_211
+  double S_m_gam2__head_deta1_deta2;  // Meta_212
+  double S_m_gam2__head_deta2_deta2;  // Meta_222
+  double S_m_gam2__head_dgam1_dgam1;  // Mgamma_211
+  double S_m_gam2__head_dgam1_dgam2;  // Mgamma_212
+  double S_m_gam2__head_dgam2_dgam2;  // Mgamma_222
+  double S_m_gam2_gam2;  // M_L22
+  double S_m_gam2_x0;  // B11_2
+};
+
+Symbols::Symbols(const model::CoefficientInputs& in) {
+  lock = in.lock;
+  lr = in.lr;
+  theta = in.theta;
+  inflow = in.inflow;
+  precone = in.precone;
+  droop = in.droop;
+  cdo_a = in.cdo_a;
+  mu = in.mu;
+  g0_1 = in.g0[0];
+  g0_2 = in.g0[1];
+  h0_1 = in.h0[0];
+  h0_2 = in.h0[1];
+  omega_flap_1 = in.omega_flap[0];
+  damping_flap_1 = in.damping_flap[0];
+  omega_flap_2 = in.omega_flap[1];
+  damping_flap_2 = in.damping_flap[1];
+  omega_lag_1 = in.omega_lag[0];
+  damping_lag_1 = in.damping_lag[0];
+  omega_lag_2 = in.omega_lag[1];
+  damping_lag_2 = in.damping_lag[1];
+  es_flap_1_1 = in.es_flap[0];
+  es_flap_1_2 = in.es_flap[1];
+  ecs_flap_lag_1_1 = in.ecs_flap_lag[0];
+  ecs_flap_lag_1_2 = in.ecs_flap_lag[1];
+  es_flap_2_1 = in.es_flap[2];
+  es_flap_2_2 = in.es_flap[3];
+  ecs_flap_lag_2_1 = in.ecs_flap_lag[2];
+  ecs_flap_lag_2_2 = in.ecs_flap_lag[3];
+  es_lag_1_1 = in.es_lag[0];
+  es_lag_1_2 = in.es_lag[1];
+  ecs_lag_flap_1_1 = in.ecs_lag_flap[0];
+  ecs_lag_flap_1_2 = in.ecs_lag_flap[1];
+  es_lag_2_1 = in.es_lag[2];
+  es_lag_2_2 = in.es_lag[3];
+  ecs_lag_flap_2_1 = in.ecs_lag_flap[2];
+  ecs_lag_flap_2_2 = in.ecs_lag_flap[3];
+  A_eta1 = in.aero[0];
+  A_eta1_eta1 = in.aero[1];
+  A_eta1_eta1_dgam1 = in.aero[2];
+  A_eta1_eta1_dgam2 = in.aero[3];
+  A_eta1_eta2 = in.aero[4];
+  A_eta1_eta2_dgam1 = in.aero[5];
+  A_eta1_eta2_dgam2 = in.aero[6];
+  A_eta1_deta1 = in.aero[7];
+  A_eta1_deta1_gam1 = in.aero[8];
+  A_eta1_deta1_gam2 = in.aero[9];
+  A_eta1_deta1_dgam1 = in.aero[10];
+  A_eta1_deta1_dgam2 = in.aero[11];
+  A_eta1_deta2 = in.aero[12];
+  A_eta1_deta2_gam1 = in.aero[13];
+  A_eta1_deta2_gam2 = in.aero[14];
+  A_eta1_deta2_dgam1 = in.aero[15];
+  A_eta1_deta2_dgam2 = in.aero[16];
+  A_eta1_gam1 = in.aero[17];
+  A_eta1_gam1_dgam1 = in.aero[18];
+  A_eta1_gam1_dgam2 = in.aero[19];
+  A_eta1_gam2 = in.aero[20];
+  A_eta1_gam2_dgam1 = in.aero[21];
+  A_eta1_gam2_dgam2 = in.aero[22];
+  A_eta1_dgam1 = in.aero[23];
+  A_eta1_dgam2 = in.aero[24];
+  A_eta2 = in.aero[25];
+  A_eta2_eta2 = in.aero[26];
+  A_eta2_eta2_dgam1 = in.aero[27];
+  A_eta2_eta2_dgam2 = in.aero[28];
+  A_eta2_deta1 = in.aero[29];
+  A_eta2_deta1_gam1 = in.aero[30];
+  A_eta2_deta1_gam2 = in.aero[31];
+  A_eta2_deta1_dgam1 = in.aero[32];
+  A_eta2_deta1_dgam2 = in.aero[33];
+  A_eta2_deta2 = in.aero[34];
+  A_eta2_deta2_gam1 = in.aero[35];
+  A_eta2_deta2_gam2 = in.aero[36];
+  A_eta2_deta2_dgam1 = in.aero[37];
+  A_eta2_deta2_dgam2 = in.aero[38];
+  A_eta2_gam1 = in.aero[39];
+  A_eta2_gam1_dgam1 = in.aero[40];
+  A_eta2_gam1_dgam2 = in.aero[41];
+  A_eta2_gam2 = in.aero[42];
+  A_eta2_gam2_dgam1 = in.aero[43];
+  A_eta2_gam2_dgam2 = in.aero[44];
+  A_eta2_dgam1 = in.aero[45];
+  A_eta2_dgam2 = in.aero[46];
+  A_deta1_deta1_gam1 = in.aero[47];
+  A_deta1_deta1_gam2 = in.aero[48];
+  A_deta1_deta2_gam1 = in.aero[49];
+  A_deta1_deta2_gam2 = in.aero[50];
+  A_deta1_gam1 = in.aero[51];
+  A_deta1_gam1_gam1 = in.aero[52];
+  A_deta1_gam1_gam2 = in.aero[53];
+  A_deta1_gam1_dgam1 = in.aero[54];
+  A_deta1_gam1_dgam2 = in.aero[55];
+  A_deta1_gam2 = in.aero[56];
+  A_deta1_gam2_gam2 = in.aero[57];
+  A_deta1_gam2_dgam1 = in.aero[58];
+  A_deta1_gam2_dgam2 = in.aero[59];
+  A_deta2_deta2_gam1 = in.aero[60];
+  A_deta2_deta2_gam2 = in.aero[61];
+  A_deta2_gam1 = in.aero[62];
+  A_deta2_gam1_gam1 = in.aero[63];
+  A_deta2_gam1_gam2 = in.aero[64];
+  A_deta2_gam1_dgam1 = in.aero[65];
+  A_deta2_gam1_dgam2 = in.aero[66];
+  A_deta2_gam2 = in.aero[67];
+  A_deta2_gam2_gam2 = in.aero[68];
+  A_deta2_gam2_dgam1 = in.aero[69];
+  A_deta2_gam2_dgam2 = in.aero[70];
+  A_gam1 = in.aero[71];
+  A_gam1_gam1 = in.aero[72];
+  A_gam1_gam2 = in.aero[73];
+  A_gam1_dgam1 = in.aero[74];
+  A_gam1_dgam2 = in.aero[75];
+  A_gam2 = in.aero[76];
+  A_gam2_gam2 = in.aero[77];
+  A_gam2_dgam1 = in.aero[78];
+  A_gam2_dgam2 = in.aero[79];
+  A_x1_eta1 = in.aero[80];
+  A_x1_eta1_eta1 = in.aero[81];
+  A_x1_eta1_eta2 = in.aero[82];
+  A_x1_eta1_deta1 = in.aero[83];
+  A_x1_eta1_deta2 = in.aero[84];
+  A_x1_eta1_gam1 = in.aero[85];
+  A_x1_eta1_gam2 = in.aero[86];
+  A_x1_eta1_dgam1 = in.aero[87];
+  A_x1_eta1_dgam2 = in.aero[88];
+  A_x1_eta2 = in.aero[89];
+  A_x1_eta2_eta2 = in.aero[90];
+  A_x1_eta2_deta1 = in.aero[91];
+  A_x1_eta2_deta2 = in.aero[92];
+  A_x1_eta2_gam1 = in.aero[93];
+  A_x1_eta2_gam2 = in.aero[94];
+  A_x1_eta2_dgam1 = in.aero[95];
+  A_x1_eta2_dgam2 = in.aero[96];
+  A_x1_deta1_gam1 = in.aero[97];
+  A_x1_deta1_gam2 = in.aero[98];
+  A_x1_deta2_gam1 = in.aero[99];
+  A_x1_deta2_gam2 = in.aero[100];
+  A_x1_gam1 = in.aero[101];
+  A_x1_gam1_gam1 = in.aero[102];
+  A_x1_gam1_gam2 = in.aero[103];
+  A_x1_gam1_dgam1 = in.aero[104];
+  A_x1_gam1_dgam2 = in.aero[105];
+  A_x1_gam2 = in.aero[106];
+  A_x1_gam2_gam2 = in.aero[107];
+  A_x1_gam2_dgam1 = in.aero[108];
+  A_x1_gam2_dgam2 = in.aero[109];
+  A_x2_eta1 = in.aero[110];
+  A_x2_eta2 = in.aero[111];
+  A_x2_gam1 = in.aero[112];
+  A_x2_gam2 = in.aero[113];
+  S_deta1__tail_m_gam1 = in.structural[0];
+  S_deta1__tail_m_gam2 = in.structural[1];
+  S_deta1__tail_m_arm = in.structural[2];
+  S_deta1_deta1__tail_m_gam1 = in.structural[3];
+  S_deta1_deta1__tail_m_gam2 = in.structural[4];
+  S_deta1_deta1__tail_m_arm = in.structural[5];
+  S_deta1_deta2__tail_m_gam1 = in.structural[6];
+  S_deta1_deta2__tail_m_gam2 = in.structural[7];
+  S_deta1_deta2__tail_m_arm = in.structural[8];
+  S_deta2__tail_m_gam1 = in.structural[9];
+  S_deta2__tail_m_gam2 = in.structural[10];
+  S_deta2__tail_m_arm = in.structural[11];
+  S_deta2_deta2__tail_m_gam1 = in.structural[12];
+  S_deta2_deta2__tail_m_gam2 = in.structural[13];
+  S_deta2_deta2__tail_m_arm = in.structural[14];
+  S_dgam1__tail_m_gam1 = in.structural[15];
+  S_dgam1__tail_m_gam2 = in.structural[16];
+  S_dgam1__tail_m_arm = in.structural[17];
+  S_dgam1_dgam1__tail_m_gam1 = in.structural[18];
+  S_dgam1_dgam1__tail_m_gam2 = in.structural[19];
+  S_dgam1_dgam1__tail_m_arm = in.structural[20];
+  S_dgam1_dgam2__tail_m_gam1 = in.structural[21];
+  S_dgam1_dgam2__tail_m_gam2 = in.structural[22];
+  S_dgam1_dgam2__tail_m_arm = in.structural[23];
+  S_dgam2__tail_m_gam1 = in.structural[24];
+  S_dgam2__tail_m_gam2 = in.structural[25];
+  S_dgam2__tail_m_arm = in.structural[26];
+  S_dgam2_dgam2__tail_m_gam1 = in.structural[27];
+  S_dgam2_dgam2__tail_m_gam2 = in.structural[28];
+  S_dgam2_dgam2__tail_m_arm = in.structural[29];
+  S_m_eta1_eta1 = in.structural[30];
+  S_m_eta1_eta2 = in.structural[31];
+  S_m_eta1_gam1 = in.structural[32];
+  S_m_eta1_gam2 = in.structural[33];
+  S_m_eta2_eta2 = in.structural[34];
+  S_m_eta2_gam1 = in.structural[35];
+  S_m_eta2_gam2 = in.structural[36];
+  S_m_gam1__head_deta1_deta1 = in.structural[37];
+  S_m_gam1__head_deta1_deta2 = in.structural[38];
+  S_m_gam1__head_deta2_deta2 = in.structural[39];
+  S_m_gam1__head_dgam1_dgam1 = in.structural[40];
+  S_m_gam1__head_dgam1_dgam2 = in.structural[41];
+  S_m_gam1__head_dgam2_dgam2 = in.structural[42];
+  S_m_gam1_gam1 = in.structural[43];
+  S_m_gam1_gam2 = in.structural[44];
+  S_m_gam1_x0 = in.structural[45];
+  S_m_gam2__head_deta1_deta1 = in.structural[46];
+  S_m_gam2__head_deta1_deta2 = in.structural[47];
+  S_m_gam2__head_deta2_deta2 = in.structural[48];
+  S_m_gam2__head_dgam1_dgam1 = in.structural[49];
+  S_m_gam2__head_dgam1_dgam2 = in.structural[50];
+  S_m_gam2__head_dgam2_dgam2 = in.structural[51];
+  S_m_gam2_gam2 = in.structural[52];
+  S_m_gam2_x0 = in.structural[53];
+}
+
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 4, states 2n = 8, harmonics H = 5.
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
-  [[maybe_unused]] const double lock = in.lock;
-  [[maybe_unused]] const double lr = in.lr;
-  [[maybe_unused]] const double theta = in.theta;
-  [[maybe_unused]] const double inflow = in.inflow;
-  [[maybe_unused]] const double precone = in.precone;
-  [[maybe_unused]] const double droop = in.droop;
-  [[maybe_unused]] const double cdo_a = in.cdo_a;
-  [[maybe_unused]] const double mu = in.mu;
-  [[maybe_unused]] const double g0_1 = in.g0[0];
-  [[maybe_unused]] const double g0_2 = in.g0[1];
-  [[maybe_unused]] const double h0_1 = in.h0[0];
-  [[maybe_unused]] const double h0_2 = in.h0[1];
-  [[maybe_unused]] const double omega_flap_1 = in.omega_flap[0];
-  [[maybe_unused]] const double damping_flap_1 = in.damping_flap[0];
-  [[maybe_unused]] const double omega_flap_2 = in.omega_flap[1];
-  [[maybe_unused]] const double damping_flap_2 = in.damping_flap[1];
-  [[maybe_unused]] const double omega_lag_1 = in.omega_lag[0];
-  [[maybe_unused]] const double damping_lag_1 = in.damping_lag[0];
-  [[maybe_unused]] const double omega_lag_2 = in.omega_lag[1];
-  [[maybe_unused]] const double damping_lag_2 = in.damping_lag[1];
-  [[maybe_unused]] const double es_flap_1_1 = in.es_flap[0];
-  [[maybe_unused]] const double es_flap_1_2 = in.es_flap[1];
-  [[maybe_unused]] const double ecs_flap_lag_1_1 = in.ecs_flap_lag[0];
-  [[maybe_unused]] const double ecs_flap_lag_1_2 = in.ecs_flap_lag[1];
-  [[maybe_unused]] const double es_flap_2_1 = in.es_flap[2];
-  [[maybe_unused]] const double es_flap_2_2 = in.es_flap[3];
-  [[maybe_unused]] const double ecs_flap_lag_2_1 = in.ecs_flap_lag[2];
-  [[maybe_unused]] const double ecs_flap_lag_2_2 = in.ecs_flap_lag[3];
-  [[maybe_unused]] const double es_lag_1_1 = in.es_lag[0];
-  [[maybe_unused]] const double es_lag_1_2 = in.es_lag[1];
-  [[maybe_unused]] const double ecs_lag_flap_1_1 = in.ecs_lag_flap[0];
-  [[maybe_unused]] const double ecs_lag_flap_1_2 = in.ecs_lag_flap[1];
-  [[maybe_unused]] const double es_lag_2_1 = in.es_lag[2];
-  [[maybe_unused]] const double es_lag_2_2 = in.es_lag[3];
-  [[maybe_unused]] const double ecs_lag_flap_2_1 = in.ecs_lag_flap[2];
-  [[maybe_unused]] const double ecs_lag_flap_2_2 = in.ecs_lag_flap[3];
-  [[maybe_unused]] const double A_eta1 = in.aero[0];  // F3_1
-  [[maybe_unused]] const double A_eta1_eta1 = in.aero[1];  // F9_11
-  [[maybe_unused]] const double A_eta1_eta1_dgam1 = in.aero[2];  // F24_111
-  [[maybe_unused]] const double A_eta1_eta1_dgam2 = in.aero[3];  // F24_112
-  [[maybe_unused]] const double A_eta1_eta2 = in.aero[4];  // F9_12/F9_21
-  [[maybe_unused]] const double A_eta1_eta2_dgam1 = in.aero[5];  // F24_121/F24_211
-  [[maybe_unused]] const double A_eta1_eta2_dgam2 = in.aero[6];  // F24_122/F24_212
-  [[maybe_unused]] const double A_eta1_deta1 = in.aero[7];  // F7_11
-  [[maybe_unused]] const double A_eta1_deta1_gam1 = in.aero[8];  // F14_111/L17_111
-  [[maybe_unused]] const double A_eta1_deta1_gam2 = in.aero[9];  // F14_112/L17_211
-  [[maybe_unused]] const double A_eta1_deta1_dgam1 = in.aero[10];  // F23_111
-  [[maybe_unused]] const double A_eta1_deta1_dgam2 = in.aero[11];  // F23_112
-  [[maybe_unused]] const double A_eta1_deta2 = in.aero[12];  // F7_12
-  [[maybe_unused]] const double A_eta1_deta2_gam1 = in.aero[13];  // F14_121/L17_121
-  [[maybe_unused]] const double A_eta1_deta2_gam2 = in.aero[14];  // F14_122/L17_221
-  [[maybe_unused]] const double A_eta1_deta2_dgam1 = in.aero[15];  // F23_121
-  [[maybe_unused]] const double A_eta1_deta2_dgam2 = in.aero[16];  // F23_122
-  [[maybe_unused]] const double A_eta1_gam1 = in.aero[17];  // F11_11/L8_11
-  [[maybe_unused]] const double A_eta1_gam1_dgam1 = in.aero[18];  // L22_111
-  [[maybe_unused]] const double A_eta1_gam1_dgam2 = in.aero[19];  // L22_112
-  [[maybe_unused]] const double A_eta1_gam2 = in.aero[20];  // F11_12/L8_21
-  [[maybe_unused]] const double A_eta1_gam2_dgam1 = in.aero[21];  // L22_211
-  [[maybe_unused]] const double A_eta1_gam2_dgam2 = in.aero[22];  // L22_212
-  [[maybe_unused]] const double A_eta1_dgam1 = in.aero[23];  // F22_11
-  [[maybe_unused]] const double A_eta1_dgam2 = in.aero[24];  // F22_12
-  [[maybe_unused]] const double A_eta2 = in.aero[25];  // F3_2
-  [[maybe_unused]] const double A_eta2_eta2 = in.aero[26];  // F9_22
-  [[maybe_unused]] const double A_eta2_eta2_dgam1 = in.aero[27];  // F24_221
-  [[maybe_unused]] const double A_eta2_eta2_dgam2 = in.aero[28];  // F24_222
-  [[maybe_unused]] const double A_eta2_deta1 = in.aero[29];  // F7_21
-  [[maybe_unused]] const double A_eta2_deta1_gam1 = in.aero[30];  // F14_211/L17_112
-  [[maybe_unused]] const double A_eta2_deta1_gam2 = in.aero[31];  // F14_212/L17_212
-  [[maybe_unused]] const double A_eta2_deta1_dgam1 = in.aero[32];  // F23_211
-  [[maybe_unused]] const double A_eta2_deta1_dgam2 = in.aero[33];  // F23_212
-  [[maybe_unused]] const double A_eta2_deta2 = in.aero[34];  // F7_22
-  [[maybe_unused]] const double A_eta2_deta2_gam1 = in.aero[35];  // F14_221/L17_122
-  [[maybe_unused]] const double A_eta2_deta2_gam2 = in.aero[36];  // F14_222/L17_222
-  [[maybe_unused]] const double A_eta2_deta2_dgam1 = in.aero[37];  // F23_221
-  [[maybe_unused]] const double A_eta2_deta2_dgam2 = in.aero[38];  // F23_222
-  [[maybe_unused]] const double A_eta2_gam1 = in.aero[39];  // F11_21/L8_12
-  [[maybe_unused]] const double A_eta2_gam1_dgam1 = in.aero[40];  // L22_121
-  [[maybe_unused]] const double A_eta2_gam1_dgam2 = in.aero[41];  // L22_122
-  [[maybe_unused]] const double A_eta2_gam2 = in.aero[42];  // F11_22/L8_22
-  [[maybe_unused]] const double A_eta2_gam2_dgam1 = in.aero[43];  // L22_221
-  [[maybe_unused]] const double A_eta2_gam2_dgam2 = in.aero[44];  // L22_222
-  [[maybe_unused]] const double A_eta2_dgam1 = in.aero[45];  // F22_21
-  [[maybe_unused]] const double A_eta2_dgam2 = in.aero[46];  // F22_22
-  [[maybe_unused]] const double A_deta1_deta1_gam1 = in.aero[47];  // L24_111
-  [[maybe_unused]] const double A_deta1_deta1_gam2 = in.aero[48];  // L24_211
-  [[maybe_unused]] const double A_deta1_deta2_gam1 = in.aero[49];  // L24_112
-  [[maybe_unused]] const double A_deta1_deta2_gam2 = in.aero[50];  // L24_212
-  [[maybe_unused]] const double A_deta1_gam1 = in.aero[51];  // L11_11
-  [[maybe_unused]] const double A_deta1_gam1_gam1 = in.aero[52];  // L16_111
-  [[maybe_unused]] const double A_deta1_gam1_gam2 = in.aero[53];  // L16_112/L16_211
-  [[maybe_unused]] const double A_deta1_gam1_dgam1 = in.aero[54];  // L21_111
-  [[maybe_unused]] const double A_deta1_gam1_dgam2 = in.aero[55];  // L21_112
-  [[maybe_unused]] const double A_deta1_gam2 = in.aero[56];  // L11_21
-  [[maybe_unused]] const double A_deta1_gam2_gam2 = in.aero[57];  // L16_212
-  [[maybe_unused]] const double A_deta1_gam2_dgam1 = in.aero[58];  // L21_211
-  [[maybe_unused]] const double A_deta1_gam2_dgam2 = in.aero[59];  // L21_212
-  [[maybe_unused]] const double A_deta2_deta2_gam1 = in.aero[60];  // L24_122
-  [[maybe_unused]] const double A_deta2_deta2_gam2 = in.aero[61];  // L24_222
-  [[maybe_unused]] const double A_deta2_gam1 = in.aero[62];  // L11_12
-  [[maybe_unused]] const double A_deta2_gam1_gam1 = in.aero[63];  // L16_121
-  [[maybe_unused]] const double A_deta2_gam1_gam2 = in.aero[64];  // L16_122/L16_221
-  [[maybe_unused]] const double A_deta2_gam1_dgam1 = in.aero[65];  // L21_121
-  [[maybe_unused]] const double A_deta2_gam1_dgam2 = in.aero[66];  // L21_122
-  [[maybe_unused]] const double A_deta2_gam2 = in.aero[67];  // L11_22
-  [[maybe_unused]] const double A_deta2_gam2_gam2 = in.aero[68];  // L16_222
-  [[maybe_unused]] const double A_deta2_gam2_dgam1 = in.aero[69];  // L21_221
-  [[maybe_unused]] const double A_deta2_gam2_dgam2 = in.aero[70];  // L21_222
-  [[maybe_unused]] const double A_gam1 = in.aero[71];  // L2_1
-  [[maybe_unused]] const double A_gam1_gam1 = in.aero[72];  // L13_11
-  [[maybe_unused]] const double A_gam1_gam2 = in.aero[73];  // L13_12/L13_21
-  [[maybe_unused]] const double A_gam1_dgam1 = in.aero[74];  // L20_11
-  [[maybe_unused]] const double A_gam1_dgam2 = in.aero[75];  // L20_12
-  [[maybe_unused]] const double A_gam2 = in.aero[76];  // L2_2
-  [[maybe_unused]] const double A_gam2_gam2 = in.aero[77];  // L13_22
-  [[maybe_unused]] const double A_gam2_dgam1 = in.aero[78];  // L20_21
-  [[maybe_unused]] const double A_gam2_dgam2 = in.aero[79];  // L20_22
-  [[maybe_unused]] const double A_x1_eta1 = in.aero[80];  // F2_1
-  [[maybe_unused]] const double A_x1_eta1_eta1 = in.aero[81];  // F8_11
-  [[maybe_unused]] const double A_x1_eta1_eta2 = in.aero[82];  // F8_12/F8_21
-  [[maybe_unused]] const double A_x1_eta1_deta1 = in.aero[83];  // F6_11
-  [[maybe_unused]] const double A_x1_eta1_deta2 = in.aero[84];  // F6_12
-  [[maybe_unused]] const double A_x1_eta1_gam1 = in.aero[85];  // F10_11/L7_11
-  [[maybe_unused]] const double A_x1_eta1_gam2 = in.aero[86];  // F10_12/L7_21
-  [[maybe_unused]] const double A_x1_eta1_dgam1 = in.aero[87];  // F21_11
-  [[maybe_unused]] const double A_x1_eta1_dgam2 = in.aero[88];  // F21_12
-  [[maybe_unused]] const double A_x1_eta2 = in.aero[89];  // F2_2
-  [[maybe_unused]] const double A_x1_eta2_eta2 = in.aero[90];  // F8_22
-  [[maybe_unused]] const double A_x1_eta2_deta1 = in.aero[91];  // F6_21
-  [[maybe_unused]] const double A_x1_eta2_deta2 = in.aero[92];  // F6_22
-  [[maybe_unused]] const double A_x1_eta2_gam1 = in.aero[93];  // F10_21/L7_12
-  [[maybe_unused]] const double A_x1_eta2_gam2 = in.aero[94];  // F10_22/L7_22
-  [[maybe_unused]] const double A_x1_eta2_dgam1 = in.aero[95];  // F21_21
-  [[maybe_unused]] const double A_x1_eta2_dgam2 = in.aero[96];  // F21_22
-  [[maybe_unused]] const double A_x1_deta1_gam1 = in.aero[97];  // L10_11
-  [[maybe_unused]] const double A_x1_deta1_gam2 = in.aero[98];  // L10_21
-  [[maybe_unused]] const double A_x1_deta2_gam1 = in.aero[99];  // L10_12
-  [[maybe_unused]] const double A_x1_deta2_gam2 = in.aero[100];  // L10_22
-  [[maybe_unused]] const double A_x1_gam1 = in.aero[101];  // L1_1
-  [[maybe_unused]] const double A_x1_gam1_gam1 = in.aero[102];  // L14_11
-  [[maybe_unused]] const double A_x1_gam1_gam2 = in.aero[103];  // L14_12/L14_21
-  [[maybe_unused]] const double A_x1_gam1_dgam1 = in.aero[104];  // L23_11
-  [[maybe_unused]] const double A_x1_gam1_dgam2 = in.aero[105];  // L23_12
-  [[maybe_unused]] const double A_x1_gam2 = in.aero[106];  // L1_2
-  [[maybe_unused]] const double A_x1_gam2_gam2 = in.aero[107];  // L14_22
-  [[maybe_unused]] const double A_x1_gam2_dgam1 = in.aero[108];  // L23_21
-  [[maybe_unused]] const double A_x1_gam2_dgam2 = in.aero[109];  // L23_22
-  [[maybe_unused]] const double A_x2_eta1 = in.aero[110];  // F1_1
-  [[maybe_unused]] const double A_x2_eta2 = in.aero[111];  // F1_2
-  [[maybe_unused]] const double A_x2_gam1 = in.aero[112];  // L4_1
-  [[maybe_unused]] const double A_x2_gam2 = in.aero[113];  // L4_2
-  [[maybe_unused]] const double S_deta1__tail_m_gam1 = in.structural[0];  // B3_11
-  [[maybe_unused]] const double S_deta1__tail_m_gam2 = in.structural[1];  // B3_12
-  [[maybe_unused]] const double S_deta1__tail_m_arm = in.structural[2];  // B1_1
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_gam1 = in.structural[3];  // P_111
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_gam2 = in.structural[4];  // P_112
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_arm = in.structural[5];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_deta1_deta2__tail_m_gam1 = in.structural[6];  // P_121/P_211
-  [[maybe_unused]] const double S_deta1_deta2__tail_m_gam2 = in.structural[7];  // P_122/P_212
-  [[maybe_unused]] const double S_deta1_deta2__tail_m_arm = in.structural[8];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_deta2__tail_m_gam1 = in.structural[9];  // B3_21
-  [[maybe_unused]] const double S_deta2__tail_m_gam2 = in.structural[10];  // B3_22
-  [[maybe_unused]] const double S_deta2__tail_m_arm = in.structural[11];  // B1_2
-  [[maybe_unused]] const double S_deta2_deta2__tail_m_gam1 = in.structural[12];  // P_221
-  [[maybe_unused]] const double S_deta2_deta2__tail_m_gam2 = in.structural[13];  // P_222
-  [[maybe_unused]] const double S_deta2_deta2__tail_m_arm = in.structural[14];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_dgam1__tail_m_gam1 = in.structural[15];  // B8_11
-  [[maybe_unused]] const double S_dgam1__tail_m_gam2 = in.structural[16];  // B8_12
-  [[maybe_unused]] const double S_dgam1__tail_m_arm = in.structural[17];  // B10_1
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_gam1 = in.structural[18];  // S_111
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_gam2 = in.structural[19];  // S_112
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_arm = in.structural[20];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_dgam1_dgam2__tail_m_gam1 = in.structural[21];  // S_121/S_211
-  [[maybe_unused]] const double S_dgam1_dgam2__tail_m_gam2 = in.structural[22];  // S_122/S_212
-  [[maybe_unused]] const double S_dgam1_dgam2__tail_m_arm = in.structural[23];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_dgam2__tail_m_gam1 = in.structural[24];  // B8_21
-  [[maybe_unused]] const double S_dgam2__tail_m_gam2 = in.structural[25];  // B8_22
-  [[maybe_unused]] const double S_dgam2__tail_m_arm = in.structural[26];  // B10_2
-  [[maybe_unused]] const double S_dgam2_dgam2__tail_m_gam1 = in.structural[27];  // S_221
-  [[maybe_unused]] const double S_dgam2_dgam2__tail_m_gam2 = in.structural[28];  // S_222
-  [[maybe_unused]] const double S_dgam2_dgam2__tail_m_arm = in.structural[29];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_m_eta1_eta1 = in.structural[30];  // M_F11
-  [[maybe_unused]] const double S_m_eta1_eta2 = in.structural[31];  // M_F12/M_F21
-  [[maybe_unused]] const double S_m_eta1_gam1 = in.structural[32];  // B7_11
-  [[maybe_unused]] const double S_m_eta1_gam2 = in.structural[33];  // B7_21
-  [[maybe_unused]] const double S_m_eta2_eta2 = in.structural[34];  // M_F22
-  [[maybe_unused]] const double S_m_eta2_gam1 = in.structural[35];  // B7_12
-  [[maybe_unused]] const double S_m_eta2_gam2 = in.structural[36];  // B7_22
-  [[maybe_unused]] const double S_m_gam1__head_deta1_deta1 = in.structural[37];  // Meta_111
-  [[maybe_unused]] const double S_m_gam1__head_deta1_deta2 = in.structural[38];  // Meta_112
-  [[maybe_unused]] const double S_m_gam1__head_deta2_deta2 = in.structural[39];  // Meta_122
-  [[maybe_unused]] const double S_m_gam1__head_dgam1_dgam1 = in.structural[40];  // Mgamma_111
-  [[maybe_unused]] const double S_m_gam1__head_dgam1_dgam2 = in.structural[41];  // Mgamma_112
-  [[maybe_unused]] const double S_m_gam1__head_dgam2_dgam2 = in.structural[42];  // Mgamma_122
-  [[maybe_unused]] const double S_m_gam1_gam1 = in.structural[43];  // M_L11
-  [[maybe_unused]] const double S_m_gam1_gam2 = in.structural[44];  // M_L12/M_L21
-  [[maybe_unused]] const double S_m_gam1_x0 = in.structural[45];  // B11_1
-  [[maybe_unused]] const double S_m_gam2__head_deta1_deta1 = in.structural[46];  // Meta_211
-  [[maybe_unused]] const double S_m_gam2__head_deta1_deta2 = in.structural[47];  // Meta_212
-  [[maybe_unused]] const double S_m_gam2__head_deta2_deta2 = in.structural[48];  // Meta_222
-  [[maybe_unused]] const double S_m_gam2__head_dgam1_dgam1 = in.structural[49];  // Mgamma_211
-  [[maybe_unused]] const double S_m_gam2__head_dgam1_dgam2 = in.structural[50];  // Mgamma_212
-  [[maybe_unused]] const double S_m_gam2__head_dgam2_dgam2 = in.structural[51];  // Mgamma_222
-  [[maybe_unused]] const double S_m_gam2_gam2 = in.structural[52];  // M_L22
-  [[maybe_unused]] const double S_m_gam2_x0 = in.structural[53];  // B11_2
+  const Symbols s(in);
   // mass: flap 1, dg1'''
   out.mass[0] =
-      S_m_eta1_eta1;
+      s.S_m_eta1_eta1;
   // mass: flap 1, dg2'''
   out.mass[1] =
-      S_m_eta1_eta2;
+      s.S_m_eta1_eta2;
   // mass: flap 1, dh1'''
   out.mass[2] =
       0.0;
@@ -408,10 +621,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // mass: flap 2, dg1'''
   out.mass[4] =
-      S_m_eta1_eta2;
+      s.S_m_eta1_eta2;
   // mass: flap 2, dg2'''
   out.mass[5] =
-      S_m_eta2_eta2;
+      s.S_m_eta2_eta2;
   // mass: flap 2, dh1'''
   out.mass[6] =
       0.0;
@@ -426,10 +639,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // mass: lag 1, dh1'''
   out.mass[10] =
-      S_m_gam1_gam1;
+      s.S_m_gam1_gam1;
   // mass: lag 1, dh2'''
   out.mass[11] =
-      S_m_gam1_gam2;
+      s.S_m_gam1_gam2;
   // mass: lag 2, dg1'''
   out.mass[12] =
       0.0;
@@ -438,554 +651,554 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // mass: lag 2, dh1'''
   out.mass[14] =
-      S_m_gam1_gam2;
+      s.S_m_gam1_gam2;
   // mass: lag 2, dh2'''
   out.mass[15] =
-      S_m_gam2_gam2;
+      s.S_m_gam2_gam2;
   // force[1]: flap 1, dg1'
   out.force[0] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * A_x1_eta1_eta1
-      - (2.0) * omega_flap_1 * damping_flap_1 * S_m_eta1_eta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta1
+      - (2.0) * s.omega_flap_1 * s.damping_flap_1 * s.S_m_eta1_eta1;
   // force[1]: flap 1, dg2'
   out.force[1] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * A_x1_eta1_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta2;
   // force[1]: flap 1, dg1
   out.force[2] =
-      -es_flap_1_1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_2 * A_eta1_deta1_dgam2
-      - omega_flap_1 * omega_flap_1 * S_m_eta1_eta1;
+      -s.es_flap_1_1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta1_deta1_dgam2
+      - s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
   // force[1]: flap 1, dg2
   out.force[3] =
-      -es_flap_1_2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta1_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_2 * A_eta1_deta2_dgam2;
+      -s.es_flap_1_2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta1_deta2_dgam2;
   // force[1]: flap 1, dh1'
   out.force[4] =
-      (1.0 / 2.0) * lock * lr * lr * lr * inflow * A_eta1_gam1
-      - lock * lr * lr * lr * theta * A_x1_eta1_gam1
-      + (2.0) * precone * S_deta1__tail_m_gam1
-      + (2.0) * droop * S_deta1__tail_m_gam1
-      + (2.0) * g0_1 * S_deta1_deta1__tail_m_gam1
-      + (2.0) * g0_2 * S_deta1_deta2__tail_m_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
+      + (2.0) * s.precone * s.S_deta1__tail_m_gam1
+      + (2.0) * s.droop * s.S_deta1__tail_m_gam1
+      + (2.0) * s.g0_1 * s.S_deta1_deta1__tail_m_gam1
+      + (2.0) * s.g0_2 * s.S_deta1_deta2__tail_m_gam1;
   // force[1]: flap 1, dh2'
   out.force[5] =
-      (1.0 / 2.0) * lock * lr * lr * lr * inflow * A_eta1_gam2
-      - lock * lr * lr * lr * theta * A_x1_eta1_gam2
-      + (2.0) * precone * S_deta1__tail_m_gam2
-      + (2.0) * droop * S_deta1__tail_m_gam2
-      + (2.0) * g0_1 * S_deta1_deta1__tail_m_gam2
-      + (2.0) * g0_2 * S_deta1_deta2__tail_m_gam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam2
+      - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam2
+      + (2.0) * s.precone * s.S_deta1__tail_m_gam2
+      + (2.0) * s.droop * s.S_deta1__tail_m_gam2
+      + (2.0) * s.g0_1 * s.S_deta1_deta1__tail_m_gam2
+      + (2.0) * s.g0_2 * s.S_deta1_deta2__tail_m_gam2;
   // force[1]: flap 1, dh1
   out.force[6] =
-      ecs_flap_lag_1_1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta1_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta1_dgam1;
+      s.ecs_flap_lag_1_1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
   // force[1]: flap 1, dh2
   out.force[7] =
-      ecs_flap_lag_1_2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta1_deta1_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta1_deta2_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta1_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta1_dgam2;
+      s.ecs_flap_lag_1_2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam2;
   // force[1]: flap 2, dg1'
   out.force[8] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * A_x1_eta1_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta2;
   // force[1]: flap 2, dg2'
   out.force[9] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * A_x1_eta2_eta2
-      - (2.0) * omega_flap_2 * damping_flap_2 * S_m_eta2_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta2_eta2
+      - (2.0) * s.omega_flap_2 * s.damping_flap_2 * s.S_m_eta2_eta2;
   // force[1]: flap 2, dg1
   out.force[10] =
-      -es_flap_2_1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta2_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_2 * A_eta2_deta1_dgam2;
+      -s.es_flap_2_1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta2_deta1_dgam2;
   // force[1]: flap 2, dg2
   out.force[11] =
-      -es_flap_2_2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta2_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_2 * A_eta2_deta2_dgam2
-      - omega_flap_2 * omega_flap_2 * S_m_eta2_eta2;
+      -s.es_flap_2_2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta2_deta2_dgam2
+      - s.omega_flap_2 * s.omega_flap_2 * s.S_m_eta2_eta2;
   // force[1]: flap 2, dh1'
   out.force[12] =
-      (1.0 / 2.0) * lock * lr * lr * lr * inflow * A_eta2_gam1
-      - lock * lr * lr * lr * theta * A_x1_eta2_gam1
-      + (2.0) * g0_1 * S_deta1_deta2__tail_m_gam1
-      + (2.0) * precone * S_deta2__tail_m_gam1
-      + (2.0) * droop * S_deta2__tail_m_gam1
-      + (2.0) * g0_2 * S_deta2_deta2__tail_m_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta2_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta2_gam1
+      + (2.0) * s.g0_1 * s.S_deta1_deta2__tail_m_gam1
+      + (2.0) * s.precone * s.S_deta2__tail_m_gam1
+      + (2.0) * s.droop * s.S_deta2__tail_m_gam1
+      + (2.0) * s.g0_2 * s.S_deta2_deta2__tail_m_gam1;
   // force[1]: flap 2, dh2'
   out.force[13] =
-      (1.0 / 2.0) * lock * lr * lr * lr * inflow * A_eta2_gam2
-      - lock * lr * lr * lr * theta * A_x1_eta2_gam2
-      + (2.0) * g0_1 * S_deta1_deta2__tail_m_gam2
-      + (2.0) * precone * S_deta2__tail_m_gam2
-      + (2.0) * droop * S_deta2__tail_m_gam2
-      + (2.0) * g0_2 * S_deta2_deta2__tail_m_gam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta2_gam2
+      - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta2_gam2
+      + (2.0) * s.g0_1 * s.S_deta1_deta2__tail_m_gam2
+      + (2.0) * s.precone * s.S_deta2__tail_m_gam2
+      + (2.0) * s.droop * s.S_deta2__tail_m_gam2
+      + (2.0) * s.g0_2 * s.S_deta2_deta2__tail_m_gam2;
   // force[1]: flap 2, dh1
   out.force[14] =
-      ecs_flap_lag_2_1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta2_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta2_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta2_dgam1;
+      s.ecs_flap_lag_2_1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2_dgam1;
   // force[1]: flap 2, dh2
   out.force[15] =
-      ecs_flap_lag_2_2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta2_deta1_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta2_deta2_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta2_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta2_dgam2;
+      s.ecs_flap_lag_2_2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2_dgam2;
   // force[1]: lag 1, dg1'
   out.force[16] =
-      -lock * lr * lr * lr * inflow * A_eta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * theta * A_x1_eta1_gam1
-      - (2.0) * precone * S_m_eta1_gam1
-      - (2.0) * droop * S_m_eta1_gam1
-      - (2.0) * g0_1 * S_m_gam1__head_deta1_deta1
-      - (2.0) * g0_2 * S_m_gam1__head_deta1_deta2;
+      -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
+      - (2.0) * s.precone * s.S_m_eta1_gam1
+      - (2.0) * s.droop * s.S_m_eta1_gam1
+      - (2.0) * s.g0_1 * s.S_m_gam1__head_deta1_deta1
+      - (2.0) * s.g0_2 * s.S_m_gam1__head_deta1_deta2;
   // force[1]: lag 1, dg2'
   out.force[17] =
-      -lock * lr * lr * lr * inflow * A_eta2_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * theta * A_x1_eta2_gam1
-      - (2.0) * precone * S_m_eta2_gam1
-      - (2.0) * droop * S_m_eta2_gam1
-      - (2.0) * g0_1 * S_m_gam1__head_deta1_deta2
-      - (2.0) * g0_2 * S_m_gam1__head_deta2_deta2;
+      -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta2_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta2_gam1
+      - (2.0) * s.precone * s.S_m_eta2_gam1
+      - (2.0) * s.droop * s.S_m_eta2_gam1
+      - (2.0) * s.g0_1 * s.S_m_gam1__head_deta1_deta2
+      - (2.0) * s.g0_2 * s.S_m_gam1__head_deta2_deta2;
   // force[1]: lag 1, dg1
   out.force[18] =
-      ecs_lag_flap_1_1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_2 * A_deta1_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta1_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_deta1_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_2 * A_deta1_gam1_dgam2;
+      s.ecs_lag_flap_1_1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta1_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta1_gam1_dgam2;
   // force[1]: lag 1, dg2
   out.force[19] =
-      ecs_lag_flap_1_2
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_2 * A_deta2_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta2_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_deta2_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_2 * A_deta2_gam1_dgam2;
+      s.ecs_lag_flap_1_2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta2_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta2_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta2_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta2_gam1_dgam2;
   // force[1]: lag 1, dh1'
   out.force[20] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * theta * inflow * A_gam1_gam1
-      - lock * lr * lr * lr * cdo_a * A_x1_gam1_gam1
-      + (2.0) * theta * droop * S_dgam1__tail_m_gam1
-      + (2.0) * h0_1 * S_dgam1_dgam1__tail_m_gam1
-      + (2.0) * h0_2 * S_dgam1_dgam2__tail_m_gam1
-      - (2.0) * h0_1 * S_m_gam1__head_dgam1_dgam1
-      - (2.0) * h0_2 * S_m_gam1__head_dgam1_dgam2
-      - (2.0) * omega_lag_1 * damping_lag_1 * S_m_gam1_gam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam1_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam1_gam1
+      + (2.0) * s.theta * s.droop * s.S_dgam1__tail_m_gam1
+      + (2.0) * s.h0_1 * s.S_dgam1_dgam1__tail_m_gam1
+      + (2.0) * s.h0_2 * s.S_dgam1_dgam2__tail_m_gam1
+      - (2.0) * s.h0_1 * s.S_m_gam1__head_dgam1_dgam1
+      - (2.0) * s.h0_2 * s.S_m_gam1__head_dgam1_dgam2
+      - (2.0) * s.omega_lag_1 * s.damping_lag_1 * s.S_m_gam1_gam1;
   // force[1]: lag 1, dh2'
   out.force[21] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * theta * inflow * A_gam1_gam2
-      - lock * lr * lr * lr * cdo_a * A_x1_gam1_gam2
-      + (2.0) * theta * droop * S_dgam1__tail_m_gam2
-      + (2.0) * h0_1 * S_dgam1_dgam1__tail_m_gam2
-      + (2.0) * h0_2 * S_dgam1_dgam2__tail_m_gam2
-      - (2.0) * h0_1 * S_m_gam1__head_dgam1_dgam2
-      - (2.0) * h0_2 * S_m_gam1__head_dgam2_dgam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam1_gam2
+      - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam1_gam2
+      + (2.0) * s.theta * s.droop * s.S_dgam1__tail_m_gam2
+      + (2.0) * s.h0_1 * s.S_dgam1_dgam1__tail_m_gam2
+      + (2.0) * s.h0_2 * s.S_dgam1_dgam2__tail_m_gam2
+      - (2.0) * s.h0_1 * s.S_m_gam1__head_dgam1_dgam2
+      - (2.0) * s.h0_2 * s.S_m_gam1__head_dgam2_dgam2;
   // force[1]: lag 1, dh1
   out.force[22] =
-      es_lag_1_1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * A_deta2_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam1_dgam1
-      - omega_lag_1 * omega_lag_1 * S_m_gam1_gam1;
+      s.es_lag_1_1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam1
+      - s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
   // force[1]: lag 1, dh2
   out.force[23] =
-      es_lag_1_2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam1_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * A_deta2_gam1_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam1_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam1_dgam2;
+      s.es_lag_1_2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam2;
   // force[1]: lag 2, dg1'
   out.force[24] =
-      -lock * lr * lr * lr * inflow * A_eta1_gam2
-      + (1.0 / 2.0) * lock * lr * lr * lr * theta * A_x1_eta1_gam2
-      - (2.0) * precone * S_m_eta1_gam2
-      - (2.0) * droop * S_m_eta1_gam2
-      - (2.0) * g0_1 * S_m_gam2__head_deta1_deta1
-      - (2.0) * g0_2 * S_m_gam2__head_deta1_deta2;
+      -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam2
+      - (2.0) * s.precone * s.S_m_eta1_gam2
+      - (2.0) * s.droop * s.S_m_eta1_gam2
+      - (2.0) * s.g0_1 * s.S_m_gam2__head_deta1_deta1
+      - (2.0) * s.g0_2 * s.S_m_gam2__head_deta1_deta2;
   // force[1]: lag 2, dg2'
   out.force[25] =
-      -lock * lr * lr * lr * inflow * A_eta2_gam2
-      + (1.0 / 2.0) * lock * lr * lr * lr * theta * A_x1_eta2_gam2
-      - (2.0) * precone * S_m_eta2_gam2
-      - (2.0) * droop * S_m_eta2_gam2
-      - (2.0) * g0_1 * S_m_gam2__head_deta1_deta2
-      - (2.0) * g0_2 * S_m_gam2__head_deta2_deta2;
+      -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta2_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta2_gam2
+      - (2.0) * s.precone * s.S_m_eta2_gam2
+      - (2.0) * s.droop * s.S_m_eta2_gam2
+      - (2.0) * s.g0_1 * s.S_m_gam2__head_deta1_deta2
+      - (2.0) * s.g0_2 * s.S_m_gam2__head_deta2_deta2;
   // force[1]: lag 2, dg1
   out.force[26] =
-      ecs_lag_flap_2_1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_2 * A_deta1_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta1_gam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_deta1_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_2 * A_deta1_gam2_dgam2;
+      s.ecs_lag_flap_2_1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta1_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta1_gam2_dgam2;
   // force[1]: lag 2, dg2
   out.force[27] =
-      ecs_lag_flap_2_2
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_2 * A_deta2_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta2_gam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_deta2_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_2 * A_deta2_gam2_dgam2;
+      s.ecs_lag_flap_2_2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta2_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta2_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta2_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta2_gam2_dgam2;
   // force[1]: lag 2, dh1'
   out.force[28] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * theta * inflow * A_gam1_gam2
-      - lock * lr * lr * lr * cdo_a * A_x1_gam1_gam2
-      + (2.0) * h0_1 * S_dgam1_dgam2__tail_m_gam1
-      + (2.0) * theta * droop * S_dgam2__tail_m_gam1
-      + (2.0) * h0_2 * S_dgam2_dgam2__tail_m_gam1
-      - (2.0) * h0_1 * S_m_gam2__head_dgam1_dgam1
-      - (2.0) * h0_2 * S_m_gam2__head_dgam1_dgam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam1_gam2
+      - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam1_gam2
+      + (2.0) * s.h0_1 * s.S_dgam1_dgam2__tail_m_gam1
+      + (2.0) * s.theta * s.droop * s.S_dgam2__tail_m_gam1
+      + (2.0) * s.h0_2 * s.S_dgam2_dgam2__tail_m_gam1
+      - (2.0) * s.h0_1 * s.S_m_gam2__head_dgam1_dgam1
+      - (2.0) * s.h0_2 * s.S_m_gam2__head_dgam1_dgam2;
   // force[1]: lag 2, dh2'
   out.force[29] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * theta * inflow * A_gam2_gam2
-      - lock * lr * lr * lr * cdo_a * A_x1_gam2_gam2
-      + (2.0) * h0_1 * S_dgam1_dgam2__tail_m_gam2
-      + (2.0) * theta * droop * S_dgam2__tail_m_gam2
-      + (2.0) * h0_2 * S_dgam2_dgam2__tail_m_gam2
-      - (2.0) * h0_1 * S_m_gam2__head_dgam1_dgam2
-      - (2.0) * h0_2 * S_m_gam2__head_dgam2_dgam2
-      - (2.0) * omega_lag_2 * damping_lag_2 * S_m_gam2_gam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam2_gam2
+      - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam2_gam2
+      + (2.0) * s.h0_1 * s.S_dgam1_dgam2__tail_m_gam2
+      + (2.0) * s.theta * s.droop * s.S_dgam2__tail_m_gam2
+      + (2.0) * s.h0_2 * s.S_dgam2_dgam2__tail_m_gam2
+      - (2.0) * s.h0_1 * s.S_m_gam2__head_dgam1_dgam2
+      - (2.0) * s.h0_2 * s.S_m_gam2__head_dgam2_dgam2
+      - (2.0) * s.omega_lag_2 * s.damping_lag_2 * s.S_m_gam2_gam2;
   // force[1]: lag 2, dh1
   out.force[30] =
-      es_lag_2_1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * A_deta2_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam2_dgam1;
+      s.es_lag_2_1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam2_dgam1;
   // force[1]: lag 2, dh2
   out.force[31] =
-      es_lag_2_2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam2_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * A_deta2_gam2_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam2_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam2_dgam2
-      - omega_lag_2 * omega_lag_2 * S_m_gam2_gam2;
+      s.es_lag_2_2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam2_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam2_dgam2
+      - s.omega_lag_2 * s.omega_lag_2 * s.S_m_gam2_gam2;
   // forcing[1]: flap 1
   out.forcing[0] =
-      -g0_1 * es_flap_1_1
-      - g0_2 * es_flap_1_2
-      + h0_1 * ecs_flap_lag_1_1
-      + h0_2 * ecs_flap_lag_1_2
-      + (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_eta1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_2 * A_eta1_deta1_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * h0_1 * A_eta1_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * h0_2 * A_eta1_deta2_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_1 * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_1 * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_2 * A_eta1_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_2 * A_eta1_dgam2
-      - (1.0 / 2.0) * lock * lr * lr * inflow * A_x1_eta1
-      + (1.0 / 2.0) * lock * lr * lr * theta * A_x2_eta1
-      - precone * S_deta1__tail_m_arm
-      - droop * S_deta1__tail_m_arm
-      - g0_1 * omega_flap_1 * omega_flap_1 * S_m_eta1_eta1;
+      -s.g0_1 * s.es_flap_1_1
+      - s.g0_2 * s.es_flap_1_2
+      + s.h0_1 * s.ecs_flap_lag_1_1
+      + s.h0_2 * s.ecs_flap_lag_1_2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_2 * s.A_eta1_deta1_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_eta1_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_2 * s.A_eta1_deta2_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_2 * s.A_eta1_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_2 * s.A_eta1_dgam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta1
+      - s.precone * s.S_deta1__tail_m_arm
+      - s.droop * s.S_deta1__tail_m_arm
+      - s.g0_1 * s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
   // forcing[1]: flap 2
   out.forcing[1] =
-      -g0_1 * es_flap_2_1
-      - g0_2 * es_flap_2_2
-      + h0_1 * ecs_flap_lag_2_1
-      + h0_2 * ecs_flap_lag_2_2
-      + (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_eta2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_1 * A_eta2_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_2 * A_eta2_deta1_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * h0_1 * A_eta2_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * h0_2 * A_eta2_deta2_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_1 * A_eta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_1 * A_eta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_2 * A_eta2_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_2 * A_eta2_dgam2
-      - (1.0 / 2.0) * lock * lr * lr * inflow * A_x1_eta2
-      + (1.0 / 2.0) * lock * lr * lr * theta * A_x2_eta2
-      - precone * S_deta2__tail_m_arm
-      - droop * S_deta2__tail_m_arm
-      - g0_2 * omega_flap_2 * omega_flap_2 * S_m_eta2_eta2;
+      -s.g0_1 * s.es_flap_2_1
+      - s.g0_2 * s.es_flap_2_2
+      + s.h0_1 * s.ecs_flap_lag_2_1
+      + s.h0_2 * s.ecs_flap_lag_2_2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta2_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_2 * s.A_eta2_deta1_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_eta2_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_2 * s.A_eta2_deta2_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_2 * s.A_eta2_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_2 * s.A_eta2_dgam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta2
+      - s.precone * s.S_deta2__tail_m_arm
+      - s.droop * s.S_deta2__tail_m_arm
+      - s.g0_2 * s.omega_flap_2 * s.omega_flap_2 * s.S_m_eta2_eta2;
   // forcing[1]: lag 1
   out.forcing[2] =
-      g0_1 * ecs_lag_flap_1_1
-      + g0_2 * ecs_lag_flap_1_2
-      + h0_1 * es_lag_1_1
-      + h0_2 * es_lag_1_2
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * g0_1 * A_deta1_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * g0_2 * A_deta1_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_1 * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_1 * A_deta1_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * h0_1 * A_deta1_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * h0_2 * A_deta1_gam1_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * g0_2 * A_deta2_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_2 * A_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_2 * A_deta2_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * h0_1 * A_deta2_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * h0_2 * A_deta2_gam1_dgam2
-      - (1.0 / 2.0) * lock * lr * lr * inflow * inflow * A_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * droop * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * precone * precone * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * droop * droop * mu * mu * A_gam1
-      + (1.0 / 4.0) * lock * lr * lr * cdo_a * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * h0_1 * A_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * h0_1 * A_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * h0_2 * A_gam1_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * h0_2 * A_gam1_dgam2
-      + (1.0 / 2.0) * lock * lr * lr * theta * inflow * A_x1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * cdo_a * A_x2_gam1
-      - theta * droop * S_dgam1__tail_m_arm
-      - h0_1 * omega_lag_1 * omega_lag_1 * S_m_gam1_gam1
-      + theta * droop * S_m_gam1_x0;
+      s.g0_1 * s.ecs_lag_flap_1_1
+      + s.g0_2 * s.ecs_lag_flap_1_2
+      + s.h0_1 * s.es_lag_1_1
+      + s.h0_2 * s.es_lag_1_2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_2 * s.A_deta1_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_deta1_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.h0_2 * s.A_deta1_gam1_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.g0_2 * s.A_deta2_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_deta2_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.h0_2 * s.A_deta2_gam1_dgam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.droop * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.precone * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.droop * s.mu * s.mu * s.A_gam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_2 * s.A_gam1_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_2 * s.A_gam1_dgam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.A_x2_gam1
+      - s.theta * s.droop * s.S_dgam1__tail_m_arm
+      - s.h0_1 * s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1
+      + s.theta * s.droop * s.S_m_gam1_x0;
   // forcing[1]: lag 2
   out.forcing[3] =
-      g0_1 * ecs_lag_flap_2_1
-      + g0_2 * ecs_lag_flap_2_2
-      + h0_1 * es_lag_2_1
-      + h0_2 * es_lag_2_2
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * g0_1 * A_deta1_deta1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * g0_2 * A_deta1_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_1 * A_deta1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_1 * A_deta1_gam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * h0_1 * A_deta1_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * h0_2 * A_deta1_gam2_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * g0_2 * A_deta2_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_2 * A_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_2 * A_deta2_gam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * h0_1 * A_deta2_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * h0_2 * A_deta2_gam2_dgam2
-      - (1.0 / 2.0) * lock * lr * lr * inflow * inflow * A_gam2
-      - (1.0 / 2.0) * lock * lr * lr * precone * droop * mu * mu * A_gam2
-      - (1.0 / 4.0) * lock * lr * lr * precone * precone * mu * mu * A_gam2
-      - (1.0 / 4.0) * lock * lr * lr * droop * droop * mu * mu * A_gam2
-      + (1.0 / 4.0) * lock * lr * lr * cdo_a * mu * mu * A_gam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * h0_1 * A_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * h0_1 * A_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * h0_2 * A_gam2_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * h0_2 * A_gam2_dgam2
-      + (1.0 / 2.0) * lock * lr * lr * theta * inflow * A_x1_gam2
-      + (1.0 / 2.0) * lock * lr * lr * cdo_a * A_x2_gam2
-      - theta * droop * S_dgam2__tail_m_arm
-      - h0_2 * omega_lag_2 * omega_lag_2 * S_m_gam2_gam2
-      + theta * droop * S_m_gam2_x0;
+      s.g0_1 * s.ecs_lag_flap_2_1
+      + s.g0_2 * s.ecs_lag_flap_2_2
+      + s.h0_1 * s.es_lag_2_1
+      + s.h0_2 * s.es_lag_2_2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_2 * s.A_deta1_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_deta1_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.h0_2 * s.A_deta1_gam2_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.g0_2 * s.A_deta2_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_2 * s.A_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_2 * s.A_deta2_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_deta2_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.h0_2 * s.A_deta2_gam2_dgam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.droop * s.mu * s.mu * s.A_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.precone * s.mu * s.mu * s.A_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.droop * s.mu * s.mu * s.A_gam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_1 * s.A_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_1 * s.A_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_2 * s.A_gam2_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_2 * s.A_gam2_dgam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.A_x2_gam2
+      - s.theta * s.droop * s.S_dgam2__tail_m_arm
+      - s.h0_2 * s.omega_lag_2 * s.omega_lag_2 * s.S_m_gam2_gam2
+      + s.theta * s.droop * s.S_m_gam2_x0;
   // force[cos psi]: flap 1, dg1'
   out.force[32] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * h0_1 * A_eta1_eta1_dgam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * mu * h0_2 * A_eta1_eta1_dgam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta1_dgam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_2 * s.A_eta1_eta1_dgam2;
   // force[cos psi]: flap 1, dg2'
   out.force[33] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * h0_1 * A_eta1_eta2_dgam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * mu * h0_2 * A_eta1_eta2_dgam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta2_dgam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_2 * s.A_eta1_eta2_dgam2;
   // force[cos psi]: flap 1, dg1
   out.force[34] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * A_x1_eta1_deta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta1_deta1;
   // force[cos psi]: flap 1, dg2
   out.force[35] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * A_x1_eta1_deta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta1_deta2;
   // force[cos psi]: flap 1, dh1'
   out.force[36] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * g0_1 * A_eta1_deta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * mu * g0_2 * A_eta1_deta2_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * precone * mu * A_eta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * droop * mu * A_eta1_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta1_deta2_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1;
   // force[cos psi]: flap 1, dh2'
   out.force[37] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * g0_1 * A_eta1_deta1_gam2
-      + (1.0 / 2.0) * lock * lr * lr * lr * mu * g0_2 * A_eta1_deta2_gam2
-      + (1.0 / 2.0) * lock * lr * lr * lr * precone * mu * A_eta1_gam2
-      + (1.0 / 2.0) * lock * lr * lr * lr * droop * mu * A_eta1_gam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta1_deta2_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam2;
   // force[cos psi]: flap 1, dh1
   out.force[38] =
-      (1.0 / 2.0) * lock * lr * lr * inflow * mu * A_eta1_dgam1
-      - lock * lr * lr * theta * mu * A_x1_eta1_dgam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1_dgam1
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1_dgam1;
   // force[cos psi]: flap 1, dh2
   out.force[39] =
-      (1.0 / 2.0) * lock * lr * lr * inflow * mu * A_eta1_dgam2
-      - lock * lr * lr * theta * mu * A_x1_eta1_dgam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1_dgam2
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1_dgam2;
   // force[cos psi]: flap 2, dg1'
   out.force[40] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * h0_1 * A_eta1_eta2_dgam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * mu * h0_2 * A_eta1_eta2_dgam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta2_dgam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_2 * s.A_eta1_eta2_dgam2;
   // force[cos psi]: flap 2, dg2'
   out.force[41] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * h0_1 * A_eta2_eta2_dgam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * mu * h0_2 * A_eta2_eta2_dgam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta2_eta2_dgam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_2 * s.A_eta2_eta2_dgam2;
   // force[cos psi]: flap 2, dg1
   out.force[42] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * A_x1_eta2_deta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta2_deta1;
   // force[cos psi]: flap 2, dg2
   out.force[43] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * A_x1_eta2_deta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta2_deta2;
   // force[cos psi]: flap 2, dh1'
   out.force[44] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * g0_1 * A_eta2_deta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * mu * g0_2 * A_eta2_deta2_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * precone * mu * A_eta2_gam1
-      + (1.0 / 2.0) * lock * lr * lr * lr * droop * mu * A_eta2_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta2_deta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta2_deta2_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta2_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta2_gam1;
   // force[cos psi]: flap 2, dh2'
   out.force[45] =
-      (1.0 / 2.0) * lock * lr * lr * lr * mu * g0_1 * A_eta2_deta1_gam2
-      + (1.0 / 2.0) * lock * lr * lr * lr * mu * g0_2 * A_eta2_deta2_gam2
-      + (1.0 / 2.0) * lock * lr * lr * lr * precone * mu * A_eta2_gam2
-      + (1.0 / 2.0) * lock * lr * lr * lr * droop * mu * A_eta2_gam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta2_deta1_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta2_deta2_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta2_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta2_gam2;
   // force[cos psi]: flap 2, dh1
   out.force[46] =
-      (1.0 / 2.0) * lock * lr * lr * inflow * mu * A_eta2_dgam1
-      - lock * lr * lr * theta * mu * A_x1_eta2_dgam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta2_dgam1
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta2_dgam1;
   // force[cos psi]: flap 2, dh2
   out.force[47] =
-      (1.0 / 2.0) * lock * lr * lr * inflow * mu * A_eta2_dgam2
-      - lock * lr * lr * theta * mu * A_x1_eta2_dgam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta2_dgam2
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta2_dgam2;
   // force[cos psi]: lag 1, dg1'
   out.force[48] =
-      -lock * lr * lr * lr * mu * g0_1 * A_eta1_deta1_gam1
-      - lock * lr * lr * lr * mu * g0_2 * A_eta1_deta2_gam1
-      - lock * lr * lr * lr * precone * mu * A_eta1_gam1
-      - lock * lr * lr * lr * droop * mu * A_eta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * h0_1 * A_eta1_gam1_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * h0_2 * A_eta1_gam1_dgam2;
+      -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta1_deta2_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta1_gam1_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_eta1_gam1_dgam2;
   // force[cos psi]: lag 1, dg2'
   out.force[49] =
-      -lock * lr * lr * lr * mu * g0_1 * A_eta2_deta1_gam1
-      - lock * lr * lr * lr * mu * g0_2 * A_eta2_deta2_gam1
-      - lock * lr * lr * lr * precone * mu * A_eta2_gam1
-      - lock * lr * lr * lr * droop * mu * A_eta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * h0_1 * A_eta2_gam1_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * h0_2 * A_eta2_gam1_dgam2;
+      -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta2_deta1_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta2_deta2_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta2_gam1
+      - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta2_gam1_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_eta2_gam1_dgam2;
   // force[cos psi]: lag 1, dg1
   out.force[50] =
-      -lock * lr * lr * inflow * mu * A_deta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * A_x1_deta1_gam1;
+      -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta1_gam1;
   // force[cos psi]: lag 1, dg2
   out.force[51] =
-      -lock * lr * lr * inflow * mu * A_deta2_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * A_x1_deta2_gam1;
+      -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta2_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta2_gam1;
   // force[cos psi]: lag 1, dh1'
   out.force[52] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * theta * mu * g0_1 * A_deta1_gam1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * g0_2 * A_deta2_gam1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * precone * mu * A_gam1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * droop * mu * A_gam1_gam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_2 * s.A_deta2_gam1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam1_gam1;
   // force[cos psi]: lag 1, dh2'
   out.force[53] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * theta * mu * g0_1 * A_deta1_gam1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * g0_2 * A_deta2_gam1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * precone * mu * A_gam1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * droop * mu * A_gam1_gam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_2 * s.A_deta2_gam1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam1_gam2;
   // force[cos psi]: lag 1, dh1
   out.force[54] =
-      -(1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * A_gam1_dgam1
-      - lock * lr * lr * cdo_a * mu * A_x1_gam1_dgam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1_dgam1
+      - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1_dgam1;
   // force[cos psi]: lag 1, dh2
   out.force[55] =
-      -(1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * A_gam1_dgam2
-      - lock * lr * lr * cdo_a * mu * A_x1_gam1_dgam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1_dgam2
+      - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1_dgam2;
   // force[cos psi]: lag 2, dg1'
   out.force[56] =
-      -lock * lr * lr * lr * mu * g0_1 * A_eta1_deta1_gam2
-      - lock * lr * lr * lr * mu * g0_2 * A_eta1_deta2_gam2
-      - lock * lr * lr * lr * precone * mu * A_eta1_gam2
-      - lock * lr * lr * lr * droop * mu * A_eta1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * h0_1 * A_eta1_gam2_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * h0_2 * A_eta1_gam2_dgam2;
+      -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam2
+      - s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta1_deta2_gam2
+      - s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam2
+      - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta1_gam2_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_eta1_gam2_dgam2;
   // force[cos psi]: lag 2, dg2'
   out.force[57] =
-      -lock * lr * lr * lr * mu * g0_1 * A_eta2_deta1_gam2
-      - lock * lr * lr * lr * mu * g0_2 * A_eta2_deta2_gam2
-      - lock * lr * lr * lr * precone * mu * A_eta2_gam2
-      - lock * lr * lr * lr * droop * mu * A_eta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * h0_1 * A_eta2_gam2_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * h0_2 * A_eta2_gam2_dgam2;
+      -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta2_deta1_gam2
+      - s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta2_deta2_gam2
+      - s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta2_gam2
+      - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta2_gam2_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_eta2_gam2_dgam2;
   // force[cos psi]: lag 2, dg1
   out.force[58] =
-      -lock * lr * lr * inflow * mu * A_deta1_gam2
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * A_x1_deta1_gam2;
+      -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta1_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta1_gam2;
   // force[cos psi]: lag 2, dg2
   out.force[59] =
-      -lock * lr * lr * inflow * mu * A_deta2_gam2
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * A_x1_deta2_gam2;
+      -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta2_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta2_gam2;
   // force[cos psi]: lag 2, dh1'
   out.force[60] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * theta * mu * g0_1 * A_deta1_gam1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * g0_2 * A_deta2_gam1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * precone * mu * A_gam1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * droop * mu * A_gam1_gam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_2 * s.A_deta2_gam1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam1_gam2;
   // force[cos psi]: lag 2, dh2'
   out.force[61] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * theta * mu * g0_1 * A_deta1_gam2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * g0_2 * A_deta2_gam2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * precone * mu * A_gam2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * lr * theta * droop * mu * A_gam2_gam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_2 * s.A_deta2_gam2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam2_gam2;
   // force[cos psi]: lag 2, dh1
   out.force[62] =
-      -(1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * A_gam2_dgam1
-      - lock * lr * lr * cdo_a * mu * A_x1_gam2_dgam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam2_dgam1
+      - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam2_dgam1;
   // force[cos psi]: lag 2, dh2
   out.force[63] =
-      -(1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * A_gam2_dgam2
-      - lock * lr * lr * cdo_a * mu * A_x1_gam2_dgam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam2_dgam2
+      - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam2_dgam2;
   // forcing[cos psi]: flap 1
   out.forcing[4] =
-      (1.0 / 2.0) * lock * lr * lr * inflow * mu * h0_1 * A_eta1_dgam1
-      + (1.0 / 2.0) * lock * lr * lr * inflow * mu * h0_2 * A_eta1_dgam2
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * A_x1_eta1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * A_x1_eta1
-      - (1.0 / 2.0) * lock * lr * lr * mu * g0_1 * A_x1_eta1_deta1
-      - (1.0 / 2.0) * lock * lr * lr * mu * g0_2 * A_x1_eta1_deta2
-      - lock * lr * lr * theta * mu * h0_1 * A_x1_eta1_dgam1
-      - lock * lr * lr * theta * mu * h0_2 * A_x1_eta1_dgam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_1 * s.A_eta1_dgam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_2 * s.A_eta1_dgam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.A_x1_eta1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.A_x1_eta1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_1 * s.A_x1_eta1_deta1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_2 * s.A_x1_eta1_deta2
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_x1_eta1_dgam1
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_x1_eta1_dgam2;
   // forcing[cos psi]: flap 2
   out.forcing[5] =
-      (1.0 / 2.0) * lock * lr * lr * inflow * mu * h0_1 * A_eta2_dgam1
-      + (1.0 / 2.0) * lock * lr * lr * inflow * mu * h0_2 * A_eta2_dgam2
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * A_x1_eta2
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * A_x1_eta2
-      - (1.0 / 2.0) * lock * lr * lr * mu * g0_1 * A_x1_eta2_deta1
-      - (1.0 / 2.0) * lock * lr * lr * mu * g0_2 * A_x1_eta2_deta2
-      - lock * lr * lr * theta * mu * h0_1 * A_x1_eta2_dgam1
-      - lock * lr * lr * theta * mu * h0_2 * A_x1_eta2_dgam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_1 * s.A_eta2_dgam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_2 * s.A_eta2_dgam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.A_x1_eta2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.A_x1_eta2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_1 * s.A_x1_eta2_deta1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_2 * s.A_x1_eta2_deta2
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_x1_eta2_dgam1
+      - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_x1_eta2_dgam2;
   // forcing[cos psi]: lag 1
   out.forcing[6] =
-      -lock * lr * lr * inflow * mu * g0_1 * A_deta1_gam1
-      - lock * lr * lr * inflow * mu * g0_2 * A_deta2_gam1
-      - lock * lr * lr * inflow * precone * mu * A_gam1
-      - lock * lr * lr * inflow * droop * mu * A_gam1
-      - (1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * h0_1 * A_gam1_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * h0_2 * A_gam1_dgam2
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * g0_1 * A_x1_deta1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * g0_2 * A_x1_deta2_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * precone * mu * A_x1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * droop * mu * A_x1_gam1
-      - lock * lr * lr * cdo_a * mu * h0_1 * A_x1_gam1_dgam1
-      - lock * lr * lr * cdo_a * mu * h0_2 * A_x1_gam1_dgam2;
+      -s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_1 * s.A_deta1_gam1
+      - s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_2 * s.A_deta2_gam1
+      - s.lock * s.lr * s.lr * s.inflow * s.precone * s.mu * s.A_gam1
+      - s.lock * s.lr * s.lr * s.inflow * s.droop * s.mu * s.A_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.h0_1 * s.A_gam1_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.h0_2 * s.A_gam1_dgam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_x1_deta1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.g0_2 * s.A_x1_deta2_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_x1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_x1_gam1
+      - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_1 * s.A_x1_gam1_dgam1
+      - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_2 * s.A_x1_gam1_dgam2;
   // forcing[cos psi]: lag 2
   out.forcing[7] =
-      -lock * lr * lr * inflow * mu * g0_1 * A_deta1_gam2
-      - lock * lr * lr * inflow * mu * g0_2 * A_deta2_gam2
-      - lock * lr * lr * inflow * precone * mu * A_gam2
-      - lock * lr * lr * inflow * droop * mu * A_gam2
-      - (1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * h0_1 * A_gam2_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * h0_2 * A_gam2_dgam2
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * g0_1 * A_x1_deta1_gam2
-      + (1.0 / 2.0) * lock * lr * lr * theta * mu * g0_2 * A_x1_deta2_gam2
-      + (1.0 / 2.0) * lock * lr * lr * theta * precone * mu * A_x1_gam2
-      + (1.0 / 2.0) * lock * lr * lr * theta * droop * mu * A_x1_gam2
-      - lock * lr * lr * cdo_a * mu * h0_1 * A_x1_gam2_dgam1
-      - lock * lr * lr * cdo_a * mu * h0_2 * A_x1_gam2_dgam2;
+      -s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_1 * s.A_deta1_gam2
+      - s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_2 * s.A_deta2_gam2
+      - s.lock * s.lr * s.lr * s.inflow * s.precone * s.mu * s.A_gam2
+      - s.lock * s.lr * s.lr * s.inflow * s.droop * s.mu * s.A_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.h0_1 * s.A_gam2_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.h0_2 * s.A_gam2_dgam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_x1_deta1_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.g0_2 * s.A_x1_deta2_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_x1_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_x1_gam2
+      - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_1 * s.A_x1_gam2_dgam1
+      - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_2 * s.A_x1_gam2_dgam2;
   // force[sin psi]: flap 1, dg1'
   out.force[64] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * mu * A_eta1_eta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta1;
   // force[sin psi]: flap 1, dg2'
   out.force[65] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * mu * A_eta1_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta2;
   // force[sin psi]: flap 1, dg1
   out.force[66] =
       0.0;
@@ -994,10 +1207,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin psi]: flap 1, dh1'
   out.force[68] =
-      -lock * lr * lr * lr * theta * mu * A_eta1_gam1;
+      -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
   // force[sin psi]: flap 1, dh2'
   out.force[69] =
-      -lock * lr * lr * lr * theta * mu * A_eta1_gam2;
+      -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam2;
   // force[sin psi]: flap 1, dh1
   out.force[70] =
       0.0;
@@ -1006,10 +1219,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin psi]: flap 2, dg1'
   out.force[72] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * mu * A_eta1_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta2;
   // force[sin psi]: flap 2, dg2'
   out.force[73] =
-      -(1.0 / 2.0) * lock * lr * lr * lr * mu * A_eta2_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta2_eta2;
   // force[sin psi]: flap 2, dg1
   out.force[74] =
       0.0;
@@ -1018,10 +1231,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin psi]: flap 2, dh1'
   out.force[76] =
-      -lock * lr * lr * lr * theta * mu * A_eta2_gam1;
+      -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta2_gam1;
   // force[sin psi]: flap 2, dh2'
   out.force[77] =
-      -lock * lr * lr * lr * theta * mu * A_eta2_gam2;
+      -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta2_gam2;
   // force[sin psi]: flap 2, dh1
   out.force[78] =
       0.0;
@@ -1030,10 +1243,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin psi]: lag 1, dg1'
   out.force[80] =
-      (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * A_eta1_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
   // force[sin psi]: lag 1, dg2'
   out.force[81] =
-      (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * A_eta2_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta2_gam1;
   // force[sin psi]: lag 1, dg1
   out.force[82] =
       0.0;
@@ -1042,10 +1255,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin psi]: lag 1, dh1'
   out.force[84] =
-      -lock * lr * lr * lr * cdo_a * mu * A_gam1_gam1;
+      -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam1_gam1;
   // force[sin psi]: lag 1, dh2'
   out.force[85] =
-      -lock * lr * lr * lr * cdo_a * mu * A_gam1_gam2;
+      -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam1_gam2;
   // force[sin psi]: lag 1, dh1
   out.force[86] =
       0.0;
@@ -1054,10 +1267,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin psi]: lag 2, dg1'
   out.force[88] =
-      (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * A_eta1_gam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam2;
   // force[sin psi]: lag 2, dg2'
   out.force[89] =
-      (1.0 / 2.0) * lock * lr * lr * lr * theta * mu * A_eta2_gam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta2_gam2;
   // force[sin psi]: lag 2, dg1
   out.force[90] =
       0.0;
@@ -1066,10 +1279,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin psi]: lag 2, dh1'
   out.force[92] =
-      -lock * lr * lr * lr * cdo_a * mu * A_gam1_gam2;
+      -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam1_gam2;
   // force[sin psi]: lag 2, dh2'
   out.force[93] =
-      -lock * lr * lr * lr * cdo_a * mu * A_gam2_gam2;
+      -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam2_gam2;
   // force[sin psi]: lag 2, dh1
   out.force[94] =
       0.0;
@@ -1078,20 +1291,20 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // forcing[sin psi]: flap 1
   out.forcing[8] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * mu * A_eta1
-      + lock * lr * lr * theta * mu * A_x1_eta1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1
+      + s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1;
   // forcing[sin psi]: flap 2
   out.forcing[9] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * mu * A_eta2
-      + lock * lr * lr * theta * mu * A_x1_eta2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta2
+      + s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta2;
   // forcing[sin psi]: lag 1
   out.forcing[10] =
-      (1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * A_gam1
-      + lock * lr * lr * cdo_a * mu * A_x1_gam1;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1
+      + s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1;
   // forcing[sin psi]: lag 2
   out.forcing[11] =
-      (1.0 / 2.0) * lock * lr * lr * theta * inflow * mu * A_gam2
-      + lock * lr * lr * cdo_a * mu * A_x1_gam2;
+      (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam2
+      + s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam2;
   // force[cos 2psi]: flap 1, dg1'
   out.force[96] =
       0.0;
@@ -1100,12 +1313,12 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[cos 2psi]: flap 1, dg1
   out.force[98] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_2 * A_eta1_deta1_dgam2;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta1_deta1_dgam2;
   // force[cos 2psi]: flap 1, dg2
   out.force[99] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta1_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_2 * A_eta1_deta2_dgam2;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta1_deta2_dgam2;
   // force[cos 2psi]: flap 1, dh1'
   out.force[100] =
       0.0;
@@ -1114,16 +1327,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[cos 2psi]: flap 1, dh1
   out.force[102] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta1_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta1_dgam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
   // force[cos 2psi]: flap 1, dh2
   out.force[103] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta1_deta1_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta1_deta2_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta1_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta1_dgam2;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam2;
   // force[cos 2psi]: flap 2, dg1'
   out.force[104] =
       0.0;
@@ -1132,12 +1345,12 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[cos 2psi]: flap 2, dg1
   out.force[106] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta2_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_2 * A_eta2_deta1_dgam2;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta2_deta1_dgam2;
   // force[cos 2psi]: flap 2, dg2
   out.force[107] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_1 * A_eta2_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * h0_2 * A_eta2_deta2_dgam2;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta2_deta2_dgam2;
   // force[cos 2psi]: flap 2, dh1'
   out.force[108] =
       0.0;
@@ -1146,16 +1359,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[cos 2psi]: flap 2, dh1
   out.force[110] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta2_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta2_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta2_dgam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2_dgam1;
   // force[cos 2psi]: flap 2, dh2
   out.force[111] =
-      (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta2_deta1_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta2_deta2_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta2_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta2_dgam2;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2_dgam2;
   // force[cos 2psi]: lag 1, dg1'
   out.force[112] =
       0.0;
@@ -1164,20 +1377,20 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[cos 2psi]: lag 1, dg1
   out.force[114] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_2 * A_deta1_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta1_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_deta1_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_2 * A_deta1_gam1_dgam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta1_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta1_gam1_dgam2;
   // force[cos 2psi]: lag 1, dg2
   out.force[115] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_2 * A_deta2_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta2_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_deta2_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_2 * A_deta2_gam1_dgam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta2_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta2_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta2_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta2_gam1_dgam2;
   // force[cos 2psi]: lag 1, dh1'
   out.force[116] =
       0.0;
@@ -1186,16 +1399,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[cos 2psi]: lag 1, dh1
   out.force[118] =
-      -(1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * A_deta2_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam1_dgam1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam1;
   // force[cos 2psi]: lag 1, dh2
   out.force[119] =
-      -(1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam1_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * A_deta2_gam1_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam1_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam1_dgam2;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam2;
   // force[cos 2psi]: lag 2, dg1'
   out.force[120] =
       0.0;
@@ -1204,20 +1417,20 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[cos 2psi]: lag 2, dg1
   out.force[122] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_2 * A_deta1_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta1_gam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_deta1_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_2 * A_deta1_gam2_dgam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta1_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta1_gam2_dgam2;
   // force[cos 2psi]: lag 2, dg2
   out.force[123] =
-      -(1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * A_deta1_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_2 * A_deta2_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * A_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * A_deta2_gam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_deta2_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * h0_2 * A_deta2_gam2_dgam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta2_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta2_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta2_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta2_gam2_dgam2;
   // force[cos 2psi]: lag 2, dh1'
   out.force[124] =
       0.0;
@@ -1226,80 +1439,80 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[cos 2psi]: lag 2, dh1
   out.force[126] =
-      -(1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * A_deta2_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam2_dgam1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam2_dgam1;
   // force[cos 2psi]: lag 2, dh2
   out.force[127] =
-      -(1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam2_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * A_deta2_gam2_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam2_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam2_dgam2;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam2_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam2_dgam2;
   // forcing[cos 2psi]: flap 1
   out.forcing[12] =
-      -(1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_eta1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_1 * A_eta1_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_2 * A_eta1_deta1_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * h0_1 * A_eta1_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * h0_2 * A_eta1_deta2_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_1 * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_1 * A_eta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_2 * A_eta1_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_2 * A_eta1_dgam2;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta1_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_2 * s.A_eta1_deta1_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_eta1_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_2 * s.A_eta1_deta2_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_2 * s.A_eta1_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_2 * s.A_eta1_dgam2;
   // forcing[cos 2psi]: flap 2
   out.forcing[13] =
-      -(1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_eta2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_1 * A_eta2_deta1_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * h0_2 * A_eta2_deta1_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * h0_1 * A_eta2_deta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * h0_2 * A_eta2_deta2_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_1 * A_eta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_1 * A_eta2_dgam1
-      + (1.0 / 4.0) * lock * lr * lr * precone * mu * mu * h0_2 * A_eta2_dgam2
-      + (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * h0_2 * A_eta2_dgam2;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta2_deta1_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_2 * s.A_eta2_deta1_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_eta2_deta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_2 * s.A_eta2_deta2_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_2 * s.A_eta2_dgam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_2 * s.A_eta2_dgam2;
   // forcing[cos 2psi]: lag 1
   out.forcing[14] =
-      -(1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * g0_1 * A_deta1_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * g0_2 * A_deta1_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_1 * A_deta1_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_1 * A_deta1_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * h0_1 * A_deta1_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * h0_2 * A_deta1_gam1_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * g0_2 * A_deta2_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_2 * A_deta2_gam1
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_2 * A_deta2_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * h0_1 * A_deta2_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * h0_2 * A_deta2_gam1_dgam2
-      - (1.0 / 2.0) * lock * lr * lr * precone * droop * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * precone * precone * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * droop * droop * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * cdo_a * mu * mu * A_gam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * h0_1 * A_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * h0_1 * A_gam1_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * h0_2 * A_gam1_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * h0_2 * A_gam1_dgam2;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_2 * s.A_deta1_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_deta1_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.h0_2 * s.A_deta1_gam1_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.g0_2 * s.A_deta2_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_deta2_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.h0_2 * s.A_deta2_gam1_dgam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.droop * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.precone * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.droop * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_2 * s.A_gam1_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_2 * s.A_gam1_dgam2;
   // forcing[cos 2psi]: lag 2
   out.forcing[15] =
-      -(1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * g0_1 * A_deta1_deta1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * mu * mu * g0_1 * g0_2 * A_deta1_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_1 * A_deta1_gam2
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_1 * A_deta1_gam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * h0_1 * A_deta1_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * h0_2 * A_deta1_gam2_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * g0_2 * A_deta2_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * precone * mu * mu * g0_2 * A_deta2_gam2
-      - (1.0 / 2.0) * lock * lr * lr * droop * mu * mu * g0_2 * A_deta2_gam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * h0_1 * A_deta2_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * h0_2 * A_deta2_gam2_dgam2
-      - (1.0 / 2.0) * lock * lr * lr * precone * droop * mu * mu * A_gam2
-      - (1.0 / 4.0) * lock * lr * lr * precone * precone * mu * mu * A_gam2
-      - (1.0 / 4.0) * lock * lr * lr * droop * droop * mu * mu * A_gam2
-      - (1.0 / 4.0) * lock * lr * lr * cdo_a * mu * mu * A_gam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * h0_1 * A_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * h0_1 * A_gam2_dgam1
-      - (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * h0_2 * A_gam2_dgam2
-      - (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * h0_2 * A_gam2_dgam2;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_2 * s.A_deta1_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_deta1_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.h0_2 * s.A_deta1_gam2_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.g0_2 * s.A_deta2_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_2 * s.A_deta2_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.g0_2 * s.A_deta2_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_deta2_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.h0_2 * s.A_deta2_gam2_dgam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.droop * s.mu * s.mu * s.A_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.precone * s.mu * s.mu * s.A_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.droop * s.mu * s.mu * s.A_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_1 * s.A_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_1 * s.A_gam2_dgam1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_2 * s.A_gam2_dgam2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_2 * s.A_gam2_dgam2;
   // force[sin 2psi]: flap 1, dg1'
   out.force[128] =
       0.0;
@@ -1308,10 +1521,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin 2psi]: flap 1, dg1
   out.force[130] =
-      -(1.0 / 4.0) * lock * lr * lr * mu * mu * A_eta1_deta1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta1_deta1;
   // force[sin 2psi]: flap 1, dg2
   out.force[131] =
-      -(1.0 / 4.0) * lock * lr * lr * mu * mu * A_eta1_deta2;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta1_deta2;
   // force[sin 2psi]: flap 1, dh1'
   out.force[132] =
       0.0;
@@ -1320,10 +1533,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin 2psi]: flap 1, dh1
   out.force[134] =
-      -(1.0 / 2.0) * lock * lr * lr * theta * mu * mu * A_eta1_dgam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1_dgam1;
   // force[sin 2psi]: flap 1, dh2
   out.force[135] =
-      -(1.0 / 2.0) * lock * lr * lr * theta * mu * mu * A_eta1_dgam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1_dgam2;
   // force[sin 2psi]: flap 2, dg1'
   out.force[136] =
       0.0;
@@ -1332,10 +1545,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin 2psi]: flap 2, dg1
   out.force[138] =
-      -(1.0 / 4.0) * lock * lr * lr * mu * mu * A_eta2_deta1;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta2_deta1;
   // force[sin 2psi]: flap 2, dg2
   out.force[139] =
-      -(1.0 / 4.0) * lock * lr * lr * mu * mu * A_eta2_deta2;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta2_deta2;
   // force[sin 2psi]: flap 2, dh1'
   out.force[140] =
       0.0;
@@ -1344,10 +1557,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin 2psi]: flap 2, dh1
   out.force[142] =
-      -(1.0 / 2.0) * lock * lr * lr * theta * mu * mu * A_eta2_dgam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta2_dgam1;
   // force[sin 2psi]: flap 2, dh2
   out.force[143] =
-      -(1.0 / 2.0) * lock * lr * lr * theta * mu * mu * A_eta2_dgam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta2_dgam2;
   // force[sin 2psi]: lag 1, dg1'
   out.force[144] =
       0.0;
@@ -1356,10 +1569,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin 2psi]: lag 1, dg1
   out.force[146] =
-      (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_deta1_gam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta1_gam1;
   // force[sin 2psi]: lag 1, dg2
   out.force[147] =
-      (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_deta2_gam1;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta2_gam1;
   // force[sin 2psi]: lag 1, dh1'
   out.force[148] =
       0.0;
@@ -1368,10 +1581,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin 2psi]: lag 1, dh1
   out.force[150] =
-      -(1.0 / 2.0) * lock * lr * lr * cdo_a * mu * mu * A_gam1_dgam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1_dgam1;
   // force[sin 2psi]: lag 1, dh2
   out.force[151] =
-      -(1.0 / 2.0) * lock * lr * lr * cdo_a * mu * mu * A_gam1_dgam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1_dgam2;
   // force[sin 2psi]: lag 2, dg1'
   out.force[152] =
       0.0;
@@ -1380,10 +1593,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin 2psi]: lag 2, dg1
   out.force[154] =
-      (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_deta1_gam2;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta1_gam2;
   // force[sin 2psi]: lag 2, dg2
   out.force[155] =
-      (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * A_deta2_gam2;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta2_gam2;
   // force[sin 2psi]: lag 2, dh1'
   out.force[156] =
       0.0;
@@ -1392,308 +1605,105 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       0.0;
   // force[sin 2psi]: lag 2, dh1
   out.force[158] =
-      -(1.0 / 2.0) * lock * lr * lr * cdo_a * mu * mu * A_gam2_dgam1;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam2_dgam1;
   // force[sin 2psi]: lag 2, dh2
   out.force[159] =
-      -(1.0 / 2.0) * lock * lr * lr * cdo_a * mu * mu * A_gam2_dgam2;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam2_dgam2;
   // forcing[sin 2psi]: flap 1
   out.forcing[16] =
-      -(1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta1
-      - (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta1
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta1_deta1
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta1_deta2
-      - (1.0 / 2.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_eta1_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * theta * mu * mu * h0_2 * A_eta1_dgam2;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_eta1_dgam2;
   // forcing[sin 2psi]: flap 2
   out.forcing[17] =
-      -(1.0 / 4.0) * lock * lr * lr * precone * mu * mu * A_eta2
-      - (1.0 / 4.0) * lock * lr * lr * droop * mu * mu * A_eta2
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_1 * A_eta2_deta1
-      - (1.0 / 4.0) * lock * lr * lr * mu * mu * g0_2 * A_eta2_deta2
-      - (1.0 / 2.0) * lock * lr * lr * theta * mu * mu * h0_1 * A_eta2_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * theta * mu * mu * h0_2 * A_eta2_dgam2;
+      -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1
+      - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_eta2_dgam2;
   // forcing[sin 2psi]: lag 1
   out.forcing[18] =
-      (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam1
-      + (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * A_deta2_gam1
-      + (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam1
-      + (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam1
-      - (1.0 / 2.0) * lock * lr * lr * cdo_a * mu * mu * h0_1 * A_gam1_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * cdo_a * mu * mu * h0_2 * A_gam1_dgam2;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.h0_2 * s.A_gam1_dgam2;
   // forcing[sin 2psi]: lag 2
   out.forcing[19] =
-      (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_1 * A_deta1_gam2
-      + (1.0 / 4.0) * lock * lr * lr * theta * mu * mu * g0_2 * A_deta2_gam2
-      + (1.0 / 4.0) * lock * lr * lr * theta * precone * mu * mu * A_gam2
-      + (1.0 / 4.0) * lock * lr * lr * theta * droop * mu * mu * A_gam2
-      - (1.0 / 2.0) * lock * lr * lr * cdo_a * mu * mu * h0_1 * A_gam2_dgam1
-      - (1.0 / 2.0) * lock * lr * lr * cdo_a * mu * mu * h0_2 * A_gam2_dgam2;
+      (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2
+      + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam2
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.h0_1 * s.A_gam2_dgam1
+      - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.h0_2 * s.A_gam2_dgam2;
 }
 
 // Hover static equilibrium S q0 = c (eqs 2.27-2.32).
 void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOutputs& out) {
-  [[maybe_unused]] const double lock = in.lock;
-  [[maybe_unused]] const double lr = in.lr;
-  [[maybe_unused]] const double theta = in.theta;
-  [[maybe_unused]] const double inflow = in.inflow;
-  [[maybe_unused]] const double precone = in.precone;
-  [[maybe_unused]] const double droop = in.droop;
-  [[maybe_unused]] const double cdo_a = in.cdo_a;
-  [[maybe_unused]] const double mu = in.mu;
-  [[maybe_unused]] const double g0_1 = in.g0[0];
-  [[maybe_unused]] const double g0_2 = in.g0[1];
-  [[maybe_unused]] const double h0_1 = in.h0[0];
-  [[maybe_unused]] const double h0_2 = in.h0[1];
-  [[maybe_unused]] const double omega_flap_1 = in.omega_flap[0];
-  [[maybe_unused]] const double damping_flap_1 = in.damping_flap[0];
-  [[maybe_unused]] const double omega_flap_2 = in.omega_flap[1];
-  [[maybe_unused]] const double damping_flap_2 = in.damping_flap[1];
-  [[maybe_unused]] const double omega_lag_1 = in.omega_lag[0];
-  [[maybe_unused]] const double damping_lag_1 = in.damping_lag[0];
-  [[maybe_unused]] const double omega_lag_2 = in.omega_lag[1];
-  [[maybe_unused]] const double damping_lag_2 = in.damping_lag[1];
-  [[maybe_unused]] const double es_flap_1_1 = in.es_flap[0];
-  [[maybe_unused]] const double es_flap_1_2 = in.es_flap[1];
-  [[maybe_unused]] const double ecs_flap_lag_1_1 = in.ecs_flap_lag[0];
-  [[maybe_unused]] const double ecs_flap_lag_1_2 = in.ecs_flap_lag[1];
-  [[maybe_unused]] const double es_flap_2_1 = in.es_flap[2];
-  [[maybe_unused]] const double es_flap_2_2 = in.es_flap[3];
-  [[maybe_unused]] const double ecs_flap_lag_2_1 = in.ecs_flap_lag[2];
-  [[maybe_unused]] const double ecs_flap_lag_2_2 = in.ecs_flap_lag[3];
-  [[maybe_unused]] const double es_lag_1_1 = in.es_lag[0];
-  [[maybe_unused]] const double es_lag_1_2 = in.es_lag[1];
-  [[maybe_unused]] const double ecs_lag_flap_1_1 = in.ecs_lag_flap[0];
-  [[maybe_unused]] const double ecs_lag_flap_1_2 = in.ecs_lag_flap[1];
-  [[maybe_unused]] const double es_lag_2_1 = in.es_lag[2];
-  [[maybe_unused]] const double es_lag_2_2 = in.es_lag[3];
-  [[maybe_unused]] const double ecs_lag_flap_2_1 = in.ecs_lag_flap[2];
-  [[maybe_unused]] const double ecs_lag_flap_2_2 = in.ecs_lag_flap[3];
-  [[maybe_unused]] const double A_eta1 = in.aero[0];  // F3_1
-  [[maybe_unused]] const double A_eta1_eta1 = in.aero[1];  // F9_11
-  [[maybe_unused]] const double A_eta1_eta1_dgam1 = in.aero[2];  // F24_111
-  [[maybe_unused]] const double A_eta1_eta1_dgam2 = in.aero[3];  // F24_112
-  [[maybe_unused]] const double A_eta1_eta2 = in.aero[4];  // F9_12/F9_21
-  [[maybe_unused]] const double A_eta1_eta2_dgam1 = in.aero[5];  // F24_121/F24_211
-  [[maybe_unused]] const double A_eta1_eta2_dgam2 = in.aero[6];  // F24_122/F24_212
-  [[maybe_unused]] const double A_eta1_deta1 = in.aero[7];  // F7_11
-  [[maybe_unused]] const double A_eta1_deta1_gam1 = in.aero[8];  // F14_111/L17_111
-  [[maybe_unused]] const double A_eta1_deta1_gam2 = in.aero[9];  // F14_112/L17_211
-  [[maybe_unused]] const double A_eta1_deta1_dgam1 = in.aero[10];  // F23_111
-  [[maybe_unused]] const double A_eta1_deta1_dgam2 = in.aero[11];  // F23_112
-  [[maybe_unused]] const double A_eta1_deta2 = in.aero[12];  // F7_12
-  [[maybe_unused]] const double A_eta1_deta2_gam1 = in.aero[13];  // F14_121/L17_121
-  [[maybe_unused]] const double A_eta1_deta2_gam2 = in.aero[14];  // F14_122/L17_221
-  [[maybe_unused]] const double A_eta1_deta2_dgam1 = in.aero[15];  // F23_121
-  [[maybe_unused]] const double A_eta1_deta2_dgam2 = in.aero[16];  // F23_122
-  [[maybe_unused]] const double A_eta1_gam1 = in.aero[17];  // F11_11/L8_11
-  [[maybe_unused]] const double A_eta1_gam1_dgam1 = in.aero[18];  // L22_111
-  [[maybe_unused]] const double A_eta1_gam1_dgam2 = in.aero[19];  // L22_112
-  [[maybe_unused]] const double A_eta1_gam2 = in.aero[20];  // F11_12/L8_21
-  [[maybe_unused]] const double A_eta1_gam2_dgam1 = in.aero[21];  // L22_211
-  [[maybe_unused]] const double A_eta1_gam2_dgam2 = in.aero[22];  // L22_212
-  [[maybe_unused]] const double A_eta1_dgam1 = in.aero[23];  // F22_11
-  [[maybe_unused]] const double A_eta1_dgam2 = in.aero[24];  // F22_12
-  [[maybe_unused]] const double A_eta2 = in.aero[25];  // F3_2
-  [[maybe_unused]] const double A_eta2_eta2 = in.aero[26];  // F9_22
-  [[maybe_unused]] const double A_eta2_eta2_dgam1 = in.aero[27];  // F24_221
-  [[maybe_unused]] const double A_eta2_eta2_dgam2 = in.aero[28];  // F24_222
-  [[maybe_unused]] const double A_eta2_deta1 = in.aero[29];  // F7_21
-  [[maybe_unused]] const double A_eta2_deta1_gam1 = in.aero[30];  // F14_211/L17_112
-  [[maybe_unused]] const double A_eta2_deta1_gam2 = in.aero[31];  // F14_212/L17_212
-  [[maybe_unused]] const double A_eta2_deta1_dgam1 = in.aero[32];  // F23_211
-  [[maybe_unused]] const double A_eta2_deta1_dgam2 = in.aero[33];  // F23_212
-  [[maybe_unused]] const double A_eta2_deta2 = in.aero[34];  // F7_22
-  [[maybe_unused]] const double A_eta2_deta2_gam1 = in.aero[35];  // F14_221/L17_122
-  [[maybe_unused]] const double A_eta2_deta2_gam2 = in.aero[36];  // F14_222/L17_222
-  [[maybe_unused]] const double A_eta2_deta2_dgam1 = in.aero[37];  // F23_221
-  [[maybe_unused]] const double A_eta2_deta2_dgam2 = in.aero[38];  // F23_222
-  [[maybe_unused]] const double A_eta2_gam1 = in.aero[39];  // F11_21/L8_12
-  [[maybe_unused]] const double A_eta2_gam1_dgam1 = in.aero[40];  // L22_121
-  [[maybe_unused]] const double A_eta2_gam1_dgam2 = in.aero[41];  // L22_122
-  [[maybe_unused]] const double A_eta2_gam2 = in.aero[42];  // F11_22/L8_22
-  [[maybe_unused]] const double A_eta2_gam2_dgam1 = in.aero[43];  // L22_221
-  [[maybe_unused]] const double A_eta2_gam2_dgam2 = in.aero[44];  // L22_222
-  [[maybe_unused]] const double A_eta2_dgam1 = in.aero[45];  // F22_21
-  [[maybe_unused]] const double A_eta2_dgam2 = in.aero[46];  // F22_22
-  [[maybe_unused]] const double A_deta1_deta1_gam1 = in.aero[47];  // L24_111
-  [[maybe_unused]] const double A_deta1_deta1_gam2 = in.aero[48];  // L24_211
-  [[maybe_unused]] const double A_deta1_deta2_gam1 = in.aero[49];  // L24_112
-  [[maybe_unused]] const double A_deta1_deta2_gam2 = in.aero[50];  // L24_212
-  [[maybe_unused]] const double A_deta1_gam1 = in.aero[51];  // L11_11
-  [[maybe_unused]] const double A_deta1_gam1_gam1 = in.aero[52];  // L16_111
-  [[maybe_unused]] const double A_deta1_gam1_gam2 = in.aero[53];  // L16_112/L16_211
-  [[maybe_unused]] const double A_deta1_gam1_dgam1 = in.aero[54];  // L21_111
-  [[maybe_unused]] const double A_deta1_gam1_dgam2 = in.aero[55];  // L21_112
-  [[maybe_unused]] const double A_deta1_gam2 = in.aero[56];  // L11_21
-  [[maybe_unused]] const double A_deta1_gam2_gam2 = in.aero[57];  // L16_212
-  [[maybe_unused]] const double A_deta1_gam2_dgam1 = in.aero[58];  // L21_211
-  [[maybe_unused]] const double A_deta1_gam2_dgam2 = in.aero[59];  // L21_212
-  [[maybe_unused]] const double A_deta2_deta2_gam1 = in.aero[60];  // L24_122
-  [[maybe_unused]] const double A_deta2_deta2_gam2 = in.aero[61];  // L24_222
-  [[maybe_unused]] const double A_deta2_gam1 = in.aero[62];  // L11_12
-  [[maybe_unused]] const double A_deta2_gam1_gam1 = in.aero[63];  // L16_121
-  [[maybe_unused]] const double A_deta2_gam1_gam2 = in.aero[64];  // L16_122/L16_221
-  [[maybe_unused]] const double A_deta2_gam1_dgam1 = in.aero[65];  // L21_121
-  [[maybe_unused]] const double A_deta2_gam1_dgam2 = in.aero[66];  // L21_122
-  [[maybe_unused]] const double A_deta2_gam2 = in.aero[67];  // L11_22
-  [[maybe_unused]] const double A_deta2_gam2_gam2 = in.aero[68];  // L16_222
-  [[maybe_unused]] const double A_deta2_gam2_dgam1 = in.aero[69];  // L21_221
-  [[maybe_unused]] const double A_deta2_gam2_dgam2 = in.aero[70];  // L21_222
-  [[maybe_unused]] const double A_gam1 = in.aero[71];  // L2_1
-  [[maybe_unused]] const double A_gam1_gam1 = in.aero[72];  // L13_11
-  [[maybe_unused]] const double A_gam1_gam2 = in.aero[73];  // L13_12/L13_21
-  [[maybe_unused]] const double A_gam1_dgam1 = in.aero[74];  // L20_11
-  [[maybe_unused]] const double A_gam1_dgam2 = in.aero[75];  // L20_12
-  [[maybe_unused]] const double A_gam2 = in.aero[76];  // L2_2
-  [[maybe_unused]] const double A_gam2_gam2 = in.aero[77];  // L13_22
-  [[maybe_unused]] const double A_gam2_dgam1 = in.aero[78];  // L20_21
-  [[maybe_unused]] const double A_gam2_dgam2 = in.aero[79];  // L20_22
-  [[maybe_unused]] const double A_x1_eta1 = in.aero[80];  // F2_1
-  [[maybe_unused]] const double A_x1_eta1_eta1 = in.aero[81];  // F8_11
-  [[maybe_unused]] const double A_x1_eta1_eta2 = in.aero[82];  // F8_12/F8_21
-  [[maybe_unused]] const double A_x1_eta1_deta1 = in.aero[83];  // F6_11
-  [[maybe_unused]] const double A_x1_eta1_deta2 = in.aero[84];  // F6_12
-  [[maybe_unused]] const double A_x1_eta1_gam1 = in.aero[85];  // F10_11/L7_11
-  [[maybe_unused]] const double A_x1_eta1_gam2 = in.aero[86];  // F10_12/L7_21
-  [[maybe_unused]] const double A_x1_eta1_dgam1 = in.aero[87];  // F21_11
-  [[maybe_unused]] const double A_x1_eta1_dgam2 = in.aero[88];  // F21_12
-  [[maybe_unused]] const double A_x1_eta2 = in.aero[89];  // F2_2
-  [[maybe_unused]] const double A_x1_eta2_eta2 = in.aero[90];  // F8_22
-  [[maybe_unused]] const double A_x1_eta2_deta1 = in.aero[91];  // F6_21
-  [[maybe_unused]] const double A_x1_eta2_deta2 = in.aero[92];  // F6_22
-  [[maybe_unused]] const double A_x1_eta2_gam1 = in.aero[93];  // F10_21/L7_12
-  [[maybe_unused]] const double A_x1_eta2_gam2 = in.aero[94];  // F10_22/L7_22
-  [[maybe_unused]] const double A_x1_eta2_dgam1 = in.aero[95];  // F21_21
-  [[maybe_unused]] const double A_x1_eta2_dgam2 = in.aero[96];  // F21_22
-  [[maybe_unused]] const double A_x1_deta1_gam1 = in.aero[97];  // L10_11
-  [[maybe_unused]] const double A_x1_deta1_gam2 = in.aero[98];  // L10_21
-  [[maybe_unused]] const double A_x1_deta2_gam1 = in.aero[99];  // L10_12
-  [[maybe_unused]] const double A_x1_deta2_gam2 = in.aero[100];  // L10_22
-  [[maybe_unused]] const double A_x1_gam1 = in.aero[101];  // L1_1
-  [[maybe_unused]] const double A_x1_gam1_gam1 = in.aero[102];  // L14_11
-  [[maybe_unused]] const double A_x1_gam1_gam2 = in.aero[103];  // L14_12/L14_21
-  [[maybe_unused]] const double A_x1_gam1_dgam1 = in.aero[104];  // L23_11
-  [[maybe_unused]] const double A_x1_gam1_dgam2 = in.aero[105];  // L23_12
-  [[maybe_unused]] const double A_x1_gam2 = in.aero[106];  // L1_2
-  [[maybe_unused]] const double A_x1_gam2_gam2 = in.aero[107];  // L14_22
-  [[maybe_unused]] const double A_x1_gam2_dgam1 = in.aero[108];  // L23_21
-  [[maybe_unused]] const double A_x1_gam2_dgam2 = in.aero[109];  // L23_22
-  [[maybe_unused]] const double A_x2_eta1 = in.aero[110];  // F1_1
-  [[maybe_unused]] const double A_x2_eta2 = in.aero[111];  // F1_2
-  [[maybe_unused]] const double A_x2_gam1 = in.aero[112];  // L4_1
-  [[maybe_unused]] const double A_x2_gam2 = in.aero[113];  // L4_2
-  [[maybe_unused]] const double S_deta1__tail_m_gam1 = in.structural[0];  // B3_11
-  [[maybe_unused]] const double S_deta1__tail_m_gam2 = in.structural[1];  // B3_12
-  [[maybe_unused]] const double S_deta1__tail_m_arm = in.structural[2];  // B1_1
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_gam1 = in.structural[3];  // P_111
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_gam2 = in.structural[4];  // P_112
-  [[maybe_unused]] const double S_deta1_deta1__tail_m_arm = in.structural[5];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_deta1_deta2__tail_m_gam1 = in.structural[6];  // P_121/P_211
-  [[maybe_unused]] const double S_deta1_deta2__tail_m_gam2 = in.structural[7];  // P_122/P_212
-  [[maybe_unused]] const double S_deta1_deta2__tail_m_arm = in.structural[8];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_deta2__tail_m_gam1 = in.structural[9];  // B3_21
-  [[maybe_unused]] const double S_deta2__tail_m_gam2 = in.structural[10];  // B3_22
-  [[maybe_unused]] const double S_deta2__tail_m_arm = in.structural[11];  // B1_2
-  [[maybe_unused]] const double S_deta2_deta2__tail_m_gam1 = in.structural[12];  // P_221
-  [[maybe_unused]] const double S_deta2_deta2__tail_m_gam2 = in.structural[13];  // P_222
-  [[maybe_unused]] const double S_deta2_deta2__tail_m_arm = in.structural[14];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_dgam1__tail_m_gam1 = in.structural[15];  // B8_11
-  [[maybe_unused]] const double S_dgam1__tail_m_gam2 = in.structural[16];  // B8_12
-  [[maybe_unused]] const double S_dgam1__tail_m_arm = in.structural[17];  // B10_1
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_gam1 = in.structural[18];  // S_111
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_gam2 = in.structural[19];  // S_112
-  [[maybe_unused]] const double S_dgam1_dgam1__tail_m_arm = in.structural[20];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_dgam1_dgam2__tail_m_gam1 = in.structural[21];  // S_121/S_211
-  [[maybe_unused]] const double S_dgam1_dgam2__tail_m_gam2 = in.structural[22];  // S_122/S_212
-  [[maybe_unused]] const double S_dgam1_dgam2__tail_m_arm = in.structural[23];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_dgam2__tail_m_gam1 = in.structural[24];  // B8_21
-  [[maybe_unused]] const double S_dgam2__tail_m_gam2 = in.structural[25];  // B8_22
-  [[maybe_unused]] const double S_dgam2__tail_m_arm = in.structural[26];  // B10_2
-  [[maybe_unused]] const double S_dgam2_dgam2__tail_m_gam1 = in.structural[27];  // S_221
-  [[maybe_unused]] const double S_dgam2_dgam2__tail_m_gam2 = in.structural[28];  // S_222
-  [[maybe_unused]] const double S_dgam2_dgam2__tail_m_arm = in.structural[29];  // centrifugal stiffness (absorbed)
-  [[maybe_unused]] const double S_m_eta1_eta1 = in.structural[30];  // M_F11
-  [[maybe_unused]] const double S_m_eta1_eta2 = in.structural[31];  // M_F12/M_F21
-  [[maybe_unused]] const double S_m_eta1_gam1 = in.structural[32];  // B7_11
-  [[maybe_unused]] const double S_m_eta1_gam2 = in.structural[33];  // B7_21
-  [[maybe_unused]] const double S_m_eta2_eta2 = in.structural[34];  // M_F22
-  [[maybe_unused]] const double S_m_eta2_gam1 = in.structural[35];  // B7_12
-  [[maybe_unused]] const double S_m_eta2_gam2 = in.structural[36];  // B7_22
-  [[maybe_unused]] const double S_m_gam1__head_deta1_deta1 = in.structural[37];  // Meta_111
-  [[maybe_unused]] const double S_m_gam1__head_deta1_deta2 = in.structural[38];  // Meta_112
-  [[maybe_unused]] const double S_m_gam1__head_deta2_deta2 = in.structural[39];  // Meta_122
-  [[maybe_unused]] const double S_m_gam1__head_dgam1_dgam1 = in.structural[40];  // Mgamma_111
-  [[maybe_unused]] const double S_m_gam1__head_dgam1_dgam2 = in.structural[41];  // Mgamma_112
-  [[maybe_unused]] const double S_m_gam1__head_dgam2_dgam2 = in.structural[42];  // Mgamma_122
-  [[maybe_unused]] const double S_m_gam1_gam1 = in.structural[43];  // M_L11
-  [[maybe_unused]] const double S_m_gam1_gam2 = in.structural[44];  // M_L12/M_L21
-  [[maybe_unused]] const double S_m_gam1_x0 = in.structural[45];  // B11_1
-  [[maybe_unused]] const double S_m_gam2__head_deta1_deta1 = in.structural[46];  // Meta_211
-  [[maybe_unused]] const double S_m_gam2__head_deta1_deta2 = in.structural[47];  // Meta_212
-  [[maybe_unused]] const double S_m_gam2__head_deta2_deta2 = in.structural[48];  // Meta_222
-  [[maybe_unused]] const double S_m_gam2__head_dgam1_dgam1 = in.structural[49];  // Mgamma_211
-  [[maybe_unused]] const double S_m_gam2__head_dgam1_dgam2 = in.structural[50];  // Mgamma_212
-  [[maybe_unused]] const double S_m_gam2__head_dgam2_dgam2 = in.structural[51];  // Mgamma_222
-  [[maybe_unused]] const double S_m_gam2_gam2 = in.structural[52];  // M_L22
-  [[maybe_unused]] const double S_m_gam2_x0 = in.structural[53];  // B11_2
+  const Symbols s(in);
   out.S[0] =
-      es_flap_1_1
-      + omega_flap_1 * omega_flap_1 * S_m_eta1_eta1;
+      s.es_flap_1_1
+      + s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
   out.S[1] =
-      es_flap_1_2;
+      s.es_flap_1_2;
   out.S[2] =
-      -ecs_flap_lag_1_1;
+      -s.ecs_flap_lag_1_1;
   out.S[3] =
-      -ecs_flap_lag_1_2;
+      -s.ecs_flap_lag_1_2;
   out.c[0] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * A_x1_eta1
-      + (1.0 / 2.0) * lock * lr * lr * theta * A_x2_eta1
-      - precone * S_deta1__tail_m_arm
-      - droop * S_deta1__tail_m_arm;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta1
+      - s.precone * s.S_deta1__tail_m_arm
+      - s.droop * s.S_deta1__tail_m_arm;
   out.S[4] =
-      es_flap_2_1;
+      s.es_flap_2_1;
   out.S[5] =
-      es_flap_2_2
-      + omega_flap_2 * omega_flap_2 * S_m_eta2_eta2;
+      s.es_flap_2_2
+      + s.omega_flap_2 * s.omega_flap_2 * s.S_m_eta2_eta2;
   out.S[6] =
-      -ecs_flap_lag_2_1;
+      -s.ecs_flap_lag_2_1;
   out.S[7] =
-      -ecs_flap_lag_2_2;
+      -s.ecs_flap_lag_2_2;
   out.c[1] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * A_x1_eta2
-      + (1.0 / 2.0) * lock * lr * lr * theta * A_x2_eta2
-      - precone * S_deta2__tail_m_arm
-      - droop * S_deta2__tail_m_arm;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta2
+      - s.precone * s.S_deta2__tail_m_arm
+      - s.droop * s.S_deta2__tail_m_arm;
   out.S[8] =
-      -ecs_lag_flap_1_1;
+      -s.ecs_lag_flap_1_1;
   out.S[9] =
-      -ecs_lag_flap_1_2;
+      -s.ecs_lag_flap_1_2;
   out.S[10] =
-      -es_lag_1_1
-      + omega_lag_1 * omega_lag_1 * S_m_gam1_gam1;
+      -s.es_lag_1_1
+      + s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
   out.S[11] =
-      -es_lag_1_2;
+      -s.es_lag_1_2;
   out.c[2] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * inflow * A_gam1
-      + (1.0 / 2.0) * lock * lr * lr * theta * inflow * A_x1_gam1
-      + (1.0 / 2.0) * lock * lr * lr * cdo_a * A_x2_gam1
-      - theta * droop * S_dgam1__tail_m_arm
-      + theta * droop * S_m_gam1_x0;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam1
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.A_x2_gam1
+      - s.theta * s.droop * s.S_dgam1__tail_m_arm
+      + s.theta * s.droop * s.S_m_gam1_x0;
   out.S[12] =
-      -ecs_lag_flap_2_1;
+      -s.ecs_lag_flap_2_1;
   out.S[13] =
-      -ecs_lag_flap_2_2;
+      -s.ecs_lag_flap_2_2;
   out.S[14] =
-      -es_lag_2_1;
+      -s.es_lag_2_1;
   out.S[15] =
-      -es_lag_2_2
-      + omega_lag_2 * omega_lag_2 * S_m_gam2_gam2;
+      -s.es_lag_2_2
+      + s.omega_lag_2 * s.omega_lag_2 * s.S_m_gam2_gam2;
   out.c[3] =
-      -(1.0 / 2.0) * lock * lr * lr * inflow * inflow * A_gam2
-      + (1.0 / 2.0) * lock * lr * lr * theta * inflow * A_x1_gam2
-      + (1.0 / 2.0) * lock * lr * lr * cdo_a * A_x2_gam2
-      - theta * droop * S_dgam2__tail_m_arm
-      + theta * droop * S_m_gam2_x0;
+      -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam2
+      + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.A_x2_gam2
+      - s.theta * s.droop * s.S_dgam2__tail_m_arm
+      + s.theta * s.droop * s.S_m_gam2_x0;
 }
 
 }  // namespace

@@ -53,10 +53,10 @@ std::string term_cpp(const DerivedModel& m, const Term& t) {
   std::vector<std::string> f;
   if (c != 1) f.push_back("(" + rational_cpp(c) + ")");
   for (const auto& [idx, p] : t.scalars) {
-    for (int j = 0; j < p; ++j) f.push_back(m.scalars[idx].name);
+    for (int j = 0; j < p; ++j) f.push_back("s." + m.scalars[idx].name);
   }
-  if (t.ref == IntegralRef::Aero) f.push_back("A_" + m.aero[t.integral].ident);
-  if (t.ref == IntegralRef::Structural) f.push_back("S_" + m.structural[t.integral].ident);
+  if (t.ref == IntegralRef::Aero) f.push_back("s.A_" + m.aero[t.integral].ident);
+  if (t.ref == IntegralRef::Structural) f.push_back("s.S_" + m.structural[t.integral].ident);
   if (f.empty()) f.push_back("1.0");
   os << (neg ? "- " : "+ ");
   for (size_t j = 0; j < f.size(); ++j) os << (j ? " * " : "") << f[j];
@@ -90,19 +90,30 @@ std::string c_string(const std::string& s) {
   return os.str();
 }
 
-void emit_inputs(std::ostringstream& os, const DerivedModel& m) {
-  for (const auto& s : m.scalars) {
-    os << "  [[maybe_unused]] const double " << s.name << " = " << s.cexpr << ";\n";
-  }
+// The named inputs (scalars, aerodynamic integrals A_*, generalized masses S_*), unpacked once
+// for both generated functions.
+void emit_symbols(std::ostringstream& os, const DerivedModel& m) {
+  os << "// Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses "
+        "(S_*).\n"
+     << "struct Symbols {\n  explicit Symbols(const model::CoefficientInputs& in);\n";
+  for (const auto& sc : m.scalars) os << "  double " << sc.name << ";\n";
   for (size_t j = 0; j < m.aero.size(); ++j) {
-    os << "  [[maybe_unused]] const double A_" << m.aero[j].ident << " = in.aero[" << j << "];"
+    os << "  double A_" << m.aero[j].ident << ";"
        << (m.aero[j].paper_name.empty() ? "" : "  // " + m.aero[j].paper_name) << "\n";
   }
   for (size_t j = 0; j < m.structural.size(); ++j) {
-    os << "  [[maybe_unused]] const double S_" << m.structural[j].ident << " = in.structural[" << j
-       << "];" << (m.structural[j].paper_name.empty() ? "" : "  // " + m.structural[j].paper_name)
-       << "\n";
+    os << "  double S_" << m.structural[j].ident << ";"
+       << (m.structural[j].paper_name.empty() ? "" : "  // " + m.structural[j].paper_name) << "\n";
   }
+  os << "};\n\nSymbols::Symbols(const model::CoefficientInputs& in) {\n";
+  for (const auto& sc : m.scalars) os << "  " << sc.name << " = " << sc.cexpr << ";\n";
+  for (size_t j = 0; j < m.aero.size(); ++j) {
+    os << "  A_" << m.aero[j].ident << " = in.aero[" << j << "];\n";
+  }
+  for (size_t j = 0; j < m.structural.size(); ++j) {
+    os << "  S_" << m.structural[j].ident << " = in.structural[" << j << "];\n";
+  }
+  os << "}\n\n";
 }
 
 std::string header_comment(const DerivedModel& m, const std::string& comment) {
@@ -156,11 +167,12 @@ std::string emit_cpp(const DerivedModel& m) {
   os << "};\n\n";
   os << "const char kSpecText[] = " << c_string(m.spec.canonical_text()) << ";\n\n";
 
+  emit_symbols(os, m);
   os << "// mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = " << n
      << ", states 2n = " << 2 * n << ", harmonics H = " << m.H << ".\n";
   os << "void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& "
         "out) {\n";
-  emit_inputs(os, m);
+  os << "  const Symbols s(in);\n";
   const std::string ind = "      ";
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
@@ -190,7 +202,7 @@ std::string emit_cpp(const DerivedModel& m) {
   os << "// Hover static equilibrium S q0 = c (eqs 2.27-2.32).\n";
   os << "void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOutputs& "
         "out) {\n";
-  emit_inputs(os, m);
+  os << "  const Symbols s(in);\n";
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       os << "  out.S[" << i * n + j << "] =\n" << ind << slot_cpp(m, m.S[i * n + j], ind) << ";\n";
