@@ -44,6 +44,10 @@ AeroAntiderivatives::AeroAntiderivatives(const model::ModelDescriptor& m, const 
     x0[k] = 0.5 * (a_ + b_) + 0.5 * (b_ - a_) * t[k];
   }
   const double half = 0.5 * (b_ - a_);
+  // cos(pi i k / n) for the discrete cosine transform, shared by every integrand.
+  std::vector<double> cos_table((n + 1) * (n + 1));
+  for (int i = 0; i <= n; ++i)
+    for (int k = 0; k <= n; ++k) cos_table[i * (n + 1) + k] = std::cos(kPi * i * k / n);
   coef_.resize(m.n_aero);
   std::vector<double> f(n + 1), c(n + 1);
   for (int j = 0; j < m.n_aero; ++j) {
@@ -59,7 +63,7 @@ AeroAntiderivatives::AeroAntiderivatives(const model::ModelDescriptor& m, const 
       double s = 0.0;
       for (int k = 0; k <= n; ++k) {
         const double w = (k == 0 || k == n) ? 0.5 : 1.0;
-        s += w * f[k] * std::cos(kPi * i * k / n);
+        s += w * f[k] * cos_table[i * (n + 1) + k];
       }
       c[i] = s * 2.0 / n * ((i == 0 || i == n) ? 0.5 : 1.0);
     }
