@@ -97,13 +97,16 @@ TEST(FigureEight, LagOrderTwoLosesAllLagAerodynamicDampingAndIsUnstableInHover) 
   // A33 (lag rate row/column, index 2 in y = [g', g, h', h]) in hover.
   const double a33_full = full.hover().A0(2, 2), a33_reduced = reduced.hover().A0(2, 2);
   const auto snap = full.snapshot(0.0, 0.0);
+  const auto& model = full.model();
   double L13 = 0, L14 = 0, ML = 0;
-  for (const auto& [name, v] : snap.aero_integrals) {
-    if (name.find("(L13_11)") != std::string::npos) L13 = v;
-    if (name.find("(L14_11)") != std::string::npos) L14 = v;
+  for (int j = 0; j < model.n_aero; ++j) {
+    if (std::string(model.aero[j].paper_name) == "L13_11") L13 = snap.aero_integrals[j].second;
+    if (std::string(model.aero[j].paper_name) == "L14_11") L14 = snap.aero_integrals[j].second;
   }
-  for (const auto& [name, v] : snap.structural_integrals) {
-    if (name.find("(M_L11)") != std::string::npos) ML = v;
+  for (int j = 0; j < model.n_structural; ++j) {
+    if (std::string(model.structural[j].paper_name) == "M_L11") {
+      ML = snap.structural_integrals[j].second;
+    }
   }
   ASSERT_GT(L13 * L14 * ML, 0.0);
   const double lr = 1.0, gamma = p.lock, cdo_a = p.cdo / p.lift_slope;

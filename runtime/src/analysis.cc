@@ -156,18 +156,12 @@ SystemSnapshot Analysis::snapshot(double mu, double psi) const {
   const auto& normal = impl_->builder.normal_integrals();
   const std::vector<double> region = reversed ? impl_->builder.reversed_integrals(mu) : normal;
   for (int j = 0; j < m.n_aero; ++j) {
-    std::string name = std::string("int ") + m.aero[j].name + " dx0";
-    if (m.aero[j].paper_name[0] != '\0') name += " (" + std::string(m.aero[j].paper_name) + ")";
-    s.aero_integrals.emplace_back(name, normal[j]);
-    s.aero_integrals_region.emplace_back(name, region[j]);
+    s.aero_integrals.emplace_back(m.aero[j].name, normal[j]);
+    s.aero_integrals_region.emplace_back(m.aero[j].name, region[j]);
   }
   const auto& st = impl_->builder.structural_values();
   for (int j = 0; j < m.n_structural; ++j) {
-    std::string name = std::string("int ") + m.structural[j].name + " dx0";
-    if (m.structural[j].paper_name[0] != '\0') {
-      name += " (" + std::string(m.structural[j].paper_name) + ")";
-    }
-    s.structural_integrals.emplace_back(name, st[j]);
+    s.structural_integrals.emplace_back(m.structural[j].name, st[j]);
   }
   return s;
 }
