@@ -115,3 +115,36 @@ TEST(FigureEight, LagOrderTwoLosesAllLagAerodynamicDampingAndIsUnstableInHover) 
   EXPECT_TRUE(flaplag::testing::RelClose(expected, a33_full - a33_reduced, 1e-12));
   EXPECT_LT(a33_full, a33_reduced);  // the O(eps^3) terms are damping
 }
+
+// Fig 15 (assumed modes): the rotating lag frequency decides the type of instability.  Near
+// omega_L1 = 1/2 the lag mode goes unstable with omega locked to 1/2 per rev; for
+// 0.9 < omega_L1 < 1.6 the radial-flow lag flutter appears early, at a frequency close to
+// omega_L1; omega_L1 ~ 0.75 and > 1.6 are the best choices.
+TEST(FigureFifteen, LagFrequencyDecidesTheInstability) {
+  auto crit = [](double omega_lag) {
+    RotorParameters p;
+    p.omega_lag = omega_lag;
+    return critical(p, TransitionOptions{});
+  };
+  const auto half = crit(0.5);
+  ASSERT_TRUE(half.found);
+  EXPECT_EQ(half.mode, "lag");
+  EXPECT_EQ(half.kind, flaplag::InstabilityKind::Periodic);
+  EXPECT_NEAR(half.omega, 0.5, 1e-3);
+  double worst_mid = 0.0;
+  for (double w : {1.0, 1.2, 1.4}) {
+    const auto c = crit(w);
+    ASSERT_TRUE(c.found) << "omega_L1 = " << w;
+    EXPECT_EQ(c.mode, "lag");
+    EXPECT_EQ(c.kind, flaplag::InstabilityKind::Flutter);
+    EXPECT_NEAR(c.omega, w, 0.05) << "flutter near the lag frequency";
+    EXPECT_LT(c.mu_c, 0.9);
+    worst_mid = std::max(worst_mid, c.mu_c);
+  }
+  const auto soft = crit(0.75);
+  ASSERT_TRUE(soft.found);
+  EXPECT_GT(soft.mu_c, worst_mid + 0.3);
+  EXPECT_GT(soft.mu_c, half.mu_c + 0.3);
+  const auto stiff = crit(1.7);
+  EXPECT_TRUE(!stiff.found || stiff.mu_c > worst_mid + 0.3);
+}

@@ -241,7 +241,8 @@ CriticalResult Analysis::critical(const CriticalOptions& opt) const {
   r.found = c.found;
   r.mu_c = c.mu_c;
   r.mode = c.label;
-  r.omega = c.omega;
+  // A conjugate pair crosses together; report the member with omega >= 0.
+  r.omega = std::abs(c.omega);
   r.kind = c.kind;
   r.mu_max = c.mu_max;
   r.status = c.status;
