@@ -72,7 +72,7 @@ struct CriticalResult {
   bool found = false;  // false: stable up to mu_max
   double mu_c = 0.0;
   std::string mode;    // "flap"/"lag"
-  double omega = 0.0;  // per rev at mu_c
+  double omega = 0.0;  // per rev at mu_c, >= 0 (either member of a crossing pair)
   InstabilityKind kind = InstabilityKind::Flutter;
   double mu_max = 0.0;
   Status status = Status::Ok;
