@@ -637,7 +637,6 @@ void Deriver::add_term(Slot& s, const Term& t) {
 
 // Splits an expanded residual of equation eq into harmonics and slots.
 void Deriver::place(const ex& expr, bool aero, int eq) {
-  const int n = M_ + N_;
   std::map<int, exvector> buckets;  // harmonic index -> terms
   const ex e = expr.expand();
   auto bucket = [&](const ex& t) {
@@ -707,7 +706,6 @@ void Deriver::place(const ex& expr, bool aero, int eq) {
       }
     }
   }
-  (void)n;
 }
 
 // Generalized aerodynamic loads, eqs 2.18-2.23, nondimensionalised so that

@@ -129,6 +129,9 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   geometry_.tip_loss_a = p_.tip_loss_a;
   geometry_.tip_loss_b = p_.tip_loss_b;
   inflow_ = hover_inflow(p_);
+  // Structural damping ratios apply to every mode of a direction.
+  damping_flap_.assign(M_, p_.damping_flap);
+  damping_lag_.assign(N_, p_.damping_lag);
   cdo_a_ = p_.cdo / p_.lift_slope;
 
   // Appendix E: only with exact modes (paper 4.1(a): neglected with the assumed mode).
@@ -208,12 +211,8 @@ model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) co
   in.h0 = h0_.data();
   in.omega_flap = modes_.omega_flap.data();
   in.omega_lag = modes_.omega_lag.data();
-  // Structural damping ratios apply to every mode of a direction.
-  static thread_local std::vector<double> zf, zl;
-  zf.assign(M_, p_.damping_flap);
-  zl.assign(N_, p_.damping_lag);
-  in.damping_flap = zf.data();
-  in.damping_lag = zl.data();
+  in.damping_flap = damping_flap_.data();
+  in.damping_lag = damping_lag_.data();
   in.es_flap = es_flap_.data();
   in.es_lag = es_lag_.data();
   in.ecs_flap_lag = ecs_flap_lag_.data();
