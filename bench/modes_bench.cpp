@@ -2,8 +2,8 @@
 // evaluated from them.
 #include <benchmark/benchmark.h>
 
-#include "flaplag/blade.h"
-#include "flaplag/rotating_modes.h"
+#include "flaplag/blade/blade.h"
+#include "flaplag/blade/rotating_modes.h"
 
 namespace {
 

@@ -6,8 +6,9 @@
 //   BM_RotorCritical_Hsu:    the full mu_c search of `flaplag critical`.
 #include <benchmark/benchmark.h>
 
+#include "flaplag/core/constants.h"
 #include "flaplag/analysis.h"
-#include "flaplag/continuation.h"
+#include "flaplag/numerics/continuation.h"
 
 namespace {
 
@@ -52,7 +53,7 @@ void BM_RotorPhi_RK4_N50_ColumnByColumn1974(benchmark::State& state) {
   const auto an = typical();
   const auto sys = an.system(0.7);
   const int n = sys.n, N = 50;
-  const double h = 2.0 * 3.14159265358979323846 / N;
+  const double h = flaplag::kTwoPi / N;
   for (auto _ : state) {
     Eigen::MatrixXd phi(n, n);
     for (int col = 0; col < n; ++col) {

@@ -7,12 +7,13 @@
 
 #include <cmath>
 
-#include "flaplag/continuation.h"
-#include "flaplag/floquet.h"
+#include "flaplag/core/constants.h"
+#include "flaplag/numerics/continuation.h"
+#include "flaplag/numerics/floquet.h"
+#include "flaplag/rotor/hover.h"
 
 namespace {
 
-constexpr double kPi = 3.141592653589793238462643383280;
 
 Eigen::MatrixXd hover_matrix() {
   Eigen::MatrixXd A(4, 4);
@@ -44,8 +45,8 @@ flaplag::PeriodicSystem rotor_like() {
   fill(s.normal, 1.0);
   fill(s.reversed, -1.0);
   s.has_sector = true;
-  s.sector_begin = 1.25 * kPi;
-  s.sector_end = 1.75 * kPi;
+  s.sector_begin = 1.25 * flaplag::kPi;
+  s.sector_end = 1.75 * flaplag::kPi;
   return s;
 }
 

@@ -5,8 +5,9 @@
 #include <vector>
 
 #include "flaplag/analysis.h"
-#include "flaplag/errors.h"
-#include "flaplag/parameter_table.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
+#include "flaplag/rotor/parameter_table.h"
 
 namespace flaplag::cli {
 

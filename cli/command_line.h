@@ -7,9 +7,9 @@
 #include <memory>
 #include <string>
 
-#include "flaplag/errors.h"
-#include "flaplag/floquet.h"
-#include "flaplag/parameters.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/numerics/floquet.h"
+#include "flaplag/rotor/parameters.h"
 
 namespace flaplag::cli {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "flaplag/analysis.h"
-#include "flaplag/parameter_table.h"
+#include "flaplag/rotor/parameter_table.h"
 #include "output.h"
 
 namespace flaplag::cli {

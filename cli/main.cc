@@ -11,8 +11,8 @@
 
 #include "command_line.h"
 #include "commands.h"
-#include "flaplag/errors.h"
-#include "flaplag/parameter_table.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/rotor/parameter_table.h"
 #include "output.h"
 
 namespace {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "flaplag/rotating_modes.h"
+#include "flaplag/blade/rotating_modes.h"
 #include "output.h"
 
 namespace flaplag::cli {

@@ -9,8 +9,9 @@
 #include <cstring>
 #include <utility>
 
-#include "flaplag/errors.h"
-#include "flaplag/parameter_table.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
+#include "flaplag/rotor/parameter_table.h"
 
 namespace flaplag::cli {
 

@@ -1,4 +1,5 @@
 // The rotor analysis layer: operating point, hover equilibrium, periodic system, methods.
+#include "flaplag/core/constants.h"
 #include "flaplag/analysis.h"
 
 #include <gtest/gtest.h>
@@ -6,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "flaplag/errors.h"
+#include "flaplag/core/errors.h"
 #include "test_util.h"
 
 using flaplag::Analysis;
@@ -17,7 +18,6 @@ using flaplag::testing::AbsClose;
 using flaplag::testing::RelClose;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 TransitionOptions method(TransitionMethod m, int steps, int terms = 4) {
   TransitionOptions o;
@@ -108,16 +108,16 @@ TEST(ReversedFlow, SectorGeometry) {
   Analysis an(RotorParameters{}, {});
   const auto s05 = an.system(0.5);
   ASSERT_TRUE(s05.has_sector);
-  EXPECT_TRUE(AbsClose(1.5 * kPi - kPi / 4, s05.sector_begin, 1e-15));
-  EXPECT_TRUE(AbsClose(1.5 * kPi + kPi / 4, s05.sector_end, 1e-15));
+  EXPECT_TRUE(AbsClose(1.5 * flaplag::kPi - flaplag::kPi / 4, s05.sector_begin, 1e-15));
+  EXPECT_TRUE(AbsClose(1.5 * flaplag::kPi + flaplag::kPi / 4, s05.sector_end, 1e-15));
   const auto s2 = an.system(2.0);
   const double a = std::asin(0.5);
-  const double alpha = kPi - 2 * a + 4 * a - std::sqrt(3.0);
+  const double alpha = flaplag::kPi - 2 * a + 4 * a - std::sqrt(3.0);
   EXPECT_TRUE(AbsClose(alpha, s2.sector_end - s2.sector_begin, 1e-14));
   const auto s1 = an.system(1.0);
-  EXPECT_TRUE(AbsClose(kPi / 2, s1.sector_end - s1.sector_begin, 1e-14));
+  EXPECT_TRUE(AbsClose(flaplag::kPi / 2, s1.sector_end - s1.sector_begin, 1e-14));
   // mu >= 1: the whole span reversed, so every aerodynamic integral changes sign
-  const auto snap = an.snapshot(1.5, 1.5 * kPi);
+  const auto snap = an.snapshot(1.5, 1.5 * flaplag::kPi);
   EXPECT_EQ(snap.region, "reversed");
   for (size_t j = 0; j < snap.aero_integrals.size(); ++j) {
     EXPECT_DOUBLE_EQ(snap.aero_integrals_region[j].second, -snap.aero_integrals[j].second);
@@ -131,7 +131,7 @@ TEST(ReversedFlow, SectorGeometry) {
 TEST(ReversedFlow, NormalRegionOutsideTheSector) {
   Analysis an(RotorParameters{}, {});
   EXPECT_EQ(an.snapshot(0.5, 0.5).region, "normal");
-  EXPECT_EQ(an.snapshot(0.5, 1.5 * kPi).region, "reversed");
+  EXPECT_EQ(an.snapshot(0.5, 1.5 * flaplag::kPi).region, "reversed");
 }
 
 struct BadParam {

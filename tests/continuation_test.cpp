@@ -1,6 +1,8 @@
 // Continuation in mu: hover labels, exponent tracking through crossings and integer wraps,
 // critical mu for flutter (complex pair) and periodic (real multiplier) instabilities.
-#include "flaplag/continuation.h"
+#include "flaplag/core/constants.h"
+#include "flaplag/numerics/continuation.h"
+#include "flaplag/rotor/hover.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +10,7 @@
 #include <limits>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "flaplag/errors.h"
+#include "flaplag/core/errors.h"
 #include "test_util.h"
 
 namespace flaplag {
@@ -17,7 +19,6 @@ namespace {
 using testing::AbsClose;
 using testing::RelClose;
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 // Two uncoupled oscillators in the model_api.h ordering y = [g', g, h', h]:
 //   g'' + cg g' + kg g = 0,  h'' + ch h' + kh h = 0  (+ weak coupling kappa).

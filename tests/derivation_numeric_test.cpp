@@ -10,7 +10,8 @@
 #include <cmath>
 #include <string>
 
-#include "flaplag/blade.h"
+#include "flaplag/core/constants.h"
+#include "flaplag/blade/blade.h"
 #include "flaplag/model_api.h"
 #include "flaplag_derive/derive.h"
 #include "flaplag_derive/spec.h"
@@ -20,7 +21,6 @@ namespace fm = flaplag::model;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Eq 4.1 and its slope, coded independently of the runtime.
 double eta(double x) { return -(1.0 / 3.0) * (1.0 - 4.0 * x - std::pow(1.0 - x, 4)); }
@@ -224,7 +224,7 @@ TEST(DerivationVsQuadrature, UntruncatedSpecMatchesFullNonlinearLoadsToFiniteDif
 // Max |difference| over psi samples for one equation (row): Jacobian and forcing separately.
 std::array<double, 2> truncation_error(const fm::ModelDescriptor& m, const Operating& o, int row) {
   double ej = 0.0, ef = 0.0;
-  for (double psi = 0.1; psi < 2 * kPi; psi += 0.37) {
+  for (double psi = 0.1; psi < flaplag::kTwoPi; psi += 0.37) {
     const auto J = fd_jacobian(o, psi);
     const auto F = full_loads(o, psi, {o.g0, o.h0, 0.0, 0.0});
     const auto c = compiled_aero(m, o, psi);

@@ -22,8 +22,8 @@
 #include <vector>
 
 #include "flaplag/analysis.h"
-#include "flaplag/blade.h"
-#include "flaplag/rotating_modes.h"
+#include "flaplag/blade/blade.h"
+#include "flaplag/blade/rotating_modes.h"
 #include "test_util.h"
 
 using flaplag::Analysis;

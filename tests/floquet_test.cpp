@@ -1,5 +1,6 @@
 // Floquet exponents from Phi(2 pi, 0): eqs 3.16-3.19, principal omega, Liouville residual.
-#include "flaplag/floquet.h"
+#include "flaplag/core/constants.h"
+#include "flaplag/numerics/floquet.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +8,7 @@
 #include <limits>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "flaplag/errors.h"
+#include "flaplag/core/errors.h"
 #include "test_util.h"
 
 namespace flaplag {
@@ -16,8 +17,6 @@ namespace {
 using testing::AbsClose;
 using testing::RelClose;
 
-constexpr double kPi = 3.141592653589793238462643383280;
-constexpr double kTwoPi = 2.0 * kPi;
 
 // Real matrix with eigenvalues z_k +- i w_k (2x2 blocks), mixed by a fixed similarity.
 Eigen::MatrixXd with_eigenvalues(const std::vector<std::pair<double, double>>& pairs) {

@@ -1,5 +1,5 @@
 // Rotor parameters: the name table, validate() and the hover inflow of eq 2.24.
-#include "flaplag/parameters.h"
+#include "flaplag/rotor/parameters.h"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,9 @@
 #include <set>
 #include <string>
 
-#include "flaplag/errors.h"
-#include "flaplag/parameter_table.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
+#include "flaplag/rotor/parameter_table.h"
 #include "test_util.h"
 
 namespace flaplag {

@@ -1,12 +1,13 @@
 // PeriodicSystem: harmonic basis, exact interval means (eqs 4.2-4.5), regions, trace integral.
-#include "flaplag/periodic_system.h"
+#include "flaplag/core/constants.h"
+#include "flaplag/numerics/periodic_system.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
 
-#include "flaplag/errors.h"
+#include "flaplag/core/errors.h"
 #include "test_util.h"
 
 namespace flaplag {
@@ -15,8 +16,6 @@ namespace {
 using testing::AbsClose;
 using testing::RelClose;
 
-constexpr double kPi = 3.141592653589793238462643383280;
-constexpr double kTwoPi = 2.0 * kPi;
 
 // Composite Gauss-Legendre (5 points on each of `panels` panels): independent of the closed
 // forms under test, and exact to rounding for the smooth integrands used here.

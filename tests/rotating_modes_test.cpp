@@ -4,7 +4,7 @@
 // monotonicity in the basis size, the orthogonality relations A.1-A.4 evaluated by quadrature
 // from the returned shapes (through the structural-integral machinery), Rayleigh's principle, the
 // classical Southwell coefficient of the uniform cantilever (1.193), boundary conditions.
-#include "flaplag/rotating_modes.h"
+#include "flaplag/blade/rotating_modes.h"
 
 #include <gtest/gtest.h>
 
@@ -13,8 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "flaplag/blade.h"
-#include "flaplag/errors.h"
+#include "flaplag/blade/blade.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
 #include "test_util.h"
 
 namespace flaplag {
@@ -72,12 +73,12 @@ TEST(RotatingModes, TypicalBlade) {
       RelClose(std::sqrt(m.stiffness_flap / 3.0) * b1 * b1, r.omega_flap_nonrotating, 1e-15));
   EXPECT_TRUE(RelClose(std::sqrt(m.stiffness_lag / 3.0) * b1 * b1, r.omega_lag_nonrotating, 1e-15));
   EXPECT_LT(r.omega_flap_nonrotating, kOmegaF);
-  std::cout << "typical blade: k_y = " << format_value(m.stiffness_flap)
-            << ", k_z = " << format_value(m.stiffness_lag)
-            << ", wF1N = " << format_value(r.omega_flap_nonrotating)
-            << ", wL1N = " << format_value(r.omega_lag_nonrotating) << "\n";
-  ::testing::Test::RecordProperty("k_y", format_value(m.stiffness_flap));
-  ::testing::Test::RecordProperty("k_z", format_value(m.stiffness_lag));
+  std::cout << "typical blade: k_y = " << round_trip_text(m.stiffness_flap)
+            << ", k_z = " << round_trip_text(m.stiffness_lag)
+            << ", wF1N = " << round_trip_text(r.omega_flap_nonrotating)
+            << ", wL1N = " << round_trip_text(r.omega_lag_nonrotating) << "\n";
+  ::testing::Test::RecordProperty("k_y", round_trip_text(m.stiffness_flap));
+  ::testing::Test::RecordProperty("k_z", round_trip_text(m.stiffness_lag));
 }
 
 TEST(RotatingModes, RequestedFrequencyIsTheRayleighQuotientOfTheShape) {
@@ -178,7 +179,7 @@ TEST(RotatingModes, FrequenciesConvergeWithBasisSize) {
   }
   EXPECT_LT(first[4] - first[7], 1e-3 * first[7]);
   std::cout << "first flap frequency at k_y for n = 1..8:";
-  for (double w : first) std::cout << " " << format_value(w);
+  for (double w : first) std::cout << " " << round_trip_text(w);
   std::cout << "\n";
 }
 
@@ -203,9 +204,9 @@ TEST(RotatingModes, SouthwellCoefficient) {
   const double stiff = rotating_frequency(BendingDirection::Flap, 30.0);
   EXPECT_TRUE(RelClose(k1, stiff * stiff - 900.0, 1e-3));
   const ExactModes r = exact_rotating_modes(kOmegaF, kOmegaL);
-  std::cout << "Southwell K_1 (phi_1 Rayleigh) = " << format_value(k1)
+  std::cout << "Southwell K_1 (phi_1 Rayleigh) = " << round_trip_text(k1)
             << "; typical blade wF1^2 - wF1N^2 = "
-            << format_value(kOmegaF * kOmegaF - r.omega_flap_nonrotating * r.omega_flap_nonrotating)
+            << round_trip_text(kOmegaF * kOmegaF - r.omega_flap_nonrotating * r.omega_flap_nonrotating)
             << "\n";
   // Lag: the in-plane term lowers wbar^2 by exactly 1 at equal stiffness (eq A.4).
   const double wf = rotating_frequency(BendingDirection::Flap, 1.2);
@@ -254,9 +255,9 @@ TEST(RotatingModes, Paper1974ShapesOption) {
       rayleigh_frequency(BendingDirection::Flap, *p.modes.flap[0], p.modes.stiffness_flap);
   const double l74 =
       rayleigh_frequency(BendingDirection::Lag, *p.modes.lag[0], p.modes.stiffness_lag);
-  std::cout << "1974 shapes: Rayleigh flap frequency " << format_value(w74) << " (true 1.175), lag "
-            << format_value(l74) << " (true 1.28303)\n";
-  ::testing::Test::RecordProperty("rayleigh_flap_1974", format_value(w74));
+  std::cout << "1974 shapes: Rayleigh flap frequency " << round_trip_text(w74) << " (true 1.175), lag "
+            << round_trip_text(l74) << " (true 1.28303)\n";
+  ::testing::Test::RecordProperty("rayleigh_flap_1974", round_trip_text(w74));
   // Rayleigh's principle: a shape that is not the first mode has a larger quotient.
   EXPECT_GT(w74, kOmegaF + 0.01);
   EXPECT_GT(l74, kOmegaL);
@@ -276,14 +277,14 @@ TEST(RotatingModes, UnreachableFrequenciesThrow) {
   } catch (const InvalidInput& e) {
     EXPECT_EQ("omega_flap", e.name());
     EXPECT_EQ("1", e.value());
-    EXPECT_NE(std::string(e.what()).find(format_value(flap_limit)), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(round_trip_text(flap_limit)), std::string::npos) << e.what();
   }
   try {
     exact_modes(kOmegaF, 0.2);  // below the 5-function lag limit 0.207...
     FAIL() << "no exception";
   } catch (const InvalidInput& e) {
     EXPECT_EQ("omega_lag", e.name());
-    EXPECT_NE(std::string(e.what()).find(format_value(lag_limit)), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(round_trip_text(lag_limit)), std::string::npos) << e.what();
   }
   ExactModeOptions six;
   six.n_basis = 6;

@@ -5,8 +5,9 @@
 #include <cmath>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "flaplag/errors.h"
-#include "flaplag/floquet.h"
+#include "flaplag/core/constants.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/numerics/floquet.h"
 #include "test_util.h"
 
 namespace flaplag {
@@ -14,8 +15,6 @@ namespace {
 
 using testing::RelClose;
 
-constexpr double kPi = 3.141592653589793238462643383280;
-constexpr double kTwoPi = 2.0 * kPi;
 
 double max_abs(const Eigen::MatrixXd& m) { return m.cwiseAbs().maxCoeff(); }
 double rel_err(const Eigen::MatrixXd& ref, const Eigen::MatrixXd& x) {

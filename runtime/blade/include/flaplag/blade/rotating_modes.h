@@ -1,0 +1,111 @@
+// flaplag — exact rotating mode shapes of a uniform cantilevered blade (paper 4.1(b), App. A).
+//
+// Galerkin's method on n_basis nonrotating clamped-free cantilever functions phi_j per bending
+// direction (blade.h, classical normalisation int phi_i phi_j = delta_ij).  Nondimensional as in
+// the paper: span coordinate x0 = x0bar in [0, 1] by l, frequencies by Omega, masses by I_b,
+//   mbar = m l^3 / I_b               (= 3 for a uniform blade: I_b = l^3 int_0^1 m x0^2 dx0),
+//   k    = EI / (Omega^2 l I_b)      (stiffness_flap = (EI)_y, stiffness_lag = (EI)_z),
+//   T(x) = int_x^1 mbar (x1 + e1/l) dx1   (centrifugal tension by Omega^2 I_b / l).
+// Eqs A.1-A.2 (flap) and A.3-A.4 (lag) give the symmetric eigenproblems
+//   flap:  [k B + G] c = wbar^2 M c,
+//   lag:   [k B + G - M] c = wbar^2 M c,
+//   B_ij = int phi_i'' phi_j'' = beta_j^4 delta_ij,  G_ij = int phi_i' phi_j' T,
+//   M_ij = mbar int phi_i phi_j = mbar delta_ij.
+// The nonrotating first frequency is wbar_1N = sqrt(k / mbar) beta_1^2 (k beta^4 = mbar wbar^2).
+// The user specifies the first rotating frequencies; k_y and k_z are solved for.
+#pragma once
+
+#include <Eigen/Dense>
+#include <memory>
+#include <vector>
+
+#include "flaplag/blade/blade.h"
+
+namespace flaplag {
+
+enum class BendingDirection { Flap, Lag };
+
+struct ExactModeOptions {
+  int n_basis = 5;         // cantilever functions per direction (paper: 5); 1..12
+  int flap_modes = 1;      // M rotating flap modes returned, 1..n_basis
+  int lag_modes = 1;       // N rotating lag modes returned, 1..n_basis
+  double e1_over_l = 0.0;  // root offset from the rotation axis by l, >= 0 (centrifugal arm)
+  double mbar = 3.0;       // m l^3 / I_b (frequencies depend on k / mbar only)
+  // Compatibility with the 1974 program (DESIGN.md, "About the paper's exact-mode numbers"):
+  // rebuild the shapes from the correct Galerkin coefficients c_j with the even-numbered basis
+  // functions sign-flipped, eta = sum (-1)^(j+1) c_j phi_j.  Frequencies and stiffnesses are
+  // unchanged; the shapes are NOT modes of the blade.  Off by default.
+  bool paper_1974_shapes = false;
+};
+
+// A linear combination sum_j c_j phi_j of basis shapes (derivatives 0..3 by linearity).
+class ModalCombination final : public ModeShape {
+ public:
+  ModalCombination(std::vector<std::shared_ptr<const ModeShape>> basis,
+                   Eigen::VectorXd coefficients);
+  double value(int d, double x0) const override;
+  const Eigen::VectorXd& coefficients() const { return coefficients_; }
+
+ private:
+  std::vector<std::shared_ptr<const ModeShape>> basis_;
+  Eigen::VectorXd coefficients_;
+};
+
+struct ExactModes {
+  // flap/lag: tip-normalised rotating modes (eta(1) = gamma(1) = +1, like eq 4.1), kind "exact";
+  // omega_flap/omega_lag: rotating frequencies of the M / N returned modes;
+  // stiffness_flap/lag: k_y, k_z.
+  ModeSet modes;
+  double omega_flap_nonrotating = 0.0;  // wbar_F1N = sqrt(k_y / mbar) beta_1^2
+  double omega_lag_nonrotating = 0.0;   // wbar_L1N = sqrt(k_z / mbar) beta_1^2
+  std::vector<double> omega_flap_all;   // all n_basis rotating flap frequencies, ascending
+  std::vector<double> omega_lag_all;    // all n_basis rotating lag frequencies, ascending
+  // Coefficients of the returned shapes on phi_1..phi_n (n_basis x M and n_basis x N), as used
+  // in modes.flap / modes.lag (i.e. including the 1974 sign flip when that option is set).
+  Eigen::MatrixXd flap_coefficients;
+  Eigen::MatrixXd lag_coefficients;
+};
+
+// Exact rotating modes with first rotating frequencies omega_flap = wbar_F1 and omega_lag =
+// wbar_L1 (by Omega).  Throws InvalidInput naming "omega_flap" / "omega_lag" when a frequency is
+// non-finite, <= 0, or not above the k -> 0 limit of the basis (centrifugal_limit); and naming
+// the option for out-of-range options.
+ExactModes exact_rotating_modes(double omega_flap, double omega_lag,
+                                const ExactModeOptions& options = {});
+// The ModeSet part of exact_rotating_modes.
+ModeSet exact_modes(double omega_flap, double omega_lag, const ExactModeOptions& options = {});
+
+// All n_basis rotating frequencies (ascending) for stiffness k = EI / (Omega^2 l I_b) >= 0.
+std::vector<double> rotating_frequencies(BendingDirection direction, double stiffness,
+                                         const ExactModeOptions& options = {});
+// The first rotating frequency as k -> 0 (pure centrifugal stiffening in the basis): flap just
+// above 1 for e1 = 0 (1 exactly only for the rigid hinged blade), lag = sqrt(flap^2 - 1).
+// Requested first frequencies must exceed it.
+double centrifugal_limit(BendingDirection direction, const ExactModeOptions& options = {});
+// k whose first rotating frequency is omega_rotating (bracketed, safeguarded Newton on the
+// concave, increasing lambda_1(k)).  Throws as exact_rotating_modes.
+double stiffness_for_frequency(BendingDirection direction, double omega_rotating,
+                               const ExactModeOptions& options = {});
+
+// Fig. 9: first rotating <-> first nonrotating frequency (both by Omega).
+double nonrotating_frequency(BendingDirection direction, double omega_rotating,
+                             const ExactModeOptions& options = {});
+double rotating_frequency(BendingDirection direction, double omega_nonrotating,
+                          const ExactModeOptions& options = {});
+struct FrequencyPair {
+  double nonrotating;
+  double rotating;
+};
+// n_points >= 2 equally spaced nonrotating frequencies on [lo, hi] (0 <= lo <= hi) with their
+// rotating first frequencies: the curves of Fig. 9.
+std::vector<FrequencyPair> fig9_table(BendingDirection direction, double omega_nonrotating_lo,
+                                      double omega_nonrotating_hi, int n_points,
+                                      const ExactModeOptions& options = {});
+
+// Rayleigh quotient sqrt(R) of any shape, by quadrature:
+//   flap: R = [k int eta''^2 + int eta'^2 T] / int mbar eta^2;  lag: R_flap - 1 (eq A.4).
+// For an exact mode it returns its frequency; for a wrong shape it shows how wrong.
+double rayleigh_frequency(BendingDirection direction, const ModeShape& shape, double stiffness,
+                          double e1_over_l = 0.0, double mbar = 3.0);
+
+}  // namespace flaplag

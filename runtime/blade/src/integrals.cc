@@ -1,0 +1,405 @@
+// flaplag — spanwise integrals: aerodynamic coefficients (Appendix B, split for reversed flow as
+// in Appendix D), structural generalized masses (Appendix B) and elastic coupling (Appendix E).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "flaplag/core/constants.h"
+#include "flaplag/blade/blade.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
+
+namespace flaplag {
+namespace {
+
+using model::Factor;
+using model::FactorRef;
+
+constexpr int kGaussPoints = 20;
+constexpr int kPanels = 8;
+
+struct GaussRule {
+  std::array<double, kGaussPoints> t{};  // nodes on [-1, 1]
+  std::array<double, kGaussPoints> w{};
+};
+
+// Gauss-Legendre nodes by Newton iteration on P_n (three-term recurrence); converges to full
+// double precision from the Tricomi initial guess.
+GaussRule make_gauss_rule() {
+  GaussRule r;
+  const int n = kGaussPoints;
+  for (int i = 0; i < n; ++i) {
+    double t = std::cos(kPi * (i + 0.75) / (n + 0.5));
+    double dp = 1.0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1.0;
+      double p1 = t;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2.0 * k - 1.0) * t * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (t * p1 - p0) / (t * t - 1.0);
+      const double step = p1 / dp;
+      t -= step;
+      if (std::abs(step) < 1e-17) break;
+    }
+    r.t[i] = t;
+    r.w[i] = 2.0 / ((1.0 - t * t) * dp * dp);
+  }
+  return r;
+}
+
+const GaussRule& gauss_rule() {
+  static const GaussRule rule = make_gauss_rule();
+  return rule;
+}
+
+// Gauss nodes of one interval [a, b] appended to (x, w).
+void append_interval(double a, double b, std::vector<double>& x, std::vector<double>& w) {
+  const GaussRule& g = gauss_rule();
+  const double half = 0.5 * (b - a);
+  const double mid = 0.5 * (a + b);
+  for (int i = 0; i < kGaussPoints; ++i) {
+    x.push_back(mid + half * g.t[i]);
+    w.push_back(half * g.w[i]);
+  }
+}
+
+const char* factor_name(Factor f) {
+  switch (f) {
+    case Factor::Eta:
+      return "eta";
+    case Factor::EtaPrime:
+      return "eta'";
+    case Factor::Gamma:
+      return "gamma";
+    case Factor::GammaPrime:
+      return "gamma'";
+    case Factor::X0:
+      return "x0";
+    case Factor::Arm:
+      return "arm";
+  }
+  return "?";
+}
+
+// Values of spanwise factors at a fixed list of stations, each distinct (kind, mode) evaluated
+// once: a model has tens of integrals over the same few mode shapes, and exact modes cost a few
+// transcendental functions per basis function and station.
+class FactorTable {
+ public:
+  FactorTable(const ModeSet& modes, std::vector<double> x0, double arm_offset)
+      : modes_(modes), x0_(std::move(x0)), arm_offset_(arm_offset) {}
+
+  std::size_t size() const { return x0_.size(); }
+
+  const std::vector<double>& values(const FactorRef& f, const char* integral) {
+    const int kind = static_cast<int>(f.kind);
+    const bool modal = f.kind != Factor::X0 && f.kind != Factor::Arm;
+    const int mode = modal ? f.mode : 0;
+    const auto key = std::make_pair(kind, mode);
+    auto it = cache_.find(key);
+    if (it != cache_.end()) return it->second;
+
+    std::vector<double> v(x0_.size());
+    if (f.kind == Factor::X0 || f.kind == Factor::Arm) {
+      const double off = f.kind == Factor::Arm ? arm_offset_ : 0.0;
+      for (std::size_t q = 0; q < x0_.size(); ++q) v[q] = x0_[q] + off;
+    } else {
+      const bool flap = f.kind == Factor::Eta || f.kind == Factor::EtaPrime;
+      const auto& shapes = flap ? modes_.flap : modes_.lag;
+      if (mode < 0 || mode >= static_cast<int>(shapes.size())) {
+        throw InvalidInput(
+            std::string("mode index of ") + factor_name(f.kind) + " in \"" + integral + "\"",
+            std::to_string(mode),
+            "the mode set has " + std::to_string(shapes.size()) + (flap ? " flap" : " lag") +
+                " modes");
+      }
+      const int d = (f.kind == Factor::EtaPrime || f.kind == Factor::GammaPrime) ? 1 : 0;
+      const ModeShape& shape = *shapes[mode];
+      for (std::size_t q = 0; q < x0_.size(); ++q) v[q] = shape.value(d, x0_[q]);
+    }
+    return cache_.emplace(key, std::move(v)).first->second;
+  }
+
+  // prod(factors) at every station, times scale.
+  std::vector<double> product(const FactorRef* factors, int n_factors, double scale,
+                              const char* integral) {
+    if (n_factors < 0 || n_factors > 4) {
+      throw InvalidInput(std::string("factor count of \"") + integral + "\"",
+                         std::to_string(n_factors), "must be 0..4");
+    }
+    std::vector<double> p(x0_.size(), scale);
+    for (int i = 0; i < n_factors; ++i) {
+      const std::vector<double>& v = values(factors[i], integral);
+      for (std::size_t q = 0; q < p.size(); ++q) p[q] *= v[q];
+    }
+    return p;
+  }
+
+ private:
+  const ModeSet& modes_;
+  std::vector<double> x0_;
+  double arm_offset_;
+  std::map<std::pair<int, int>, std::vector<double>> cache_;
+};
+
+void check_geometry(const SpanGeometry& g) {
+  if (!std::isfinite(g.e1) || g.e1 < 0.0) {
+    throw InvalidInput("e1", round_trip_text(g.e1), "hinge offset by R must be finite and >= 0");
+  }
+  if (!std::isfinite(g.lr) || g.lr <= 0.0) {
+    throw InvalidInput("lr", round_trip_text(g.lr), "l/R must be finite and positive");
+  }
+  if (!std::isfinite(g.tip_loss_a) || !std::isfinite(g.tip_loss_b) || g.tip_loss_a > g.tip_loss_b) {
+    throw InvalidInput(
+        "tip_loss_a", round_trip_text(g.tip_loss_a),
+        "tip-loss limits must be finite with A <= B = " + round_trip_text(g.tip_loss_b));
+  }
+}
+
+// One flow region [lo, hi] of the aerodynamic span: stations, weights and factor values.
+class AeroRegion {
+ public:
+  AeroRegion(const ModeSet& modes, const SpanGeometry& g, double lo, double hi)
+      : rule_(span_rule(lo, hi)), table_(modes, rule_.x0, g.e1 / g.lr) {
+    x_.resize(rule_.x0.size());
+    for (std::size_t q = 0; q < x_.size(); ++q) x_[q] = g.e1 + g.lr * rule_.x0[q];
+  }
+
+  double integral(const model::AeroIntegral& spec) {
+    if (spec.x_power < 0) {
+      throw InvalidInput(std::string("x power of \"") + spec.name + "\"",
+                         std::to_string(spec.x_power), "must be >= 0");
+    }
+    const std::vector<double> p = table_.product(spec.factors, spec.n_factors, 1.0, spec.name);
+    double sum = 0.0;
+    for (std::size_t q = 0; q < p.size(); ++q) {
+      double xp = 1.0;
+      for (int k = 0; k < spec.x_power; ++k) xp *= x_[q];
+      sum += rule_.weight[q] * xp * p[q];
+    }
+    return sum;
+  }
+
+ private:
+  SpanRule rule_;
+  FactorTable table_;
+  std::vector<double> x_;
+};
+
+// Stations for int_0^1 F(x) J(x) dx with J a tail (int_x^1) or head (int_0^x) integral.
+// Outer: the composite rule on [0, 1].  For each outer station x in panel [a, b], J is the Gauss
+// integral over the partial panel [x, b] (tail) or [a, x] (head) plus the whole-panel Gauss sums
+// of the other panels, so J is as accurate as a single integral and exact for polynomials.
+class NestedGrid {
+ public:
+  NestedGrid(const ModeSet& modes, double e1_over_l)
+      : outer_rule_(span_rule(0.0, 1.0)),
+        outer_(modes, outer_rule_.x0, e1_over_l),
+        tail_(modes, partial_points(true, tail_w_), e1_over_l),
+        head_(modes, partial_points(false, head_w_), e1_over_l) {}
+
+  double integral(const model::StructuralIntegral& spec, double mbar) {
+    const std::vector<double> f =
+        outer_.product(spec.outer, spec.n_outer, std::pow(mbar, spec.outer_mass), spec.name);
+    const std::size_t n = f.size();
+    std::vector<double> j(n, 1.0);
+    if (spec.inner != model::Inner::None) {
+      const bool tail = spec.inner == model::Inner::Tail;
+      const double inner_scale = std::pow(mbar, spec.inner_mass);
+      // Whole-panel integrals of the inner integrand, on the outer stations.
+      const std::vector<double> g_outer =
+          outer_.product(spec.inner_factors, spec.n_inner, inner_scale, spec.name);
+      std::array<double, kPanels> panel{};
+      for (int p = 0; p < kPanels; ++p) {
+        for (int i = 0; i < kGaussPoints; ++i) {
+          const std::size_t q = static_cast<std::size_t>(p * kGaussPoints + i);
+          panel[p] += outer_rule_.weight[q] * g_outer[q];
+        }
+      }
+      FactorTable& partial = tail ? tail_ : head_;
+      const std::vector<double>& pw = tail ? tail_w_ : head_w_;
+      const std::vector<double> g_part =
+          partial.product(spec.inner_factors, spec.n_inner, inner_scale, spec.name);
+      for (int p = 0; p < kPanels; ++p) {
+        double others = 0.0;
+        if (tail) {
+          for (int r = p + 1; r < kPanels; ++r) others += panel[r];
+        } else {
+          for (int r = 0; r < p; ++r) others += panel[r];
+        }
+        for (int i = 0; i < kGaussPoints; ++i) {
+          const std::size_t q = static_cast<std::size_t>(p * kGaussPoints + i);
+          double part = 0.0;
+          for (int k = 0; k < kGaussPoints; ++k) {
+            const std::size_t s = q * kGaussPoints + static_cast<std::size_t>(k);
+            part += pw[s] * g_part[s];
+          }
+          j[q] = others + part;
+        }
+      }
+    }
+    double sum = 0.0;
+    for (std::size_t q = 0; q < n; ++q) sum += outer_rule_.weight[q] * f[q] * j[q];
+    return sum;
+  }
+
+ private:
+  std::vector<double> partial_points(bool tail, std::vector<double>& w) const {
+    std::vector<double> x;
+    const double h = 1.0 / kPanels;
+    for (int p = 0; p < kPanels; ++p) {
+      const double a = p * h;
+      const double b = (p == kPanels - 1) ? 1.0 : (p + 1) * h;
+      for (int i = 0; i < kGaussPoints; ++i) {
+        const double xq = outer_rule_.x0[static_cast<std::size_t>(p * kGaussPoints + i)];
+        if (tail) {
+          append_interval(xq, b, x, w);
+        } else {
+          append_interval(a, xq, x, w);
+        }
+      }
+    }
+    return x;
+  }
+
+  SpanRule outer_rule_;
+  FactorTable outer_;
+  std::vector<double> tail_w_;
+  std::vector<double> head_w_;
+  FactorTable tail_;
+  FactorTable head_;
+};
+
+void check_structural(double e1_over_l, double mbar) {
+  if (!std::isfinite(e1_over_l) || e1_over_l < 0.0) {
+    throw InvalidInput("e1_over_l", round_trip_text(e1_over_l), "must be finite and >= 0");
+  }
+  if (!std::isfinite(mbar) || mbar <= 0.0) {
+    throw InvalidInput("mbar", round_trip_text(mbar), "mass per length m l^3/I_b must be positive");
+  }
+}
+
+// int_0^1 f_i'' g_k'' dx0 for all pairs.
+Eigen::MatrixXd curvature_products(const std::vector<std::shared_ptr<const ModeShape>>& f,
+                                   const std::vector<std::shared_ptr<const ModeShape>>& g) {
+  const SpanRule rule = span_rule(0.0, 1.0);
+  const Eigen::Index nq = static_cast<Eigen::Index>(rule.x0.size());
+  auto curvatures = [&](const std::vector<std::shared_ptr<const ModeShape>>& s) {
+    Eigen::MatrixXd c(nq, static_cast<Eigen::Index>(s.size()));
+    for (Eigen::Index k = 0; k < c.cols(); ++k) {
+      for (Eigen::Index q = 0; q < nq; ++q) c(q, k) = s[k]->value(2, rule.x0[q]);
+    }
+    return c;
+  };
+  const Eigen::MatrixXd cf = curvatures(f);
+  const Eigen::MatrixXd cg = curvatures(g);
+  const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(rule.weight.data(), nq);
+  return cf.transpose() * w.asDiagonal() * cg;
+}
+
+}  // namespace
+
+SpanRule span_rule(double a, double b) {
+  SpanRule r;
+  r.x0.reserve(kPanels * kGaussPoints);
+  r.weight.reserve(kPanels * kGaussPoints);
+  const double h = (b - a) / kPanels;
+  for (int p = 0; p < kPanels; ++p) {
+    const double lo = a + p * h;
+    const double hi = (p == kPanels - 1) ? b : a + (p + 1) * h;
+    append_interval(lo, hi, r.x0, r.weight);
+  }
+  return r;
+}
+
+double aero_integral(const model::AeroIntegral& spec, const ModeSet& modes, const SpanGeometry& g,
+                     double x0_lo, double x0_hi) {
+  check_geometry(g);
+  AeroRegion region(modes, g, x0_lo, x0_hi);
+  return region.integral(spec);
+}
+
+std::vector<double> aero_integrals_normal(const model::ModelDescriptor& m, const ModeSet& modes,
+                                          const SpanGeometry& g) {
+  check_geometry(g);
+  AeroRegion region(modes, g, g.tip_loss_a, g.tip_loss_b);
+  std::vector<double> v(static_cast<std::size_t>(m.n_aero));
+  for (int i = 0; i < m.n_aero; ++i) v[i] = region.integral(m.aero[i]);
+  return v;
+}
+
+std::vector<double> aero_integrals_reversed(const model::ModelDescriptor& m, const ModeSet& modes,
+                                            const SpanGeometry& g, double mu) {
+  check_geometry(g);
+  if (!std::isfinite(mu) || mu < 0.0) {
+    throw InvalidInput("mu", round_trip_text(mu), "advance ratio must be finite and >= 0");
+  }
+  std::vector<double> v(static_cast<std::size_t>(m.n_aero));
+  if (mu >= 1.0) {
+    // Eqs D.5-D.6: the whole span is in reversed flow, lift slope negated.
+    AeroRegion region(modes, g, g.tip_loss_a, g.tip_loss_b);
+    for (int i = 0; i < m.n_aero; ++i) v[i] = -region.integral(m.aero[i]);
+    return v;
+  }
+  // Eqs D.3-D.4: reversed flow inboard of x = mu, i.e. x0 < (mu - e1)/lr.
+  const double split = std::clamp((mu - g.e1) / g.lr, g.tip_loss_a, g.tip_loss_b);
+  AeroRegion inboard(modes, g, g.tip_loss_a, split);
+  AeroRegion outboard(modes, g, split, g.tip_loss_b);
+  for (int i = 0; i < m.n_aero; ++i) {
+    v[i] = -inboard.integral(m.aero[i]) + outboard.integral(m.aero[i]);
+  }
+  return v;
+}
+
+double structural_integral(const model::StructuralIntegral& spec, const ModeSet& modes,
+                           double e1_over_l, double mbar) {
+  check_structural(e1_over_l, mbar);
+  NestedGrid grid(modes, e1_over_l);
+  return grid.integral(spec, mbar);
+}
+
+std::vector<double> structural_integrals(const model::ModelDescriptor& m, const ModeSet& modes,
+                                         double e1_over_l, double mbar) {
+  check_structural(e1_over_l, mbar);
+  NestedGrid grid(modes, e1_over_l);
+  std::vector<double> v(static_cast<std::size_t>(m.n_structural));
+  for (int i = 0; i < m.n_structural; ++i) v[i] = grid.integral(m.structural[i], mbar);
+  return v;
+}
+
+ElasticCoupling no_elastic_coupling(const ModeSet& modes) {
+  const Eigen::Index nf = static_cast<Eigen::Index>(modes.flap.size());
+  const Eigen::Index nl = static_cast<Eigen::Index>(modes.lag.size());
+  ElasticCoupling e;
+  e.es_flap = Eigen::MatrixXd::Zero(nf, nf);
+  e.es_lag = Eigen::MatrixXd::Zero(nl, nl);
+  e.ecs_flap_lag = Eigen::MatrixXd::Zero(nf, nl);
+  e.ecs_lag_flap = Eigen::MatrixXd::Zero(nl, nf);
+  return e;
+}
+
+ElasticCoupling elastic_coupling(const ModeSet& modes, double theta) {
+  if (!std::isfinite(theta)) {
+    throw InvalidInput("theta", round_trip_text(theta), "collective pitch must be finite");
+  }
+  ElasticCoupling e = no_elastic_coupling(modes);
+  if (modes.stiffness_flap == 0.0 && modes.stiffness_lag == 0.0) return e;
+  // Eqs E.3-E.8 divided by Omega^2 I_b / l: (EI_z - EI_y)/(Omega^2 l I_b) = k_z - k_y.
+  const double dk = modes.stiffness_lag - modes.stiffness_flap;
+  const double s = std::sin(theta);
+  const double c = std::cos(theta);
+  e.es_flap = dk * s * s * curvature_products(modes.flap, modes.flap);
+  e.es_lag = dk * s * s * curvature_products(modes.lag, modes.lag);
+  e.ecs_flap_lag = dk * s * c * curvature_products(modes.flap, modes.lag);
+  e.ecs_lag_flap = e.ecs_flap_lag.transpose();
+  return e;
+}
+
+}  // namespace flaplag

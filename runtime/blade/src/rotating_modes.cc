@@ -1,0 +1,333 @@
+// flaplag — exact rotating modes by Galerkin's method on nonrotating cantilever functions
+// (paper 4.1(b); orthogonality relations A.1-A.4 are the Galerkin equations used here).
+#include "flaplag/blade/rotating_modes.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
+
+namespace flaplag {
+
+ModalCombination::ModalCombination(std::vector<std::shared_ptr<const ModeShape>> basis,
+                                   Eigen::VectorXd coefficients)
+    : basis_(std::move(basis)), coefficients_(std::move(coefficients)) {
+  if (static_cast<Eigen::Index>(basis_.size()) != coefficients_.size()) {
+    throw InvalidInput(
+        "coefficients", std::to_string(coefficients_.size()),
+        "must have one coefficient per basis shape (" + std::to_string(basis_.size()) + ")");
+  }
+}
+
+double ModalCombination::value(int d, double x0) const {
+  double v = 0.0;
+  for (std::size_t j = 0; j < basis_.size(); ++j) {
+    v += coefficients_[static_cast<Eigen::Index>(j)] * basis_[j]->value(d, x0);
+  }
+  return v;
+}
+
+namespace {
+
+constexpr int kMaxBasis = 12;
+
+// The Galerkin matrices divided by mbar, so that lambda = wbar^2 are the eigenvalues of
+//   flap: kappa B + G,   lag: kappa B + G - I,   kappa = k / mbar,
+// with B = diag(beta_j^4) and G_ij = int phi_i' phi_j' t, t = (1 - x^2)/2 + e (1 - x) = T/mbar
+// (the basis is orthonormal, so M / mbar = I and int phi_i'' phi_j'' = beta_j^4 delta_ij hold
+// exactly; only G needs quadrature).
+struct Galerkin {
+  int n = 0;
+  std::vector<std::shared_ptr<const ModeShape>> basis;
+  Eigen::VectorXd beta4;
+  Eigen::MatrixXd g;
+  double beta1 = 0.0;
+
+  Galerkin(int n_basis, double e1_over_l) : n(n_basis), beta4(n_basis), g(n_basis, n_basis) {
+    for (int j = 1; j <= n; ++j) {
+      basis.push_back(cantilever_mode(j));
+      const double b = cantilever_root(j);
+      beta4[j - 1] = b * b * b * b;
+    }
+    beta1 = cantilever_root(1);
+    const SpanRule rule = span_rule(0.0, 1.0);
+    const Eigen::Index nq = static_cast<Eigen::Index>(rule.x0.size());
+    Eigen::MatrixXd slope(nq, n);
+    Eigen::VectorXd wt(nq);
+    for (Eigen::Index q = 0; q < nq; ++q) {
+      const double x = rule.x0[q];
+      wt[q] = rule.weight[q] * (0.5 * (1.0 - x * x) + e1_over_l * (1.0 - x));
+      for (int j = 0; j < n; ++j) slope(q, j) = basis[j]->value(1, x);
+    }
+    g = slope.transpose() * wt.asDiagonal() * slope;
+    g = 0.5 * (g + g.transpose()).eval();
+  }
+
+  Eigen::MatrixXd centrifugal(BendingDirection dir) const {
+    Eigen::MatrixXd c = g;
+    if (dir == BendingDirection::Lag) c -= Eigen::MatrixXd::Identity(n, n);
+    return c;
+  }
+
+  // Eigenpairs for kappa, ascending; eigenvalues replaced by the Rayleigh quotients of the
+  // eigenvectors, evaluated as kappa sum beta^4 c^2 + c'Cc: the stiffness part is a sum of
+  // positive terms, so small eigenvalues keep full relative accuracy however large beta_n^4 is.
+  std::pair<Eigen::VectorXd, Eigen::MatrixXd> solve(BendingDirection dir, double kappa) const {
+    const Eigen::MatrixXd c = centrifugal(dir);
+    Eigen::MatrixXd a = c;
+    a.diagonal() += kappa * beta4;
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(a);
+    Eigen::MatrixXd v = es.eigenvectors();
+    Eigen::VectorXd lambda(n);
+    for (int i = 0; i < n; ++i) {
+      const Eigen::VectorXd vi = v.col(i);
+      lambda[i] =
+          (kappa * (beta4.array() * vi.array().square()).sum() + vi.dot(c * vi)) / vi.squaredNorm();
+    }
+    return {lambda, v};
+  }
+
+  double first_eigenvalue(BendingDirection dir, double kappa) const {
+    return solve(dir, kappa).first[0];
+  }
+};
+
+const char* option_name(BendingDirection dir) {
+  return dir == BendingDirection::Flap ? "omega_flap" : "omega_lag";
+}
+const char* direction_name(BendingDirection dir) {
+  return dir == BendingDirection::Flap ? "flap" : "lag";
+}
+
+void check_options(const ExactModeOptions& o) {
+  if (o.n_basis < 1 || o.n_basis > kMaxBasis) {
+    throw InvalidInput("n_basis", std::to_string(o.n_basis),
+                       "number of cantilever functions must be 1.." + std::to_string(kMaxBasis));
+  }
+  if (o.flap_modes < 1 || o.flap_modes > o.n_basis) {
+    throw InvalidInput("flap_modes", std::to_string(o.flap_modes),
+                       "must be 1..n_basis = " + std::to_string(o.n_basis));
+  }
+  if (o.lag_modes < 1 || o.lag_modes > o.n_basis) {
+    throw InvalidInput("lag_modes", std::to_string(o.lag_modes),
+                       "must be 1..n_basis = " + std::to_string(o.n_basis));
+  }
+  if (!std::isfinite(o.e1_over_l) || o.e1_over_l < 0.0) {
+    throw InvalidInput("e1_over_l", round_trip_text(o.e1_over_l), "must be finite and >= 0");
+  }
+  if (!std::isfinite(o.mbar) || o.mbar <= 0.0) {
+    throw InvalidInput("mbar", round_trip_text(o.mbar), "must be finite and positive");
+  }
+}
+
+// kappa = k/mbar with lambda_1(kappa) = target.  lambda_1 is increasing (B > 0) and concave (a
+// minimum of Rayleigh quotients linear in kappa), with derivative c'Bc (Hellmann-Feynman).
+// Newton on a concave increasing function lands left of the root after at most one step and
+// then climbs monotonically; the bracket [lo, hi] with bisection fallback guards rounding.
+double solve_kappa(const Galerkin& gal, BendingDirection dir, double omega) {
+  if (!std::isfinite(omega) || omega <= 0.0) {
+    throw InvalidInput(option_name(dir), round_trip_text(omega),
+                       std::string("first rotating ") + direction_name(dir) +
+                           " frequency by Omega must be finite and positive");
+  }
+  const double target = omega * omega;
+  const double lambda0 = gal.first_eigenvalue(dir, 0.0);
+  if (!(target > lambda0)) {
+    throw InvalidInput(
+        option_name(dir), round_trip_text(omega),
+        std::string("first rotating ") + direction_name(dir) +
+            " frequency must exceed the k -> 0 (centrifugal stiffening only) limit " +
+            round_trip_text(std::sqrt(std::max(lambda0, 0.0))) + " of the " + std::to_string(gal.n) +
+            "-function cantilever basis (a larger n_basis lowers the limit)");
+  }
+  double lo = 0.0;
+  double hi = std::numeric_limits<double>::infinity();
+  // Southwell-type start: lambda_1 ~ kappa beta_1^4 + lambda_1(0).
+  double kappa = (target - lambda0) / gal.beta4[0];
+  for (int it = 0; it < 200; ++it) {
+    auto [lambda, v] = gal.solve(dir, kappa);
+    const double f = lambda[0] - target;
+    if (f == 0.0) return kappa;
+    if (f < 0.0) {
+      lo = kappa;
+    } else {
+      hi = kappa;
+    }
+    const Eigen::VectorXd c = v.col(0);
+    const double slope = (gal.beta4.array() * c.array().square()).sum() / c.squaredNorm();
+    double next = kappa - f / slope;
+    if (!(next > lo && next < hi)) next = std::isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * kappa + 1.0;
+    if (std::abs(f) <= 2.0 * std::numeric_limits<double>::epsilon() * target) return kappa;
+    if (std::abs(next - kappa) <= 4.0 * std::numeric_limits<double>::epsilon() * kappa) {
+      return next;
+    }
+    kappa = next;
+  }
+  return kappa;
+}
+
+// Shape coefficients scaled to tip value +1: eta(1) = sum c_j phi_j(1), phi_j(1) = 2(-1)^(j+1).
+Eigen::VectorXd tip_normalised(Eigen::VectorXd c, bool paper_1974) {
+  const Eigen::Index n = c.size();
+  if (paper_1974) {
+    // The 1974 slip: coefficients computed for phi_j used with tip-(+2) functions.
+    for (Eigen::Index j = 1; j < n; j += 2) c[j] = -c[j];
+  }
+  double tip = 0.0;
+  for (Eigen::Index j = 0; j < n; ++j) tip += c[j] * ((j % 2 == 0) ? 2.0 : -2.0);
+  return c / tip;
+}
+
+}  // namespace
+
+std::vector<double> rotating_frequencies(BendingDirection direction, double stiffness,
+                                         const ExactModeOptions& options) {
+  check_options(options);
+  if (!std::isfinite(stiffness) || stiffness < 0.0) {
+    throw InvalidInput(direction == BendingDirection::Flap ? "stiffness_flap" : "stiffness_lag",
+                       round_trip_text(stiffness), "must be finite and >= 0");
+  }
+  const Galerkin gal(options.n_basis, options.e1_over_l);
+  const Eigen::VectorXd lambda = gal.solve(direction, stiffness / options.mbar).first;
+  std::vector<double> w(static_cast<std::size_t>(gal.n));
+  for (int i = 0; i < gal.n; ++i) w[i] = std::sqrt(std::max(lambda[i], 0.0));
+  return w;
+}
+
+double centrifugal_limit(BendingDirection direction, const ExactModeOptions& options) {
+  check_options(options);
+  const Galerkin gal(options.n_basis, options.e1_over_l);
+  return std::sqrt(std::max(gal.first_eigenvalue(direction, 0.0), 0.0));
+}
+
+double stiffness_for_frequency(BendingDirection direction, double omega_rotating,
+                               const ExactModeOptions& options) {
+  check_options(options);
+  const Galerkin gal(options.n_basis, options.e1_over_l);
+  return options.mbar * solve_kappa(gal, direction, omega_rotating);
+}
+
+ExactModes exact_rotating_modes(double omega_flap, double omega_lag,
+                                const ExactModeOptions& options) {
+  check_options(options);
+  const Galerkin gal(options.n_basis, options.e1_over_l);
+  ExactModes r;
+  r.modes.kind = "exact";
+
+  auto build = [&](BendingDirection dir, double omega, int count,
+                   std::vector<std::shared_ptr<const ModeShape>>& shapes,
+                   std::vector<double>& omega_out, std::vector<double>& omega_all,
+                   Eigen::MatrixXd& coeffs) {
+    const double kappa = solve_kappa(gal, dir, omega);
+    auto [lambda, v] = gal.solve(dir, kappa);
+    omega_all.resize(static_cast<std::size_t>(gal.n));
+    for (int i = 0; i < gal.n; ++i) omega_all[i] = std::sqrt(std::max(lambda[i], 0.0));
+    omega_out.assign(omega_all.begin(), omega_all.begin() + count);
+    coeffs.resize(gal.n, count);
+    for (int i = 0; i < count; ++i) {
+      coeffs.col(i) = tip_normalised(v.col(i), options.paper_1974_shapes);
+      shapes.push_back(std::make_shared<ModalCombination>(gal.basis, coeffs.col(i)));
+    }
+    return kappa * options.mbar;
+  };
+  r.modes.stiffness_flap =
+      build(BendingDirection::Flap, omega_flap, options.flap_modes, r.modes.flap,
+            r.modes.omega_flap, r.omega_flap_all, r.flap_coefficients);
+  r.modes.stiffness_lag = build(BendingDirection::Lag, omega_lag, options.lag_modes, r.modes.lag,
+                                r.modes.omega_lag, r.omega_lag_all, r.lag_coefficients);
+  r.omega_flap_nonrotating =
+      std::sqrt(r.modes.stiffness_flap / options.mbar) * gal.beta1 * gal.beta1;
+  r.omega_lag_nonrotating = std::sqrt(r.modes.stiffness_lag / options.mbar) * gal.beta1 * gal.beta1;
+  return r;
+}
+
+ModeSet exact_modes(double omega_flap, double omega_lag, const ExactModeOptions& options) {
+  return exact_rotating_modes(omega_flap, omega_lag, options).modes;
+}
+
+double nonrotating_frequency(BendingDirection direction, double omega_rotating,
+                             const ExactModeOptions& options) {
+  const double k = stiffness_for_frequency(direction, omega_rotating, options);
+  const double b1 = cantilever_root(1);
+  return std::sqrt(k / options.mbar) * b1 * b1;
+}
+
+double rotating_frequency(BendingDirection direction, double omega_nonrotating,
+                          const ExactModeOptions& options) {
+  check_options(options);
+  if (!std::isfinite(omega_nonrotating) || omega_nonrotating < 0.0) {
+    throw InvalidInput(
+        direction == BendingDirection::Flap ? "omega_flap_nonrotating" : "omega_lag_nonrotating",
+        round_trip_text(omega_nonrotating), "must be finite and >= 0");
+  }
+  const Galerkin gal(options.n_basis, options.e1_over_l);
+  const double r = omega_nonrotating / (gal.beta1 * gal.beta1);
+  return std::sqrt(std::max(gal.first_eigenvalue(direction, r * r), 0.0));
+}
+
+std::vector<FrequencyPair> fig9_table(BendingDirection direction, double omega_nonrotating_lo,
+                                      double omega_nonrotating_hi, int n_points,
+                                      const ExactModeOptions& options) {
+  check_options(options);
+  if (n_points < 2) {
+    throw InvalidInput("n_points", std::to_string(n_points), "must be >= 2");
+  }
+  if (!std::isfinite(omega_nonrotating_lo) || omega_nonrotating_lo < 0.0) {
+    throw InvalidInput("omega_nonrotating_lo", round_trip_text(omega_nonrotating_lo),
+                       "must be finite and >= 0");
+  }
+  if (!std::isfinite(omega_nonrotating_hi) || omega_nonrotating_hi < omega_nonrotating_lo) {
+    throw InvalidInput(
+        "omega_nonrotating_hi", round_trip_text(omega_nonrotating_hi),
+        "must be finite and >= omega_nonrotating_lo = " + round_trip_text(omega_nonrotating_lo));
+  }
+  const Galerkin gal(options.n_basis, options.e1_over_l);
+  const double b12 = gal.beta1 * gal.beta1;
+  std::vector<FrequencyPair> table;
+  table.reserve(static_cast<std::size_t>(n_points));
+  for (int i = 0; i < n_points; ++i) {
+    const double t = static_cast<double>(i) / (n_points - 1);
+    const double wn = omega_nonrotating_lo + t * (omega_nonrotating_hi - omega_nonrotating_lo);
+    const double r = wn / b12;
+    const double lambda = gal.first_eigenvalue(direction, r * r);
+    table.push_back({wn, std::sqrt(std::max(lambda, 0.0))});
+  }
+  return table;
+}
+
+double rayleigh_frequency(BendingDirection direction, const ModeShape& shape, double stiffness,
+                          double e1_over_l, double mbar) {
+  if (!std::isfinite(stiffness) || stiffness < 0.0) {
+    throw InvalidInput("stiffness", round_trip_text(stiffness), "must be finite and >= 0");
+  }
+  if (!std::isfinite(e1_over_l) || e1_over_l < 0.0) {
+    throw InvalidInput("e1_over_l", round_trip_text(e1_over_l), "must be finite and >= 0");
+  }
+  if (!std::isfinite(mbar) || mbar <= 0.0) {
+    throw InvalidInput("mbar", round_trip_text(mbar), "must be finite and positive");
+  }
+  const SpanRule rule = span_rule(0.0, 1.0);
+  double strain = 0.0;
+  double tension = 0.0;
+  double mass = 0.0;
+  for (std::size_t q = 0; q < rule.x0.size(); ++q) {
+    const double x = rule.x0[q];
+    const double w = rule.weight[q];
+    const double t = mbar * (0.5 * (1.0 - x * x) + e1_over_l * (1.0 - x));
+    const double d1 = shape.value(1, x);
+    const double d2 = shape.value(2, x);
+    const double d0 = shape.value(0, x);
+    strain += w * d2 * d2;
+    tension += w * d1 * d1 * t;
+    mass += w * mbar * d0 * d0;
+  }
+  double r = (stiffness * strain + tension) / mass;
+  if (direction == BendingDirection::Lag) r -= 1.0;  // eq A.4: in-plane centrifugal term
+  return std::sqrt(std::max(r, 0.0));
+}
+
+}  // namespace flaplag

@@ -1,0 +1,55 @@
+// flaplag — transition matrix Phi(2 pi, 0) and Floquet analysis (paper Section 3).
+//
+// Exponents lambda_k = zeta_k + i omega_k = ln(Lambda_k) / T, T = 2 pi, per rev (eqs 3.16-3.19).
+// omega is defined only up to an integer; floquet_exponents() returns the principal value and
+// the continuation in analysis.h fixes the integer.
+#pragma once
+
+#include <Eigen/Dense>
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "flaplag/numerics/periodic_system.h"
+
+namespace flaplag {
+
+enum class TransitionMethod {
+  RK4,      // classical Runge-Kutta, N equal steps per period (paper 3.3.2), split at sector edges
+  Hsu,      // K intervals, exact interval means of A, J Taylor terms (eqs 3.21-3.28)
+  Magnus4,  // 4th-order Magnus with Richardson error estimate (reference method)
+};
+
+const char* method_name(TransitionMethod m);  // "rk4", "hsu", "magnus"
+
+struct TransitionOptions {
+  TransitionMethod method = TransitionMethod::Hsu;
+  int steps = 50;  // RK4 steps / Hsu intervals / Magnus steps per period (>= 1)
+  int terms = 4;   // Hsu Taylor terms J (>= 1)
+};
+
+struct TransitionResult {
+  Eigen::MatrixXd phi;          // Phi(2 pi, 0)
+  double error_estimate = 0.0;  // Magnus: Richardson estimate of ||Phi error||_max; else 0
+};
+
+TransitionResult transition_matrix(const PeriodicSystem& sys, const TransitionOptions& opt);
+Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps);
+Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms);
+TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps);
+
+struct FloquetExponent {
+  std::complex<double> multiplier;  // Lambda_k
+  double zeta = 0.0;                // ln|Lambda| / T
+  double omega = 0.0;               // arg(Lambda) / T, principal value in (-1/2, 1/2]
+  Eigen::VectorXcd eigenvector;     // eigenvector of Phi(T) (unit 2-norm)
+};
+
+struct FloquetResult {
+  std::vector<FloquetExponent> exponents;
+  double liouville_residual = 0.0;  // |det Phi - exp(int trace A)| / exp(int trace A)
+};
+
+FloquetResult floquet_exponents(const Eigen::MatrixXd& phi, double trace_integral);
+
+}  // namespace flaplag

@@ -1,0 +1,34 @@
+// flaplag — the hover static equilibrium and the flap/lag labels of the hover modes.
+#pragma once
+
+#include <Eigen/Dense>
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "flaplag/core/status.h"
+#include "flaplag/model_api.h"
+#include "flaplag/numerics/continuation.h"
+
+namespace flaplag {
+
+// Hover static equilibrium (eqs 2.29-2.32) and hover stability.
+struct HoverResult {
+  double inflow = 0.0;                            // lambda, eq 2.24
+  Eigen::VectorXd q0;                             // [g0_1..g0_M, h0_1..h0_N]
+  Eigen::MatrixXd A0;                             // constant A at mu = 0
+  std::vector<std::complex<double>> eigenvalues;  // eig(A0), per rev
+  std::vector<std::string> labels;                // "flap"/"lag" per eigenvalue ("flap1", "flap2",
+                                                  // ... when the model has several modes of a kind)
+  bool stable = true;
+  Status status = Status::Ok;
+  std::string message;
+};
+
+// A0 is 2(M+N) x 2(M+N) in the state ordering of model_api.h (M, N >= 0, M + N >= 1).  An eigenvalue is
+// "flap" when the flap displacements g dominate its eigenvector (|g|^2 >= |h|^2) and "lag"
+// otherwise; with several modes of that kind the suffix is 1 + the index of the largest
+// displacement component ("flap1", "flap2").  Throws InvalidInput for wrong sizes or NaN.
+HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_modes);
+
+}  // namespace flaplag

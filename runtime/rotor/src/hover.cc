@@ -1,0 +1,49 @@
+// flaplag — flap/lag labels of the hover modes.
+#include "flaplag/rotor/hover.h"
+
+#include <Eigen/Eigenvalues>
+
+#include "flaplag/core/errors.h"
+
+namespace flaplag {
+
+HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_modes) {
+  if (flap_modes < 0 || lag_modes < 0 || flap_modes + lag_modes < 1)
+    throw InvalidInput("modes",
+                       std::to_string(flap_modes) + " flap, " + std::to_string(lag_modes) + " lag",
+                       "need M, N >= 0 and M + N >= 1");
+  const int M = flap_modes, N = lag_modes, n = 2 * (M + N);
+  if (A0.rows() != n || A0.cols() != n)
+    throw InvalidInput("A0", std::to_string(A0.rows()) + "x" + std::to_string(A0.cols()),
+                       "must be 2(M+N) x 2(M+N) = " + std::to_string(n) + "x" + std::to_string(n));
+  if (!A0.allFinite()) throw InvalidInput("A0", "non-finite", "hover matrix must be finite");
+
+  HoverModes out;
+  Eigen::EigenSolver<Eigen::MatrixXd> es(A0, true);
+  if (es.info() != Eigen::Success) {
+    out.status = Status::Failed;
+    out.message = "eigen-decomposition of the hover matrix did not converge";
+    return out;
+  }
+  for (int k = 0; k < n; ++k) {
+    Eigen::VectorXcd v = es.eigenvectors().col(k);
+    v /= v.norm();
+    // Displacements: g at [M, 2M), h at [2M + N, 2M + 2N) (model_api.h state ordering).
+    const Eigen::VectorXcd g = v.segment(M, M);
+    const Eigen::VectorXcd h = v.segment(2 * M + N, N);
+    const bool flap = N == 0 || (M > 0 && g.squaredNorm() >= h.squaredNorm());
+    std::string label = flap ? "flap" : "lag";
+    const Eigen::VectorXcd& part = flap ? g : h;
+    if (part.size() > 1) {
+      Eigen::Index idx = 0;
+      part.cwiseAbs().maxCoeff(&idx);
+      label += std::to_string(idx + 1);
+    }
+    out.eigenvalues.push_back(es.eigenvalues()(k));
+    out.eigenvectors.push_back(std::move(v));
+    out.labels.push_back(std::move(label));
+  }
+  return out;
+}
+
+}  // namespace flaplag
