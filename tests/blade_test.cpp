@@ -15,6 +15,7 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/blade/rotating_modes.h"
+#include "model_fixtures.h"
 #include "test_util.h"
 
 namespace flaplag {
@@ -27,19 +28,8 @@ using model::Inner;
 using model::StructuralIntegral;
 using testing::AbsClose;
 using testing::RelClose;
+using namespace testing::fixtures;
 
-constexpr FactorRef kEta{Factor::Eta, 0};
-constexpr FactorRef kEtaP{Factor::EtaPrime, 0};
-constexpr FactorRef kGamma{Factor::Gamma, 0};
-constexpr FactorRef kGammaP{Factor::GammaPrime, 0};
-constexpr FactorRef kArm{Factor::Arm, 0};
-constexpr FactorRef kNone{Factor::X0, 0};
-
-AeroIntegral aero(const char* name, int p, std::vector<FactorRef> f) {
-  AeroIntegral a{name, name, p, static_cast<int>(f.size()), {kNone, kNone, kNone, kNone}, ""};
-  for (std::size_t i = 0; i < f.size(); ++i) a.factors[i] = f[i];
-  return a;
-}
 
 StructuralIntegral structural(const char* name, int outer_mass, std::vector<FactorRef> outer,
                               Inner inner, int inner_mass, std::vector<FactorRef> inner_f) {
@@ -218,54 +208,6 @@ TEST(AeroIntegral, AssumedModeExactValues) {
                1e-14));
 }
 
-model::ModelDescriptor descriptor(const std::vector<AeroIntegral>& a,
-                                  const std::vector<StructuralIntegral>& s) {
-  model::ModelDescriptor d{};
-  d.name = "test";
-  d.flap_modes = 1;
-  d.lag_modes = 1;
-  d.n_aero = static_cast<int>(a.size());
-  d.aero = a.data();
-  d.n_structural = static_cast<int>(s.size());
-  d.structural = s.data();
-  return d;
-}
-
-TEST(AeroIntegral, ReversedFlowSplit) {
-  const ModeSet m = assumed_modes(1.175, 1.28303);
-  SpanGeometry g;
-  g.e1 = 0.05;
-  g.lr = 0.95;
-  g.tip_loss_a = 0.1;
-  g.tip_loss_b = 0.97;
-  const std::vector<AeroIntegral> list = {
-      aero("x^2 eta", 2, {kEta}),
-      aero("x^3 eta eta' gamma' gamma", 3, {kEta, kEtaP, kGammaP, kGamma})};
-  const auto d = descriptor(list, {});
-  const auto normal = aero_integrals_normal(d, m, g);
-  ASSERT_EQ(2u, normal.size());
-  EXPECT_TRUE(RelClose(0.2032798983095815392857, normal[0], 1e-14));
-
-  // mu = 1/2: split at x0 = (mu - e1)/lr = 9/19; normal - reversed = 2 int_A^{9/19}.
-  const auto rev = aero_integrals_reversed(d, m, g, 0.5);
-  EXPECT_TRUE(RelClose(2.0 * 0.008549941432498036770422, normal[0] - rev[0], 1e-13));
-  EXPECT_TRUE(RelClose(2.0 * 0.0009922597246163115682400, normal[1] - rev[1], 1e-13));
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const double inboard = aero_integral(list[i], m, g, 0.1, 9.0 / 19.0);
-    EXPECT_TRUE(RelClose(normal[i] - 2.0 * inboard, rev[i], 1e-13));
-  }
-  // mu >= 1: whole span negated (eqs D.5-D.6).
-  for (double mu : {1.0, 1.4}) {
-    const auto r = aero_integrals_reversed(d, m, g, mu);
-    for (std::size_t i = 0; i < list.size(); ++i) EXPECT_EQ(-normal[i], r[i]) << mu;
-  }
-  // Split below A (mu < e1 + lr A): no reversed part.
-  const auto r0 = aero_integrals_reversed(d, m, g, 0.1);
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    EXPECT_TRUE(RelClose(normal[i], r0[i], 1e-14));
-  }
-  EXPECT_THROW(aero_integrals_reversed(d, m, g, -0.1), InvalidInput);
-}
 
 TEST(AeroIntegral, BadModeIndexNamesTheIntegral) {
   const ModeSet m = assumed_modes(1.175, 1.28303);

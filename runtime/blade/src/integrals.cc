@@ -149,7 +149,9 @@ class FactorTable {
   std::map<std::pair<int, int>, std::vector<double>> cache_;
 };
 
-void check_geometry(const SpanGeometry& g) {
+}  // namespace
+
+void validate(const SpanGeometry& g) {
   if (!std::isfinite(g.e1) || g.e1 < 0.0) {
     throw InvalidInput("e1", round_trip_text(g.e1), "hinge offset by R must be finite and >= 0");
   }
@@ -162,6 +164,23 @@ void check_geometry(const SpanGeometry& g) {
         "tip-loss limits must be finite with A <= B = " + round_trip_text(g.tip_loss_b));
   }
 }
+
+std::vector<std::vector<double>> aero_integrands(const model::ModelDescriptor& m,
+                                                 const ModeSet& modes, const SpanGeometry& g,
+                                                 const std::vector<double>& x0) {
+  validate(g);
+  FactorTable table(modes, x0, g.e1 / g.lr);
+  std::vector<std::vector<double>> out(static_cast<std::size_t>(m.n_aero));
+  for (int j = 0; j < m.n_aero; ++j) {
+    const model::AeroIntegral& spec = m.aero[j];
+    std::vector<double> v = table.product(spec.factors, spec.n_factors, 1.0, spec.name);
+    for (std::size_t q = 0; q < x0.size(); ++q) v[q] *= std::pow(g.e1 + g.lr * x0[q], spec.x_power);
+    out[j] = std::move(v);
+  }
+  return out;
+}
+
+namespace {
 
 // One flow region [lo, hi] of the aerodynamic span: stations, weights and factor values.
 class AeroRegion {
@@ -321,41 +340,9 @@ SpanRule span_rule(double a, double b) {
 
 double aero_integral(const model::AeroIntegral& spec, const ModeSet& modes, const SpanGeometry& g,
                      double x0_lo, double x0_hi) {
-  check_geometry(g);
+  validate(g);
   AeroRegion region(modes, g, x0_lo, x0_hi);
   return region.integral(spec);
-}
-
-std::vector<double> aero_integrals_normal(const model::ModelDescriptor& m, const ModeSet& modes,
-                                          const SpanGeometry& g) {
-  check_geometry(g);
-  AeroRegion region(modes, g, g.tip_loss_a, g.tip_loss_b);
-  std::vector<double> v(static_cast<std::size_t>(m.n_aero));
-  for (int i = 0; i < m.n_aero; ++i) v[i] = region.integral(m.aero[i]);
-  return v;
-}
-
-std::vector<double> aero_integrals_reversed(const model::ModelDescriptor& m, const ModeSet& modes,
-                                            const SpanGeometry& g, double mu) {
-  check_geometry(g);
-  if (!std::isfinite(mu) || mu < 0.0) {
-    throw InvalidInput("mu", round_trip_text(mu), "advance ratio must be finite and >= 0");
-  }
-  std::vector<double> v(static_cast<std::size_t>(m.n_aero));
-  if (mu >= 1.0) {
-    // Eqs D.5-D.6: the whole span is in reversed flow, lift slope negated.
-    AeroRegion region(modes, g, g.tip_loss_a, g.tip_loss_b);
-    for (int i = 0; i < m.n_aero; ++i) v[i] = -region.integral(m.aero[i]);
-    return v;
-  }
-  // Eqs D.3-D.4: reversed flow inboard of x = mu, i.e. x0 < (mu - e1)/lr.
-  const double split = std::clamp((mu - g.e1) / g.lr, g.tip_loss_a, g.tip_loss_b);
-  AeroRegion inboard(modes, g, g.tip_loss_a, split);
-  AeroRegion outboard(modes, g, split, g.tip_loss_b);
-  for (int i = 0; i < m.n_aero; ++i) {
-    v[i] = -inboard.integral(m.aero[i]) + outboard.integral(m.aero[i]);
-  }
-  return v;
 }
 
 double structural_integral(const model::StructuralIntegral& spec, const ModeSet& modes,

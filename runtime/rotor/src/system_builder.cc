@@ -11,94 +11,6 @@
 
 namespace flaplag::detail {
 
-namespace {
-
-
-double factor_value(const model::FactorRef& f, const ModeSet& modes, double x0) {
-  switch (f.kind) {
-    case model::Factor::Eta:
-      return modes.flap[f.mode]->value(0, x0);
-    case model::Factor::EtaPrime:
-      return modes.flap[f.mode]->value(1, x0);
-    case model::Factor::Gamma:
-      return modes.lag[f.mode]->value(0, x0);
-    case model::Factor::GammaPrime:
-      return modes.lag[f.mode]->value(1, x0);
-    case model::Factor::X0:
-      return x0;
-    case model::Factor::Arm:
-      return x0;  // not used by aerodynamic integrals
-  }
-  return 0.0;
-}
-
-}  // namespace
-
-AeroAntiderivatives::AeroAntiderivatives(const model::ModelDescriptor& m, const ModeSet& modes,
-                                         const SpanGeometry& g)
-    : a_(g.tip_loss_a), b_(g.tip_loss_b) {
-  const int n = kDegree;
-  // Chebyshev-Gauss-Lobatto nodes on [a, b].
-  std::vector<double> t(n + 1), x0(n + 1);
-  for (int k = 0; k <= n; ++k) {
-    t[k] = std::cos(kPi * k / n);
-    x0[k] = 0.5 * (a_ + b_) + 0.5 * (b_ - a_) * t[k];
-  }
-  const double half = 0.5 * (b_ - a_);
-  // cos(pi i k / n) for the discrete cosine transform, shared by every integrand.
-  std::vector<double> cos_table((n + 1) * (n + 1));
-  for (int i = 0; i <= n; ++i)
-    for (int k = 0; k <= n; ++k) cos_table[i * (n + 1) + k] = std::cos(kPi * i * k / n);
-  coef_.resize(m.n_aero);
-  std::vector<double> f(n + 1), c(n + 1);
-  for (int j = 0; j < m.n_aero; ++j) {
-    const auto& spec = m.aero[j];
-    for (int k = 0; k <= n; ++k) {
-      const double x = g.e1 + g.lr * x0[k];
-      double v = std::pow(x, spec.x_power);
-      for (int q = 0; q < spec.n_factors; ++q) v *= factor_value(spec.factors[q], modes, x0[k]);
-      f[k] = v;
-    }
-    // Chebyshev coefficients c_i of the interpolant (discrete cosine transform, O(n^2) once).
-    for (int i = 0; i <= n; ++i) {
-      double s = 0.0;
-      for (int k = 0; k <= n; ++k) {
-        const double w = (k == 0 || k == n) ? 0.5 : 1.0;
-        s += w * f[k] * cos_table[i * (n + 1) + k];
-      }
-      c[i] = s * 2.0 / n * ((i == 0 || i == n) ? 0.5 : 1.0);
-    }
-    // Antiderivative in t: C_i = (c_{i-1} - c_{i+1}) / (2 i), i >= 1; C_0 fixes F(-1) = 0.
-    std::vector<double> C(n + 2, 0.0);
-    for (int i = 1; i <= n + 1; ++i) {
-      const double cm = i - 1 == 0 ? 2.0 * c[0] : c[i - 1];
-      const double cp = i + 1 <= n ? c[i + 1] : 0.0;
-      C[i] = (cm - cp) / (2.0 * i) * half;
-    }
-    double at_minus1 = 0.0;
-    for (int i = 1; i <= n + 1; ++i) at_minus1 += (i % 2 == 0 ? 1.0 : -1.0) * C[i];
-    C[0] = -at_minus1;
-    coef_[j] = C;
-  }
-}
-
-void AeroAntiderivatives::partial(double s, std::vector<double>& out) const {
-  s = std::clamp(s, a_, b_);
-  const double t = (2.0 * s - a_ - b_) / (b_ - a_);
-  out.resize(coef_.size());
-  for (size_t j = 0; j < coef_.size(); ++j) {
-    const auto& C = coef_[j];
-    // Clenshaw recurrence for sum_i C_i T_i(t)
-    double b1 = 0.0, b2 = 0.0;
-    for (int i = static_cast<int>(C.size()) - 1; i >= 1; --i) {
-      const double b0 = 2.0 * t * b1 - b2 + C[i];
-      b2 = b1;
-      b1 = b0;
-    }
-    out[j] = t * b1 - b2 + C[0];
-  }
-}
-
 double reversed_flow_sector_width(double mu) {
   if (mu < 1.0) return kPi / 2.0;  // eq D.1
   const double s = std::asin(1.0 / mu);
@@ -151,14 +63,13 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   ecs_lag_flap_ = flat(coupling_.ecs_lag_flap);
 
   structural_ = structural_integrals(m, modes_, p_.e1 / p_.length_ratio);
-  antiderivatives_ = AeroAntiderivatives(m, modes_, geometry_);
-  antiderivatives_.partial(geometry_.tip_loss_b, aero_normal_);
+  aero_ = AeroIntegrals(m, modes_, geometry_);
 
   // Hover equilibrium (2.29-2.32): S q0 = c with mu = 0.
   g0_.assign(M_, 0.0);
   h0_.assign(N_, 0.0);
   std::vector<double> S(n_ * n_), c(n_);
-  m.equilibrium(inputs(0.0, aero_normal_.data()), {S.data(), c.data()});
+  m.equilibrium(inputs(0.0, aero_.normal().data()), {S.data(), c.data()});
   Eigen::MatrixXd Sm(n_, n_);
   Eigen::VectorXd cv(n_);
   for (int i = 0; i < n_; ++i) {
@@ -180,7 +91,7 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   // Forcing at the hover equilibrium (balances to ~0 when S q0 = c) and the constant A0.
   HarmonicSet h0set;
   hover_forcing_ = Eigen::VectorXd::Zero(2 * n_);
-  assemble(0.0, aero_normal_, h0set);
+  assemble(0.0, aero_.normal(), h0set);
   hover_forcing_ = h0set.f[0];
   hover_.A0 = h0set.A[0];
   Eigen::EigenSolver<Eigen::MatrixXd> es(hover_.A0);
@@ -263,17 +174,7 @@ void SystemBuilder::assemble(double mu, const std::vector<double>& aero, Harmoni
 }
 
 std::vector<double> SystemBuilder::reversed_integrals(double mu) const {
-  std::vector<double> r;
-  if (mu >= 1.0) {  // eqs D.5-D.6: the whole span reversed
-    r = aero_normal_;
-    for (double& v : r) v = -v;
-    return r;
-  }
-  // eqs D.3-D.4: -int_A^{x0(mu)} + int_{x0(mu)}^B = normal - 2 int_A^{x0(mu)}
-  const double s = (mu - p_.e1) / p_.length_ratio;
-  antiderivatives_.partial(s, r);
-  for (size_t j = 0; j < r.size(); ++j) r[j] = aero_normal_[j] - 2.0 * r[j];
-  return r;
+  return aero_.reversed(mu);
 }
 
 PeriodicSystem SystemBuilder::system(double mu) const {
@@ -282,7 +183,7 @@ PeriodicSystem SystemBuilder::system(double mu) const {
   }
   PeriodicSystem sys;
   sys.n = 2 * n_;
-  assemble(mu, aero_normal_, sys.normal);
+  assemble(mu, aero_.normal(), sys.normal);
   if (p_.reversed_flow && mu > 0.0) {
     const double alpha = reversed_flow_sector_width(mu);
     sys.has_sector = true;

@@ -62,6 +62,9 @@ struct SpanGeometry {
   double tip_loss_b = 1.0;
 };
 
+// Throws InvalidInput unless e1 >= 0, lr > 0 and A <= B, all finite.
+void validate(const SpanGeometry& g);
+
 // The quadrature behind every spanwise integral: composite Gauss-Legendre, 8 equal panels of
 // 20 points on [a, b].  Exact for polynomials of degree <= 39 (the assumed-mode integrands) and
 // accurate to ~1e-14 relative for products of up to four exact modes built from <= 8 cantilever
@@ -73,17 +76,18 @@ struct SpanRule {
 SpanRule span_rule(double a, double b);
 
 // int_{x0_lo}^{x0_hi} x^p prod(factors) dx0  (Gauss quadrature, exact for the polynomial modes).
+// The reference for the production integrals of aero_integrals.h.
 // X0 factors are x0bar; Arm factors are x0bar + e1/l with e1/l = g.e1 / g.lr.
 double aero_integral(const model::AeroIntegral& spec, const ModeSet& modes, const SpanGeometry& g,
                      double x0_lo, double x0_hi);
 
-// Values of all aerodynamic integrals for the normal region (A..B) and for the reversed-flow
-// sector: -int_A^{x0(mu)} + int_{x0(mu)}^B for mu < 1, and -int_A^B for mu >= 1 (eqs D.3-D.6),
-// with x0(mu) = (mu - e1)/lr clamped to [A, B].
-std::vector<double> aero_integrals_normal(const model::ModelDescriptor& m, const ModeSet& modes,
-                                          const SpanGeometry& g);
-std::vector<double> aero_integrals_reversed(const model::ModelDescriptor& m, const ModeSet& modes,
-                                            const SpanGeometry& g, double mu);
+// Values of every aerodynamic integrand of model m,  x^p prod(factors),  at the stations x0
+// (out[j][q] for integral j at station q).  Shared by the Gauss quadrature above and the
+// production integrals of aero_integrals.h.  Throws InvalidInput for an invalid geometry or a
+// factor naming a mode the set does not have.
+std::vector<std::vector<double>> aero_integrands(const model::ModelDescriptor& m,
+                                                 const ModeSet& modes, const SpanGeometry& g,
+                                                 const std::vector<double>& x0);
 
 // Structural generalized masses (see model_api.h); mbar = 3, e1_over_l = e1 / l.  The inner
 // integral is evaluated by Gauss quadrature on [x, end of x's panel] plus whole-panel sums, so

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "flaplag/blade/aero_integrals.h"
 #include "flaplag/blade/blade.h"
 #include "flaplag/rotor/hover.h"
 #include "flaplag/model_api.h"
@@ -17,24 +18,6 @@
 #include "flaplag/numerics/periodic_system.h"
 
 namespace flaplag::detail {
-
-// Antiderivatives of the aerodynamic integrands in x0 (Chebyshev interpolants of degree
-// kDegree, integrated exactly), so the reversed-flow split at x0(mu) costs a Clenshaw sum per
-// integral instead of a quadrature.  Exact for the assumed-mode polynomials.
-class AeroAntiderivatives {
- public:
-  static constexpr int kDegree = 48;
-  AeroAntiderivatives() = default;
-  AeroAntiderivatives(const model::ModelDescriptor& m, const ModeSet& modes, const SpanGeometry& g);
-  // int_{a}^{s} integrand_j dx0 for every integral j, a = tip_loss_a, s clamped to [a, b].
-  void partial(double s, std::vector<double>& out) const;
-  double lower() const { return a_; }
-  double upper() const { return b_; }
-
- private:
-  double a_ = 0.0, b_ = 1.0;
-  std::vector<std::vector<double>> coef_;  // Chebyshev coefficients of each antiderivative
-};
 
 // Half-angle sector of reversed flow (Appendix D): alpha = pi/2 for mu < 1, eq D.2 for mu >= 1.
 double reversed_flow_sector_width(double mu);
@@ -52,7 +35,7 @@ class SystemBuilder {
   PeriodicSystem system(double mu) const;
   // Aerodynamic integrals used inside the reversed sector at mu.
   std::vector<double> reversed_integrals(double mu) const;
-  const std::vector<double>& normal_integrals() const { return aero_normal_; }
+  const std::vector<double>& normal_integrals() const { return aero_.normal(); }
   const std::vector<double>& structural_values() const { return structural_; }
 
  private:
@@ -67,8 +50,8 @@ class SystemBuilder {
   double inflow_ = 0.0, cdo_a_ = 0.0;
   ElasticCoupling coupling_;
   std::vector<double> es_flap_, es_lag_, ecs_flap_lag_, ecs_lag_flap_;  // row-major copies
-  std::vector<double> aero_normal_, structural_;
-  AeroAntiderivatives antiderivatives_;
+  std::vector<double> structural_;
+  AeroIntegrals aero_;
   std::vector<double> g0_, h0_;
   std::vector<double> damping_flap_, damping_lag_;  // per mode [M], [N]
   Eigen::VectorXd hover_forcing_;         // forcing[0] at mu = 0, normal flow, at the equilibrium

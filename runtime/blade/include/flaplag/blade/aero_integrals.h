@@ -1,0 +1,46 @@
+// flaplag — the aerodynamic spanwise integrals of a model for one blade, as the runtime uses them.
+//
+// Each integral  I_j = int x^p prod(factors) dx0  (model_api.h AeroIntegral) is needed over the
+// whole aerodynamic span (normal flow) and, inside the reversed-flow sector, split at the station
+// x = mu where the flow reverses (Appendix D, eqs D.3-D.6).  The split point moves with mu, so
+// the integrands are interpolated once at Chebyshev-Gauss-Lobatto points (degree kDegree) and
+// integrated exactly: a reversed-sector evaluation is one Clenshaw sum per integral instead of a
+// quadrature.  Exact (to rounding) for the assumed-mode polynomials; for exact modes the
+// interpolation error is far below 1e-13 (tests/aero_integrals_test.cpp checks both against the
+// Gauss quadrature of aero_integral() in blade.h).
+#pragma once
+
+#include <vector>
+
+#include "flaplag/blade/blade.h"
+#include "flaplag/model_api.h"
+
+namespace flaplag {
+
+class AeroIntegrals {
+ public:
+  static constexpr int kDegree = 48;
+
+  AeroIntegrals() = default;
+  // Throws InvalidInput for an invalid geometry (see blade.h) or a factor naming a missing mode.
+  AeroIntegrals(const model::ModelDescriptor& m, const ModeSet& modes, const SpanGeometry& g);
+
+  // Normal-flow values, int_A^B, in the order of the model's AeroIntegral list.
+  const std::vector<double>& normal() const { return normal_; }
+
+  // Values inside the reversed-flow sector at advance ratio mu (>= 0, finite; else
+  // InvalidInput("mu", ...)):  -int_A^{x0} + int_{x0}^B with x0 = (mu - e1)/lr clamped to
+  // [A, B] for mu < 1 (eqs D.3-D.4), and -int_A^B for mu >= 1 (eqs D.5-D.6).
+  void reversed(double mu, std::vector<double>& out) const;
+  std::vector<double> reversed(double mu) const;
+
+  // int_A^s of every integrand, s clamped to [A, B].
+  void partial(double s, std::vector<double>& out) const;
+
+ private:
+  double a_ = 0.0, b_ = 1.0, e1_ = 0.0, lr_ = 1.0;
+  std::vector<std::vector<double>> coef_;  // Chebyshev coefficients of each antiderivative
+  std::vector<double> normal_;
+};
+
+}  // namespace flaplag

@@ -1,0 +1,99 @@
+// flaplag — aerodynamic spanwise integrals through exact Chebyshev antiderivatives.
+#include "flaplag/blade/aero_integrals.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "flaplag/core/constants.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
+
+namespace flaplag {
+
+AeroIntegrals::AeroIntegrals(const model::ModelDescriptor& m, const ModeSet& modes,
+                                         const SpanGeometry& g)
+    : a_(g.tip_loss_a), b_(g.tip_loss_b), e1_(g.e1), lr_(g.lr) {
+  validate(g);
+  if (!(a_ < b_)) {
+    throw InvalidInput("tip_loss_a", round_trip_text(a_),
+                       "the aerodynamic span needs A < B = " + round_trip_text(b_));
+  }
+  const int n = kDegree;
+  // Chebyshev-Gauss-Lobatto nodes on [a, b].
+  std::vector<double> t(n + 1), x0(n + 1);
+  for (int k = 0; k <= n; ++k) {
+    t[k] = std::cos(kPi * k / n);
+    x0[k] = 0.5 * (a_ + b_) + 0.5 * (b_ - a_) * t[k];
+  }
+  const double half = 0.5 * (b_ - a_);
+  // cos(pi i k / n) for the discrete cosine transform, shared by every integrand.
+  std::vector<double> cos_table((n + 1) * (n + 1));
+  for (int i = 0; i <= n; ++i)
+    for (int k = 0; k <= n; ++k) cos_table[i * (n + 1) + k] = std::cos(kPi * i * k / n);
+  const std::vector<std::vector<double>> values = aero_integrands(m, modes, g, x0);
+  coef_.resize(m.n_aero);
+  std::vector<double> c(n + 1);
+  for (int j = 0; j < m.n_aero; ++j) {
+    const std::vector<double>& f = values[j];
+    // Chebyshev coefficients c_i of the interpolant (discrete cosine transform, O(n^2) once).
+    for (int i = 0; i <= n; ++i) {
+      double s = 0.0;
+      for (int k = 0; k <= n; ++k) {
+        const double w = (k == 0 || k == n) ? 0.5 : 1.0;
+        s += w * f[k] * cos_table[i * (n + 1) + k];
+      }
+      c[i] = s * 2.0 / n * ((i == 0 || i == n) ? 0.5 : 1.0);
+    }
+    // Antiderivative in t: C_i = (c_{i-1} - c_{i+1}) / (2 i), i >= 1; C_0 fixes F(-1) = 0.
+    std::vector<double> C(n + 2, 0.0);
+    for (int i = 1; i <= n + 1; ++i) {
+      const double cm = i - 1 == 0 ? 2.0 * c[0] : c[i - 1];
+      const double cp = i + 1 <= n ? c[i + 1] : 0.0;
+      C[i] = (cm - cp) / (2.0 * i) * half;
+    }
+    double at_minus1 = 0.0;
+    for (int i = 1; i <= n + 1; ++i) at_minus1 += (i % 2 == 0 ? 1.0 : -1.0) * C[i];
+    C[0] = -at_minus1;
+    coef_[j] = C;
+  }
+  partial(b_, normal_);
+}
+
+void AeroIntegrals::partial(double s, std::vector<double>& out) const {
+  s = std::clamp(s, a_, b_);
+  const double t = (2.0 * s - a_ - b_) / (b_ - a_);
+  out.resize(coef_.size());
+  for (size_t j = 0; j < coef_.size(); ++j) {
+    const auto& C = coef_[j];
+    // Clenshaw recurrence for sum_i C_i T_i(t)
+    double b1 = 0.0, b2 = 0.0;
+    for (int i = static_cast<int>(C.size()) - 1; i >= 1; --i) {
+      const double b0 = 2.0 * t * b1 - b2 + C[i];
+      b2 = b1;
+      b1 = b0;
+    }
+    out[j] = t * b1 - b2 + C[0];
+  }
+}
+
+void AeroIntegrals::reversed(double mu, std::vector<double>& out) const {
+  if (!std::isfinite(mu) || mu < 0.0) {
+    throw InvalidInput("mu", round_trip_text(mu), "advance ratio must be finite and >= 0");
+  }
+  if (mu >= 1.0) {  // eqs D.5-D.6: the whole span reversed, lift slope negated
+    out = normal_;
+    for (double& v : out) v = -v;
+    return;
+  }
+  // eqs D.3-D.4: -int_A^{x0(mu)} + int_{x0(mu)}^B = normal - 2 int_A^{x0(mu)}, x0 = (mu - e1)/lr
+  partial((mu - e1_) / lr_, out);
+  for (std::size_t j = 0; j < out.size(); ++j) out[j] = normal_[j] - 2.0 * out[j];
+}
+
+std::vector<double> AeroIntegrals::reversed(double mu) const {
+  std::vector<double> r;
+  reversed(mu, r);
+  return r;
+}
+
+}  // namespace flaplag
