@@ -151,9 +151,9 @@ std::vector<std::string> mode_labels(const Analysis& an) {
 
 // The exponent that decides a mode's stability: largest zeta; of a conjugate pair the one with
 // omega >= 0.
-const ModeExponent* dominant(const PointResult& r, const std::string& label) {
-  const ModeExponent* best = nullptr;
-  for (const ModeExponent& e : r.exponents) {
+const LabelledExponent* dominant(const PointResult& r, const std::string& label) {
+  const LabelledExponent* best = nullptr;
+  for (const LabelledExponent& e : r.exponents) {
     if (e.label != label) continue;
     if (best == nullptr || e.zeta > best->zeta ||
         (e.zeta == best->zeta && e.omega >= 0.0 && best->omega < 0.0)) {
@@ -219,9 +219,20 @@ std::string hover_text(const Analysis& an) {
   return out + status_text(h.status, h.message);
 }
 
-Json exponent_json(const ModeExponent& e) {
+// zeta of a zero multiplier is -inf, which JSON cannot hold: it is written as the string "-inf".
+Json zeta_json(double zeta) { return std::isfinite(zeta) ? Json(zeta) : Json(round_trip_text(zeta)); }
+
+Json optional_json(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
+
+Json stable_json(const std::optional<bool>& v) { return v ? Json(*v) : Json(nullptr); }
+
+std::string stable_text(const std::optional<bool>& v) { return !v ? "unknown" : *v ? "yes" : "NO"; }
+
+std::string optional_text(const std::optional<double>& v) { return v ? num(*v) : "-"; }
+
+Json exponent_json(const LabelledExponent& e) {
   return Json{{"label", e.label},
-              {"zeta", e.zeta},
+              {"zeta", zeta_json(e.zeta)},
               {"omega", e.omega},
               {"multiplier", complex_json(e.multiplier)}};
 }
@@ -230,43 +241,45 @@ Json point_json(const PointResult& r) {
   Json j;
   j["mu"] = r.mu;
   Json ex = Json::array(), mult = Json::array();
-  for (const ModeExponent& e : r.exponents) {
+  for (const LabelledExponent& e : r.exponents) {
     ex.push_back(exponent_json(e));
     mult.push_back(complex_json(e.multiplier));
   }
   j["exponents"] = ex;
   j["multipliers"] = mult;
-  j["liouville_residual"] = r.liouville_residual;
-  j["error_estimate"] = r.error_estimate;
-  j["stable"] = r.stable;
+  j["liouville_residual"] = optional_json(r.liouville_residual);
+  j["error_estimate"] = optional_json(r.error);
+  j["stable"] = stable_json(r.stable);
   return status_json(j, r.status, r.message);
 }
 
 std::string point_text(const PointResult& r, const TransitionOptions& o) {
   std::string out = "Characteristic exponents at mu = " + num(r.mu) + " (per rev)\n";
   TextTable t({"mode", "zeta", "omega", "multiplier"});
-  for (const ModeExponent& e : r.exponents) {
+  for (const LabelledExponent& e : r.exponents) {
     t.add_row({e.label, num(e.zeta), num(e.omega), complex_text(e.multiplier)});
   }
   out += t.render();
   KeyValues kv;
-  kv.add("stable", r.stable ? "yes" : "NO");
+  kv.add("stable", stable_text(r.stable));
   kv.add("Liouville residual",
-         num(r.liouville_residual) + "  (|det Phi - exp int tr A|, relative)");
-  if (o.method == TransitionMethod::Magnus4) {
-    kv.add("error estimate", num(r.error_estimate) + "  (Richardson, ||Phi error||_max)");
-  }
+         optional_text(r.liouville_residual) + "  (|det Phi - exp int tr A|, relative)");
+  kv.add("error estimate",
+         optional_text(r.error) + "  (exponents, per rev: Richardson from K and K/2 steps)");
+  (void)o;
   out += kv.render();
   return out + status_text(r.status, r.message);
 }
 
 Json critical_json(const CriticalResult& c) {
   Json j;
-  j["found"] = c.found;
-  j["mu_c"] = c.found ? Json(c.mu_c) : Json(nullptr);
-  j["omega"] = c.found ? Json(c.omega) : Json(nullptr);
-  j["mode"] = c.found ? Json(c.mode) : Json(nullptr);
-  j["kind"] = c.found ? Json(kind_name(c.kind)) : Json(nullptr);
+  const bool found = c.mu_c.has_value();
+  j["hover_unstable"] = c.hover_unstable;
+  j["mu_c"] = optional_json(c.mu_c);
+  j["mu_c_error"] = optional_json(c.mu_c_error);
+  j["omega"] = found ? Json(c.omega) : Json(nullptr);
+  j["mode"] = found ? Json(c.mode) : Json(nullptr);
+  j["kind"] = found ? Json(kind_name(c.kind)) : Json(nullptr);
   j["mu_max"] = c.mu_max;
   return status_json(j, c.status, c.message);
 }
@@ -274,13 +287,17 @@ Json critical_json(const CriticalResult& c) {
 std::string critical_text(const CriticalResult& c) {
   std::string out = "Critical advance ratio (first mu in 0.." + num(c.mu_max) + " with zeta > 0)\n";
   KeyValues kv;
-  if (c.found) {
-    kv.add("mu_c", num(c.mu_c));
+  if (c.mu_c) {
+    kv.add("mu_c", num(*c.mu_c) + (c.mu_c_error ? "  (estimated error " + num(*c.mu_c_error) + ")" : ""));
     kv.add("mode", c.mode);
     kv.add("omega", num(c.omega) + " per rev");
     kv.add("kind", c.kind == InstabilityKind::Flutter
                        ? "flutter (omega not locked to 0, 1/2 or 1 per rev)"
                        : "periodic (omega locked to 0, 1/2 or 1 per rev)");
+  } else if (c.hover_unstable) {
+    kv.add("mu_c", "none: the blade is unstable already in hover");
+  } else if (c.status == Status::Failed) {
+    kv.add("mu_c", "unknown: the search failed");
   } else {
     kv.add("mu_c", "none: stable up to mu = " + num(c.mu_max));
   }
@@ -294,15 +311,16 @@ Json sweep_rows_json(const SweepResult& s, const std::vector<std::string>& label
     Json row;
     row["mu"] = p.mu;
     for (const std::string& l : labels) {
-      const ModeExponent* e = dominant(p, l);
-      row[l] = e ? Json{{"zeta", e->zeta}, {"omega", e->omega}} : Json(nullptr);
+      const LabelledExponent* e = dominant(p, l);
+      row[l] = e ? Json{{"zeta", zeta_json(e->zeta)}, {"omega", e->omega}} : Json(nullptr);
     }
-    row["liouville_residual"] = p.liouville_residual;
-    row["stable"] = p.stable;
+    row["liouville_residual"] = optional_json(p.liouville_residual);
+    row["error_estimate"] = optional_json(p.error);
+    row["stable"] = stable_json(p.stable);
     row["status"] = status_name(p.status);
     if (!p.message.empty()) row["message"] = p.message;
     Json ex = Json::array();
-    for (const ModeExponent& e : p.exponents) ex.push_back(exponent_json(e));
+    for (const LabelledExponent& e : p.exponents) ex.push_back(exponent_json(e));
     row["exponents"] = ex;
     rows.push_back(row);
   }
@@ -321,11 +339,11 @@ std::string sweep_table_text(const SweepResult& s, const std::vector<std::string
   for (const PointResult& p : s.points) {
     std::vector<std::string> row{num(p.mu)};
     for (const std::string& l : labels) {
-      const ModeExponent* e = dominant(p, l);
+      const LabelledExponent* e = dominant(p, l);
       row.push_back(e ? num(e->zeta) : "-");
       row.push_back(e ? num(e->omega) : "-");
     }
-    row.push_back(num(p.liouville_residual));
+    row.push_back(optional_text(p.liouville_residual));
     t.add_row(row);
     if (p.status != Status::Ok || !p.message.empty()) {
       notes += "  mu = " + num(p.mu) + ": " + status_name(p.status) + ": " + p.message + "\n";
@@ -348,10 +366,11 @@ std::string sweep_csv(const SweepResult& s, const std::vector<std::string>& labe
   for (const PointResult& p : s.points) {
     out += num(p.mu);
     for (const std::string& l : labels) {
-      const ModeExponent* e = dominant(p, l);
+      const LabelledExponent* e = dominant(p, l);
       out += e ? "," + num(e->zeta) + "," + num(e->omega) : std::string(",,");
     }
-    out += "," + num(p.liouville_residual) + "," + (p.stable ? "true" : "false") + "," +
+    out += "," + (p.liouville_residual ? num(*p.liouville_residual) : std::string()) + "," +
+           (!p.stable ? "" : *p.stable ? "true" : "false") + "," +
            csv_field(status_name(p.status)) + "\n";
   }
   return out;
@@ -359,7 +378,7 @@ std::string sweep_csv(const SweepResult& s, const std::vector<std::string>& labe
 
 double max_liouville(const SweepResult& s) {
   double m = 0.0;
-  for (const PointResult& p : s.points) m = std::max(m, p.liouville_residual);
+  for (const PointResult& p : s.points) m = std::max(m, p.liouville_residual.value_or(0.0));
   return m;
 }
 

@@ -25,7 +25,7 @@ std::string run_modes(const Request& r) {
   opt.n_basis = r.basis;
   opt.flap_modes = r.flap_modes;
   opt.lag_modes = r.lag_modes;
-  opt.e1_over_l = p.e1 / p.length_ratio;
+  opt.e1_over_l = p.root_offset / p.length_ratio;
   opt.paper_1974_shapes = p.paper_1974_shapes;
 
   // fig9_table spaces n points evenly on [lo, hi]: hi is the last multiple of STEP in the range

@@ -1,5 +1,4 @@
 // The rotor analysis layer: operating point, hover equilibrium, periodic system, methods.
-#include "flaplag/core/constants.h"
 #include "flaplag/analysis.h"
 
 #include <gtest/gtest.h>
@@ -7,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "test_util.h"
 
@@ -33,10 +33,10 @@ TransitionOptions method(TransitionMethod m, int steps, int terms = 4) {
 TEST(Hover, EquilibriumMatchesHandComputedAssumedModeValues) {
   RotorParameters p;
   Analysis an(p, {});
-  const double sa = p.solidity * p.lift_slope;
+  const double sa = p.sigma * p.lift_slope;
   const double lambda = sa / 16.0 * (std::sqrt(1.0 + 24.0 * p.theta / sa) - 1.0);
   EXPECT_TRUE(RelClose(lambda, an.hover().inflow, 1e-14));
-  const double g0 = p.lock / 2.0 * (71.0 / 315.0 * p.theta - 13.0 / 45.0 * lambda) /
+  const double g0 = p.gamma / 2.0 * (71.0 / 315.0 * p.theta - 13.0 / 45.0 * lambda) /
                     (104.0 / 135.0 * p.omega_flap * p.omega_flap);
   EXPECT_TRUE(RelClose(g0, an.hover().q0(0), 1e-12));
   EXPECT_TRUE(an.hover().stable);
@@ -70,11 +70,16 @@ TEST(Hover, ExponentsEqualEigenvaluesOfA0ForAllMethods) {
 }
 
 TEST(Floquet, LiouvilleResidualOfTheReferenceMethodIsBelow1e10) {
-  Analysis an(RotorParameters{}, method(TransitionMethod::Magnus4, 50));
+  TransitionOptions o = method(TransitionMethod::Magnus4, TransitionOptions::kAutomatic);
+  o.zeta_tolerance = 1e-12;
+  Analysis an(RotorParameters{}, o);
   for (double mu : {0.3, 0.7, 1.2}) {
     const auto pt = an.point(mu, 0.05);
-    EXPECT_LT(pt.liouville_residual, 1e-10) << "mu = " << mu;
-    EXPECT_LT(pt.error_estimate, 1e-8) << "mu = " << mu;
+    ASSERT_TRUE(pt.liouville_residual.has_value()) << "mu = " << mu;
+    EXPECT_LT(*pt.liouville_residual, 1e-10) << "mu = " << mu;
+    ASSERT_TRUE(pt.error.has_value()) << "mu = " << mu;
+    EXPECT_LT(*pt.error, 1e-8) << "mu = " << mu;
+    EXPECT_EQ(pt.status, flaplag::Status::Ok) << pt.message;
   }
 }
 
@@ -137,33 +142,33 @@ TEST(ReversedFlow, NormalRegionOutsideTheSector) {
 struct BadParam {
   const char* name;
   void (*set)(RotorParameters&);
-  const char* option;
+  const char* field;
 };
 
 class InvalidParameters : public ::testing::TestWithParam<BadParam> {};
 
-TEST_P(InvalidParameters, ThrowInvalidInputNamingTheOption) {
+TEST_P(InvalidParameters, ThrowInvalidInputNamingTheField) {
   RotorParameters p;
   GetParam().set(p);
   try {
     Analysis an(p, {});
     FAIL() << "accepted";
   } catch (const flaplag::InvalidInput& e) {
-    EXPECT_EQ(e.name(), GetParam().option) << e.what();
+    EXPECT_EQ(e.name(), GetParam().field) << e.what();
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Rotor, InvalidParameters,
     ::testing::Values(
-        BadParam{"NegativeLock", [](RotorParameters& p) { p.lock = -1; }, "--gamma"},
-        BadParam{"NanTheta", [](RotorParameters& p) { p.theta = std::nan(""); }, "--theta"},
-        BadParam{"ZeroLagFrequency", [](RotorParameters& p) { p.omega_lag = 0; }, "--omega-lag"},
+        BadParam{"NegativeLock", [](RotorParameters& p) { p.gamma = -1; }, "gamma"},
+        BadParam{"NanTheta", [](RotorParameters& p) { p.theta = std::nan(""); }, "theta"},
+        BadParam{"ZeroLagFrequency", [](RotorParameters& p) { p.omega_lag = 0; }, "omega_lag"},
         BadParam{"NegativeDamping", [](RotorParameters& p) { p.damping_lag = -0.1; },
-                 "--damping-lag"},
-        BadParam{"UnknownModel", [](RotorParameters& p) { p.model = "nope"; }, "--model"},
+                 "damping_lag"},
+        BadParam{"UnknownModel", [](RotorParameters& p) { p.model = "nope"; }, "model"},
         BadParam{"MultiModeNeedsExactModes", [](RotorParameters& p) { p.model = "paper-2x2"; },
-                 "--modes"}),
+                 "modes"}),
     [](const auto& tp) { return std::string(tp.param.name); });
 
 TEST(InvalidArguments, NegativeMuAndBadRanges) {
@@ -173,8 +178,11 @@ TEST(InvalidArguments, NegativeMuAndBadRanges) {
   EXPECT_THROW(an.sweep(0.5, 0.2, 0.1), flaplag::InvalidInput);
   EXPECT_THROW(an.sweep(0.5, 0.5, 0.1), flaplag::InvalidInput);
   EXPECT_THROW(an.sweep(0.0, 0.5, 0.0), flaplag::InvalidInput);
-  EXPECT_THROW(Analysis(RotorParameters{}, method(TransitionMethod::Hsu, 0)),
+  EXPECT_THROW(Analysis(RotorParameters{}, method(TransitionMethod::Hsu, -1)),
                flaplag::InvalidInput);
+  EXPECT_THROW(
+      Analysis(RotorParameters{}, method(TransitionMethod::Hsu, TransitionOptions::kMaxSteps + 1)),
+      flaplag::InvalidInput);
   EXPECT_THROW(Analysis(RotorParameters{}, method(TransitionMethod::Hsu, 50, 0)),
                flaplag::InvalidInput);
 }

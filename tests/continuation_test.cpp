@@ -1,8 +1,6 @@
 // Continuation in mu: hover labels, exponent tracking through crossings and integer wraps,
 // critical mu for flutter (complex pair) and periodic (real multiplier) instabilities.
-#include "flaplag/core/constants.h"
 #include "flaplag/numerics/continuation.h"
-#include "flaplag/rotor/hover.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +8,9 @@
 #include <limits>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/rotor/hover.h"
 #include "test_util.h"
 
 namespace flaplag {
@@ -18,7 +18,6 @@ namespace {
 
 using testing::AbsClose;
 using testing::RelClose;
-
 
 // Two uncoupled oscillators in the model_api.h ordering y = [g', g, h', h]:
 //   g'' + cg g' + kg g = 0,  h'' + ch h' + kh h = 0  (+ weak coupling kappa).
@@ -38,11 +37,18 @@ Eigen::MatrixXd oscillators(double cg, double kg, double ch, double kh, double k
 // Stiffness giving damped frequency w for damping c: eigenvalues -c/2 +- i w.
 double stiffness(double c, double w) { return w * w + 0.25 * c * c; }
 
+// A FloquetFunction sample without an error estimate.
+FloquetSample sample(FloquetResult r) {
+  FloquetSample s;
+  s.floquet = std::move(r);
+  return s;
+}
+
 // Constant-coefficient family: Phi = expm(2 pi A(mu)) exactly.
 FloquetFunction constant_family(std::function<Eigen::MatrixXd(double)> A) {
-  return [A](double mu) {
+  return [A](double mu, double) {
     const Eigen::MatrixXd a = A(mu);
-    return floquet_exponents((kTwoPi * a).exp(), kTwoPi * a.trace());
+    return sample(floquet_exponents((kTwoPi * a).exp(), kTwoPi * a.trace()));
   };
 }
 
@@ -98,10 +104,10 @@ TEST(ExponentTracker, KeepsLabelsThroughCrossingAndIntegerWrap) {
     return oscillators(0.6, stiffness(0.6, 1.17 + mu), 0.04, stiffness(0.04, 1.28));
   };
   const HoverModes hover = label_hover_modes(A(0.0), 1, 1);
-  const ExponentSweep sw = sweep_exponents(hover, constant_family(A), 0.0, 0.6, 0.01);
+  const SweepResult sw = sweep_exponents(hover, constant_family(A), 0.0, 0.6, 0.01);
   EXPECT_EQ(Status::Ok, sw.status) << sw.message;
   ASSERT_EQ(61u, sw.points.size());
-  for (const SweepPoint& p : sw.points) {
+  for (const PointResult& p : sw.points) {
     for (double sign : {1.0, -1.0}) {
       const LabelledExponent* flap = find(p.exponents, "flap", sign);
       const LabelledExponent* lag = find(p.exponents, "lag", sign);
@@ -113,7 +119,7 @@ TEST(ExponentTracker, KeepsLabelsThroughCrossingAndIntegerWrap) {
       EXPECT_TRUE(AbsClose(-0.3, flap->zeta, 1e-9));
       EXPECT_TRUE(AbsClose(-0.02, lag->zeta, 1e-9));
     }
-    EXPECT_TRUE(p.stable);
+    EXPECT_EQ(std::optional<bool>(true), p.stable);
   }
   EXPECT_DOUBLE_EQ(0.6, sw.points.back().mu);
 }
@@ -125,12 +131,11 @@ TEST(FindCritical, FlutterCrossingOfConstantFamily) {
     const double ch = 2.0 * (0.5037 - mu);
     return oscillators(1.2, stiffness(1.2, 1.17), ch, stiffness(ch, 1.28), 0.0);
   };
-  const CriticalSearchResult r =
-      find_critical(label_hover_modes(A(0.0), 1, 1), constant_family(A), {});
-  ASSERT_TRUE(r.found) << r.message;
+  const CriticalResult r = find_critical(label_hover_modes(A(0.0), 1, 1), constant_family(A), {});
+  ASSERT_TRUE(r.mu_c.has_value()) << r.message;
   EXPECT_EQ(Status::Ok, r.status) << r.message;
-  EXPECT_TRUE(AbsClose(0.5037, r.mu_c, 1e-5));
-  EXPECT_EQ("lag", r.label);
+  EXPECT_TRUE(AbsClose(0.5037, *r.mu_c, 1e-5));
+  EXPECT_EQ("lag", r.mode);
   EXPECT_TRUE(AbsClose(1.28, std::abs(r.omega), 1e-9));
   EXPECT_EQ(InstabilityKind::Flutter, r.kind);
   EXPECT_LT(r.evaluations, 51 + 30);  // the scan plus a Brent refinement
@@ -140,11 +145,12 @@ TEST(FindCritical, StableUpToMuMaxAndUnstableHover) {
   auto stable = [](double mu) {
     return oscillators(1.2, stiffness(1.2, 1.17), 0.04 + mu, stiffness(0.04, 1.28));
   };
-  CriticalSearchOptions opt;
+  CriticalOptions opt;
   opt.mu_max = 0.3;
-  const CriticalSearchResult r =
+  const CriticalResult r =
       find_critical(label_hover_modes(stable(0.0), 1, 1), constant_family(stable), opt);
-  EXPECT_FALSE(r.found);
+  EXPECT_FALSE(r.mu_c.has_value());
+  EXPECT_FALSE(r.hover_unstable);
   EXPECT_EQ(Status::Ok, r.status);
   EXPECT_EQ(0.3, r.mu_max);
   EXPECT_EQ(30, r.evaluations);
@@ -152,12 +158,14 @@ TEST(FindCritical, StableUpToMuMaxAndUnstableHover) {
   auto unstable = [](double) {
     return oscillators(1.2, stiffness(1.2, 1.17), -0.04, stiffness(-0.04, 1.28));
   };
-  const CriticalSearchResult u =
+  const CriticalResult u =
       find_critical(label_hover_modes(unstable(0.0), 1, 1), constant_family(unstable), opt);
-  EXPECT_TRUE(u.found);
-  EXPECT_EQ(0.0, u.mu_c);
-  EXPECT_EQ("lag", u.label);
+  // Regression: an unstable hover used to come back as found = true, mu_c = 0, which a script
+  // filtering on `found` recorded as mu_c = 0.
+  EXPECT_TRUE(u.hover_unstable);
+  EXPECT_FALSE(u.mu_c.has_value());
   EXPECT_EQ(Status::Warning, u.status);
+  ASSERT_EQ(4u, u.exponents.size());
 }
 
 // Damped Mathieu equation g'' + 2 xi g' + (delta + mu cos psi) g = 0 (one flap mode) near
@@ -177,13 +185,13 @@ PeriodicSystem mathieu(double delta, double xi, double mu) {
 
 TEST(FindCritical, MathieuTongueIsPeriodicType) {
   const double delta = 0.26, xi = 0.01;
-  auto floquet = [&](double mu) {
+  auto floquet = [&](double mu, double) {
     const PeriodicSystem s = mathieu(delta, xi, mu);
-    return floquet_exponents(transition_matrix_magnus4(s, 100).phi, s.trace_integral());
+    return sample(floquet_exponents(transition_matrix_magnus4(s, 100).phi, s.trace_integral()));
   };
   auto max_zeta = [&](double mu) {
     double z = -1e300;
-    for (const FloquetExponent& e : floquet(mu).exponents) z = std::max(z, e.zeta);
+    for (const FloquetExponent& e : floquet(mu, 0.0).floquet.exponents) z = std::max(z, e.zeta);
     return z;
   };
   double lo = 0.0, hi = 0.5;
@@ -192,12 +200,12 @@ TEST(FindCritical, MathieuTongueIsPeriodicType) {
   while (hi - lo > 1e-10) (max_zeta(0.5 * (lo + hi)) > 0 ? hi : lo) = 0.5 * (lo + hi);
 
   const HoverModes hover = label_hover_modes(mathieu(delta, xi, 0.0).normal.A[0], 1, 0);
-  const CriticalSearchResult r = find_critical(hover, floquet, {});
-  ASSERT_TRUE(r.found) << r.message;
-  EXPECT_TRUE(AbsClose(lo, r.mu_c, 1e-5));
-  EXPECT_EQ("flap", r.label);
+  const CriticalResult r = find_critical(hover, floquet, {});
+  ASSERT_TRUE(r.mu_c.has_value()) << r.message;
+  EXPECT_TRUE(AbsClose(lo, *r.mu_c, 1e-5));
+  EXPECT_EQ("flap", r.mode);
   EXPECT_EQ(InstabilityKind::Periodic, r.kind);
-  EXPECT_EQ(0.5, std::abs(r.omega));  // locked exactly: the multiplier is real
+  EXPECT_EQ(0.5, r.omega);  // locked exactly: the multiplier is real; reported >= 0
 }
 
 TEST(Continuation, ClassifyCrossing) {
@@ -216,11 +224,11 @@ TEST(Continuation, SweepStartsAboveHoverAndIncludesEnd) {
     return oscillators(0.6, stiffness(0.6, 1.17 + mu), 0.04, stiffness(0.04, 1.28));
   };
   int calls = 0;
-  FloquetFunction f = [&](double mu) {
+  FloquetFunction f = [&](double mu, double tol) {
     ++calls;
-    return constant_family(A)(mu);
+    return constant_family(A)(mu, tol);
   };
-  const ExponentSweep sw = sweep_exponents(label_hover_modes(A(0.0), 1, 1), f, 0.5, 0.625, 0.05);
+  const SweepResult sw = sweep_exponents(label_hover_modes(A(0.0), 1, 1), f, 0.5, 0.625, 0.05);
   ASSERT_EQ(4u, sw.points.size());  // 0.5, 0.55, 0.6, 0.625
   EXPECT_DOUBLE_EQ(0.5, sw.points[0].mu);
   EXPECT_DOUBLE_EQ(0.625, sw.points[3].mu);
@@ -231,28 +239,29 @@ TEST(Continuation, SweepStartsAboveHoverAndIncludesEnd) {
 
 TEST(Continuation, FailuresAreReportedNotThrown) {
   auto A = [](double) { return oscillators(0.6, 1.5, 0.04, 1.7); };
-  FloquetFunction nan_after = [&](double mu) {
+  FloquetFunction nan_after = [&](double mu, double tol) {
     if (mu > 0.1) {
-      return floquet_exponents(
-          Eigen::MatrixXd::Constant(4, 4, std::numeric_limits<double>::quiet_NaN()), 0.0);
+      return sample(floquet_exponents(
+          Eigen::MatrixXd::Constant(4, 4, std::numeric_limits<double>::quiet_NaN()), 0.0));
     }
-    return constant_family(A)(mu);
+    return constant_family(A)(mu, tol);
   };
   const HoverModes hover = label_hover_modes(A(0.0), 1, 1);
-  const CriticalSearchResult r = find_critical(hover, nan_after, {});
-  EXPECT_FALSE(r.found);
+  const CriticalResult r = find_critical(hover, nan_after, {});
+  EXPECT_FALSE(r.mu_c.has_value());
   EXPECT_EQ(Status::Failed, r.status);
   EXPECT_FALSE(r.message.empty());
-  const ExponentSweep sw = sweep_exponents(hover, nan_after, 0.0, 0.3, 0.05);
+  const SweepResult sw = sweep_exponents(hover, nan_after, 0.0, 0.3, 0.05);
   EXPECT_EQ(Status::Failed, sw.status);
-  EXPECT_EQ(4u, sw.points.size());  // 0, 0.05, 0.1 and the failed 0.15
+  EXPECT_EQ(4u, sw.points.size());                    // 0, 0.05, 0.1 and the failed 0.15
+  EXPECT_FALSE(sw.points.back().stable.has_value());  // unknown, not "stable"
 }
 
 TEST(Continuation, InvalidArgumentsThrow) {
   auto A = [](double) { return oscillators(0.6, 1.5, 0.04, 1.7); };
   const HoverModes hover = label_hover_modes(A(0.0), 1, 1);
-  CriticalSearchOptions o;
-  o.step = 0.0;
+  CriticalOptions o;
+  o.scan_step = 0.0;
   EXPECT_THROW(find_critical(hover, constant_family(A), o), InvalidInput);
   o = {};
   o.mu_max = std::nan("");
@@ -263,10 +272,81 @@ TEST(Continuation, InvalidArgumentsThrow) {
   EXPECT_THROW(find_critical(hover, FloquetFunction{}, {}), InvalidInput);
   EXPECT_THROW(sweep_exponents(hover, constant_family(A), 0.0, 1.0, -0.1), InvalidInput);
   EXPECT_THROW(sweep_exponents(hover, constant_family(A), 0.5, 0.4, 0.1), InvalidInput);
+  // Regressions (issue 8): counts that used to overflow int or never finish.
+  o = {};
+  o.mu_max = 21474837;  // (int)ceil(mu_max / step) overflowed: "stable, status ok"
+  EXPECT_THROW(find_critical(hover, constant_family(A), o), InvalidInput);
+  o = {};
+  o.scan_step = 1e-12;  // 2e12 scan steps
+  EXPECT_THROW(find_critical(hover, constant_family(A), o), InvalidInput);
+  std::string why;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_EQ(0u, why.find("scan_step = 1e-12: ")) << why;
+  EXPECT_TRUE(CriticalOptions{}.IsValid(&why));
+  EXPECT_THROW(sweep_exponents(hover, constant_family(A), 0.0, 3e4, 1e-5), InvalidInput);
+  EXPECT_THROW(sweep_exponents(hover, constant_family(A), 0.0, 10.0, 1e-6), InvalidInput);
   ExponentTracker t(hover);
   FloquetResult wrong;
   wrong.exponents.resize(2);
   EXPECT_THROW(t.advance(wrong), InvalidInput);
+}
+
+// Regression (issue 8 item 1): a multiplier of exactly 0 (zeta = -inf) made every assignment
+// cost +inf, the tracker kept match = -1 and read exponents[-1] (SIGSEGV).  It must be matched
+// and keep its label.
+TEST(ExponentTracker, ZeroMultiplierIsMatchedNotACrash) {
+  const Eigen::MatrixXd A0 =
+      oscillators(1.2, stiffness(1.2, 1.17), 0.04, stiffness(0.04, 1.28), 0.0);
+  const HoverModes hover = label_hover_modes(A0, 1, 1);
+  ExponentTracker t(hover);
+  // Phi with the flap pair decayed to exactly 0 and the lag pair as at hover.
+  const Eigen::MatrixXd phi_lag = (kTwoPi * A0).exp();
+  Eigen::MatrixXd phi = phi_lag;
+  phi.block(0, 0, 2, 4).setZero();
+  phi.block(0, 0, 4, 2).setZero();
+  const FloquetResult r = floquet_exponents(phi, kTwoPi * A0.trace());
+  int zeros = 0;
+  for (const FloquetExponent& e : r.exponents) zeros += e.zeta == -HUGE_VAL ? 1 : 0;
+  ASSERT_EQ(2, zeros);
+  for (double mu : {0.1, 0.2, 0.3}) {
+    const TrackReport rep = t.advance(r, mu);
+    EXPECT_NE(Status::Failed, rep.status) << rep.message;
+  }
+  int flap_zero = 0, lag_finite = 0;
+  for (const LabelledExponent& e : t.exponents()) {
+    if (e.label == "flap" && e.zeta == -HUGE_VAL) ++flap_zero;
+    if (e.label == "lag" && std::isfinite(e.zeta)) ++lag_finite;
+  }
+  EXPECT_EQ(2, flap_zero);
+  EXPECT_EQ(2, lag_finite);
+  EXPECT_TRUE(std::isfinite(t.max_zeta()));
+}
+
+// A crossing whose exponents carry a large error estimate: mu_c comes back with its error
+// estimate and a Warning naming the remedy, not as "ok".
+TEST(FindCritical, UnresolvedCrossingIsAWarningWithAnErrorEstimate) {
+  auto A = [](double mu) {
+    const double ch = 2.0 * (0.5037 - mu);
+    return oscillators(1.2, stiffness(1.2, 1.17), ch, stiffness(ch, 1.28), 0.0);
+  };
+  auto noisy = [&](double mu, double tol) {
+    FloquetSample s = constant_family(A)(mu, tol);
+    s.zeta_errors.assign(s.floquet.exponents.size(), 1e-3);  // 1e-3 per rev, slope 1
+    s.error = 1e-3;
+    return s;
+  };
+  const CriticalResult r = find_critical(label_hover_modes(A(0.0), 1, 1), noisy, {});
+  ASSERT_TRUE(r.mu_c.has_value()) << r.message;
+  ASSERT_TRUE(r.mu_c_error.has_value());
+  EXPECT_GT(*r.mu_c_error, 9e-4);  // zeta error / slope
+  EXPECT_LT(*r.mu_c_error, 2e-3);
+  EXPECT_EQ(Status::Warning, r.status);
+  EXPECT_NE(std::string::npos, r.message.find("`steps`")) << r.message;
+  // And the same crossing with exact exponents: no error estimate claimed, status ok.
+  const CriticalResult exact =
+      find_critical(label_hover_modes(A(0.0), 1, 1), constant_family(A), {});
+  EXPECT_FALSE(exact.mu_c_error.has_value());
+  EXPECT_EQ(Status::Ok, exact.status);
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ TEST(Parameters, DefaultsAreThePapersTypicalCaseAndValid) {
   const RotorParameters p;
   EXPECT_NO_THROW(validate(p));
   EXPECT_EQ(p.model, "paper");
-  EXPECT_EQ(p.lock, 10.0);
+  EXPECT_EQ(p.gamma, 10.0);
   EXPECT_EQ(p.theta, 0.15);
   EXPECT_EQ(p.omega_flap, 1.175);
   EXPECT_EQ(p.omega_lag, 1.28303);
@@ -38,12 +38,12 @@ TEST(Parameters, DefaultsAreThePapersTypicalCaseAndValid) {
 TEST(Parameters, HoverInflowEq224) {
   RotorParameters p;
   p.theta = 0.15;
-  p.solidity = 0.05;
+  p.sigma = 0.05;
   p.lift_slope = 2.0 * M_PI;
   EXPECT_TRUE(RelClose(0.04967158306004168079, hover_inflow(p), 1e-15));
   // It is the positive root of 32 lambda^2 + 4 sigma a lambda - 3 sigma a theta = 0, which is
   // eq 2.24 squared out.
-  const double sa = p.solidity * p.lift_slope;
+  const double sa = p.sigma * p.lift_slope;
   const double l = hover_inflow(p);
   EXPECT_NEAR(32 * l * l + 4 * sa * l - 3 * sa * p.theta, 0.0, 1e-15);
 }
@@ -165,11 +165,11 @@ TEST_P(ValidateRejects, NamesTheOption) {
 }
 
 const BadCase kBad[] = {
-    {"LockNaN", [](RotorParameters& p) { p.lock = kNaN; }, "--gamma"},
-    {"LockZero", [](RotorParameters& p) { p.lock = 0.0; }, "--gamma"},
-    {"LockNegative", [](RotorParameters& p) { p.lock = -1.0; }, "--gamma"},
-    {"SolidityZero", [](RotorParameters& p) { p.solidity = 0.0; }, "--sigma"},
-    {"SolidityInf", [](RotorParameters& p) { p.solidity = kInf; }, "--sigma"},
+    {"LockNaN", [](RotorParameters& p) { p.gamma = kNaN; }, "--gamma"},
+    {"LockZero", [](RotorParameters& p) { p.gamma = 0.0; }, "--gamma"},
+    {"LockNegative", [](RotorParameters& p) { p.gamma = -1.0; }, "--gamma"},
+    {"SolidityZero", [](RotorParameters& p) { p.sigma = 0.0; }, "--sigma"},
+    {"SolidityInf", [](RotorParameters& p) { p.sigma = kInf; }, "--sigma"},
     {"LiftSlopeZero", [](RotorParameters& p) { p.lift_slope = 0.0; }, "--lift-slope"},
     {"CdoNegative", [](RotorParameters& p) { p.cdo = -1e-3; }, "--cdo"},
     {"ThetaNaN", [](RotorParameters& p) { p.theta = kNaN; }, "--theta"},
@@ -197,7 +197,7 @@ const BadCase kBad[] = {
        p.tip_loss_b = 0.5;
      },
      "--tip-loss-a"},
-    {"RootOffsetNegative", [](RotorParameters& p) { p.e1 = -0.01; }, "--root-offset"},
+    {"RootOffsetNegative", [](RotorParameters& p) { p.root_offset = -0.01; }, "--root-offset"},
     {"EmptyModel", [](RotorParameters& p) { p.model.clear(); }, "--model"},
 };
 

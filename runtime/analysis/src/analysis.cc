@@ -1,13 +1,15 @@
-#include "flaplag/core/constants.h"
 #include "flaplag/analysis.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
-#include "flaplag/numerics/continuation.h"
+#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/system_builder.h"
 
 namespace flaplag {
@@ -31,14 +33,15 @@ const model::ModelDescriptor& find_model(const std::string& name) {
   std::string known;
   for (const auto* m : compiled_models())
     known += (known.empty() ? "" : ", ") + std::string(m->name);
-  throw InvalidInput("--model", name, "unknown model (compiled: " + known + ")");
+  throw InvalidInput("model", name, "unknown model (compiled: " + known + ")");
 }
 
 namespace {
 
 void check_mu(double mu, const char* name) {
-  if (!std::isfinite(mu) || mu < 0.0) {
-    throw InvalidInput(name, round_trip_text(mu), "advance ratio must be finite and >= 0");
+  if (!std::isfinite(mu) || mu < 0.0 || mu > kMaxAdvanceRatio) {
+    throw InvalidInput(name, round_trip_text(mu),
+                       "advance ratio must be >= 0 and <= " + round_trip_text(kMaxAdvanceRatio));
   }
 }
 
@@ -48,13 +51,55 @@ std::string snap12(double v) {
   return buf;
 }
 
-std::vector<ModeExponent> to_modes(const std::vector<LabelledExponent>& v) {
-  std::vector<ModeExponent> out;
-  for (const auto& e : v) out.push_back({e.label, e.zeta, e.omega, e.multiplier});
-  std::stable_sort(out.begin(), out.end(), [](const ModeExponent& a, const ModeExponent& b) {
+// Sorted by label, then omega descending: the order in which results are shown.
+void sort_for_output(std::vector<LabelledExponent>& v) {
+  std::stable_sort(v.begin(), v.end(), [](const LabelledExponent& a, const LabelledExponent& b) {
     return a.label != b.label ? a.label < b.label : a.omega > b.omega;
   });
-  return out;
+}
+
+// The order of a method's error in the step h, for the Richardson estimate from K and K/2.
+int method_order(const TransitionOptions& o) {
+  switch (o.method) {
+    case TransitionMethod::RK4:
+      return 4;
+    case TransitionMethod::Hsu:
+      return std::min(o.terms, 2);  // interval means O(h^2); J = 1 Taylor truncation O(h)
+    case TransitionMethod::Magnus4:
+      return 6;  // transition_matrix_magnus4 returns its own Richardson extrapolation
+  }
+  return 1;
+}
+
+// Fewest steps of the automatic rule.
+constexpr int kMinAutomaticSteps = 50;
+
+// ln of the smallest normal double over 2 pi: zeta of a multiplier that underflowed.
+const double kZetaFloor = std::log(std::numeric_limits<double>::min()) / kTwoPi;
+
+// |zeta_k(fine) - zeta_k(coarse)| for each exponent of `fine`, the multipliers paired greedily
+// by distance (zeta below kZetaFloor counts as kZetaFloor: both are "zero" in double precision).
+std::vector<double> zeta_differences(const FloquetResult& fine, const FloquetResult& coarse) {
+  const std::size_t n = fine.exponents.size();
+  std::vector<double> d(n, 0.0);
+  std::vector<bool> used(n, false);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::complex<double> a = fine.exponents[i].multiplier;
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t bj = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (used[j]) continue;
+      const double dist = std::abs(a - coarse.exponents[j].multiplier);
+      if (dist < best) {
+        best = dist;
+        bj = j;
+      }
+    }
+    used[bj] = true;
+    d[i] = std::abs(std::max(fine.exponents[i].zeta, kZetaFloor) -
+                    std::max(coarse.exponents[bj].zeta, kZetaFloor));
+  }
+  return d;
 }
 
 }  // namespace
@@ -62,8 +107,7 @@ std::vector<ModeExponent> to_modes(const std::vector<LabelledExponent>& v) {
 struct Analysis::Impl {
   Impl(const RotorParameters& p, const TransitionOptions& o)
       : options(o), builder(p, find_model(p.model)) {
-    if (o.steps < 1) throw InvalidInput("--steps", std::to_string(o.steps), "must be >= 1");
-    if (o.terms < 1) throw InvalidInput("--terms", std::to_string(o.terms), "must be >= 1");
+    o.Check();
     hover = builder.hover();
     const auto& m = builder.model();
     hover_modes = label_hover_modes(hover.A0, m.flap_modes, m.lag_modes);
@@ -73,57 +117,131 @@ struct Analysis::Impl {
       hover.status = hover_modes.status;
       hover.message = hover_modes.message;
     }
-    // Fixed-step methods resolve a mode only when |lambda| * step is well inside their
-    // stability region; a stiff blade (high frequencies) needs more steps.
+  }
+
+  // The automatic starting K at mu: |lambda| h <= 1/2 for the largest eigenvalue of A(psi) at a
+  // few azimuths of each region (the spectrum sets the step a fixed-step method needs).
+  int automatic_start(const PeriodicSystem& sys) const {
     double rho = 0.0;
-    for (const auto& lam : hover.eigenvalues) rho = std::max(rho, std::abs(lam));
-    const double h = kTwoPi / o.steps;
-    if (o.method != TransitionMethod::Magnus4 && rho * h > 1.0) {
-      resolution_warning =
-          "step too coarse for the fastest hover mode (|lambda| = " + round_trip_text(rho) +
-          " per rev, |lambda| * step = " + round_trip_text(rho * h) + " > 1): increase --steps";
+    for (int k = 0; k < 8; ++k) {
+      const double psi = (k + 0.5) * kTwoPi / 8.0;
+      Eigen::EigenSolver<Eigen::MatrixXd> es(sys.A(psi), false);
+      if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
     }
+    if (sys.has_sector) {
+      Eigen::EigenSolver<Eigen::MatrixXd> es(sys.A(0.5 * (sys.sector_begin + sys.sector_end)),
+                                             false);
+      if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
+    }
+    const double k = std::ceil(rho * kTwoPi / 0.5);
+    if (!(k <= kMaxAutomaticSteps)) return kMaxAutomaticSteps;
+    // an even count, so that K/2 is a whole number
+    const int ki = std::max(kMinAutomaticSteps, static_cast<int>(k));
+    return ki + (ki % 2);
   }
 
-  // Adds the resolution warning to a result's status and message.
-  template <class R>
-  void flag(R& r) const {
-    if (resolution_warning.empty()) return;
-    if (r.status == Status::Ok) r.status = Status::Warning;
-    r.message = r.message.empty() ? resolution_warning : r.message + "; " + resolution_warning;
-  }
-
-  // The reference method refines itself: the Magnus steps double until the Richardson error
-  // estimate of Phi is below kReferenceTolerance (or kMaxReferenceSteps is reached), so that
-  // "reference" means converged, whatever --steps asked for.
-  static constexpr double kReferenceTolerance = 1e-12;
-  static constexpr int kMaxReferenceSteps = 12800;
-
-  TransitionResult transition(const PeriodicSystem& sys) const {
-    TransitionResult tr = transition_matrix(sys, options);
-    if (options.method != TransitionMethod::Magnus4) return tr;
+  FloquetResult at(const PeriodicSystem& sys, double trace, int steps) const {
     TransitionOptions o = options;
-    while (tr.error_estimate > kReferenceTolerance && o.steps * 2 <= kMaxReferenceSteps) {
-      o.steps *= 2;
-      tr = transition_matrix(sys, o);
-    }
-    return tr;
+    o.steps = steps;
+    return floquet_exponents(transition_matrix(sys, o).phi, trace);
   }
 
-  FloquetResult floquet(double mu) const {
+  static bool finite(const FloquetResult& r) {
+    for (const FloquetExponent& e : r.exponents)
+      if (!std::isfinite(e.multiplier.real()) || !std::isfinite(e.multiplier.imag())) return false;
+    return !r.exponents.empty();
+  }
+
+  FloquetSample floquet(double mu, double zeta_tolerance) const {
+    FloquetSample out;
     const PeriodicSystem sys = builder.system(mu);
-    return floquet_exponents(transition(sys).phi, sys.trace_integral());
+    bool system_finite = true;
+    for (const HarmonicSet* set : {&sys.normal, &sys.reversed})
+      for (const Eigen::MatrixXd& a : set->A) system_finite = system_finite && a.allFinite();
+    if (!system_finite) {
+      out.status = Status::Failed;
+      out.message =
+          "the periodic system overflows at this mu (the parameters are too extreme "
+          "for double precision)";
+      return out;
+    }
+    const double trace = sys.trace_integral();
+    const int order = method_order(options);
+    const double richardson = std::ldexp(1.0, order) - 1.0;
+    const bool automatic = options.steps == TransitionOptions::kAutomatic;
+    int steps = automatic ? automatic_start(sys) : options.steps;
+
+    FloquetResult fine = at(sys, trace, steps);
+    std::optional<FloquetResult> coarse;
+    if (steps >= 2) coarse = at(sys, trace, steps / 2);
+    auto resolved = [&](const std::vector<double>& err) {
+      for (std::size_t k = 0; k < err.size(); ++k) {
+        const double z = std::abs(fine.exponents[k].zeta);
+        const double allowed = zeta_tolerance * std::max(1.0, 100.0 * (std::isfinite(z) ? z : 0.0));
+        if (!(err[k] <= allowed)) return false;
+      }
+      return true;
+    };
+    std::vector<double> err;
+    for (;;) {
+      if (!finite(fine)) break;
+      if (!coarse || !finite(*coarse)) {
+        err.clear();
+        break;
+      }
+      err = zeta_differences(fine, *coarse);
+      for (double& e : err) e /= richardson;
+      if (!automatic || resolved(err) || 2 * steps > kMaxAutomaticSteps) break;
+      coarse = std::move(fine);
+      steps *= 2;
+      fine = at(sys, trace, steps);
+    }
+    const bool is_resolved = !err.empty() && resolved(err);
+    out.floquet = std::move(fine);
+    if (!finite(out.floquet)) {
+      out.status = Status::Failed;
+      out.message = "the transition matrix overflowed or its eigenvalues did not converge at " +
+                    std::to_string(steps) +
+                    " steps: an exponent is too large for double precision over one revolution";
+      return out;
+    }
+    std::string note;
+    if (!err.empty()) {
+      out.error = *std::max_element(err.begin(), err.end());
+      out.zeta_errors = err;
+      if (!is_resolved) {
+        note = "exponents not resolved: estimated zeta error " + short_text(*out.error) +
+               " per rev at " + std::to_string(steps) + " steps (tolerance " +
+               short_text(zeta_tolerance) + "); " +
+               (automatic ? "the automatic limit of " + std::to_string(kMaxAutomaticSteps) +
+                                " steps is reached"
+                          : "increase `steps`");
+      }
+      const double residual = out.floquet.liouville_residual;
+      const double implied = kTwoPi * static_cast<double>(err.size()) * *out.error;
+      if (std::isfinite(residual) && residual > 100.0 * implied + 1e-9) {
+        note += std::string(note.empty() ? "" : "; ") + "Liouville residual " +
+                short_text(residual) +
+                " far above the error estimate: the exponents are not resolved; increase `steps`";
+      }
+    } else if (steps < 2) {
+      note = "no error estimate with 1 step; increase `steps`";
+    }
+    if (!note.empty()) {
+      out.status = Status::Warning;
+      out.message = note;
+    }
+    return out;
   }
 
   FloquetFunction function() const {
-    return [this](double mu) { return floquet(mu); };
+    return [this](double mu, double tol) { return floquet(mu, tol); };
   }
 
   TransitionOptions options;
   detail::SystemBuilder builder;
   HoverResult hover;
   HoverModes hover_modes;
-  std::string resolution_warning;
 };
 
 Analysis::Analysis(const RotorParameters& params, const TransitionOptions& options)
@@ -139,13 +257,20 @@ const ModeSet& Analysis::modes() const { return impl_->builder.modes(); }
 const HoverResult& Analysis::hover() const { return impl_->hover; }
 
 PeriodicSystem Analysis::system(double mu) const {
-  check_mu(mu, "--mu");
+  check_mu(mu, "mu");
   return impl_->builder.system(mu);
 }
 
+FloquetSample Analysis::floquet(double mu, double zeta_tolerance) const {
+  check_mu(mu, "mu");
+  if (!(std::isfinite(zeta_tolerance) && zeta_tolerance > 0.0))
+    throw InvalidInput("zeta_tolerance", round_trip_text(zeta_tolerance), "must be > 0");
+  return impl_->floquet(mu, zeta_tolerance);
+}
+
 SystemSnapshot Analysis::snapshot(double mu, double psi) const {
-  check_mu(mu, "--mu");
-  if (!std::isfinite(psi)) throw InvalidInput("--psi", round_trip_text(psi), "must be finite");
+  check_mu(mu, "mu");
+  if (!std::isfinite(psi)) throw InvalidInput("psi", round_trip_text(psi), "must be finite");
   SystemSnapshot s;
   s.mu = mu;
   s.psi = psi;
@@ -169,87 +294,70 @@ SystemSnapshot Analysis::snapshot(double mu, double psi) const {
 }
 
 PointResult Analysis::point(double mu, double scan_step) const {
-  check_mu(mu, "--mu");
+  check_mu(mu, "mu");
   if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
-    throw InvalidInput("--step", round_trip_text(scan_step), "must be finite and > 0");
+    throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
   }
-  const ExponentSweep sw =
-      sweep_exponents(impl_->hover_modes, impl_->function(), mu, mu, scan_step);
+  if (mu / scan_step > static_cast<double>(kMaxContinuationSteps)) {
+    throw InvalidInput("scan_step", round_trip_text(scan_step),
+                       "too small: at most " + std::to_string(kMaxContinuationSteps) +
+                           " continuation steps from hover");
+  }
+  SweepResult sw = sweep_exponents(impl_->hover_modes, impl_->function(), mu, mu, scan_step,
+                                   impl_->options.zeta_tolerance);
   PointResult r;
   r.mu = mu;
-  r.status = sw.status;
-  r.message = sw.message;
   if (sw.points.empty()) {
     r.status = Status::Failed;
-    if (r.message.empty()) r.message = "continuation from hover failed";
+    r.message = sw.message.empty() ? "continuation from hover failed" : sw.message;
     return r;
   }
-  const SweepPoint& p = sw.points.back();
-  r.exponents = to_modes(p.exponents);
-  r.liouville_residual = p.liouville_residual;
-  r.stable = p.stable;
-  if (impl_->options.method == TransitionMethod::Magnus4) {
-    r.error_estimate = impl_->transition(impl_->builder.system(mu)).error_estimate;
+  r = std::move(sw.points.back());
+  r.mu = mu;
+  if (r.status != Status::Failed) {
+    // A problem on the way (identification) matters for the point too.
+    if (sw.status > r.status) {
+      r.status = sw.status;
+      r.message = r.message.empty() ? sw.message : r.message + "; " + sw.message;
+    }
+  } else if (r.message.empty()) {
+    r.message = sw.message;
   }
-  impl_->flag(r);
+  sort_for_output(r.exponents);
   return r;
 }
 
 SweepResult Analysis::sweep(double mu0, double mu1, double step) const {
-  check_mu(mu0, "--mu (start)");
-  check_mu(mu1, "--mu (end)");
+  check_mu(mu0, "mu0");
+  check_mu(mu1, "mu1");
   if (!(step > 0.0) || !std::isfinite(step)) {
-    throw InvalidInput("--mu (step)", round_trip_text(step), "step must be finite and > 0");
+    throw InvalidInput("step", round_trip_text(step), "must be finite and > 0");
   }
   if (!(mu1 > mu0)) {
-    throw InvalidInput("--mu", round_trip_text(mu0) + ":" + round_trip_text(mu1),
-                       "empty or reversed range (end must exceed start)");
+    throw InvalidInput("mu1", round_trip_text(mu1),
+                       "empty or reversed range (must exceed mu0 = " + round_trip_text(mu0) + ")");
   }
-  const ExponentSweep sw = sweep_exponents(impl_->hover_modes, impl_->function(), mu0, mu1, step);
-  SweepResult r;
-  r.status = sw.status;
-  r.message = sw.message;
-  for (const auto& p : sw.points) {
-    PointResult q;
+  if (mu1 / step > static_cast<double>(kMaxContinuationSteps)) {
+    throw InvalidInput(
+        "step", round_trip_text(step),
+        "too small: at most " + std::to_string(kMaxContinuationSteps) + " continuation steps");
+  }
+  SweepResult r = sweep_exponents(impl_->hover_modes, impl_->function(), mu0, mu1, step,
+                                  impl_->options.zeta_tolerance);
+  for (PointResult& p : r.points) {
     // mu0 + k step accumulates rounding (0.7999999999999999); report the decimal grid value.
-    q.mu = std::stod(snap12(p.mu));
-    q.exponents = to_modes(p.exponents);
-    q.liouville_residual = p.liouville_residual;
-    q.stable = p.stable;
-    q.status = p.status;
-    q.message = p.message;
-    r.points.push_back(std::move(q));
+    p.mu = std::stod(snap12(p.mu));
+    sort_for_output(p.exponents);
   }
-  impl_->flag(r);
   return r;
 }
 
 CriticalResult Analysis::critical(const CriticalOptions& opt) const {
-  if (!(opt.mu_max > 0.0) || !std::isfinite(opt.mu_max)) {
-    throw InvalidInput("--mu-max", round_trip_text(opt.mu_max), "must be finite and > 0");
-  }
-  if (!(opt.scan_step > 0.0) || !std::isfinite(opt.scan_step)) {
-    throw InvalidInput("--scan-step", round_trip_text(opt.scan_step), "must be finite and > 0");
-  }
-  if (!(opt.tolerance > 0.0) || !std::isfinite(opt.tolerance)) {
-    throw InvalidInput("--tolerance", round_trip_text(opt.tolerance), "must be finite and > 0");
-  }
-  CriticalSearchOptions o;
-  o.mu_max = opt.mu_max;
-  o.step = opt.scan_step;
-  o.tolerance = opt.tolerance;
-  const CriticalSearchResult c = find_critical(impl_->hover_modes, impl_->function(), o);
-  CriticalResult r;
-  r.found = c.found;
-  r.mu_c = c.mu_c;
-  r.mode = c.label;
-  // A conjugate pair crosses together; report the member with omega >= 0.
-  r.omega = std::abs(c.omega);
-  r.kind = c.kind;
-  r.mu_max = c.mu_max;
-  r.status = c.status;
-  r.message = c.message;
-  impl_->flag(r);
+  opt.Check();
+  CriticalOptions o = opt;
+  o.scan_zeta_tolerance = std::min(opt.scan_zeta_tolerance, impl_->options.zeta_tolerance);
+  CriticalResult r = find_critical(impl_->hover_modes, impl_->function(), o);
+  sort_for_output(r.exponents);
   return r;
 }
 

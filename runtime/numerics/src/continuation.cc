@@ -16,6 +16,13 @@ namespace flaplag {
 namespace {
 
 constexpr double kAmbiguousSimilarity = 0.5;
+// ln of the smallest normal double over 2 pi: a multiplier below it is indistinguishable from 0.
+// Zero multipliers have zeta = -inf; for prediction and matching their zeta is taken as this.
+const double kZetaFloor = std::log(std::numeric_limits<double>::min()) / kTwoPi;
+// Any mismatch costs at most this: keeps the branch-and-bound's arithmetic finite.
+constexpr double kMaxCost = 1e12;
+
+double finite_zeta(double zeta) { return std::max(zeta, kZetaFloor); }
 
 std::string fmt(double v) { return short_text(v); }
 
@@ -86,10 +93,46 @@ class Assignment {
 // Everything the search needs at one trial mu.
 struct Trial {
   double mu = 0.0;
-  double f = 0.0;  // max zeta - zeta_tolerance
+  double f = 0.0;  // max zeta - zeta_threshold
   ExponentTracker tracker;
   TrackReport report;
+  std::optional<double> error;  // the sample's error estimate of the largest zeta
+  double liouville_residual = 0.0;
 };
+
+// Error estimate of the largest zeta of a sample (the one that decides stability).
+std::optional<double> largest_zeta_error(const FloquetSample& s) {
+  if (s.zeta_errors.size() != s.floquet.exponents.size() || s.zeta_errors.empty()) return s.error;
+  std::size_t k = 0;
+  for (std::size_t i = 1; i < s.floquet.exponents.size(); ++i)
+    if (s.floquet.exponents[i].zeta > s.floquet.exponents[k].zeta) k = i;
+  return s.zeta_errors[k];
+}
+
+// The InvalidInput of the first invalid field, or nothing.
+std::optional<InvalidInput> problem(const CriticalOptions& o) {
+  auto bad = [](const char* name, double v, const std::string& reason) {
+    return std::optional<InvalidInput>(InvalidInput(name, round_trip_text(v), reason));
+  };
+  if (!(std::isfinite(o.mu_max) && o.mu_max > 0.0 && o.mu_max <= kMaxAdvanceRatio))
+    return bad("mu_max", o.mu_max, "must be > 0 and <= " + round_trip_text(kMaxAdvanceRatio));
+  if (!(std::isfinite(o.scan_step) && o.scan_step > 0.0))
+    return bad("scan_step", o.scan_step, "must be > 0");
+  if (o.mu_max / o.scan_step > static_cast<double>(kMaxContinuationSteps))
+    return bad("scan_step", o.scan_step,
+               "too small: mu_max / scan_step must be at most " +
+                   std::to_string(kMaxContinuationSteps) + " steps");
+  if (!(std::isfinite(o.tolerance) && o.tolerance > 0.0))
+    return bad("tolerance", o.tolerance, "must be > 0");
+  if (!(std::isfinite(o.zeta_threshold) && o.zeta_threshold >= 0.0))
+    return bad("zeta_threshold", o.zeta_threshold, "must be >= 0");
+  if (!(std::isfinite(o.periodic_omega_tolerance) && o.periodic_omega_tolerance >= 0.0 &&
+        o.periodic_omega_tolerance < 0.25))
+    return bad("periodic_omega_tolerance", o.periodic_omega_tolerance, "must be in [0, 0.25)");
+  if (!(std::isfinite(o.scan_zeta_tolerance) && o.scan_zeta_tolerance > 0.0))
+    return bad("scan_zeta_tolerance", o.scan_zeta_tolerance, "must be > 0");
+  return std::nullopt;
+}
 
 }  // namespace
 
@@ -124,7 +167,8 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
   TrackReport report;
   for (const FloquetExponent& e : next.exponents) {
     if (!std::isfinite(e.multiplier.real()) || !std::isfinite(e.multiplier.imag()) ||
-        e.eigenvector.size() != vectors_[0].size() || !e.eigenvector.allFinite()) {
+        std::isnan(e.zeta) || std::isnan(e.omega) || e.eigenvector.size() != vectors_[0].size() ||
+        !e.eigenvector.allFinite()) {
       report.status = Status::Failed;
       report.message = "non-finite multipliers or eigenvectors; tracking state unchanged";
       report.min_similarity = 0.0;
@@ -148,7 +192,8 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
   }
   for (int i = 0; i < n; ++i) {
     const LabelledExponent& e = exponents_[i];
-    pz[i] = e.zeta + (extrapolate ? t * (e.zeta - previous_[i].real()) : 0.0);
+    const double z = finite_zeta(e.zeta);
+    pz[i] = z + (extrapolate ? t * (z - finite_zeta(previous_[i].real())) : 0.0);
     pw[i] = e.omega + (extrapolate ? t * (e.omega - previous_[i].imag()) : 0.0);
   }
 
@@ -162,17 +207,26 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
       const FloquetExponent& e = next.exponents[j];
       sim(i, j) = std::abs(vectors_[i].dot(e.eigenvector));  // dot() conjugates the left side
       const double dw = e.omega - pw[i];
-      const double dz = std::isfinite(e.zeta) ? e.zeta - pz[i] : 1e3;
-      cost(i, j) = (1.0 - sim(i, j)) + kTwoPi * std::hypot(dz, dw - std::round(dw));
+      const double dz = finite_zeta(e.zeta) - pz[i];
+      const double c = (1.0 - sim(i, j)) + kTwoPi * std::hypot(dz, dw - std::round(dw));
+      cost(i, j) = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
     }
   }
   const std::vector<int> match = Assignment(cost).solve();
+  for (int i = 0; i < n; ++i) {
+    if (match[i] < 0 || match[i] >= n) {  // unreachable with finite costs; never index with it
+      report.status = Status::Failed;
+      report.message = "mode identification found no assignment; tracking state unchanged";
+      report.min_similarity = 0.0;
+      return report;
+    }
+  }
 
   previous_.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     const FloquetExponent& e = next.exponents[match[i]];
     LabelledExponent& x = exponents_[i];
-    previous_[i] = {x.zeta, x.omega};
+    previous_[i] = {finite_zeta(x.zeta), x.omega};
     // omega = principal + k with the integer k that puts omega closest to its prediction.
     x.omega = e.omega + std::round(pw[i] - e.omega);
     x.zeta = e.zeta;
@@ -200,19 +254,22 @@ int ExponentTracker::most_unstable() const {
 
 double ExponentTracker::max_zeta() const { return exponents_[most_unstable()].zeta; }
 
-CriticalSearchResult find_critical(const HoverModes& hover, const FloquetFunction& floquet,
-                                   const CriticalSearchOptions& opt) {
-  require(std::isfinite(opt.mu_max) && opt.mu_max > 0.0, "mu_max", opt.mu_max, "must be > 0");
-  require(std::isfinite(opt.step) && opt.step > 0.0, "step", opt.step, "must be > 0");
-  require(std::isfinite(opt.tolerance) && opt.tolerance > 0.0, "tolerance", opt.tolerance,
-          "must be > 0");
-  require(std::isfinite(opt.zeta_tolerance) && opt.zeta_tolerance >= 0.0, "zeta_tolerance",
-          opt.zeta_tolerance, "must be >= 0");
-  require(std::isfinite(opt.periodic_omega_tolerance) && opt.periodic_omega_tolerance >= 0.0,
-          "periodic_omega_tolerance", opt.periodic_omega_tolerance, "must be >= 0");
+bool CriticalOptions::IsValid(std::string* error) const {
+  const auto p = problem(*this);
+  if (p && error != nullptr) *error = p->what();
+  return !p;
+}
+
+void CriticalOptions::Check() const {
+  if (auto p = problem(*this)) throw *p;
+}
+
+CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& floquet,
+                             const CriticalOptions& opt) {
+  opt.Check();
   if (!floquet) throw InvalidInput("floquet", "empty", "a FloquetFunction is required");
 
-  CriticalSearchResult out;
+  CriticalResult out;
   out.mu_max = opt.mu_max;
   if (hover.status == Status::Failed) {
     out.status = Status::Failed;
@@ -220,32 +277,36 @@ CriticalSearchResult find_critical(const HoverModes& hover, const FloquetFunctio
     return out;
   }
   std::string warnings;
-  auto note = [&](const std::string& m) {
-    if (warnings.empty()) warnings = m;
-  };
-  auto crossing = [&](const ExponentTracker& t, double mu) {
-    const LabelledExponent& e = t.exponents()[t.most_unstable()];
-    out.found = true;
-    out.mu_c = mu;
-    out.label = e.label;
-    out.omega = e.omega;
-    out.kind = classify_crossing(e.omega, opt.periodic_omega_tolerance);
-    out.exponents = t.exponents();
+  auto note = [&](double mu, Status status, const std::string& m) {
+    if (status != Status::Ok && warnings.empty()) warnings = "at mu = " + fmt(mu) + ": " + m;
   };
 
   ExponentTracker tracker(hover);
-  if (tracker.max_zeta() > opt.zeta_tolerance) {
-    crossing(tracker, 0.0);
+  if (tracker.max_zeta() > opt.zeta_threshold) {
+    const LabelledExponent& e = tracker.exponents()[tracker.most_unstable()];
+    out.hover_unstable = true;
+    out.exponents = tracker.exponents();
     out.status = Status::Warning;
-    out.message = "unstable in hover (" + out.label + ", zeta = " + fmt(tracker.max_zeta()) + ")";
+    out.message = "unstable in hover (" + e.label + ", zeta = " + fmt(e.zeta) +
+                  "): there is no critical advance ratio";
     return out;
   }
 
-  auto evaluate = [&](const ExponentTracker& from, double mu) {
-    Trial t{mu, 0.0, from, {}};
-    t.report = t.tracker.advance(floquet(mu), mu);
+  auto evaluate = [&](const ExponentTracker& from, double mu, double zeta_tolerance) {
+    const FloquetSample sample = floquet(mu, zeta_tolerance);
     ++out.evaluations;
-    t.f = t.tracker.max_zeta() - opt.zeta_tolerance;
+    Trial t{mu, 0.0, from, {}, largest_zeta_error(sample), sample.floquet.liouville_residual};
+    if (sample.status == Status::Failed) {
+      t.report.status = Status::Failed;
+      t.report.message = sample.message;
+      return t;
+    }
+    t.report = t.tracker.advance(sample.floquet, mu);
+    if (t.report.status == Status::Ok && sample.status != Status::Ok) {
+      t.report.status = sample.status;
+      t.report.message = sample.message;
+    }
+    t.f = t.tracker.max_zeta() - opt.zeta_threshold;
     return t;
   };
   auto failed = [&](const Trial& t) {
@@ -255,23 +316,42 @@ CriticalSearchResult find_critical(const HoverModes& hover, const FloquetFunctio
     return out;
   };
 
-  const int steps = static_cast<int>(std::ceil(opt.mu_max / opt.step - 1e-9));
+  // Bounded by Check(): at most kMaxContinuationSteps (+1 for rounding).
+  const long steps = static_cast<long>(std::ceil(opt.mu_max / opt.scan_step - 1e-9));
   double prev_mu = 0.0;
-  for (int i = 1; i <= steps; ++i) {
-    const double mu = std::min(i * opt.step, opt.mu_max);
-    Trial hi = evaluate(tracker, mu);
+  double prev_f = tracker.max_zeta() - opt.zeta_threshold;
+  for (long i = 1; i <= steps; ++i) {
+    const double mu = std::min(static_cast<double>(i) * opt.scan_step, opt.mu_max);
+    Trial hi = evaluate(tracker, mu, opt.scan_zeta_tolerance);
     if (hi.report.status == Status::Failed) return failed(hi);
-    if (hi.report.status == Status::Warning) note("at mu = " + fmt(mu) + ": " + hi.report.message);
+    note(mu, hi.report.status, hi.report.message);
     if (hi.f <= 0.0) {
       tracker = std::move(hi.tracker);
       prev_mu = mu;
+      prev_f = hi.f;
       continue;
     }
 
-    // Brent's method (zeroin) on f(mu) = max zeta - zeta_tolerance over [prev_mu, mu], every
+    // A crossing in [prev_mu, mu].  mu_c is only as good as zeta near it: the refinement asks
+    // for an exponent error well below |d zeta/d mu| * tolerance.
+    const double slope0 = (hi.f - prev_f) / (mu - prev_mu);
+    const double refine_tolerance =
+        std::max(1e-13, std::min(opt.scan_zeta_tolerance, 0.1 * slope0 * opt.tolerance));
+    Trial b = evaluate(tracker, mu, refine_tolerance);
+    if (b.report.status == Status::Failed) return failed(b);
+    if (b.f <= 0.0) {  // the coarser scan saw an instability the resolved one does not
+      note(mu, Status::Warning,
+           "an instability seen at the scan resolution vanished when resolved (zeta = " +
+               fmt(hi.f + opt.zeta_threshold) + " at the scan resolution)");
+      tracker = std::move(b.tracker);
+      prev_mu = mu;
+      prev_f = b.f;
+      continue;
+    }
+
+    // Brent's method (zeroin) on f(mu) = max zeta - zeta_threshold over [prev_mu, mu], every
     // trial continued from the tracker at the last stable grid point.
-    Trial a{prev_mu, tracker.max_zeta() - opt.zeta_tolerance, tracker, {}};
-    Trial b = std::move(hi);
+    Trial a{prev_mu, prev_f, tracker, {}, std::nullopt, 0.0};
     Trial c = a;
     double d = b.mu - a.mu, e = d;
     const double eps = std::numeric_limits<double>::epsilon();
@@ -313,18 +393,36 @@ CriticalSearchResult find_critical(const HoverModes& hover, const FloquetFunctio
       }
       a = b;
       const double next = b.mu + (std::abs(d) > tol1 ? d : (xm > 0.0 ? tol1 : -tol1));
-      b = evaluate(tracker, next);
+      b = evaluate(tracker, next, refine_tolerance);
       if (b.report.status == Status::Failed) return failed(b);
-      if (b.report.status == Status::Warning)
-        note("at mu = " + fmt(next) + ": " + b.report.message);
     }
     // b is the estimate of mu_c; the mode that crossed is the most unstable one on the
     // unstable side of the final bracket [b, c].
     const Trial& unstable = b.f > 0.0 ? b : c;
-    crossing(unstable.tracker, b.mu);
+    const LabelledExponent& x = unstable.tracker.exponents()[unstable.tracker.most_unstable()];
+    out.mu_c = b.mu;
+    out.mode = x.label;
+    // A conjugate pair crosses together; report the member with omega >= 0.
+    out.omega = std::abs(x.omega);
+    out.kind = classify_crossing(x.omega, opt.periodic_omega_tolerance);
+    out.exponents = unstable.tracker.exponents();
+    // Error of mu_c: half the final bracket plus the exponent error at the crossing over the
+    // slope of zeta there (the slope of the final bracket, or of the scan step if degenerate).
+    const double slope = c.mu != b.mu && c.f != b.f ? (c.f - b.f) / (c.mu - b.mu) : slope0;
+    const double zeta_error = std::max(b.error.value_or(0.0), c.error.value_or(0.0));
+    if (b.error || c.error) {
+      out.mu_c_error = 0.5 * std::abs(c.mu - b.mu) + zeta_error / std::abs(slope);
+    }
     out.status = warnings.empty() ? Status::Ok : Status::Warning;
-    out.message = "unstable above mu_c = " + fmt(b.mu) + " (" + out.label + ", " +
+    out.message = "unstable above mu_c = " + fmt(b.mu) + " (" + out.mode + ", " +
                   kind_name(out.kind) + ", omega = " + fmt(out.omega) + ")";
+    if (out.mu_c_error && *out.mu_c_error > 10.0 * opt.tolerance) {
+      out.status = Status::Warning;
+      out.message += "; mu_c is not resolved to `tolerance`: estimated error " +
+                     fmt(*out.mu_c_error) + " (zeta error " + fmt(zeta_error) +
+                     " per rev at a zeta slope of " + fmt(slope) +
+                     " per unit mu); increase `steps`";
+    }
     if (!warnings.empty()) out.message += "; " + warnings;
     return out;
   }
@@ -335,63 +433,91 @@ CriticalSearchResult find_critical(const HoverModes& hover, const FloquetFunctio
   return out;
 }
 
-ExponentSweep sweep_exponents(const HoverModes& hover, const FloquetFunction& floquet, double mu0,
-                              double mu1, double step) {
-  require(std::isfinite(mu0) && mu0 >= 0.0, "mu0", mu0, "must be >= 0");
-  require(std::isfinite(mu1) && mu1 >= mu0, "mu1", mu1, "must be >= mu0");
+SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floquet, double mu0,
+                            double mu1, double step, double zeta_tolerance) {
+  require(std::isfinite(mu0) && mu0 >= 0.0 && mu0 <= kMaxAdvanceRatio, "mu0", mu0,
+          "must be >= 0 and <= 1000");
+  require(std::isfinite(mu1) && mu1 >= mu0 && mu1 <= kMaxAdvanceRatio, "mu1", mu1,
+          "must be >= mu0 and <= 1000");
   require(std::isfinite(step) && step > 0.0, "step", step, "must be > 0");
+  require(mu1 / step <= static_cast<double>(kMaxContinuationSteps), "step", step,
+          "too small: at most 1000000 continuation steps");
+  require(std::isfinite(zeta_tolerance) && zeta_tolerance > 0.0, "zeta_tolerance", zeta_tolerance,
+          "must be > 0");
   if (!floquet) throw InvalidInput("floquet", "empty", "a FloquetFunction is required");
 
-  ExponentSweep out;
+  SweepResult out;
   if (hover.status == Status::Failed) {
     out.status = Status::Failed;
     out.message = "hover modes unavailable: " + hover.message;
     return out;
   }
+  auto note = [&](double mu, const std::string& m) {
+    if (out.message.empty()) out.message = "at mu = " + fmt(mu) + ": " + m;
+  };
   ExponentTracker tracker(hover);
-  // Reach mu0 from hover in equal steps no longer than `step`.
-  const int pre = static_cast<int>(std::ceil(mu0 / step - 1e-9));
-  for (int i = 1; i < pre; ++i) {
-    const double mu = mu0 * i / pre;
-    const TrackReport r = tracker.advance(floquet(mu), mu);
+  // Reach mu0 from hover in equal steps no longer than `step` (bounded by the checks above).
+  const long pre = static_cast<long>(std::ceil(mu0 / step - 1e-9));
+  for (long i = 1; i < pre; ++i) {
+    const double mu = mu0 * static_cast<double>(i) / static_cast<double>(pre);
+    const FloquetSample sample = floquet(mu, zeta_tolerance);
+    TrackReport r;
+    if (sample.status == Status::Failed) {
+      r.status = Status::Failed;
+      r.message = sample.message;
+    } else {
+      r = tracker.advance(sample.floquet, mu);
+    }
     if (r.status == Status::Failed) {
       out.status = Status::Failed;
       out.message = "continuation to mu0 failed at mu = " + fmt(mu) + ": " + r.message;
       return out;
     }
-    if (r.status == Status::Warning && out.message.empty()) {
+    // Identification along the way matters; the resolution of points not reported does not.
+    if (r.status == Status::Warning) {
       out.status = Status::Warning;
-      out.message = "at mu = " + fmt(mu) + ": " + r.message;
+      note(mu, r.message);
     }
   }
 
   std::vector<double> mus;
-  const int m = static_cast<int>(std::floor((mu1 - mu0) / step + 1e-9));
-  for (int i = 0; i <= m; ++i) mus.push_back(mu0 + i * step);
+  const long m = static_cast<long>(std::floor((mu1 - mu0) / step + 1e-9));
+  for (long i = 0; i <= m; ++i) mus.push_back(mu0 + static_cast<double>(i) * step);
   if (mus.back() < mu1 - 1e-12 * std::max(1.0, mu1))
     mus.push_back(mu1);
   else
     mus.back() = std::min(mus.back(), mu1);
 
   for (double mu : mus) {
-    const FloquetResult fr = floquet(mu);
-    const TrackReport r = tracker.advance(fr, mu);
-    SweepPoint p;
+    const FloquetSample sample = floquet(mu, zeta_tolerance);
+    PointResult p;
     p.mu = mu;
+    if (std::isfinite(sample.floquet.liouville_residual))
+      p.liouville_residual = sample.floquet.liouville_residual;
+    p.error = sample.error;
+    TrackReport r;
+    if (sample.status == Status::Failed) {
+      r.status = Status::Failed;
+      r.message = sample.message;
+    } else {
+      r = tracker.advance(sample.floquet, mu);
+    }
     p.status = r.status;
     p.message = r.message;
-    p.liouville_residual = fr.liouville_residual;
     if (r.status == Status::Failed) {
       out.points.push_back(std::move(p));
       out.status = Status::Failed;
       out.message = "at mu = " + fmt(mu) + ": " + r.message;
       return out;
     }
+    if (sample.status == Status::Warning) {
+      p.status = Status::Warning;
+      p.message = p.message.empty() ? sample.message : p.message + "; " + sample.message;
+    }
     p.exponents = tracker.exponents();
     p.stable = tracker.max_zeta() <= 0.0;
-    if (r.status == Status::Warning && out.message.empty())
-      out.message = "at mu = " + fmt(mu) + ": " + r.message;
-    out.status = worse(out.status, r.status);
+    if (p.status != Status::Ok) note(mu, p.message);
+    out.status = worse(out.status, p.status);
     out.points.push_back(std::move(p));
   }
   return out;

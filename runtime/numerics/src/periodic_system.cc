@@ -1,18 +1,17 @@
 // flaplag — the periodic system y' = A(psi) y + f(psi): harmonic evaluation, exact interval
 // means (eqs 4.2-4.5 generalised to any harmonic) and the exact trace integral used by the
 // Liouville check det Phi(2 pi) = exp(int_0^{2 pi} tr A).
-#include "flaplag/core/constants.h"
 #include "flaplag/numerics/periodic_system.h"
 
 #include <cmath>
 #include <cstdio>
 #include <string>
 
+#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 
 namespace flaplag {
 namespace {
-
 
 // Local formatting so that this library does not depend on errors.cc (another library).
 std::string fmt(double v) {
@@ -86,11 +85,16 @@ void PeriodicSystem::validate() const {
   }
 }
 
-bool PeriodicSystem::in_sector(double psi) const {
-  if (!has_sector) return false;
+double reduce_azimuth(double psi) {
   double p = std::fmod(psi, kTwoPi);
   if (p < 0.0) p += kTwoPi;
   if (p >= kTwoPi) p = 0.0;  // fmod of a tiny negative number rounds up to 2 pi
+  return p;
+}
+
+bool PeriodicSystem::in_sector(double psi) const {
+  if (!has_sector) return false;
+  const double p = reduce_azimuth(psi);
   return p >= sector_begin && p < sector_end;
 }
 
@@ -99,6 +103,8 @@ const HarmonicSet& PeriodicSystem::region(double psi) const {
 }
 
 Eigen::MatrixXd PeriodicSystem::A(double psi) const {
+  // Reduced first: cos(k psi) of a huge psi is NaN (k psi overflows) or meaningless.
+  psi = reduce_azimuth(psi);
   const HarmonicSet& set = region(psi);
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n);
   for (std::size_t h = 0; h < set.A.size(); ++h)
@@ -107,6 +113,7 @@ Eigen::MatrixXd PeriodicSystem::A(double psi) const {
 }
 
 Eigen::VectorXd PeriodicSystem::f(double psi) const {
+  psi = reduce_azimuth(psi);
   const HarmonicSet& set = region(psi);
   Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
   for (std::size_t h = 0; h < set.f.size(); ++h)

@@ -23,6 +23,7 @@
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
 #include "flaplag/numerics/floquet.h"
 
 namespace flaplag {
@@ -38,8 +39,10 @@ double sinc(double x) {
   return std::sin(x) / x;
 }
 
-void check_count(const char* name, int value) {
-  if (value < 1) throw InvalidInput(name, std::to_string(value), "must be >= 1");
+// Upper bounds keep memory (one grid segment per step) and time bounded for any caller.
+void check_count(const char* name, int value, int hi = TransitionOptions::kMaxSteps) {
+  if (value < 1 || value > hi)
+    throw InvalidInput(name, std::to_string(value), "must be 1.." + std::to_string(hi));
 }
 
 // One substep of the grid.  `node` >= 0 marks an unsplit equal step number `node` (its ends
@@ -429,7 +432,7 @@ Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps) {
 
 Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms) {
   check_count("intervals", intervals);
-  check_count("terms", terms);
+  check_count("terms", terms, TransitionOptions::kMaxTerms);
   sys.validate();
   return dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.hsu(intervals, terms)); });
 }
@@ -458,7 +461,36 @@ TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps)
   return out;
 }
 
+bool TransitionOptions::IsValid(std::string* error) const {
+  std::string why;
+  if (method != TransitionMethod::RK4 && method != TransitionMethod::Hsu &&
+      method != TransitionMethod::Magnus4) {
+    why = "method = " + std::to_string(static_cast<int>(method)) + ": unknown method";
+  } else if (steps < 0 || steps > kMaxSteps) {
+    why = "steps = " + std::to_string(steps) + ": must be 0 (automatic) or 1.." +
+          std::to_string(kMaxSteps);
+  } else if (terms < 1 || terms > kMaxTerms) {
+    why = "terms = " + std::to_string(terms) + ": must be 1.." + std::to_string(kMaxTerms);
+  } else if (!(std::isfinite(zeta_tolerance) && zeta_tolerance > 0.0)) {
+    why = "zeta_tolerance = " + round_trip_text(zeta_tolerance) + ": must be > 0";
+  }
+  if (!why.empty() && error != nullptr) *error = why;
+  return why.empty();
+}
+
+void TransitionOptions::Check() const {
+  std::string why;
+  if (IsValid(&why)) return;
+  // "field = value: reason"
+  const auto eq = why.find(" = ");
+  const auto colon = why.find(": ", eq);
+  throw InvalidInput(why.substr(0, eq), why.substr(eq + 3, colon - eq - 3), why.substr(colon + 2));
+}
+
 TransitionResult transition_matrix(const PeriodicSystem& sys, const TransitionOptions& opt) {
+  opt.Check();
+  if (opt.steps == TransitionOptions::kAutomatic)
+    throw InvalidInput("steps", "0", "transition_matrix needs a fixed step count");
   switch (opt.method) {
     case TransitionMethod::RK4:
       return {transition_matrix_rk4(sys, opt.steps), 0.0};

@@ -47,9 +47,9 @@ std::vector<ParameterSpec> build_table() {
                             "the name of a compiled model", nullptr, Interval{0, 0, false, false},
                             nullptr, false, nullptr});
   t.push_back(real_row("lock", "--gamma", "gamma", "-", "Lock number, based on normal flow",
-                       &RotorParameters::lock, positive, "> 0"));
+                       &RotorParameters::gamma, positive, "> 0"));
   t.push_back(real_row("solidity", "--sigma", "sigma", "-",
-                       "rotor solidity, for the inflow of eq 2.24", &RotorParameters::solidity,
+                       "rotor solidity, for the inflow of eq 2.24", &RotorParameters::sigma,
                        positive, "> 0"));
   t.push_back(real_row("lift_slope", "--lift-slope", "a", "1/rad", "lift-curve slope",
                        &RotorParameters::lift_slope, positive, "> 0"));
@@ -83,7 +83,7 @@ std::vector<ParameterSpec> build_table() {
                        "outer limit of the aerodynamic span (tip loss), in x0 = r/l",
                        &RotorParameters::tip_loss_b, Interval{0.0, 1.0, true, false}, "in (0, 1]"));
   t.push_back(real_row("e1", "--root-offset", "e1", "-", "root offset of the elastic blade by R",
-                       &RotorParameters::e1, non_negative, ">= 0"));
+                       &RotorParameters::root_offset, non_negative, ">= 0"));
   t.push_back(flag_row("reversed_flow", "--no-reversed-flow",
                        "leave out the reversed-flow sector (Appendix D)",
                        &RotorParameters::reversed_flow, false));
@@ -231,7 +231,7 @@ void validate(const RotorParameters& p) {
 }
 
 double hover_inflow(const RotorParameters& p) {
-  const double sa = p.solidity * p.lift_slope;
+  const double sa = p.sigma * p.lift_slope;
   // Written as 24 theta / (16 (sqrt(1 + 24 theta/(sigma a)) + 1)), which equals eq 2.24 exactly
   // but does not lose digits to cancellation when 24 theta << sigma a.  Negative theta below
   // -sigma a / 24 makes the square root imaginary: eq 2.24 has no hover inflow there.

@@ -22,22 +22,22 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   validate(p_);
   if (p_.modes == ModeKind::Assumed) {
     if (M_ != 1 || N_ != 1) {
-      throw InvalidInput("--modes", "assumed",
+      throw InvalidInput("modes", "assumed",
                          std::string("model '") + m.name + "' has " + std::to_string(M_) +
                              " flap x " + std::to_string(N_) +
                              " lag modes; the assumed mode (eq 4.1) gives one of each: use "
-                             "--modes exact");
+                             "`modes` = exact");
     }
     modes_ = assumed_modes(p_.omega_flap, p_.omega_lag);
   } else {
     ExactModeOptions opt;
     opt.flap_modes = M_;
     opt.lag_modes = N_;
-    opt.e1_over_l = p_.e1 / p_.length_ratio;
+    opt.e1_over_l = p_.root_offset / p_.length_ratio;
     opt.paper_1974_shapes = p_.paper_1974_shapes;
     modes_ = exact_modes(p_.omega_flap, p_.omega_lag, opt);
   }
-  geometry_.e1 = p_.e1;
+  geometry_.e1 = p_.root_offset;
   geometry_.lr = p_.length_ratio;
   geometry_.tip_loss_a = p_.tip_loss_a;
   geometry_.tip_loss_b = p_.tip_loss_b;
@@ -62,7 +62,7 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   ecs_flap_lag_ = flat(coupling_.ecs_flap_lag);
   ecs_lag_flap_ = flat(coupling_.ecs_lag_flap);
 
-  structural_ = structural_integrals(m, modes_, p_.e1 / p_.length_ratio);
+  structural_ = structural_integrals(m, modes_, p_.root_offset / p_.length_ratio);
   aero_ = AeroIntegrals(m, modes_, geometry_);
 
   // Hover equilibrium (2.29-2.32): S q0 = c with mu = 0.
@@ -111,7 +111,7 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
 
 model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) const {
   model::CoefficientInputs in{};
-  in.lock = p_.lock;
+  in.lock = p_.gamma;
   in.lr = p_.length_ratio;
   in.theta = p_.theta;
   in.inflow = inflow_;
@@ -179,7 +179,7 @@ std::vector<double> SystemBuilder::reversed_integrals(double mu) const {
 
 PeriodicSystem SystemBuilder::system(double mu) const {
   if (!(mu >= 0.0) || !std::isfinite(mu)) {
-    throw InvalidInput("--mu", round_trip_text(mu), "advance ratio must be finite and >= 0");
+    throw InvalidInput("mu", round_trip_text(mu), "advance ratio must be finite and >= 0");
   }
   PeriodicSystem sys;
   sys.n = 2 * n_;

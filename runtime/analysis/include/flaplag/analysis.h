@@ -5,8 +5,31 @@
 //   flaplag::Analysis an(p, {});                // Hsu K = 50, J = 4
 //   auto crit = an.critical({});                // mu_c, mode, omega, kind
 //
-// Invalid parameters throw InvalidInput from the constructor.  Numerical outcomes (unstable
-// hover, unconverged search, defective multipliers) come back with a Status and a message.
+// Invalid parameters or options throw InvalidInput from the constructor, naming the field
+// (RotorParameters, TransitionOptions, CriticalOptions) or the argument ("mu", "psi", ...) and
+// the value.  Numerical outcomes (unstable hover, unconverged search, under-resolved transition
+// matrices, ambiguous mode identification, overflow) come back with a Status and a message;
+// field names inside messages are written in backticks (`steps`) so that a front end can show
+// them in its own vocabulary.
+//
+// Accuracy.  Every Floquet evaluation estimates its own error of the damping exponents zeta:
+// Phi(2 pi) is computed with K steps and with K/2, the multipliers are paired, and the
+// Richardson estimate  |zeta_k(K) - zeta_k(K/2)| / (2^p - 1)  (p = the method's order: RK4 4,
+// Hsu min(J, 2), Magnus 6 after its built-in extrapolation; conservative where the error falls
+// faster, e.g. Hsu in hover, where the interval means are exact and only the J-term Taylor
+// truncation is left) is reported with the exponents (PointResult::error: the largest, per rev). An
+// exponent counts as resolved when its error is at most zeta_tolerance * max(1, 100 |zeta_k|)
+// (absolute near zeta = 0, where stability is decided; 1e-3 relative for strongly damped modes when
+// zeta_tolerance = 1e-5).
+//   - steps = kAutomatic (the default): K starts from the spectrum of A(psi) at mu (|lambda| h
+//     <= 1/2, at least 50 for Hsu, RK4 and Magnus) and doubles until every exponent is
+//     resolved or K reaches kMaxAutomaticSteps (then status Warning);
+//   - fixed steps (e.g. TransitionOptions::Paper(), Hsu K = 50, J = 4): an unresolved exponent
+//     gives status Warning with the remedy (increase `steps`).
+// The Liouville identity det Phi = exp(int tr A) is checked as well: a relative residual far
+// above what the error estimate implies (2 pi n error) gives status Warning.  The critical
+// search refines mu_c with exponents resolved to 0.1 |d zeta/d mu| * tolerance and reports
+// CriticalResult::mu_c_error.
 #pragma once
 
 #include <Eigen/Dense>
@@ -17,55 +40,18 @@
 #include <vector>
 
 #include "flaplag/blade/blade.h"
-#include "flaplag/rotor/hover.h"
-#include "flaplag/numerics/floquet.h"
-#include "flaplag/model_api.h"
-#include "flaplag/rotor/parameters.h"
-#include "flaplag/numerics/periodic_system.h"
 #include "flaplag/core/status.h"
+#include "flaplag/model_api.h"
+#include "flaplag/numerics/continuation.h"
+#include "flaplag/numerics/floquet.h"
+#include "flaplag/numerics/periodic_system.h"
+#include "flaplag/rotor/hover.h"
+#include "flaplag/rotor/parameters.h"
 
 namespace flaplag {
 
-// One labelled characteristic exponent.
-struct ModeExponent {
-  std::string label;   // "flap", "lag" ("flap1", "flap2", ... when there are several modes)
-  double zeta = 0.0;   // real part, per rev
-  double omega = 0.0;  // imaginary part, per rev, integer fixed by continuation from hover
-  std::complex<double> multiplier;
-};
-
-struct PointResult {
-  double mu = 0.0;
-  std::vector<ModeExponent> exponents;  // sorted by label, then by omega
-  double liouville_residual = 0.0;
-  double error_estimate = 0.0;  // reference method only
-  bool stable = true;
-  Status status = Status::Ok;
-  std::string message;
-};
-
-struct SweepResult {
-  std::vector<PointResult> points;
-  Status status = Status::Ok;
-  std::string message;
-};
-
-struct CriticalOptions {
-  double mu_max = 2.0;      // scan limit
-  double scan_step = 0.01;  // continuation / scan step in mu
-  double tolerance = 1e-5;  // on mu_c
-};
-
-struct CriticalResult {
-  bool found = false;  // false: stable up to mu_max
-  double mu_c = 0.0;
-  std::string mode;    // "flap"/"lag"
-  double omega = 0.0;  // per rev at mu_c, >= 0 (either member of a crossing pair)
-  InstabilityKind kind = InstabilityKind::Flutter;
-  double mu_max = 0.0;
-  Status status = Status::Ok;
-  std::string message;
-};
+// Results are the numerics' types (numerics/continuation.h): PointResult, SweepResult,
+// CriticalResult, with exponents sorted by label, then by omega (descending).
 
 // The numbers an auditor needs at one (mu, psi).
 struct SystemSnapshot {
@@ -78,8 +64,12 @@ struct SystemSnapshot {
   std::vector<std::pair<std::string, double>> structural_integrals;
 };
 
+// Automatic steps never exceed this (a blade so stiff that it needs more gets status Warning).
+inline constexpr int kMaxAutomaticSteps = 65536;
+
 class Analysis {
  public:
+  // Checks params (validate()) and options (TransitionOptions::Check()); throws InvalidInput.
   Analysis(const RotorParameters& params, const TransitionOptions& options);
   ~Analysis();
   Analysis(Analysis&&) noexcept;
@@ -91,14 +81,23 @@ class Analysis {
   const ModeSet& modes() const;
 
   const HoverResult& hover() const;
-  PeriodicSystem system(double mu) const;  // throws InvalidInput for mu < 0 or NaN
+  // mu in [0, kMaxAdvanceRatio] (else InvalidInput("mu", ...)).
+  PeriodicSystem system(double mu) const;
+  // psi any finite angle [rad], reduced to [0, 2 pi).
   SystemSnapshot snapshot(double mu, double psi) const;
 
-  // Exponents at mu with labels from continuation (steps of at most scan_step from hover).
+  // Exponents at mu with labels from continuation (steps of at most scan_step from hover;
+  // mu / scan_step <= kMaxContinuationSteps).
   PointResult point(double mu, double scan_step = 0.01) const;
-  // Sweep mu0..mu1 inclusive with the given step (mu0 >= 0, mu1 >= mu0, step > 0).
+  // Sweep mu0..mu1 inclusive with the given step (0 <= mu0 < mu1 <= kMaxAdvanceRatio, step > 0,
+  // at most kMaxContinuationSteps points).  Points carry the decimal grid value of mu.
   SweepResult sweep(double mu0, double mu1, double step) const;
+  // opt.Check() first.
   CriticalResult critical(const CriticalOptions& opt) const;
+
+  // One resolved Floquet evaluation at mu (the FloquetFunction of the numerics), for callers
+  // that drive their own continuation.
+  FloquetSample floquet(double mu, double zeta_tolerance) const;
 
  private:
   struct Impl;

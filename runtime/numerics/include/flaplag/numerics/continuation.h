@@ -7,8 +7,7 @@
 // and choosing the integer that keeps omega continuous (paper 4.2 step 3: "the degrees of
 // freedom are identified by tracing back their history from mu = 0").
 //
-// Nothing here knows about rotors beyond the state ordering used for the hover labels
-// (model_api.h): y = [g'_1..g'_M, g_1..g_M, h'_1..h'_N, h_1..h_N].
+// Nothing here knows about rotors: labels are strings given with the hover modes.
 //
 // Invalid arguments throw InvalidInput; numerical outcomes (non-finite multipliers, ambiguous
 // identification, instability in hover) come back as a status and a message.
@@ -18,11 +17,12 @@
 #include <complex>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "flaplag/numerics/floquet.h"
 #include "flaplag/core/status.h"
+#include "flaplag/numerics/floquet.h"
 
 namespace flaplag {
 
@@ -67,8 +67,10 @@ class ExponentTracker {
   // prediction, so a real multiplier keeps omega locked at the integer or half-integer next to
   // where its mode came from, and a conjugate pair passing through a half-integer (where the
   // eigenvectors are momentarily real and the pair indistinguishable) keeps its direction.
-  // Non-finite multipliers leave the state unchanged and report Failed; a best match with
-  // eigenvector similarity below 0.5 reports Warning.  Throws InvalidInput when the number of
+  // A zero multiplier (zeta = -inf: the mode decays by more than double precision can hold in
+  // one revolution) is matched by its multiplier and keeps its label; NaN or infinite
+  // multipliers leave the state unchanged and report Failed; a best match with eigenvector
+  // similarity below 0.5 reports Warning.  Throws InvalidInput when the number of
   // exponents differs from the tracked one.
   TrackReport advance(const FloquetResult& next,
                       double mu = std::numeric_limits<double>::quiet_NaN());
@@ -90,58 +92,94 @@ class ExponentTracker {
   bool has_previous_ = false;
 };
 
-// The caller builds the periodic system at mu and returns its Floquet analysis.
-using FloquetFunction = std::function<FloquetResult(double mu)>;
-
-struct CriticalSearchOptions {
-  double mu_max = 2.0;                     // scan limit (> 0)
-  double step = 0.01;                      // scan / continuation step (> 0)
-  double tolerance = 1e-5;                 // on mu_c (> 0)
-  double zeta_tolerance = 0.0;             // unstable means zeta > zeta_tolerance (>= 0)
-  double periodic_omega_tolerance = 1e-3;  // see classify_crossing
+// One evaluation of the caller's Floquet analysis at mu.
+struct FloquetSample {
+  FloquetResult floquet;
+  // Estimated error of zeta_k for each exponent of `floquet` (same order), per rev (the
+  // method's own estimate, e.g. Richardson from a coarser resolution); empty: not estimated.
+  std::vector<double> zeta_errors;
+  // max of zeta_errors; nullopt: not estimated.
+  std::optional<double> error;
+  Status status = Status::Ok;  // Warning: not resolved to the requested tolerance; Failed: no
+  std::string message;         // usable multipliers (message says why)
 };
 
-struct CriticalSearchResult {
-  bool found = false;  // false: stable up to mu_max
-  double mu_c = 0.0;
-  std::string label;   // label of the mode that crossed
-  double omega = 0.0;  // its omega at mu_c, per rev
+// The caller builds the periodic system at mu and returns its Floquet analysis, resolved so that
+// the estimated exponent error is at most `zeta_tolerance` per rev where it can (the caller
+// decides what it can afford; a sample that misses it says so in its status).
+using FloquetFunction = std::function<FloquetSample(double mu, double zeta_tolerance)>;
+
+// Limits that keep every loop bounded and every count representable.
+inline constexpr double kMaxAdvanceRatio = 1000.0;      // mu beyond this is refused
+inline constexpr long kMaxContinuationSteps = 1000000;  // steps of a scan or sweep
+
+// The labelled exponents at one mu.
+struct PointResult {
+  double mu = 0.0;
+  std::vector<LabelledExponent> exponents;  // hover order (Analysis sorts by label, then omega)
+  // |det Phi - exp int tr A| / exp int tr A; nullopt when not representable (a multiplier
+  // underflowed to 0 while exp int tr A did not, or the reverse)
+  std::optional<double> liouville_residual;
+  std::optional<double> error;  // estimated max zeta error, per rev (FloquetSample)
+  std::optional<bool> stable;   // all zeta <= 0; nullopt when unknown (Failed)
+  Status status = Status::Ok;
+  std::string message;
+};
+
+struct SweepResult {
+  std::vector<PointResult> points;
+  Status status = Status::Ok;  // worst over the points
+  std::string message;         // the first problem met
+};
+
+// Search for the critical advance ratio.  IsValid() is the Ceres-style check (false and
+// "field = value: reason" in *error); Check() throws the same as InvalidInput.
+struct CriticalOptions {
+  double mu_max = 2.0;                     // scan limit, 0 < mu_max <= kMaxAdvanceRatio
+  double scan_step = 0.01;                 // scan / continuation step, > 0, at most
+                                           // kMaxContinuationSteps steps up to mu_max
+  double tolerance = 1e-5;                 // on mu_c, > 0
+  double zeta_threshold = 0.0;             // unstable means zeta > zeta_threshold (>= 0)
+  double periodic_omega_tolerance = 1e-3;  // see classify_crossing, >= 0
+  // Exponent accuracy asked of the scan (per rev); the Brent refinement asks for
+  // min(this, 0.1 * |d zeta/d mu| * tolerance) so that mu_c is as good as `tolerance` says.
+  double scan_zeta_tolerance = 1e-5;
+
+  bool IsValid(std::string* error) const;
+  void Check() const;
+};
+
+struct CriticalResult {
+  bool hover_unstable = false;       // true: unstable already at mu = 0 (no mu_c; see exponents)
+  std::optional<double> mu_c;        // first mu in (0, mu_max] with zeta > zeta_threshold; nullopt:
+                                     // stable up to mu_max, hover unstable, or the search failed
+  std::optional<double> mu_c_error;  // estimated |mu_c error|: the Brent bracket plus the
+                                     // exponent error over |d zeta/d mu| at the crossing
+  std::string mode;                  // label of the mode that crossed ("" without mu_c)
+  double omega = 0.0;  // its omega at mu_c, per rev, >= 0 (either member of a crossing pair)
   InstabilityKind kind = InstabilityKind::Flutter;
   double mu_max = 0.0;
-  std::vector<LabelledExponent> exponents;  // at mu_c (found) or at the last mu scanned
+  std::vector<LabelledExponent> exponents;  // at mu_c, at hover, or at the last mu scanned
   int evaluations = 0;                      // calls of the FloquetFunction
   Status status = Status::Ok;
   std::string message;
 };
 
 // Scans mu = step, 2 step, ... up to mu_max, continuing the exponents from hover.  At the first
-// mu where some zeta > zeta_tolerance the crossing is refined by Brent's method on
+// mu where some zeta > zeta_threshold the crossing is refined by Brent's method on
 // max_k zeta_k(mu), each trial advancing a copy of the tracker from the last stable grid point
 // (so that labels and omega integers stay those of the continuation).  A mode that turns
-// unstable and stable again within one step is not seen.  Unstable in hover: found = true,
-// mu_c = 0, status Warning.
-CriticalSearchResult find_critical(const HoverModes& hover, const FloquetFunction& floquet,
-                                   const CriticalSearchOptions& opt = {});
-
-struct SweepPoint {
-  double mu = 0.0;
-  std::vector<LabelledExponent> exponents;  // hover order
-  double liouville_residual = 0.0;
-  bool stable = true;  // all zeta <= 0
-  Status status = Status::Ok;
-  std::string message;
-};
-
-struct ExponentSweep {
-  std::vector<SweepPoint> points;
-  Status status = Status::Ok;  // worst over the points
-  std::string message;
-};
+// unstable and stable again within one step is not seen.  Options are checked (Check()).
+CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& floquet,
+                             const CriticalOptions& opt = {});
 
 // Labelled exponents at mu0, mu0 + step, ..., mu1 (mu1 always included).  The continuation
-// starts in hover and reaches mu0 in equal steps of at most `step`.  mu0 >= 0, mu1 >= mu0,
-// step > 0.  A Failed step stops the sweep (points so far are kept).
-ExponentSweep sweep_exponents(const HoverModes& hover, const FloquetFunction& floquet, double mu0,
-                              double mu1, double step);
+// starts in hover and reaches mu0 in equal steps of at most `step`.  0 <= mu0 <= mu1 <=
+// kMaxAdvanceRatio, step > 0, and at most kMaxContinuationSteps steps in all (else
+// InvalidInput).  A Failed step stops the sweep (points so far are kept, the failed one last,
+// with stable = nullopt).  Each point is resolved to `zeta_tolerance` where the FloquetFunction
+// can.
+SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floquet, double mu0,
+                            double mu1, double step, double zeta_tolerance = 1e-5);
 
 }  // namespace flaplag

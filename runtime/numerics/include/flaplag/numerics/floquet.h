@@ -22,17 +22,35 @@ enum class TransitionMethod {
 
 const char* method_name(TransitionMethod m);  // "rk4", "hsu", "magnus"
 
+// How Phi(2 pi, 0) is computed.  IsValid() is the Ceres-style check (false and "field = value:
+// reason" in *error); Check() throws the same as InvalidInput.
 struct TransitionOptions {
+  static constexpr int kAutomatic = 0;
+  static constexpr int kMaxSteps = 1000000;
+  static constexpr int kMaxTerms = 30;
+
   TransitionMethod method = TransitionMethod::Hsu;
-  int steps = 50;  // RK4 steps / Hsu intervals / Magnus steps per period (>= 1)
-  int terms = 4;   // Hsu Taylor terms J (>= 1)
+  // RK4 steps / Hsu intervals K / Magnus steps per period, 1..kMaxSteps; kAutomatic (the
+  // default): the analysis chooses them per mu so that the estimated exponent error is at most
+  // zeta_tolerance (analysis.h).  The transition_matrix* functions need a fixed count.
+  int steps = kAutomatic;
+  int terms = 4;                 // Hsu Taylor terms J, 1..kMaxTerms
+  double zeta_tolerance = 1e-5;  // target exponent error per rev (see analysis.h), > 0
+
+  // The paper's setting: Hsu, K = 50 intervals, J = 4 terms (Section 3.3, Fig. 3).
+  static TransitionOptions Paper() { return {TransitionMethod::Hsu, 50, 4, 1e-5}; }
+
+  bool IsValid(std::string* error) const;
+  void Check() const;
 };
 
 struct TransitionResult {
   Eigen::MatrixXd phi;          // Phi(2 pi, 0)
   double error_estimate = 0.0;  // Magnus: Richardson estimate of ||Phi error||_max; else 0
+                                // (the analysis estimates exponent errors itself)
 };
 
+// opt.Check() and a fixed step count (not kAutomatic) are required, else InvalidInput.
 TransitionResult transition_matrix(const PeriodicSystem& sys, const TransitionOptions& opt);
 Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps);
 Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms);

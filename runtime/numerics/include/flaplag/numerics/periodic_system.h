@@ -18,6 +18,8 @@ struct HarmonicSet {
 
 // Basis function phi_h(psi).
 double harmonic_basis(int h, double psi);
+// psi reduced to [0, 2 pi) (NaN and inf stay NaN).
+double reduce_azimuth(double psi);
 // Exact mean of phi_h over [a, b] (eqs 4.2-4.5 generalised), b > a.
 double harmonic_mean(int h, double a, double b);
 
@@ -38,6 +40,7 @@ struct PeriodicSystem {
   bool in_sector(double psi) const;
   const HarmonicSet& region(double psi) const;
 
+  // A(psi), f(psi) with psi reduced to [0, 2 pi) first (any finite psi).
   Eigen::MatrixXd A(double psi) const;
   Eigen::VectorXd f(double psi) const;
   // Exact mean of A over [a, b] inside one region (a < b, both in [0, 2 pi]); callers split

@@ -13,8 +13,8 @@ enum class ModeKind { Assumed, Exact };
 
 struct RotorParameters {
   std::string model = "paper";            // compiled ordering model (see `flaplag models`)
-  double lock = 10.0;                     // gamma, Lock number based on normal flow (> 0)
-  double solidity = 0.05;                 // sigma (> 0), used by the inflow, eq 2.24
+  double gamma = 10.0;                    // Lock number based on normal flow (> 0)
+  double sigma = 0.05;                    // rotor solidity (> 0), used by the inflow, eq 2.24
   double lift_slope = 6.283185307179586;  // a (> 0)
   double cdo = 0.01;                      // profile drag coefficient C_Do (>= 0)
   double theta = 0.15;                    // collective pitch [rad]
@@ -27,7 +27,7 @@ struct RotorParameters {
   double length_ratio = 1.0;              // l / R (> 0, <= 1)
   double tip_loss_a = 0.0;                // A-bar, inner aerodynamic limit in x0bar
   double tip_loss_b = 1.0;                // B-bar, outer aerodynamic limit in x0bar
-  double e1 = 0.0;                        // root offset by R (>= 0)
+  double root_offset = 0.0;               // e1, root offset of the elastic blade by R (>= 0)
   bool reversed_flow = true;              // Appendix D sector model
   ModeKind modes = ModeKind::Assumed;
   bool elastic_coupling = true;  // Appendix E; applies to exact modes only (paper 4.1(a))
