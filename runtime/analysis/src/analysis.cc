@@ -77,9 +77,21 @@ constexpr int kMinAutomaticSteps = 50;
 // ln of the smallest normal double over 2 pi: zeta of a multiplier that underflowed.
 const double kZetaFloor = std::log(std::numeric_limits<double>::min()) / kTwoPi;
 
+// One transition matrix's Floquet analysis and its rounding floor: an eigenvalue of Phi below
+// ~n eps ||Phi|| is lost in rounding, so a zeta below ln(that) / 2 pi is only a bound.
+struct Evaluated {
+  FloquetResult floquet;
+  double zeta_floor = kZetaFloor;
+  double log_norm = 0.0;  // ln ||Phi||_F
+};
+
 // |zeta_k(fine) - zeta_k(coarse)| for each exponent of `fine`, the multipliers paired greedily
-// by distance (zeta below kZetaFloor counts as kZetaFloor: both are "zero" in double precision).
-std::vector<double> zeta_differences(const FloquetResult& fine, const FloquetResult& coarse) {
+// by distance; zeta below each matrix's rounding floor counts as the floor (both are "zero" to
+// the precision of Phi).
+std::vector<double> zeta_differences(const Evaluated& fine_e, const Evaluated& coarse_e) {
+  const FloquetResult& fine = fine_e.floquet;
+  const FloquetResult& coarse = coarse_e.floquet;
+  const double floor = std::max(fine_e.zeta_floor, coarse_e.zeta_floor);
   const std::size_t n = fine.exponents.size();
   std::vector<double> d(n, 0.0);
   std::vector<bool> used(n, false);
@@ -96,8 +108,8 @@ std::vector<double> zeta_differences(const FloquetResult& fine, const FloquetRes
       }
     }
     used[bj] = true;
-    d[i] = std::abs(std::max(fine.exponents[i].zeta, kZetaFloor) -
-                    std::max(coarse.exponents[bj].zeta, kZetaFloor));
+    d[i] = std::abs(std::max(fine.exponents[i].zeta, floor) -
+                    std::max(coarse.exponents[bj].zeta, floor));
   }
   return d;
 }
@@ -140,16 +152,26 @@ struct Analysis::Impl {
     return ki + (ki % 2);
   }
 
-  FloquetResult at(const PeriodicSystem& sys, double trace, int steps) const {
+  Evaluated at(const PeriodicSystem& sys, double trace, int steps) const {
     TransitionOptions o = options;
     o.steps = steps;
-    return floquet_exponents(transition_matrix(sys, o).phi, trace);
+    const Eigen::MatrixXd phi = transition_matrix(sys, o).phi;
+    Evaluated e;
+    e.floquet = floquet_exponents(phi, trace);
+    const double norm = phi.allFinite() ? phi.norm() : 0.0;
+    if (norm > 0.0) {
+      const double n = static_cast<double>(phi.rows());
+      e.log_norm = std::log(norm);
+      e.zeta_floor = std::max(
+          kZetaFloor, std::log(64.0 * n * std::numeric_limits<double>::epsilon() * norm) / kTwoPi);
+    }
+    return e;
   }
 
-  static bool finite(const FloquetResult& r) {
-    for (const FloquetExponent& e : r.exponents)
-      if (!std::isfinite(e.multiplier.real()) || !std::isfinite(e.multiplier.imag())) return false;
-    return !r.exponents.empty();
+  static bool finite(const Evaluated& e) {
+    for (const FloquetExponent& x : e.floquet.exponents)
+      if (!std::isfinite(x.multiplier.real()) || !std::isfinite(x.multiplier.imag())) return false;
+    return !e.floquet.exponents.empty();
   }
 
   FloquetSample floquet(double mu, double zeta_tolerance) const {
@@ -171,12 +193,12 @@ struct Analysis::Impl {
     const bool automatic = options.steps == TransitionOptions::kAutomatic;
     int steps = automatic ? automatic_start(sys) : options.steps;
 
-    FloquetResult fine = at(sys, trace, steps);
-    std::optional<FloquetResult> coarse;
+    Evaluated fine = at(sys, trace, steps);
+    std::optional<Evaluated> coarse;
     if (steps >= 2) coarse = at(sys, trace, steps / 2);
     auto resolved = [&](const std::vector<double>& err) {
       for (std::size_t k = 0; k < err.size(); ++k) {
-        const double z = std::abs(fine.exponents[k].zeta);
+        const double z = std::abs(std::max(fine.floquet.exponents[k].zeta, fine.zeta_floor));
         const double allowed = zeta_tolerance * std::max(1.0, 100.0 * (std::isfinite(z) ? z : 0.0));
         if (!(err[k] <= allowed)) return false;
       }
@@ -197,8 +219,11 @@ struct Analysis::Impl {
       fine = at(sys, trace, steps);
     }
     const bool is_resolved = !err.empty() && resolved(err);
-    out.floquet = std::move(fine);
-    if (!finite(out.floquet)) {
+    const bool fine_finite = finite(fine);
+    const double zeta_floor = fine.zeta_floor;
+    const double log_norm = fine.log_norm;
+    out.floquet = std::move(fine.floquet);
+    if (!fine_finite) {
       out.status = Status::Failed;
       out.message = "the transition matrix overflowed or its eigenvalues did not converge at " +
                     std::to_string(steps) +
@@ -217,8 +242,14 @@ struct Analysis::Impl {
                                 " steps is reached"
                           : "increase `steps`");
       }
+      // det Phi = exp(int tr A) can be checked only when that determinant is above the rounding
+      // of det computed from Phi (~ eps ||Phi||^n); otherwise the residual means nothing.
+      const double n = static_cast<double>(out.floquet.exponents.size());
+      if (trace < std::log(1e3 * std::numeric_limits<double>::epsilon()) + n * log_norm) {
+        out.floquet.liouville_residual = std::numeric_limits<double>::quiet_NaN();
+      }
       const double residual = out.floquet.liouville_residual;
-      const double implied = kTwoPi * static_cast<double>(err.size()) * *out.error;
+      const double implied = kTwoPi * n * *out.error;
       if (std::isfinite(residual) && residual > 100.0 * implied + 1e-9) {
         note += std::string(note.empty() ? "" : "; ") + "Liouville residual " +
                 short_text(residual) +
@@ -226,6 +257,13 @@ struct Analysis::Impl {
       }
     } else if (steps < 2) {
       note = "no error estimate with 1 step; increase `steps`";
+    }
+    int below = 0;
+    for (const FloquetExponent& e : out.floquet.exponents) below += e.zeta < zeta_floor ? 1 : 0;
+    if (below > 0) {
+      note += std::string(note.empty() ? "" : "; ") + std::to_string(below) +
+              " exponent(s) below the rounding floor of the transition matrix (zeta < " +
+              short_text(zeta_floor) + " per rev): their zeta is only known to be below that bound";
     }
     if (!note.empty()) {
       out.status = Status::Warning;

@@ -16,6 +16,8 @@ namespace flaplag {
 namespace {
 
 constexpr double kAmbiguousSimilarity = 0.5;
+// Exponent accuracy asked of continuation steps that are not reported (per rev).
+constexpr double kIdentificationTolerance = 1e-3;
 // ln of the smallest normal double over 2 pi: a multiplier below it is indistinguishable from 0.
 // Zero multipliers have zeta = -inf; for prediction and matching their zeta is taken as this.
 const double kZetaFloor = std::log(std::numeric_limits<double>::min()) / kTwoPi;
@@ -227,8 +229,10 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
     const FloquetExponent& e = next.exponents[match[i]];
     LabelledExponent& x = exponents_[i];
     previous_[i] = {finite_zeta(x.zeta), x.omega};
-    // omega = principal + k with the integer k that puts omega closest to its prediction.
-    x.omega = e.omega + std::round(pw[i] - e.omega);
+    // omega = principal + k with the integer k that puts omega closest to its prediction.  A
+    // zero multiplier has no argument: its omega stays where the mode was last seen.
+    if (e.multiplier != std::complex<double>(0.0, 0.0))
+      x.omega = e.omega + std::round(pw[i] - e.omega);
     x.zeta = e.zeta;
     x.multiplier = e.multiplier;
     vectors_[i] = e.eigenvector;
@@ -457,10 +461,12 @@ SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floq
   };
   ExponentTracker tracker(hover);
   // Reach mu0 from hover in equal steps no longer than `step` (bounded by the checks above).
+  // Steps that are not reported only carry the identification: exponents to
+  // kIdentificationTolerance are plenty for that.
   const long pre = static_cast<long>(std::ceil(mu0 / step - 1e-9));
   for (long i = 1; i < pre; ++i) {
     const double mu = mu0 * static_cast<double>(i) / static_cast<double>(pre);
-    const FloquetSample sample = floquet(mu, zeta_tolerance);
+    const FloquetSample sample = floquet(mu, std::max(zeta_tolerance, kIdentificationTolerance));
     TrackReport r;
     if (sample.status == Status::Failed) {
       r.status = Status::Failed;
