@@ -52,7 +52,7 @@ const model::StructuralIntegral kStructural[] = {
     {"m gamma1 x0", "m_gam1_x0", 1, 2, {{Factor::Gamma, 0}, {Factor::X0, 0}}, Inner::None, 0, 0, {}, "B11_1"},
 };
 
-const char kSpecText[] = "description = \"Paper model with lag loads only to O(eps^2) (Fig 8)\"\n[modes]\nflap = 1\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 2\n[terms]\nradial_flow = true\n";
+const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; model family \"lag-order-2\")\ndescription = \"Paper model with lag loads only to O(eps^2) (Fig 8)\"\n[modes]\nflap = 1\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 2\n[terms]\nradial_flow = true\n";
 
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
@@ -445,6 +445,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
 const flaplag::model::ModelDescriptor& flaplag_model_lag_order_2() {
   namespace g = flaplag::generated::lag_order_2;
   static const flaplag::model::ModelDescriptor d = {
+      "lag-order-2",
       "lag-order-2",
       "lag-order-2.toml",
       g::kSpecText,

@@ -113,7 +113,7 @@ const model::StructuralIntegral kStructural[] = {
     {"m gamma2 x0", "m_gam2_x0", 1, 2, {{Factor::Gamma, 1}, {Factor::X0, 0}}, Inner::None, 0, 0, {}, "B11_2"},
 };
 
-const char kSpecText[] = "description = \"Paper ordering with one flap mode and two lag modes (exact rotating modes)\"\n[modes]\nflap = 1\nlag = 2\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
+const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; model family \"paper\")\ndescription = \"Paper ordering with one flap mode and two lag modes (exact rotating modes)\"\n[modes]\nflap = 1\nlag = 2\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
 
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
@@ -1013,6 +1013,7 @@ const flaplag::model::ModelDescriptor& flaplag_model_paper_1x2() {
   namespace g = flaplag::generated::paper_1x2;
   static const flaplag::model::ModelDescriptor d = {
       "paper-1x2",
+      "paper",
       "paper-1x2.toml",
       g::kSpecText,
       "paper-1x2: 1 flap x 2 lag modes; flap loads to O(eps^2), lag loads to O(eps^3); radial flow on",

@@ -102,7 +102,7 @@ const model::StructuralIntegral kStructural[] = {
     {"m gamma1 x0", "m_gam1_x0", 1, 2, {{Factor::Gamma, 0}, {Factor::X0, 0}}, Inner::None, 0, 0, {}, "B11_1"},
 };
 
-const char kSpecText[] = "description = \"Paper ordering with two flap modes and one lag mode (exact rotating modes)\"\n[modes]\nflap = 2\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
+const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; model family \"paper\")\ndescription = \"Paper ordering with two flap modes and one lag mode (exact rotating modes)\"\n[modes]\nflap = 2\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
 
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
@@ -926,6 +926,7 @@ const flaplag::model::ModelDescriptor& flaplag_model_paper_2x1() {
   namespace g = flaplag::generated::paper_2x1;
   static const flaplag::model::ModelDescriptor d = {
       "paper-2x1",
+      "paper",
       "paper-2x1.toml",
       g::kSpecText,
       "paper-2x1: 2 flap x 1 lag modes; flap loads to O(eps^2), lag loads to O(eps^3); radial flow on",

@@ -489,6 +489,7 @@ const flaplag::model::ModelDescriptor& flaplag_model_paper() {
   namespace g = flaplag::generated::paper;
   static const flaplag::model::ModelDescriptor d = {
       "paper",
+      "paper",
       "paper.toml",
       g::kSpecText,
       "paper: 1 flap x 1 lag modes; flap loads to O(eps^2), lag loads to O(eps^3); radial flow on",

@@ -214,6 +214,7 @@ std::string emit_cpp(const DerivedModel& m) {
   os << "  namespace g = flaplag::generated::" << id << ";\n";
   os << "  static const flaplag::model::ModelDescriptor d = {\n"
      << "      " << c_string(m.spec.name) << ",\n"
+     << "      " << c_string(m.spec.family) << ",\n"
      << "      " << c_string(m.spec.file) << ",\n"
      << "      g::kSpecText,\n"
      << "      " << c_string(m.spec.summary()) << ",\n"

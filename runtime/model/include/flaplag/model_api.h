@@ -107,7 +107,12 @@ struct EquilibriumOutputs {
 };
 
 struct ModelDescriptor {
-  const char* name;       // model name, e.g. "paper"
+  const char* name;  // model name, e.g. "paper-2x2"
+  // Model family, e.g. "paper" for paper, paper-2x1, paper-1x2, paper-2x2: the models of one
+  // family have the same ordering and term classes and differ only in their mode counts, so a
+  // model is identified by (base, flap_modes, lag_modes).  A spec without `base`, or one that
+  // changes more than [modes] of its base, is its own family (base == name).
+  const char* base;
   const char* spec_file;  // spec file name, e.g. "paper.toml"
   const char* spec_text;  // the spec as parsed (canonical TOML)
   const char* summary;    // one line: orders, term classes, modes
