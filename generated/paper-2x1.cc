@@ -335,31 +335,31 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 3, states 2n = 6, harmonics H = 5.
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1'''
+  // mass: flap 1, dg1''
   out.mass[0] =
       s.S_m_eta1_eta1;
-  // mass: flap 1, dg2'''
+  // mass: flap 1, dg2''
   out.mass[1] =
       s.S_m_eta1_eta2;
-  // mass: flap 1, dh1'''
+  // mass: flap 1, dh1''
   out.mass[2] =
       0.0;
-  // mass: flap 2, dg1'''
+  // mass: flap 2, dg1''
   out.mass[3] =
       s.S_m_eta1_eta2;
-  // mass: flap 2, dg2'''
+  // mass: flap 2, dg2''
   out.mass[4] =
       s.S_m_eta2_eta2;
-  // mass: flap 2, dh1'''
+  // mass: flap 2, dh1''
   out.mass[5] =
       0.0;
-  // mass: lag 1, dg1'''
+  // mass: lag 1, dg1''
   out.mass[6] =
       0.0;
-  // mass: lag 1, dg2'''
+  // mass: lag 1, dg2''
   out.mass[7] =
       0.0;
-  // mass: lag 1, dh1'''
+  // mass: lag 1, dh1''
   out.mass[8] =
       s.S_m_gam1_gam1;
   // force[1]: flap 1, dg1'

@@ -607,52 +607,52 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 4, states 2n = 8, harmonics H = 5.
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1'''
+  // mass: flap 1, dg1''
   out.mass[0] =
       s.S_m_eta1_eta1;
-  // mass: flap 1, dg2'''
+  // mass: flap 1, dg2''
   out.mass[1] =
       s.S_m_eta1_eta2;
-  // mass: flap 1, dh1'''
+  // mass: flap 1, dh1''
   out.mass[2] =
       0.0;
-  // mass: flap 1, dh2'''
+  // mass: flap 1, dh2''
   out.mass[3] =
       0.0;
-  // mass: flap 2, dg1'''
+  // mass: flap 2, dg1''
   out.mass[4] =
       s.S_m_eta1_eta2;
-  // mass: flap 2, dg2'''
+  // mass: flap 2, dg2''
   out.mass[5] =
       s.S_m_eta2_eta2;
-  // mass: flap 2, dh1'''
+  // mass: flap 2, dh1''
   out.mass[6] =
       0.0;
-  // mass: flap 2, dh2'''
+  // mass: flap 2, dh2''
   out.mass[7] =
       0.0;
-  // mass: lag 1, dg1'''
+  // mass: lag 1, dg1''
   out.mass[8] =
       0.0;
-  // mass: lag 1, dg2'''
+  // mass: lag 1, dg2''
   out.mass[9] =
       0.0;
-  // mass: lag 1, dh1'''
+  // mass: lag 1, dh1''
   out.mass[10] =
       s.S_m_gam1_gam1;
-  // mass: lag 1, dh2'''
+  // mass: lag 1, dh2''
   out.mass[11] =
       s.S_m_gam1_gam2;
-  // mass: lag 2, dg1'''
+  // mass: lag 2, dg1''
   out.mass[12] =
       0.0;
-  // mass: lag 2, dg2'''
+  // mass: lag 2, dg2''
   out.mass[13] =
       0.0;
-  // mass: lag 2, dh1'''
+  // mass: lag 2, dh1''
   out.mass[14] =
       s.S_m_gam1_gam2;
-  // mass: lag 2, dh2'''
+  // mass: lag 2, dh2''
   out.mass[15] =
       s.S_m_gam2_gam2;
   // force[1]: flap 1, dg1'

@@ -285,6 +285,36 @@ TEST(TermClasses, LagOrderTwoRemovesExactlyTheThirdOrderLagTerms) {
   EXPECT_EQ(got, expected);
 }
 
+// ---------------------------------------------------------------- state ordering
+
+// The helpers of model_api.h against the layout written out by hand from eq 2.36 generalised:
+// y = [dg'_1..dg'_M, dg_1..dg_M, dh'_1..dh'_N, dh_1..dh_N].
+TEST(StateOrdering, HelpersFollowEquation236) {
+  const std::vector<std::string> two_by_one = {"dg1'", "dg2'", "dg1", "dg2", "dh1'", "dh1"};
+  const std::vector<std::string> one_by_two = {"dg1'", "dg1", "dh1'", "dh2'", "dh1", "dh2"};
+  for (const auto& [M, N, names] :
+       {std::make_tuple(2, 1, two_by_one), std::make_tuple(1, 2, one_by_two)}) {
+    ASSERT_EQ(fm::state_count(M, N), static_cast<int>(names.size()));
+    for (int col = 0; col < fm::state_count(M, N); ++col) {
+      EXPECT_EQ(fm::state_name(col, M, N), names[col]) << M << "x" << N << " col " << col;
+    }
+    for (int k = 0; k < M; ++k) {
+      EXPECT_EQ(names[fm::flap_rate_index(k, M, N)], "dg" + std::to_string(k + 1) + "'");
+      EXPECT_EQ(names[fm::flap_displacement_index(k, M, N)], "dg" + std::to_string(k + 1));
+      EXPECT_EQ(fm::rate_index(k, M, N), fm::flap_rate_index(k, M, N));
+      EXPECT_EQ(fm::coordinate_of_state(fm::flap_displacement_index(k, M, N), M, N), k);
+    }
+    for (int m = 0; m < N; ++m) {
+      EXPECT_EQ(names[fm::lag_rate_index(m, M, N)], "dh" + std::to_string(m + 1) + "'");
+      EXPECT_EQ(names[fm::lag_displacement_index(m, M, N)], "dh" + std::to_string(m + 1));
+      EXPECT_EQ(fm::displacement_index(M + m, M, N), fm::lag_displacement_index(m, M, N));
+      EXPECT_EQ(fm::coordinate_of_state(fm::lag_rate_index(m, M, N), M, N), M + m);
+      EXPECT_EQ(fm::lag_equation_index(m, M), M + m);
+    }
+  }
+  static_assert(fm::lag_displacement_index(0, 1, 1) == 3, "A14 multiplies h (eq 2.36)");
+}
+
 // ---------------------------------------------------------------- bad specs
 
 struct BadSpec {
