@@ -52,7 +52,7 @@ const model::StructuralIntegral kStructural[] = {
     {"m gamma1 x0", "m_gam1_x0", 1, 2, {{Factor::Gamma, 0}, {Factor::X0, 0}}, Inner::None, 0, 0, {}, "B11_1"},
 };
 
-const char kSpecText[] = "description = \"Paper model with lag loads only to O(eps^2) (Fig 8)\"\n[modes]\nflap = 1\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 2\n[terms]\nradial_flow = true\n";
+const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; model family \"lag-order-2\")\ndescription = \"Paper model with lag loads only to O(eps^2) (Fig 8)\"\n[modes]\nflap = 1\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 2\n[terms]\nradial_flow = true\n";
 
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
@@ -169,16 +169,16 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 2, states 2n = 4, harmonics H = 5.
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1'''
+  // mass: flap 1, dg1''
   out.mass[0] =
       s.S_m_eta1_eta1;
-  // mass: flap 1, dh1'''
+  // mass: flap 1, dh1''
   out.mass[1] =
       0.0;
-  // mass: lag 1, dg1'''
+  // mass: lag 1, dg1''
   out.mass[2] =
       0.0;
-  // mass: lag 1, dh1'''
+  // mass: lag 1, dh1''
   out.mass[3] =
       s.S_m_gam1_gam1;
   // force[1]: flap 1, dg1'
@@ -445,6 +445,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
 const flaplag::model::ModelDescriptor& flaplag_model_lag_order_2() {
   namespace g = flaplag::generated::lag_order_2;
   static const flaplag::model::ModelDescriptor d = {
+      "lag-order-2",
       "lag-order-2",
       "lag-order-2.toml",
       g::kSpecText,

@@ -51,7 +51,7 @@ const model::StructuralIntegral kStructural[] = {
     {"m gamma1 x0", "m_gam1_x0", 1, 2, {{Factor::Gamma, 0}, {Factor::X0, 0}}, Inner::None, 0, 0, {}, "B11_1"},
 };
 
-const char kSpecText[] = "description = \"Paper model without the radial-flow terms of U_T (Figs 6-7)\"\n[modes]\nflap = 1\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = false\n";
+const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; model family \"no-radial-flow\")\ndescription = \"Paper model without the radial-flow terms of U_T (Figs 6-7)\"\n[modes]\nflap = 1\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = false\n";
 
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
@@ -166,16 +166,16 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 2, states 2n = 4, harmonics H = 5.
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1'''
+  // mass: flap 1, dg1''
   out.mass[0] =
       s.S_m_eta1_eta1;
-  // mass: flap 1, dh1'''
+  // mass: flap 1, dh1''
   out.mass[1] =
       0.0;
-  // mass: lag 1, dg1'''
+  // mass: lag 1, dg1''
   out.mass[2] =
       0.0;
-  // mass: lag 1, dh1'''
+  // mass: lag 1, dh1''
   out.mass[3] =
       s.S_m_gam1_gam1;
   // force[1]: flap 1, dg1'
@@ -430,6 +430,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
 const flaplag::model::ModelDescriptor& flaplag_model_no_radial_flow() {
   namespace g = flaplag::generated::no_radial_flow;
   static const flaplag::model::ModelDescriptor d = {
+      "no-radial-flow",
       "no-radial-flow",
       "no-radial-flow.toml",
       g::kSpecText,

@@ -102,7 +102,7 @@ const model::StructuralIntegral kStructural[] = {
     {"m gamma1 x0", "m_gam1_x0", 1, 2, {{Factor::Gamma, 0}, {Factor::X0, 0}}, Inner::None, 0, 0, {}, "B11_1"},
 };
 
-const char kSpecText[] = "description = \"Paper ordering with two flap modes and one lag mode (exact rotating modes)\"\n[modes]\nflap = 2\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
+const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; model family \"paper\")\ndescription = \"Paper ordering with two flap modes and one lag mode (exact rotating modes)\"\n[modes]\nflap = 2\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
 
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
@@ -335,31 +335,31 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 3, states 2n = 6, harmonics H = 5.
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1'''
+  // mass: flap 1, dg1''
   out.mass[0] =
       s.S_m_eta1_eta1;
-  // mass: flap 1, dg2'''
+  // mass: flap 1, dg2''
   out.mass[1] =
       s.S_m_eta1_eta2;
-  // mass: flap 1, dh1'''
+  // mass: flap 1, dh1''
   out.mass[2] =
       0.0;
-  // mass: flap 2, dg1'''
+  // mass: flap 2, dg1''
   out.mass[3] =
       s.S_m_eta1_eta2;
-  // mass: flap 2, dg2'''
+  // mass: flap 2, dg2''
   out.mass[4] =
       s.S_m_eta2_eta2;
-  // mass: flap 2, dh1'''
+  // mass: flap 2, dh1''
   out.mass[5] =
       0.0;
-  // mass: lag 1, dg1'''
+  // mass: lag 1, dg1''
   out.mass[6] =
       0.0;
-  // mass: lag 1, dg2'''
+  // mass: lag 1, dg2''
   out.mass[7] =
       0.0;
-  // mass: lag 1, dh1'''
+  // mass: lag 1, dh1''
   out.mass[8] =
       s.S_m_gam1_gam1;
   // force[1]: flap 1, dg1'
@@ -926,6 +926,7 @@ const flaplag::model::ModelDescriptor& flaplag_model_paper_2x1() {
   namespace g = flaplag::generated::paper_2x1;
   static const flaplag::model::ModelDescriptor d = {
       "paper-2x1",
+      "paper",
       "paper-2x1.toml",
       g::kSpecText,
       "paper-2x1: 2 flap x 1 lag modes; flap loads to O(eps^2), lag loads to O(eps^3); radial flow on",

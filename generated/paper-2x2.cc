@@ -186,7 +186,7 @@ const model::StructuralIntegral kStructural[] = {
     {"m gamma2 x0", "m_gam2_x0", 1, 2, {{Factor::Gamma, 1}, {Factor::X0, 0}}, Inner::None, 0, 0, {}, "B11_2"},
 };
 
-const char kSpecText[] = "description = \"Paper ordering with two flap and two lag modes (exact rotating modes)\"\n[modes]\nflap = 2\nlag = 2\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
+const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; model family \"paper\")\ndescription = \"Paper ordering with two flap and two lag modes (exact rotating modes)\"\n[modes]\nflap = 2\nlag = 2\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
 
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
@@ -607,52 +607,52 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 4, states 2n = 8, harmonics H = 5.
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1'''
+  // mass: flap 1, dg1''
   out.mass[0] =
       s.S_m_eta1_eta1;
-  // mass: flap 1, dg2'''
+  // mass: flap 1, dg2''
   out.mass[1] =
       s.S_m_eta1_eta2;
-  // mass: flap 1, dh1'''
+  // mass: flap 1, dh1''
   out.mass[2] =
       0.0;
-  // mass: flap 1, dh2'''
+  // mass: flap 1, dh2''
   out.mass[3] =
       0.0;
-  // mass: flap 2, dg1'''
+  // mass: flap 2, dg1''
   out.mass[4] =
       s.S_m_eta1_eta2;
-  // mass: flap 2, dg2'''
+  // mass: flap 2, dg2''
   out.mass[5] =
       s.S_m_eta2_eta2;
-  // mass: flap 2, dh1'''
+  // mass: flap 2, dh1''
   out.mass[6] =
       0.0;
-  // mass: flap 2, dh2'''
+  // mass: flap 2, dh2''
   out.mass[7] =
       0.0;
-  // mass: lag 1, dg1'''
+  // mass: lag 1, dg1''
   out.mass[8] =
       0.0;
-  // mass: lag 1, dg2'''
+  // mass: lag 1, dg2''
   out.mass[9] =
       0.0;
-  // mass: lag 1, dh1'''
+  // mass: lag 1, dh1''
   out.mass[10] =
       s.S_m_gam1_gam1;
-  // mass: lag 1, dh2'''
+  // mass: lag 1, dh2''
   out.mass[11] =
       s.S_m_gam1_gam2;
-  // mass: lag 2, dg1'''
+  // mass: lag 2, dg1''
   out.mass[12] =
       0.0;
-  // mass: lag 2, dg2'''
+  // mass: lag 2, dg2''
   out.mass[13] =
       0.0;
-  // mass: lag 2, dh1'''
+  // mass: lag 2, dh1''
   out.mass[14] =
       s.S_m_gam1_gam2;
-  // mass: lag 2, dh2'''
+  // mass: lag 2, dh2''
   out.mass[15] =
       s.S_m_gam2_gam2;
   // force[1]: flap 1, dg1'
@@ -1713,6 +1713,7 @@ const flaplag::model::ModelDescriptor& flaplag_model_paper_2x2() {
   namespace g = flaplag::generated::paper_2x2;
   static const flaplag::model::ModelDescriptor d = {
       "paper-2x2",
+      "paper",
       "paper-2x2.toml",
       g::kSpecText,
       "paper-2x2: 2 flap x 2 lag modes; flap loads to O(eps^2), lag loads to O(eps^3); radial flow on",

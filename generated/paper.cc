@@ -190,16 +190,16 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 2, states 2n = 4, harmonics H = 5.
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1'''
+  // mass: flap 1, dg1''
   out.mass[0] =
       s.S_m_eta1_eta1;
-  // mass: flap 1, dh1'''
+  // mass: flap 1, dh1''
   out.mass[1] =
       0.0;
-  // mass: lag 1, dg1'''
+  // mass: lag 1, dg1''
   out.mass[2] =
       0.0;
-  // mass: lag 1, dh1'''
+  // mass: lag 1, dh1''
   out.mass[3] =
       s.S_m_gam1_gam1;
   // force[1]: flap 1, dg1'
@@ -488,6 +488,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
 const flaplag::model::ModelDescriptor& flaplag_model_paper() {
   namespace g = flaplag::generated::paper;
   static const flaplag::model::ModelDescriptor d = {
+      "paper",
       "paper",
       "paper.toml",
       g::kSpecText,

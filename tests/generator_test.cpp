@@ -12,6 +12,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <tuple>
 
 #include "flaplag/model_api.h"
 #include "flaplag_derive/derive.h"
@@ -284,6 +285,36 @@ TEST(TermClasses, LagOrderTwoRemovesExactlyTheThirdOrderLagTerms) {
   EXPECT_EQ(got, expected);
 }
 
+// ---------------------------------------------------------------- state ordering
+
+// The helpers of model_api.h against the layout written out by hand from eq 2.36 generalised:
+// y = [dg'_1..dg'_M, dg_1..dg_M, dh'_1..dh'_N, dh_1..dh_N].
+TEST(StateOrdering, HelpersFollowEquation236) {
+  const std::vector<std::string> two_by_one = {"dg1'", "dg2'", "dg1", "dg2", "dh1'", "dh1"};
+  const std::vector<std::string> one_by_two = {"dg1'", "dg1", "dh1'", "dh2'", "dh1", "dh2"};
+  for (const auto& [M, N, names] :
+       {std::make_tuple(2, 1, two_by_one), std::make_tuple(1, 2, one_by_two)}) {
+    ASSERT_EQ(fm::state_count(M, N), static_cast<int>(names.size()));
+    for (int col = 0; col < fm::state_count(M, N); ++col) {
+      EXPECT_EQ(fm::state_name(col, M, N), names[col]) << M << "x" << N << " col " << col;
+    }
+    for (int k = 0; k < M; ++k) {
+      EXPECT_EQ(names[fm::flap_rate_index(k, M, N)], "dg" + std::to_string(k + 1) + "'");
+      EXPECT_EQ(names[fm::flap_displacement_index(k, M, N)], "dg" + std::to_string(k + 1));
+      EXPECT_EQ(fm::rate_index(k, M, N), fm::flap_rate_index(k, M, N));
+      EXPECT_EQ(fm::coordinate_of_state(fm::flap_displacement_index(k, M, N), M, N), k);
+    }
+    for (int m = 0; m < N; ++m) {
+      EXPECT_EQ(names[fm::lag_rate_index(m, M, N)], "dh" + std::to_string(m + 1) + "'");
+      EXPECT_EQ(names[fm::lag_displacement_index(m, M, N)], "dh" + std::to_string(m + 1));
+      EXPECT_EQ(fm::displacement_index(M + m, M, N), fm::lag_displacement_index(m, M, N));
+      EXPECT_EQ(fm::coordinate_of_state(fm::lag_rate_index(m, M, N), M, N), M + m);
+      EXPECT_EQ(fm::lag_equation_index(m, M), M + m);
+    }
+  }
+  static_assert(fm::lag_displacement_index(0, 1, 1) == 3, "A14 multiplies h (eq 2.36)");
+}
+
 // ---------------------------------------------------------------- bad specs
 
 struct BadSpec {
@@ -320,8 +351,123 @@ INSTANTIATE_TEST_SUITE_P(
         BadSpec{"ZeroLagModes", "[modes]\nlag = 0\n", {"modes.lag", "0", ">= 1"}},
         BadSpec{"RadialNotBool", "[terms]\nradial_flow = 1\n", {"terms.radial_flow", "1"}},
         BadSpec{"UnknownTermClass", "[terms]\nstall = true\n", {"terms.stall"}},
-        BadSpec{"ZeroOrderCoordinate", "[orders]\ng = 0\n", {"orders.g", "0"}}),
+        BadSpec{"ZeroOrderCoordinate", "[orders]\ng = 0\n", {"orders.g", "0"}},
+        BadSpec{"BaseNotString", "base = 3\n", {"base = 3", "string"}},
+        BadSpec{"BaseTable", "[base]\nname = \"paper\"\n", {"base = (table)", "string"}},
+        BadSpec{"BaseWithPath", "base = \"../paper\"\n", {"base = \"../paper\"", "no path"}},
+        BadSpec{"BaseMissingFile",
+                "base = \"no-such-spec\"\n",
+                {"base = \"no-such-spec\"", "no spec file", "no-such-spec.toml"}},
+        BadSpec{"BaseIsItself", "base = \"bad\"\n", {"base = \"bad\"", "cycle"}}),
     [](const auto& tp) { return std::string(tp.param.name); });
+
+// ---------------------------------------------------------------- spec inheritance
+
+namespace {
+
+// A scratch directory of spec files, removed at the end of the test.
+class SpecDir {
+ public:
+  explicit SpecDir(const std::string& tag)
+      : dir_(std::filesystem::temp_directory_path() / ("flaplag_spec_" + tag)) {
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  ~SpecDir() { std::filesystem::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) const {
+    const auto p = dir_ / (name + ".toml");
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  const std::filesystem::path& path() const { return dir_; }
+
+ private:
+  std::filesystem::path dir_;
+};
+
+std::string spec_error(const std::string& path) {
+  try {
+    fd::load_spec(path);
+  } catch (const fd::SpecError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+}  // namespace
+
+// A base of a base is resolved; each file overrides only the keys it gives.
+TEST(SpecInheritance, ChainOfBasesResolvesKeyByKey) {
+  SpecDir d("chain");
+  d.write("root", "description = \"root\"\n[orders]\ntheta = 2\n[kept]\nflap = 3\n");
+  d.write("mid", "base = \"root\"\n[kept]\nlag = 2\n");
+  const auto leaf = fd::load_spec(d.write("leaf", "base = \"mid\"\n[modes]\nlag = 2\n"));
+  EXPECT_EQ(leaf.name, "leaf");
+  EXPECT_EQ(leaf.base, "mid");
+  EXPECT_EQ(leaf.description, "root");  // inherited through two levels
+  EXPECT_EQ(leaf.order("theta"), 2);    // from root
+  EXPECT_EQ(leaf.order("cdo_a"), 2);    // default
+  EXPECT_EQ(leaf.kept_flap, 3);         // from root
+  EXPECT_EQ(leaf.kept_lag, 2);          // from mid
+  EXPECT_EQ(leaf.flap_modes, 1);
+  EXPECT_EQ(leaf.lag_modes, 2);  // its own
+  // mid changes the physics of root: a family of its own; leaf changes only its modes.
+  EXPECT_EQ(fd::load_spec((d.path() / "root.toml").string()).family, "root");
+  EXPECT_EQ(fd::load_spec((d.path() / "mid.toml").string()).family, "mid");
+  EXPECT_EQ(leaf.family, "mid");
+  EXPECT_NE(leaf.canonical_text().find("base = \"mid\""), std::string::npos);
+}
+
+TEST(SpecInheritance, CycleIsAnErrorNamingFileKeyAndValue) {
+  SpecDir d("cycle");
+  d.write("b", "base = \"c\"\n");
+  d.write("c", "base = \"b\"\n");
+  const std::string what = spec_error(d.write("a", "base = \"b\"\n"));
+  EXPECT_NE(what.find("c.toml: base = \"b\""), std::string::npos) << what;
+  EXPECT_NE(what.find("cycle a -> b -> c -> b"), std::string::npos) << what;
+  EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+}
+
+// An error inside a base file names the base file, not the file that inherits from it.
+TEST(SpecInheritance, ErrorInBaseNamesTheBaseFile) {
+  SpecDir d("base_error");
+  d.write("parent", "[orders]\nzeta = 1\n");
+  const std::string what = spec_error(d.write("child", "base = \"parent\"\n"));
+  EXPECT_NE(what.find("parent.toml: orders.zeta = 1"), std::string::npos) << what;
+}
+
+// The shipped variants differ from their base only where they say so, and (family, M, N) names
+// one compiled model, which is how the runtime looks them up.
+TEST(SpecInheritance, ShippedFamiliesAreUniqueByModeCounts) {
+  std::map<std::tuple<std::string, int, int>, std::string> seen;
+  for (const auto& entry : std::filesystem::directory_iterator(FLAPLAG_SPEC_DIR)) {
+    if (entry.path().extension() != ".toml") continue;
+    const auto s = fd::load_spec(entry.path().string());
+    const auto key = std::make_tuple(s.family, s.flap_modes, s.lag_modes);
+    EXPECT_EQ(seen.count(key), 0u) << s.name << " and " << seen[key] << " are both " << s.family
+                                   << " " << s.flap_modes << "x" << s.lag_modes;
+    seen[key] = s.name;
+  }
+  const auto paper = spec_of("paper");
+  EXPECT_EQ(paper.family, "paper");
+  for (const char* v : {"paper-1x2", "paper-2x1", "paper-2x2"}) {
+    auto s = spec_of(v);
+    EXPECT_EQ(s.family, "paper") << v;
+    EXPECT_EQ(std::string(v),
+              "paper-" + std::to_string(s.flap_modes) + "x" + std::to_string(s.lag_modes));
+    s.flap_modes = s.lag_modes = 1;
+    s.description = paper.description;
+    s.base.clear();
+    s.family = paper.family;
+    EXPECT_EQ(s.canonical_text(), paper.canonical_text()) << v;
+  }
+  EXPECT_EQ(spec_of("lag-order-2").family, "lag-order-2");
+  EXPECT_EQ(spec_of("no-radial-flow").family, "no-radial-flow");
+  // the compiled descriptors carry the family
+  for (const auto* m : fm::registered_models()) {
+    EXPECT_EQ(std::string(m->base), spec_of(m->name).family) << m->name;
+  }
+}
 
 // The build-time tool: one line on stderr naming file, key and value, exit code 2, and no
 // output file; the build fails with that message because the custom command fails.
@@ -355,4 +501,19 @@ TEST(DeriveTool, MissingSpecFileFails) {
   const int status = std::system(cmd.c_str());
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 2);
+}
+
+TEST(DeriveTool, BadBaseFailsWithExitCode2) {
+  SpecDir d("tool_base");
+  const std::string spec = d.write("orphan", "base = \"gone\"\n");
+  const auto err = d.path() / "err";
+  const std::string cmd = std::string(FLAPLAG_DERIVE_EXE) + " --spec " + spec + " --out-dir " +
+                          (d.path() / "out").string() + " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  std::ifstream in(err);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_NE(line.find("orphan.toml: base = \"gone\""), std::string::npos) << line;
 }

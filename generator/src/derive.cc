@@ -24,22 +24,11 @@ bool StructuralIntegralKey::operator<(const StructuralIntegralKey& o) const {
   return inner_factors < o.inner_factors;
 }
 
-std::string DerivedModel::state_name(int col) const {
-  std::ostringstream os;
-  if (col < M) {
-    os << "dg" << col + 1 << "'";
-  } else if (col < 2 * M) {
-    os << "dg" << col - M + 1;
-  } else if (col < 2 * M + N) {
-    os << "dh" << col - 2 * M + 1 << "'";
-  } else {
-    os << "dh" << col - 2 * M - N + 1;
-  }
-  return os.str();
-}
+std::string DerivedModel::state_name(int col) const { return model::state_name(col, M, N); }
 
 std::string DerivedModel::equation_name(int row) const {
-  return row < M ? "flap " + std::to_string(row + 1) : "lag " + std::to_string(row - M + 1);
+  return model::is_flap_coordinate(row, M) ? "flap " + std::to_string(row + 1)
+                                           : "lag " + std::to_string(row - M + 1);
 }
 
 std::string DerivedModel::harmonic_name(int h) {
@@ -392,9 +381,9 @@ void Deriver::make_symbols() {
     etap_.push_back(sym("etap" + s, {Role::Shape, k, FactorKind::EtaPrime}));
     ieta_.push_back(sym("ieta" + s, {Role::InnerShape, k, FactorKind::Eta}));
     ietap_.push_back(sym("ietap" + s, {Role::InnerShape, k, FactorKind::EtaPrime}));
-    dgd_.push_back(sym("dgd" + s, {Role::State, k}));
-    dg_.push_back(sym("dg" + s, {Role::State, M_ + k}));
-    dgdd_.push_back(sym("dgdd" + s, {Role::Accel, k}));
+    dgd_.push_back(sym("dgd" + s, {Role::State, model::flap_rate_index(k, M_, N_)}));
+    dg_.push_back(sym("dg" + s, {Role::State, model::flap_displacement_index(k, M_, N_)}));
+    dgdd_.push_back(sym("dgdd" + s, {Role::Accel, model::flap_equation_index(k, M_)}));
   }
   for (int m = 0; m < N_; ++m) {
     const std::string s = std::to_string(m + 1);
@@ -402,9 +391,9 @@ void Deriver::make_symbols() {
     gamp_.push_back(sym("gamp" + s, {Role::Shape, m, FactorKind::GammaPrime}));
     igam_.push_back(sym("igam" + s, {Role::InnerShape, m, FactorKind::Gamma}));
     igamp_.push_back(sym("igamp" + s, {Role::InnerShape, m, FactorKind::GammaPrime}));
-    dhd_.push_back(sym("dhd" + s, {Role::State, 2 * M_ + m}));
-    dh_.push_back(sym("dh" + s, {Role::State, 2 * M_ + N_ + m}));
-    dhdd_.push_back(sym("dhdd" + s, {Role::Accel, M_ + m}));
+    dhd_.push_back(sym("dhd" + s, {Role::State, model::lag_rate_index(m, M_, N_)}));
+    dh_.push_back(sym("dh" + s, {Role::State, model::lag_displacement_index(m, M_, N_)}));
+    dhdd_.push_back(sym("dhdd" + s, {Role::Accel, model::lag_equation_index(m, M_)}));
   }
   // Scalars, in the order the generated code reads them.
   lock_ = add_scalar("lock", "in.lock");
@@ -608,7 +597,7 @@ Term Deriver::make_term(const Mono& m, bool aero, int eq) {
   t.eps_order = m.eps;
   t.origin = m.origin;
   t.radial_flow = m.radial > 0;
-  const bool flap_eq = eq < M_;
+  const bool flap_eq = model::is_flap_coordinate(eq, M_);
   const int eq_mode = flap_eq ? eq : eq - M_;
   if (aero) {
     AeroIntegralKey k{m.x_power, m.outer};
@@ -673,15 +662,15 @@ void Deriver::place(const ex& expr, bool aero, int eq) {
         // Linear rotating-beam stiffness: replaced by M w^2 through the orthogonality
         // relations (A.2, A.4), which define the rotating frequencies.
         int col = -1;
-        if (m.dlt == 1 && m.scalars.empty() && m.accel < 0 &&
-            ((m.state >= M_ && m.state < 2 * M_) || m.state >= 2 * M_ + N_)) {
+        if (m.dlt == 1 && m.scalars.empty() && m.accel < 0 && m.state >= 0 &&
+            !model::state_ref(m.state, M_, N_).rate) {
           col = m.state;
         } else if (m.dlt == 0 && m.scalars.size() == 1 && m.scalars[0].second == 1) {
           const int si = m.scalars[0].first;
           for (int k = 0; k < M_; ++k)
-            if (si == g0_[k]) col = M_ + k;
+            if (si == g0_[k]) col = model::flap_displacement_index(k, M_, N_);
           for (int r = 0; r < N_; ++r)
-            if (si == h0_[r]) col = 2 * M_ + N_ + r;
+            if (si == h0_[r]) col = model::lag_displacement_index(r, M_, N_);
         }
         if (col >= 0) {
           if (m.dlt == 1) {  // record once, for the perturbation
@@ -754,7 +743,7 @@ void Deriver::aerodynamic_loads() {
                       kl);
   const ex scale = scalar(lock_) / 2 * GiNaC::pow(lr, 2);
   for (int i = 0; i < M_; ++i) place(scale * lz * eta_[i], true, i);
-  for (int i = 0; i < N_; ++i) place(scale * ly * gam_[i], true, M_ + i);
+  for (int i = 0; i < N_; ++i) place(scale * ly * gam_[i], true, model::lag_equation_index(i, M_));
 }
 
 // Structural and inertial generalized forces from eqs 2.2-2.10, Galerkin-weighted (2.16-2.17)
@@ -814,7 +803,7 @@ void Deriver::structural_loads() {
            (tag("lag inertia v'' (2.5)") * v_acc - tag("in-plane centrifugal -v (2.5)") * v +
             tag("Coriolis 2u' (2.5)") * 2 * u_rate);
     r += mul(gamp_[i] * v_slope, tension, big);
-    place(trunc(r, big), false, M_ + i);
+    place(trunc(r, big), false, model::lag_equation_index(i, M_));
   }
 
   // Modal stiffness and damping (orthogonality, A.2 and A.4; damping as in 2.16-2.17) and the
@@ -839,7 +828,7 @@ void Deriver::structural_loads() {
       r += tag("elastic coupling E^s (E.7)") * es_w * scalar(esl_[i][m]) * H[m];
     for (int k = 0; k < M_; ++k)
       r += tag("elastic coupling E^cs (E.8)") * ecs_w * scalar(ecslf_[i][k]) * G[k];
-    place(trunc(r, big), false, M_ + i);
+    place(trunc(r, big), false, model::lag_equation_index(i, M_));
   }
 }
 

@@ -176,8 +176,9 @@ std::string emit_cpp(const DerivedModel& m) {
   const std::string ind = "      ";
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
-      os << "  // mass: " << m.equation_name(i) << ", " << m.state_name(j < m.M ? j : m.M + j)
-         << "''\n";
+      // the mass multiplies the acceleration of coordinate j: q_j'' = (displacement j)''
+      os << "  // mass: " << m.equation_name(i) << ", "
+         << m.state_name(model::displacement_index(j, m.M, m.N)) << "''\n";
       os << "  out.mass[" << i * n + j << "] =\n"
          << ind << slot_cpp(m, m.mass[i * n + j], ind) << ";\n";
     }
@@ -214,6 +215,7 @@ std::string emit_cpp(const DerivedModel& m) {
   os << "  namespace g = flaplag::generated::" << id << ";\n";
   os << "  static const flaplag::model::ModelDescriptor d = {\n"
      << "      " << c_string(m.spec.name) << ",\n"
+     << "      " << c_string(m.spec.family) << ",\n"
      << "      " << c_string(m.spec.file) << ",\n"
      << "      g::kSpecText,\n"
      << "      " << c_string(m.spec.summary()) << ",\n"

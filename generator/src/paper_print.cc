@@ -60,6 +60,7 @@ int aero_index(const DerivedModel& m, const std::string& paper) {
   return -1;
 }
 
+int lag1(const DerivedModel& m) { return model::lag_equation_index(0, m.M); }
 int forcing_slot(const DerivedModel& m, int h, int eq) { return h * m.n() + eq; }
 int force_slot(const DerivedModel& m, int h, int eq, int col) {
   return (h * m.n() + eq) * 2 * m.n() + col;
@@ -127,8 +128,8 @@ std::vector<Difference> differences() {
        "row 3 of A is the lag equation (2.17)",
        [](const DerivedModel& m) {
          const int n = m.n();
-         return find(m, m.mass, m.M * n + m.M, "M_L11", {}) != nullptr ? Check::Confirmed
-                                                                       : Check::Absent;
+         return find(m, m.mass, lag1(m) * n + lag1(m), "M_L11", {}) != nullptr ? Check::Confirmed
+                                                                               : Check::Absent;
        }},
       {"Appendix C.3, f1, h0 bracket", "-F22 mu cos(psi)", "+F22 lambda mu cos(psi) h0",
        "the forcing is the lag-displacement coefficient of A14 times h0; A14 prints "
@@ -152,24 +153,27 @@ std::vector<Difference> differences() {
        "+L2 (mu^2/2)(C_Do/a)(1 - cos 2psi)",
        "drag term (C_Do/a) U_T^2 with U_T^2 containing mu^2 sin^2(psi); eq 2.35 prints it right",
        [](const DerivedModel& m) {
-         return sign_is(find(m, m.forcing, forcing_slot(m, 3, m.M), "L2_1", {"cdo_a"}), -1);
+         return sign_is(find(m, m.forcing, forcing_slot(m, 3, lag1(m)), "L2_1", {"cdo_a"}), -1);
        }},
       {"Eq 2.35 and Appendix C.3, f3", "+L21 (mu^2/2)(1+cos 2psi) theta g0 h0",
        "-L21 (mu^2/2)(1+cos 2psi) theta g0 h0",
        "Appendix C.1 (A_Li) and A32, A34 print the minus sign; the forcing must agree with them",
        [](const DerivedModel& m) {
          return sign_is(
-             find(m, m.forcing, forcing_slot(m, 0, m.M), "L21_111", {"theta", "g0_1", "h0_1"}), -1);
+             find(m, m.forcing, forcing_slot(m, 0, lag1(m)), "L21_111", {"theta", "g0_1", "h0_1"}),
+             -1);
        }},
       {"Eq 2.32, vector c", "L4 + C_Do/a", "L4 C_Do/a",
        "eq 2.30 prints the product; the drag load is (C_Do/a) U_T^2",
        [](const DerivedModel& m) {
-         return find(m, m.c, m.M, "L4_1", {"cdo_a"}) != nullptr ? Check::Confirmed : Check::Absent;
+         return find(m, m.c, lag1(m), "L4_1", {"cdo_a"}) != nullptr ? Check::Confirmed
+                                                                    : Check::Absent;
        }},
       {"Eq 2.34, coefficient of dh1 (left-hand side)", "+E^cs", "-E^cs",
        "on the left-hand side the sign is opposite to A14 (+E^cs on the right, eq 2.16)",
        [](const DerivedModel& m) {
-         for (const auto& t : m.force[force_slot(m, 0, 0, 2 * m.M + m.N)].terms) {
+         const int dh1 = model::lag_displacement_index(0, m.M, m.N);
+         for (const auto& t : m.force[force_slot(m, 0, 0, dh1)].terms) {
            if (has_scalar(m, t, "ecs_flap_lag_1_1")) {
              return t.coef > 0 ? Check::Confirmed : Check::Contradicted;
            }

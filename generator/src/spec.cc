@@ -2,6 +2,8 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -9,9 +11,18 @@ namespace flaplag::derive {
 
 namespace {
 
-// Canonical order of the small quantities (Appendix C.1).
-const char* const kOrderKeys[] = {"g",      "h",       "g_dot", "h_dot", "theta",
-                                  "inflow", "precone", "droop", "cdo_a"};
+constexpr int kMaxInteger = 99;  // mode counts and orders: anything larger is a typo
+
+std::string* description_of(OrderingSpec& s, const char*) { return &s.description; }
+std::string* base_of(OrderingSpec& s, const char*) { return &s.base; }
+int* modes_of(OrderingSpec& s, const char* key) {
+  return std::string(key) == "flap" ? &s.flap_modes : &s.lag_modes;
+}
+int* order_of(OrderingSpec& s, const char* key) { return &s.orders[key]; }
+int* kept_of(OrderingSpec& s, const char* key) {
+  return std::string(key) == "flap" ? &s.kept_flap : &s.kept_lag;
+}
+bool* radial_flow_of(OrderingSpec& s, const char*) { return &s.radial_flow; }
 
 std::string node_text(const toml::node& n) {
   std::ostringstream os;
@@ -34,59 +45,123 @@ std::string node_text(const toml::node& n) {
 }
 
 std::string stem_of(const std::string& file) {
-  std::string base = file;
-  if (auto slash = base.find_last_of('/'); slash != std::string::npos)
-    base = base.substr(slash + 1);
+  std::string base = std::filesystem::path(file).filename().string();
   if (base.size() > 5 && base.compare(base.size() - 5, 5, ".toml") == 0) {
     base = base.substr(0, base.size() - 5);
   }
   return base;
 }
 
-int read_int(const toml::node& n, const std::string& file, const std::string& key, int min_value) {
-  const auto* i = n.as_integer();
-  if (i == nullptr) {
-    throw SpecError(file, key, node_text(n), "must be an integer");
+std::string full_name(const SpecKey& k) {
+  return *k.table ? std::string(k.table) + "." + k.name : std::string(k.name);
+}
+
+// Table names in the order of spec_keys(), "" (top level) first.
+std::vector<std::string> tables() {
+  std::vector<std::string> t;
+  for (const auto& k : spec_keys()) {
+    if (std::find(t.begin(), t.end(), k.table) == t.end()) t.emplace_back(k.table);
   }
-  const int64_t v = i->get();
-  if (v < min_value) {
-    throw SpecError(file, key, node_text(n), "must be >= " + std::to_string(min_value));
+  return t;
+}
+
+// "unknown key (expected a, b, c)" for one table, from spec_keys().
+std::string unknown(const std::string& table) {
+  const std::string what = table == "orders"  ? "unknown symbol"
+                           : table == "terms" ? "unknown term class"
+                                              : "unknown key";
+  std::string expected;
+  for (const auto& k : spec_keys()) {
+    if (k.table != table) continue;
+    expected += (expected.empty() ? "" : ", ") + std::string(k.name);
   }
-  if (v > 99) throw SpecError(file, key, node_text(n), "must be <= 99");
-  return static_cast<int>(v);
-}
-
-bool read_bool(const toml::node& n, const std::string& file, const std::string& key) {
-  const auto* b = n.as_boolean();
-  if (b == nullptr) throw SpecError(file, key, node_text(n), "must be true or false");
-  return b->get();
-}
-
-const toml::table& read_table(const toml::node& n, const std::string& file,
-                              const std::string& key) {
-  const auto* t = n.as_table();
-  if (t == nullptr) throw SpecError(file, key, node_text(n), "must be a table");
-  return *t;
-}
-
-}  // namespace
-
-const std::map<std::string, int>& default_orders() {
-  static const std::map<std::string, int> m = {{"g", 1},       {"h", 1},     {"g_dot", 1},
-                                               {"h_dot", 1},   {"theta", 1}, {"inflow", 1},
-                                               {"precone", 1}, {"droop", 1}, {"cdo_a", 2}};
-  return m;
-}
-
-OrderingSpec parse_spec(const std::string& text, const std::string& file_label) {
-  OrderingSpec spec;
-  spec.file = file_label;
-  if (auto slash = spec.file.find_last_of('/'); slash != std::string::npos) {
-    spec.file = spec.file.substr(slash + 1);
+  if (table.empty()) {
+    for (const auto& t : tables()) {
+      if (!t.empty()) expected += ", " + t;
+    }
   }
-  spec.name = stem_of(file_label);
-  spec.orders = default_orders();
-  const std::string& f = spec.file;
+  return what + " (expected " + expected + ")";
+}
+
+const SpecKey* find_key(const std::string& table, const std::string& name) {
+  for (const auto& k : spec_keys()) {
+    if (k.table == table && k.name == name) return &k;
+  }
+  return nullptr;
+}
+
+void apply(const SpecKey& k, const toml::node& v, const std::string& file, OrderingSpec& spec) {
+  const std::string key = full_name(k);
+  switch (k.type) {
+    case SpecKey::Type::Text: {
+      const auto* s = v.as_string();
+      if (s == nullptr) throw SpecError(file, key, node_text(v), "must be a string");
+      *k.text(spec, k.name) = s->get();
+      return;
+    }
+    case SpecKey::Type::Integer: {
+      const auto* i = v.as_integer();
+      if (i == nullptr) throw SpecError(file, key, node_text(v), "must be an integer");
+      const int64_t value = i->get();
+      if (value < k.min_value) {
+        std::string why = "must be >= " + std::to_string(k.min_value);
+        if (k.min_reason != nullptr) why += " (" + std::string(k.min_reason) + ")";
+        throw SpecError(file, key, node_text(v), why);
+      }
+      if (value > kMaxInteger) {
+        throw SpecError(file, key, node_text(v), "must be <= " + std::to_string(kMaxInteger));
+      }
+      *k.integer(spec, k.name) = static_cast<int>(value);
+      return;
+    }
+    case SpecKey::Type::Boolean: {
+      const auto* b = v.as_boolean();
+      if (b == nullptr) throw SpecError(file, key, node_text(v), "must be true or false");
+      *k.boolean(spec, k.name) = b->get();
+      return;
+    }
+  }
+}
+
+bool same_physics(OrderingSpec a, OrderingSpec b) {
+  for (const auto& k : spec_keys()) {
+    if (!k.physics) continue;
+    switch (k.type) {
+      case SpecKey::Type::Text:
+        if (*k.text(a, k.name) != *k.text(b, k.name)) return false;
+        break;
+      case SpecKey::Type::Integer:
+        if (*k.integer(a, k.name) != *k.integer(b, k.name)) return false;
+        break;
+      case SpecKey::Type::Boolean:
+        if (*k.boolean(a, k.name) != *k.boolean(b, k.name)) return false;
+        break;
+    }
+  }
+  return true;
+}
+
+bool plain_name(const std::string& s) {
+  if (s.empty()) return false;
+  return std::all_of(s.begin(), s.end(), [](char ch) {
+    return std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_';
+  });
+}
+
+std::string read_text(const std::string& path, bool* ok) {
+  std::ifstream in(path);
+  *ok = static_cast<bool>(in);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// `chain`: the specs whose base is being resolved (leaf first), for the cycle check.
+OrderingSpec parse_layer(const std::string& text, const std::string& file_label,
+                         std::vector<std::string> chain) {
+  const std::string f = std::filesystem::path(file_label).filename().string();
+  const std::string name = stem_of(file_label);
+  chain.push_back(name);
 
   toml::table root;
   try {
@@ -98,85 +173,135 @@ OrderingSpec parse_spec(const std::string& text, const std::string& file_label) 
                     std::string("malformed TOML: ") + std::string(e.description()));
   }
 
+  // The base first: this file's keys override the resolved base spec.
+  OrderingSpec spec = default_spec();
+  OrderingSpec base_spec;
+  std::string base;
+  if (const toml::node* b = root.get("base")) {
+    const SpecKey& k = *find_key("", "base");
+    apply(k, *b, f, spec);
+    base = spec.base;
+    if (!plain_name(base)) {
+      throw SpecError(f, "base", node_text(*b),
+                      "must name a spec of the same directory (letters, digits, '-', '_'; no "
+                      "path, no .toml)");
+    }
+    if (std::find(chain.begin(), chain.end(), base) != chain.end()) {
+      std::string cycle;
+      for (const auto& c : chain) cycle += c + " -> ";
+      throw SpecError(f, "base", node_text(*b), "inheritance cycle " + cycle + base);
+    }
+    const std::filesystem::path base_path =
+        std::filesystem::path(file_label).parent_path() / (base + ".toml");
+    bool ok = false;
+    const std::string base_text = read_text(base_path.string(), &ok);
+    if (!ok) throw SpecError(f, "base", node_text(*b), "no spec file " + base_path.string());
+    base_spec = parse_layer(base_text, base_path.string(), chain);
+    spec = base_spec;
+  }
+  spec.name = name;
+  spec.file = f;
+  spec.base = base;
+
   for (const auto& [k, v] : root) {
     const std::string key(k.str());
-    if (key == "description") {
-      const auto* s = v.as_string();
-      if (s == nullptr) throw SpecError(f, key, node_text(v), "must be a string");
-      spec.description = s->get();
-    } else if (key == "modes") {
-      for (const auto& [mk, mv] : read_table(v, f, key)) {
-        const std::string k2 = "modes." + std::string(mk.str());
-        if (mk.str() == "flap") {
-          spec.flap_modes = read_int(mv, f, k2, 1);
-        } else if (mk.str() == "lag") {
-          spec.lag_modes = read_int(mv, f, k2, 1);
-        } else {
-          throw SpecError(f, k2, node_text(mv), "unknown key (expected flap, lag)");
-        }
-      }
-    } else if (key == "orders") {
-      for (const auto& [ok, ov] : read_table(v, f, key)) {
-        const std::string name(ok.str());
-        const std::string k2 = "orders." + name;
-        if (spec.orders.count(name) == 0) {
-          throw SpecError(f, k2, node_text(ov),
-                          "unknown symbol (expected g, h, g_dot, h_dot, theta, inflow, precone, "
-                          "droop, cdo_a)");
-        }
-        spec.orders[name] = read_int(ov, f, k2, 0);
-      }
-    } else if (key == "kept") {
-      for (const auto& [kk, kv] : read_table(v, f, key)) {
-        const std::string k2 = "kept." + std::string(kk.str());
-        if (kk.str() == "flap") {
-          spec.kept_flap = read_int(kv, f, k2, 0);
-        } else if (kk.str() == "lag") {
-          spec.kept_lag = read_int(kv, f, k2, 0);
-        } else {
-          throw SpecError(f, k2, node_text(kv), "unknown key (expected flap, lag)");
-        }
-      }
-    } else if (key == "terms") {
-      for (const auto& [tk, tv] : read_table(v, f, key)) {
-        const std::string k2 = "terms." + std::string(tk.str());
-        if (tk.str() == "radial_flow") {
-          spec.radial_flow = read_bool(tv, f, k2);
-        } else {
-          throw SpecError(f, k2, node_text(tv), "unknown term class (expected radial_flow)");
-        }
-      }
-    } else {
-      throw SpecError(f, key, node_text(v),
-                      "unknown key (expected description, modes, orders, kept, terms)");
+    if (key == "base") continue;
+    if (const SpecKey* sk = find_key("", key)) {
+      apply(*sk, v, f, spec);
+      continue;
+    }
+    const auto t = tables();
+    if (key.empty() || std::find(t.begin(), t.end(), key) == t.end()) {
+      throw SpecError(f, key, node_text(v), unknown(""));
+    }
+    const auto* table = v.as_table();
+    if (table == nullptr) throw SpecError(f, key, node_text(v), "must be a table");
+    for (const auto& [k2, v2] : *table) {
+      const std::string name2(k2.str());
+      const SpecKey* sk2 = find_key(key, name2);
+      if (sk2 == nullptr) throw SpecError(f, key + "." + name2, node_text(v2), unknown(key));
+      apply(*sk2, v2, f, spec);
     }
   }
-  // Displacements and their rates must be small, or the linearization is meaningless.
-  for (const char* k : {"g", "h", "g_dot", "h_dot"}) {
-    if (spec.orders[k] < 1) {
-      throw SpecError(f, std::string("orders.") + k, std::to_string(spec.orders[k]),
-                      "generalized coordinates must be at least O(eps)");
-    }
-  }
+  spec.family = !base.empty() && same_physics(spec, base_spec) ? base_spec.family : spec.name;
   return spec;
 }
 
+}  // namespace
+
+const std::vector<SpecKey>& spec_keys() {
+  using T = SpecKey::Type;
+  static const char* const kCoordinates = "generalized coordinates must be at least O(eps)";
+  // Orders of the small quantities: paper Appendix C.1.
+  static const std::vector<SpecKey> keys = {
+      {"", "base", T::Text, 0, 0, nullptr, false, &base_of, nullptr, nullptr},
+      {"", "description", T::Text, 0, 0, nullptr, false, &description_of, nullptr, nullptr},
+      {"modes", "flap", T::Integer, 1, 1, nullptr, false, nullptr, &modes_of, nullptr},
+      {"modes", "lag", T::Integer, 1, 1, nullptr, false, nullptr, &modes_of, nullptr},
+      {"orders", "g", T::Integer, 1, 1, kCoordinates, true, nullptr, &order_of, nullptr},
+      {"orders", "h", T::Integer, 1, 1, kCoordinates, true, nullptr, &order_of, nullptr},
+      {"orders", "g_dot", T::Integer, 1, 1, kCoordinates, true, nullptr, &order_of, nullptr},
+      {"orders", "h_dot", T::Integer, 1, 1, kCoordinates, true, nullptr, &order_of, nullptr},
+      {"orders", "theta", T::Integer, 1, 0, nullptr, true, nullptr, &order_of, nullptr},
+      {"orders", "inflow", T::Integer, 1, 0, nullptr, true, nullptr, &order_of, nullptr},
+      {"orders", "precone", T::Integer, 1, 0, nullptr, true, nullptr, &order_of, nullptr},
+      {"orders", "droop", T::Integer, 1, 0, nullptr, true, nullptr, &order_of, nullptr},
+      {"orders", "cdo_a", T::Integer, 2, 0, nullptr, true, nullptr, &order_of, nullptr},
+      {"kept", "flap", T::Integer, 2, 0, nullptr, true, nullptr, &kept_of, nullptr},
+      {"kept", "lag", T::Integer, 3, 0, nullptr, true, nullptr, &kept_of, nullptr},
+      {"terms", "radial_flow", T::Boolean, 1, 0, nullptr, true, nullptr, nullptr, &radial_flow_of},
+  };
+  return keys;
+}
+
+OrderingSpec default_spec() {
+  OrderingSpec s;
+  for (const auto& k : spec_keys()) {
+    if (k.type == SpecKey::Type::Integer) *k.integer(s, k.name) = k.default_value;
+    if (k.type == SpecKey::Type::Boolean) *k.boolean(s, k.name) = k.default_value != 0;
+  }
+  return s;
+}
+
+OrderingSpec parse_spec(const std::string& text, const std::string& file_label) {
+  return parse_layer(text, file_label, {});
+}
+
 OrderingSpec load_spec(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw SpecError(path, "file", "?", "cannot be read");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_spec(ss.str(), path);
+  bool ok = false;
+  const std::string text = read_text(path, &ok);
+  if (!ok) throw SpecError(path, "file", "?", "cannot be read");
+  return parse_spec(text, path);
 }
 
 std::string OrderingSpec::canonical_text() const {
+  OrderingSpec self = *this;  // the accessors take a mutable spec
   std::ostringstream os;
-  os << "description = \"" << description << "\"\n";
-  os << "[modes]\nflap = " << flap_modes << "\nlag = " << lag_modes << "\n";
-  os << "[orders]\n";
-  for (const char* k : kOrderKeys) os << k << " = " << orders.at(k) << "\n";
-  os << "[kept]\nflap = " << kept_flap << "\nlag = " << kept_lag << "\n";
-  os << "[terms]\nradial_flow = " << (radial_flow ? "true" : "false") << "\n";
+  if (!base.empty()) {
+    os << "# base = \"" << base << "\" (inherited values resolved below; model family \"" << family
+       << "\")\n";
+  }
+  std::string table;
+  for (const auto& k : spec_keys()) {
+    if (std::string(k.name) == "base" && !*k.table) continue;
+    if (k.table != table) {
+      table = k.table;
+      os << "[" << table << "]\n";
+    }
+    os << k.name << " = ";
+    switch (k.type) {
+      case SpecKey::Type::Text:
+        os << '"' << *k.text(self, k.name) << '"';
+        break;
+      case SpecKey::Type::Integer:
+        os << *k.integer(self, k.name);
+        break;
+      case SpecKey::Type::Boolean:
+        os << (*k.boolean(self, k.name) ? "true" : "false");
+        break;
+    }
+    os << "\n";
+  }
   return os.str();
 }
 

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "flaplag/model_api.h"
 #include "flaplag_derive/spec.h"
 
 namespace flaplag::derive {

@@ -1,12 +1,16 @@
 // flaplag-derive — the ordering spec: which small quantities have which eps_D order, which order
 // is kept in each equation, which term classes are switched on, how many modes.
 //
-// One spec file = one model.  The model name is the file name without ".toml".
+// One spec file = one model.  The model name is the file name without ".toml".  A spec may
+// inherit from another spec of the same directory (`base = "paper"`): it starts from the
+// resolved base spec and overrides the keys it gives, so that variants (e.g. the paper ordering
+// with more modes) cannot drift from their base.  Every key is declared once, in spec_keys().
 #pragma once
 
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace flaplag::derive {
 
@@ -18,32 +22,56 @@ class SpecError : public std::runtime_error {
       : std::runtime_error(file + ": " + key + " = " + value + ": " + reason) {}
 };
 
+// Construct with default_spec(), load_spec() or parse_spec(): the defaults live in spec_keys().
 struct OrderingSpec {
   std::string name;  // model name (file stem)
   std::string file;  // file name (no directory: generated output must not embed paths)
+  std::string base;  // the spec this one inherits from (`base` key), "" when none
+  // Model family: specs that differ only in their mode counts (and description) form one family,
+  // named after its root spec.  = base's family when this spec changes nothing but [modes] and
+  // description; otherwise its own name.  The runtime looks models up by (family, M, N).
+  std::string family;
   std::string description;
-  int flap_modes = 1;  // M
-  int lag_modes = 1;   // N
-  // eps_D order of each small quantity (paper Appendix C.1).  Keys: g, h, g_dot, h_dot, theta,
-  // inflow, precone, droop, cdo_a.
+  int flap_modes = 0;  // M
+  int lag_modes = 0;   // N
+  // eps_D order of each small quantity (paper Appendix C.1); keys as in spec_keys() ([orders]).
   std::map<std::string, int> orders;
-  int kept_flap = 2;        // highest eps order kept in the flap aerodynamic load
-  int kept_lag = 3;         // ... in the lag aerodynamic load
-  bool radial_flow = true;  // the mu cos(psi) dv/dx0 term of U_T (eq 2.23)
+  int kept_flap = 0;         // highest eps order kept in the flap aerodynamic load
+  int kept_lag = 0;          // ... in the lag aerodynamic load
+  bool radial_flow = false;  // the mu cos(psi) dv/dx0 term of U_T (eq 2.23)
 
   int order(const std::string& key) const { return orders.at(key); }
-  // Canonical TOML text of the spec (what the generated code records).
+  // Canonical TOML text of the resolved spec (what the generated code records).
   std::string canonical_text() const;
   // One-line summary.
   std::string summary() const;
 };
 
-// The small quantities and their paper orders, in canonical order.
-const std::map<std::string, int>& default_orders();
+// One key of the spec format.  spec_keys() is the single list: parsing, defaults, the "expected
+// ..." lists of error messages, the family rule and the canonical text all read it.
+struct SpecKey {
+  enum class Type { Text, Integer, Boolean };
+  const char* table;  // "" for a top-level key, else the [table] it belongs to
+  const char* name;
+  Type type;
+  int default_value;       // Integer and Boolean (0/1) keys
+  int min_value;           // Integer keys: smallest accepted value (the largest is 99)
+  const char* min_reason;  // why min_value (nullptr: none given)
+  bool physics;            // part of the equations (false: description, mode counts)
+  // Where the value lives (the one matching `type` is set; the key name is passed in).
+  std::string* (*text)(OrderingSpec&, const char* name);
+  int* (*integer)(OrderingSpec&, const char* name);
+  bool* (*boolean)(OrderingSpec&, const char* name);
+};
+const std::vector<SpecKey>& spec_keys();
 
-// Parse a spec file; throws SpecError.
+// A spec with every key at its default (the paper's ordering, one mode each).
+OrderingSpec default_spec();
+
+// Parse a spec file; throws SpecError.  A `base` is looked up in the same directory.
 OrderingSpec load_spec(const std::string& path);
-// Parse spec text (file_label is used in messages and as OrderingSpec::file).
+// Parse spec text (file_label is used in messages and as OrderingSpec::file; a `base` is looked
+// up in file_label's directory).
 OrderingSpec parse_spec(const std::string& text, const std::string& file_label);
 
 }  // namespace flaplag::derive

@@ -442,8 +442,9 @@ Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, 
 //   (16 Phi_{h/2} - Phi_h) / 15
 // is sixth-order accurate, and error_estimate = ||Phi_{h/2} - Phi_h||_max / 15 estimates the
 // error of Phi_{h/2}, i.e. it is a conservative (pessimistic) bound for the returned matrix
-// once the steps resolve A(psi).  Measured on the rotor-like 4x4 system of transition_test
-// (harmonics to 4/rev, a reversed sector, |A| up to about 6): steps = 25 / 50 / 100 give Phi to
+// once the steps resolve A(psi).  Measured on the rotor-like 4x4 system rotor_like() of
+// tests/periodic_fixtures.h (harmonics to 4/rev, a reversed sector, max |A_ij| = 5.7, ||A||_F
+// up to 6.2), against 1000 steps, by transition_test: steps = 25 / 50 / 100 give Phi to
 // 1e-7 / 2e-9 / 3e-11 relative (sixth order), while the estimate is 1e-5 / 1e-6 / 8e-8, i.e.
 // two to three orders of magnitude pessimistic.
 TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps) {

@@ -13,11 +13,58 @@
 // State ordering (eq 2.36 generalised to M flap and N lag modes):
 //   y = [dg'_1..dg'_M, dg_1..dg_M, dh'_1..dh'_N, dh_1..dh_N]     (' = d/dpsi, d = Delta)
 // Equation ordering (rows of the generalized force): flap 1..M, then lag 1..N.
+// The functions below are the one place this ordering is written down.
 #pragma once
 
+#include <string>
 #include <vector>
 
 namespace flaplag::model {
+
+// ----- state and equation ordering (all indices 0-based; k: flap mode, m: lag mode) ----------
+
+constexpr int state_count(int M, int N) { return 2 * (M + N); }
+constexpr int flap_rate_index(int k, int /*M*/, int /*N*/) { return k; }             // dg'_k
+constexpr int flap_displacement_index(int k, int M, int /*N*/) { return M + k; }     // dg_k
+constexpr int lag_rate_index(int m, int M, int /*N*/) { return 2 * M + m; }          // dh'_m
+constexpr int lag_displacement_index(int m, int M, int N) { return 2 * M + N + m; }  // dh_m
+
+// Generalized coordinate j of q = [g_1..g_M, h_1..h_N] (also the equation / mass row j).
+constexpr bool is_flap_coordinate(int j, int M) { return j < M; }
+constexpr int rate_index(int j, int M, int N) {
+  return j < M ? flap_rate_index(j, M, N) : lag_rate_index(j - M, M, N);
+}
+constexpr int displacement_index(int j, int M, int N) {
+  return j < M ? flap_displacement_index(j, M, N) : lag_displacement_index(j - M, M, N);
+}
+constexpr int flap_equation_index(int k, int /*M*/) { return k; }
+constexpr int lag_equation_index(int m, int M) { return M + m; }
+
+// What state column col holds.
+enum class Direction : int { Flap = 0, Lag = 1 };
+struct StateRef {
+  Direction direction;
+  int mode;   // 0-based mode of that direction
+  bool rate;  // true: dg'_k / dh'_m, false: dg_k / dh_m
+};
+constexpr StateRef state_ref(int col, int M, int N) {
+  return col < M           ? StateRef{Direction::Flap, col, true}
+         : col < 2 * M     ? StateRef{Direction::Flap, col - M, false}
+         : col < 2 * M + N ? StateRef{Direction::Lag, col - 2 * M, true}
+                           : StateRef{Direction::Lag, col - 2 * M - N, false};
+}
+// The coordinate (equation row) a state column belongs to.
+constexpr int coordinate_of_state(int col, int M, int N) {
+  return state_ref(col, M, N).direction == Direction::Flap ? state_ref(col, M, N).mode
+                                                           : M + state_ref(col, M, N).mode;
+}
+
+// Name of state column col: "dg1'", "dg1", "dh1'", "dh1" (1-based mode numbers).
+inline std::string state_name(int col, int M, int N) {
+  const StateRef s = state_ref(col, M, N);
+  return std::string(s.direction == Direction::Flap ? "dg" : "dh") + std::to_string(s.mode + 1) +
+         (s.rate ? "'" : "");
+}
 
 // Spanwise functions that can appear in an integrand.  Derivatives are d/d(x0bar).
 enum class Factor : int {
@@ -107,7 +154,12 @@ struct EquilibriumOutputs {
 };
 
 struct ModelDescriptor {
-  const char* name;       // model name, e.g. "paper"
+  const char* name;  // model name, e.g. "paper-2x2"
+  // Model family, e.g. "paper" for paper, paper-2x1, paper-1x2, paper-2x2: the models of one
+  // family have the same ordering and term classes and differ only in their mode counts, so a
+  // model is identified by (base, flap_modes, lag_modes).  A spec without `base`, or one that
+  // changes more than [modes] of its base, is its own family (base == name).
+  const char* base;
   const char* spec_file;  // spec file name, e.g. "paper.toml"
   const char* spec_text;  // the spec as parsed (canonical TOML)
   const char* summary;    // one line: orders, term classes, modes
