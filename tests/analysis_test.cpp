@@ -187,6 +187,22 @@ TEST(InvalidArguments, NegativeMuAndBadRanges) {
                flaplag::InvalidInput);
 }
 
+TEST(Models, LookedUpByFamilyAndModeCounts) {
+  EXPECT_STREQ("paper", flaplag::find_model("paper", 1, 1).name);
+  const auto& m = flaplag::find_model("paper", 2, 2);
+  EXPECT_EQ(2, m.flap_modes);
+  EXPECT_EQ(2, m.lag_modes);
+  EXPECT_STREQ("paper", m.base);
+  try {
+    flaplag::find_model("paper", 7, 7);
+    FAIL() << "no 7x7 model is compiled";
+  } catch (const flaplag::InvalidInput& e) {
+    EXPECT_EQ("model", e.name());
+    EXPECT_NE(std::string::npos, std::string(e.what()).find("2x2")) << e.what();
+  }
+  EXPECT_THROW(flaplag::find_model("no-such-family", 1, 1), flaplag::InvalidInput);
+}
+
 TEST(Models, PaperModelsAreCompiled) {
   for (const char* name : {"paper", "no-radial-flow", "lag-order-2", "paper-2x2"}) {
     EXPECT_NO_THROW(flaplag::find_model(name)) << name;

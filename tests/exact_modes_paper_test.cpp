@@ -354,9 +354,7 @@ class ModeConvergence : public ::testing::TestWithParam<ModesCase> {};
 TEST_P(ModeConvergence, PinnedCriticalAdvanceRatio) {
   const ModesCase& c = GetParam();
   RotorParameters p = exact_case(0.15, 10.0, c.coupling, c.shapes_1974);
-  p.model = (c.flap == 1 && c.lag == 1)
-                ? std::string("paper")
-                : "paper-" + std::to_string(c.flap) + "x" + std::to_string(c.lag);
+  p.model = flaplag::find_model("paper", c.flap, c.lag).name;
   const Analysis an(p, hsu());
   ASSERT_EQ(c.flap, an.model().flap_modes);
   ASSERT_EQ(c.lag, an.model().lag_modes);

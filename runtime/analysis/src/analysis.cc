@@ -36,6 +36,21 @@ const model::ModelDescriptor& find_model(const std::string& name) {
   throw InvalidInput("model", name, "unknown model (compiled: " + known + ")");
 }
 
+const model::ModelDescriptor& find_model(const std::string& base, int flap_modes, int lag_modes) {
+  std::string sizes;
+  for (const auto* m : compiled_models()) {
+    if (base != m->base) continue;
+    if (m->flap_modes == flap_modes && m->lag_modes == lag_modes) return *m;
+    sizes += (sizes.empty() ? "" : ", ") + std::to_string(m->flap_modes) + "x" +
+             std::to_string(m->lag_modes);
+  }
+  throw InvalidInput("model", base,
+                     sizes.empty() ? "no compiled model family of that name"
+                                   : "has no " + std::to_string(flap_modes) + " flap x " +
+                                         std::to_string(lag_modes) +
+                                         " lag model (compiled: " + sizes + ")");
+}
+
 namespace {
 
 void check_mu(double mu, const char* name) {

@@ -28,9 +28,8 @@ HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_
   for (int k = 0; k < n; ++k) {
     Eigen::VectorXcd v = es.eigenvectors().col(k);
     v /= v.norm();
-    // Displacements: g at [M, 2M), h at [2M + N, 2M + 2N) (model_api.h state ordering).
-    const Eigen::VectorXcd g = v.segment(M, M);
-    const Eigen::VectorXcd h = v.segment(2 * M + N, N);
+    const Eigen::VectorXcd g = v.segment(model::flap_displacement_index(0, M, N), M);
+    const Eigen::VectorXcd h = v.segment(model::lag_displacement_index(0, M, N), N);
     const bool flap = N == 0 || (M > 0 && g.squaredNorm() >= h.squaredNorm());
     std::string label = flap ? "flap" : "lag";
     const Eigen::VectorXcd& part = flap ? g : h;

@@ -108,5 +108,8 @@ class Analysis {
 const std::vector<const model::ModelDescriptor*>& compiled_models();
 // Throws InvalidInput("model", name, ...) when unknown.
 const model::ModelDescriptor& find_model(const std::string& name);
+// The model of family `base` (ModelDescriptor::base, e.g. "paper") with M flap and N lag modes.
+// Throws InvalidInput("model", base, ...) naming the sizes that family has compiled.
+const model::ModelDescriptor& find_model(const std::string& base, int flap_modes, int lag_modes);
 
 }  // namespace flaplag
