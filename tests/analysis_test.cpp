@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -186,6 +187,61 @@ TEST(InvalidArguments, NegativeMuAndBadRanges) {
   EXPECT_THROW(Analysis(RotorParameters{}, method(TransitionMethod::Hsu, 50, 0)),
                flaplag::InvalidInput);
 }
+
+// Issue 8: with default settings every shipped model gives a resolved answer, and the claimed
+// accuracy holds against an independent, much finer reference (RK4, automatic steps at a
+// tolerance of 1e-10): each zeta within max(tol, 100 tol |zeta|) of the reference, tol = 1e-5,
+// up to a factor 3 for the Richardson estimate's own uncertainty.
+struct ResolutionCase {
+  const char* model;
+  bool exact_modes;
+  double mu;
+};
+
+class DefaultResolution : public ::testing::TestWithParam<ResolutionCase> {};
+
+TEST_P(DefaultResolution, ResolvedAndWithinTheClaimedToleranceOfAFineReference) {
+  RotorParameters p;
+  p.model = GetParam().model;
+  p.modes = GetParam().exact_modes ? flaplag::ModeKind::Exact : flaplag::ModeKind::Assumed;
+  const Analysis an(p, {});
+  const auto pt = an.point(GetParam().mu, 0.05);
+  ASSERT_NE(flaplag::Status::Failed, pt.status) << pt.message;
+  EXPECT_EQ(flaplag::Status::Ok, pt.status) << pt.message;
+  ASSERT_TRUE(pt.error.has_value());
+  TransitionOptions fine = method(TransitionMethod::RK4, TransitionOptions::kAutomatic);
+  fine.zeta_tolerance = 1e-10;
+  const auto ref = Analysis(p, fine).point(GetParam().mu, 0.05);
+  ASSERT_EQ(ref.exponents.size(), pt.exponents.size());
+  const double tol = TransitionOptions{}.zeta_tolerance;
+  for (std::size_t k = 0; k < pt.exponents.size(); ++k) {
+    const double z = ref.exponents[k].zeta;
+    EXPECT_EQ(ref.exponents[k].label, pt.exponents[k].label);
+    EXPECT_TRUE(AbsClose(z, pt.exponents[k].zeta, 3.0 * tol * std::max(1.0, 100.0 * std::abs(z))))
+        << pt.exponents[k].label << " at " << pt.steps << " steps, estimated error " << *pt.error;
+  }
+  std::printf("[resolution] %-16s %-7s mu = %.1f: %d steps, estimated zeta error %.2g\n",
+              GetParam().model, GetParam().exact_modes ? "exact" : "assumed", GetParam().mu,
+              pt.steps, *pt.error);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    ShippedModels, DefaultResolution,
+    ::testing::Values(
+        ResolutionCase{"paper", false, 0.5}, ResolutionCase{"paper", false, 1.5},
+        ResolutionCase{"paper", true, 0.5}, ResolutionCase{"paper", true, 1.5},
+        ResolutionCase{"no-radial-flow", false, 0.5}, ResolutionCase{"no-radial-flow", false, 1.5},
+        ResolutionCase{"lag-order-2", false, 0.5}, ResolutionCase{"lag-order-2", false, 1.5},
+        ResolutionCase{"paper-2x1", true, 0.5}, ResolutionCase{"paper-2x1", true, 1.5},
+        ResolutionCase{"paper-1x2", true, 0.5}, ResolutionCase{"paper-1x2", true, 1.5},
+        ResolutionCase{"paper-2x2", true, 0.5}, ResolutionCase{"paper-2x2", true, 1.5}),
+    [](const auto& tp) {
+      std::string n = std::string(tp.param.model) + (tp.param.exact_modes ? "_exact_" : "_") +
+                      (tp.param.mu < 1 ? "mu05" : "mu15");
+      for (char& c : n)
+        if (c == '-') c = '_';
+      return n;
+    });
 
 TEST(Models, LookedUpByFamilyAndModeCounts) {
   EXPECT_STREQ("paper", flaplag::find_model("paper", 1, 1).name);

@@ -234,6 +234,7 @@ struct Analysis::Impl {
       fine = at(sys, trace, steps);
     }
     const bool is_resolved = !err.empty() && resolved(err);
+    out.steps = steps;
     const bool fine_finite = finite(fine);
     const double zeta_floor = fine.zeta_floor;
     const double log_norm = fine.log_norm;

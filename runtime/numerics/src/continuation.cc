@@ -501,6 +501,7 @@ SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floq
     if (std::isfinite(sample.floquet.liouville_residual))
       p.liouville_residual = sample.floquet.liouville_residual;
     p.error = sample.error;
+    p.steps = sample.steps;
     TrackReport r;
     if (sample.status == Status::Failed) {
       r.status = Status::Failed;

@@ -100,6 +100,7 @@ struct FloquetSample {
   std::vector<double> zeta_errors;
   // max of zeta_errors; nullopt: not estimated.
   std::optional<double> error;
+  int steps = 0;  // steps per period behind `floquet` (0: not a stepping method)
   Status status = Status::Ok;  // Warning: not resolved to the requested tolerance; Failed: no
   std::string message;         // usable multipliers (message says why)
 };
@@ -121,6 +122,7 @@ struct PointResult {
   // underflowed to 0 while exp int tr A did not, or the reverse)
   std::optional<double> liouville_residual;
   std::optional<double> error;  // estimated max zeta error, per rev (FloquetSample)
+  int steps = 0;                // steps per period used (FloquetSample)
   std::optional<bool> stable;   // all zeta <= 0; nullopt when unknown (Failed)
   Status status = Status::Ok;
   std::string message;
