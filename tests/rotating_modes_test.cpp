@@ -237,7 +237,8 @@ TEST(RotatingModes, Fig9RoundTripAndTable) {
 }
 
 TEST(RotatingModes, Paper1974ShapesOption) {
-  // DESIGN.md: same frequencies and stiffnesses, even-numbered basis functions sign-flipped.
+  // docs/validation.md: same frequencies and stiffnesses, even-numbered basis functions
+  // sign-flipped.
   ExactModeOptions o;
   o.paper_1974_shapes = true;
   const ExactModes p = exact_rotating_modes(kOmegaF, kOmegaL, o);
@@ -261,7 +262,7 @@ TEST(RotatingModes, Paper1974ShapesOption) {
   // Rayleigh's principle: a shape that is not the first mode has a larger quotient.
   EXPECT_GT(w74, kOmegaF + 0.01);
   EXPECT_GT(l74, kOmegaL);
-  // DESIGN.md's independent claim "near 1.23".
+  // The design notes' independent claim (an implementation outside this code): "near 1.23".
   EXPECT_NEAR(1.23, w74, 0.01);
 }
 

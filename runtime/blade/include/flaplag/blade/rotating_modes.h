@@ -31,7 +31,7 @@ struct ExactModeOptions {
   int lag_modes = 1;       // N rotating lag modes returned, 1..n_basis
   double e1_over_l = 0.0;  // root offset from the rotation axis by l, >= 0 (centrifugal arm)
   double mbar = 3.0;       // m l^3 / I_b (frequencies depend on k / mbar only)
-  // Compatibility with the 1974 program (DESIGN.md, "About the paper's exact-mode numbers"):
+  // Compatibility with the 1974 program (docs/validation.md, "1974 shapes"):
   // rebuild the shapes from the correct Galerkin coefficients c_j with the even-numbered basis
   // functions sign-flipped, eta = sum (-1)^(j+1) c_j phi_j.  Frequencies and stiffnesses are
   // unchanged; the shapes are NOT modes of the blade.  Off by default.
