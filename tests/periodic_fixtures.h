@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <unsupported/Eigen/MatrixFunctions>
@@ -119,6 +120,52 @@ inline Eigen::MatrixXd reducible_phi(const Eigen::MatrixXd& B, const Frame& norm
   return P0 * (kTwoPi * B).exp() * P0.inverse();
 }
 
+// dA/dpsi inside the region that contains psi, from the harmonic coefficients.
+inline Eigen::MatrixXd A_rate(const PeriodicSystem& s, double psi) {
+  const HarmonicSet& set = s.region(psi);
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(s.n, s.n);
+  for (std::size_t h = 1; h < set.A.size(); ++h) {
+    const double k = static_cast<double>((h + 1) / 2);
+    d += (h % 2 == 1 ? -k * std::sin(k * psi) : k * std::cos(k * psi)) * set.A[h];
+  }
+  return d;
+}
+
+// Sizes that set the leading error terms: L = max ||A(psi)||_2, C = max ||[A, A']||_2 (sampled
+// on 2000 points; both regions).
+struct SystemScale {
+  double L = 0.0;
+  double C = 0.0;
+};
+inline SystemScale scale_of(const PeriodicSystem& s) {
+  SystemScale out;
+  for (int j = 0; j < 2000; ++j) {
+    const double psi = kTwoPi * (j + 0.5) / 2000;
+    const Eigen::MatrixXd A = s.A(psi), D = A_rate(s, psi);
+    out.L = std::max(out.L, A.operatorNorm());
+    out.C = std::max(out.C, (A * D - D * A).operatorNorm());
+  }
+  return out;
+}
+
+// A priori leading-term error models of Phi(2 pi, 0) relative to max |Phi| (T = 2 pi, h the
+// step).  They ignore the propagation of the local errors by Phi(2 pi, psi) (of order 1 for the
+// decaying systems used here), so the tests allow a factor 4.
+//  RK4 (order 4): the one-step remainder (h A)^5 / 5! accumulated over T / h steps,
+//    T (h L)^4 L / 120.
+//  Hsu (order 2, eq 3.29): exp(Delta C_k) with C_k the interval mean misses the second Magnus
+//    term Delta^3 [A, A'] / 12 on every interval, T Delta^2 C / 12, plus the Taylor remainder
+//    of J terms, T (Delta L)^J L / (J + 1)!.
+inline double rk4_error_model(const SystemScale& s, int steps) {
+  const double h = kTwoPi / steps;
+  return kTwoPi * std::pow(h * s.L, 4) * s.L / 120.0;
+}
+inline double hsu_error_model(const SystemScale& s, int intervals, int terms) {
+  const double d = kTwoPi / intervals;
+  return kTwoPi * d * d * s.C / 12.0 +
+         kTwoPi * std::pow(d * s.L, terms) * s.L / std::tgamma(terms + 2.0);
+}
+
 // Rotation by angle t and its derivative d/dt.
 inline Eigen::Matrix2d rotation(double t) {
   Eigen::Matrix2d R;
@@ -215,6 +262,77 @@ inline Eigen::MatrixXd with_eigenvalues(const std::vector<std::pair<double, doub
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) S(i, j) = (i == j ? 2.0 : 0.0) + 0.3 * std::sin(1.0 + i + 2.0 * j);
   return S * D * S.inverse();
+}
+
+// The Markus-Yamabe example (L. Markus, H. Yamabe, Osaka Math. J. 12, 1960), written from
+// first principles:
+//   A(psi) = [[-1 + 1.5 cos^2, 1 - 1.5 cos sin], [-1 - 1.5 sin cos, -1 + 1.5 sin^2]]
+//          = [[-1/4, 1], [-1, -1/4]] + 3/4 cos 2psi [[1, 0], [0, -1]] - 3/4 sin 2psi [[0, 1], [1,
+//          0]]
+// (cos^2 = (1 + cos 2psi) / 2, sin^2 = (1 - cos 2psi) / 2, sin cos = sin 2psi / 2).  Its
+// eigenvalues -1/4 +- i sqrt(7)/4 have negative real parts for every psi, yet
+//   y1 = e^{psi/2} (-cos psi, sin psi),  y2 = e^{-psi} (sin psi, cos psi)
+// solve y' = A y (substitute: row 1 of A y1 is e^{psi/2} (cos + sin - 1.5 cos (cos^2 + sin^2))
+// = e^{psi/2} (sin - cos / 2) = (y1)_1', and likewise for the other three components).  So
+// y = P z with P = [[-cos, sin], [sin, cos]], z' = diag(1/2, -1) z: Phi(2 pi) =
+// diag(e^{pi}, e^{-2 pi}), exponents 1/2 and -1, omega 0 (the trace, -1/2, is their sum).
+inline PeriodicSystem markus_yamabe() {
+  PeriodicSystem s;
+  s.n = 2;
+  s.normal.A.assign(5, Eigen::MatrixXd::Zero(2, 2));
+  s.normal.A[0] << -0.25, 1.0, -1.0, -0.25;
+  s.normal.A[3] << 0.75, 0.0, 0.0, -0.75;   // cos 2 psi
+  s.normal.A[4] << 0.0, -0.75, -0.75, 0.0;  // sin 2 psi
+  return s;
+}
+inline Frame markus_yamabe_frame() {
+  Frame f;
+  f.P = [](double p) -> Eigen::MatrixXd {
+    Eigen::Matrix2d m;
+    m << -std::cos(p), std::sin(p), std::sin(p), std::cos(p);
+    return m;
+  };
+  f.dP = [](double p) -> Eigen::MatrixXd {
+    Eigen::Matrix2d m;
+    m << std::sin(p), std::cos(p), std::cos(p), -std::sin(p);
+    return m;
+  };
+  return f;
+}
+
+// A periodic system with an exactly known transition matrix and exponents eig(B).
+struct ExactCase {
+  const char* name;
+  PeriodicSystem sys;
+  Eigen::MatrixXd B;    // z' = B z, y = P(psi) z
+  Frame frame;          // P in the normal region (psi = 0 lies there)
+  Frame reversed;       // P in the sector (equal to `frame` without one)
+  Eigen::MatrixXd phi;  // Phi(2 pi, 0) = P(0) e^{2 pi B} P(0)^{-1}
+};
+
+// 2 and 4 states, with and without a sector (P continuous, A jumping at its edges), and the
+// Markus-Yamabe example.  Exponents: -0.15 +- 1.0805i (2 states; omega 1.08 > 1/2 checks the
+// integer ambiguity); flap-like -0.15 +- 1.17i and lag-like -0.02 +- 1.28i (4 states).
+inline std::vector<ExactCase> exact_cases() {
+  std::vector<ExactCase> out;
+  Eigen::MatrixXd B2(2, 2);
+  B2 << -0.1, 1.3, -0.9, -0.2;
+  const Eigen::MatrixXd B4 = with_eigenvalues({{-0.15, 1.17}, {-0.02, 1.28}});
+  const Frame f2 = frame2(), f4 = frame4();
+  const Frame f2s = frame2(0.7, 0.8 * kPi), f4s = frame4(0.6, 0.9 * kPi);
+  out.push_back({"2 states", reducible_system(B2, f2, 6), B2, f2, f2, reducible_phi(B2, f2)});
+  out.push_back({"2 states, sector [0.8 pi, 1.8 pi)",
+                 reducible_system(B2, f2, 6, &f2s, 0.8 * kPi, 1.8 * kPi), B2, f2, f2s,
+                 reducible_phi(B2, f2)});
+  out.push_back({"4 states", reducible_system(B4, f4, 8), B4, f4, f4, reducible_phi(B4, f4)});
+  out.push_back({"4 states, sector [0.9 pi, 1.9 pi)",
+                 reducible_system(B4, f4, 8, &f4s, 0.9 * kPi, 1.9 * kPi), B4, f4, f4s,
+                 reducible_phi(B4, f4)});
+  Eigen::MatrixXd Bmy = Eigen::MatrixXd::Zero(2, 2);
+  Bmy.diagonal() << 0.5, -1.0;
+  const Frame fmy = markus_yamabe_frame();
+  out.push_back({"Markus-Yamabe", markus_yamabe(), Bmy, fmy, fmy, reducible_phi(Bmy, fmy)});
+  return out;
 }
 
 }  // namespace flaplag::fixtures

@@ -1,5 +1,4 @@
 // PeriodicSystem: harmonic basis, exact interval means (eqs 4.2-4.5), regions, trace integral.
-#include "flaplag/core/constants.h"
 #include "flaplag/numerics/periodic_system.h"
 
 #include <gtest/gtest.h>
@@ -7,7 +6,9 @@
 #include <cmath>
 #include <functional>
 
+#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "periodic_fixtures.h"
 #include "test_util.h"
 
 namespace flaplag {
@@ -15,7 +16,6 @@ namespace {
 
 using testing::AbsClose;
 using testing::RelClose;
-
 
 // Composite Gauss-Legendre (5 points on each of `panels` panels): independent of the closed
 // forms under test, and exact to rounding for the smooth integrands used here.
@@ -179,6 +179,47 @@ TEST(PeriodicSystem, ValidateRejectsMalformedSystems) {
   bad = s;
   bad.normal.f[0] = Eigen::VectorXd::Zero(5);
   EXPECT_THROW(bad.validate(), InvalidInput);
+}
+
+// The exactly solvable systems of periodic_fixtures.h: the harmonic expansion (trapezoidal
+// coefficients of A = P' P^{-1} + P B P^{-1}, or the hand-written Markus-Yamabe harmonics)
+// reproduces A off the sample points, in the right region, so the assumed degrees hold; the
+// frame is continuous at the sector edges (y continuous) while A jumps there.
+TEST(PeriodicSystem, ExactFixturesReproduceA) {
+  for (const fixtures::ExactCase& c : fixtures::exact_cases()) {
+    for (double psi : {0.0123, 0.9, 2.2, 2.6, 3.1, 4.0, 5.0, 5.7, 6.25}) {
+      const fixtures::Frame& f = c.sys.in_sector(psi) ? c.reversed : c.frame;
+      const Eigen::MatrixXd P = f.P(psi), Pinv = P.inverse();
+      const Eigen::MatrixXd A = f.dP(psi) * Pinv + P * c.B * Pinv;
+      EXPECT_LT((c.sys.A(psi) - A).cwiseAbs().maxCoeff(), 1e-13 * A.cwiseAbs().maxCoeff())
+          << c.name << ", psi = " << psi;
+    }
+    if (c.sys.has_sector) {
+      for (double e : {c.sys.sector_begin, c.sys.sector_end}) {
+        EXPECT_LT((c.frame.P(e) - c.reversed.P(e)).cwiseAbs().maxCoeff(), 1e-15) << c.name;
+        EXPECT_GT((c.frame.dP(e) - c.reversed.dP(e)).cwiseAbs().maxCoeff(), 0.1) << c.name;
+      }
+    }
+  }
+}
+
+// det P = 1 (rotation times unipotent) or -1 (Markus-Yamabe) for all psi, so tr(P' P^{-1}) =
+// (ln |det P|)' = 0 and tr A = tr B pointwise: int tr A = 2 pi tr B, with or without a sector.
+TEST(PeriodicSystem, TraceIntegralOfReducibleSystems) {
+  for (const fixtures::ExactCase& c : fixtures::exact_cases())
+    EXPECT_TRUE(RelClose(kTwoPi * c.B.trace(), c.sys.trace_integral(), 1e-13)) << c.name;
+}
+
+// The derivative used by the error models of periodic_fixtures.h, against central differences
+// (truncation h^2 |A'''| / 6 <= 1e-8 / 6 * 4^3 * 4 with h = 1e-4, harmonics to 4/rev of size
+// <= 4; rounding 1e-16 / h: below 1e-6).
+TEST(PeriodicSystem, FixtureDerivativeMatchesDifferences) {
+  const PeriodicSystem s = fixtures::rotor_like();
+  const double h = 1e-4;
+  for (double psi : {0.3, 2.0, 4.5, 6.0}) {  // 4.5 lies in the sector, away from its edges
+    const Eigen::MatrixXd fd = (s.A(psi + h) - s.A(psi - h)) / (2 * h);
+    EXPECT_LT((fixtures::A_rate(s, psi) - fd).cwiseAbs().maxCoeff(), 1e-6) << "psi = " << psi;
+  }
 }
 
 }  // namespace

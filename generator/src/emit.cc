@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <stdexcept>
 
 #include "flaplag_derive/paper_print.h"
 
@@ -28,6 +29,9 @@ const char* factor_enum(FactorKind k) {
 }
 
 std::string factors_init(const std::vector<ShapeFactor>& f) {
+  if (f.size() > static_cast<size_t>(model::kMaxFactors)) {
+    throw std::logic_error("an integrand has more than model::kMaxFactors spanwise factors");
+  }
   std::ostringstream os;
   os << "{";
   for (size_t j = 0; j < f.size(); ++j) {
@@ -330,11 +334,9 @@ std::string emit_report(const DerivedModel& m) {
         "replaced by M w^2 through the orthogonality relations of the rotating modes (A.2, A.4); "
         "they are listed so that nothing derived disappears silently.\n\n"
      << "| equation | state | factor | integral | origin |\n|---|---|---|---|---|\n";
-  for (size_t j = 0; j < m.absorbed.size(); ++j) {
-    const Term& t = m.absorbed[j];
-    os << "| " << m.equation_name(m.absorbed_equation[j]) << " | "
-       << m.state_name(m.absorbed_state[j]) << " | " << factor_text(m, t, false) << " | "
-       << integral_text(t) << " | " << t.origin << " |\n";
+  for (const auto& [eq, col, t] : m.absorbed) {
+    os << "| " << m.equation_name(eq) << " | " << m.state_name(col) << " | "
+       << factor_text(m, t, false) << " | " << integral_text(t) << " | " << t.origin << " |\n";
   }
   os << "\n## Hover static equilibrium (eqs 2.27-2.32)\n\n`S q0 = c`; aerodynamic factors with "
         "(gamma/2)(l/R)^2 removed.\n\n| entry | factor | integral | paper | eps | origin | radial "

@@ -8,6 +8,11 @@
 // The result is a list of terms per output slot, each a rational factor times powers of named
 // scalars times one spanwise integral.  Terms carry their eps order, origin and radial-flow flag
 // for the audit report.
+//
+// Implementation: src/physics.cc (kinematics, loads, ordering truncation), src/monomials.cc
+// (monomials to terms and slots), src/derive.cc (set-up, assembly, hover equilibrium); the
+// bookkeeping symbols (eps, dlt, rf, origin tags, TAIL/HEAD, mass markers) are explained at the
+// top of src/deriver.h; paper names in paper_names.h.
 #pragma once
 
 #include <ginac/ginac.h>
@@ -77,6 +82,13 @@ struct Term {
   std::string paper_name;  // paper coefficient for this term (role-aware)
 };
 
+// A linear centrifugal stiffness term absorbed into the modal stiffness.
+struct AbsorbedTerm {
+  int equation;  // row (flap 1..M, lag 1..N)
+  int state;     // state column of the displacement it multiplies
+  Term term;
+};
+
 struct Slot {
   std::vector<Term> terms;
   GiNaC::ex value;  // sum of the terms, in scalar symbols and integral symbols
@@ -100,10 +112,8 @@ struct DerivedModel {
   std::vector<Slot> S;        // [n*n]
   std::vector<Slot> c;        // [n]
   // Centrifugal stiffness terms replaced by the modal stiffness M w^2 (orthogonality, eqs A.2,
-  // A.4), with the equation each belongs to and the coordinate it multiplies.
-  std::vector<Term> absorbed;
-  std::vector<int> absorbed_equation;
-  std::vector<int> absorbed_state;
+  // A.4), listed in the report so that nothing derived disappears silently.
+  std::vector<AbsorbedTerm> absorbed;
 
   std::string state_name(int col) const;     // "dg1'", "dg1", "dh1'", "dh1"
   std::string equation_name(int row) const;  // "flap 1", "lag 1"

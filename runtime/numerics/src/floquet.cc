@@ -1,49 +1,78 @@
 // flaplag — characteristic multipliers and exponents of Phi(2 pi, 0) (eqs 3.15-3.20).
-#include "flaplag/core/constants.h"
 #include "flaplag/numerics/floquet.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <cmath>
 #include <complex>
 #include <limits>
 #include <string>
+#include <utility>
 
+#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 
 namespace flaplag {
 namespace {
 
+// Liouville, det Phi(T) = exp(int_0^T tr A): the relative residual |det Phi e^{-int tr A} - 1|
+// from log|det Phi| and the sign of det Phi (LU factors).  det Phi itself and exp(int tr A)
+// under- or overflow once |int tr A| exceeds about 709, and their product 0 * inf or inf * 0
+// would be NaN.  A zero pivot (singular Phi) gives 1.
+template <typename Lu>
+double liouville_residual(const Lu& lu, double trace_integral) {
+  double log_abs = 0.0;
+  double sign = static_cast<double>(lu.permutationP().determinant());  // +-1
+  const auto& u = lu.matrixLU();
+  for (Eigen::Index i = 0; i < u.rows(); ++i) {
+    const double d = u(i, i);
+    if (d == 0.0) return 1.0;  // det = 0: |0 - exp(int tr A)| / exp(int tr A)
+    if (d < 0.0) sign = -sign;
+    log_abs += std::log(std::abs(d));
+  }
+  return std::abs(sign * std::exp(log_abs - trace_integral) - 1.0);
+}
 
 template <typename Solver>
-FloquetResult extract(const Solver& es, double det, double trace_integral) {
+FloquetResult extract(const Solver& es, double residual) {
   FloquetResult out;
   const auto& values = es.eigenvalues();
   const auto& vectors = es.eigenvectors();
   const Eigen::Index n = values.size();
   out.exponents.resize(static_cast<std::size_t>(n));
+  bool finite = true;
   for (Eigen::Index k = 0; k < n; ++k) {
     FloquetExponent& e = out.exponents[static_cast<std::size_t>(k)];
     e.multiplier = values(k);
     const double mod = std::abs(e.multiplier);
-    // eq 3.18; a zero multiplier (exact nilpotent part) has zeta = -inf.
-    e.zeta = mod > 0.0 ? std::log(mod) / kTwoPi : -std::numeric_limits<double>::infinity();
+    e.eigenvector = vectors.col(k);
+    const double nv = e.eigenvector.norm();
+    if (nv > 0.0) e.eigenvector /= nv;
+    finite = finite && std::isfinite(mod) && std::isfinite(nv);
+    if (mod == 0.0) {
+      // A zero multiplier (exact nilpotent part): zeta = -inf and, whatever the signs of the
+      // zeros, omega = 0.
+      e.zeta = -std::numeric_limits<double>::infinity();
+      e.omega = 0.0;
+      continue;
+    }
+    e.zeta = std::log(mod) / kTwoPi;  // eq 3.18
     // eq 3.19 with the principal value in (-1/2, 1/2]: std::arg gives [-pi, pi], and -pi
     // (a negative real multiplier with imaginary part -0.0) is the same point as +pi.
     double arg = std::arg(e.multiplier);
     if (arg <= -kPi) arg = kPi;
     e.omega = arg / kTwoPi;
-    e.eigenvector = vectors.col(k);
-    const double nv = e.eigenvector.norm();
-    if (nv > 0.0) e.eigenvector /= nv;
   }
-  // Liouville: det Phi(T) = exp(int_0^T tr A); relative residual computed as
-  // |det exp(-int tr A) - 1| so that large |int tr A| cannot overflow.
-  out.liouville_residual = std::abs(det * std::exp(-trace_integral) - 1.0);
+  out.liouville_residual = residual;
+  if (!finite) {
+    out.status = Status::Failed;
+    out.message = "the eigen-solve of Phi gave non-finite multipliers or eigenvectors";
+  }
   return out;
 }
 
 // NaN exponents: how a diverged integration or an unconverged eigen-solve is reported.
-FloquetResult nan_result(Eigen::Index n) {
+FloquetResult nan_result(Eigen::Index n, std::string message) {
   FloquetResult out;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   out.exponents.resize(static_cast<std::size_t>(n));
@@ -53,6 +82,8 @@ FloquetResult nan_result(Eigen::Index n) {
     e.eigenvector = Eigen::VectorXcd::Constant(n, {nan, nan});
   }
   out.liouville_residual = nan;
+  out.status = Status::Failed;
+  out.message = std::move(message);
   return out;
 }
 
@@ -64,18 +95,19 @@ FloquetResult floquet_exponents(const Eigen::MatrixXd& phi, double trace_integra
                        "transition matrix must be square and non-empty");
   if (!std::isfinite(trace_integral))
     throw InvalidInput("trace_integral", "non-finite", "must be finite");
-  // A diverged integration is a numerical outcome: NaN exponents, no exception.
-  if (!phi.allFinite()) return nan_result(phi.rows());
+  // A diverged integration is a numerical outcome: NaN exponents and Status::Failed.
+  if (!phi.allFinite()) return nan_result(phi.rows(), "Phi has non-finite entries");
+  const char* unconverged = "the eigen-solve of Phi did not converge";
   // Fixed-size solver for the common 4x4 case keeps the eigen-solve off the heap.
   if (phi.rows() == 4) {
     const Eigen::Matrix4d p = phi;
     Eigen::EigenSolver<Eigen::Matrix4d> es(p, true);
-    if (es.info() != Eigen::Success) return nan_result(4);
-    return extract(es, p.determinant(), trace_integral);
+    if (es.info() != Eigen::Success) return nan_result(4, unconverged);
+    return extract(es, liouville_residual(Eigen::PartialPivLU<Eigen::Matrix4d>(p), trace_integral));
   }
   Eigen::EigenSolver<Eigen::MatrixXd> es(phi, true);
-  if (es.info() != Eigen::Success) return nan_result(phi.rows());
-  return extract(es, phi.determinant(), trace_integral);
+  if (es.info() != Eigen::Success) return nan_result(phi.rows(), unconverged);
+  return extract(es, liouville_residual(Eigen::PartialPivLU<Eigen::MatrixXd>(phi), trace_integral));
 }
 
 }  // namespace flaplag

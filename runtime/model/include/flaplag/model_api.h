@@ -76,6 +76,10 @@ enum class Factor : int {
   Arm = 5,         // x0bar + e1/l       centrifugal arm (structural integrals only; mode ignored)
 };
 
+// Largest number of spanwise factors in one integrand (outer or inner): the generator stops
+// with an error if a derivation needs more.
+constexpr int kMaxFactors = 4;
+
 struct FactorRef {
   Factor kind;
   int mode;  // 0-based mode index (flap mode for Eta*, lag mode for Gamma*), 0 for X0/Arm
@@ -89,7 +93,7 @@ struct AeroIntegral {
   const char* ident;  // C identifier form, e.g. "x2_eta1_deta1"
   int x_power;
   int n_factors;
-  FactorRef factors[4];
+  FactorRef factors[kMaxFactors];
   const char* paper_name;  // Appendix B name, e.g. "F6_11", or "" when the paper has none
 };
 
@@ -106,11 +110,11 @@ struct StructuralIntegral {
   const char* ident;  // C identifier form
   int outer_mass;
   int n_outer;
-  FactorRef outer[4];
+  FactorRef outer[kMaxFactors];
   Inner inner;
   int inner_mass;
   int n_inner;
-  FactorRef inner_factors[4];
+  FactorRef inner_factors[kMaxFactors];
   const char* paper_name;  // Appendix B name ("B3_11", "P_111", "M_F1", ...) or ""
 };
 

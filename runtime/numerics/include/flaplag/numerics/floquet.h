@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "flaplag/core/status.h"
 #include "flaplag/numerics/periodic_system.h"
 
 namespace flaplag {
@@ -56,16 +57,25 @@ Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps);
 Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms);
 TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps);
 
+// A zero multiplier (possible only for a Phi that no smooth ODE produces, e.g. an exactly
+// singular input) is represented by zeta = -infinity and omega = 0.
 struct FloquetExponent {
   std::complex<double> multiplier;  // Lambda_k
-  double zeta = 0.0;                // ln|Lambda| / T
+  double zeta = 0.0;                // ln|Lambda| / T (-infinity for Lambda = 0)
   double omega = 0.0;               // arg(Lambda) / T, principal value in (-1/2, 1/2]
   Eigen::VectorXcd eigenvector;     // eigenvector of Phi(T) (unit 2-norm)
 };
 
 struct FloquetResult {
   std::vector<FloquetExponent> exponents;
-  double liouville_residual = 0.0;  // |det Phi - exp(int trace A)| / exp(int trace A)
+  // |det Phi - exp(int trace A)| / exp(int trace A), from log|det Phi| so that neither
+  // determinant need be representable; 1 for a singular Phi.
+  double liouville_residual = 0.0;
+  // Failed when Phi has non-finite entries or the eigen-solve does not give finite
+  // multipliers and eigenvectors: then the exponents are NaN (or partly so) and must not be
+  // used; message says why.
+  Status status = Status::Ok;
+  std::string message;
 };
 
 FloquetResult floquet_exponents(const Eigen::MatrixXd& phi, double trace_integral);
