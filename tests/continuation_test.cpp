@@ -141,6 +141,36 @@ TEST(FindCritical, FlutterCrossingOfConstantFamily) {
   EXPECT_LT(r.evaluations, 51 + 30);  // the scan plus a Brent refinement
 }
 
+// Lag damping -zeta_lag(mu) = -(mu - 0.3)(0.8 - mu)(mu - 1.2) changes sign three times: unstable
+// on (0.3, 0.8) and from 1.2 on.  all_intervals reports both, the first one's onset is mu_c.
+TEST(FindCritical, AllIntervalsOnsetAndRestabilization) {
+  auto A = [](double mu) {
+    const double zeta = (mu - 0.3) * (0.8 - mu) * (mu - 1.2) * -1.0;  // lag zeta
+    const double ch = -2.0 * zeta;
+    return oscillators(1.2, stiffness(1.2, 1.17), ch, stiffness(ch, 1.28), 0.0);
+  };
+  CriticalOptions opt;
+  opt.mu_max = 1.5;
+  opt.all_intervals = true;
+  const CriticalResult r = find_critical(label_hover_modes(A(0.0), 1, 1), constant_family(A), opt);
+  ASSERT_EQ(2u, r.intervals.size()) << r.message;
+  EXPECT_TRUE(AbsClose(0.3, r.intervals[0].onset, 1e-5));
+  ASSERT_TRUE(r.intervals[0].end.has_value());
+  EXPECT_TRUE(AbsClose(0.8, *r.intervals[0].end, 1e-5));
+  EXPECT_TRUE(AbsClose(1.2, r.intervals[1].onset, 1e-5));
+  EXPECT_FALSE(r.intervals[1].end.has_value());  // unstable at mu_max
+  EXPECT_EQ("lag", r.intervals[1].mode);
+  ASSERT_TRUE(r.mu_c.has_value());
+  EXPECT_EQ(r.intervals[0].onset, *r.mu_c);
+  // Without all_intervals the search stops at mu_c.
+  opt.all_intervals = false;
+  const CriticalResult first =
+      find_critical(label_hover_modes(A(0.0), 1, 1), constant_family(A), opt);
+  EXPECT_EQ(1u, first.intervals.size());
+  EXPECT_FALSE(first.intervals[0].end.has_value());
+  EXPECT_LT(first.evaluations, r.evaluations);
+}
+
 TEST(FindCritical, StableUpToMuMaxAndUnstableHover) {
   auto stable = [](double mu) {
     return oscillators(1.2, stiffness(1.2, 1.17), 0.04 + mu, stiffness(0.04, 1.28));

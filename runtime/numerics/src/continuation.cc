@@ -319,43 +319,13 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
     out.exponents = t.tracker.exponents();
     return out;
   };
+  std::optional<Trial> failure;  // a Brent trial that failed
 
-  // Bounded by Check(): at most kMaxContinuationSteps (+1 for rounding).
-  const long steps = static_cast<long>(std::ceil(opt.mu_max / opt.scan_step - 1e-9));
-  double prev_mu = 0.0;
-  double prev_f = tracker.max_zeta() - opt.zeta_threshold;
-  for (long i = 1; i <= steps; ++i) {
-    const double mu = std::min(static_cast<double>(i) * opt.scan_step, opt.mu_max);
-    Trial hi = evaluate(tracker, mu, opt.scan_zeta_tolerance);
-    if (hi.report.status == Status::Failed) return failed(hi);
-    note(mu, hi.report.status, hi.report.message);
-    if (hi.f <= 0.0) {
-      tracker = std::move(hi.tracker);
-      prev_mu = mu;
-      prev_f = hi.f;
-      continue;
-    }
-
-    // A crossing in [prev_mu, mu].  mu_c is only as good as zeta near it: the refinement asks
-    // for an exponent error well below |d zeta/d mu| * tolerance.
-    const double slope0 = (hi.f - prev_f) / (mu - prev_mu);
-    const double refine_tolerance =
-        std::max(1e-13, std::min(opt.scan_zeta_tolerance, 0.1 * slope0 * opt.tolerance));
-    Trial b = evaluate(tracker, mu, refine_tolerance);
-    if (b.report.status == Status::Failed) return failed(b);
-    if (b.f <= 0.0) {  // the coarser scan saw an instability the resolved one does not
-      note(mu, Status::Warning,
-           "an instability seen at the scan resolution vanished when resolved (zeta = " +
-               fmt(hi.f + opt.zeta_threshold) + " at the scan resolution)");
-      tracker = std::move(b.tracker);
-      prev_mu = mu;
-      prev_f = b.f;
-      continue;
-    }
-
-    // Brent's method (zeroin) on f(mu) = max zeta - zeta_threshold over [prev_mu, mu], every
-    // trial continued from the tracker at the last stable grid point.
-    Trial a{prev_mu, prev_f, tracker, {}, std::nullopt, 0.0};
+  // Brent's method (zeroin) on f(mu) = max zeta - zeta_threshold over [a.mu, b.mu] (signs of
+  // a.f and b.f differ), every trial continued from `from` (the tracker at the grid point below
+  // the bracket, so that labels and omega integers stay those of the continuation).  Returns
+  // the final (b, c): b the estimate, [b, c] the bracket.
+  auto brent = [&](const ExponentTracker& from, Trial a, Trial b, double zeta_tolerance) {
     Trial c = a;
     double d = b.mu - a.mu, e = d;
     const double eps = std::numeric_limits<double>::epsilon();
@@ -397,42 +367,105 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
       }
       a = b;
       const double next = b.mu + (std::abs(d) > tol1 ? d : (xm > 0.0 ? tol1 : -tol1));
-      b = evaluate(tracker, next, refine_tolerance);
-      if (b.report.status == Status::Failed) return failed(b);
+      b = evaluate(from, next, zeta_tolerance);
+      if (b.report.status == Status::Failed) {
+        failure = b;
+        break;
+      }
     }
-    // b is the estimate of mu_c; the mode that crossed is the most unstable one on the
-    // unstable side of the final bracket [b, c].
-    const Trial& unstable = b.f > 0.0 ? b : c;
-    const LabelledExponent& x = unstable.tracker.exponents()[unstable.tracker.most_unstable()];
-    out.mu_c = b.mu;
-    out.mode = x.label;
-    // A conjugate pair crosses together; report the member with omega >= 0.
-    out.omega = std::abs(x.omega);
-    out.kind = classify_crossing(x.omega, opt.periodic_omega_tolerance);
-    out.exponents = unstable.tracker.exponents();
-    // Error of mu_c: half the final bracket plus the exponent error at the crossing over the
-    // slope of zeta there (the slope of the final bracket, or of the scan step if degenerate).
+    return std::make_pair(std::move(b), std::move(c));
+  };
+
+  // Error of a crossing: half the final bracket plus the zeta error at the crossing over the
+  // slope of zeta there (the slope of the final bracket, or of the scan step if degenerate).
+  std::string unresolved;
+  auto crossing_error = [&](const Trial& b, const Trial& c, double slope0) {
     const double slope = c.mu != b.mu && c.f != b.f ? (c.f - b.f) / (c.mu - b.mu) : slope0;
-    const double zeta_error = std::max(b.error.value_or(0.0), c.error.value_or(0.0));
+    std::optional<double> err;
     if (b.error || c.error) {
-      out.mu_c_error = 0.5 * std::abs(c.mu - b.mu) + zeta_error / std::abs(slope);
+      const double zeta_error = std::max(b.error.value_or(0.0), c.error.value_or(0.0));
+      err = 0.5 * std::abs(c.mu - b.mu) + zeta_error / std::abs(slope);
+      if (*err > 10.0 * opt.tolerance && unresolved.empty()) {
+        unresolved = "the crossing at mu = " + fmt(b.mu) +
+                     " is not resolved to `tolerance`: estimated error " + fmt(*err) +
+                     " (zeta error " + fmt(zeta_error) + " per rev at a zeta slope of " +
+                     fmt(slope) + " per unit mu); increase `steps`";
+      }
     }
-    out.status = warnings.empty() ? Status::Ok : Status::Warning;
-    out.message = "unstable above mu_c = " + fmt(b.mu) + " (" + out.mode + ", " +
-                  kind_name(out.kind) + ", omega = " + fmt(out.omega) + ")";
-    if (out.mu_c_error && *out.mu_c_error > 10.0 * opt.tolerance) {
-      out.status = Status::Warning;
-      out.message += "; mu_c is not resolved to `tolerance`: estimated error " +
-                     fmt(*out.mu_c_error) + " (zeta error " + fmt(zeta_error) +
-                     " per rev at a zeta slope of " + fmt(slope) +
-                     " per unit mu); increase `steps`";
+    return err;
+  };
+
+  // Bounded by Check(): at most kMaxContinuationSteps (+1 for rounding).
+  const long steps = static_cast<long>(std::ceil(opt.mu_max / opt.scan_step - 1e-9));
+  Trial prev{0.0, tracker.max_zeta() - opt.zeta_threshold, tracker, {}, std::nullopt, 0.0};
+  for (long i = 1; i <= steps; ++i) {
+    const double mu = std::min(static_cast<double>(i) * opt.scan_step, opt.mu_max);
+    Trial hi = evaluate(prev.tracker, mu, opt.scan_zeta_tolerance);
+    if (hi.report.status == Status::Failed) return failed(hi);
+    note(mu, hi.report.status, hi.report.message);
+    if ((hi.f > 0.0) == (prev.f > 0.0)) {
+      prev = std::move(hi);
+      continue;
     }
-    if (!warnings.empty()) out.message += "; " + warnings;
-    return out;
+
+    // A stability change in [prev.mu, mu].  It is only as good as zeta near it: the refinement
+    // asks for a zeta error well below |d zeta/d mu| * tolerance.
+    const double slope0 = (hi.f - prev.f) / (mu - prev.mu);
+    const double refine_tolerance =
+        std::max(1e-13, std::min(opt.scan_zeta_tolerance, 0.1 * std::abs(slope0) * opt.tolerance));
+    Trial b = evaluate(prev.tracker, mu, refine_tolerance);
+    if (b.report.status == Status::Failed) return failed(b);
+    if ((b.f > 0.0) == (prev.f > 0.0)) {  // seen at the scan resolution only
+      note(mu, Status::Warning,
+           "a stability change seen at the scan resolution vanished when resolved (zeta = " +
+               fmt(hi.f + opt.zeta_threshold) + " at the scan resolution)");
+      prev = std::move(b);
+      continue;
+    }
+    const bool onset = prev.f <= 0.0;
+    auto [bb, cc] = brent(prev.tracker, prev, b, refine_tolerance);
+    if (failure) return failed(*failure);
+    const Trial& unstable = bb.f > 0.0 ? bb : cc;
+    const LabelledExponent& x = unstable.tracker.exponents()[unstable.tracker.most_unstable()];
+    const std::optional<double> err = crossing_error(bb, cc, slope0);
+    if (onset) {
+      InstabilityInterval iv;
+      iv.onset = bb.mu;
+      iv.onset_error = err;
+      iv.mode = x.label;
+      // A conjugate pair crosses together; report the member with omega >= 0.
+      iv.omega = std::abs(x.omega);
+      iv.kind = classify_crossing(x.omega, opt.periodic_omega_tolerance);
+      out.intervals.push_back(iv);
+      if (out.intervals.size() == 1) out.exponents = unstable.tracker.exponents();
+      if (!opt.all_intervals) break;
+    } else if (!out.intervals.empty()) {
+      out.intervals.back().end = bb.mu;
+      out.intervals.back().end_error = err;
+    }
+    prev = std::move(b);
   }
-  out.exponents = tracker.exponents();
-  out.status = warnings.empty() ? Status::Ok : Status::Warning;
-  out.message = "stable up to mu_max = " + fmt(opt.mu_max);
+
+  if (out.intervals.empty()) {
+    out.exponents = prev.tracker.exponents();
+    out.status = warnings.empty() ? Status::Ok : Status::Warning;
+    out.message = "stable up to mu_max = " + fmt(opt.mu_max);
+  } else {
+    const InstabilityInterval& first = out.intervals.front();
+    out.mu_c = first.onset;
+    out.mu_c_error = first.onset_error;
+    out.mode = first.mode;
+    out.omega = first.omega;
+    out.kind = first.kind;
+    out.status = warnings.empty() && unresolved.empty() ? Status::Ok : Status::Warning;
+    out.message = "unstable above mu_c = " + fmt(first.onset) + " (" + out.mode + ", " +
+                  kind_name(out.kind) + ", omega = " + fmt(out.omega) + ")";
+    if (opt.all_intervals) {
+      out.message += "; " + std::to_string(out.intervals.size()) +
+                     " instability interval(s) up to mu_max = " + fmt(opt.mu_max);
+    }
+  }
+  if (!unresolved.empty()) out.message += "; " + unresolved;
   if (!warnings.empty()) out.message += "; " + warnings;
   return out;
 }

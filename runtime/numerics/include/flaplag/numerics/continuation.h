@@ -100,7 +100,7 @@ struct FloquetSample {
   std::vector<double> zeta_errors;
   // max of zeta_errors; nullopt: not estimated.
   std::optional<double> error;
-  int steps = 0;  // steps per period behind `floquet` (0: not a stepping method)
+  int steps = 0;               // steps per period behind `floquet` (0: not a stepping method)
   Status status = Status::Ok;  // Warning: not resolved to the requested tolerance; Failed: no
   std::string message;         // usable multipliers (message says why)
 };
@@ -146,9 +146,22 @@ struct CriticalOptions {
   // Exponent accuracy asked of the scan (per rev); the Brent refinement asks for
   // min(this, 0.1 * |d zeta/d mu| * tolerance) so that mu_c is as good as `tolerance` says.
   double scan_zeta_tolerance = 1e-5;
+  // false: stop at the first onset (mu_c).  true: scan to mu_max and report every interval of
+  // instability (onset and re-stabilization).
+  bool all_intervals = false;
 
   bool IsValid(std::string* error) const;
   void Check() const;
+};
+
+// One interval of instability in mu: max zeta > zeta_threshold for onset < mu < end.
+struct InstabilityInterval {
+  double onset = 0.0;
+  std::optional<double> end;  // re-stabilization; nullopt: still unstable at mu_max
+  std::optional<double> onset_error, end_error;  // as CriticalResult::mu_c_error
+  std::string mode;                              // the mode that crosses at the onset
+  double omega = 0.0;                            // its omega at the onset, per rev, >= 0
+  InstabilityKind kind = InstabilityKind::Flutter;
 };
 
 struct CriticalResult {
@@ -162,16 +175,19 @@ struct CriticalResult {
   InstabilityKind kind = InstabilityKind::Flutter;
   double mu_max = 0.0;
   std::vector<LabelledExponent> exponents;  // at mu_c, at hover, or at the last mu scanned
-  int evaluations = 0;                      // calls of the FloquetFunction
+  // The first interval starts at mu_c; with all_intervals, every interval up to mu_max.
+  std::vector<InstabilityInterval> intervals;
+  int evaluations = 0;  // calls of the FloquetFunction
   Status status = Status::Ok;
   std::string message;
 };
 
-// Scans mu = step, 2 step, ... up to mu_max, continuing the exponents from hover.  At the first
-// mu where some zeta > zeta_threshold the crossing is refined by Brent's method on
-// max_k zeta_k(mu), each trial advancing a copy of the tracker from the last stable grid point
-// (so that labels and omega integers stay those of the continuation).  A mode that turns
-// unstable and stable again within one step is not seen.  Options are checked (Check()).
+// Scans mu = step, 2 step, ... up to mu_max, continuing the exponents from hover.  Where the
+// sign of max_k zeta_k(mu) - zeta_threshold changes between grid points the crossing is refined
+// by Brent's method, each trial advancing a copy of the tracker from the grid point below (so
+// that labels and omega integers stay those of the continuation); the first onset is mu_c, and
+// with all_intervals the scan goes on to mu_max.  A mode that turns unstable and stable again
+// within one step is not seen.  Options are checked (Check()).
 CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& floquet,
                              const CriticalOptions& opt = {});
 
