@@ -406,6 +406,17 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step) const {
   return r;
 }
 
+SweepResult Analysis::track(const std::vector<double>& mus, double scan_step) const {
+  for (double mu : mus) check_mu(mu, "mu");
+  if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
+    throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
+  }
+  SweepResult r = track_exponents(impl_->hover_modes, impl_->function(), mus, scan_step,
+                                  impl_->options.zeta_tolerance);
+  for (PointResult& p : r.points) sort_for_output(p.exponents);
+  return r;
+}
+
 CriticalResult Analysis::critical(const CriticalOptions& opt) const {
   opt.Check();
   CriticalOptions o = opt;

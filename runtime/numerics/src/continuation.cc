@@ -470,15 +470,20 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
   return out;
 }
 
-SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floquet, double mu0,
-                            double mu1, double step, double zeta_tolerance) {
-  require(std::isfinite(mu0) && mu0 >= 0.0 && mu0 <= kMaxAdvanceRatio, "mu0", mu0,
-          "must be >= 0 and <= 1000");
-  require(std::isfinite(mu1) && mu1 >= mu0 && mu1 <= kMaxAdvanceRatio, "mu1", mu1,
-          "must be >= mu0 and <= 1000");
-  require(std::isfinite(step) && step > 0.0, "step", step, "must be > 0");
-  require(mu1 / step <= static_cast<double>(kMaxContinuationSteps), "step", step,
-          "too small: at most 1000000 continuation steps");
+SweepResult track_exponents(const HoverModes& hover, const FloquetFunction& floquet,
+                            const std::vector<double>& mus, double max_step,
+                            double zeta_tolerance) {
+  require(std::isfinite(max_step) && max_step > 0.0, "step", max_step, "must be > 0");
+  require(!mus.empty(), "mu", 0.0, "need at least one advance ratio");
+  double last = 0.0;
+  for (double mu : mus) {
+    require(std::isfinite(mu) && mu >= last && mu <= kMaxAdvanceRatio, "mu", mu,
+            "advance ratios must be nondecreasing in [0, 1000]");
+    last = mu;
+  }
+  require(last / max_step + static_cast<double>(mus.size()) <=
+              static_cast<double>(kMaxContinuationSteps),
+          "step", max_step, "too small: at most 1000000 continuation steps");
   require(std::isfinite(zeta_tolerance) && zeta_tolerance > 0.0, "zeta_tolerance", zeta_tolerance,
           "must be > 0");
   if (!floquet) throw InvalidInput("floquet", "empty", "a FloquetFunction is required");
@@ -493,55 +498,45 @@ SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floq
     if (out.message.empty()) out.message = "at mu = " + fmt(mu) + ": " + m;
   };
   ExponentTracker tracker(hover);
-  // Reach mu0 from hover in equal steps no longer than `step` (bounded by the checks above).
-  // Steps that are not reported only carry the identification: exponents to
-  // kIdentificationTolerance are plenty for that.
-  const long pre = static_cast<long>(std::ceil(mu0 / step - 1e-9));
-  for (long i = 1; i < pre; ++i) {
-    const double mu = mu0 * static_cast<double>(i) / static_cast<double>(pre);
-    const FloquetSample sample = floquet(mu, std::max(zeta_tolerance, kIdentificationTolerance));
-    TrackReport r;
+  auto sample_at = [&](double mu, double tol, TrackReport& r) {
+    FloquetSample sample = floquet(mu, tol);
     if (sample.status == Status::Failed) {
       r.status = Status::Failed;
       r.message = sample.message;
     } else {
       r = tracker.advance(sample.floquet, mu);
     }
-    if (r.status == Status::Failed) {
-      out.status = Status::Failed;
-      out.message = "continuation to mu0 failed at mu = " + fmt(mu) + ": " + r.message;
-      return out;
-    }
-    // Identification along the way matters; the resolution of points not reported does not.
-    if (r.status == Status::Warning) {
-      out.status = Status::Warning;
-      note(mu, r.message);
-    }
-  }
-
-  std::vector<double> mus;
-  const long m = static_cast<long>(std::floor((mu1 - mu0) / step + 1e-9));
-  for (long i = 0; i <= m; ++i) mus.push_back(mu0 + static_cast<double>(i) * step);
-  if (mus.back() < mu1 - 1e-12 * std::max(1.0, mu1))
-    mus.push_back(mu1);
-  else
-    mus.back() = std::min(mus.back(), mu1);
-
+    return sample;
+  };
+  double at = 0.0;  // where the tracker is
   for (double mu : mus) {
-    const FloquetSample sample = floquet(mu, zeta_tolerance);
+    // Reach mu from the tracker's position in equal steps no longer than max_step.  Steps that
+    // are not reported only carry the identification: kIdentificationTolerance is plenty.
+    const long pre = static_cast<long>(std::ceil((mu - at) / max_step - 1e-9));
+    for (long i = 1; i < pre; ++i) {
+      const double m = at + (mu - at) * static_cast<double>(i) / static_cast<double>(pre);
+      TrackReport r;
+      sample_at(m, std::max(zeta_tolerance, kIdentificationTolerance), r);
+      if (r.status == Status::Failed) {
+        out.status = Status::Failed;
+        out.message = "continuation failed at mu = " + fmt(m) + ": " + r.message;
+        return out;
+      }
+      // Identification along the way matters; the resolution of points not reported does not.
+      if (r.status == Status::Warning) {
+        out.status = worse(out.status, Status::Warning);
+        note(m, r.message);
+      }
+    }
+    TrackReport r;
+    const FloquetSample sample = sample_at(mu, zeta_tolerance, r);
+    at = mu;
     PointResult p;
     p.mu = mu;
     if (std::isfinite(sample.floquet.liouville_residual))
       p.liouville_residual = sample.floquet.liouville_residual;
     p.error = sample.error;
     p.steps = sample.steps;
-    TrackReport r;
-    if (sample.status == Status::Failed) {
-      r.status = Status::Failed;
-      r.message = sample.message;
-    } else {
-      r = tracker.advance(sample.floquet, mu);
-    }
     p.status = r.status;
     p.message = r.message;
     if (r.status == Status::Failed) {
@@ -561,6 +556,25 @@ SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floq
     out.points.push_back(std::move(p));
   }
   return out;
+}
+
+SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floquet, double mu0,
+                            double mu1, double step, double zeta_tolerance) {
+  require(std::isfinite(mu0) && mu0 >= 0.0 && mu0 <= kMaxAdvanceRatio, "mu0", mu0,
+          "must be >= 0 and <= 1000");
+  require(std::isfinite(mu1) && mu1 >= mu0 && mu1 <= kMaxAdvanceRatio, "mu1", mu1,
+          "must be >= mu0 and <= 1000");
+  require(std::isfinite(step) && step > 0.0, "step", step, "must be > 0");
+  require(mu1 / step <= static_cast<double>(kMaxContinuationSteps), "step", step,
+          "too small: at most 1000000 continuation steps");
+  std::vector<double> mus;
+  const long m = static_cast<long>(std::floor((mu1 - mu0) / step + 1e-9));
+  for (long i = 0; i <= m; ++i) mus.push_back(mu0 + static_cast<double>(i) * step);
+  if (mus.back() < mu1 - 1e-12 * std::max(1.0, mu1))
+    mus.push_back(mu1);
+  else
+    mus.back() = std::min(mus.back(), mu1);
+  return track_exponents(hover, floquet, mus, step, zeta_tolerance);
 }
 
 }  // namespace flaplag

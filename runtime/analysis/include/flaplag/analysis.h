@@ -92,6 +92,9 @@ class Analysis {
   // Sweep mu0..mu1 inclusive with the given step (0 <= mu0 < mu1 <= kMaxAdvanceRatio, step > 0,
   // at most kMaxContinuationSteps points).  Points carry the decimal grid value of mu.
   SweepResult sweep(double mu0, double mu1, double step) const;
+  // Exponents at the given advance ratios (nondecreasing, each in [0, kMaxAdvanceRatio]),
+  // continued from hover in steps of at most scan_step.  mu is reported as given.
+  SweepResult track(const std::vector<double>& mus, double scan_step = 0.01) const;
   // opt.Check() first.
   CriticalResult critical(const CriticalOptions& opt) const;
 

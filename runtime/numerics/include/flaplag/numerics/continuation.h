@@ -197,6 +197,13 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
 // InvalidInput).  A Failed step stops the sweep (points so far are kept, the failed one last,
 // with stable = nullopt).  Each point is resolved to `zeta_tolerance` where the FloquetFunction
 // can.
+// Labelled exponents at the given advance ratios (nondecreasing, in [0, kMaxAdvanceRatio]),
+// continued from hover in steps of at most max_step (intermediate steps are not reported).
+// sweep_exponents is this on the grid mu0, mu0 + step, ..., mu1.
+SweepResult track_exponents(const HoverModes& hover, const FloquetFunction& floquet,
+                            const std::vector<double>& mus, double max_step,
+                            double zeta_tolerance = 1e-5);
+
 SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floquet, double mu0,
                             double mu1, double step, double zeta_tolerance = 1e-5);
 

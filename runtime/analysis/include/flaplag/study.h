@@ -1,0 +1,107 @@
+// flaplag — parametric studies: mu_c (and every instability interval) versus one parameter, and
+// stability maps over two parameters, one of which may be the advance ratio.
+//
+// Each row of a study or a map is independent: rows run on a pool of threads and every row's
+// result depends only on its own inputs, so the result is identical, bit for bit, for any
+// number of threads.  A cancel flag is polled between rows; rows already started finish, so
+// the finished rows are always a prefix of the full result.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "flaplag/analysis.h"
+
+namespace flaplag {
+
+// Called after each finished row with (rows finished, rows in all); from worker threads, one
+// call at a time.
+using ProgressFunction = std::function<void(std::size_t, std::size_t)>;
+
+// The name of an axis: "mu" or a Real field of the parameter table (rotor/parameter_table.h),
+// e.g. "omega_lag", "theta", "damping_lag".
+bool is_study_parameter(const std::string& name);
+// p with field `name` set to v (InvalidInput("parameter", name) for an unknown name; the value
+// itself is checked when an Analysis is built from p).
+RotorParameters with_parameter(RotorParameters p, const std::string& name, double v);
+
+struct StudyOptions {
+  std::string parameter;       // the varied field (not "mu")
+  std::vector<double> values;  // 1..kMaxStudyValues values
+  CriticalOptions critical;    // the search at each value (all_intervals is always on)
+  int threads = 0;             // 0: as many as the hardware has; else 1..256
+
+  bool IsValid(std::string* error) const;
+  void Check() const;
+};
+
+inline constexpr std::size_t kMaxStudyValues = 100000;
+
+struct StudyRow {
+  double value = 0.0;
+  // mu_c, its mode/omega/kind, hover_unstable, every instability interval, status and message.
+  // An InvalidInput at this value (e.g. an exact-mode frequency the basis cannot reach) gives
+  // status Failed with the reason as message.
+  CriticalResult critical;
+};
+
+struct StudyResult {
+  std::vector<StudyRow> rows;  // rows_done of them when cancelled
+  std::size_t rows_done = 0;
+  bool cancelled = false;
+  Status status = Status::Ok;  // worst over the rows
+  std::string message;         // the first problem met
+};
+
+// Options are checked (Check()); so is every value (rows with invalid values are Failed rows,
+// not exceptions).  base and transition are as for Analysis.
+StudyResult run_study(const RotorParameters& base, const TransitionOptions& transition,
+                      const StudyOptions& options, const std::atomic<bool>* cancel = nullptr,
+                      const ProgressFunction& progress = {});
+
+struct MapAxis {
+  std::string parameter;       // "mu" or a study parameter
+  std::vector<double> values;  // ascending for "mu"
+};
+
+struct MapOptions {
+  MapAxis x, y;            // at most one of them "mu"; each with 1..kMaxMapValues values
+  double mu = 0.0;         // the advance ratio when neither axis is "mu"
+  double scan_step = 0.01;  // continuation step in mu
+  int threads = 0;
+
+  bool IsValid(std::string* error) const;
+  void Check() const;
+};
+
+inline constexpr std::size_t kMaxMapValues = 10000;
+
+struct MapCell {
+  bool computed = false;           // false: not reached (cancelled run)
+  std::optional<double> max_zeta;  // largest zeta, per rev; nullopt when unknown (Failed)
+  std::string mode;                // label of the least stable exponent
+  double omega = 0.0;              // its omega, per rev
+  InstabilityKind kind = InstabilityKind::Flutter;  // periodic when omega is locked (0, 1/2, 1)
+  Status status = Status::Ok;
+  std::string message;
+};
+
+struct MapResult {
+  // cells[i][j]: y.values[i], x.values[j].  The work is done in lines along the "mu" axis (one
+  // continuation in mu per value of the other parameter) or, without a "mu" axis, in rows; a
+  // cancelled run has the first lines_done lines computed (MapCell::computed).
+  std::vector<std::vector<MapCell>> cells;
+  std::size_t lines_done = 0;
+  bool cancelled = false;
+  Status status = Status::Ok;
+  std::string message;
+};
+
+MapResult run_map(const RotorParameters& base, const TransitionOptions& transition,
+                  const MapOptions& options, const std::atomic<bool>* cancel = nullptr,
+                  const ProgressFunction& progress = {});
+
+}  // namespace flaplag

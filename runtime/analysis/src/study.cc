@@ -1,0 +1,263 @@
+// flaplag — parametric studies and stability maps on a pool of threads.
+#include "flaplag/study.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
+#include "flaplag/rotor/parameter_table.h"
+
+namespace flaplag {
+namespace {
+
+std::optional<InvalidInput> bad(const char* name, const std::string& value,
+                                const std::string& reason) {
+  return InvalidInput(name, value, reason);
+}
+
+// Ceres-style check helpers: "field = value: reason" from an InvalidInput.
+bool report(const std::optional<InvalidInput>& p, std::string* error) {
+  if (p && error != nullptr) *error = p->what();
+  return !p;
+}
+
+std::optional<InvalidInput> check_threads(int threads) {
+  if (threads < 0 || threads > 256)
+    return bad("threads", std::to_string(threads), "must be 0 (all cores) or 1..256");
+  return std::nullopt;
+}
+
+std::optional<InvalidInput> check_values(const char* name, const std::vector<double>& v,
+                                         std::size_t max_count) {
+  if (v.empty()) return bad(name, "[]", "need at least one value");
+  if (v.size() > max_count)
+    return bad(name, std::to_string(v.size()) + " values",
+               "at most " + std::to_string(max_count) + " values");
+  for (double x : v)
+    if (!std::isfinite(x)) return bad(name, round_trip_text(x), "values must be finite");
+  return std::nullopt;
+}
+
+std::optional<InvalidInput> study_problem(const StudyOptions& o) {
+  if (o.parameter == "mu" || !is_study_parameter(o.parameter))
+    return bad("parameter", o.parameter.empty() ? "\"\"" : o.parameter,
+               "must name a numeric rotor parameter (not mu: mu_c is what a study finds)");
+  if (auto p = check_values("values", o.values, kMaxStudyValues)) return p;
+  std::string why;
+  if (!o.critical.IsValid(&why)) {
+    o.critical.Check();  // throws the precise InvalidInput
+  }
+  return check_threads(o.threads);
+}
+
+std::optional<InvalidInput> map_problem(const MapOptions& o) {
+  for (const MapAxis* a : {&o.x, &o.y}) {
+    const char* name = a == &o.x ? "x" : "y";
+    if (a->parameter != "mu" && !is_study_parameter(a->parameter))
+      return bad(name, a->parameter.empty() ? "\"\"" : a->parameter,
+                 "must be mu or a numeric rotor parameter");
+    if (auto p = check_values(name, a->values, kMaxMapValues)) return p;
+    if (a->parameter == "mu") {
+      for (std::size_t i = 0; i < a->values.size(); ++i) {
+        const double mu = a->values[i];
+        if (mu < 0.0 || mu > kMaxAdvanceRatio)
+          return bad(name, round_trip_text(mu), "advance ratios must be in [0, 1000]");
+        if (i > 0 && mu <= a->values[i - 1])
+          return bad(name, round_trip_text(mu), "advance ratios must be increasing");
+      }
+    }
+  }
+  if (o.x.parameter == o.y.parameter)
+    return bad("y", o.y.parameter, "must differ from the x axis");
+  if (!(std::isfinite(o.mu) && o.mu >= 0.0 && o.mu <= kMaxAdvanceRatio))
+    return bad("mu", round_trip_text(o.mu), "must be in [0, 1000]");
+  if (!(std::isfinite(o.scan_step) && o.scan_step > 0.0))
+    return bad("scan_step", round_trip_text(o.scan_step), "must be > 0");
+  return check_threads(o.threads);
+}
+
+// Runs task(i) for i = 0..n-1 on `threads` threads, claiming indices in order; stops claiming
+// when *cancel is set.  Every claimed task finishes, so the finished tasks are 0..k-1.
+std::size_t parallel_for(std::size_t n, int threads, const std::atomic<bool>* cancel,
+                         const ProgressFunction& progress,
+                         const std::function<void(std::size_t)>& task) {
+  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> finished{0};
+  std::mutex progress_mutex;
+  auto worker = [&] {
+    for (;;) {
+      if (cancel != nullptr && cancel->load()) return;
+      const std::size_t i = next.fetch_add(1);
+      if (i >= n) return;
+      task(i);
+      const std::size_t done = finished.fetch_add(1) + 1;
+      if (progress) {
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        progress(done, n);
+      }
+    }
+  };
+  std::size_t count = threads > 0 ? static_cast<std::size_t>(threads)
+                                  : std::max(1u, std::thread::hardware_concurrency());
+  count = std::min(count, n);
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < count; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  return std::min(next.load(), n) == finished.load() ? finished.load()
+                                                     : std::min(next.load(), n);
+}
+
+Status worse(Status a, Status b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
+
+// The least stable exponent of a point as a map cell.
+MapCell cell_of(const PointResult& p) {
+  MapCell c;
+  c.computed = true;
+  c.status = p.status;
+  c.message = p.message;
+  if (p.exponents.empty() || !p.stable) return c;
+  const LabelledExponent* best = &p.exponents.front();
+  for (const LabelledExponent& e : p.exponents)
+    if (e.zeta > best->zeta || (e.zeta == best->zeta && e.omega >= 0.0 && best->omega < 0.0))
+      best = &e;
+  c.max_zeta = best->zeta;
+  c.mode = best->label;
+  c.omega = std::abs(best->omega);
+  c.kind = classify_crossing(best->omega);
+  return c;
+}
+
+MapCell failed_cell(const std::string& why) {
+  MapCell c;
+  c.computed = true;
+  c.status = Status::Failed;
+  c.message = why;
+  return c;
+}
+
+}  // namespace
+
+bool is_study_parameter(const std::string& name) {
+  const ParameterSpec* s = find_parameter(name);
+  return s != nullptr && s->type == ParameterType::Real;
+}
+
+RotorParameters with_parameter(RotorParameters p, const std::string& name, double v) {
+  const ParameterSpec* s = find_parameter(name);
+  if (s == nullptr || s->type != ParameterType::Real)
+    throw InvalidInput("parameter", name.empty() ? "\"\"" : name,
+                       "not a numeric rotor parameter");
+  p.*(s->real) = v;
+  return p;
+}
+
+bool StudyOptions::IsValid(std::string* error) const {
+  try {
+    return report(study_problem(*this), error);
+  } catch (const InvalidInput& e) {
+    if (error != nullptr) *error = e.what();
+    return false;
+  }
+}
+
+void StudyOptions::Check() const {
+  if (auto p = study_problem(*this)) throw *p;
+}
+
+bool MapOptions::IsValid(std::string* error) const { return report(map_problem(*this), error); }
+
+void MapOptions::Check() const {
+  if (auto p = map_problem(*this)) throw *p;
+}
+
+StudyResult run_study(const RotorParameters& base, const TransitionOptions& transition,
+                      const StudyOptions& options, const std::atomic<bool>* cancel,
+                      const ProgressFunction& progress) {
+  options.Check();
+  transition.Check();
+  CriticalOptions crit = options.critical;
+  crit.all_intervals = true;
+  StudyResult out;
+  out.rows.resize(options.values.size());
+  out.rows_done = parallel_for(options.values.size(), options.threads, cancel, progress,
+                               [&](std::size_t i) {
+                                 StudyRow& row = out.rows[i];
+                                 row.value = options.values[i];
+                                 try {
+                                   const Analysis an(
+                                       with_parameter(base, options.parameter, row.value),
+                                       transition);
+                                   row.critical = an.critical(crit);
+                                 } catch (const InvalidInput& e) {
+                                   row.critical = CriticalResult{};
+                                   row.critical.mu_max = crit.mu_max;
+                                   row.critical.status = Status::Failed;
+                                   row.critical.message = e.what();
+                                 }
+                               });
+  out.cancelled = out.rows_done < out.rows.size();
+  out.rows.resize(out.rows_done);
+  for (const StudyRow& r : out.rows) {
+    out.status = worse(out.status, r.critical.status);
+    if (out.message.empty() && r.critical.status != Status::Ok)
+      out.message = options.parameter + " = " + round_trip_text(r.value) + ": " +
+                    r.critical.message;
+  }
+  return out;
+}
+
+MapResult run_map(const RotorParameters& base, const TransitionOptions& transition,
+                  const MapOptions& options, const std::atomic<bool>* cancel,
+                  const ProgressFunction& progress) {
+  options.Check();
+  transition.Check();
+  const std::size_t nx = options.x.values.size(), ny = options.y.values.size();
+  MapResult out;
+  out.cells.assign(ny, std::vector<MapCell>(nx));
+  const bool mu_x = options.x.parameter == "mu", mu_y = options.y.parameter == "mu";
+  // A line: one value of the non-mu parameter, continued along mu; without a mu axis, a row.
+  const std::size_t lines = mu_x ? ny : (mu_y ? nx : ny);
+  out.lines_done = parallel_for(lines, options.threads, cancel, progress, [&](std::size_t l) {
+    if (mu_x || mu_y) {
+      const MapAxis& other = mu_x ? options.y : options.x;
+      const std::vector<double>& mus = mu_x ? options.x.values : options.y.values;
+      auto put = [&](std::size_t k, MapCell c) {
+        (mu_x ? out.cells[l][k] : out.cells[k][l]) = std::move(c);
+      };
+      try {
+        const Analysis an(with_parameter(base, other.parameter, other.values[l]), transition);
+        const SweepResult s = an.track(mus, options.scan_step);
+        for (std::size_t k = 0; k < mus.size(); ++k)
+          put(k, k < s.points.size() ? cell_of(s.points[k])
+                                     : failed_cell("continuation stopped: " + s.message));
+      } catch (const InvalidInput& e) {
+        for (std::size_t k = 0; k < mus.size(); ++k) put(k, failed_cell(e.what()));
+      }
+      return;
+    }
+    for (std::size_t j = 0; j < nx; ++j) {
+      try {
+        const RotorParameters p =
+            with_parameter(with_parameter(base, options.y.parameter, options.y.values[l]),
+                           options.x.parameter, options.x.values[j]);
+        out.cells[l][j] = cell_of(Analysis(p, transition).point(options.mu, options.scan_step));
+      } catch (const InvalidInput& e) {
+        out.cells[l][j] = failed_cell(e.what());
+      }
+    }
+  });
+  out.cancelled = out.lines_done < lines;
+  for (const auto& row : out.cells)
+    for (const MapCell& c : row) {
+      if (!c.computed) continue;
+      out.status = worse(out.status, c.status);
+      if (out.message.empty() && c.status != Status::Ok) out.message = c.message;
+    }
+  return out;
+}
+
+}  // namespace flaplag
