@@ -104,6 +104,43 @@ const model::StructuralIntegral kStructural[] = {
 
 const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; model family \"paper\")\ndescription = \"Paper ordering with two flap modes and one lag mode (exact rotating modes)\"\n[modes]\nflap = 2\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
 
+// Generalized mass: coefficient of the accelerations q'' = [dg1''..dgM'', dh1''..dhN''] in
+// each equation (inertia terms of eqs 2.16-2.17).  Structural integrals only: independent
+// of mu and of the hover state.
+void mass(const model::CoefficientInputs& in, double* out) {
+  const double S_m_eta1_eta1 = in.structural[14];  // M_F11
+  const double S_m_eta1_eta2 = in.structural[15];  // M_F12/M_F21
+  const double S_m_eta2_eta2 = in.structural[17];  // M_F22
+  const double S_m_gam1_gam1 = in.structural[23];  // M_L11
+  // mass: flap 1 equation, coefficient of dg1''
+  out[0] =
+      S_m_eta1_eta1;
+  // mass: flap 1 equation, coefficient of dg2''
+  out[1] =
+      S_m_eta1_eta2;
+  // mass: flap 1 equation, coefficient of dh1''
+  out[2] =
+      0.0;
+  // mass: flap 2 equation, coefficient of dg1''
+  out[3] =
+      S_m_eta1_eta2;
+  // mass: flap 2 equation, coefficient of dg2''
+  out[4] =
+      S_m_eta2_eta2;
+  // mass: flap 2 equation, coefficient of dh1''
+  out[5] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dg1''
+  out[6] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dg2''
+  out[7] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dh1''
+  out[8] =
+      S_m_gam1_gam1;
+}
+
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
   explicit Symbols(const model::CoefficientInputs& in);
@@ -335,33 +372,6 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 3, states 2n = 6, harmonics H = 5.
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1''
-  out.mass[0] =
-      s.S_m_eta1_eta1;
-  // mass: flap 1, dg2''
-  out.mass[1] =
-      s.S_m_eta1_eta2;
-  // mass: flap 1, dh1''
-  out.mass[2] =
-      0.0;
-  // mass: flap 2, dg1''
-  out.mass[3] =
-      s.S_m_eta1_eta2;
-  // mass: flap 2, dg2''
-  out.mass[4] =
-      s.S_m_eta2_eta2;
-  // mass: flap 2, dh1''
-  out.mass[5] =
-      0.0;
-  // mass: lag 1, dg1''
-  out.mass[6] =
-      0.0;
-  // mass: lag 1, dg2''
-  out.mass[7] =
-      0.0;
-  // mass: lag 1, dh1''
-  out.mass[8] =
-      s.S_m_gam1_gam1;
   // force[1]: flap 1, dg1'
   out.force[0] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta1
@@ -933,6 +943,7 @@ const flaplag::model::ModelDescriptor& flaplag_model_paper_2x1() {
       2, 1, 5,
       59, g::kAero,
       25, g::kStructural,
+      &g::mass,
       &g::coefficients,
       &g::equilibrium};
   return d;

@@ -188,6 +188,66 @@ const model::StructuralIntegral kStructural[] = {
 
 const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; model family \"paper\")\ndescription = \"Paper ordering with two flap and two lag modes (exact rotating modes)\"\n[modes]\nflap = 2\nlag = 2\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
 
+// Generalized mass: coefficient of the accelerations q'' = [dg1''..dgM'', dh1''..dhN''] in
+// each equation (inertia terms of eqs 2.16-2.17).  Structural integrals only: independent
+// of mu and of the hover state.
+void mass(const model::CoefficientInputs& in, double* out) {
+  const double S_m_eta1_eta1 = in.structural[30];  // M_F11
+  const double S_m_eta1_eta2 = in.structural[31];  // M_F12/M_F21
+  const double S_m_eta2_eta2 = in.structural[34];  // M_F22
+  const double S_m_gam1_gam1 = in.structural[43];  // M_L11
+  const double S_m_gam1_gam2 = in.structural[44];  // M_L12/M_L21
+  const double S_m_gam2_gam2 = in.structural[52];  // M_L22
+  // mass: flap 1 equation, coefficient of dg1''
+  out[0] =
+      S_m_eta1_eta1;
+  // mass: flap 1 equation, coefficient of dg2''
+  out[1] =
+      S_m_eta1_eta2;
+  // mass: flap 1 equation, coefficient of dh1''
+  out[2] =
+      0.0;
+  // mass: flap 1 equation, coefficient of dh2''
+  out[3] =
+      0.0;
+  // mass: flap 2 equation, coefficient of dg1''
+  out[4] =
+      S_m_eta1_eta2;
+  // mass: flap 2 equation, coefficient of dg2''
+  out[5] =
+      S_m_eta2_eta2;
+  // mass: flap 2 equation, coefficient of dh1''
+  out[6] =
+      0.0;
+  // mass: flap 2 equation, coefficient of dh2''
+  out[7] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dg1''
+  out[8] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dg2''
+  out[9] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dh1''
+  out[10] =
+      S_m_gam1_gam1;
+  // mass: lag 1 equation, coefficient of dh2''
+  out[11] =
+      S_m_gam1_gam2;
+  // mass: lag 2 equation, coefficient of dg1''
+  out[12] =
+      0.0;
+  // mass: lag 2 equation, coefficient of dg2''
+  out[13] =
+      0.0;
+  // mass: lag 2 equation, coefficient of dh1''
+  out[14] =
+      S_m_gam1_gam2;
+  // mass: lag 2 equation, coefficient of dh2''
+  out[15] =
+      S_m_gam2_gam2;
+}
+
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
   explicit Symbols(const model::CoefficientInputs& in);
@@ -607,54 +667,6 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 4, states 2n = 8, harmonics H = 5.
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1''
-  out.mass[0] =
-      s.S_m_eta1_eta1;
-  // mass: flap 1, dg2''
-  out.mass[1] =
-      s.S_m_eta1_eta2;
-  // mass: flap 1, dh1''
-  out.mass[2] =
-      0.0;
-  // mass: flap 1, dh2''
-  out.mass[3] =
-      0.0;
-  // mass: flap 2, dg1''
-  out.mass[4] =
-      s.S_m_eta1_eta2;
-  // mass: flap 2, dg2''
-  out.mass[5] =
-      s.S_m_eta2_eta2;
-  // mass: flap 2, dh1''
-  out.mass[6] =
-      0.0;
-  // mass: flap 2, dh2''
-  out.mass[7] =
-      0.0;
-  // mass: lag 1, dg1''
-  out.mass[8] =
-      0.0;
-  // mass: lag 1, dg2''
-  out.mass[9] =
-      0.0;
-  // mass: lag 1, dh1''
-  out.mass[10] =
-      s.S_m_gam1_gam1;
-  // mass: lag 1, dh2''
-  out.mass[11] =
-      s.S_m_gam1_gam2;
-  // mass: lag 2, dg1''
-  out.mass[12] =
-      0.0;
-  // mass: lag 2, dg2''
-  out.mass[13] =
-      0.0;
-  // mass: lag 2, dh1''
-  out.mass[14] =
-      s.S_m_gam1_gam2;
-  // mass: lag 2, dh2''
-  out.mass[15] =
-      s.S_m_gam2_gam2;
   // force[1]: flap 1, dg1'
   out.force[0] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta1
@@ -1720,6 +1732,7 @@ const flaplag::model::ModelDescriptor& flaplag_model_paper_2x2() {
       2, 2, 5,
       114, g::kAero,
       54, g::kStructural,
+      &g::mass,
       &g::coefficients,
       &g::equilibrium};
   return d;

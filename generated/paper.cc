@@ -61,6 +61,26 @@ const model::StructuralIntegral kStructural[] = {
 
 const char kSpecText[] = "description = \"NASA CR-132431 model: flap O(eps^2), lag O(eps^3), radial flow on (Figs 3-5, 10-17)\"\n[modes]\nflap = 1\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
 
+// Generalized mass: coefficient of the accelerations q'' = [dg1''..dgM'', dh1''..dhN''] in
+// each equation (inertia terms of eqs 2.16-2.17).  Structural integrals only: independent
+// of mu and of the hover state.
+void mass(const model::CoefficientInputs& in, double* out) {
+  const double S_m_eta1_eta1 = in.structural[8];  // M_F11
+  const double S_m_gam1_gam1 = in.structural[12];  // M_L11
+  // mass: flap 1 equation, coefficient of dg1''
+  out[0] =
+      S_m_eta1_eta1;
+  // mass: flap 1 equation, coefficient of dh1''
+  out[1] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dg1''
+  out[2] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dh1''
+  out[3] =
+      S_m_gam1_gam1;
+}
+
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
   explicit Symbols(const model::CoefficientInputs& in);
@@ -190,18 +210,6 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 2, states 2n = 4, harmonics H = 5.
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1''
-  out.mass[0] =
-      s.S_m_eta1_eta1;
-  // mass: flap 1, dh1''
-  out.mass[1] =
-      0.0;
-  // mass: lag 1, dg1''
-  out.mass[2] =
-      0.0;
-  // mass: lag 1, dh1''
-  out.mass[3] =
-      s.S_m_gam1_gam1;
   // force[1]: flap 1, dg1'
   out.force[0] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta1
@@ -496,6 +504,7 @@ const flaplag::model::ModelDescriptor& flaplag_model_paper() {
       1, 1, 5,
       27, g::kAero,
       14, g::kStructural,
+      &g::mass,
       &g::coefficients,
       &g::equilibrium};
   return d;
