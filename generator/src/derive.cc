@@ -26,7 +26,7 @@ std::string DerivedModel::equation_name(int row) const {
 }
 
 std::string DerivedModel::harmonic_name(int h) {
-  if (h == 0) return "1";
+  if (h == 0) return "const";
   const int k = (h + 1) / 2;
   const std::string arg = k == 1 ? "psi" : std::to_string(k) + "psi";
   return (h % 2 == 1 ? "cos " : "sin ") + arg;

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "flaplag_derive/paper_names.h"
 #include "flaplag_derive/paper_print.h"
 
 namespace flaplag::derive {
@@ -203,7 +204,14 @@ std::string emit_cpp(const DerivedModel& m) {
 
   emit_symbols(os, m);
   os << "// mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = " << n
-     << ", states 2n = " << 2 * n << ", harmonics H = " << m.H << ".\n";
+     << ", states 2n = " << 2 * n << ", harmonics H = " << m.H << ".\n"
+     << "// Each slot is labelled with the entry of the first-order form y' = A(psi) y + f(psi) "
+        "it\n"
+     << "// feeds (A = mass^-1 force, f = mass^-1 forcing; eqs 2.36-2.37) and the harmonic it\n"
+     << "// multiplies.  Row i of A is the row of the equation's rate (flap k -> k, lag m -> 2M + "
+        "m),\n"
+     << "// column j the state column; for M = N = 1 these are A11..A14, A31..A34 (Appendix C.2)\n"
+     << "// and f1, f3 (Appendix C.3), and A_ij = force / M_F1 (flap) or / M_L1 (lag).\n";
   os << "void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& "
         "out) {\n";
   os << "  const Symbols s(in);\n";
@@ -211,14 +219,15 @@ std::string emit_cpp(const DerivedModel& m) {
     for (int i = 0; i < n; ++i) {
       for (int col = 0; col < 2 * n; ++col) {
         const int idx = (h * n + i) * 2 * n + col;
-        os << "  // force[" << DerivedModel::harmonic_name(h) << "]: " << m.equation_name(i) << ", "
-           << m.state_name(col) << "\n";
+        os << "  // " << a_entry_name(i, col, m.M, m.N) << ", " << DerivedModel::harmonic_name(h)
+           << ": " << m.equation_name(i) << " equation, coefficient of " << m.state_name(col)
+           << "\n";
         os << "  out.force[" << idx << "] =\n" << ind << slot_cpp(m, m.force[idx], ind) << ";\n";
       }
     }
     for (int i = 0; i < n; ++i) {
-      os << "  // forcing[" << DerivedModel::harmonic_name(h) << "]: " << m.equation_name(i)
-         << "\n";
+      os << "  // " << f_entry_name(i, m.M, m.N) << ", " << DerivedModel::harmonic_name(h) << ": "
+         << m.equation_name(i) << " equation, state-independent\n";
       os << "  out.forcing[" << h * n + i << "] =\n"
          << ind << slot_cpp(m, m.forcing[h * n + i], ind) << ";\n";
     }
@@ -229,9 +238,16 @@ std::string emit_cpp(const DerivedModel& m) {
         "out) {\n";
   os << "  const Symbols s(in);\n";
   for (int i = 0; i < n; ++i) {
+    const std::string row = std::to_string(i + 1);
     for (int j = 0; j < n; ++j) {
+      const std::string q0 = model::is_flap_coordinate(j, m.M)
+                                 ? "g0_" + std::to_string(j + 1)
+                                 : "h0_" + std::to_string(j - m.M + 1);
+      os << "  // S[" << row << "," << j + 1 << "]: " << m.equation_name(i)
+         << " equation, coefficient of " << q0 << "\n";
       os << "  out.S[" << i * n + j << "] =\n" << ind << slot_cpp(m, m.S[i * n + j], ind) << ";\n";
     }
+    os << "  // c[" << row << "]: " << m.equation_name(i) << " equation, hover load\n";
     os << "  out.c[" << i << "] =\n" << ind << slot_cpp(m, m.c[i], ind) << ";\n";
   }
   os << "}\n\n}  // namespace\n}  // namespace flaplag::generated::" << id << "\n\n";
