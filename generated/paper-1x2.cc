@@ -115,6 +115,43 @@ const model::StructuralIntegral kStructural[] = {
 
 const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; model family \"paper\")\ndescription = \"Paper ordering with one flap mode and two lag modes (exact rotating modes)\"\n[modes]\nflap = 1\nlag = 2\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
 
+// Generalized mass: coefficient of the accelerations q'' = [dg1''..dgM'', dh1''..dhN''] in
+// each equation (inertia terms of eqs 2.16-2.17).  Structural integrals only: independent
+// of mu and of the hover state.
+void mass(const model::CoefficientInputs& in, double* out) {
+  const double S_m_eta1_eta1 = in.structural[21];  // M_F11
+  const double S_m_gam1_gam1 = in.structural[28];  // M_L11
+  const double S_m_gam1_gam2 = in.structural[29];  // M_L12/M_L21
+  const double S_m_gam2_gam2 = in.structural[35];  // M_L22
+  // mass: flap 1 equation, coefficient of dg1''
+  out[0] =
+      S_m_eta1_eta1;
+  // mass: flap 1 equation, coefficient of dh1''
+  out[1] =
+      0.0;
+  // mass: flap 1 equation, coefficient of dh2''
+  out[2] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dg1''
+  out[3] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dh1''
+  out[4] =
+      S_m_gam1_gam1;
+  // mass: lag 1 equation, coefficient of dh2''
+  out[5] =
+      S_m_gam1_gam2;
+  // mass: lag 2 equation, coefficient of dg1''
+  out[6] =
+      0.0;
+  // mass: lag 2 equation, coefficient of dh1''
+  out[7] =
+      S_m_gam1_gam2;
+  // mass: lag 2 equation, coefficient of dh2''
+  out[8] =
+      S_m_gam2_gam2;
+}
+
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
   explicit Symbols(const model::CoefficientInputs& in);
@@ -366,79 +403,57 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 }
 
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 3, states 2n = 6, harmonics H = 5.
+// Each slot is labelled with the entry of the first-order form y' = A(psi) y + f(psi) it
+// feeds (A = mass^-1 force, f = mass^-1 forcing; eqs 2.36-2.37) and the harmonic it
+// multiplies.  Row i of A is the row of the equation's rate (flap k -> k, lag m -> 2M + m),
+// column j the state column; for M = N = 1 these are A11..A14, A31..A34 (Appendix C.2)
+// and f1, f3 (Appendix C.3), and A_ij = force / M_F1 (flap) or / M_L1 (lag).
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1''
-  out.mass[0] =
-      s.S_m_eta1_eta1;
-  // mass: flap 1, dh1''
-  out.mass[1] =
-      0.0;
-  // mass: flap 1, dh2''
-  out.mass[2] =
-      0.0;
-  // mass: lag 1, dg1''
-  out.mass[3] =
-      0.0;
-  // mass: lag 1, dh1''
-  out.mass[4] =
-      s.S_m_gam1_gam1;
-  // mass: lag 1, dh2''
-  out.mass[5] =
-      s.S_m_gam1_gam2;
-  // mass: lag 2, dg1''
-  out.mass[6] =
-      0.0;
-  // mass: lag 2, dh1''
-  out.mass[7] =
-      s.S_m_gam1_gam2;
-  // mass: lag 2, dh2''
-  out.mass[8] =
-      s.S_m_gam2_gam2;
-  // force[1]: flap 1, dg1'
+  // A11, const: flap 1 equation, coefficient of dg1'
   out.force[0] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta1
       - (2.0) * s.omega_flap_1 * s.damping_flap_1 * s.S_m_eta1_eta1;
-  // force[1]: flap 1, dg1
+  // A12, const: flap 1 equation, coefficient of dg1
   out.force[1] =
       -s.es_flap_1_1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta1_deta1_dgam2
       - s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
-  // force[1]: flap 1, dh1'
+  // A13, const: flap 1 equation, coefficient of dh1'
   out.force[2] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
       + (2.0) * s.precone * s.S_deta1__tail_m_gam1
       + (2.0) * s.droop * s.S_deta1__tail_m_gam1
       + (2.0) * s.g0_1 * s.S_deta1_deta1__tail_m_gam1;
-  // force[1]: flap 1, dh2'
+  // A14, const: flap 1 equation, coefficient of dh2'
   out.force[3] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam2
       - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam2
       + (2.0) * s.precone * s.S_deta1__tail_m_gam2
       + (2.0) * s.droop * s.S_deta1__tail_m_gam2
       + (2.0) * s.g0_1 * s.S_deta1_deta1__tail_m_gam2;
-  // force[1]: flap 1, dh1
+  // A15, const: flap 1 equation, coefficient of dh1
   out.force[4] =
       s.ecs_flap_lag_1_1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
-  // force[1]: flap 1, dh2
+  // A16, const: flap 1 equation, coefficient of dh2
   out.force[5] =
       s.ecs_flap_lag_1_2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam2;
-  // force[1]: lag 1, dg1'
+  // A31, const: lag 1 equation, coefficient of dg1'
   out.force[6] =
       -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
       - (2.0) * s.precone * s.S_m_eta1_gam1
       - (2.0) * s.droop * s.S_m_eta1_gam1
       - (2.0) * s.g0_1 * s.S_m_gam1__head_deta1_deta1;
-  // force[1]: lag 1, dg1
+  // A32, const: lag 1 equation, coefficient of dg1
   out.force[7] =
       s.ecs_lag_flap_1_1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
@@ -446,7 +461,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta1_gam1_dgam2;
-  // force[1]: lag 1, dh1'
+  // A33, const: lag 1 equation, coefficient of dh1'
   out.force[8] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam1_gam1
@@ -456,7 +471,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (2.0) * s.h0_1 * s.S_m_gam1__head_dgam1_dgam1
       - (2.0) * s.h0_2 * s.S_m_gam1__head_dgam1_dgam2
       - (2.0) * s.omega_lag_1 * s.damping_lag_1 * s.S_m_gam1_gam1;
-  // force[1]: lag 1, dh2'
+  // A34, const: lag 1 equation, coefficient of dh2'
   out.force[9] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam1_gam2
       - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam1_gam2
@@ -465,27 +480,27 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (2.0) * s.h0_2 * s.S_dgam1_dgam2__tail_m_gam2
       - (2.0) * s.h0_1 * s.S_m_gam1__head_dgam1_dgam2
       - (2.0) * s.h0_2 * s.S_m_gam1__head_dgam2_dgam2;
-  // force[1]: lag 1, dh1
+  // A35, const: lag 1 equation, coefficient of dh1
   out.force[10] =
       s.es_lag_1_1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam1
       - s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
-  // force[1]: lag 1, dh2
+  // A36, const: lag 1 equation, coefficient of dh2
   out.force[11] =
       s.es_lag_1_2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam2;
-  // force[1]: lag 2, dg1'
+  // A41, const: lag 2 equation, coefficient of dg1'
   out.force[12] =
       -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam2
       - (2.0) * s.precone * s.S_m_eta1_gam2
       - (2.0) * s.droop * s.S_m_eta1_gam2
       - (2.0) * s.g0_1 * s.S_m_gam2__head_deta1_deta1;
-  // force[1]: lag 2, dg1
+  // A42, const: lag 2 equation, coefficient of dg1
   out.force[13] =
       s.ecs_lag_flap_2_1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam2
@@ -493,7 +508,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta1_gam2_dgam2;
-  // force[1]: lag 2, dh1'
+  // A43, const: lag 2 equation, coefficient of dh1'
   out.force[14] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam1_gam2
       - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam1_gam2
@@ -502,7 +517,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (2.0) * s.h0_2 * s.S_dgam2_dgam2__tail_m_gam1
       - (2.0) * s.h0_1 * s.S_m_gam2__head_dgam1_dgam1
       - (2.0) * s.h0_2 * s.S_m_gam2__head_dgam1_dgam2;
-  // force[1]: lag 2, dh2'
+  // A44, const: lag 2 equation, coefficient of dh2'
   out.force[15] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam2_gam2
       - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam2_gam2
@@ -512,20 +527,20 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (2.0) * s.h0_1 * s.S_m_gam2__head_dgam1_dgam2
       - (2.0) * s.h0_2 * s.S_m_gam2__head_dgam2_dgam2
       - (2.0) * s.omega_lag_2 * s.damping_lag_2 * s.S_m_gam2_gam2;
-  // force[1]: lag 2, dh1
+  // A45, const: lag 2 equation, coefficient of dh1
   out.force[16] =
       s.es_lag_2_1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam2_dgam1;
-  // force[1]: lag 2, dh2
+  // A46, const: lag 2 equation, coefficient of dh2
   out.force[17] =
       s.es_lag_2_2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam2_dgam2
       - s.omega_lag_2 * s.omega_lag_2 * s.S_m_gam2_gam2;
-  // forcing[1]: flap 1
+  // f1, const: flap 1 equation, state-independent
   out.forcing[0] =
       -s.g0_1 * s.es_flap_1_1
       + s.h0_1 * s.ecs_flap_lag_1_1
@@ -542,7 +557,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.precone * s.S_deta1__tail_m_arm
       - s.droop * s.S_deta1__tail_m_arm
       - s.g0_1 * s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
-  // forcing[1]: lag 1
+  // f3, const: lag 1 equation, state-independent
   out.forcing[1] =
       s.g0_1 * s.ecs_lag_flap_1_1
       + s.h0_1 * s.es_lag_1_1
@@ -566,7 +581,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.theta * s.droop * s.S_dgam1__tail_m_arm
       - s.h0_1 * s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1
       + s.theta * s.droop * s.S_m_gam1_x0;
-  // forcing[1]: lag 2
+  // f4, const: lag 2 equation, state-independent
   out.forcing[2] =
       s.g0_1 * s.ecs_lag_flap_2_1
       + s.h0_1 * s.es_lag_2_1
@@ -590,90 +605,90 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.theta * s.droop * s.S_dgam2__tail_m_arm
       - s.h0_2 * s.omega_lag_2 * s.omega_lag_2 * s.S_m_gam2_gam2
       + s.theta * s.droop * s.S_m_gam2_x0;
-  // force[cos psi]: flap 1, dg1'
+  // A11, cos psi: flap 1 equation, coefficient of dg1'
   out.force[18] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta1_dgam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_2 * s.A_eta1_eta1_dgam2;
-  // force[cos psi]: flap 1, dg1
+  // A12, cos psi: flap 1 equation, coefficient of dg1
   out.force[19] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta1_deta1;
-  // force[cos psi]: flap 1, dh1'
+  // A13, cos psi: flap 1 equation, coefficient of dh1'
   out.force[20] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1;
-  // force[cos psi]: flap 1, dh2'
+  // A14, cos psi: flap 1 equation, coefficient of dh2'
   out.force[21] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam2;
-  // force[cos psi]: flap 1, dh1
+  // A15, cos psi: flap 1 equation, coefficient of dh1
   out.force[22] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1_dgam1
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1_dgam1;
-  // force[cos psi]: flap 1, dh2
+  // A16, cos psi: flap 1 equation, coefficient of dh2
   out.force[23] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1_dgam2
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1_dgam2;
-  // force[cos psi]: lag 1, dg1'
+  // A31, cos psi: lag 1 equation, coefficient of dg1'
   out.force[24] =
       -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta1_gam1_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_eta1_gam1_dgam2;
-  // force[cos psi]: lag 1, dg1
+  // A32, cos psi: lag 1 equation, coefficient of dg1
   out.force[25] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta1_gam1;
-  // force[cos psi]: lag 1, dh1'
+  // A33, cos psi: lag 1 equation, coefficient of dh1'
   out.force[26] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam1_gam1;
-  // force[cos psi]: lag 1, dh2'
+  // A34, cos psi: lag 1 equation, coefficient of dh2'
   out.force[27] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam1_gam2;
-  // force[cos psi]: lag 1, dh1
+  // A35, cos psi: lag 1 equation, coefficient of dh1
   out.force[28] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1_dgam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1_dgam1;
-  // force[cos psi]: lag 1, dh2
+  // A36, cos psi: lag 1 equation, coefficient of dh2
   out.force[29] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1_dgam2
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1_dgam2;
-  // force[cos psi]: lag 2, dg1'
+  // A41, cos psi: lag 2 equation, coefficient of dg1'
   out.force[30] =
       -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam2
       - s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam2
       - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta1_gam2_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_eta1_gam2_dgam2;
-  // force[cos psi]: lag 2, dg1
+  // A42, cos psi: lag 2 equation, coefficient of dg1
   out.force[31] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta1_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta1_gam2;
-  // force[cos psi]: lag 2, dh1'
+  // A43, cos psi: lag 2 equation, coefficient of dh1'
   out.force[32] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam1_gam2;
-  // force[cos psi]: lag 2, dh2'
+  // A44, cos psi: lag 2 equation, coefficient of dh2'
   out.force[33] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam2_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam2_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam2_gam2;
-  // force[cos psi]: lag 2, dh1
+  // A45, cos psi: lag 2 equation, coefficient of dh1
   out.force[34] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam2_dgam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam2_dgam1;
-  // force[cos psi]: lag 2, dh2
+  // A46, cos psi: lag 2 equation, coefficient of dh2
   out.force[35] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam2_dgam2
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam2_dgam2;
-  // forcing[cos psi]: flap 1
+  // f1, cos psi: flap 1 equation, state-independent
   out.forcing[3] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_1 * s.A_eta1_dgam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_2 * s.A_eta1_dgam2
@@ -682,7 +697,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_1 * s.A_x1_eta1_deta1
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_x1_eta1_dgam1
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_x1_eta1_dgam2;
-  // forcing[cos psi]: lag 1
+  // f3, cos psi: lag 1 equation, state-independent
   out.forcing[4] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_1 * s.A_deta1_gam1
       - s.lock * s.lr * s.lr * s.inflow * s.precone * s.mu * s.A_gam1
@@ -694,7 +709,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_x1_gam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_1 * s.A_x1_gam1_dgam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_2 * s.A_x1_gam1_dgam2;
-  // forcing[cos psi]: lag 2
+  // f4, cos psi: lag 2 equation, state-independent
   out.forcing[5] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_1 * s.A_deta1_gam2
       - s.lock * s.lr * s.lr * s.inflow * s.precone * s.mu * s.A_gam2
@@ -706,148 +721,148 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_x1_gam2
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_1 * s.A_x1_gam2_dgam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_2 * s.A_x1_gam2_dgam2;
-  // force[sin psi]: flap 1, dg1'
+  // A11, sin psi: flap 1 equation, coefficient of dg1'
   out.force[36] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta1;
-  // force[sin psi]: flap 1, dg1
+  // A12, sin psi: flap 1 equation, coefficient of dg1
   out.force[37] =
       0.0;
-  // force[sin psi]: flap 1, dh1'
+  // A13, sin psi: flap 1 equation, coefficient of dh1'
   out.force[38] =
       -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
-  // force[sin psi]: flap 1, dh2'
+  // A14, sin psi: flap 1 equation, coefficient of dh2'
   out.force[39] =
       -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam2;
-  // force[sin psi]: flap 1, dh1
+  // A15, sin psi: flap 1 equation, coefficient of dh1
   out.force[40] =
       0.0;
-  // force[sin psi]: flap 1, dh2
+  // A16, sin psi: flap 1 equation, coefficient of dh2
   out.force[41] =
       0.0;
-  // force[sin psi]: lag 1, dg1'
+  // A31, sin psi: lag 1 equation, coefficient of dg1'
   out.force[42] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
-  // force[sin psi]: lag 1, dg1
+  // A32, sin psi: lag 1 equation, coefficient of dg1
   out.force[43] =
       0.0;
-  // force[sin psi]: lag 1, dh1'
+  // A33, sin psi: lag 1 equation, coefficient of dh1'
   out.force[44] =
       -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam1_gam1;
-  // force[sin psi]: lag 1, dh2'
+  // A34, sin psi: lag 1 equation, coefficient of dh2'
   out.force[45] =
       -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam1_gam2;
-  // force[sin psi]: lag 1, dh1
+  // A35, sin psi: lag 1 equation, coefficient of dh1
   out.force[46] =
       0.0;
-  // force[sin psi]: lag 1, dh2
+  // A36, sin psi: lag 1 equation, coefficient of dh2
   out.force[47] =
       0.0;
-  // force[sin psi]: lag 2, dg1'
+  // A41, sin psi: lag 2 equation, coefficient of dg1'
   out.force[48] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam2;
-  // force[sin psi]: lag 2, dg1
+  // A42, sin psi: lag 2 equation, coefficient of dg1
   out.force[49] =
       0.0;
-  // force[sin psi]: lag 2, dh1'
+  // A43, sin psi: lag 2 equation, coefficient of dh1'
   out.force[50] =
       -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam1_gam2;
-  // force[sin psi]: lag 2, dh2'
+  // A44, sin psi: lag 2 equation, coefficient of dh2'
   out.force[51] =
       -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam2_gam2;
-  // force[sin psi]: lag 2, dh1
+  // A45, sin psi: lag 2 equation, coefficient of dh1
   out.force[52] =
       0.0;
-  // force[sin psi]: lag 2, dh2
+  // A46, sin psi: lag 2 equation, coefficient of dh2
   out.force[53] =
       0.0;
-  // forcing[sin psi]: flap 1
+  // f1, sin psi: flap 1 equation, state-independent
   out.forcing[6] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1
       + s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1;
-  // forcing[sin psi]: lag 1
+  // f3, sin psi: lag 1 equation, state-independent
   out.forcing[7] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1
       + s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1;
-  // forcing[sin psi]: lag 2
+  // f4, sin psi: lag 2 equation, state-independent
   out.forcing[8] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam2
       + s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam2;
-  // force[cos 2psi]: flap 1, dg1'
+  // A11, cos 2psi: flap 1 equation, coefficient of dg1'
   out.force[54] =
       0.0;
-  // force[cos 2psi]: flap 1, dg1
+  // A12, cos 2psi: flap 1 equation, coefficient of dg1
   out.force[55] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta1_deta1_dgam2;
-  // force[cos 2psi]: flap 1, dh1'
+  // A13, cos 2psi: flap 1 equation, coefficient of dh1'
   out.force[56] =
       0.0;
-  // force[cos 2psi]: flap 1, dh2'
+  // A14, cos 2psi: flap 1 equation, coefficient of dh2'
   out.force[57] =
       0.0;
-  // force[cos 2psi]: flap 1, dh1
+  // A15, cos 2psi: flap 1 equation, coefficient of dh1
   out.force[58] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
-  // force[cos 2psi]: flap 1, dh2
+  // A16, cos 2psi: flap 1 equation, coefficient of dh2
   out.force[59] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam2;
-  // force[cos 2psi]: lag 1, dg1'
+  // A31, cos 2psi: lag 1 equation, coefficient of dg1'
   out.force[60] =
       0.0;
-  // force[cos 2psi]: lag 1, dg1
+  // A32, cos 2psi: lag 1 equation, coefficient of dg1
   out.force[61] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta1_gam1_dgam2;
-  // force[cos 2psi]: lag 1, dh1'
+  // A33, cos 2psi: lag 1 equation, coefficient of dh1'
   out.force[62] =
       0.0;
-  // force[cos 2psi]: lag 1, dh2'
+  // A34, cos 2psi: lag 1 equation, coefficient of dh2'
   out.force[63] =
       0.0;
-  // force[cos 2psi]: lag 1, dh1
+  // A35, cos 2psi: lag 1 equation, coefficient of dh1
   out.force[64] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam1;
-  // force[cos 2psi]: lag 1, dh2
+  // A36, cos 2psi: lag 1 equation, coefficient of dh2
   out.force[65] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam2;
-  // force[cos 2psi]: lag 2, dg1'
+  // A41, cos 2psi: lag 2 equation, coefficient of dg1'
   out.force[66] =
       0.0;
-  // force[cos 2psi]: lag 2, dg1
+  // A42, cos 2psi: lag 2 equation, coefficient of dg1
   out.force[67] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta1_gam2_dgam2;
-  // force[cos 2psi]: lag 2, dh1'
+  // A43, cos 2psi: lag 2 equation, coefficient of dh1'
   out.force[68] =
       0.0;
-  // force[cos 2psi]: lag 2, dh2'
+  // A44, cos 2psi: lag 2 equation, coefficient of dh2'
   out.force[69] =
       0.0;
-  // force[cos 2psi]: lag 2, dh1
+  // A45, cos 2psi: lag 2 equation, coefficient of dh1
   out.force[70] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam2_dgam1;
-  // force[cos 2psi]: lag 2, dh2
+  // A46, cos 2psi: lag 2 equation, coefficient of dh2
   out.force[71] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam2_dgam2;
-  // forcing[cos 2psi]: flap 1
+  // f1, cos 2psi: flap 1 equation, state-independent
   out.forcing[9] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta1_deta1_dgam1
@@ -856,7 +871,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_2 * s.A_eta1_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_2 * s.A_eta1_dgam2;
-  // forcing[cos 2psi]: lag 1
+  // f3, cos 2psi: lag 1 equation, state-independent
   out.forcing[10] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
@@ -871,7 +886,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_2 * s.A_gam1_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_2 * s.A_gam1_dgam2;
-  // forcing[cos 2psi]: lag 2
+  // f4, cos 2psi: lag 2 equation, state-independent
   out.forcing[11] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2
@@ -886,75 +901,75 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_1 * s.A_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_2 * s.A_gam2_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_2 * s.A_gam2_dgam2;
-  // force[sin 2psi]: flap 1, dg1'
+  // A11, sin 2psi: flap 1 equation, coefficient of dg1'
   out.force[72] =
       0.0;
-  // force[sin 2psi]: flap 1, dg1
+  // A12, sin 2psi: flap 1 equation, coefficient of dg1
   out.force[73] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta1_deta1;
-  // force[sin 2psi]: flap 1, dh1'
+  // A13, sin 2psi: flap 1 equation, coefficient of dh1'
   out.force[74] =
       0.0;
-  // force[sin 2psi]: flap 1, dh2'
+  // A14, sin 2psi: flap 1 equation, coefficient of dh2'
   out.force[75] =
       0.0;
-  // force[sin 2psi]: flap 1, dh1
+  // A15, sin 2psi: flap 1 equation, coefficient of dh1
   out.force[76] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1_dgam1;
-  // force[sin 2psi]: flap 1, dh2
+  // A16, sin 2psi: flap 1 equation, coefficient of dh2
   out.force[77] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1_dgam2;
-  // force[sin 2psi]: lag 1, dg1'
+  // A31, sin 2psi: lag 1 equation, coefficient of dg1'
   out.force[78] =
       0.0;
-  // force[sin 2psi]: lag 1, dg1
+  // A32, sin 2psi: lag 1 equation, coefficient of dg1
   out.force[79] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta1_gam1;
-  // force[sin 2psi]: lag 1, dh1'
+  // A33, sin 2psi: lag 1 equation, coefficient of dh1'
   out.force[80] =
       0.0;
-  // force[sin 2psi]: lag 1, dh2'
+  // A34, sin 2psi: lag 1 equation, coefficient of dh2'
   out.force[81] =
       0.0;
-  // force[sin 2psi]: lag 1, dh1
+  // A35, sin 2psi: lag 1 equation, coefficient of dh1
   out.force[82] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1_dgam1;
-  // force[sin 2psi]: lag 1, dh2
+  // A36, sin 2psi: lag 1 equation, coefficient of dh2
   out.force[83] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1_dgam2;
-  // force[sin 2psi]: lag 2, dg1'
+  // A41, sin 2psi: lag 2 equation, coefficient of dg1'
   out.force[84] =
       0.0;
-  // force[sin 2psi]: lag 2, dg1
+  // A42, sin 2psi: lag 2 equation, coefficient of dg1
   out.force[85] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta1_gam2;
-  // force[sin 2psi]: lag 2, dh1'
+  // A43, sin 2psi: lag 2 equation, coefficient of dh1'
   out.force[86] =
       0.0;
-  // force[sin 2psi]: lag 2, dh2'
+  // A44, sin 2psi: lag 2 equation, coefficient of dh2'
   out.force[87] =
       0.0;
-  // force[sin 2psi]: lag 2, dh1
+  // A45, sin 2psi: lag 2 equation, coefficient of dh1
   out.force[88] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam2_dgam1;
-  // force[sin 2psi]: lag 2, dh2
+  // A46, sin 2psi: lag 2 equation, coefficient of dh2
   out.force[89] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam2_dgam2;
-  // forcing[sin 2psi]: flap 1
+  // f1, sin 2psi: flap 1 equation, state-independent
   out.forcing[12] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_eta1_dgam2;
-  // forcing[sin 2psi]: lag 1
+  // f3, sin 2psi: lag 1 equation, state-independent
   out.forcing[13] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.h0_2 * s.A_gam1_dgam2;
-  // forcing[sin 2psi]: lag 2
+  // f4, sin 2psi: lag 2 equation, state-independent
   out.forcing[14] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2
@@ -966,38 +981,50 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
 // Hover static equilibrium S q0 = c (eqs 2.27-2.32).
 void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOutputs& out) {
   const Symbols s(in);
+  // S[1,1]: flap 1 equation, coefficient of g0_1
   out.S[0] =
       s.es_flap_1_1
       + s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
+  // S[1,2]: flap 1 equation, coefficient of h0_1
   out.S[1] =
       -s.ecs_flap_lag_1_1;
+  // S[1,3]: flap 1 equation, coefficient of h0_2
   out.S[2] =
       -s.ecs_flap_lag_1_2;
+  // c[1]: flap 1 equation, hover load
   out.c[0] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta1
       - s.precone * s.S_deta1__tail_m_arm
       - s.droop * s.S_deta1__tail_m_arm;
+  // S[2,1]: lag 1 equation, coefficient of g0_1
   out.S[3] =
       -s.ecs_lag_flap_1_1;
+  // S[2,2]: lag 1 equation, coefficient of h0_1
   out.S[4] =
       -s.es_lag_1_1
       + s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
+  // S[2,3]: lag 1 equation, coefficient of h0_2
   out.S[5] =
       -s.es_lag_1_2;
+  // c[2]: lag 1 equation, hover load
   out.c[1] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.A_x2_gam1
       - s.theta * s.droop * s.S_dgam1__tail_m_arm
       + s.theta * s.droop * s.S_m_gam1_x0;
+  // S[3,1]: lag 2 equation, coefficient of g0_1
   out.S[6] =
       -s.ecs_lag_flap_2_1;
+  // S[3,2]: lag 2 equation, coefficient of h0_1
   out.S[7] =
       -s.es_lag_2_1;
+  // S[3,3]: lag 2 equation, coefficient of h0_2
   out.S[8] =
       -s.es_lag_2_2
       + s.omega_lag_2 * s.omega_lag_2 * s.S_m_gam2_gam2;
+  // c[3]: lag 2 equation, hover load
   out.c[2] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam2
@@ -1020,6 +1047,7 @@ const flaplag::model::ModelDescriptor& flaplag_model_paper_1x2() {
       1, 2, 5,
       58, g::kAero,
       37, g::kStructural,
+      &g::mass,
       &g::coefficients,
       &g::equilibrium};
   return d;

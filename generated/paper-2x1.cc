@@ -104,6 +104,43 @@ const model::StructuralIntegral kStructural[] = {
 
 const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; model family \"paper\")\ndescription = \"Paper ordering with two flap modes and one lag mode (exact rotating modes)\"\n[modes]\nflap = 2\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
 
+// Generalized mass: coefficient of the accelerations q'' = [dg1''..dgM'', dh1''..dhN''] in
+// each equation (inertia terms of eqs 2.16-2.17).  Structural integrals only: independent
+// of mu and of the hover state.
+void mass(const model::CoefficientInputs& in, double* out) {
+  const double S_m_eta1_eta1 = in.structural[14];  // M_F11
+  const double S_m_eta1_eta2 = in.structural[15];  // M_F12/M_F21
+  const double S_m_eta2_eta2 = in.structural[17];  // M_F22
+  const double S_m_gam1_gam1 = in.structural[23];  // M_L11
+  // mass: flap 1 equation, coefficient of dg1''
+  out[0] =
+      S_m_eta1_eta1;
+  // mass: flap 1 equation, coefficient of dg2''
+  out[1] =
+      S_m_eta1_eta2;
+  // mass: flap 1 equation, coefficient of dh1''
+  out[2] =
+      0.0;
+  // mass: flap 2 equation, coefficient of dg1''
+  out[3] =
+      S_m_eta1_eta2;
+  // mass: flap 2 equation, coefficient of dg2''
+  out[4] =
+      S_m_eta2_eta2;
+  // mass: flap 2 equation, coefficient of dh1''
+  out[5] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dg1''
+  out[6] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dg2''
+  out[7] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dh1''
+  out[8] =
+      S_m_gam1_gam1;
+}
+
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
   explicit Symbols(const model::CoefficientInputs& in);
@@ -333,52 +370,30 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 }
 
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 3, states 2n = 6, harmonics H = 5.
+// Each slot is labelled with the entry of the first-order form y' = A(psi) y + f(psi) it
+// feeds (A = mass^-1 force, f = mass^-1 forcing; eqs 2.36-2.37) and the harmonic it
+// multiplies.  Row i of A is the row of the equation's rate (flap k -> k, lag m -> 2M + m),
+// column j the state column; for M = N = 1 these are A11..A14, A31..A34 (Appendix C.2)
+// and f1, f3 (Appendix C.3), and A_ij = force / M_F1 (flap) or / M_L1 (lag).
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1''
-  out.mass[0] =
-      s.S_m_eta1_eta1;
-  // mass: flap 1, dg2''
-  out.mass[1] =
-      s.S_m_eta1_eta2;
-  // mass: flap 1, dh1''
-  out.mass[2] =
-      0.0;
-  // mass: flap 2, dg1''
-  out.mass[3] =
-      s.S_m_eta1_eta2;
-  // mass: flap 2, dg2''
-  out.mass[4] =
-      s.S_m_eta2_eta2;
-  // mass: flap 2, dh1''
-  out.mass[5] =
-      0.0;
-  // mass: lag 1, dg1''
-  out.mass[6] =
-      0.0;
-  // mass: lag 1, dg2''
-  out.mass[7] =
-      0.0;
-  // mass: lag 1, dh1''
-  out.mass[8] =
-      s.S_m_gam1_gam1;
-  // force[1]: flap 1, dg1'
+  // A11, const: flap 1 equation, coefficient of dg1'
   out.force[0] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta1
       - (2.0) * s.omega_flap_1 * s.damping_flap_1 * s.S_m_eta1_eta1;
-  // force[1]: flap 1, dg2'
+  // A12, const: flap 1 equation, coefficient of dg2'
   out.force[1] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta2;
-  // force[1]: flap 1, dg1
+  // A13, const: flap 1 equation, coefficient of dg1
   out.force[2] =
       -s.es_flap_1_1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1
       - s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
-  // force[1]: flap 1, dg2
+  // A14, const: flap 1 equation, coefficient of dg2
   out.force[3] =
       -s.es_flap_1_2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta2_dgam1;
-  // force[1]: flap 1, dh1'
+  // A15, const: flap 1 equation, coefficient of dh1'
   out.force[4] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
@@ -386,30 +401,30 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (2.0) * s.droop * s.S_deta1__tail_m_gam1
       + (2.0) * s.g0_1 * s.S_deta1_deta1__tail_m_gam1
       + (2.0) * s.g0_2 * s.S_deta1_deta2__tail_m_gam1;
-  // force[1]: flap 1, dh1
+  // A16, const: flap 1 equation, coefficient of dh1
   out.force[5] =
       s.ecs_flap_lag_1_1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
-  // force[1]: flap 2, dg1'
+  // A21, const: flap 2 equation, coefficient of dg1'
   out.force[6] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta2;
-  // force[1]: flap 2, dg2'
+  // A22, const: flap 2 equation, coefficient of dg2'
   out.force[7] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta2_eta2
       - (2.0) * s.omega_flap_2 * s.damping_flap_2 * s.S_m_eta2_eta2;
-  // force[1]: flap 2, dg1
+  // A23, const: flap 2 equation, coefficient of dg1
   out.force[8] =
       -s.es_flap_2_1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta1_dgam1;
-  // force[1]: flap 2, dg2
+  // A24, const: flap 2 equation, coefficient of dg2
   out.force[9] =
       -s.es_flap_2_2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta2_dgam1
       - s.omega_flap_2 * s.omega_flap_2 * s.S_m_eta2_eta2;
-  // force[1]: flap 2, dh1'
+  // A25, const: flap 2 equation, coefficient of dh1'
   out.force[10] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta2_gam1
       - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta2_gam1
@@ -417,14 +432,14 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (2.0) * s.precone * s.S_deta2__tail_m_gam1
       + (2.0) * s.droop * s.S_deta2__tail_m_gam1
       + (2.0) * s.g0_2 * s.S_deta2_deta2__tail_m_gam1;
-  // force[1]: flap 2, dh1
+  // A26, const: flap 2 equation, coefficient of dh1
   out.force[11] =
       s.ecs_flap_lag_2_1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2_dgam1;
-  // force[1]: lag 1, dg1'
+  // A51, const: lag 1 equation, coefficient of dg1'
   out.force[12] =
       -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
@@ -432,7 +447,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (2.0) * s.droop * s.S_m_eta1_gam1
       - (2.0) * s.g0_1 * s.S_m_gam1__head_deta1_deta1
       - (2.0) * s.g0_2 * s.S_m_gam1__head_deta1_deta2;
-  // force[1]: lag 1, dg2'
+  // A52, const: lag 1 equation, coefficient of dg2'
   out.force[13] =
       -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta2_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta2_gam1
@@ -440,7 +455,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (2.0) * s.droop * s.S_m_eta2_gam1
       - (2.0) * s.g0_1 * s.S_m_gam1__head_deta1_deta2
       - (2.0) * s.g0_2 * s.S_m_gam1__head_deta2_deta2;
-  // force[1]: lag 1, dg1
+  // A53, const: lag 1 equation, coefficient of dg1
   out.force[14] =
       s.ecs_lag_flap_1_1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
@@ -448,7 +463,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam1_dgam1;
-  // force[1]: lag 1, dg2
+  // A54, const: lag 1 equation, coefficient of dg2
   out.force[15] =
       s.ecs_lag_flap_1_2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta2_gam1
@@ -456,7 +471,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta2_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta2_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta2_gam1_dgam1;
-  // force[1]: lag 1, dh1'
+  // A55, const: lag 1 equation, coefficient of dh1'
   out.force[16] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam1_gam1
@@ -464,7 +479,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (2.0) * s.h0_1 * s.S_dgam1_dgam1__tail_m_gam1
       - (2.0) * s.h0_1 * s.S_m_gam1__head_dgam1_dgam1
       - (2.0) * s.omega_lag_1 * s.damping_lag_1 * s.S_m_gam1_gam1;
-  // force[1]: lag 1, dh1
+  // A56, const: lag 1 equation, coefficient of dh1
   out.force[17] =
       s.es_lag_1_1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam1
@@ -472,7 +487,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam1
       - s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
-  // forcing[1]: flap 1
+  // f1, const: flap 1 equation, state-independent
   out.forcing[0] =
       -s.g0_1 * s.es_flap_1_1
       - s.g0_2 * s.es_flap_1_2
@@ -487,7 +502,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.precone * s.S_deta1__tail_m_arm
       - s.droop * s.S_deta1__tail_m_arm
       - s.g0_1 * s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
-  // forcing[1]: flap 2
+  // f2, const: flap 2 equation, state-independent
   out.forcing[1] =
       -s.g0_1 * s.es_flap_2_1
       - s.g0_2 * s.es_flap_2_2
@@ -502,7 +517,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.precone * s.S_deta2__tail_m_arm
       - s.droop * s.S_deta2__tail_m_arm
       - s.g0_2 * s.omega_flap_2 * s.omega_flap_2 * s.S_m_eta2_eta2;
-  // forcing[1]: lag 1
+  // f5, const: lag 1 equation, state-independent
   out.forcing[2] =
       s.g0_1 * s.ecs_lag_flap_1_1
       + s.g0_2 * s.ecs_lag_flap_1_2
@@ -528,83 +543,83 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.theta * s.droop * s.S_dgam1__tail_m_arm
       - s.h0_1 * s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1
       + s.theta * s.droop * s.S_m_gam1_x0;
-  // force[cos psi]: flap 1, dg1'
+  // A11, cos psi: flap 1 equation, coefficient of dg1'
   out.force[18] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta1_dgam1;
-  // force[cos psi]: flap 1, dg2'
+  // A12, cos psi: flap 1 equation, coefficient of dg2'
   out.force[19] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta2_dgam1;
-  // force[cos psi]: flap 1, dg1
+  // A13, cos psi: flap 1 equation, coefficient of dg1
   out.force[20] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta1_deta1;
-  // force[cos psi]: flap 1, dg2
+  // A14, cos psi: flap 1 equation, coefficient of dg2
   out.force[21] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta1_deta2;
-  // force[cos psi]: flap 1, dh1'
+  // A15, cos psi: flap 1 equation, coefficient of dh1'
   out.force[22] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta1_deta2_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1;
-  // force[cos psi]: flap 1, dh1
+  // A16, cos psi: flap 1 equation, coefficient of dh1
   out.force[23] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1_dgam1
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1_dgam1;
-  // force[cos psi]: flap 2, dg1'
+  // A21, cos psi: flap 2 equation, coefficient of dg1'
   out.force[24] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta2_dgam1;
-  // force[cos psi]: flap 2, dg2'
+  // A22, cos psi: flap 2 equation, coefficient of dg2'
   out.force[25] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta2_eta2_dgam1;
-  // force[cos psi]: flap 2, dg1
+  // A23, cos psi: flap 2 equation, coefficient of dg1
   out.force[26] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta2_deta1;
-  // force[cos psi]: flap 2, dg2
+  // A24, cos psi: flap 2 equation, coefficient of dg2
   out.force[27] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta2_deta2;
-  // force[cos psi]: flap 2, dh1'
+  // A25, cos psi: flap 2 equation, coefficient of dh1'
   out.force[28] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta2_deta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta2_deta2_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta2_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta2_gam1;
-  // force[cos psi]: flap 2, dh1
+  // A26, cos psi: flap 2 equation, coefficient of dh1
   out.force[29] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta2_dgam1
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta2_dgam1;
-  // force[cos psi]: lag 1, dg1'
+  // A51, cos psi: lag 1 equation, coefficient of dg1'
   out.force[30] =
       -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta1_deta2_gam1
       - s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta1_gam1_dgam1;
-  // force[cos psi]: lag 1, dg2'
+  // A52, cos psi: lag 1 equation, coefficient of dg2'
   out.force[31] =
       -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta2_deta1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta2_deta2_gam1
       - s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta2_gam1
       - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta2_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta2_gam1_dgam1;
-  // force[cos psi]: lag 1, dg1
+  // A53, cos psi: lag 1 equation, coefficient of dg1
   out.force[32] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta1_gam1;
-  // force[cos psi]: lag 1, dg2
+  // A54, cos psi: lag 1 equation, coefficient of dg2
   out.force[33] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta2_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta2_gam1;
-  // force[cos psi]: lag 1, dh1'
+  // A55, cos psi: lag 1 equation, coefficient of dh1'
   out.force[34] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_2 * s.A_deta2_gam1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam1_gam1;
-  // force[cos psi]: lag 1, dh1
+  // A56, cos psi: lag 1 equation, coefficient of dh1
   out.force[35] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1_dgam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1_dgam1;
-  // forcing[cos psi]: flap 1
+  // f1, cos psi: flap 1 equation, state-independent
   out.forcing[3] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_1 * s.A_eta1_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.A_x1_eta1
@@ -612,7 +627,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_1 * s.A_x1_eta1_deta1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_2 * s.A_x1_eta1_deta2
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_x1_eta1_dgam1;
-  // forcing[cos psi]: flap 2
+  // f2, cos psi: flap 2 equation, state-independent
   out.forcing[4] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_1 * s.A_eta2_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.A_x1_eta2
@@ -620,7 +635,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_1 * s.A_x1_eta2_deta1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_2 * s.A_x1_eta2_deta2
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_x1_eta2_dgam1;
-  // forcing[cos psi]: lag 1
+  // f5, cos psi: lag 1 equation, state-independent
   out.forcing[5] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_1 * s.A_deta1_gam1
       - s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_2 * s.A_deta2_gam1
@@ -632,158 +647,158 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_x1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_x1_gam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_1 * s.A_x1_gam1_dgam1;
-  // force[sin psi]: flap 1, dg1'
+  // A11, sin psi: flap 1 equation, coefficient of dg1'
   out.force[36] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta1;
-  // force[sin psi]: flap 1, dg2'
+  // A12, sin psi: flap 1 equation, coefficient of dg2'
   out.force[37] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta2;
-  // force[sin psi]: flap 1, dg1
+  // A13, sin psi: flap 1 equation, coefficient of dg1
   out.force[38] =
       0.0;
-  // force[sin psi]: flap 1, dg2
+  // A14, sin psi: flap 1 equation, coefficient of dg2
   out.force[39] =
       0.0;
-  // force[sin psi]: flap 1, dh1'
+  // A15, sin psi: flap 1 equation, coefficient of dh1'
   out.force[40] =
       -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
-  // force[sin psi]: flap 1, dh1
+  // A16, sin psi: flap 1 equation, coefficient of dh1
   out.force[41] =
       0.0;
-  // force[sin psi]: flap 2, dg1'
+  // A21, sin psi: flap 2 equation, coefficient of dg1'
   out.force[42] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta2;
-  // force[sin psi]: flap 2, dg2'
+  // A22, sin psi: flap 2 equation, coefficient of dg2'
   out.force[43] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta2_eta2;
-  // force[sin psi]: flap 2, dg1
+  // A23, sin psi: flap 2 equation, coefficient of dg1
   out.force[44] =
       0.0;
-  // force[sin psi]: flap 2, dg2
+  // A24, sin psi: flap 2 equation, coefficient of dg2
   out.force[45] =
       0.0;
-  // force[sin psi]: flap 2, dh1'
+  // A25, sin psi: flap 2 equation, coefficient of dh1'
   out.force[46] =
       -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta2_gam1;
-  // force[sin psi]: flap 2, dh1
+  // A26, sin psi: flap 2 equation, coefficient of dh1
   out.force[47] =
       0.0;
-  // force[sin psi]: lag 1, dg1'
+  // A51, sin psi: lag 1 equation, coefficient of dg1'
   out.force[48] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
-  // force[sin psi]: lag 1, dg2'
+  // A52, sin psi: lag 1 equation, coefficient of dg2'
   out.force[49] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta2_gam1;
-  // force[sin psi]: lag 1, dg1
+  // A53, sin psi: lag 1 equation, coefficient of dg1
   out.force[50] =
       0.0;
-  // force[sin psi]: lag 1, dg2
+  // A54, sin psi: lag 1 equation, coefficient of dg2
   out.force[51] =
       0.0;
-  // force[sin psi]: lag 1, dh1'
+  // A55, sin psi: lag 1 equation, coefficient of dh1'
   out.force[52] =
       -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam1_gam1;
-  // force[sin psi]: lag 1, dh1
+  // A56, sin psi: lag 1 equation, coefficient of dh1
   out.force[53] =
       0.0;
-  // forcing[sin psi]: flap 1
+  // f1, sin psi: flap 1 equation, state-independent
   out.forcing[6] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1
       + s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1;
-  // forcing[sin psi]: flap 2
+  // f2, sin psi: flap 2 equation, state-independent
   out.forcing[7] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta2
       + s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta2;
-  // forcing[sin psi]: lag 1
+  // f5, sin psi: lag 1 equation, state-independent
   out.forcing[8] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1
       + s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1;
-  // force[cos 2psi]: flap 1, dg1'
+  // A11, cos 2psi: flap 1 equation, coefficient of dg1'
   out.force[54] =
       0.0;
-  // force[cos 2psi]: flap 1, dg2'
+  // A12, cos 2psi: flap 1 equation, coefficient of dg2'
   out.force[55] =
       0.0;
-  // force[cos 2psi]: flap 1, dg1
+  // A13, cos 2psi: flap 1 equation, coefficient of dg1
   out.force[56] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1;
-  // force[cos 2psi]: flap 1, dg2
+  // A14, cos 2psi: flap 1 equation, coefficient of dg2
   out.force[57] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta2_dgam1;
-  // force[cos 2psi]: flap 1, dh1'
+  // A15, cos 2psi: flap 1 equation, coefficient of dh1'
   out.force[58] =
       0.0;
-  // force[cos 2psi]: flap 1, dh1
+  // A16, cos 2psi: flap 1 equation, coefficient of dh1
   out.force[59] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
-  // force[cos 2psi]: flap 2, dg1'
+  // A21, cos 2psi: flap 2 equation, coefficient of dg1'
   out.force[60] =
       0.0;
-  // force[cos 2psi]: flap 2, dg2'
+  // A22, cos 2psi: flap 2 equation, coefficient of dg2'
   out.force[61] =
       0.0;
-  // force[cos 2psi]: flap 2, dg1
+  // A23, cos 2psi: flap 2 equation, coefficient of dg1
   out.force[62] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta1_dgam1;
-  // force[cos 2psi]: flap 2, dg2
+  // A24, cos 2psi: flap 2 equation, coefficient of dg2
   out.force[63] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta2_dgam1;
-  // force[cos 2psi]: flap 2, dh1'
+  // A25, cos 2psi: flap 2 equation, coefficient of dh1'
   out.force[64] =
       0.0;
-  // force[cos 2psi]: flap 2, dh1
+  // A26, cos 2psi: flap 2 equation, coefficient of dh1
   out.force[65] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2_dgam1;
-  // force[cos 2psi]: lag 1, dg1'
+  // A51, cos 2psi: lag 1 equation, coefficient of dg1'
   out.force[66] =
       0.0;
-  // force[cos 2psi]: lag 1, dg2'
+  // A52, cos 2psi: lag 1 equation, coefficient of dg2'
   out.force[67] =
       0.0;
-  // force[cos 2psi]: lag 1, dg1
+  // A53, cos 2psi: lag 1 equation, coefficient of dg1
   out.force[68] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta1_deta2_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam1_dgam1;
-  // force[cos 2psi]: lag 1, dg2
+  // A54, cos 2psi: lag 1 equation, coefficient of dg2
   out.force[69] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta2_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta2_deta2_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta2_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta2_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta2_gam1_dgam1;
-  // force[cos 2psi]: lag 1, dh1'
+  // A55, cos 2psi: lag 1 equation, coefficient of dh1'
   out.force[70] =
       0.0;
-  // force[cos 2psi]: lag 1, dh1
+  // A56, cos 2psi: lag 1 equation, coefficient of dh1
   out.force[71] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam1;
-  // forcing[cos 2psi]: flap 1
+  // f1, cos 2psi: flap 1 equation, state-independent
   out.forcing[9] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_eta1_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1;
-  // forcing[cos 2psi]: flap 2
+  // f2, cos 2psi: flap 2 equation, state-independent
   out.forcing[10] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta2_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.h0_1 * s.A_eta2_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1;
-  // forcing[cos 2psi]: lag 1
+  // f5, cos 2psi: lag 1 equation, state-independent
   out.forcing[11] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_2 * s.A_deta1_deta2_gam1
@@ -800,75 +815,75 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1;
-  // force[sin 2psi]: flap 1, dg1'
+  // A11, sin 2psi: flap 1 equation, coefficient of dg1'
   out.force[72] =
       0.0;
-  // force[sin 2psi]: flap 1, dg2'
+  // A12, sin 2psi: flap 1 equation, coefficient of dg2'
   out.force[73] =
       0.0;
-  // force[sin 2psi]: flap 1, dg1
+  // A13, sin 2psi: flap 1 equation, coefficient of dg1
   out.force[74] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta1_deta1;
-  // force[sin 2psi]: flap 1, dg2
+  // A14, sin 2psi: flap 1 equation, coefficient of dg2
   out.force[75] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta1_deta2;
-  // force[sin 2psi]: flap 1, dh1'
+  // A15, sin 2psi: flap 1 equation, coefficient of dh1'
   out.force[76] =
       0.0;
-  // force[sin 2psi]: flap 1, dh1
+  // A16, sin 2psi: flap 1 equation, coefficient of dh1
   out.force[77] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1_dgam1;
-  // force[sin 2psi]: flap 2, dg1'
+  // A21, sin 2psi: flap 2 equation, coefficient of dg1'
   out.force[78] =
       0.0;
-  // force[sin 2psi]: flap 2, dg2'
+  // A22, sin 2psi: flap 2 equation, coefficient of dg2'
   out.force[79] =
       0.0;
-  // force[sin 2psi]: flap 2, dg1
+  // A23, sin 2psi: flap 2 equation, coefficient of dg1
   out.force[80] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta2_deta1;
-  // force[sin 2psi]: flap 2, dg2
+  // A24, sin 2psi: flap 2 equation, coefficient of dg2
   out.force[81] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta2_deta2;
-  // force[sin 2psi]: flap 2, dh1'
+  // A25, sin 2psi: flap 2 equation, coefficient of dh1'
   out.force[82] =
       0.0;
-  // force[sin 2psi]: flap 2, dh1
+  // A26, sin 2psi: flap 2 equation, coefficient of dh1
   out.force[83] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta2_dgam1;
-  // force[sin 2psi]: lag 1, dg1'
+  // A51, sin 2psi: lag 1 equation, coefficient of dg1'
   out.force[84] =
       0.0;
-  // force[sin 2psi]: lag 1, dg2'
+  // A52, sin 2psi: lag 1 equation, coefficient of dg2'
   out.force[85] =
       0.0;
-  // force[sin 2psi]: lag 1, dg1
+  // A53, sin 2psi: lag 1 equation, coefficient of dg1
   out.force[86] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta1_gam1;
-  // force[sin 2psi]: lag 1, dg2
+  // A54, sin 2psi: lag 1 equation, coefficient of dg2
   out.force[87] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta2_gam1;
-  // force[sin 2psi]: lag 1, dh1'
+  // A55, sin 2psi: lag 1 equation, coefficient of dh1'
   out.force[88] =
       0.0;
-  // force[sin 2psi]: lag 1, dh1
+  // A56, sin 2psi: lag 1 equation, coefficient of dh1
   out.force[89] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1_dgam1;
-  // forcing[sin 2psi]: flap 1
+  // f1, sin 2psi: flap 1 equation, state-independent
   out.forcing[12] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1;
-  // forcing[sin 2psi]: flap 2
+  // f2, sin 2psi: flap 2 equation, state-independent
   out.forcing[13] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1;
-  // forcing[sin 2psi]: lag 1
+  // f5, sin 2psi: lag 1 equation, state-independent
   out.forcing[14] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1
@@ -880,37 +895,49 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
 // Hover static equilibrium S q0 = c (eqs 2.27-2.32).
 void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOutputs& out) {
   const Symbols s(in);
+  // S[1,1]: flap 1 equation, coefficient of g0_1
   out.S[0] =
       s.es_flap_1_1
       + s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
+  // S[1,2]: flap 1 equation, coefficient of g0_2
   out.S[1] =
       s.es_flap_1_2;
+  // S[1,3]: flap 1 equation, coefficient of h0_1
   out.S[2] =
       -s.ecs_flap_lag_1_1;
+  // c[1]: flap 1 equation, hover load
   out.c[0] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta1
       - s.precone * s.S_deta1__tail_m_arm
       - s.droop * s.S_deta1__tail_m_arm;
+  // S[2,1]: flap 2 equation, coefficient of g0_1
   out.S[3] =
       s.es_flap_2_1;
+  // S[2,2]: flap 2 equation, coefficient of g0_2
   out.S[4] =
       s.es_flap_2_2
       + s.omega_flap_2 * s.omega_flap_2 * s.S_m_eta2_eta2;
+  // S[2,3]: flap 2 equation, coefficient of h0_1
   out.S[5] =
       -s.ecs_flap_lag_2_1;
+  // c[2]: flap 2 equation, hover load
   out.c[1] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta2
       - s.precone * s.S_deta2__tail_m_arm
       - s.droop * s.S_deta2__tail_m_arm;
+  // S[3,1]: lag 1 equation, coefficient of g0_1
   out.S[6] =
       -s.ecs_lag_flap_1_1;
+  // S[3,2]: lag 1 equation, coefficient of g0_2
   out.S[7] =
       -s.ecs_lag_flap_1_2;
+  // S[3,3]: lag 1 equation, coefficient of h0_1
   out.S[8] =
       -s.es_lag_1_1
       + s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
+  // c[3]: lag 1 equation, hover load
   out.c[2] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam1
@@ -933,6 +960,7 @@ const flaplag::model::ModelDescriptor& flaplag_model_paper_2x1() {
       2, 1, 5,
       59, g::kAero,
       25, g::kStructural,
+      &g::mass,
       &g::coefficients,
       &g::equilibrium};
   return d;

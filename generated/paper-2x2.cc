@@ -188,6 +188,66 @@ const model::StructuralIntegral kStructural[] = {
 
 const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; model family \"paper\")\ndescription = \"Paper ordering with two flap and two lag modes (exact rotating modes)\"\n[modes]\nflap = 2\nlag = 2\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
 
+// Generalized mass: coefficient of the accelerations q'' = [dg1''..dgM'', dh1''..dhN''] in
+// each equation (inertia terms of eqs 2.16-2.17).  Structural integrals only: independent
+// of mu and of the hover state.
+void mass(const model::CoefficientInputs& in, double* out) {
+  const double S_m_eta1_eta1 = in.structural[30];  // M_F11
+  const double S_m_eta1_eta2 = in.structural[31];  // M_F12/M_F21
+  const double S_m_eta2_eta2 = in.structural[34];  // M_F22
+  const double S_m_gam1_gam1 = in.structural[43];  // M_L11
+  const double S_m_gam1_gam2 = in.structural[44];  // M_L12/M_L21
+  const double S_m_gam2_gam2 = in.structural[52];  // M_L22
+  // mass: flap 1 equation, coefficient of dg1''
+  out[0] =
+      S_m_eta1_eta1;
+  // mass: flap 1 equation, coefficient of dg2''
+  out[1] =
+      S_m_eta1_eta2;
+  // mass: flap 1 equation, coefficient of dh1''
+  out[2] =
+      0.0;
+  // mass: flap 1 equation, coefficient of dh2''
+  out[3] =
+      0.0;
+  // mass: flap 2 equation, coefficient of dg1''
+  out[4] =
+      S_m_eta1_eta2;
+  // mass: flap 2 equation, coefficient of dg2''
+  out[5] =
+      S_m_eta2_eta2;
+  // mass: flap 2 equation, coefficient of dh1''
+  out[6] =
+      0.0;
+  // mass: flap 2 equation, coefficient of dh2''
+  out[7] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dg1''
+  out[8] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dg2''
+  out[9] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dh1''
+  out[10] =
+      S_m_gam1_gam1;
+  // mass: lag 1 equation, coefficient of dh2''
+  out[11] =
+      S_m_gam1_gam2;
+  // mass: lag 2 equation, coefficient of dg1''
+  out[12] =
+      0.0;
+  // mass: lag 2 equation, coefficient of dg2''
+  out[13] =
+      0.0;
+  // mass: lag 2 equation, coefficient of dh1''
+  out[14] =
+      S_m_gam1_gam2;
+  // mass: lag 2 equation, coefficient of dh2''
+  out[15] =
+      S_m_gam2_gam2;
+}
+
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
   explicit Symbols(const model::CoefficientInputs& in);
@@ -605,75 +665,32 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 }
 
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 4, states 2n = 8, harmonics H = 5.
+// Each slot is labelled with the entry of the first-order form y' = A(psi) y + f(psi) it
+// feeds (A = mass^-1 force, f = mass^-1 forcing; eqs 2.36-2.37) and the harmonic it
+// multiplies.  Row i of A is the row of the equation's rate (flap k -> k, lag m -> 2M + m),
+// column j the state column; for M = N = 1 these are A11..A14, A31..A34 (Appendix C.2)
+// and f1, f3 (Appendix C.3), and A_ij = force / M_F1 (flap) or / M_L1 (lag).
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1''
-  out.mass[0] =
-      s.S_m_eta1_eta1;
-  // mass: flap 1, dg2''
-  out.mass[1] =
-      s.S_m_eta1_eta2;
-  // mass: flap 1, dh1''
-  out.mass[2] =
-      0.0;
-  // mass: flap 1, dh2''
-  out.mass[3] =
-      0.0;
-  // mass: flap 2, dg1''
-  out.mass[4] =
-      s.S_m_eta1_eta2;
-  // mass: flap 2, dg2''
-  out.mass[5] =
-      s.S_m_eta2_eta2;
-  // mass: flap 2, dh1''
-  out.mass[6] =
-      0.0;
-  // mass: flap 2, dh2''
-  out.mass[7] =
-      0.0;
-  // mass: lag 1, dg1''
-  out.mass[8] =
-      0.0;
-  // mass: lag 1, dg2''
-  out.mass[9] =
-      0.0;
-  // mass: lag 1, dh1''
-  out.mass[10] =
-      s.S_m_gam1_gam1;
-  // mass: lag 1, dh2''
-  out.mass[11] =
-      s.S_m_gam1_gam2;
-  // mass: lag 2, dg1''
-  out.mass[12] =
-      0.0;
-  // mass: lag 2, dg2''
-  out.mass[13] =
-      0.0;
-  // mass: lag 2, dh1''
-  out.mass[14] =
-      s.S_m_gam1_gam2;
-  // mass: lag 2, dh2''
-  out.mass[15] =
-      s.S_m_gam2_gam2;
-  // force[1]: flap 1, dg1'
+  // A11, const: flap 1 equation, coefficient of dg1'
   out.force[0] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta1
       - (2.0) * s.omega_flap_1 * s.damping_flap_1 * s.S_m_eta1_eta1;
-  // force[1]: flap 1, dg2'
+  // A12, const: flap 1 equation, coefficient of dg2'
   out.force[1] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta2;
-  // force[1]: flap 1, dg1
+  // A13, const: flap 1 equation, coefficient of dg1
   out.force[2] =
       -s.es_flap_1_1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta1_deta1_dgam2
       - s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
-  // force[1]: flap 1, dg2
+  // A14, const: flap 1 equation, coefficient of dg2
   out.force[3] =
       -s.es_flap_1_2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta1_deta2_dgam2;
-  // force[1]: flap 1, dh1'
+  // A15, const: flap 1 equation, coefficient of dh1'
   out.force[4] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
@@ -681,7 +698,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (2.0) * s.droop * s.S_deta1__tail_m_gam1
       + (2.0) * s.g0_1 * s.S_deta1_deta1__tail_m_gam1
       + (2.0) * s.g0_2 * s.S_deta1_deta2__tail_m_gam1;
-  // force[1]: flap 1, dh2'
+  // A16, const: flap 1 equation, coefficient of dh2'
   out.force[5] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam2
       - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam2
@@ -689,39 +706,39 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (2.0) * s.droop * s.S_deta1__tail_m_gam2
       + (2.0) * s.g0_1 * s.S_deta1_deta1__tail_m_gam2
       + (2.0) * s.g0_2 * s.S_deta1_deta2__tail_m_gam2;
-  // force[1]: flap 1, dh1
+  // A17, const: flap 1 equation, coefficient of dh1
   out.force[6] =
       s.ecs_flap_lag_1_1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
-  // force[1]: flap 1, dh2
+  // A18, const: flap 1 equation, coefficient of dh2
   out.force[7] =
       s.ecs_flap_lag_1_2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam2;
-  // force[1]: flap 2, dg1'
+  // A21, const: flap 2 equation, coefficient of dg1'
   out.force[8] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta2;
-  // force[1]: flap 2, dg2'
+  // A22, const: flap 2 equation, coefficient of dg2'
   out.force[9] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta2_eta2
       - (2.0) * s.omega_flap_2 * s.damping_flap_2 * s.S_m_eta2_eta2;
-  // force[1]: flap 2, dg1
+  // A23, const: flap 2 equation, coefficient of dg1
   out.force[10] =
       -s.es_flap_2_1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta2_deta1_dgam2;
-  // force[1]: flap 2, dg2
+  // A24, const: flap 2 equation, coefficient of dg2
   out.force[11] =
       -s.es_flap_2_2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta2_deta2_dgam2
       - s.omega_flap_2 * s.omega_flap_2 * s.S_m_eta2_eta2;
-  // force[1]: flap 2, dh1'
+  // A25, const: flap 2 equation, coefficient of dh1'
   out.force[12] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta2_gam1
       - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta2_gam1
@@ -729,7 +746,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (2.0) * s.precone * s.S_deta2__tail_m_gam1
       + (2.0) * s.droop * s.S_deta2__tail_m_gam1
       + (2.0) * s.g0_2 * s.S_deta2_deta2__tail_m_gam1;
-  // force[1]: flap 2, dh2'
+  // A26, const: flap 2 equation, coefficient of dh2'
   out.force[13] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta2_gam2
       - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta2_gam2
@@ -737,21 +754,21 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (2.0) * s.precone * s.S_deta2__tail_m_gam2
       + (2.0) * s.droop * s.S_deta2__tail_m_gam2
       + (2.0) * s.g0_2 * s.S_deta2_deta2__tail_m_gam2;
-  // force[1]: flap 2, dh1
+  // A27, const: flap 2 equation, coefficient of dh1
   out.force[14] =
       s.ecs_flap_lag_2_1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2_dgam1;
-  // force[1]: flap 2, dh2
+  // A28, const: flap 2 equation, coefficient of dh2
   out.force[15] =
       s.ecs_flap_lag_2_2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2_dgam2;
-  // force[1]: lag 1, dg1'
+  // A51, const: lag 1 equation, coefficient of dg1'
   out.force[16] =
       -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
@@ -759,7 +776,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (2.0) * s.droop * s.S_m_eta1_gam1
       - (2.0) * s.g0_1 * s.S_m_gam1__head_deta1_deta1
       - (2.0) * s.g0_2 * s.S_m_gam1__head_deta1_deta2;
-  // force[1]: lag 1, dg2'
+  // A52, const: lag 1 equation, coefficient of dg2'
   out.force[17] =
       -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta2_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta2_gam1
@@ -767,7 +784,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (2.0) * s.droop * s.S_m_eta2_gam1
       - (2.0) * s.g0_1 * s.S_m_gam1__head_deta1_deta2
       - (2.0) * s.g0_2 * s.S_m_gam1__head_deta2_deta2;
-  // force[1]: lag 1, dg1
+  // A53, const: lag 1 equation, coefficient of dg1
   out.force[18] =
       s.ecs_lag_flap_1_1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
@@ -776,7 +793,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta1_gam1_dgam2;
-  // force[1]: lag 1, dg2
+  // A54, const: lag 1 equation, coefficient of dg2
   out.force[19] =
       s.ecs_lag_flap_1_2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta2_gam1
@@ -785,7 +802,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta2_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta2_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta2_gam1_dgam2;
-  // force[1]: lag 1, dh1'
+  // A55, const: lag 1 equation, coefficient of dh1'
   out.force[20] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam1_gam1
@@ -795,7 +812,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (2.0) * s.h0_1 * s.S_m_gam1__head_dgam1_dgam1
       - (2.0) * s.h0_2 * s.S_m_gam1__head_dgam1_dgam2
       - (2.0) * s.omega_lag_1 * s.damping_lag_1 * s.S_m_gam1_gam1;
-  // force[1]: lag 1, dh2'
+  // A56, const: lag 1 equation, coefficient of dh2'
   out.force[21] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam1_gam2
       - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam1_gam2
@@ -804,7 +821,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (2.0) * s.h0_2 * s.S_dgam1_dgam2__tail_m_gam2
       - (2.0) * s.h0_1 * s.S_m_gam1__head_dgam1_dgam2
       - (2.0) * s.h0_2 * s.S_m_gam1__head_dgam2_dgam2;
-  // force[1]: lag 1, dh1
+  // A57, const: lag 1 equation, coefficient of dh1
   out.force[22] =
       s.es_lag_1_1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam1
@@ -812,14 +829,14 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam1
       - s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
-  // force[1]: lag 1, dh2
+  // A58, const: lag 1 equation, coefficient of dh2
   out.force[23] =
       s.es_lag_1_2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam2;
-  // force[1]: lag 2, dg1'
+  // A61, const: lag 2 equation, coefficient of dg1'
   out.force[24] =
       -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam2
@@ -827,7 +844,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (2.0) * s.droop * s.S_m_eta1_gam2
       - (2.0) * s.g0_1 * s.S_m_gam2__head_deta1_deta1
       - (2.0) * s.g0_2 * s.S_m_gam2__head_deta1_deta2;
-  // force[1]: lag 2, dg2'
+  // A62, const: lag 2 equation, coefficient of dg2'
   out.force[25] =
       -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta2_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta2_gam2
@@ -835,7 +852,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (2.0) * s.droop * s.S_m_eta2_gam2
       - (2.0) * s.g0_1 * s.S_m_gam2__head_deta1_deta2
       - (2.0) * s.g0_2 * s.S_m_gam2__head_deta2_deta2;
-  // force[1]: lag 2, dg1
+  // A63, const: lag 2 equation, coefficient of dg1
   out.force[26] =
       s.ecs_lag_flap_2_1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam2
@@ -844,7 +861,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta1_gam2_dgam2;
-  // force[1]: lag 2, dg2
+  // A64, const: lag 2 equation, coefficient of dg2
   out.force[27] =
       s.ecs_lag_flap_2_2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta2_gam2
@@ -853,7 +870,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta2_gam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta2_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta2_gam2_dgam2;
-  // force[1]: lag 2, dh1'
+  // A65, const: lag 2 equation, coefficient of dh1'
   out.force[28] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam1_gam2
       - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam1_gam2
@@ -862,7 +879,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (2.0) * s.h0_2 * s.S_dgam2_dgam2__tail_m_gam1
       - (2.0) * s.h0_1 * s.S_m_gam2__head_dgam1_dgam1
       - (2.0) * s.h0_2 * s.S_m_gam2__head_dgam1_dgam2;
-  // force[1]: lag 2, dh2'
+  // A66, const: lag 2 equation, coefficient of dh2'
   out.force[29] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam2_gam2
       - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam2_gam2
@@ -872,14 +889,14 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (2.0) * s.h0_1 * s.S_m_gam2__head_dgam1_dgam2
       - (2.0) * s.h0_2 * s.S_m_gam2__head_dgam2_dgam2
       - (2.0) * s.omega_lag_2 * s.damping_lag_2 * s.S_m_gam2_gam2;
-  // force[1]: lag 2, dh1
+  // A67, const: lag 2 equation, coefficient of dh1
   out.force[30] =
       s.es_lag_2_1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam2_dgam1;
-  // force[1]: lag 2, dh2
+  // A68, const: lag 2 equation, coefficient of dh2
   out.force[31] =
       s.es_lag_2_2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2_dgam2
@@ -887,7 +904,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam2_dgam2
       - s.omega_lag_2 * s.omega_lag_2 * s.S_m_gam2_gam2;
-  // forcing[1]: flap 1
+  // f1, const: flap 1 equation, state-independent
   out.forcing[0] =
       -s.g0_1 * s.es_flap_1_1
       - s.g0_2 * s.es_flap_1_2
@@ -907,7 +924,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.precone * s.S_deta1__tail_m_arm
       - s.droop * s.S_deta1__tail_m_arm
       - s.g0_1 * s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
-  // forcing[1]: flap 2
+  // f2, const: flap 2 equation, state-independent
   out.forcing[1] =
       -s.g0_1 * s.es_flap_2_1
       - s.g0_2 * s.es_flap_2_2
@@ -927,7 +944,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.precone * s.S_deta2__tail_m_arm
       - s.droop * s.S_deta2__tail_m_arm
       - s.g0_2 * s.omega_flap_2 * s.omega_flap_2 * s.S_m_eta2_eta2;
-  // forcing[1]: lag 1
+  // f5, const: lag 1 equation, state-independent
   out.forcing[2] =
       s.g0_1 * s.ecs_lag_flap_1_1
       + s.g0_2 * s.ecs_lag_flap_1_2
@@ -958,7 +975,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.theta * s.droop * s.S_dgam1__tail_m_arm
       - s.h0_1 * s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1
       + s.theta * s.droop * s.S_m_gam1_x0;
-  // forcing[1]: lag 2
+  // f6, const: lag 2 equation, state-independent
   out.forcing[3] =
       s.g0_1 * s.ecs_lag_flap_2_1
       + s.g0_2 * s.ecs_lag_flap_2_2
@@ -989,75 +1006,75 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.theta * s.droop * s.S_dgam2__tail_m_arm
       - s.h0_2 * s.omega_lag_2 * s.omega_lag_2 * s.S_m_gam2_gam2
       + s.theta * s.droop * s.S_m_gam2_x0;
-  // force[cos psi]: flap 1, dg1'
+  // A11, cos psi: flap 1 equation, coefficient of dg1'
   out.force[32] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta1_dgam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_2 * s.A_eta1_eta1_dgam2;
-  // force[cos psi]: flap 1, dg2'
+  // A12, cos psi: flap 1 equation, coefficient of dg2'
   out.force[33] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta2_dgam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_2 * s.A_eta1_eta2_dgam2;
-  // force[cos psi]: flap 1, dg1
+  // A13, cos psi: flap 1 equation, coefficient of dg1
   out.force[34] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta1_deta1;
-  // force[cos psi]: flap 1, dg2
+  // A14, cos psi: flap 1 equation, coefficient of dg2
   out.force[35] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta1_deta2;
-  // force[cos psi]: flap 1, dh1'
+  // A15, cos psi: flap 1 equation, coefficient of dh1'
   out.force[36] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta1_deta2_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1;
-  // force[cos psi]: flap 1, dh2'
+  // A16, cos psi: flap 1 equation, coefficient of dh2'
   out.force[37] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta1_deta2_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam2;
-  // force[cos psi]: flap 1, dh1
+  // A17, cos psi: flap 1 equation, coefficient of dh1
   out.force[38] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1_dgam1
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1_dgam1;
-  // force[cos psi]: flap 1, dh2
+  // A18, cos psi: flap 1 equation, coefficient of dh2
   out.force[39] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1_dgam2
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1_dgam2;
-  // force[cos psi]: flap 2, dg1'
+  // A21, cos psi: flap 2 equation, coefficient of dg1'
   out.force[40] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta2_dgam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_2 * s.A_eta1_eta2_dgam2;
-  // force[cos psi]: flap 2, dg2'
+  // A22, cos psi: flap 2 equation, coefficient of dg2'
   out.force[41] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta2_eta2_dgam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_2 * s.A_eta2_eta2_dgam2;
-  // force[cos psi]: flap 2, dg1
+  // A23, cos psi: flap 2 equation, coefficient of dg1
   out.force[42] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta2_deta1;
-  // force[cos psi]: flap 2, dg2
+  // A24, cos psi: flap 2 equation, coefficient of dg2
   out.force[43] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta2_deta2;
-  // force[cos psi]: flap 2, dh1'
+  // A25, cos psi: flap 2 equation, coefficient of dh1'
   out.force[44] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta2_deta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta2_deta2_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta2_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta2_gam1;
-  // force[cos psi]: flap 2, dh2'
+  // A26, cos psi: flap 2 equation, coefficient of dh2'
   out.force[45] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta2_deta1_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta2_deta2_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta2_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta2_gam2;
-  // force[cos psi]: flap 2, dh1
+  // A27, cos psi: flap 2 equation, coefficient of dh1
   out.force[46] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta2_dgam1
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta2_dgam1;
-  // force[cos psi]: flap 2, dh2
+  // A28, cos psi: flap 2 equation, coefficient of dh2
   out.force[47] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta2_dgam2
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta2_dgam2;
-  // force[cos psi]: lag 1, dg1'
+  // A51, cos psi: lag 1 equation, coefficient of dg1'
   out.force[48] =
       -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta1_deta2_gam1
@@ -1065,7 +1082,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta1_gam1_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_eta1_gam1_dgam2;
-  // force[cos psi]: lag 1, dg2'
+  // A52, cos psi: lag 1 equation, coefficient of dg2'
   out.force[49] =
       -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta2_deta1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta2_deta2_gam1
@@ -1073,35 +1090,35 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta2_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta2_gam1_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_eta2_gam1_dgam2;
-  // force[cos psi]: lag 1, dg1
+  // A53, cos psi: lag 1 equation, coefficient of dg1
   out.force[50] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta1_gam1;
-  // force[cos psi]: lag 1, dg2
+  // A54, cos psi: lag 1 equation, coefficient of dg2
   out.force[51] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta2_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta2_gam1;
-  // force[cos psi]: lag 1, dh1'
+  // A55, cos psi: lag 1 equation, coefficient of dh1'
   out.force[52] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_2 * s.A_deta2_gam1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam1_gam1;
-  // force[cos psi]: lag 1, dh2'
+  // A56, cos psi: lag 1 equation, coefficient of dh2'
   out.force[53] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_2 * s.A_deta2_gam1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam1_gam2;
-  // force[cos psi]: lag 1, dh1
+  // A57, cos psi: lag 1 equation, coefficient of dh1
   out.force[54] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1_dgam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1_dgam1;
-  // force[cos psi]: lag 1, dh2
+  // A58, cos psi: lag 1 equation, coefficient of dh2
   out.force[55] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1_dgam2
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1_dgam2;
-  // force[cos psi]: lag 2, dg1'
+  // A61, cos psi: lag 2 equation, coefficient of dg1'
   out.force[56] =
       -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam2
       - s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta1_deta2_gam2
@@ -1109,7 +1126,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta1_gam2_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_eta1_gam2_dgam2;
-  // force[cos psi]: lag 2, dg2'
+  // A62, cos psi: lag 2 equation, coefficient of dg2'
   out.force[57] =
       -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta2_deta1_gam2
       - s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_2 * s.A_eta2_deta2_gam2
@@ -1117,35 +1134,35 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta2_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta2_gam2_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_eta2_gam2_dgam2;
-  // force[cos psi]: lag 2, dg1
+  // A63, cos psi: lag 2 equation, coefficient of dg1
   out.force[58] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta1_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta1_gam2;
-  // force[cos psi]: lag 2, dg2
+  // A64, cos psi: lag 2 equation, coefficient of dg2
   out.force[59] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta2_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta2_gam2;
-  // force[cos psi]: lag 2, dh1'
+  // A65, cos psi: lag 2 equation, coefficient of dh1'
   out.force[60] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_2 * s.A_deta2_gam1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam1_gam2;
-  // force[cos psi]: lag 2, dh2'
+  // A66, cos psi: lag 2 equation, coefficient of dh2'
   out.force[61] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam2_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_2 * s.A_deta2_gam2_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam2_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam2_gam2;
-  // force[cos psi]: lag 2, dh1
+  // A67, cos psi: lag 2 equation, coefficient of dh1
   out.force[62] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam2_dgam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam2_dgam1;
-  // force[cos psi]: lag 2, dh2
+  // A68, cos psi: lag 2 equation, coefficient of dh2
   out.force[63] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam2_dgam2
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam2_dgam2;
-  // forcing[cos psi]: flap 1
+  // f1, cos psi: flap 1 equation, state-independent
   out.forcing[4] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_1 * s.A_eta1_dgam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_2 * s.A_eta1_dgam2
@@ -1155,7 +1172,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_2 * s.A_x1_eta1_deta2
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_x1_eta1_dgam1
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_x1_eta1_dgam2;
-  // forcing[cos psi]: flap 2
+  // f2, cos psi: flap 2 equation, state-independent
   out.forcing[5] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_1 * s.A_eta2_dgam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_2 * s.A_eta2_dgam2
@@ -1165,7 +1182,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_2 * s.A_x1_eta2_deta2
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_x1_eta2_dgam1
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_2 * s.A_x1_eta2_dgam2;
-  // forcing[cos psi]: lag 1
+  // f5, cos psi: lag 1 equation, state-independent
   out.forcing[6] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_1 * s.A_deta1_gam1
       - s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_2 * s.A_deta2_gam1
@@ -1179,7 +1196,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_x1_gam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_1 * s.A_x1_gam1_dgam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_2 * s.A_x1_gam1_dgam2;
-  // forcing[cos psi]: lag 2
+  // f6, cos psi: lag 2 equation, state-independent
   out.forcing[7] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_1 * s.A_deta1_gam2
       - s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_2 * s.A_deta2_gam2
@@ -1193,189 +1210,189 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_x1_gam2
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_1 * s.A_x1_gam2_dgam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_2 * s.A_x1_gam2_dgam2;
-  // force[sin psi]: flap 1, dg1'
+  // A11, sin psi: flap 1 equation, coefficient of dg1'
   out.force[64] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta1;
-  // force[sin psi]: flap 1, dg2'
+  // A12, sin psi: flap 1 equation, coefficient of dg2'
   out.force[65] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta2;
-  // force[sin psi]: flap 1, dg1
+  // A13, sin psi: flap 1 equation, coefficient of dg1
   out.force[66] =
       0.0;
-  // force[sin psi]: flap 1, dg2
+  // A14, sin psi: flap 1 equation, coefficient of dg2
   out.force[67] =
       0.0;
-  // force[sin psi]: flap 1, dh1'
+  // A15, sin psi: flap 1 equation, coefficient of dh1'
   out.force[68] =
       -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
-  // force[sin psi]: flap 1, dh2'
+  // A16, sin psi: flap 1 equation, coefficient of dh2'
   out.force[69] =
       -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam2;
-  // force[sin psi]: flap 1, dh1
+  // A17, sin psi: flap 1 equation, coefficient of dh1
   out.force[70] =
       0.0;
-  // force[sin psi]: flap 1, dh2
+  // A18, sin psi: flap 1 equation, coefficient of dh2
   out.force[71] =
       0.0;
-  // force[sin psi]: flap 2, dg1'
+  // A21, sin psi: flap 2 equation, coefficient of dg1'
   out.force[72] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta2;
-  // force[sin psi]: flap 2, dg2'
+  // A22, sin psi: flap 2 equation, coefficient of dg2'
   out.force[73] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta2_eta2;
-  // force[sin psi]: flap 2, dg1
+  // A23, sin psi: flap 2 equation, coefficient of dg1
   out.force[74] =
       0.0;
-  // force[sin psi]: flap 2, dg2
+  // A24, sin psi: flap 2 equation, coefficient of dg2
   out.force[75] =
       0.0;
-  // force[sin psi]: flap 2, dh1'
+  // A25, sin psi: flap 2 equation, coefficient of dh1'
   out.force[76] =
       -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta2_gam1;
-  // force[sin psi]: flap 2, dh2'
+  // A26, sin psi: flap 2 equation, coefficient of dh2'
   out.force[77] =
       -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta2_gam2;
-  // force[sin psi]: flap 2, dh1
+  // A27, sin psi: flap 2 equation, coefficient of dh1
   out.force[78] =
       0.0;
-  // force[sin psi]: flap 2, dh2
+  // A28, sin psi: flap 2 equation, coefficient of dh2
   out.force[79] =
       0.0;
-  // force[sin psi]: lag 1, dg1'
+  // A51, sin psi: lag 1 equation, coefficient of dg1'
   out.force[80] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
-  // force[sin psi]: lag 1, dg2'
+  // A52, sin psi: lag 1 equation, coefficient of dg2'
   out.force[81] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta2_gam1;
-  // force[sin psi]: lag 1, dg1
+  // A53, sin psi: lag 1 equation, coefficient of dg1
   out.force[82] =
       0.0;
-  // force[sin psi]: lag 1, dg2
+  // A54, sin psi: lag 1 equation, coefficient of dg2
   out.force[83] =
       0.0;
-  // force[sin psi]: lag 1, dh1'
+  // A55, sin psi: lag 1 equation, coefficient of dh1'
   out.force[84] =
       -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam1_gam1;
-  // force[sin psi]: lag 1, dh2'
+  // A56, sin psi: lag 1 equation, coefficient of dh2'
   out.force[85] =
       -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam1_gam2;
-  // force[sin psi]: lag 1, dh1
+  // A57, sin psi: lag 1 equation, coefficient of dh1
   out.force[86] =
       0.0;
-  // force[sin psi]: lag 1, dh2
+  // A58, sin psi: lag 1 equation, coefficient of dh2
   out.force[87] =
       0.0;
-  // force[sin psi]: lag 2, dg1'
+  // A61, sin psi: lag 2 equation, coefficient of dg1'
   out.force[88] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam2;
-  // force[sin psi]: lag 2, dg2'
+  // A62, sin psi: lag 2 equation, coefficient of dg2'
   out.force[89] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta2_gam2;
-  // force[sin psi]: lag 2, dg1
+  // A63, sin psi: lag 2 equation, coefficient of dg1
   out.force[90] =
       0.0;
-  // force[sin psi]: lag 2, dg2
+  // A64, sin psi: lag 2 equation, coefficient of dg2
   out.force[91] =
       0.0;
-  // force[sin psi]: lag 2, dh1'
+  // A65, sin psi: lag 2 equation, coefficient of dh1'
   out.force[92] =
       -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam1_gam2;
-  // force[sin psi]: lag 2, dh2'
+  // A66, sin psi: lag 2 equation, coefficient of dh2'
   out.force[93] =
       -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam2_gam2;
-  // force[sin psi]: lag 2, dh1
+  // A67, sin psi: lag 2 equation, coefficient of dh1
   out.force[94] =
       0.0;
-  // force[sin psi]: lag 2, dh2
+  // A68, sin psi: lag 2 equation, coefficient of dh2
   out.force[95] =
       0.0;
-  // forcing[sin psi]: flap 1
+  // f1, sin psi: flap 1 equation, state-independent
   out.forcing[8] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1
       + s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1;
-  // forcing[sin psi]: flap 2
+  // f2, sin psi: flap 2 equation, state-independent
   out.forcing[9] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta2
       + s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta2;
-  // forcing[sin psi]: lag 1
+  // f5, sin psi: lag 1 equation, state-independent
   out.forcing[10] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1
       + s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1;
-  // forcing[sin psi]: lag 2
+  // f6, sin psi: lag 2 equation, state-independent
   out.forcing[11] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam2
       + s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam2;
-  // force[cos 2psi]: flap 1, dg1'
+  // A11, cos 2psi: flap 1 equation, coefficient of dg1'
   out.force[96] =
       0.0;
-  // force[cos 2psi]: flap 1, dg2'
+  // A12, cos 2psi: flap 1 equation, coefficient of dg2'
   out.force[97] =
       0.0;
-  // force[cos 2psi]: flap 1, dg1
+  // A13, cos 2psi: flap 1 equation, coefficient of dg1
   out.force[98] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta1_deta1_dgam2;
-  // force[cos 2psi]: flap 1, dg2
+  // A14, cos 2psi: flap 1 equation, coefficient of dg2
   out.force[99] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta1_deta2_dgam2;
-  // force[cos 2psi]: flap 1, dh1'
+  // A15, cos 2psi: flap 1 equation, coefficient of dh1'
   out.force[100] =
       0.0;
-  // force[cos 2psi]: flap 1, dh2'
+  // A16, cos 2psi: flap 1 equation, coefficient of dh2'
   out.force[101] =
       0.0;
-  // force[cos 2psi]: flap 1, dh1
+  // A17, cos 2psi: flap 1 equation, coefficient of dh1
   out.force[102] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
-  // force[cos 2psi]: flap 1, dh2
+  // A18, cos 2psi: flap 1 equation, coefficient of dh2
   out.force[103] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam2;
-  // force[cos 2psi]: flap 2, dg1'
+  // A21, cos 2psi: flap 2 equation, coefficient of dg1'
   out.force[104] =
       0.0;
-  // force[cos 2psi]: flap 2, dg2'
+  // A22, cos 2psi: flap 2 equation, coefficient of dg2'
   out.force[105] =
       0.0;
-  // force[cos 2psi]: flap 2, dg1
+  // A23, cos 2psi: flap 2 equation, coefficient of dg1
   out.force[106] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta2_deta1_dgam2;
-  // force[cos 2psi]: flap 2, dg2
+  // A24, cos 2psi: flap 2 equation, coefficient of dg2
   out.force[107] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta2_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_2 * s.A_eta2_deta2_dgam2;
-  // force[cos 2psi]: flap 2, dh1'
+  // A25, cos 2psi: flap 2 equation, coefficient of dh1'
   out.force[108] =
       0.0;
-  // force[cos 2psi]: flap 2, dh2'
+  // A26, cos 2psi: flap 2 equation, coefficient of dh2'
   out.force[109] =
       0.0;
-  // force[cos 2psi]: flap 2, dh1
+  // A27, cos 2psi: flap 2 equation, coefficient of dh1
   out.force[110] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2_dgam1;
-  // force[cos 2psi]: flap 2, dh2
+  // A28, cos 2psi: flap 2 equation, coefficient of dh2
   out.force[111] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta2_deta1_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2_dgam2;
-  // force[cos 2psi]: lag 1, dg1'
+  // A51, cos 2psi: lag 1 equation, coefficient of dg1'
   out.force[112] =
       0.0;
-  // force[cos 2psi]: lag 1, dg2'
+  // A52, cos 2psi: lag 1 equation, coefficient of dg2'
   out.force[113] =
       0.0;
-  // force[cos 2psi]: lag 1, dg1
+  // A53, cos 2psi: lag 1 equation, coefficient of dg1
   out.force[114] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta1_deta2_gam1
@@ -1383,7 +1400,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta1_gam1_dgam2;
-  // force[cos 2psi]: lag 1, dg2
+  // A54, cos 2psi: lag 1 equation, coefficient of dg2
   out.force[115] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta2_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta2_deta2_gam1
@@ -1391,31 +1408,31 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta2_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta2_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta2_gam1_dgam2;
-  // force[cos 2psi]: lag 1, dh1'
+  // A55, cos 2psi: lag 1 equation, coefficient of dh1'
   out.force[116] =
       0.0;
-  // force[cos 2psi]: lag 1, dh2'
+  // A56, cos 2psi: lag 1 equation, coefficient of dh2'
   out.force[117] =
       0.0;
-  // force[cos 2psi]: lag 1, dh1
+  // A57, cos 2psi: lag 1 equation, coefficient of dh1
   out.force[118] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam1;
-  // force[cos 2psi]: lag 1, dh2
+  // A58, cos 2psi: lag 1 equation, coefficient of dh2
   out.force[119] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam2;
-  // force[cos 2psi]: lag 2, dg1'
+  // A61, cos 2psi: lag 2 equation, coefficient of dg1'
   out.force[120] =
       0.0;
-  // force[cos 2psi]: lag 2, dg2'
+  // A62, cos 2psi: lag 2 equation, coefficient of dg2'
   out.force[121] =
       0.0;
-  // force[cos 2psi]: lag 2, dg1
+  // A63, cos 2psi: lag 2 equation, coefficient of dg1
   out.force[122] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta1_deta2_gam2
@@ -1423,7 +1440,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta1_gam2_dgam2;
-  // force[cos 2psi]: lag 2, dg2
+  // A64, cos 2psi: lag 2 equation, coefficient of dg2
   out.force[123] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta2_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_deta2_deta2_gam2
@@ -1431,25 +1448,25 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta2_gam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta2_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_deta2_gam2_dgam2;
-  // force[cos 2psi]: lag 2, dh1'
+  // A65, cos 2psi: lag 2 equation, coefficient of dh1'
   out.force[124] =
       0.0;
-  // force[cos 2psi]: lag 2, dh2'
+  // A66, cos 2psi: lag 2 equation, coefficient of dh2'
   out.force[125] =
       0.0;
-  // force[cos 2psi]: lag 2, dh1
+  // A67, cos 2psi: lag 2 equation, coefficient of dh1
   out.force[126] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam2_dgam1;
-  // force[cos 2psi]: lag 2, dh2
+  // A68, cos 2psi: lag 2 equation, coefficient of dh2
   out.force[127] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam2_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam2_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam2_dgam2;
-  // forcing[cos 2psi]: flap 1
+  // f1, cos 2psi: flap 1 equation, state-independent
   out.forcing[12] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta1_deta1_dgam1
@@ -1460,7 +1477,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_2 * s.A_eta1_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_2 * s.A_eta1_dgam2;
-  // forcing[cos 2psi]: flap 2
+  // f2, cos 2psi: flap 2 equation, state-independent
   out.forcing[13] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta2_deta1_dgam1
@@ -1471,7 +1488,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_2 * s.A_eta2_dgam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_2 * s.A_eta2_dgam2;
-  // forcing[cos 2psi]: lag 1
+  // f5, cos 2psi: lag 1 equation, state-independent
   out.forcing[14] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_2 * s.A_deta1_deta2_gam1
@@ -1492,7 +1509,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_2 * s.A_gam1_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_2 * s.A_gam1_dgam2;
-  // forcing[cos 2psi]: lag 2
+  // f6, cos 2psi: lag 2 equation, state-independent
   out.forcing[15] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_2 * s.A_deta1_deta2_gam2
@@ -1513,103 +1530,103 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_1 * s.A_gam2_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_2 * s.A_gam2_dgam2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_2 * s.A_gam2_dgam2;
-  // force[sin 2psi]: flap 1, dg1'
+  // A11, sin 2psi: flap 1 equation, coefficient of dg1'
   out.force[128] =
       0.0;
-  // force[sin 2psi]: flap 1, dg2'
+  // A12, sin 2psi: flap 1 equation, coefficient of dg2'
   out.force[129] =
       0.0;
-  // force[sin 2psi]: flap 1, dg1
+  // A13, sin 2psi: flap 1 equation, coefficient of dg1
   out.force[130] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta1_deta1;
-  // force[sin 2psi]: flap 1, dg2
+  // A14, sin 2psi: flap 1 equation, coefficient of dg2
   out.force[131] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta1_deta2;
-  // force[sin 2psi]: flap 1, dh1'
+  // A15, sin 2psi: flap 1 equation, coefficient of dh1'
   out.force[132] =
       0.0;
-  // force[sin 2psi]: flap 1, dh2'
+  // A16, sin 2psi: flap 1 equation, coefficient of dh2'
   out.force[133] =
       0.0;
-  // force[sin 2psi]: flap 1, dh1
+  // A17, sin 2psi: flap 1 equation, coefficient of dh1
   out.force[134] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1_dgam1;
-  // force[sin 2psi]: flap 1, dh2
+  // A18, sin 2psi: flap 1 equation, coefficient of dh2
   out.force[135] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1_dgam2;
-  // force[sin 2psi]: flap 2, dg1'
+  // A21, sin 2psi: flap 2 equation, coefficient of dg1'
   out.force[136] =
       0.0;
-  // force[sin 2psi]: flap 2, dg2'
+  // A22, sin 2psi: flap 2 equation, coefficient of dg2'
   out.force[137] =
       0.0;
-  // force[sin 2psi]: flap 2, dg1
+  // A23, sin 2psi: flap 2 equation, coefficient of dg1
   out.force[138] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta2_deta1;
-  // force[sin 2psi]: flap 2, dg2
+  // A24, sin 2psi: flap 2 equation, coefficient of dg2
   out.force[139] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta2_deta2;
-  // force[sin 2psi]: flap 2, dh1'
+  // A25, sin 2psi: flap 2 equation, coefficient of dh1'
   out.force[140] =
       0.0;
-  // force[sin 2psi]: flap 2, dh2'
+  // A26, sin 2psi: flap 2 equation, coefficient of dh2'
   out.force[141] =
       0.0;
-  // force[sin 2psi]: flap 2, dh1
+  // A27, sin 2psi: flap 2 equation, coefficient of dh1
   out.force[142] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta2_dgam1;
-  // force[sin 2psi]: flap 2, dh2
+  // A28, sin 2psi: flap 2 equation, coefficient of dh2
   out.force[143] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta2_dgam2;
-  // force[sin 2psi]: lag 1, dg1'
+  // A51, sin 2psi: lag 1 equation, coefficient of dg1'
   out.force[144] =
       0.0;
-  // force[sin 2psi]: lag 1, dg2'
+  // A52, sin 2psi: lag 1 equation, coefficient of dg2'
   out.force[145] =
       0.0;
-  // force[sin 2psi]: lag 1, dg1
+  // A53, sin 2psi: lag 1 equation, coefficient of dg1
   out.force[146] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta1_gam1;
-  // force[sin 2psi]: lag 1, dg2
+  // A54, sin 2psi: lag 1 equation, coefficient of dg2
   out.force[147] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta2_gam1;
-  // force[sin 2psi]: lag 1, dh1'
+  // A55, sin 2psi: lag 1 equation, coefficient of dh1'
   out.force[148] =
       0.0;
-  // force[sin 2psi]: lag 1, dh2'
+  // A56, sin 2psi: lag 1 equation, coefficient of dh2'
   out.force[149] =
       0.0;
-  // force[sin 2psi]: lag 1, dh1
+  // A57, sin 2psi: lag 1 equation, coefficient of dh1
   out.force[150] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1_dgam1;
-  // force[sin 2psi]: lag 1, dh2
+  // A58, sin 2psi: lag 1 equation, coefficient of dh2
   out.force[151] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1_dgam2;
-  // force[sin 2psi]: lag 2, dg1'
+  // A61, sin 2psi: lag 2 equation, coefficient of dg1'
   out.force[152] =
       0.0;
-  // force[sin 2psi]: lag 2, dg2'
+  // A62, sin 2psi: lag 2 equation, coefficient of dg2'
   out.force[153] =
       0.0;
-  // force[sin 2psi]: lag 2, dg1
+  // A63, sin 2psi: lag 2 equation, coefficient of dg1
   out.force[154] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta1_gam2;
-  // force[sin 2psi]: lag 2, dg2
+  // A64, sin 2psi: lag 2 equation, coefficient of dg2
   out.force[155] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta2_gam2;
-  // force[sin 2psi]: lag 2, dh1'
+  // A65, sin 2psi: lag 2 equation, coefficient of dh1'
   out.force[156] =
       0.0;
-  // force[sin 2psi]: lag 2, dh2'
+  // A66, sin 2psi: lag 2 equation, coefficient of dh2'
   out.force[157] =
       0.0;
-  // force[sin 2psi]: lag 2, dh1
+  // A67, sin 2psi: lag 2 equation, coefficient of dh1
   out.force[158] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam2_dgam1;
-  // force[sin 2psi]: lag 2, dh2
+  // A68, sin 2psi: lag 2 equation, coefficient of dh2
   out.force[159] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam2_dgam2;
-  // forcing[sin 2psi]: flap 1
+  // f1, sin 2psi: flap 1 equation, state-independent
   out.forcing[16] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1
@@ -1617,7 +1634,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta1_deta2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_eta1_dgam2;
-  // forcing[sin 2psi]: flap 2
+  // f2, sin 2psi: flap 2 equation, state-independent
   out.forcing[17] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta2
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta2
@@ -1625,7 +1642,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_2 * s.A_eta2_deta2
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_eta2_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_2 * s.A_eta2_dgam2;
-  // forcing[sin 2psi]: lag 1
+  // f5, sin 2psi: lag 1 equation, state-independent
   out.forcing[18] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam1
@@ -1633,7 +1650,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.h0_2 * s.A_gam1_dgam2;
-  // forcing[sin 2psi]: lag 2
+  // f6, sin 2psi: lag 2 equation, state-independent
   out.forcing[19] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam2
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_2 * s.A_deta2_gam2
@@ -1646,58 +1663,78 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
 // Hover static equilibrium S q0 = c (eqs 2.27-2.32).
 void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOutputs& out) {
   const Symbols s(in);
+  // S[1,1]: flap 1 equation, coefficient of g0_1
   out.S[0] =
       s.es_flap_1_1
       + s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
+  // S[1,2]: flap 1 equation, coefficient of g0_2
   out.S[1] =
       s.es_flap_1_2;
+  // S[1,3]: flap 1 equation, coefficient of h0_1
   out.S[2] =
       -s.ecs_flap_lag_1_1;
+  // S[1,4]: flap 1 equation, coefficient of h0_2
   out.S[3] =
       -s.ecs_flap_lag_1_2;
+  // c[1]: flap 1 equation, hover load
   out.c[0] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta1
       - s.precone * s.S_deta1__tail_m_arm
       - s.droop * s.S_deta1__tail_m_arm;
+  // S[2,1]: flap 2 equation, coefficient of g0_1
   out.S[4] =
       s.es_flap_2_1;
+  // S[2,2]: flap 2 equation, coefficient of g0_2
   out.S[5] =
       s.es_flap_2_2
       + s.omega_flap_2 * s.omega_flap_2 * s.S_m_eta2_eta2;
+  // S[2,3]: flap 2 equation, coefficient of h0_1
   out.S[6] =
       -s.ecs_flap_lag_2_1;
+  // S[2,4]: flap 2 equation, coefficient of h0_2
   out.S[7] =
       -s.ecs_flap_lag_2_2;
+  // c[2]: flap 2 equation, hover load
   out.c[1] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta2
       - s.precone * s.S_deta2__tail_m_arm
       - s.droop * s.S_deta2__tail_m_arm;
+  // S[3,1]: lag 1 equation, coefficient of g0_1
   out.S[8] =
       -s.ecs_lag_flap_1_1;
+  // S[3,2]: lag 1 equation, coefficient of g0_2
   out.S[9] =
       -s.ecs_lag_flap_1_2;
+  // S[3,3]: lag 1 equation, coefficient of h0_1
   out.S[10] =
       -s.es_lag_1_1
       + s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
+  // S[3,4]: lag 1 equation, coefficient of h0_2
   out.S[11] =
       -s.es_lag_1_2;
+  // c[3]: lag 1 equation, hover load
   out.c[2] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.A_x2_gam1
       - s.theta * s.droop * s.S_dgam1__tail_m_arm
       + s.theta * s.droop * s.S_m_gam1_x0;
+  // S[4,1]: lag 2 equation, coefficient of g0_1
   out.S[12] =
       -s.ecs_lag_flap_2_1;
+  // S[4,2]: lag 2 equation, coefficient of g0_2
   out.S[13] =
       -s.ecs_lag_flap_2_2;
+  // S[4,3]: lag 2 equation, coefficient of h0_1
   out.S[14] =
       -s.es_lag_2_1;
+  // S[4,4]: lag 2 equation, coefficient of h0_2
   out.S[15] =
       -s.es_lag_2_2
       + s.omega_lag_2 * s.omega_lag_2 * s.S_m_gam2_gam2;
+  // c[4]: lag 2 equation, hover load
   out.c[3] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam2
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam2
@@ -1720,6 +1757,7 @@ const flaplag::model::ModelDescriptor& flaplag_model_paper_2x2() {
       2, 2, 5,
       114, g::kAero,
       54, g::kStructural,
+      &g::mass,
       &g::coefficients,
       &g::equilibrium};
   return d;

@@ -61,6 +61,26 @@ const model::StructuralIntegral kStructural[] = {
 
 const char kSpecText[] = "description = \"NASA CR-132431 model: flap O(eps^2), lag O(eps^3), radial flow on (Figs 3-5, 10-17)\"\n[modes]\nflap = 1\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 3\n[terms]\nradial_flow = true\n";
 
+// Generalized mass: coefficient of the accelerations q'' = [dg1''..dgM'', dh1''..dhN''] in
+// each equation (inertia terms of eqs 2.16-2.17).  Structural integrals only: independent
+// of mu and of the hover state.
+void mass(const model::CoefficientInputs& in, double* out) {
+  const double S_m_eta1_eta1 = in.structural[8];  // M_F11
+  const double S_m_gam1_gam1 = in.structural[12];  // M_L11
+  // mass: flap 1 equation, coefficient of dg1''
+  out[0] =
+      S_m_eta1_eta1;
+  // mass: flap 1 equation, coefficient of dh1''
+  out[1] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dg1''
+  out[2] =
+      0.0;
+  // mass: lag 1 equation, coefficient of dh1''
+  out[3] =
+      S_m_gam1_gam1;
+}
+
 // Named inputs: scalars, spanwise aerodynamic integrals (A_*), generalized masses (S_*).
 struct Symbols {
   explicit Symbols(const model::CoefficientInputs& in);
@@ -188,57 +208,50 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 }
 
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = 2, states 2n = 4, harmonics H = 5.
+// Each slot is labelled with the entry of the first-order form y' = A(psi) y + f(psi) it
+// feeds (A = mass^-1 force, f = mass^-1 forcing; eqs 2.36-2.37) and the harmonic it
+// multiplies.  Row i of A is the row of the equation's rate (flap k -> k, lag m -> 2M + m),
+// column j the state column; for M = N = 1 these are A11..A14, A31..A34 (Appendix C.2)
+// and f1, f3 (Appendix C.3), and A_ij = force / M_F1 (flap) or / M_L1 (lag).
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
-  // mass: flap 1, dg1''
-  out.mass[0] =
-      s.S_m_eta1_eta1;
-  // mass: flap 1, dh1''
-  out.mass[1] =
-      0.0;
-  // mass: lag 1, dg1''
-  out.mass[2] =
-      0.0;
-  // mass: lag 1, dh1''
-  out.mass[3] =
-      s.S_m_gam1_gam1;
-  // force[1]: flap 1, dg1'
+  // A11, const: flap 1 equation, coefficient of dg1'
   out.force[0] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.A_x1_eta1_eta1
       - (2.0) * s.omega_flap_1 * s.damping_flap_1 * s.S_m_eta1_eta1;
-  // force[1]: flap 1, dg1
+  // A12, const: flap 1 equation, coefficient of dg1
   out.force[1] =
       -s.es_flap_1_1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1
       - s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
-  // force[1]: flap 1, dh1'
+  // A13, const: flap 1 equation, coefficient of dh1'
   out.force[2] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
       + (2.0) * s.precone * s.S_deta1__tail_m_gam1
       + (2.0) * s.droop * s.S_deta1__tail_m_gam1
       + (2.0) * s.g0_1 * s.S_deta1_deta1__tail_m_gam1;
-  // force[1]: flap 1, dh1
+  // A14, const: flap 1 equation, coefficient of dh1
   out.force[3] =
       s.ecs_flap_lag_1_1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
-  // force[1]: lag 1, dg1'
+  // A31, const: lag 1 equation, coefficient of dg1'
   out.force[4] =
       -s.lock * s.lr * s.lr * s.lr * s.inflow * s.A_eta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.A_x1_eta1_gam1
       - (2.0) * s.precone * s.S_m_eta1_gam1
       - (2.0) * s.droop * s.S_m_eta1_gam1
       - (2.0) * s.g0_1 * s.S_m_gam1__head_deta1_deta1;
-  // force[1]: lag 1, dg1
+  // A32, const: lag 1 equation, coefficient of dg1
   out.force[5] =
       s.ecs_lag_flap_1_1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam1_dgam1;
-  // force[1]: lag 1, dh1'
+  // A33, const: lag 1 equation, coefficient of dh1'
   out.force[6] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.inflow * s.A_gam1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.A_x1_gam1_gam1
@@ -246,14 +259,14 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (2.0) * s.h0_1 * s.S_dgam1_dgam1__tail_m_gam1
       - (2.0) * s.h0_1 * s.S_m_gam1__head_dgam1_dgam1
       - (2.0) * s.omega_lag_1 * s.damping_lag_1 * s.S_m_gam1_gam1;
-  // force[1]: lag 1, dh1
+  // A34, const: lag 1 equation, coefficient of dh1
   out.force[7] =
       s.es_lag_1_1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam1
       - s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
-  // forcing[1]: flap 1
+  // f1, const: flap 1 equation, state-independent
   out.forcing[0] =
       -s.g0_1 * s.es_flap_1_1
       + s.h0_1 * s.ecs_flap_lag_1_1
@@ -266,7 +279,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.precone * s.S_deta1__tail_m_arm
       - s.droop * s.S_deta1__tail_m_arm
       - s.g0_1 * s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
-  // forcing[1]: lag 1
+  // f3, const: lag 1 equation, state-independent
   out.forcing[1] =
       s.g0_1 * s.ecs_lag_flap_1_1
       + s.h0_1 * s.es_lag_1_1
@@ -286,48 +299,48 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - s.theta * s.droop * s.S_dgam1__tail_m_arm
       - s.h0_1 * s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1
       + s.theta * s.droop * s.S_m_gam1_x0;
-  // force[cos psi]: flap 1, dg1'
+  // A11, cos psi: flap 1 equation, coefficient of dg1'
   out.force[8] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.h0_1 * s.A_eta1_eta1_dgam1;
-  // force[cos psi]: flap 1, dg1
+  // A12, cos psi: flap 1 equation, coefficient of dg1
   out.force[9] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.A_x1_eta1_deta1;
-  // force[cos psi]: flap 1, dh1'
+  // A13, cos psi: flap 1 equation, coefficient of dh1'
   out.force[10] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1;
-  // force[cos psi]: flap 1, dh1
+  // A14, cos psi: flap 1 equation, coefficient of dh1
   out.force[11] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1_dgam1
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1_dgam1;
-  // force[cos psi]: lag 1, dg1'
+  // A31, cos psi: lag 1 equation, coefficient of dg1'
   out.force[12] =
       -s.lock * s.lr * s.lr * s.lr * s.mu * s.g0_1 * s.A_eta1_deta1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.precone * s.mu * s.A_eta1_gam1
       - s.lock * s.lr * s.lr * s.lr * s.droop * s.mu * s.A_eta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_eta1_gam1_dgam1;
-  // force[cos psi]: lag 1, dg1
+  // A32, cos psi: lag 1 equation, coefficient of dg1
   out.force[13] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_deta1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_deta1_gam1;
-  // force[cos psi]: lag 1, dh1'
+  // A33, cos psi: lag 1 equation, coefficient of dh1'
   out.force[14] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.g0_1 * s.A_deta1_gam1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_gam1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_gam1_gam1;
-  // force[cos psi]: lag 1, dh1
+  // A34, cos psi: lag 1 equation, coefficient of dh1
   out.force[15] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1_dgam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1_dgam1;
-  // forcing[cos psi]: flap 1
+  // f1, cos psi: flap 1 equation, state-independent
   out.forcing[2] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.h0_1 * s.A_eta1_dgam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.A_x1_eta1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.A_x1_eta1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.g0_1 * s.A_x1_eta1_deta1
       - s.lock * s.lr * s.lr * s.theta * s.mu * s.h0_1 * s.A_x1_eta1_dgam1;
-  // forcing[cos psi]: lag 1
+  // f3, cos psi: lag 1 equation, state-independent
   out.forcing[3] =
       -s.lock * s.lr * s.lr * s.inflow * s.mu * s.g0_1 * s.A_deta1_gam1
       - s.lock * s.lr * s.lr * s.inflow * s.precone * s.mu * s.A_gam1
@@ -337,76 +350,76 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.A_x1_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.A_x1_gam1
       - s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.h0_1 * s.A_x1_gam1_dgam1;
-  // force[sin psi]: flap 1, dg1'
+  // A11, sin psi: flap 1 equation, coefficient of dg1'
   out.force[16] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.A_eta1_eta1;
-  // force[sin psi]: flap 1, dg1
+  // A12, sin psi: flap 1 equation, coefficient of dg1
   out.force[17] =
       0.0;
-  // force[sin psi]: flap 1, dh1'
+  // A13, sin psi: flap 1 equation, coefficient of dh1'
   out.force[18] =
       -s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
-  // force[sin psi]: flap 1, dh1
+  // A14, sin psi: flap 1 equation, coefficient of dh1
   out.force[19] =
       0.0;
-  // force[sin psi]: lag 1, dg1'
+  // A31, sin psi: lag 1 equation, coefficient of dg1'
   out.force[20] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * s.mu * s.A_eta1_gam1;
-  // force[sin psi]: lag 1, dg1
+  // A32, sin psi: lag 1 equation, coefficient of dg1
   out.force[21] =
       0.0;
-  // force[sin psi]: lag 1, dh1'
+  // A33, sin psi: lag 1 equation, coefficient of dh1'
   out.force[22] =
       -s.lock * s.lr * s.lr * s.lr * s.cdo_a * s.mu * s.A_gam1_gam1;
-  // force[sin psi]: lag 1, dh1
+  // A34, sin psi: lag 1 equation, coefficient of dh1
   out.force[23] =
       0.0;
-  // forcing[sin psi]: flap 1
+  // f1, sin psi: flap 1 equation, state-independent
   out.forcing[4] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.mu * s.A_eta1
       + s.lock * s.lr * s.lr * s.theta * s.mu * s.A_x1_eta1;
-  // forcing[sin psi]: lag 1
+  // f3, sin psi: lag 1 equation, state-independent
   out.forcing[5] =
       (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.mu * s.A_gam1
       + s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.A_x1_gam1;
-  // force[cos 2psi]: flap 1, dg1'
+  // A11, cos 2psi: flap 1 equation, coefficient of dg1'
   out.force[24] =
       0.0;
-  // force[cos 2psi]: flap 1, dg1
+  // A12, cos 2psi: flap 1 equation, coefficient of dg1
   out.force[25] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.h0_1 * s.A_eta1_deta1_dgam1;
-  // force[cos 2psi]: flap 1, dh1'
+  // A13, cos 2psi: flap 1 equation, coefficient of dh1'
   out.force[26] =
       0.0;
-  // force[cos 2psi]: flap 1, dh1
+  // A14, cos 2psi: flap 1 equation, coefficient of dh1
   out.force[27] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1_dgam1;
-  // force[cos 2psi]: lag 1, dg1'
+  // A31, cos 2psi: lag 1 equation, coefficient of dg1'
   out.force[28] =
       0.0;
-  // force[cos 2psi]: lag 1, dg1
+  // A32, cos 2psi: lag 1 equation, coefficient of dg1
   out.force[29] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_deta1_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_deta1_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_deta1_gam1_dgam1;
-  // force[cos 2psi]: lag 1, dh1'
+  // A33, cos 2psi: lag 1 equation, coefficient of dh1'
   out.force[30] =
       0.0;
-  // force[cos 2psi]: lag 1, dh1
+  // A34, cos 2psi: lag 1 equation, coefficient of dh1
   out.force[31] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.A_gam1_dgam1;
-  // forcing[cos 2psi]: flap 1
+  // f1, cos 2psi: flap 1 equation, state-independent
   out.forcing[6] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.h0_1 * s.A_eta1_deta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1;
-  // forcing[cos 2psi]: lag 1
+  // f3, cos 2psi: lag 1 equation, state-independent
   out.forcing[7] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.g0_1 * s.A_deta1_deta1_gam1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
@@ -418,37 +431,37 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.droop * s.mu * s.mu * s.h0_1 * s.A_gam1_dgam1;
-  // force[sin 2psi]: flap 1, dg1'
+  // A11, sin 2psi: flap 1 equation, coefficient of dg1'
   out.force[32] =
       0.0;
-  // force[sin 2psi]: flap 1, dg1
+  // A12, sin 2psi: flap 1 equation, coefficient of dg1
   out.force[33] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.A_eta1_deta1;
-  // force[sin 2psi]: flap 1, dh1'
+  // A13, sin 2psi: flap 1 equation, coefficient of dh1'
   out.force[34] =
       0.0;
-  // force[sin 2psi]: flap 1, dh1
+  // A14, sin 2psi: flap 1 equation, coefficient of dh1
   out.force[35] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_eta1_dgam1;
-  // force[sin 2psi]: lag 1, dg1'
+  // A31, sin 2psi: lag 1 equation, coefficient of dg1'
   out.force[36] =
       0.0;
-  // force[sin 2psi]: lag 1, dg1
+  // A32, sin 2psi: lag 1 equation, coefficient of dg1
   out.force[37] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.A_deta1_gam1;
-  // force[sin 2psi]: lag 1, dh1'
+  // A33, sin 2psi: lag 1 equation, coefficient of dh1'
   out.force[38] =
       0.0;
-  // force[sin 2psi]: lag 1, dh1
+  // A34, sin 2psi: lag 1 equation, coefficient of dh1
   out.force[39] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.cdo_a * s.mu * s.mu * s.A_gam1_dgam1;
-  // forcing[sin 2psi]: flap 1
+  // f1, sin 2psi: flap 1 equation, state-independent
   out.forcing[8] =
       -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.precone * s.mu * s.mu * s.A_eta1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.droop * s.mu * s.mu * s.A_eta1
       - (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.g0_1 * s.A_eta1_deta1
       - (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.h0_1 * s.A_eta1_dgam1;
-  // forcing[sin 2psi]: lag 1
+  // f3, sin 2psi: lag 1 equation, state-independent
   out.forcing[9] =
       (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.mu * s.mu * s.g0_1 * s.A_deta1_gam1
       + (1.0 / 4.0) * s.lock * s.lr * s.lr * s.theta * s.precone * s.mu * s.mu * s.A_gam1
@@ -459,21 +472,27 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
 // Hover static equilibrium S q0 = c (eqs 2.27-2.32).
 void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOutputs& out) {
   const Symbols s(in);
+  // S[1,1]: flap 1 equation, coefficient of g0_1
   out.S[0] =
       s.es_flap_1_1
       + s.omega_flap_1 * s.omega_flap_1 * s.S_m_eta1_eta1;
+  // S[1,2]: flap 1 equation, coefficient of h0_1
   out.S[1] =
       -s.ecs_flap_lag_1_1;
+  // c[1]: flap 1 equation, hover load
   out.c[0] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.A_x1_eta1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.A_x2_eta1
       - s.precone * s.S_deta1__tail_m_arm
       - s.droop * s.S_deta1__tail_m_arm;
+  // S[2,1]: lag 1 equation, coefficient of g0_1
   out.S[2] =
       -s.ecs_lag_flap_1_1;
+  // S[2,2]: lag 1 equation, coefficient of h0_1
   out.S[3] =
       -s.es_lag_1_1
       + s.omega_lag_1 * s.omega_lag_1 * s.S_m_gam1_gam1;
+  // c[2]: lag 1 equation, hover load
   out.c[1] =
       -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.inflow * s.inflow * s.A_gam1
       + (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * s.inflow * s.A_x1_gam1
@@ -496,6 +515,7 @@ const flaplag::model::ModelDescriptor& flaplag_model_paper() {
       1, 1, 5,
       27, g::kAero,
       14, g::kStructural,
+      &g::mass,
       &g::coefficients,
       &g::equilibrium};
   return d;

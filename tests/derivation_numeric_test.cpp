@@ -10,8 +10,8 @@
 #include <cmath>
 #include <string>
 
-#include "flaplag/core/constants.h"
 #include "flaplag/blade/blade.h"
+#include "flaplag/core/constants.h"
 #include "flaplag/model_api.h"
 #include "flaplag_derive/derive.h"
 #include "flaplag_derive/spec.h"
@@ -20,7 +20,6 @@ namespace fd = flaplag::derive;
 namespace fm = flaplag::model;
 
 namespace {
-
 
 // Eq 4.1 and its slope, coded independently of the runtime.
 double eta(double x) { return -(1.0 / 3.0) * (1.0 - 4.0 * x - std::pow(1.0 - x, 4)); }
@@ -181,8 +180,8 @@ LinearAero compiled_aero(const fm::ModelDescriptor& m, const Operating& o, doubl
   in.es_flap = in.es_lag = in.ecs_flap_lag = in.ecs_lag_flap = zeros.data();
   in.aero = vals.data();
   in.structural = structural.data();
-  std::vector<double> mass(4), force(m.n_harmonics * 2 * 4), forcing(m.n_harmonics * 2);
-  m.coefficients(in, {mass.data(), force.data(), forcing.data()});
+  std::vector<double> force(m.n_harmonics * 2 * 4), forcing(m.n_harmonics * 2);
+  m.coefficients(in, {force.data(), forcing.data()});
   LinearAero r;
   for (int h = 0; h < m.n_harmonics; ++h) {
     const double b = basis(h, psi);

@@ -161,8 +161,9 @@ TEST(Floquet, ExactSystemsExponentsAreEigenvaluesOfB) {
 // ||N||_F ||E||_F + ||E||_F^2 / 2 (2 x 2: det(N + E) = tr(adj(N) E) + det E), hence
 //   |nu| <= |tr E| / 2 + sqrt(|tr E|^2 / 4 + ||N||_F ||E||_F + ||E||_F^2 / 2):
 // the exponents are accurate only to about the square root of the method error (RK4 N = 200:
-// ||E|| ~ 3e-7, |nu| ~ 1e-3), while the mean of the pair, tr(Phi + E) / 2, keeps first-order
-// accuracy.  The bound applies to zeta and to omega (|d ln Lambda| <= |nu| / (|Lambda| - |nu|)).
+// ||E|| ~ 3e-7, |nu| = 3e-4 within the bound 1e-3), while the mean of the pair, tr(Phi + E) / 2,
+// keeps first-order accuracy.  The bound applies to zeta and to omega (|d ln Lambda| <= |nu| /
+// (|Lambda| - |nu|)).
 TEST(Floquet, DefectiveMultiplierToSquareRootOfMethodError) {
   Eigen::MatrixXd B(2, 2);
   B << -0.1, 1.0, 0.0, -0.1;

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -17,6 +19,7 @@
 #include "flaplag/model_api.h"
 #include "flaplag_derive/derive.h"
 #include "flaplag_derive/emit.h"
+#include "flaplag_derive/paper_print.h"
 #include "flaplag_derive/spec.h"
 
 namespace fd = flaplag::derive;
@@ -151,7 +154,8 @@ TEST_P(GeneratedModel, CompiledCodeEqualsGiNaCEvaluation) {
   for (unsigned seed : {1u, 2u, 3u}) {
     RandomInputs r(dm, seed);
     std::vector<double> mass(n * n), force(dm.H * n * 2 * n), forcing(dm.H * n), S(n * n), c(n);
-    cm->coefficients(r.inputs(), {mass.data(), force.data(), forcing.data()});
+    cm->mass(r.inputs(), mass.data());
+    cm->coefficients(r.inputs(), {force.data(), forcing.data()});
     cm->equilibrium(r.inputs(), {S.data(), c.data()});
     const auto sub = r.substitution(dm);
     expect_slots(dm.mass, mass, sub, "mass");
@@ -159,6 +163,16 @@ TEST_P(GeneratedModel, CompiledCodeEqualsGiNaCEvaluation) {
     expect_slots(dm.forcing, forcing, sub, "forcing");
     expect_slots(dm.S, S, sub, "S");
     expect_slots(dm.c, c, sub, "c");
+    // The mass reads the structural integrals only: the runtime evaluates it once, before the
+    // hover state is known.  Every other input is NaN or null here.
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    fm::CoefficientInputs only{};
+    only.lock = only.lr = only.theta = only.inflow = nan;
+    only.precone = only.droop = only.cdo_a = only.mu = nan;
+    only.structural = r.structural.data();
+    std::vector<double> structural_only(n * n);
+    cm->mass(only, structural_only.data());
+    EXPECT_EQ(structural_only, mass);
   }
 }
 
@@ -313,6 +327,172 @@ TEST(StateOrdering, HelpersFollowEquation236) {
     }
   }
   static_assert(fm::lag_displacement_index(0, 1, 1) == 3, "A14 multiplies h (eq 2.36)");
+}
+
+// ---------------------------------------------------------------- differences from print
+
+namespace {
+
+fd::Term* term_named(fd::DerivedModel& m, std::vector<fd::Slot>& slots, int slot,
+                     const std::string& paper, const std::string& scalar) {
+  for (auto& t : slots[slot].terms) {
+    if (t.paper_name != paper) continue;
+    for (const auto& [idx, p] : t.scalars) {
+      if (m.scalars[idx].name == scalar) return &t;
+    }
+  }
+  ADD_FAILURE() << "no term " << paper << " with " << scalar << " in slot " << slot;
+  static fd::Term none;
+  return &none;
+}
+
+int integral_named(const std::vector<fd::IntegralInfo>& list, const std::string& paper) {
+  for (size_t j = 0; j < list.size(); ++j) {
+    if (list[j].paper_name.find(paper) != std::string::npos) return static_cast<int>(j);
+  }
+  ADD_FAILURE() << "no integral " << paper;
+  return 0;
+}
+
+std::map<std::string, fd::PaperCheck> statuses(const fd::DerivedModel& m) {
+  std::map<std::string, fd::PaperCheck> s;
+  for (const auto& d : fd::paper_differences(m)) s[d.id] = d.status;
+  return s;
+}
+
+// One deliberate error per entry, each the printed form the entry says is wrong.
+struct Alteration {
+  const char* id;
+  std::function<void(fd::DerivedModel&)> alter;
+};
+
+const fd::DerivedModel& paper_model() {
+  static const fd::DerivedModel m = fd::derive_model(spec_of("paper"));
+  return m;
+}
+
+// slot indices of the 1 x 1 paper model
+int force_slot(int h, int eq, int col) { return (h * 2 + eq) * 4 + col; }
+int forcing_slot(int h, int eq) { return h * 2 + eq; }
+constexpr int kConst = 0, kCos = 1, kCos2 = 3, kSin2 = 4, kFlap = 0, kLag = 1;
+
+const std::vector<Alteration>& alterations() {
+  using FK = fd::FactorKind;
+  static const std::vector<Alteration> a = {
+      {"P_ikm",  // the printed moment arm x1 inside the Coriolis tension integral
+       [](fd::DerivedModel& m) {
+         m.structural_keys[integral_named(m.structural, "P_111")].inner_factors.push_back(
+             {FK::X0, 0});
+       }},
+      {"B8_im",  // printed weight gamma_i instead of its slope
+       [](fd::DerivedModel& m) {
+         m.structural_keys[integral_named(m.structural, "B8_11")].outer[0].kind = FK::Gamma;
+       }},
+      {"B10_i",
+       [](fd::DerivedModel& m) {
+         m.structural_keys[integral_named(m.structural, "B10_1")].outer[0].kind = FK::Gamma;
+       }},
+      {"F23_ikm",  // printed eta_i eta_k gamma_m' (= F24)
+       [](fd::DerivedModel& m) {
+         m.aero_keys[integral_named(m.aero, "F23_111")].factors = {
+             {FK::Eta, 0}, {FK::Eta, 0}, {FK::GammaPrime, 0}};
+       }},
+      {"S_imr",  // h0 (2 S + 2 M_gamma): the Coriolis pair would not cancel
+       [](fd::DerivedModel& m) {
+         auto* t = term_named(m, m.force, force_slot(kConst, kLag, 2), "Mgamma_111", "h0_1");
+         t->coef = -t->coef;
+       }},
+      {"A31",  // the lag row divided by the flap mass
+       [](fd::DerivedModel& m) { m.mass[1 * 2 + 1] = m.mass[0]; }},
+      {"f1 F22 lambda",
+       [](fd::DerivedModel& m) {
+         auto* t = term_named(m, m.forcing, forcing_slot(kCos, kFlap), "F22_11", "inflow");
+         t->coef = -t->coef;
+       }},
+      {"f1 F22 theta",
+       [](fd::DerivedModel& m) {
+         auto* t = term_named(m, m.forcing, forcing_slot(kSin2, kFlap), "F22_11", "theta");
+         t->coef = -t->coef;
+       }},
+      {"f1 F22 beta",
+       [](fd::DerivedModel& m) {
+         auto* t = term_named(m, m.forcing, forcing_slot(kConst, kFlap), "F22_11", "precone");
+         t->coef = -t->coef;
+       }},
+      {"f3 L2 drag",  // printed (1 + cos 2psi)
+       [](fd::DerivedModel& m) {
+         auto* t = term_named(m, m.forcing, forcing_slot(kCos2, kLag), "L2_1", "cdo_a");
+         t->coef = -t->coef;
+       }},
+      {"f3 L21",
+       [](fd::DerivedModel& m) {
+         auto* t = term_named(m, m.forcing, forcing_slot(kConst, kLag), "L21_111", "theta");
+         t->coef = -t->coef;
+       }},
+      {"c L4",  // printed L4 + C_Do/a: a drag term without spanwise integral
+       [](fd::DerivedModel& m) {
+         fd::Term bare = *term_named(m, m.c, kLag, "L4_1", "cdo_a");
+         bare.ref = fd::IntegralRef::None;
+         bare.integral = -1;
+         bare.paper_name.clear();
+         m.c[kLag].terms.push_back(bare);
+       }},
+      {"eq 2.34 E^cs",
+       [](fd::DerivedModel& m) {
+         for (auto& t : m.force[force_slot(kConst, kFlap, 3)].terms) {
+           if (t.ref == fd::IntegralRef::None) t.coef = -t.coef;
+         }
+       }},
+      {"A_F scale",  // (gamma/2)(l/R)^2 F1 theta printed as gamma (l/R)^2 F1 theta
+       [](fd::DerivedModel& m) {
+         term_named(m, m.forcing, forcing_slot(kConst, kFlap), "F1_1", "theta")->coef *= 2;
+       }},
+      {"L_z F6",  // printed eta_k instead of eta_k'
+       [](fd::DerivedModel& m) {
+         m.aero_keys[integral_named(m.aero, "F6_11")].factors = {{FK::Eta, 0}, {FK::Eta, 0}};
+       }},
+      {"F15 L18",
+       [](fd::DerivedModel& m) { m.aero[integral_named(m.aero, "F9_11")].paper_name = "F15_11"; }},
+  };
+  return a;
+}
+
+}  // namespace
+
+// The paper model reproduces every corrected entry; no shipped model contradicts one.
+TEST(PaperDifferences, PaperModelConfirmsEveryEntryAndNoModelContradictsOne) {
+  for (const auto& [id, status] : statuses(paper_model())) {
+    EXPECT_EQ(status, fd::PaperCheck::Confirmed) << id;
+  }
+  for (const auto& name : compiled_names()) {
+    for (const auto& d : fd::paper_differences(fd::derive_model(spec_of(name)))) {
+      EXPECT_NE(d.status, fd::PaperCheck::Contradicted) << name << ": " << d.id;
+    }
+  }
+  // without radial flow the F22 terms do not exist: absent, not confirmed
+  const auto nrf = statuses(fd::derive_model(spec_of("no-radial-flow")));
+  EXPECT_EQ(nrf.at("f1 F22 lambda"), fd::PaperCheck::Absent);
+}
+
+// Every entry tests the derived model: the printed form, put into the model, contradicts it.
+TEST(PaperDifferences, EachEntryFailsOnTheMisprintedForm) {
+  const auto all = statuses(paper_model());
+  ASSERT_EQ(all.size(), alterations().size());
+  for (const auto& a : alterations()) {
+    ASSERT_EQ(all.count(a.id), 1u) << a.id;
+    fd::DerivedModel altered = paper_model();
+    a.alter(altered);
+    const auto s = statuses(altered);
+    EXPECT_EQ(s.at(a.id), fd::PaperCheck::Contradicted) << a.id;
+    for (const auto& [id, status] : s) {
+      if (id != a.id) {
+        EXPECT_EQ(status, fd::PaperCheck::Confirmed) << a.id << " also changes " << id;
+      }
+    }
+  }
+  fd::DerivedModel altered = paper_model();
+  alterations().front().alter(altered);
+  EXPECT_NE(fd::paper_differences_section(altered).find("| CONTRADICTED |"), std::string::npos);
 }
 
 // ---------------------------------------------------------------- bad specs

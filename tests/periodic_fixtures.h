@@ -1,10 +1,14 @@
 // Periodic systems shared by the numerics tests and the transition bench (header-only, needs
 // only flaplag_numerics):
 //
-//  - rotor_like(): THE rotor-like 4x4 system whose accuracy figures transition.cc quotes;
+//  - rotor_like(): THE rotor-like 4x4 system whose accuracy figures transition.cc quotes (also
+//    timed by bench/transition_bench.cpp);
 //  - harmonics_of(): exact harmonic coefficients of a matrix trigonometric polynomial;
 //  - reducible_system(): Lyapunov-reducible systems y = P(psi) z, z' = B z, whose transition
-//    matrix P(0) e^{2 pi B} P(0)^{-1} and exponents eig(B) are known exactly.
+//    matrix P(0) e^{2 pi B} P(0)^{-1} and exponents eig(B) are known exactly; exact_cases()
+//    collects them (2 and 4 states, with and without a sector) with the Markus-Yamabe example;
+//  - scale_of(), rk4_error_model(), hsu_error_model(): a priori leading-term error models that
+//    justify the tolerances of the transition tests.
 #pragma once
 
 #include <Eigen/Dense>

@@ -26,7 +26,7 @@ std::string DerivedModel::equation_name(int row) const {
 }
 
 std::string DerivedModel::harmonic_name(int h) {
-  if (h == 0) return "1";
+  if (h == 0) return "const";
   const int k = (h + 1) / 2;
   const std::string arg = k == 1 ? "psi" : std::to_string(k) + "psi";
   return (h % 2 == 1 ? "cos " : "sin ") + arg;
@@ -223,7 +223,14 @@ DerivedModel Deriver::run() {
   for (auto& s : model_.S) s.value = 0;
   for (auto& s : model_.c) s.value = 0;
   for (const auto& [key, terms] : pending_mass_) {
-    for (const auto& t : terms) add_term(model_.mass[key.first * n + key.second], t);
+    for (const auto& t : terms) {
+      // The runtime evaluates and factors the mass once per blade (model_api.h): it must be a
+      // pure structural integral, free of mu and of the hover state.
+      if (!t.scalars.empty() || t.ref != IntegralRef::Structural) {
+        throw std::logic_error("generalized mass term with scalar inputs (" + t.origin + ")");
+      }
+      add_term(model_.mass[key.first * n + key.second], t);
+    }
   }
   for (const auto& [key, terms] : pending_force_) {
     const auto [h, eq, col] = key;

@@ -1,9 +1,11 @@
 #include "flaplag_derive/emit.h"
 
 #include <algorithm>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
+#include "flaplag_derive/paper_names.h"
 #include "flaplag_derive/paper_print.h"
 
 namespace flaplag::derive {
@@ -49,7 +51,8 @@ std::string rational_cpp(const GiNaC::numeric& q) {
   return os.str();
 }
 
-std::string term_cpp(const DerivedModel& m, const Term& t) {
+// One term as C++; the named inputs are members of `prefix` ("s." = the Symbols struct).
+std::string term_cpp(const DerivedModel& m, const Term& t, const std::string& prefix) {
   std::ostringstream os;
   GiNaC::numeric c = t.coef;
   const bool neg = c < 0;
@@ -57,21 +60,24 @@ std::string term_cpp(const DerivedModel& m, const Term& t) {
   std::vector<std::string> f;
   if (c != 1) f.push_back("(" + rational_cpp(c) + ")");
   for (const auto& [idx, p] : t.scalars) {
-    for (int j = 0; j < p; ++j) f.push_back("s." + m.scalars[idx].name);
+    for (int j = 0; j < p; ++j) f.push_back(prefix + m.scalars[idx].name);
   }
-  if (t.ref == IntegralRef::Aero) f.push_back("s.A_" + m.aero[t.integral].ident);
-  if (t.ref == IntegralRef::Structural) f.push_back("s.S_" + m.structural[t.integral].ident);
+  if (t.ref == IntegralRef::Aero) f.push_back(prefix + "A_" + m.aero[t.integral].ident);
+  if (t.ref == IntegralRef::Structural) {
+    f.push_back(prefix + "S_" + m.structural[t.integral].ident);
+  }
   if (f.empty()) f.push_back("1.0");
   os << (neg ? "- " : "+ ");
   for (size_t j = 0; j < f.size(); ++j) os << (j ? " * " : "") << f[j];
   return os.str();
 }
 
-std::string slot_cpp(const DerivedModel& m, const Slot& s, const std::string& indent) {
+std::string slot_cpp(const DerivedModel& m, const Slot& s, const std::string& indent,
+                     const std::string& prefix = "s.") {
   if (s.terms.empty()) return "0.0";
   std::ostringstream os;
   for (size_t j = 0; j < s.terms.size(); ++j) {
-    std::string t = term_cpp(m, s.terms[j]);
+    std::string t = term_cpp(m, s.terms[j], prefix);
     if (j == 0 && t.rfind("+ ", 0) == 0) t = t.substr(2);
     if (j == 0 && t.rfind("- ", 0) == 0) t = "-" + t.substr(2);
     os << (j ? "\n" + indent : "") << t;
@@ -171,34 +177,57 @@ std::string emit_cpp(const DerivedModel& m) {
   os << "};\n\n";
   os << "const char kSpecText[] = " << c_string(m.spec.canonical_text()) << ";\n\n";
 
-  emit_symbols(os, m);
-  os << "// mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = " << n
-     << ", states 2n = " << 2 * n << ", harmonics H = " << m.H << ".\n";
-  os << "void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& "
-        "out) {\n";
-  os << "  const Symbols s(in);\n";
   const std::string ind = "      ";
+  // The mass first: it reads only the structural integrals it needs (model_api.h).
+  os << "// Generalized mass: coefficient of the accelerations q'' = [dg1''..dgM'', dh1''..dhN''] "
+        "in\n// each equation (inertia terms of eqs 2.16-2.17).  Structural integrals only: "
+        "independent\n// of mu and of the hover state.\n"
+     << "void mass(const model::CoefficientInputs& in, double* out) {\n";
+  std::set<int> mass_integrals;
+  for (const auto& slot : m.mass) {
+    for (const auto& t : slot.terms) mass_integrals.insert(t.integral);
+  }
+  for (int j : mass_integrals) {
+    os << "  const double S_" << m.structural[j].ident << " = in.structural[" << j << "];"
+       << (m.structural[j].paper_name.empty() ? "" : "  // " + m.structural[j].paper_name) << "\n";
+  }
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       // the mass multiplies the acceleration of coordinate j: q_j'' = (displacement j)''
-      os << "  // mass: " << m.equation_name(i) << ", "
+      os << "  // mass: " << m.equation_name(i) << " equation, coefficient of "
          << m.state_name(model::displacement_index(j, m.M, m.N)) << "''\n";
-      os << "  out.mass[" << i * n + j << "] =\n"
-         << ind << slot_cpp(m, m.mass[i * n + j], ind) << ";\n";
+      os << "  out[" << i * n + j << "] =\n"
+         << ind << slot_cpp(m, m.mass[i * n + j], ind, "") << ";\n";
     }
   }
+  os << "}\n\n";
+
+  emit_symbols(os, m);
+  os << "// mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]);  n = " << n
+     << ", states 2n = " << 2 * n << ", harmonics H = " << m.H << ".\n"
+     << "// Each slot is labelled with the entry of the first-order form y' = A(psi) y + f(psi) "
+        "it\n"
+     << "// feeds (A = mass^-1 force, f = mass^-1 forcing; eqs 2.36-2.37) and the harmonic it\n"
+     << "// multiplies.  Row i of A is the row of the equation's rate (flap k -> k, lag m -> 2M + "
+        "m),\n"
+     << "// column j the state column; for M = N = 1 these are A11..A14, A31..A34 (Appendix C.2)\n"
+     << "// and f1, f3 (Appendix C.3), and A_ij = force / M_F1 (flap) or / M_L1 (lag).\n";
+  os << "void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& "
+        "out) {\n";
+  os << "  const Symbols s(in);\n";
   for (int h = 0; h < m.H; ++h) {
     for (int i = 0; i < n; ++i) {
       for (int col = 0; col < 2 * n; ++col) {
         const int idx = (h * n + i) * 2 * n + col;
-        os << "  // force[" << DerivedModel::harmonic_name(h) << "]: " << m.equation_name(i) << ", "
-           << m.state_name(col) << "\n";
+        os << "  // " << a_entry_name(i, col, m.M, m.N) << ", " << DerivedModel::harmonic_name(h)
+           << ": " << m.equation_name(i) << " equation, coefficient of " << m.state_name(col)
+           << "\n";
         os << "  out.force[" << idx << "] =\n" << ind << slot_cpp(m, m.force[idx], ind) << ";\n";
       }
     }
     for (int i = 0; i < n; ++i) {
-      os << "  // forcing[" << DerivedModel::harmonic_name(h) << "]: " << m.equation_name(i)
-         << "\n";
+      os << "  // " << f_entry_name(i, m.M, m.N) << ", " << DerivedModel::harmonic_name(h) << ": "
+         << m.equation_name(i) << " equation, state-independent\n";
       os << "  out.forcing[" << h * n + i << "] =\n"
          << ind << slot_cpp(m, m.forcing[h * n + i], ind) << ";\n";
     }
@@ -209,9 +238,16 @@ std::string emit_cpp(const DerivedModel& m) {
         "out) {\n";
   os << "  const Symbols s(in);\n";
   for (int i = 0; i < n; ++i) {
+    const std::string row = std::to_string(i + 1);
     for (int j = 0; j < n; ++j) {
+      const std::string q0 = model::is_flap_coordinate(j, m.M)
+                                 ? "g0_" + std::to_string(j + 1)
+                                 : "h0_" + std::to_string(j - m.M + 1);
+      os << "  // S[" << row << "," << j + 1 << "]: " << m.equation_name(i)
+         << " equation, coefficient of " << q0 << "\n";
       os << "  out.S[" << i * n + j << "] =\n" << ind << slot_cpp(m, m.S[i * n + j], ind) << ";\n";
     }
+    os << "  // c[" << row << "]: " << m.equation_name(i) << " equation, hover load\n";
     os << "  out.c[" << i << "] =\n" << ind << slot_cpp(m, m.c[i], ind) << ";\n";
   }
   os << "}\n\n}  // namespace\n}  // namespace flaplag::generated::" << id << "\n\n";
@@ -226,6 +262,7 @@ std::string emit_cpp(const DerivedModel& m) {
      << "      " << m.M << ", " << m.N << ", " << m.H << ",\n"
      << "      " << m.aero.size() << ", g::kAero,\n"
      << "      " << m.structural.size() << ", g::kStructural,\n"
+     << "      &g::mass,\n"
      << "      &g::coefficients,\n"
      << "      &g::equilibrium};\n";
   os << "  return d;\n}\n";

@@ -148,4 +148,14 @@ std::string paper_structural_name(bool flap_eq, int eq_mode, const StructuralInt
   return "";
 }
 
+std::string a_entry_name(int eq, int col, int M, int N) {
+  const int i = model::rate_index(eq, M, N) + 1, j = col + 1;
+  if (i <= 9 && j <= 9) return "A" + std::to_string(i) + std::to_string(j);
+  return "A(" + std::to_string(i) + "," + std::to_string(j) + ")";
+}
+
+std::string f_entry_name(int eq, int M, int N) {
+  return "f" + std::to_string(model::rate_index(eq, M, N) + 1);
+}
+
 }  // namespace flaplag::derive

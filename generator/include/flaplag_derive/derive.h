@@ -117,7 +117,7 @@ struct DerivedModel {
 
   std::string state_name(int col) const;     // "dg1'", "dg1", "dh1'", "dh1"
   std::string equation_name(int row) const;  // "flap 1", "lag 1"
-  static std::string harmonic_name(int h);   // "1", "cos psi", "sin psi", "cos 2psi", ...
+  static std::string harmonic_name(int h);   // "const", "cos psi", "sin psi", "cos 2psi", ...
 };
 
 // Derive the model for a spec.  Deterministic.

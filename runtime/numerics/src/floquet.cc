@@ -15,12 +15,17 @@
 namespace flaplag {
 namespace {
 
-// Liouville, det Phi(T) = exp(int_0^T tr A): the relative residual |det Phi e^{-int tr A} - 1|
-// from log|det Phi| and the sign of det Phi (LU factors).  det Phi itself and exp(int tr A)
-// under- or overflow once |int tr A| exceeds about 709, and their product 0 * inf or inf * 0
-// would be NaN.  A zero pivot (singular Phi) gives 1.
-template <typename Lu>
-double liouville_residual(const Lu& lu, double trace_integral) {
+// Liouville, det Phi(T) = exp(int_0^T tr A): the relative residual |det Phi e^{-int tr A} - 1|.
+// While det Phi and exp(-int tr A) are both representable (the rotor case) it is computed from
+// them directly; otherwise (|int tr A| > 700, or det Phi under- or overflowing, where the
+// product would be 0 * inf = NaN) from log|det Phi| and the sign of det Phi by LU.  A singular
+// Phi gives 1.
+template <typename Mat>
+double liouville_residual(const Mat& phi, double trace_integral) {
+  const double det = phi.determinant();
+  if (std::isnormal(det) && std::abs(trace_integral) < 700.0)
+    return std::abs(det * std::exp(-trace_integral) - 1.0);
+  const Eigen::PartialPivLU<Mat> lu(phi);
   double log_abs = 0.0;
   double sign = static_cast<double>(lu.permutationP().determinant());  // +-1
   const auto& u = lu.matrixLU();
@@ -103,11 +108,11 @@ FloquetResult floquet_exponents(const Eigen::MatrixXd& phi, double trace_integra
     const Eigen::Matrix4d p = phi;
     Eigen::EigenSolver<Eigen::Matrix4d> es(p, true);
     if (es.info() != Eigen::Success) return nan_result(4, unconverged);
-    return extract(es, liouville_residual(Eigen::PartialPivLU<Eigen::Matrix4d>(p), trace_integral));
+    return extract(es, liouville_residual(p, trace_integral));
   }
   Eigen::EigenSolver<Eigen::MatrixXd> es(phi, true);
   if (es.info() != Eigen::Success) return nan_result(phi.rows(), unconverged);
-  return extract(es, liouville_residual(Eigen::PartialPivLU<Eigen::MatrixXd>(phi), trace_integral));
+  return extract(es, liouville_residual(phi, trace_integral));
 }
 
 }  // namespace flaplag

@@ -88,6 +88,16 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   for (int k = 0; k < M_; ++k) g0_[k] = hover_.q0(k);
   for (int r = 0; r < N_; ++r) h0_[r] = hover_.q0(M_ + r);
 
+  // The generalized mass depends on the structural integrals only (model_api.h): factor it once.
+  {
+    std::vector<double> mass(n_ * n_);
+    m.mass(inputs(0.0, aero_.normal().data()), mass.data());
+    Eigen::MatrixXd Mm(n_, n_);
+    for (int i = 0; i < n_; ++i)
+      for (int j = 0; j < n_; ++j) Mm(i, j) = mass[i * n_ + j];
+    mass_inverse_ = Mm.inverse();
+  }
+
   // Forcing at the hover equilibrium (balances to ~0 when S q0 = c) and the constant A0.
   HarmonicSet h0set;
   hover_forcing_ = Eigen::VectorXd::Zero(2 * n_);
@@ -137,18 +147,10 @@ model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) co
 // A rows: velocity rows get mass^-1 * generalized force; displacement rows the identity.
 void SystemBuilder::assemble(double mu, const std::vector<double>& aero, HarmonicSet& out) const {
   const int n = n_, ns = 2 * n_;
-  std::vector<double> buffer(n * n + H_ * n * ns + H_ * n);
-  double* mass = buffer.data();
-  double* force = mass + n * n;
+  std::vector<double> buffer(H_ * n * ns + H_ * n);
+  double* force = buffer.data();
   double* forcing = force + H_ * n * ns;
-  model_->coefficients(inputs(mu, aero.data()), {mass, force, forcing});
-  if (mass_inverse_.rows() != n) {
-    // The generalized mass depends on the structural integrals only: factor it once.
-    Eigen::MatrixXd Mm(n, n);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) Mm(i, j) = mass[i * n + j];
-    mass_inverse_ = Mm.inverse();
-  }
+  model_->coefficients(inputs(mu, aero.data()), {force, forcing});
   // state column of the rate / displacement of coordinate j
   auto rate_col = [&](int j) { return j < M_ ? j : 2 * M_ + (j - M_); };
   auto disp_col = [&](int j) { return j < M_ ? M_ + j : 2 * M_ + N_ + (j - M_); };

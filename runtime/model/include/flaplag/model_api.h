@@ -143,10 +143,10 @@ struct CoefficientInputs {
 };
 
 // Outputs.  n = M + N equations, 2n states, H harmonics.
-// Harmonic index h: 0 -> 1, 2k-1 -> cos(k psi), 2k -> sin(k psi).
-// The equations of motion are  mass * q'' = sum_h phi_h(psi) (force[h] * y + forcing[h]).
+// Harmonic index h: 0 -> 1 (constant), 2k-1 -> cos(k psi), 2k -> sin(k psi).
+// The equations of motion are  mass * q'' = sum_h phi_h(psi) (force[h] * y + forcing[h]),
+// with the generalized mass from ModelDescriptor::mass.
 struct CoefficientOutputs {
-  double* mass;     // [n*n]     generalized mass matrix (inertia of the modal accelerations)
   double* force;    // [H*n*2n]  linear coefficient of the state y in the generalized force
   double* forcing;  // [H*n]     state-independent part (evaluated at g0, h0; includes hover load)
 };
@@ -174,6 +174,10 @@ struct ModelDescriptor {
   const AeroIntegral* aero;
   int n_structural;
   const StructuralIntegral* structural;
+  // Generalized mass matrix [n*n], row-major (equation row, coordinate column of q''): the
+  // inertia of the modal accelerations.  Reads in.structural only (no mu, no hover state), so
+  // the runtime evaluates and factors it once per blade.
+  void (*mass)(const CoefficientInputs& in, double* mass);
   void (*coefficients)(const CoefficientInputs&, const CoefficientOutputs&);
   void (*equilibrium)(const CoefficientInputs&, const EquilibriumOutputs&);
 };

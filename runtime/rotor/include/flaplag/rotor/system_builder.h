@@ -55,7 +55,7 @@ class SystemBuilder {
   std::vector<double> g0_, h0_;
   std::vector<double> damping_flap_, damping_lag_;  // per mode [M], [N]
   Eigen::VectorXd hover_forcing_;         // forcing[0] at mu = 0, normal flow, at the equilibrium
-  mutable Eigen::MatrixXd mass_inverse_;  // set by the first assemble() (in the constructor)
+  Eigen::MatrixXd mass_inverse_;  // generalized mass^-1, factored once in the constructor
   HoverResult hover_;
 };
 
