@@ -11,6 +11,7 @@
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/numerics/brent.h"
 
 namespace flaplag {
 namespace {
@@ -167,6 +168,12 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
     throw InvalidInput("exponents", std::to_string(next.exponents.size()),
                        "expected " + std::to_string(n) + " as tracked");
   TrackReport report;
+  if (next.status == Status::Failed) {
+    report.status = Status::Failed;
+    report.message = next.message + "; tracking state unchanged";
+    report.min_similarity = 0.0;
+    return report;
+  }
   for (const FloquetExponent& e : next.exponents) {
     if (!std::isfinite(e.multiplier.real()) || !std::isfinite(e.multiplier.imag()) ||
         std::isnan(e.zeta) || std::isnan(e.omega) || e.eigenvector.size() != vectors_[0].size() ||
@@ -321,59 +328,29 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
   };
   std::optional<Trial> failure;  // a Brent trial that failed
 
-  // Brent's method (zeroin) on f(mu) = max zeta - zeta_threshold over [a.mu, b.mu] (signs of
+  // Brent's method (brent.h) on f(mu) = max zeta - zeta_threshold over [a.mu, b.mu] (signs of
   // a.f and b.f differ), every trial continued from `from` (the tracker at the grid point below
   // the bracket, so that labels and omega integers stay those of the continuation).  Returns
-  // the final (b, c): b the estimate, [b, c] the bracket.
-  auto brent = [&](const ExponentTracker& from, Trial a, Trial b, double zeta_tolerance) {
-    Trial c = a;
-    double d = b.mu - a.mu, e = d;
-    const double eps = std::numeric_limits<double>::epsilon();
-    for (int iter = 0; iter < 200; ++iter) {
-      if ((b.f > 0.0) == (c.f > 0.0)) {
-        c = a;
-        d = e = b.mu - a.mu;
+  // the trials (b, c): b the estimate, [b, c] the final bracket.
+  auto brent = [&](const ExponentTracker& from, const Trial& a, const Trial& b,
+                   double zeta_tolerance) {
+    std::vector<Trial> trials{a, b};  // by BrentPoint::index
+    auto f = [&](double mu) {
+      trials.push_back(evaluate(from, mu, zeta_tolerance));
+      const Trial& t = trials.back();
+      if (t.report.status == Status::Failed) {
+        failure = t;
+        return std::numeric_limits<double>::quiet_NaN();  // stops the iteration
       }
-      if (std::abs(c.f) < std::abs(b.f)) {
-        a = b;
-        b = c;
-        c = a;
-      }
-      const double tol1 = 2.0 * eps * std::abs(b.mu) + 0.5 * opt.tolerance;
-      const double xm = 0.5 * (c.mu - b.mu);
-      if (std::abs(xm) <= tol1 || b.f == 0.0) break;
-      if (std::abs(e) >= tol1 && std::abs(a.f) > std::abs(b.f)) {
-        // Inverse quadratic interpolation (secant when a == c).
-        const double s = b.f / a.f;
-        double p, q;
-        if (a.mu == c.mu) {
-          p = 2.0 * xm * s;
-          q = 1.0 - s;
-        } else {
-          const double qa = a.f / c.f, r = b.f / c.f;
-          p = s * (2.0 * xm * qa * (qa - r) - (b.mu - a.mu) * (r - 1.0));
-          q = (qa - 1.0) * (r - 1.0) * (s - 1.0);
-        }
-        if (p > 0.0) q = -q;
-        p = std::abs(p);
-        if (2.0 * p < std::min(3.0 * xm * q - std::abs(tol1 * q), std::abs(e * q))) {
-          e = d;
-          d = p / q;
-        } else {
-          d = e = xm;
-        }
-      } else {
-        d = e = xm;
-      }
-      a = b;
-      const double next = b.mu + (std::abs(d) > tol1 ? d : (xm > 0.0 ? tol1 : -tol1));
-      b = evaluate(from, next, zeta_tolerance);
-      if (b.report.status == Status::Failed) {
-        failure = b;
-        break;
-      }
-    }
-    return std::make_pair(std::move(b), std::move(c));
+      return t.f;
+    };
+    BrentOptions bo;
+    bo.tolerance = opt.tolerance;
+    bo.max_evaluations = 200;
+    const BrentResult r = brent_zero(f, a.mu, a.f, b.mu, b.f, bo);
+    const BrentPoint& other = r.root.index == r.lo.index ? r.hi : r.lo;
+    return std::make_pair(trials[static_cast<std::size_t>(r.root.index)],
+                          trials[static_cast<std::size_t>(other.index)]);
   };
 
   // Error of a crossing: half the final bracket plus the zeta error at the crossing over the
