@@ -1,5 +1,6 @@
 #include "command_line.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -15,13 +16,12 @@ namespace {
 
 // Upper limits that only keep absurd requests from running for hours or overflowing; they are
 // far above anything the paper or the tests use.
-constexpr int kMaxSteps = 1000000;
-constexpr int kMaxTerms = 50;
 constexpr int kMaxModes = 12;  // exact modes: at most the Galerkin basis (rotating_modes.h)
 constexpr int kMaxBasis = 12;
 constexpr int kMaxPoints = 100001;  // sweep points, Fig 9 rows, spanwise stations
 
-std::string quoted_if_empty(const std::string& s) { return s.empty() ? "\"\"" : s; }
+const char* const kMissing = "(missing)";
+const char* const kNoValue = "(no value)";
 
 std::string join_model_names() {
   std::string names;
@@ -39,13 +39,38 @@ const model::ModelDescriptor* compiled_model(const std::string& name) {
   return nullptr;
 }
 
+std::string subcommand_list() {
+  std::string s;
+  for (Command c : subcommands()) s += (s.empty() ? "" : ", ") + std::string(command_name(c));
+  return s;
+}
+
+// "flaplag point" / "flaplag"
+std::string full_name(Command c) {
+  const std::string n = command_name(c);
+  return n.empty() ? "flaplag" : "flaplag " + n;
+}
+
+bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+// "-0.5", "-.5", "-1e3": a negative number, not an option.
+bool negative_number(const std::string& a) {
+  if (a.size() < 2 || a[0] != '-') return false;
+  const char c = a[1];
+  return (c >= '0' && c <= '9') || (c == '.' && a.size() > 2 && a[2] >= '0' && a[2] <= '9');
+}
+
+bool is_option_word(const std::string& a) {
+  return a.size() > 1 && a[0] == '-' && !negative_number(a);
+}
+
 struct Range {
   double start, stop, step;
   int count;  // points start, start + step, ..., up to stop
 };
 
-// "A:B:STEP" with A <= ... ; `what` names the quantity in messages.
-Range parse_range(const std::string& option, const std::string& text, double min_start) {
+// "A:B:STEP" with 0 <= A < B, STEP > 0; the whole text is the value in every message.
+Range parse_range(const std::string& option, const std::string& text) {
   std::vector<std::string> parts;
   std::string::size_type from = 0;
   for (;;) {
@@ -54,9 +79,9 @@ Range parse_range(const std::string& option, const std::string& text, double min
     if (colon == std::string::npos) break;
     from = colon + 1;
   }
-  const std::string shown = quoted_if_empty(text);
-  if (text.empty()) throw InvalidInput(option, shown, "empty range, expected START:STOP:STEP");
-  if (parts.size() != 3) throw InvalidInput(option, shown, "expected START:STOP:STEP");
+  const std::string value = shown(text);
+  if (text.empty()) throw InvalidInput(option, value, "empty range, expected START:STOP:STEP");
+  if (parts.size() != 3) throw InvalidInput(option, value, "expected START:STOP:STEP");
   const char* names[3] = {"START", "STOP", "STEP"};
   double v[3];
   for (int i = 0; i < 3; ++i) {
@@ -64,43 +89,139 @@ Range parse_range(const std::string& option, const std::string& text, double min
       v[i] = parse_real(option, parts[i]);
     } catch (const InvalidInput& e) {
       // Keep the whole range as the value; say which part is wrong.
-      throw InvalidInput(option, shown, std::string(names[i]) + " " + reason_of(e));
+      throw InvalidInput(option, value, std::string(names[i]) + " " + reason_of(e));
     }
   }
   Range r{v[0], v[1], v[2], 0};
-  if (r.start < min_start) {
-    throw InvalidInput(option, shown, "START must be >= " + round_trip_text(min_start));
-  }
-  if (r.stop < r.start) throw InvalidInput(option, shown, "reversed range (STOP < START)");
-  if (r.stop == r.start) throw InvalidInput(option, shown, "empty range (STOP = START)");
-  if (!(r.step > 0.0)) throw InvalidInput(option, shown, "STEP must be > 0");
+  if (r.start < 0.0) throw InvalidInput(option, value, "START must be >= 0");
+  if (r.stop < r.start) throw InvalidInput(option, value, "reversed range (STOP < START)");
+  if (r.stop == r.start) throw InvalidInput(option, value, "empty range (STOP = START)");
+  if (!(r.step > 0.0)) throw InvalidInput(option, value, "STEP must be > 0");
   const double n = std::floor((r.stop - r.start) / r.step * (1.0 + 1e-12)) + 1.0;
   if (!(n <= kMaxPoints)) {
-    throw InvalidInput(option, shown,
+    throw InvalidInput(option, value,
                        "STEP too small: more than " + std::to_string(kMaxPoints) + " points");
   }
   r.count = static_cast<int>(n);
   return r;
 }
 
-double parse_at_least(const std::string& option, const std::string& text, double lo, bool open) {
-  const double v = parse_real(option, text);
-  if (open ? !(v > lo) : !(v >= lo)) {
-    throw InvalidInput(option, text,
-                       std::string("must be ") + (open ? "> " : ">= ") + round_trip_text(lo));
+// ---- help ------------------------------------------------------------------------------------
+
+const char* description(Command c) {
+  switch (c) {
+    case Command::Typical:
+      return "the paper's typical case: hover, mu_c, zeta(mu) and omega(mu) for mu = 0, 0.1, ..., "
+             "1";
+    case Command::Point:
+      return "characteristic exponents and multipliers at one advance ratio";
+    case Command::Sweep:
+      return "exponents over a range of advance ratios";
+    case Command::Critical:
+      return "critical advance ratio mu_c: the first mu with zeta > 0";
+    case Command::System:
+      return "A(psi), f(psi), flow region, hover equilibrium, spanwise integrals";
+    case Command::Models:
+      return "compiled ordering models and their specs";
+    case Command::Modes:
+      return "exact rotating modes: the Fig 9 frequency relation and a blade's mode shapes";
   }
-  return v;
+  return "";
 }
 
-std::string rotor_help(const ParameterSpec& s) {
-  std::string h = s.help;
-  std::string detail;
-  if (*s.symbol != '\0') detail += s.symbol;
-  if (std::string(s.units) != "-") detail += (detail.empty() ? "" : ", ") + std::string(s.units);
-  if (*s.requirement != '\0' && s.type == ParameterType::Real) {
-    detail += (detail.empty() ? "" : "; ") + std::string(s.requirement);
+std::vector<std::string> examples(Command c) {
+  switch (c) {
+    case Command::Typical:
+      return {"flaplag                                   the typical case",
+              "flaplag --modes exact --json              exact modes, as JSON",
+              "flaplag critical --method magnus          mu_c with the reference method",
+              "flaplag point --mu 0.5                    exponents at mu = 0.5"};
+    case Command::Point:
+      return {"flaplag point --mu 0.5", "flaplag point --mu 0.8 --method hsu --steps 50 --json"};
+    case Command::Sweep:
+      return {"flaplag sweep --mu 0:1:0.05",
+              "flaplag sweep --mu 0:1.5:0.01 --format csv -o sweep.csv"};
+    case Command::Critical:
+      return {"flaplag critical", "flaplag critical --mu-max 1.5 --modes exact --flap-modes 2"};
+    case Command::System:
+      return {"flaplag system --mu 0.8 --psi 4.7", "flaplag system --mu 0.3 --json"};
+    case Command::Models:
+      return {"flaplag models", "flaplag models --spec paper"};
+    case Command::Modes:
+      return {"flaplag modes", "flaplag modes --omega-lag 1.4 --flap-modes 2 --json"};
   }
-  return detail.empty() ? h : h + " (" + detail + ")";
+  return {};
+}
+
+constexpr char kNoBreak = '\x01';
+
+// Words of `text` wrapped to `width` columns, continuation lines indented by `indent`.
+std::string wrap(const std::string& text, std::size_t first_column, std::size_t indent,
+                 std::size_t width = 100) {
+  std::string out, word;
+  std::size_t column = first_column;
+  auto flush = [&]() {
+    if (word.empty()) return;
+    if (column > indent && column + 1 + word.size() > width) {
+      out += "\n" + std::string(indent, ' ');
+      column = indent;
+    } else if (column > indent || !out.empty()) {
+      out += ' ';
+      ++column;
+    }
+    out += word;
+    column += word.size();
+    word.clear();
+  };
+  for (char ch : text) {
+    if (ch == ' ') {
+      flush();
+    } else {
+      word += ch == kNoBreak ? ' ' : ch;
+    }
+  }
+  flush();
+  return out;
+}
+
+// A phrase wrap() keeps on one line ("in (0, 1000]").
+std::string unbroken(std::string s) {
+  std::replace(s.begin(), s.end(), ' ', kNoBreak);
+  return s;
+}
+
+std::string option_help(const OptionSpec& o) {
+  std::string h = o.help;
+  std::vector<std::string> detail;
+  if (o.rotor != nullptr && o.rotor->type == ParameterType::Real) {
+    std::string symbol = o.rotor->symbol;
+    if (std::string(o.rotor->units) != "-") {
+      symbol += (symbol.empty() ? "" : ", ") + std::string(o.rotor->units);
+    }
+    if (!symbol.empty()) detail.push_back(unbroken(symbol));
+    detail.push_back(unbroken(o.rotor->requirement));
+  }
+  if (!o.default_text.empty()) detail.push_back(unbroken("default " + o.default_text));
+  if (detail.empty()) return h;
+  std::string d;
+  for (const std::string& s : detail) d += (d.empty() ? "" : "; ") + s;
+  return h + " (" + d + ")";
+}
+
+std::string options_block(const std::vector<OptionSpec>& options) {
+  constexpr std::size_t kColumn = 30;
+  std::string out;
+  for (const OptionSpec& o : options) {
+    std::string left = "  " + o.name + (o.alias.empty() ? "" : ", " + o.alias);
+    if (o.takes_value) left += " " + o.metavar;
+    if (left.size() + 2 > kColumn) {
+      out += left + "\n" + std::string(kColumn, ' ');
+    } else {
+      out += left + std::string(kColumn - left.size(), ' ');
+    }
+    out += wrap(option_help(o), kColumn, kColumn) + "\n";
+  }
+  return out;
 }
 
 }  // namespace
@@ -111,303 +232,266 @@ std::string reason_of(const InvalidInput& e) {
   return prefix <= what.size() ? what.substr(prefix) : what;
 }
 
-CommandLine::CommandLine() : app_(std::make_unique<CLI::App>()) {
-  CLI::App& a = *app_;
-  a.name("flaplag");
-  a.description(
-      "Coupled flap-lag stability of a hingeless rotor blade in forward flight\n"
-      "(Friedmann & Silverthorn, NASA CR-132431, 1974).\n"
-      "Without a subcommand: the paper's typical case (hover, mu_c, zeta(mu) table).");
-  a.footer(
-      "Examples:\n"
-      "  flaplag                                  typical case, Hsu K = 50, J = 4\n"
-      "  flaplag critical --method magnus         mu_c with the reference method\n"
-      "  flaplag point --mu 0.5 --json            exponents at mu = 0.5 as JSON\n"
-      "  flaplag sweep --mu 0:1:0.05 --format csv -o sweep.csv\n"
-      "  flaplag system --mu 0.8 --psi 4.7        A(psi), f(psi) and the spanwise integrals\n"
-      "  flaplag --modes exact critical           exact rotating modes with elastic coupling\n"
-      "Bad input: one line on stderr, exit code 2.");
-  a.set_version_flag("--version", "flaplag 0.1.0");
-  a.get_formatter()->column_width(34);
-  a.require_subcommand(0, 1);
-  add_rotor_options(&a);
-  add_analysis_options(&a);
-  add_output_options(&a);
-
-  CLI::App* point = a.add_subcommand("point", "characteristic exponents at one advance ratio");
-  add_value(point, "--mu", "--mu", "advance ratio (>= 0)", "REAL", "", true);
-  CLI::App* sweep = a.add_subcommand("sweep", "exponents over a range of advance ratios");
-  add_value(sweep, "--mu", "--mu",
-            "advance ratios START:STOP:STEP (0 <= START < STOP, STEP > 0, STOP included)",
-            "A:B:STEP", "", true);
-  add_value(sweep, "--format", "--format", "table or csv (--json for JSON)", "table|csv", "table");
-  CLI::App* critical =
-      a.add_subcommand("critical", "critical advance ratio mu_c: the first mu with zeta > 0");
-  add_value(critical, "--mu-max", "--mu-max", "scan limit (> 0)", "REAL", "2");
-  CLI::App* system =
-      a.add_subcommand("system", "A(psi), f(psi), flow region, hover equilibrium, integrals");
-  add_value(system, "--mu", "--mu", "advance ratio (>= 0)", "REAL", "", true);
-  add_value(system, "--psi", "--psi", "azimuth [rad] (any finite value; reduced to [0, 2 pi))",
-            "REAL", "0");
-  for (CLI::App* sub : {point, sweep, critical, system}) {
-    add_rotor_options(sub);
-    add_analysis_options(sub);
-    add_output_options(sub);
+CommandLine::CommandLine(const std::vector<std::string>& args) {
+  bool have_command = false;
+  bool options_done = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (!options_done && a == "--") {
+      options_done = true;
+      continue;
+    }
+    if (options_done || !is_option_word(a)) {
+      if (!have_command) {
+        have_command = true;
+        if (!command_from_name(a, &command_)) {
+          problem(i,
+                  InvalidInput("subcommand", shown(a),
+                               "unknown (one of " + subcommand_list() + "; see flaplag --help)"));
+        }
+      } else {
+        const std::string cmd = full_name(command_);
+        problem(
+            i, InvalidInput("argument", shown(a),
+                            "unexpected: " + cmd + " takes options only (see " + cmd + " --help)"));
+      }
+      continue;
+    }
+    // --name[=value], -o[VALUE]
+    std::string name = a;
+    std::optional<std::string> attached;
+    if (starts_with(a, "--")) {
+      const auto eq = a.find('=');
+      if (eq != std::string::npos) {
+        name = a.substr(0, eq);
+        attached = a.substr(eq + 1);
+      }
+    } else if (a.size() > 2) {
+      name = a.substr(0, 2);
+      attached = a.substr(2);
+    }
+    if (name == "--help" || name == "-h") {
+      help_ = true;
+      continue;
+    }
+    if (name == "--version") {
+      version_ = true;
+      continue;
+    }
+    const OptionSpec* spec = find_any_option(name);
+    if (spec == nullptr) {
+      // Show what the user meant as its value, if anything: "--bogus 1" -> "--bogus = 1".
+      std::string value = kNoValue;
+      Command c;
+      if (attached) {
+        value = shown(*attached);
+      } else if (i + 1 < args.size() && !is_option_word(args[i + 1]) &&
+                 !command_from_name(args[i + 1], &c)) {
+        value = shown(args[i + 1]);
+      }
+      problem(i, InvalidInput(name, value, "unknown option (see flaplag --help)"));
+      continue;
+    }
+    Given g{spec->name, name, "", i};
+    if (spec->takes_value) {
+      if (attached) {
+        g.text = *attached;
+      } else if (i + 1 < args.size() && !starts_with(args[i + 1], "--")) {
+        g.text = args[++i];
+      } else {
+        problem(i, InvalidInput(name, kMissing, "needs a value (" + spec->metavar + ")"));
+        continue;
+      }
+    } else if (attached) {
+      problem(i, InvalidInput(name, shown(*attached), "takes no value"));
+      continue;
+    }
+    given_.push_back(g);
   }
-  CLI::App* models = a.add_subcommand("models", "compiled ordering models and their specs");
-  add_value(models, "--spec", "--spec", "print the spec of this model", "NAME", "");
-  add_output_options(models);
-  CLI::App* modes = a.add_subcommand(
-      "modes", "exact rotating modes: Fig 9 frequency relation and the mode shapes of a blade");
-  add_modes_options(modes);
-  add_output_options(modes);
-
-  commands_ = {{"point", point},   {"sweep", sweep},   {"critical", critical},
-               {"system", system}, {"models", models}, {"modes", modes}};
-}
-
-CommandLine::~CommandLine() = default;
-
-void CommandLine::add_value(CLI::App* app, const std::string& names, const std::string& key,
-                            const std::string& help, const std::string& type,
-                            const std::string& default_text, bool required) {
-  Slot* s = &slot(key);
-  // Values arrive as text and are converted by interpret(), so that every bad value gets the
-  // same one-line message naming the option and the value as typed.
-  CLI::Option* o = app->add_option_function<std::string>(
-      names,
-      [s](const std::string& text) {
-        s->text = text;
-        s->given = true;
-      },
-      help);
-  o->type_name(type);
-  o->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  if (!default_text.empty()) o->default_str(default_text);
-  if (required) o->required();
-}
-
-void CommandLine::add_flag(CLI::App* app, const std::string& names, const std::string& key,
-                           const std::string& help) {
-  Slot* s = &slot(key);
-  app->add_flag_callback(
-      names, [s]() { s->given = true; }, help);
-}
-
-void CommandLine::add_rotor_options(CLI::App* app) {
-  const RotorParameters defaults;
-  for (const ParameterSpec& spec : parameter_table()) {
-    if (spec.type == ParameterType::Flag) {
-      add_flag(app, spec.option, spec.option, rotor_help(spec));
-    } else {
-      const char* type = spec.type == ParameterType::Real   ? "REAL"
-                         : spec.type == ParameterType::Text ? "NAME"
-                                                            : spec.choices;
-      add_value(app, spec.option, spec.option, rotor_help(spec), type,
-                parameter_text(defaults, spec));
+  // Options are shared by several subcommands and may come before the subcommand, so whether
+  // this one takes an option is known only now.
+  for (const Given& g : given_) {
+    if (find_option(command_, g.name) == nullptr) {
+      const std::string cmd = full_name(command_);
+      const OptionSpec* spec = find_any_option(g.name);
+      problem(g.position, InvalidInput(g.spelling, spec->takes_value ? shown(g.text) : kNoValue,
+                                       "not an option of " + cmd + " (see " + cmd + " --help)"));
     }
   }
 }
 
-void CommandLine::add_analysis_options(CLI::App* app) {
-  const TransitionOptions defaults;
-  add_value(app, "--method", "--method",
-            "transition matrix: rk4 (paper 3.3.2), hsu (eqs 3.21-3.28) or magnus (4th-order "
-            "Magnus with Richardson error estimate)",
-            "rk4|hsu|magnus", method_name(defaults.method));
-  add_value(app, "--steps", "--steps", "RK4 steps, Hsu intervals K or Magnus steps per period", "N",
-            std::to_string(defaults.steps));
-  add_value(app, "--terms", "--terms", "Hsu Taylor terms J", "J", std::to_string(defaults.terms));
-  add_value(app, "--flap-modes", "--flap-modes",
-            "flap modes M: selects model <model>-<M>x<N> (<model> itself for 1x1)", "M", "1");
-  add_value(app, "--lag-modes", "--lag-modes", "lag modes N (see --flap-modes)", "N", "1");
+void CommandLine::problem(std::size_t position, InvalidInput e) {
+  if (!problem_ || position < problem_->position) problem_ = Problem{position, std::move(e)};
 }
 
-void CommandLine::add_output_options(CLI::App* app) {
-  add_flag(app, "--json", "--json", "write JSON instead of text");
-  add_value(app, "-o,--output", "-o", "write to FILE (atomically replaced) instead of stdout",
-            "FILE", "");
+void CommandLine::check() const {
+  if (problem_) throw problem_->error;
 }
 
-void CommandLine::add_modes_options(CLI::App* app) {
-  for (const char* field : {"omega_flap", "omega_lag", "length_ratio", "e1", "paper_1974_shapes"}) {
-    const ParameterSpec& spec = *find_parameter(field);
-    if (spec.type == ParameterType::Flag) {
-      add_flag(app, spec.option, spec.option, rotor_help(spec));
-    } else {
-      add_value(app, spec.option, spec.option, rotor_help(spec), "REAL",
-                parameter_text(RotorParameters{}, spec));
-    }
+const CommandLine::Given* CommandLine::given(const std::string& name) const {
+  for (auto it = given_.rbegin(); it != given_.rend(); ++it) {
+    if (it->name == name) return &*it;
   }
-  add_value(app, "--flap-modes", "--flap-modes", "rotating flap modes shown (1..basis)", "M", "1");
-  add_value(app, "--lag-modes", "--lag-modes", "rotating lag modes shown (1..basis)", "N", "1");
-  add_value(app, "--basis", "--basis", "nonrotating cantilever functions per direction", "N", "5");
-  add_value(app, "--nonrotating", "--nonrotating",
-            "Fig 9 table: first nonrotating frequencies START:STOP:STEP (>= 0)", "A:B:STEP",
-            "0:2.5:0.1");
-  add_value(app, "--points", "--points", "spanwise stations of the mode-shape table (>= 2)", "K",
-            "11");
-}
-
-const std::string* CommandLine::typed(const std::string& option) const {
-  const Slot* s = given(option);
-  return s != nullptr ? &s->text : nullptr;
-}
-
-const CommandLine::Slot* CommandLine::given(const std::string& key) const {
-  const auto it = slots_.find(key);
-  return it != slots_.end() && it->second.given ? &it->second : nullptr;
+  return nullptr;
 }
 
 Request CommandLine::interpret() const {
+  check();
   Request r;
-  std::string command;
-  for (const auto& [name, sub] : commands_) {
-    if (sub->parsed()) command = name;
-  }
-  if (command.empty())
-    r.command = Command::Typical;
-  else if (command == "point")
-    r.command = Command::Point;
-  else if (command == "sweep")
-    r.command = Command::Sweep;
-  else if (command == "critical")
-    r.command = Command::Critical;
-  else if (command == "system")
-    r.command = Command::System;
-  else if (command == "models")
-    r.command = Command::Models;
-  else
-    r.command = Command::Modes;
+  r.command = command_;
+  const Command c = command_;
+  // The option as typed, for messages ("-o" or "--output").
+  auto spelled = [&](const Given* g) { return g->spelling; };
 
   // Rotor parameters, in table order.
-  for (const ParameterSpec& spec : parameter_table()) {
-    if (const Slot* s = given(spec.option)) set_parameter(r.params, spec, s->text);
+  for (const OptionSpec& o : options_of(c)) {
+    if (o.rotor == nullptr) continue;
+    if (const Given* g = given(o.name)) set_parameter(r.params, o, g->text);
   }
-  try {
-    validate(r.params);
-  } catch (const InvalidInput& e) {
-    // validate() shows the stored double; show what the user typed instead.
-    const Slot* s = given(e.name());
-    if (s == nullptr) throw;
-    throw InvalidInput(e.name(), quoted_if_empty(s->text), reason_of(e));
-  }
+  if (c != Command::Models && c != Command::Modes) validate(r.params);
 
   int flap_modes = 1, lag_modes = 1;
-  const Slot* flap_given = given("--flap-modes");
-  const Slot* lag_given = given("--lag-modes");
-  if (flap_given) flap_modes = parse_int("--flap-modes", flap_given->text, 1, kMaxModes);
-  if (lag_given) lag_modes = parse_int("--lag-modes", lag_given->text, 1, kMaxModes);
+  const Given* flap_given = given("--flap-modes");
+  const Given* lag_given = given("--lag-modes");
+  if (flap_given) flap_modes = parse_int(spelled(flap_given), flap_given->text, 1, kMaxModes);
+  if (lag_given) lag_modes = parse_int(spelled(lag_given), lag_given->text, 1, kMaxModes);
 
-  if (const Slot* s = given("--method")) {
-    if (s->text == "rk4")
+  if (const Given* g = given("--method")) {
+    if (g->text == "rk4")
       r.transition.method = TransitionMethod::RK4;
-    else if (s->text == "hsu")
+    else if (g->text == "hsu")
       r.transition.method = TransitionMethod::Hsu;
-    else if (s->text == "magnus")
+    else if (g->text == "magnus")
       r.transition.method = TransitionMethod::Magnus4;
     else
-      throw InvalidInput("--method", quoted_if_empty(s->text), "must be one of rk4, hsu, magnus");
+      throw InvalidInput(g->spelling, shown(g->text), "must be one of rk4, hsu, magnus");
   }
-  if (const Slot* s = given("--steps"))
-    r.transition.steps = parse_int("--steps", s->text, 1, kMaxSteps);
-  if (const Slot* s = given("--terms"))
-    r.transition.terms = parse_int("--terms", s->text, 1, kMaxTerms);
-
-  if (const Slot* s = given("--json")) r.json = s->given;
-  if (const Slot* s = given("-o")) {
-    if (s->text.empty()) throw InvalidInput("-o", "\"\"", "empty file name");
-    r.output = s->text;
+  if (const Given* g = given("--steps")) {
+    r.transition.steps = g->text == "auto"
+                             ? TransitionOptions::kAutomatic
+                             : parse_int(g->spelling, g->text, 1, TransitionOptions::kMaxSteps);
+  }
+  if (const Given* g = given("--terms")) {
+    r.transition.terms = parse_int(g->spelling, g->text, 1, TransitionOptions::kMaxTerms);
+  }
+  if (const Given* g = given("--zeta-tolerance")) {
+    r.transition.zeta_tolerance = parse_real(g->spelling, g->text);
   }
 
-  const bool analysis = r.command != Command::Models && r.command != Command::Modes;
+  r.json = given("--json") != nullptr;
+  if (const Given* g = given("-o")) {
+    if (g->text.empty()) throw InvalidInput(g->spelling, shown(g->text), "empty file name");
+    r.output = g->text == "-" ? "" : g->text;
+  }
+
+  const bool analysis = c != Command::Models && c != Command::Modes;
   if (analysis) {
     // --flap-modes M --lag-modes N select the model "<model>-<M>x<N>"; 1x1 is <model> itself.
     if (flap_given || lag_given) {
+      const Given* which = flap_modes != 1 || !lag_given ? flap_given : lag_given;
+      if (which == nullptr) which = lag_given;
+      if ((flap_modes > 1 || lag_modes > 1) && r.params.modes == ModeKind::Assumed) {
+        const Given* many = flap_modes > 1 ? flap_given : lag_given;
+        throw InvalidInput(many->spelling, shown(many->text),
+                           "more than one mode needs --modes exact (the assumed mode of eq 4.1 "
+                           "is one flap and one lag mode)");
+      }
       const std::string base = r.params.model;
       if (flap_modes != 1 || lag_modes != 1) {
         r.params.model = base + "-" + std::to_string(flap_modes) + "x" + std::to_string(lag_modes);
       }
-      const std::string option = flap_given ? "--flap-modes" : "--lag-modes";
-      const std::string value = flap_given ? flap_given->text : lag_given->text;
       const model::ModelDescriptor* m = compiled_model(r.params.model);
       if (m == nullptr) {
-        throw InvalidInput(option, value,
+        throw InvalidInput(which->spelling, shown(which->text),
                            "no compiled model \"" + r.params.model + "\" for " +
                                std::to_string(flap_modes) + " flap x " + std::to_string(lag_modes) +
                                " lag modes (compiled: " + join_model_names() + ")");
       }
       if (m->flap_modes != flap_modes || m->lag_modes != lag_modes) {
-        throw InvalidInput(option, value,
+        throw InvalidInput(which->spelling, shown(which->text),
                            "model \"" + r.params.model + "\" has " + std::to_string(m->flap_modes) +
                                " flap x " + std::to_string(m->lag_modes) + " lag modes");
       }
     } else if (compiled_model(r.params.model) == nullptr) {
-      throw InvalidInput("--model", r.params.model,
+      const Given* g = given("--model");
+      throw InvalidInput(g != nullptr ? g->spelling : "--model", shown(r.params.model),
                          "unknown model (compiled: " + join_model_names() + ")");
     }
   }
 
-  switch (r.command) {
+  auto required = [&](const char* name) -> const Given& {
+    const Given* g = given(name);
+    if (g == nullptr) throw InvalidInput(name, kMissing, "required by " + full_name(c));
+    return *g;
+  };
+
+  switch (c) {
     case Command::Point:
-    case Command::System:
-      r.mu = parse_at_least("--mu", slots_.at("--mu").text, 0.0, false);
-      if (r.command == Command::System) {
-        if (const Slot* s = given("--psi")) r.psi = parse_real("--psi", s->text);
+    case Command::System: {
+      const Given& mu = required("--mu");
+      // The range (0..kMaxAdvanceRatio) is the library's to check; its error names `mu`.
+      r.mu = parse_real(mu.spelling, mu.text);
+      if (c == Command::System) {
+        if (const Given* g = given("--psi")) r.psi = parse_real(g->spelling, g->text);
       }
+      if (const Given* g = given("--scan-step")) r.scan_step = parse_real(g->spelling, g->text);
       break;
+    }
     case Command::Sweep: {
-      const Range range = parse_range("--mu", slots_.at("--mu").text, 0.0);
+      const Given& mu = required("--mu");
+      const Range range = parse_range(mu.spelling, mu.text);
       r.sweep_start = range.start;
       r.sweep_stop = range.stop;
       r.sweep_step = range.step;
-      if (const Slot* s = given("--format")) {
-        if (s->text == "csv")
+      if (const Given* g = given("--format")) {
+        if (g->text == "csv")
           r.csv = true;
-        else if (s->text != "table") {
-          throw InvalidInput("--format", quoted_if_empty(s->text), "must be table or csv");
-        }
+        else if (g->text != "table")
+          throw InvalidInput(g->spelling, shown(g->text), "must be table or csv");
         if (r.csv && r.json)
-          throw InvalidInput("--format", s->text, "cannot be combined with --json");
+          throw InvalidInput(g->spelling, shown(g->text), "cannot be combined with --json");
       }
       break;
     }
     case Command::Critical:
-      if (const Slot* s = given("--mu-max"))
-        r.mu_max = parse_at_least("--mu-max", s->text, 0.0, true);
+      if (const Given* g = given("--mu-max")) r.mu_max = parse_real(g->spelling, g->text);
+      if (const Given* g = given("--scan-step")) r.scan_step = parse_real(g->spelling, g->text);
       break;
     case Command::Models:
-      if (const Slot* s = given("--spec")) {
-        if (compiled_model(s->text) == nullptr) {
-          throw InvalidInput("--spec", quoted_if_empty(s->text),
+      if (const Given* g = given("--spec")) {
+        if (compiled_model(g->text) == nullptr) {
+          throw InvalidInput(g->spelling, shown(g->text),
                              "unknown model (compiled: " + join_model_names() + ")");
         }
-        r.spec = s->text;
+        r.spec = g->text;
       }
       break;
     case Command::Modes: {
+      // Only the blade parameters modes uses; the others keep their (valid) defaults.
+      validate(r.params);
       int basis = 5;
-      if (const Slot* s = given("--basis")) basis = parse_int("--basis", s->text, 1, kMaxBasis);
+      if (const Given* g = given("--basis")) basis = parse_int(g->spelling, g->text, 1, kMaxBasis);
       if (flap_modes > basis) {
-        throw InvalidInput("--flap-modes", flap_given->text,
+        throw InvalidInput(flap_given->spelling, shown(flap_given->text),
                            "must not exceed --basis = " + std::to_string(basis));
       }
       if (lag_modes > basis) {
-        throw InvalidInput("--lag-modes", lag_given->text,
+        throw InvalidInput(lag_given->spelling, shown(lag_given->text),
                            "must not exceed --basis = " + std::to_string(basis));
       }
-      const Slot* nr = given("--nonrotating");
+      const Given* nr = given("--nonrotating");
+      const std::string spelling = nr ? nr->spelling : "--nonrotating";
       const std::string text = nr ? nr->text : "0:2.5:0.1";
-      const Range range = parse_range("--nonrotating", text, 0.0);
+      const Range range = parse_range(spelling, text);
       if (range.count < 2) {
-        throw InvalidInput("--nonrotating", text, "STEP exceeds the range: need 2 points or more");
+        throw InvalidInput(spelling, shown(text), "STEP exceeds the range: need 2 points or more");
       }
       r.fig9_from = range.start;
       r.fig9_to = range.stop;
       r.fig9_step = range.step;
       r.fig9_points = range.count;
-      if (const Slot* s = given("--points")) {
-        r.shape_points = parse_int("--points", s->text, 2, kMaxPoints);
+      if (const Given* g = given("--points")) {
+        r.shape_points = parse_int(g->spelling, g->text, 2, kMaxPoints);
       }
       r.basis = basis;
       r.flap_modes = flap_modes;
@@ -418,6 +502,55 @@ Request CommandLine::interpret() const {
       break;
   }
   return r;
+}
+
+std::optional<std::string> CommandLine::error_line(const InvalidInput& e) const {
+  // Raised by the CLI itself: already named by the option as typed.
+  if (!e.name().empty() && e.name()[0] == '-') {
+    return e.name() + " = " + e.value() + ": " + vocabulary(reason_of(e));
+  }
+  if (e.name() == "subcommand" || e.name() == "argument") return std::string(e.what());
+  const OptionSpec* o = option_for_library_name(command_, e.name());
+  if (o == nullptr) return std::nullopt;
+  const Given* g = given(o->name);
+  std::string value = e.value();
+  if (g != nullptr && o->takes_value) value = shown(g->text);
+  return (g != nullptr ? g->spelling : o->name) + " = " + value + ": " + vocabulary(reason_of(e));
+}
+
+std::string CommandLine::vocabulary(const std::string& message) const {
+  return in_cli_vocabulary(command_, message);
+}
+
+std::string CommandLine::help_text() const {
+  const Command c = command_;
+  std::string out;
+  if (c == Command::Typical) {
+    out +=
+        "flaplag: coupled flap-lag stability of a hingeless rotor blade in forward flight\n"
+        "(Friedmann & Silverthorn, NASA CR-132431, 1974)\n\n"
+        "Usage: flaplag [SUBCOMMAND] [OPTIONS]   (options before or after the subcommand)\n\n";
+    out += wrap("Without a subcommand: " + std::string(description(c)) + ".", 0, 0) +
+           "\n\nSubcommands (flaplag SUBCOMMAND --help):\n";
+    for (Command s : subcommands()) {
+      const std::string n = command_name(s);
+      out += "  " + n + std::string(12 - n.size(), ' ') + description(s) + "\n";
+    }
+  } else {
+    std::string usage = full_name(c);
+    if (c == Command::Point || c == Command::System) usage += " --mu REAL";
+    if (c == Command::Sweep) usage += " --mu A:B:STEP";
+    out += "Usage: " + usage + " [OPTIONS]\n\n" + description(c) + "\n";
+  }
+  out += "\nOptions:\n" + options_block(options_of(c));
+  out += "  -h, --help                  this help\n";
+  out += "  --version                   the version\n";
+  out += "\nExamples:\n";
+  for (const std::string& x : examples(c)) out += "  " + x + "\n";
+  out +=
+      "\nExit codes: 0 a result (an unstable blade or an unresolved computation is a result with a "
+      "status);\n2 bad input, one line on stderr: flaplag: error: <option> = <value>: <reason>\n";
+  return out;
 }
 
 }  // namespace flaplag::cli

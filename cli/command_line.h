@@ -1,31 +1,38 @@
-// flaplag CLI — the command line: options (built from the parameter table), subcommands and
-// their interpretation into a Request.  No analysis happens here.
+// flaplag CLI — the command line: the subcommand, its options and their interpretation into a
+// Request.  No analysis happens here.
+//
+// The parser is our own (not CLI11's) because the error contract is ours: every refused input
+// is ONE line "<option> = <value>: <reason>" naming the option as the user typed it and the
+// value as typed.  Grammar: at most one subcommand; options before or after it; "--name value"
+// or "--name=value", "-o FILE" or "-oFILE"; a value may start with '-' ("--theta -0.1",
+// "-o -") but not with "--" (then the value is missing); "--" ends the options; the last of a
+// repeated option wins.
 #pragma once
 
-#include <CLI/CLI.hpp>
-#include <map>
-#include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "flaplag/core/errors.h"
+#include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/rotor/parameters.h"
+#include "options.h"
 
 namespace flaplag::cli {
-
-enum class Command { Typical, Point, Sweep, Critical, System, Models, Modes };
 
 struct Request {
   Command command = Command::Typical;
   RotorParameters params;
-  TransitionOptions transition;
+  TransitionOptions transition;  // automatic steps unless --steps N
   bool json = false;
-  std::string output;  // -o FILE; empty: stdout
-  // point, system: --mu; system: --psi
+  std::string output;  // -o FILE; empty: stdout (also for "-o -")
+  // point, system: --mu; system: --psi; point, critical: --scan-step
   double mu = 0.0;
   double psi = 0.0;
+  double scan_step = 0.01;
   // critical: --mu-max
-  double mu_max = 2.0;
+  double mu_max = CriticalOptions{}.mu_max;
   // sweep: --mu A:B:STEP, --format
   double sweep_start = 0.0, sweep_stop = 0.0, sweep_step = 0.0;
   bool csv = false;
@@ -45,41 +52,55 @@ std::string reason_of(const InvalidInput& e);
 
 class CommandLine {
  public:
-  CommandLine();
-  ~CommandLine();
-  CommandLine(const CommandLine&) = delete;
-  CommandLine& operator=(const CommandLine&) = delete;
+  // Splits args (argv[1..]) into the subcommand and its options.  Never throws: problems are
+  // kept for check(), so that --help works on any command line.
+  explicit CommandLine(const std::vector<std::string>& args);
 
-  CLI::App& app() { return *app_; }
+  Command command() const { return command_; }
+  bool wants_help() const { return help_; }
+  bool wants_version() const { return version_; }
 
-  // After app().parse(): the request, every value checked.  Throws InvalidInput naming the
-  // option and the value as typed.
+  // Throws InvalidInput for the first problem of the command line itself, in argument order:
+  // an unknown option (name = the option), an unknown subcommand (name = "subcommand"), a stray
+  // argument (name = "argument"), a missing value (value "(missing)"), a value given to a flag,
+  // an option the subcommand does not take.
+  void check() const;
+
+  // After check(): the request, every value checked.  Throws InvalidInput(option as typed,
+  // value as typed, reason).
   Request interpret() const;
 
-  // The text typed for an option, or nullptr when it was not given: error messages about a
-  // value the runtime rejected quote the user's spelling, not the stored double.
-  const std::string* typed(const std::string& option) const;
+  // An InvalidInput from the runtime (named by field or argument, "omega_lag", "mu1") or from
+  // the CLI itself (named by option) as "<option> = <value>: <reason>" in this command line's
+  // vocabulary: the option as typed, the value as typed (the runtime's value for options not
+  // given), field names in the reason translated.  nullopt when no option of the subcommand
+  // answers for the name (a quantity derived inside the analysis: a bug, not bad input).
+  std::optional<std::string> error_line(const InvalidInput& e) const;
+
+  // A library message in this command's vocabulary (see in_cli_vocabulary).
+  std::string vocabulary(const std::string& message) const;
+
+  // The help of the subcommand (or of flaplag itself).
+  std::string help_text() const;
 
  private:
-  struct Slot {
-    std::string text;
-    bool given = false;
+  struct Given {
+    std::string name;      // OptionSpec::name
+    std::string spelling;  // as typed ("--output" or "-o")
+    std::string text;      // the value ("" for flags)
+    std::size_t position;  // index in args
   };
-  Slot& slot(const std::string& key) { return slots_[key]; }
-  const Slot* given(const std::string& key) const;
-  void add_value(CLI::App* app, const std::string& names, const std::string& key,
-                 const std::string& help, const std::string& type, const std::string& default_text,
-                 bool required = false);
-  void add_flag(CLI::App* app, const std::string& names, const std::string& key,
-                const std::string& help);
-  void add_rotor_options(CLI::App* app);
-  void add_analysis_options(CLI::App* app);
-  void add_output_options(CLI::App* app);
-  void add_modes_options(CLI::App* app);
+  struct Problem {
+    std::size_t position;
+    InvalidInput error;
+  };
+  const Given* given(const std::string& name) const;
+  void problem(std::size_t position, InvalidInput e);
 
-  std::unique_ptr<CLI::App> app_;
-  std::map<std::string, CLI::App*> commands_;
-  std::map<std::string, Slot> slots_;  // keyed by long option name; node-stable for callbacks
+  Command command_ = Command::Typical;
+  std::vector<Given> given_;  // in argument order; the last of a name wins
+  std::optional<Problem> problem_;
+  bool help_ = false, version_ = false;
 };
 
 }  // namespace flaplag::cli

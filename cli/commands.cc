@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "flaplag/analysis.h"
 #include "flaplag/rotor/parameter_table.h"
+#include "options.h"
 #include "output.h"
 
 namespace flaplag::cli {
@@ -17,16 +20,122 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-// The short zeta(mu) table of the typical case: mu = 0, 0.1, ..., 1.0.
+// The short zeta(mu) table of the typical case: mu = 0, 0.1, ..., 1.0, continued from hover in
+// steps of kTableScan (every kTableEvery-th point of the continuation is shown).
 constexpr double kTableStop = 1.0;
-constexpr double kTableStep = 0.1;
+constexpr double kTableScan = 0.01;
+constexpr int kTableEvery = 10;
 
 std::string dump(const Json& j) { return j.dump(2) + "\n"; }
 
-Json complex_json(std::complex<double> z) { return Json{{"re", z.real()}, {"im", z.imag()}}; }
+// ---- numbers that may not be finite ------------------------------------------------------------
+//
+// The library promises finite results, with two documented exceptions: the zeta of a zero
+// multiplier is -inf, and optional diagnostics are absent rather than NaN.  The printers do not
+// take that on trust: every result is audited first (audit_*), and a value that breaks the
+// promise marks its result "failed" with a message saying what was not shown; the printers then
+// show such values as "-" (text), an empty field (CSV) or null (JSON).  num() itself refuses
+// non-finite values, so a value no audit covered ends the run as an internal error instead of
+// printing "nan".
+
+bool finite(double v) { return std::isfinite(v); }
+bool finite(std::complex<double> z) { return finite(z.real()) && finite(z.imag()); }
+bool zeta_ok(double zeta) {
+  return finite(zeta) || zeta == -std::numeric_limits<double>::infinity();
+}
+
+std::string cell(double v) { return finite(v) ? num(v) : "-"; }
+std::string zeta_cell(double zeta) { return zeta_ok(zeta) ? zeta_text(zeta) : "-"; }
+Json jnum(double v) { return finite(v) ? Json(v) : Json(nullptr); }
+// zeta of a zero multiplier is -inf, which JSON cannot hold: it is written as the string "-inf".
+Json zeta_json(double zeta) {
+  if (finite(zeta)) return Json(zeta);
+  return zeta_ok(zeta) ? Json("-inf") : Json(nullptr);
+}
+Json complex_json(std::complex<double> z) {
+  return Json{{"re", jnum(z.real())}, {"im", jnum(z.imag())}};
+}
 
 std::string complex_text(std::complex<double> z) {
+  if (!finite(z)) return "-";
   return num(z.real()) + (std::signbit(z.imag()) ? " - " : " + ") + num(std::abs(z.imag())) + "i";
+}
+
+Json optional_json(const std::optional<double>& v) { return v ? jnum(*v) : Json(nullptr); }
+std::string optional_text(const std::optional<double>& v) { return v ? cell(*v) : "-"; }
+
+Json stable_json(const std::optional<bool>& v) { return v ? Json(*v) : Json(nullptr); }
+std::string stable_text(const std::optional<bool>& v) { return !v ? "unknown" : *v ? "yes" : "NO"; }
+
+// Records that `what` could not be shown: the result becomes `worst` (at least) and says why.
+void demote(Status& status, std::string& message, Status worst, const std::string& what) {
+  if (static_cast<int>(status) < static_cast<int>(worst)) status = worst;
+  const std::string note = "non-finite " + what + " (not shown)";
+  message = message.empty() ? note : message + "; " + note;
+}
+
+void audit_exponents(const std::vector<LabelledExponent>& ex, Status& status,
+                     std::string& message) {
+  for (const LabelledExponent& e : ex) {
+    if (!zeta_ok(e.zeta) || !finite(e.omega) || !finite(e.multiplier)) {
+      demote(status, message, Status::Failed, "exponent of mode " + e.label);
+      return;
+    }
+  }
+}
+
+void audit(PointResult& p) {
+  const Status before = p.status;
+  audit_exponents(p.exponents, p.status, p.message);
+  if (!finite(p.mu)) demote(p.status, p.message, Status::Failed, "mu");
+  // The exponents are what stability is read from: without them it is unknown.
+  if (p.status == Status::Failed && before != Status::Failed) p.stable.reset();
+  if (p.liouville_residual && !finite(*p.liouville_residual)) {
+    demote(p.status, p.message, Status::Warning, "Liouville residual");
+  }
+  if (p.error && !finite(*p.error)) demote(p.status, p.message, Status::Warning, "error estimate");
+}
+
+void audit(SweepResult& s) {
+  for (PointResult& p : s.points) {
+    audit(p);
+    if (static_cast<int>(p.status) > static_cast<int>(s.status)) {
+      s.status = p.status;
+      if (s.message.empty()) s.message = "at mu = " + cell(p.mu) + ": " + p.message;
+    }
+  }
+}
+
+void audit(CriticalResult& c) {
+  if (c.mu_c && (!finite(*c.mu_c) || !finite(c.omega))) {
+    demote(c.status, c.message, Status::Failed, "mu_c or omega");
+    c.mu_c.reset();
+  }
+  if (c.mu_c_error && !finite(*c.mu_c_error)) {
+    demote(c.status, c.message, Status::Warning, "mu_c error estimate");
+  }
+  if (!finite(c.mu_max)) demote(c.status, c.message, Status::Failed, "mu_max");
+}
+
+// The hover result with its own audit (HoverResult is the analysis' const member).
+struct Hover {
+  HoverResult h;
+  std::optional<bool> stable;  // unknown when the hover analysis failed
+};
+
+Hover audited_hover(const Analysis& an) {
+  Hover r{an.hover(), an.hover().stable};
+  HoverResult& h = r.h;
+  bool ok = finite(h.inflow);
+  for (Eigen::Index i = 0; i < h.q0.size(); ++i) ok = ok && finite(h.q0[i]);
+  for (const auto& z : h.eigenvalues) ok = ok && finite(z);
+  if (!ok) demote(h.status, h.message, Status::Failed, "hover equilibrium or eigenvalue");
+  if (h.status == Status::Failed) r.stable.reset();
+  return r;
+}
+
+std::string vocab(const Request& r, const std::string& message) {
+  return in_cli_vocabulary(r.command, message);
 }
 
 Json parameters_json(const RotorParameters& p) {
@@ -34,14 +143,14 @@ Json parameters_json(const RotorParameters& p) {
   for (const ParameterSpec& s : parameter_table()) {
     switch (s.type) {
       case ParameterType::Real:
-        j[s.field] = p.*s.real;
+        j[json_key(s)] = p.*s.real;
         break;
       case ParameterType::Flag:
-        j[s.field] = p.*s.flag;
+        j[json_key(s)] = p.*s.flag;
         break;
       case ParameterType::Choice:
       case ParameterType::Text:
-        j[s.field] = parameter_text(p, s);
+        j[json_key(s)] = parameter_text(p, s);
         break;
     }
   }
@@ -71,23 +180,29 @@ Json model_json(const model::ModelDescriptor& m) {
 }
 
 Json method_json(const TransitionOptions& o) {
-  Json j{{"name", method_name(o.method)}, {"steps", o.steps}};
+  Json j{{"name", method_name(o.method)}};
+  j["steps"] = o.steps == TransitionOptions::kAutomatic ? Json("automatic") : Json(o.steps);
   if (o.method == TransitionMethod::Hsu) j["terms"] = o.terms;
+  j["zeta-tolerance"] = o.zeta_tolerance;
   return j;
 }
 
 std::string method_text(const TransitionOptions& o) {
+  const bool automatic = o.steps == TransitionOptions::kAutomatic;
+  const std::string n = automatic ? "automatic" : std::to_string(o.steps);
+  std::string t;
   switch (o.method) {
     case TransitionMethod::RK4:
-      return "rk4, N = " + std::to_string(o.steps) + " steps per period";
+      t = "rk4, N = " + n + " steps per period";
+      break;
     case TransitionMethod::Hsu:
-      return "hsu, K = " + std::to_string(o.steps) + " intervals, J = " + std::to_string(o.terms) +
-             " Taylor terms";
+      t = "hsu, K = " + n + " intervals, J = " + std::to_string(o.terms) + " Taylor terms";
+      break;
     case TransitionMethod::Magnus4:
-      return "magnus (4th order, Richardson error estimate), " + std::to_string(o.steps) +
-             " steps per period";
+      t = "magnus (4th order, Richardson-extrapolated), " + n + " steps per period";
+      break;
   }
-  return method_name(o.method);
+  return t + (automatic ? " (zeta resolved to " + num(o.zeta_tolerance) + " per rev)" : "");
 }
 
 bool coupling_on(const Analysis& an) {
@@ -95,19 +210,19 @@ bool coupling_on(const Analysis& an) {
 }
 
 // The part every analysis output starts with: what was computed, and how.
-Json header_json(const char* command, const Analysis& an) {
+Json header_json(const char* command, const Analysis& an, bool with_method = true) {
   const model::ModelDescriptor& m = an.model();
   Json j;
   j["command"] = command;
   j["model"] = model_json(m);
   j["mode_shapes"] = an.modes().kind;
   j["elastic_coupling"] = coupling_on(an);
-  j["method"] = method_json(an.options());
+  if (with_method) j["method"] = method_json(an.options());
   j["parameters"] = parameters_json(an.parameters());
   return j;
 }
 
-std::string header_text(const Analysis& an) {
+std::string header_text(const Analysis& an, bool with_method = true) {
   const RotorParameters& p = an.parameters();
   const model::ModelDescriptor& m = an.model();
   KeyValues kv;
@@ -119,17 +234,14 @@ std::string header_text(const Analysis& an) {
            " lag; elastic coupling " + (coupling_on(an) ? "on" : "off") + "; reversed flow " +
            (p.reversed_flow ? "on" : "off");
   kv.add("blade", blade);
-  kv.add("method", method_text(an.options()));
+  if (with_method) kv.add("method", method_text(an.options()));
   kv.add("parameters", parameters_text(p));
   return kv.render();
 }
 
 std::vector<std::string> state_names(int M, int N) {
   std::vector<std::string> s;
-  for (int k = 1; k <= M; ++k) s.push_back("dg'_" + std::to_string(k));
-  for (int k = 1; k <= M; ++k) s.push_back("dg_" + std::to_string(k));
-  for (int k = 1; k <= N; ++k) s.push_back("dh'_" + std::to_string(k));
-  for (int k = 1; k <= N; ++k) s.push_back("dh_" + std::to_string(k));
+  for (int col = 0; col < 2 * (M + N); ++col) s.push_back(model::state_name(col, M, N));
   return s;
 }
 
@@ -175,122 +287,119 @@ std::string status_text(Status status, const std::string& message) {
          "\n";
 }
 
-Json hover_json(const Analysis& an) {
-  const HoverResult& h = an.hover();
+Json hover_json(const Request& r, const Analysis& an) {
+  const Hover hv = audited_hover(an);
+  const HoverResult& h = hv.h;
   const model::ModelDescriptor& m = an.model();
   Json j;
-  j["inflow"] = h.inflow;
+  j["inflow"] = jnum(h.inflow);
   Json q0 = Json::object();
   const auto names = equilibrium_names(m.flap_modes, m.lag_modes);
   for (Eigen::Index i = 0; i < h.q0.size() && i < static_cast<Eigen::Index>(names.size()); ++i) {
-    q0[names[static_cast<std::size_t>(i)]] = h.q0[i];
+    q0[names[static_cast<std::size_t>(i)]] = jnum(h.q0[i]);
   }
   j["equilibrium"] = q0;
   Json ex = Json::array();
   for (std::size_t i = 0; i < h.eigenvalues.size(); ++i) {
-    ex.push_back(Json{{"zeta", h.eigenvalues[i].real()},
-                      {"omega", h.eigenvalues[i].imag()},
+    ex.push_back(Json{{"zeta", jnum(h.eigenvalues[i].real())},
+                      {"omega", jnum(h.eigenvalues[i].imag())},
                       {"label", i < h.labels.size() ? h.labels[i] : ""}});
   }
   j["exponents"] = ex;
-  j["stable"] = h.stable;
-  return status_json(j, h.status, h.message);
+  j["stable"] = stable_json(hv.stable);
+  return status_json(j, h.status, vocab(r, h.message));
 }
 
-std::string hover_text(const Analysis& an) {
-  const HoverResult& h = an.hover();
+std::string hover_text(const Request& r, const Analysis& an) {
+  const Hover hv = audited_hover(an);
+  const HoverResult& h = hv.h;
   const model::ModelDescriptor& m = an.model();
   std::string out = "Hover equilibrium (eqs 2.24, 2.29-2.32)\n";
   KeyValues kv;
-  kv.add("inflow lambda", num(h.inflow));
+  kv.add("inflow lambda", cell(h.inflow));
   const auto names = equilibrium_names(m.flap_modes, m.lag_modes);
   for (Eigen::Index i = 0; i < h.q0.size() && i < static_cast<Eigen::Index>(names.size()); ++i) {
-    kv.add(names[static_cast<std::size_t>(i)], num(h.q0[i]));
+    kv.add(names[static_cast<std::size_t>(i)], cell(h.q0[i]));
   }
   out += kv.render();
   out += "\nHover exponents (eigenvalues of A at mu = 0, per rev)\n";
   TextTable t({"mode", "zeta", "omega"});
   for (std::size_t i = 0; i < h.eigenvalues.size(); ++i) {
-    t.add_row({i < h.labels.size() ? h.labels[i] : "?", num(h.eigenvalues[i].real()),
-               num(h.eigenvalues[i].imag())});
+    t.add_row({i < h.labels.size() ? h.labels[i] : "?", cell(h.eigenvalues[i].real()),
+               cell(h.eigenvalues[i].imag())});
   }
   out += t.render();
-  out += std::string("  hover is ") + (h.stable ? "stable" : "UNSTABLE") + "\n";
-  return out + status_text(h.status, h.message);
+  out += std::string("  hover is ") +
+         (!hv.stable   ? "of unknown stability"
+          : *hv.stable ? "stable"
+                       : "UNSTABLE") +
+         "\n";
+  return out + status_text(h.status, vocab(r, h.message));
 }
-
-// zeta of a zero multiplier is -inf, which JSON cannot hold: it is written as the string "-inf".
-Json zeta_json(double zeta) { return std::isfinite(zeta) ? Json(zeta) : Json(round_trip_text(zeta)); }
-
-Json optional_json(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
-
-Json stable_json(const std::optional<bool>& v) { return v ? Json(*v) : Json(nullptr); }
-
-std::string stable_text(const std::optional<bool>& v) { return !v ? "unknown" : *v ? "yes" : "NO"; }
-
-std::string optional_text(const std::optional<double>& v) { return v ? num(*v) : "-"; }
 
 Json exponent_json(const LabelledExponent& e) {
   return Json{{"label", e.label},
               {"zeta", zeta_json(e.zeta)},
-              {"omega", e.omega},
+              {"omega", jnum(e.omega)},
               {"multiplier", complex_json(e.multiplier)}};
 }
 
-Json point_json(const PointResult& r) {
+Json point_json(const Request& r, const PointResult& p) {
   Json j;
-  j["mu"] = r.mu;
+  j["mu"] = jnum(p.mu);
   Json ex = Json::array(), mult = Json::array();
-  for (const LabelledExponent& e : r.exponents) {
+  for (const LabelledExponent& e : p.exponents) {
     ex.push_back(exponent_json(e));
     mult.push_back(complex_json(e.multiplier));
   }
   j["exponents"] = ex;
   j["multipliers"] = mult;
-  j["liouville_residual"] = optional_json(r.liouville_residual);
-  j["error_estimate"] = optional_json(r.error);
-  j["stable"] = stable_json(r.stable);
-  return status_json(j, r.status, r.message);
+  j["liouville_residual"] = optional_json(p.liouville_residual);
+  j["error_estimate"] = optional_json(p.error);
+  j["stable"] = stable_json(p.stable);
+  return status_json(j, p.status, vocab(r, p.message));
 }
 
-std::string point_text(const PointResult& r, const TransitionOptions& o) {
-  std::string out = "Characteristic exponents at mu = " + num(r.mu) + " (per rev)\n";
+std::string point_text(const Request& r, const PointResult& p) {
+  std::string out = "Characteristic exponents at mu = " + cell(p.mu) + " (per rev)\n";
   TextTable t({"mode", "zeta", "omega", "multiplier"});
-  for (const LabelledExponent& e : r.exponents) {
-    t.add_row({e.label, num(e.zeta), num(e.omega), complex_text(e.multiplier)});
+  for (const LabelledExponent& e : p.exponents) {
+    t.add_row({e.label, zeta_cell(e.zeta), cell(e.omega), complex_text(e.multiplier)});
   }
   out += t.render();
   KeyValues kv;
-  kv.add("stable", stable_text(r.stable));
+  kv.add("stable", stable_text(p.stable));
   kv.add("Liouville residual",
-         optional_text(r.liouville_residual) + "  (|det Phi - exp int tr A|, relative)");
+         optional_text(p.liouville_residual) + "  (|det Phi - exp int tr A|, relative)");
   kv.add("error estimate",
-         optional_text(r.error) + "  (exponents, per rev: Richardson from K and K/2 steps)");
-  (void)o;
+         optional_text(p.error) + "  (largest zeta error, per rev: Richardson from K and K/2)");
   out += kv.render();
-  return out + status_text(r.status, r.message);
+  return out + status_text(p.status, vocab(r, p.message));
 }
 
-Json critical_json(const CriticalResult& c) {
+Json critical_json(const Request& r, const CriticalResult& c) {
   Json j;
   const bool found = c.mu_c.has_value();
   j["hover_unstable"] = c.hover_unstable;
   j["mu_c"] = optional_json(c.mu_c);
   j["mu_c_error"] = optional_json(c.mu_c_error);
-  j["omega"] = found ? Json(c.omega) : Json(nullptr);
+  j["omega"] = found ? jnum(c.omega) : Json(nullptr);
   j["mode"] = found ? Json(c.mode) : Json(nullptr);
   j["kind"] = found ? Json(kind_name(c.kind)) : Json(nullptr);
-  j["mu_max"] = c.mu_max;
-  return status_json(j, c.status, c.message);
+  j["mu_max"] = jnum(c.mu_max);
+  return status_json(j, c.status, vocab(r, c.message));
 }
 
-std::string critical_text(const CriticalResult& c) {
-  std::string out = "Critical advance ratio (first mu in 0.." + num(c.mu_max) + " with zeta > 0)\n";
+std::string critical_text(const Request& r, const CriticalResult& c) {
+  std::string out =
+      "Critical advance ratio (first mu in 0.." + cell(c.mu_max) + " with zeta > 0)\n";
   KeyValues kv;
   if (c.mu_c) {
-    kv.add("mu_c", num(*c.mu_c) + (c.mu_c_error ? "  (estimated error " + num(*c.mu_c_error) + ")" : ""));
+    kv.add("mu_c", num(*c.mu_c) + (c.mu_c_error && finite(*c.mu_c_error)
+                                       ? "  (estimated error " + num(*c.mu_c_error) + ")"
+                                       : ""));
     kv.add("mode", c.mode);
-    kv.add("omega", num(c.omega) + " per rev");
+    kv.add("omega", cell(c.omega) + " per rev");
     kv.add("kind", c.kind == InstabilityKind::Flutter
                        ? "flutter (omega not locked to 0, 1/2 or 1 per rev)"
                        : "periodic (omega locked to 0, 1/2 or 1 per rev)");
@@ -299,26 +408,38 @@ std::string critical_text(const CriticalResult& c) {
   } else if (c.status == Status::Failed) {
     kv.add("mu_c", "unknown: the search failed");
   } else {
-    kv.add("mu_c", "none: stable up to mu = " + num(c.mu_max));
+    kv.add("mu_c", "none: stable up to mu = " + cell(c.mu_max));
   }
   out += kv.render();
-  return out + status_text(c.status, c.message);
+  return out + status_text(c.status, vocab(r, c.message));
 }
 
-Json sweep_rows_json(const SweepResult& s, const std::vector<std::string>& labels) {
+// Largest Liouville residual over the points that have one; nullopt when none has.
+std::optional<double> max_liouville(const SweepResult& s) {
+  std::optional<double> m;
+  for (const PointResult& p : s.points) {
+    if (p.liouville_residual && finite(*p.liouville_residual)) {
+      m = std::max(m.value_or(0.0), *p.liouville_residual);
+    }
+  }
+  return m;
+}
+
+Json sweep_rows_json(const Request& r, const SweepResult& s,
+                     const std::vector<std::string>& labels) {
   Json rows = Json::array();
   for (const PointResult& p : s.points) {
     Json row;
-    row["mu"] = p.mu;
+    row["mu"] = jnum(p.mu);
     for (const std::string& l : labels) {
       const LabelledExponent* e = dominant(p, l);
-      row[l] = e ? Json{{"zeta", zeta_json(e->zeta)}, {"omega", e->omega}} : Json(nullptr);
+      row[l] = e ? Json{{"zeta", zeta_json(e->zeta)}, {"omega", jnum(e->omega)}} : Json(nullptr);
     }
     row["liouville_residual"] = optional_json(p.liouville_residual);
     row["error_estimate"] = optional_json(p.error);
     row["stable"] = stable_json(p.stable);
     row["status"] = status_name(p.status);
-    if (!p.message.empty()) row["message"] = p.message;
+    row["message"] = vocab(r, p.message);
     Json ex = Json::array();
     for (const LabelledExponent& e : p.exponents) ex.push_back(exponent_json(e));
     row["exponents"] = ex;
@@ -327,29 +448,33 @@ Json sweep_rows_json(const SweepResult& s, const std::vector<std::string>& label
   return rows;
 }
 
-std::string sweep_table_text(const SweepResult& s, const std::vector<std::string>& labels) {
+std::string sweep_table_text(const Request& r, const SweepResult& s,
+                             const std::vector<std::string>& labels) {
   std::vector<std::string> header{"mu"};
   for (const std::string& l : labels) {
     header.push_back(l + " zeta");
     header.push_back(l + " omega");
   }
+  header.push_back("stable");
   header.push_back("Liouville");
   TextTable t(header);
   std::string notes;
   for (const PointResult& p : s.points) {
-    std::vector<std::string> row{num(p.mu)};
+    std::vector<std::string> row{cell(p.mu)};
     for (const std::string& l : labels) {
       const LabelledExponent* e = dominant(p, l);
-      row.push_back(e ? num(e->zeta) : "-");
-      row.push_back(e ? num(e->omega) : "-");
+      row.push_back(e ? zeta_cell(e->zeta) : "-");
+      row.push_back(e ? cell(e->omega) : "-");
     }
+    row.push_back(stable_text(p.stable));
     row.push_back(optional_text(p.liouville_residual));
     t.add_row(row);
     if (p.status != Status::Ok || !p.message.empty()) {
-      notes += "  mu = " + num(p.mu) + ": " + status_name(p.status) + ": " + p.message + "\n";
+      notes +=
+          "  mu = " + cell(p.mu) + ": " + status_name(p.status) + ": " + vocab(r, p.message) + "\n";
     }
   }
-  return t.render() + notes + status_text(s.status, s.message);
+  return t.render() + notes + status_text(s.status, vocab(r, s.message));
 }
 
 std::string csv_field(const std::string& s) {
@@ -359,55 +484,62 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
-std::string sweep_csv(const SweepResult& s, const std::vector<std::string>& labels) {
+// Empty fields for what is not known (no exponent of a label, no residual, unknown stability).
+std::string sweep_csv(const Request& r, const SweepResult& s,
+                      const std::vector<std::string>& labels) {
+  auto field = [](double v) { return finite(v) ? num(v) : std::string(); };
   std::string out = "mu";
   for (const std::string& l : labels) out += "," + l + "_zeta," + l + "_omega";
-  out += ",liouville_residual,stable,status\n";
+  out += ",liouville_residual,error_estimate,stable,status,message\n";
   for (const PointResult& p : s.points) {
-    out += num(p.mu);
+    out += field(p.mu);
     for (const std::string& l : labels) {
       const LabelledExponent* e = dominant(p, l);
-      out += e ? "," + num(e->zeta) + "," + num(e->omega) : std::string(",,");
+      out += "," + (e && zeta_ok(e->zeta) ? zeta_text(e->zeta) : std::string()) + "," +
+             (e ? field(e->omega) : std::string());
     }
-    out += "," + (p.liouville_residual ? num(*p.liouville_residual) : std::string()) + "," +
-           (!p.stable ? "" : *p.stable ? "true" : "false") + "," +
-           csv_field(status_name(p.status)) + "\n";
+    out += "," + (p.liouville_residual ? field(*p.liouville_residual) : std::string());
+    out += "," + (p.error ? field(*p.error) : std::string());
+    out += "," + std::string(!p.stable ? "" : *p.stable ? "true" : "false");
+    out += "," + csv_field(status_name(p.status)) + "," + csv_field(vocab(r, p.message)) + "\n";
   }
   return out;
 }
 
-double max_liouville(const SweepResult& s) {
-  double m = 0.0;
-  for (const PointResult& p : s.points) m = std::max(m, p.liouville_residual.value_or(0.0));
-  return m;
-}
-
 std::string warnings_text(const Analysis& an) {
-  const HoverResult& h = an.hover();
-  return h.stable ? ""
-                  : "warning: the hover equilibrium itself is unstable; see the hover exponents\n";
+  return an.hover().stable
+             ? ""
+             : "warning: the hover equilibrium itself is unstable; see the hover exponents\n";
 }
 
 // ---- commands --------------------------------------------------------------------------------
 
 std::string typical(const Request& r, const Analysis& an) {
-  const CriticalResult crit = an.critical(CriticalOptions{});
-  // Points one by one so that mu is exactly k/10 in the table (mu0 + k * step is not).
+  CriticalResult crit = an.critical(CriticalOptions{});
+  audit(crit);
+  // One continuation from hover in steps of kTableScan, shown every kTableEvery-th point: the
+  // exponents of each row are continued exactly as `flaplag point` continues them, at a tenth of
+  // the cost of continuing every row from hover again.
+  const SweepResult all = an.sweep(0.0, kTableStop, kTableScan);
   SweepResult table;
-  const int n_table = static_cast<int>(std::lround(kTableStop / kTableStep));
-  for (int k = 0; k <= n_table; ++k) {
-    table.points.push_back(an.point(static_cast<double>(k) / n_table * kTableStop));
+  table.status = all.status;
+  table.message = all.message;
+  for (std::size_t i = 0; i < all.points.size(); ++i) {
+    // A sweep that stopped early ends with the failed point: show it too.
+    if (i % kTableEvery == 0 || i + 1 == all.points.size()) table.points.push_back(all.points[i]);
   }
+  audit(table);
   const std::vector<std::string> labels = mode_labels(an);
+  const std::optional<double> max_res = max_liouville(table);
   if (r.json) {
     Json j = header_json("typical", an);
-    j["hover"] = hover_json(an);
-    j["critical"] = critical_json(crit);
+    j["hover"] = hover_json(r, an);
+    j["critical"] = critical_json(r, crit);
     Json t;
     t["labels"] = labels;
-    t["rows"] = sweep_rows_json(table, labels);
-    t["max_liouville_residual"] = max_liouville(table);
-    j["table"] = status_json(t, table.status, table.message);
+    t["rows"] = sweep_rows_json(r, table, labels);
+    t["max_liouville_residual"] = optional_json(max_res);
+    j["table"] = status_json(t, table.status, vocab(r, table.message));
     return dump(j);
   }
   std::string out =
@@ -415,52 +547,56 @@ std::string typical(const Request& r, const Analysis& an) {
       "(NASA CR-132431)\n";
   out += header_text(an) + "\n";
   out += warnings_text(an);
-  out += hover_text(an) + "\n";
-  out += critical_text(crit) + "\n";
+  out += hover_text(r, an) + "\n";
+  out += critical_text(r, crit) + "\n";
   out += "Exponents zeta(mu), omega(mu) per rev (dominant exponent of each mode)\n";
-  out += sweep_table_text(table, labels);
+  out += sweep_table_text(r, table, labels);
   out += "  Liouville residual |det Phi - exp int tr A| (relative), max over the table: " +
-         num(max_liouville(table)) + "\n";
+         optional_text(max_res) + "\n";
   return out;
 }
 
 std::string point(const Request& r, const Analysis& an) {
-  const PointResult p = an.point(r.mu);
+  PointResult p = an.point(r.mu, r.scan_step);
+  audit(p);
   if (r.json) {
     Json j = header_json("point", an);
-    j.update(point_json(p));
-    j["hover"] = hover_json(an);
+    j.update(point_json(r, p));
+    j["hover"] = hover_json(r, an);
     return dump(j);
   }
-  return header_text(an) + "\n" + warnings_text(an) + point_text(p, an.options());
+  return header_text(an) + "\n" + warnings_text(an) + point_text(r, p);
 }
 
 std::string sweep(const Request& r, const Analysis& an) {
-  const SweepResult s = an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step);
+  SweepResult s = an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step);
+  audit(s);
   const std::vector<std::string> labels = mode_labels(an);
-  if (r.csv) return sweep_csv(s, labels);
+  if (r.csv) return sweep_csv(r, s, labels);
   if (r.json) {
     Json j = header_json("sweep", an);
     j["mu"] = Json{{"start", r.sweep_start}, {"stop", r.sweep_stop}, {"step", r.sweep_step}};
     j["labels"] = labels;
-    j["rows"] = sweep_rows_json(s, labels);
-    j["max_liouville_residual"] = max_liouville(s);
-    return dump(status_json(j, s.status, s.message));
+    j["rows"] = sweep_rows_json(r, s, labels);
+    j["max_liouville_residual"] = optional_json(max_liouville(s));
+    return dump(status_json(j, s.status, vocab(r, s.message)));
   }
   return header_text(an) + "\n" + warnings_text(an) +
-         "Exponents per rev (dominant exponent of each mode)\n" + sweep_table_text(s, labels);
+         "Exponents per rev (dominant exponent of each mode)\n" + sweep_table_text(r, s, labels);
 }
 
 std::string critical(const Request& r, const Analysis& an) {
   CriticalOptions opt;
   opt.mu_max = r.mu_max;
-  const CriticalResult c = an.critical(opt);
+  opt.scan_step = r.scan_step;
+  CriticalResult c = an.critical(opt);
+  audit(c);
   if (r.json) {
     Json j = header_json("critical", an);
-    j.update(critical_json(c));
+    j.update(critical_json(r, c));
     return dump(j);
   }
-  return header_text(an) + "\n" + warnings_text(an) + critical_text(c);
+  return header_text(an) + "\n" + warnings_text(an) + critical_text(r, c);
 }
 
 // Paper (Appendix B) name of an integral, looked up by its canonical name.
@@ -481,30 +617,41 @@ std::string system_snapshot(const Request& r, const Analysis& an) {
     return i < static_cast<Eigen::Index>(states.size()) ? states[static_cast<std::size_t>(i)]
                                                         : std::to_string(i);
   };
+  // The snapshot has no status of its own: the audit gives it one.
+  Status status = Status::Ok;
+  std::string message;
+  if (!s.A.allFinite() || !s.f.allFinite() || !finite(s.psi)) {
+    demote(status, message, Status::Failed, "entries of A(psi) or f(psi)");
+  }
+  bool integrals_ok = true;
+  for (const auto& v : {&s.aero_integrals, &s.aero_integrals_region, &s.structural_integrals}) {
+    for (const auto& [name, value] : *v) integrals_ok = integrals_ok && finite(value);
+  }
+  if (!integrals_ok) demote(status, message, Status::Failed, "spanwise integrals");
   if (r.json) {
-    Json j = header_json("system", an);
+    Json j = header_json("system", an, false);
     j["mu"] = s.mu;
-    j["psi"] = s.psi;
+    j["psi"] = jnum(s.psi);
     j["region"] = s.region;
     j["state"] = states;
     Json A = Json::array();
     for (Eigen::Index i = 0; i < n; ++i) {
       Json row = Json::array();
-      for (Eigen::Index k = 0; k < s.A.cols(); ++k) row.push_back(s.A(i, k));
+      for (Eigen::Index k = 0; k < s.A.cols(); ++k) row.push_back(jnum(s.A(i, k)));
       A.push_back(row);
     }
     j["A"] = A;
     Json f = Json::array();
-    for (Eigen::Index i = 0; i < s.f.size(); ++i) f.push_back(s.f[i]);
+    for (Eigen::Index i = 0; i < s.f.size(); ++i) f.push_back(jnum(s.f[i]));
     j["f"] = f;
-    j["hover"] = hover_json(an);
+    j["hover"] = hover_json(r, an);
     Json aero = Json::array();
     for (std::size_t i = 0; i < s.aero_integrals.size(); ++i) {
       const std::string& name = s.aero_integrals[i].first;
       Json a{{"name", name},
              {"paper_name", paper_name(m.aero, m.n_aero, name)},
-             {"normal", s.aero_integrals[i].second}};
-      a["at_psi"] = i < s.aero_integrals_region.size() ? Json(s.aero_integrals_region[i].second)
+             {"normal", jnum(s.aero_integrals[i].second)}};
+      a["at_psi"] = i < s.aero_integrals_region.size() ? jnum(s.aero_integrals_region[i].second)
                                                        : Json(nullptr);
       aero.push_back(a);
     }
@@ -513,13 +660,13 @@ std::string system_snapshot(const Request& r, const Analysis& an) {
     for (const auto& [name, value] : s.structural_integrals) {
       st.push_back(Json{{"name", name},
                         {"paper_name", paper_name(m.structural, m.n_structural, name)},
-                        {"value", value}});
+                        {"value", jnum(value)}});
     }
     j["structural_integrals"] = st;
-    return dump(j);
+    return dump(status_json(j, status, message));
   }
-  std::string out = header_text(an) + "\n" + warnings_text(an);
-  out += "System y' = A(psi) y + f(psi) at mu = " + num(s.mu) + ", psi = " + num(s.psi) +
+  std::string out = header_text(an, false) + "\n" + warnings_text(an);
+  out += "System y' = A(psi) y + f(psi) at mu = " + num(s.mu) + ", psi = " + cell(s.psi) +
          " rad: " + s.region + " flow region\n";
   std::string state_list;
   for (const std::string& x : states) state_list += (state_list.empty() ? "" : ", ") + x;
@@ -530,26 +677,26 @@ std::string system_snapshot(const Request& r, const Analysis& an) {
   TextTable t(header);
   for (Eigen::Index i = 0; i < n; ++i) {
     std::vector<std::string> row{state(i) + "'"};
-    for (Eigen::Index k = 0; k < s.A.cols(); ++k) row.push_back(num(s.A(i, k)));
-    row.push_back(i < s.f.size() ? num(s.f[i]) : "");
+    for (Eigen::Index k = 0; k < s.A.cols(); ++k) row.push_back(cell(s.A(i, k)));
+    row.push_back(i < s.f.size() ? cell(s.f[i]) : "");
     t.add_row(row);
   }
-  out += t.render() + "\n" + hover_text(an) + "\n";
+  out += t.render() + status_text(status, message) + "\n" + hover_text(r, an) + "\n";
   out += "Aerodynamic spanwise integrals (int x^p ... dx0 over the aerodynamic span)\n";
   TextTable a({"integral", "paper", "normal flow", "used at psi"});
   a.left_align(1);
   for (std::size_t i = 0; i < s.aero_integrals.size(); ++i) {
     const std::string& name = s.aero_integrals[i].first;
     const std::string pn = paper_name(m.aero, m.n_aero, name);
-    a.add_row({name, pn.empty() ? "-" : pn, num(s.aero_integrals[i].second),
-               i < s.aero_integrals_region.size() ? num(s.aero_integrals_region[i].second) : "-"});
+    a.add_row({name, pn.empty() ? "-" : pn, cell(s.aero_integrals[i].second),
+               i < s.aero_integrals_region.size() ? cell(s.aero_integrals_region[i].second) : "-"});
   }
   out += a.render() + "\nGeneralized masses and structural integrals (by I_b)\n";
   TextTable g({"integral", "paper", "value"});
   g.left_align(1);
   for (const auto& [name, value] : s.structural_integrals) {
     const std::string pn = paper_name(m.structural, m.n_structural, name);
-    g.add_row({name, pn.empty() ? "-" : pn, num(value)});
+    g.add_row({name, pn.empty() ? "-" : pn, cell(value)});
   }
   return out + g.render();
 }

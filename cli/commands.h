@@ -9,7 +9,10 @@
 namespace flaplag::cli {
 
 // Runs the request and returns what is to be written.  Throws InvalidInput for inputs only the
-// runtime can judge (e.g. an exact-mode frequency the Galerkin basis cannot reach).
+// runtime can judge (e.g. an exact-mode frequency the Galerkin basis cannot reach), named by the
+// runtime's field or argument name (CommandLine::error_line() turns it into an option).  Every
+// number written is finite, or the zeta "-inf" of a zero multiplier, or the result carries a
+// non-ok status saying what was not shown.
 std::string run_command(const Request& request);
 
 // `flaplag modes` (modes_command.cc).

@@ -4,21 +4,22 @@
 // limit are results, not errors); 2 bad input, reported as ONE line on stderr
 // "flaplag: error: <option> = <value>: <reason>", with no output file created or changed;
 // 1 an internal failure (a bug), also one line on stderr.
-#include <cstdio>
 #include <exception>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "command_line.h"
 #include "commands.h"
 #include "flaplag/core/errors.h"
-#include "flaplag/rotor/parameter_table.h"
 #include "output.h"
 
 namespace {
 
 constexpr int kBadInput = 2;
 constexpr int kInternalError = 1;
+
+const char* const kVersion = "flaplag 0.1.0";
 
 // One line, whatever the message contains.
 std::string one_line(std::string s) {
@@ -30,57 +31,35 @@ std::string one_line(std::string s) {
 }
 
 int report(const std::string& message, int code) {
-  std::cerr << "flaplag: error: " << one_line(message) << std::endl;
+  std::cerr << (code == kBadInput ? "flaplag: error: " : "flaplag: internal error: ")
+            << one_line(message) << std::endl;
   return code;
 }
 
-// CLI11 says "The following argument(s) was/were not expected: x y"; say what the user needs.
-std::string parse_error_text(const CLI::ParseError& e) {
-  const std::string what = e.what();
-  if (dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr) {
-    const auto colon = what.find(": ");
-    const std::string args = colon == std::string::npos ? what : what.substr(colon + 2);
-    return args + ": unknown option, subcommand or argument (see flaplag --help)";
-  }
-  return what;
-}
-
-int run(int argc, char** argv) {
-  flaplag::cli::CommandLine cl;
-  try {
-    cl.app().parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return cl.app().exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return cl.app().exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return cl.app().exit(e);
-  } catch (const CLI::ParseError& e) {
-    return report(parse_error_text(e), kBadInput);
+int run(const std::vector<std::string>& args) {
+  const flaplag::cli::CommandLine cl(args);
+  if (cl.wants_help() || cl.wants_version()) {
+    std::cout << (cl.wants_help() ? cl.help_text() : std::string(kVersion) + "\n") << std::flush;
+    return std::cout ? 0 : kInternalError;
   }
   try {
     const flaplag::cli::Request request = cl.interpret();
     // Check the output path before a possibly long analysis; nothing is left behind.
-    if (!request.output.empty()) flaplag::cli::probe_output_path(request.output);
+    const flaplag::cli::OutputTarget target(request.output);
     const std::string text = flaplag::cli::run_command(request);
     if (request.output.empty()) {
       std::cout << text << std::flush;
       if (!std::cout) return report("cannot write to standard output", kInternalError);
     } else {
-      flaplag::cli::write_file_atomically(request.output, text);
+      target.write(text);
     }
     return 0;
   } catch (const flaplag::InvalidInput& e) {
     // The runtime names fields ("omega_lag"); users know options ("--omega-lag").
-    const std::string option = flaplag::option_for(e.name());
-    if (option.empty() || option[0] != '-') {
-      // Not an option but a quantity derived from several (e.g. a non-finite coefficient of
-      // A(psi) for an extreme mu or gamma): say that it comes from the inputs as a whole.
-      return report(std::string(e.what()) + " (for the parameters given)", kBadInput);
-    }
-    const std::string* typed = cl.typed(option);
-    const std::string value = typed != nullptr && !typed->empty() ? *typed : e.value();
-    return report(option + " = " + value + ": " + flaplag::cli::reason_of(e), kBadInput);
+    if (const std::optional<std::string> line = cl.error_line(e)) return report(*line, kBadInput);
+    // A name no option answers for is a quantity the analysis derived from valid input (say a
+    // non-finite coefficient): the inputs were checked, so this is a bug to report.
+    return report(std::string("invalid derived quantity ") + e.what(), kInternalError);
   }
 }
 
@@ -88,10 +67,10 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   try {
-    return run(argc, argv);
+    return run(std::vector<std::string>(argv + (argc > 0 ? 1 : 0), argv + argc));
   } catch (const std::exception& e) {
-    return report(std::string("internal error: ") + e.what(), kInternalError);
+    return report(e.what(), kInternalError);
   } catch (...) {
-    return report("internal error: unknown exception", kInternalError);
+    return report("unknown exception", kInternalError);
   }
 }

@@ -1,12 +1,15 @@
 // `flaplag modes`: the Fig 9 relation between first rotating and nonrotating frequencies, and
 // the exact rotating modes of one blade (frequencies, stiffnesses, shapes, Rayleigh checks).
 #include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "commands.h"
 #include "flaplag/blade/rotating_modes.h"
+#include "flaplag/rotor/parameter_table.h"
+#include "options.h"
 #include "output.h"
 
 namespace flaplag::cli {
@@ -16,6 +19,16 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 std::string index_name(const char* base, std::size_t k) { return base + std::to_string(k + 1); }
+
+// As in commands.cc: a value the Galerkin solution did not deliver finite is shown as "-" or
+// null, and the output's status says so.
+std::string cell(double v) { return std::isfinite(v) ? num(v) : "-"; }
+Json jnum(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+Json jnums(const std::vector<double>& v) {
+  Json a = Json::array();
+  for (double x : v) a.push_back(jnum(x));
+  return a;
+}
 
 }  // namespace
 
@@ -50,17 +63,53 @@ std::string run_modes(const Request& r) {
     x0[i] = static_cast<double>(i) / static_cast<double>(x0.size() - 1);
   }
 
+  // Every number shown, checked once.
+  bool all_finite = std::isfinite(opt.e1_over_l) && std::isfinite(ex.omega_flap_nonrotating) &&
+                    std::isfinite(ex.omega_lag_nonrotating) && std::isfinite(ms.stiffness_flap) &&
+                    std::isfinite(ms.stiffness_lag);
+  for (const auto& t : {&flap9, &lag9}) {
+    for (const FrequencyPair& f : *t) {
+      all_finite = all_finite && std::isfinite(f.nonrotating) && std::isfinite(f.rotating);
+    }
+  }
+  const std::vector<const std::vector<double>*> lists = {&ex.omega_flap_all, &ex.omega_lag_all,
+                                                         &ms.omega_flap,     &ms.omega_lag,
+                                                         &rayleigh_flap,     &rayleigh_lag};
+  for (const std::vector<double>* v : lists) {
+    for (double x : *v) all_finite = all_finite && std::isfinite(x);
+  }
+  for (const auto& shapes : {&ms.flap, &ms.lag}) {
+    for (const auto& shape : *shapes) {
+      for (int der = 0; der <= 3; ++der) {
+        for (double x : x0) all_finite = all_finite && std::isfinite(shape->value(der, x));
+      }
+    }
+  }
+  const std::string status = all_finite ? "ok" : "failed";
+  const std::string message =
+      all_finite ? "" : "non-finite frequencies, stiffnesses or shape values (not shown)";
+
   if (r.json) {
     Json j;
     j["command"] = "modes";
     j["basis"] = r.basis;
-    j["e1_over_l"] = opt.e1_over_l;
-    j["paper_1974_shapes"] = opt.paper_1974_shapes;
+    Json params = Json::object();
+    for (const char* field :
+         {"omega_flap", "omega_lag", "length_ratio", "root_offset", "paper_1974_shapes"}) {
+      const ParameterSpec& spec = *find_parameter(field);
+      if (spec.type == ParameterType::Flag) {
+        params[json_key(spec)] = p.*spec.flag;
+      } else {
+        params[json_key(spec)] = p.*spec.real;
+      }
+    }
+    j["parameters"] = params;
+    j["e1_over_l"] = jnum(opt.e1_over_l);
     Json fig9 = Json::array();
     for (std::size_t i = 0; i < flap9.size(); ++i) {
-      fig9.push_back(Json{{"nonrotating", flap9[i].nonrotating},
-                          {"flap_rotating", flap9[i].rotating},
-                          {"lag_rotating", i < lag9.size() ? lag9[i].rotating : 0.0}});
+      fig9.push_back(Json{{"nonrotating", jnum(flap9[i].nonrotating)},
+                          {"flap_rotating", jnum(flap9[i].rotating)},
+                          {"lag_rotating", i < lag9.size() ? jnum(lag9[i].rotating) : Json()}});
     }
     j["fig9"] = fig9;
     auto direction = [&](const char* base, double given, double nonrot, double k,
@@ -69,18 +118,18 @@ std::string run_modes(const Request& r) {
                          const std::vector<std::shared_ptr<const ModeShape>>& shapes) {
       Json d;
       d["rotating_first"] = given;
-      d["nonrotating_first"] = nonrot;
-      d["stiffness"] = k;
-      d["rotating_all"] = all;
+      d["nonrotating_first"] = jnum(nonrot);
+      d["stiffness"] = jnum(k);
+      d["rotating_all"] = jnums(all);
       Json modes = Json::array();
       for (std::size_t m = 0; m < shapes.size(); ++m) {
         Json mode;
         mode["name"] = index_name(base, m);
-        mode["omega"] = m < returned.size() ? returned[m] : 0.0;
-        mode["rayleigh_omega"] = rayleigh[m];
+        mode["omega"] = m < returned.size() ? jnum(returned[m]) : Json();
+        mode["rayleigh_omega"] = jnum(rayleigh[m]);
         for (int der = 0; der <= 3; ++der) {
           Json col = Json::array();
-          for (double x : x0) col.push_back(shapes[m]->value(der, x));
+          for (double x : x0) col.push_back(jnum(shapes[m]->value(der, x)));
           mode[der == 0 ? "value" : "d" + std::to_string(der)] = col;
         }
         modes.push_back(mode);
@@ -93,16 +142,18 @@ std::string run_modes(const Request& r) {
                           ex.omega_flap_all, ms.omega_flap, rayleigh_flap, ms.flap);
     j["lag"] = direction("gamma", p.omega_lag, ex.omega_lag_nonrotating, ms.stiffness_lag,
                          ex.omega_lag_all, ms.omega_lag, rayleigh_lag, ms.lag);
+    j["status"] = status;
+    j["message"] = message;
     return j.dump(2) + "\n";
   }
 
   std::string out = "Fig 9: first rotating vs first nonrotating frequency, by Omega\n(" +
                     std::to_string(r.basis) +
-                    " cantilever functions per direction, e1/l = " + num(opt.e1_over_l) + ")\n";
+                    " cantilever functions per direction, e1/l = " + cell(opt.e1_over_l) + ")\n";
   TextTable t9({"nonrotating", "flap rotating", "lag rotating"});
   for (std::size_t i = 0; i < flap9.size(); ++i) {
-    t9.add_row({num(flap9[i].nonrotating), num(flap9[i].rotating),
-                i < lag9.size() ? num(lag9[i].rotating) : "-"});
+    t9.add_row({cell(flap9[i].nonrotating), cell(flap9[i].rotating),
+                i < lag9.size() ? cell(lag9[i].rotating) : "-"});
   }
   out += t9.render() + "\n";
 
@@ -111,22 +162,22 @@ std::string run_modes(const Request& r) {
     out += "\n(1974 sign convention: the shapes are NOT modes of the blade)";
   out += "\n";
   TextTable tb({"", "flap", "lag"});
-  tb.add_row({"first rotating frequency", num(p.omega_flap), num(p.omega_lag)});
-  tb.add_row({"first nonrotating frequency", num(ex.omega_flap_nonrotating),
-              num(ex.omega_lag_nonrotating)});
-  tb.add_row({"stiffness EI/(Omega^2 l I_b)", num(ms.stiffness_flap), num(ms.stiffness_lag)});
+  tb.add_row({"first rotating frequency", cell(p.omega_flap), cell(p.omega_lag)});
+  tb.add_row({"first nonrotating frequency", cell(ex.omega_flap_nonrotating),
+              cell(ex.omega_lag_nonrotating)});
+  tb.add_row({"stiffness EI/(Omega^2 l I_b)", cell(ms.stiffness_flap), cell(ms.stiffness_lag)});
   const std::size_t n_all = std::max(ex.omega_flap_all.size(), ex.omega_lag_all.size());
   for (std::size_t m = 0; m < n_all; ++m) {
     tb.add_row({"rotating frequency " + std::to_string(m + 1),
-                m < ex.omega_flap_all.size() ? num(ex.omega_flap_all[m]) : "-",
-                m < ex.omega_lag_all.size() ? num(ex.omega_lag_all[m]) : "-"});
+                m < ex.omega_flap_all.size() ? cell(ex.omega_flap_all[m]) : "-",
+                m < ex.omega_lag_all.size() ? cell(ex.omega_lag_all[m]) : "-"});
   }
   // The Rayleigh quotient of a true mode is its frequency; a wrong shape shows up here.
   const std::size_t n_shapes = std::max(rayleigh_flap.size(), rayleigh_lag.size());
   for (std::size_t m = 0; m < n_shapes; ++m) {
     tb.add_row({"Rayleigh frequency of shape " + std::to_string(m + 1),
-                m < rayleigh_flap.size() ? num(rayleigh_flap[m]) : "-",
-                m < rayleigh_lag.size() ? num(rayleigh_lag[m]) : "-"});
+                m < rayleigh_flap.size() ? cell(rayleigh_flap[m]) : "-",
+                m < rayleigh_lag.size() ? cell(rayleigh_lag[m]) : "-"});
   }
   out += tb.render() + "\nMode shapes (tip value 1)\n";
   std::vector<std::string> header{"x0"};
@@ -134,12 +185,14 @@ std::string run_modes(const Request& r) {
   for (std::size_t m = 0; m < ms.lag.size(); ++m) header.push_back(index_name("gamma", m));
   TextTable ts(header);
   for (double x : x0) {
-    std::vector<std::string> row{num(x)};
-    for (const auto& s : ms.flap) row.push_back(num(s->value(0, x)));
-    for (const auto& s : ms.lag) row.push_back(num(s->value(0, x)));
+    std::vector<std::string> row{cell(x)};
+    for (const auto& s : ms.flap) row.push_back(cell(s->value(0, x)));
+    for (const auto& s : ms.lag) row.push_back(cell(s->value(0, x)));
     ts.add_row(row);
   }
-  return out + ts.render();
+  out += ts.render();
+  if (!all_finite) out += "  status: " + status + ": " + message + "\n";
+  return out;
 }
 
 }  // namespace flaplag::cli

@@ -1,27 +1,33 @@
 #include "output.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
+#include <limits>
+#include <stdexcept>
 #include <utility>
 
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
-#include "flaplag/rotor/parameter_table.h"
 
 namespace flaplag::cli {
 
 namespace {
 
-const char* const kOutputOption = "-o";
+// The library-style name of -o: the command line shows it as the user typed it.
+const char* const kOutputName = "output";
 
 [[noreturn]] void fail(const std::string& path, const std::string& reason) {
-  throw InvalidInput(kOutputOption, path.empty() ? "\"\"" : path, reason);
+  throw InvalidInput(kOutputName, path.empty() ? "\"\"" : path, reason);
 }
+
+std::string errno_text() { return std::strerror(errno); }
 
 // Counts display columns, not bytes, so that tables with Greek letters stay aligned.
 std::size_t display_width(const std::string& s) {
@@ -42,81 +48,187 @@ std::string pad_right(const std::string& s, std::size_t width) {
   return w >= width ? s : s + std::string(width - w, ' ');
 }
 
-void check_target(const std::string& path) {
-  if (path.empty()) fail(path, "empty file name");
-  if (path.back() == '/') fail(path, "is a directory");
-  struct stat st {};
-  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) fail(path, "is a directory");
+std::string directory_of(const std::string& path) {
+  const auto slash = path.rfind('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
 }
 
-// Creates <path>.tmp.XXXXXX; returns the descriptor and fills `tmp`.
-int make_temporary(const std::string& path, std::string& tmp) {
-  std::vector<char> name(path.begin(), path.end());
-  const char suffix[] = ".tmp.XXXXXX";
-  name.insert(name.end(), suffix, suffix + sizeof suffix);  // includes the terminating NUL
+enum class Kind { Missing, Regular, Through };
+
+struct Resolved {
+  std::string path;  // symlinks followed: what is replaced or written
+  Kind kind = Kind::Missing;
+  struct stat st {};
+};
+
+// Follows symbolic links in the last component (the kernel resolves those in the directories)
+// and classifies what is found.  Fails for anything that is neither missing, a regular file, a
+// character device nor a FIFO.
+Resolved resolve(const std::string& given) {
+  if (given.empty()) fail(given, "empty file name");
+  if (given.back() == '/') fail(given, "names a directory (ends in /)");
+  Resolved r;
+  r.path = given;
+  // Linux gives up after 40 links too (ELOOP).
+  for (int hop = 0; hop <= 40; ++hop) {
+    if (::lstat(r.path.c_str(), &r.st) != 0) {
+      if (errno == ENOENT) {
+        r.kind = Kind::Missing;
+        return r;
+      }
+      fail(given, (r.path == given ? "" : "target " + r.path + ": ") + errno_text());
+    }
+    if (S_ISLNK(r.st.st_mode)) {
+      std::vector<char> buf(static_cast<std::size_t>(r.st.st_size > 0 ? r.st.st_size : 255) + 2);
+      const ssize_t n = ::readlink(r.path.c_str(), buf.data(), buf.size() - 1);
+      if (n < 0) fail(given, "cannot read the symbolic link: " + errno_text());
+      const std::string to(buf.data(), static_cast<std::size_t>(n));
+      if (to.empty()) fail(given, "empty symbolic link");
+      r.path = to[0] == '/' ? to : directory_of(r.path) + "/" + to;
+      if (r.path.back() == '/') fail(given, "symbolic link to a directory: " + r.path);
+      continue;
+    }
+    const std::string what = r.path == given ? "" : "symbolic link to " + r.path + ", which ";
+    if (S_ISREG(r.st.st_mode)) {
+      r.kind = Kind::Regular;
+    } else if (S_ISCHR(r.st.st_mode) || S_ISFIFO(r.st.st_mode)) {
+      r.kind = Kind::Through;
+    } else if (S_ISDIR(r.st.st_mode)) {
+      fail(given, what + "is a directory");
+    } else {
+      fail(given, what + "is neither a regular file, a character device nor a FIFO");
+    }
+    // Replacing a file the user may not write would bypass its permissions.
+    if (::access(r.path.c_str(), W_OK) != 0) {
+      fail(given,
+           (what.empty() ? "" : "target " + r.path + ": ") + "not writable: " + errno_text());
+    }
+    return r;
+  }
+  fail(given, "too many levels of symbolic links");
+}
+
+// Creates a temporary file next to `path` (in its directory, so that rename() is atomic);
+// returns the descriptor and fills `tmp`.
+int make_temporary(const std::string& given, const std::string& path, std::string& tmp) {
+  const std::string pattern = directory_of(path) + "/.flaplag-tmp.XXXXXX";
+  std::vector<char> name(pattern.begin(), pattern.end());
+  name.push_back('\0');
   const int fd = ::mkstemp(name.data());
-  if (fd < 0) fail(path, std::string("cannot create a file there: ") + std::strerror(errno));
+  if (fd < 0) {
+    fail(given, "cannot create a file in " + directory_of(path) + ": " + errno_text());
+  }
   tmp.assign(name.data());
   return fd;
 }
 
-}  // namespace
-
-void probe_output_path(const std::string& path) {
-  check_target(path);
-  std::string tmp;
-  const int fd = make_temporary(path, tmp);
-  ::close(fd);
-  ::unlink(tmp.c_str());
-}
-
-void write_file_atomically(const std::string& path, const std::string& content) {
-  check_target(path);
-  std::string tmp;
-  const int fd = make_temporary(path, tmp);
-  auto abandon = [&](const std::string& what) {
-    const std::string reason = what + ": " + std::strerror(errno);
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    fail(path, reason);
-  };
-  // mkstemp creates mode 0600; give the file the mode it would have had if written directly.
-  struct stat st {};
-  mode_t mode = 0;
-  if (::stat(path.c_str(), &st) == 0) {
-    mode = st.st_mode & 07777;
-  } else {
-    const mode_t mask = ::umask(0);
-    ::umask(mask);
-    mode = 0666 & ~mask;
-  }
-  if (::fchmod(fd, mode) != 0) abandon("cannot set the file mode");
+// write(2) until done; false with errno set on failure.
+bool write_all(int fd, const std::string& content) {
   const char* p = content.data();
   std::size_t left = content.size();
   while (left > 0) {
     const ssize_t n = ::write(fd, p, left);
     if (n < 0) {
       if (errno == EINTR) continue;
-      abandon("write failed");
+      return false;
     }
     p += n;
     left -= static_cast<std::size_t>(n);
   }
+  return true;
+}
+
+void replace_atomically(const std::string& given, const Resolved& r, const std::string& content) {
+  std::string tmp;
+  const int fd = make_temporary(given, r.path, tmp);
+  auto abandon = [&](const std::string& what) {
+    const std::string reason = what + ": " + errno_text();
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    fail(given, reason);
+  };
+  // mkstemp creates mode 0600; give the file the mode it would have had if written directly.
+  mode_t mode = 0;
+  if (r.kind == Kind::Regular) {
+    mode = r.st.st_mode & 07777;
+    // Keep the owner where we may (root replacing a user's file); failure is harmless.
+    if (::fchown(fd, r.st.st_uid, r.st.st_gid) != 0) errno = 0;
+  } else {
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    mode = 0666 & ~mask;
+  }
+  if (::fchmod(fd, mode) != 0) abandon("cannot set the file mode");
+  if (!write_all(fd, content)) abandon("write failed");
   // Without fsync a crash after rename can leave an empty file where the old one was.
   if (::fsync(fd) != 0) abandon("write failed");
   if (::close(fd) != 0) {
-    const std::string reason = std::string("write failed: ") + std::strerror(errno);
+    const std::string reason = "write failed: " + errno_text();
     ::unlink(tmp.c_str());
-    fail(path, reason);
+    fail(given, reason);
   }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::string("cannot replace the file: ") + std::strerror(errno);
+  if (::rename(tmp.c_str(), r.path.c_str()) != 0) {
+    const std::string reason = "cannot replace " + r.path + ": " + errno_text();
     ::unlink(tmp.c_str());
-    fail(path, reason);
+    fail(given, reason);
   }
 }
 
-std::string num(double v) { return round_trip_text(v); }
+void write_through(const std::string& given, const Resolved& r, const std::string& content) {
+  // A FIFO whose reader went away must give an error, not kill us with SIGPIPE.
+  struct sigaction ignore {
+  }, previous{};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  ::sigaction(SIGPIPE, &ignore, &previous);
+  // No O_CREAT: a device or FIFO that vanished since resolve() is not recreated as a file.
+  const int fd = ::open(r.path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+  std::string reason;
+  if (fd < 0) {
+    reason = "cannot open: " + errno_text();
+  } else {
+    if (!write_all(fd, content)) reason = "write failed: " + errno_text();
+    if (::close(fd) != 0 && reason.empty()) reason = "write failed: " + errno_text();
+  }
+  ::sigaction(SIGPIPE, &previous, nullptr);
+  if (!reason.empty()) fail(given, reason);
+}
+
+}  // namespace
+
+OutputTarget::OutputTarget(std::string path) : path_(std::move(path)) {
+  if (path_.empty()) return;
+  const Resolved r = resolve(path_);
+  if (r.kind == Kind::Through) return;  // opening a FIFO would wait for a reader
+  // The rename needs a writable directory: find out now, leaving nothing behind.
+  std::string tmp;
+  const int fd = make_temporary(path_, r.path, tmp);
+  ::close(fd);
+  ::unlink(tmp.c_str());
+}
+
+void OutputTarget::write(const std::string& content) const {
+  if (path_.empty()) return;
+  // Resolved again: the path may have changed during the analysis.
+  const Resolved r = resolve(path_);
+  if (r.kind == Kind::Through) {
+    write_through(path_, r, content);
+  } else {
+    replace_atomically(path_, r, content);
+  }
+}
+
+std::string num(double v) {
+  if (!std::isfinite(v)) {
+    throw std::logic_error("non-finite number " + round_trip_text(v) + " reached the output");
+  }
+  return round_trip_text(v);
+}
+
+std::string zeta_text(double zeta) {
+  return zeta == -std::numeric_limits<double>::infinity() ? "-inf" : num(zeta);
+}
 
 TextTable::TextTable(std::vector<std::string> header) { rows_.push_back(std::move(header)); }
 

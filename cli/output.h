@@ -1,5 +1,5 @@
-// flaplag CLI — where results go (stdout or an atomically replaced file) and how numbers and
-// tables are written.
+// flaplag CLI — where results go (stdout, an atomically replaced file, a device or FIFO) and how
+// numbers and tables are written.
 #pragma once
 
 #include <string>
@@ -7,19 +7,37 @@
 
 namespace flaplag::cli {
 
-// Checks now that `path` can be written, so that a long analysis does not end in a lost result,
-// and leaves nothing behind: the probe file is removed at once.  Throws InvalidInput("-o", ...).
-void probe_output_path(const std::string& path);
+// Where `-o FILE` writes.  Constructed before the analysis, so that a long run does not end in
+// a lost result: it checks that the path can be written and decides how, and leaves nothing
+// behind (no file is created, opened or changed until write()).
+//   - a missing path or a regular file is replaced atomically: a temporary file in the same
+//     directory is written, flushed to disk and renamed over the path (a new file gets mode
+//     0666 & ~umask, a replaced one keeps its mode and, where permitted, its owner);
+//   - a character device (/dev/null, a terminal) or a FIFO is written straight through: it is
+//     never replaced;
+//   - a symbolic link is followed (chains too, relative to the link's directory) and the rules
+//     above apply to its target: a regular target is replaced atomically in the target's
+//     directory and the link is kept; a dangling link creates its target;
+//   - a directory, block device or socket is refused.
+// Errors throw InvalidInput("output", path, reason) (the command line names it -o).
+class OutputTarget {
+ public:
+  // "" means standard output: nothing to check.
+  explicit OutputTarget(std::string path);
+  void write(const std::string& content) const;
 
-// Writes `content` to `path` atomically: a temporary file in the same directory
-// (<path>.tmp.XXXXXX) is written, flushed to disk and renamed over `path`.  On any failure the
-// temporary is removed, an existing `path` is left untouched and InvalidInput("-o", ...) is thrown.
-// A new file gets mode 0666 & ~umask; a replaced file keeps its mode.
-void write_file_atomically(const std::string& path, const std::string& content);
+ private:
+  std::string path_;
+};
 
 // Numbers in text output: shortest decimal that reads back as exactly the same double
-// (never more than the 17 significant digits of %.17g).
+// (never more than the 17 significant digits of %.17g).  A non-finite value is a bug of the
+// caller, which must have checked its results (commands.cc): num() throws std::logic_error
+// rather than print "nan" or "inf" as a result.
 std::string num(double v);
+// A damping exponent: num(), or "-inf" for the zeta of a zero multiplier (the only documented
+// non-finite result).
+std::string zeta_text(double zeta);
 
 // A text table: left-aligned first column, right-aligned further columns (numbers) unless
 // marked as text, two blanks between.

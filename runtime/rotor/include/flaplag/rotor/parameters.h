@@ -13,21 +13,21 @@ enum class ModeKind { Assumed, Exact };
 
 struct RotorParameters {
   std::string model = "paper";            // compiled ordering model (see `flaplag models`)
-  double gamma = 10.0;                    // Lock number based on normal flow (> 0)
-  double sigma = 0.05;                    // rotor solidity (> 0), used by the inflow, eq 2.24
-  double lift_slope = 6.283185307179586;  // a (> 0)
-  double cdo = 0.01;                      // profile drag coefficient C_Do (>= 0)
-  double theta = 0.15;                    // collective pitch [rad]
-  double precone = 0.0;                   // beta_P [rad]
-  double droop = 0.0;                     // beta_D [rad]
-  double omega_flap = 1.175;              // first rotating flap frequency by Omega (> 0)
-  double omega_lag = 1.28303;             // first rotating lag frequency by Omega (> 0)
-  double damping_flap = 0.0;              // eta_SF, viscous structural damping ratio (>= 0)
-  double damping_lag = 0.0;               // eta_SL (>= 0)
-  double length_ratio = 1.0;              // l / R (> 0, <= 1)
-  double tip_loss_a = 0.0;                // A-bar, inner aerodynamic limit in x0bar
-  double tip_loss_b = 1.0;                // B-bar, outer aerodynamic limit in x0bar
-  double root_offset = 0.0;               // e1, root offset of the elastic blade by R (>= 0)
+  double gamma = 10.0;                    // Lock number based on normal flow, (0, 1e4]
+  double sigma = 0.05;                    // rotor solidity, (0, 1], used by the inflow, eq 2.24
+  double lift_slope = 6.283185307179586;  // a [1/rad], (0, 100]
+  double cdo = 0.01;                      // profile drag coefficient C_Do, [0, 1]
+  double theta = 0.15;                    // collective pitch [rad], (-pi/2, pi/2)
+  double precone = 0.0;                   // beta_P [rad], (-pi/2, pi/2)
+  double droop = 0.0;                     // beta_D [rad], (-pi/2, pi/2)
+  double omega_flap = 1.175;              // first rotating flap frequency by Omega, (0, 1000]
+  double omega_lag = 1.28303;             // first rotating lag frequency by Omega, (0, 1000]
+  double damping_flap = 0.0;              // eta_SF, viscous structural damping ratio, [0, 10]
+  double damping_lag = 0.0;               // eta_SL, [0, 10]
+  double length_ratio = 1.0;              // l / R, (0, 1]
+  double tip_loss_a = 0.0;                // A-bar, inner aerodynamic limit in x0bar, [0, 1)
+  double tip_loss_b = 1.0;                // B-bar, outer aerodynamic limit in x0bar, (0, 1]
+  double root_offset = 0.0;               // e1, root offset of the elastic blade by R, [0, 1)
   bool reversed_flow = true;              // Appendix D sector model
   ModeKind modes = ModeKind::Assumed;
   bool elastic_coupling = true;  // Appendix E; applies to exact modes only (paper 4.1(a))
@@ -35,7 +35,8 @@ struct RotorParameters {
       false;  // exact modes rebuilt with the 1974 sign slip (docs/validation.md)
 };
 
-// Throws InvalidInput naming the first offending field and its value.
+// Throws InvalidInput naming the first offending field ("omega_lag") and its value; the
+// admissible ranges are those of parameter_table.h (also noted above).
 void validate(const RotorParameters& p);
 
 // Inflow ratio for hover, eq 2.24: lambda = sigma a / 16 [sqrt(1 + 24 theta/(sigma a)) - 1].

@@ -1,0 +1,387 @@
+#include "options.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <system_error>
+
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
+#include "flaplag/numerics/continuation.h"
+#include "flaplag/numerics/floquet.h"
+
+namespace flaplag::cli {
+
+namespace {
+
+bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v'; }
+
+std::string kebab(std::string_view field) {
+  std::string s(field);
+  for (char& c : s) {
+    if (c == '_') c = '-';
+  }
+  return s;
+}
+
+OptionSpec value_option(std::string name, std::string metavar, std::string help,
+                        std::string default_text, std::vector<std::string> library_names) {
+  OptionSpec o;
+  o.name = std::move(name);
+  o.takes_value = true;
+  o.metavar = std::move(metavar);
+  o.help = std::move(help);
+  o.default_text = std::move(default_text);
+  o.library_names = std::move(library_names);
+  return o;
+}
+
+OptionSpec flag_option(std::string name, std::string help) {
+  OptionSpec o;
+  o.name = std::move(name);
+  o.help = std::move(help);
+  return o;
+}
+
+// One option per row of the runtime table.  A bool field gets the option that changes its
+// default: "--no-<field>" for a field that is on by default, "--<field>" for one that is off.
+OptionSpec rotor_option(const ParameterSpec& s) {
+  const RotorParameters defaults;
+  OptionSpec o;
+  o.rotor = &s;
+  o.library_names = {s.field};
+  switch (s.type) {
+    case ParameterType::Real:
+    case ParameterType::Text:
+    case ParameterType::Choice:
+      o.name = kebab_option(s.field);
+      o.takes_value = true;
+      o.metavar = s.type == ParameterType::Real   ? "REAL"
+                  : s.type == ParameterType::Text ? "NAME"
+                                                  : s.choices;
+      o.help = s.description;
+      o.default_text = parameter_text(defaults, s);
+      break;
+    case ParameterType::Flag: {
+      const bool on_by_default = defaults.*s.flag;
+      o.name = on_by_default ? "--no-" + kebab(s.field) : kebab_option(s.field);
+      o.flag_value = !on_by_default;
+      o.help = std::string(on_by_default ? "without " : "with ") + s.description;
+      break;
+    }
+  }
+  return o;
+}
+
+std::vector<OptionSpec> rotor_options() {
+  std::vector<OptionSpec> v;
+  for (const ParameterSpec& s : parameter_table()) v.push_back(rotor_option(s));
+  return v;
+}
+
+// The blade parameters `flaplag modes` uses.
+std::vector<OptionSpec> modes_rotor_options() {
+  std::vector<OptionSpec> v;
+  for (const char* field :
+       {"omega_flap", "omega_lag", "length_ratio", "root_offset", "paper_1974_shapes"}) {
+    v.push_back(rotor_option(*find_parameter(field)));
+  }
+  return v;
+}
+
+std::vector<OptionSpec> transition_options() {
+  const TransitionOptions defaults;
+  return {
+      value_option("--method", "rk4|hsu|magnus",
+                   "transition matrix: rk4 (paper 3.3.2), hsu (eqs 3.21-3.28) or magnus "
+                   "(4th-order Magnus, Richardson-extrapolated)",
+                   method_name(defaults.method), {"method"}),
+      value_option("--steps", "N|auto",
+                   "RK4 steps, Hsu intervals K or Magnus steps per period, 1.." +
+                       std::to_string(TransitionOptions::kMaxSteps) +
+                       "; auto: doubled until the exponents meet --zeta-tolerance",
+                   "auto", {"steps"}),
+      value_option("--terms", "J",
+                   "Hsu Taylor terms J, 1.." + std::to_string(TransitionOptions::kMaxTerms),
+                   std::to_string(defaults.terms), {"terms"}),
+      value_option("--zeta-tolerance", "REAL",
+                   "target error of the damping exponents zeta, per rev (> 0)",
+                   round_trip_text(defaults.zeta_tolerance), {"zeta_tolerance"}),
+  };
+}
+
+std::vector<OptionSpec> mode_count_options() {
+  return {
+      value_option("--flap-modes", "M",
+                   "flap modes M: selects the model <model>-<M>x<N> (<model> itself for 1x1; "
+                   "more than one mode needs --modes exact)",
+                   "1", {"flap_modes"}),
+      value_option("--lag-modes", "N", "lag modes N (see --flap-modes)", "1", {"lag_modes"}),
+  };
+}
+
+std::vector<OptionSpec> output_options() {
+  OptionSpec o = value_option("-o", "FILE",
+                              "write to FILE instead of stdout (- is stdout; a file is replaced "
+                              "atomically, a device or FIFO written through)",
+                              "", {"output"});
+  o.alias = "--output";
+  return {flag_option("--json", "write JSON instead of text"), o};
+}
+
+void append(std::vector<OptionSpec>& to, const std::vector<OptionSpec>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
+
+std::vector<OptionSpec> build(Command c) {
+  std::vector<OptionSpec> v;
+  const OptionSpec mu = value_option(
+      "--mu", "REAL", "advance ratio (0.." + round_trip_text(kMaxAdvanceRatio) + ")", "", {"mu"});
+  const OptionSpec scan_step = value_option(
+      "--scan-step", "REAL", "continuation step in mu from hover (> 0)", "0.01", {"scan_step"});
+  switch (c) {
+    case Command::Point:
+      v.push_back(mu);
+      v.push_back(scan_step);
+      break;
+    case Command::Sweep:
+      v.push_back(value_option("--mu", "A:B:STEP",
+                               "advance ratios A, A + STEP, ..., B (0 <= A < B <= " +
+                                   round_trip_text(kMaxAdvanceRatio) + ", STEP > 0, B included)",
+                               "", {"mu0", "mu1", "step", "mu"}));
+      v.push_back(value_option("--format", "table|csv", "text layout (--json for JSON)", "table",
+                               {"format"}));
+      break;
+    case Command::Critical: {
+      const CriticalOptions defaults;
+      v.push_back(
+          value_option("--mu-max", "REAL",
+                       "scan limit (0 < mu-max <= " + round_trip_text(kMaxAdvanceRatio) + ")",
+                       round_trip_text(defaults.mu_max), {"mu_max"}));
+      v.push_back(scan_step);
+      break;
+    }
+    case Command::System:
+      v.push_back(mu);
+      v.push_back(value_option("--psi", "REAL", "azimuth [rad], any finite value", "0", {"psi"}));
+      break;
+    case Command::Models:
+      v.push_back(
+          value_option("--spec", "NAME", "print the ordering spec of this model", "", {"model"}));
+      append(v, output_options());
+      return v;
+    case Command::Modes:
+      append(v, modes_rotor_options());
+      v.push_back(value_option("--flap-modes", "M", "rotating flap modes shown (1..--basis)", "1",
+                               {"flap_modes"}));
+      v.push_back(value_option("--lag-modes", "N", "rotating lag modes shown (1..--basis)", "1",
+                               {"lag_modes"}));
+      v.push_back(value_option("--basis", "N", "nonrotating cantilever functions per direction",
+                               "5", {"n_basis"}));
+      v.push_back(value_option("--nonrotating", "A:B:STEP",
+                               "Fig 9 table: first nonrotating frequencies (0 <= A < B, STEP > 0)",
+                               "0:2.5:0.1", {"omega_nonrotating_lo", "omega_nonrotating_hi"}));
+      v.push_back(value_option("--points", "K", "spanwise stations of the mode-shape table (>= 2)",
+                               "11", {"n_points"}));
+      append(v, output_options());
+      return v;
+    case Command::Typical:
+      break;
+  }
+  append(v, rotor_options());
+  if (c != Command::System) append(v, transition_options());
+  append(v, mode_count_options());
+  append(v, output_options());
+  return v;
+}
+
+}  // namespace
+
+const char* command_name(Command c) {
+  switch (c) {
+    case Command::Typical:
+      return "";
+    case Command::Point:
+      return "point";
+    case Command::Sweep:
+      return "sweep";
+    case Command::Critical:
+      return "critical";
+    case Command::System:
+      return "system";
+    case Command::Models:
+      return "models";
+    case Command::Modes:
+      return "modes";
+  }
+  return "";
+}
+
+const std::vector<Command>& subcommands() {
+  static const std::vector<Command> all = {Command::Point,  Command::Sweep,  Command::Critical,
+                                           Command::System, Command::Models, Command::Modes};
+  return all;
+}
+
+bool command_from_name(std::string_view name, Command* c) {
+  for (Command k : subcommands()) {
+    if (name == command_name(k)) {
+      *c = k;
+      return true;
+    }
+  }
+  return false;
+}
+
+const std::vector<OptionSpec>& options_of(Command c) {
+  static const std::map<Command, std::vector<OptionSpec>> all = [] {
+    std::map<Command, std::vector<OptionSpec>> m;
+    m[Command::Typical] = build(Command::Typical);
+    for (Command k : subcommands()) m[k] = build(k);
+    return m;
+  }();
+  return all.at(c);
+}
+
+const OptionSpec* find_option(Command c, std::string_view name) {
+  for (const OptionSpec& o : options_of(c)) {
+    if (name == o.name || (!o.alias.empty() && name == o.alias)) return &o;
+  }
+  return nullptr;
+}
+
+const OptionSpec* find_any_option(std::string_view name) {
+  if (const OptionSpec* o = find_option(Command::Typical, name)) return o;
+  for (Command c : subcommands()) {
+    if (const OptionSpec* o = find_option(c, name)) return o;
+  }
+  return nullptr;
+}
+
+const OptionSpec* option_for_library_name(Command c, std::string_view library_name) {
+  for (const OptionSpec& o : options_of(c)) {
+    for (const std::string& n : o.library_names) {
+      if (library_name == n) return &o;
+    }
+  }
+  return nullptr;
+}
+
+std::string json_key(const ParameterSpec& spec) { return kebab(spec.field); }
+
+std::string kebab_option(std::string_view field) { return "--" + kebab(field); }
+
+std::string in_cli_vocabulary(Command c, const std::string& message) {
+  std::string out;
+  std::size_t i = 0;
+  while (i < message.size()) {
+    const std::size_t open = message.find('`', i);
+    const std::size_t close = open == std::string::npos ? open : message.find('`', open + 1);
+    if (close == std::string::npos) {
+      out += message.substr(i);
+      break;
+    }
+    out += message.substr(i, open - i);
+    const std::string name = message.substr(open + 1, close - open - 1);
+    const OptionSpec* o = option_for_library_name(c, name);
+    i = close + 1;
+    if (o == nullptr) {
+      out += "`" + name + "`";
+      continue;
+    }
+    out += o->name;
+    if (o->takes_value && message.compare(i, 3, " = ") == 0) {
+      out += "=";
+      i += 3;
+    }
+  }
+  return out;
+}
+
+std::string shown(const std::string& text) {
+  bool plain = !text.empty() && !is_blank(text.front()) && !is_blank(text.back());
+  for (unsigned char ch : text) plain = plain && ch >= 0x20 && ch != 0x7f;
+  if (plain) return text;
+  // Quoted, with control characters escaped, so that the error stays on one line and shows
+  // blanks the user may not see.
+  std::string q = "\"";
+  for (unsigned char ch : text) {
+    if (ch == '"' || ch == '\\') {
+      q += '\\';
+      q += static_cast<char>(ch);
+    } else if (ch == '\n') {
+      q += "\\n";
+    } else if (ch == '\t') {
+      q += "\\t";
+    } else if (ch < 0x20 || ch == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", ch);
+      q += buf;
+    } else {
+      q += static_cast<char>(ch);
+    }
+  }
+  return q + "\"";
+}
+
+double parse_real(const std::string& option, const std::string& text) {
+  if (text.empty() || is_blank(text.front()) || is_blank(text.back())) {
+    throw InvalidInput(option, shown(text), "not a number");
+  }
+  // strtod also accepts "nan", "inf" and hexadecimal; the first two are rejected below with a
+  // clearer reason than "not a number".  errno distinguishes overflow (1e999) from a valid 0.
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(begin, &end);
+  if (end == begin || *end != '\0' || text.size() != std::char_traits<char>::length(begin)) {
+    throw InvalidInput(option, shown(text), "not a number");
+  }
+  if (!std::isfinite(v)) {
+    const bool overflow = errno == ERANGE;
+    throw InvalidInput(option, shown(text),
+                       overflow ? "out of the range of double" : "must be a finite number");
+  }
+  return v;
+}
+
+int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
+  long long v = 0;
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  if (first != last && *first == '+') ++first;  // from_chars takes no '+', users do type it
+  const auto res = std::from_chars(first, last, v);
+  if (text.empty() || res.ec == std::errc::invalid_argument || res.ptr != last) {
+    throw InvalidInput(option, shown(text), "not a whole number");
+  }
+  if (res.ec == std::errc::result_out_of_range || v < lo || v > hi) {
+    throw InvalidInput(option, shown(text),
+                       "must be between " + std::to_string(lo) + " and " + std::to_string(hi));
+  }
+  return static_cast<int>(v);
+}
+
+void set_parameter(RotorParameters& p, const OptionSpec& option, const std::string& text) {
+  const ParameterSpec& spec = *option.rotor;
+  switch (spec.type) {
+    case ParameterType::Real:
+      p.*spec.real = parse_real(option.name, text);
+      return;
+    case ParameterType::Flag:
+      p.*spec.flag = option.flag_value;
+      return;
+    case ParameterType::Choice:
+      if (!mode_kind_from_name(text, &p.modes)) {
+        throw InvalidInput(option.name, shown(text), "must be one of assumed, exact");
+      }
+      return;
+    case ParameterType::Text:
+      p.model = text;
+      return;
+  }
+}
+
+}  // namespace flaplag::cli

@@ -1,0 +1,80 @@
+// flaplag CLI — the option vocabulary: which options each command takes, how a value is parsed,
+// and how the library's field and argument names ("omega_lag", "steps", "mu") map to what the
+// user types ("--omega-lag", "--steps", "--mu").
+//
+// The runtime names fields only (rotor/parameter_table.h); this file is the only place that
+// spells options.  The rule: an option is "--" + the field name with '_' -> '-'
+// ("omega_lag" -> "--omega-lag"), except the bool fields, whose option turns them off
+// (--no-reversed-flow, --no-elastic-coupling) or on (--paper-1974-shapes).  JSON parameter keys
+// are the same words without "--" ("omega-lag", "reversed-flow").
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "flaplag/rotor/parameter_table.h"
+
+namespace flaplag::cli {
+
+enum class Command { Typical, Point, Sweep, Critical, System, Models, Modes };
+
+const char* command_name(Command c);  // "" for Typical, else "point", ...
+// The commands that have a name (not Typical), in help order.
+const std::vector<Command>& subcommands();
+// false when `name` is not a subcommand.
+bool command_from_name(std::string_view name, Command* c);
+
+struct OptionSpec {
+  std::string name;          // "--omega-lag", "-o"
+  std::string alias;         // another spelling ("--output" for -o), or ""
+  bool takes_value = false;  // false: a flag
+  std::string metavar;       // "REAL", "N", "A:B:STEP", "FILE"
+  std::string help;          // one line (units, range and default added by the help printer)
+  std::string default_text;  // "" when there is no default to show
+  // The library names this option answers for (InvalidInput::name(), backticked names in
+  // messages): a RotorParameters field, a TransitionOptions / CriticalOptions field or an
+  // argument of analysis.h.
+  std::vector<std::string> library_names;
+  const ParameterSpec* rotor = nullptr;  // rotor parameter rows
+  bool flag_value = false;               // rotor Flag rows: the value the option sets
+};
+
+// The options of a command, in help order (never --help / --version, which every command has).
+const std::vector<OptionSpec>& options_of(Command c);
+// The option of command c called `name` (either spelling); nullptr when c has none.
+const OptionSpec* find_option(Command c, std::string_view name);
+// The option `name` of any command (value-taking or not is the same in all of them); nullptr when
+// no command has it.
+const OptionSpec* find_any_option(std::string_view name);
+// The option of command c that answers for the library name (field or argument); nullptr when
+// there is none.
+const OptionSpec* option_for_library_name(Command c, std::string_view library_name);
+
+// JSON key of a rotor parameter: "omega_lag" -> "omega-lag".
+std::string json_key(const ParameterSpec& spec);
+// "--" + kebab: "omega_lag" -> "--omega-lag".
+std::string kebab_option(std::string_view field);
+
+// A library message in the command line's vocabulary: every `name` in backticks that names an
+// option of command c becomes that option ("increase `steps`" -> "increase --steps");
+// "`name` = value" becomes "--option=value".  Other text is unchanged.
+std::string in_cli_vocabulary(Command c, const std::string& message);
+
+// The value of an option as shown in an error line: the text as typed, "\"\"" when empty.
+std::string shown(const std::string& text);
+
+// Strict number parsing: the whole text must be one decimal or hexadecimal floating-point
+// literal (no surrounding blanks); "nan", "inf" and magnitudes beyond double are rejected.
+// Throws InvalidInput(option, shown(text), reason).
+double parse_real(const std::string& option, const std::string& text);
+// Whole decimal integer in [lo, hi] ('+' allowed).  Throws InvalidInput(option, shown(text), ...).
+int parse_int(const std::string& option, const std::string& text, int lo, int hi);
+
+// Sets the rotor parameter of `option` (option.rotor != nullptr) from the text typed: reals
+// parsed strictly (ranges are validate()'s job, so that a parameter set built in code and one
+// built from the command line are checked by the same code), flags set flag_value, choices must
+// name one.  Throws InvalidInput(option.name, ...).
+void set_parameter(RotorParameters& p, const OptionSpec& option, const std::string& text);
+
+}  // namespace flaplag::cli
