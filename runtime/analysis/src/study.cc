@@ -70,8 +70,7 @@ std::optional<InvalidInput> map_problem(const MapOptions& o) {
       }
     }
   }
-  if (o.x.parameter == o.y.parameter)
-    return bad("y", o.y.parameter, "must differ from the x axis");
+  if (o.x.parameter == o.y.parameter) return bad("y", o.y.parameter, "must differ from the x axis");
   if (!(std::isfinite(o.mu) && o.mu >= 0.0 && o.mu <= kMaxAdvanceRatio))
     return bad("mu", round_trip_text(o.mu), "must be in [0, 1000]");
   if (!(std::isfinite(o.scan_step) && o.scan_step > 0.0))
@@ -107,8 +106,7 @@ std::size_t parallel_for(std::size_t n, int threads, const std::atomic<bool>* ca
   for (std::size_t t = 1; t < count; ++t) pool.emplace_back(worker);
   worker();
   for (std::thread& t : pool) t.join();
-  return std::min(next.load(), n) == finished.load() ? finished.load()
-                                                     : std::min(next.load(), n);
+  return std::min(next.load(), n) == finished.load() ? finished.load() : std::min(next.load(), n);
 }
 
 Status worse(Status a, Status b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
@@ -149,8 +147,7 @@ bool is_study_parameter(const std::string& name) {
 RotorParameters with_parameter(RotorParameters p, const std::string& name, double v) {
   const ParameterSpec* s = find_parameter(name);
   if (s == nullptr || s->type != ParameterType::Real)
-    throw InvalidInput("parameter", name.empty() ? "\"\"" : name,
-                       "not a numeric rotor parameter");
+    throw InvalidInput("parameter", name.empty() ? "\"\"" : name, "not a numeric rotor parameter");
   p.*(s->real) = v;
   return p;
 }
@@ -183,29 +180,27 @@ StudyResult run_study(const RotorParameters& base, const TransitionOptions& tran
   crit.all_intervals = true;
   StudyResult out;
   out.rows.resize(options.values.size());
-  out.rows_done = parallel_for(options.values.size(), options.threads, cancel, progress,
-                               [&](std::size_t i) {
-                                 StudyRow& row = out.rows[i];
-                                 row.value = options.values[i];
-                                 try {
-                                   const Analysis an(
-                                       with_parameter(base, options.parameter, row.value),
-                                       transition);
-                                   row.critical = an.critical(crit);
-                                 } catch (const InvalidInput& e) {
-                                   row.critical = CriticalResult{};
-                                   row.critical.mu_max = crit.mu_max;
-                                   row.critical.status = Status::Failed;
-                                   row.critical.message = e.what();
-                                 }
-                               });
+  out.rows_done =
+      parallel_for(options.values.size(), options.threads, cancel, progress, [&](std::size_t i) {
+        StudyRow& row = out.rows[i];
+        row.value = options.values[i];
+        try {
+          const Analysis an(with_parameter(base, options.parameter, row.value), transition);
+          row.critical = an.critical(crit);
+        } catch (const InvalidInput& e) {
+          row.critical = CriticalResult{};
+          row.critical.mu_max = crit.mu_max;
+          row.critical.status = Status::Failed;
+          row.critical.message = e.what();
+        }
+      });
   out.cancelled = out.rows_done < out.rows.size();
   out.rows.resize(out.rows_done);
   for (const StudyRow& r : out.rows) {
     out.status = worse(out.status, r.critical.status);
     if (out.message.empty() && r.critical.status != Status::Ok)
-      out.message = options.parameter + " = " + round_trip_text(r.value) + ": " +
-                    r.critical.message;
+      out.message =
+          options.parameter + " = " + round_trip_text(r.value) + ": " + r.critical.message;
   }
   return out;
 }

@@ -68,8 +68,8 @@ struct MapAxis {
 };
 
 struct MapOptions {
-  MapAxis x, y;            // at most one of them "mu"; each with 1..kMaxMapValues values
-  double mu = 0.0;         // the advance ratio when neither axis is "mu"
+  MapAxis x, y;             // at most one of them "mu"; each with 1..kMaxMapValues values
+  double mu = 0.0;          // the advance ratio when neither axis is "mu"
   double scan_step = 0.01;  // continuation step in mu
   int threads = 0;
 
