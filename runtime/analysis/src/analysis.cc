@@ -146,7 +146,7 @@ struct Analysis::Impl {
     }
   }
 
-  // The automatic starting K at mu: |lambda| h <= 1/2 for the largest eigenvalue of A(psi) at a
+  // The automatic starting K at mu: |lambda| h <= 1 for the largest eigenvalue of A(psi) at a
   // few azimuths of each region (the spectrum sets the step a fixed-step method needs).
   int automatic_start(const PeriodicSystem& sys) const {
     double rho = 0.0;
@@ -160,7 +160,7 @@ struct Analysis::Impl {
                                              false);
       if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
     }
-    const double k = std::ceil(rho * kTwoPi / 0.5);
+    const double k = std::ceil(rho * kTwoPi / 1.0);
     if (!(k <= kMaxAutomaticSteps)) return kMaxAutomaticSteps;
     // an even count, so that K/2 is a whole number
     const int ki = std::max(kMinAutomaticSteps, static_cast<int>(k));

@@ -22,8 +22,9 @@
 // (absolute near zeta = 0, where stability is decided; 1e-3 relative for strongly damped modes when
 // zeta_tolerance = 1e-5).
 //   - steps = kAutomatic (the default): K starts from the spectrum of A(psi) at mu (|lambda| h
-//     <= 1/2, at least 50 for Hsu, RK4 and Magnus) and doubles until every exponent is
-//     resolved or K reaches kMaxAutomaticSteps (then status Warning);
+//     <= 1, inside the stability region of every method's one-step map, and at least 50) and
+//     doubles until every exponent is resolved or K reaches kMaxAutomaticSteps (then status
+//     Warning);
 //   - fixed steps (e.g. TransitionOptions::Paper(), Hsu K = 50, J = 4): an unresolved exponent
 //     gives status Warning with the remedy (increase `steps`).
 // The Liouville identity det Phi = exp(int tr A) is checked as well: a relative residual far
