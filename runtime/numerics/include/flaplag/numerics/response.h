@@ -1,0 +1,72 @@
+// flaplag — the periodic forced response of y' = A(psi) y + f(psi) and time-domain simulation.
+//
+// The periodic response is the Floquet particular solution: with Phi = Phi(2 pi, 0) and g the
+// state at 2 pi of the solution that starts from y(0) = 0,  (I - Phi) y0 = g  gives the unique
+// 2 pi-periodic solution when no multiplier equals 1.  Both Phi and g come from one RK4
+// integration of the augmented system z = [y; 1], z' = [[A, f], [0, 0]] z, on the grid of
+// transition.cc (equal steps, split at the reversed-flow sector edges, each substep in the
+// harmonics of its own region).
+#pragma once
+
+#include <Eigen/Dense>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "flaplag/core/status.h"
+#include "flaplag/numerics/periodic_system.h"
+
+namespace flaplag {
+
+struct ResponseOptions {
+  int steps = 0;               // RK4 steps per period; 0: automatic (|lambda| h <= 1/2, >= 200,
+                               // doubled until the periodic state agrees to `tolerance`)
+  int samples = 72;            // points of y(psi) reported over one period (>= 2), psi_k = 2 pi k / n
+  double tolerance = 1e-10;    // on max |y0(N) - y0(N/2)| relative to max |y0| (automatic steps)
+  bool IsValid(std::string* error) const;
+  void Check() const;
+};
+
+struct PeriodicResponse {
+  Eigen::VectorXd y0;                 // the periodic state at psi = 0
+  std::vector<double> psi;            // sample azimuths [rad], [0, 2 pi)
+  std::vector<Eigen::VectorXd> y;     // y(psi_k)
+  double closure = 0.0;               // |y(2 pi) - y(0)| / max(1, |y0|): periodicity check
+  std::optional<double> error;        // estimated error of y0 (max norm, relative)
+  double min_distance_to_one = 0.0;   // min_k |Lambda_k - 1| (near 0: no unique solution)
+  int steps = 0;
+  Status status = Status::Ok;  // Failed: a multiplier at 1 (singular I - Phi) or overflow
+  std::string message;
+};
+
+// sys.validate() and options.Check() first (InvalidInput).  An unstable system still has a
+// periodic solution (status Warning: it is not what the blade settles to).
+PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOptions& options = {});
+
+struct SimulationOptions {
+  double revolutions = 20.0;  // > 0, at most 1e5
+  int steps_per_rev = 0;      // RK4 steps per revolution; 0: automatic (|lambda| h <= 1/2, >= 200)
+  int samples_per_rev = 36;   // reported points per revolution (>= 1)
+  bool IsValid(std::string* error) const;
+  void Check() const;
+};
+
+struct Simulation {
+  std::vector<double> psi;         // [rad] from 0
+  std::vector<Eigen::VectorXd> y;  // y(psi)
+  int steps_per_rev = 0;
+  Status status = Status::Ok;  // Failed on overflow (the state is kept up to there)
+  std::string message;
+};
+
+// Integrates y' = A y + (forced ? f : 0) from y(0) = y0 (size sys.n).
+Simulation simulate(const PeriodicSystem& sys, const Eigen::VectorXd& y0, bool forced,
+                    const SimulationOptions& options = {});
+
+// The growth rate of a simulated signal per rev: the slope of ln max_{rev k} |s| over the
+// revolutions from `skip_revs` on, by least squares over whole revolutions (the envelope of
+// a Floquet solution grows like exp(zeta psi)).  nullopt with fewer than 3 revolutions left.
+std::optional<double> envelope_growth_rate(const std::vector<double>& psi,
+                                           const std::vector<double>& signal, double skip_revs);
+
+}  // namespace flaplag

@@ -1,0 +1,312 @@
+// flaplag — periodic forced response and time-domain simulation (RK4 on the sector-split grid).
+#include "flaplag/numerics/response.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "flaplag/core/constants.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
+
+namespace flaplag {
+namespace {
+
+constexpr int kMinSteps = 200;
+constexpr int kMaxSteps = 1 << 20;
+
+struct Segment {
+  double a, b;
+  const HarmonicSet* set;
+};
+
+// Equal steps over [0, 2 pi], split at the sector edges; each piece in its own region.
+std::vector<Segment> grid(const PeriodicSystem& sys, int steps) {
+  std::vector<double> cuts;
+  for (int i = 0; i <= steps; ++i) cuts.push_back(kTwoPi * i / steps);
+  for (double e : sys.breakpoints()) cuts.push_back(e);
+  std::sort(cuts.begin(), cuts.end());
+  std::vector<Segment> out;
+  for (std::size_t i = 1; i < cuts.size(); ++i) {
+    if (cuts[i] - cuts[i - 1] <= 1e-14) continue;
+    const double mid = 0.5 * (cuts[i] + cuts[i - 1]);
+    out.push_back({cuts[i - 1], cuts[i], &sys.region(mid)});
+  }
+  return out;
+}
+
+// A and f of one region at psi (no region lookup: the segment decides).
+void eval(const HarmonicSet& set, double psi, int n, Eigen::MatrixXd& A, Eigen::VectorXd& f) {
+  A.setZero(n, n);
+  f.setZero(n);
+  for (std::size_t h = 0; h < set.A.size(); ++h) {
+    const double phi = harmonic_basis(static_cast<int>(h), psi);
+    A += phi * set.A[h];
+    if (h < set.f.size() && set.f[h].size() == n) f += phi * set.f[h];
+  }
+}
+
+// One RK4 step of z' = A z + c f (c = 1 forced, 0 free) for the columns of Z (n x m).
+struct Stepper {
+  int n;
+  Eigen::MatrixXd A0, A1, A2;
+  Eigen::VectorXd f0, f1, f2;
+  void step(const Segment& s, Eigen::MatrixXd& Y, const Eigen::RowVectorXd& c) {
+    const double h = s.b - s.a;
+    eval(*s.set, s.a, n, A0, f0);
+    eval(*s.set, 0.5 * (s.a + s.b), n, A1, f1);
+    eval(*s.set, s.b, n, A2, f2);
+    const Eigen::MatrixXd k1 = A0 * Y + f0 * c;
+    const Eigen::MatrixXd k2 = A1 * (Y + 0.5 * h * k1) + f1 * c;
+    const Eigen::MatrixXd k3 = A1 * (Y + 0.5 * h * k2) + f1 * c;
+    const Eigen::MatrixXd k4 = A2 * (Y + h * k3) + f2 * c;
+    Y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+  }
+};
+
+// Automatic starting steps: |lambda| h <= 1/2 for the largest eigenvalue of A at a few azimuths.
+int automatic_steps(const PeriodicSystem& sys) {
+  double rho = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    Eigen::EigenSolver<Eigen::MatrixXd> es(sys.A((k + 0.5) * kTwoPi / 8.0), false);
+    if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
+  }
+  const double k = std::ceil(rho * kTwoPi / 0.5);
+  if (!(k <= kMaxSteps / 4)) return kMaxSteps / 4;
+  return std::max(kMinSteps, static_cast<int>(k));
+}
+
+// Phi and g (the state at 2 pi from y(0) = 0) by RK4 with `steps`.
+void monodromy(const PeriodicSystem& sys, int steps, Eigen::MatrixXd& phi, Eigen::VectorXd& g) {
+  const int n = sys.n;
+  Eigen::MatrixXd Y(n, n + 1);
+  Y.setZero();
+  Y.leftCols(n).setIdentity();
+  Eigen::RowVectorXd c = Eigen::RowVectorXd::Zero(n + 1);
+  c(n) = 1.0;  // the last column is the forced solution from 0
+  Stepper st{n, {}, {}, {}, {}, {}, {}};
+  for (const Segment& s : grid(sys, steps)) st.step(s, Y, c);
+  phi = Y.leftCols(n);
+  g = Y.col(n);
+}
+
+bool report(const char* name, const std::string& value, const std::string& reason,
+            std::string* error) {
+  if (error != nullptr) *error = std::string(name) + " = " + value + ": " + reason;
+  return false;
+}
+
+}  // namespace
+
+bool ResponseOptions::IsValid(std::string* error) const {
+  if (steps < 0 || steps > kMaxSteps)
+    return report("steps", std::to_string(steps), "must be 0 (automatic) or 1..1048576", error);
+  if (samples < 2 || samples > 100000)
+    return report("samples", std::to_string(samples), "must be 2..100000", error);
+  if (!(std::isfinite(tolerance) && tolerance > 0.0))
+    return report("tolerance", round_trip_text(tolerance), "must be > 0", error);
+  return true;
+}
+
+void ResponseOptions::Check() const {
+  if (steps < 0 || steps > kMaxSteps)
+    throw InvalidInput("steps", std::to_string(steps), "must be 0 (automatic) or 1..1048576");
+  if (samples < 2 || samples > 100000)
+    throw InvalidInput("samples", std::to_string(samples), "must be 2..100000");
+  if (!(std::isfinite(tolerance) && tolerance > 0.0))
+    throw InvalidInput("tolerance", round_trip_text(tolerance), "must be > 0");
+}
+
+bool SimulationOptions::IsValid(std::string* error) const {
+  if (!(std::isfinite(revolutions) && revolutions > 0.0 && revolutions <= 1e5))
+    return report("revolutions", round_trip_text(revolutions), "must be in (0, 1e5]", error);
+  if (steps_per_rev < 0 || steps_per_rev > kMaxSteps)
+    return report("steps", std::to_string(steps_per_rev), "must be 0 (automatic) or 1..1048576",
+                  error);
+  if (samples_per_rev < 1 || samples_per_rev > 10000)
+    return report("samples", std::to_string(samples_per_rev), "must be 1..10000", error);
+  return true;
+}
+
+void SimulationOptions::Check() const {
+  std::string why;
+  if (IsValid(&why)) return;
+  const auto eq = why.find(" = ");
+  const auto colon = why.find(": ", eq);
+  throw InvalidInput(why.substr(0, eq), why.substr(eq + 3, colon - eq - 3), why.substr(colon + 2));
+}
+
+PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOptions& options) {
+  sys.validate();
+  options.Check();
+  const int n = sys.n;
+  PeriodicResponse out;
+  const bool automatic = options.steps == 0;
+  int steps = automatic ? automatic_steps(sys) : options.steps;
+  auto solve = [&](int k, Eigen::VectorXd& y0, double& dist) {
+    Eigen::MatrixXd phi;
+    Eigen::VectorXd g;
+    monodromy(sys, k, phi, g);
+    if (!phi.allFinite() || !g.allFinite()) return false;
+    Eigen::EigenSolver<Eigen::MatrixXd> es(phi, false);
+    dist = HUGE_VAL;
+    if (es.info() == Eigen::Success)
+      for (Eigen::Index i = 0; i < n; ++i)
+        dist = std::min(dist, std::abs(es.eigenvalues()(i) - std::complex<double>(1.0, 0.0)));
+    const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
+    y0 = (I - phi).fullPivLu().solve(g);
+    return y0.allFinite();
+  };
+  Eigen::VectorXd fine, coarse;
+  double dist = 0.0, dist_coarse = 0.0;
+  bool ok = solve(steps, fine, dist);
+  if (ok && steps >= 2) {
+    bool ok_coarse = solve(steps / 2, coarse, dist_coarse);
+    while (ok && ok_coarse) {
+      const double scale = std::max(1e-300, fine.cwiseAbs().maxCoeff());
+      // RK4: error(N) ~ (error(N/2) - error(N)) / 15
+      out.error = (fine - coarse).cwiseAbs().maxCoeff() / scale / 15.0;
+      if (!automatic || *out.error <= options.tolerance || 2 * steps > kMaxSteps) break;
+      coarse = fine;
+      steps *= 2;
+      ok = solve(steps, fine, dist);
+    }
+  }
+  out.steps = steps;
+  out.min_distance_to_one = dist;
+  if (!ok) {
+    out.status = Status::Failed;
+    out.message = "the transition matrix overflowed or I - Phi is singular: no periodic response";
+    return out;
+  }
+  // A multiplier at 1 makes I - Phi singular: the forced problem has no unique periodic
+  // solution (resonance with the forcing's period).
+  if (dist < 1e-8) {
+    out.status = Status::Failed;
+    out.message = "a characteristic multiplier is at 1 (distance " + short_text(dist) +
+                  "): no unique periodic response";
+    return out;
+  }
+  out.y0 = fine;
+  // The response over one period, sampled at psi_k = 2 pi k / samples, integrated from y0 on
+  // the same grid (refined so that every sample is a grid point).
+  const int per = std::max(1, (steps + options.samples - 1) / options.samples);
+  Stepper st{n, {}, {}, {}, {}, {}, {}};
+  Eigen::MatrixXd Y = fine;
+  const Eigen::RowVectorXd c = Eigen::RowVectorXd::Ones(1);
+  std::vector<double> cuts;
+  for (int k = 0; k <= options.samples; ++k) cuts.push_back(kTwoPi * k / options.samples);
+  for (int k = 0; k < options.samples; ++k) {
+    out.psi.push_back(cuts[k]);
+    out.y.push_back(Y.col(0));
+    std::vector<double> pts;
+    for (int i = 0; i <= per; ++i) pts.push_back(cuts[k] + (cuts[k + 1] - cuts[k]) * i / per);
+    for (double e : sys.breakpoints())
+      if (e > cuts[k] && e < cuts[k + 1]) pts.push_back(e);
+    std::sort(pts.begin(), pts.end());
+    for (std::size_t i = 1; i < pts.size(); ++i) {
+      if (pts[i] - pts[i - 1] <= 1e-14) continue;
+      const Segment s{pts[i - 1], pts[i], &sys.region(0.5 * (pts[i] + pts[i - 1]))};
+      st.step(s, Y, c);
+    }
+  }
+  out.closure = (Y.col(0) - fine).cwiseAbs().maxCoeff() / std::max(1.0, fine.cwiseAbs().maxCoeff());
+  if (dist < 1.0 - 1e-12) {
+    // Some |Lambda| > 1 means the blade does not settle onto this solution.
+    Eigen::EigenSolver<Eigen::MatrixXd> es;
+    Eigen::MatrixXd phi;
+    Eigen::VectorXd g;
+    monodromy(sys, steps, phi, g);
+    es.compute(phi, false);
+    double rho = 0.0;
+    if (es.info() == Eigen::Success) rho = es.eigenvalues().cwiseAbs().maxCoeff();
+    if (rho > 1.0) {
+      out.status = Status::Warning;
+      out.message = "the system is unstable (largest |multiplier| " + short_text(rho) +
+                    "): the periodic solution exists but the blade does not settle onto it";
+    }
+  }
+  if (automatic && out.error && *out.error > options.tolerance) {
+    out.status = Status::Warning;
+    out.message += std::string(out.message.empty() ? "" : "; ") +
+                   "not resolved to the tolerance: estimated error " + short_text(*out.error);
+  }
+  return out;
+}
+
+Simulation simulate(const PeriodicSystem& sys, const Eigen::VectorXd& y0, bool forced,
+                    const SimulationOptions& options) {
+  sys.validate();
+  options.Check();
+  if (y0.size() != sys.n || !y0.allFinite())
+    throw InvalidInput("y0", std::to_string(y0.size()) + " values",
+                       "must be " + std::to_string(sys.n) + " finite values");
+  Simulation out;
+  int steps = options.steps_per_rev > 0 ? options.steps_per_rev : automatic_steps(sys);
+  // whole multiples of the sample count, so that samples fall on grid points
+  steps = ((steps + options.samples_per_rev - 1) / options.samples_per_rev) *
+          options.samples_per_rev;
+  out.steps_per_rev = steps;
+  const int per = steps / options.samples_per_rev;
+  const long total_samples =
+      static_cast<long>(std::ceil(options.revolutions * options.samples_per_rev - 1e-9));
+  Stepper st{sys.n, {}, {}, {}, {}, {}, {}};
+  Eigen::MatrixXd Y = y0;
+  const Eigen::RowVectorXd c = Eigen::RowVectorXd::Constant(1, forced ? 1.0 : 0.0);
+  out.psi.push_back(0.0);
+  out.y.push_back(y0);
+  for (long k = 0; k < total_samples; ++k) {
+    const int j = static_cast<int>(k % options.samples_per_rev);
+    const double base = kTwoPi * static_cast<double>(k / options.samples_per_rev);
+    const double a = kTwoPi * j / options.samples_per_rev, b = kTwoPi * (j + 1) / options.samples_per_rev;
+    std::vector<double> pts;
+    for (int i = 0; i <= per; ++i) pts.push_back(a + (b - a) * i / per);
+    for (double e : sys.breakpoints())
+      if (e > a && e < b) pts.push_back(e);
+    std::sort(pts.begin(), pts.end());
+    for (std::size_t i = 1; i < pts.size(); ++i) {
+      if (pts[i] - pts[i - 1] <= 1e-14) continue;
+      st.step({pts[i - 1], pts[i], &sys.region(0.5 * (pts[i] + pts[i - 1]))}, Y, c);
+    }
+    if (!Y.allFinite()) {
+      out.status = Status::Failed;
+      out.message = "the state overflowed after " + short_text(base / kTwoPi + (j + 1.0) / options.samples_per_rev) + " revolutions";
+      return out;
+    }
+    out.psi.push_back(base + b);
+    out.y.push_back(Y.col(0));
+  }
+  return out;
+}
+
+std::optional<double> envelope_growth_rate(const std::vector<double>& psi,
+                                           const std::vector<double>& signal, double skip_revs) {
+  if (psi.size() != signal.size() || psi.empty()) return std::nullopt;
+  // max |s| per whole revolution after skip_revs
+  std::vector<double> revs, logs;
+  const long first = static_cast<long>(std::ceil(skip_revs));
+  const long last = static_cast<long>(std::floor(psi.back() / kTwoPi + 1e-9));
+  for (long r = first; r < last; ++r) {
+    double m = 0.0;
+    for (std::size_t i = 0; i < psi.size(); ++i)
+      if (psi[i] >= kTwoPi * static_cast<double>(r) - 1e-12 &&
+          psi[i] < kTwoPi * static_cast<double>(r + 1) - 1e-12)
+        m = std::max(m, std::abs(signal[i]));
+    if (!(m > 0.0) || !std::isfinite(m)) return std::nullopt;
+    revs.push_back(static_cast<double>(r));
+    logs.push_back(std::log(m));
+  }
+  if (revs.size() < 3) return std::nullopt;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(revs.size());
+  for (std::size_t i = 0; i < revs.size(); ++i) {
+    sx += revs[i];
+    sy += logs[i];
+    sxx += revs[i] * revs[i];
+    sxy += revs[i] * logs[i];
+  }
+  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);  // ln growth per revolution
+  return slope / kTwoPi;  // per radian of psi: the unit of zeta
+}
+
+}  // namespace flaplag
