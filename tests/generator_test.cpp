@@ -16,9 +16,11 @@
 #include <string>
 #include <tuple>
 
+#include "flaplag/blade/blade.h"
 #include "flaplag/model_api.h"
 #include "flaplag_derive/derive.h"
 #include "flaplag_derive/emit.h"
+#include "flaplag_derive/operating_point.h"
 #include "flaplag_derive/paper_print.h"
 #include "flaplag_derive/spec.h"
 
@@ -493,6 +495,135 @@ TEST(PaperDifferences, EachEntryFailsOnTheMisprintedForm) {
   fd::DerivedModel altered = paper_model();
   alterations().front().alter(altered);
   EXPECT_NE(fd::paper_differences_section(altered).find("| CONTRADICTED |"), std::string::npos);
+}
+
+// ---------------------------------------------------------------- audit report
+
+// The report's exact assumed-mode integrals against the runtime's Gauss quadrature (blade.h),
+// an independent implementation.
+TEST(AuditReport, ExactAssumedModeIntegralsAgreeWithTheRuntimeQuadrature) {
+  const flaplag::ModeSet modes = flaplag::assumed_modes(1.175, 1.28303);
+  const flaplag::SpanGeometry span;  // e1 = 0, l/R = 1, A = 0, B = 1 (paper Sec. 4.1)
+  for (const char* name : {"paper", "no-radial-flow", "lag-order-2"}) {
+    const fm::ModelDescriptor* cm = compiled(name);
+    ASSERT_NE(cm, nullptr);
+    const auto dm = fd::derive_model(spec_of(name));
+    ASSERT_EQ(static_cast<size_t>(cm->n_aero), dm.aero_keys.size());
+    for (size_t j = 0; j < dm.aero_keys.size(); ++j) {
+      ASSERT_EQ(dm.aero[j].name, cm->aero[j].name);
+      const double exact = fd::assumed_mode_integral(dm.aero_keys[j]).to_double();
+      const double gauss = flaplag::aero_integral(cm->aero[j], modes, span, 0.0, 1.0);
+      EXPECT_NEAR(exact, gauss, 1e-13 * std::abs(gauss)) << name << " " << dm.aero[j].name;
+    }
+    for (size_t j = 0; j < dm.structural_keys.size(); ++j) {
+      ASSERT_EQ(dm.structural[j].name, cm->structural[j].name);
+      const double exact = fd::assumed_mode_integral(dm.structural_keys[j]).to_double();
+      const double gauss = flaplag::structural_integral(cm->structural[j], modes, 0.0);
+      EXPECT_NEAR(exact, gauss, 1e-13 * std::abs(gauss)) << name << " " << dm.structural[j].name;
+    }
+  }
+}
+
+// The value column: the report's evaluation (exact integrals, symbolic slots) against the
+// compiled model fed with the runtime's integrals, at the typical case typed in from the paper.
+TEST(AuditReport, ValuesAtTheTypicalCaseAgreeWithTheCompiledModel) {
+  const fm::ModelDescriptor* cm = compiled("paper");
+  const auto dm = fd::derive_model(spec_of("paper"));
+  const fd::PointValues pv = fd::typical_case_values(dm);
+  ASSERT_TRUE(pv.available) << pv.reason;
+  // Sec. 4.1 and eq 2.24: sigma = 0.05, a = 2 pi, theta = 0.15
+  const double a = 2.0 * std::acos(-1.0), sa = 0.05 * a;
+  const double lambda = sa / 16.0 * (std::sqrt(1.0 + 24.0 * 0.15 / sa) - 1.0);
+  EXPECT_NEAR(lambda, 0.0496715830600, 1e-12);
+  const flaplag::ModeSet modes = flaplag::assumed_modes(1.175, 1.28303);
+  std::vector<double> aero, structural;
+  for (int j = 0; j < cm->n_aero; ++j) {
+    aero.push_back(flaplag::aero_integral(cm->aero[j], modes, {}, 0.0, 1.0));
+  }
+  for (int j = 0; j < cm->n_structural; ++j) {
+    structural.push_back(flaplag::structural_integral(cm->structural[j], modes, 0.0));
+  }
+  const double zero[1] = {0.0}, wf[1] = {1.175}, wl[1] = {1.28303};
+  double g0[1] = {0.0}, h0[1] = {0.0};
+  fm::CoefficientInputs in{};
+  in.lock = 10.0;
+  in.lr = 1.0;
+  in.theta = 0.15;
+  in.inflow = lambda;
+  in.cdo_a = 0.01 / a;
+  in.mu = 0.0;
+  in.g0 = g0;
+  in.h0 = h0;
+  in.omega_flap = wf;
+  in.omega_lag = wl;
+  in.damping_flap = in.damping_lag = in.es_flap = in.es_lag = zero;
+  in.ecs_flap_lag = in.ecs_lag_flap = zero;
+  in.aero = aero.data();
+  in.structural = structural.data();
+  double S[4], c[2];
+  cm->equilibrium(in, {S, c});
+  const double det = S[0] * S[3] - S[1] * S[2];
+  g0[0] = (c[0] * S[3] - S[1] * c[1]) / det;
+  h0[0] = (S[0] * c[1] - S[2] * c[0]) / det;
+  auto scalar = [&](const std::string& n) {
+    for (size_t j = 0; j < dm.scalars.size(); ++j) {
+      if (dm.scalars[j].name == n) return pv.scalar[j];
+    }
+    return std::nan("");
+  };
+  EXPECT_NEAR(scalar("g0_1"), g0[0], 1e-13);
+  EXPECT_NEAR(scalar("h0_1"), h0[0], 1e-13);
+  in.mu = 0.5;
+  double mass[4];
+  std::vector<double> force(dm.H * 8), forcing(dm.H * 2);
+  cm->mass(in, mass);
+  cm->coefficients(in, {force.data(), forcing.data()});
+  for (int h = 0; h < dm.H; ++h) {
+    for (int eq = 0; eq < 2; ++eq) {
+      const double m_report = pv.value(dm.mass[eq * 3]);
+      EXPECT_NEAR(m_report, mass[eq * 3], 1e-14);
+      for (int col = 0; col < 4; ++col) {
+        const int k = (h * 2 + eq) * 4 + col;
+        EXPECT_NEAR(pv.value(dm.force[k]) / m_report, force[k] / mass[eq * 3], 1e-12)
+            << "harmonic " << h << " eq " << eq << " col " << col;
+      }
+      EXPECT_NEAR(pv.value(dm.forcing[h * 2 + eq]), forcing[h * 2 + eq], 1e-12);
+    }
+  }
+  EXPECT_FALSE(fd::typical_case_values(fd::derive_model(spec_of("paper-2x2"))).available);
+}
+
+// The blocks read like Appendix C.2 and C.3 (transcribed from the paper into the report's names,
+// with the corrected signs of the "Differences" section).
+TEST(AuditReport, BlocksReadLikeAppendixC) {
+  const std::string r = fd::emit_report(paper_model());
+  for (const char* line :
+       {// A11 = -2 eta_SF1 w_F1 + (1/M_F1)(gamma/2)(l/R)^2 [-F8 l/R - F9 mu l/R sin psi
+        //       + F24 mu cos psi l/R h0]
+        "`A11 = (1/M_F11) { -2 omega_flap_1 damping_flap_1 M_F11 + (lock/2) lr^2 [ -lr F8_11 "
+        "- lr mu sin psi F9_11 + lr mu h0_1 cos psi F24_111 ] }`",
+        // A13: 2 P_111 g0 + 2 (beta_P + beta_D) B3_11 + ...
+        "2 (precone + droop) B3_11 + 2 g0_1 P_111",
+        // A32: -L11 mu^2 (beta_P + beta_D)(1 + cos 2psi)
+        "- (precone + droop) mu^2 (1 + cos 2psi) L11_11",
+        // f3: -L2 (mu^2/2)(beta_P + beta_D)^2 (1 + cos 2psi) + L2 (mu^2/2)(C_Do/a)(1 - cos 2psi)
+        "- 1/2 (precone + droop)^2 mu^2 (1 + cos 2psi) L2_1 + 1/2 cdo_a mu^2 (1 - cos 2psi) L2_1",
+        "| A13 | const | 2 (precone + droop) | int eta1' [int_x^1 m gamma1 dx1] | B3_11 |",
+        "### f3: lag 1 equation"}) {
+    EXPECT_NE(r.find(line), std::string::npos) << line;
+  }
+}
+
+// beta_P and beta_D are printed as their sum only when the derivation gives them equal factors.
+TEST(AuditReport, BetaSumOnlyForEqualFactors) {
+  fd::DerivedModel m = paper_model();
+  term_named(m, m.force, force_slot(kConst, kFlap, 2), "B3_11", "droop")->coef *= 2;
+  const std::string r = fd::emit_report(m);
+  EXPECT_EQ(r.find("| A13 | const | 2 (precone + droop) |"), std::string::npos);
+  EXPECT_NE(r.find("| A13 | const | 2 precone | int eta1' [int_x^1 m gamma1 dx1] | B3_11 |"),
+            std::string::npos);
+  EXPECT_NE(r.find("| A13 | const | 4 droop | int eta1' [int_x^1 m gamma1 dx1] | B3_11 |"),
+            std::string::npos);
 }
 
 // ---------------------------------------------------------------- bad specs

@@ -14,12 +14,19 @@ std::string model_ident(const std::string& name);
 // the descriptor accessor `const flaplag::model::ModelDescriptor& flaplag_model_<ident>()`.
 std::string emit_cpp(const DerivedModel& m);
 
-// The audit report (Markdown): every retained term with factor, eps order, origin, radial-flow
-// flag, spanwise integral and paper name; absorbed terms; equilibrium; differences from print.
+// The audit report (Markdown, src/report.cc), laid out like Appendix C: one block per entry
+// A_ij and f_i with every retained term (factor, eps order, origin, radial-flow flag, spanwise
+// integral, paper name, value at the typical case); the generalized mass, the absorbed terms,
+// the hover equilibrium and the differences from the printed paper.
 std::string emit_report(const DerivedModel& m);
 
 // Text of a term's factor, e.g. "-1/2 mu^2 theta" (aero terms with (gamma/2)(l/R)^2 removed
-// when strip_aero_scale is set).
-std::string factor_text(const DerivedModel& m, const Term& t, bool strip_aero_scale);
+// when strip_aero_scale is set).  beta_power > 0: the term's precone and droop powers are
+// replaced by (precone + droop)^beta_power (the paper's (beta_P + beta_D)).
+std::string factor_text(const DerivedModel& m, const Term& t, bool strip_aero_scale,
+                        int beta_power = 0);
+
+// The "generated -- do not edit" header of both outputs, each line starting with `comment`.
+std::string generated_header(const DerivedModel& m, const std::string& comment);
 
 }  // namespace flaplag::derive

@@ -165,7 +165,7 @@ struct ModelDescriptor {
   // changes more than [modes] of its base, is its own family (base == name).
   const char* base;
   const char* spec_file;  // spec file name, e.g. "paper.toml"
-  const char* spec_text;  // the spec as parsed (canonical TOML)
+  const char* spec_text;  // the resolved spec (canonical TOML; a comment line names its base)
   const char* summary;    // one line: orders, term classes, modes
   int flap_modes;         // M
   int lag_modes;          // N
