@@ -152,8 +152,8 @@ void SystemBuilder::assemble(double mu, const std::vector<double>& aero, Harmoni
   double* forcing = force + H_ * n * ns;
   model_->coefficients(inputs(mu, aero.data()), {force, forcing});
   // state column of the rate / displacement of coordinate j
-  auto rate_col = [&](int j) { return j < M_ ? j : 2 * M_ + (j - M_); };
-  auto disp_col = [&](int j) { return j < M_ ? M_ + j : 2 * M_ + N_ + (j - M_); };
+  auto rate_col = [&](int j) { return model::rate_index(j, M_, N_); };
+  auto disp_col = [&](int j) { return model::displacement_index(j, M_, N_); };
   out.A.assign(H_, Eigen::MatrixXd::Zero(ns, ns));
   out.f.assign(H_, Eigen::VectorXd::Zero(ns));
   for (int h = 0; h < H_; ++h) {
