@@ -60,6 +60,16 @@ bool negative_number(const std::string& a) {
   return (c >= '0' && c <= '9') || (c == '.' && a.size() > 2 && a[2] >= '0' && a[2] <= '9');
 }
 
+// "--" and lower-case letters, digits and inner dashes: the shape of every option of flaplag.
+bool well_formed_long_option(const std::string& name) {
+  if (name.size() < 3 || !starts_with(name, "--") || name[2] == '-') return false;
+  for (std::size_t i = 2; i < name.size(); ++i) {
+    const char c = name[i];
+    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-')) return false;
+  }
+  return true;
+}
+
 bool is_option_word(const std::string& a) {
   return a.size() > 1 && a[0] == '-' && !negative_number(a);
 }
@@ -266,8 +276,8 @@ CommandLine::CommandLine(const std::vector<std::string>& args) {
         name = a.substr(0, eq);
         attached = a.substr(eq + 1);
       }
-    } else if (a.size() > 2) {
-      name = a.substr(0, 2);
+    } else if (a.size() > 2 && starts_with(a, "-o")) {
+      name = "-o";  // -oFILE, as getopt
       attached = a.substr(2);
     }
     if (name == "--help" || name == "-h") {
@@ -279,6 +289,11 @@ CommandLine::CommandLine(const std::vector<std::string>& args) {
       continue;
     }
     const OptionSpec* spec = find_any_option(name);
+    if (spec == nullptr && !well_formed_long_option(name)) {
+      // "-q", "--Gamma", "---x": not an option name at all, so the word itself is the value.
+      problem(i, InvalidInput("argument", shown(a), "unknown option (see flaplag --help)"));
+      continue;
+    }
     if (spec == nullptr) {
       // Show what the user meant as its value, if anything: "--bogus 1" -> "--bogus = 1".
       std::string value = kNoValue;

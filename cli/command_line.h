@@ -61,9 +61,10 @@ class CommandLine {
   bool wants_version() const { return version_; }
 
   // Throws InvalidInput for the first problem of the command line itself, in argument order:
-  // an unknown option (name = the option), an unknown subcommand (name = "subcommand"), a stray
-  // argument (name = "argument"), a missing value (value "(missing)"), a value given to a flag,
-  // an option the subcommand does not take.
+  // an unknown option (name = the option when it is shaped like one, "--bogus"; else name =
+  // "argument" and the word is the value, "-q", "--Gamma"), an unknown subcommand (name =
+  // "subcommand"), a stray argument (name = "argument"), a missing value (value "(missing)"), a
+  // value given to a flag, an option the subcommand does not take.
   void check() const;
 
   // After check(): the request, every value checked.  Throws InvalidInput(option as typed,

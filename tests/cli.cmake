@@ -7,3 +7,8 @@ flaplag_test(cli_test flaplag_cli nlohmann_json::nlohmann_json)
 target_compile_definitions(cli_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>"
                                             FLAPLAG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 add_dependencies(cli_test flaplag)
+
+# Generated command lines against the output contract (FLAPLAG_FUZZ_VECTORS, default 1000).
+flaplag_test(cli_fuzz_test flaplag_cli nlohmann_json::nlohmann_json)
+target_compile_definitions(cli_fuzz_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
+add_dependencies(cli_fuzz_test flaplag)
