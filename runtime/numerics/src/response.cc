@@ -244,8 +244,8 @@ Simulation simulate(const PeriodicSystem& sys, const Eigen::VectorXd& y0, bool f
   Simulation out;
   int steps = options.steps_per_rev > 0 ? options.steps_per_rev : automatic_steps(sys);
   // whole multiples of the sample count, so that samples fall on grid points
-  steps = ((steps + options.samples_per_rev - 1) / options.samples_per_rev) *
-          options.samples_per_rev;
+  steps =
+      ((steps + options.samples_per_rev - 1) / options.samples_per_rev) * options.samples_per_rev;
   out.steps_per_rev = steps;
   const int per = steps / options.samples_per_rev;
   const long total_samples =
@@ -258,7 +258,8 @@ Simulation simulate(const PeriodicSystem& sys, const Eigen::VectorXd& y0, bool f
   for (long k = 0; k < total_samples; ++k) {
     const int j = static_cast<int>(k % options.samples_per_rev);
     const double base = kTwoPi * static_cast<double>(k / options.samples_per_rev);
-    const double a = kTwoPi * j / options.samples_per_rev, b = kTwoPi * (j + 1) / options.samples_per_rev;
+    const double a = kTwoPi * j / options.samples_per_rev,
+                 b = kTwoPi * (j + 1) / options.samples_per_rev;
     std::vector<double> pts;
     for (int i = 0; i <= per; ++i) pts.push_back(a + (b - a) * i / per);
     for (double e : sys.breakpoints())
@@ -270,7 +271,9 @@ Simulation simulate(const PeriodicSystem& sys, const Eigen::VectorXd& y0, bool f
     }
     if (!Y.allFinite()) {
       out.status = Status::Failed;
-      out.message = "the state overflowed after " + short_text(base / kTwoPi + (j + 1.0) / options.samples_per_rev) + " revolutions";
+      out.message = "the state overflowed after " +
+                    short_text(base / kTwoPi + (j + 1.0) / options.samples_per_rev) +
+                    " revolutions";
       return out;
     }
     out.psi.push_back(base + b);

@@ -19,21 +19,21 @@
 namespace flaplag {
 
 struct ResponseOptions {
-  int steps = 0;               // RK4 steps per period; 0: automatic (|lambda| h <= 1/2, >= 200,
-                               // doubled until the periodic state agrees to `tolerance`)
-  int samples = 72;            // points of y(psi) reported over one period (>= 2), psi_k = 2 pi k / n
-  double tolerance = 1e-10;    // on max |y0(N) - y0(N/2)| relative to max |y0| (automatic steps)
+  int steps = 0;             // RK4 steps per period; 0: automatic (|lambda| h <= 1/2, >= 200,
+                             // doubled until the periodic state agrees to `tolerance`)
+  int samples = 72;          // points of y(psi) reported over one period (>= 2), psi_k = 2 pi k / n
+  double tolerance = 1e-10;  // on max |y0(N) - y0(N/2)| relative to max |y0| (automatic steps)
   bool IsValid(std::string* error) const;
   void Check() const;
 };
 
 struct PeriodicResponse {
-  Eigen::VectorXd y0;                 // the periodic state at psi = 0
-  std::vector<double> psi;            // sample azimuths [rad], [0, 2 pi)
-  std::vector<Eigen::VectorXd> y;     // y(psi_k)
-  double closure = 0.0;               // |y(2 pi) - y(0)| / max(1, |y0|): periodicity check
-  std::optional<double> error;        // estimated error of y0 (max norm, relative)
-  double min_distance_to_one = 0.0;   // min_k |Lambda_k - 1| (near 0: no unique solution)
+  Eigen::VectorXd y0;                // the periodic state at psi = 0
+  std::vector<double> psi;           // sample azimuths [rad], [0, 2 pi)
+  std::vector<Eigen::VectorXd> y;    // y(psi_k)
+  double closure = 0.0;              // |y(2 pi) - y(0)| / max(1, |y0|): periodicity check
+  std::optional<double> error;       // estimated error of y0 (max norm, relative)
+  double min_distance_to_one = 0.0;  // min_k |Lambda_k - 1| (near 0: no unique solution)
   int steps = 0;
   Status status = Status::Ok;  // Failed: a multiplier at 1 (singular I - Phi) or overflow
   std::string message;

@@ -1,0 +1,133 @@
+// Periodic forced response and time-domain simulation (numerics/response.h): a closed-form
+// periodic solution, periodicity and the ODE, agreement with the long-time simulation, and the
+// simulated envelope growth against the Floquet exponents of the rotor.
+#include "flaplag/numerics/response.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "flaplag/analysis.h"
+#include "flaplag/core/constants.h"
+#include "flaplag/core/errors.h"
+#include "test_util.h"
+
+namespace flaplag {
+namespace {
+
+using testing::AbsClose;
+using testing::RelClose;
+
+// y1' = -a y1 + cos psi, y2' = -b y2 + sin 2 psi: periodic solutions in closed form,
+//   y1 = (a cos psi + sin psi) / (a^2 + 1),  y2 = (b sin 2psi - 2 cos 2psi) / (b^2 + 4).
+PeriodicSystem forced_decay(double a, double b) {
+  PeriodicSystem s;
+  s.n = 2;
+  Eigen::MatrixXd A0 = Eigen::MatrixXd::Zero(2, 2);
+  A0(0, 0) = -a;
+  A0(1, 1) = -b;
+  s.normal.A = {A0, Eigen::MatrixXd::Zero(2, 2), Eigen::MatrixXd::Zero(2, 2),
+                Eigen::MatrixXd::Zero(2, 2), Eigen::MatrixXd::Zero(2, 2)};
+  s.normal.f.assign(5, Eigen::VectorXd::Zero(2));
+  s.normal.f[1](0) = 1.0;  // cos psi
+  s.normal.f[4](1) = 1.0;  // sin 2 psi
+  return s;
+}
+
+TEST(PeriodicResponse, ClosedFormSolution) {
+  const double a = 0.3, b = 2.0;
+  const PeriodicResponse r = periodic_response(forced_decay(a, b));
+  ASSERT_EQ(Status::Ok, r.status) << r.message;
+  ASSERT_EQ(72u, r.y.size());
+  for (std::size_t k = 0; k < r.y.size(); ++k) {
+    const double p = r.psi[k];
+    EXPECT_TRUE(AbsClose((a * std::cos(p) + std::sin(p)) / (a * a + 1), r.y[k](0), 1e-10)) << p;
+    EXPECT_TRUE(
+        AbsClose((b * std::sin(2 * p) - 2 * std::cos(2 * p)) / (b * b + 4), r.y[k](1), 1e-10))
+        << p;
+  }
+  EXPECT_LT(r.closure, 1e-10);
+  ASSERT_TRUE(r.error.has_value());
+  EXPECT_LT(*r.error, 1e-10);
+}
+
+TEST(PeriodicResponse, MultiplierAtOneHasNoUniqueSolution) {
+  // a = 0: y1' = cos psi has the periodic solutions sin psi + C (Lambda = 1).
+  const PeriodicResponse r = periodic_response(forced_decay(0.0, 1.0));
+  EXPECT_EQ(Status::Failed, r.status);
+  EXPECT_NE(std::string::npos, r.message.find("multiplier")) << r.message;
+}
+
+// The rotor: the response satisfies the ODE (finite-difference residual at sample points), is
+// periodic, and is what a long forced simulation from rest settles to.
+TEST(PeriodicResponse, RotorResponseIsTheLongTimeLimitOfTheSimulation) {
+  const Analysis an(RotorParameters{}, {});
+  const PeriodicSystem sys = an.system(0.3);
+  ResponseOptions ro;
+  ro.samples = 360;
+  const PeriodicResponse r = periodic_response(sys, ro);
+  ASSERT_EQ(Status::Ok, r.status) << r.message;
+  EXPECT_LT(r.closure, 1e-10);
+  const double scale = r.y0.cwiseAbs().maxCoeff();
+  for (std::size_t k = 1; k + 1 < r.y.size(); k += 37) {
+    if (sys.in_sector(r.psi[k - 1]) != sys.in_sector(r.psi[k + 1])) continue;  // A jumps
+    const double h = r.psi[k + 1] - r.psi[k];
+    const Eigen::VectorXd dy = (r.y[k + 1] - r.y[k - 1]) / (2 * h);
+    const Eigen::VectorXd rhs = sys.A(r.psi[k]) * r.y[k] + sys.f(r.psi[k]);
+    EXPECT_LT((dy - rhs).cwiseAbs().maxCoeff(), 1e-3 * scale) << "psi = " << r.psi[k];
+  }
+  SimulationOptions so;
+  so.revolutions = 1200;  // the lag mode decays by exp(2 pi 0.0022) per rev
+  so.samples_per_rev = 4;
+  const Simulation s = simulate(sys, Eigen::VectorXd::Zero(sys.n), true, so);
+  ASSERT_EQ(Status::Ok, s.status) << s.message;
+  EXPECT_LT((s.y.back() - r.y0).cwiseAbs().maxCoeff(), 1e-4 * scale);
+}
+
+double max_zeta(const PointResult& p) {
+  double z = -HUGE_VAL;
+  for (const auto& e : p.exponents) z = std::max(z, e.zeta);
+  return z;
+}
+
+// The free response grows or decays at the largest Floquet exponent (within 1 %), for a stable
+// (mu = 0.5) and an unstable (mu = 0.9) point of the typical case.
+class EnvelopeGrowth : public ::testing::TestWithParam<double> {};
+
+TEST_P(EnvelopeGrowth, EqualsTheLargestFloquetExponent) {
+  const double mu = GetParam();
+  const Analysis an(RotorParameters{}, {});
+  const double zeta = max_zeta(an.point(mu));
+  SimulationOptions so;
+  so.revolutions = 150;
+  so.samples_per_rev = 360;
+  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(4);
+  y0 << 0.01, 0.01, 0.01, 0.01;
+  const Simulation s = simulate(an.system(mu), y0, false, so);
+  ASSERT_EQ(Status::Ok, s.status) << s.message;
+  std::vector<double> lag_tip;
+  for (const auto& y : s.y) lag_tip.push_back(y(3));
+  const std::optional<double> rate = envelope_growth_rate(s.psi, lag_tip, 10.0);
+  ASSERT_TRUE(rate.has_value());
+  EXPECT_TRUE(RelClose(zeta, *rate, 0.01)) << "mu = " << mu;
+}
+
+INSTANTIATE_TEST_SUITE_P(StableAndUnstable, EnvelopeGrowth, ::testing::Values(0.5, 0.9));
+
+TEST(Simulation, InvalidOptionsAndOverflow) {
+  const PeriodicSystem sys = forced_decay(0.3, 2.0);
+  SimulationOptions o;
+  o.revolutions = 0.0;
+  EXPECT_THROW(simulate(sys, Eigen::VectorXd::Zero(2), true, o), InvalidInput);
+  o = {};
+  EXPECT_THROW(simulate(sys, Eigen::VectorXd::Zero(3), true, o), InvalidInput);
+  // Growth by e^{2 pi 50} per rev overflows: Failed, not inf.
+  PeriodicSystem grow = forced_decay(-50.0, 1.0);
+  o.revolutions = 10;
+  const Simulation s = simulate(grow, Eigen::VectorXd::Ones(2), false, o);
+  EXPECT_EQ(Status::Failed, s.status);
+  for (const auto& y : s.y) EXPECT_TRUE(y.allFinite());
+}
+
+}  // namespace
+}  // namespace flaplag
