@@ -322,6 +322,47 @@ FloquetSample Analysis::floquet(double mu, double zeta_tolerance) const {
   return impl_->floquet(mu, zeta_tolerance);
 }
 
+ForcedResponse Analysis::response(double mu, const ResponseOptions& options) const {
+  check_mu(mu, "mu");
+  options.Check();
+  ForcedResponse out;
+  out.mu = mu;
+  out.periodic = periodic_response(impl_->builder.system(mu), options);
+  out.status = out.periodic.status;
+  out.message = out.periodic.message;
+  if (out.status == Status::Failed) return out;
+  const model::ModelDescriptor& m = model();
+  const ModeSet& modes = impl_->builder.modes();
+  const Eigen::VectorXd& q0 = impl_->hover.q0;
+  const int M = m.flap_modes, N = m.lag_modes;
+  for (const Eigen::VectorXd& y : out.periodic.y) {
+    double w = 0.0, v = 0.0;
+    for (int k = 0; k < M; ++k)
+      w += modes.flap[k]->value(0, 1.0) * (q0(k) + y(model::flap_displacement_index(k, M, N)));
+    for (int r = 0; r < N; ++r)
+      v += modes.lag[r]->value(0, 1.0) * (q0(M + r) + y(model::lag_displacement_index(r, M, N)));
+    out.flap_tip.push_back(w);
+    out.lag_tip.push_back(v);
+  }
+  // Discrete Fourier coefficients over the equally spaced samples.
+  auto harmonics = [&](const std::vector<double>& s) {
+    const double n = static_cast<double>(s.size());
+    std::vector<double> c(11, 0.0);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const double psi = out.periodic.psi[i];
+      c[0] += s[i] / n;
+      for (int h = 1; h <= 5; ++h) {
+        c[2 * h - 1] += 2.0 / n * s[i] * std::cos(h * psi);
+        c[2 * h] += 2.0 / n * s[i] * std::sin(h * psi);
+      }
+    }
+    return c;
+  };
+  out.flap_harmonics = harmonics(out.flap_tip);
+  out.lag_harmonics = harmonics(out.lag_tip);
+  return out;
+}
+
 SystemSnapshot Analysis::snapshot(double mu, double psi) const {
   check_mu(mu, "mu");
   if (!std::isfinite(psi)) throw InvalidInput("psi", round_trip_text(psi), "must be finite");

@@ -46,6 +46,7 @@
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/numerics/periodic_system.h"
+#include "flaplag/numerics/response.h"
 #include "flaplag/rotor/hover.h"
 #include "flaplag/rotor/parameters.h"
 
@@ -67,6 +68,20 @@ struct SystemSnapshot {
 
 // Automatic steps never exceed this (a blade so stiff that it needs more gets status Warning).
 inline constexpr int kMaxAutomaticSteps = 65536;
+
+// The periodic forced response at one mu (numerics/response.h) in blade terms.
+struct ForcedResponse {
+  double mu = 0.0;
+  PeriodicResponse periodic;  // of the perturbation state y about the hover equilibrium
+  // Tip deflections over one revolution at periodic.psi, hover equilibrium included, by l:
+  // flap w/l = sum_k eta_k(1) g_k (up), lag = sum_m gamma_m(1) h_m (positive lag, eq 2.12).
+  std::vector<double> flap_tip, lag_tip;
+  // Their harmonics: value = c[0] + sum_n (c[2n-1] cos n psi + c[2n] sin n psi), n = 1..5
+  // (the harmonic index of periodic_system.h).
+  std::vector<double> flap_harmonics, lag_harmonics;
+  Status status = Status::Ok;
+  std::string message;
+};
 
 class Analysis {
  public:
@@ -98,6 +113,10 @@ class Analysis {
   SweepResult track(const std::vector<double>& mus, double scan_step = 0.01) const;
   // opt.Check() first.
   CriticalResult critical(const CriticalOptions& opt) const;
+
+  // The periodic forced response at mu; status Failed when there is none (a multiplier at 1),
+  // Warning when the system is unstable (the blade does not settle onto it).
+  ForcedResponse response(double mu, const ResponseOptions& options = {}) const;
 
   // One resolved Floquet evaluation at mu (the FloquetFunction of the numerics), for callers
   // that drive their own continuation.
