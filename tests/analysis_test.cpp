@@ -243,6 +243,37 @@ INSTANTIATE_TEST_SUITE_P(
       return n;
     });
 
+// The forced response in hover is the static equilibrium (f = 0 at mu = 0): the tip flap and lag
+// deflections are eta(1) g0 and gamma(1) h0 (eta(1) = gamma(1) = 1 for the mode of eq 4.1) and
+// every harmonic but the constant is zero; in forward flight the first harmonics appear.
+TEST(ForcedResponse, HoverIsTheStaticEquilibriumAndForwardFlightHasHarmonics) {
+  const Analysis an(RotorParameters{}, {});
+  const flaplag::ForcedResponse h = an.response(0.0);
+  ASSERT_EQ(flaplag::Status::Ok, h.status) << h.message;
+  const double g0 = an.hover().q0(0), h0 = an.hover().q0(1);
+  for (std::size_t k = 0; k < h.flap_tip.size(); ++k) {
+    EXPECT_TRUE(AbsClose(g0, h.flap_tip[k], 1e-14));
+    EXPECT_TRUE(AbsClose(h0, h.lag_tip[k], 1e-14));
+  }
+  EXPECT_TRUE(AbsClose(g0, h.flap_harmonics[0], 1e-14));
+  for (std::size_t c = 1; c < h.flap_harmonics.size(); ++c)
+    EXPECT_TRUE(AbsClose(0.0, h.flap_harmonics[c], 1e-14)) << c;
+  const flaplag::ForcedResponse f = an.response(0.3);
+  ASSERT_EQ(flaplag::Status::Ok, f.status) << f.message;
+  const double first = std::hypot(f.flap_harmonics[1], f.flap_harmonics[2]);
+  EXPECT_GT(first, 1e-3);  // 1/rev flapping from the mu sin(psi) terms of U_T
+  // The harmonics reproduce the samples to the truncation of the 5-harmonic series.
+  double worst = 0.0;
+  for (std::size_t k = 0; k < f.flap_tip.size(); ++k) {
+    double v = f.flap_harmonics[0];
+    for (int n = 1; n <= 5; ++n)
+      v += f.flap_harmonics[2 * n - 1] * std::cos(n * f.periodic.psi[k]) +
+           f.flap_harmonics[2 * n] * std::sin(n * f.periodic.psi[k]);
+    worst = std::max(worst, std::abs(v - f.flap_tip[k]));
+  }
+  EXPECT_LT(worst, 1e-2 * first);
+}
+
 TEST(Models, LookedUpByFamilyAndModeCounts) {
   EXPECT_STREQ("paper", flaplag::find_model("paper", 1, 1).name);
   const auto& m = flaplag::find_model("paper", 2, 2);
