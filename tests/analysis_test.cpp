@@ -274,6 +274,34 @@ TEST(ForcedResponse, HoverIsTheStaticEquilibriumAndForwardFlightHasHarmonics) {
   EXPECT_LT(worst, 1e-2 * first);
 }
 
+// Regression (issue 8): Fig 16, exact modes, droop -0.02 is a shallow crossing where Hsu K = 50
+// has a zeta error as large as zeta: it gave mu_c = 1.030 with status ok.  The default
+// resolution must agree with the reference (RK4 and Magnus, automatic, tight tolerance), and
+// the paper's setting must say that it is not resolved.
+TEST(Regression, ShallowCrossingIsResolvedByDefaultAndFlaggedAtK50) {
+  RotorParameters p;
+  p.modes = flaplag::ModeKind::Exact;
+  p.droop = -0.02;
+  const auto def = Analysis(p, {}).critical({});
+  ASSERT_TRUE(def.mu_c.has_value()) << def.message;
+  EXPECT_EQ(flaplag::Status::Ok, def.status) << def.message;
+  for (TransitionMethod m : {TransitionMethod::RK4, TransitionMethod::Magnus4}) {
+    TransitionOptions o = method(m, TransitionOptions::kAutomatic);
+    o.zeta_tolerance = 1e-8;
+    const auto ref = Analysis(p, o).critical({});
+    ASSERT_TRUE(ref.mu_c.has_value()) << ref.message;
+    ASSERT_TRUE(def.mu_c_error.has_value());
+    EXPECT_TRUE(AbsClose(*ref.mu_c, *def.mu_c, std::max(1e-4, 3.0 * *def.mu_c_error)))
+        << flaplag::method_name(m);
+  }
+  const auto k50 = Analysis(p, TransitionOptions::Paper()).critical({});
+  ASSERT_TRUE(k50.mu_c.has_value());
+  EXPECT_GT(std::abs(*k50.mu_c - *def.mu_c), 0.01);  // the old, wrong answer ...
+  EXPECT_EQ(flaplag::Status::Warning, k50.status);   // ... is no longer "ok"
+  ASSERT_TRUE(k50.mu_c_error.has_value());
+  EXPECT_GT(*k50.mu_c_error, 0.01);
+}
+
 TEST(Models, LookedUpByFamilyAndModeCounts) {
   EXPECT_STREQ("paper", flaplag::find_model("paper", 1, 1).name);
   const auto& m = flaplag::find_model("paper", 2, 2);

@@ -353,21 +353,37 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
                           trials[static_cast<std::size_t>(other.index)]);
   };
 
-  // Error of a crossing: half the final bracket plus the zeta error at the crossing over the
-  // slope of zeta there (the slope of the final bracket, or of the scan step if degenerate).
+  // Error of a crossing.  With a zeta error e the true crossing lies where |f| <= e, not only
+  // within e / |slope| of mu_c: zeta(mu) can be curved (shallow crossings) or kinked (at mu = 1
+  // the reversed region changes form).  So the linear estimate d = e / |slope| is verified by
+  // evaluating f at mu_c -+ 2d: the bound holds when f < -2e below and f > +2e above (for an
+  // onset; mirrored for a re-stabilization); otherwise d doubles, up to 10 scan steps.
   std::string unresolved;
-  auto crossing_error = [&](const Trial& b, const Trial& c, double slope0) {
+  auto crossing_error = [&](const ExponentTracker& from, const Trial& b, const Trial& c,
+                            double slope0, double zeta_tolerance) -> std::optional<double> {
+    if (!b.error && !c.error) return std::nullopt;
     const double slope = c.mu != b.mu && c.f != b.f ? (c.f - b.f) / (c.mu - b.mu) : slope0;
-    std::optional<double> err;
-    if (b.error || c.error) {
-      const double zeta_error = std::max(b.error.value_or(0.0), c.error.value_or(0.0));
-      err = 0.5 * std::abs(c.mu - b.mu) + zeta_error / std::abs(slope);
-      if (*err > 10.0 * opt.tolerance && unresolved.empty()) {
-        unresolved = "the crossing at mu = " + fmt(b.mu) +
-                     " is not resolved to `tolerance`: estimated error " + fmt(*err) +
-                     " (zeta error " + fmt(zeta_error) + " per rev at a zeta slope of " +
-                     fmt(slope) + " per unit mu); increase `steps`";
-      }
+    double e = std::max(b.error.value_or(0.0), c.error.value_or(0.0));
+    const double sign = slope0 > 0.0 ? 1.0 : -1.0;  // +1: onset (f rises through 0)
+    double d = std::max(0.5 * std::abs(c.mu - b.mu), e / std::abs(slope));
+    bool verified = false;
+    while (!verified) {
+      const double lo = std::max(0.0, b.mu - 2.0 * d), hi = b.mu + 2.0 * d;
+      Trial tl = evaluate(from, lo, zeta_tolerance);
+      Trial th = evaluate(from, hi, zeta_tolerance);
+      if (tl.report.status == Status::Failed || th.report.status == Status::Failed) break;
+      e = std::max({e, tl.error.value_or(0.0), th.error.value_or(0.0)});
+      // A Richardson estimate is not a bound: ask for a margin of twice the estimate.
+      verified = (lo == 0.0 || sign * tl.f < -2.0 * e) && sign * th.f > 2.0 * e;
+      if (verified || 2.0 * d > 10.0 * opt.scan_step) break;
+      d *= 2.0;
+    }
+    const double err = 2.0 * d;
+    if ((err > 10.0 * opt.tolerance || !verified) && unresolved.empty()) {
+      unresolved = "the crossing at mu = " + fmt(b.mu) +
+                   " is not resolved to `tolerance`: estimated error " + fmt(err) +
+                   (verified ? "" : " or more") + " (zeta error " + fmt(e) +
+                   " per rev at a zeta slope of " + fmt(slope) + " per unit mu); increase `steps`";
     }
     return err;
   };
@@ -404,7 +420,8 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
     if (failure) return failed(*failure);
     const Trial& unstable = bb.f > 0.0 ? bb : cc;
     const LabelledExponent& x = unstable.tracker.exponents()[unstable.tracker.most_unstable()];
-    const std::optional<double> err = crossing_error(bb, cc, slope0);
+    const std::optional<double> err =
+        crossing_error(prev.tracker, bb, cc, slope0, refine_tolerance);
     if (onset) {
       InstabilityInterval iv;
       iv.onset = bb.mu;
