@@ -837,7 +837,7 @@ TEST(CliOutput, SymlinkToDirectoryOrLoopIsBadInput) {
 // drop the matching kKnownLibraryIssues entry of cli_fuzz_test.cpp).
 
 // analysis.cc formats the rounding-floor bound of zero-ish multipliers as "zeta < inf per rev".
-TEST(CliLibraryBugs, DISABLED_RoundingFloorMessageHasNoInfinity) {
+TEST(CliLibraryBugs, RoundingFloorMessageHasNoInfinity) {
   const Json j = parse_json(run({"point", "--mu", "0.1", "--gamma", "1391", "--sigma", "1e-4",
                                  "--lift-slope", "12.2826", "--terms", "1", "--json"}));
   expect_clean_text(j["message"].get<std::string>());
@@ -845,7 +845,7 @@ TEST(CliLibraryBugs, DISABLED_RoundingFloorMessageHasNoInfinity) {
 
 // PointResult::error is NaN (and the message says "estimated zeta error nan per rev") for an
 // extreme advance ratio reached in large continuation steps.
-TEST(CliLibraryBugs, DISABLED_ErrorEstimateIsFiniteOrAbsent) {
+TEST(CliLibraryBugs, ErrorEstimateIsFiniteOrAbsent) {
   const Json j = parse_json(
       run({"point", "--mu", "700", "--scan-step", "140", "--tip-loss-b", "0.44", "--json"}));
   expect_clean_text(j["message"].get<std::string>());

@@ -173,12 +173,14 @@ struct Analysis::Impl {
     const Eigen::MatrixXd phi = transition_matrix(sys, o).phi;
     Evaluated e;
     e.floquet = floquet_exponents(phi, trace);
-    const double norm = phi.allFinite() ? phi.norm() : 0.0;
-    if (norm > 0.0) {
-      const double n = static_cast<double>(phi.rows());
-      e.log_norm = std::log(norm);
+    // n max|Phi_ij| bounds ||Phi||_2 without the overflow of a sum of squares.
+    const double n = static_cast<double>(phi.rows());
+    const double big = phi.allFinite() ? phi.cwiseAbs().maxCoeff() : 0.0;
+    if (big > 0.0) {
+      e.log_norm = std::log(n) + std::log(big);
       e.zeta_floor = std::max(
-          kZetaFloor, std::log(64.0 * n * std::numeric_limits<double>::epsilon() * norm) / kTwoPi);
+          kZetaFloor,
+          (std::log(64.0 * n * std::numeric_limits<double>::epsilon()) + e.log_norm) / kTwoPi);
     }
     return e;
   }
@@ -260,6 +262,12 @@ struct Analysis::Impl {
       return out;
     }
     std::string note;
+    for (double e : err) {
+      if (!std::isfinite(e)) {  // cannot happen with finite floors; never report a NaN
+        err.clear();
+        break;
+      }
+    }
     if (!err.empty()) {
       out.error = *std::max_element(err.begin(), err.end());
       out.zeta_errors = err;
