@@ -15,7 +15,9 @@ export DEBIAN_FRONTEND=noninteractive
 apt-get update
 # GiNaC (with CLN) runs the symbolic derivation at build time; toml++ reads the ordering specs;
 # Eigen, CLI11 and nlohmann-json are the runtime and the command line; GoogleTest and Google
-# Benchmark are the tests and bench/.
+# Benchmark are the tests and bench/.  The Python module (python/) is built with pybind11 for
+# Debian's /usr/bin/python3 and uses numpy; its tests use pytest, dask.distributed (maps on a
+# cluster) and matplotlib (examples/python/).
 apt-get install -y --no-install-recommends \
   build-essential \
   cmake \
@@ -27,4 +29,11 @@ apt-get install -y --no-install-recommends \
   libbenchmark-dev \
   libcli11-dev \
   nlohmann-json3-dev \
-  libtomlplusplus-dev
+  libtomlplusplus-dev \
+  python3-dev \
+  pybind11-dev \
+  python3-pybind11 \
+  python3-numpy \
+  python3-pytest \
+  python3-distributed \
+  python3-matplotlib

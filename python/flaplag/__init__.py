@@ -1,0 +1,75 @@
+"""flaplag: coupled flap-lag aeroelastic stability of hingeless helicopter blades in forward
+flight (Friedmann & Silverthorn, NASA CR-132431, 1974), by Floquet analysis.
+
+    >>> import flaplag
+    >>> an = flaplag.Analysis()                  # the paper's typical case
+    >>> an.critical()                            # mu_c, mode, omega, kind
+    >>> an.sweep(numpy.linspace(0, 1.2, 61)).zeta["lag"]
+    >>> flaplag.study("omega_lag", numpy.linspace(0.5, 2, 16))
+    >>> flaplag.map(x=("mu", numpy.linspace(0, 1, 51)), y=("theta", [0.1, 0.15, 0.2]))
+
+Analysis takes the C++ field names as keyword arguments (help(flaplag.Analysis) lists them with
+units and ranges).  Results are small classes with numpy arrays, a status ('ok', 'warning',
+'failed') and a message; invalid input raises flaplag.InvalidInput (a ValueError) with the
+library's message '<field> = <value>: <reason>'.  flaplag.map and flaplag.study run on all
+cores, or with client=<dask.distributed.Client> on a Dask cluster.
+"""
+
+from . import _flaplag
+from ._analysis import PARAMETERS, TRANSITION, Analysis, InvalidInput, UnknownParameter
+from ._parallel import map, study, study_parameters
+from ._results import (
+    CriticalResult,
+    Exponent,
+    FloquetSample,
+    HoverResult,
+    Interval,
+    MapResult,
+    ModelInfo,
+    ModeShapes,
+    PointResult,
+    StudyResult,
+    SweepResult,
+    SystemResult,
+)
+
+__version__ = _flaplag.version
+git_commit = _flaplag.git_commit  # the commit the library was configured from ("" if unknown)
+max_advance_ratio = _flaplag.max_advance_ratio
+
+
+def models():
+    """The compiled ordering models (the command line's ``flaplag models``)."""
+    return [ModelInfo._from(m) for m in _flaplag.models()]
+
+
+def parameter_table():
+    """The rotor parameters: one dict per field with symbol, units, type, default, the
+    admissible values (requirement, range) and a description (the library's table)."""
+    return [dict(r) for r in PARAMETERS]
+
+
+__all__ = [
+    "Analysis",
+    "InvalidInput",
+    "UnknownParameter",
+    "study",
+    "map",
+    "study_parameters",
+    "models",
+    "parameter_table",
+    "CriticalResult",
+    "Exponent",
+    "FloquetSample",
+    "HoverResult",
+    "Interval",
+    "MapResult",
+    "ModelInfo",
+    "ModeShapes",
+    "PointResult",
+    "StudyResult",
+    "SweepResult",
+    "SystemResult",
+    "__version__",
+    "git_commit",
+]

@@ -1,0 +1,372 @@
+"""flaplag.Analysis: the stability analysis of one blade, with the vocabulary of the C++ library.
+
+The keyword arguments are the field names of the C++ RotorParameters (rotor/parameter_table.h)
+and TransitionOptions, read from the library's own tables when this module is imported, so that
+the names, units, ranges, defaults and descriptions have one source.  The command line spells
+the same names as options (``omega_lag`` is ``--omega-lag``).
+"""
+
+import difflib
+import inspect
+import math
+import numbers
+import operator
+import textwrap
+
+import numpy as np
+
+from . import _flaplag
+from ._results import (
+    CriticalResult,
+    FloquetSample,
+    HoverResult,
+    ModelInfo,
+    ModeShapes,
+    PointResult,
+    SweepResult,
+    SystemResult,
+)
+
+InvalidInput = _flaplag.InvalidInput
+
+
+class UnknownParameter(InvalidInput, TypeError):
+    """A keyword that names no parameter: both a ValueError (as every bad input of flaplag)
+    and the TypeError Python raises for an unexpected keyword argument."""
+
+
+UnknownParameter.__module__ = "flaplag"
+
+
+PARAMETERS = tuple(_flaplag.parameter_table())  # rows of the RotorParameters table
+TRANSITION = tuple(_flaplag.transition_table())  # method, steps, terms, zeta_tolerance
+_MODE_COUNTS = (
+    {
+        "field": "flap_modes",
+        "symbol": "M",
+        "type": "int",
+        "default": 1,
+        "units": "-",
+        "requirement": ">= 1",
+        "description": "flap modes M: selects the compiled model '<model>-<M>x<N>' "
+        "(<model> itself for 1 x 1; more than one mode needs modes='exact')",
+    },
+    {
+        "field": "lag_modes",
+        "symbol": "N",
+        "type": "int",
+        "default": 1,
+        "units": "-",
+        "requirement": ">= 1",
+        "description": "lag modes N (see flap_modes)",
+    },
+)
+_ROTOR_FIELDS = {r["field"]: r for r in PARAMETERS}
+_TRANSITION_FIELDS = {r["field"]: r for r in TRANSITION}
+_COUNT_FIELDS = {r["field"]: r for r in _MODE_COUNTS}
+_ALL_FIELDS = {**_ROTOR_FIELDS, **_TRANSITION_FIELDS, **_COUNT_FIELDS}
+CRITICAL_DEFAULTS = dict(_flaplag.critical_defaults())
+
+_INT_MAX = 2**31 - 1
+
+
+def _invalid(cls, field, value, reason, text=None):
+    """cls('<field> = <value>: <reason>') with .field, .value (as text) and .reason; text: the
+    value as shown, when not its repr."""
+    text = _shown(value) if text is None else text
+    e = cls(f"{field} = {text}: {reason}")
+    e.field, e.value, e.reason = field, text, reason
+    return e
+
+
+def _shown(value):
+    if isinstance(value, float):
+        return repr(value)
+    r = repr(value)
+    return r if len(r) <= 60 else r[:57] + "..."
+
+
+def _real(field, value):
+    """A float from any real number (not a bool, not a string)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise _invalid(InvalidInput, field, value, "must be a real number")
+    return float(value)
+
+
+def _int(field, value):
+    if isinstance(value, (bool, np.bool_)):
+        raise _invalid(InvalidInput, field, value, "must be an integer")
+    try:
+        v = operator.index(value)
+    except TypeError:
+        raise _invalid(InvalidInput, field, value, "must be an integer") from None
+    if not -_INT_MAX <= v <= _INT_MAX:
+        raise _invalid(InvalidInput, field, value, "out of range")
+    return int(v)
+
+
+def _flag(field, value):
+    if not isinstance(value, (bool, np.bool_)):
+        raise _invalid(InvalidInput, field, value, "must be True or False")
+    return bool(value)
+
+
+def _text(field, value):
+    if not isinstance(value, str):
+        raise _invalid(InvalidInput, field, value, "must be a string")
+    return value
+
+
+def _real_array(field, values):
+    """A 1-D list of floats from a scalar or an array-like of real numbers."""
+    if isinstance(values, (str, bytes)):
+        raise _invalid(InvalidInput, field, values, "must be real numbers")
+    try:
+        a = np.asarray(values)
+    except Exception:  # ragged input
+        raise _invalid(InvalidInput, field, values, "must be real numbers") from None
+    if a.dtype == bool or not (
+        np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.integer)
+    ):
+        raise _invalid(InvalidInput, field, values, "must be real numbers")
+    if a.ndim > 1:
+        raise _invalid(InvalidInput, field, a, "must be one-dimensional", f"<{a.ndim}-D array>")
+    return [float(v) for v in np.atleast_1d(a).astype(float)]
+
+
+def _coerce(field, value):
+    row = _ALL_FIELDS[field]
+    t = row["type"]
+    if t == "real":
+        return _real(field, value)
+    if t == "int":
+        if field == "steps" and isinstance(value, str) and value == "auto":
+            return 0
+        return _int(field, value)
+    if t == "flag":
+        return _flag(field, value)
+    return _text(field, value)  # text and choice: the library checks the name
+
+
+def split_parameters(kwargs):
+    """(rotor dict, transition dict, flap_modes, lag_modes) from Analysis keyword arguments,
+    names checked and values converted to the field types; the values themselves are checked
+    by the library."""
+    rotor, transition, counts = {}, {}, {"flap_modes": 1, "lag_modes": 1}
+    for field, value in kwargs.items():
+        if field not in _ALL_FIELDS:
+            close = difflib.get_close_matches(field, list(_ALL_FIELDS), n=1)
+            hint = f" (did you mean {close[0]}?)" if close else ""
+            raise _invalid(UnknownParameter, field, value, "unknown parameter" + hint)
+        v = _coerce(field, value)
+        if field in _ROTOR_FIELDS:
+            rotor[field] = v
+        elif field in _TRANSITION_FIELDS:
+            transition[field] = v
+        else:
+            counts[field] = v
+    return rotor, transition, counts["flap_modes"], counts["lag_modes"]
+
+
+def _describe(row):
+    """A numpydoc parameter entry from a table row."""
+    t = row["type"]
+    kind = {
+        "real": "float",
+        "int": "int",
+        "flag": "bool",
+        "text": "str",
+        "choice": "{" + ", ".join(repr(c) for c in row.get("choices", ())) + "}",
+    }[t]
+    head = f"{row['field']} : {kind}, default {row['default']!r}"
+    details = []
+    if row.get("symbol"):
+        details.append(row["symbol"])
+    if row.get("units") and row["units"] != "-":
+        details.append(f"[{row['units']}]")
+    if row.get("requirement") and t not in ("choice", "text", "flag"):
+        details.append(row["requirement"])
+    desc = row["description"]
+    if details:
+        desc = f"{desc}; {' '.join(details)}"
+    return head + "\n" + textwrap.indent(textwrap.fill(desc, 88), "    ")
+
+
+def _signature(rows, self_param=True):
+    params = [inspect.Parameter("self", inspect.Parameter.POSITIONAL_ONLY)] if self_param else []
+    params += [
+        inspect.Parameter(r["field"], inspect.Parameter.KEYWORD_ONLY, default=r["default"])
+        for r in rows
+    ]
+    return inspect.Signature(params)
+
+
+def parameters_doc():
+    """The parameter part of the Analysis docstring, from the library's tables."""
+    out = ["Rotor and blade (C++ RotorParameters; the paper's typical case by default)"]
+    out += [_describe(r) for r in PARAMETERS]
+    out += ["", "Transition matrix Phi(2 pi) (C++ TransitionOptions)"]
+    out += [_describe(r) for r in TRANSITION]
+    out += ["", "Number of modes (the command line's --flap-modes, --lag-modes)"]
+    out += [_describe(r) for r in _MODE_COUNTS]
+    return "\n".join(out)
+
+
+def _rebuild(kwargs):
+    return Analysis(**kwargs)
+
+
+class Analysis:
+    def __init__(self, **kwargs):
+        rotor, transition, flap_modes, lag_modes = split_parameters(kwargs)
+        self._kwargs = dict(kwargs)
+        self._native = _flaplag.Analysis(rotor, transition, flap_modes, lag_modes)
+        self._hover = None
+
+    # -- what was built ------------------------------------------------------------------------
+
+    @property
+    def parameters(self) -> dict:
+        """Every RotorParameters field as used (model: the model selected for the mode counts)."""
+        return dict(self._native.parameters())
+
+    @property
+    def options(self) -> dict:
+        """The TransitionOptions: method, steps (0: automatic), terms, zeta_tolerance."""
+        return dict(self._native.transition())
+
+    @property
+    def model(self) -> ModelInfo:
+        """The compiled ordering model of this analysis."""
+        return ModelInfo._from(self._native.model())
+
+    @property
+    def hover(self) -> HoverResult:
+        """The hover equilibrium and exponents (computed with the analysis)."""
+        if self._hover is None:
+            self._hover = HoverResult._from(self._native.hover())
+        return self._hover
+
+    def _labels(self):
+        labels = []
+        for l in self.hover.labels:
+            if l not in labels:
+                labels.append(l)
+        return labels
+
+    # -- analyses ------------------------------------------------------------------------------
+
+    def point(self, mu, *, scan_step=0.01) -> PointResult:
+        """The labelled exponents at advance ratio mu (0 <= mu <= 1000), continued from hover
+        in steps of at most scan_step so that each exponent keeps its flap / lag label and its
+        omega its integer part.  zeta, omega per rev."""
+        return PointResult._from(
+            self._native.point(_real("mu", mu), _real("scan_step", scan_step))
+        )
+
+    def sweep(self, mu, stop=None, step=None, *, scan_step=0.01) -> SweepResult:
+        """Exponents along advance ratios, continued from hover.
+
+        sweep(mus): at the given advance ratios (nondecreasing, any spacing), continued in steps
+        of at most scan_step (C++ Analysis::track).
+        sweep(start, stop, step): at start, start + step, ..., stop inclusive, reported at the
+        decimal grid values (C++ Analysis::sweep, the command line's --mu START:STOP:STEP).
+        """
+        if stop is None and step is None:
+            raw = self._native.track(_real_array("mu", mu), _real("scan_step", scan_step))
+        elif stop is None or step is None:
+            raise TypeError("sweep(start, stop, step) needs all three, or sweep(mus) an array")
+        else:
+            raw = self._native.sweep(_real("mu0", mu), _real("mu1", stop), _real("step", step))
+        return SweepResult._from(raw, self._labels())
+
+    def critical(
+        self,
+        *,
+        mu_max=CRITICAL_DEFAULTS["mu_max"],
+        scan_step=CRITICAL_DEFAULTS["scan_step"],
+        tolerance=CRITICAL_DEFAULTS["tolerance"],
+        all_intervals=CRITICAL_DEFAULTS["all_intervals"],
+        zeta_threshold=CRITICAL_DEFAULTS["zeta_threshold"],
+        periodic_omega_tolerance=CRITICAL_DEFAULTS["periodic_omega_tolerance"],
+        scan_zeta_tolerance=CRITICAL_DEFAULTS["scan_zeta_tolerance"],
+    ) -> CriticalResult:
+        """The critical advance ratio mu_c: scans mu = scan_step, 2 scan_step, ... up to mu_max,
+        continuing the exponents from hover, and refines the first crossing of
+        max zeta = zeta_threshold [per rev] by Brent's method to ``tolerance`` in mu.
+        all_intervals=True scans on to mu_max and reports every instability interval.
+        periodic_omega_tolerance: |omega - k/2| [per rev] below which a crossing is 'periodic';
+        scan_zeta_tolerance: the exponent accuracy asked of the scan [per rev]."""
+        opts = {
+            "mu_max": _real("mu_max", mu_max),
+            "scan_step": _real("scan_step", scan_step),
+            "tolerance": _real("tolerance", tolerance),
+            "all_intervals": _flag("all_intervals", all_intervals),
+            "zeta_threshold": _real("zeta_threshold", zeta_threshold),
+            "periodic_omega_tolerance": _real("periodic_omega_tolerance", periodic_omega_tolerance),
+            "scan_zeta_tolerance": _real("scan_zeta_tolerance", scan_zeta_tolerance),
+        }
+        return CriticalResult._from(self._native.critical(opts))
+
+    def system(self, mu, psi=0.0) -> SystemResult:
+        """The periodic system y' = A(psi) y + f(psi) at advance ratio mu and azimuth psi [rad]
+        (any finite angle, reduced to [0, 2 pi)): A, f as numpy arrays, the flow region and
+        every spanwise integral and generalized mass by name."""
+        return SystemResult._from(self._native.snapshot(_real("mu", mu), _real("psi", psi)))
+
+    def modes(self, x=101, *, derivative=0) -> ModeShapes:
+        """The blade's mode shapes (flap eta_k, lag gamma_m) at stations x in [0, 1] (x0 = r/l):
+        an array of stations, or a number of equally spaced ones (default 101).  derivative:
+        0..3, the d/dx0 derivative to sample."""
+        if isinstance(x, numbers.Integral) and not isinstance(x, bool):
+            if x < 2:
+                raise _invalid(InvalidInput, "x", x, "need at least 2 stations")
+            stations = np.linspace(0.0, 1.0, int(x)).tolist()
+        else:
+            stations = _real_array("x", x)
+        return ModeShapes._from(self._native.modes(stations, _int("derivative", derivative)))
+
+    def floquet(self, mu, *, zeta_tolerance=None) -> FloquetSample:
+        """One Floquet analysis at mu without continuation (omega only as principal value),
+        resolved to zeta_tolerance [per rev] (default: the analysis' zeta_tolerance)."""
+        tol = self.options["zeta_tolerance"] if zeta_tolerance is None else zeta_tolerance
+        return FloquetSample._from(
+            self._native.floquet(_real("mu", mu), _real("zeta_tolerance", tol))
+        )
+
+    # -- Python protocol -----------------------------------------------------------------------
+
+    def __reduce__(self):
+        return (_rebuild, (self._kwargs,))
+
+    def __repr__(self):
+        given = ", ".join(f"{k}={v!r}" for k, v in self._kwargs.items())
+        return f"flaplag.Analysis({given})"
+
+
+Analysis.__doc__ = (
+    """The coupled flap-lag stability analysis of one hingeless blade (NASA CR-132431).
+
+Analysis(**parameters) builds the blade, its periodic system and the hover equilibrium; the
+methods then analyse it at any advance ratio mu.  Keyword arguments only; every one has the
+paper's typical-case default (gamma = 10, theta = 0.15, omega_flap = 1.175, omega_lag =
+1.28303, assumed modes, model 'paper', Hsu's method with automatic steps).  The names are the
+C++ field names (the command line's options without -- and with _ for -).  Quantities are
+nondimensional as in the paper: angles in rad, frequencies per rev (by Omega).
+
+Invalid values raise flaplag.InvalidInput, a ValueError with the library's one-line message
+'<field> = <value>: <reason>'; unknown names raise flaplag.UnknownParameter (ValueError and
+TypeError).  Numerical outcomes are results with a status and a message.
+
+    >>> import flaplag
+    >>> flaplag.Analysis().critical()
+    >>> flaplag.Analysis(modes="exact", omega_lag=1.4).sweep(numpy.linspace(0, 1, 51))
+
+Parameters
+----------
+"""
+    + parameters_doc()
+)
+Analysis.__module__ = "flaplag"
+Analysis.__init__.__signature__ = _signature(PARAMETERS + TRANSITION + _MODE_COUNTS)
+Analysis.__init__.__doc__ = "Builds the analysis; see help(flaplag.Analysis) for the parameters."

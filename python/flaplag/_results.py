@@ -1,0 +1,690 @@
+"""Result classes of flaplag: plain, picklable values with numpy arrays and readable reprs.
+
+Every result carries ``status`` ('ok', 'warning' or 'failed') and ``message``, as in C++:
+numerical outcomes (an unstable hover, no mu_c below the scan limit, an under-resolved
+transition matrix) are results, never exceptions.  Units: zeta and omega per rev (by the rotor
+speed Omega), advance ratios mu and angles psi nondimensional / in radians.
+"""
+
+import math
+from dataclasses import dataclass, field
+from typing import Dict, Optional, Tuple
+
+import numpy as np
+
+__all__ = [
+    "Exponent",
+    "HoverResult",
+    "PointResult",
+    "SweepResult",
+    "Interval",
+    "CriticalResult",
+    "SystemResult",
+    "ModeShapes",
+    "FloquetSample",
+    "ModelInfo",
+    "StudyResult",
+    "MapResult",
+]
+
+
+def _g(v, digits=6):
+    """A number for a repr: about six significant digits, None as None."""
+    if v is None:
+        return "None"
+    if isinstance(v, float) and not math.isfinite(v):
+        return repr(v)
+    return f"{v:.{digits}g}"
+
+
+def _status(status, message):
+    if status == "ok":
+        return "status='ok'"
+    return f"status={status!r}, message={message!r}"
+
+
+@dataclass(frozen=True, repr=False)
+class Exponent:
+    """One characteristic exponent lambda = zeta + i omega [per rev] with its mode label.
+
+    ``multiplier`` is the characteristic multiplier exp(2 pi lambda) of Phi(2 pi) (None for the
+    hover eigenvalues, which come from A at mu = 0 directly).  omega has its integer part fixed
+    by continuation from hover; zeta = -inf marks a multiplier that underflowed to zero.
+    """
+
+    label: str
+    zeta: float
+    omega: float
+    multiplier: Optional[complex] = None
+
+    def __repr__(self):
+        return f"Exponent({self.label!r}, zeta={_g(self.zeta)}, omega={_g(self.omega)})"
+
+
+def _exponents(raw) -> Tuple[Exponent, ...]:
+    return tuple(Exponent(label, zeta, omega, complex(mult)) for label, zeta, omega, mult in raw)
+
+
+def _exponent_list(exponents):
+    return "[" + ", ".join(f"{e.label} {_g(e.zeta, 4)}{e.omega:+.5g}i" for e in exponents) + "]"
+
+
+@dataclass(frozen=True, repr=False)
+class HoverResult:
+    """The hover equilibrium (eqs 2.24, 2.29-2.32) and the hover exponents.
+
+    inflow: lambda (eq 2.24); equilibrium: {'g0_1': ..., 'h0_1': ...} (modal amplitudes);
+    A0: the constant A at mu = 0; eigenvalues: eig(A0) [per rev] with ``labels``; stable: all
+    zeta <= 0.
+    """
+
+    inflow: float
+    equilibrium: Dict[str, float]
+    A0: np.ndarray
+    eigenvalues: np.ndarray
+    labels: Tuple[str, ...]
+    stable: bool
+    status: str
+    message: str
+
+    @property
+    def exponents(self) -> Tuple[Exponent, ...]:
+        return tuple(
+            Exponent(l, float(z.real), float(z.imag)) for l, z in zip(self.labels, self.eigenvalues)
+        )
+
+    def __repr__(self):
+        eq = ", ".join(f"{k}={_g(v)}" for k, v in self.equilibrium.items())
+        return (
+            f"HoverResult(inflow={_g(self.inflow)}, {eq}, stable={self.stable}, "
+            f"exponents={_exponent_list(self.exponents)}, {_status(self.status, self.message)})"
+        )
+
+    @classmethod
+    def _from(cls, d):
+        return cls(
+            d["inflow"],
+            dict(d["equilibrium"]),
+            np.asarray(d["A0"]),
+            np.asarray(d["eigenvalues"]),
+            tuple(d["labels"]),
+            d["stable"],
+            d["status"],
+            d["message"],
+        )
+
+
+@dataclass(frozen=True, repr=False)
+class PointResult:
+    """The labelled exponents at one advance ratio mu.
+
+    exponents: sorted by label, then by omega (descending); liouville_residual: the relative
+    |det Phi - exp int tr A| (None when not representable); error: the estimated largest zeta
+    error [per rev] (None when not estimated); steps: the steps per period used; stable: all
+    zeta <= 0 (None when unknown, i.e. status 'failed').
+    """
+
+    mu: float
+    exponents: Tuple[Exponent, ...]
+    liouville_residual: Optional[float]
+    error: Optional[float]
+    steps: int
+    stable: Optional[bool]
+    status: str
+    message: str
+
+    @property
+    def zeta(self) -> np.ndarray:
+        """zeta of every exponent [per rev], in the order of ``exponents``."""
+        return np.array([e.zeta for e in self.exponents])
+
+    @property
+    def omega(self) -> np.ndarray:
+        """omega of every exponent [per rev]."""
+        return np.array([e.omega for e in self.exponents])
+
+    @property
+    def multipliers(self) -> np.ndarray:
+        return np.array([e.multiplier for e in self.exponents], dtype=complex)
+
+    @property
+    def labels(self) -> Tuple[str, ...]:
+        return tuple(e.label for e in self.exponents)
+
+    @property
+    def max_zeta(self) -> float:
+        """The largest zeta [per rev] (nan without exponents)."""
+        return max((e.zeta for e in self.exponents), default=math.nan)
+
+    def dominant(self, label) -> Optional[Exponent]:
+        """The exponent that decides mode ``label``'s stability: the largest zeta, of a
+        conjugate pair the one with omega >= 0 (the command line's rule for its tables)."""
+        best = None
+        for e in self.exponents:
+            if e.label != label:
+                continue
+            if (
+                best is None
+                or e.zeta > best.zeta
+                or (e.zeta == best.zeta and e.omega >= 0.0 and best.omega < 0.0)
+            ):
+                best = e
+        return best
+
+    def __repr__(self):
+        return (
+            f"PointResult(mu={_g(self.mu)}, stable={self.stable}, "
+            f"exponents={_exponent_list(self.exponents)}, {_status(self.status, self.message)})"
+        )
+
+    @classmethod
+    def _from(cls, d):
+        return cls(
+            d["mu"],
+            _exponents(d["exponents"]),
+            d["liouville_residual"],
+            d["error"],
+            d["steps"],
+            d["stable"],
+            d["status"],
+            d["message"],
+        )
+
+
+@dataclass(frozen=True, repr=False)
+class SweepResult:
+    """Exponents along advance ratios mu, continued from hover.
+
+    mu: the advance ratios (1-D array); points: one PointResult each; labels: the mode labels
+    in hover order.  ``zeta[label]`` and ``omega[label]`` are 1-D arrays of the mode's dominant
+    exponent (PointResult.dominant; nan where a point has none).  A failed step ends the sweep:
+    then there are fewer points than advance ratios asked for, the failed one last.
+    """
+
+    mu: np.ndarray
+    points: Tuple[PointResult, ...]
+    labels: Tuple[str, ...]
+    status: str
+    message: str
+    zeta: Dict[str, np.ndarray] = field(init=False)
+    omega: Dict[str, np.ndarray] = field(init=False)
+
+    def __post_init__(self):
+        zeta, omega = {}, {}
+        for label in self.labels:
+            dom = [p.dominant(label) for p in self.points]
+            zeta[label] = np.array([math.nan if e is None else e.zeta for e in dom])
+            omega[label] = np.array([math.nan if e is None else e.omega for e in dom])
+        object.__setattr__(self, "zeta", zeta)
+        object.__setattr__(self, "omega", omega)
+
+    @property
+    def max_zeta(self) -> np.ndarray:
+        """The largest zeta at each point [per rev]."""
+        return np.array([p.max_zeta for p in self.points])
+
+    @property
+    def stable(self) -> Tuple[Optional[bool], ...]:
+        return tuple(p.stable for p in self.points)
+
+    def __len__(self):
+        return len(self.points)
+
+    def __repr__(self):
+        if len(self.mu) == 0:
+            return f"SweepResult(no points, {_status(self.status, self.message)})"
+        unstable = [p.mu for p in self.points if p.stable is False]
+        where = f", unstable from mu = {_g(unstable[0])}" if unstable else ", stable throughout"
+        return (
+            f"SweepResult({len(self.points)} points, mu = {_g(self.mu[0])}..{_g(self.mu[-1])}, "
+            f"modes {list(self.labels)}{where}, {_status(self.status, self.message)})"
+        )
+
+    @classmethod
+    def _from(cls, d, labels):
+        points = tuple(PointResult._from(p) for p in d["points"])
+        return cls(
+            np.array([p.mu for p in points]), points, tuple(labels), d["status"], d["message"]
+        )
+
+
+@dataclass(frozen=True, repr=False)
+class Interval:
+    """One interval of instability in mu: max zeta > zeta_threshold for onset < mu < end
+    (end None: still unstable at mu_max), with the mode that crosses at the onset, its omega
+    [per rev] and kind ('flutter' or 'periodic'); *_error: estimated |error| of onset / end."""
+
+    onset: float
+    end: Optional[float]
+    onset_error: Optional[float]
+    end_error: Optional[float]
+    mode: str
+    omega: float
+    kind: str
+
+    def __repr__(self):
+        return (
+            f"Interval({_g(self.onset)}..{_g(self.end)}, mode={self.mode!r}, "
+            f"kind={self.kind!r}, omega={_g(self.omega)})"
+        )
+
+    @classmethod
+    def _from(cls, d):
+        return cls(
+            d["onset"], d["end"], d["onset_error"], d["end_error"], d["mode"], d["omega"], d["kind"]
+        )
+
+
+@dataclass(frozen=True, repr=False)
+class CriticalResult:
+    """The critical advance ratio mu_c: the first mu in (0, mu_max] where an exponent has
+    zeta > zeta_threshold.
+
+    mu_c is None when the blade is stable up to mu_max, unstable already in hover
+    (hover_unstable) or the search failed (status 'failed').  With mu_c: mode ('flap', 'lag',
+    'flap2', ...), omega [per rev, >= 0] and kind ('flutter': omega not locked; 'periodic':
+    omega locked to 0, 1/2 or 1 per rev); otherwise these are None.  mu_c_error is the
+    estimated |mu_c error|; intervals lists the instability intervals (every one up to mu_max
+    with all_intervals=True); exponents are those at mu_c, at hover or at the last mu scanned;
+    evaluations counts the Floquet analyses.
+    """
+
+    mu_c: Optional[float]
+    mu_c_error: Optional[float]
+    mode: Optional[str]
+    omega: Optional[float]
+    kind: Optional[str]
+    hover_unstable: bool
+    mu_max: float
+    exponents: Tuple[Exponent, ...]
+    intervals: Tuple[Interval, ...]
+    evaluations: int
+    status: str
+    message: str
+
+    def __repr__(self):
+        if self.mu_c is not None:
+            what = (
+                f"mu_c={_g(self.mu_c)}, mode={self.mode!r}, kind={self.kind!r}, "
+                f"omega={_g(self.omega)}"
+            )
+            if len(self.intervals) > 1:
+                what += f", intervals={list(self.intervals)}"
+        elif self.hover_unstable:
+            what = "mu_c=None (unstable in hover)"
+        elif self.status == "failed":
+            what = "mu_c=None (the search failed)"
+        else:
+            what = f"mu_c=None (stable up to mu = {_g(self.mu_max)})"
+        return f"CriticalResult({what}, {_status(self.status, self.message)})"
+
+    @classmethod
+    def _from(cls, d):
+        found = d["mu_c"] is not None
+        return cls(
+            d["mu_c"],
+            d["mu_c_error"],
+            d["mode"] if found else None,
+            d["omega"] if found else None,
+            d["kind"] if found else None,
+            d["hover_unstable"],
+            d["mu_max"],
+            _exponents(d["exponents"]),
+            tuple(Interval._from(i) for i in d["intervals"]),
+            d["evaluations"],
+            d["status"],
+            d["message"],
+        )
+
+
+@dataclass(frozen=True, repr=False)
+class SystemResult:
+    """The linear periodic system y' = A(psi) y + f(psi) at one (mu, psi), for auditing.
+
+    states: the state names (dg1', dg1, dh1', dh1 for one flap and one lag mode); region:
+    'normal' or 'reversed' (the reversed-flow sector of Appendix D); aero_integrals: the
+    spanwise aerodynamic integrals of the normal-flow region by name, aero_integrals_at_psi the
+    values used at psi; structural_integrals: the generalized masses and structural integrals
+    (by I_b); paper_names: the Appendix B name of each integral ('' where there is none).
+    """
+
+    mu: float
+    psi: float
+    region: str
+    A: np.ndarray
+    f: np.ndarray
+    states: Tuple[str, ...]
+    aero_integrals: Dict[str, float]
+    aero_integrals_at_psi: Dict[str, float]
+    structural_integrals: Dict[str, float]
+    paper_names: Dict[str, str]
+
+    def __repr__(self):
+        n = self.A.shape[0]
+        return (
+            f"SystemResult(mu={_g(self.mu)}, psi={_g(self.psi)}, region={self.region!r}, "
+            f"A: {n}x{n}, states {list(self.states)}, {len(self.aero_integrals)} aerodynamic "
+            f"and {len(self.structural_integrals)} structural integrals)"
+        )
+
+    @classmethod
+    def _from(cls, d):
+        paper = {}
+        for name, pname, _, _ in d["aero_integrals"]:
+            paper[name] = pname
+        for name, pname, _ in d["structural_integrals"]:
+            paper[name] = pname
+        return cls(
+            d["mu"],
+            d["psi"],
+            d["region"],
+            np.asarray(d["A"]),
+            np.asarray(d["f"]),
+            tuple(d["states"]),
+            {name: v for name, _, v, _ in d["aero_integrals"]},
+            {name: v for name, _, _, v in d["aero_integrals"]},
+            {name: v for name, _, v in d["structural_integrals"]},
+            paper,
+        )
+
+
+@dataclass(frozen=True, repr=False)
+class ModeShapes:
+    """The blade's mode shapes sampled at stations x (x0 = r / l in [0, 1], the elastic span).
+
+    flap[k] (eta_k) and lag[m] (gamma_m) are the shapes or their ``derivative``-th derivative
+    d/dx0 at x; omega_flap / omega_lag: the rotating frequencies [per rev];
+    stiffness_flap / stiffness_lag: EI / (Omega^2 l I_b) (0 for the assumed mode of eq 4.1).
+    """
+
+    kind: str
+    x: np.ndarray
+    derivative: int
+    flap: np.ndarray
+    lag: np.ndarray
+    omega_flap: np.ndarray
+    omega_lag: np.ndarray
+    stiffness_flap: float
+    stiffness_lag: float
+
+    def __repr__(self):
+        return (
+            f"ModeShapes({self.kind!r}, {self.flap.shape[0]} flap x {self.lag.shape[0]} lag, "
+            f"omega_flap={[float(_g(w)) for w in self.omega_flap]}, "
+            f"omega_lag={[float(_g(w)) for w in self.omega_lag]}, {len(self.x)} stations, "
+            f"derivative {self.derivative})"
+        )
+
+    @classmethod
+    def _from(cls, d):
+        return cls(
+            d["kind"],
+            np.asarray(d["x"]),
+            d["derivative"],
+            np.asarray(d["flap"]),
+            np.asarray(d["lag"]),
+            np.asarray(d["omega_flap"]),
+            np.asarray(d["omega_lag"]),
+            d["stiffness_flap"],
+            d["stiffness_lag"],
+        )
+
+
+@dataclass(frozen=True, repr=False)
+class FloquetSample:
+    """One Floquet analysis at mu, without continuation: multipliers of Phi(2 pi), zeta and
+    omega (principal value in (-1/2, 1/2]) [per rev], zeta_errors (estimated, per exponent),
+    error (the largest), steps per period, the Liouville residual."""
+
+    multipliers: np.ndarray
+    zeta: np.ndarray
+    omega: np.ndarray
+    zeta_errors: np.ndarray
+    error: Optional[float]
+    steps: int
+    liouville_residual: float
+    status: str
+    message: str
+
+    def __repr__(self):
+        return (
+            f"FloquetSample(zeta={[float(_g(z)) for z in self.zeta]}, steps={self.steps}, "
+            f"error={_g(self.error)}, {_status(self.status, self.message)})"
+        )
+
+    @classmethod
+    def _from(cls, d):
+        return cls(
+            np.asarray(d["multipliers"]),
+            np.asarray(d["zeta"]),
+            np.asarray(d["omega"]),
+            np.asarray(d["zeta_errors"]),
+            d["error"],
+            d["steps"],
+            d["liouville_residual"],
+            d["status"],
+            d["message"],
+        )
+
+
+@dataclass(frozen=True)
+class ModelInfo:
+    """A compiled ordering model: name (e.g. 'paper-2x2'), base (its family, 'paper'),
+    flap_modes M, lag_modes N, harmonics, spec_file and a one-line summary."""
+
+    name: str
+    base: str
+    flap_modes: int
+    lag_modes: int
+    harmonics: int
+    spec_file: str
+    summary: str
+
+    @classmethod
+    def _from(cls, d):
+        return cls(
+            d["name"],
+            d["base"],
+            d["flap_modes"],
+            d["lag_modes"],
+            d["harmonics"],
+            d["spec_file"],
+            d["summary"],
+        )
+
+
+def _worst(statuses):
+    order = {"ok": 0, "warning": 1, "failed": 2}
+    return max(statuses, key=lambda s: order.get(s, 0), default="ok")
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class StudyResult:
+    """mu_c (and every instability interval) versus one rotor parameter.
+
+    parameter: the field varied; values: its values (1-D array); rows: a CriticalResult per
+    value (searched with all_intervals=True).  Columns as arrays, one entry per value: mu_c
+    (nan where there is none), mu_c_error, omega [per rev] (nan without mu_c), mode and kind
+    ('' without mu_c), hover_unstable, row_status.  A value the analysis refuses (e.g. an
+    exact-mode frequency the basis cannot reach) is a row with status 'failed' and the reason
+    as message.  status / message: the worst row and the first problem met.  metadata: the
+    flaplag version and commit, the base parameters and the transition options.
+    """
+
+    parameter: str
+    values: np.ndarray
+    rows: Tuple[CriticalResult, ...]
+    status: str
+    message: str
+    metadata: dict
+
+    def _column(self, name, missing=math.nan):
+        return np.array([missing if getattr(r, name) is None else getattr(r, name) for r in self.rows])
+
+    @property
+    def mu_c(self) -> np.ndarray:
+        return self._column("mu_c")
+
+    @property
+    def mu_c_error(self) -> np.ndarray:
+        return self._column("mu_c_error")
+
+    @property
+    def omega(self) -> np.ndarray:
+        return self._column("omega")
+
+    @property
+    def mode(self) -> np.ndarray:
+        return np.array([r.mode or "" for r in self.rows], dtype=object)
+
+    @property
+    def kind(self) -> np.ndarray:
+        return np.array([r.kind or "" for r in self.rows], dtype=object)
+
+    @property
+    def hover_unstable(self) -> np.ndarray:
+        return np.array([r.hover_unstable for r in self.rows], dtype=bool)
+
+    @property
+    def row_status(self) -> np.ndarray:
+        return np.array([r.status for r in self.rows], dtype=object)
+
+    def __len__(self):
+        return len(self.rows)
+
+    def __repr__(self):
+        found = int(np.sum(~np.isnan(self.mu_c)))
+        return (
+            f"StudyResult({self.parameter} = {_g(self.values[0])}..{_g(self.values[-1])}, "
+            f"{len(self.rows)} values, mu_c found for {found}, "
+            f"{_status(self.status, self.message)})"
+        )
+
+    @classmethod
+    def _from(cls, parameter, d, metadata):
+        rows = tuple(CriticalResult._from(r) for r in d["rows"])
+        return cls(parameter, np.asarray(d["values"]), rows, d["status"], d["message"], metadata)
+
+    @classmethod
+    def _concatenate(cls, parameter, parts, metadata):
+        """The result of one study from studies of consecutive slices of its values."""
+        rows = tuple(CriticalResult._from(r) for d in parts for r in d["rows"])
+        values = np.concatenate([np.asarray(d["values"]) for d in parts])
+        status = _worst([d["status"] for d in parts])
+        message = next((d["message"] for d in parts if d["status"] != "ok"), "")
+        return cls(parameter, values, rows, status, message, metadata)
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class MapResult:
+    """A stability map: the largest damping exponent over a grid of two parameters.
+
+    x, y: the axis names ('mu' or a rotor parameter; at most one of them 'mu'); x_values,
+    y_values: 1-D arrays.  Cell [i, j] is y = y_values[i], x = x_values[j] (rows along y, so
+    ``plt.pcolormesh(x_values, y_values, max_zeta)`` draws it): max_zeta [per rev] (nan where
+    unknown, i.e. status 'failed'), omega of that exponent [per rev], mode (its label) and kind
+    ('flutter' / 'periodic'; '' where unknown), cell_status and cell_message.  status /
+    message: the worst cell and the first problem met (row by row).  metadata: the flaplag
+    version and commit, the base parameters, the transition options, mu and scan_step.
+    """
+
+    x: str
+    x_values: np.ndarray
+    y: str
+    y_values: np.ndarray
+    max_zeta: np.ndarray
+    omega: np.ndarray
+    mode: np.ndarray
+    kind: np.ndarray
+    cell_status: np.ndarray
+    cell_message: np.ndarray
+    status: str
+    message: str
+    metadata: dict
+
+    @property
+    def stable(self) -> np.ndarray:
+        """max_zeta <= 0 (False where unknown)."""
+        with np.errstate(invalid="ignore"):
+            return self.max_zeta <= 0.0
+
+    @property
+    def shape(self):
+        return self.max_zeta.shape
+
+    def __eq__(self, other):
+        """Equal, bit for bit, in every array (nan equal to nan) and in status and message."""
+        if not isinstance(other, MapResult):
+            return NotImplemented
+        same = lambda a, b: a.shape == b.shape and a.dtype == b.dtype and a.tobytes() == b.tobytes()
+        return (
+            (self.x, self.y, self.status, self.message) == (other.x, other.y, other.status, other.message)
+            and all(
+                same(getattr(self, n), getattr(other, n))
+                for n in ("x_values", "y_values", "max_zeta", "omega")
+            )
+            and all(
+                np.array_equal(getattr(self, n), getattr(other, n))
+                for n in ("mode", "kind", "cell_status", "cell_message")
+            )
+        )
+
+    __hash__ = None
+
+    def __repr__(self):
+        ny, nx = self.max_zeta.shape
+        known = ~np.isnan(self.max_zeta)
+        unstable = int(np.sum(self.max_zeta[known] > 0.0))
+        return (
+            f"MapResult({self.y} ({ny}) x {self.x} ({nx}), {unstable} of {ny * nx} cells unstable"
+            + (f", {int(np.sum(~known))} unknown" if not known.all() else "")
+            + f", {_status(self.status, self.message)})"
+        )
+
+    @classmethod
+    def _assemble(cls, x, y, parts, axis, metadata):
+        """One map from maps of consecutive slices of its lines (axis 0: slices of y, 1: of x).
+
+        Cell values come straight from the parts; status and message are recomputed over the
+        cells row by row, the rule of the C++ run_map, so that any split gives the same result.
+        """
+        cat = lambda key, dtype=None: np.concatenate(
+            [np.asarray(d[key], dtype=dtype) for d in parts], axis=axis
+        )
+        if axis == 0:
+            x_values = np.asarray(parts[0]["x_values"])
+            y_values = np.concatenate([np.asarray(d["y_values"]) for d in parts])
+        else:
+            x_values = np.concatenate([np.asarray(d["x_values"]) for d in parts])
+            y_values = np.asarray(parts[0]["y_values"])
+        computed = cat("computed", bool)
+        if not computed.all():
+            raise RuntimeError("flaplag.map: a part of the map was not computed (cancelled)")
+        cell_status = cat("status", object)
+        cell_message = cat("message", object)
+        status, message = "ok", ""
+        for s, m in zip(cell_status.ravel(), cell_message.ravel()):
+            status = _worst([status, s])
+            if not message and s != "ok":
+                message = m
+        return cls(
+            x,
+            x_values,
+            y,
+            y_values,
+            cat("max_zeta"),
+            cat("omega"),
+            cat("mode", object),
+            cat("kind", object),
+            cell_status,
+            cell_message,
+            status,
+            message,
+            metadata,
+        )
+
+
+for _cls in (Exponent, HoverResult, PointResult, SweepResult, Interval, CriticalResult,
+             SystemResult, ModeShapes, FloquetSample, ModelInfo, StudyResult, MapResult):
+    _cls.__module__ = "flaplag"  # shown (and pickled) as flaplag.<class>
+del _cls

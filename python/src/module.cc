@@ -1,0 +1,847 @@
+// flaplag._flaplag — the pybind11 layer under the Python package `flaplag` (python/flaplag/).
+//
+// This layer only translates: parameters arrive as dicts keyed by the field names of
+// RotorParameters (rotor/parameter_table.h) and TransitionOptions, already of the right Python
+// type (the pure-Python layer checks types and names), and results leave as dicts, tuples and
+// numpy arrays that the pure-Python layer wraps in its result classes.  Values are checked by
+// the library itself (validate(), Check()); its InvalidInput becomes flaplag.InvalidInput, a
+// ValueError whose message is the library's one line "<field> = <value>: <reason>".
+//
+// Every computation runs with the GIL released.  Studies and maps run on a thread of their own
+// while the calling thread waits with the GIL released, waking every 50 ms to deliver progress
+// and to look for KeyboardInterrupt (Ctrl-C cancels the run: rows already started finish).
+#include <pybind11/complex.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <condition_variable>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "flaplag/analysis.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
+#include "flaplag/rotor/parameter_table.h"
+#include "flaplag/study.h"
+#include "flaplag/version.h"
+
+namespace py = pybind11;
+
+namespace flaplag::python {
+namespace {
+
+// ---- exceptions ---------------------------------------------------------------------------------
+
+// flaplag._flaplag.InvalidInput (a ValueError), created at import and never freed (the module
+// lives as long as the interpreter).
+PyObject* invalid_input_type = nullptr;
+
+void translate_invalid_input(const InvalidInput& e) {
+  const std::string what = e.what();
+  const std::string head = e.name() + " = " + e.value() + ": ";
+  py::object type = py::reinterpret_borrow<py::object>(invalid_input_type);
+  py::object exc = type(what);
+  exc.attr("field") = e.name();
+  exc.attr("value") = e.value();
+  exc.attr("reason") = what.compare(0, head.size(), head) == 0 ? what.substr(head.size()) : what;
+  PyErr_SetObject(invalid_input_type, exc.ptr());
+}
+
+// ---- conversions --------------------------------------------------------------------------------
+
+py::array_t<double> to_numpy(const Eigen::MatrixXd& m) {
+  py::array_t<double> a({static_cast<py::ssize_t>(m.rows()), static_cast<py::ssize_t>(m.cols())});
+  auto r = a.mutable_unchecked<2>();
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index k = 0; k < m.cols(); ++k) r(i, k) = m(i, k);
+  return a;
+}
+
+py::array_t<double> to_numpy(const Eigen::VectorXd& v) {
+  py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+  auto r = a.mutable_unchecked<1>();
+  for (Eigen::Index i = 0; i < v.size(); ++i) r(i) = v[i];
+  return a;
+}
+
+py::array_t<double> to_numpy(const std::vector<double>& v) {
+  py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+  auto r = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < v.size(); ++i) r(static_cast<py::ssize_t>(i)) = v[i];
+  return a;
+}
+
+py::array_t<std::complex<double>> to_numpy(const std::vector<std::complex<double>>& v) {
+  py::array_t<std::complex<double>> a(static_cast<py::ssize_t>(v.size()));
+  auto r = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < v.size(); ++i) r(static_cast<py::ssize_t>(i)) = v[i];
+  return a;
+}
+
+py::object optional(const std::optional<double>& v) {
+  return v ? py::object(py::float_(*v)) : py::object(py::none());
+}
+
+py::object optional(const std::optional<bool>& v) {
+  return v ? py::object(py::bool_(*v)) : py::object(py::none());
+}
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+// The value of a parameter field, for messages.
+std::string shown(const py::handle& v) { return py::repr(v).cast<std::string>(); }
+
+// RotorParameters from {field: value}; field names and Python types are the caller's check, the
+// values are validate()'s (called by Analysis).
+RotorParameters rotor_parameters(const py::dict& d) {
+  RotorParameters p;
+  for (const auto& [key, value] : d) {
+    const std::string field = key.cast<std::string>();
+    const ParameterSpec* s = find_parameter(field);
+    if (s == nullptr) throw InvalidInput(field, shown(value), "unknown parameter");
+    switch (s->type) {
+      case ParameterType::Real:
+        p.*s->real = value.cast<double>();
+        break;
+      case ParameterType::Flag:
+        p.*s->flag = value.cast<bool>();
+        break;
+      case ParameterType::Text:
+        p.model = value.cast<std::string>();
+        break;
+      case ParameterType::Choice: {
+        const std::string text = value.cast<std::string>();
+        if (!mode_kind_from_name(text, &p.modes)) {
+          std::string choices = s->choices;
+          for (std::size_t i = 0; (i = choices.find('|', i)) != std::string::npos;)
+            choices.replace(i, 1, ", ");
+          throw InvalidInput(field, quoted(text), "must be one of " + choices);
+        }
+        break;
+      }
+    }
+  }
+  return p;
+}
+
+py::dict parameters_dict(const RotorParameters& p) {
+  py::dict d;
+  for (const ParameterSpec& s : parameter_table()) {
+    switch (s.type) {
+      case ParameterType::Real:
+        d[s.field] = p.*s.real;
+        break;
+      case ParameterType::Flag:
+        d[s.field] = p.*s.flag;
+        break;
+      case ParameterType::Text:
+      case ParameterType::Choice:
+        d[s.field] = parameter_text(p, s);
+        break;
+    }
+  }
+  return d;
+}
+
+const TransitionMethod kMethods[] = {TransitionMethod::RK4, TransitionMethod::Hsu,
+                                     TransitionMethod::Magnus4};
+
+TransitionOptions transition_options(const py::dict& d) {
+  TransitionOptions o;
+  for (const auto& [key, value] : d) {
+    const std::string field = key.cast<std::string>();
+    if (field == "method") {
+      const std::string name = value.cast<std::string>();
+      bool found = false;
+      for (TransitionMethod m : kMethods) {
+        if (name == method_name(m)) {
+          o.method = m;
+          found = true;
+        }
+      }
+      if (!found) throw InvalidInput("method", quoted(name), "must be one of rk4, hsu, magnus");
+    } else if (field == "steps") {
+      o.steps = value.cast<int>();
+    } else if (field == "terms") {
+      o.terms = value.cast<int>();
+    } else if (field == "zeta_tolerance") {
+      o.zeta_tolerance = value.cast<double>();
+    } else {
+      throw InvalidInput(field, shown(value), "unknown transition option");
+    }
+  }
+  o.Check();
+  return o;
+}
+
+py::dict transition_dict(const TransitionOptions& o) {
+  py::dict d;
+  d["method"] = method_name(o.method);
+  d["steps"] = o.steps;
+  d["terms"] = o.terms;
+  d["zeta_tolerance"] = o.zeta_tolerance;
+  return d;
+}
+
+// The model of M flap and N lag modes in the family of p.model (the command line's
+// --flap-modes / --lag-modes); 1 x 1 is p.model itself.
+void select_mode_counts(RotorParameters& p, int flap_modes, int lag_modes) {
+  for (const auto& [name, n] : {std::pair{"flap_modes", flap_modes}, {"lag_modes", lag_modes}}) {
+    if (n < 1) throw InvalidInput(name, std::to_string(n), "must be >= 1");
+  }
+  if (flap_modes == 1 && lag_modes == 1) return;
+  if (p.modes == ModeKind::Assumed) {
+    const bool flap = flap_modes > 1;
+    throw InvalidInput(flap ? "flap_modes" : "lag_modes",
+                       std::to_string(flap ? flap_modes : lag_modes),
+                       "more than one mode needs modes='exact' (the assumed mode of eq 4.1 is "
+                       "one flap and one lag mode)");
+  }
+  p.model = find_model(p.model, flap_modes, lag_modes).name;
+}
+
+RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_modes) {
+  RotorParameters p = rotor_parameters(params);
+  validate(p);
+  find_model(p.model);
+  select_mode_counts(p, flap_modes, lag_modes);
+  return p;
+}
+
+py::tuple exponent_tuple(const LabelledExponent& e) {
+  return py::make_tuple(e.label, e.zeta, e.omega, e.multiplier);
+}
+
+py::list exponents_list(const std::vector<LabelledExponent>& v) {
+  py::list l;
+  for (const LabelledExponent& e : v) l.append(exponent_tuple(e));
+  return l;
+}
+
+py::dict point_dict(const PointResult& r) {
+  py::dict d;
+  d["mu"] = r.mu;
+  d["exponents"] = exponents_list(r.exponents);
+  d["liouville_residual"] = optional(r.liouville_residual);
+  d["error"] = optional(r.error);
+  d["steps"] = r.steps;
+  d["stable"] = optional(r.stable);
+  d["status"] = status_name(r.status);
+  d["message"] = r.message;
+  return d;
+}
+
+py::dict sweep_dict(const SweepResult& s) {
+  py::list points;
+  for (const PointResult& p : s.points) points.append(point_dict(p));
+  py::dict d;
+  d["points"] = points;
+  d["status"] = status_name(s.status);
+  d["message"] = s.message;
+  return d;
+}
+
+py::dict interval_dict(const InstabilityInterval& i) {
+  py::dict d;
+  d["onset"] = i.onset;
+  d["end"] = optional(i.end);
+  d["onset_error"] = optional(i.onset_error);
+  d["end_error"] = optional(i.end_error);
+  d["mode"] = i.mode;
+  d["omega"] = i.omega;
+  d["kind"] = kind_name(i.kind);
+  return d;
+}
+
+py::dict critical_dict(const CriticalResult& c) {
+  py::dict d;
+  d["hover_unstable"] = c.hover_unstable;
+  d["mu_c"] = optional(c.mu_c);
+  d["mu_c_error"] = optional(c.mu_c_error);
+  d["mode"] = c.mode;
+  d["omega"] = c.omega;
+  d["kind"] = kind_name(c.kind);
+  d["mu_max"] = c.mu_max;
+  d["exponents"] = exponents_list(c.exponents);
+  py::list intervals;
+  for (const InstabilityInterval& i : c.intervals) intervals.append(interval_dict(i));
+  d["intervals"] = intervals;
+  d["evaluations"] = c.evaluations;
+  d["status"] = status_name(c.status);
+  d["message"] = c.message;
+  return d;
+}
+
+CriticalOptions critical_options(const py::dict& d) {
+  CriticalOptions o;
+  for (const auto& [key, value] : d) {
+    const std::string field = key.cast<std::string>();
+    if (field == "mu_max")
+      o.mu_max = value.cast<double>();
+    else if (field == "scan_step")
+      o.scan_step = value.cast<double>();
+    else if (field == "tolerance")
+      o.tolerance = value.cast<double>();
+    else if (field == "zeta_threshold")
+      o.zeta_threshold = value.cast<double>();
+    else if (field == "periodic_omega_tolerance")
+      o.periodic_omega_tolerance = value.cast<double>();
+    else if (field == "scan_zeta_tolerance")
+      o.scan_zeta_tolerance = value.cast<double>();
+    else if (field == "all_intervals")
+      o.all_intervals = value.cast<bool>();
+    else
+      throw InvalidInput(field, shown(value), "unknown option of the critical search");
+  }
+  o.Check();
+  return o;
+}
+
+py::dict critical_defaults() {
+  const CriticalOptions o;
+  py::dict d;
+  d["mu_max"] = o.mu_max;
+  d["scan_step"] = o.scan_step;
+  d["tolerance"] = o.tolerance;
+  d["zeta_threshold"] = o.zeta_threshold;
+  d["periodic_omega_tolerance"] = o.periodic_omega_tolerance;
+  d["scan_zeta_tolerance"] = o.scan_zeta_tolerance;
+  d["all_intervals"] = o.all_intervals;
+  return d;
+}
+
+py::dict hover_dict(const Analysis& an) {
+  const HoverResult& h = an.hover();
+  const model::ModelDescriptor& m = an.model();
+  py::dict eq;
+  for (Eigen::Index i = 0; i < h.q0.size(); ++i) {
+    const bool flap = i < m.flap_modes;
+    const Eigen::Index k = flap ? i : i - m.flap_modes;
+    eq[py::str((flap ? "g0_" : "h0_") + std::to_string(k + 1))] = h.q0[i];
+  }
+  py::dict d;
+  d["inflow"] = h.inflow;
+  d["equilibrium"] = eq;
+  d["A0"] = to_numpy(h.A0);
+  d["eigenvalues"] = to_numpy(h.eigenvalues);
+  d["labels"] = h.labels;
+  d["stable"] = h.stable;
+  d["status"] = status_name(h.status);
+  d["message"] = h.message;
+  return d;
+}
+
+py::dict model_dict(const model::ModelDescriptor& m) {
+  py::dict d;
+  d["name"] = m.name;
+  d["base"] = m.base;
+  d["spec_file"] = m.spec_file;
+  d["summary"] = m.summary;
+  d["flap_modes"] = m.flap_modes;
+  d["lag_modes"] = m.lag_modes;
+  d["harmonics"] = m.n_harmonics;
+  return d;
+}
+
+template <typename Integral>
+std::string paper_name(const Integral* list, int n, const std::string& name) {
+  for (int i = 0; i < n; ++i) {
+    if (name == list[i].name) return list[i].paper_name;
+  }
+  return "";
+}
+
+py::dict snapshot_dict(const Analysis& an, const SystemSnapshot& s) {
+  const model::ModelDescriptor& m = an.model();
+  py::list states;
+  for (Eigen::Index col = 0; col < s.A.cols(); ++col)
+    states.append(model::state_name(static_cast<int>(col), m.flap_modes, m.lag_modes));
+  py::list aero;
+  for (std::size_t i = 0; i < s.aero_integrals.size(); ++i) {
+    const std::string& name = s.aero_integrals[i].first;
+    aero.append(py::make_tuple(name, paper_name(m.aero, m.n_aero, name), s.aero_integrals[i].second,
+                               i < s.aero_integrals_region.size()
+                                   ? s.aero_integrals_region[i].second
+                                   : std::numeric_limits<double>::quiet_NaN()));
+  }
+  py::list structural;
+  for (const auto& [name, value] : s.structural_integrals)
+    structural.append(py::make_tuple(name, paper_name(m.structural, m.n_structural, name), value));
+  py::dict d;
+  d["mu"] = s.mu;
+  d["psi"] = s.psi;
+  d["region"] = s.region;
+  d["A"] = to_numpy(s.A);
+  d["f"] = to_numpy(s.f);
+  d["states"] = states;
+  d["aero_integrals"] = aero;
+  d["structural_integrals"] = structural;
+  return d;
+}
+
+py::dict modes_dict(const ModeSet& modes, const std::vector<double>& x, int derivative) {
+  if (derivative < 0 || derivative > 3)
+    throw InvalidInput("derivative", std::to_string(derivative), "must be 0, 1, 2 or 3");
+  for (double v : x) {
+    if (!(v >= 0.0 && v <= 1.0))
+      throw InvalidInput("x", round_trip_text(v), "stations must be in [0, 1] (x0 = r / l)");
+  }
+  auto sample = [&](const std::vector<std::shared_ptr<const ModeShape>>& shapes) {
+    py::array_t<double> a(
+        {static_cast<py::ssize_t>(shapes.size()), static_cast<py::ssize_t>(x.size())});
+    auto r = a.mutable_unchecked<2>();
+    for (std::size_t k = 0; k < shapes.size(); ++k)
+      for (std::size_t q = 0; q < x.size(); ++q)
+        r(static_cast<py::ssize_t>(k), static_cast<py::ssize_t>(q)) =
+            shapes[k]->value(derivative, x[q]);
+    return a;
+  };
+  py::dict d;
+  d["kind"] = modes.kind;
+  d["x"] = to_numpy(x);
+  d["derivative"] = derivative;
+  d["flap"] = sample(modes.flap);
+  d["lag"] = sample(modes.lag);
+  d["omega_flap"] = to_numpy(modes.omega_flap);
+  d["omega_lag"] = to_numpy(modes.omega_lag);
+  d["stiffness_flap"] = modes.stiffness_flap;
+  d["stiffness_lag"] = modes.stiffness_lag;
+  return d;
+}
+
+py::dict floquet_dict(const FloquetSample& s) {
+  std::vector<std::complex<double>> multipliers;
+  std::vector<double> zeta, omega;
+  for (const FloquetExponent& e : s.floquet.exponents) {
+    multipliers.push_back(e.multiplier);
+    zeta.push_back(e.zeta);
+    omega.push_back(e.omega);
+  }
+  py::dict d;
+  d["multipliers"] = to_numpy(multipliers);
+  d["zeta"] = to_numpy(zeta);
+  d["omega"] = to_numpy(omega);
+  d["zeta_errors"] = to_numpy(s.zeta_errors);
+  d["error"] = optional(s.error);
+  d["steps"] = s.steps;
+  d["liouville_residual"] = s.floquet.liouville_residual;
+  d["status"] = status_name(s.status);
+  d["message"] = s.message;
+  return d;
+}
+
+// ---- long runs: studies and maps ----------------------------------------------------------------
+
+// Runs work(cancel, progress) on a thread of its own.  The calling thread (which holds the GIL on
+// entry and exit) waits with the GIL released; every 50 ms, and when the work ends, it takes the
+// GIL to call progress_cb(done, total) when that changed and to check for signals.  A signal
+// handler that raises (KeyboardInterrupt) or a progress callback that raises cancels the work;
+// the exception is re-raised once the work has stopped.
+template <typename Result, typename Work>
+Result run_cancellable(Work work, const py::object& progress_cb) {
+  std::atomic<bool> cancel{false};
+  std::atomic<std::size_t> done{0}, total{0};
+  std::mutex mutex;
+  std::condition_variable cv;
+  bool finished = false;
+  Result result{};
+  std::exception_ptr failure;
+  std::optional<py::error_already_set> python_error;
+  std::size_t reported = 0;
+
+  auto poll = [&]() {  // with the GIL held
+    if (python_error) return;
+    if (PyErr_CheckSignals() != 0) {
+      python_error.emplace();
+      cancel = true;
+      return;
+    }
+    const std::size_t d = done.load(), n = total.load();
+    if (!progress_cb.is_none() && n > 0 && d != reported) {
+      reported = d;
+      try {
+        progress_cb(d, n);
+      } catch (py::error_already_set& e) {
+        python_error.emplace(std::move(e));
+        cancel = true;
+      }
+    }
+  };
+
+  {
+    py::gil_scoped_release release;
+    std::thread worker([&] {
+      try {
+        result = work(&cancel, [&](std::size_t d, std::size_t n) {
+          total = n;
+          done = d;
+        });
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      const std::lock_guard<std::mutex> lock(mutex);
+      finished = true;
+      cv.notify_all();
+    });
+    for (;;) {
+      bool end = false;
+      {
+        std::unique_lock<std::mutex> lock(mutex);
+        end = cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return finished; });
+      }
+      {
+        py::gil_scoped_acquire acquire;
+        poll();
+      }
+      if (end) break;
+    }
+    worker.join();
+  }
+  if (python_error) throw std::move(*python_error);
+  if (failure) std::rethrow_exception(failure);
+  return result;
+}
+
+std::vector<double> values_of(const py::handle& v) { return v.cast<std::vector<double>>(); }
+
+StudyOptions study_options(const std::string& parameter, const py::handle& values,
+                           const py::dict& critical, int threads) {
+  StudyOptions o;
+  o.parameter = parameter;
+  o.values = values_of(values);
+  o.critical = critical_options(critical);
+  o.threads = threads;
+  o.Check();
+  return o;
+}
+
+py::dict study(const py::dict& params, const py::dict& transition, int flap_modes, int lag_modes,
+               const std::string& parameter, const py::handle& values, const py::dict& critical,
+               int threads, const py::object& progress) {
+  const RotorParameters base = base_parameters(params, flap_modes, lag_modes);
+  const TransitionOptions t = transition_options(transition);
+  const StudyOptions o = study_options(parameter, values, critical, threads);
+  const StudyResult r = run_cancellable<StudyResult>(
+      [&](const std::atomic<bool>* cancel, ProgressFunction report) {
+        return run_study(base, t, o, cancel, report);
+      },
+      progress);
+  py::list rows;
+  for (const StudyRow& row : r.rows) rows.append(critical_dict(row.critical));
+  py::dict d;
+  d["values"] = to_numpy(o.values);
+  d["rows"] = rows;
+  d["rows_done"] = r.rows_done;
+  d["cancelled"] = r.cancelled;
+  d["status"] = status_name(r.status);
+  d["message"] = r.message;
+  return d;
+}
+
+MapOptions map_options(const std::string& x, const py::handle& x_values, const std::string& y,
+                       const py::handle& y_values, double mu, double scan_step, int threads) {
+  MapOptions o;
+  o.x = MapAxis{x, values_of(x_values)};
+  o.y = MapAxis{y, values_of(y_values)};
+  o.mu = mu;
+  o.scan_step = scan_step;
+  o.threads = threads;
+  o.Check();
+  return o;
+}
+
+py::dict stability_map(const py::dict& params, const py::dict& transition, int flap_modes,
+                       int lag_modes, const std::string& x, const py::handle& x_values,
+                       const std::string& y, const py::handle& y_values, double mu,
+                       double scan_step, int threads, const py::object& progress) {
+  const RotorParameters base = base_parameters(params, flap_modes, lag_modes);
+  const TransitionOptions t = transition_options(transition);
+  const MapOptions o = map_options(x, x_values, y, y_values, mu, scan_step, threads);
+  const MapResult r = run_cancellable<MapResult>(
+      [&](const std::atomic<bool>* cancel, ProgressFunction report) {
+        return run_map(base, t, o, cancel, report);
+      },
+      progress);
+  const auto ny = static_cast<py::ssize_t>(o.y.values.size());
+  const auto nx = static_cast<py::ssize_t>(o.x.values.size());
+  py::array_t<double> max_zeta({ny, nx}), omega({ny, nx});
+  py::array_t<bool> computed({ny, nx});
+  auto z = max_zeta.mutable_unchecked<2>();
+  auto w = omega.mutable_unchecked<2>();
+  auto c = computed.mutable_unchecked<2>();
+  py::list mode, kind, status, message;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (py::ssize_t i = 0; i < ny; ++i) {
+    py::list mode_row, kind_row, status_row, message_row;
+    for (py::ssize_t j = 0; j < nx; ++j) {
+      const MapCell& cell = r.cells[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+      z(i, j) = cell.computed && cell.max_zeta ? *cell.max_zeta : nan;
+      w(i, j) = cell.computed && cell.max_zeta ? cell.omega : nan;
+      c(i, j) = cell.computed;
+      const bool known = cell.computed && cell.max_zeta.has_value();
+      mode_row.append(known ? cell.mode : std::string());
+      kind_row.append(known ? kind_name(cell.kind) : "");
+      status_row.append(cell.computed ? status_name(cell.status) : "");
+      message_row.append(cell.message);
+    }
+    mode.append(mode_row);
+    kind.append(kind_row);
+    status.append(status_row);
+    message.append(message_row);
+  }
+  py::dict d;
+  d["x_values"] = to_numpy(o.x.values);
+  d["y_values"] = to_numpy(o.y.values);
+  d["max_zeta"] = max_zeta;
+  d["omega"] = omega;
+  d["computed"] = computed;
+  d["mode"] = mode;
+  d["kind"] = kind;
+  d["status"] = status;
+  d["message"] = message;
+  d["lines_done"] = r.lines_done;
+  d["cancelled"] = r.cancelled;
+  d["overall_status"] = status_name(r.status);
+  d["overall_message"] = r.message;
+  return d;
+}
+
+// ---- tables -------------------------------------------------------------------------------------
+
+const char* type_name(ParameterType t) {
+  switch (t) {
+    case ParameterType::Real:
+      return "real";
+    case ParameterType::Text:
+      return "text";
+    case ParameterType::Flag:
+      return "flag";
+    case ParameterType::Choice:
+      return "choice";
+  }
+  return "";
+}
+
+py::list parameter_rows() {
+  const RotorParameters defaults;
+  const py::dict values = parameters_dict(defaults);
+  py::list rows;
+  for (const ParameterSpec& s : parameter_table()) {
+    py::dict r;
+    r["field"] = s.field;
+    r["symbol"] = s.symbol;
+    r["units"] = s.units;
+    r["description"] = s.description;
+    r["type"] = type_name(s.type);
+    r["requirement"] = s.requirement;
+    r["default"] = values[s.field];
+    if (s.type == ParameterType::Real) {
+      r["range"] = py::make_tuple(s.range.lo, s.range.hi, s.range.lo_open, s.range.hi_open);
+    }
+    if (s.type == ParameterType::Choice) {
+      py::list choices;
+      std::string c = s.choices;
+      for (std::size_t start = 0;;) {
+        const std::size_t bar = c.find('|', start);
+        choices.append(c.substr(start, bar == std::string::npos ? std::string::npos : bar - start));
+        if (bar == std::string::npos) break;
+        start = bar + 1;
+      }
+      r["choices"] = choices;
+    }
+    rows.append(r);
+  }
+  return rows;
+}
+
+py::list transition_rows() {
+  const TransitionOptions defaults;
+  auto row = [](const char* field, const char* type, py::object value, const char* units,
+                const char* requirement, const char* description) {
+    py::dict r;
+    r["field"] = field;
+    r["symbol"] = "";
+    r["type"] = type;
+    r["default"] = value;
+    r["units"] = units;
+    r["requirement"] = requirement;
+    r["description"] = description;
+    return r;
+  };
+  const std::string max_steps = std::to_string(TransitionOptions::kMaxSteps);
+  const std::string max_terms = std::to_string(TransitionOptions::kMaxTerms);
+  py::list rows;
+  py::dict method =
+      row("method", "choice", py::str(method_name(defaults.method)), "-", "rk4, hsu or magnus",
+          "transition matrix Phi(2 pi): rk4 (paper 3.3.2), hsu (Hsu's method, "
+          "eqs 3.21-3.28) or magnus (4th-order Magnus, Richardson-extrapolated)");
+  py::list choices;
+  for (TransitionMethod m : kMethods) choices.append(method_name(m));
+  method["choices"] = choices;
+  rows.append(method);
+  rows.append(row("steps", "int", py::int_(defaults.steps), "-", ("0 or 1.." + max_steps).c_str(),
+                  "RK4 steps, Hsu intervals K or Magnus steps per period; 0: automatic "
+                  "(doubled until the exponents meet zeta_tolerance)"));
+  rows.append(row("terms", "int", py::int_(defaults.terms), "-", ("1.." + max_terms).c_str(),
+                  "Hsu's Taylor terms J"));
+  rows.append(row("zeta_tolerance", "real", py::float_(defaults.zeta_tolerance), "per rev", "> 0",
+                  "target error of the damping exponents zeta"));
+  return rows;
+}
+
+py::list model_rows() {
+  py::list l;
+  for (const model::ModelDescriptor* m : compiled_models()) l.append(model_dict(*m));
+  return l;
+}
+
+}  // namespace
+}  // namespace flaplag::python
+
+PYBIND11_MODULE(_flaplag, m) {
+  using namespace flaplag;
+  using namespace flaplag::python;
+  m.doc() = "flaplag's C++ library (NASA CR-132431 flap-lag stability); use the package flaplag.";
+
+  invalid_input_type = PyErr_NewExceptionWithDoc(
+      "flaplag.InvalidInput",
+      "An invalid parameter, option or argument: a ValueError whose message is the one line\n"
+      "'<field> = <value>: <reason>'; the parts are .field, .value and .reason.",
+      PyExc_ValueError, nullptr);
+  if (invalid_input_type == nullptr) throw py::error_already_set();
+  m.attr("InvalidInput") = py::handle(invalid_input_type);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InvalidInput& e) {
+      translate_invalid_input(e);
+    }
+  });
+
+  m.attr("version") = kVersion;
+  m.attr("git_commit") = kGitCommit;
+  m.attr("max_advance_ratio") = kMaxAdvanceRatio;
+  m.def("parameter_table", &parameter_rows);
+  m.def("transition_table", &transition_rows);
+  m.def("critical_defaults", &critical_defaults);
+  m.def("models", &model_rows);
+  m.def("study_parameters", [] {
+    py::list l;
+    for (const ParameterSpec& s : parameter_table())
+      if (is_study_parameter(s.field)) l.append(s.field);
+    return l;
+  });
+  // Checks a parameter set and transition options as Analysis would (for work sent elsewhere).
+  m.def("check",
+        [](const py::dict& params, const py::dict& transition, int flap_modes, int lag_modes) {
+          base_parameters(params, flap_modes, lag_modes);
+          transition_options(transition);
+        });
+
+  py::class_<Analysis>(m, "Analysis")
+      .def(py::init([](const py::dict& params, const py::dict& transition, int flap_modes,
+                       int lag_modes) {
+             RotorParameters p = rotor_parameters(params);
+             validate(p);
+             find_model(p.model);
+             select_mode_counts(p, flap_modes, lag_modes);
+             const TransitionOptions t = transition_options(transition);
+             py::gil_scoped_release release;
+             return Analysis(p, t);
+           }),
+           py::arg("params"), py::arg("transition"), py::arg("flap_modes") = 1,
+           py::arg("lag_modes") = 1)
+      .def("parameters", [](const Analysis& a) { return parameters_dict(a.parameters()); })
+      .def("transition", [](const Analysis& a) { return transition_dict(a.options()); })
+      .def("model", [](const Analysis& a) { return model_dict(a.model()); })
+      .def("hover", &hover_dict)
+      .def("point",
+           [](const Analysis& a, double mu, double scan_step) {
+             PointResult r;
+             {
+               py::gil_scoped_release release;
+               r = a.point(mu, scan_step);
+             }
+             return point_dict(r);
+           })
+      .def("sweep",
+           [](const Analysis& a, double mu0, double mu1, double step) {
+             SweepResult r;
+             {
+               py::gil_scoped_release release;
+               r = a.sweep(mu0, mu1, step);
+             }
+             return sweep_dict(r);
+           })
+      .def("track",
+           [](const Analysis& a, const std::vector<double>& mus, double scan_step) {
+             SweepResult r;
+             {
+               py::gil_scoped_release release;
+               r = a.track(mus, scan_step);
+             }
+             return sweep_dict(r);
+           })
+      .def("critical",
+           [](const Analysis& a, const py::dict& options) {
+             const CriticalOptions o = critical_options(options);
+             CriticalResult r;
+             {
+               py::gil_scoped_release release;
+               r = a.critical(o);
+             }
+             return critical_dict(r);
+           })
+      .def("snapshot",
+           [](const Analysis& a, double mu, double psi) {
+             if (!std::isfinite(psi))
+               throw InvalidInput("psi", round_trip_text(psi), "must be a finite angle [rad]");
+             SystemSnapshot s;
+             {
+               py::gil_scoped_release release;
+               s = a.snapshot(mu, psi);
+             }
+             return snapshot_dict(a, s);
+           })
+      .def("modes", [](const Analysis& a, const std::vector<double>& x,
+                       int derivative) { return modes_dict(a.modes(), x, derivative); })
+      .def("floquet", [](const Analysis& a, double mu, double zeta_tolerance) {
+        FloquetSample s;
+        {
+          py::gil_scoped_release release;
+          s = a.floquet(mu, zeta_tolerance);
+        }
+        return floquet_dict(s);
+      });
+
+  m.def("study", &study);
+  m.def("map", &stability_map);
+  // The checks of study() / map() without the work (for work sent to other processes).
+  m.def("check_study", [](const py::dict& params, const py::dict& transition, int flap_modes,
+                          int lag_modes, const std::string& parameter, const py::handle& values,
+                          const py::dict& critical, int threads) {
+    base_parameters(params, flap_modes, lag_modes);
+    transition_options(transition);
+    study_options(parameter, values, critical, threads);
+  });
+  m.def("check_map",
+        [](const py::dict& params, const py::dict& transition, int flap_modes, int lag_modes,
+           const std::string& x, const py::handle& x_values, const std::string& y,
+           const py::handle& y_values, double mu, double scan_step, int threads) {
+          base_parameters(params, flap_modes, lag_modes);
+          transition_options(transition);
+          map_options(x, x_values, y, y_values, mu, scan_step, threads);
+        });
+}

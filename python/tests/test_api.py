@@ -1,0 +1,309 @@
+"""The Python API: vocabulary, errors, results, the GIL, studies and maps."""
+
+import inspect
+import math
+import pickle
+import pydoc
+import threading
+
+import numpy as np
+import pytest
+
+import flaplag
+from conftest import cli_error, cli_args
+
+
+# ---- vocabulary --------------------------------------------------------------------------------
+
+def test_keywords_are_the_library_fields():
+    sig = inspect.signature(flaplag.Analysis)
+    names = list(sig.parameters)
+    table = [r["field"] for r in flaplag.parameter_table()]
+    assert names[: len(table)] == table
+    assert names[len(table):] == ["method", "steps", "terms", "zeta_tolerance", "flap_modes",
+                                  "lag_modes"]
+    for name in ("gamma", "sigma", "lift_slope", "cdo", "theta", "precone", "droop",
+                 "omega_flap", "omega_lag", "damping_flap", "damping_lag", "length_ratio",
+                 "tip_loss_a", "tip_loss_b", "root_offset", "reversed_flow", "modes",
+                 "elastic_coupling", "paper_1974_shapes", "model"):
+        assert name in names
+    assert all(p.kind is inspect.Parameter.KEYWORD_ONLY for p in sig.parameters.values())
+    # defaults: the paper's typical case (Fig 3)
+    assert sig.parameters["omega_lag"].default == 1.28303
+    assert sig.parameters["gamma"].default == 10.0
+    assert sig.parameters["method"].default == "hsu"
+    assert sig.parameters["steps"].default == 0
+
+
+def test_help_reads_well():
+    text = pydoc.render_doc(flaplag.Analysis, renderer=pydoc.plaintext)
+    for row in flaplag.parameter_table():
+        assert row["field"] in text
+        assert row["description"].split()[0] in text
+    assert "omega_lag : float, default 1.28303" in text
+    assert "[per rev]" in text and "[rad]" in text
+    for method in ("critical", "sweep", "point", "system", "modes"):
+        assert method in text
+
+
+def test_parameters_round_trip():
+    an = flaplag.Analysis(theta=0.2, omega_lag=1.5, reversed_flow=False, modes="exact")
+    p = an.parameters
+    assert p["theta"] == 0.2 and p["omega_lag"] == 1.5
+    assert p["reversed_flow"] is False and p["modes"] == "exact"
+    assert an.options == {"method": "hsu", "steps": 0, "terms": 4, "zeta_tolerance": 1e-5}
+    assert "theta=0.2" in repr(an)
+    assert flaplag.Analysis(modes="exact", flap_modes=2, lag_modes=2).model.name == "paper-2x2"
+
+
+def test_numpy_scalars_are_numbers():
+    a = flaplag.Analysis(theta=np.float64(0.15), steps=np.int64(50), reversed_flow=np.bool_(True))
+    b = flaplag.Analysis(theta=0.15, steps=50)
+    assert a.critical().mu_c == b.critical().mu_c
+
+
+# ---- errors ------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("field,value", [
+    ("gamma", -1.0), ("gamma", 0.0), ("sigma", 2.0), ("theta", 2.0), ("omega_lag", 0.0),
+    ("omega_flap", 1e6), ("damping_lag", -0.1), ("tip_loss_b", 0.0), ("root_offset", 1.0),
+    ("cdo", -0.01), ("lift_slope", 101.0),
+])
+def test_invalid_value_has_the_cli_reason(field, value):
+    with pytest.raises(ValueError) as err:
+        flaplag.Analysis(**{field: value})
+    e = err.value
+    assert isinstance(e, flaplag.InvalidInput)
+    assert e.field == field
+    assert str(e) == f"{e.field} = {e.value}: {e.reason}"
+    # the command line says the same about the same value
+    option, cli_value, reason = cli_error(*cli_args(**{field: value}), "critical")
+    assert option == "--" + field.replace("_", "-")
+    assert reason == e.reason
+    assert float(cli_value) == float(e.value)
+
+
+@pytest.mark.parametrize("kwargs,field", [
+    ({"model": "nope"}, "model"),
+    ({"modes": "foo"}, "modes"),
+    ({"method": "euler"}, "method"),
+    ({"steps": -1}, "steps"),
+    ({"terms": 0}, "terms"),
+    ({"zeta_tolerance": 0.0}, "zeta_tolerance"),
+    ({"theta": "0.1"}, "theta"),
+    ({"theta": None}, "theta"),
+    ({"theta": math.nan}, "theta"),
+    ({"lift_slope": math.inf}, "lift_slope"),
+    ({"reversed_flow": 1}, "reversed_flow"),
+    ({"steps": 50.5}, "steps"),
+    ({"steps": True}, "steps"),
+    ({"flap_modes": 2}, "flap_modes"),  # more than one mode needs exact modes
+    ({"modes": "exact", "flap_modes": 9}, "model"),  # no such compiled model
+    ({"flap_modes": 0}, "flap_modes"),
+])
+def test_bad_arguments_raise_value_error(kwargs, field):
+    with pytest.raises(ValueError) as err:
+        flaplag.Analysis(**kwargs)
+    assert err.value.field == field
+    assert str(err.value).startswith(field + " = ")
+
+
+def test_unknown_keyword():
+    with pytest.raises(ValueError) as err:
+        flaplag.Analysis(omega_lagg=1.2)
+    assert isinstance(err.value, TypeError)
+    assert "did you mean omega_lag" in str(err.value)
+
+
+def test_bad_method_arguments():
+    an = flaplag.Analysis()
+    cases = [
+        lambda: an.point(-1.0),
+        lambda: an.point(math.nan),
+        lambda: an.point("0.5"),
+        lambda: an.point(0.5, scan_step=0.0),
+        lambda: an.sweep([0.5, 0.4]),
+        lambda: an.sweep(1.0, 0.5, 0.1),
+        lambda: an.sweep(0.0, 1.0, 0.0),
+        lambda: an.sweep([[0.1, 0.2]]),
+        lambda: an.critical(mu_max=0.0),
+        lambda: an.critical(scan_step=-0.01),
+        lambda: an.critical(tolerance=0.0),
+        lambda: an.system(0.5, math.inf),
+        lambda: an.modes([0.0, 1.5]),
+        lambda: an.modes(derivative=4),
+        lambda: an.floquet(0.5, zeta_tolerance=0.0),
+        lambda: flaplag.study("mu", [0.1]),
+        lambda: flaplag.study("nope", [0.1]),
+        lambda: flaplag.study("omega_lag", []),
+        lambda: flaplag.study("omega_lag", [1.0], threads=-1),
+        lambda: flaplag.study("omega_lag", [1.0], omega_lag=1.2),
+        lambda: flaplag.map(x=("mu", [0.2, 0.1]), y=("theta", [0.1])),
+        lambda: flaplag.map(x=("theta", [0.1]), y=("theta", [0.2])),
+        lambda: flaplag.map(x=("mu", [0.1]), y=("mu", [0.2])),
+        lambda: flaplag.map(x=("theta", [0.1]), y=("gamma", [5.0]), mu=-1.0),
+        lambda: flaplag.map(x=("theta", [0.1]), y=("gamma", [5.0]), theta=0.2),
+        lambda: flaplag.map(x="theta", y=("gamma", [5.0])),
+        lambda: flaplag.map(x=("theta", [0.1]), y=("gamma", [5.0]), gamma=-1.0),
+    ]
+    for i, case in enumerate(cases):
+        with pytest.raises(ValueError):
+            case()
+            pytest.fail(f"case {i} did not raise")
+    with pytest.raises(TypeError):
+        an.sweep(0.0, 1.0)
+
+
+# ---- results -----------------------------------------------------------------------------------
+
+def test_critical_result_reads_well():
+    crit = flaplag.Analysis().critical()
+    text = repr(crit)
+    assert text.startswith("CriticalResult(mu_c=0.754")
+    assert "mode='lag'" in text and "kind='flutter'" in text and "status='ok'" in text
+    assert str(crit) == text
+    stable = flaplag.Analysis(omega_lag=1.7).critical(mu_max=1.0)
+    assert stable.mu_c is None and stable.mode is None and stable.kind is None
+    assert "stable up to mu = 1" in repr(stable)
+
+
+def test_all_intervals():
+    crit = flaplag.Analysis().critical(all_intervals=True)
+    assert crit.intervals and crit.intervals[0].onset == crit.mu_c
+    for a, b in zip(crit.intervals, crit.intervals[1:]):
+        assert a.end is not None and a.end < b.onset
+
+
+def test_hover_is_eq_2_24():
+    """lambda = sigma a / 16 [sqrt(1 + 24 theta / (sigma a)) - 1] (eq 2.24)."""
+    sigma, a, theta = 0.07, 5.9, 0.12
+    hover = flaplag.Analysis(sigma=sigma, lift_slope=a, theta=theta).hover
+    expected = sigma * a / 16 * (math.sqrt(1 + 24 * theta / (sigma * a)) - 1)
+    assert hover.inflow == pytest.approx(expected, rel=1e-14)
+    assert hover.A0.shape == (4, 4) and len(hover.eigenvalues) == 4
+    assert set(hover.labels) == {"flap", "lag"} and hover.stable
+    assert set(hover.equilibrium) == {"g0_1", "h0_1"}
+
+
+def test_assumed_mode_shape_is_eq_4_1():
+    """eta = gamma = -(1/3) [1 - 4 x0 - (1 - x0)^4] (eq 4.1), with eta(1) = 1."""
+    x = np.linspace(0.0, 1.0, 11)
+    shapes = flaplag.Analysis().modes(x)
+    expected = -(1 - 4 * x - (1 - x) ** 4) / 3
+    assert shapes.flap.shape == (1, 11) and shapes.lag.shape == (1, 11)
+    np.testing.assert_allclose(shapes.flap[0], expected, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(shapes.lag[0], expected, rtol=0, atol=1e-15)
+    slope = flaplag.Analysis().modes(x, derivative=1).flap[0]
+    np.testing.assert_allclose(slope, -(-4 + 4 * (1 - x) ** 3) / 3, rtol=0, atol=1e-14)
+    exact = flaplag.Analysis(modes="exact", flap_modes=2, lag_modes=2).modes(51)
+    assert exact.kind == "exact" and exact.flap.shape == (2, 51)
+    assert list(exact.omega_lag)[0] == 1.28303
+
+
+def test_sweep_of_an_array_is_the_track():
+    an = flaplag.Analysis()
+    mus = np.array([0.0, 0.3, 0.35, 0.8, 1.0])
+    s = an.sweep(mus)
+    assert s.mu.tolist() == mus.tolist() and len(s) == 5
+    assert s.stable[-1] is False and s.stable[0] is True
+    assert "lag" in s.zeta and s.zeta["lag"].shape == (5,)
+
+
+def test_results_pickle():
+    an = flaplag.Analysis(theta=0.2)
+    again = pickle.loads(pickle.dumps(an))
+    assert again.critical().mu_c == an.critical().mu_c
+    for r in (an.critical(), an.point(0.3), an.sweep([0.1, 0.2]), an.hover, an.system(0.3, 1.0)):
+        assert repr(pickle.loads(pickle.dumps(r))) == repr(r)
+
+
+def test_version():
+    assert flaplag.__version__.count(".") == 2
+    assert isinstance(flaplag.git_commit, str)
+
+
+# ---- the GIL -----------------------------------------------------------------------------------
+
+def test_the_gil_is_released_during_a_computation():
+    """A Python thread keeps running while the analysis computes: with the GIL held for the
+    whole call it could not take a single step."""
+    an = flaplag.Analysis()
+    counter = [0]
+    stop = threading.Event()
+
+    def spin():
+        while not stop.is_set():
+            counter[0] += 1
+
+    t = threading.Thread(target=spin)
+    t.start()
+    try:
+        before = counter[0]
+        an.sweep(0.0, 2.0, 0.002)
+        during = counter[0] - before
+    finally:
+        stop.set()
+        t.join()
+    assert during > 1000
+
+
+# ---- studies and maps --------------------------------------------------------------------------
+
+def test_study_rows_are_the_single_analyses():
+    values = [0.5, 1.0, 1.28303]
+    st = flaplag.study("omega_lag", values, threads=2)
+    assert st.values.tolist() == values and len(st) == 3
+    for v, row in zip(values, st.rows):
+        crit = flaplag.Analysis(omega_lag=v).critical(all_intervals=True)
+        assert row.mu_c == crit.mu_c and row.mode == crit.mode and row.kind == crit.kind
+    assert st.kind.tolist() == ["periodic", "flutter", "flutter"]
+    assert st.metadata["flaplag_version"] == flaplag.__version__
+    one = flaplag.study("omega_lag", values, threads=1)
+    assert one.mu_c.tobytes() == st.mu_c.tobytes()
+
+
+def _map(threads, **kw):
+    return flaplag.map(x=("mu", np.linspace(0.0, 1.2, 13)), y=("omega_lag", [0.6, 1.0, 1.4, 1.8]),
+                       threads=threads, **kw)
+
+
+def test_map_two_threads_equal_one():
+    one, two = _map(1), _map(2)
+    assert one.max_zeta.shape == (4, 13)
+    assert one.max_zeta.tobytes() == two.max_zeta.tobytes()
+    assert one.omega.tobytes() == two.omega.tobytes()
+    assert one.mode.tolist() == two.mode.tolist() and one.kind.tolist() == two.kind.tolist()
+    assert one == two
+    assert "4) x mu (13)" in repr(one)
+
+
+def test_map_cells_are_the_analyses():
+    m = _map(2, theta=0.2)
+    mus = m.x_values
+    for i, w in enumerate(m.y_values):
+        sweep = flaplag.Analysis(theta=0.2, omega_lag=w).sweep(mus)
+        assert m.max_zeta[i].tobytes() == sweep.max_zeta.tobytes()
+    # without a mu axis every cell is a point; rows along y
+    grid = flaplag.map(x=("theta", [0.1, 0.2]), y=("gamma", [5.0, 10.0, 15.0]), mu=0.6)
+    assert grid.max_zeta.shape == (3, 2)
+    assert grid.max_zeta[2, 0] == flaplag.Analysis(gamma=15.0, theta=0.1).point(0.6).max_zeta
+    # mu on y: columns along mu
+    t = flaplag.map(x=("omega_lag", [0.6, 1.0, 1.4, 1.8]), y=("mu", np.linspace(0.0, 1.2, 13)),
+                    theta=0.2)
+    assert t.max_zeta.tobytes() == np.ascontiguousarray(m.max_zeta.T).tobytes()
+
+
+def test_progress_and_cancel():
+    seen = []
+    _map(1, progress=lambda done, total: seen.append((done, total)))
+    assert seen and seen[-1] == (4, 4)
+
+    class Stop(Exception):
+        pass
+
+    def stop(done, total):
+        raise Stop()
+
+    with pytest.raises(Stop):
+        flaplag.map(x=("mu", np.linspace(0, 1, 101)), y=("omega_lag", np.linspace(0.5, 2, 40)),
+                    threads=1, progress=stop)

@@ -1,0 +1,165 @@
+"""The Python module gives the command line's numbers, bit for bit: both are front ends of the
+same library, so any difference is a front end passing a different parameter or option, or
+converting a number."""
+
+import math
+
+import numpy as np
+import pytest
+
+import flaplag
+from conftest import cli_args, find, run_cli, same, zeta_value
+
+
+def check_parameters(doc, an):
+    """The parameters the CLI reports are the ones the Python analysis used."""
+    params = find(doc, "parameters", default=None)
+    if params is None:
+        return
+    for field, value in an.parameters.items():
+        for key in (field.replace("_", "-"), field):
+            if key in params:
+                if isinstance(value, float):
+                    assert same(params[key], value), field
+                else:
+                    assert params[key] == value, field
+                break
+
+
+def check_exponents(cli_exponents, exponents):
+    assert len(cli_exponents) == len(exponents)
+    for c, e in zip(cli_exponents, exponents):
+        assert c["label"] == e.label
+        assert same(zeta_value(c["zeta"]), e.zeta), (c, e)
+        assert same(c["omega"], e.omega), (c, e)
+        m = c.get("multiplier")
+        if m is not None:
+            assert same(m["re"], e.multiplier.real) and same(m["im"], e.multiplier.imag)
+
+
+def check_critical(doc, crit):
+    mu_c = find(doc, "mu_c", "critical.mu_c")
+    assert same(mu_c, crit.mu_c)
+    assert same(find(doc, "mu_c_error", "critical.mu_c_error", default=crit.mu_c_error),
+                crit.mu_c_error)
+    if crit.mu_c is not None:
+        assert same(find(doc, "omega", "critical.omega"), crit.omega)
+        assert find(doc, "mode", "critical.mode") == crit.mode
+        assert find(doc, "kind", "critical.kind") == crit.kind
+    assert find(doc, "hover_unstable", "critical.hover_unstable") == crit.hover_unstable
+    assert same(find(doc, "mu_max", "critical.mu_max"), crit.mu_max)
+    assert find(doc, "status", "critical.status") == crit.status
+    message = find(doc, "message", "critical.message", default=None)
+    if message is not None and "`" not in crit.message:
+        assert message == crit.message
+
+
+def test_typical_case_critical():
+    """Fig 3: the typical case loses stability in lag flutter at mu_c = 0.754 (the paper)."""
+    crit = flaplag.Analysis().critical()
+    assert crit.mu_c is not None and abs(crit.mu_c - 0.754) < 1e-3
+    assert crit.mode == "lag" and crit.kind == "flutter"
+    doc = run_cli("critical")
+    check_critical(doc, crit)
+    check_parameters(doc, flaplag.Analysis())
+
+
+CRITICAL_CASES = [
+    ({}, {"mu_max": 1.5, "scan_step": 0.02}),
+    ({"theta": 0.2, "omega_lag": 1.0, "gamma": 8.0}, {}),
+    ({"omega_lag": 0.5}, {}),  # Fig 15: a periodic (omega = 1/2) lag instability
+    ({"method": "rk4", "steps": 50}, {}),
+    ({"method": "magnus"}, {"mu_max": 1.2}),
+    ({"method": "hsu", "steps": 50, "terms": 4}, {}),  # the paper's K = 50, J = 4
+    ({"model": "no-radial-flow"}, {"mu_max": 1.5}),
+    ({"reversed_flow": False, "cdo": 0.02}, {}),
+    ({"omega_lag": 1.7}, {"mu_max": 1.0}),  # stable up to mu_max: mu_c is null
+]
+
+
+@pytest.mark.parametrize("params,options", CRITICAL_CASES)
+def test_critical_search(params, options):
+    an = flaplag.Analysis(**params)
+    crit = an.critical(**options)
+    doc = run_cli(*cli_args(**params), "critical", *cli_args(**options))
+    check_critical(doc, crit)
+    check_parameters(doc, an)
+
+
+EXACT_CASES = [
+    {"modes": "exact"},
+    {"modes": "exact", "elastic_coupling": False},
+    {"modes": "exact", "paper_1974_shapes": True},
+    {"modes": "exact", "theta": 0.3, "damping_lag": 0.01},
+    {"modes": "exact", "flap_modes": 2, "lag_modes": 1},
+]
+
+
+@pytest.mark.parametrize("params", EXACT_CASES)
+def test_exact_modes_critical(params):
+    an = flaplag.Analysis(**params)
+    crit = an.critical()
+    doc = run_cli(*cli_args(**params), "critical")
+    check_critical(doc, crit)
+    check_parameters(doc, an)
+    if params.get("flap_modes") == 2:
+        assert an.model.flap_modes == 2 and an.model.lag_modes == 1
+
+
+@pytest.mark.parametrize("params", [{}, {"modes": "exact", "omega_lag": 1.4}])
+def test_sweep(params):
+    an = flaplag.Analysis(**params)
+    sweep = an.sweep(0.0, 1.2, 0.1)
+    doc = run_cli(*cli_args(**params), "sweep", "--mu", "0:1.2:0.1")
+    rows = find(doc, "rows", "sweep.rows")
+    assert len(rows) == len(sweep.points) == 13
+    for row, point, mu in zip(rows, sweep.points, sweep.mu):
+        assert same(row["mu"], point.mu) and same(mu, point.mu)
+        if "exponents" in row:
+            check_exponents(row["exponents"], point.exponents)
+        for label in sweep.labels:
+            if isinstance(row.get(label), dict):
+                e = point.dominant(label)
+                assert same(zeta_value(row[label]["zeta"]), e.zeta)
+                assert same(row[label]["omega"], e.omega)
+        for key, value in (("liouville_residual", point.liouville_residual),
+                           ("error_estimate", point.error)):
+            if key in row:
+                assert same(row[key], value), key
+        if "stable" in row:
+            assert row["stable"] == point.stable
+        if "status" in row:
+            assert row["status"] == point.status
+    # the per-label arrays are the dominant exponents of the points
+    for label in sweep.labels:
+        assert np.array_equal(sweep.zeta[label], [p.dominant(label).zeta for p in sweep.points])
+
+
+def test_point():
+    an = flaplag.Analysis(omega_lag=1.1)
+    point = an.point(0.55)
+    doc = run_cli("--omega-lag", "1.1", "point", "--mu", "0.55")
+    check_exponents(find(doc, "exponents", "point.exponents"), point.exponents)
+    assert same(find(doc, "liouville_residual", "point.liouville_residual"),
+                point.liouville_residual)
+    assert find(doc, "stable", "point.stable") == point.stable
+
+
+def test_system():
+    an = flaplag.Analysis(modes="exact")
+    sys_ = an.system(0.8, 4.7)
+    doc = run_cli("--modes", "exact", "system", "--mu", "0.8", "--psi", "4.7")
+    A = np.array(find(doc, "A", "system.A"), dtype=float)
+    assert A.shape == sys_.A.shape == (4, 4)
+    assert A.tobytes() == sys_.A.tobytes()
+    assert np.array(find(doc, "f", "system.f"), dtype=float).tobytes() == sys_.f.tobytes()
+    assert find(doc, "region", "system.region") == sys_.region == "reversed"
+    for item in find(doc, "aero_integrals", "system.aero_integrals", default=[]):
+        assert same(item["normal"], sys_.aero_integrals[item["name"]])
+        if item.get("at_psi") is not None:
+            assert same(item["at_psi"], sys_.aero_integrals_at_psi[item["name"]])
+    for item in find(doc, "structural_integrals", "system.structural_integrals", default=[]):
+        assert same(item["value"], sys_.structural_integrals[item["name"]])
+    hover = find(doc, "hover", default=None)
+    if hover is not None:
+        assert same(hover["inflow"], an.hover.inflow)
