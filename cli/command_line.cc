@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -9,6 +11,7 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/rotor/parameter_table.h"
+#include "plot.h"
 
 namespace flaplag::cli {
 
@@ -116,6 +119,89 @@ Range parse_range(const std::string& option, const std::string& text) {
   return r;
 }
 
+// "NAME=START:STOP:STEP" or "NAME=V1,V2,...": NAME an option word of a numeric rotor parameter
+// ("omega-lag") or, where allowed, "mu"; the values in the given order (a range ascending, both
+// ends included).
+void parse_axis(const std::string& option, const std::string& text, bool allow_mu,
+                std::string& name, std::vector<double>& values) {
+  const std::string value = shown(text);
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InvalidInput(option, value, "expected NAME=START:STOP:STEP or NAME=V1,V2,...");
+  std::string word = text.substr(0, eq);
+  std::string field = word;
+  for (char& ch : field)
+    if (ch == '-') ch = '_';
+  if (field == "mu") {
+    if (!allow_mu)
+      throw InvalidInput(option, value, "mu cannot be varied here (mu_c is what a study finds)");
+  } else {
+    const ParameterSpec* s = find_parameter(field);
+    if (s == nullptr || s->type != ParameterType::Real)
+      throw InvalidInput(option, value,
+                         "\"" + word +
+                             "\" is not a numeric rotor parameter (e.g. omega-lag, theta, "
+                             "gamma, damping-lag, droop, precone)");
+  }
+  name = field;
+  values.clear();
+  const std::string rest = text.substr(eq + 1);
+  if (rest.find(':') != std::string::npos) {
+    std::vector<std::string> parts;
+    std::string::size_type from = 0;
+    for (;;) {
+      const auto colon = rest.find(':', from);
+      parts.push_back(rest.substr(from, colon == std::string::npos ? colon : colon - from));
+      if (colon == std::string::npos) break;
+      from = colon + 1;
+    }
+    if (parts.size() != 3) throw InvalidInput(option, value, "expected NAME=START:STOP:STEP");
+    double v[3];
+    const char* names[3] = {"START", "STOP", "STEP"};
+    for (int i = 0; i < 3; ++i) {
+      try {
+        v[i] = parse_real(option, parts[i]);
+      } catch (const InvalidInput& e) {
+        throw InvalidInput(option, value, std::string(names[i]) + " " + reason_of(e));
+      }
+    }
+    if (!(v[2] > 0.0)) throw InvalidInput(option, value, "STEP must be > 0");
+    if (!(v[1] > v[0]))
+      throw InvalidInput(option, value, "empty or reversed range (STOP <= START)");
+    const double n = std::floor((v[1] - v[0]) / v[2] * (1.0 + 1e-12)) + 1.0;
+    if (!(n <= kMaxPoints))
+      throw InvalidInput(option, value,
+                         "STEP too small: more than " + std::to_string(kMaxPoints) + " points");
+    // Decimal grid values (START + k STEP accumulates rounding): 12 significant digits.
+    for (int k = 0; k < static_cast<int>(n); ++k) {
+      char buf[40];
+      std::snprintf(buf, sizeof buf, "%.12g", v[0] + k * v[2]);
+      values.push_back(std::strtod(buf, nullptr));
+    }
+    if (values.back() < v[1] - 1e-9 * std::max(1.0, std::abs(v[1]))) values.push_back(v[1]);
+  } else {
+    std::string::size_type from = 0;
+    for (;;) {
+      const auto comma = rest.find(',', from);
+      const std::string item = rest.substr(from, comma == std::string::npos ? comma : comma - from);
+      try {
+        values.push_back(parse_real(option, item));
+      } catch (const InvalidInput& e) {
+        throw InvalidInput(option, value, "value \"" + item + "\" " + reason_of(e));
+      }
+      if (values.size() > static_cast<std::size_t>(kMaxPoints))
+        throw InvalidInput(option, value, "more than " + std::to_string(kMaxPoints) + " values");
+      if (comma == std::string::npos) break;
+      from = comma + 1;
+    }
+  }
+  if (field == "mu") {
+    for (std::size_t i = 0; i < values.size(); ++i)
+      if (values[i] < 0.0 || (i > 0 && values[i] <= values[i - 1]))
+        throw InvalidInput(option, value, "advance ratios must be >= 0 and increasing");
+  }
+}
+
 // ---- help ------------------------------------------------------------------------------------
 
 const char* description(Command c) {
@@ -135,6 +221,14 @@ const char* description(Command c) {
       return "compiled ordering models and their specs";
     case Command::Modes:
       return "exact rotating modes: the Fig 9 frequency relation and a blade's mode shapes";
+    case Command::Study:
+      return "mu_c and every instability interval versus one parameter (Figs 12-17)";
+    case Command::Map:
+      return "stability map: the largest zeta over two parameters (one may be mu)";
+    case Command::Response:
+      return "periodic forced response: tip flap and lag deflections over one revolution";
+    case Command::Simulate:
+      return "time-domain simulation of the linear system from a perturbation";
   }
   return "";
 }
@@ -159,6 +253,16 @@ std::vector<std::string> examples(Command c) {
       return {"flaplag models", "flaplag models --spec paper"};
     case Command::Modes:
       return {"flaplag modes", "flaplag modes --omega-lag 1.4 --flap-modes 2 --json"};
+    case Command::Study:
+      return {"flaplag study --vary omega-lag=0.2:2.5:0.05 --plot fig15.svg",
+              "flaplag --modes exact study --vary damping-lag=0,0.01,0.02,0.03,0.05 --json"};
+    case Command::Map:
+      return {"flaplag map --x mu=0:2:0.02 --y omega-lag=0.3:2.5:0.02 --plot map.png",
+              "flaplag map --x theta=0.05:0.3:0.01 --y gamma=4:16:0.5 --mu 0.6 --json"};
+    case Command::Response:
+      return {"flaplag response --mu 0.3", "flaplag response --mu 0.5 --json --plot tip.svg"};
+    case Command::Simulate:
+      return {"flaplag simulate --mu 0.9 --revs 50", "flaplag simulate --mu 0.3 --forced --json"};
   }
   return {};
 }
@@ -412,16 +516,17 @@ Request CommandLine::interpret() const {
                            "is one flap and one lag mode)");
       }
       const std::string base = r.params.model;
-      if (flap_modes != 1 || lag_modes != 1) {
-        r.params.model = base + "-" + std::to_string(flap_modes) + "x" + std::to_string(lag_modes);
+      const model::ModelDescriptor* m = nullptr;
+      for (const model::ModelDescriptor* d : compiled_models()) {
+        if (base == d->base && d->flap_modes == flap_modes && d->lag_modes == lag_modes) m = d;
       }
-      const model::ModelDescriptor* m = compiled_model(r.params.model);
       if (m == nullptr) {
         throw InvalidInput(which->spelling, shown(which->text),
-                           "no compiled model \"" + r.params.model + "\" for " +
+                           "no compiled model of family \"" + base + "\" for " +
                                std::to_string(flap_modes) + " flap x " + std::to_string(lag_modes) +
                                " lag modes (compiled: " + join_model_names() + ")");
       }
+      r.params.model = m->name;
       if (m->flap_modes != flap_modes || m->lag_modes != lag_modes) {
         throw InvalidInput(which->spelling, shown(which->text),
                            "model \"" + r.params.model + "\" has " + std::to_string(m->flap_modes) +
@@ -513,8 +618,56 @@ Request CommandLine::interpret() const {
       r.lag_modes = lag_modes;
       break;
     }
+    case Command::Study: {
+      const Given& v = required("--vary");
+      parse_axis(v.spelling, v.text, false, r.vary, r.vary_values);
+      if (const Given* g = given("--mu-max")) r.mu_max = parse_real(g->spelling, g->text);
+      if (const Given* g = given("--scan-step")) r.scan_step = parse_real(g->spelling, g->text);
+      break;
+    }
+    case Command::Map: {
+      const Given& x = required("--x");
+      const Given& y = required("--y");
+      parse_axis(x.spelling, x.text, true, r.x_name, r.x_values);
+      parse_axis(y.spelling, y.text, true, r.y_name, r.y_values);
+      if (r.x_name == r.y_name)
+        throw InvalidInput(y.spelling, shown(y.text), "must vary another quantity than --x");
+      if (const Given* g = given("--mu")) {
+        if (r.x_name == "mu" || r.y_name == "mu")
+          throw InvalidInput(g->spelling, shown(g->text), "mu is already an axis");
+        r.mu = parse_real(g->spelling, g->text);
+      }
+      if (const Given* g = given("--scan-step")) r.scan_step = parse_real(g->spelling, g->text);
+      break;
+    }
+    case Command::Response: {
+      const Given& mu = required("--mu");
+      r.mu = parse_real(mu.spelling, mu.text);
+      r.samples = 72;
+      if (const Given* g = given("--samples"))
+        r.samples = parse_int(g->spelling, g->text, 12, 100000);
+      break;
+    }
+    case Command::Simulate: {
+      const Given& mu = required("--mu");
+      r.mu = parse_real(mu.spelling, mu.text);
+      if (const Given* g = given("--revs")) r.revolutions = parse_real(g->spelling, g->text);
+      if (const Given* g = given("--perturbation"))
+        r.perturbation = parse_real(g->spelling, g->text);
+      r.forced = given("--forced") != nullptr;
+      r.samples = 36;
+      if (const Given* g = given("--samples"))
+        r.samples = parse_int(g->spelling, g->text, 1, 10000);
+      break;
+    }
     case Command::Typical:
       break;
+  }
+  if (const Given* g = given("--threads")) r.threads = parse_int(g->spelling, g->text, 0, 256);
+  if (const Given* g = given("--plot")) {
+    if (!is_plot_path(g->text))
+      throw InvalidInput(g->spelling, shown(g->text), "must end in .svg or .png");
+    r.plot = g->text;
   }
   return r;
 }

@@ -45,6 +45,19 @@ struct Request {
   int fig9_points = 0;
   int flap_modes = 1, lag_modes = 1, basis = 5;
   int shape_points = 11;
+  // study: --vary NAME=...; map: --x, --y (field names, "mu" for the advance ratio)
+  std::string vary;
+  std::vector<double> vary_values;
+  std::string x_name, y_name;
+  std::vector<double> x_values, y_values;
+  int threads = 0;
+  std::string plot;  // --plot FILE (.svg or .png)
+  // response: --samples; simulate: --revs, --perturbation, --forced, --samples
+  int samples = 0;
+  double revolutions = 20.0, perturbation = 0.01;
+  bool forced = false;
+  // The arguments as given (after a case file is expanded), for the "case" of JSON outputs.
+  std::vector<std::string> arguments;
 };
 
 // The reason part of an InvalidInput message ("name = value: reason").

@@ -4,15 +4,21 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "flaplag/analysis.h"
+#include "flaplag/core/constants.h"
+#include "flaplag/core/format.h"
 #include "flaplag/rotor/parameter_table.h"
+#include "flaplag/study.h"
+#include "flaplag/version.h"
 #include "options.h"
 #include "output.h"
+#include "plot.h"
 
 namespace flaplag::cli {
 
@@ -727,14 +733,339 @@ std::string models(const Request& r) {
          t.render();
 }
 
+// ---- studies, maps, response, simulation -------------------------------------------------------
+
+// The word of a field in this command line's vocabulary ("omega_lag" -> "omega-lag").
+std::string word(const std::string& field) {
+  std::string s = field;
+  for (char& c : s)
+    if (c == '_') c = '-';
+  return s;
+}
+
+// A plot, if asked for: "" or a warning line for stderr (the data is written in any case).
+std::string plot_if_asked(const Request& r, const std::string& script) {
+  if (r.plot.empty()) return "";
+  return render_plot(script, r.plot);
+}
+
+Json interval_json(const InstabilityInterval& iv) {
+  Json j = Json::array();
+  j.push_back(jnum(iv.onset));
+  j.push_back(iv.end ? jnum(*iv.end) : Json(nullptr));
+  return j;
+}
+
+std::string study(const Request& r, std::string& warning) {
+  const Analysis base(r.params, r.transition);  // the header, and the base parameters checked
+  StudyOptions so;
+  so.parameter = r.vary;
+  so.values = r.vary_values;
+  so.critical.mu_max = r.mu_max;
+  so.critical.scan_step = r.scan_step;
+  so.threads = r.threads;
+  StudyResult s = run_study(r.params, r.transition, so);
+  for (StudyRow& row : s.rows) audit(row.critical);
+  // The plot: mu_c per value (flutter and periodic marked differently) and the intervals.
+  {
+    Curve flutter{"mu_c, flutter", {}, {}, true, 7},
+        periodic{"mu_c, periodic (omega = 0, 1/2, 1)", {}, {}, true, 5};
+    Curve intervals{"unstable intervals", {}, {}, false, 7};
+    for (const StudyRow& row : s.rows) {
+      const CriticalResult& c = row.critical;
+      if (c.mu_c)
+        (c.kind == InstabilityKind::Periodic ? periodic : flutter).x.push_back(row.value),
+            (c.kind == InstabilityKind::Periodic ? periodic : flutter).y.push_back(*c.mu_c);
+      for (const InstabilityInterval& iv : c.intervals) {
+        intervals.x.insert(intervals.x.end(), {row.value, row.value, NAN});
+        intervals.y.insert(intervals.y.end(), {iv.onset, iv.end.value_or(c.mu_max), NAN});
+      }
+    }
+    Panel p{"critical advance ratio", word(r.vary), "mu", {intervals, flutter, periodic}, false};
+    warning = plot_if_asked(r, line_plot_script("flaplag study: " + word(r.vary), {p}));
+  }
+  if (r.json) {
+    Json j = header_json("study", base);
+    j["vary"] = word(r.vary);
+    j["mu_max"] = r.mu_max;
+    j["scan_step"] = r.scan_step;
+    Json rows = Json::array();
+    for (const StudyRow& row : s.rows) {
+      const CriticalResult& c = row.critical;
+      Json x;
+      x["value"] = row.value;
+      x["hover_unstable"] = c.hover_unstable;
+      x["mu_c"] = optional_json(c.mu_c);
+      x["mu_c_error"] = optional_json(c.mu_c_error);
+      x["mode"] = c.mu_c ? Json(c.mode) : Json(nullptr);
+      x["omega"] = c.mu_c ? jnum(c.omega) : Json(nullptr);
+      x["kind"] = c.mu_c ? Json(kind_name(c.kind)) : Json(nullptr);
+      Json iv = Json::array();
+      for (const InstabilityInterval& i : c.intervals) iv.push_back(interval_json(i));
+      x["intervals"] = iv;
+      rows.push_back(status_json(x, c.status, vocab(r, c.message)));
+    }
+    j["rows"] = rows;
+    return dump(status_json(j, s.status, vocab(r, s.message)));
+  }
+  std::string out = header_text(base) + "\n";
+  out += "mu_c and instability intervals versus " + word(r.vary) + " (mu up to " + num(r.mu_max) +
+         ")\n";
+  TextTable t({word(r.vary), "mu_c", "mode", "omega", "kind", "unstable for mu in", "status"});
+  t.left_align(6);
+  t.left_align(5);
+  for (const StudyRow& row : s.rows) {
+    const CriticalResult& c = row.critical;
+    std::string ivs;
+    for (const InstabilityInterval& i : c.intervals)
+      ivs += (ivs.empty() ? "" : " ") + std::string("(") + short_text(i.onset) + ", " +
+             (i.end ? short_text(*i.end) : std::string("mu-max")) + ")";
+    t.add_row({num(row.value), c.mu_c ? short_text(*c.mu_c) : (c.hover_unstable ? "hover" : "-"),
+               c.mu_c ? c.mode : "-", c.mu_c ? short_text(c.omega) : "-",
+               c.mu_c ? kind_name(c.kind) : "-", ivs.empty() ? "-" : ivs, status_name(c.status)});
+  }
+  out += t.render();
+  for (const StudyRow& row : s.rows)
+    if (row.critical.status != Status::Ok)
+      out += "  " + word(r.vary) + " = " + num(row.value) + ": " +
+             status_name(row.critical.status) + ": " + vocab(r, row.critical.message) + "\n";
+  return out;
+}
+
+std::string map(const Request& r, std::string& warning) {
+  const Analysis base(r.params, r.transition);
+  MapOptions mo;
+  mo.x = {r.x_name, r.x_values};
+  mo.y = {r.y_name, r.y_values};
+  mo.mu = r.mu;
+  mo.scan_step = r.scan_step;
+  mo.threads = r.threads;
+  const MapResult m = run_map(r.params, r.transition, mo);
+  std::vector<std::vector<double>> z(r.y_values.size());
+  for (std::size_t i = 0; i < m.cells.size(); ++i)
+    for (const MapCell& c : m.cells[i])
+      z[i].push_back(c.max_zeta && finite(*c.max_zeta) ? *c.max_zeta : NAN);
+  warning = plot_if_asked(r, map_plot_script("flaplag map: max zeta", word(r.x_name), r.x_values,
+                                             word(r.y_name), r.y_values, z));
+  if (r.json) {
+    Json j = header_json("map", base);
+    j["x"] = Json{{"name", word(r.x_name)}, {"values", r.x_values}};
+    j["y"] = Json{{"name", word(r.y_name)}, {"values", r.y_values}};
+    if (r.x_name != "mu" && r.y_name != "mu") j["mu"] = r.mu;
+    Json zeta = Json::array(), mode = Json::array(), kind = Json::array();
+    for (const auto& row : m.cells) {
+      Json a = Json::array(), b = Json::array(), c = Json::array();
+      for (const MapCell& cell : row) {
+        a.push_back(cell.max_zeta ? zeta_json(*cell.max_zeta) : Json(nullptr));
+        b.push_back(cell.max_zeta ? Json(cell.mode) : Json(nullptr));
+        c.push_back(cell.max_zeta ? Json(kind_name(cell.kind)) : Json(nullptr));
+      }
+      zeta.push_back(a);
+      mode.push_back(b);
+      kind.push_back(c);
+    }
+    j["max_zeta"] = zeta;
+    j["mode"] = mode;
+    j["kind"] = kind;
+    return dump(status_json(j, m.status, vocab(r, m.message)));
+  }
+  std::string out = header_text(base) + "\n";
+  out += "Largest zeta (per rev) over " + word(r.y_name) + " (rows) x " + word(r.x_name) +
+         " (columns); * marks an unstable point\n";
+  std::vector<std::string> header{word(r.y_name) + " \\ " + word(r.x_name)};
+  for (double x : r.x_values) header.push_back(short_text(x));
+  TextTable t(header);
+  for (std::size_t i = 0; i < m.cells.size(); ++i) {
+    std::vector<std::string> row{short_text(r.y_values[i])};
+    for (const MapCell& c : m.cells[i])
+      row.push_back(c.max_zeta ? short_text(*c.max_zeta) + (*c.max_zeta > 0 ? "*" : " ") : "-");
+    t.add_row(row);
+  }
+  return out + t.render() + status_text(m.status, vocab(r, m.message));
+}
+
+std::string response(const Request& r, const Analysis& an, std::string& warning) {
+  ResponseOptions ro;
+  ro.samples = r.samples;
+  const ForcedResponse f = an.response(r.mu, ro);
+  if (f.status != Status::Failed) {
+    std::vector<double> deg;
+    for (double p : f.periodic.psi) deg.push_back(p * 180.0 / kPi);
+    Panel flap{"flap tip deflection w/l",
+               "psi [deg]",
+               "w/l",
+               {{"flap", deg, f.flap_tip, false, 7}},
+               false};
+    Panel lag{"lag tip deflection v/l (positive lag)",
+              "psi [deg]",
+              "v/l",
+              {{"lag", deg, f.lag_tip, false, 7}},
+              false};
+    warning =
+        plot_if_asked(r, line_plot_script("flaplag response at mu = " + num(r.mu), {flap, lag}));
+  }
+  const char* names[] = {"const",    "cos psi",  "sin psi",  "cos 2psi", "sin 2psi", "cos 3psi",
+                         "sin 3psi", "cos 4psi", "sin 4psi", "cos 5psi", "sin 5psi"};
+  if (r.json) {
+    Json j = header_json("response", an, false);
+    j["mu"] = r.mu;
+    if (f.status != Status::Failed) {
+      j["psi"] = f.periodic.psi;
+      j["flap_tip"] = f.flap_tip;
+      j["lag_tip"] = f.lag_tip;
+      Json h = Json::object(), g = Json::object();
+      for (std::size_t k = 0; k < f.flap_harmonics.size(); ++k) {
+        h[names[k]] = f.flap_harmonics[k];
+        g[names[k]] = f.lag_harmonics[k];
+      }
+      j["flap_harmonics"] = h;
+      j["lag_harmonics"] = g;
+      j["closure"] = f.periodic.closure;
+      j["error_estimate"] = optional_json(f.periodic.error);
+      j["steps"] = f.periodic.steps;
+    }
+    return dump(status_json(j, f.status, vocab(r, f.message)));
+  }
+  std::string out = header_text(an, false) + "\n";
+  out += "Periodic forced response at mu = " + num(r.mu) +
+         " (tip deflections by l, hover equilibrium included)\n";
+  if (f.status == Status::Failed) return out + status_text(f.status, vocab(r, f.message));
+  TextTable h({"harmonic", "flap w/l", "lag v/l"});
+  for (std::size_t k = 0; k < f.flap_harmonics.size(); ++k)
+    h.add_row({names[k], short_text(f.flap_harmonics[k]), short_text(f.lag_harmonics[k])});
+  out += h.render();
+  TextTable t({"psi [deg]", "flap w/l", "lag v/l"});
+  const std::size_t every = std::max<std::size_t>(1, f.flap_tip.size() / 24);
+  for (std::size_t k = 0; k < f.flap_tip.size(); k += every)
+    t.add_row({short_text(f.periodic.psi[k] * 180.0 / kPi), short_text(f.flap_tip[k]),
+               short_text(f.lag_tip[k])});
+  out += "\n" + t.render();
+  out += "  periodicity |y(2 pi) - y(0)| / |y0| = " + short_text(f.periodic.closure) + "\n";
+  return out + status_text(f.status, vocab(r, f.message));
+}
+
+std::string simulate_command(const Request& r, const Analysis& an, std::string& warning) {
+  SimulationOptions so;
+  so.revolutions = r.revolutions;
+  so.samples_per_rev = r.samples;
+  const PeriodicSystem sys = an.system(r.mu);
+  const Eigen::VectorXd y0 = Eigen::VectorXd::Constant(sys.n, r.perturbation);
+  const Simulation s = simulate(sys, y0, r.forced, so);
+  const int M = an.model().flap_modes, N = an.model().lag_modes;
+  std::vector<double> revs, flap, lag;
+  for (std::size_t k = 0; k < s.y.size(); ++k) {
+    revs.push_back(s.psi[k] / kTwoPi);
+    double w = 0.0, v = 0.0;
+    for (int i = 0; i < M; ++i)
+      w += an.modes().flap[i]->value(0, 1.0) * s.y[k](model::flap_displacement_index(i, M, N));
+    for (int i = 0; i < N; ++i)
+      v += an.modes().lag[i]->value(0, 1.0) * s.y[k](model::lag_displacement_index(i, M, N));
+    flap.push_back(w);
+    lag.push_back(v);
+  }
+  const std::optional<double> flap_rate = envelope_growth_rate(s.psi, flap, 0.25 * r.revolutions);
+  const std::optional<double> lag_rate = envelope_growth_rate(s.psi, lag, 0.25 * r.revolutions);
+  Panel pf{"flap tip perturbation", "revolutions", "dw/l", {{"flap", revs, flap, false, 7}}, false};
+  Panel pl{"lag tip perturbation", "revolutions", "dv/l", {{"lag", revs, lag, false, 7}}, false};
+  warning = plot_if_asked(r, line_plot_script("flaplag simulate at mu = " + num(r.mu), {pf, pl}));
+  if (r.json) {
+    Json j = header_json("simulate", an, false);
+    j["mu"] = r.mu;
+    j["forced"] = r.forced;
+    j["revolutions"] = r.revolutions;
+    j["steps_per_rev"] = s.steps_per_rev;
+    j["psi"] = s.psi;
+    j["flap_tip"] = flap;
+    j["lag_tip"] = lag;
+    j["flap_growth_rate"] = optional_json(flap_rate);
+    j["lag_growth_rate"] = optional_json(lag_rate);
+    return dump(status_json(j, s.status, vocab(r, s.message)));
+  }
+  std::string out = header_text(an, false) + "\n";
+  out += std::string(r.forced ? "Forced" : "Free") + " response at mu = " + num(r.mu) +
+         " from y0 = " + num(r.perturbation) + " in every state, " + num(r.revolutions) +
+         " revolutions (" + std::to_string(s.steps_per_rev) + " RK4 steps per rev)\n";
+  TextTable t({"rev", "flap dw/l", "lag dv/l"});
+  const std::size_t every = std::max<std::size_t>(1, s.y.size() / 20);
+  for (std::size_t k = 0; k < s.y.size(); k += every)
+    t.add_row({short_text(revs[k]), short_text(flap[k]), short_text(lag[k])});
+  out += t.render();
+  out +=
+      "  envelope growth rate (last 3/4 of the run; compare with the largest Floquet zeta): flap " +
+      (flap_rate ? short_text(*flap_rate) : std::string("-")) + ", lag " +
+      (lag_rate ? short_text(*lag_rate) : std::string("-")) + " per rev\n";
+  return out + status_text(s.status, vocab(r, s.message));
+}
+
+// The command line behind a result, as the "case" object of JSON outputs: `flaplag run` takes
+// it back (case_file.h).
+Json case_json(const Request& r) {
+  // Keys in a canonical order (command, then alphabetical), so that a case read back from a
+  // file in any key order reproduces the same bytes.
+  std::map<std::string, Json> options;
+  const std::vector<std::string>& a = r.arguments;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::string& s = a[i];
+    if (s.rfind("-", 0) != 0 || s == "-") continue;  // the subcommand
+    std::string name = s, value;
+    bool attached = false;
+    const auto eq = s.find('=');
+    if (s.rfind("--", 0) == 0 && eq != std::string::npos) {
+      name = s.substr(0, eq);
+      value = s.substr(eq + 1);
+      attached = true;
+    } else if (s.rfind("-o", 0) == 0 && s.size() > 2 && s.rfind("--", 0) != 0) {
+      name = "-o";
+      value = s.substr(2);
+      attached = true;
+    }
+    const OptionSpec* o = find_option(r.command, name);
+    if (o == nullptr) continue;
+    // Where the result goes is not part of it: the same run to stdout and to -o FILE writes
+    // the same bytes.
+    if (o->name == "-o") {
+      if (!attached) ++i;
+      continue;
+    }
+    const std::string key = o->name.substr(2);
+    if (!o->takes_value) {
+      options[key] = true;
+    } else {
+      if (!attached && i + 1 < a.size()) value = a[++i];
+      options[key] = value;
+    }
+  }
+  Json c = Json::object();
+  c["command"] = command_name(r.command);
+  for (const auto& [key, value] : options) c[key] = value;
+  return c;
+}
+
 }  // namespace
 
-std::string run_command(const Request& r) {
+std::string run_command(const Request& r, std::string* warning) {
+  std::string text = run_command_text(r, warning);
+  if (!r.json || text.empty() || text[0] != '{') return text;
+  // Provenance in every JSON output: the flaplag version and commit, and the case that
+  // reproduces it (`flaplag run FILE.json`).
+  Json j = Json::parse(text);
+  j["flaplag"] = Json{{"version", FLAPLAG_VERSION}, {"commit", FLAPLAG_GIT_COMMIT}};
+  j["case"] = case_json(r);
+  return dump(j);
+}
+
+std::string run_command_text(const Request& r, std::string* warning) {
+  std::string ignored;
+  std::string& w = warning != nullptr ? *warning : ignored;
   switch (r.command) {
     case Command::Models:
       return models(r);
     case Command::Modes:
       return run_modes(r);
+    case Command::Study:
+      return study(r, w);
+    case Command::Map:
+      return map(r, w);
     default:
       break;
   }
@@ -748,6 +1079,10 @@ std::string run_command(const Request& r) {
       return critical(r, an);
     case Command::System:
       return system_snapshot(r, an);
+    case Command::Response:
+      return response(r, an, w);
+    case Command::Simulate:
+      return simulate_command(r, an, w);
     default:
       return typical(r, an);
   }

@@ -13,7 +13,11 @@ namespace flaplag::cli {
 // runtime's field or argument name (CommandLine::error_line() turns it into an option).  Every
 // number written is finite, or the zeta "-inf" of a zero multiplier, or the result carries a
 // non-ok status saying what was not shown.
-std::string run_command(const Request& request);
+// JSON outputs carry the flaplag version and commit and the "case" (the options given) that
+// reproduces them.  *warning (when given) receives a one-line warning for stderr, e.g. a plot
+// that could not be drawn because gnuplot is missing (the data is still returned).
+std::string run_command(const Request& request, std::string* warning = nullptr);
+std::string run_command_text(const Request& request, std::string* warning);
 
 // `flaplag modes` (modes_command.cc).
 std::string run_modes(const Request& request);

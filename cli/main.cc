@@ -9,9 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "case_file.h"
 #include "command_line.h"
 #include "commands.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/version.h"
 #include "output.h"
 
 namespace {
@@ -19,7 +21,7 @@ namespace {
 constexpr int kBadInput = 2;
 constexpr int kInternalError = 1;
 
-const char* const kVersion = "flaplag 0.1.0";
+const char* const kVersion = "flaplag " FLAPLAG_VERSION;
 
 // One line, whatever the message contains.
 std::string one_line(std::string s) {
@@ -36,30 +38,76 @@ int report(const std::string& message, int code) {
   return code;
 }
 
-int run(const std::vector<std::string>& args) {
-  const flaplag::cli::CommandLine cl(args);
+// `flaplag run CASE [options]`: the case file's arguments, then the options typed after it
+// (the last of a repeated option wins, so the command line overrides the file).
+struct Expanded {
+  std::vector<std::string> args;
+  flaplag::cli::CaseArguments from_file;
+  std::vector<std::string> typed;  // the options given after the file
+};
+
+Expanded expand(const std::vector<std::string>& args) {
+  Expanded e;
+  if (args.empty() || args[0] != "run") {
+    e.args = args;
+    return e;
+  }
+  if (args.size() < 2 || args[1].empty() || args[1][0] == '-')
+    throw flaplag::InvalidInput("run", args.size() < 2 ? "(missing)" : args[1],
+                                "needs a case file: flaplag run CASE.toml (or a --json output)");
+  e.from_file = flaplag::cli::read_case_file(args[1]);
+  e.args = e.from_file.args;
+  e.typed.assign(args.begin() + 2, args.end());
+  e.args.insert(e.args.end(), e.typed.begin(), e.typed.end());
+  return e;
+}
+
+// An error about an option that came from the case file names the file, line and key.
+std::string with_origin(const Expanded& e, const std::string& line) {
+  for (const auto& [option, where] : e.from_file.origin) {
+    if (line.rfind(option + " = ", 0) != 0 && line.rfind(option + "=", 0) != 0) continue;
+    bool typed = false;
+    for (const std::string& t : e.typed)
+      typed = typed || t == option || t.rfind(option + "=", 0) == 0;
+    if (!typed) return where + line.substr(option.size());
+  }
+  return line;
+}
+
+int run(const std::vector<std::string>& raw) {
+  Expanded e;
+  try {
+    e = expand(raw);
+  } catch (const flaplag::InvalidInput& error) {
+    return report(error.what(), kBadInput);
+  }
+  const flaplag::cli::CommandLine cl(e.args);
   if (cl.wants_help() || cl.wants_version()) {
     std::cout << (cl.wants_help() ? cl.help_text() : std::string(kVersion) + "\n") << std::flush;
     return std::cout ? 0 : kInternalError;
   }
   try {
-    const flaplag::cli::Request request = cl.interpret();
+    flaplag::cli::Request request = cl.interpret();
+    request.arguments = e.args;
     // Check the output path before a possibly long analysis; nothing is left behind.
     const flaplag::cli::OutputTarget target(request.output);
-    const std::string text = flaplag::cli::run_command(request);
+    std::string warning;
+    const std::string text = flaplag::cli::run_command(request, &warning);
     if (request.output.empty()) {
       std::cout << text << std::flush;
       if (!std::cout) return report("cannot write to standard output", kInternalError);
     } else {
       target.write(text);
     }
+    if (!warning.empty()) std::cerr << "flaplag: warning: " << one_line(warning) << std::endl;
     return 0;
-  } catch (const flaplag::InvalidInput& e) {
+  } catch (const flaplag::InvalidInput& error) {
     // The runtime names fields ("omega_lag"); users know options ("--omega-lag").
-    if (const std::optional<std::string> line = cl.error_line(e)) return report(*line, kBadInput);
+    if (const std::optional<std::string> line = cl.error_line(error))
+      return report(with_origin(e, *line), kBadInput);
     // A name no option answers for is a quantity the analysis derived from valid input (say a
     // non-finite coefficient): the inputs were checked, so this is a bug to report.
-    return report(std::string("invalid derived quantity ") + e.what(), kInternalError);
+    return report(std::string("invalid derived quantity ") + error.what(), kInternalError);
   }
 }
 

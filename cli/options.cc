@@ -188,11 +188,65 @@ std::vector<OptionSpec> build(Command c) {
                                "11", {"n_points"}));
       append(v, output_options());
       return v;
+    case Command::Study: {
+      const CriticalOptions defaults;
+      v.push_back(value_option("--vary", "NAME=START:STOP:STEP|NAME=V1,V2,...",
+                               "the parameter varied (any numeric rotor parameter, e.g. "
+                               "omega-lag, theta, damping-lag) and its values",
+                               "", {"parameter", "values"}));
+      v.push_back(
+          value_option("--mu-max", "REAL",
+                       "scan limit (0 < mu-max <= " + round_trip_text(kMaxAdvanceRatio) + ")",
+                       round_trip_text(defaults.mu_max), {"mu_max"}));
+      v.push_back(scan_step);
+      v.push_back(
+          value_option("--threads", "N", "worker threads (0: all cores)", "0", {"threads"}));
+      v.push_back(value_option("--plot", "FILE.svg|FILE.png",
+                               "also draw mu_c and the instability intervals (gnuplot)", "",
+                               {"plot"}));
+      break;
+    }
+    case Command::Map:
+      v.push_back(value_option("--x", "NAME=START:STOP:STEP|NAME=V1,...",
+                               "x axis: mu or a numeric rotor parameter", "", {"x"}));
+      v.push_back(value_option("--y", "NAME=START:STOP:STEP|NAME=V1,...",
+                               "y axis: mu or a numeric rotor parameter", "", {"y"}));
+      v.push_back(
+          value_option("--mu", "REAL", "advance ratio when neither axis is mu", "0", {"mu"}));
+      v.push_back(scan_step);
+      v.push_back(
+          value_option("--threads", "N", "worker threads (0: all cores)", "0", {"threads"}));
+      v.push_back(value_option("--plot", "FILE.svg|FILE.png",
+                               "also draw the max-zeta map with the zeta = 0 boundary (gnuplot)",
+                               "", {"plot"}));
+      break;
+    case Command::Response:
+      v.push_back(mu);
+      v.push_back(value_option("--samples", "N", "azimuth samples over one revolution (>= 12)",
+                               "72", {"samples"}));
+      v.push_back(value_option("--plot", "FILE.svg|FILE.png",
+                               "also draw the tip deflections over one revolution (gnuplot)", "",
+                               {"plot"}));
+      break;
+    case Command::Simulate:
+      v.push_back(mu);
+      v.push_back(value_option("--revs", "REAL", "revolutions simulated (0 < revs <= 1e5)", "20",
+                               {"revolutions"}));
+      v.push_back(value_option("--perturbation", "REAL",
+                               "initial perturbation of every state (free response)", "0.01",
+                               {"perturbation"}));
+      v.push_back(flag_option("--forced", "include the forcing f(psi) (default: free response)"));
+      v.push_back(
+          value_option("--samples", "N", "reported points per revolution", "36", {"samples"}));
+      v.push_back(value_option("--plot", "FILE.svg|FILE.png",
+                               "also draw the tip response (gnuplot)", "", {"plot"}));
+      break;
     case Command::Typical:
       break;
   }
   append(v, rotor_options());
-  if (c != Command::System) append(v, transition_options());
+  if (c != Command::System && c != Command::Response && c != Command::Simulate)
+    append(v, transition_options());
   append(v, mode_count_options());
   append(v, output_options());
   return v;
@@ -216,13 +270,22 @@ const char* command_name(Command c) {
       return "models";
     case Command::Modes:
       return "modes";
+    case Command::Study:
+      return "study";
+    case Command::Map:
+      return "map";
+    case Command::Response:
+      return "response";
+    case Command::Simulate:
+      return "simulate";
   }
   return "";
 }
 
 const std::vector<Command>& subcommands() {
-  static const std::vector<Command> all = {Command::Point,  Command::Sweep,  Command::Critical,
-                                           Command::System, Command::Models, Command::Modes};
+  static const std::vector<Command> all = {
+      Command::Point,  Command::Sweep,    Command::Critical, Command::Study,  Command::Map,
+      Command::System, Command::Response, Command::Simulate, Command::Models, Command::Modes};
   return all;
 }
 

@@ -17,7 +17,19 @@
 
 namespace flaplag::cli {
 
-enum class Command { Typical, Point, Sweep, Critical, System, Models, Modes };
+enum class Command {
+  Typical,
+  Point,
+  Sweep,
+  Critical,
+  System,
+  Models,
+  Modes,
+  Study,
+  Map,
+  Response,
+  Simulate
+};
 
 const char* command_name(Command c);  // "" for Typical, else "point", ...
 // The commands that have a name (not Typical), in help order.

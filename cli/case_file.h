@@ -1,0 +1,35 @@
+// flaplag CLI — case files: a study, a map or any other command written down as TOML (or as the
+// "case" object of any JSON output), turned into the command-line arguments it stands for.
+//
+// One vocabulary: a key is an option name without "--" ("omega-lag", "mu-max", "steps",
+// "vary"), the value its text.  Tables ([parameters], [method], ...) only group keys for the
+// reader; their names are not part of the key.  A boolean rotor parameter is written as its
+// JSON key ("reversed-flow = false" is --no-reversed-flow; "paper-1974-shapes = true" is
+// --paper-1974-shapes); any other boolean key is a flag given when true ("json = true").
+// "command" names the subcommand.  Command-line options given after `flaplag run FILE` override
+// the file (the last of a repeated option wins).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace flaplag::cli {
+
+struct CaseArguments {
+  std::vector<std::string> args;  // subcommand first (when the case names one), then options
+  // Where each option came from, for error messages: "--theta" -> "case.toml:3: theta".
+  std::map<std::string, std::string> origin;
+};
+
+// Reads a TOML case file, or a JSON document with a "case" object (any flaplag --json output).
+// Throws InvalidInput naming "<file>:<line>: <key>" (the file alone for a file that does not
+// parse or cannot be read) with the value as written: unknown keys, wrong types (arrays,
+// dates, nested tables below the grouping level), and so on.  Values are checked by the
+// command line like typed ones.
+CaseArguments read_case_file(const std::string& path);
+
+// The same from text already read (`name` stands for the file in messages).
+CaseArguments parse_case_text(const std::string& name, const std::string& text);
+
+}  // namespace flaplag::cli
