@@ -151,10 +151,10 @@ CaseArguments parse_case_text(const std::string& name, const std::string& text) 
 
 CaseArguments read_case_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidInput("case file", shown(path), "cannot be read");
+  if (!in) throw InvalidInput("argument", shown(path), "case file cannot be read");
   std::ostringstream s;
   s << in.rdbuf();
-  if (in.bad()) throw InvalidInput("case file", shown(path), "cannot be read");
+  if (in.bad()) throw InvalidInput("argument", shown(path), "case file cannot be read");
   return parse_case_text(path, s.str());
 }
 

@@ -53,8 +53,9 @@ Expanded expand(const std::vector<std::string>& args) {
     return e;
   }
   if (args.size() < 2 || args[1].empty() || args[1][0] == '-')
-    throw flaplag::InvalidInput("run", args.size() < 2 ? "(missing)" : args[1],
-                                "needs a case file: flaplag run CASE.toml (or a --json output)");
+    throw flaplag::InvalidInput("argument", args.size() < 2 ? "(missing)" : args[1],
+                                "flaplag run needs a case file: flaplag run CASE.toml (or a "
+                                "--json output of flaplag)");
   e.from_file = flaplag::cli::read_case_file(args[1]);
   e.args = e.from_file.args;
   e.typed.assign(args.begin() + 2, args.end());

@@ -12,3 +12,8 @@ add_dependencies(cli_test flaplag)
 flaplag_test(cli_fuzz_test flaplag_cli nlohmann_json::nlohmann_json)
 target_compile_definitions(cli_fuzz_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
 add_dependencies(cli_fuzz_test flaplag)
+
+# study, map, run (case files), --plot, response, simulate (maintained with cli/).
+flaplag_test(cli_studies_test nlohmann_json::nlohmann_json)
+target_compile_definitions(cli_studies_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
+add_dependencies(cli_studies_test flaplag)

@@ -1,0 +1,236 @@
+// The study-level commands of the CLI, run as a user would: study, map, run (case files and
+// JSON round trips), --plot, response and simulate.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Json = nlohmann::json;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class TempDir {
+ public:
+  TempDir() {
+    char tmpl[] = "/tmp/flaplag_studies_test.XXXXXX";
+    path_ = ::mkdtemp(tmpl);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  std::string file(const std::string& name) const { return path_ + "/" + name; }
+
+ private:
+  std::string path_;
+};
+
+// fork + exec, stdout/stderr to files; `path_env` replaces PATH when not empty.
+Outcome run(std::vector<std::string> args, const std::string& path_env = "") {
+  TempDir io;
+  const std::string out = io.file("out"), err = io.file("err");
+  std::string exe = FLAPLAG_EXE;
+  std::vector<char*> argv{exe.data()};
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int fo = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    const int fe = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    if (fo < 0 || fe < 0 || ::dup2(fo, 1) < 0 || ::dup2(fe, 2) < 0) ::_exit(127);
+    if (!path_env.empty()) ::setenv("PATH", path_env.c_str(), 1);
+    ::execv(exe.c_str(), argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  Outcome r;
+  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+bool gnuplot_available() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
+
+TEST(CliStudy, RowsWithIntervalsIdenticalForOneAndTwoThreads) {
+  const std::vector<std::string> base = {
+      "--modes", "exact", "study", "--vary", "omega-lag=1.3,1.45", "--mu-max", "1.5", "--json"};
+  std::vector<std::string> one = base, two = base;
+  one.insert(one.end(), {"--threads", "1"});
+  two.insert(two.end(), {"--threads", "2"});
+  const Outcome a = run(one), b = run(two);
+  ASSERT_EQ(0, a.exit_code) << a.err;
+  ASSERT_EQ(0, b.exit_code) << b.err;
+  const Json ja = Json::parse(a.out), jb = Json::parse(b.out);
+  // Identical results; only the case (which records --threads) differs.
+  EXPECT_EQ(ja["rows"], jb["rows"]);
+  ASSERT_EQ(2u, ja["rows"].size());
+  const Json& r = ja["rows"][1];  // omega_L1 = 1.45: unstable, re-stabilizes, unstable again
+  EXPECT_EQ(1.45, r["value"].get<double>());
+  ASSERT_GE(r["intervals"].size(), 2u) << r;
+  EXPECT_TRUE(r["intervals"][0][1].is_number());
+  EXPECT_EQ(r["mu_c"], r["intervals"][0][0]);
+  EXPECT_EQ("lag", r["mode"]);
+  EXPECT_FALSE(r["hover_unstable"].get<bool>());
+  EXPECT_EQ("omega-lag", ja["vary"]);
+}
+
+TEST(CliMap, IdenticalBytesForOneAndTwoThreads) {
+  const std::vector<std::string> base = {
+      "map", "--x", "mu=0:1:0.1", "--y", "omega-lag=0.8,1.2,1.6", "--json"};
+  std::vector<std::string> one = base, two = base;
+  one.insert(one.end(), {"--threads", "1"});
+  two.insert(two.end(), {"--threads", "2"});
+  const Outcome a = run(one), b = run(two);
+  ASSERT_EQ(0, a.exit_code) << a.err;
+  Json ja = Json::parse(a.out), jb = Json::parse(b.out);
+  ja.erase("case");
+  jb.erase("case");
+  EXPECT_EQ(ja.dump(), jb.dump());
+  ASSERT_EQ(3u, ja["max_zeta"].size());
+  EXPECT_EQ(11u, ja["max_zeta"][0].size());
+  EXPECT_EQ("mu", ja["x"]["name"]);
+}
+
+TEST(CliRun, CaseFileAndJsonRoundTripReproduceTheBytes) {
+  TempDir d;
+  const std::string toml = d.file("case.toml");
+  std::ofstream(toml) << "# Fig 12, three points\ncommand = \"study\"\n[parameters]\n"
+                         "modes = \"exact\"\n[study]\nvary = \"damping-lag=0,0.01\"\n"
+                         "[output]\njson = true\n";
+  const Outcome first = run({"run", toml});
+  ASSERT_EQ(0, first.exit_code) << first.err;
+  const std::string json = d.file("first.json");
+  std::ofstream(json) << first.out;
+  const Outcome second = run({"run", json});
+  ASSERT_EQ(0, second.exit_code) << second.err;
+  EXPECT_EQ(first.out, second.out);
+  // The same study typed on the command line gives the same result.
+  const Outcome typed =
+      run({"--modes", "exact", "study", "--vary", "damping-lag=0,0.01", "--json"});
+  EXPECT_EQ(first.out, typed.out);
+  // Command-line options after the file override it.
+  const Outcome over = run({"run", toml, "--mu-max", "1.0"});
+  ASSERT_EQ(0, over.exit_code) << over.err;
+  const Json j = Json::parse(over.out);
+  EXPECT_EQ(1.0, j["mu_max"].get<double>());
+  EXPECT_TRUE(j["rows"][1]["mu_c"].is_null());  // eta_SL = 0.01: mu_c = 1.317 > 1
+}
+
+struct BadCase {
+  const char* name;
+  const char* text;
+  const char* expected;  // regex of the whole stderr line after "flaplag: error: "
+};
+
+class CliBadCase : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(CliBadCase, NamesFileLineKeyAndValue) {
+  TempDir d;
+  const std::string file = d.file("bad.toml");
+  std::ofstream(file) << GetParam().text;
+  const std::string out = d.file("out.json");
+  const Outcome r = run({"run", file, "-o", out});
+  EXPECT_EQ(2, r.exit_code);
+  EXPECT_TRUE(r.out.empty());
+  const std::regex line("flaplag: error: " +
+                        std::regex_replace(GetParam().expected, std::regex("FILE"), file) + "\n");
+  EXPECT_TRUE(std::regex_match(r.err, line)) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Table, CliBadCase,
+    ::testing::Values(
+        BadCase{"UnknownKey", "thetaa = 0.1\n", "FILE:1: thetaa = 0.1: unknown key.*"},
+        BadCase{"NotANumber", "\n\ntheta = \"abc\"\n", "FILE:3: theta = abc: not a number"},
+        BadCase{"OutOfRange", "gamma = -1.0\n", "FILE:1: gamma = -1: must be in .*"},
+        BadCase{"WrongType", "modes = [1, 2]\n", "FILE:1: modes = \\[array\\]: must be .*"},
+        BadCase{"UnknownTable", "[bogus]\ntheta = 0.1\n", "FILE:1: bogus = \\[table\\]: .*"},
+        BadCase{"FlagWithValue", "json = \"yes\"\n", "FILE:1: json = yes: must be true or false"},
+        BadCase{"UnknownCommand", "command = \"fly\"\n", "FILE:1: command = fly: not a subcommand"},
+        BadCase{"Malformed", "theta = = 1\n", "FILE:1 = \\(TOML\\): .*"}),
+    [](const auto& tp) { return std::string(tp.param.name); });
+
+TEST(CliRun, MissingOrUnreadableCaseFile) {
+  const Outcome a = run({"run"});
+  EXPECT_EQ(2, a.exit_code);
+  EXPECT_NE(std::string::npos, a.err.find("flaplag: error: argument = (missing): ")) << a.err;
+  const Outcome b = run({"run", "/nonexistent/case.toml"});
+  EXPECT_EQ(2, b.exit_code);
+  EXPECT_NE(std::string::npos, b.err.find("argument = /nonexistent/case.toml: case file")) << b.err;
+}
+
+TEST(CliPlot, FilesAreWrittenAndAMissingRendererIsOneWarning) {
+  TempDir d;
+  const std::string svg = d.file("study.svg"), png = d.file("map.png");
+  if (gnuplot_available()) {
+    const Outcome s = run({"study", "--vary", "omega-lag=1.0,1.3", "--plot", svg});
+    ASSERT_EQ(0, s.exit_code) << s.err;
+    EXPECT_GT(std::filesystem::file_size(svg), 1000u);
+    EXPECT_NE(std::string::npos, slurp(svg).find("<svg"));
+    const Outcome m = run({"map", "--x", "mu=0:1:0.25", "--y", "omega-lag=1,1.3", "--plot", png});
+    ASSERT_EQ(0, m.exit_code) << m.err;
+    EXPECT_EQ("\x89PNG", slurp(png).substr(0, 4));
+  }
+  // No gnuplot on PATH: the data is written, the plot is not, one warning line.
+  const std::string missing = d.file("missing.svg");
+  const Outcome n = run({"study", "--vary", "omega-lag=1.0", "--plot", missing}, "/nonexistent");
+  EXPECT_EQ(0, n.exit_code);
+  EXPECT_NE(std::string::npos, n.out.find("mu_c"));
+  EXPECT_TRUE(std::regex_match(n.err, std::regex("flaplag: warning: gnuplot is not installed.*\n")))
+      << n.err;
+  EXPECT_FALSE(std::filesystem::exists(missing));
+  // A plot path that is not .svg or .png is bad input.
+  const Outcome bad = run({"study", "--vary", "omega-lag=1.0", "--plot", d.file("x.pdf")});
+  EXPECT_EQ(2, bad.exit_code);
+}
+
+TEST(CliResponse, PeriodicTipResponseAndSimulatedGrowth) {
+  const Outcome r = run({"response", "--mu", "0.3", "--json"});
+  ASSERT_EQ(0, r.exit_code) << r.err;
+  const Json j = Json::parse(r.out);
+  EXPECT_EQ("ok", j["status"]);
+  EXPECT_LT(j["closure"].get<double>(), 1e-10);
+  EXPECT_EQ(72u, j["flap_tip"].size());
+  EXPECT_GT(std::hypot(j["flap_harmonics"]["cos psi"].get<double>(),
+                       j["flap_harmonics"]["sin psi"].get<double>()),
+            1e-3);
+  // The free response grows at the largest zeta (point at mu = 0.9, lag flutter).
+  const Json p = Json::parse(run({"point", "--mu", "0.9", "--json"}).out);
+  double zeta = -1e9;
+  for (const Json& e : p["exponents"])
+    if (e["zeta"].is_number()) zeta = std::max(zeta, e["zeta"].get<double>());
+  const Json s = Json::parse(run({"simulate", "--mu", "0.9", "--revs", "80", "--json"}).out);
+  ASSERT_TRUE(s["lag_growth_rate"].is_number()) << s;
+  EXPECT_NEAR(zeta, s["lag_growth_rate"].get<double>(), 0.01 * std::abs(zeta));
+  // No unique periodic response / bad input are statuses and errors, never NaN.
+  const Outcome bad = run({"response", "--mu", "-1"});
+  EXPECT_EQ(2, bad.exit_code);
+  EXPECT_TRUE(std::regex_match(bad.err, std::regex("flaplag: error: --mu = -1: .*\n"))) << bad.err;
+}
+
+}  // namespace
