@@ -574,10 +574,31 @@ std::string point(const Request& r, const Analysis& an) {
   return header_text(an) + "\n" + warnings_text(an) + point_text(r, p);
 }
 
-std::string sweep(const Request& r, const Analysis& an) {
+std::string plot_if_asked(const Request& r, const std::string& script);
+
+std::string sweep(const Request& r, const Analysis& an, std::string& warning) {
   SweepResult s = an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step);
   audit(s);
   const std::vector<std::string> labels = mode_labels(an);
+  if (!r.plot.empty()) {
+    // zeta(mu) and omega(mu) of each mode's dominant exponent, as the paper's Figs 3-8.
+    Panel pz{"damping exponent zeta (real part of the characteristic exponent)", "mu",
+             "zeta [1/rev]", {}, true};
+    Panel pw{"frequency omega", "mu", "omega [per rev]", {}, false};
+    for (const std::string& l : labels) {
+      Curve z{l, {}, {}, false, 7}, w{l, {}, {}, false, 7};
+      for (const PointResult& p : s.points) {
+        const LabelledExponent* e = dominant(p, l);
+        z.x.push_back(p.mu);
+        w.x.push_back(p.mu);
+        z.y.push_back(e != nullptr && finite(e->zeta) ? e->zeta : NAN);
+        w.y.push_back(e != nullptr ? e->omega : NAN);
+      }
+      pz.curves.push_back(z);
+      pw.curves.push_back(w);
+    }
+    warning = plot_if_asked(r, line_plot_script("flaplag sweep: " + std::string(an.model().name), {pz, pw}));
+  }
   if (r.csv) return sweep_csv(r, s, labels);
   if (r.json) {
     Json j = header_json("sweep", an);
@@ -1074,7 +1095,7 @@ std::string run_command_text(const Request& r, std::string* warning) {
     case Command::Point:
       return point(r, an);
     case Command::Sweep:
-      return sweep(r, an);
+      return sweep(r, an, w);
     case Command::Critical:
       return critical(r, an);
     case Command::System:

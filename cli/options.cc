@@ -154,6 +154,9 @@ std::vector<OptionSpec> build(Command c) {
                                "", {"mu0", "mu1", "step", "mu"}));
       v.push_back(value_option("--format", "table|csv", "text layout (--json for JSON)", "table",
                                {"format"}));
+      v.push_back(value_option("--plot", "FILE.svg|FILE.png",
+                               "also draw zeta(mu) and omega(mu) of each mode (gnuplot)", "",
+                               {"plot"}));
       break;
     case Command::Critical: {
       const CriticalOptions defaults;
