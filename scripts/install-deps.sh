@@ -36,4 +36,5 @@ apt-get install -y --no-install-recommends \
   python3-numpy \
   python3-pytest \
   python3-distributed \
-  python3-matplotlib
+  python3-matplotlib \
+  gnuplot-nox
