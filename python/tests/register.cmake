@@ -7,7 +7,7 @@ set(py_env
     FLAPLAG_CLI=$<TARGET_FILE:flaplag>)
 foreach(suite api cli_equality dask)
   add_test(NAME python.${suite}
-           COMMAND ${Python3_EXECUTABLE} -m pytest -q -p no:cacheprovider
+           COMMAND ${Python3_EXECUTABLE} -m pytest -q -rs -p no:cacheprovider
                    ${CMAKE_CURRENT_SOURCE_DIR}/tests/test_${suite}.py
            WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/tests)
   set_tests_properties(python.${suite} PROPERTIES ENVIRONMENT "${py_env}" TIMEOUT 120)

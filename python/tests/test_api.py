@@ -2,6 +2,9 @@
 
 import inspect
 import math
+import os
+import signal
+import time
 import pickle
 import pydoc
 import threading
@@ -200,7 +203,7 @@ def test_assumed_mode_shape_is_eq_4_1():
     assert list(exact.omega_lag)[0] == 1.28303
 
 
-def test_sweep_of_an_array_is_the_track():
+def test_sweep_of_an_array():
     an = flaplag.Analysis()
     mus = np.array([0.0, 0.3, 0.35, 0.8, 1.0])
     s = an.sweep(mus)
@@ -307,3 +310,17 @@ def test_progress_and_cancel():
     with pytest.raises(Stop):
         flaplag.map(x=("mu", np.linspace(0, 1, 101)), y=("omega_lag", np.linspace(0.5, 2, 40)),
                     threads=1, progress=stop)
+
+
+def test_ctrl_c_cancels_a_map():
+    """SIGINT during a long map raises KeyboardInterrupt soon after (the lines already started
+    finish; the rest is not computed)."""
+    timer = threading.Timer(0.2, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        timer.start()
+        # about a minute of work on one thread
+        flaplag.map(x=("mu", np.linspace(0, 1.5, 301)), y=("omega_lag", np.linspace(0.2, 2.5, 400)),
+                    threads=1)
+    timer.join()
+    assert time.monotonic() - start < 10.0

@@ -12,6 +12,8 @@ add_test(NAME consumer.build_and_run
                  -DSOURCE=${CMAKE_CURRENT_LIST_DIR}
                  -DBINARY=${PROJECT_BINARY_DIR}/test-consumer
                  -DGENERATOR=${CMAKE_GENERATOR} -DCXX=${CMAKE_CXX_COMPILER}
+                 # the flags the libraries were built with (a sanitizer build needs its runtime)
+                 "-DCXX_FLAGS=${CMAKE_CXX_FLAGS}" "-DLINKER_FLAGS=${CMAKE_EXE_LINKER_FLAGS}"
                  -P ${CMAKE_CURRENT_LIST_DIR}/run.cmake)
 set_tests_properties(consumer.build_and_run PROPERTIES FIXTURES_REQUIRED flaplag_install_tree
                                                         TIMEOUT 300)

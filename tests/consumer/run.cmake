@@ -1,6 +1,7 @@
 # Configures and builds the consumer project against an install tree and runs both programs.
 #   cmake -DPREFIX=<install prefix> -DSOURCE=<tests/consumer> -DBINARY=<build dir>
-#         [-DGENERATOR=...] [-DCXX=<compiler>] -P run.cmake
+#         [-DGENERATOR=...] [-DCXX=<compiler>] [-DCXX_FLAGS=...] [-DLINKER_FLAGS=...]
+#         -P run.cmake
 foreach(v PREFIX SOURCE BINARY)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "run.cmake: -D${v}=... is required")
@@ -26,11 +27,11 @@ if(CXX)
 endif()
 # Only the install tree: the pkg-config search path too, and the consumer must not see the
 # packages only flaplag's build and command line need.
-set(ENV{PKG_CONFIG_PATH} "")
 file(GLOB pc_dirs LIST_DIRECTORIES true ${PREFIX}/lib*/pkgconfig ${PREFIX}/lib/*/pkgconfig)
 string(REPLACE ";" ":" pc_path "${pc_dirs}")
 set(ENV{PKG_CONFIG_PATH} "${pc_path}")
 run(${CMAKE_COMMAND} -S ${SOURCE} -B ${BINARY} ${generator_args} ${compiler_args}
+    "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${LINKER_FLAGS}"
     -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${PREFIX}
     -DCMAKE_DISABLE_FIND_PACKAGE_CLI11=ON -DCMAKE_DISABLE_FIND_PACKAGE_nlohmann_json=ON
     -DCMAKE_DISABLE_FIND_PACKAGE_tomlplusplus=ON)
