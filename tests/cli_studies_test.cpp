@@ -15,62 +15,19 @@
 #include <string>
 #include <vector>
 
+#include "process.h"
+
 namespace {
 
 using Json = nlohmann::json;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-};
+using flaplag::testing::Outcome;
+using flaplag::testing::slurp;
+using flaplag::testing::TempDir;
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class TempDir {
- public:
-  TempDir() {
-    char tmpl[] = "/tmp/flaplag_studies_test.XXXXXX";
-    path_ = ::mkdtemp(tmpl);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name) const { return path_ + "/" + name; }
-
- private:
-  std::string path_;
-};
-
-// fork + exec, stdout/stderr to files; `path_env` replaces PATH when not empty.
-Outcome run(std::vector<std::string> args, const std::string& path_env = "") {
-  TempDir io;
-  const std::string out = io.file("out"), err = io.file("err");
-  std::string exe = FLAPLAG_EXE;
-  std::vector<char*> argv{exe.data()};
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int fo = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    const int fe = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    if (fo < 0 || fe < 0 || ::dup2(fo, 1) < 0 || ::dup2(fe, 2) < 0) ::_exit(127);
-    if (!path_env.empty()) ::setenv("PATH", path_env.c_str(), 1);
-    ::execv(exe.c_str(), argv.data());
-    ::_exit(127);
-  }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  Outcome r;
-  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
+// `path_env` replaces PATH when not empty.
+Outcome run(const std::vector<std::string>& args, const std::string& path_env = "") {
+  return flaplag::testing::run_process(FLAPLAG_EXE, args, std::chrono::seconds(300), path_env);
 }
 
 bool gnuplot_available() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }

@@ -1,0 +1,112 @@
+// Shared test helper: run a program as a user would (fork + exec, no shell), capture its
+// stdout and stderr, and temporary directories that clean up after themselves.
+#pragma once
+
+#include <fcntl.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace flaplag::testing {
+
+struct Outcome {
+  int exit_code = -1;  // -1: did not exit normally (signal, or killed after the time limit)
+  std::string out, err;
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+inline bool exists(const std::string& path) {
+  struct stat st {};
+  return ::lstat(path.c_str(), &st) == 0;
+}
+
+// A fresh directory per test, removed with its contents afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    char tmpl[] = "/tmp/flaplag_test.XXXXXX";
+    const char* d = ::mkdtemp(tmpl);
+    if (d == nullptr) throw std::runtime_error("mkdtemp failed");
+    path_ = d;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::string& path() const { return path_; }
+  std::string file(const std::string& name) const { return path_ + "/" + name; }
+  // Names in the directory (to see that no temporary files are left behind).
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(path_)) {
+      names.push_back(e.path().filename().string());
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+ private:
+  std::string path_;
+};
+
+// fork + exec of `program` with stdout/stderr captured in files: no shell, so arguments arrive
+// verbatim (empty strings, '*', quotes).  A run longer than `limit` is killed (exit_code -1): a
+// test of an output that must not block (a FIFO nobody reads) fails instead of hanging.
+inline Outcome run_process(const std::string& program, const std::vector<std::string>& args,
+                           std::chrono::seconds limit = std::chrono::seconds(120),
+                           const std::string& path_env = "") {
+  TempDir io;
+  const std::string out = io.file("stdout"), err = io.file("stderr");
+  std::vector<std::string> copy = args;
+  std::string exe = program;
+  std::vector<char*> argv{exe.data()};
+  for (std::string& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int fo = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    const int fe = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    if (fo < 0 || fe < 0 || ::dup2(fo, 1) < 0 || ::dup2(fe, 2) < 0) ::_exit(127);
+    if (!path_env.empty()) ::setenv("PATH", path_env.c_str(), 1);
+    ::execv(exe.c_str(), argv.data());
+    ::_exit(127);
+  }
+  Outcome r;
+  int status = 0;
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  for (;;) {
+    const pid_t w = ::waitpid(pid, &status, WNOHANG);
+    if (w == pid) break;
+    if (w < 0 || std::chrono::steady_clock::now() > deadline) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      status = -1;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+}  // namespace flaplag::testing
