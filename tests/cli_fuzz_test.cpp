@@ -162,7 +162,16 @@ class Generator {
                                                 "--spec",
                                                 "--basis",
                                                 "--nonrotating",
-                                                "--points"};
+                                                "--points",
+                                                "--vary",
+                                                "--x",
+                                                "--y",
+                                                "--threads",
+                                                "--plot",
+                                                "--samples",
+                                                "--revs",
+                                                "--perturbation",
+                                                "--forced"};
     return known.count(option) == 1;
   }
 
@@ -228,7 +237,8 @@ class Generator {
     if (option == "--root-offset") return in(0.0, 0.999);
     if (option == "--modes") return chance(0.5) ? "assumed" : "exact";
     if (option == "--method") return pick(std::vector<std::string>{"rk4", "hsu", "magnus"});
-    if (option == "--steps") return chance(0.2) ? "auto" : std::to_string(integer(1, 2000));
+    if (option == "--steps")
+      return chance(0.2) ? "auto" : std::to_string(integer(1, 2000));  // corrupt()
     if (option == "--terms") return std::to_string(integer(1, 8));
     if (option == "--zeta-tolerance") return in(1e-7, 1e-1, true);
     if (option == "--flap-modes" || option == "--lag-modes") {
@@ -242,6 +252,13 @@ class Generator {
       const double a = uniform(0, 5), b = a + uniform(0.01, 10);
       return text(a) + ":" + text(b) + ":" + text((b - a) / integer(1, 30));
     }
+    if (option == "--vary") return axis(false);
+    if (option == "--x" || option == "--y") return axis(true);
+    if (option == "--threads") return std::to_string(integer(0, 3));
+    if (option == "--plot") return chance(0.5) ? "plot.svg" : "plot.png";
+    if (option == "--samples") return std::to_string(integer(12, 100));
+    if (option == "--revs") return text(log_uniform(0.1, 30));
+    if (option == "--perturbation") return text(log_uniform(1e-6, 10));
     if (option == "--mu") return text(uniform(0, 2));
     if (option == "--scan-step") return text(log_uniform(0.005, 0.5));
     if (option == "--mu-max") return text(uniform(0.01, 3));
@@ -250,13 +267,13 @@ class Generator {
 
   // mu and the continuation step together: at most ~40 Floquet evaluations per run, with mu
   // up to kMaxAdvanceRatio.
-  void add_advance_ratio(std::vector<std::string>& a, cli::Command c) {
+  void add_advance_ratio(std::vector<std::string>& a, cli::Command c, int max_evaluations) {
     const double r = uniform(0, 1);
     const double mu_max = flaplag::kMaxAdvanceRatio;
     const double mu = r < 0.6   ? uniform(0, 2)
                       : r < 0.9 ? log_uniform(2, mu_max)
                                 : (chance(0.5) ? 0.0 : mu_max);
-    const int evaluations = integer(2, 40);
+    const int evaluations = integer(2, max_evaluations);
     const double step = std::max(mu / evaluations, 0.01);
     switch (c) {
       case cli::Command::Point:
@@ -275,6 +292,26 @@ class Generator {
         if (chance(0.3)) a.insert(a.end(), {"--format", legal_value("--format", c)});
         break;
       }
+      case cli::Command::Study:
+        a.insert(a.end(), {"--vary", axis(false)});
+        a.insert(a.end(), {"--mu-max", text(uniform(0.05, 1.5)), "--scan-step", text(0.1)});
+        break;
+      case cli::Command::Map:
+        a.insert(a.end(), {"--x", axis(true), "--y", axis(chance(0.5))});
+        if (chance(0.5)) a.insert(a.end(), {"--mu", text(uniform(0, 1.5))});
+        a.insert(a.end(), {"--scan-step", text(0.1)});
+        break;
+      case cli::Command::Response:
+        a.insert(a.end(), {"--mu", text(r < 0.8 ? uniform(0, 2) : mu)});
+        if (chance(0.5)) a.insert(a.end(), {"--samples", std::to_string(integer(12, 200))});
+        break;
+      case cli::Command::Simulate:
+        a.insert(a.end(), {"--mu", text(r < 0.8 ? uniform(0, 2) : mu)});
+        a.insert(a.end(), {"--revs", text(log_uniform(0.1, 30))});
+        if (chance(0.5)) a.insert(a.end(), {"--samples", std::to_string(integer(12, 72))});
+        if (chance(0.5)) a.insert(a.end(), {"--perturbation", text(log_uniform(1e-6, 10))});
+        if (chance(0.3)) a.push_back("--forced");
+        break;
       case cli::Command::Critical: {
         const double m = std::max(mu, 0.01);
         a.insert(a.end(), {"--mu-max", text(m)});
@@ -290,32 +327,68 @@ class Generator {
   cli::Command command() {
     const double r = uniform(0, 1);
     if (r < 0.06) return cli::Command::Typical;
-    if (r < 0.30) return cli::Command::Point;
-    if (r < 0.50) return cli::Command::Sweep;
-    if (r < 0.65) return cli::Command::Critical;
-    if (r < 0.85) return cli::Command::System;
-    if (r < 0.92) return cli::Command::Models;
-    return cli::Command::Modes;
+    if (r < 0.26) return cli::Command::Point;
+    if (r < 0.42) return cli::Command::Sweep;
+    if (r < 0.54) return cli::Command::Critical;
+    if (r < 0.70) return cli::Command::System;
+    if (r < 0.76) return cli::Command::Models;
+    if (r < 0.82) return cli::Command::Modes;
+    if (r < 0.87) return cli::Command::Study;
+    if (r < 0.92) return cli::Command::Map;
+    if (r < 0.96) return cli::Command::Response;
+    return cli::Command::Simulate;
+  }
+
+  // A parameter axis of study / map: NAME=START:STOP:STEP or NAME=V1,V2,... with few values.
+  std::string axis(bool allow_mu) {
+    std::vector<const flaplag::ParameterSpec*> reals;
+    for (const flaplag::ParameterSpec& s : flaplag::parameter_table()) {
+      if (s.type == flaplag::ParameterType::Real) reals.push_back(&s);
+    }
+    if (allow_mu && chance(0.4)) {
+      const double hi = uniform(0.05, 2.0);
+      return "mu=0:" + text(hi) + ":" + text(hi / integer(1, 3));
+    }
+    const flaplag::ParameterSpec& s = *pick(reals);
+    const std::string name = cli::json_key(s);
+    const std::string option = "--" + name;
+    if (chance(0.5)) {
+      std::string list;
+      for (int i = integer(1, 3); i > 0; --i) {
+        list += (list.empty() ? "" : ",") + legal_value(option, cli::Command::Point);
+      }
+      return name + "=" + list;
+    }
+    const double lo = s.range.lo, hi = s.range.hi;
+    const double a = uniform(lo, lo + (hi - lo) * 0.5), b = uniform(a, hi);
+    return name + "=" + text(a) + ":" + text(b) + ":" + text((b - a) / integer(1, 3) + 1e-9);
   }
 
   void legal(std::vector<std::string>& a) {
     const cli::Command c = command();
     command_ = c;
-    std::vector<std::string> options;
     const bool subcommand_first = chance(0.7);
     if (c != cli::Command::Typical && subcommand_first) a.push_back(cli::command_name(c));
-    add_advance_ratio(a, c);
-    // The bare command runs a critical search and a 101-point sweep: mild parameters only, or
-    // explicit small step counts.
-    const double p = c == cli::Command::Typical ? 0.1 : 0.3;
+    // The cost of a run is (Floquet evaluations) x (steps per evaluation).  Automatic steps
+    // reach 65536 for a stiff blade, so those runs get fewer evaluations (and no first-order
+    // Hsu); the bare command (a critical search and a 101-point sweep) has explicit steps.
+    const bool heavy =
+        c == cli::Command::Typical || c == cli::Command::Study || c == cli::Command::Map;
+    const bool explicit_steps = heavy ? chance(0.95) : chance(0.45);
+    add_advance_ratio(a, c, explicit_steps ? 40 : 15);
+    const double p = heavy ? 0.15 : 0.3;
     for (const cli::OptionSpec& o : cli::options_of(c)) {
       if (o.name == "-o" || o.name == "--mu" || o.name == "--scan-step" || o.name == "--psi" ||
-          o.name == "--mu-max" || o.name == "--format") {
+          o.name == "--mu-max" || o.name == "--format" || o.name == "--steps" ||
+          o.name == "--vary" || o.name == "--x" || o.name == "--y" || o.name == "--samples" ||
+          o.name == "--revs" || o.name == "--perturbation" || o.name == "--forced") {
         continue;
       }
-      if (!chance(o.name == "--json" ? 0.5 : p)) continue;
+      // gnuplot is slow to start: few pictures.
+      if (!chance(o.name == "--json" ? 0.5 : o.name == "--plot" ? 0.05 : p)) continue;
       if (o.takes_value) {
         std::string v = legal_value(o.name, c);
+        if (o.name == "--terms" && !explicit_steps) v = std::to_string(integer(2, 8));
         if (chance(0.15)) {
           a.push_back(o.name + "=" + v);
         } else {
@@ -325,11 +398,16 @@ class Generator {
         a.push_back(o.name);
       }
     }
-    if (c == cli::Command::Typical && chance(0.7)) {
-      a.insert(a.end(), {"--steps", std::to_string(integer(1, 200))});
+    const bool analysis = c != cli::Command::Models && c != cli::Command::Modes;
+    if (analysis && cli::find_option(c, "--steps") != nullptr) {
+      if (explicit_steps) {
+        const int hi = heavy ? 200 : 2000;
+        a.insert(a.end(), {"--steps", std::to_string(integer(1, hi))});
+      } else if (chance(0.2)) {
+        a.insert(a.end(), {"--steps", "auto"});
+      }
     }
     // More than one mode needs exact modes (else refused): mostly given.
-    const bool analysis = c != cli::Command::Models && c != cli::Command::Modes;
     for (std::size_t i = 0; analysis && i + 1 < a.size(); ++i) {
       if ((a[i] == "--flap-modes" || a[i] == "--lag-modes") && a[i + 1] != "1" && chance(0.8)) {
         a.insert(a.end(), {"--modes", "exact"});
@@ -543,9 +621,19 @@ const std::regex kBadToken(R"((^|[^A-Za-z_-])[+]?(nan|inf|infinity)([^A-Za-z_]|$
 
 void check_json(const Json& j, const std::string& key, bool lenient,
                 std::vector<std::string>& problems) {
-  static const std::set<std::string> kNullable = {
-      "stable", "error_estimate", "liouville_residual",    "mu_c", "mu_c_error", "omega",
-      "mode",   "kind",           "max_liouville_residual"};
+  // README "Using flaplag": what a null means under each of these keys.
+  static const std::set<std::string> kNullable = {"stable",
+                                                  "error_estimate",
+                                                  "liouville_residual",
+                                                  "mu_c",
+                                                  "mu_c_error",
+                                                  "omega",
+                                                  "mode",
+                                                  "kind",
+                                                  "max_liouville_residual",
+                                                  "flap_growth_rate",
+                                                  "lag_growth_rate",
+                                                  "intervals"};
   if (problems.size() > 5) return;
   if (j.is_object()) {
     const bool not_ok = j.contains("status") && j["status"] != "ok";
@@ -616,7 +704,11 @@ std::vector<std::string> judge(const Result& r) {
     }
     return p;
   }
-  if (!r.err.empty()) p.push_back("stderr on exit 0: " + r.err);
+  // At most one warning line (a --plot without gnuplot).
+  static const std::regex kWarning(R"(flaplag: warning: [^\n]+\n)");
+  if (!r.err.empty() && !std::regex_match(r.err, kWarning)) {
+    p.push_back("stderr on exit 0: " + r.err);
+  }
   const bool info = has(r.args, "--help") || has(r.args, "-h") || has(r.args, "--version");
   std::string text = r.out;
   if (user_output) {
