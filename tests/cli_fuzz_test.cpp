@@ -242,7 +242,9 @@ class Generator {
     if (option == "--terms") return std::to_string(integer(1, 8));
     if (option == "--zeta-tolerance") return in(1e-7, 1e-1, true);
     if (option == "--flap-modes" || option == "--lag-modes") {
-      return std::to_string(c == cli::Command::Modes ? integer(1, 5) : integer(1, 2));
+      // Compiled: up to 2x2 and the square 3x3..5x5 (a mismatch is refused).
+      return std::to_string(c == cli::Command::Modes || chance(0.1) ? integer(1, 5)
+                                                                    : integer(1, 2));
     }
     if (option == "--format") return chance(0.5) ? "table" : "csv";
     if (option == "--psi") return chance(0.2) ? text(chance(0.5) ? 1e308 : -1e308) : in(-50, 50);
