@@ -507,8 +507,10 @@ Request CommandLine::interpret() const {
   if (analysis) {
     // --flap-modes M --lag-modes N select the model "<model>-<M>x<N>"; 1x1 is <model> itself.
     if (flap_given || lag_given) {
-      const Given* which = flap_modes != 1 || !lag_given ? flap_given : lag_given;
-      if (which == nullptr) which = lag_given;
+      // Named in errors: --flap-modes when it asks for more than one mode or is all there is.
+      const Given* which = flap_given != nullptr && (flap_modes != 1 || lag_given == nullptr)
+                               ? flap_given
+                               : lag_given;
       if ((flap_modes > 1 || lag_modes > 1) && r.params.modes == ModeKind::Assumed) {
         const Given* many = flap_modes > 1 ? flap_given : lag_given;
         throw InvalidInput(many->spelling, shown(many->text),
