@@ -6,6 +6,15 @@
 
 #include "flaplag/model_api.h"
 
+// UBSan's per-access checks add nothing to straight-line arithmetic on arrays sized by this
+// descriptor (ASan still checks the bounds) and make -g sanitizer builds of the larger
+// models take minutes (variable tracking).
+#if defined(__GNUC__) || defined(__clang__)
+#define FLAPLAG_GENERATED_NO_UBSAN __attribute__((no_sanitize("undefined")))
+#else
+#define FLAPLAG_GENERATED_NO_UBSAN
+#endif
+
 namespace flaplag::generated::paper_5x5 {
 namespace {
 
@@ -1538,6 +1547,7 @@ const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; m
 // Generalized mass: coefficient of the accelerations q'' = [dg1''..dgM'', dh1''..dhN''] in
 // each equation (inertia terms of eqs 2.16-2.17).  Structural integrals only: independent
 // of mu and of the hover state.
+FLAPLAG_GENERATED_NO_UBSAN
 void mass(const model::CoefficientInputs& in, double* out) {
   const double S_m_eta1_eta1 = in.structural[240];  // M_F11
   const double S_m_eta1_eta2 = in.structural[241];  // M_F12/M_F21
@@ -3529,6 +3539,7 @@ struct Symbols {
   double S_m_gam5_x0;  // B11_5
 };
 
+FLAPLAG_GENERATED_NO_UBSAN
 Symbols::Symbols(const model::CoefficientInputs& in) {
   lock = in.lock;
   lr = in.lr;
@@ -5191,6 +5202,7 @@ Symbols::Symbols(const model::CoefficientInputs& in) {
 // multiplies.  Row i of A is the row of the equation's rate (flap k -> k, lag m -> 2M + m),
 // column j the state column; for M = N = 1 these are A11..A14, A31..A34 (Appendix C.2)
 // and f1, f3 (Appendix C.3), and A_ij = force / M_F1 (flap) or / M_L1 (lag).
+FLAPLAG_GENERATED_NO_UBSAN
 void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Symbols s(in);
   // A11, const: flap 1 equation, coefficient of dg1'
@@ -12716,6 +12728,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
 }
 
 // Hover static equilibrium S q0 = c (eqs 2.27-2.32).
+FLAPLAG_GENERATED_NO_UBSAN
 void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOutputs& out) {
   const Symbols s(in);
   // S[1,1]: flap 1 equation, coefficient of g0_1
