@@ -2,19 +2,21 @@
 //   BM_RotorPointHsu_K50_J4: one stability point at mu = 0.7 from a built system:
 //                            Phi by Hsu (K = 50, J = 4) + eigen-solve + identification.
 //   BM_RotorSystem_Build:    harmonic matrices for one mu (generated code, both regions).
-//   BM_RotorSweep151_Hsu:    151-point sweep mu = 0..1.5 (build + Phi + identification each).
-//   BM_RotorCritical_Hsu:    the full mu_c search of `flaplag critical`.
+//   BM_RotorSweep151_*:      151-point sweep mu = 0..1.5 (build + Phi + identification each),
+//                            with the paper's fixed Hsu K = 50, J = 4 (_Hsu_K50_J4, plus the 2K
+//                            evaluation of the error estimate) and with the default automatic
+//                            steps (_HsuAuto).
+//   BM_RotorCritical_*:      the full mu_c search of `flaplag critical`, the same two settings.
 #include <benchmark/benchmark.h>
 
-#include "flaplag/core/constants.h"
 #include "flaplag/analysis.h"
+#include "flaplag/core/constants.h"
 #include "flaplag/numerics/continuation.h"
 
 namespace {
 
-flaplag::Analysis typical(flaplag::TransitionMethod m = flaplag::TransitionMethod::Hsu) {
-  flaplag::TransitionOptions o;
-  o.method = m;
+// The default options: Hsu, J = 4, automatic steps.
+flaplag::Analysis typical(const flaplag::TransitionOptions& o = {}) {
   return flaplag::Analysis(flaplag::RotorParameters{}, o);
 }
 
@@ -86,17 +88,29 @@ void BM_RotorSystem_Build(benchmark::State& state) {
 }
 BENCHMARK(BM_RotorSystem_Build);
 
-void BM_RotorSweep151_Hsu(benchmark::State& state) {
+void BM_RotorSweep151_Hsu_K50_J4(benchmark::State& state) {
+  const auto an = typical(flaplag::TransitionOptions::Paper());
+  for (auto _ : state) benchmark::DoNotOptimize(an.sweep(0.0, 1.5, 0.01));
+}
+BENCHMARK(BM_RotorSweep151_Hsu_K50_J4)->Unit(benchmark::kMicrosecond);
+
+void BM_RotorSweep151_HsuAuto(benchmark::State& state) {
   const auto an = typical();
   for (auto _ : state) benchmark::DoNotOptimize(an.sweep(0.0, 1.5, 0.01));
 }
-BENCHMARK(BM_RotorSweep151_Hsu)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RotorSweep151_HsuAuto)->Unit(benchmark::kMicrosecond);
 
-void BM_RotorCritical_Hsu(benchmark::State& state) {
+void BM_RotorCritical_Hsu_K50_J4(benchmark::State& state) {
+  const auto an = typical(flaplag::TransitionOptions::Paper());
+  for (auto _ : state) benchmark::DoNotOptimize(an.critical({}));
+}
+BENCHMARK(BM_RotorCritical_Hsu_K50_J4)->Unit(benchmark::kMicrosecond);
+
+void BM_RotorCritical_HsuAuto(benchmark::State& state) {
   const auto an = typical();
   for (auto _ : state) benchmark::DoNotOptimize(an.critical({}));
 }
-BENCHMARK(BM_RotorCritical_Hsu)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RotorCritical_HsuAuto)->Unit(benchmark::kMicrosecond);
 
 void BM_RotorAnalysis_Setup(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(typical());

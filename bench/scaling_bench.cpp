@@ -1,0 +1,87 @@
+// Cost against the state size: the paper family on exact rotating modes, k flap x k lag modes
+// (models paper, paper-2x2 .. paper-5x5: 4k = 4, 8, 12, 16, 20 states), typical case.  The
+// benchmark argument is k.
+//   BM_ScalingPointHsu_K50_J4:   one stability point at mu = 0.8 from a built system: Phi by
+//                                Hsu (K = 50, J = 4) + eigen-solve + identification (the
+//                                arithmetic of BM_RotorPointHsu_K50_J4; NOT resolved from 3 x 3 on:
+//                                see bench/README.md).
+//   BM_ScalingFloquet_K50_J4:    Analysis::floquet(0.8) with TransitionOptions::Paper(): system
+//                                build, Phi at K = 50 and at 2K for the error estimate.
+//   BM_ScalingFloquet_Auto:      Analysis::floquet(0.8) with the default automatic steps
+//                                (counter K: the intervals it settled on).
+//   BM_ScalingCritical_Auto:     the converged mu_c search of `flaplag critical`.
+//   BM_ScalingAnalysis_Setup:    exact modes, spanwise integrals, hover (once per blade).
+#include <benchmark/benchmark.h>
+
+#include "flaplag/analysis.h"
+#include "flaplag/numerics/continuation.h"
+
+namespace {
+
+constexpr double kMu = 0.8;
+
+flaplag::Analysis exact(int k, const flaplag::TransitionOptions& o = {}) {
+  flaplag::RotorParameters p;
+  p.modes = flaplag::ModeKind::Exact;
+  p.model = flaplag::find_model("paper", k, k).name;
+  return flaplag::Analysis(p, o);
+}
+
+int size_of(const benchmark::State& state) { return static_cast<int>(state.range(0)); }
+
+void label(benchmark::State& state) { state.counters["states"] = 4.0 * size_of(state); }
+
+void BM_ScalingPointHsu_K50_J4(benchmark::State& state) {
+  const int k = size_of(state);
+  const auto an = exact(k);
+  const auto sys = an.system(kMu);
+  const double tr = sys.trace_integral();
+  flaplag::ExponentTracker tracker(flaplag::label_hover_modes(an.hover().A0, k, k));
+  tracker.advance(flaplag::floquet_exponents(flaplag::transition_matrix_hsu(sys, 50, 4), tr), kMu);
+  // Advancing in place at the same mu keeps the tracker state fixed from one iteration to the
+  // next, without timing a copy of it.
+  for (auto _ : state) {
+    const auto phi = flaplag::transition_matrix_hsu(sys, 50, 4);
+    benchmark::DoNotOptimize(tracker.advance(flaplag::floquet_exponents(phi, tr), kMu));
+  }
+  label(state);
+}
+BENCHMARK(BM_ScalingPointHsu_K50_J4)->DenseRange(1, 5)->Unit(benchmark::kMicrosecond);
+
+void BM_ScalingFloquet_K50_J4(benchmark::State& state) {
+  const auto an = exact(size_of(state), flaplag::TransitionOptions::Paper());
+  for (auto _ : state) benchmark::DoNotOptimize(an.floquet(kMu, 1e-5));
+  label(state);
+}
+BENCHMARK(BM_ScalingFloquet_K50_J4)->DenseRange(1, 5)->Unit(benchmark::kMicrosecond);
+
+void BM_ScalingFloquet_Auto(benchmark::State& state) {
+  const auto an = exact(size_of(state));
+  int steps = 0;
+  for (auto _ : state) {
+    const auto s = an.floquet(kMu, 1e-5);
+    steps = s.steps;
+    benchmark::DoNotOptimize(s);
+  }
+  label(state);
+  state.counters["K"] = steps;
+}
+BENCHMARK(BM_ScalingFloquet_Auto)->DenseRange(1, 5)->Unit(benchmark::kMillisecond);
+
+void BM_ScalingCritical_Auto(benchmark::State& state) {
+  const auto an = exact(size_of(state));
+  for (auto _ : state) benchmark::DoNotOptimize(an.critical({}));
+  label(state);
+}
+// One search takes 25 ms (1 x 1) to about 15 s (5 x 5): one iteration per repetition from 3 x 3.
+BENCHMARK(BM_ScalingCritical_Auto)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ScalingCritical_Auto)->DenseRange(3, 5)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+void BM_ScalingAnalysis_Setup(benchmark::State& state) {
+  const int k = size_of(state);
+  for (auto _ : state) benchmark::DoNotOptimize(exact(k));
+  label(state);
+}
+BENCHMARK(BM_ScalingAnalysis_Setup)->DenseRange(1, 5)->Unit(benchmark::kMillisecond);
+
+}  // namespace
