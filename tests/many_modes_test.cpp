@@ -134,10 +134,13 @@ TEST(ManyModesTracking, FiveByFiveKeepsTheLabelsOutToTheFlutterBoundary) {
 
 // mu_c of the typical case with 3 x 3 exact modes, automatic resolution: the value of the
 // README's mode-convergence table, and the same boundary from RK4 (an independent transition
-// method) within the two error estimates.
+// method) within the two error estimates.  The scan steps by 0.05 (there is one crossing, and
+// Brent refines it to the same tolerance), a quarter of the default scan's cost.
 TEST(ManyModesCritical, ThreeByThreeMuCAgreesAcrossMethods) {
+  flaplag::CriticalOptions opt;
+  opt.scan_step = 0.05;
   Analysis hsu(exact(3), {});
-  const auto c = hsu.critical({});
+  const auto c = hsu.critical(opt);
   ASSERT_EQ(c.status, Status::Ok) << c.message;
   ASSERT_TRUE(c.mu_c.has_value() && c.mu_c_error.has_value());
   EXPECT_LT(*c.mu_c_error, 2e-5);
@@ -147,7 +150,7 @@ TEST(ManyModesCritical, ThreeByThreeMuCAgreesAcrossMethods) {
   TransitionOptions rk4;
   rk4.method = flaplag::TransitionMethod::RK4;
   Analysis other(exact(3), rk4);
-  const auto d = other.critical({});
+  const auto d = other.critical(opt);
   ASSERT_EQ(d.status, Status::Ok) << d.message;
   ASSERT_TRUE(d.mu_c.has_value() && d.mu_c_error.has_value());
   EXPECT_LE(std::abs(*d.mu_c - *c.mu_c), *c.mu_c_error + *d.mu_c_error);
