@@ -22,6 +22,7 @@ namespace {
 constexpr int kMaxModes = 12;  // exact modes: at most the Galerkin basis (rotating_modes.h)
 constexpr int kMaxBasis = 12;
 constexpr int kMaxPoints = 100001;  // sweep points, Fig 9 rows, spanwise stations
+constexpr int kMaxShards = 100000;  // parts of a --shard job (a map has at most 10000 lines)
 
 const char* const kMissing = "(missing)";
 const char* const kNoValue = "(no value)";
@@ -229,6 +230,10 @@ const char* description(Command c) {
       return "periodic forced response: tip flap and lag deflections over one revolution";
     case Command::Simulate:
       return "time-domain simulation of the linear system from a perturbation";
+    case Command::Merge:
+      return "join the --shard parts of a map or study into the file one run writes";
+    case Command::Plot:
+      return "draw an existing sweep, study, map, response or simulate result (--json output)";
   }
   return "";
 }
@@ -255,16 +260,51 @@ std::vector<std::string> examples(Command c) {
       return {"flaplag modes", "flaplag modes --omega-lag 1.4 --flap-modes 2 --json"};
     case Command::Study:
       return {"flaplag study --vary omega-lag=0.2:2.5:0.05 --plot fig15.svg",
-              "flaplag --modes exact study --vary damping-lag=0,0.01,0.02,0.03,0.05 --json"};
+              "flaplag --modes exact study --vary damping-lag=0,0.01,0.02,0.03,0.05 --json",
+              "flaplag study --vary omega-lag=0.2:2.5:0.01 --json --shard 1/4 -o part1.json"};
     case Command::Map:
       return {"flaplag map --x mu=0:2:0.02 --y omega-lag=0.3:2.5:0.02 --plot map.png",
-              "flaplag map --x theta=0.05:0.3:0.01 --y gamma=4:16:0.5 --mu 0.6 --json"};
+              "flaplag map --x theta=0.05:0.3:0.01 --y gamma=4:16:0.5 --mu 0.6 --json",
+              "flaplag map --x mu=0:2:0.01 --y omega-lag=0.3:2.5:0.01 --json --shard 3/8 -o "
+              "part3.json   (then: flaplag merge part*.json -o map.json)"};
     case Command::Response:
       return {"flaplag response --mu 0.3", "flaplag response --mu 0.5 --json --plot tip.svg"};
     case Command::Simulate:
       return {"flaplag simulate --mu 0.9 --revs 50", "flaplag simulate --mu 0.3 --forced --json"};
+    case Command::Merge:
+      return {
+          "flaplag map --x mu=0:2:0.02 --y omega-lag=0.3:2.5:0.02 --json --shard 2/8 -o "
+          "part2.json",
+          "flaplag merge part*.json -o map.json"};
+    case Command::Plot:
+      return {"flaplag plot map.json --plot map.png",
+              "flaplag study --vary theta=0:0.3:0.02 --json -o s.json && flaplag plot s.json "
+              "--plot s.svg"};
   }
   return {};
+}
+
+const char* const kRunDescription = "run a case file (TOML) or a --json output again";
+
+// What a subcommand's help says beyond its options.
+std::string usage_notes(Command c) {
+  switch (c) {
+    case Command::Study:
+    case Command::Map:
+      return "\nOn a terminal a progress bar shows on stderr after 1 s (--quiet: none).  Ctrl-C "
+             "stops\nafter the rows being computed: the rows finished are written as a valid "
+             "file with\nstatus \"cancelled\", and flaplag exits with code 130.\n";
+    case Command::Merge:
+      return "\nThe parts are the --json outputs of one command line run with --shard 1/N .. "
+             "N/N.\nThe result is byte for byte the file the command writes without --shard.  "
+             "Parts of\nanother case, missing or repeated parts and files that are not "
+             "flaplag parts are\nrefused (exit 2).\n";
+    case Command::Plot:
+      return "\nThe same picture as --plot on the command that wrote DATA.json.  Without "
+             "gnuplot\n(Debian: gnuplot-nox) one line says so and flaplag exits with code 3.\n";
+    default:
+      return "";
+  }
 }
 
 constexpr char kNoBreak = '\x01';
@@ -363,6 +403,8 @@ CommandLine::CommandLine(const std::vector<std::string>& args) {
                   InvalidInput("subcommand", shown(a),
                                "unknown (one of " + subcommand_list() + "; see flaplag --help)"));
         }
+      } else if (command_ == Command::Merge || command_ == Command::Plot) {
+        inputs_.push_back(a);
       } else {
         const std::string cmd = full_name(command_);
         problem(
@@ -662,9 +704,25 @@ Request CommandLine::interpret() const {
         r.samples = parse_int(g->spelling, g->text, 1, 10000);
       break;
     }
+    case Command::Merge:
+      if (inputs_.empty())
+        throw InvalidInput("argument", kMissing,
+                           "flaplag merge needs the parts: flaplag merge PART.json... -o OUT.json");
+      r.inputs = inputs_;
+      break;
+    case Command::Plot:
+      if (inputs_.size() != 1)
+        throw InvalidInput("argument", inputs_.empty() ? kMissing : shown(inputs_[1]),
+                           inputs_.empty() ? "flaplag plot needs the data: flaplag plot "
+                                             "DATA.json --plot FILE.svg"
+                                           : "flaplag plot draws one file at a time");
+      required("--plot");
+      r.inputs = inputs_;
+      break;
     case Command::Typical:
       break;
   }
+  if (c == Command::Study || c == Command::Map) interpret_batch(r);
   if (const Given* g = given("--threads")) r.threads = parse_int(g->spelling, g->text, 0, 256);
   if (const Given* g = given("--plot")) {
     if (!is_plot_path(g->text))
@@ -706,11 +764,17 @@ std::string CommandLine::help_text() const {
       const std::string n = command_name(s);
       out += "  " + n + std::string(12 - n.size(), ' ') + description(s) + "\n";
     }
+    out += "  run         " + std::string(kRunDescription) + "\n";
   } else {
     std::string usage = full_name(c);
     if (c == Command::Point || c == Command::System) usage += " --mu REAL";
     if (c == Command::Sweep) usage += " --mu A:B:STEP";
+    if (c == Command::Study) usage += " --vary NAME=...";
+    if (c == Command::Map) usage += " --x NAME=... --y NAME=...";
+    if (c == Command::Merge) usage += " PART.json...";
+    if (c == Command::Plot) usage += " DATA.json --plot FILE.svg|FILE.png";
     out += "Usage: " + usage + " [OPTIONS]\n\n" + description(c) + "\n";
+    out += usage_notes(c);
   }
   out += "\nOptions:\n" + options_block(options_of(c));
   out += "  -h, --help                  this help\n";
@@ -720,7 +784,48 @@ std::string CommandLine::help_text() const {
   out +=
       "\nExit codes: 0 a result (an unstable blade or an unresolved computation is a result with a "
       "status);\n2 bad input, one line on stderr: flaplag: error: <option> = <value>: <reason>\n";
+  if (c == Command::Study || c == Command::Map)
+    out += "130 interrupted (Ctrl-C): the rows finished are written, status \"cancelled\"\n";
+  if (c == Command::Plot) out += "3 gnuplot is missing or failed: no picture written\n";
   return out;
+}
+
+std::string CommandLine::run_help_text() {
+  return "Usage: flaplag run CASE [OPTIONS]\n\n" + std::string(kRunDescription) +
+         ".\n\nCASE is a TOML file whose keys are the option names without \"--\" (command = "
+         "\"study\",\nvary = \"omega-lag=0.2:2.5:0.05\", theta = 0.1, json = true; tables "
+         "such as [parameters]\nonly group keys), or any --json output of flaplag: its \"case\" "
+         "object reproduces it byte\nfor byte.  Options typed after CASE override the file; they "
+         "are the options of the\ncase's subcommand (flaplag SUBCOMMAND --help lists them).\n"
+         "\nOptions:\n  -h, --help                  this help\n"
+         "\nExamples:\n"
+         "  flaplag run examples/fig15.toml\n"
+         "  flaplag run examples/fig12.toml --json -o fig12.json\n"
+         "  flaplag run fig12.json                    the same bytes again\n"
+         "\nExit codes: those of the case's subcommand; 2 also for a case file that cannot be read "
+         "or\nhas an unknown key, a wrong type or a bad value (named by file, line and key).\n";
+}
+
+void CommandLine::interpret_batch(Request& r) const {
+  r.quiet = given("--quiet") != nullptr;
+  const Given* g = given("--shard");
+  if (g == nullptr) return;
+  const std::string value = shown(g->text);
+  const auto slash = g->text.find('/');
+  if (slash == std::string::npos)
+    throw InvalidInput(g->spelling, value, "expected I/N: part I of N, 1 <= I <= N (e.g. 2/8)");
+  int count = 0;
+  try {
+    count = parse_int(g->spelling, g->text.substr(slash + 1), 1, kMaxShards);
+    r.shard_index = parse_int(g->spelling, g->text.substr(0, slash), 1, count);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(g->spelling, value,
+                       std::string(count == 0 ? "N " : "I ") + reason_of(e) + " (expected I/N)");
+  }
+  r.shard_count = count;
+  if (!r.json)
+    throw InvalidInput(g->spelling, value,
+                       "needs --json: the parts are JSON files that flaplag merge joins");
 }
 
 }  // namespace flaplag::cli

@@ -52,6 +52,11 @@ struct Request {
   std::vector<double> x_values, y_values;
   int threads = 0;
   std::string plot;  // --plot FILE (.svg or .png)
+  // study, map: --shard I/N (1 <= I <= N; N = 0: the whole job) and --quiet (no progress bar)
+  int shard_index = 0, shard_count = 0;
+  bool quiet = false;
+  // merge: the part files; plot: the data file (as typed)
+  std::vector<std::string> inputs;
   // response: --samples; simulate: --revs, --perturbation, --forced, --samples
   int samples = 0;
   double revolutions = 20.0, perturbation = 0.01;
@@ -97,6 +102,9 @@ class CommandLine {
   // The help of the subcommand (or of flaplag itself).
   std::string help_text() const;
 
+  // The help of `flaplag run CASE [OPTIONS]` (run is expanded before the command line is read).
+  static std::string run_help_text();
+
  private:
   struct Given {
     std::string name;      // OptionSpec::name
@@ -110,9 +118,11 @@ class CommandLine {
   };
   const Given* given(const std::string& name) const;
   void problem(std::size_t position, InvalidInput e);
+  void interpret_batch(Request& r) const;  // --shard, --quiet
 
   Command command_ = Command::Typical;
-  std::vector<Given> given_;  // in argument order; the last of a name wins
+  std::vector<Given> given_;         // in argument order; the last of a name wins
+  std::vector<std::string> inputs_;  // merge, plot: the file arguments
   std::optional<Problem> problem_;
   bool help_ = false, version_ = false;
 };

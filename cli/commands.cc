@@ -19,6 +19,7 @@
 #include "options.h"
 #include "output.h"
 #include "plot.h"
+#include "shard.h"
 
 namespace flaplag::cli {
 
@@ -581,23 +582,19 @@ std::string sweep(const Request& r, const Analysis& an, std::string& warning) {
   audit(s);
   const std::vector<std::string> labels = mode_labels(an);
   if (!r.plot.empty()) {
-    // zeta(mu) and omega(mu) of each mode's dominant exponent, as the paper's Figs 3-8.
-    Panel pz{"damping exponent zeta (real part of the characteristic exponent)", "mu",
-             "zeta [1/rev]", {}, true};
-    Panel pw{"frequency omega", "mu", "omega [per rev]", {}, false};
+    std::vector<double> mu;
+    for (const PointResult& p : s.points) mu.push_back(p.mu);
+    std::vector<ModeCurve> modes;
     for (const std::string& l : labels) {
-      Curve z{l, {}, {}, false, 7}, w{l, {}, {}, false, 7};
+      ModeCurve m{l, {}, {}};
       for (const PointResult& p : s.points) {
         const LabelledExponent* e = dominant(p, l);
-        z.x.push_back(p.mu);
-        w.x.push_back(p.mu);
-        z.y.push_back(e != nullptr && finite(e->zeta) ? e->zeta : NAN);
-        w.y.push_back(e != nullptr ? e->omega : NAN);
+        m.zeta.push_back(e != nullptr && finite(e->zeta) ? e->zeta : NAN);
+        m.omega.push_back(e != nullptr ? e->omega : NAN);
       }
-      pz.curves.push_back(z);
-      pw.curves.push_back(w);
+      modes.push_back(m);
     }
-    warning = plot_if_asked(r, line_plot_script("flaplag sweep: " + std::string(an.model().name), {pz, pw}));
+    warning = plot_if_asked(r, sweep_plot_script(an.model().name, mu, modes));
   }
   if (r.csv) return sweep_csv(r, s, labels);
   if (r.json) {
@@ -770,6 +767,15 @@ std::string plot_if_asked(const Request& r, const std::string& script) {
   return render_plot(script, r.plot);
 }
 
+// A run stopped by RunControl::cancel: what the output holds.
+void note_cancelled(RunControl* control, std::size_t done, std::size_t all,
+                    const std::string& lines) {
+  if (control == nullptr) return;
+  control->cancelled = true;
+  control->message = "interrupted: " + std::to_string(done) + " of " + std::to_string(all) + " " +
+                     lines + " finished; the output holds those";
+}
+
 Json interval_json(const InstabilityInterval& iv) {
   Json j = Json::array();
   j.push_back(jnum(iv.onset));
@@ -777,7 +783,8 @@ Json interval_json(const InstabilityInterval& iv) {
   return j;
 }
 
-std::string study(const Request& r, std::string& warning) {
+std::string study(const Request& request, std::string& warning, RunControl* control) {
+  const Request r = shard_request(request);     // --shard: this part's values only
   const Analysis base(r.params, r.transition);  // the header, and the base parameters checked
   StudyOptions so;
   so.parameter = r.vary;
@@ -785,25 +792,25 @@ std::string study(const Request& r, std::string& warning) {
   so.critical.mu_max = r.mu_max;
   so.critical.scan_step = r.scan_step;
   so.threads = r.threads;
-  StudyResult s = run_study(r.params, r.transition, so);
+  StudyResult s;
+  if (!so.values.empty()) {  // an empty part of a job with more parts than values
+    s = run_study(r.params, r.transition, so, control ? control->cancel : nullptr,
+                  control ? control->progress : ProgressFunction{});
+  }
+  if (s.cancelled)
+    note_cancelled(control, s.rows_done, so.values.size(), "values (" + word(r.vary) + ")");
   for (StudyRow& row : s.rows) audit(row.critical);
-  // The plot: mu_c per value (flutter and periodic marked differently) and the intervals.
-  {
-    Curve flutter{"mu_c, flutter", {}, {}, true, 7},
-        periodic{"mu_c, periodic (omega = 0, 1/2, 1)", {}, {}, true, 5};
-    Curve intervals{"unstable intervals", {}, {}, false, 7};
+  if (!r.plot.empty()) {
+    std::vector<StudyMark> marks;
     for (const StudyRow& row : s.rows) {
       const CriticalResult& c = row.critical;
-      if (c.mu_c)
-        (c.kind == InstabilityKind::Periodic ? periodic : flutter).x.push_back(row.value),
-            (c.kind == InstabilityKind::Periodic ? periodic : flutter).y.push_back(*c.mu_c);
-      for (const InstabilityInterval& iv : c.intervals) {
-        intervals.x.insert(intervals.x.end(), {row.value, row.value, NAN});
-        intervals.y.insert(intervals.y.end(), {iv.onset, iv.end.value_or(c.mu_max), NAN});
-      }
+      StudyMark m{row.value, c.mu_c, c.kind == InstabilityKind::Periodic, {}};
+      // An open interval is drawn to the scan limit (r.mu_max: what the JSON output holds).
+      for (const InstabilityInterval& iv : c.intervals)
+        m.intervals.emplace_back(iv.onset, iv.end.value_or(r.mu_max));
+      marks.push_back(m);
     }
-    Panel p{"critical advance ratio", word(r.vary), "mu", {intervals, flutter, periodic}, false};
-    warning = plot_if_asked(r, line_plot_script("flaplag study: " + word(r.vary), {p}));
+    warning = plot_if_asked(r, study_plot_script(word(r.vary), marks));
   }
   if (r.json) {
     Json j = header_json("study", base);
@@ -853,7 +860,8 @@ std::string study(const Request& r, std::string& warning) {
   return out;
 }
 
-std::string map(const Request& r, std::string& warning) {
+std::string map(const Request& request, std::string& warning, RunControl* control) {
+  Request r = shard_request(request);  // --shard: this part's lines only
   const Analysis base(r.params, r.transition);
   MapOptions mo;
   mo.x = {r.x_name, r.x_values};
@@ -861,13 +869,31 @@ std::string map(const Request& r, std::string& warning) {
   mo.mu = r.mu;
   mo.scan_step = r.scan_step;
   mo.threads = r.threads;
-  const MapResult m = run_map(r.params, r.transition, mo);
+  MapResult m;
+  m.cells.assign(r.y_values.size(), {});  // an empty part: no lines
+  if (!r.x_values.empty() && !r.y_values.empty()) {
+    m = run_map(r.params, r.transition, mo, control ? control->cancel : nullptr,
+                control ? control->progress : ProgressFunction{});
+  }
+  if (m.cancelled) {
+    // The output is the map of the lines finished: rows, or columns when y is mu.
+    const bool columns = r.y_name == "mu";
+    note_cancelled(control, m.lines_done, columns ? r.x_values.size() : r.y_values.size(),
+                   (columns ? "columns (" + word(r.x_name) : "rows (" + word(r.y_name)) + ")");
+    if (columns) {
+      r.x_values.resize(m.lines_done);
+      for (auto& row : m.cells) row.resize(m.lines_done);
+    } else {
+      r.y_values.resize(m.lines_done);
+      m.cells.resize(m.lines_done);
+    }
+  }
   std::vector<std::vector<double>> z(r.y_values.size());
   for (std::size_t i = 0; i < m.cells.size(); ++i)
     for (const MapCell& c : m.cells[i])
       z[i].push_back(c.max_zeta && finite(*c.max_zeta) ? *c.max_zeta : NAN);
-  warning = plot_if_asked(r, map_plot_script("flaplag map: max zeta", word(r.x_name), r.x_values,
-                                             word(r.y_name), r.y_values, z));
+  warning = plot_if_asked(
+      r, max_zeta_plot_script(word(r.x_name), r.x_values, word(r.y_name), r.y_values, z));
   if (r.json) {
     Json j = header_json("map", base);
     j["x"] = Json{{"name", word(r.x_name)}, {"values", r.x_values}};
@@ -912,18 +938,7 @@ std::string response(const Request& r, const Analysis& an, std::string& warning)
   if (f.status != Status::Failed) {
     std::vector<double> deg;
     for (double p : f.periodic.psi) deg.push_back(p * 180.0 / kPi);
-    Panel flap{"flap tip deflection w/l",
-               "psi [deg]",
-               "w/l",
-               {{"flap", deg, f.flap_tip, false, 7}},
-               false};
-    Panel lag{"lag tip deflection v/l (positive lag)",
-              "psi [deg]",
-              "v/l",
-              {{"lag", deg, f.lag_tip, false, 7}},
-              false};
-    warning =
-        plot_if_asked(r, line_plot_script("flaplag response at mu = " + num(r.mu), {flap, lag}));
+    warning = plot_if_asked(r, response_plot_script(r.mu, deg, f.flap_tip, f.lag_tip));
   }
   const char* names[] = {"const",    "cos psi",  "sin psi",  "cos 2psi", "sin 2psi", "cos 3psi",
                          "sin 3psi", "cos 4psi", "sin 4psi", "cos 5psi", "sin 5psi"};
@@ -986,9 +1001,7 @@ std::string simulate_command(const Request& r, const Analysis& an, std::string& 
   }
   const std::optional<double> flap_rate = envelope_growth_rate(s.psi, flap, 0.25 * r.revolutions);
   const std::optional<double> lag_rate = envelope_growth_rate(s.psi, lag, 0.25 * r.revolutions);
-  Panel pf{"flap tip perturbation", "revolutions", "dw/l", {{"flap", revs, flap, false, 7}}, false};
-  Panel pl{"lag tip perturbation", "revolutions", "dv/l", {{"lag", revs, lag, false, 7}}, false};
-  warning = plot_if_asked(r, line_plot_script("flaplag simulate at mu = " + num(r.mu), {pf, pl}));
+  warning = plot_if_asked(r, simulate_plot_script(r.mu, revs, flap, lag));
   if (r.json) {
     Json j = header_json("simulate", an, false);
     j["mu"] = r.mu;
@@ -1048,6 +1061,7 @@ Json case_json(const Request& r) {
       if (!attached) ++i;
       continue;
     }
+    if (o->name == "--quiet") continue;  // how the run looked, not what it computed
     const std::string key = o->name.substr(2);
     if (!o->takes_value) {
       options[key] = true;
@@ -1064,18 +1078,28 @@ Json case_json(const Request& r) {
 
 }  // namespace
 
-std::string run_command(const Request& r, std::string* warning) {
-  std::string text = run_command_text(r, warning);
-  if (!r.json || text.empty() || text[0] != '{') return text;
+std::string run_command(const Request& r, std::string* warning, RunControl* control) {
+  std::string text = run_command_text(r, warning, control);
+  const bool cancelled = control != nullptr && control->cancelled;
+  if (!r.json || text.empty() || text[0] != '{') {
+    if (cancelled) text += "  status: cancelled: " + control->message + "\n";
+    return text;
+  }
   // Provenance in every JSON output: the flaplag version and commit, and the case that
   // reproduces it (`flaplag run FILE.json`).
   Json j = Json::parse(text);
+  if (cancelled) {
+    const std::string before = j.value("message", "");
+    j["status"] = "cancelled";
+    j["message"] = control->message + (before.empty() ? "" : "; " + before);
+  }
+  if (r.shard_count > 0) j["shard"] = shard_json(r);  // which part of a --shard job
   j["flaplag"] = Json{{"version", FLAPLAG_VERSION}, {"commit", FLAPLAG_GIT_COMMIT}};
   j["case"] = case_json(r);
   return dump(j);
 }
 
-std::string run_command_text(const Request& r, std::string* warning) {
+std::string run_command_text(const Request& r, std::string* warning, RunControl* control) {
   std::string ignored;
   std::string& w = warning != nullptr ? *warning : ignored;
   switch (r.command) {
@@ -1084,9 +1108,13 @@ std::string run_command_text(const Request& r, std::string* warning) {
     case Command::Modes:
       return run_modes(r);
     case Command::Study:
-      return study(r, w);
+      return study(r, w, control);
     case Command::Map:
-      return map(r, w);
+      return map(r, w, control);
+    case Command::Merge:
+      return merge_parts(r);
+    case Command::Plot:
+      return plot_data_file(r.inputs.front(), r.plot);
     default:
       break;
   }

@@ -2,11 +2,23 @@
 // (human-readable or JSON).  Nothing is written here; the caller decides where the text goes.
 #pragma once
 
+#include <atomic>
 #include <string>
 
 #include "command_line.h"
+#include "flaplag/study.h"
 
 namespace flaplag::cli {
+
+// How the caller steers a long run (study, map) and learns how it ended.
+struct RunControl {
+  const std::atomic<bool>* cancel = nullptr;  // polled between rows (set by a SIGINT handler)
+  ProgressFunction progress;                  // after each finished row (the progress bar)
+  // Out: the run was stopped by *cancel; the output holds the rows finished, with status
+  // "cancelled" and this message.
+  bool cancelled = false;
+  std::string message;
+};
 
 // Runs the request and returns what is to be written.  Throws InvalidInput for inputs only the
 // runtime can judge (e.g. an exact-mode frequency the Galerkin basis cannot reach), named by the
@@ -16,8 +28,11 @@ namespace flaplag::cli {
 // JSON outputs carry the flaplag version and commit and the "case" (the options given) that
 // reproduces them.  *warning (when given) receives a one-line warning for stderr, e.g. a plot
 // that could not be drawn because gnuplot is missing (the data is still returned).
-std::string run_command(const Request& request, std::string* warning = nullptr);
-std::string run_command_text(const Request& request, std::string* warning);
+// `control` (optional) carries the cancel flag and progress function of a study or map.
+std::string run_command(const Request& request, std::string* warning = nullptr,
+                        RunControl* control = nullptr);
+std::string run_command_text(const Request& request, std::string* warning,
+                             RunControl* control = nullptr);
 
 // `flaplag modes` (modes_command.cc).
 std::string run_modes(const Request& request);

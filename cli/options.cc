@@ -136,6 +136,24 @@ void append(std::vector<OptionSpec>& to, const std::vector<OptionSpec>& from) {
   to.insert(to.end(), from.begin(), from.end());
 }
 
+// The long runs (study, map): one part of a batch job, and the progress bar.
+std::vector<OptionSpec> batch_options() {
+  return {
+      value_option("--shard", "I/N",
+                   "compute part I of N (I = 1..N, e.g. $SLURM_ARRAY_TASK_ID/N): a contiguous "
+                   "block of the rows (of the columns when --y is mu); needs --json; "
+                   "flaplag merge joins the parts",
+                   "", {"shard"}),
+      flag_option("--quiet", "no progress bar on stderr (shown only on a terminal, after 1 s)")};
+}
+
+// flaplag merge and flaplag plot read files given as arguments.
+std::vector<OptionSpec> file_tool_options(Command c) {
+  if (c == Command::Merge) return {output_options()[1]};  // -o: the output is JSON
+  return {
+      value_option("--plot", "FILE.svg|FILE.png", "the picture to draw (gnuplot)", "", {"plot"})};
+}
+
 std::vector<OptionSpec> build(Command c) {
   std::vector<OptionSpec> v;
   const OptionSpec mu = value_option(
@@ -244,9 +262,13 @@ std::vector<OptionSpec> build(Command c) {
       v.push_back(value_option("--plot", "FILE.svg|FILE.png",
                                "also draw the tip response (gnuplot)", "", {"plot"}));
       break;
+    case Command::Merge:
+    case Command::Plot:
+      return file_tool_options(c);
     case Command::Typical:
       break;
   }
+  if (c == Command::Study || c == Command::Map) append(v, batch_options());
   append(v, rotor_options());
   if (c != Command::System && c != Command::Response && c != Command::Simulate)
     append(v, transition_options());
@@ -281,14 +303,19 @@ const char* command_name(Command c) {
       return "response";
     case Command::Simulate:
       return "simulate";
+    case Command::Merge:
+      return "merge";
+    case Command::Plot:
+      return "plot";
   }
   return "";
 }
 
 const std::vector<Command>& subcommands() {
-  static const std::vector<Command> all = {
-      Command::Point,  Command::Sweep,    Command::Critical, Command::Study,  Command::Map,
-      Command::System, Command::Response, Command::Simulate, Command::Models, Command::Modes};
+  static const std::vector<Command> all = {Command::Point,    Command::Sweep,    Command::Critical,
+                                           Command::Study,    Command::Map,      Command::System,
+                                           Command::Response, Command::Simulate, Command::Models,
+                                           Command::Modes,    Command::Merge,    Command::Plot};
   return all;
 }
 

@@ -28,7 +28,9 @@ enum class Command {
   Study,
   Map,
   Response,
-  Simulate
+  Simulate,
+  Merge,  // flaplag merge PART...: the --shard parts of a map or study as one file
+  Plot    // flaplag plot DATA.json --plot FILE: the picture of an existing result
 };
 
 const char* command_name(Command c);  // "" for Typical, else "point", ...

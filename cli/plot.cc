@@ -111,6 +111,70 @@ std::string map_plot_script(const std::string& title, const std::string& xlabel,
   return s;
 }
 
+std::string sweep_plot_script(const std::string& model, const std::vector<double>& mu,
+                              const std::vector<ModeCurve>& modes) {
+  Panel pz{"damping exponent zeta (real part of the characteristic exponent)",
+           "mu",
+           "zeta [1/rev]",
+           {},
+           true};
+  Panel pw{"frequency omega", "mu", "omega [per rev]", {}, false};
+  for (const ModeCurve& m : modes) {
+    pz.curves.push_back({m.label, mu, m.zeta, false, 7});
+    pw.curves.push_back({m.label, mu, m.omega, false, 7});
+  }
+  return line_plot_script("flaplag sweep: " + model, {pz, pw});
+}
+
+std::string study_plot_script(const std::string& parameter, const std::vector<StudyMark>& rows) {
+  Curve flutter{"mu_c, flutter", {}, {}, true, 7},
+      periodic{"mu_c, periodic (omega = 0, 1/2, 1)", {}, {}, true, 5};
+  Curve intervals{"unstable intervals", {}, {}, false, 7};
+  for (const StudyMark& row : rows) {
+    if (row.mu_c) {
+      Curve& c = row.periodic ? periodic : flutter;
+      c.x.push_back(row.value);
+      c.y.push_back(*row.mu_c);
+    }
+    for (const auto& [on, off] : row.intervals) {
+      intervals.x.insert(intervals.x.end(), {row.value, row.value, NAN});
+      intervals.y.insert(intervals.y.end(), {on, off, NAN});
+    }
+  }
+  Panel p{"critical advance ratio", parameter, "mu", {intervals, flutter, periodic}, false};
+  return line_plot_script("flaplag study: " + parameter, {p});
+}
+
+std::string max_zeta_plot_script(const std::string& xname, const std::vector<double>& x,
+                                 const std::string& yname, const std::vector<double>& y,
+                                 const std::vector<std::vector<double>>& z) {
+  return map_plot_script("flaplag map: max zeta", xname, x, yname, y, z);
+}
+
+std::string response_plot_script(double mu, const std::vector<double>& psi_deg,
+                                 const std::vector<double>& flap, const std::vector<double>& lag) {
+  Panel pf{
+      "flap tip deflection w/l", "psi [deg]", "w/l", {{"flap", psi_deg, flap, false, 7}}, false};
+  Panel pl{"lag tip deflection v/l (positive lag)",
+           "psi [deg]",
+           "v/l",
+           {{"lag", psi_deg, lag, false, 7}},
+           false};
+  return line_plot_script("flaplag response at mu = " + num(mu), {pf, pl});
+}
+
+std::string simulate_plot_script(double mu, const std::vector<double>& revolutions,
+                                 const std::vector<double>& flap, const std::vector<double>& lag) {
+  Panel pf{"flap tip perturbation",
+           "revolutions",
+           "dw/l",
+           {{"flap", revolutions, flap, false, 7}},
+           false};
+  Panel pl{
+      "lag tip perturbation", "revolutions", "dv/l", {{"lag", revolutions, lag, false, 7}}, false};
+  return line_plot_script("flaplag simulate at mu = " + num(mu), {pf, pl});
+}
+
 std::string render_plot(const std::string& script, const std::string& path) {
   if (!is_plot_path(path)) throw InvalidInput("plot", shown(path), "must end in .svg or .png");
   const OutputTarget target(path);  // checked before anything runs

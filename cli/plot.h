@@ -5,7 +5,9 @@
 #pragma once
 
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace flaplag::cli {
@@ -36,6 +38,50 @@ std::string map_plot_script(const std::string& title, const std::string& xlabel,
                             const std::vector<double>& x, const std::string& ylabel,
                             const std::vector<double>& y,
                             const std::vector<std::vector<double>>& z);
+
+// ---- the pictures of the commands ------------------------------------------------------------
+// Each is drawn from numbers that the command's JSON output holds too, so that `flaplag plot
+// DATA.json` draws exactly what --plot drew (NaN: unknown, a gap).
+
+// sweep: zeta(mu) and omega(mu) of each mode's dominant exponent, as the paper's Figs 3-8.
+struct ModeCurve {
+  std::string label;
+  std::vector<double> zeta, omega;  // at the sweep's mu values
+};
+std::string sweep_plot_script(const std::string& model, const std::vector<double>& mu,
+                              const std::vector<ModeCurve>& modes);
+
+// study: mu_c per value, flutter and periodic marked differently (Fig 15), and the unstable
+// intervals (an open end drawn to mu-max).
+struct StudyMark {
+  double value = 0.0;
+  std::optional<double> mu_c;
+  bool periodic = false;
+  std::vector<std::pair<double, double>> intervals;
+};
+std::string study_plot_script(const std::string& parameter, const std::vector<StudyMark>& rows);
+
+// map: the max-zeta heat map with its zeta = 0 boundary.
+std::string max_zeta_plot_script(const std::string& xname, const std::vector<double>& x,
+                                 const std::string& yname, const std::vector<double>& y,
+                                 const std::vector<std::vector<double>>& z);
+
+// response (psi in degrees) and simulate (time in revolutions): tip flap and lag.
+std::string response_plot_script(double mu, const std::vector<double>& psi_deg,
+                                 const std::vector<double>& flap, const std::vector<double>& lag);
+std::string simulate_plot_script(double mu, const std::vector<double>& revolutions,
+                                 const std::vector<double>& flap, const std::vector<double>& lag);
+
+// `flaplag plot DATA.json --plot FILE`: the picture of a sweep, study, map, response or
+// simulate result written by --json.  Throws InvalidInput("argument", data as typed, reason)
+// for a file that cannot be read, is not JSON or not such a result; RendererUnavailable when
+// gnuplot is missing or fails.  Returns "" (nothing for stdout).
+std::string plot_data_file(const std::string& data, const std::string& plot);
+
+// gnuplot is not installed or failed (the message is one line).
+struct RendererUnavailable : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 // Renders `script` (without terminal/output lines) into `path` (.svg or .png).  Returns "" on
 // success, or a one-line warning when gnuplot is not installed or fails (nothing is written

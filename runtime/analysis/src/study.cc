@@ -246,8 +246,12 @@ MapResult run_map(const RotorParameters& base, const TransitionOptions& transiti
     }
   });
   out.cancelled = out.lines_done < lines;
-  for (const auto& row : out.cells)
-    for (const MapCell& c : row) {
+  // In line order, so that the first problem of a map split into blocks of lines (flaplag map
+  // --shard) is the first problem of the first block that has one.
+  const std::size_t along = mu_y ? ny : nx;
+  for (std::size_t l = 0; l < lines; ++l)
+    for (std::size_t k = 0; k < along; ++k) {
+      const MapCell& c = mu_y ? out.cells[k][l] : out.cells[l][k];
       if (!c.computed) continue;
       out.status = worse(out.status, c.status);
       if (out.message.empty() && c.status != Status::Ok) out.message = c.message;

@@ -96,8 +96,8 @@ struct MapResult {
   std::vector<std::vector<MapCell>> cells;
   std::size_t lines_done = 0;
   bool cancelled = false;
-  Status status = Status::Ok;
-  std::string message;
+  Status status = Status::Ok;  // worst over the computed cells
+  std::string message;         // the first problem met, in line order
 };
 
 MapResult run_map(const RotorParameters& base, const TransitionOptions& transition,
