@@ -124,19 +124,18 @@ Json case_part(const Part& p) {
   return j;
 }
 
-// The first key (top level, or of "case") in which a and b differ.
-std::string first_difference(const Json& a, const Json& b) {
+// The first key in which a and b differ, as a path ("parameters.theta").
+std::string first_difference(const Json& a, const Json& b, const std::string& path = "") {
   for (const auto& [key, value] : a.items()) {
-    if (!b.contains(key)) return key;
+    const std::string at = path.empty() ? key : path + "." + key;
+    if (!b.contains(key)) return at;
     if (b[key] == value) continue;
-    if (key == "case" && value.is_object() && b[key].is_object()) {
-      for (const auto& [k, v] : value.items())
-        if (!b[key].contains(k) || b[key][k] != v) return "case option " + k;
-      return "case options";
-    }
-    return key;
+    if (value.is_object() && b[key].is_object()) return first_difference(value, b[key], at);
+    return at;
   }
-  return "keys";
+  for (const auto& [key, value] : b.items())
+    if (!a.contains(key)) return path.empty() ? key : path + "." + key;
+  return path.empty() ? "a key" : path;
 }
 
 std::string part_name(std::size_t index, std::size_t count) {

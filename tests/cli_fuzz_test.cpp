@@ -171,7 +171,9 @@ class Generator {
                                                 "--samples",
                                                 "--revs",
                                                 "--perturbation",
-                                                "--forced"};
+                                                "--forced",
+                                                "--shard",
+                                                "--quiet"};
     return known.count(option) == 1;
   }
 
@@ -258,6 +260,10 @@ class Generator {
     if (option == "--x" || option == "--y") return axis(true);
     if (option == "--threads") return std::to_string(integer(0, 3));
     if (option == "--plot") return chance(0.5) ? "plot.svg" : "plot.png";
+    if (option == "--shard") {  // part I of N; now and then I > N (refused)
+      const int n = integer(1, 4);
+      return std::to_string(chance(0.9) ? integer(1, n) : n + 1) + "/" + std::to_string(n);
+    }
     if (option == "--samples") return std::to_string(integer(12, 100));
     if (option == "--revs") return text(log_uniform(0.1, 30));
     if (option == "--perturbation") return text(log_uniform(1e-6, 10));
@@ -338,7 +344,8 @@ class Generator {
     if (r < 0.87) return cli::Command::Study;
     if (r < 0.92) return cli::Command::Map;
     if (r < 0.96) return cli::Command::Response;
-    return cli::Command::Simulate;
+    if (r < 0.98) return cli::Command::Simulate;
+    return r < 0.99 ? cli::Command::Merge : cli::Command::Plot;
   }
 
   // A parameter axis of study / map: NAME=START:STOP:STEP or NAME=V1,V2,... with few values.
@@ -399,6 +406,13 @@ class Generator {
       } else {
         a.push_back(o.name);
       }
+    }
+    // merge and plot read files: here never a part or a result (refused, one line each).
+    if (c == cli::Command::Merge || c == cli::Command::Plot) {
+      for (int i = integer(c == cli::Command::Plot ? 1 : 0, 2); i > 0; --i)
+        a.push_back(pick(std::vector<std::string>{"/dev/null", "/etc/hostname", "missing.json",
+                                                  FLAPLAG_EXE, "/"}));
+      if (c == cli::Command::Plot) a.insert(a.end(), {"--plot", legal_value("--plot", c)});
     }
     const bool analysis = c != cli::Command::Models && c != cli::Command::Modes;
     if (analysis && cli::find_option(c, "--steps") != nullptr) {

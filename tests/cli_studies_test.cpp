@@ -5,7 +5,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +15,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "process.h"
@@ -164,6 +167,244 @@ TEST(CliPlot, FilesAreWrittenAndAMissingRendererIsOneWarning) {
   // A plot path that is not .svg or .png is bad input.
   const Outcome bad = run({"study", "--vary", "omega-lag=1.0", "--plot", d.file("x.pdf")});
   EXPECT_EQ(2, bad.exit_code);
+}
+
+// ---- --shard and merge (issue 9 item 4) --------------------------------------------------------
+
+struct ShardCase {
+  const char* name;
+  std::vector<std::string> args;  // a --json command line
+  int parts;
+  std::vector<std::size_t> sizes;  // the expected number of lines of each part
+};
+
+class CliShard : public ::testing::TestWithParam<ShardCase> {};
+
+// The parts of a job merged (given in reverse order) are byte for byte the file one run writes.
+TEST_P(CliShard, MergedPartsEqualOneRunByteForByte) {
+  const ShardCase& c = GetParam();
+  TempDir d;
+  std::vector<std::string> files;
+  for (int i = c.parts; i >= 1; --i) {
+    std::vector<std::string> a = c.args;
+    const std::string file = d.file("part" + std::to_string(i) + ".json");
+    a.insert(a.end(), {"--shard", std::to_string(i) + "/" + std::to_string(c.parts), "-o", file});
+    const Outcome r = run(a);
+    ASSERT_EQ(0, r.exit_code) << r.err;
+    const Json j = Json::parse(slurp(file));
+    EXPECT_EQ(i, j["shard"]["index"].get<int>());
+    const std::string axis = j["shard"]["axis"];
+    const std::size_t lines =
+        axis == "vary" ? j["rows"].size() : j[axis]["values"].get<std::vector<double>>().size();
+    EXPECT_EQ(c.sizes[static_cast<std::size_t>(i - 1)], lines) << "part " << i;
+    files.push_back(file);
+  }
+  const Outcome whole = run(c.args);
+  ASSERT_EQ(0, whole.exit_code) << whole.err;
+  std::vector<std::string> merge = {"merge"};
+  merge.insert(merge.end(), files.begin(), files.end());
+  const std::string out = d.file("merged.json");
+  merge.insert(merge.end(), {"-o", out});
+  const Outcome m = run(merge);
+  ASSERT_EQ(0, m.exit_code) << m.err;
+  EXPECT_TRUE(m.err.empty()) << m.err;
+  EXPECT_EQ(whole.out, slurp(out));
+}
+
+const std::vector<std::string> kMapRows = {
+    "map", "--x", "mu=0:1:0.25", "--y", "omega-lag=0.8,1.2,1.6,2.0", "--json"};
+// y = mu: the lines are the columns (each a continuation in mu, never split).
+const std::vector<std::string> kMapColumns = {
+    "map", "--y", "mu=0:0.8:0.2", "--x", "omega-lag=0.8,1.2,1.6,2.0", "--json"};
+const std::vector<std::string> kStudy = {"study",    "--vary", "omega-lag=1.0,1.3,1.45",
+                                         "--mu-max", "1.2",    "--json"};
+
+INSTANTIATE_TEST_SUITE_P(
+    Jobs, CliShard,
+    ::testing::Values(ShardCase{"MapRowsUneven", kMapRows, 3, {1, 1, 2}},
+                      ShardCase{"MapRowsMorePartsThanRows", kMapRows, 6, {0, 1, 1, 0, 1, 1}},
+                      ShardCase{"MapColumns", kMapColumns, 3, {1, 1, 2}},
+                      ShardCase{"StudyMorePartsThanValues", kStudy, 5, {0, 1, 0, 1, 1}},
+                      ShardCase{"OnePart", kStudy, 1, {3}}),
+    [](const auto& tp) { return std::string(tp.param.name); });
+
+TEST(CliMerge, RefusesPartsThatDoNotMakeOneRun) {
+  TempDir d;
+  auto part = [&](const std::string& name, int i, int n, std::vector<std::string> args) {
+    args.insert(args.end(),
+                {"--shard", std::to_string(i) + "/" + std::to_string(n), "-o", d.file(name)});
+    const Outcome r = run(args);
+    EXPECT_EQ(0, r.exit_code) << r.err;
+    return d.file(name);
+  };
+  const std::string a1 = part("a1.json", 1, 2, kMapRows), a2 = part("a2.json", 2, 2, kMapRows);
+  std::vector<std::string> theta = kMapRows;
+  theta.insert(theta.end(), {"--theta", "0.1"});
+  const std::string b2 = part("b2.json", 2, 2, theta);
+  const std::string c2 = part("c2.json", 2, 3, kMapRows);
+  const std::string s2 = part("s2.json", 2, 2, kStudy);
+  const std::string whole = d.file("whole.json"), text = d.file("text.txt");
+  ASSERT_EQ(
+      0, run({"map", "--x", "mu=0:1:0.5", "--y", "omega-lag=1", "--json", "-o", whole}).exit_code);
+  std::ofstream(text) << "mu zeta\n0 -0.1\n";
+  Json cancelled = Json::parse(slurp(a2));
+  cancelled["status"] = "cancelled";
+  const std::string x2 = d.file("x2.json");
+  std::ofstream(x2) << cancelled.dump(2) << "\n";
+  struct Refusal {
+    std::vector<std::string> parts;
+    std::string line;  // regex after "flaplag: error: "
+  };
+  const std::vector<Refusal> refusals = {
+      {{a1}, "argument = \\(missing\\): part 2/2 missing \\(given: " + a1 + " = 1/2\\)"},
+      {{a1, a2, a2}, "argument = " + a2 + ": part 2/2 again \\(also " + a2 + "\\)"},
+      {{a1, b2},
+       "argument = " + b2 + ": not a part of the same case as " + a1 +
+           " \\(parameters.theta differs\\)"},
+      {{a1, c2}, "argument = " + c2 + ": part 2/3, but " + a1 + " is a part of 2"},
+      {{a1, s2}, "argument = " + s2 + ": .*study.*"},
+      {{whole}, "argument = " + whole + ": a whole flaplag map result .*"},
+      {{text}, "argument = " + text + ": not JSON .*"},
+      {{a1, x2}, "argument = " + x2 + ": an interrupted part .*"},
+      {{d.file("none.json")}, "argument = " + d.file("none.json") + ": cannot be read"},
+  };
+  for (const Refusal& f : refusals) {
+    std::vector<std::string> args = {"merge"};
+    args.insert(args.end(), f.parts.begin(), f.parts.end());
+    const std::string out = d.file("out.json");
+    args.insert(args.end(), {"-o", out});
+    const Outcome r = run(args);
+    EXPECT_EQ(2, r.exit_code) << f.line;
+    EXPECT_TRUE(std::regex_match(r.err, std::regex("flaplag: error: " + f.line + "\n")))
+        << r.err << "expected: " << f.line;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  // A part must be JSON: --shard without --json is refused before anything runs.
+  std::vector<std::string> no_json(kMapRows.begin(), kMapRows.end() - 1);
+  no_json.insert(no_json.end(), {"--shard", "1/2"});
+  const Outcome r = run(no_json);
+  EXPECT_EQ(2, r.exit_code);
+  EXPECT_TRUE(
+      std::regex_match(r.err, std::regex("flaplag: error: --shard = 1/2: needs --json.*\n")))
+      << r.err;
+  for (const char* bad : {"0/2", "3/2", "1/0", "2", "a/b", "1/2/3", ""}) {
+    std::vector<std::string> a = kMapRows;
+    a.insert(a.end(), {"--shard", bad});
+    EXPECT_EQ(2, run(a).exit_code) << bad;
+  }
+}
+
+// ---- Ctrl-C (issue 9 item 4) -------------------------------------------------------------------
+
+// SIGINT during a long map: exit 130, one stderr line, and a valid file holding the rows
+// finished, which are the first rows of the full map.
+TEST(CliInterrupt, SigintLeavesAParseablePrefixOfTheMap) {
+  TempDir d;
+  const std::string out = d.file("partial.json");
+  // 4001 rows: about 25 s of work on one core, interrupted after one second.
+  const std::vector<std::string> args = {
+      "map",    "--x",       "mu=0:1:0.25", "--y", "omega-lag=0.5:2.5:0.0005",
+      "--json", "--threads", "2",           "-o",  out};
+  const Outcome r = flaplag::testing::run_process(FLAPLAG_EXE, args, std::chrono::seconds(300), "",
+                                                  std::chrono::milliseconds(1000));
+  ASSERT_EQ(130, r.exit_code) << r.err;
+  EXPECT_TRUE(std::regex_match(
+      r.err, std::regex("flaplag: interrupted: [0-9]+ of 4001 rows \\(omega-lag\\) finished.*\n")))
+      << r.err;
+  const Json j = Json::parse(slurp(out));  // throws (fails) if not parseable
+  EXPECT_EQ("cancelled", j["status"]);
+  EXPECT_NE(std::string::npos, j["message"].get<std::string>().find("interrupted"));
+  const std::vector<double> y = j["y"]["values"];
+  ASSERT_LT(y.size(), 4001u);
+  ASSERT_EQ(y.size(), j["max_zeta"].size());
+  ASSERT_EQ(y.size(), j["mode"].size());
+  EXPECT_EQ(5u, j["x"]["values"].size());
+  if (y.empty()) return;  // a very slow machine: nothing finished, still a valid file
+  EXPECT_EQ(0.5, y.front());
+  // The rows are those of the full map: the same map over (up to 20 of) the finished y values.
+  std::string list;
+  const std::size_t n = std::min<std::size_t>(y.size(), 20);
+  for (std::size_t i = 0; i < n; ++i) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", y[i]);
+    list += (i ? "," : "") + std::string(buf);
+  }
+  const Outcome full = run({"map", "--x", "mu=0:1:0.25", "--y", "omega-lag=" + list, "--json"});
+  ASSERT_EQ(0, full.exit_code) << full.err;
+  const Json f = Json::parse(full.out);
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_EQ(f["max_zeta"][i], j["max_zeta"][i]) << "row " << i;
+    EXPECT_EQ(f["mode"][i], j["mode"][i]) << "row " << i;
+    EXPECT_EQ(f["kind"][i], j["kind"][i]) << "row " << i;
+  }
+}
+
+TEST(CliInterrupt, SigintDuringAStudyKeepsTheValuesFinished) {
+  TempDir d;
+  const std::string out = d.file("partial.json");
+  const std::vector<std::string> args = {
+      "study", "--vary", "omega-lag=0.5:2.5:0.001", "--json", "--threads", "2", "-o", out};
+  const Outcome r = flaplag::testing::run_process(FLAPLAG_EXE, args, std::chrono::seconds(300), "",
+                                                  std::chrono::milliseconds(1000));
+  ASSERT_EQ(130, r.exit_code) << r.err;
+  const Json j = Json::parse(slurp(out));
+  EXPECT_EQ("cancelled", j["status"]);
+  ASSERT_LT(j["rows"].size(), 2001u);
+  for (std::size_t i = 0; i < j["rows"].size(); ++i)
+    EXPECT_NEAR(0.5 + 0.001 * static_cast<double>(i), j["rows"][i]["value"].get<double>(), 1e-12);
+}
+
+// ---- flaplag plot DATA.json (issue 9 item 5)
+// -----------------------------------------------------
+
+TEST(CliPlot, PlotOfTheDataIsThePictureOfPlotOption) {
+  TempDir d;
+  const std::string data = d.file("map.json"), first = d.file("first.svg"),
+                    again = d.file("again.svg");
+  const Outcome m = run({"map", "--x", "mu=0:1:0.25", "--y", "omega-lag=1,1.3", "--json", "-o",
+                         data, "--plot", first});
+  ASSERT_EQ(0, m.exit_code) << m.err;
+  const Outcome sweep = run({"sweep", "--mu", "0:0.6:0.2", "--json", "-o", d.file("sweep.json")});
+  ASSERT_EQ(0, sweep.exit_code);
+  if (gnuplot_available()) {
+    const Outcome p = run({"plot", data, "--plot", again});
+    ASSERT_EQ(0, p.exit_code) << p.err;
+    EXPECT_TRUE(p.out.empty() && p.err.empty()) << p.out << p.err;
+    EXPECT_GT(std::filesystem::file_size(again), 1000u);
+    EXPECT_EQ(slurp(first), slurp(again));  // the same script, so the same picture
+    const std::string png = d.file("sweep.png");
+    ASSERT_EQ(0, run({"plot", d.file("sweep.json"), "--plot", png}).exit_code);
+    EXPECT_EQ("\x89PNG", slurp(png).substr(0, 4));
+  }
+  // No gnuplot: one line, exit 3, nothing written.
+  const std::string missing = d.file("missing.svg");
+  const Outcome n = run({"plot", data, "--plot", missing}, "/nonexistent");
+  EXPECT_EQ(3, n.exit_code);
+  EXPECT_TRUE(std::regex_match(n.err, std::regex("flaplag: error: gnuplot is not installed.*\n")))
+      << n.err;
+  EXPECT_FALSE(std::filesystem::exists(missing));
+  // Bad data: one line naming the file, exit 2.
+  const std::string text = d.file("notes.txt"), point = d.file("point.json");
+  std::ofstream(text) << "not json\n";
+  ASSERT_EQ(0, run({"point", "--mu", "0.3", "--json", "-o", point}).exit_code);
+  const std::string damaged = d.file("damaged.json");
+  Json broken = Json::parse(slurp(data));
+  broken.erase("max_zeta");
+  std::ofstream(damaged) << broken.dump();
+  for (const auto& [file, reason] :
+       std::vector<std::pair<std::string, std::string>>{{text, "not JSON.*"},
+                                                        {point, "a flaplag point result has no.*"},
+                                                        {damaged, "a damaged flaplag map result.*"},
+                                                        {d.file("none.json"), "cannot be read"}}) {
+    const Outcome b = run({"plot", file, "--plot", d.file("x.svg")});
+    EXPECT_EQ(2, b.exit_code) << file;
+    EXPECT_TRUE(std::regex_match(
+        b.err, std::regex("flaplag: error: argument = " + file + ": " + reason + "\n")))
+        << b.err;
+    EXPECT_FALSE(std::filesystem::exists(d.file("x.svg")));
+  }
+  EXPECT_EQ(2, run({"plot", data}).exit_code);  // --plot is required
+  EXPECT_EQ(2, run({"plot", "--plot", d.file("x.svg")}).exit_code);
 }
 
 TEST(CliResponse, PeriodicTipResponseAndSimulatedGrowth) {

@@ -591,6 +591,49 @@ TEST(CliGood, HelpAndVersionExitZero) {
   EXPECT_EQ(v.out.rfind("flaplag ", 0), 0u);
 }
 
+// Every subcommand's --help (issue 9 item 6): its usage, all of its options, none of the options
+// only other subcommands have, and examples of itself.
+TEST(CliGood, EverySubcommandHelpShowsItsOwnOptionsAndExamples) {
+  std::set<std::string> every;
+  for (flaplag::cli::Command c : flaplag::cli::subcommands())
+    for (const flaplag::cli::OptionSpec& o : flaplag::cli::options_of(c)) every.insert(o.name);
+  auto listed = [](const std::string& help, const std::string& option) {
+    // An option line: "  --name METAVAR", "  --name  help", "  -o, --output FILE".
+    return help.find("\n  " + option + " ") != std::string::npos ||
+           help.find("\n  " + option + ",") != std::string::npos;
+  };
+  for (flaplag::cli::Command c : flaplag::cli::subcommands()) {
+    const std::string name = flaplag::cli::command_name(c);
+    const Outcome h = run({name, "--help"});
+    EXPECT_EQ(h.exit_code, 0) << name;
+    EXPECT_TRUE(h.err.empty()) << name << ": " << h.err;
+    EXPECT_EQ(h.out.rfind("Usage: flaplag " + name, 0), 0u) << h.out;
+    std::set<std::string> own;
+    for (const flaplag::cli::OptionSpec& o : flaplag::cli::options_of(c)) {
+      own.insert(o.name);
+      EXPECT_TRUE(listed(h.out, o.name)) << name << " --help lacks " << o.name;
+    }
+    for (const std::string& o : every) {
+      if (own.count(o) == 0) {
+        EXPECT_FALSE(listed(h.out, o)) << name << " --help lists " << o;
+      }
+    }
+    const std::size_t examples = h.out.find("\nExamples:\n");
+    ASSERT_NE(examples, std::string::npos) << name;
+    EXPECT_NE(h.out.find("\n  flaplag " + name + " ", examples), std::string::npos)
+        << name << ": no example of itself";
+  }
+  // `flaplag run` is expanded before the command line is read; its help is its own.
+  for (const char* flag : {"--help", "-h"}) {
+    const Outcome r = run({"run", flag});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+    EXPECT_EQ(r.out.rfind("Usage: flaplag run CASE", 0), 0u) << r.out;
+    EXPECT_NE(r.out.find("\n  flaplag run examples/"), std::string::npos) << r.out;
+  }
+  EXPECT_NE(run({"--help"}).out.find("\n  run "), std::string::npos);
+}
+
 // ---- -o: what is and is not replaced (issue 8 item 4) ------------------------------------------
 
 const std::vector<std::string> kPoint = fast({"point", "--mu", "0.3", "--json"});

@@ -70,9 +70,11 @@ class TempDir {
 // fork + exec of `program` with stdout/stderr captured in files: no shell, so arguments arrive
 // verbatim (empty strings, '*', quotes).  A run longer than `limit` is killed (exit_code -1): a
 // test of an output that must not block (a FIFO nobody reads) fails instead of hanging.
+// `interrupt_after` > 0: SIGINT is sent once, that long after the start (Ctrl-C in a terminal).
 inline Outcome run_process(const std::string& program, const std::vector<std::string>& args,
                            std::chrono::seconds limit = std::chrono::seconds(120),
-                           const std::string& path_env = "") {
+                           const std::string& path_env = "",
+                           std::chrono::milliseconds interrupt_after = {}) {
   TempDir io;
   const std::string out = io.file("stdout"), err = io.file("stderr");
   std::vector<std::string> copy = args;
@@ -91,10 +93,17 @@ inline Outcome run_process(const std::string& program, const std::vector<std::st
   }
   Outcome r;
   int status = 0;
-  const auto deadline = std::chrono::steady_clock::now() + limit;
+  const auto start = std::chrono::steady_clock::now();
+  const auto deadline = start + limit;
+  bool interrupted = false;
   for (;;) {
     const pid_t w = ::waitpid(pid, &status, WNOHANG);
     if (w == pid) break;
+    if (interrupt_after.count() > 0 && !interrupted &&
+        std::chrono::steady_clock::now() >= start + interrupt_after) {
+      ::kill(pid, SIGINT);
+      interrupted = true;
+    }
     if (w < 0 || std::chrono::steady_clock::now() > deadline) {
       ::kill(pid, SIGKILL);
       ::waitpid(pid, &status, 0);
