@@ -354,8 +354,34 @@ TEST(CliInterrupt, SigintDuringAStudyKeepsTheValuesFinished) {
     EXPECT_NEAR(0.5 + 0.001 * static_cast<double>(i), j["rows"][i]["value"].get<double>(), 1e-12);
 }
 
-// ---- flaplag plot DATA.json (issue 9 item 5)
-// -----------------------------------------------------
+// ---- the progress bar (issue 9 item 4) ----------------------------------------------------------
+
+// On a terminal, a run longer than a second shows a bar on stderr, erased before anything else
+// is written there; --quiet shows none; the output never holds any of it.  (A stderr that is
+// not a terminal never gets a bar: every other test here sees an empty stderr.)
+TEST(CliProgress, BarOnATerminalOnlyAndNeverInTheOutput) {
+  const std::vector<std::string> map = {
+      "map", "--x", "mu=0:1:0.25", "--y", "omega-lag=0.5:2.5:0.0005", "--json", "--threads", "2"};
+  // Interrupted after 2 s: long enough for the bar, cheap however slow the build.
+  const Outcome bar = flaplag::testing::run_process_on_terminal(
+      FLAPLAG_EXE, map, std::chrono::seconds(300), std::chrono::milliseconds(2000));
+  ASSERT_EQ(130, bar.exit_code) << bar.err;
+  EXPECT_TRUE(std::regex_search(
+      bar.err, std::regex("\rflaplag map \\[#*\\.*\\] +[0-9]+%  [0-9]+/4001 rows  [0-9]+ s")))
+      << bar.err;
+  // Erased ("\r", erase to the end of the line) before the message line.
+  EXPECT_NE(std::string::npos, bar.err.find("\r\033[Kflaplag: interrupted: ")) << bar.err;
+  EXPECT_EQ(std::string::npos, bar.out.find('\r'));
+  EXPECT_EQ("cancelled", Json::parse(bar.out)["status"]);
+  std::vector<std::string> quiet = map;
+  quiet.push_back("--quiet");
+  const Outcome q = flaplag::testing::run_process_on_terminal(
+      FLAPLAG_EXE, quiet, std::chrono::seconds(300), std::chrono::milliseconds(1500));
+  ASSERT_EQ(130, q.exit_code) << q.err;
+  EXPECT_TRUE(std::regex_match(q.err, std::regex("flaplag: interrupted: [^\r\n]*\r?\n"))) << q.err;
+}
+
+// ---- flaplag plot DATA.json (issue 9 item 5) -------------------------------------------------
 
 TEST(CliPlot, PlotOfTheDataIsThePictureOfPlotOption) {
   TempDir d;

@@ -118,4 +118,65 @@ inline Outcome run_process(const std::string& program, const std::vector<std::st
   return r;
 }
 
+// As run_process, but with stderr on a pseudo-terminal (isatty(2) is true in the child, as in an
+// interactive shell); Outcome::err is what the terminal received (the pty turns "\n" into
+// "\r\n").  `interrupt_after` > 0: SIGINT once, that long after the start.
+inline Outcome run_process_on_terminal(const std::string& program,
+                                       const std::vector<std::string>& args,
+                                       std::chrono::seconds limit,
+                                       std::chrono::milliseconds interrupt_after = {}) {
+  TempDir io;
+  const std::string out = io.file("stdout");
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0)
+    throw std::runtime_error("no pseudo-terminal");
+  const std::string slave = ::ptsname(master);
+  std::vector<std::string> copy = args;
+  std::string exe = program;
+  std::vector<char*> argv{exe.data()};
+  for (std::string& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::setsid();
+    const int fo = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    const int fe = ::open(slave.c_str(), O_RDWR);
+    if (fo < 0 || fe < 0 || ::dup2(fo, 1) < 0 || ::dup2(fe, 2) < 0) ::_exit(127);
+    ::execv(exe.c_str(), argv.data());
+    ::_exit(127);
+  }
+  ::fcntl(master, F_SETFL, ::fcntl(master, F_GETFL) | O_NONBLOCK);
+  Outcome r;
+  int status = 0;
+  const auto start = std::chrono::steady_clock::now();
+  bool interrupted = false;
+  auto drain = [&] {
+    char buf[4096];
+    for (ssize_t n; (n = ::read(master, buf, sizeof buf)) > 0;)
+      r.err.append(buf, static_cast<std::size_t>(n));
+  };
+  for (;;) {
+    drain();
+    const pid_t w = ::waitpid(pid, &status, WNOHANG);
+    if (w == pid) break;
+    const auto now = std::chrono::steady_clock::now();
+    if (interrupt_after.count() > 0 && !interrupted && now >= start + interrupt_after) {
+      ::kill(pid, SIGINT);
+      interrupted = true;
+    }
+    if (w < 0 || now > start + limit) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      status = -1;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  drain();
+  ::close(master);
+  if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  r.out = slurp(out);
+  return r;
+}
+
 }  // namespace flaplag::testing
