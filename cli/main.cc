@@ -43,7 +43,7 @@ void catch_interrupt() {
   struct sigaction sa {};
   sa.sa_handler = on_interrupt;
   sigemptyset(&sa.sa_mask);
-  sa.sa_flags = SA_RESETHAND;
+  sa.sa_flags = SA_RESETHAND | SA_RESTART;  // no EINTR for the writes of the output
   ::sigaction(SIGINT, &sa, nullptr);
 }
 

@@ -26,6 +26,17 @@ std::vector<std::string> data_keys(const std::string& command) {
   return {"max_zeta", "mode", "kind"};
 }
 
+// Far above any real job (a map has at most 10000 lines, a study 100000 values); a larger
+// number in a file is damage, not a job.
+constexpr std::size_t kMaxCount = 100000;
+
+// Lines [first, last) of part `index` (1-based) of `count` over `total` lines.
+void block_of(std::size_t total, std::size_t index, std::size_t count, ShardBlock& b) {
+  b.total = total;
+  b.first = total * (index - 1) / count;
+  b.last = total * index / count;
+}
+
 int status_rank(const std::string& s) { return s == "ok" ? 0 : s == "warning" ? 1 : 2; }
 
 struct Part {
@@ -83,7 +94,8 @@ Part read_part(const std::string& file) {
   p.total = count_of(s, "total", file);
   p.axis = s.contains("axis") && s["axis"].is_string() ? s["axis"].get<std::string>() : "";
   const bool axis_ok = command == "study" ? p.axis == "vary" : (p.axis == "x" || p.axis == "y");
-  if (!axis_ok || p.index < 1 || p.index > p.count || p.first > p.last || p.last > p.total)
+  if (!axis_ok || p.index < 1 || p.index > p.count || p.first > p.last || p.last > p.total ||
+      p.count > kMaxCount || p.total > kMaxCount)
     refuse(file, "damaged part: inconsistent \"shard\" object");
   const std::string status = j.value("status", "");
   if (status == "cancelled")
@@ -153,14 +165,11 @@ ShardBlock shard_block(const Request& r) {
     b.axis = columns ? "x" : "y";
     values = columns ? &r.x_values : &r.y_values;
   }
-  b.total = values->size();
-  b.last = b.total;
-  if (r.shard_count > 0) {
-    const std::size_t i = static_cast<std::size_t>(r.shard_index),
-                      n = static_cast<std::size_t>(r.shard_count);
-    b.first = b.total * (i - 1) / n;
-    b.last = b.total * i / n;
-  }
+  if (r.shard_count > 0)
+    block_of(values->size(), static_cast<std::size_t>(r.shard_index),
+             static_cast<std::size_t>(r.shard_count), b);
+  else
+    block_of(values->size(), 1, 1, b);
   return b;
 }
 
@@ -206,14 +215,8 @@ std::string merge_parts(const Request& r) {
       refuse(p.file,
              "part " + part_name(p.index, p.count) + " again (also " + it->second->file + ")");
     // The block must be the one of its index (as flaplag computes it).
-    Request probe;
-    probe.command = head.json["command"] == "map" ? Command::Map : Command::Study;
-    probe.shard_index = static_cast<int>(p.index);
-    probe.shard_count = static_cast<int>(p.count);
-    probe.vary_values.assign(p.total, 0.0);
-    probe.y_name = p.axis == "x" ? "mu" : "";
-    (p.axis == "x" ? probe.x_values : probe.y_values).assign(p.total, 0.0);
-    const ShardBlock b = shard_block(probe);
+    ShardBlock b;
+    block_of(p.total, p.index, p.count, b);
     if (b.first != p.first || b.last != p.last)
       refuse(p.file, "damaged part: part " + part_name(p.index, p.count) + " is not lines " +
                          std::to_string(b.first) + ".." + std::to_string(b.last));

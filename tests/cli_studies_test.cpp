@@ -216,6 +216,12 @@ const std::vector<std::string> kMapRows = {
 // y = mu: the lines are the columns (each a continuation in mu, never split).
 const std::vector<std::string> kMapColumns = {
     "map", "--y", "mu=0:0.8:0.2", "--x", "omega-lag=0.8,1.2,1.6,2.0", "--json"};
+// Failed lines (omega_L1 <= 0 is refused per row): the status and message of the whole map are
+// those of its first failed line.
+const std::vector<std::string> kMapFailedRows = {
+    "map", "--x", "mu=0:1:0.5", "--y", "omega-lag=0.8,-2,1.6,-1", "--json"};
+const std::vector<std::string> kMapFailedColumns = {
+    "map", "--y", "mu=0:1:0.5", "--x", "omega-lag=0.8,1.2,-2,-1", "--json"};
 const std::vector<std::string> kStudy = {"study",    "--vary", "omega-lag=1.0,1.3,1.45",
                                          "--mu-max", "1.2",    "--json"};
 
@@ -224,6 +230,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(ShardCase{"MapRowsUneven", kMapRows, 3, {1, 1, 2}},
                       ShardCase{"MapRowsMorePartsThanRows", kMapRows, 6, {0, 1, 1, 0, 1, 1}},
                       ShardCase{"MapColumns", kMapColumns, 3, {1, 1, 2}},
+                      ShardCase{"MapFailedRows", kMapFailedRows, 3, {1, 1, 2}},
+                      ShardCase{"MapFailedColumns", kMapFailedColumns, 4, {1, 1, 1, 1}},
                       ShardCase{"StudyMorePartsThanValues", kStudy, 5, {0, 1, 0, 1, 1}},
                       ShardCase{"OnePart", kStudy, 1, {3}}),
     [](const auto& tp) { return std::string(tp.param.name); });
