@@ -151,6 +151,9 @@ Json parameters_json(const RotorParameters& p) {
       case ParameterType::Real:
         j[json_key(s)] = p.*s.real;
         break;
+      case ParameterType::Integer:
+        j[json_key(s)] = p.*s.integer;
+        break;
       case ParameterType::Flag:
         j[json_key(s)] = p.*s.flag;
         break;
@@ -234,7 +237,9 @@ std::string header_text(const Analysis& an, bool with_method = true) {
   KeyValues kv;
   kv.add("model", std::string(m.name) + " (" + m.spec_file + "): " + m.summary);
   std::string blade =
-      an.modes().kind == "exact" ? "exact rotating mode shapes" : "assumed mode shape (eq 4.1)";
+      an.modes().kind == "exact"
+          ? "exact rotating mode shapes (" + std::to_string(p.basis) + " cantilever functions)"
+          : "assumed mode shape (eq 4.1)";
   if (p.paper_1974_shapes && an.modes().kind == "exact") blade += " (1974 shapes)";
   blade += ", " + std::to_string(m.flap_modes) + " flap x " + std::to_string(m.lag_modes) +
            " lag; elastic coupling " + (coupling_on(an) ? "on" : "off") + "; reversed flow " +

@@ -228,6 +228,30 @@ const std::vector<BadInput> kBadInputs = {
     {"LengthRatioAboveOne", {"--length-ratio", "1.5"}, "--length-ratio", "1.5"},
     {"ModesBasisTooSmall", {"modes", "--flap-modes", "3", "--basis", "2"}, "--flap-modes", "3"},
     {"ModesOneFig9Point", {"modes", "--nonrotating", "0:1:2"}, "--nonrotating", "0:1:2"},
+    // --basis, the exact-mode Galerkin basis (issue 9 item 3), in every analysis command
+    {"ZeroBasis", {"critical", "--basis", "0"}, "--basis", "0"},
+    {"BasisAboveTwelve",
+     {"point", "--mu", "0.1", "--modes", "exact", "--basis", "13"},
+     "--basis",
+     "13"},
+    {"FractionalBasis", {"--basis", "2.5"}, "--basis", "2.5"},
+    {"NonNumericBasis", {"sweep", "--mu", "0:1:0.5", "--basis", "five"}, "--basis", "five"},
+    {"BasisBeyondInt", {"--basis", "99999999999"}, "--basis", "99999999999"},
+    {"ModesBasisZero", {"modes", "--basis", "0"}, "--basis", "0"},
+    {"BasisSmallerThanModes",
+     {"critical", "--modes", "exact", "--flap-modes", "3", "--lag-modes", "3", "--basis", "2"},
+     "--basis",
+     "2"},
+    {"StudyBasisSmallerThanModes",
+     {"study", "--vary", "theta=0.1,0.2", "--modes", "exact", "--flap-modes", "2", "--basis", "1"},
+     "--basis",
+     "1"},
+    // With five functions the lag frequency cannot go below 0.2074 (the k -> 0 limit): the
+    // message points at --basis.
+    {"ExactLagFrequencyBelowBasisLimit",
+     {"critical", "--modes", "exact", "--omega-lag", "0.2"},
+     "--omega-lag",
+     "0.2"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Table, CliBadInput, ::testing::ValuesIn(kBadInputs),

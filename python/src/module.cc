@@ -115,6 +115,9 @@ RotorParameters rotor_parameters(const py::dict& d) {
       case ParameterType::Real:
         p.*s->real = value.cast<double>();
         break;
+      case ParameterType::Integer:
+        p.*s->integer = value.cast<int>();
+        break;
       case ParameterType::Flag:
         p.*s->flag = value.cast<bool>();
         break;
@@ -142,6 +145,9 @@ py::dict parameters_dict(const RotorParameters& p) {
     switch (s.type) {
       case ParameterType::Real:
         d[s.field] = p.*s.real;
+        break;
+      case ParameterType::Integer:
+        d[s.field] = p.*s.integer;
         break;
       case ParameterType::Flag:
         d[s.field] = p.*s.flag;
@@ -624,6 +630,8 @@ const char* type_name(ParameterType t) {
   switch (t) {
     case ParameterType::Real:
       return "real";
+    case ParameterType::Integer:
+      return "int";
     case ParameterType::Text:
       return "text";
     case ParameterType::Flag:
@@ -647,7 +655,7 @@ py::list parameter_rows() {
     r["type"] = type_name(s.type);
     r["requirement"] = s.requirement;
     r["default"] = values[s.field];
-    if (s.type == ParameterType::Real) {
+    if (s.type == ParameterType::Real || s.type == ParameterType::Integer) {
       r["range"] = py::make_tuple(s.range.lo, s.range.hi, s.range.lo_open, s.range.hi_open);
     }
     if (s.type == ParameterType::Choice) {

@@ -30,7 +30,16 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
     }
     modes_ = assumed_modes(p_.omega_flap, p_.omega_lag);
   } else {
+    // Galerkin's method gives at most as many rotating modes per direction as basis functions.
+    if (M_ > p_.basis || N_ > p_.basis) {
+      throw InvalidInput(
+          "basis", std::to_string(p_.basis),
+          std::string("model '") + m.name + "' has " + std::to_string(M_) + " flap x " +
+              std::to_string(N_) + " lag modes; the exact modes need at least " +
+              std::to_string(std::max(M_, N_)) + " cantilever functions per direction");
+    }
     ExactModeOptions opt;
+    opt.n_basis = p_.basis;
     opt.flap_modes = M_;
     opt.lag_modes = N_;
     opt.e1_over_l = p_.root_offset / p_.length_ratio;
