@@ -70,6 +70,35 @@ std::string complex_text(std::complex<double> z) {
 Json optional_json(const std::optional<double>& v) { return v ? jnum(*v) : Json(nullptr); }
 std::string optional_text(const std::optional<double>& v) { return v ? cell(*v) : "-"; }
 
+// ---- exponents in tables: damping ratio and locked frequencies (issue 9 item 6) ----------------
+
+// What the exponent columns mean, above every table that has them.
+const char* const kExponentLegend =
+    "  zeta: real part of the characteristic exponent lambda = zeta + i omega, 1/rev (> 0: "
+    "unstable)\n"
+    "  damping ratio: -zeta/|lambda|; for omega = 0 (a real exponent) +1 if decaying, -1 if "
+    "growing\n"
+    "  locked: omega locked to 0, 1/2 or 1 per rev (mod 1; a real multiplier: the periodic kind)\n";
+// The same, short, above the zeta(mu) tables.
+const char* const kSweepLegend =
+    "  zeta in 1/rev (real part of the exponent lambda = zeta + i omega); ratio: damping ratio\n"
+    "  -zeta/|lambda|; p after omega: locked to 0, 1/2 or 1 per rev (mod 1: the periodic kind)\n";
+
+// The locked frequency of a periodic-kind exponent (classify_crossing: omega within 1e-3 of a
+// multiple of 1/2) as "0", "1/2", "1", "3/2", ...; "" when omega is not locked.
+std::string locked_text(double omega) {
+  if (!finite(omega) || classify_crossing(omega) != InstabilityKind::Periodic) return "";
+  const long k = std::lround(2.0 * omega);
+  if (k % 2 == 0) return std::to_string(k / 2);
+  return std::to_string(k) + "/2";
+}
+
+std::string ratio_cell(double zeta, double omega) {
+  const std::optional<double> r = damping_ratio(zeta, omega);
+  return r ? num(*r) : "-";
+}
+Json ratio_json(double zeta, double omega) { return optional_json(damping_ratio(zeta, omega)); }
+
 Json stable_json(const std::optional<bool>& v) { return v ? Json(*v) : Json(nullptr); }
 std::string stable_text(const std::optional<bool>& v) { return !v ? "unknown" : *v ? "yes" : "NO"; }
 
@@ -312,9 +341,11 @@ Json hover_json(const Request& r, const Analysis& an) {
   j["equilibrium"] = q0;
   Json ex = Json::array();
   for (std::size_t i = 0; i < h.eigenvalues.size(); ++i) {
-    ex.push_back(Json{{"zeta", jnum(h.eigenvalues[i].real())},
-                      {"omega", jnum(h.eigenvalues[i].imag())},
-                      {"label", i < h.labels.size() ? h.labels[i] : ""}});
+    ex.push_back(
+        Json{{"zeta", jnum(h.eigenvalues[i].real())},
+             {"omega", jnum(h.eigenvalues[i].imag())},
+             {"damping_ratio", ratio_json(h.eigenvalues[i].real(), h.eigenvalues[i].imag())},
+             {"label", i < h.labels.size() ? h.labels[i] : ""}});
   }
   j["exponents"] = ex;
   j["stable"] = stable_json(hv.stable);
@@ -334,10 +365,13 @@ std::string hover_text(const Request& r, const Analysis& an) {
   }
   out += kv.render();
   out += "\nHover exponents (eigenvalues of A at mu = 0, per rev)\n";
-  TextTable t({"mode", "zeta", "omega"});
+  out += kExponentLegend;
+  TextTable t({"mode", "zeta [1/rev]", "omega [per rev]", "damping ratio", "locked"});
   for (std::size_t i = 0; i < h.eigenvalues.size(); ++i) {
-    t.add_row({i < h.labels.size() ? h.labels[i] : "?", cell(h.eigenvalues[i].real()),
-               cell(h.eigenvalues[i].imag())});
+    const double zeta = h.eigenvalues[i].real(), omega = h.eigenvalues[i].imag();
+    const std::string locked = locked_text(omega);
+    t.add_row({i < h.labels.size() ? h.labels[i] : "?", cell(zeta), cell(omega),
+               ratio_cell(zeta, omega), locked.empty() ? "-" : locked});
   }
   out += t.render();
   out += std::string("  hover is ") +
@@ -352,6 +386,7 @@ Json exponent_json(const LabelledExponent& e) {
   return Json{{"label", e.label},
               {"zeta", zeta_json(e.zeta)},
               {"omega", jnum(e.omega)},
+              {"damping_ratio", ratio_json(e.zeta, e.omega)},
               {"multiplier", complex_json(e.multiplier)}};
 }
 
@@ -373,9 +408,12 @@ Json point_json(const Request& r, const PointResult& p) {
 
 std::string point_text(const Request& r, const PointResult& p) {
   std::string out = "Characteristic exponents at mu = " + cell(p.mu) + " (per rev)\n";
-  TextTable t({"mode", "zeta", "omega", "multiplier"});
+  out += kExponentLegend;
+  TextTable t({"mode", "zeta [1/rev]", "omega [per rev]", "damping ratio", "locked", "multiplier"});
   for (const LabelledExponent& e : p.exponents) {
-    t.add_row({e.label, zeta_cell(e.zeta), cell(e.omega), complex_text(e.multiplier)});
+    const std::string locked = locked_text(e.omega);
+    t.add_row({e.label, zeta_cell(e.zeta), cell(e.omega), ratio_cell(e.zeta, e.omega),
+               locked.empty() ? "-" : locked, complex_text(e.multiplier)});
   }
   out += t.render();
   KeyValues kv;
@@ -465,6 +503,7 @@ std::string sweep_table_text(const Request& r, const SweepResult& s,
   for (const std::string& l : labels) {
     header.push_back(l + " zeta");
     header.push_back(l + " omega");
+    header.push_back(l + " ratio");
   }
   header.push_back("stable");
   header.push_back("Liouville");
@@ -475,7 +514,9 @@ std::string sweep_table_text(const Request& r, const SweepResult& s,
     for (const std::string& l : labels) {
       const LabelledExponent* e = dominant(p, l);
       row.push_back(e ? zeta_cell(e->zeta) : "-");
-      row.push_back(e ? cell(e->omega) : "-");
+      // " p": locked (periodic kind), as the paper marks Fig 15's periodic points.
+      row.push_back(e ? cell(e->omega) + (locked_text(e->omega).empty() ? "  " : " p") : "-");
+      row.push_back(e ? ratio_cell(e->zeta, e->omega) : "-");
     }
     row.push_back(stable_text(p.stable));
     row.push_back(optional_text(p.liouville_residual));
@@ -485,7 +526,7 @@ std::string sweep_table_text(const Request& r, const SweepResult& s,
           "  mu = " + cell(p.mu) + ": " + status_name(p.status) + ": " + vocab(r, p.message) + "\n";
     }
   }
-  return t.render() + notes + status_text(s.status, vocab(r, s.message));
+  return kSweepLegend + t.render() + notes + status_text(s.status, vocab(r, s.message));
 }
 
 std::string csv_field(const std::string& s) {
@@ -498,7 +539,7 @@ std::string csv_field(const std::string& s) {
 // Empty fields for what is not known (no exponent of a label, no residual, unknown stability).
 std::string sweep_csv(const Request& r, const SweepResult& s,
                       const std::vector<std::string>& labels) {
-  auto field = [](double v) { return finite(v) ? num(v) : std::string(); };
+  auto field = [](double v) { return finite(v) ? exact_num(v) : std::string(); };
   std::string out = "mu";
   for (const std::string& l : labels) out += "," + l + "_zeta," + l + "_omega";
   out += ",liouville_residual,error_estimate,stable,status,message\n";
@@ -506,7 +547,7 @@ std::string sweep_csv(const Request& r, const SweepResult& s,
     out += field(p.mu);
     for (const std::string& l : labels) {
       const LabelledExponent* e = dominant(p, l);
-      out += "," + (e && zeta_ok(e->zeta) ? zeta_text(e->zeta) : std::string()) + "," +
+      out += "," + (e && zeta_ok(e->zeta) ? exact_zeta_text(e->zeta) : std::string()) + "," +
              (e ? field(e->omega) : std::string());
     }
     out += "," + (p.liouville_residual ? field(*p.liouville_residual) : std::string());
