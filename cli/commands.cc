@@ -971,8 +971,6 @@ std::string response(const Request& r, const Analysis& an, std::string& warning)
     warning =
         plot_if_asked(r, line_plot_script("flaplag response at mu = " + num(r.mu), {flap, lag}));
   }
-  const char* names[] = {"const",    "cos psi",  "sin psi",  "cos 2psi", "sin 2psi", "cos 3psi",
-                         "sin 3psi", "cos 4psi", "sin 4psi", "cos 5psi", "sin 5psi"};
   if (r.json) {
     Json j = header_json("response", an, false);
     j["mu"] = r.mu;
@@ -982,8 +980,8 @@ std::string response(const Request& r, const Analysis& an, std::string& warning)
       j["lag_tip"] = f.lag_tip;
       Json h = Json::object(), g = Json::object();
       for (std::size_t k = 0; k < f.flap_harmonics.size(); ++k) {
-        h[names[k]] = f.flap_harmonics[k];
-        g[names[k]] = f.lag_harmonics[k];
+        h[harmonic_name(static_cast<int>(k))] = f.flap_harmonics[k];
+        g[harmonic_name(static_cast<int>(k))] = f.lag_harmonics[k];
       }
       j["flap_harmonics"] = h;
       j["lag_harmonics"] = g;
@@ -999,7 +997,8 @@ std::string response(const Request& r, const Analysis& an, std::string& warning)
   if (f.status == Status::Failed) return out + status_text(f.status, vocab(r, f.message));
   TextTable h({"harmonic", "flap w/l", "lag v/l"});
   for (std::size_t k = 0; k < f.flap_harmonics.size(); ++k)
-    h.add_row({names[k], short_text(f.flap_harmonics[k]), short_text(f.lag_harmonics[k])});
+    h.add_row({harmonic_name(static_cast<int>(k)), short_text(f.flap_harmonics[k]),
+               short_text(f.lag_harmonics[k])});
   out += h.render();
   TextTable t({"psi [deg]", "flap w/l", "lag v/l"});
   const std::size_t every = std::max<std::size_t>(1, f.flap_tip.size() / 24);
@@ -1015,23 +1014,15 @@ std::string simulate_command(const Request& r, const Analysis& an, std::string& 
   SimulationOptions so;
   so.revolutions = r.revolutions;
   so.samples_per_rev = r.samples;
-  const PeriodicSystem sys = an.system(r.mu);
-  const Eigen::VectorXd y0 = Eigen::VectorXd::Constant(sys.n, r.perturbation);
-  const Simulation s = simulate(sys, y0, r.forced, so);
-  const int M = an.model().flap_modes, N = an.model().lag_modes;
-  std::vector<double> revs, flap, lag;
-  for (std::size_t k = 0; k < s.y.size(); ++k) {
-    revs.push_back(s.psi[k] / kTwoPi);
-    double w = 0.0, v = 0.0;
-    for (int i = 0; i < M; ++i)
-      w += an.modes().flap[i]->value(0, 1.0) * s.y[k](model::flap_displacement_index(i, M, N));
-    for (int i = 0; i < N; ++i)
-      v += an.modes().lag[i]->value(0, 1.0) * s.y[k](model::lag_displacement_index(i, M, N));
-    flap.push_back(w);
-    lag.push_back(v);
-  }
-  const std::optional<double> flap_rate = envelope_growth_rate(s.psi, flap, 0.25 * r.revolutions);
-  const std::optional<double> lag_rate = envelope_growth_rate(s.psi, lag, 0.25 * r.revolutions);
+  const Eigen::VectorXd y0 = Eigen::VectorXd::Constant(an.state_size(), r.perturbation);
+  const TipSimulation ts = an.simulate(r.mu, y0, r.forced, so);
+  const Simulation& s = ts.simulation;
+  const std::vector<double>& flap = ts.flap_tip;
+  const std::vector<double>& lag = ts.lag_tip;
+  std::vector<double> revs;
+  for (double psi : s.psi) revs.push_back(psi / kTwoPi);
+  const std::optional<double>& flap_rate = ts.flap_growth_rate;
+  const std::optional<double>& lag_rate = ts.lag_growth_rate;
   Panel pf{"flap tip perturbation", "revolutions", "dw/l", {{"flap", revs, flap, false, 7}}, false};
   Panel pl{"lag tip perturbation", "revolutions", "dv/l", {{"lag", revs, lag, false, 7}}, false};
   warning = plot_if_asked(r, line_plot_script("flaplag simulate at mu = " + num(r.mu), {pf, pl}));

@@ -384,3 +384,28 @@ TEST(ExactModeBasis, Fig15LeftEndIsReachableWithALargerBasis) {
   EXPECT_TRUE(RelClose(m12, m10, 1e-2));
   EXPECT_GT(m12, 1.0);
 }
+
+// Analysis::simulate in blade terms: the tip perturbation is the tip-weighted sum of the
+// displacement states (the assumed mode has eta(1) = gamma(1) = 1), and y0 must fit the state.
+TEST(Simulation, TipDeflectionsFromTheDisplacementStates) {
+  const Analysis an(RotorParameters{}, {});
+  ASSERT_EQ(an.state_size(), 4);
+  Eigen::VectorXd y0(4);
+  y0 << 0.3, 0.01, -0.2, 0.02;  // dg1', dg1, dh1', dh1
+  flaplag::SimulationOptions o;
+  o.revolutions = 1.0;
+  o.samples_per_rev = 8;
+  const flaplag::TipSimulation s = an.simulate(0.5, y0, false, o);
+  EXPECT_EQ(s.simulation.status, flaplag::Status::Ok) << s.simulation.message;
+  ASSERT_EQ(s.flap_tip.size(), 9u);
+  EXPECT_EQ(s.flap_tip[0], 0.01);
+  EXPECT_EQ(s.lag_tip[0], 0.02);
+  EXPECT_FALSE(s.flap_growth_rate.has_value());  // one revolution: too short for a rate
+  try {
+    an.simulate(0.5, Eigen::VectorXd::Zero(3), false, o);
+    FAIL() << "accepted";
+  } catch (const flaplag::InvalidInput& e) {
+    EXPECT_EQ(e.name(), "y0");
+  }
+  EXPECT_THROW(an.simulate(-1.0, y0, false, o), flaplag::InvalidInput);
+}
