@@ -12,6 +12,8 @@ from typing import Dict, Optional, Tuple
 
 import numpy as np
 
+from . import _flaplag
+
 __all__ = [
     "Exponent",
     "HoverResult",
@@ -58,6 +60,12 @@ class Exponent:
     zeta: float
     omega: float
     multiplier: Optional[complex] = None
+
+    @property
+    def damping_ratio(self) -> Optional[float]:
+        """-zeta / |lambda| (the command line's damping ratio): for omega = 0 +1 when the mode
+        decays, -1 when it grows; None for lambda = 0."""
+        return _flaplag.damping_ratio(self.zeta, self.omega)
 
     def __repr__(self):
         return f"Exponent({self.label!r}, zeta={_g(self.zeta)}, omega={_g(self.omega)})"

@@ -817,6 +817,8 @@ PYBIND11_MODULE(_flaplag, m) {
   m.def("transition_table", &transition_rows);
   m.def("critical_defaults", &critical_defaults);
   m.def("response_defaults", &response_defaults);
+  m.def("damping_ratio",
+        [](double zeta, double omega) { return optional(damping_ratio(zeta, omega)); });
   m.def("simulation_defaults", &simulation_defaults);
   m.def("models", &model_rows);
   m.def("study_parameters", [] {

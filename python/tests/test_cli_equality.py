@@ -32,6 +32,8 @@ def check_exponents(cli_exponents, exponents):
         assert c["label"] == e.label
         assert same(zeta_value(c["zeta"]), e.zeta), (c, e)
         assert same(c["omega"], e.omega), (c, e)
+        if "damping_ratio" in c:
+            assert same(c["damping_ratio"], e.damping_ratio), (c, e)
         m = c.get("multiplier")
         if m is not None:
             assert same(m["re"], e.multiplier.real) and same(m["im"], e.multiplier.imag)
