@@ -19,8 +19,7 @@ namespace {
 
 // Upper limits that only keep absurd requests from running for hours or overflowing; they are
 // far above anything the paper or the tests use.
-constexpr int kMaxModes = 12;  // exact modes: at most the Galerkin basis (rotating_modes.h)
-constexpr int kMaxBasis = 12;
+constexpr int kMaxModes = 12;       // exact modes: at most the Galerkin basis (rotating_modes.h)
 constexpr int kMaxPoints = 100001;  // sweep points, Fig 9 rows, spanwise stations
 constexpr int kMaxShards = 100000;  // parts of a --shard job (a map has at most 10000 lines)
 
@@ -347,7 +346,8 @@ std::string unbroken(std::string s) {
 std::string option_help(const OptionSpec& o) {
   std::string h = o.help;
   std::vector<std::string> detail;
-  if (o.rotor != nullptr && o.rotor->type == ParameterType::Real) {
+  if (o.rotor != nullptr &&
+      (o.rotor->type == ParameterType::Real || o.rotor->type == ParameterType::Integer)) {
     std::string symbol = o.rotor->symbol;
     if (std::string(o.rotor->units) != "-") {
       symbol += (symbol.empty() ? "" : ", ") + std::string(o.rotor->units);
@@ -633,8 +633,7 @@ Request CommandLine::interpret() const {
     case Command::Modes: {
       // Only the blade parameters modes uses; the others keep their (valid) defaults.
       validate(r.params);
-      int basis = 5;
-      if (const Given* g = given("--basis")) basis = parse_int(g->spelling, g->text, 1, kMaxBasis);
+      const int basis = r.params.basis;
       if (flap_modes > basis) {
         throw InvalidInput(flap_given->spelling, shown(flap_given->text),
                            "must not exceed --basis = " + std::to_string(basis));
@@ -657,7 +656,6 @@ Request CommandLine::interpret() const {
       if (const Given* g = given("--points")) {
         r.shape_points = parse_int(g->spelling, g->text, 2, kMaxPoints);
       }
-      r.basis = basis;
       r.flap_modes = flap_modes;
       r.lag_modes = lag_modes;
       break;

@@ -39,11 +39,11 @@ struct Request {
   // models: --spec NAME ("" lists the models)
   std::string spec;
   // modes: the Fig 9 table over nonrotating first frequencies START:STOP:STEP (fig9_points of
-  // them), and M flap / N lag rotating mode shapes from `basis` cantilever functions, tabulated
-  // at shape_points stations
+  // them), and M flap / N lag rotating mode shapes from params.basis cantilever functions,
+  // tabulated at shape_points stations
   double fig9_from = 0.0, fig9_to = 0.0, fig9_step = 0.0;
   int fig9_points = 0;
-  int flap_modes = 1, lag_modes = 1, basis = 5;
+  int flap_modes = 1, lag_modes = 1;  // the basis size: params.basis
   int shape_points = 11;
   // study: --vary NAME=...; map: --x, --y (field names, "mu" for the advance ratio)
   std::string vary;

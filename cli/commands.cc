@@ -71,6 +71,35 @@ std::string complex_text(std::complex<double> z) {
 Json optional_json(const std::optional<double>& v) { return v ? jnum(*v) : Json(nullptr); }
 std::string optional_text(const std::optional<double>& v) { return v ? cell(*v) : "-"; }
 
+// ---- exponents in tables: damping ratio and locked frequencies (issue 9 item 6) ----------------
+
+// What the exponent columns mean, above every table that has them.
+const char* const kExponentLegend =
+    "  zeta: real part of the characteristic exponent lambda = zeta + i omega, 1/rev (> 0: "
+    "unstable)\n"
+    "  damping ratio: -zeta/|lambda|; for omega = 0 (a real exponent) +1 if decaying, -1 if "
+    "growing\n"
+    "  locked: omega locked to 0, 1/2 or 1 per rev (mod 1; a real multiplier: the periodic kind)\n";
+// The same, short, above the zeta(mu) tables.
+const char* const kSweepLegend =
+    "  zeta in 1/rev (real part of the exponent lambda = zeta + i omega); ratio: damping ratio\n"
+    "  -zeta/|lambda|; p after omega: locked to 0, 1/2 or 1 per rev (mod 1: the periodic kind)\n";
+
+// The locked frequency of a periodic-kind exponent (classify_crossing: omega within 1e-3 of a
+// multiple of 1/2) as "0", "1/2", "1", "3/2", ...; "" when omega is not locked.
+std::string locked_text(double omega) {
+  if (!finite(omega) || classify_crossing(omega) != InstabilityKind::Periodic) return "";
+  const long k = std::lround(2.0 * omega);
+  if (k % 2 == 0) return std::to_string(k / 2);
+  return std::to_string(k) + "/2";
+}
+
+std::string ratio_cell(double zeta, double omega) {
+  const std::optional<double> r = damping_ratio(zeta, omega);
+  return r ? num(*r) : "-";
+}
+Json ratio_json(double zeta, double omega) { return optional_json(damping_ratio(zeta, omega)); }
+
 Json stable_json(const std::optional<bool>& v) { return v ? Json(*v) : Json(nullptr); }
 std::string stable_text(const std::optional<bool>& v) { return !v ? "unknown" : *v ? "yes" : "NO"; }
 
@@ -151,6 +180,9 @@ Json parameters_json(const RotorParameters& p) {
     switch (s.type) {
       case ParameterType::Real:
         j[json_key(s)] = p.*s.real;
+        break;
+      case ParameterType::Integer:
+        j[json_key(s)] = p.*s.integer;
         break;
       case ParameterType::Flag:
         j[json_key(s)] = p.*s.flag;
@@ -235,7 +267,9 @@ std::string header_text(const Analysis& an, bool with_method = true) {
   KeyValues kv;
   kv.add("model", std::string(m.name) + " (" + m.spec_file + "): " + m.summary);
   std::string blade =
-      an.modes().kind == "exact" ? "exact rotating mode shapes" : "assumed mode shape (eq 4.1)";
+      an.modes().kind == "exact"
+          ? "exact rotating mode shapes (" + std::to_string(p.basis) + " cantilever functions)"
+          : "assumed mode shape (eq 4.1)";
   if (p.paper_1974_shapes && an.modes().kind == "exact") blade += " (1974 shapes)";
   blade += ", " + std::to_string(m.flap_modes) + " flap x " + std::to_string(m.lag_modes) +
            " lag; elastic coupling " + (coupling_on(an) ? "on" : "off") + "; reversed flow " +
@@ -308,9 +342,11 @@ Json hover_json(const Request& r, const Analysis& an) {
   j["equilibrium"] = q0;
   Json ex = Json::array();
   for (std::size_t i = 0; i < h.eigenvalues.size(); ++i) {
-    ex.push_back(Json{{"zeta", jnum(h.eigenvalues[i].real())},
-                      {"omega", jnum(h.eigenvalues[i].imag())},
-                      {"label", i < h.labels.size() ? h.labels[i] : ""}});
+    ex.push_back(
+        Json{{"zeta", jnum(h.eigenvalues[i].real())},
+             {"omega", jnum(h.eigenvalues[i].imag())},
+             {"damping_ratio", ratio_json(h.eigenvalues[i].real(), h.eigenvalues[i].imag())},
+             {"label", i < h.labels.size() ? h.labels[i] : ""}});
   }
   j["exponents"] = ex;
   j["stable"] = stable_json(hv.stable);
@@ -330,10 +366,13 @@ std::string hover_text(const Request& r, const Analysis& an) {
   }
   out += kv.render();
   out += "\nHover exponents (eigenvalues of A at mu = 0, per rev)\n";
-  TextTable t({"mode", "zeta", "omega"});
+  out += kExponentLegend;
+  TextTable t({"mode", "zeta [1/rev]", "omega [per rev]", "damping ratio", "locked"});
   for (std::size_t i = 0; i < h.eigenvalues.size(); ++i) {
-    t.add_row({i < h.labels.size() ? h.labels[i] : "?", cell(h.eigenvalues[i].real()),
-               cell(h.eigenvalues[i].imag())});
+    const double zeta = h.eigenvalues[i].real(), omega = h.eigenvalues[i].imag();
+    const std::string locked = locked_text(omega);
+    t.add_row({i < h.labels.size() ? h.labels[i] : "?", cell(zeta), cell(omega),
+               ratio_cell(zeta, omega), locked.empty() ? "-" : locked});
   }
   out += t.render();
   out += std::string("  hover is ") +
@@ -348,6 +387,7 @@ Json exponent_json(const LabelledExponent& e) {
   return Json{{"label", e.label},
               {"zeta", zeta_json(e.zeta)},
               {"omega", jnum(e.omega)},
+              {"damping_ratio", ratio_json(e.zeta, e.omega)},
               {"multiplier", complex_json(e.multiplier)}};
 }
 
@@ -369,9 +409,12 @@ Json point_json(const Request& r, const PointResult& p) {
 
 std::string point_text(const Request& r, const PointResult& p) {
   std::string out = "Characteristic exponents at mu = " + cell(p.mu) + " (per rev)\n";
-  TextTable t({"mode", "zeta", "omega", "multiplier"});
+  out += kExponentLegend;
+  TextTable t({"mode", "zeta [1/rev]", "omega [per rev]", "damping ratio", "locked", "multiplier"});
   for (const LabelledExponent& e : p.exponents) {
-    t.add_row({e.label, zeta_cell(e.zeta), cell(e.omega), complex_text(e.multiplier)});
+    const std::string locked = locked_text(e.omega);
+    t.add_row({e.label, zeta_cell(e.zeta), cell(e.omega), ratio_cell(e.zeta, e.omega),
+               locked.empty() ? "-" : locked, complex_text(e.multiplier)});
   }
   out += t.render();
   KeyValues kv;
@@ -461,6 +504,7 @@ std::string sweep_table_text(const Request& r, const SweepResult& s,
   for (const std::string& l : labels) {
     header.push_back(l + " zeta");
     header.push_back(l + " omega");
+    header.push_back(l + " ratio");
   }
   header.push_back("stable");
   header.push_back("Liouville");
@@ -471,7 +515,9 @@ std::string sweep_table_text(const Request& r, const SweepResult& s,
     for (const std::string& l : labels) {
       const LabelledExponent* e = dominant(p, l);
       row.push_back(e ? zeta_cell(e->zeta) : "-");
-      row.push_back(e ? cell(e->omega) : "-");
+      // " p": locked (periodic kind), as the paper marks Fig 15's periodic points.
+      row.push_back(e ? cell(e->omega) + (locked_text(e->omega).empty() ? "  " : " p") : "-");
+      row.push_back(e ? ratio_cell(e->zeta, e->omega) : "-");
     }
     row.push_back(stable_text(p.stable));
     row.push_back(optional_text(p.liouville_residual));
@@ -481,7 +527,7 @@ std::string sweep_table_text(const Request& r, const SweepResult& s,
           "  mu = " + cell(p.mu) + ": " + status_name(p.status) + ": " + vocab(r, p.message) + "\n";
     }
   }
-  return t.render() + notes + status_text(s.status, vocab(r, s.message));
+  return kSweepLegend + t.render() + notes + status_text(s.status, vocab(r, s.message));
 }
 
 std::string csv_field(const std::string& s) {
@@ -494,7 +540,7 @@ std::string csv_field(const std::string& s) {
 // Empty fields for what is not known (no exponent of a label, no residual, unknown stability).
 std::string sweep_csv(const Request& r, const SweepResult& s,
                       const std::vector<std::string>& labels) {
-  auto field = [](double v) { return finite(v) ? num(v) : std::string(); };
+  auto field = [](double v) { return finite(v) ? exact_num(v) : std::string(); };
   std::string out = "mu";
   for (const std::string& l : labels) out += "," + l + "_zeta," + l + "_omega";
   out += ",liouville_residual,error_estimate,stable,status,message\n";
@@ -502,7 +548,7 @@ std::string sweep_csv(const Request& r, const SweepResult& s,
     out += field(p.mu);
     for (const std::string& l : labels) {
       const LabelledExponent* e = dominant(p, l);
-      out += "," + (e && zeta_ok(e->zeta) ? zeta_text(e->zeta) : std::string()) + "," +
+      out += "," + (e && zeta_ok(e->zeta) ? exact_zeta_text(e->zeta) : std::string()) + "," +
              (e ? field(e->omega) : std::string());
     }
     out += "," + (p.liouville_residual ? field(*p.liouville_residual) : std::string());
@@ -940,8 +986,6 @@ std::string response(const Request& r, const Analysis& an, std::string& warning)
     for (double p : f.periodic.psi) deg.push_back(p * 180.0 / kPi);
     warning = plot_if_asked(r, response_plot_script(r.mu, deg, f.flap_tip, f.lag_tip));
   }
-  const char* names[] = {"const",    "cos psi",  "sin psi",  "cos 2psi", "sin 2psi", "cos 3psi",
-                         "sin 3psi", "cos 4psi", "sin 4psi", "cos 5psi", "sin 5psi"};
   if (r.json) {
     Json j = header_json("response", an, false);
     j["mu"] = r.mu;
@@ -951,8 +995,8 @@ std::string response(const Request& r, const Analysis& an, std::string& warning)
       j["lag_tip"] = f.lag_tip;
       Json h = Json::object(), g = Json::object();
       for (std::size_t k = 0; k < f.flap_harmonics.size(); ++k) {
-        h[names[k]] = f.flap_harmonics[k];
-        g[names[k]] = f.lag_harmonics[k];
+        h[harmonic_name(static_cast<int>(k))] = f.flap_harmonics[k];
+        g[harmonic_name(static_cast<int>(k))] = f.lag_harmonics[k];
       }
       j["flap_harmonics"] = h;
       j["lag_harmonics"] = g;
@@ -968,7 +1012,8 @@ std::string response(const Request& r, const Analysis& an, std::string& warning)
   if (f.status == Status::Failed) return out + status_text(f.status, vocab(r, f.message));
   TextTable h({"harmonic", "flap w/l", "lag v/l"});
   for (std::size_t k = 0; k < f.flap_harmonics.size(); ++k)
-    h.add_row({names[k], short_text(f.flap_harmonics[k]), short_text(f.lag_harmonics[k])});
+    h.add_row({harmonic_name(static_cast<int>(k)), short_text(f.flap_harmonics[k]),
+               short_text(f.lag_harmonics[k])});
   out += h.render();
   TextTable t({"psi [deg]", "flap w/l", "lag v/l"});
   const std::size_t every = std::max<std::size_t>(1, f.flap_tip.size() / 24);
@@ -984,23 +1029,15 @@ std::string simulate_command(const Request& r, const Analysis& an, std::string& 
   SimulationOptions so;
   so.revolutions = r.revolutions;
   so.samples_per_rev = r.samples;
-  const PeriodicSystem sys = an.system(r.mu);
-  const Eigen::VectorXd y0 = Eigen::VectorXd::Constant(sys.n, r.perturbation);
-  const Simulation s = simulate(sys, y0, r.forced, so);
-  const int M = an.model().flap_modes, N = an.model().lag_modes;
-  std::vector<double> revs, flap, lag;
-  for (std::size_t k = 0; k < s.y.size(); ++k) {
-    revs.push_back(s.psi[k] / kTwoPi);
-    double w = 0.0, v = 0.0;
-    for (int i = 0; i < M; ++i)
-      w += an.modes().flap[i]->value(0, 1.0) * s.y[k](model::flap_displacement_index(i, M, N));
-    for (int i = 0; i < N; ++i)
-      v += an.modes().lag[i]->value(0, 1.0) * s.y[k](model::lag_displacement_index(i, M, N));
-    flap.push_back(w);
-    lag.push_back(v);
-  }
-  const std::optional<double> flap_rate = envelope_growth_rate(s.psi, flap, 0.25 * r.revolutions);
-  const std::optional<double> lag_rate = envelope_growth_rate(s.psi, lag, 0.25 * r.revolutions);
+  const Eigen::VectorXd y0 = Eigen::VectorXd::Constant(an.state_size(), r.perturbation);
+  const TipSimulation ts = an.simulate(r.mu, y0, r.forced, so);
+  const Simulation& s = ts.simulation;
+  const std::vector<double>& flap = ts.flap_tip;
+  const std::vector<double>& lag = ts.lag_tip;
+  std::vector<double> revs;
+  for (double psi : s.psi) revs.push_back(psi / kTwoPi);
+  const std::optional<double>& flap_rate = ts.flap_growth_rate;
+  const std::optional<double>& lag_rate = ts.lag_growth_rate;
   warning = plot_if_asked(r, simulate_plot_script(r.mu, revs, flap, lag));
   if (r.json) {
     Json j = header_json("simulate", an, false);

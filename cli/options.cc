@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <system_error>
 
@@ -55,13 +56,15 @@ OptionSpec rotor_option(const ParameterSpec& s) {
   o.library_names = {s.field};
   switch (s.type) {
     case ParameterType::Real:
+    case ParameterType::Integer:
     case ParameterType::Text:
     case ParameterType::Choice:
       o.name = kebab_option(s.field);
       o.takes_value = true;
-      o.metavar = s.type == ParameterType::Real   ? "REAL"
-                  : s.type == ParameterType::Text ? "NAME"
-                                                  : s.choices;
+      o.metavar = s.type == ParameterType::Real      ? "REAL"
+                  : s.type == ParameterType::Integer ? "N"
+                  : s.type == ParameterType::Text    ? "NAME"
+                                                     : s.choices;
       o.help = s.description;
       o.default_text = parameter_text(defaults, s);
       break;
@@ -73,6 +76,9 @@ OptionSpec rotor_option(const ParameterSpec& s) {
       break;
     }
   }
+  // The basis row is ExactModeOptions::n_basis, which the blade layer names in its messages.
+  if (s.type == ParameterType::Integer && s.integer == &RotorParameters::basis)
+    o.library_names.push_back("n_basis");
   return o;
 }
 
@@ -86,7 +92,7 @@ std::vector<OptionSpec> rotor_options() {
 std::vector<OptionSpec> modes_rotor_options() {
   std::vector<OptionSpec> v;
   for (const char* field :
-       {"omega_flap", "omega_lag", "length_ratio", "root_offset", "paper_1974_shapes"}) {
+       {"omega_flap", "omega_lag", "length_ratio", "root_offset", "basis", "paper_1974_shapes"}) {
     v.push_back(rotor_option(*find_parameter(field)));
   }
   return v;
@@ -200,8 +206,6 @@ std::vector<OptionSpec> build(Command c) {
                                {"flap_modes"}));
       v.push_back(value_option("--lag-modes", "N", "rotating lag modes shown (1..--basis)", "1",
                                {"lag_modes"}));
-      v.push_back(value_option("--basis", "N", "nonrotating cantilever functions per direction",
-                               "5", {"n_basis"}));
       v.push_back(value_option("--nonrotating", "A:B:STEP",
                                "Fig 9 table: first nonrotating frequencies (0 <= A < B, STEP > 0)",
                                "0:2.5:0.1", {"omega_nonrotating_lo", "omega_nonrotating_hi"}));
@@ -462,6 +466,19 @@ void set_parameter(RotorParameters& p, const OptionSpec& option, const std::stri
   switch (spec.type) {
     case ParameterType::Real:
       p.*spec.real = parse_real(option.name, text);
+      return;
+    case ParameterType::Integer:
+      // The range is validate()'s, as for reals; a whole number beyond int is out of it too.
+      try {
+        p.*spec.integer = parse_int(option.name, text, std::numeric_limits<int>::min(),
+                                    std::numeric_limits<int>::max());
+      } catch (const InvalidInput&) {
+        const std::size_t digits = text.find_first_not_of("+-") == 1 ? 1 : 0;
+        if (text.size() <= digits ||
+            text.find_first_not_of("0123456789", digits) != std::string::npos)
+          throw;  // not a whole number
+        throw InvalidInput(option.name, shown(text), std::string("must be ") + spec.requirement);
+      }
       return;
     case ParameterType::Flag:
       p.*spec.flag = option.flag_value;

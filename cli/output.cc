@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -219,15 +220,39 @@ void OutputTarget::write(const std::string& content) const {
   }
 }
 
-std::string num(double v) {
+namespace {
+void check_finite(double v) {
   if (!std::isfinite(v)) {
     throw std::logic_error("non-finite number " + round_trip_text(v) + " reached the output");
   }
+}
+}  // namespace
+
+std::string num(double v) {
+  check_finite(v);
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  // "1e-05" -> "1e-5", "1e+20" -> "1e+20" stays, "1e+05" -> "1e+5".
+  std::string s = buf;
+  const std::size_t e = s.find('e');
+  if (e != std::string::npos && e + 2 < s.size()) {
+    std::size_t first = e + 2;
+    while (first + 1 < s.size() && s[first] == '0') s.erase(first, 1);
+  }
+  return s;
+}
+
+std::string exact_num(double v) {
+  check_finite(v);
   return round_trip_text(v);
 }
 
 std::string zeta_text(double zeta) {
   return zeta == -std::numeric_limits<double>::infinity() ? "-inf" : num(zeta);
+}
+
+std::string exact_zeta_text(double zeta) {
+  return zeta == -std::numeric_limits<double>::infinity() ? "-inf" : exact_num(zeta);
 }
 
 TextTable::TextTable(std::vector<std::string> header) { rows_.push_back(std::move(header)); }

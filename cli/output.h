@@ -30,14 +30,19 @@ class OutputTarget {
   std::string path_;
 };
 
-// Numbers in text output: shortest decimal that reads back as exactly the same double
-// (never more than the 17 significant digits of %.17g).  A non-finite value is a bug of the
-// caller, which must have checked its results (commands.cc): num() throws std::logic_error
-// rather than print "nan" or "inf" as a result.
+// Numbers in text output (tables, key-value lines, plot titles), for people: about six
+// significant digits (%.6g, exponent without leading zeros: "1e-5").  CSV uses exact_num() and
+// JSON the double itself, which keep full round-trip precision.  A non-finite value is a bug
+// of the caller, which must have checked its results (commands.cc): num() and exact_num()
+// throw std::logic_error rather than print "nan" or "inf" as a result.
 std::string num(double v);
-// A damping exponent: num(), or "-inf" for the zeta of a zero multiplier (the only documented
-// non-finite result).
+// Numbers in CSV: the shortest decimal that reads back as exactly the same double (never more
+// than the 17 significant digits of %.17g).
+std::string exact_num(double v);
+// A damping exponent: num() (text) or exact_num() (CSV), or "-inf" for the zeta of a zero
+// multiplier (the only documented non-finite result).
 std::string zeta_text(double zeta);
+std::string exact_zeta_text(double zeta);
 
 // A text table: left-aligned first column, right-aligned further columns (numbers) unless
 // marked as text, two blanks between.

@@ -169,7 +169,24 @@ INSTANTIATE_TEST_SUITE_P(
                  "damping_lag"},
         BadParam{"UnknownModel", [](RotorParameters& p) { p.model = "nope"; }, "model"},
         BadParam{"MultiModeNeedsExactModes", [](RotorParameters& p) { p.model = "paper-2x2"; },
-                 "modes"}),
+                 "modes"},
+        // The exact-mode basis (issue 9 item 3): 1..12, and at least the model's mode counts.
+        BadParam{"ZeroBasis", [](RotorParameters& p) { p.basis = 0; }, "basis"},
+        BadParam{"BasisAboveTwelve", [](RotorParameters& p) { p.basis = 13; }, "basis"},
+        BadParam{"BasisSmallerThanModes",
+                 [](RotorParameters& p) {
+                   p.modes = flaplag::ModeKind::Exact;
+                   p.model = "paper-3x3";
+                   p.basis = 2;
+                 },
+                 "basis"},
+        // Five functions cannot represent a lag frequency below 0.2074 (k -> 0 limit).
+        BadParam{"LagFrequencyBelowTheBasisLimit",
+                 [](RotorParameters& p) {
+                   p.modes = flaplag::ModeKind::Exact;
+                   p.omega_lag = 0.2;
+                 },
+                 "omega_lag"}),
     [](const auto& tp) { return std::string(tp.param.name); });
 
 TEST(InvalidArguments, NegativeMuAndBadRanges) {
@@ -322,4 +339,73 @@ TEST(Models, PaperModelsAreCompiled) {
   for (const char* name : {"paper", "no-radial-flow", "lag-order-2", "paper-2x2"}) {
     EXPECT_NO_THROW(flaplag::find_model(name)) << name;
   }
+}
+
+// The exact modes are built from `basis` cantilever functions (it used to be 5 whatever the
+// caller asked for).  The first rotating frequencies are imposed, so they do not move; the
+// shape does, and it converges: the 12-function shape is closer to the 10-function one than
+// the 5-function shape is.  A basis of one function is the first cantilever function itself.
+TEST(ExactModeBasis, ShapesFollowTheBasisAndConverge) {
+  auto lag_shape_at = [](int basis, double x0) {
+    RotorParameters p;
+    p.modes = flaplag::ModeKind::Exact;
+    p.basis = basis;
+    const Analysis an(p, {});
+    EXPECT_EQ(an.parameters().basis, basis);
+    EXPECT_DOUBLE_EQ(an.modes().omega_lag[0], p.omega_lag);
+    return an.modes().lag[0]->value(0, x0);
+  };
+  const double x0 = 0.5;
+  const double s5 = lag_shape_at(5, x0), s10 = lag_shape_at(10, x0), s12 = lag_shape_at(12, x0);
+  EXPECT_NE(s5, s12);
+  EXPECT_LT(std::abs(s12 - s10), std::abs(s12 - s5)) << s5 << " " << s10 << " " << s12;
+  // One function: the tip-normalised first cantilever function phi_1(x0) / phi_1(1).
+  const auto phi1 = flaplag::cantilever_mode(1);
+  EXPECT_TRUE(RelClose(phi1->value(0, x0) / phi1->value(0, 1.0), lag_shape_at(1, x0), 1e-12));
+}
+
+// Issue 9 item 3: the left end of Fig 15 (omega_L1 = 0.2, exact modes) is below the k -> 0
+// limit of five functions but inside that of twelve, and the answer settles with the basis:
+// mu_c with 10 and 12 functions agree to 1 %, both resolved (status ok).
+TEST(ExactModeBasis, Fig15LeftEndIsReachableWithALargerBasis) {
+  auto mu_c = [](int basis) {
+    RotorParameters p;
+    p.modes = flaplag::ModeKind::Exact;
+    p.omega_lag = 0.2;
+    p.basis = basis;
+    flaplag::CriticalOptions o;
+    o.mu_max = 1.5;
+    const flaplag::CriticalResult c = Analysis(p, {}).critical(o);
+    EXPECT_EQ(c.status, flaplag::Status::Ok) << c.message;
+    EXPECT_TRUE(c.mu_c.has_value());
+    return c.mu_c.value_or(0.0);
+  };
+  const double m10 = mu_c(10), m12 = mu_c(12);
+  EXPECT_TRUE(RelClose(m12, m10, 1e-2));
+  EXPECT_GT(m12, 1.0);
+}
+
+// Analysis::simulate in blade terms: the tip perturbation is the tip-weighted sum of the
+// displacement states (the assumed mode has eta(1) = gamma(1) = 1), and y0 must fit the state.
+TEST(Simulation, TipDeflectionsFromTheDisplacementStates) {
+  const Analysis an(RotorParameters{}, {});
+  ASSERT_EQ(an.state_size(), 4);
+  Eigen::VectorXd y0(4);
+  y0 << 0.3, 0.01, -0.2, 0.02;  // dg1', dg1, dh1', dh1
+  flaplag::SimulationOptions o;
+  o.revolutions = 1.0;
+  o.samples_per_rev = 8;
+  const flaplag::TipSimulation s = an.simulate(0.5, y0, false, o);
+  EXPECT_EQ(s.simulation.status, flaplag::Status::Ok) << s.simulation.message;
+  ASSERT_EQ(s.flap_tip.size(), 9u);
+  EXPECT_EQ(s.flap_tip[0], 0.01);
+  EXPECT_EQ(s.lag_tip[0], 0.02);
+  EXPECT_FALSE(s.flap_growth_rate.has_value());  // one revolution: too short for a rate
+  try {
+    an.simulate(0.5, Eigen::VectorXd::Zero(3), false, o);
+    FAIL() << "accepted";
+  } catch (const flaplag::InvalidInput& e) {
+    EXPECT_EQ(e.name(), "y0");
+  }
+  EXPECT_THROW(an.simulate(-1.0, y0, false, o), flaplag::InvalidInput);
 }

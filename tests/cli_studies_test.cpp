@@ -132,8 +132,46 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"UnknownTable", "[bogus]\ntheta = 0.1\n", "FILE:1: bogus = \\[table\\]: .*"},
         BadCase{"FlagWithValue", "json = \"yes\"\n", "FILE:1: json = yes: must be true or false"},
         BadCase{"UnknownCommand", "command = \"fly\"\n", "FILE:1: command = fly: not a subcommand"},
-        BadCase{"Malformed", "theta = = 1\n", "FILE:1 = \\(TOML\\): .*"}),
+        BadCase{"Malformed", "theta = = 1\n", "FILE:1 = \\(TOML\\): .*"},
+        BadCase{"BasisOutOfRange", "basis = 13\n", "FILE:1: basis = 13: must be in 1\\.\\.12"},
+        BadCase{"BasisNotWhole", "basis = 2.5\n", "FILE:1: basis = 2.5: not a whole number"},
+        BadCase{"BasisBelowModes",
+                "command = \"critical\"\nmodes = \"exact\"\nflap-modes = 2\nbasis = 1\n",
+                "FILE:4: basis = 1: model 'paper-2x1' has 2 flap x 1 lag modes; .*"}),
     [](const auto& tp) { return std::string(tp.param.name); });
+
+// Issue 9 item 3: --basis reaches the analysis from a case file, appears in the JSON
+// parameters and round-trips; with it Fig 15's left end (exact modes, omega_L1 = 0.2), refused
+// with the default five functions, has a resolved answer.
+TEST(CliRun, BasisFromACaseFileReachesTheExactModes) {
+  TempDir d;
+  const std::string toml = d.file("fig15-left.toml");
+  std::ofstream(toml) << "command = \"critical\"\n[parameters]\nmodes = \"exact\"\n"
+                         "omega-lag = 0.2\nbasis = 12\n[critical]\nmu-max = 1.5\n"
+                         "[output]\njson = true\n";
+  const Outcome first = run({"run", toml});
+  ASSERT_EQ(0, first.exit_code) << first.err;
+  const Json j = Json::parse(first.out);
+  EXPECT_EQ(12, j["parameters"]["basis"].get<int>());
+  EXPECT_EQ("ok", j["status"]) << j["message"];
+  EXPECT_TRUE(j["mu_c"].is_number());
+  EXPECT_TRUE(j["mu_c_error"].is_number());
+  const std::string json = d.file("first.json");
+  std::ofstream(json) << first.out;
+  const Outcome again = run({"run", json});
+  EXPECT_EQ(first.out, again.out);
+  // The default basis refuses the frequency, and the message says what to change.
+  const Outcome five = run({"run", toml, "--basis", "5"});
+  EXPECT_EQ(2, five.exit_code);
+  EXPECT_NE(std::string::npos, five.err.find(":4: omega-lag = 0.2: ")) << five.err;
+  EXPECT_NE(std::string::npos, five.err.find("a larger --basis lowers the limit")) << five.err;
+  // A smaller basis changes the answer (the modes are rebuilt from it).
+  const Outcome ten = run({"run", toml, "--basis", "10"});
+  ASSERT_EQ(0, ten.exit_code) << ten.err;
+  const Json k = Json::parse(ten.out);
+  EXPECT_EQ(10, k["parameters"]["basis"].get<int>());
+  EXPECT_NE(j["mu_c"].get<double>(), k["mu_c"].get<double>());
+}
 
 TEST(CliRun, MissingOrUnreadableCaseFile) {
   const Outcome a = run({"run"});

@@ -228,6 +228,30 @@ const std::vector<BadInput> kBadInputs = {
     {"LengthRatioAboveOne", {"--length-ratio", "1.5"}, "--length-ratio", "1.5"},
     {"ModesBasisTooSmall", {"modes", "--flap-modes", "3", "--basis", "2"}, "--flap-modes", "3"},
     {"ModesOneFig9Point", {"modes", "--nonrotating", "0:1:2"}, "--nonrotating", "0:1:2"},
+    // --basis, the exact-mode Galerkin basis (issue 9 item 3), in every analysis command
+    {"ZeroBasis", {"critical", "--basis", "0"}, "--basis", "0"},
+    {"BasisAboveTwelve",
+     {"point", "--mu", "0.1", "--modes", "exact", "--basis", "13"},
+     "--basis",
+     "13"},
+    {"FractionalBasis", {"--basis", "2.5"}, "--basis", "2.5"},
+    {"NonNumericBasis", {"sweep", "--mu", "0:1:0.5", "--basis", "five"}, "--basis", "five"},
+    {"BasisBeyondInt", {"--basis", "99999999999"}, "--basis", "99999999999"},
+    {"ModesBasisZero", {"modes", "--basis", "0"}, "--basis", "0"},
+    {"BasisSmallerThanModes",
+     {"critical", "--modes", "exact", "--flap-modes", "3", "--lag-modes", "3", "--basis", "2"},
+     "--basis",
+     "2"},
+    {"StudyBasisSmallerThanModes",
+     {"study", "--vary", "theta=0.1,0.2", "--modes", "exact", "--flap-modes", "2", "--basis", "1"},
+     "--basis",
+     "1"},
+    // With five functions the lag frequency cannot go below 0.2074 (the k -> 0 limit): the
+    // message points at --basis.
+    {"ExactLagFrequencyBelowBasisLimit",
+     {"critical", "--modes", "exact", "--omega-lag", "0.2"},
+     "--omega-lag",
+     "0.2"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Table, CliBadInput, ::testing::ValuesIn(kBadInputs),
@@ -337,6 +361,82 @@ TEST(CliGood, BareCommandIsTheTypicalCase) {
     EXPECT_NE(r.out.find(s), std::string::npos) << s;
   }
   expect_clean_text(r.out);
+}
+
+// Issue 9 item 6: text tables for people — about six significant digits, zeta stated as the
+// real part of the exponent in 1/rev, the damping ratio, and locked (periodic-kind) exponents
+// marked — while CSV and JSON keep full round-trip precision.
+std::size_t significant_digits(const std::string& number) {
+  std::string mantissa = number.substr(0, number.find_first_of("eE"));
+  mantissa.erase(
+      std::remove_if(mantissa.begin(), mantissa.end(), [](char c) { return c < '0' || c > '9'; }),
+      mantissa.end());
+  mantissa.erase(0, mantissa.find_first_not_of('0'));
+  return mantissa.size();
+}
+
+TEST(CliTables, SixDigitsDampingRatioAndLockedModes) {
+  // omega_L1 = 0.5 at mu = 0.5: the lag mode is locked at 1/2 per rev (Fig 15's dip), the
+  // flap mode at 1 per rev.
+  const std::vector<std::string> args = {"point", "--mu", "0.5", "--omega-lag", "0.5"};
+  const Outcome t = run(args);
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  for (const char* s :
+       {"zeta: real part of the characteristic exponent", "1/rev", "damping ratio: -zeta/|lambda|",
+        "for omega = 0", "zeta [1/rev]", "damping ratio", "locked"}) {
+    EXPECT_NE(t.out.find(s), std::string::npos) << s << "\n" << t.out;
+  }
+  std::vector<std::string> json_args = args;
+  json_args.push_back("--json");
+  const Json j = parse_json(run(json_args));
+  int locked_half = 0;
+  for (const Json& e : j["exponents"]) {
+    const double zeta = e["zeta"].get<double>(), omega = e["omega"].get<double>();
+    ASSERT_TRUE(e["damping_ratio"].is_number()) << e;
+    EXPECT_DOUBLE_EQ(e["damping_ratio"].get<double>(), -zeta / std::hypot(zeta, omega)) << e;
+    if (e["label"] == "lag" && std::abs(omega - 0.5) < 1e-9) ++locked_half;
+  }
+  EXPECT_GE(locked_half, 1) << j["exponents"];
+  // The table row of each exponent: mode, zeta, omega, ratio, locked, multiplier, each number
+  // at most six significant digits.
+  std::istringstream lines(t.out);
+  std::string line;
+  int rows = 0, half_rows = 0;
+  static const std::regex kRow(R"(^  (flap|lag) +(\S+) +(\S+) +(\S+) +(\S+) +(.*)$)");
+  while (std::getline(lines, line)) {
+    std::smatch m;
+    if (!std::regex_match(line, m, kRow)) continue;
+    ++rows;
+    for (int k = 2; k <= 4; ++k) EXPECT_LE(significant_digits(m[k]), 6u) << line;
+    if (m[1] == "lag" && m[5] == "1/2") ++half_rows;
+    if (m[5] != "-") {
+      EXPECT_TRUE(m[5] == "1/2" || m[5] == "-1/2" || m[5] == "1" || m[5] == "-1") << line;
+    }
+  }
+  EXPECT_EQ(rows, 4) << t.out;
+  EXPECT_EQ(half_rows, locked_half) << t.out;
+
+  // Sweep: "p" after a locked omega; CSV holds the same numbers as JSON, to the last bit.
+  const std::vector<std::string> sweep = {"sweep", "--mu", "0.4:0.5:0.1", "--omega-lag", "0.5"};
+  const Outcome st = run(sweep);
+  ASSERT_EQ(st.exit_code, 0) << st.err;
+  EXPECT_NE(st.out.find("0.5 p"), std::string::npos) << st.out;
+  EXPECT_NE(st.out.find("lag ratio"), std::string::npos) << st.out;
+  std::vector<std::string> csv = sweep, js = sweep;
+  csv.insert(csv.end(), {"--format", "csv"});
+  js.push_back("--json");
+  const Outcome c = run(csv);
+  const Json sj = parse_json(run(js));
+  std::istringstream crow(c.out);
+  std::getline(crow, line);  // header
+  std::getline(crow, line);  // mu = 0.4
+  std::vector<std::string> fields;
+  std::stringstream fs(line);
+  for (std::string f; std::getline(fs, f, ',');) fields.push_back(f);
+  ASSERT_GE(fields.size(), 5u) << line;
+  EXPECT_EQ(std::stod(fields[1]), sj["rows"][0]["flap"]["zeta"].get<double>()) << line;
+  EXPECT_EQ(std::stod(fields[3]), sj["rows"][0]["lag"]["zeta"].get<double>()) << line;
+  EXPECT_GT(significant_digits(fields[3]), 6u) << line;
 }
 
 TEST(CliGood, BareCommandJson) {

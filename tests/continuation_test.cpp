@@ -249,6 +249,24 @@ TEST(Continuation, ClassifyCrossing) {
   EXPECT_STREQ("warning", status_name(Status::Warning));
 }
 
+// Damping ratio -zeta/|lambda| of lambda = zeta + i omega (issue 9 item 6): a 3-4-5 triangle,
+// the real exponents (omega = 0: +1 decaying, -1 growing), a zero multiplier (zeta = -inf)
+// and the undefined lambda = 0.
+TEST(Continuation, DampingRatio) {
+  EXPECT_EQ(0.6, damping_ratio(-3.0, 4.0).value());
+  EXPECT_EQ(0.6, damping_ratio(-3.0, -4.0).value());
+  EXPECT_EQ(-0.6, damping_ratio(3.0, 4.0).value());
+  EXPECT_EQ(1.0, damping_ratio(-0.2, 0.0).value());
+  EXPECT_EQ(-1.0, damping_ratio(0.2, 0.0).value());
+  EXPECT_EQ(0.0, damping_ratio(0.0, 1.5).value());
+  EXPECT_EQ(1.0, damping_ratio(-std::numeric_limits<double>::infinity(), 0.5).value());
+  EXPECT_FALSE(damping_ratio(0.0, 0.0).has_value());
+  EXPECT_FALSE(damping_ratio(std::nan(""), 1.0).has_value());
+  EXPECT_FALSE(damping_ratio(-0.1, std::numeric_limits<double>::infinity()).has_value());
+  // A lightly damped oscillator: ratio ~ -zeta / omega.
+  EXPECT_TRUE(RelClose(1e-3 / 1.28, damping_ratio(-1e-3, 1.28).value(), 1e-6));
+}
+
 TEST(Continuation, SweepStartsAboveHoverAndIncludesEnd) {
   auto A = [](double mu) {
     return oscillators(0.6, stiffness(0.6, 1.17 + mu), 0.04, stiffness(0.04, 1.28));

@@ -102,6 +102,36 @@ TEST(ParameterTable, RealRangesAreBoundedAndHoldTheDefaults) {
   }
 }
 
+// Integer rows: a closed range of whole numbers holding the default, and validate() accepting
+// exactly that range (the basis: the paper's 5 by default, 1..12 admissible).
+TEST(ParameterTable, IntegerRowsAreClosedWholeRanges) {
+  const RotorParameters defaults;
+  int integer_rows = 0;
+  for (const ParameterSpec& s : parameter_table()) {
+    if (s.type != ParameterType::Integer) continue;
+    ++integer_rows;
+    ASSERT_NE(s.integer, nullptr) << s.field;
+    EXPECT_EQ(s.real, nullptr) << s.field;
+    EXPECT_FALSE(s.range.lo_open || s.range.hi_open) << s.field;
+    EXPECT_EQ(s.range.lo, std::floor(s.range.lo)) << s.field;
+    EXPECT_EQ(s.range.hi, std::floor(s.range.hi)) << s.field;
+    EXPECT_TRUE(in_range(s, defaults.*s.integer)) << s.field;
+    for (const int v : {static_cast<int>(s.range.lo), static_cast<int>(s.range.hi)}) {
+      RotorParameters p;
+      p.*s.integer = v;
+      EXPECT_NO_THROW(validate(p)) << s.field << " = " << v;
+      EXPECT_EQ(parameter_text(p, s), std::to_string(v));
+    }
+  }
+  EXPECT_EQ(integer_rows, 1);
+  const ParameterSpec* basis = find_parameter("basis");
+  ASSERT_NE(basis, nullptr);
+  EXPECT_EQ(basis->type, ParameterType::Integer);
+  EXPECT_EQ(defaults.basis, 5);  // paper 4.1(b)
+  EXPECT_EQ(basis->range.lo, 1.0);
+  EXPECT_EQ(basis->range.hi, 12.0);
+}
+
 TEST(ParameterTable, ValuesAsTextAndModeKinds) {
   RotorParameters p;
   p.omega_lag = 0.1 + 0.2;
@@ -195,6 +225,10 @@ const BadCase kBad[] = {
     {"DampingFlapAboveBound", [](RotorParameters& p) { p.damping_flap = 10.5; }, "damping_flap"},
     {"DampingLagAboveBound", [](RotorParameters& p) { p.damping_lag = 1e10; }, "damping_lag"},
     {"RootOffsetAtRadius", [](RotorParameters& p) { p.root_offset = 1.0; }, "root_offset"},
+    // The exact-mode Galerkin basis: 1..12 cantilever functions (rotating_modes.h).
+    {"BasisZero", [](RotorParameters& p) { p.basis = 0; }, "basis"},
+    {"BasisNegative", [](RotorParameters& p) { p.basis = -5; }, "basis"},
+    {"BasisThirteen", [](RotorParameters& p) { p.basis = 13; }, "basis"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Table, ValidateRejects, ::testing::ValuesIn(kBad),

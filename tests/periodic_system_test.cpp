@@ -66,6 +66,18 @@ TEST(HarmonicBasis, IndexConvention) {
   EXPECT_THROW(harmonic_basis(-1, psi), InvalidInput);
 }
 
+// The names the front ends print (flaplag response, Python harmonic_names) follow the index
+// convention of harmonic_basis.
+TEST(HarmonicBasis, Names) {
+  EXPECT_EQ("const", harmonic_name(0));
+  EXPECT_EQ("cos psi", harmonic_name(1));
+  EXPECT_EQ("sin psi", harmonic_name(2));
+  EXPECT_EQ("cos 2psi", harmonic_name(3));
+  EXPECT_EQ("sin 5psi", harmonic_name(10));
+  EXPECT_EQ("cos 12psi", harmonic_name(23));
+  EXPECT_THROW(harmonic_name(-1), InvalidInput);
+}
+
 TEST(HarmonicMean, MatchesQuadratureForAllHarmonics) {
   const double intervals[][2] = {
       {0.0, kTwoPi / 50}, {0.3, 1.9}, {4.0, 6.2}, {1.0, 1.0 + 0x1p-20}};  // exact length

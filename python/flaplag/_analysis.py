@@ -23,6 +23,8 @@ from ._results import (
     ModelInfo,
     ModeShapes,
     PointResult,
+    ResponseResult,
+    SimulationResult,
     SweepResult,
     SystemResult,
 )
@@ -66,6 +68,8 @@ _TRANSITION_FIELDS = {r["field"]: r for r in TRANSITION}
 _COUNT_FIELDS = {r["field"]: r for r in _MODE_COUNTS}
 _ALL_FIELDS = {**_ROTOR_FIELDS, **_TRANSITION_FIELDS, **_COUNT_FIELDS}
 CRITICAL_DEFAULTS = dict(_flaplag.critical_defaults())
+RESPONSE_DEFAULTS = dict(_flaplag.response_defaults())  # C++ ResponseOptions
+SIMULATION_DEFAULTS = dict(_flaplag.simulation_defaults())  # C++ SimulationOptions
 
 _INT_MAX = 2**31 - 1
 
@@ -325,6 +329,58 @@ class Analysis:
         else:
             stations = _real_array("x", x)
         return ModeShapes._from(self._native.modes(stations, _int("derivative", derivative)))
+
+    def response(
+        self,
+        mu,
+        *,
+        samples=RESPONSE_DEFAULTS["samples"],
+        steps=RESPONSE_DEFAULTS["steps"],
+        tolerance=RESPONSE_DEFAULTS["tolerance"],
+    ) -> ResponseResult:
+        """The periodic forced response at mu (C++ Analysis::response, the command line's
+        ``flaplag response``): the tip deflections at ``samples`` azimuths psi_k = 2 pi k / n
+        over one revolution and their harmonics.  steps: RK4 steps per period (0: automatic,
+        doubled until y(0) agrees to ``tolerance``, relative)."""
+        return ResponseResult._from(
+            self._native.response(
+                _real("mu", mu),
+                _int("samples", samples),
+                _int("steps", steps),
+                _real("tolerance", tolerance),
+            )
+        )
+
+    def simulate(
+        self,
+        mu,
+        *,
+        revolutions=SIMULATION_DEFAULTS["revolutions"],
+        y0=0.01,
+        forced=False,
+        samples_per_rev=SIMULATION_DEFAULTS["samples_per_rev"],
+        steps_per_rev=SIMULATION_DEFAULTS["steps_per_rev"],
+    ) -> SimulationResult:
+        """Integrates the linear system at mu from y(0) = y0 (C++ Analysis::simulate, the
+        command line's ``flaplag simulate``): y0 a number (every state, the command line's
+        --perturbation) or one value per state (the order of ``Analysis.system(mu).states``);
+        forced: include f(psi) (default: the free response).  ``revolutions`` (> 0), reported
+        ``samples_per_rev`` times per revolution; steps_per_rev: RK4 steps (0: automatic)."""
+        n = self._native.state_size()
+        if isinstance(y0, numbers.Real) and not isinstance(y0, (bool, np.bool_)):
+            start = [float(y0)] * n
+        else:
+            start = _real_array("y0", y0)
+        return SimulationResult._from(
+            self._native.simulate(
+                _real("mu", mu),
+                start,
+                _flag("forced", forced),
+                _real("revolutions", revolutions),
+                _int("samples_per_rev", samples_per_rev),
+                _int("steps_per_rev", steps_per_rev),
+            )
+        )
 
     def floquet(self, mu, *, zeta_tolerance=None) -> FloquetSample:
         """One Floquet analysis at mu without continuation (omega only as principal value),

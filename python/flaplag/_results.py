@@ -12,6 +12,8 @@ from typing import Dict, Optional, Tuple
 
 import numpy as np
 
+from . import _flaplag
+
 __all__ = [
     "Exponent",
     "HoverResult",
@@ -22,6 +24,8 @@ __all__ = [
     "SystemResult",
     "ModeShapes",
     "FloquetSample",
+    "ResponseResult",
+    "SimulationResult",
     "ModelInfo",
     "StudyResult",
     "MapResult",
@@ -56,6 +60,12 @@ class Exponent:
     zeta: float
     omega: float
     multiplier: Optional[complex] = None
+
+    @property
+    def damping_ratio(self) -> Optional[float]:
+        """-zeta / |lambda| (the command line's damping ratio): for omega = 0 +1 when the mode
+        decays, -1 when it grows; None for lambda = 0."""
+        return _flaplag.damping_ratio(self.zeta, self.omega)
 
     def __repr__(self):
         return f"Exponent({self.label!r}, zeta={_g(self.zeta)}, omega={_g(self.omega)})"
@@ -462,6 +472,129 @@ class FloquetSample:
             d["error"],
             d["steps"],
             d["liouville_residual"],
+            d["status"],
+            d["message"],
+        )
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class ResponseResult:
+    """The periodic forced response at one mu (the command line's ``flaplag response``): the
+    2 pi-periodic solution of y' = A(psi) y + f(psi), the Floquet particular solution
+    (I - Phi) y(0) = int Phi(2 pi, s) f(s) ds.
+
+    psi: the sample azimuths [rad] in [0, 2 pi); y: the perturbation state about the hover
+    equilibrium at psi (samples x states, the state order of ``Analysis.system``); y0 = y(0);
+    flap_tip, lag_tip: the tip deflections by l at psi, hover equilibrium included (flap w/l
+    up, lag v/l positive lag); flap_harmonics, lag_harmonics: their harmonics, value =
+    c[0] + sum_n (c[2n-1] cos n psi + c[2n] sin n psi), n = 1..5, named by ``harmonic_names``
+    ('const', 'cos psi', 'sin psi', 'cos 2psi', ...); closure: |y(2 pi) - y(0)| / max(1, |y0|);
+    error: the estimated error of y0 (relative); min_distance_to_one: min |multiplier - 1|
+    (near 0: no unique periodic solution); steps: RK4 steps per period.  status 'failed'
+    (arrays empty) when a multiplier is at 1, 'warning' when the blade is unstable (the
+    solution exists but is not what the blade settles to).
+    """
+
+    mu: float
+    psi: np.ndarray
+    y: np.ndarray
+    y0: np.ndarray
+    flap_tip: np.ndarray
+    lag_tip: np.ndarray
+    flap_harmonics: np.ndarray
+    lag_harmonics: np.ndarray
+    harmonic_names: Tuple[str, ...]
+    closure: float
+    error: Optional[float]
+    min_distance_to_one: float
+    steps: int
+    status: str
+    message: str
+
+    def harmonics(self, which="flap") -> Dict[str, float]:
+        """{'const': ..., 'cos psi': ..., ...} of the flap or the lag tip deflection."""
+        c = {"flap": self.flap_harmonics, "lag": self.lag_harmonics}[which]
+        return {n: float(v) for n, v in zip(self.harmonic_names, c)}
+
+    def __repr__(self):
+        first = ""
+        if len(self.flap_harmonics) >= 3:
+            first = (
+                f"flap const={_g(self.flap_harmonics[0])}, cos={_g(self.flap_harmonics[1])}, "
+                f"sin={_g(self.flap_harmonics[2])}, "
+            )
+        return (
+            f"ResponseResult(mu={_g(self.mu)}, {len(self.psi)} samples, {first}"
+            f"closure={_g(self.closure)}, {_status(self.status, self.message)})"
+        )
+
+    @classmethod
+    def _from(cls, d):
+        return cls(
+            d["mu"],
+            np.asarray(d["psi"]),
+            np.asarray(d["y"]),
+            np.asarray(d["y0"]),
+            np.asarray(d["flap_tip"]),
+            np.asarray(d["lag_tip"]),
+            np.asarray(d["flap_harmonics"]),
+            np.asarray(d["lag_harmonics"]),
+            tuple(d["harmonic_names"]),
+            d["closure"],
+            d["error"],
+            d["min_distance_to_one"],
+            d["steps"],
+            d["status"],
+            d["message"],
+        )
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class SimulationResult:
+    """A time-domain simulation of the linear system at one mu (the command line's
+    ``flaplag simulate``): y' = A(psi) y (+ f(psi) when forced) from y(0) = y0.
+
+    psi: [rad] from 0; revolutions: psi / 2 pi; y: the perturbation state (samples x states);
+    flap_tip, lag_tip: the tip perturbation deflections by l (no hover equilibrium);
+    flap_growth_rate, lag_growth_rate: the envelope growth rates per rev over the last 3/4 of
+    the run (None with fewer than 3 revolutions there), to compare with the largest Floquet
+    zeta; steps_per_rev: RK4 steps per revolution.  status 'failed' on overflow (the state is
+    kept up to there).
+    """
+
+    mu: float
+    psi: np.ndarray
+    y: np.ndarray
+    flap_tip: np.ndarray
+    lag_tip: np.ndarray
+    flap_growth_rate: Optional[float]
+    lag_growth_rate: Optional[float]
+    steps_per_rev: int
+    status: str
+    message: str
+
+    @property
+    def revolutions(self) -> np.ndarray:
+        return self.psi / (2.0 * math.pi)
+
+    def __repr__(self):
+        return (
+            f"SimulationResult(mu={_g(self.mu)}, {len(self.psi)} samples, "
+            f"flap_growth_rate={_g(self.flap_growth_rate)}, "
+            f"lag_growth_rate={_g(self.lag_growth_rate)}, {_status(self.status, self.message)})"
+        )
+
+    @classmethod
+    def _from(cls, d):
+        return cls(
+            d["mu"],
+            np.asarray(d["psi"]),
+            np.asarray(d["y"]),
+            np.asarray(d["flap_tip"]),
+            np.asarray(d["lag_tip"]),
+            d["flap_growth_rate"],
+            d["lag_growth_rate"],
+            d["steps_per_rev"],
             d["status"],
             d["message"],
         )

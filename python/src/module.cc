@@ -115,6 +115,9 @@ RotorParameters rotor_parameters(const py::dict& d) {
       case ParameterType::Real:
         p.*s->real = value.cast<double>();
         break;
+      case ParameterType::Integer:
+        p.*s->integer = value.cast<int>();
+        break;
       case ParameterType::Flag:
         p.*s->flag = value.cast<bool>();
         break;
@@ -142,6 +145,9 @@ py::dict parameters_dict(const RotorParameters& p) {
     switch (s.type) {
       case ParameterType::Real:
         d[s.field] = p.*s.real;
+        break;
+      case ParameterType::Integer:
+        d[s.field] = p.*s.integer;
         break;
       case ParameterType::Flag:
         d[s.field] = p.*s.flag;
@@ -618,12 +624,86 @@ py::dict stability_map(const py::dict& params, const py::dict& transition, int f
   return d;
 }
 
+// ---- response and simulation -------------------------------------------------------------------
+
+// Rows of a 2-D array: one state vector per sample.
+py::array_t<double> states_numpy(const std::vector<Eigen::VectorXd>& y, int n) {
+  py::array_t<double> a({static_cast<py::ssize_t>(y.size()), static_cast<py::ssize_t>(n)});
+  auto r = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < y.size(); ++i)
+    for (int k = 0; k < n; ++k) r(static_cast<py::ssize_t>(i), k) = y[i](k);
+  return a;
+}
+
+py::list harmonic_names(std::size_t n) {
+  py::list l;
+  for (std::size_t h = 0; h < n; ++h) l.append(harmonic_name(static_cast<int>(h)));
+  return l;
+}
+
+py::dict response_dict(const Analysis& a, const ForcedResponse& f) {
+  const PeriodicResponse& p = f.periodic;
+  py::dict d;
+  d["mu"] = f.mu;
+  d["psi"] = to_numpy(p.psi);
+  d["y"] = states_numpy(p.y, a.state_size());
+  d["y0"] = to_numpy(p.y0);
+  d["flap_tip"] = to_numpy(f.flap_tip);
+  d["lag_tip"] = to_numpy(f.lag_tip);
+  d["flap_harmonics"] = to_numpy(f.flap_harmonics);
+  d["lag_harmonics"] = to_numpy(f.lag_harmonics);
+  d["harmonic_names"] = harmonic_names(f.flap_harmonics.size());
+  d["closure"] = p.closure;
+  d["error"] = optional(p.error);
+  d["min_distance_to_one"] = p.min_distance_to_one;
+  d["steps"] = p.steps;
+  d["status"] = status_name(f.status);
+  d["message"] = f.message;
+  return d;
+}
+
+py::dict simulation_dict(const Analysis& a, const TipSimulation& t) {
+  const Simulation& s = t.simulation;
+  py::dict d;
+  d["mu"] = t.mu;
+  d["psi"] = to_numpy(s.psi);
+  d["y"] = states_numpy(s.y, a.state_size());
+  d["flap_tip"] = to_numpy(t.flap_tip);
+  d["lag_tip"] = to_numpy(t.lag_tip);
+  d["flap_growth_rate"] = optional(t.flap_growth_rate);
+  d["lag_growth_rate"] = optional(t.lag_growth_rate);
+  d["steps_per_rev"] = s.steps_per_rev;
+  d["status"] = status_name(s.status);
+  d["message"] = s.message;
+  return d;
+}
+
+py::dict response_defaults() {
+  const ResponseOptions o;
+  py::dict d;
+  d["samples"] = o.samples;
+  d["steps"] = o.steps;
+  d["tolerance"] = o.tolerance;
+  return d;
+}
+
+py::dict simulation_defaults() {
+  const SimulationOptions o;
+  py::dict d;
+  d["revolutions"] = o.revolutions;
+  d["samples_per_rev"] = o.samples_per_rev;
+  d["steps_per_rev"] = o.steps_per_rev;
+  return d;
+}
+
 // ---- tables -------------------------------------------------------------------------------------
 
 const char* type_name(ParameterType t) {
   switch (t) {
     case ParameterType::Real:
       return "real";
+    case ParameterType::Integer:
+      return "int";
     case ParameterType::Text:
       return "text";
     case ParameterType::Flag:
@@ -647,7 +727,7 @@ py::list parameter_rows() {
     r["type"] = type_name(s.type);
     r["requirement"] = s.requirement;
     r["default"] = values[s.field];
-    if (s.type == ParameterType::Real) {
+    if (s.type == ParameterType::Real || s.type == ParameterType::Integer) {
       r["range"] = py::make_tuple(s.range.lo, s.range.hi, s.range.lo_open, s.range.hi_open);
     }
     if (s.type == ParameterType::Choice) {
@@ -736,6 +816,10 @@ PYBIND11_MODULE(_flaplag, m) {
   m.def("parameter_table", &parameter_rows);
   m.def("transition_table", &transition_rows);
   m.def("critical_defaults", &critical_defaults);
+  m.def("response_defaults", &response_defaults);
+  m.def("damping_ratio",
+        [](double zeta, double omega) { return optional(damping_ratio(zeta, omega)); });
+  m.def("simulation_defaults", &simulation_defaults);
   m.def("models", &model_rows);
   m.def("study_parameters", [] {
     py::list l;
@@ -817,6 +901,36 @@ PYBIND11_MODULE(_flaplag, m) {
            })
       .def("modes", [](const Analysis& a, const std::vector<double>& x,
                        int derivative) { return modes_dict(a.modes(), x, derivative); })
+      .def("response",
+           [](const Analysis& a, double mu, int samples, int steps, double tolerance) {
+             ResponseOptions o;
+             o.samples = samples;
+             o.steps = steps;
+             o.tolerance = tolerance;
+             ForcedResponse f;
+             {
+               py::gil_scoped_release release;
+               f = a.response(mu, o);
+             }
+             return response_dict(a, f);
+           })
+      .def("state_size", &Analysis::state_size)
+      .def("simulate",
+           [](const Analysis& a, double mu, const std::vector<double>& y0, bool forced,
+              double revolutions, int samples_per_rev, int steps_per_rev) {
+             SimulationOptions o;
+             o.revolutions = revolutions;
+             o.samples_per_rev = samples_per_rev;
+             o.steps_per_rev = steps_per_rev;
+             const Eigen::VectorXd y =
+                 Eigen::Map<const Eigen::VectorXd>(y0.data(), static_cast<Eigen::Index>(y0.size()));
+             TipSimulation t;
+             {
+               py::gil_scoped_release release;
+               t = a.simulate(mu, y, forced, o);
+             }
+             return simulation_dict(a, t);
+           })
       .def("floquet", [](const Analysis& a, double mu, double zeta_tolerance) {
         FloquetSample s;
         {

@@ -70,7 +70,7 @@ def test_numpy_scalars_are_numbers():
 @pytest.mark.parametrize("field,value", [
     ("gamma", -1.0), ("gamma", 0.0), ("sigma", 2.0), ("theta", 2.0), ("omega_lag", 0.0),
     ("omega_flap", 1e6), ("damping_lag", -0.1), ("tip_loss_b", 0.0), ("root_offset", 1.0),
-    ("cdo", -0.01), ("lift_slope", 101.0),
+    ("cdo", -0.01), ("lift_slope", 101.0), ("basis", 0), ("basis", 13),
 ])
 def test_invalid_value_has_the_cli_reason(field, value):
     with pytest.raises(ValueError) as err:
@@ -103,6 +103,10 @@ def test_invalid_value_has_the_cli_reason(field, value):
     ({"flap_modes": 2}, "flap_modes"),  # more than one mode needs exact modes
     ({"modes": "exact", "flap_modes": 9}, "model"),  # no such compiled model
     ({"flap_modes": 0}, "flap_modes"),
+    ({"basis": 2.5}, "basis"),
+    ({"basis": "5"}, "basis"),
+    ({"modes": "exact", "flap_modes": 3, "lag_modes": 3, "basis": 2}, "basis"),
+    ({"modes": "exact", "omega_lag": 0.2}, "omega_lag"),  # below the 5-function limit 0.2074
 ])
 def test_bad_arguments_raise_value_error(kwargs, field):
     with pytest.raises(ValueError) as err:
@@ -324,3 +328,56 @@ def test_ctrl_c_cancels_a_map():
                     threads=1)
     timer.join()
     assert time.monotonic() - start < 10.0
+
+
+# ---- the exact-mode basis, the forced response and the simulation ----------------------------
+
+def test_basis_keyword_reaches_the_exact_modes():
+    """basis (the command line's --basis): the Galerkin basis of the exact modes; the left end
+    of Fig 15 (omega_lag = 0.2) needs more than the default five functions."""
+    assert flaplag.Analysis().parameters["basis"] == 5
+    an = flaplag.Analysis(modes="exact", omega_lag=0.2, basis=12)
+    assert an.parameters["basis"] == 12
+    crit = an.critical(mu_max=1.5)
+    assert crit.status == "ok" and crit.mu_c is not None
+    x = np.linspace(0, 1, 11)
+    five = flaplag.Analysis(modes="exact").modes(x).lag
+    twelve = flaplag.Analysis(modes="exact", basis=12).modes(x).lag
+    assert not np.array_equal(five, twelve)
+    assert abs(five[0, -1] - 1.0) < 1e-12 and abs(twelve[0, -1] - 1.0) < 1e-12  # tip-normalised
+
+
+def test_response_is_periodic_and_its_harmonics_rebuild_it():
+    r = flaplag.Analysis().response(0.3, samples=72)
+    assert r.status == "ok", r.message
+    assert r.psi.shape == r.flap_tip.shape == r.lag_tip.shape == (72,)
+    assert r.y.shape == (72, 4) and np.array_equal(r.y[0], r.y0)
+    assert r.closure < 1e-10
+    assert r.harmonic_names[:3] == ("const", "cos psi", "sin psi")
+    assert set(r.harmonics("lag")) == set(r.harmonic_names)
+    # five harmonics rebuild the tip deflection to within the higher harmonics left out
+    rebuilt = np.full_like(r.psi, r.flap_harmonics[0])
+    for n in range(1, 6):
+        rebuilt += r.flap_harmonics[2 * n - 1] * np.cos(n * r.psi)
+        rebuilt += r.flap_harmonics[2 * n] * np.sin(n * r.psi)
+    assert np.max(np.abs(rebuilt - r.flap_tip)) < 1e-4 * np.max(np.abs(r.flap_tip))
+
+
+def test_simulation_growth_rate_is_the_largest_zeta():
+    """Issue 12: the envelope of the free response grows like exp(max zeta psi)."""
+    an = flaplag.Analysis()
+    s = an.simulate(0.9, revolutions=40)
+    zeta = max(e.zeta for e in an.point(0.9).exponents if e.label == "lag")
+    assert s.status == "ok", s.message
+    assert s.y.shape == (len(s.psi), 4)
+    assert abs(s.lag_growth_rate - zeta) < 0.01 * abs(zeta)
+    assert np.array_equal(s.revolutions, s.psi / (2 * math.pi))
+    # y0 per state: only the lag displacement perturbed
+    t = an.simulate(0.9, revolutions=2, y0=[0.0, 0.0, 0.0, 0.02])
+    assert t.lag_tip[0] == 0.02 and t.flap_tip[0] == 0.0
+    with pytest.raises(ValueError):
+        an.simulate(0.9, y0=[0.0, 1.0])
+    with pytest.raises(ValueError):
+        an.simulate(0.9, revolutions=0.0)
+    with pytest.raises(ValueError):
+        an.response(-0.1)

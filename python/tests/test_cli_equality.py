@@ -32,6 +32,8 @@ def check_exponents(cli_exponents, exponents):
         assert c["label"] == e.label
         assert same(zeta_value(c["zeta"]), e.zeta), (c, e)
         assert same(c["omega"], e.omega), (c, e)
+        if "damping_ratio" in c:
+            assert same(c["damping_ratio"], e.damping_ratio), (c, e)
         m = c.get("multiplier")
         if m is not None:
             assert same(m["re"], e.multiplier.real) and same(m["im"], e.multiplier.imag)
@@ -163,3 +165,53 @@ def test_system():
     hover = find(doc, "hover", default=None)
     if hover is not None:
         assert same(hover["inflow"], an.hover.inflow)
+
+
+RESPONSE_CASES = [
+    ({}, "0.3", {}),
+    ({"modes": "exact", "theta": 0.2}, "0.6", {"samples": 36}),
+    ({"modes": "exact", "flap_modes": 2, "lag_modes": 1, "basis": 8}, "0.4", {}),
+]
+
+
+@pytest.mark.parametrize("params,mu,options", RESPONSE_CASES)
+def test_response(params, mu, options):
+    """`flaplag response` and Analysis.response: the same tip deflections and harmonics."""
+    an = flaplag.Analysis(**params)
+    r = an.response(float(mu), **options)
+    doc = run_cli(*cli_args(**params), "response", "--mu", mu, *cli_args(**options))
+    check_parameters(doc, an)
+    assert find(doc, "status") == r.status
+    assert np.array(find(doc, "psi"), dtype=float).tobytes() == r.psi.tobytes()
+    assert np.array(find(doc, "flap_tip"), dtype=float).tobytes() == r.flap_tip.tobytes()
+    assert np.array(find(doc, "lag_tip"), dtype=float).tobytes() == r.lag_tip.tobytes()
+    for key, values in (("flap_harmonics", r.flap_harmonics), ("lag_harmonics", r.lag_harmonics)):
+        h = find(doc, key)
+        assert list(h) == list(r.harmonic_names)
+        assert np.array(list(h.values()), dtype=float).tobytes() == values.tobytes()
+    assert same(find(doc, "closure"), r.closure)
+    assert same(find(doc, "error_estimate", default=r.error), r.error)
+    assert find(doc, "steps") == r.steps
+
+
+@pytest.mark.parametrize("params,mu,options", [
+    ({}, "0.9", {"revolutions": 12.0}),
+    ({"modes": "exact"}, "0.5", {"revolutions": 6.5, "samples_per_rev": 20, "forced": True}),
+])
+def test_simulate(params, mu, options):
+    """`flaplag simulate` and Analysis.simulate: the same tip response and growth rates."""
+    an = flaplag.Analysis(**params)
+    s = an.simulate(float(mu), y0=0.01, **options)
+    args = ["--revs", repr(options["revolutions"]), "--perturbation", "0.01"]
+    if "samples_per_rev" in options:
+        args += ["--samples", str(options["samples_per_rev"])]
+    if options.get("forced"):
+        args.append("--forced")
+    doc = run_cli(*cli_args(**params), "simulate", "--mu", mu, *args)
+    check_parameters(doc, an)
+    assert find(doc, "status") == s.status
+    assert find(doc, "steps_per_rev") == s.steps_per_rev
+    for key, values in (("psi", s.psi), ("flap_tip", s.flap_tip), ("lag_tip", s.lag_tip)):
+        assert np.array(find(doc, key), dtype=float).tobytes() == values.tobytes(), key
+    assert same(find(doc, "flap_growth_rate"), s.flap_growth_rate)
+    assert same(find(doc, "lag_growth_rate"), s.lag_growth_rate)

@@ -384,6 +384,32 @@ ForcedResponse Analysis::response(double mu, const ResponseOptions& options) con
   return out;
 }
 
+TipSimulation Analysis::simulate(double mu, const Eigen::VectorXd& y0, bool forced,
+                                 const SimulationOptions& options) const {
+  check_mu(mu, "mu");
+  TipSimulation out;
+  out.mu = mu;
+  out.simulation = flaplag::simulate(impl_->builder.system(mu), y0, forced, options);
+  const Simulation& s = out.simulation;
+  const ModeSet& modes = impl_->builder.modes();
+  const int M = model().flap_modes, N = model().lag_modes;
+  for (const Eigen::VectorXd& y : s.y) {
+    double w = 0.0, v = 0.0;
+    for (int k = 0; k < M; ++k)
+      w += modes.flap[k]->value(0, 1.0) * y(model::flap_displacement_index(k, M, N));
+    for (int r = 0; r < N; ++r)
+      v += modes.lag[r]->value(0, 1.0) * y(model::lag_displacement_index(r, M, N));
+    out.flap_tip.push_back(w);
+    out.lag_tip.push_back(v);
+  }
+  // The first quarter holds the transient of the other modes.
+  out.flap_growth_rate = envelope_growth_rate(s.psi, out.flap_tip, 0.25 * options.revolutions);
+  out.lag_growth_rate = envelope_growth_rate(s.psi, out.lag_tip, 0.25 * options.revolutions);
+  return out;
+}
+
+int Analysis::state_size() const { return impl_->builder.state_size(); }
+
 SystemSnapshot Analysis::snapshot(double mu, double psi) const {
   check_mu(mu, "mu");
   if (!std::isfinite(psi)) throw InvalidInput("psi", round_trip_text(psi), "must be finite");

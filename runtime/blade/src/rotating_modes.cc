@@ -33,7 +33,7 @@ double ModalCombination::value(int d, double x0) const {
 
 namespace {
 
-constexpr int kMaxBasis = 12;
+constexpr int kMaxBasis = kMaxBasisFunctions;
 
 // The Galerkin matrices divided by mbar, so that lambda = wbar^2 are the eigenvalues of
 //   flap: kappa B + G,   lag: kappa B + G - I,   kappa = k / mbar,
@@ -141,8 +141,9 @@ double solve_kappa(const Galerkin& gal, BendingDirection dir, double omega) {
         option_name(dir), round_trip_text(omega),
         std::string("first rotating ") + direction_name(dir) +
             " frequency must exceed the k -> 0 (centrifugal stiffening only) limit " +
-            round_trip_text(std::sqrt(std::max(lambda0, 0.0))) + " of the " + std::to_string(gal.n) +
-            "-function cantilever basis (a larger n_basis lowers the limit)");
+            round_trip_text(std::sqrt(std::max(lambda0, 0.0))) + " of the " +
+            std::to_string(gal.n) +
+            "-function cantilever basis (a larger `n_basis` lowers the limit)");
   }
   double lo = 0.0;
   double hi = std::numeric_limits<double>::infinity();

@@ -145,6 +145,14 @@ InstabilityKind classify_crossing(double omega, double tolerance) {
                                                                 : InstabilityKind::Flutter;
 }
 
+std::optional<double> damping_ratio(double zeta, double omega) {
+  if (zeta == -std::numeric_limits<double>::infinity() && std::isfinite(omega)) return 1.0;
+  if (!std::isfinite(zeta) || !std::isfinite(omega)) return std::nullopt;
+  const double r = std::hypot(zeta, omega);
+  if (r == 0.0) return std::nullopt;
+  return -zeta / r;
+}
+
 ExponentTracker::ExponentTracker(const HoverModes& hover) {
   if (hover.eigenvalues.empty() || hover.eigenvectors.size() != hover.eigenvalues.size() ||
       hover.labels.size() != hover.eigenvalues.size())

@@ -61,6 +61,13 @@ double harmonic_basis(int h, double psi) {
   return (h % 2 == 1) ? std::cos(k * psi) : std::sin(k * psi);
 }
 
+std::string harmonic_name(int h) {
+  if (h < 0) throw InvalidInput("h", std::to_string(h), "harmonic index must be >= 0");
+  if (h == 0) return "const";
+  const int k = order(h);
+  return std::string(h % 2 == 1 ? "cos " : "sin ") + (k == 1 ? "" : std::to_string(k)) + "psi";
+}
+
 double harmonic_mean(int h, double a, double b) {
   if (h < 0) throw InvalidInput("h", std::to_string(h), "harmonic index must be >= 0");
   if (!(std::isfinite(a) && std::isfinite(b)))

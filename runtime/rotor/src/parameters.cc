@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "flaplag/blade/rotating_modes.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/rotor/parameter_table.h"
@@ -19,7 +20,24 @@ ParameterSpec real_row(const char* field, const char* symbol, const char* units,
                        const char* description, double RotorParameters::*member, Interval range,
                        const char* requirement) {
   return ParameterSpec{field,       symbol, units, description, ParameterType::Real,
-                       requirement, member, range, nullptr,     nullptr};
+                       requirement, member, range, nullptr,     nullptr,
+                       nullptr};
+}
+
+// An int field with the closed range [lo, hi].
+ParameterSpec integer_row(const char* field, const char* symbol, const char* description,
+                          int RotorParameters::*member, int lo, int hi, const char* requirement) {
+  return ParameterSpec{field,
+                       symbol,
+                       "-",
+                       description,
+                       ParameterType::Integer,
+                       requirement,
+                       nullptr,
+                       Interval{static_cast<double>(lo), static_cast<double>(hi), false, false},
+                       nullptr,
+                       nullptr,
+                       member};
 }
 
 ParameterSpec flag_row(const char* field, const char* description, bool RotorParameters::*member) {
@@ -32,6 +50,7 @@ ParameterSpec flag_row(const char* field, const char* description, bool RotorPar
                        nullptr,
                        Interval{0, 0, false, false},
                        member,
+                       nullptr,
                        nullptr};
 }
 
@@ -49,7 +68,7 @@ std::vector<ParameterSpec> build_table() {
   std::vector<ParameterSpec> t;
   t.push_back(ParameterSpec{"model", "", "-", "compiled ordering model (the list: flaplag models)",
                             ParameterType::Text, "the name of a compiled model", nullptr,
-                            Interval{0, 0, false, false}, nullptr, nullptr});
+                            Interval{0, 0, false, false}, nullptr, nullptr, nullptr});
   t.push_back(real_row("gamma", "gamma", "-", "Lock number, based on normal flow",
                        &RotorParameters::gamma, Interval{0.0, 1e4, true, false}, "in (0, 1e4]"));
   t.push_back(real_row("sigma", "sigma", "-", "rotor solidity, for the inflow of eq 2.24",
@@ -90,7 +109,14 @@ std::vector<ParameterSpec> build_table() {
   t.push_back(ParameterSpec{"modes", "", "-",
                             "blade mode shapes: assumed (eq 4.1) or exact rotating modes",
                             ParameterType::Choice, "assumed or exact", nullptr,
-                            Interval{0, 0, false, false}, nullptr, "assumed|exact"});
+                            Interval{0, 0, false, false}, nullptr, "assumed|exact", nullptr});
+  // Paper 4.1(b): five functions.  A lag frequency near the k -> 0 limit of the basis (0.207
+  // with five, Fig 15's left end omega_L1 = 0.2) needs more (rotating_modes.h).
+  static_assert(kMaxBasisFunctions == 12, "update the requirement text");
+  t.push_back(integer_row("basis", "",
+                          "exact modes: nonrotating cantilever functions per direction (Galerkin "
+                          "basis of the rotating modes; at least the model's mode counts)",
+                          &RotorParameters::basis, 1, kMaxBasisFunctions, "in 1..12"));
   t.push_back(flag_row("elastic_coupling", "the elastic coupling of Appendix E (exact modes only)",
                        &RotorParameters::elastic_coupling));
   t.push_back(flag_row("paper_1974_shapes",
@@ -144,6 +170,8 @@ std::string parameter_text(const RotorParameters& p, const ParameterSpec& spec) 
   switch (spec.type) {
     case ParameterType::Real:
       return round_trip_text(p.*spec.real);
+    case ParameterType::Integer:
+      return std::to_string(p.*spec.integer);
     case ParameterType::Flag:
       return p.*spec.flag ? "true" : "false";
     case ParameterType::Choice:
@@ -156,6 +184,12 @@ std::string parameter_text(const RotorParameters& p, const ParameterSpec& spec) 
 
 void validate(const RotorParameters& p) {
   for (const ParameterSpec& s : parameter_table()) {
+    if (s.type == ParameterType::Integer) {
+      const int v = p.*s.integer;
+      if (!in_range(s, v))
+        throw InvalidInput(s.field, std::to_string(v), std::string("must be ") + s.requirement);
+      continue;
+    }
     if (s.type != ParameterType::Real) continue;
     const double v = p.*s.real;
     if (!std::isfinite(v))

@@ -30,12 +30,30 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
     }
     modes_ = assumed_modes(p_.omega_flap, p_.omega_lag);
   } else {
+    // Galerkin's method gives at most as many rotating modes per direction as basis functions.
+    if (M_ > p_.basis || N_ > p_.basis) {
+      throw InvalidInput(
+          "basis", std::to_string(p_.basis),
+          std::string("model '") + m.name + "' has " + std::to_string(M_) + " flap x " +
+              std::to_string(N_) + " lag modes; the exact modes need at least " +
+              std::to_string(std::max(M_, N_)) + " cantilever functions per direction");
+    }
     ExactModeOptions opt;
+    opt.n_basis = p_.basis;
     opt.flap_modes = M_;
     opt.lag_modes = N_;
     opt.e1_over_l = p_.root_offset / p_.length_ratio;
     opt.paper_1974_shapes = p_.paper_1974_shapes;
-    modes_ = exact_modes(p_.omega_flap, p_.omega_lag, opt);
+    try {
+      modes_ = exact_modes(p_.omega_flap, p_.omega_lag, opt);
+    } catch (const InvalidInput& e) {
+      // The blade layer calls the basis size `n_basis` (ExactModeOptions); here it is `basis`.
+      const std::string head = e.name() + " = " + e.value() + ": ";
+      std::string reason = std::string(e.what()).substr(head.size());
+      for (std::size_t at; (at = reason.find("`n_basis`")) != std::string::npos;)
+        reason.replace(at, 9, "`basis`");
+      throw InvalidInput(e.name() == "n_basis" ? "basis" : e.name(), e.value(), reason);
+    }
   }
   geometry_.e1 = p_.root_offset;
   geometry_.lr = p_.length_ratio;

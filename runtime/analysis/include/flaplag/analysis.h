@@ -83,6 +83,19 @@ struct ForcedResponse {
   std::string message;
 };
 
+// A time-domain simulation of the perturbation y about the hover equilibrium
+// (numerics/response.h) in blade terms.
+struct TipSimulation {
+  double mu = 0.0;
+  Simulation simulation;  // psi [rad] from 0 and y(psi); its status and message
+  // Tip perturbation deflections by l at simulation.psi: flap dw/l = sum_k eta_k(1) dg_k (up),
+  // lag dv/l = sum_m gamma_m(1) dh_m (positive lag); the hover equilibrium is not included.
+  std::vector<double> flap_tip, lag_tip;
+  // Envelope growth rates per rev (envelope_growth_rate) over the last 3/4 of the run, to
+  // compare with the largest Floquet zeta; nullopt with fewer than 3 revolutions there.
+  std::optional<double> flap_growth_rate, lag_growth_rate;
+};
+
 class Analysis {
  public:
   // Checks params (validate()) and options (TransitionOptions::Check()); throws InvalidInput.
@@ -117,6 +130,13 @@ class Analysis {
   // The periodic forced response at mu; status Failed when there is none (a multiplier at 1),
   // Warning when the system is unstable (the blade does not settle onto it).
   ForcedResponse response(double mu, const ResponseOptions& options = {}) const;
+
+  // Integrates y' = A(psi) y (+ f(psi) when forced) from y(0) = y0 (state_size() values, the
+  // state order of model_api.h) at mu; options.Check() and y0 checked (InvalidInput "y0").
+  TipSimulation simulate(double mu, const Eigen::VectorXd& y0, bool forced,
+                         const SimulationOptions& options = {}) const;
+  // The size of the state y: 2 (M + N).
+  int state_size() const;
 
   // One resolved Floquet evaluation at mu (the FloquetFunction of the numerics), for callers
   // that drive their own continuation.

@@ -25,8 +25,12 @@ namespace flaplag {
 
 enum class BendingDirection { Flap, Lag };
 
+// The largest Galerkin basis: the cantilever functions are verified to ~1e-13 for j <= 12
+// (blade.h).
+inline constexpr int kMaxBasisFunctions = 12;
+
 struct ExactModeOptions {
-  int n_basis = 5;         // cantilever functions per direction (paper: 5); 1..12
+  int n_basis = 5;         // cantilever functions per direction (paper: 5); 1..kMaxBasisFunctions
   int flap_modes = 1;      // M rotating flap modes returned, 1..n_basis
   int lag_modes = 1;       // N rotating lag modes returned, 1..n_basis
   double e1_over_l = 0.0;  // root offset from the rotation axis by l, >= 0 (centrifugal arm)

@@ -29,6 +29,14 @@ namespace flaplag {
 // Periodic when omega is within `tolerance` of an integer or half-integer.
 InstabilityKind classify_crossing(double omega, double tolerance = 1e-3);
 
+// Damping ratio of the characteristic exponent lambda = zeta + i omega (per rev):
+// -zeta / |lambda|, the viscous damping ratio of a constant-coefficient oscillator with that
+// exponent.  In (-1, 1) for omega != 0; for omega = 0 (a real exponent, no oscillation) it is
+// +1 when the mode decays and -1 when it grows; +1 for zeta = -inf (a zero multiplier).
+// nullopt for lambda = 0 and for non-finite input otherwise.  Note that omega is known only up
+// to an integer from Phi(2 pi) (eq 3.19); the ratio uses the omega continued from hover.
+std::optional<double> damping_ratio(double zeta, double omega);
+
 struct LabelledExponent {
   std::string label;   // "flap", "lag" ("flap2", "lag2", ... when M or N > 1)
   double zeta = 0.0;   // per rev

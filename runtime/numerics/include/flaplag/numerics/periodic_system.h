@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <string>
 #include <vector>
 
 namespace flaplag {
@@ -18,6 +19,8 @@ struct HarmonicSet {
 
 // Basis function phi_h(psi).
 double harmonic_basis(int h, double psi);
+// Its name: "const", "cos psi", "sin psi", "cos 2psi", "sin 2psi", ... (h >= 0).
+std::string harmonic_name(int h);
 // psi reduced to [0, 2 pi) (NaN and inf stay NaN).
 double reduce_azimuth(double psi);
 // Exact mean of phi_h over [a, b] (eqs 4.2-4.5 generalised), b > a.

@@ -17,10 +17,11 @@
 namespace flaplag {
 
 enum class ParameterType {
-  Real,    // double field with an admissible interval
-  Text,    // std::string field (the model name)
-  Flag,    // bool field
-  Choice,  // ModeKind field, one of `choices`
+  Real,     // double field with an admissible interval
+  Integer,  // int field with an admissible closed interval [lo, hi] (range, both ends integers)
+  Text,     // std::string field (the model name)
+  Flag,     // bool field
+  Choice,   // ModeKind field, one of `choices`
 };
 
 // Admissible values of a Real parameter.  Every bound is finite: each admissible value is a
@@ -42,11 +43,13 @@ struct ParameterSpec {
   const char* requirement;  // admissible values in words, e.g. "in (0, 1e4]"; "" if any
   // Real only
   double RotorParameters::*real;
-  Interval range;
+  Interval range;  // Real and Integer rows
   // Flag only
   bool RotorParameters::*flag;
   // Choice only: values separated by '|', e.g. "assumed|exact"
   const char* choices;
+  // Integer only
+  int RotorParameters::*integer;
 };
 
 // All rows, in the order of RotorParameters.
@@ -55,10 +58,11 @@ const std::vector<ParameterSpec>& parameter_table();
 // Row by field name ("omega_lag"); nullptr when there is none.
 const ParameterSpec* find_parameter(std::string_view field);
 
-// True when v is finite and inside the row's interval (Real rows only).
+// True when v is finite and inside the row's interval (Real and Integer rows).
 bool in_range(const ParameterSpec& spec, double v);
 
-// Current value of a row as text: reals in shortest round-trip form, flags "true"/"false",
+// Current value of a row as text: reals in shortest round-trip form, integers in decimal,
+// flags "true"/"false",
 // choices by name, the model as is.
 std::string parameter_text(const RotorParameters& p, const ParameterSpec& spec);
 

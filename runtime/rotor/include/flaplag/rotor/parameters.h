@@ -30,6 +30,7 @@ struct RotorParameters {
   double root_offset = 0.0;               // e1, root offset of the elastic blade by R, [0, 1)
   bool reversed_flow = true;              // Appendix D sector model
   ModeKind modes = ModeKind::Assumed;
+  int basis = 5;  // exact modes: nonrotating cantilever functions per direction, 1..12 (paper 5)
   bool elastic_coupling = true;  // Appendix E; applies to exact modes only (paper 4.1(a))
   bool paper_1974_shapes =
       false;  // exact modes rebuilt with the 1974 sign slip (docs/validation.md)
