@@ -25,6 +25,7 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/floquet.h"
+#include "transition_varying.h"
 
 namespace flaplag {
 namespace {
@@ -427,6 +428,7 @@ const char* method_name(TransitionMethod m) {
 Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps) {
   check_count("steps", steps);
   sys.validate();
+  if (sys.has_varying) return detail::varying_rk4(sys, steps);  // transition_varying.cc
   return dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.rk4(steps)); });
 }
 
@@ -434,6 +436,7 @@ Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, 
   check_count("intervals", intervals);
   check_count("terms", terms, TransitionOptions::kMaxTerms);
   sys.validate();
+  if (sys.has_varying) return detail::varying_hsu(sys, intervals, terms);
   return dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.hsu(intervals, terms)); });
 }
 
@@ -450,6 +453,7 @@ Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, 
 TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps) {
   check_count("steps", steps);
   sys.validate();
+  if (sys.has_varying) return detail::varying_magnus4(sys, steps);
   const std::vector<Segment> coarse = make_grid(sys, steps);
   const std::vector<Segment> fine = bisect(coarse);
   const Eigen::MatrixXd ph =

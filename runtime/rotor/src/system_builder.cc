@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 #include "flaplag/core/errors.h"
@@ -15,6 +16,22 @@ double reversed_flow_sector_width(double mu) {
   if (mu < 1.0) return kPi / 2.0;  // eq D.1
   const double s = std::asin(1.0 / mu);
   return kPi - 2.0 * s + mu * mu * s - std::sqrt(mu * mu - 1.0);  // eq D.2
+}
+
+ExactReversedRegion exact_reversed_region(double mu, const RotorParameters& p) {
+  ExactReversedRegion r;
+  const double x_a = p.root_offset + p.length_ratio * p.tip_loss_a;  // inner aerodynamic limit
+  const double x_b = p.root_offset + p.length_ratio * p.tip_loss_b;  // outer (tip loss) limit
+  if (!(mu > x_a)) return r;  // the circle of diameter mu does not reach the aerodynamic span
+  const double a = std::asin(x_a / mu);
+  r.exists = true;
+  r.begin = kPi + a;
+  r.end = kTwoPi - a;
+  if (mu > x_b) {
+    const double b = std::asin(x_b / mu);
+    r.breaks = {kPi + b, kTwoPi - b};
+  }
+  return r;
 }
 
 SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescriptor& m)
@@ -179,6 +196,109 @@ std::vector<double> SystemBuilder::reversed_integrals(double mu) const {
   return aero_.reversed(mu);
 }
 
+// A and f of the exact region at one mu as functions of the split station x0 in [A, B] and of
+// psi.  The aerodynamic integrals at a split x0 are normal - 2 int_A^{x0}, whose antiderivatives
+// are Chebyshev series of degree kDegree + 1 in x0 (aero_integrals.h), and the generated loads
+// are affine in the integrals (each term carries one spanwise integral, model_api.h), so every
+// harmonic coefficient of A and f is a polynomial of that degree in x0: interpolating it at
+// kDegree + 2 Chebyshev-Lobatto points reproduces it to rounding, and one evaluation is a
+// Clenshaw sum instead of a call of the generated code.  (tests/analysis_test.cpp checks the
+// result against the loads assembled from Gauss-quadrature integrals split at x0(psi).)
+class SystemBuilder::ExactTable {
+ public:
+  ExactTable(const SystemBuilder& b, double mu)
+      : mu_(mu), e1_(b.p_.root_offset), lr_(b.p_.length_ratio), a_(b.p_.tip_loss_a),
+        b_(b.p_.tip_loss_b), ns_(2 * b.n_), H_(b.H_) {
+    const int n = AeroIntegrals::kDegree + 1;  // polynomial degree in x0
+    const Eigen::Index rows = static_cast<Eigen::Index>(ns_) * ns_ + ns_;
+    std::vector<Eigen::MatrixXd> values(n + 1);
+    std::vector<double> partial;
+    const std::vector<double>& normal = b.aero_.normal();
+    for (int k = 0; k <= n; ++k) {
+      const double x0 = 0.5 * (a_ + b_) + 0.5 * (b_ - a_) * std::cos(kPi * k / n);
+      b.aero_.partial(x0, partial);
+      std::vector<double> aero(partial.size());
+      for (std::size_t j = 0; j < aero.size(); ++j) aero[j] = normal[j] - 2.0 * partial[j];
+      HarmonicSet set;
+      b.assemble(mu, aero, set);
+      Eigen::MatrixXd& v = values[k];
+      v.setZero(rows, H_);
+      for (int h = 0; h < H_; ++h) {
+        v.col(h).head(static_cast<Eigen::Index>(ns_) * ns_) =
+            Eigen::Map<const Eigen::VectorXd>(set.A[h].data(), set.A[h].size());
+        v.col(h).tail(ns_) = set.f[h];
+      }
+    }
+    // Chebyshev coefficients (discrete cosine transform over the Lobatto nodes).
+    coef_.assign(n + 1, Eigen::MatrixXd::Zero(rows, H_));
+    for (int i = 0; i <= n; ++i) {
+      for (int k = 0; k <= n; ++k) {
+        const double w = (k == 0 || k == n) ? 0.5 : 1.0;
+        coef_[i] += (w * std::cos(kPi * i * k / n)) * values[k];
+      }
+      coef_[i] *= 2.0 / n * ((i == 0 || i == n) ? 0.5 : 1.0);
+    }
+    // Trailing coefficients at the rounding floor of the transform (measured ~2e-15 of the
+    // largest) only cost time: the assumed-mode integrands are polynomials of low degree
+    // (13 terms kept for the paper model), the exact-mode ones converge geometrically (~32).
+    double big = 0.0;
+    for (const Eigen::MatrixXd& c : coef_) big = std::max(big, c.cwiseAbs().maxCoeff());
+    while (coef_.size() > 1 && coef_.back().cwiseAbs().maxCoeff() <= 4e-15 * big) coef_.pop_back();
+  }
+
+  void at(double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) const {
+    const double x0 = std::clamp((-mu_ * std::sin(psi) - e1_) / lr_, a_, b_);
+    const double t = (2.0 * x0 - a_ - b_) / (b_ - a_);
+    Eigen::VectorXd phi(H_);
+    for (int h = 0; h < H_; ++h) phi(h) = harmonic_basis(h, psi);
+    // W = sum_i T_i(t) coef_i (T_i by the three-term recurrence; |t| <= 1 keeps it stable),
+    // then A and f = W phi.
+    Eigen::MatrixXd W = coef_[0];
+    double tm = 1.0, tc = t;
+    for (std::size_t i = 1; i < coef_.size(); ++i) {
+      W += tc * coef_[i];
+      const double tn = 2.0 * t * tc - tm;
+      tm = tc;
+      tc = tn;
+    }
+    const Eigen::VectorXd b0 = W * phi;
+    A = Eigen::Map<const Eigen::MatrixXd>(b0.data(), ns_, ns_);
+    f = b0.tail(ns_);
+  }
+
+ private:
+  double mu_, e1_, lr_, a_, b_;
+  int ns_, H_;
+  std::vector<Eigen::MatrixXd> coef_;  // [degree + 1], each (ns^2 + ns) x H
+};
+
+std::vector<double> SystemBuilder::exact_integrals(double mu, double psi) const {
+  std::vector<double> out;
+  // the station (in x0) where the flow reverses at psi; partial() clips it to [A, B]
+  aero_.partial((-mu * std::sin(psi) - p_.root_offset) / p_.length_ratio, out);
+  const std::vector<double>& normal = aero_.normal();
+  for (std::size_t j = 0; j < out.size(); ++j) out[j] = normal[j] - 2.0 * out[j];
+  return out;
+}
+
+HarmonicSet SystemBuilder::harmonics(double mu, const std::vector<double>& aero) const {
+  HarmonicSet set;
+  assemble(mu, aero, set);
+  return set;
+}
+
+void SystemBuilder::exact_at(double mu, double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) const {
+  HarmonicSet set;
+  assemble(mu, exact_integrals(mu, psi), set);
+  A.setZero(2 * n_, 2 * n_);
+  f.setZero(2 * n_);
+  for (int h = 0; h < H_; ++h) {
+    const double phi = harmonic_basis(h, psi);
+    A += phi * set.A[h];
+    f += phi * set.f[h];
+  }
+}
+
 PeriodicSystem SystemBuilder::system(double mu) const {
   if (!(mu >= 0.0) || !std::isfinite(mu)) {
     throw InvalidInput("mu", round_trip_text(mu), "advance ratio must be finite and >= 0");
@@ -186,7 +306,21 @@ PeriodicSystem SystemBuilder::system(double mu) const {
   PeriodicSystem sys;
   sys.n = 2 * n_;
   assemble(mu, aero_.normal(), sys.normal);
-  if (p_.reversed_flow && mu > 0.0) {
+  if (p_.reversed_flow && p_.exact_reversed_flow && mu > 0.0) {
+    const ExactReversedRegion r = exact_reversed_region(mu, p_);
+    if (r.exists) {
+      sys.has_varying = true;
+      sys.varying_begin = r.begin;
+      sys.varying_end = r.end;
+      sys.varying_breaks = r.breaks;
+      // The system may outlive this builder (it is returned by value): the evaluator owns its
+      // table.
+      auto table = std::make_shared<const ExactTable>(*this, mu);
+      sys.varying = [table](double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) {
+        table->at(psi, A, f);
+      };
+    }
+  } else if (p_.reversed_flow && mu > 0.0) {
     const double alpha = reversed_flow_sector_width(mu);
     sys.has_sector = true;
     sys.sector_begin = 1.5 * kPi - 0.5 * alpha;
