@@ -30,6 +30,9 @@ TEST(Parameters, DefaultsAreThePapersTypicalCaseAndValid) {
   EXPECT_EQ(p.theta, 0.15);
   EXPECT_EQ(p.omega_flap, 1.175);
   EXPECT_EQ(p.omega_lag, 1.28303);
+  // the paper's reversed-flow model: the Appendix D sector, not the exact circle
+  EXPECT_TRUE(p.reversed_flow);
+  EXPECT_FALSE(p.exact_reversed_flow);
 }
 
 // Eq 2.24 evaluated independently: sigma a = 0.05 * 2 pi, 24 theta / (sigma a) = 11.4591559...,
@@ -195,6 +198,12 @@ const BadCase kBad[] = {
     {"DampingFlapAboveBound", [](RotorParameters& p) { p.damping_flap = 10.5; }, "damping_flap"},
     {"DampingLagAboveBound", [](RotorParameters& p) { p.damping_lag = 1e10; }, "damping_lag"},
     {"RootOffsetAtRadius", [](RotorParameters& p) { p.root_offset = 1.0; }, "root_offset"},
+    {"ExactReversedFlowWithoutReversedFlow",
+     [](RotorParameters& p) {
+       p.reversed_flow = false;
+       p.exact_reversed_flow = true;
+     },
+     "exact_reversed_flow"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Table, ValidateRejects, ::testing::ValuesIn(kBad),
