@@ -246,7 +246,8 @@ TEST(ExactReversedFlow, HsuConvergesAtSecondOrder) {
   const double z_ref = top(Analysis(p, method(TransitionMethod::Magnus4, 400)).point(mu, 0.05));
   double err[3];
   int j = 0;
-  for (int K : {100, 200, 400}) err[j++] = std::abs(top(Analysis(p, method(TransitionMethod::Hsu, K)).point(mu, 0.05)) - z_ref);
+  for (int K : {100, 200, 400})
+    err[j++] = std::abs(top(Analysis(p, method(TransitionMethod::Hsu, K)).point(mu, 0.05)) - z_ref);
   EXPECT_NEAR(2.0, std::log2(err[0] / err[1]), 0.3) << err[0] << " " << err[1];
   EXPECT_NEAR(2.0, std::log2(err[1] / err[2]), 0.3) << err[1] << " " << err[2];
 }

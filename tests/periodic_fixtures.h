@@ -354,8 +354,10 @@ inline PeriodicSystem sector_as_varying(const PeriodicSystem& sector) {
   v.varying = [rev, n](double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) {
     A.setZero(n, n);
     f.setZero(n);
-    for (std::size_t h = 0; h < rev.A.size(); ++h) A += harmonic_basis(static_cast<int>(h), psi) * rev.A[h];
-    for (std::size_t h = 0; h < rev.f.size(); ++h) f += harmonic_basis(static_cast<int>(h), psi) * rev.f[h];
+    for (std::size_t h = 0; h < rev.A.size(); ++h)
+      A += harmonic_basis(static_cast<int>(h), psi) * rev.A[h];
+    for (std::size_t h = 0; h < rev.f.size(); ++h)
+      f += harmonic_basis(static_cast<int>(h), psi) * rev.f[h];
   };
   v.reversed = HarmonicSet{};
   return v;

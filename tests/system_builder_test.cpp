@@ -142,13 +142,12 @@ TEST_P(ExactRegionGauss, AMatchesGaussQuadratureOfTheSplitIntegrals) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Models, ExactRegionGauss,
-    ::testing::Values(GaussCase{"assumed_mu06", "paper", false, 0.6},
-                      GaussCase{"assumed_mu13", "paper", false, 1.3},
-                      GaussCase{"exact_mu06", "paper", true, 0.6},
-                      GaussCase{"exact2x2_mu13", "paper-2x2", true, 1.3}),
-    [](const auto& tp) { return std::string(tp.param.name); });
+INSTANTIATE_TEST_SUITE_P(Models, ExactRegionGauss,
+                         ::testing::Values(GaussCase{"assumed_mu06", "paper", false, 0.6},
+                                           GaussCase{"assumed_mu13", "paper", false, 1.3},
+                                           GaussCase{"exact_mu06", "paper", true, 0.6},
+                                           GaussCase{"exact2x2_mu13", "paper-2x2", true, 1.3}),
+                         [](const auto& tp) { return std::string(tp.param.name); });
 
 // mu >= 1 on the default blade: between the breaks the whole span is reversed, so the
 // integrals there are the negated normal ones, as in the sector of eqs D.5-D.6.

@@ -203,7 +203,8 @@ struct Analysis::Impl {
     for (const HarmonicSet* set : {&sys.normal, &sys.reversed})
       for (const Eigen::MatrixXd& a : set->A) system_finite = system_finite && a.allFinite();
     if (sys.has_varying)  // the exact region's fully reversed middle (the largest values)
-      system_finite = system_finite && sys.A(0.5 * (sys.varying_begin + sys.varying_end)).allFinite();
+      system_finite =
+          system_finite && sys.A(0.5 * (sys.varying_begin + sys.varying_end)).allFinite();
     if (!system_finite) {
       out.status = Status::Failed;
       out.message =

@@ -205,12 +205,13 @@ double PeriodicSystem::trace_integral() const {
   if (has_varying) {
     // Inside the varying region the normal harmonics are replaced by the evaluator: subtract
     // their exact integral and add the evaluator's by composite Gauss-Legendre, 8 points on
-    // panels of at most pi/16 on each smooth piece (between breaks): exact to rounding for
-    // trigonometric content up to order ~20 per rev (tests/periodic_system_test.cpp).
+    // panels of at most pi/16 on each smooth piece (between breaks), where the integrand is
+    // analytic (checked against closed forms in tests/periodic_system_test.cpp, and through
+    // the rotor's Liouville residual below 1e-10 in tests/analysis_test.cpp).
     const double width = varying_end - varying_begin;
     for (std::size_t h = 0; h < normal.A.size(); ++h)
-      total -= normal.A[h].trace() * harmonic_mean(static_cast<int>(h), varying_begin, varying_end) *
-               width;
+      total -= normal.A[h].trace() *
+               harmonic_mean(static_cast<int>(h), varying_begin, varying_end) * width;
     std::vector<double> cuts = {varying_begin};
     for (double b : varying_breaks) cuts.push_back(b);
     cuts.push_back(varying_end);

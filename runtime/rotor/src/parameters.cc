@@ -177,8 +177,8 @@ void validate(const RotorParameters& p) {
   // The exact region is a way of modelling the reversed flow, not a second switch for it.
   if (p.exact_reversed_flow && !p.reversed_flow) {
     throw InvalidInput(row("exact_reversed_flow").field, "true",
-                       "needs `reversed_flow` (the exact region replaces the sector of the "
-                       "reversed flow that is switched off)");
+                       "needs the reversed flow switched on (the exact region replaces its "
+                       "Appendix D sector)");
   }
   // Every other check is per field; this one keeps hover_inflow() defined for valid input.
   hover_inflow(p);

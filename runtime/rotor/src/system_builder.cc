@@ -1,4 +1,3 @@
-#include "flaplag/core/constants.h"
 #include "flaplag/rotor/system_builder.h"
 
 #include <algorithm>
@@ -6,9 +5,10 @@
 #include <memory>
 #include <sstream>
 
+#include "flaplag/blade/rotating_modes.h"
+#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
-#include "flaplag/blade/rotating_modes.h"
 
 namespace flaplag::detail {
 
@@ -207,13 +207,35 @@ std::vector<double> SystemBuilder::reversed_integrals(double mu) const {
 class SystemBuilder::ExactTable {
  public:
   ExactTable(const SystemBuilder& b, double mu)
-      : mu_(mu), e1_(b.p_.root_offset), lr_(b.p_.length_ratio), a_(b.p_.tip_loss_a),
-        b_(b.p_.tip_loss_b), ns_(2 * b.n_), H_(b.H_) {
+      : mu_(mu),
+        e1_(b.p_.root_offset),
+        lr_(b.p_.length_ratio),
+        a_(b.p_.tip_loss_a),
+        b_(b.p_.tip_loss_b),
+        ns_(2 * b.n_),
+        H_(b.H_) {
     const int n = AeroIntegrals::kDegree + 1;  // polynomial degree in x0
     const Eigen::Index rows = static_cast<Eigen::Index>(ns_) * ns_ + ns_;
+    // Harmonics packed as columns [vec(A_h); f_h]; the table holds the change from the normal
+    // harmonics, so that entries the reversed flow does not touch (the identity rows of A)
+    // stay exact.
+    auto pack = [&](const HarmonicSet& set) {
+      Eigen::MatrixXd v(rows, H_);
+      for (int h = 0; h < H_; ++h) {
+        v.col(h).head(static_cast<Eigen::Index>(ns_) * ns_) =
+            Eigen::Map<const Eigen::VectorXd>(set.A[h].data(), set.A[h].size());
+        v.col(h).tail(ns_) = set.f[h];
+      }
+      return v;
+    };
+    const std::vector<double>& normal = b.aero_.normal();
+    {
+      HarmonicSet set;
+      b.assemble(mu, normal, set);
+      base_ = pack(set);
+    }
     std::vector<Eigen::MatrixXd> values(n + 1);
     std::vector<double> partial;
-    const std::vector<double>& normal = b.aero_.normal();
     for (int k = 0; k <= n; ++k) {
       const double x0 = 0.5 * (a_ + b_) + 0.5 * (b_ - a_) * std::cos(kPi * k / n);
       b.aero_.partial(x0, partial);
@@ -221,13 +243,7 @@ class SystemBuilder::ExactTable {
       for (std::size_t j = 0; j < aero.size(); ++j) aero[j] = normal[j] - 2.0 * partial[j];
       HarmonicSet set;
       b.assemble(mu, aero, set);
-      Eigen::MatrixXd& v = values[k];
-      v.setZero(rows, H_);
-      for (int h = 0; h < H_; ++h) {
-        v.col(h).head(static_cast<Eigen::Index>(ns_) * ns_) =
-            Eigen::Map<const Eigen::VectorXd>(set.A[h].data(), set.A[h].size());
-        v.col(h).tail(ns_) = set.f[h];
-      }
+      values[k] = pack(set) - base_;
     }
     // Chebyshev coefficients (discrete cosine transform over the Lobatto nodes).
     coef_.assign(n + 1, Eigen::MatrixXd::Zero(rows, H_));
@@ -239,10 +255,11 @@ class SystemBuilder::ExactTable {
       coef_[i] *= 2.0 / n * ((i == 0 || i == n) ? 0.5 : 1.0);
     }
     // Trailing coefficients at the rounding floor of the transform (measured ~2e-15 of the
-    // largest) only cost time: the assumed-mode integrands are polynomials of low degree
+    // largest harmonic) only cost time: the assumed-mode integrands are polynomials of low degree
     // (13 terms kept for the paper model), the exact-mode ones converge geometrically (~32).
     double big = 0.0;
     for (const Eigen::MatrixXd& c : coef_) big = std::max(big, c.cwiseAbs().maxCoeff());
+    big = std::max(big, base_.cwiseAbs().maxCoeff());
     while (coef_.size() > 1 && coef_.back().cwiseAbs().maxCoeff() <= 4e-15 * big) coef_.pop_back();
   }
 
@@ -253,7 +270,7 @@ class SystemBuilder::ExactTable {
     for (int h = 0; h < H_; ++h) phi(h) = harmonic_basis(h, psi);
     // W = sum_i T_i(t) coef_i (T_i by the three-term recurrence; |t| <= 1 keeps it stable),
     // then A and f = W phi.
-    Eigen::MatrixXd W = coef_[0];
+    Eigen::MatrixXd W = base_ + coef_[0];
     double tm = 1.0, tc = t;
     for (std::size_t i = 1; i < coef_.size(); ++i) {
       W += tc * coef_[i];
@@ -269,7 +286,8 @@ class SystemBuilder::ExactTable {
  private:
   double mu_, e1_, lr_, a_, b_;
   int ns_, H_;
-  std::vector<Eigen::MatrixXd> coef_;  // [degree + 1], each (ns^2 + ns) x H
+  Eigen::MatrixXd base_;               // normal-flow harmonics, (ns^2 + ns) x H
+  std::vector<Eigen::MatrixXd> coef_;  // [degree + 1] of the change, each (ns^2 + ns) x H
 };
 
 std::vector<double> SystemBuilder::exact_integrals(double mu, double psi) const {

@@ -43,7 +43,7 @@ struct PeriodicSystem {
   // there (at the edges: the one-sided limit from inside), with psi in [0, 2 pi].
   using Evaluator = std::function<void(double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f)>;
   bool has_varying = false;
-  double varying_begin = 0.0;          // radians, 0 <= begin < end <= 2*pi
+  double varying_begin = 0.0;  // radians, 0 <= begin < end <= 2*pi
   double varying_end = 0.0;
   std::vector<double> varying_breaks;  // where A is not smooth, inside (begin, end), sorted
   Evaluator varying;

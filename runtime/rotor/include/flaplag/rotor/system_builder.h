@@ -15,10 +15,10 @@
 
 #include "flaplag/blade/aero_integrals.h"
 #include "flaplag/blade/blade.h"
-#include "flaplag/rotor/hover.h"
 #include "flaplag/model_api.h"
-#include "flaplag/rotor/parameters.h"
 #include "flaplag/numerics/periodic_system.h"
+#include "flaplag/rotor/hover.h"
+#include "flaplag/rotor/parameters.h"
 
 namespace flaplag::detail {
 
@@ -81,8 +81,8 @@ class SystemBuilder {
   AeroIntegrals aero_;
   std::vector<double> g0_, h0_;
   std::vector<double> damping_flap_, damping_lag_;  // per mode [M], [N]
-  Eigen::VectorXd hover_forcing_;         // forcing[0] at mu = 0, normal flow, at the equilibrium
-  Eigen::MatrixXd mass_inverse_;  // generalized mass^-1, factored once in the constructor
+  Eigen::VectorXd hover_forcing_;  // forcing[0] at mu = 0, normal flow, at the equilibrium
+  Eigen::MatrixXd mass_inverse_;   // generalized mass^-1, factored once in the constructor
   HoverResult hover_;
 };
 
