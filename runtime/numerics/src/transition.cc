@@ -4,7 +4,8 @@
 // contains a reversed-flow sector edge is split there into two substeps, so that A(psi) is
 // smooth (a trigonometric polynomial of one region) on every substep.  Each substep uses the
 // harmonics of the region that contains its midpoint; at a substep end that lies on an edge
-// that is the one-sided limit, which is what the integrators need.
+// that is the one-sided limit, which is what the integrators need.  A system with a varying
+// region (the exact reversed flow, periodic_system.h) goes to transition_varying.cc instead.
 //
 // Speed: the dimension is a template parameter (fixed-size, stack-allocated Eigen matrices for
 // n = 2, 4, 6, 8; dynamic matrices with preallocated temporaries otherwise); only the entries
