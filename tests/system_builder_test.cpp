@@ -145,7 +145,12 @@ TEST_P(ExactRegionGauss, AMatchesGaussQuadratureOfTheSplitIntegrals) {
 INSTANTIATE_TEST_SUITE_P(Models, ExactRegionGauss,
                          ::testing::Values(GaussCase{"assumed_mu06", "paper", false, 0.6},
                                            GaussCase{"assumed_mu13", "paper", false, 1.3},
+                                           GaussCase{"no_radial_flow_mu13", "no-radial-flow", false,
+                                                     1.3},
+                                           GaussCase{"lag_order_2_mu08", "lag-order-2", false, 0.8},
                                            GaussCase{"exact_mu06", "paper", true, 0.6},
+                                           GaussCase{"exact2x1_mu08", "paper-2x1", true, 0.8},
+                                           GaussCase{"exact1x2_mu08", "paper-1x2", true, 0.8},
                                            GaussCase{"exact2x2_mu13", "paper-2x2", true, 1.3}),
                          [](const auto& tp) { return std::string(tp.param.name); });
 

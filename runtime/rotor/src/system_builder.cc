@@ -202,8 +202,9 @@ std::vector<double> SystemBuilder::reversed_integrals(double mu) const {
 // are affine in the integrals (each term carries one spanwise integral, model_api.h), so every
 // harmonic coefficient of A and f is a polynomial of that degree in x0: interpolating it at
 // kDegree + 2 Chebyshev-Lobatto points reproduces it to rounding, and one evaluation is a
-// Clenshaw sum instead of a call of the generated code.  (tests/analysis_test.cpp checks the
-// result against the loads assembled from Gauss-quadrature integrals split at x0(psi).)
+// Chebyshev sum instead of a call of the generated code.  (tests/system_builder_test.cpp checks
+// the result, for every shipped model family, against the loads assembled from Gauss-quadrature
+// integrals split at x0(psi).)
 class SystemBuilder::ExactTable {
  public:
   ExactTable(const SystemBuilder& b, double mu)
@@ -303,18 +304,6 @@ HarmonicSet SystemBuilder::harmonics(double mu, const std::vector<double>& aero)
   HarmonicSet set;
   assemble(mu, aero, set);
   return set;
-}
-
-void SystemBuilder::exact_at(double mu, double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) const {
-  HarmonicSet set;
-  assemble(mu, exact_integrals(mu, psi), set);
-  A.setZero(2 * n_, 2 * n_);
-  f.setZero(2 * n_);
-  for (int h = 0; h < H_; ++h) {
-    const double phi = harmonic_basis(h, psi);
-    A += phi * set.A[h];
-    f += phi * set.f[h];
-  }
 }
 
 PeriodicSystem SystemBuilder::system(double mu) const {

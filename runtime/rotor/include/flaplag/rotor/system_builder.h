@@ -56,10 +56,9 @@ class SystemBuilder {
   // x0 = (-mu sin psi - e1)/(l/R) clipped to [A, B] (the sector's rule with its fixed station
   // x = mu replaced by x = -mu sin psi); the normal values where x0 <= A.
   std::vector<double> exact_integrals(double mu, double psi) const;
-  // Harmonic matrices of A and f at mu for a given set of aerodynamic integrals.
+  // Harmonic matrices of A and f at mu for a given set of aerodynamic integrals (in the exact
+  // region, system(mu).A(psi) is harmonics(mu, exact_integrals(mu, psi)) summed at psi).
   HarmonicSet harmonics(double mu, const std::vector<double>& aero) const;
-  // A(psi), f(psi) of the exact region: harmonics(mu, exact_integrals(mu, psi)) summed at psi.
-  void exact_at(double mu, double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) const;
   const std::vector<double>& normal_integrals() const { return aero_.normal(); }
   const std::vector<double>& structural_values() const { return structural_; }
 
