@@ -20,7 +20,8 @@ namespace {
 
 struct Piece {
   double a, b;
-  bool varying;  // inside the varying region (by the midpoint)
+  bool varying;              // inside the varying region (by the midpoint)
+  bool after_break = false;  // a starts at a breakpoint (A may jump or kink there)
 };
 
 // N equal steps over [0, 2 pi]; a step containing a breakpoint strictly inside is split there
@@ -36,12 +37,14 @@ std::vector<Piece> make_grid(const PeriodicSystem& sys, int steps) {
     const double a = i * d;
     const double b = (i + 1 == steps) ? kTwoPi : (i + 1) * d;
     double lo = a;
-    while (k < edges.size() && edges[k] <= a + slack) ++k;
+    bool at_break = false;
+    while (k < edges.size() && edges[k] <= a + slack) at_break |= edges[k++] >= a - slack;
     while (k < edges.size() && edges[k] < b - slack) {
-      out.push_back({lo, edges[k], sys.in_varying(0.5 * (lo + edges[k]))});
+      out.push_back({lo, edges[k], sys.in_varying(0.5 * (lo + edges[k])), at_break});
       lo = edges[k++];
+      at_break = true;
     }
-    out.push_back({lo, b, sys.in_varying(0.5 * (lo + b))});
+    out.push_back({lo, b, sys.in_varying(0.5 * (lo + b)), at_break});
   }
   return out;
 }
@@ -57,9 +60,17 @@ class Evaluator {
       return;
     }
     const HarmonicSet& set = sys_.region(0.5 * (p.a + p.b));
-    out.setZero(sys_.n, sys_.n);
-    for (std::size_t h = 0; h < set.A.size(); ++h)
-      out += harmonic_basis(static_cast<int>(h), psi) * set.A[h];
+    out = set.A[0];
+    // cos k psi, sin k psi by the rotation recurrence from one sin/cos pair
+    const double c1 = std::cos(psi), s1 = std::sin(psi);
+    double ck = c1, sk = s1;
+    for (std::size_t h = 1; h < set.A.size(); h += 2) {
+      out += ck * set.A[h];
+      if (h + 1 < set.A.size()) out += sk * set.A[h + 1];
+      const double cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+    }
   }
 
  private:
@@ -67,15 +78,16 @@ class Evaluator {
   Eigen::VectorXd f_;
 };
 
-// sum_{j=0}^{J} X^j / j! by Horner (eq 3.27).
-Eigen::MatrixXd taylor(const Eigen::MatrixXd& X, int J) {
-  const Eigen::Index n = X.rows();
-  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(n, n) + X / static_cast<double>(J);
+// T = sum_{j=0}^{J} X^j / j! by Horner (eq 3.27): I + X/1 (I + X/2 (... (I + X/J))); Y is
+// workspace.
+void taylor(const Eigen::MatrixXd& X, int J, Eigen::MatrixXd& Y, Eigen::MatrixXd& T) {
+  T = X / static_cast<double>(J);
+  T.diagonal().array() += 1.0;
   for (int j = J - 1; j >= 1; --j) {
-    Eigen::MatrixXd Y = X * T;
-    T = Eigen::MatrixXd::Identity(n, n) + Y / static_cast<double>(j);
+    Y.noalias() = X * T;
+    T = Y / static_cast<double>(j);
+    T.diagonal().array() += 1.0;
   }
-  return T;
 }
 
 Eigen::MatrixXd magnus(const PeriodicSystem& sys, const std::vector<Piece>& grid) {
@@ -98,16 +110,28 @@ Eigen::MatrixXd magnus(const PeriodicSystem& sys, const std::vector<Piece>& grid
 
 Eigen::MatrixXd varying_rk4(const PeriodicSystem& sys, int steps) {
   Evaluator ev(sys);
-  Eigen::MatrixXd Phi = Eigen::MatrixXd::Identity(sys.n, sys.n), Aa, Am, Ab;
-  for (const Piece& p : make_grid(sys, steps)) {
+  const int n = sys.n;
+  Eigen::MatrixXd Phi = Eigen::MatrixXd::Identity(n, n), Aa(n, n), Am(n, n), Ab(n, n), Y(n, n),
+                  k1(n, n), k2(n, n), k3(n, n), k4(n, n);
+  const std::vector<Piece> grid = make_grid(sys, steps);
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    const Piece& p = grid[i];
     const double h = p.b - p.a;
-    ev.at(p, p.a, Aa);
+    // A at the start is the previous end unless a breakpoint lies between (A may jump there)
+    if (i > 0 && !p.after_break) {
+      Aa.swap(Ab);
+    } else {
+      ev.at(p, p.a, Aa);
+    }
     ev.at(p, 0.5 * (p.a + p.b), Am);
     ev.at(p, p.b, Ab);
-    const Eigen::MatrixXd k1 = Aa * Phi;
-    const Eigen::MatrixXd k2 = Am * (Phi + (0.5 * h) * k1);
-    const Eigen::MatrixXd k3 = Am * (Phi + (0.5 * h) * k2);
-    const Eigen::MatrixXd k4 = Ab * (Phi + h * k3);
+    k1.noalias() = Aa * Phi;
+    Y = Phi + (0.5 * h) * k1;
+    k2.noalias() = Am * Y;
+    Y = Phi + (0.5 * h) * k2;
+    k3.noalias() = Am * Y;
+    Y = Phi + h * k3;
+    k4.noalias() = Ab * Y;
     Phi += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
   }
   return Phi;
@@ -117,7 +141,8 @@ Eigen::MatrixXd varying_hsu(const PeriodicSystem& sys, int intervals, int terms)
   // 3-point Gauss-Legendre on [-1, 1]
   const double gx = std::sqrt(0.6), gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
   Evaluator ev(sys);
-  Eigen::MatrixXd Phi = Eigen::MatrixXd::Identity(sys.n, sys.n), C, X;
+  const int n = sys.n;
+  Eigen::MatrixXd Phi = Eigen::MatrixXd::Identity(n, n), C(n, n), X(n, n), E(n, n), P(n, n);
   for (const Piece& p : make_grid(sys, intervals)) {
     // C_k = mean of A over the substep (eq 3.22): exact for the harmonic regions; in the
     // varying region 3-point Gauss (error O(h^6), far below Hsu's own O(h^2)).
@@ -131,8 +156,10 @@ Eigen::MatrixXd varying_hsu(const PeriodicSystem& sys, int intervals, int terms)
     } else {
       C = sys.A_mean(p.a, p.b);
     }
-    const Eigen::MatrixXd E = taylor((p.b - p.a) * C, terms);
-    Phi = E * Phi;
+    C *= p.b - p.a;
+    taylor(C, terms, X, E);
+    P.noalias() = E * Phi;
+    Phi.swap(P);
   }
   return Phi;
 }

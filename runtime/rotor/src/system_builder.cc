@@ -262,33 +262,61 @@ class SystemBuilder::ExactTable {
     for (const Eigen::MatrixXd& c : coef_) big = std::max(big, c.cwiseAbs().maxCoeff());
     big = std::max(big, base_.cwiseAbs().maxCoeff());
     while (coef_.size() > 1 && coef_.back().cwiseAbs().maxCoeff() <= 4e-15 * big) coef_.pop_back();
+    // Only the entries the reversed flow changes are summed (the displacement rows of A and
+    // the entries without aerodynamic terms have an exactly zero change).
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      bool changes = false;
+      for (const Eigen::MatrixXd& c : coef_) changes = changes || (c.row(r).array() != 0.0).any();
+      if (changes) rows_.push_back(r);
+    }
+    // stack_ column i = vec of coefficient i restricted to those entries (m x H, column-major)
+    const Eigen::Index m = static_cast<Eigen::Index>(rows_.size());
+    stack_.resize(m * H_, static_cast<Eigen::Index>(coef_.size()));
+    for (std::size_t i = 0; i < coef_.size(); ++i)
+      for (int h = 0; h < H_; ++h)
+        for (Eigen::Index e = 0; e < m; ++e) stack_(h * m + e, i) = coef_[i](rows_[e], h);
+    coef_.clear();
   }
 
   void at(double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) const {
-    const double x0 = std::clamp((-mu_ * std::sin(psi) - e1_) / lr_, a_, b_);
+    const double c1 = std::cos(psi), s1 = std::sin(psi);
+    const double x0 = std::clamp((-mu_ * s1 - e1_) / lr_, a_, b_);
     const double t = (2.0 * x0 - a_ - b_) / (b_ - a_);
-    Eigen::VectorXd phi(H_);
-    for (int h = 0; h < H_; ++h) phi(h) = harmonic_basis(h, psi);
-    // W = sum_i T_i(t) coef_i (T_i by the three-term recurrence; |t| <= 1 keeps it stable),
-    // then A and f = W phi.
-    Eigen::MatrixXd W = base_ + coef_[0];
-    double tm = 1.0, tc = t;
-    for (std::size_t i = 1; i < coef_.size(); ++i) {
-      W += tc * coef_[i];
-      const double tn = 2.0 * t * tc - tm;
-      tm = tc;
-      tc = tn;
+    // Scratch per thread: the evaluator is const and may run in several threads at once.
+    thread_local Eigen::VectorXd phi, v, w, T, sum;
+    // the harmonic basis by the rotation recurrence (index convention of periodic_system.h)
+    phi.resize(H_);
+    phi(0) = 1.0;
+    double ck = c1, sk = s1;
+    for (int h = 1; h < H_; h += 2) {
+      phi(h) = ck;
+      if (h + 1 < H_) phi(h + 1) = sk;
+      const double cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
     }
-    const Eigen::VectorXd b0 = W * phi;
-    A = Eigen::Map<const Eigen::MatrixXd>(b0.data(), ns_, ns_);
-    f = b0.tail(ns_);
+    // the normal harmonics at psi, plus the change (sum_i T_i(t) coef_i) phi; T_i by the
+    // three-term recurrence (|t| <= 1 keeps it stable)
+    v.noalias() = base_ * phi;
+    const Eigen::Index m = static_cast<Eigen::Index>(rows_.size()), terms = stack_.cols();
+    T.resize(terms);
+    T(0) = 1.0;
+    if (terms > 1) T(1) = t;
+    for (Eigen::Index i = 2; i < terms; ++i) T(i) = 2.0 * t * T(i - 1) - T(i - 2);
+    sum.noalias() = stack_ * T;
+    w.noalias() = Eigen::Map<const Eigen::MatrixXd>(sum.data(), m, H_) * phi;
+    for (Eigen::Index e = 0; e < m; ++e) v(rows_[e]) += w(e);
+    A = Eigen::Map<const Eigen::MatrixXd>(v.data(), ns_, ns_);
+    f = v.tail(ns_);
   }
 
  private:
   double mu_, e1_, lr_, a_, b_;
   int ns_, H_;
   Eigen::MatrixXd base_;               // normal-flow harmonics, (ns^2 + ns) x H
-  std::vector<Eigen::MatrixXd> coef_;  // [degree + 1] of the change, each (ns^2 + ns) x H
+  std::vector<Eigen::Index> rows_;     // the packed entries that the reversed flow changes
+  std::vector<Eigen::MatrixXd> coef_;  // [degree + 1] of the change (construction only)
+  Eigen::MatrixXd stack_;              // (rows_ x H) x terms: the kept coefficients, stacked
 };
 
 std::vector<double> SystemBuilder::exact_integrals(double mu, double psi) const {
