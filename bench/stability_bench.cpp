@@ -7,6 +7,7 @@
 //                            evaluation of the error estimate) and with the default automatic
 //                            steps (_HsuAuto).
 //   BM_RotorCritical_*:      the full mu_c search of `flaplag critical`, the same two settings.
+//   *_ExactReversedFlow:     the same with the exact circular reversed-flow region.
 #include <benchmark/benchmark.h>
 
 #include "flaplag/analysis.h"
@@ -116,5 +117,26 @@ void BM_RotorAnalysis_Setup(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(typical());
 }
 BENCHMARK(BM_RotorAnalysis_Setup)->Unit(benchmark::kMicrosecond);
+
+// The exact circular reversed-flow region (exact_reversed_flow, docs/validation.md): one system
+// build (the Chebyshev table of the region) and the mu_c search, against the sector's
+// BM_RotorSystem_Build and BM_RotorCritical_HsuAuto.
+flaplag::Analysis typical_exact_region() {
+  flaplag::RotorParameters p;
+  p.exact_reversed_flow = true;
+  return flaplag::Analysis(p, {});
+}
+
+void BM_RotorSystem_Build_ExactReversedFlow(benchmark::State& state) {
+  const auto an = typical_exact_region();
+  for (auto _ : state) benchmark::DoNotOptimize(an.system(0.7));
+}
+BENCHMARK(BM_RotorSystem_Build_ExactReversedFlow)->Unit(benchmark::kMicrosecond);
+
+void BM_RotorCritical_HsuAuto_ExactReversedFlow(benchmark::State& state) {
+  const auto an = typical_exact_region();
+  for (auto _ : state) benchmark::DoNotOptimize(an.critical({}));
+}
+BENCHMARK(BM_RotorCritical_HsuAuto_ExactReversedFlow)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

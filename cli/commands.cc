@@ -273,7 +273,9 @@ std::string header_text(const Analysis& an, bool with_method = true) {
   if (p.paper_1974_shapes && an.modes().kind == "exact") blade += " (1974 shapes)";
   blade += ", " + std::to_string(m.flap_modes) + " flap x " + std::to_string(m.lag_modes) +
            " lag; elastic coupling " + (coupling_on(an) ? "on" : "off") + "; reversed flow " +
-           (p.reversed_flow ? "on" : "off");
+           (!p.reversed_flow        ? "off"
+            : p.exact_reversed_flow ? "on (exact circle)"
+                                    : "on");
   kv.add("blade", blade);
   if (with_method) kv.add("method", method_text(an.options()));
   kv.add("parameters", parameters_text(p));

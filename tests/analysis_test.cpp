@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ostream>
+#include <string>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -188,6 +190,98 @@ INSTANTIATE_TEST_SUITE_P(
                  },
                  "omega_lag"}),
     [](const auto& tp) { return std::string(tp.param.name); });
+
+// The exact circular reversed-flow region (exact_reversed_flow): the default resolution comes
+// back resolved (status ok) and agrees with a fine RK4 reference (a cross-method check: Hsu's
+// piecewise-constant means against RK4's point values, through the same evaluator).
+struct ExactRegionCase {
+  const char* name;
+  bool exact_modes;
+  double mu;
+};
+
+void PrintTo(const ExactRegionCase& c, std::ostream* os) { *os << c.name; }
+
+class ExactReversedFlow : public ::testing::TestWithParam<ExactRegionCase> {};
+
+TEST_P(ExactReversedFlow, ResolvedAndHsuAgreesWithRk4) {
+  RotorParameters p;
+  p.exact_reversed_flow = true;
+  p.modes = GetParam().exact_modes ? flaplag::ModeKind::Exact : flaplag::ModeKind::Assumed;
+  const double mu = GetParam().mu;
+  const auto pt = Analysis(p, {}).point(mu, 0.05);
+  EXPECT_EQ(flaplag::Status::Ok, pt.status) << pt.message;
+  ASSERT_TRUE(pt.error.has_value());
+  TransitionOptions fine = method(TransitionMethod::RK4, TransitionOptions::kAutomatic);
+  fine.zeta_tolerance = 1e-9;
+  const auto ref = Analysis(p, fine).point(mu, 0.05);
+  EXPECT_EQ(flaplag::Status::Ok, ref.status) << ref.message;
+  ASSERT_EQ(ref.exponents.size(), pt.exponents.size());
+  const double tol = TransitionOptions{}.zeta_tolerance;
+  for (std::size_t k = 0; k < pt.exponents.size(); ++k) {
+    const double z = ref.exponents[k].zeta;
+    EXPECT_EQ(ref.exponents[k].label, pt.exponents[k].label);
+    EXPECT_TRUE(AbsClose(z, pt.exponents[k].zeta, 3.0 * tol * std::max(1.0, 100.0 * std::abs(z))))
+        << pt.exponents[k].label << " at " << pt.steps << " steps";
+    EXPECT_TRUE(AbsClose(ref.exponents[k].omega, pt.exponents[k].omega, 1e-4));
+  }
+  // Liouville: det Phi of the reference method against the Gauss quadrature of tr A over the
+  // region (as LiouvilleResidualOfTheReferenceMethodIsBelow1e10 does for the sector).
+  TransitionOptions magnus = method(TransitionMethod::Magnus4, TransitionOptions::kAutomatic);
+  magnus.zeta_tolerance = 1e-12;
+  const auto lv = Analysis(p, magnus).point(mu, 0.05);
+  ASSERT_TRUE(lv.liouville_residual.has_value());
+  EXPECT_LT(*lv.liouville_residual, 1e-10);
+  // and the exact region changes the answer: the sector's exponents are elsewhere
+  RotorParameters q = p;
+  q.exact_reversed_flow = false;
+  const auto sector = Analysis(q, fine).point(mu, 0.05);
+  double diff = 0.0;
+  for (std::size_t k = 0; k < pt.exponents.size(); ++k)
+    diff = std::max(diff, std::abs(sector.exponents[k].zeta - ref.exponents[k].zeta));
+  EXPECT_GT(diff, 1e-4);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, ExactReversedFlow,
+                         ::testing::Values(ExactRegionCase{"assumed_mu08", false, 0.8},
+                                           ExactRegionCase{"assumed_mu15", false, 1.5},
+                                           ExactRegionCase{"exact_mu08", true, 0.8}),
+                         [](const auto& tp) { return std::string(tp.param.name); });
+
+// Hsu's error in zeta falls like K^-2 with the exact region too (the steps are split at the
+// region's edges and breaks, so A is smooth on every interval): mu = 1.3 has both.
+TEST(ExactReversedFlow, HsuConvergesAtSecondOrder) {
+  RotorParameters p;
+  p.exact_reversed_flow = true;
+  p.tip_loss_b = 0.97;  // breaks at pi + asin(0.97/1.3) and 2 pi - asin(0.97/1.3), off the grid
+  const double mu = 1.3;
+  auto top = [](const flaplag::PointResult& pt) {
+    double z = -1e300;
+    for (const auto& e : pt.exponents) z = std::max(z, e.zeta);
+    return z;
+  };
+  const double z_ref = top(Analysis(p, method(TransitionMethod::Magnus4, 400)).point(mu, 0.05));
+  double err[3];
+  int j = 0;
+  for (int K : {100, 200, 400})
+    err[j++] = std::abs(top(Analysis(p, method(TransitionMethod::Hsu, K)).point(mu, 0.05)) - z_ref);
+  EXPECT_NEAR(2.0, std::log2(err[0] / err[1]), 0.3) << err[0] << " " << err[1];
+  EXPECT_NEAR(2.0, std::log2(err[1] / err[2]), 0.3) << err[1] << " " << err[2];
+}
+
+// The snapshot reports the region and the integrals split at x = -mu sin psi.
+TEST(ExactReversedFlow, SnapshotShowsTheSplitIntegrals) {
+  RotorParameters p;
+  p.exact_reversed_flow = true;
+  const Analysis an(p, {});
+  EXPECT_EQ("normal", an.snapshot(0.5, 1.0).region);
+  const auto s = an.snapshot(0.5, 3.5);  // inside (pi, 2 pi): reversed inboard of 0.5 |sin 3.5|
+  EXPECT_EQ("reversed", s.region);
+  bool changed = false;
+  for (std::size_t j = 0; j < s.aero_integrals.size(); ++j)
+    changed |= s.aero_integrals_region[j].second != s.aero_integrals[j].second;
+  EXPECT_TRUE(changed);
+}
 
 TEST(InvalidArguments, NegativeMuAndBadRanges) {
   Analysis an(RotorParameters{}, {});

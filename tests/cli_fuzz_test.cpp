@@ -143,6 +143,7 @@ class Generator {
                                                 "--tip-loss-b",
                                                 "--root-offset",
                                                 "--no-reversed-flow",
+                                                "--exact-reversed-flow",
                                                 "--modes",
                                                 "--no-elastic-coupling",
                                                 "--paper-1974-shapes",

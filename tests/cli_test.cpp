@@ -181,6 +181,10 @@ const std::vector<BadInput> kBadInputs = {
     {"DampingAboveBound", {"--damping-lag", "11"}, "--damping-lag", "11"},
     {"FrequencyAboveBound", {"--omega-flap", "1001"}, "--omega-flap", "1001"},
     {"RootOffsetAtRadius", {"--root-offset", "1"}, "--root-offset", "1"},
+    {"ExactReversedFlowWithoutReversedFlow",
+     {"point", "--mu", "0.5", "--no-reversed-flow", "--exact-reversed-flow"},
+     "--exact-reversed-flow",
+     "true"},
     {"HugeMu", {"point", "--mu", "1e300"}, "--mu", "1e300"},  // was "mu = 1e+300: ..."
     {"LargeMu", {"point", "--mu", "1e30"}, "--mu", "1e30"},
     {"HugeMuSystemJson", {"system", "--mu", "1e300", "--json"}, "--mu", "1e300"},

@@ -30,6 +30,9 @@ TEST(Parameters, DefaultsAreThePapersTypicalCaseAndValid) {
   EXPECT_EQ(p.theta, 0.15);
   EXPECT_EQ(p.omega_flap, 1.175);
   EXPECT_EQ(p.omega_lag, 1.28303);
+  // the paper's reversed-flow model: the Appendix D sector, not the exact circle
+  EXPECT_TRUE(p.reversed_flow);
+  EXPECT_FALSE(p.exact_reversed_flow);
 }
 
 // Eq 2.24 evaluated independently: sigma a = 0.05 * 2 pi, 24 theta / (sigma a) = 11.4591559...,
@@ -229,6 +232,12 @@ const BadCase kBad[] = {
     {"BasisZero", [](RotorParameters& p) { p.basis = 0; }, "basis"},
     {"BasisNegative", [](RotorParameters& p) { p.basis = -5; }, "basis"},
     {"BasisThirteen", [](RotorParameters& p) { p.basis = 13; }, "basis"},
+    {"ExactReversedFlowWithoutReversedFlow",
+     [](RotorParameters& p) {
+       p.reversed_flow = false;
+       p.exact_reversed_flow = true;
+     },
+     "exact_reversed_flow"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Table, ValidateRejects, ::testing::ValuesIn(kBad),

@@ -8,7 +8,9 @@
 //    matrix P(0) e^{2 pi B} P(0)^{-1} and exponents eig(B) are known exactly; exact_cases()
 //    collects them (2 and 4 states, with and without a sector) with the Markus-Yamabe example;
 //  - scale_of(), rk4_error_model(), hsu_error_model(): a priori leading-term error models that
-//    justify the tolerances of the transition tests.
+//    justify the tolerances of the transition tests;
+//  - sector_as_varying(), clipped_scalar(): systems with a varying region (the exact reversed
+//    flow's point-wise A(psi)), one equal to a sector system, one with a closed-form Phi.
 #pragma once
 
 #include <Eigen/Dense>
@@ -337,6 +339,53 @@ inline std::vector<ExactCase> exact_cases() {
   const Frame fmy = markus_yamabe_frame();
   out.push_back({"Markus-Yamabe", markus_yamabe(), Bmy, fmy, fmy, reducible_phi(Bmy, fmy)});
   return out;
+}
+
+// The same system with its sector replaced by a varying region whose evaluator sums the
+// sector's harmonics point by point: every integrator must give what it gives on the sector.
+inline PeriodicSystem sector_as_varying(const PeriodicSystem& sector) {
+  PeriodicSystem v = sector;
+  v.has_sector = false;
+  v.has_varying = true;
+  v.varying_begin = sector.sector_begin;
+  v.varying_end = sector.sector_end;
+  const HarmonicSet rev = sector.reversed;
+  const int n = sector.n;
+  v.varying = [rev, n](double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) {
+    A.setZero(n, n);
+    f.setZero(n);
+    for (std::size_t h = 0; h < rev.A.size(); ++h)
+      A += harmonic_basis(static_cast<int>(h), psi) * rev.A[h];
+    for (std::size_t h = 0; h < rev.f.size(); ++h)
+      f += harmonic_basis(static_cast<int>(h), psi) * rev.f[h];
+  };
+  v.reversed = HarmonicSet{};
+  return v;
+}
+
+// A scalar system shaped like the exact reversed-flow region: -0.05 + 0.7 cos psi on [0, pi),
+// and 0.3 + 0.9 clamp(-sin psi, 0, c) on the varying region [pi, 2 pi), which is not smooth at
+// the breaks pi + asin c and 2 pi - asin c.  clipped_log_phi() is ln Phi(2 pi) in closed form:
+// -0.05 pi + 0.3 pi + 0.9 (2 (1 - cos a) + c (pi - 2 a)), a = asin c.
+inline PeriodicSystem clipped_scalar(double c = 0.6) {
+  PeriodicSystem s;
+  s.n = 1;
+  s.normal.A = {Eigen::MatrixXd::Constant(1, 1, -0.05), Eigen::MatrixXd::Constant(1, 1, 0.7)};
+  s.has_varying = true;
+  s.varying_begin = kPi;
+  s.varying_end = kTwoPi;
+  const double a = std::asin(c);
+  s.varying_breaks = {kPi + a, kTwoPi - a};
+  s.varying = [c](double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) {
+    A = Eigen::MatrixXd::Constant(1, 1, 0.3 + 0.9 * std::clamp(-std::sin(psi), 0.0, c));
+    f = Eigen::VectorXd::Zero(1);
+  };
+  return s;
+}
+
+inline double clipped_log_phi(double c = 0.6) {
+  const double a = std::asin(c);
+  return -0.05 * kPi + 0.3 * kPi + 0.9 * (2.0 * (1.0 - std::cos(a)) + c * (kPi - 2.0 * a));
 }
 
 }  // namespace flaplag::fixtures

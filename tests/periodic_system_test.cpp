@@ -167,6 +167,66 @@ TEST(PeriodicSystem, TraceIntegralWithSector) {
   EXPECT_TRUE(RelClose(kTwoPi * s.normal.A[0].trace(), t.trace_integral(), 1e-15));
 }
 
+// The varying region: A and f from the evaluator inside [begin, end), harmonics outside; its
+// edges and breaks are breakpoints; the trace integral by quadrature matches the closed form.
+TEST(PeriodicSystem, VaryingRegion) {
+  const PeriodicSystem s = fixtures::clipped_scalar(0.6);
+  EXPECT_NO_THROW(s.validate());
+  EXPECT_FALSE(s.in_varying(0.5 * kPi));
+  EXPECT_TRUE(s.in_varying(kPi));  // [begin, end)
+  EXPECT_TRUE(s.in_varying(1.5 * kPi - kTwoPi));
+  EXPECT_FALSE(s.in_varying(kTwoPi));
+  EXPECT_DOUBLE_EQ(0.3 + 0.9 * 0.6, s.A(1.5 * kPi)(0, 0));
+  EXPECT_DOUBLE_EQ(0.3 + 0.9 * 0.25, s.A(kPi + std::asin(0.25))(0, 0));
+  EXPECT_DOUBLE_EQ(-0.05 + 0.7 * std::cos(1.0), s.A(1.0)(0, 0));
+  EXPECT_EQ(0.0, s.f(4.0)(0));
+  const std::vector<double> bp = s.breakpoints();
+  ASSERT_EQ(3u, bp.size());  // pi, and the two breaks; the end 2 pi is none
+  EXPECT_EQ(kPi, bp[0]);
+  EXPECT_EQ(s.varying_breaks[0], bp[1]);
+  EXPECT_EQ(s.varying_breaks[1], bp[2]);
+  EXPECT_TRUE(RelClose(fixtures::clipped_log_phi(0.6), s.trace_integral(), 1e-14));
+  // The mean inside one smooth piece (between breaks) against quadrature.
+  const double a = kPi + 0.1, b = s.varying_breaks[0];
+  const double ref = quad([&](double p) { return s.A(p)(0, 0); }, a, b) / (b - a);
+  EXPECT_TRUE(AbsClose(ref, s.A_mean(a, b)(0, 0), 1e-14));
+}
+
+// A varying region that reproduces a sector gives the sector's trace integral (quadrature of
+// a trigonometric polynomial of degree 4 against the closed form).
+TEST(PeriodicSystem, VaryingRegionTraceMatchesSector) {
+  const PeriodicSystem s = sector_system(3, 9);
+  const PeriodicSystem v = fixtures::sector_as_varying(s);
+  EXPECT_NO_THROW(v.validate());
+  EXPECT_TRUE(RelClose(s.trace_integral(), v.trace_integral(), 1e-13, 1.0));
+  for (double psi : {0.3, 4.2, 5.3}) {
+    EXPECT_LT((s.A(psi) - v.A(psi)).norm(), 1e-14 * s.A(psi).norm()) << psi;
+    EXPECT_LT((s.f(psi) - v.f(psi)).norm(), 1e-14 * s.f(psi).norm()) << psi;
+  }
+}
+
+TEST(PeriodicSystem, ValidateRejectsMalformedVaryingRegions) {
+  PeriodicSystem s = fixtures::clipped_scalar(0.6);
+  PeriodicSystem bad = s;
+  bad.varying = nullptr;
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.varying_end = bad.varying_begin;
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  std::swap(bad.varying_breaks[0], bad.varying_breaks[1]);  // unsorted
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.varying_breaks.push_back(0.5);  // outside the region
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.has_sector = true;  // never both
+  bad.reversed = bad.normal;
+  bad.sector_begin = 1.0;
+  bad.sector_end = 2.0;
+  EXPECT_THROW(bad.validate(), InvalidInput);
+}
+
 TEST(PeriodicSystem, ValidateRejectsMalformedSystems) {
   PeriodicSystem s = sector_system(2, 3);
   EXPECT_NO_THROW(s.validate());

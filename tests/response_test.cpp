@@ -114,6 +114,41 @@ TEST_P(EnvelopeGrowth, EqualsTheLargestFloquetExponent) {
 
 INSTANTIATE_TEST_SUITE_P(StableAndUnstable, EnvelopeGrowth, ::testing::Values(0.5, 0.9));
 
+// With the exact circular reversed-flow region (A(psi) from the point-wise evaluator on the
+// retreating side): the response is periodic and satisfies the ODE there, and the free
+// response grows at the largest Floquet exponent of the same system (within 1 %).
+TEST(ExactReversedFlow, ResponseAndEnvelopeGrowth) {
+  RotorParameters p;
+  p.exact_reversed_flow = true;
+  const Analysis an(p, {});
+  const PeriodicSystem sys = an.system(0.9);
+  ASSERT_TRUE(sys.has_varying);
+  ResponseOptions ro;
+  ro.samples = 360;
+  const PeriodicResponse r = periodic_response(sys, ro);
+  ASSERT_NE(Status::Failed, r.status) << r.message;  // unstable at 0.9: a warning
+  EXPECT_LT(r.closure, 1e-10);
+  const double scale = r.y0.cwiseAbs().maxCoeff();
+  for (std::size_t k = 181; k + 1 < r.y.size(); k += 23) {  // psi in (pi, 2 pi)
+    const double h = r.psi[k + 1] - r.psi[k];
+    const Eigen::VectorXd dy = (r.y[k + 1] - r.y[k - 1]) / (2 * h);
+    const Eigen::VectorXd rhs = sys.A(r.psi[k]) * r.y[k] + sys.f(r.psi[k]);
+    EXPECT_LT((dy - rhs).cwiseAbs().maxCoeff(), 1e-3 * scale) << "psi = " << r.psi[k];
+  }
+  const double zeta = max_zeta(an.point(0.9));
+  SimulationOptions so;
+  so.revolutions = 150;
+  so.samples_per_rev = 360;
+  Eigen::VectorXd y0 = Eigen::VectorXd::Constant(4, 0.01);
+  const Simulation s = simulate(sys, y0, false, so);
+  ASSERT_EQ(Status::Ok, s.status) << s.message;
+  std::vector<double> lag_tip;
+  for (const auto& y : s.y) lag_tip.push_back(y(3));
+  const std::optional<double> rate = envelope_growth_rate(s.psi, lag_tip, 10.0);
+  ASSERT_TRUE(rate.has_value());
+  EXPECT_TRUE(RelClose(zeta, *rate, 0.01));
+}
+
 TEST(Simulation, InvalidOptionsAndOverflow) {
   const PeriodicSystem sys = forced_decay(0.3, 2.0);
   SimulationOptions o;

@@ -159,6 +159,33 @@ double max_zeta(const Eigen::MatrixXd& phi, double tr) {
 
 // Inside the first instability tongue (delta near 1/4) the multipliers are real and distinct,
 // so zeta_max is a smooth function of Phi and its error shows the order of each method.
+// The varying-region path (transition_varying.cc) on a clipped scalar system with breaks off
+// the grid: Phi = exp(int A) in closed form.  RK4 converges at fourth order only because the
+// steps are split at the breaks; Hsu's 3-point Gauss means make its scalar Phi exact to O(h^6).
+TEST(Transition, VaryingRegionBreaksAreSplit) {
+  const PeriodicSystem s = fixtures::clipped_scalar(0.6);
+  const double exact = std::exp(fixtures::clipped_log_phi(0.6));
+  EXPECT_TRUE(RelClose(exact, transition_matrix_hsu(s, 200, 30)(0, 0), 1e-11));
+  const TransitionResult m50 = transition_matrix_magnus4(s, 50);
+  EXPECT_LE(std::abs(m50.phi(0, 0) - exact), m50.error_estimate);
+  EXPECT_TRUE(RelClose(exact, transition_matrix_magnus4(s, 100).phi(0, 0), 1e-11));
+  const double e1 = std::abs(transition_matrix_rk4(s, 50)(0, 0) - exact);
+  const double e2 = std::abs(transition_matrix_rk4(s, 100)(0, 0) - exact);
+  EXPECT_NEAR(4.0, std::log2(e1 / e2), 0.5) << e1 << " " << e2;
+}
+
+// On a varying region that reproduces the rotor-like system's sector, every method gives the
+// sector result: RK4 and Magnus evaluate A at the same points (agreement to rounding), Hsu's
+// Gauss means differ from the exact means by O(h^6).
+TEST(Transition, VaryingRegionEqualsSector) {
+  const PeriodicSystem s = rotor_like();
+  const PeriodicSystem v = fixtures::sector_as_varying(s);
+  EXPECT_LT(rel_err(transition_matrix_rk4(s, 300), transition_matrix_rk4(v, 300)), 1e-13);
+  EXPECT_LT(rel_err(transition_matrix_magnus4(s, 60).phi, transition_matrix_magnus4(v, 60).phi),
+            1e-13);
+  EXPECT_LT(rel_err(transition_matrix_hsu(s, 200, 4), transition_matrix_hsu(v, 200, 4)), 1e-9);
+}
+
 TEST(Transition, MathieuMethodsAgreeAndConverge) {
   const PeriodicSystem s = mathieu(0.26, 0.4, 0.02);
   const double tr = s.trace_integral();

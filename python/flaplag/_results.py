@@ -352,7 +352,8 @@ class SystemResult:
     """The linear periodic system y' = A(psi) y + f(psi) at one (mu, psi), for auditing.
 
     states: the state names (dg1', dg1, dh1', dh1 for one flap and one lag mode); region:
-    'normal' or 'reversed' (the reversed-flow sector of Appendix D); aero_integrals: the
+    'normal' or 'reversed' (the reversed-flow sector of Appendix D, or with exact_reversed_flow
+    the exact circle x < -mu sin psi); aero_integrals: the
     spanwise aerodynamic integrals of the normal-flow region by name, aero_integrals_at_psi the
     values used at psi; structural_integrals: the generalized masses and structural integrals
     (by I_b); paper_names: the Appendix B name of each integral ('' where there is none).

@@ -27,7 +27,8 @@ def test_keywords_are_the_library_fields():
                                   "lag_modes"]
     for name in ("gamma", "sigma", "lift_slope", "cdo", "theta", "precone", "droop",
                  "omega_flap", "omega_lag", "damping_flap", "damping_lag", "length_ratio",
-                 "tip_loss_a", "tip_loss_b", "root_offset", "reversed_flow", "modes",
+                 "tip_loss_a", "tip_loss_b", "root_offset", "reversed_flow",
+                 "exact_reversed_flow", "modes",
                  "elastic_coupling", "paper_1974_shapes", "model"):
         assert name in names
     assert all(p.kind is inspect.Parameter.KEYWORD_ONLY for p in sig.parameters.values())

@@ -75,6 +75,7 @@ CRITICAL_CASES = [
     ({"method": "hsu", "steps": 50, "terms": 4}, {}),  # the paper's K = 50, J = 4
     ({"model": "no-radial-flow"}, {"mu_max": 1.5}),
     ({"reversed_flow": False, "cdo": 0.02}, {}),
+    ({"exact_reversed_flow": True}, {}),  # the exact circular reversed-flow region
     ({"omega_lag": 1.7}, {"mu_max": 1.0}),  # stable up to mu_max: mu_c is null
 ]
 
@@ -92,6 +93,7 @@ EXACT_CASES = [
     {"modes": "exact"},
     {"modes": "exact", "elastic_coupling": False},
     {"modes": "exact", "paper_1974_shapes": True},
+    {"modes": "exact", "exact_reversed_flow": True},
     {"modes": "exact", "theta": 0.3, "damping_lag": 0.01},
     {"modes": "exact", "flap_modes": 2, "lag_modes": 1},
 ]

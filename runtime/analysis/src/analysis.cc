@@ -160,6 +160,11 @@ struct Analysis::Impl {
                                              false);
       if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
     }
+    if (sys.has_varying) {
+      Eigen::EigenSolver<Eigen::MatrixXd> es(sys.A(0.5 * (sys.varying_begin + sys.varying_end)),
+                                             false);
+      if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
+    }
     const double k = std::ceil(rho * kTwoPi / 1.0);
     if (!(k <= kMaxAutomaticSteps)) return kMaxAutomaticSteps;
     // an even count, so that K/2 is a whole number
@@ -197,6 +202,9 @@ struct Analysis::Impl {
     bool system_finite = true;
     for (const HarmonicSet* set : {&sys.normal, &sys.reversed})
       for (const Eigen::MatrixXd& a : set->A) system_finite = system_finite && a.allFinite();
+    if (sys.has_varying)  // the exact region's fully reversed middle (the largest values)
+      system_finite =
+          system_finite && sys.A(0.5 * (sys.varying_begin + sys.varying_end)).allFinite();
     if (!system_finite) {
       out.status = Status::Failed;
       out.message =
@@ -417,13 +425,16 @@ SystemSnapshot Analysis::snapshot(double mu, double psi) const {
   s.mu = mu;
   s.psi = psi;
   const PeriodicSystem sys = impl_->builder.system(mu);
-  const bool reversed = sys.has_sector && sys.in_sector(psi);
+  const bool exact = sys.in_varying(psi);
+  const bool reversed = exact || (sys.has_sector && sys.in_sector(psi));
   s.region = reversed ? "reversed" : "normal";
   s.A = sys.A(psi);
   s.f = sys.f(psi);
   const auto& m = impl_->builder.model();
   const auto& normal = impl_->builder.normal_integrals();
-  const std::vector<double> region = reversed ? impl_->builder.reversed_integrals(mu) : normal;
+  const std::vector<double> region = exact      ? impl_->builder.exact_integrals(mu, psi)
+                                     : reversed ? impl_->builder.reversed_integrals(mu)
+                                                : normal;
   for (int j = 0; j < m.n_aero; ++j) {
     s.aero_integrals.emplace_back(m.aero[j].name, normal[j]);
     s.aero_integrals_region.emplace_back(m.aero[j].name, region[j]);

@@ -3,6 +3,7 @@
 // Liouville check det Phi(2 pi) = exp(int_0^{2 pi} tr A).
 #include "flaplag/numerics/periodic_system.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -31,6 +32,14 @@ double sinc(double x) {
 
 // Harmonic order k of basis index h: 0 -> 0, 2k-1 and 2k -> k.
 int order(int h) { return (h + 1) / 2; }
+
+// 8-point Gauss-Legendre on [-1, 1] (exact for polynomials of degree 15).
+constexpr double kGaussX[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
+                               -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
+                               0.7966664774136267,  0.9602898564975363};
+constexpr double kGaussW[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
+                               0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
+                               0.2223810344533745, 0.1012285362903763};
 
 void check_harmonics(const HarmonicSet& set, int n, const char* region) {
   const std::string r(region);
@@ -90,6 +99,22 @@ void PeriodicSystem::validate() const {
       throw InvalidInput("sector", "[" + fmt(sector_begin) + ", " + fmt(sector_end) + ")",
                          "need 0 <= sector_begin < sector_end <= 2 pi");
   }
+  if (has_varying) {
+    if (has_sector)
+      throw InvalidInput("varying", "with a sector",
+                         "a varying region replaces the sector; both cannot be set");
+    if (!varying) throw InvalidInput("varying", "empty", "the varying region needs an evaluator");
+    if (!(varying_begin >= 0.0 && varying_begin < varying_end && varying_end <= kTwoPi))
+      throw InvalidInput("varying", "[" + fmt(varying_begin) + ", " + fmt(varying_end) + ")",
+                         "need 0 <= varying_begin < varying_end <= 2 pi");
+    double last = varying_begin;
+    for (double b : varying_breaks) {
+      if (!(b > last && b < varying_end))
+        throw InvalidInput("varying_breaks", fmt(b),
+                           "breaks must be sorted and inside (varying_begin, varying_end)");
+      last = b;
+    }
+  }
 }
 
 double reduce_azimuth(double psi) {
@@ -105,6 +130,12 @@ bool PeriodicSystem::in_sector(double psi) const {
   return p >= sector_begin && p < sector_end;
 }
 
+bool PeriodicSystem::in_varying(double psi) const {
+  if (!has_varying) return false;
+  const double p = reduce_azimuth(psi);
+  return p >= varying_begin && p < varying_end;
+}
+
 const HarmonicSet& PeriodicSystem::region(double psi) const {
   return in_sector(psi) ? reversed : normal;
 }
@@ -112,6 +143,12 @@ const HarmonicSet& PeriodicSystem::region(double psi) const {
 Eigen::MatrixXd PeriodicSystem::A(double psi) const {
   // Reduced first: cos(k psi) of a huge psi is NaN (k psi overflows) or meaningless.
   psi = reduce_azimuth(psi);
+  if (in_varying(psi)) {
+    Eigen::MatrixXd a;
+    Eigen::VectorXd f;
+    varying(psi, a, f);
+    return a;
+  }
   const HarmonicSet& set = region(psi);
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n);
   for (std::size_t h = 0; h < set.A.size(); ++h)
@@ -121,6 +158,12 @@ Eigen::MatrixXd PeriodicSystem::A(double psi) const {
 
 Eigen::VectorXd PeriodicSystem::f(double psi) const {
   psi = reduce_azimuth(psi);
+  if (in_varying(psi)) {
+    Eigen::MatrixXd a;
+    Eigen::VectorXd f;
+    varying(psi, a, f);
+    return f;
+  }
   const HarmonicSet& set = region(psi);
   Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
   for (std::size_t h = 0; h < set.f.size(); ++h)
@@ -131,6 +174,15 @@ Eigen::VectorXd PeriodicSystem::f(double psi) const {
 Eigen::MatrixXd PeriodicSystem::A_mean(double a, double b) const {
   // The interval lies inside one region by contract; its midpoint decides which (robust to an
   // endpoint sitting exactly on a sector edge).
+  if (in_varying(0.5 * (a + b))) {
+    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n), x;
+    Eigen::VectorXd f;
+    for (int i = 0; i < 8; ++i) {
+      varying(0.5 * (a + b) + 0.5 * (b - a) * kGaussX[i], x, f);
+      out += (0.5 * kGaussW[i]) * x;
+    }
+    return out;
+  }
   const HarmonicSet& set = region(0.5 * (a + b));
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n);
   for (std::size_t h = 0; h < set.A.size(); ++h)
@@ -140,6 +192,12 @@ Eigen::MatrixXd PeriodicSystem::A_mean(double a, double b) const {
 
 std::vector<double> PeriodicSystem::breakpoints() const {
   std::vector<double> out;
+  if (has_varying) {
+    if (varying_begin > 0.0) out.push_back(varying_begin);
+    for (double b : varying_breaks) out.push_back(b);
+    if (varying_end < kTwoPi) out.push_back(varying_end);
+    return out;
+  }
   if (!has_sector) return out;
   if (sector_begin > 0.0 && sector_begin < kTwoPi) out.push_back(sector_begin);
   if (sector_end > 0.0 && sector_end < kTwoPi) out.push_back(sector_end);
@@ -151,6 +209,35 @@ double PeriodicSystem::trace_integral() const {
   // harmonics by the reversed ones over [begin, end):
   //   int tr A = sum_h tr(N_h) (int_0^{2pi} phi_h - int_sec phi_h) + sum_h tr(R_h) int_sec phi_h.
   double total = kTwoPi * normal.A.at(0).trace();
+  if (has_varying) {
+    // Inside the varying region the normal harmonics are replaced by the evaluator: subtract
+    // their exact integral and add the evaluator's by composite Gauss-Legendre, 8 points on
+    // panels of at most pi/16 on each smooth piece (between breaks), where the integrand is
+    // analytic (checked against closed forms in tests/periodic_system_test.cpp, and through
+    // the rotor's Liouville residual below 1e-10 in tests/analysis_test.cpp).
+    const double width = varying_end - varying_begin;
+    for (std::size_t h = 0; h < normal.A.size(); ++h)
+      total -= normal.A[h].trace() *
+               harmonic_mean(static_cast<int>(h), varying_begin, varying_end) * width;
+    std::vector<double> cuts = {varying_begin};
+    for (double b : varying_breaks) cuts.push_back(b);
+    cuts.push_back(varying_end);
+    Eigen::MatrixXd x;
+    Eigen::VectorXd f;
+    for (std::size_t k = 1; k < cuts.size(); ++k) {
+      const double lo = cuts[k - 1], hi = cuts[k];
+      const int panels = std::max(2, static_cast<int>(std::ceil((hi - lo) / (kPi / 16.0))));
+      const double hp = (hi - lo) / panels;
+      for (int p = 0; p < panels; ++p) {
+        const double c = lo + (p + 0.5) * hp;
+        for (int i = 0; i < 8; ++i) {
+          varying(c + 0.5 * hp * kGaussX[i], x, f);
+          total += 0.5 * hp * kGaussW[i] * x.trace();
+        }
+      }
+    }
+    return total;
+  }
   if (!has_sector) return total;
   const double width = sector_end - sector_begin;
   for (std::size_t h = 0; h < normal.A.size(); ++h)

@@ -17,8 +17,13 @@ constexpr int kMaxSteps = 1 << 20;
 
 struct Segment {
   double a, b;
-  const HarmonicSet* set;
+  const HarmonicSet* set;  // nullptr: inside the varying region (A, f from its evaluator)
 };
+
+// The harmonics of the piece whose midpoint is `mid`, or nullptr in the varying region.
+const HarmonicSet* piece_set(const PeriodicSystem& sys, double mid) {
+  return sys.in_varying(mid) ? nullptr : &sys.region(mid);
+}
 
 // Equal steps over [0, 2 pi], split at the sector edges; each piece in its own region.
 std::vector<Segment> grid(const PeriodicSystem& sys, int steps) {
@@ -30,7 +35,7 @@ std::vector<Segment> grid(const PeriodicSystem& sys, int steps) {
   for (std::size_t i = 1; i < cuts.size(); ++i) {
     if (cuts[i] - cuts[i - 1] <= 1e-14) continue;
     const double mid = 0.5 * (cuts[i] + cuts[i - 1]);
-    out.push_back({cuts[i - 1], cuts[i], &sys.region(mid)});
+    out.push_back({cuts[i - 1], cuts[i], piece_set(sys, mid)});
   }
   return out;
 }
@@ -48,14 +53,22 @@ void eval(const HarmonicSet& set, double psi, int n, Eigen::MatrixXd& A, Eigen::
 
 // One RK4 step of z' = A z + c f (c = 1 forced, 0 free) for the columns of Z (n x m).
 struct Stepper {
+  const PeriodicSystem* sys;
   int n;
   Eigen::MatrixXd A0, A1, A2;
   Eigen::VectorXd f0, f1, f2;
+  void at(const Segment& s, double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) const {
+    if (s.set == nullptr) {
+      sys->varying(psi, A, f);
+    } else {
+      eval(*s.set, psi, n, A, f);
+    }
+  }
   void step(const Segment& s, Eigen::MatrixXd& Y, const Eigen::RowVectorXd& c) {
     const double h = s.b - s.a;
-    eval(*s.set, s.a, n, A0, f0);
-    eval(*s.set, 0.5 * (s.a + s.b), n, A1, f1);
-    eval(*s.set, s.b, n, A2, f2);
+    at(s, s.a, A0, f0);
+    at(s, 0.5 * (s.a + s.b), A1, f1);
+    at(s, s.b, A2, f2);
     const Eigen::MatrixXd k1 = A0 * Y + f0 * c;
     const Eigen::MatrixXd k2 = A1 * (Y + 0.5 * h * k1) + f1 * c;
     const Eigen::MatrixXd k3 = A1 * (Y + 0.5 * h * k2) + f1 * c;
@@ -84,7 +97,7 @@ void monodromy(const PeriodicSystem& sys, int steps, Eigen::MatrixXd& phi, Eigen
   Y.leftCols(n).setIdentity();
   Eigen::RowVectorXd c = Eigen::RowVectorXd::Zero(n + 1);
   c(n) = 1.0;  // the last column is the forced solution from 0
-  Stepper st{n, {}, {}, {}, {}, {}, {}};
+  Stepper st{&sys, n, {}, {}, {}, {}, {}, {}};
   for (const Segment& s : grid(sys, steps)) st.step(s, Y, c);
   phi = Y.leftCols(n);
   g = Y.col(n);
@@ -191,7 +204,7 @@ PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOpti
   // The response over one period, sampled at psi_k = 2 pi k / samples, integrated from y0 on
   // the same grid (refined so that every sample is a grid point).
   const int per = std::max(1, (steps + options.samples - 1) / options.samples);
-  Stepper st{n, {}, {}, {}, {}, {}, {}};
+  Stepper st{&sys, n, {}, {}, {}, {}, {}, {}};
   Eigen::MatrixXd Y = fine;
   const Eigen::RowVectorXd c = Eigen::RowVectorXd::Ones(1);
   std::vector<double> cuts;
@@ -206,7 +219,7 @@ PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOpti
     std::sort(pts.begin(), pts.end());
     for (std::size_t i = 1; i < pts.size(); ++i) {
       if (pts[i] - pts[i - 1] <= 1e-14) continue;
-      const Segment s{pts[i - 1], pts[i], &sys.region(0.5 * (pts[i] + pts[i - 1]))};
+      const Segment s{pts[i - 1], pts[i], piece_set(sys, 0.5 * (pts[i] + pts[i - 1]))};
       st.step(s, Y, c);
     }
   }
@@ -250,7 +263,7 @@ Simulation simulate(const PeriodicSystem& sys, const Eigen::VectorXd& y0, bool f
   const int per = steps / options.samples_per_rev;
   const long total_samples =
       static_cast<long>(std::ceil(options.revolutions * options.samples_per_rev - 1e-9));
-  Stepper st{sys.n, {}, {}, {}, {}, {}, {}};
+  Stepper st{&sys, sys.n, {}, {}, {}, {}, {}, {}};
   Eigen::MatrixXd Y = y0;
   const Eigen::RowVectorXd c = Eigen::RowVectorXd::Constant(1, forced ? 1.0 : 0.0);
   out.psi.push_back(0.0);
@@ -267,7 +280,7 @@ Simulation simulate(const PeriodicSystem& sys, const Eigen::VectorXd& y0, bool f
     std::sort(pts.begin(), pts.end());
     for (std::size_t i = 1; i < pts.size(); ++i) {
       if (pts[i] - pts[i - 1] <= 1e-14) continue;
-      st.step({pts[i - 1], pts[i], &sys.region(0.5 * (pts[i] + pts[i - 1]))}, Y, c);
+      st.step({pts[i - 1], pts[i], piece_set(sys, 0.5 * (pts[i] + pts[i - 1]))}, Y, c);
     }
     if (!Y.allFinite()) {
       out.status = Status::Failed;

@@ -4,7 +4,8 @@
 // contains a reversed-flow sector edge is split there into two substeps, so that A(psi) is
 // smooth (a trigonometric polynomial of one region) on every substep.  Each substep uses the
 // harmonics of the region that contains its midpoint; at a substep end that lies on an edge
-// that is the one-sided limit, which is what the integrators need.
+// that is the one-sided limit, which is what the integrators need.  A system with a varying
+// region (the exact reversed flow, periodic_system.h) goes to transition_varying.cc instead.
 //
 // Speed: the dimension is a template parameter (fixed-size, stack-allocated Eigen matrices for
 // n = 2, 4, 6, 8; dynamic matrices with preallocated temporaries otherwise); only the entries
@@ -25,6 +26,7 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/floquet.h"
+#include "transition_varying.h"
 
 namespace flaplag {
 namespace {
@@ -427,6 +429,7 @@ const char* method_name(TransitionMethod m) {
 Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps) {
   check_count("steps", steps);
   sys.validate();
+  if (sys.has_varying) return detail::varying_rk4(sys, steps);  // transition_varying.cc
   return dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.rk4(steps)); });
 }
 
@@ -434,6 +437,7 @@ Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, 
   check_count("intervals", intervals);
   check_count("terms", terms, TransitionOptions::kMaxTerms);
   sys.validate();
+  if (sys.has_varying) return detail::varying_hsu(sys, intervals, terms);
   return dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.hsu(intervals, terms)); });
 }
 
@@ -450,6 +454,7 @@ Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, 
 TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps) {
   check_count("steps", steps);
   sys.validate();
+  if (sys.has_varying) return detail::varying_magnus4(sys, steps);
   const std::vector<Segment> coarse = make_grid(sys, steps);
   const std::vector<Segment> fine = bisect(coarse);
   const Eigen::MatrixXd ph =

@@ -106,6 +106,10 @@ std::vector<ParameterSpec> build_table() {
                        "in [0, 1)"));
   t.push_back(flag_row("reversed_flow", "the reversed-flow sector (Appendix D)",
                        &RotorParameters::reversed_flow));
+  t.push_back(flag_row("exact_reversed_flow",
+                       "the exact circular reversed-flow region (x < -mu sin psi) instead of the "
+                       "Appendix D sector",
+                       &RotorParameters::exact_reversed_flow));
   t.push_back(ParameterSpec{"modes", "", "-",
                             "blade mode shapes: assumed (eq 4.1) or exact rotating modes",
                             ParameterType::Choice, "assumed or exact", nullptr,
@@ -203,6 +207,12 @@ void validate(const RotorParameters& p) {
   if (!(p.tip_loss_a < p.tip_loss_b)) {
     throw InvalidInput(row("tip_loss_a").field, round_trip_text(p.tip_loss_a),
                        "must be below `tip_loss_b` = " + round_trip_text(p.tip_loss_b));
+  }
+  // The exact region is a way of modelling the reversed flow, not a second switch for it.
+  if (p.exact_reversed_flow && !p.reversed_flow) {
+    throw InvalidInput(row("exact_reversed_flow").field, "true",
+                       "needs the reversed flow switched on (the exact region replaces its "
+                       "Appendix D sector)");
   }
   // Every other check is per field; this one keeps hover_inflow() defined for valid input.
   hover_inflow(p);

@@ -1,13 +1,14 @@
-#include "flaplag/core/constants.h"
 #include "flaplag/rotor/system_builder.h"
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
+#include "flaplag/blade/rotating_modes.h"
+#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
-#include "flaplag/blade/rotating_modes.h"
 
 namespace flaplag::detail {
 
@@ -15,6 +16,22 @@ double reversed_flow_sector_width(double mu) {
   if (mu < 1.0) return kPi / 2.0;  // eq D.1
   const double s = std::asin(1.0 / mu);
   return kPi - 2.0 * s + mu * mu * s - std::sqrt(mu * mu - 1.0);  // eq D.2
+}
+
+ExactReversedRegion exact_reversed_region(double mu, const RotorParameters& p) {
+  ExactReversedRegion r;
+  const double x_a = p.root_offset + p.length_ratio * p.tip_loss_a;  // inner aerodynamic limit
+  const double x_b = p.root_offset + p.length_ratio * p.tip_loss_b;  // outer (tip loss) limit
+  if (!(mu > x_a)) return r;  // the circle of diameter mu does not reach the aerodynamic span
+  const double a = std::asin(x_a / mu);
+  r.exists = true;
+  r.begin = kPi + a;
+  r.end = kTwoPi - a;
+  if (mu > x_b) {
+    const double b = std::asin(x_b / mu);
+    r.breaks = {kPi + b, kTwoPi - b};
+  }
+  return r;
 }
 
 SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescriptor& m)
@@ -197,6 +214,144 @@ std::vector<double> SystemBuilder::reversed_integrals(double mu) const {
   return aero_.reversed(mu);
 }
 
+// A and f of the exact region at one mu as functions of the split station x0 in [A, B] and of
+// psi.  The aerodynamic integrals at a split x0 are normal - 2 int_A^{x0}, whose antiderivatives
+// are Chebyshev series of degree kDegree + 1 in x0 (aero_integrals.h), and the generated loads
+// are affine in the integrals (each term carries one spanwise integral, model_api.h), so every
+// harmonic coefficient of A and f is a polynomial of that degree in x0: interpolating it at
+// kDegree + 2 Chebyshev-Lobatto points reproduces it to rounding, and one evaluation is a
+// Chebyshev sum instead of a call of the generated code.  (tests/system_builder_test.cpp checks
+// the result, for every shipped model family, against the loads assembled from Gauss-quadrature
+// integrals split at x0(psi).)
+class SystemBuilder::ExactTable {
+ public:
+  ExactTable(const SystemBuilder& b, double mu)
+      : mu_(mu),
+        e1_(b.p_.root_offset),
+        lr_(b.p_.length_ratio),
+        a_(b.p_.tip_loss_a),
+        b_(b.p_.tip_loss_b),
+        ns_(2 * b.n_),
+        H_(b.H_) {
+    const int n = AeroIntegrals::kDegree + 1;  // polynomial degree in x0
+    const Eigen::Index rows = static_cast<Eigen::Index>(ns_) * ns_ + ns_;
+    // Harmonics packed as columns [vec(A_h); f_h]; the table holds the change from the normal
+    // harmonics, so that entries the reversed flow does not touch (the identity rows of A)
+    // stay exact.
+    auto pack = [&](const HarmonicSet& set) {
+      Eigen::MatrixXd v(rows, H_);
+      for (int h = 0; h < H_; ++h) {
+        v.col(h).head(static_cast<Eigen::Index>(ns_) * ns_) =
+            Eigen::Map<const Eigen::VectorXd>(set.A[h].data(), set.A[h].size());
+        v.col(h).tail(ns_) = set.f[h];
+      }
+      return v;
+    };
+    const std::vector<double>& normal = b.aero_.normal();
+    {
+      HarmonicSet set;
+      b.assemble(mu, normal, set);
+      base_ = pack(set);
+    }
+    std::vector<Eigen::MatrixXd> values(n + 1);
+    std::vector<double> partial;
+    for (int k = 0; k <= n; ++k) {
+      const double x0 = 0.5 * (a_ + b_) + 0.5 * (b_ - a_) * std::cos(kPi * k / n);
+      b.aero_.partial(x0, partial);
+      std::vector<double> aero(partial.size());
+      for (std::size_t j = 0; j < aero.size(); ++j) aero[j] = normal[j] - 2.0 * partial[j];
+      HarmonicSet set;
+      b.assemble(mu, aero, set);
+      values[k] = pack(set) - base_;
+    }
+    // Chebyshev coefficients (discrete cosine transform over the Lobatto nodes).
+    coef_.assign(n + 1, Eigen::MatrixXd::Zero(rows, H_));
+    for (int i = 0; i <= n; ++i) {
+      for (int k = 0; k <= n; ++k) {
+        const double w = (k == 0 || k == n) ? 0.5 : 1.0;
+        coef_[i] += (w * std::cos(kPi * i * k / n)) * values[k];
+      }
+      coef_[i] *= 2.0 / n * ((i == 0 || i == n) ? 0.5 : 1.0);
+    }
+    // Trailing coefficients at the rounding floor of the transform (measured ~2e-15 of the
+    // largest harmonic) only cost time: the assumed-mode integrands are polynomials of low degree
+    // (13 terms kept for the paper model), the exact-mode ones converge geometrically (~32).
+    double big = 0.0;
+    for (const Eigen::MatrixXd& c : coef_) big = std::max(big, c.cwiseAbs().maxCoeff());
+    big = std::max(big, base_.cwiseAbs().maxCoeff());
+    while (coef_.size() > 1 && coef_.back().cwiseAbs().maxCoeff() <= 4e-15 * big) coef_.pop_back();
+    // Only the entries the reversed flow changes are summed (the displacement rows of A and
+    // the entries without aerodynamic terms have an exactly zero change).
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      bool changes = false;
+      for (const Eigen::MatrixXd& c : coef_) changes = changes || (c.row(r).array() != 0.0).any();
+      if (changes) rows_.push_back(r);
+    }
+    // stack_ column i = vec of coefficient i restricted to those entries (m x H, column-major)
+    const Eigen::Index m = static_cast<Eigen::Index>(rows_.size());
+    stack_.resize(m * H_, static_cast<Eigen::Index>(coef_.size()));
+    for (std::size_t i = 0; i < coef_.size(); ++i)
+      for (int h = 0; h < H_; ++h)
+        for (Eigen::Index e = 0; e < m; ++e) stack_(h * m + e, i) = coef_[i](rows_[e], h);
+    coef_.clear();
+  }
+
+  void at(double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) const {
+    const double c1 = std::cos(psi), s1 = std::sin(psi);
+    const double x0 = std::clamp((-mu_ * s1 - e1_) / lr_, a_, b_);
+    const double t = (2.0 * x0 - a_ - b_) / (b_ - a_);
+    // Scratch per thread: the evaluator is const and may run in several threads at once.
+    thread_local Eigen::VectorXd phi, v, w, T, sum;
+    // the harmonic basis by the rotation recurrence (index convention of periodic_system.h)
+    phi.resize(H_);
+    phi(0) = 1.0;
+    double ck = c1, sk = s1;
+    for (int h = 1; h < H_; h += 2) {
+      phi(h) = ck;
+      if (h + 1 < H_) phi(h + 1) = sk;
+      const double cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+    }
+    // the normal harmonics at psi, plus the change (sum_i T_i(t) coef_i) phi; T_i by the
+    // three-term recurrence (|t| <= 1 keeps it stable)
+    v.noalias() = base_ * phi;
+    const Eigen::Index m = static_cast<Eigen::Index>(rows_.size()), terms = stack_.cols();
+    T.resize(terms);
+    T(0) = 1.0;
+    if (terms > 1) T(1) = t;
+    for (Eigen::Index i = 2; i < terms; ++i) T(i) = 2.0 * t * T(i - 1) - T(i - 2);
+    sum.noalias() = stack_ * T;
+    w.noalias() = Eigen::Map<const Eigen::MatrixXd>(sum.data(), m, H_) * phi;
+    for (Eigen::Index e = 0; e < m; ++e) v(rows_[e]) += w(e);
+    A = Eigen::Map<const Eigen::MatrixXd>(v.data(), ns_, ns_);
+    f = v.tail(ns_);
+  }
+
+ private:
+  double mu_, e1_, lr_, a_, b_;
+  int ns_, H_;
+  Eigen::MatrixXd base_;               // normal-flow harmonics, (ns^2 + ns) x H
+  std::vector<Eigen::Index> rows_;     // the packed entries that the reversed flow changes
+  std::vector<Eigen::MatrixXd> coef_;  // [degree + 1] of the change (construction only)
+  Eigen::MatrixXd stack_;              // (rows_ x H) x terms: the kept coefficients, stacked
+};
+
+std::vector<double> SystemBuilder::exact_integrals(double mu, double psi) const {
+  std::vector<double> out;
+  // the station (in x0) where the flow reverses at psi; partial() clips it to [A, B]
+  aero_.partial((-mu * std::sin(psi) - p_.root_offset) / p_.length_ratio, out);
+  const std::vector<double>& normal = aero_.normal();
+  for (std::size_t j = 0; j < out.size(); ++j) out[j] = normal[j] - 2.0 * out[j];
+  return out;
+}
+
+HarmonicSet SystemBuilder::harmonics(double mu, const std::vector<double>& aero) const {
+  HarmonicSet set;
+  assemble(mu, aero, set);
+  return set;
+}
+
 PeriodicSystem SystemBuilder::system(double mu) const {
   if (!(mu >= 0.0) || !std::isfinite(mu)) {
     throw InvalidInput("mu", round_trip_text(mu), "advance ratio must be finite and >= 0");
@@ -204,7 +359,21 @@ PeriodicSystem SystemBuilder::system(double mu) const {
   PeriodicSystem sys;
   sys.n = 2 * n_;
   assemble(mu, aero_.normal(), sys.normal);
-  if (p_.reversed_flow && mu > 0.0) {
+  if (p_.reversed_flow && p_.exact_reversed_flow && mu > 0.0) {
+    const ExactReversedRegion r = exact_reversed_region(mu, p_);
+    if (r.exists) {
+      sys.has_varying = true;
+      sys.varying_begin = r.begin;
+      sys.varying_end = r.end;
+      sys.varying_breaks = r.breaks;
+      // The system may outlive this builder (it is returned by value): the evaluator owns its
+      // table.
+      auto table = std::make_shared<const ExactTable>(*this, mu);
+      sys.varying = [table](double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) {
+        table->at(psi, A, f);
+      };
+    }
+  } else if (p_.reversed_flow && mu > 0.0) {
     const double alpha = reversed_flow_sector_width(mu);
     sys.has_sector = true;
     sys.sector_begin = 1.5 * kPi - 0.5 * alpha;

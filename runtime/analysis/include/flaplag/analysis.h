@@ -58,7 +58,7 @@ namespace flaplag {
 // The numbers an auditor needs at one (mu, psi).
 struct SystemSnapshot {
   double mu = 0.0, psi = 0.0;
-  std::string region;  // "normal" or "reversed"
+  std::string region;  // "normal" or "reversed" (sector, or exact circle at this psi)
   Eigen::MatrixXd A;
   Eigen::VectorXd f;
   std::vector<std::pair<std::string, double>> aero_integrals;         // normal region values

@@ -28,7 +28,8 @@ struct RotorParameters {
   double tip_loss_a = 0.0;                // A-bar, inner aerodynamic limit in x0bar, [0, 1)
   double tip_loss_b = 1.0;                // B-bar, outer aerodynamic limit in x0bar, (0, 1]
   double root_offset = 0.0;               // e1, root offset of the elastic blade by R, [0, 1)
-  bool reversed_flow = true;              // Appendix D sector model
+  bool reversed_flow = true;              // reversed flow: the Appendix D sector model, or
+  bool exact_reversed_flow = false;       // the exact circle x < -mu sin psi (needs reversed_flow)
   ModeKind modes = ModeKind::Assumed;
   int basis = 5;  // exact modes: nonrotating cantilever functions per direction, 1..12 (paper 5)
   bool elastic_coupling = true;  // Appendix E; applies to exact modes only (paper 4.1(a))

@@ -3,7 +3,10 @@
 // Operating point: inflow (eq 2.24), mode shapes, spanwise integrals and generalized masses,
 // elastic coupling, hover equilibrium (2.29-2.32).  For each mu: the generated coefficient
 // functions evaluated with the normal-region integrals and with the reversed-sector integrals
-// (Appendix D), assembled into harmonic matrices of A and f.
+// (Appendix D), assembled into harmonic matrices of A and f.  With exact_reversed_flow the
+// sector is replaced by the exact circle: on the retreating side the integrals are split at
+// the station where the flow reverses at that psi, so A and f come from a psi-dependent
+// evaluator (PeriodicSystem's varying region) there.
 #pragma once
 
 #include <Eigen/Dense>
@@ -12,15 +15,29 @@
 
 #include "flaplag/blade/aero_integrals.h"
 #include "flaplag/blade/blade.h"
-#include "flaplag/rotor/hover.h"
 #include "flaplag/model_api.h"
-#include "flaplag/rotor/parameters.h"
 #include "flaplag/numerics/periodic_system.h"
+#include "flaplag/rotor/hover.h"
+#include "flaplag/rotor/parameters.h"
 
 namespace flaplag::detail {
 
 // Half-angle sector of reversed flow (Appendix D): alpha = pi/2 for mu < 1, eq D.2 for mu >= 1.
 double reversed_flow_sector_width(double mu);
+
+// The exact circular region of reversed flow at mu: the blade stations x = r/R < -mu sin psi
+// (the circle of diameter mu on the retreating side).  On the aerodynamic span
+// x in [x_A, x_B] = [e1 + (l/R) A, e1 + (l/R) B] the reversed part is non-empty for psi in
+// (begin, end) = (pi + asin(x_A/mu), 2 pi - asin(x_A/mu)) when mu > x_A; the whole span is
+// reversed between the breaks pi + asin(x_B/mu) and 2 pi - asin(x_B/mu) when mu > x_B.  The
+// split station moves smoothly with psi between these points and is clipped at them, so they
+// are where A(psi) is not smooth.
+struct ExactReversedRegion {
+  bool exists = false;
+  double begin = 0.0, end = 0.0;  // radians, pi <= begin < end <= 2 pi
+  std::vector<double> breaks;     // inside (begin, end), sorted
+};
+ExactReversedRegion exact_reversed_region(double mu, const RotorParameters& p);
 
 class SystemBuilder {
  public:
@@ -35,10 +52,19 @@ class SystemBuilder {
   PeriodicSystem system(double mu) const;
   // Aerodynamic integrals used inside the reversed sector at mu.
   std::vector<double> reversed_integrals(double mu) const;
+  // Aerodynamic integrals of the exact region at (mu, psi): -int_A^{x0} + int_{x0}^B with
+  // x0 = (-mu sin psi - e1)/(l/R) clipped to [A, B] (the sector's rule with its fixed station
+  // x = mu replaced by x = -mu sin psi); the normal values where x0 <= A.
+  std::vector<double> exact_integrals(double mu, double psi) const;
+  // Harmonic matrices of A and f at mu for a given set of aerodynamic integrals (in the exact
+  // region, system(mu).A(psi) is harmonics(mu, exact_integrals(mu, psi)) summed at psi).
+  HarmonicSet harmonics(double mu, const std::vector<double>& aero) const;
   const std::vector<double>& normal_integrals() const { return aero_.normal(); }
   const std::vector<double>& structural_values() const { return structural_; }
 
  private:
+  class ExactTable;  // the exact region's A, f as Chebyshev series in the split station
+
   model::CoefficientInputs inputs(double mu, const double* aero) const;
   void assemble(double mu, const std::vector<double>& aero, HarmonicSet& out) const;
 
@@ -54,8 +80,8 @@ class SystemBuilder {
   AeroIntegrals aero_;
   std::vector<double> g0_, h0_;
   std::vector<double> damping_flap_, damping_lag_;  // per mode [M], [N]
-  Eigen::VectorXd hover_forcing_;         // forcing[0] at mu = 0, normal flow, at the equilibrium
-  Eigen::MatrixXd mass_inverse_;  // generalized mass^-1, factored once in the constructor
+  Eigen::VectorXd hover_forcing_;  // forcing[0] at mu = 0, normal flow, at the equilibrium
+  Eigen::MatrixXd mass_inverse_;   // generalized mass^-1, factored once in the constructor
   HoverResult hover_;
 };
 

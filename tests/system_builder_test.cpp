@@ -1,0 +1,172 @@
+// The rotor's periodic system (runtime/rotor/system_builder.h): the exact circular
+// reversed-flow region against the Appendix D sector and against loads assembled from
+// aerodynamic integrals done by Gauss quadrature at the split station of each psi.
+#include "flaplag/rotor/system_builder.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "flaplag/analysis.h"
+#include "flaplag/core/constants.h"
+#include "test_util.h"
+
+namespace flaplag {
+namespace {
+
+using detail::exact_reversed_region;
+using detail::SystemBuilder;
+
+double max_abs(const Eigen::MatrixXd& m) { return m.cwiseAbs().maxCoeff(); }
+
+// A blade with every geometric parameter away from its default, so that a mix-up of e1, l/R,
+// A and B in the split station shows.
+RotorParameters offset_blade(bool exact_modes, bool exact_region) {
+  RotorParameters p;
+  p.root_offset = 0.03;
+  p.length_ratio = 0.97;
+  p.tip_loss_a = 0.08;
+  p.tip_loss_b = 0.96;
+  p.modes = exact_modes ? ModeKind::Exact : ModeKind::Assumed;
+  p.exact_reversed_flow = exact_region;
+  return p;
+}
+
+// The region is where the circle of diameter mu covers part of the aerodynamic span: its edges
+// are the psi with -mu sin psi = e1 + (l/R) A, its breaks those with -mu sin psi = e1 + (l/R) B.
+TEST(ExactReversedRegion, EdgesWhereTheCircleMeetsTheSpanLimits) {
+  const RotorParameters p = offset_blade(false, true);
+  const double x_a = 0.03 + 0.97 * 0.08, x_b = 0.03 + 0.97 * 0.96;
+  EXPECT_FALSE(exact_reversed_region(0.0, p).exists);
+  EXPECT_FALSE(exact_reversed_region(0.99 * x_a, p).exists);
+  for (double mu : {0.5, 0.99, 1.3, 3.0}) {
+    const auto r = exact_reversed_region(mu, p);
+    ASSERT_TRUE(r.exists) << mu;
+    EXPECT_NEAR(x_a, -mu * std::sin(r.begin), 1e-14) << mu;
+    EXPECT_NEAR(x_a, -mu * std::sin(r.end), 1e-14) << mu;
+    EXPECT_GT(r.begin, kPi);
+    EXPECT_LT(r.end, kTwoPi);
+    EXPECT_LT(r.begin, 1.5 * kPi);
+    if (mu <= x_b) {
+      EXPECT_TRUE(r.breaks.empty()) << mu;
+      continue;
+    }
+    ASSERT_EQ(2u, r.breaks.size()) << mu;
+    for (double b : r.breaks) EXPECT_NEAR(x_b, -mu * std::sin(b), 1e-14) << mu;
+    EXPECT_LT(r.begin, r.breaks[0]);
+    EXPECT_LT(r.breaks[0], r.breaks[1]);
+    EXPECT_LT(r.breaks[1], r.end);
+  }
+  // the default blade (e1 = A = 0): the whole retreating side at every mu > 0
+  const auto r = exact_reversed_region(0.2, RotorParameters{});
+  EXPECT_EQ(kPi, r.begin);
+  EXPECT_EQ(kTwoPi, r.end);
+}
+
+// Where the circle does not reach the aerodynamic span (mu <= e1 + (l/R) A), and at mu = 0,
+// the exact and sector options give the same A and f: the sector's integrals split at
+// x0 = (mu - e1)/(l/R) <= A are the normal ones too.
+TEST(ExactReversedRegion, SameAsTheSectorWithoutReversedSpan) {
+  RotorParameters p = offset_blade(false, false);
+  p.tip_loss_a = 0.3;  // x_A = 0.321
+  RotorParameters q = p;
+  q.exact_reversed_flow = true;
+  const SystemBuilder sector(p, find_model(p.model)), exact(q, find_model(q.model));
+  for (double mu : {0.0, 0.2, 0.32}) {
+    const PeriodicSystem a = sector.system(mu), b = exact.system(mu);
+    EXPECT_FALSE(b.has_varying) << mu;
+    EXPECT_FALSE(b.has_sector) << mu;
+    for (int k = 0; k < 24; ++k) {
+      const double psi = (k + 0.3) * kTwoPi / 24;
+      const Eigen::MatrixXd Aa = a.A(psi), Ab = b.A(psi);
+      EXPECT_LE(max_abs(Aa - Ab), 1e-15 * max_abs(Aa)) << "mu = " << mu << ", psi = " << psi;
+      EXPECT_LE((a.f(psi) - b.f(psi)).cwiseAbs().maxCoeff(), 1e-15 * max_abs(Aa))
+          << "mu = " << mu << ", psi = " << psi;
+    }
+  }
+  const PeriodicSystem a0 = sector.system(0.0), b0 = exact.system(0.0);
+  ASSERT_EQ(a0.normal.A.size(), b0.normal.A.size());
+  for (std::size_t h = 0; h < a0.normal.A.size(); ++h) EXPECT_EQ(a0.normal.A[h], b0.normal.A[h]);
+}
+
+// Independent check of the exact region: at each psi, the aerodynamic integrals by Gauss
+// quadrature (blade.h aero_integral), split at x0(psi) = (-mu sin psi - e1)/(l/R) clipped to
+// [A, B] and negated on the reversed part (-int_A^{x0} + int_{x0}^B), assembled by the builder,
+// summed at psi; against the system's A(psi) and f(psi) (a Chebyshev series in x0).
+struct GaussCase {
+  const char* name;
+  const char* model;
+  bool exact_modes;
+  double mu;
+};
+
+void PrintTo(const GaussCase& c, std::ostream* os) { *os << c.name; }
+
+class ExactRegionGauss : public ::testing::TestWithParam<GaussCase> {};
+
+TEST_P(ExactRegionGauss, AMatchesGaussQuadratureOfTheSplitIntegrals) {
+  RotorParameters p = offset_blade(GetParam().exact_modes, true);
+  p.model = GetParam().model;
+  const SystemBuilder b(p, find_model(p.model));
+  const double mu = GetParam().mu;
+  const PeriodicSystem sys = b.system(mu);
+  ASSERT_TRUE(sys.has_varying);
+  SpanGeometry g;
+  g.e1 = p.root_offset;
+  g.lr = p.length_ratio;
+  g.tip_loss_a = p.tip_loss_a;
+  g.tip_loss_b = p.tip_loss_b;
+  const model::ModelDescriptor& m = b.model();
+  // normal side, both region edges' neighbourhoods, the middle, and (mu > x_B) the fully
+  // reversed part between the breaks
+  for (double psi : {1.0, 3.3, 3.8, 4.4, 1.5 * kPi, 5.1, 5.9, 6.2}) {
+    const double x0 = std::clamp((-mu * std::sin(psi) - g.e1) / g.lr, g.tip_loss_a, g.tip_loss_b);
+    std::vector<double> aero;
+    for (int j = 0; j < m.n_aero; ++j)
+      aero.push_back(-aero_integral(m.aero[j], b.modes(), g, g.tip_loss_a, x0) +
+                     aero_integral(m.aero[j], b.modes(), g, x0, g.tip_loss_b));
+    const HarmonicSet set = b.harmonics(mu, aero);
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(sys.n, sys.n);
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(sys.n);
+    for (std::size_t h = 0; h < set.A.size(); ++h) {
+      A += harmonic_basis(static_cast<int>(h), psi) * set.A[h];
+      f += harmonic_basis(static_cast<int>(h), psi) * set.f[h];
+    }
+    const double scale = max_abs(A);
+    EXPECT_LE(max_abs(sys.A(psi) - A), 1e-12 * scale) << "psi = " << psi << ", x0 = " << x0;
+    EXPECT_LE((sys.f(psi) - f).cwiseAbs().maxCoeff(), 1e-12 * scale) << "psi = " << psi;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, ExactRegionGauss,
+                         ::testing::Values(GaussCase{"assumed_mu06", "paper", false, 0.6},
+                                           GaussCase{"assumed_mu13", "paper", false, 1.3},
+                                           GaussCase{"no_radial_flow_mu13", "no-radial-flow", false,
+                                                     1.3},
+                                           GaussCase{"lag_order_2_mu08", "lag-order-2", false, 0.8},
+                                           GaussCase{"exact_mu06", "paper", true, 0.6},
+                                           GaussCase{"exact2x1_mu08", "paper-2x1", true, 0.8},
+                                           GaussCase{"exact1x2_mu08", "paper-1x2", true, 0.8},
+                                           GaussCase{"exact2x2_mu13", "paper-2x2", true, 1.3}),
+                         [](const auto& tp) { return std::string(tp.param.name); });
+
+// mu >= 1 on the default blade: between the breaks the whole span is reversed, so the
+// integrals there are the negated normal ones, as in the sector of eqs D.5-D.6.
+TEST(ExactReversedRegion, FullyReversedBetweenTheBreaks) {
+  RotorParameters p;
+  p.exact_reversed_flow = true;
+  const SystemBuilder b(p, find_model(p.model));
+  const std::vector<double> r = b.exact_integrals(1.5, 1.5 * kPi);
+  const std::vector<double>& n = b.normal_integrals();
+  ASSERT_EQ(n.size(), r.size());
+  for (std::size_t j = 0; j < n.size(); ++j) EXPECT_DOUBLE_EQ(-n[j], r[j]);
+  const std::vector<double> side = b.exact_integrals(1.5, 1.0);  // advancing side
+  for (std::size_t j = 0; j < n.size(); ++j) EXPECT_DOUBLE_EQ(n[j], side[j]);
+}
+
+}  // namespace
+}  // namespace flaplag
