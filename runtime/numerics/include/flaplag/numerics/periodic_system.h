@@ -13,8 +13,8 @@
 #pragma once
 
 #include <Eigen/Dense>
-#include <string>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace flaplag {
