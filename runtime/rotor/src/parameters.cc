@@ -60,6 +60,12 @@ std::vector<ParameterSpec> build_table() {
                        Interval{0.0, 1.0, false, false}, "in [0, 1]"));
   t.push_back(real_row("theta", "theta", "rad", "collective pitch", &RotorParameters::theta, angle,
                        "in (-pi/2, pi/2)"));
+  t.push_back(real_row("theta1c", "theta_1c", "rad",
+                       "cyclic pitch, cos psi part (needs a cyclic-pitch model, e.g. paper-cyclic)",
+                       &RotorParameters::theta1c, angle, "in (-pi/2, pi/2)"));
+  t.push_back(real_row("theta1s", "theta_1s", "rad",
+                       "cyclic pitch, sin psi part (needs a cyclic-pitch model, e.g. paper-cyclic)",
+                       &RotorParameters::theta1s, angle, "in (-pi/2, pi/2)"));
   t.push_back(real_row("precone", "beta_P", "rad", "precone angle", &RotorParameters::precone,
                        angle, "in (-pi/2, pi/2)"));
   t.push_back(real_row("droop", "beta_D", "rad", "droop angle", &RotorParameters::droop, angle,
@@ -155,6 +161,12 @@ std::string parameter_text(const RotorParameters& p, const ParameterSpec& spec) 
 }
 
 void validate(const RotorParameters& p) {
+  validate_except_inflow(p);
+  // Every other check is per field; this one keeps hover_inflow() defined for valid input.
+  hover_inflow(p);
+}
+
+void validate_except_inflow(const RotorParameters& p) {
   for (const ParameterSpec& s : parameter_table()) {
     if (s.type != ParameterType::Real) continue;
     const double v = p.*s.real;
@@ -170,8 +182,6 @@ void validate(const RotorParameters& p) {
     throw InvalidInput(row("tip_loss_a").field, round_trip_text(p.tip_loss_a),
                        "must be below `tip_loss_b` = " + round_trip_text(p.tip_loss_b));
   }
-  // Every other check is per field; this one keeps hover_inflow() defined for valid input.
-  hover_inflow(p);
 }
 
 double hover_inflow(const RotorParameters& p) {

@@ -7,24 +7,39 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "flaplag/blade/aero_integrals.h"
 #include "flaplag/blade/blade.h"
-#include "flaplag/rotor/hover.h"
 #include "flaplag/model_api.h"
-#include "flaplag/rotor/parameters.h"
 #include "flaplag/numerics/periodic_system.h"
+#include "flaplag/rotor/hover.h"
+#include "flaplag/rotor/parameters.h"
 
 namespace flaplag::detail {
 
 // Half-angle sector of reversed flow (Appendix D): alpha = pi/2 for mu < 1, eq D.2 for mu >= 1.
 double reversed_flow_sector_width(double mu);
 
+// The rotor thrust of one blade, T(psi) = sum_h phi_h(psi) (t[h] + tau[h] . y) for one flow
+// region (ModelDescriptor::thrust; y the perturbation state about the hover equilibrium).
+struct ThrustHarmonics {
+  std::vector<double> t;                // [H]
+  std::vector<Eigen::RowVectorXd> tau;  // [H] each 1 x 2n
+};
+struct ThrustSystem {
+  ThrustHarmonics normal, reversed;  // reversed: used inside the sector of system(mu)
+};
+
 class SystemBuilder {
  public:
-  SystemBuilder(const RotorParameters& p, const model::ModelDescriptor& m);
+  // inflow: lambda to use instead of eq 2.24 (a trim's eq 2.25 value); nullopt: eq 2.24.
+  // Throws InvalidInput("theta1c"/"theta1s", ...) when cyclic pitch is asked of a model
+  // without it.
+  SystemBuilder(const RotorParameters& p, const model::ModelDescriptor& m,
+                std::optional<double> inflow = std::nullopt);
 
   const RotorParameters& params() const { return p_; }
   const model::ModelDescriptor& model() const { return *model_; }
@@ -33,6 +48,9 @@ class SystemBuilder {
   int state_size() const { return 2 * n_; }
 
   PeriodicSystem system(double mu) const;
+  // Thrust harmonics at mu (models with ModelDescriptor::thrust only; else std::logic_error).
+  ThrustSystem thrust(double mu) const;
+  double inflow() const { return inflow_; }
   // Aerodynamic integrals used inside the reversed sector at mu.
   std::vector<double> reversed_integrals(double mu) const;
   const std::vector<double>& normal_integrals() const { return aero_.normal(); }
@@ -54,8 +72,8 @@ class SystemBuilder {
   AeroIntegrals aero_;
   std::vector<double> g0_, h0_;
   std::vector<double> damping_flap_, damping_lag_;  // per mode [M], [N]
-  Eigen::VectorXd hover_forcing_;         // forcing[0] at mu = 0, normal flow, at the equilibrium
-  Eigen::MatrixXd mass_inverse_;  // generalized mass^-1, factored once in the constructor
+  Eigen::VectorXd hover_forcing_;  // forcing[0] at mu = 0, normal flow, at the equilibrium
+  Eigen::MatrixXd mass_inverse_;   // generalized mass^-1, factored once in the constructor
   HoverResult hover_;
 };
 
