@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "flaplag/analysis.h"
 #include "flaplag/core/constants.h"
@@ -12,6 +13,7 @@
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/brent.h"
 #include "flaplag/numerics/continuation.h"
+#include "flaplag/rotor/hover.h"
 #include "flaplag/rotor/system_builder.h"
 
 namespace flaplag {
@@ -282,7 +284,8 @@ ThrustResult rotor_thrust_momentum(const RotorParameters& p, double mu, double s
   return last;
 }
 
-TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o) {
+TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
+                const TrimResult* start) {
   o.Check();
   check_mu(mu);
   validate_except_inflow(p);
@@ -301,18 +304,24 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o) {
   const bool moment = o.kind == TrimKind::Moment;
   const int nx = moment ? 3 : 1;
   Eigen::VectorXd x(nx);
-  // Start from blade-element theory for a uniform rigid blade without tip loss, C_T = (sigma
-  // a/2) [theta0 (1/3 + mu^2/2) + theta1s mu/2 - lambda/2] (the model's thrust at y = 0 and
-  // q0 = 0), clipped to the admissible pitch: Newton then corrects for the real blade.
-  {
+  if (start != nullptr && start->kind == o.kind && start->status != Status::Failed) {
+    x(0) = start->theta0;
+    if (moment) {
+      x(1) = start->theta1c;
+      x(2) = start->theta1s;
+    }
+  } else {
+    // Start from blade-element theory for a uniform rigid blade without tip loss, C_T =
+    // (sigma a/2) [theta0 (1/3 + mu^2/2) + theta1s mu/2 - lambda/2] (the model's thrust at
+    // y = 0 and q0 = 0), clipped: Newton then corrects for the real blade.
     const double sa2 = 0.5 * p.sigma * p.lift_slope;
     const double guess = (o.thrust_coefficient / sa2 + 0.5 * out.inflow - 0.5 * mu * p.theta1s) /
                          (1.0 / 3.0 + 0.5 * mu * mu);
     x(0) = std::isfinite(guess) ? std::clamp(guess, -1.0, 1.0) : p.theta;
-  }
-  if (moment) {
-    x(1) = p.theta1c;
-    x(2) = p.theta1s;
+    if (moment) {
+      x(1) = p.theta1c;
+      x(2) = p.theta1s;
+    }
   }
   auto params_of = [&](const Eigen::VectorXd& v) {
     RotorParameters q = p;
@@ -363,63 +372,191 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o) {
     }
     return true;
   };
-  for (int it = 1; it <= o.max_iterations; ++it) {
-    if (converged(r) && it > 1) break;
-    // Central finite-difference Jacobian (the residual is nearly linear in the pitch).
-    Eigen::MatrixXd J(nx, nx);
+  // Forward-difference Jacobian at x (the residual is nearly linear in the pitch).
+  auto jacobian = [&](Eigen::MatrixXd* J) {
+    J->resize(nx, nx);
     for (int j = 0; j < nx; ++j) {
-      const double h = 1e-5;
-      Eigen::VectorXd xp = x, xm = x, rp, rm;
+      const double h = 1e-6;
+      Eigen::VectorXd xp = x, rp;
       xp(j) += h;
-      xm(j) -= h;
-      if (!residual(xp, &rp) || !residual(xm, &rm)) {
-        return finish(x, Status::Failed, "the Jacobian could not be evaluated: " + last.message);
-      }
-      J.col(j) = (rp - rm) / (2.0 * h);
+      if (!residual(xp, &rp)) return false;
+      J->col(j) = (rp - r) / h;
+    }
+    residual(x, &r);  // restore `last` to x
+    return true;
+  };
+  // Newton with a Jacobian that is updated by Broyden's rule after each step and evaluated by
+  // finite differences only at the start (unless a warm start brings one) and when a step
+  // fails; each step is halved until the residual decreases (the thrust is strongly nonlinear
+  // in theta0 near the stability boundary, where the response is large).
+  Eigen::MatrixXd J;
+  bool fresh = false;
+  if (start != nullptr && start->jacobian.rows() == nx && start->jacobian.cols() == nx &&
+      start->kind == o.kind) {
+    J = start->jacobian;
+  } else {
+    if (!jacobian(&J)) {
+      return finish(x, Status::Failed, "the trim Jacobian could not be evaluated: " + last.message);
+    }
+    fresh = true;
+  }
+  out.iterations = 0;
+  while (!converged(r)) {
+    if (out.iterations >= o.max_iterations) {
+      out.jacobian = J;
+      return finish(x, Status::Warning,
+                    "trim not converged in " + std::to_string(out.iterations) +
+                        " iterations (`max_iterations`): |residual| = " +
+                        round_trip_text(r.cwiseAbs().maxCoeff()));
     }
     Eigen::FullPivLU<Eigen::MatrixXd> lu(J);
-    if (!lu.isInvertible()) {
-      residual(x, &r);
-      return finish(x, Status::Failed,
-                    "singular trim Jacobian: the controls do not change the thrust/moments");
-    }
-    // Newton step with backtracking: halve it until the residual decreases (the thrust is
-    // strongly nonlinear in theta0 near the stability boundary, where the response is large).
-    Eigen::VectorXd dx = lu.solve(r);
-    const double norm0 = r.norm();
-    Eigen::VectorXd trial, rt;
     bool accepted = false;
-    for (int half = 0; half < 30; ++half, dx *= 0.5) {
-      trial = x - dx;
-      if (residual(trial, &rt) && (rt.norm() < norm0 || converged(rt))) {
-        accepted = true;
-        break;
+    Eigen::VectorXd dx, trial, rt;
+    if (lu.isInvertible()) {
+      dx = lu.solve(r);
+      const double norm0 = r.norm();
+      for (int half = 0; half < (fresh ? 30 : 1); ++half, dx *= 0.5) {
+        trial = x - dx;
+        if (residual(trial, &rt) && (rt.norm() < norm0 || converged(rt))) {
+          accepted = true;
+          break;
+        }
       }
     }
     if (!accepted) {
+      if (fresh) {
+        residual(x, &r);
+        out.jacobian = J;
+        return finish(x, Status::Failed,
+                      "the trim Newton step does not reduce the residual (|r| = " +
+                          round_trip_text(r.norm()) + "; singular or unreachable)" +
+                          (last.message.empty() ? std::string() : ": " + last.message));
+      }
       residual(x, &r);
-      return finish(
-          x, Status::Failed,
-          "the trim Newton step does not reduce the residual |r| = " + round_trip_text(norm0) +
-              (last.message.empty() ? std::string() : ": " + last.message));
+      if (!jacobian(&J)) {
+        return finish(x, Status::Failed,
+                      "the trim Jacobian could not be evaluated: " + last.message);
+      }
+      fresh = true;
+      continue;
     }
+    ++out.iterations;
+    const Eigen::VectorXd step = trial - x;
+    J += ((rt - r) - J * step) * step.transpose() / step.squaredNorm();  // Broyden
+    fresh = false;
     x = trial;
     r = rt;
-    out.iterations = it;
-    if (converged(r) && dx.cwiseAbs().maxCoeff() <= 1e-15) break;
-    if (it == o.max_iterations && !converged(r)) {
-      return finish(x, Status::Warning,
-                    "trim not converged in " + std::to_string(it) +
-                        " iterations (`max_iterations`)"
-                        ": |C_T - target| / target = " +
-                        round_trip_text(std::abs(r(0))));
-    }
   }
-  if (!converged(r)) {
-    return finish(x, Status::Warning,
-                  "trim not converged: |residual| = " + round_trip_text(r.cwiseAbs().maxCoeff()));
-  }
+  out.jacobian = J;
+  out.converged = true;
   return finish(x, last.status, last.message);
+}
+
+namespace {
+
+// The continuation's ingredients for a rotor trimmed at every mu.
+struct Trimmed {
+  Trimmed(const RotorParameters& p, const TransitionOptions& t, const TrimOptions& o)
+      : params(p), transition(t), options(o) {
+    t.Check();
+    o.Check();
+    if (o.kind == TrimKind::None) {
+      throw InvalidInput("trim", "none", "nothing to trim: use thrust or moment");
+    }
+    hover = trim(p, 0.0, o);
+    if (hover.status == Status::Failed) {
+      throw InvalidInput("thrust_coefficient", round_trip_text(o.thrust_coefficient),
+                         "the rotor cannot be trimmed in hover: " + hover.message);
+    }
+    const Analysis an(hover.parameters, t, hover.inflow);
+    const auto& m = an.model();
+    modes = label_hover_modes(an.hover().A0, m.flap_modes, m.lag_modes);
+  }
+
+  FloquetFunction function() const {
+    // Moment trim: warm start from the previous trim (the continuation moves in small steps of
+    // mu; the cold start can land on another branch where the response is large).  Thrust
+    // trim: always from the blade-element estimate, which is close and keeps each mu's trim
+    // independent of the order of evaluation.
+    auto previous = std::make_shared<TrimResult>(hover);
+    const bool warm = options.kind == TrimKind::Moment;
+    return [this, previous, warm](double mu, double zeta_tolerance) {
+      FloquetSample out;
+      const TrimResult tr = trim(params, mu, options, warm ? previous.get() : nullptr);
+      if (tr.status != Status::Failed) *previous = tr;
+      if (tr.status == Status::Failed) {
+        out.status = Status::Failed;
+        out.message = "trim failed at mu = " + round_trip_text(mu) + ": " + tr.message;
+        return out;
+      }
+      const Analysis an(tr.parameters, transition, tr.inflow);
+      out = an.floquet(mu, zeta_tolerance);
+      // (an unstable trimmed system is no problem of the sample: the exponents say so)
+      if (!tr.converged && out.status == Status::Ok) {
+        out.status = Status::Warning;
+        out.message = "trim at mu = " + round_trip_text(mu) + ": " + tr.message;
+      }
+      return out;
+    };
+  }
+
+  RotorParameters params;
+  TransitionOptions transition;
+  TrimOptions options;
+  TrimResult hover;  // the trim at mu = 0
+  HoverModes modes;
+};
+
+void sort_for_output(std::vector<LabelledExponent>& v) {
+  std::stable_sort(v.begin(), v.end(), [](const LabelledExponent& a, const LabelledExponent& b) {
+    return a.label != b.label ? a.label < b.label : a.omega > b.omega;
+  });
+}
+
+}  // namespace
+
+PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, double mu, double scan_step) {
+  check_mu(mu);
+  if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
+    throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
+  }
+  const Trimmed tr(p, t, o);
+  SweepResult sw = sweep_exponents(tr.modes, tr.function(), mu, mu, scan_step, t.zeta_tolerance);
+  PointResult r;
+  r.mu = mu;
+  if (sw.points.empty()) {
+    r.status = Status::Failed;
+    r.message = sw.message.empty() ? "continuation from hover failed" : sw.message;
+    return r;
+  }
+  r = std::move(sw.points.back());
+  r.mu = mu;
+  if (sw.status > r.status) {
+    r.status = sw.status;
+    r.message = r.message.empty() ? sw.message : r.message + "; " + sw.message;
+  }
+  sort_for_output(r.exponents);
+  return r;
+}
+
+SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, double mu0, double mu1, double step) {
+  const Trimmed tr(p, t, o);
+  SweepResult r = sweep_exponents(tr.modes, tr.function(), mu0, mu1, step, t.zeta_tolerance);
+  for (PointResult& pt : r.points) sort_for_output(pt.exponents);
+  return r;
+}
+
+CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOptions& t,
+                                const TrimOptions& o, const CriticalOptions& c) {
+  c.Check();
+  const Trimmed tr(p, t, o);
+  CriticalOptions co = c;
+  co.scan_zeta_tolerance = std::min(c.scan_zeta_tolerance, t.zeta_tolerance);
+  CriticalResult r = find_critical(tr.modes, tr.function(), co);
+  sort_for_output(r.exponents);
+  return r;
 }
 
 }  // namespace flaplag

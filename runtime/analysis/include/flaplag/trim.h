@@ -37,10 +37,13 @@
 // (hover equilibrium at the trimmed theta0 and lambda; A(psi) carries the cyclic pitch).
 #pragma once
 
+#include <Eigen/Dense>
 #include <string>
 #include <string_view>
 
 #include "flaplag/core/status.h"
+#include "flaplag/numerics/continuation.h"
+#include "flaplag/numerics/floquet.h"
 #include "flaplag/numerics/response.h"
 #include "flaplag/rotor/parameters.h"
 
@@ -96,14 +99,36 @@ struct TrimResult {
   double flap_1c = 0.0, flap_1s = 0.0;                // first flap tip harmonic at the trim
   int iterations = 0;
   RotorParameters parameters;  // the input with theta, theta1c, theta1s trimmed
-  // Ok: converged.  Warning: max_iterations reached (the last iterate is reported).  Failed:
-  // no periodic response, a singular Jacobian, or a pitch outside (-pi/2, pi/2).
+  bool converged = false;      // the residual met `tolerance`
+  // Jacobian of the residual [(C_T - target)/target, flap 1c, flap 1s] in (theta0, theta1c,
+  // theta1s) at the end (Broyden-updated): a warm start for a neighbouring mu.
+  Eigen::MatrixXd jacobian;
+  // Ok: converged.  Warning: converged but the trimmed system is unstable (the periodic
+  // solution is not what the blade settles to), or max_iterations reached (converged false;
+  // the last iterate is reported).  Failed: no periodic response, a Jacobian that does not
+  // reduce the residual (singular or unreachable target), a pitch outside (-pi/2, pi/2).
   Status status = Status::Ok;
   std::string message;
 };
 
 // o.Check() first; o.kind must not be None.  p.model must emit the thrust (InvalidInput
 // "model").  mu in [0, kMaxAdvanceRatio].
-TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o);
+// start: a previous trim (e.g. at a neighbouring mu) whose controls and Jacobian start the
+// Newton iteration; nullptr: blade-element estimate and a finite-difference Jacobian.
+TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
+                const TrimResult* start = nullptr);
+
+// Stability at fixed C_T: every mu at which the continuation evaluates the Floquet exponents is
+// trimmed first (trim() above; the hover labels come from the trim at mu = 0), so mu_c is the
+// critical advance ratio of the trimmed rotor, not of the rotor at fixed theta.  A trim that
+// fails at some mu makes that evaluation Failed (message from the trim).  The options are
+// checked as by Analysis and trim() (InvalidInput).  Each evaluation costs a trim (a few
+// periodic responses) on top of the Floquet analysis.
+PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, double mu, double scan_step = 0.01);
+SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, double mu0, double mu1, double step);
+CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOptions& t,
+                                const TrimOptions& o, const CriticalOptions& c);
 
 }  // namespace flaplag
