@@ -229,6 +229,8 @@ const char* description(Command c) {
       return "periodic forced response: tip flap and lag deflections over one revolution";
     case Command::Simulate:
       return "time-domain simulation of the linear system from a perturbation";
+    case Command::Trim:
+      return "trim: theta0, theta1c, theta1s and lambda (eq 2.25) for a thrust coefficient";
   }
   return "";
 }
@@ -263,6 +265,9 @@ std::vector<std::string> examples(Command c) {
       return {"flaplag response --mu 0.3", "flaplag response --mu 0.5 --json --plot tip.svg"};
     case Command::Simulate:
       return {"flaplag simulate --mu 0.9 --revs 50", "flaplag simulate --mu 0.3 --forced --json"};
+    case Command::Trim:
+      return {"flaplag trim --model paper-cyclic --mu 0.3 --thrust-coefficient 0.005",
+              "flaplag critical --model paper-cyclic --trim moment --thrust-coefficient 0.0042"};
   }
   return {};
 }
@@ -662,9 +667,28 @@ Request CommandLine::interpret() const {
         r.samples = parse_int(g->spelling, g->text, 1, 10000);
       break;
     }
+    case Command::Trim: {
+      const Given& mu = required("--mu");
+      r.mu = parse_real(mu.spelling, mu.text);
+      r.trim.kind = TrimKind::Thrust;
+      break;
+    }
     case Command::Typical:
       break;
   }
+  if (const Given* g = given("--trim")) {
+    if (!trim_kind_from_name(g->text, &r.trim.kind) ||
+        (c == Command::Trim && r.trim.kind == TrimKind::None)) {
+      throw InvalidInput(
+          g->spelling, shown(g->text),
+          c == Command::Trim ? "must be thrust or moment" : "must be none, thrust or moment");
+    }
+  }
+  if (const Given* g = given("--thrust-coefficient"))
+    r.trim.thrust_coefficient = parse_real(g->spelling, g->text);
+  if (const Given* g = given("--shaft-angle"))
+    r.trim.shaft_angle = parse_real(g->spelling, g->text);
+  if (r.trim.kind != TrimKind::None) r.trim.Check();  // errors name the option's field
   if (const Given* g = given("--threads")) r.threads = parse_int(g->spelling, g->text, 0, 256);
   if (const Given* g = given("--plot")) {
     if (!is_plot_path(g->text))
@@ -708,7 +732,7 @@ std::string CommandLine::help_text() const {
     }
   } else {
     std::string usage = full_name(c);
-    if (c == Command::Point || c == Command::System) usage += " --mu REAL";
+    if (c == Command::Point || c == Command::System || c == Command::Trim) usage += " --mu REAL";
     if (c == Command::Sweep) usage += " --mu A:B:STEP";
     out += "Usage: " + usage + " [OPTIONS]\n\n" + description(c) + "\n";
   }

@@ -28,7 +28,8 @@ enum class Command {
   Study,
   Map,
   Response,
-  Simulate
+  Simulate,
+  Trim
 };
 
 const char* command_name(Command c);  // "" for Typical, else "point", ...
