@@ -867,6 +867,7 @@ std::string study(const Request& r, std::string& warning) {
   so.critical.mu_max = r.mu_max;
   so.critical.scan_step = r.scan_step;
   so.threads = r.threads;
+  so.trim = r.trim;
   StudyResult s = run_study(r.params, r.transition, so);
   for (StudyRow& row : s.rows) audit(row.critical);
   // The plot: mu_c per value (flutter and periodic marked differently) and the intervals.

@@ -50,6 +50,7 @@ std::optional<InvalidInput> study_problem(const StudyOptions& o) {
   if (!o.critical.IsValid(&why)) {
     o.critical.Check();  // throws the precise InvalidInput
   }
+  o.trim.Check();
   return check_threads(o.threads);
 }
 
@@ -185,8 +186,12 @@ StudyResult run_study(const RotorParameters& base, const TransitionOptions& tran
         StudyRow& row = out.rows[i];
         row.value = options.values[i];
         try {
-          const Analysis an(with_parameter(base, options.parameter, row.value), transition);
-          row.critical = an.critical(crit);
+          const RotorParameters p = with_parameter(base, options.parameter, row.value);
+          if (options.trim.kind != TrimKind::None) {
+            row.critical = trimmed_critical(p, transition, options.trim, crit);
+          } else {
+            row.critical = Analysis(p, transition).critical(crit);
+          }
         } catch (const InvalidInput& e) {
           row.critical = CriticalResult{};
           row.critical.mu_max = crit.mu_max;
