@@ -944,6 +944,7 @@ std::string map(const Request& r, std::string& warning) {
   mo.mu = r.mu;
   mo.scan_step = r.scan_step;
   mo.threads = r.threads;
+  mo.trim = r.trim;
   const MapResult m = run_map(r.params, r.transition, mo);
   std::vector<std::vector<double>> z(r.y_values.size());
   for (std::size_t i = 0; i < m.cells.size(); ++i)

@@ -269,7 +269,8 @@ std::vector<OptionSpec> build(Command c) {
     case Command::Typical:
       break;
   }
-  if (c == Command::Point || c == Command::Sweep || c == Command::Critical || c == Command::Study)
+  if (c == Command::Point || c == Command::Sweep || c == Command::Critical || c == Command::Study ||
+      c == Command::Map)
     append(v, trim_options(false));
   append(v, rotor_options());
   if (c != Command::System && c != Command::Response && c != Command::Simulate &&

@@ -548,6 +548,18 @@ SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
   return r;
 }
 
+SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, const std::vector<double>& mus, double scan_step) {
+  for (double mu : mus) check_mu(mu);
+  if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
+    throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
+  }
+  const Trimmed tr(p, t, o);
+  SweepResult r = track_exponents(tr.modes, tr.function(), mus, scan_step, t.zeta_tolerance);
+  for (PointResult& pt : r.points) sort_for_output(pt.exponents);
+  return r;
+}
+
 CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOptions& t,
                                 const TrimOptions& o, const CriticalOptions& c) {
   c.Check();

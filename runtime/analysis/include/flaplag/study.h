@@ -75,6 +75,7 @@ struct MapOptions {
   MapAxis x, y;             // at most one of them "mu"; each with 1..kMaxMapValues values
   double mu = 0.0;          // the advance ratio when neither axis is "mu"
   double scan_step = 0.01;  // continuation step in mu
+  TrimOptions trim;         // kind != None: every cell trimmed at its mu (trim.h)
   int threads = 0;
 
   bool IsValid(std::string* error) const;

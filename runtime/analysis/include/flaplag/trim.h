@@ -40,6 +40,7 @@
 #include <Eigen/Dense>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "flaplag/core/status.h"
 #include "flaplag/numerics/continuation.h"
@@ -128,6 +129,11 @@ PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
                           const TrimOptions& o, double mu, double scan_step = 0.01);
 SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
                           const TrimOptions& o, double mu0, double mu1, double step);
+// At the given advance ratios (nondecreasing), continued from hover in steps of at most
+// scan_step (as Analysis::track).
+SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, const std::vector<double>& mus,
+                          double scan_step = 0.01);
 CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOptions& t,
                                 const TrimOptions& o, const CriticalOptions& c);
 
