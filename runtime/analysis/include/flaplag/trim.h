@@ -31,9 +31,11 @@
 //   - moment (wind-tunnel trim): theta0, theta1c, theta1s such that C_T equals the target and
 //     the first harmonic of the flap tip deflection (hover equilibrium plus periodic response,
 //     cos psi and sin psi parts) vanishes.
-// Newton's method with a central finite-difference Jacobian; the periodic response uses fixed
-// RK4 steps (chosen at the first evaluation) so that the residual is a smooth function of the
-// controls.  Linearization: the system about which stability is then analysed is the paper's
+// Newton's method: a forward finite-difference Jacobian at the start (or a previous trim's, see
+// trim()), updated by Broyden's rule after each step and re-evaluated when a step fails; each
+// step is halved until the residual decreases.  The periodic response uses fixed RK4 steps
+// (chosen at the first evaluation) so that the residual is a smooth function of the controls.
+// Starting point: blade-element theory for the uniform rigid blade.  Linearization: the system about which stability is then analysed is the paper's
 // (hover equilibrium at the trimmed theta0 and lambda; A(psi) carries the cyclic pitch).
 #pragma once
 
