@@ -240,3 +240,24 @@ TEST(Trim, UnreachableThrustIsAStatus) {
     EXPECT_FALSE(r.message.empty());
   }
 }
+
+// The exact-mode family of the cyclic model (paper-cyclic-2x2): the trim works with several
+// modes (the thrust and the first harmonic sum over the modes).
+TEST(Trim, ExactModesTwoByTwo) {
+  RotorParameters p = cyclic_typical();
+  p.model = "paper-cyclic-2x2";
+  p.modes = flaplag::ModeKind::Exact;
+  TrimOptions o;
+  o.kind = TrimKind::Thrust;
+  o.thrust_coefficient = 0.005;
+  const auto r = flaplag::trim(p, 0.3, o);
+  ASSERT_EQ(r.status, Status::Ok) << r.message;
+  EXPECT_NEAR(r.thrust_coefficient, 0.005, 1e-10);
+  // the single-mode exact model trims to a nearby, not identical, collective
+  RotorParameters p1 = p;
+  p1.model = "paper-cyclic";
+  const auto r1 = flaplag::trim(p1, 0.3, o);
+  ASSERT_EQ(r1.status, Status::Ok) << r1.message;
+  EXPECT_NEAR(r.theta0, r1.theta0, 0.01);
+  EXPECT_NE(r.theta0, r1.theta0);
+}
