@@ -233,6 +233,8 @@ const char* description(Command c) {
       return "join the --shard parts of a map or study into the file one run writes";
     case Command::Plot:
       return "draw an existing sweep, study, map, response or simulate result (--json output)";
+    case Command::Trim:
+      return "trim: theta0, theta1c, theta1s and lambda (eq 2.25) for a thrust coefficient";
   }
   return "";
 }
@@ -279,6 +281,9 @@ std::vector<std::string> examples(Command c) {
       return {"flaplag plot map.json --plot map.png",
               "flaplag study --vary theta=0:0.3:0.02 --json -o s.json && flaplag plot s.json "
               "--plot s.svg"};
+    case Command::Trim:
+      return {"flaplag trim --model paper-cyclic --mu 0.3 --thrust-coefficient 0.005",
+              "flaplag critical --model paper-cyclic --trim moment --thrust-coefficient 0.0042"};
   }
   return {};
 }
@@ -717,9 +722,28 @@ Request CommandLine::interpret() const {
       required("--plot");
       r.inputs = inputs_;
       break;
+    case Command::Trim: {
+      const Given& mu = required("--mu");
+      r.mu = parse_real(mu.spelling, mu.text);
+      r.trim.kind = TrimKind::Thrust;
+      break;
+    }
     case Command::Typical:
       break;
   }
+  if (const Given* g = given("--trim")) {
+    if (!trim_kind_from_name(g->text, &r.trim.kind) ||
+        (c == Command::Trim && r.trim.kind == TrimKind::None)) {
+      throw InvalidInput(
+          g->spelling, shown(g->text),
+          c == Command::Trim ? "must be thrust or moment" : "must be none, thrust or moment");
+    }
+  }
+  if (const Given* g = given("--thrust-coefficient"))
+    r.trim.thrust_coefficient = parse_real(g->spelling, g->text);
+  if (const Given* g = given("--shaft-angle"))
+    r.trim.shaft_angle = parse_real(g->spelling, g->text);
+  if (r.trim.kind != TrimKind::None) r.trim.Check();  // errors name the option's field
   if (c == Command::Study || c == Command::Map) interpret_batch(r);
   if (const Given* g = given("--threads")) r.threads = parse_int(g->spelling, g->text, 0, 256);
   if (const Given* g = given("--plot")) {
@@ -765,7 +789,7 @@ std::string CommandLine::help_text() const {
     out += "  run         " + std::string(kRunDescription) + "\n";
   } else {
     std::string usage = full_name(c);
-    if (c == Command::Point || c == Command::System) usage += " --mu REAL";
+    if (c == Command::Point || c == Command::System || c == Command::Trim) usage += " --mu REAL";
     if (c == Command::Sweep) usage += " --mu A:B:STEP";
     if (c == Command::Study) usage += " --vary NAME=...";
     if (c == Command::Map) usage += " --x NAME=... --y NAME=...";

@@ -17,6 +17,7 @@
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/rotor/parameters.h"
+#include "flaplag/trim.h"
 #include "options.h"
 
 namespace flaplag::cli {
@@ -61,6 +62,8 @@ struct Request {
   int samples = 0;
   double revolutions = 20.0, perturbation = 0.01;
   bool forced = false;
+  // point, sweep, critical, trim: --trim, --thrust-coefficient, --shaft-angle
+  TrimOptions trim;
   // The arguments as given (after a case file is expanded), for the "case" of JSON outputs.
   std::vector<std::string> arguments;
 };

@@ -15,6 +15,7 @@
 #include "flaplag/core/format.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/study.h"
+#include "flaplag/trim.h"
 #include "flaplag/version.h"
 #include "options.h"
 #include "output.h"
@@ -611,23 +612,82 @@ std::string typical(const Request& r, const Analysis& an) {
   return out;
 }
 
+// ---- trim (trim.h) ----------------------------------------------------------------------------
+
+bool trimmed(const Request& r) { return r.trim.kind != TrimKind::None; }
+
+Json trim_json(const Request& r, const TrimResult& t) {
+  Json j;
+  j["trim"] = trim_kind_name(t.kind);
+  j["mu"] = jnum(t.mu);
+  j["theta0"] = jnum(t.theta0);
+  j["theta1c"] = jnum(t.theta1c);
+  j["theta1s"] = jnum(t.theta1s);
+  j["inflow"] = jnum(t.inflow);
+  j["thrust_coefficient"] = jnum(t.thrust_coefficient);
+  j["thrust_coefficient_target"] = jnum(t.target);
+  j["shaft_angle"] = jnum(r.trim.shaft_angle);
+  j["flap_1c"] = jnum(t.flap_1c);
+  j["flap_1s"] = jnum(t.flap_1s);
+  j["iterations"] = t.iterations;
+  return status_json(j, t.status, vocab(r, t.message));
+}
+
+std::string trim_text(const Request& r, const TrimResult& t) {
+  std::string out = std::string("Trim (") + trim_kind_name(t.kind) + ") at mu = " + cell(t.mu) +
+                    ", C_T = " + cell(t.target) + ", alpha_R = " + cell(r.trim.shaft_angle) +
+                    " rad\n";
+  KeyValues kv;
+  kv.add("theta0", cell(t.theta0) + " rad");
+  kv.add("theta1c", cell(t.theta1c) + " rad");
+  kv.add("theta1s", cell(t.theta1s) + " rad");
+  kv.add("lambda", cell(t.inflow) + "  (eq 2.25)");
+  kv.add("C_T achieved", cell(t.thrust_coefficient) + "  (the model's own lift, azimuth mean)");
+  kv.add("flap tip 1st harmonic", cell(t.flap_1c) + " cos psi + " + cell(t.flap_1s) + " sin psi");
+  kv.add("iterations", std::to_string(t.iterations));
+  out += kv.render();
+  return out + status_text(t.status, vocab(r, t.message));
+}
+
+std::string trim_command(const Request& r) {
+  const TrimResult t = trim(r.params, r.mu, r.trim);
+  if (r.json) {
+    Json j = header_json("trim", Analysis(t.parameters, r.transition, t.inflow), false);
+    j.update(trim_json(r, t));
+    return dump(j);
+  }
+  return trim_text(r, t);
+}
+
 std::string point(const Request& r, const Analysis& an) {
-  PointResult p = an.point(r.mu, r.scan_step);
+  PointResult p = trimmed(r) ? trimmed_point(r.params, r.transition, r.trim, r.mu, r.scan_step)
+                             : an.point(r.mu, r.scan_step);
   audit(p);
+  std::optional<TrimResult> t;
+  if (trimmed(r)) t = trim(r.params, r.mu, r.trim);
   if (r.json) {
     Json j = header_json("point", an);
     j.update(point_json(r, p));
     j["hover"] = hover_json(r, an);
+    if (t) j["trim"] = trim_json(r, *t);
     return dump(j);
   }
-  return header_text(an) + "\n" + warnings_text(an) + point_text(r, p);
+  return header_text(an) + "\n" + warnings_text(an) + (t ? trim_text(r, *t) + "\n" : "") +
+         point_text(r, p);
 }
 
 std::string plot_if_asked(const Request& r, const std::string& script);
 
 std::string sweep(const Request& r, const Analysis& an, std::string& warning) {
-  SweepResult s = an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step);
+  SweepResult s = trimmed(r) ? trimmed_sweep(r.params, r.transition, r.trim, r.sweep_start,
+                                             r.sweep_stop, r.sweep_step)
+                             : an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step);
   audit(s);
+  // The trimmed controls at each point of the sweep.
+  std::vector<TrimResult> trims;
+  if (trimmed(r)) {
+    for (const PointResult& p : s.points) trims.push_back(trim(r.params, p.mu, r.trim));
+  }
   const std::vector<std::string> labels = mode_labels(an);
   if (!r.plot.empty()) {
     std::vector<double> mu;
@@ -651,24 +711,46 @@ std::string sweep(const Request& r, const Analysis& an, std::string& warning) {
     j["labels"] = labels;
     j["rows"] = sweep_rows_json(r, s, labels);
     j["max_liouville_residual"] = optional_json(max_liouville(s));
+    if (trimmed(r)) {
+      Json tj = Json::array();
+      for (const TrimResult& t : trims) tj.push_back(trim_json(r, t));
+      j["trim"] = tj;
+    }
     return dump(status_json(j, s.status, vocab(r, s.message)));
   }
+  std::string trim_table;
+  if (trimmed(r)) {
+    trim_table = std::string("\nTrim (") + trim_kind_name(r.trim.kind) +
+                 ") at each mu, C_T = " + cell(r.trim.thrust_coefficient) + "\n";
+    TextTable t({"mu", "theta0", "theta1c", "theta1s", "lambda", "C_T", "status"});
+    for (const TrimResult& x : trims) {
+      t.add_row({cell(x.mu), cell(x.theta0), cell(x.theta1c), cell(x.theta1s), cell(x.inflow),
+                 cell(x.thrust_coefficient), status_name(x.status)});
+    }
+    trim_table += t.render();
+  }
   return header_text(an) + "\n" + warnings_text(an) +
-         "Exponents per rev (dominant exponent of each mode)\n" + sweep_table_text(r, s, labels);
+         "Exponents per rev (dominant exponent of each mode)\n" + sweep_table_text(r, s, labels) +
+         trim_table;
 }
 
 std::string critical(const Request& r, const Analysis& an) {
   CriticalOptions opt;
   opt.mu_max = r.mu_max;
   opt.scan_step = r.scan_step;
-  CriticalResult c = an.critical(opt);
+  CriticalResult c =
+      trimmed(r) ? trimmed_critical(r.params, r.transition, r.trim, opt) : an.critical(opt);
   audit(c);
+  std::optional<TrimResult> t;  // the trim at mu_c
+  if (trimmed(r) && c.mu_c) t = trim(r.params, *c.mu_c, r.trim);
   if (r.json) {
     Json j = header_json("critical", an);
     j.update(critical_json(r, c));
+    if (trimmed(r)) j["trim"] = t ? trim_json(r, *t) : Json(nullptr);
     return dump(j);
   }
-  return header_text(an) + "\n" + warnings_text(an) + critical_text(r, c);
+  return header_text(an) + "\n" + warnings_text(an) + critical_text(r, c) +
+         (t ? "\n" + trim_text(r, *t) : "");
 }
 
 // Paper (Appendix B) name of an integral, looked up by its canonical name.
@@ -840,6 +922,7 @@ std::string study(const Request& request, std::string& warning, RunControl* cont
   so.critical.mu_max = r.mu_max;
   so.critical.scan_step = r.scan_step;
   so.threads = r.threads;
+  so.trim = r.trim;
   StudyResult s;
   if (!so.values.empty()) {  // an empty part of a job with more parts than values
     s = run_study(r.params, r.transition, so, control ? control->cancel : nullptr,
@@ -917,6 +1000,7 @@ std::string map(const Request& request, std::string& warning, RunControl* contro
   mo.mu = r.mu;
   mo.scan_step = r.scan_step;
   mo.threads = r.threads;
+  mo.trim = r.trim;
   MapResult m;
   m.cells.assign(r.y_values.size(), {});  // an empty part: no lines
   if (!r.x_values.empty() && !r.y_values.empty()) {
@@ -1154,8 +1238,30 @@ std::string run_command_text(const Request& r, std::string* warning, RunControl*
       return merge_parts(r);
     case Command::Plot:
       return plot_data_file(r.inputs.front(), r.plot);
+    case Command::Trim:
+      return trim_command(r);
     default:
       break;
+  }
+  if (trimmed(r)) {
+    // The header shows the rotor trimmed in hover (its theta0 and eq 2.25 lambda); each mu of
+    // the analysis is trimmed on its own.
+    const TrimResult h = trim(r.params, 0.0, r.trim);
+    if (h.status == Status::Failed) {
+      throw InvalidInput("thrust_coefficient", round_trip_text(r.trim.thrust_coefficient),
+                         "the rotor cannot be trimmed in hover: " + h.message);
+    }
+    const Analysis an(h.parameters, r.transition, h.inflow);
+    switch (r.command) {
+      case Command::Point:
+        return point(r, an);
+      case Command::Sweep:
+        return sweep(r, an, w);
+      case Command::Critical:
+        return critical(r, an);
+      default:
+        break;
+    }
   }
   const Analysis an(r.params, r.transition);
   switch (r.command) {

@@ -13,6 +13,7 @@
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
+#include "flaplag/trim.h"
 
 namespace flaplag::cli {
 
@@ -126,6 +127,23 @@ std::vector<OptionSpec> mode_count_options() {
                    "more than one mode needs --modes exact)",
                    "1", {"flap_modes"}),
       value_option("--lag-modes", "N", "lag modes N (see --flap-modes)", "1", {"lag_modes"}),
+  };
+}
+
+// Trim (runtime/analysis trim.h): a trimmed rotor at every mu (point, sweep, critical, trim).
+std::vector<OptionSpec> trim_options(bool for_trim_command) {
+  const TrimOptions defaults;
+  return {
+      value_option("--trim", for_trim_command ? "thrust|moment" : "none|thrust|moment",
+                   "trim at each mu: thrust (theta0, lambda of eq 2.25 for --thrust-coefficient) "
+                   "or moment (also theta1c, theta1s: no first flap harmonic); needs a "
+                   "cyclic-pitch model (--model paper-cyclic)",
+                   for_trim_command ? "thrust" : "none", {"trim"}),
+      value_option("--thrust-coefficient", "REAL",
+                   "target thrust coefficient C_T (not C_T/sigma), in (0, 0.1]",
+                   round_trip_text(defaults.thrust_coefficient), {"thrust_coefficient"}),
+      value_option("--shaft-angle", "REAL", "shaft angle alpha_R of eq 2.25 [rad]",
+                   round_trip_text(defaults.shaft_angle), {"shaft_angle"}),
   };
 }
 
@@ -269,12 +287,20 @@ std::vector<OptionSpec> build(Command c) {
     case Command::Merge:
     case Command::Plot:
       return file_tool_options(c);
+    case Command::Trim:
+      v.push_back(mu);
+      append(v, trim_options(true));
+      break;
     case Command::Typical:
       break;
   }
+  if (c == Command::Point || c == Command::Sweep || c == Command::Critical || c == Command::Study ||
+      c == Command::Map)
+    append(v, trim_options(false));
   if (c == Command::Study || c == Command::Map) append(v, batch_options());
   append(v, rotor_options());
-  if (c != Command::System && c != Command::Response && c != Command::Simulate)
+  if (c != Command::System && c != Command::Response && c != Command::Simulate &&
+      c != Command::Trim)
     append(v, transition_options());
   append(v, mode_count_options());
   append(v, output_options());
@@ -311,6 +337,8 @@ const char* command_name(Command c) {
       return "merge";
     case Command::Plot:
       return "plot";
+    case Command::Trim:
+      return "trim";
   }
   return "";
 }
@@ -318,8 +346,9 @@ const char* command_name(Command c) {
 const std::vector<Command>& subcommands() {
   static const std::vector<Command> all = {Command::Point,    Command::Sweep,    Command::Critical,
                                            Command::Study,    Command::Map,      Command::System,
-                                           Command::Response, Command::Simulate, Command::Models,
-                                           Command::Modes,    Command::Merge,    Command::Plot};
+                                           Command::Response, Command::Simulate, Command::Trim,
+                                           Command::Models,   Command::Modes,    Command::Merge,
+                                           Command::Plot};
   return all;
 }
 

@@ -30,7 +30,8 @@ enum class Command {
   Response,
   Simulate,
   Merge,  // flaplag merge PART...: the --shard parts of a map or study as one file
-  Plot    // flaplag plot DATA.json --plot FILE: the picture of an existing result
+  Plot,   // flaplag plot DATA.json --plot FILE: the picture of an existing result
+  Trim    // flaplag trim --mu X: the trimmed controls and inflow
 };
 
 const char* command_name(Command c);  // "" for Typical, else "point", ...

@@ -174,7 +174,12 @@ class Generator {
                                                 "--perturbation",
                                                 "--forced",
                                                 "--shard",
-                                                "--quiet"};
+                                                "--quiet",
+                                                "--theta1c",
+                                                "--theta1s",
+                                                "--trim",
+                                                "--thrust-coefficient",
+                                                "--shaft-angle"};
     return known.count(option) == 1;
   }
 
@@ -229,6 +234,13 @@ class Generator {
     // Below -sigma a / 24 eq 2.24 has no inflow (refused): mostly above.
     if (option == "--theta") return chance(0.1) ? in(-1.5, 1.5) : in(-0.01, 1.5);
     if (option == "--precone" || option == "--droop") return in(-1.5, 1.5);
+    // Nonzero cyclic pitch is refused by the models without it (most of them).
+    if (option == "--theta1c" || option == "--theta1s") return in(-0.3, 0.3);
+    // A trim costs a few periodic responses per Floquet evaluation: rarely asked.
+    if (option == "--trim")
+      return chance(0.9) ? "none" : pick(std::vector<std::string>{"thrust", "moment"});
+    if (option == "--thrust-coefficient") return in(1e-4, 0.1, true);
+    if (option == "--shaft-angle") return in(-0.5, 0.5);
     if (option == "--omega-flap" || option == "--omega-lag") {
       return chance(0.05) ? "1000" : in(1e-3, 100.0, true);
     }

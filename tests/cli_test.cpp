@@ -171,6 +171,26 @@ const std::vector<BadInput> kBadInputs = {
     {"NegativeLagDamping", {"point", "--mu", "0", "--damping-lag", "-1"}, "--damping-lag", "-1"},
     {"ThetaBeyondHalfPi", {"--theta", "2"}, "--theta", "2"},
     {"ThetaBelowInflowBranch", {"--theta", "-0.1"}, "--theta", "-0.1"},
+    // Cyclic pitch and trim (issue 12 item 3)
+    {"CyclicOnPaperModel", {"point", "--mu", "0.1", "--theta1c", "0.01"}, "--theta1c", "0.01"},
+    {"CyclicBeyondHalfPi", {"--model", "paper-cyclic", "--theta1s", "2"}, "--theta1s", "2"},
+    {"UnknownTrim", {"point", "--mu", "0.1", "--trim", "full"}, "--trim", "full"},
+    {"TrimNoneForTrimCommand", {"trim", "--mu", "0.1", "--trim", "none"}, "--trim", "none"},
+    {"TrimNeedsCyclicModel", {"trim", "--mu", "0.3"}, "--model", "paper"},
+    {"TrimNeedsMu", {"trim", "--model", "paper-cyclic"}, "--mu", "(missing)"},
+    {"NegativeThrust",
+     {"trim", "--model", "paper-cyclic", "--mu", "0.3", "--thrust-coefficient", "-0.005"},
+     "--thrust-coefficient",
+     "-0.005"},
+    {"NaNThrust",
+     {"critical", "--trim", "thrust", "--thrust-coefficient", "nan"},
+     "--thrust-coefficient",
+     "nan"},
+    {"ShaftAngleBeyondHalfPi",
+     {"trim", "--model", "paper-cyclic", "--mu", "0.3", "--shaft-angle", "1.6"},
+     "--shaft-angle",
+     "1.6"},
+    {"TrimNegativeMu", {"trim", "--model", "paper-cyclic", "--mu", "-1"}, "--mu", "-1"},
     // Upper bounds (issue 8 items 6, 7): each of these used to run and print NaN or a message
     // about a derived quantity.
     {"HugeLock", {"--gamma", "1e308"}, "--gamma", "1e308"},
@@ -610,6 +630,36 @@ TEST(CliGood, CriticalJson) {
   const Json c = parse_json(run({"critical", "--scan-step", "0.05", "--json"}));
   ASSERT_TRUE(c["mu_c"].is_number()) << c;
   EXPECT_NEAR(c["mu_c"].get<double>(), j["mu_c"].get<double>(), 1e-3);
+}
+
+// flaplag trim: the trimmed controls and the thrust achieved (issue 12 item 3); a trimmed point
+// reports the same trim; moment trim leaves no first flap harmonic.
+TEST(CliGood, TrimJsonAndTrimmedPoint) {
+  const Json t = parse_json(run({"trim", "--model", "paper-cyclic", "--mu", "0.3",
+                                 "--thrust-coefficient", "0.005", "--json"}));
+  for (const char* key : {"theta0", "theta1c", "theta1s", "inflow", "thrust_coefficient",
+                          "thrust_coefficient_target", "flap_1c", "flap_1s", "status"}) {
+    EXPECT_TRUE(t.contains(key)) << key;
+  }
+  EXPECT_EQ(t["status"], "ok") << t;
+  EXPECT_NEAR(t["thrust_coefficient"].get<double>(), 0.005, 1e-10);
+  EXPECT_EQ(t["theta1c"].get<double>(), 0.0);  // thrust trim keeps the cyclic pitch given
+  EXPECT_EQ(t["parameters"]["theta"], t["theta0"]);
+  const Json m = parse_json(run({"trim", "--model", "paper-cyclic", "--mu", "0.3", "--trim",
+                                 "moment", "--thrust-coefficient", "0.005", "--json"}));
+  EXPECT_LT(std::abs(m["flap_1c"].get<double>()), 1e-10);
+  EXPECT_LT(std::abs(m["flap_1s"].get<double>()), 1e-10);
+  EXPECT_NE(m["theta1s"].get<double>(), 0.0);
+  const Json p =
+      parse_json(run(fast({"point", "--model", "paper-cyclic", "--mu", "0.3", "--scan-step", "0.1",
+                           "--trim", "thrust", "--thrust-coefficient", "0.005", "--json"})));
+  ASSERT_TRUE(p.contains("trim")) << p;
+  EXPECT_EQ(p["trim"]["theta0"], t["theta0"]);
+  const Outcome text =
+      run({"trim", "--model", "paper-cyclic", "--mu", "0.3", "--thrust-coefficient", "0.005"});
+  EXPECT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("C_T achieved"), std::string::npos) << text.out;
+  expect_clean_text(text.out);
 }
 
 // Unknown stability is never shown as stable (issue 8 item 7): a failed point says "unknown"

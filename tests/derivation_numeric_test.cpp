@@ -4,6 +4,9 @@
 //   - untruncated spec: agreement to ~1e-8 (finite-difference accuracy);
 //   - the paper's spec: the difference shrinks like s^kept (coefficients of A) and s^(kept+1)
 //     (forcing) when every small quantity is scaled by s.
+// The same for cyclic pitch (theta(psi) = theta + theta1c cos psi + theta1s sin psi in the
+// section pitch of eqs 2.20-2.21; the droop slope keeps the collective theta) and for the rotor
+// thrust T = lr int L_z dx0 that the cyclic-pitch models emit for the trim.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -29,10 +32,13 @@ struct Operating {
   double lock = 10.0, lr = 0.9, e1 = 0.05, theta = 0.15, inflow = 0.05, precone = 0.02,
          droop = 0.03, cdo_a = 0.0016, mu = 0.8;
   double g0 = 0.09, h0 = 0.006;
+  double theta1c = 0.0, theta1s = 0.0;  // cyclic pitch (models with cyclic_pitch only)
 
   Operating scaled(double s) const {
     Operating o = *this;
     o.theta *= s;
+    o.theta1c *= s;
+    o.theta1s *= s;
     o.inflow *= s;
     o.precone *= s;
     o.droop *= s;
@@ -47,11 +53,13 @@ struct Operating {
 using Q4 = std::array<double, 4>;
 
 // A_F, A_L of eqs 2.18-2.19 from the full nonlinear loads, by Gauss quadrature over x0 in [0,1].
-std::array<double, 2> full_loads(const Operating& o, double psi, const Q4& q) {
+// Third entry: the rotor thrust of one blade, lr int L_z dx0 (L_z as in A_F, unweighted).
+std::array<double, 3> full_loads(const Operating& o, double psi, const Q4& q) {
   const double g = q[0], h = q[1], gd = q[2], hd = q[3];
   const double c = std::cos(psi), s = std::sin(psi);
+  const double pitch = o.theta + o.theta1c * c + o.theta1s * s;  // section pitch theta(psi)
   const auto rule = flaplag::span_rule(0.0, 1.0);
-  double af = 0.0, al = 0.0;
+  double af = 0.0, al = 0.0, thrust = 0.0;
   for (size_t k = 0; k < rule.x0.size(); ++k) {
     const double x0 = rule.x0[k], w = rule.weight[k];
     const double x = o.e1 + o.lr * x0;
@@ -59,24 +67,25 @@ std::array<double, 2> full_loads(const Operating& o, double psi, const Q4& q) {
     const double w_slope = (o.precone + o.droop) + eta_p(x0) * g;               // dw/dx0, eq 2.15
     const double uT = x + o.mu * s + o.mu * c * v_slope - o.lr * eta(x0) * hd;  // eq 2.23
     const double uP = o.inflow + o.mu * c * w_slope + o.lr * eta(x0) * gd;      // eq 2.22
-    af += w * uT * (uT * o.theta - uP) * eta(x0);
-    al += w * (uP * (uT * o.theta - uP) + o.cdo_a * uT * uT) * eta(x0);
+    af += w * uT * (uT * pitch - uP) * eta(x0);
+    al += w * (uP * (uT * pitch - uP) + o.cdo_a * uT * uT) * eta(x0);
+    thrust += w * uT * (uT * pitch - uP);
   }
   const double scale = o.lock / 2.0 * o.lr * o.lr;
-  return {scale * af, scale * al};
+  return {scale * af, scale * al, o.lr * thrust};
 }
 
-// Jacobian d[A_F, A_L]/d[g', g, h', h] (runtime state ordering) at (g0, h0, 0, 0).
-std::array<std::array<double, 4>, 2> fd_jacobian(const Operating& o, double psi) {
+// Jacobian d[A_F, A_L, T]/d[g', g, h', h] (runtime state ordering) at (g0, h0, 0, 0).
+std::array<std::array<double, 4>, 3> fd_jacobian(const Operating& o, double psi) {
   const double step = 1e-5;
   const int to_q[4] = {2, 0, 3, 1};  // state column -> index in Q4
-  std::array<std::array<double, 4>, 2> J{};
+  std::array<std::array<double, 4>, 3> J{};
   for (int col = 0; col < 4; ++col) {
     Q4 qp = {o.g0, o.h0, 0.0, 0.0}, qm = qp;
     qp[to_q[col]] += step;
     qm[to_q[col]] -= step;
     const auto fp = full_loads(o, psi, qp), fm2 = full_loads(o, psi, qm);
-    for (int r = 0; r < 2; ++r) J[r][col] = (fp[r] - fm2[r]) / (2.0 * step);
+    for (int r = 0; r < 3; ++r) J[r][col] = (fp[r] - fm2[r]) / (2.0 * step);
   }
   return J;
 }
@@ -117,9 +126,10 @@ std::vector<fm::AeroIntegral> descriptors(const fd::DerivedModel& m) {
   return v;
 }
 
+// Rows 0, 1: flap and lag generalized loads; row 2: the thrust (cyclic-pitch models only).
 struct LinearAero {
-  std::array<std::array<double, 4>, 2> J{};
-  std::array<double, 2> F{};
+  std::array<std::array<double, 4>, 3> J{};
+  std::array<double, 3> F{};
 };
 
 // The derived model's aerodynamic part at psi: structural inputs zeroed, GiNaC evaluation.
@@ -142,6 +152,8 @@ LinearAero derived_aero(const fd::DerivedModel& m, const Operating& o, double ps
   set("mu", o.mu);
   set("g0_1", o.g0);
   set("h0_1", o.h0);
+  set("theta1c", o.theta1c);
+  set("theta1s", o.theta1s);
   for (size_t j = 0; j < m.aero_syms.size(); ++j) sub[m.aero_syms[j]] = GiNaC::numeric(vals[j]);
   for (const auto& s : m.structural_syms) sub[s] = GiNaC::numeric(0);
   LinearAero r;
@@ -155,6 +167,13 @@ LinearAero derived_aero(const fd::DerivedModel& m, const Operating& o, double ps
       const GiNaC::ex f = GiNaC::evalf(m.forcing[h * 2 + i].value.subs(sub));
       r.F[i] += b * GiNaC::ex_to<GiNaC::numeric>(f).to_double();
     }
+    if (m.thrust_forcing.empty()) continue;
+    for (int col = 0; col < 4; ++col) {
+      const GiNaC::ex v = GiNaC::evalf(m.thrust_force[h * 4 + col].value.subs(sub));
+      r.J[2][col] += b * GiNaC::ex_to<GiNaC::numeric>(v).to_double();
+    }
+    const GiNaC::ex f = GiNaC::evalf(m.thrust_forcing[h].value.subs(sub));
+    r.F[2] += b * GiNaC::ex_to<GiNaC::numeric>(f).to_double();
   }
   return r;
 }
@@ -180,8 +199,12 @@ LinearAero compiled_aero(const fm::ModelDescriptor& m, const Operating& o, doubl
   in.es_flap = in.es_lag = in.ecs_flap_lag = in.ecs_lag_flap = zeros.data();
   in.aero = vals.data();
   in.structural = structural.data();
+  in.theta1c = o.theta1c;
+  in.theta1s = o.theta1s;
   std::vector<double> force(m.n_harmonics * 2 * 4), forcing(m.n_harmonics * 2);
   m.coefficients(in, {force.data(), forcing.data()});
+  std::vector<double> tforce(m.n_harmonics * 4), tforcing(m.n_harmonics);
+  if (m.thrust != nullptr) m.thrust(in, {tforce.data(), tforcing.data()});
   LinearAero r;
   for (int h = 0; h < m.n_harmonics; ++h) {
     const double b = basis(h, psi);
@@ -189,6 +212,8 @@ LinearAero compiled_aero(const fm::ModelDescriptor& m, const Operating& o, doubl
       for (int col = 0; col < 4; ++col) r.J[i][col] += b * force[(h * 2 + i) * 4 + col];
       r.F[i] += b * forcing[h * 2 + i];
     }
+    for (int col = 0; col < 4; ++col) r.J[2][col] += b * tforce[h * 4 + col];
+    r.F[2] += b * tforcing[h];
   }
   return r;
 }
@@ -220,7 +245,37 @@ TEST(DerivationVsQuadrature, UntruncatedSpecMatchesFullNonlinearLoadsToFiniteDif
   }
 }
 
-// Max |difference| over psi samples for one equation (row): Jacobian and forcing separately.
+// The untruncated spec with cyclic pitch: flap and lag loads and the thrust equal the full
+// nonlinear ones (pitch theta + theta1c cos psi + theta1s sin psi) and their linearization.
+TEST(DerivationVsQuadrature, UntruncatedCyclicPitchMatchesFullNonlinearLoadsAndThrust) {
+  const auto spec = fd::load_spec(std::string(FLAPLAG_TEST_SPEC_DIR) + "/untruncated-cyclic.toml");
+  const auto m = fd::derive_model(spec);
+  ASSERT_FALSE(m.thrust_forcing.empty());
+  Operating o;
+  o.theta1c = 0.04;
+  o.theta1s = -0.07;
+  for (double psi : {0.3, 1.7, 2.9, 4.4, 5.8}) {
+    const auto J = fd_jacobian(o, psi);
+    const auto d = derived_aero(m, o, psi);
+    const auto F = full_loads(o, psi, {o.g0, o.h0, 0.0, 0.0});
+    for (int i = 0; i < 3; ++i) {
+      for (int col = 0; col < 4; ++col) {
+        EXPECT_NEAR(d.J[i][col], J[i][col], 1e-8 * std::max(1.0, std::abs(J[i][col])))
+            << "psi " << psi << " row " << i << " col " << col;
+      }
+      EXPECT_NEAR(d.F[i], F[i], 1e-12 * std::max(1.0, std::abs(F[i])))
+          << "psi " << psi << " row " << i;
+    }
+  }
+  // The cyclic terms are really there: without them the forcing differs at O(theta1).
+  Operating o0 = o;
+  o0.theta1c = o0.theta1s = 0.0;
+  const auto F0 = full_loads(o0, 0.3, {o.g0, o.h0, 0.0, 0.0});
+  EXPECT_GT(std::abs(derived_aero(m, o, 0.3).F[2] - F0[2]), 1e-3);
+}
+
+// Max |difference| over psi samples for one equation (row; 2 = thrust): Jacobian and forcing
+// separately.
 std::array<double, 2> truncation_error(const fm::ModelDescriptor& m, const Operating& o, int row) {
   double ej = 0.0, ef = 0.0;
   for (double psi = 0.1; psi < flaplag::kTwoPi; psi += 0.37) {
@@ -241,10 +296,16 @@ struct OrderCase {
 
 class TruncationOrder : public ::testing::TestWithParam<OrderCase> {};
 
+const char* row_name(int row) { return row == 0 ? "_flap" : row == 1 ? "_lag" : "_thrust"; }
+
 TEST_P(TruncationOrder, DifferenceShrinksLikeTheFirstDroppedOrder) {
   const auto& c = GetParam();
   const auto& m = compiled(c.model);
-  const Operating base;
+  Operating base;
+  if (m.cyclic_pitch) {
+    base.theta1c = 0.04;
+    base.theta1s = -0.07;
+  }
   const auto e1 = truncation_error(m, base.scaled(0.2), c.row);
   const auto e2 = truncation_error(m, base.scaled(0.1), c.row);
   const double order_j = std::log2(e1[0] / e2[0]);
@@ -255,10 +316,12 @@ TEST_P(TruncationOrder, DifferenceShrinksLikeTheFirstDroppedOrder) {
 
 INSTANTIATE_TEST_SUITE_P(Models, TruncationOrder,
                          ::testing::Values(OrderCase{"paper", 0, 2}, OrderCase{"paper", 1, 3},
-                                           OrderCase{"lag-order-2", 1, 2}),
+                                           OrderCase{"lag-order-2", 1, 2},
+                                           OrderCase{"paper-cyclic", 0, 2},
+                                           OrderCase{"paper-cyclic", 1, 3},
+                                           OrderCase{"paper-cyclic", 2, 2}),
                          [](const auto& tp) {
-                           std::string s =
-                               std::string(tp.param.model) + (tp.param.row == 0 ? "_flap" : "_lag");
+                           std::string s = std::string(tp.param.model) + row_name(tp.param.row);
                            for (char& ch : s) {
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            }

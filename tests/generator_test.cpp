@@ -105,6 +105,8 @@ struct RandomInputs {
     in.ecs_lag_flap = ecslf.data();
     in.aero = aero.data();
     in.structural = structural.data();
+    if (value.count("theta1c") > 0) in.theta1c = value.at("theta1c");
+    if (value.count("theta1s") > 0) in.theta1s = value.at("theta1s");
     return in;
   }
 
@@ -165,6 +167,15 @@ TEST_P(GeneratedModel, CompiledCodeEqualsGiNaCEvaluation) {
     expect_slots(dm.forcing, forcing, sub, "forcing");
     expect_slots(dm.S, S, sub, "S");
     expect_slots(dm.c, c, sub, "c");
+    // Cyclic-pitch models also emit the rotor thrust; the others must not.
+    ASSERT_EQ(cm->cyclic_pitch, dm.spec.cyclic_pitch);
+    ASSERT_EQ(cm->thrust != nullptr, dm.spec.cyclic_pitch);
+    if (cm->thrust != nullptr) {
+      std::vector<double> tforce(dm.H * 2 * n), tforcing(dm.H);
+      cm->thrust(r.inputs(), {tforce.data(), tforcing.data()});
+      expect_slots(dm.thrust_force, tforce, sub, "thrust force");
+      expect_slots(dm.thrust_forcing, tforcing, sub, "thrust forcing");
+    }
     // The mass reads the structural integrals only: the runtime evaluates it once, before the
     // hover state is known.  Every other input is NaN or null here.
     const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -231,12 +242,27 @@ std::string signature(const std::string& slot, const fd::Term& t) {
   return os.str();
 }
 
-std::multiset<std::string> signatures(const fd::DerivedModel& m, bool keep_radial) {
+// drop_cyclic: leave out the terms that carry theta1c or theta1s.
+std::multiset<std::string> signatures(const fd::DerivedModel& m, bool keep_radial,
+                                      bool drop_cyclic = false) {
+  std::set<int> cyclic;
+  for (size_t j = 0; j < m.scalars.size(); ++j) {
+    if (m.scalars[j].name == "theta1c" || m.scalars[j].name == "theta1s") {
+      cyclic.insert(static_cast<int>(j));
+    }
+  }
+  auto is_cyclic = [&](const fd::Term& t) {
+    for (const auto& sp : t.scalars) {
+      if (cyclic.count(sp.first) > 0) return true;
+    }
+    return false;
+  };
   std::multiset<std::string> s;
   auto add = [&](const std::vector<fd::Slot>& slots, const std::string& kind) {
     for (size_t j = 0; j < slots.size(); ++j) {
       for (const auto& t : slots[j].terms) {
         if (!keep_radial && t.radial_flow) continue;
+        if (drop_cyclic && is_cyclic(t)) continue;
         // integrals are renumbered per model: identify them by name
         std::string id = kind + std::to_string(j) + "|" +
                          (t.ref == fd::IntegralRef::Aero         ? m.aero[t.integral].name
@@ -266,6 +292,42 @@ TEST(TermClasses, RadialFlowSwitchRemovesExactlyTheTaggedTerms) {
   const auto non_radial = signatures(with, false);
   ASSERT_LT(non_radial.size(), all.size()) << "the paper model has radial-flow terms";
   EXPECT_EQ(signatures(without, true), non_radial);
+}
+
+// Switching cyclic_pitch on adds exactly terms in theta1c, theta1s (tagged theta_cyclic), the
+// thrust and nothing else: without them the model is the paper's, term by term.
+TEST(TermClasses, CyclicPitchSwitchAddsOnlyCyclicTerms) {
+  const auto paper = fd::derive_model(spec_of("paper"));
+  const auto cyc = fd::derive_model(spec_of("paper-cyclic"));
+  ASSERT_TRUE(cyc.spec.cyclic_pitch);
+  EXPECT_TRUE(paper.thrust_forcing.empty());
+  ASSERT_EQ(cyc.thrust_forcing.size(), static_cast<size_t>(cyc.H));
+  // more harmonics (theta1 times the 2/rev terms); compare harmonic by harmonic
+  ASSERT_GT(cyc.H, paper.H);
+  const auto all = signatures(cyc, true);
+  const auto without = signatures(cyc, true, true);
+  ASSERT_LT(without.size(), all.size()) << "the cyclic model has cyclic terms";
+  EXPECT_EQ(without, signatures(paper, true));
+  int c1 = -1, s1 = -1;
+  for (size_t j = 0; j < cyc.scalars.size(); ++j) {
+    if (cyc.scalars[j].name == "theta1c") c1 = static_cast<int>(j);
+    if (cyc.scalars[j].name == "theta1s") s1 = static_cast<int>(j);
+  }
+  ASSERT_GE(c1, 0);
+  ASSERT_GE(s1, 0);
+  // every cyclic term comes from a theta_cyclic load product, of the order of theta or above
+  for (const auto& slot : cyc.force) {
+    for (const auto& t : slot.terms) {
+      bool has = false;
+      for (const auto& sp : t.scalars) has = has || sp.first == c1 || sp.first == s1;
+      if (!has) continue;
+      EXPECT_NE(t.origin.find("theta_cyclic"), std::string::npos) << t.origin;
+      EXPECT_GE(t.eps_order, cyc.spec.order("theta"));
+    }
+  }
+  // the recorded spec of the paper model does not mention the new key (byte-identity)
+  EXPECT_EQ(spec_of("paper").canonical_text().find("cyclic_pitch"), std::string::npos);
+  EXPECT_NE(cyc.spec.canonical_text().find("cyclic_pitch = true"), std::string::npos);
 }
 
 // Lowering the lag order removes exactly the O(eps^3) lag aerodynamic terms.
@@ -661,6 +723,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadSpec{"NegativeFlapModes", "[modes]\nflap = -2\n", {"modes.flap", "-2"}},
         BadSpec{"ZeroLagModes", "[modes]\nlag = 0\n", {"modes.lag", "0", ">= 1"}},
         BadSpec{"RadialNotBool", "[terms]\nradial_flow = 1\n", {"terms.radial_flow", "1"}},
+        BadSpec{"CyclicNotBool",
+                "[terms]\ncyclic_pitch = \"yes\"\n",
+                {"terms.cyclic_pitch", "\"yes\"", "true or false"}},
         BadSpec{"UnknownTermClass", "[terms]\nstall = true\n", {"terms.stall"}},
         BadSpec{"ZeroOrderCoordinate", "[orders]\ng = 0\n", {"orders.g", "0"}},
         BadSpec{"BaseNotString", "base = 3\n", {"base = 3", "string"}},

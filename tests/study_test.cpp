@@ -210,5 +210,44 @@ TEST(Map, InvalidOptions) {
   EXPECT_THROW(m.Check(), InvalidInput);
 }
 
+// A trimmed study (issue 12 item 3): each row is the trimmed critical search of its value, and
+// the trim matters (the row differs from the untrimmed one).
+TEST(Study, TrimmedRowsAreTrimmedCriticalSearches) {
+  RotorParameters p;
+  p.model = "paper-cyclic";
+  StudyOptions o;
+  o.parameter = "omega_lag";
+  o.values = {1.28303};
+  o.critical.mu_max = 0.2;
+  o.critical.scan_step = 0.1;
+  o.trim.kind = TrimKind::Thrust;
+  o.trim.thrust_coefficient = 0.0042384;
+  const StudyResult s = run_study(p, {}, o);
+  ASSERT_EQ(s.rows.size(), 1u);
+  CriticalOptions c = o.critical;
+  c.all_intervals = true;
+  const CriticalResult direct = trimmed_critical(p, {}, o.trim, c);
+  EXPECT_TRUE(same(s.rows[0].critical, direct));
+  EXPECT_EQ(s.rows[0].critical.status, Status::Ok) << s.rows[0].critical.message;
+  // A trimmed map cell is the trimmed point at its mu.
+  MapOptions m;
+  m.x = {"mu", {0.2}};
+  m.y = {"omega_lag", {1.28303}};
+  m.scan_step = 0.1;
+  m.trim = o.trim;
+  const MapResult map = run_map(p, {}, m);
+  const PointResult pt = trimmed_point(p, {}, o.trim, 0.2, 0.1);
+  ASSERT_TRUE(map.cells[0][0].max_zeta.has_value());
+  double max_zeta = -1e300;
+  for (const auto& e : pt.exponents) max_zeta = std::max(max_zeta, e.zeta);
+  EXPECT_TRUE(same(*map.cells[0][0].max_zeta, max_zeta));
+  const PointResult untrimmed = Analysis(p, {}).point(0.2, 0.1);
+  double untrimmed_zeta = -1e300;
+  for (const auto& e : untrimmed.exponents) untrimmed_zeta = std::max(untrimmed_zeta, e.zeta);
+  EXPECT_GT(std::abs(untrimmed_zeta - max_zeta), 1e-6);
+  o.trim.thrust_coefficient = -1.0;
+  EXPECT_THROW(run_study(p, {}, o), InvalidInput);
+}
+
 }  // namespace
 }  // namespace flaplag

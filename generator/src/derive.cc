@@ -149,6 +149,12 @@ void Deriver::make_symbols() {
       ecslf_[i][k] = add_scalar("ecs_lag_flap_" + idx1(i) + "_" + idx1(k),
                                 "in.ecs_lag_flap[" + flat(i, k, M_) + "]");
   }
+  // Appended last, and only when switched on, so that the models without cyclic pitch keep
+  // their scalar list (and generated code) unchanged.
+  if (spec_.cyclic_pitch) {
+    theta1c_ = add_scalar("theta1c", "in.theta1c");
+    theta1s_ = add_scalar("theta1s", "in.theta1s");
+  }
 }
 
 void Deriver::canonicalize() {
@@ -232,13 +238,26 @@ DerivedModel Deriver::run() {
       add_term(model_.mass[key.first * n + key.second], t);
     }
   }
+  if (spec_.cyclic_pitch) {
+    model_.thrust_force.assign(H * 2 * n, Slot{});
+    model_.thrust_forcing.assign(H, Slot{});
+    for (auto& s : model_.thrust_force) s.value = 0;
+    for (auto& s : model_.thrust_forcing) s.value = 0;
+  }
+  const int thrust_eq = model_.thrust_equation();
   for (const auto& [key, terms] : pending_force_) {
     const auto [h, eq, col] = key;
-    for (const auto& t : terms) add_term(model_.force[(h * n + eq) * 2 * n + col], t);
+    for (const auto& t : terms) {
+      add_term(eq == thrust_eq ? model_.thrust_force[h * 2 * n + col]
+                               : model_.force[(h * n + eq) * 2 * n + col],
+               t);
+    }
   }
   for (const auto& [key, terms] : pending_forcing_) {
     const auto [h, eq] = key;
-    for (const auto& t : terms) add_term(model_.forcing[h * n + eq], t);
+    for (const auto& t : terms) {
+      add_term(eq == thrust_eq ? model_.thrust_forcing[h] : model_.forcing[h * n + eq], t);
+    }
   }
   // Hover static equilibrium, eqs 2.27-2.32: the perturbation-free residual at mu = 0 is
   // c - S q0 and must be linear in q0.

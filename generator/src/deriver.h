@@ -161,6 +161,7 @@ class Deriver {
   // scalar indices
   int lock_ = -1, lr_ = -1, theta_ = -1, inflow_ = -1, precone_ = -1, droop_ = -1, cdo_ = -1,
       mu_ = -1;
+  int theta1c_ = -1, theta1s_ = -1;  // cyclic pitch (spec.cyclic_pitch only)
   std::vector<int> g0_, h0_, wf_, wl_, zf_, zl_;
   std::vector<std::vector<int>> esf_, esl_, ecsfl_, ecslf_;
   std::map<std::string, GiNaC::symbol> tags_;

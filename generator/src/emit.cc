@@ -264,7 +264,30 @@ std::string emit_cpp(const DerivedModel& m) {
     os << "  // c[" << row << "]: " << m.equation_name(i) << " equation, hover load\n";
     os << "  out.c[" << i << "] =\n" << ind << slot_cpp(m, m.c[i], ind) << ";\n";
   }
-  os << "}\n\n}  // namespace\n}  // namespace flaplag::generated::" << id << "\n\n";
+  os << "}\n\n";
+  if (m.spec.cyclic_pitch) {
+    os << "// Rotor thrust of one blade, lr int L_z dx0 (the flap load of eq 2.20 with the same\n"
+       << "// truncation), by harmonic h: out.forcing[h] + out.force[h*2n .. h*2n+2n) . y.\n"
+       << "// C_T = (sigma a / 2) times its azimuth average.\n";
+    os << "FLAPLAG_GENERATED_NO_UBSAN\n"
+       << "void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs& "
+          "out) {\n";
+    os << "  const Symbols s(in);\n";
+    for (int h = 0; h < m.H; ++h) {
+      for (int col = 0; col < 2 * n; ++col) {
+        const int idx = h * 2 * n + col;
+        os << "  // thrust, " << DerivedModel::harmonic_name(h) << ": coefficient of "
+           << m.state_name(col) << "\n";
+        os << "  out.force[" << idx << "] =\n"
+           << ind << slot_cpp(m, m.thrust_force[idx], ind) << ";\n";
+      }
+      os << "  // thrust, " << DerivedModel::harmonic_name(h) << ": state-independent\n";
+      os << "  out.forcing[" << h << "] =\n"
+         << ind << slot_cpp(m, m.thrust_forcing[h], ind) << ";\n";
+    }
+    os << "}\n\n";
+  }
+  os << "}  // namespace\n}  // namespace flaplag::generated::" << id << "\n\n";
   os << "const flaplag::model::ModelDescriptor& flaplag_model_" << id << "() {\n";
   os << "  namespace g = flaplag::generated::" << id << ";\n";
   os << "  static const flaplag::model::ModelDescriptor d = {\n"
@@ -278,7 +301,11 @@ std::string emit_cpp(const DerivedModel& m) {
      << "      " << m.structural.size() << ", g::kStructural,\n"
      << "      &g::mass,\n"
      << "      &g::coefficients,\n"
-     << "      &g::equilibrium};\n";
+     << "      &g::equilibrium";
+  // Trailing members of the descriptor (model_api.h), written only when they differ from
+  // their defaults: the models without cyclic pitch stay byte-identical.
+  if (m.spec.cyclic_pitch) os << ",\n      true,\n      &g::thrust";
+  os << "};\n";
   os << "  return d;\n}\n";
   return os.str();
 }

@@ -220,7 +220,8 @@ Term Deriver::make_term(const Mono& m, bool aero, int eq) {
     AeroIntegralKey k{m.x_power, m.outer};
     t.ref = IntegralRef::Aero;
     t.integral = aero_index(k);
-    t.paper_name = paper_aero_name(flap_eq, eq_mode, k);
+    // The thrust (cyclic-pitch models) is no equation of the paper: no paper names.
+    if (eq < M_ + N_) t.paper_name = paper_aero_name(flap_eq, eq_mode, k);
   } else if (m.outer.empty() && m.inner_kind == InnerKind::None && m.mass_outer == 0) {
     t.ref = IntegralRef::None;  // elastic coupling, modal stiffness inputs carry no integral
   } else {

@@ -35,6 +35,15 @@ void Deriver::aerodynamic_loads() {
   const ex c = (z_ + 1 / z_) / 2;               // cos psi
   const ex s = (z_ - 1 / z_) / (2 * GiNaC::I);  // sin psi
   const ex theta = eps_pow("theta") * scalar(theta_);
+  // Cyclic pitch (spec switch cyclic_pitch): theta(psi) = theta + theta1c cos psi + theta1s
+  // sin psi in the pitch angle of the blade section, eqs 2.20-2.21, of the same eps order as
+  // theta.  Only the aerodynamic pitch varies with psi: the droop geometry (the -beta_D theta
+  // slope of v, eq 2.13) and the elastic coupling (Appendix E) keep the collective theta, since
+  // a pitch that varies with psi there would add inertial terms in theta' and theta'' that the
+  // paper's hover-based ordering has no place for.  The cyclic parts carry their own origin
+  // tags so that the audit report lists them apart.
+  const ex cyclic =
+      spec_.cyclic_pitch ? eps_pow("theta") * (scalar(theta1c_) * c + scalar(theta1s_) * s) : ex(0);
   const ex lambda = eps_pow("inflow") * scalar(inflow_);
   const ex beta = eps_pow("precone") * scalar(precone_) + eps_pow("droop") * scalar(droop_);
   const ex beta_d = eps_pow("droop") * scalar(droop_);
@@ -65,14 +74,22 @@ void Deriver::aerodynamic_loads() {
   const ex uP2 = mul(uP, uP, kmax);
 
   // Eq 2.20 as u_T (u_T theta - u_P), by load product.
-  const ex lz = trunc(tag("L_z: theta U_T^2") * theta * uT2 - tag("L_z: -U_T U_P") * uTuP, kf);
+  ex lz = tag("L_z: theta U_T^2") * theta * uT2 - tag("L_z: -U_T U_P") * uTuP;
   // Eq 2.21 as -(L_y) = u_P (u_T theta - u_P) + (C_Do/a) u_T^2.
-  const ex ly = trunc(tag("L_y: theta U_P U_T") * theta * uTuP - tag("L_y: -U_P^2") * uP2 +
-                          tag("L_y: (C_Do/a) U_T^2") * cdo * uT2,
-                      kl);
+  ex ly = tag("L_y: theta U_P U_T") * theta * uTuP - tag("L_y: -U_P^2") * uP2 +
+          tag("L_y: (C_Do/a) U_T^2") * cdo * uT2;
+  if (spec_.cyclic_pitch) {
+    lz += tag("L_z: theta_cyclic U_T^2") * cyclic * uT2;
+    ly += tag("L_y: theta_cyclic U_P U_T") * cyclic * uTuP;
+  }
+  lz = trunc(lz, kf);
+  ly = trunc(ly, kl);
   const ex scale = scalar(lock_) / 2 * GiNaC::pow(lr, 2);
   for (int i = 0; i < M_; ++i) place(scale * lz * eta_[i], true, i);
   for (int i = 0; i < N_; ++i) place(scale * ly * gam_[i], true, model::lag_equation_index(i, M_));
+  // Rotor thrust of one blade (cyclic-pitch models, for the trim): the same flap load L_z,
+  // integrated over the aerodynamic span with dr/R = (l/R) dx0 instead of Galerkin-weighted.
+  if (spec_.cyclic_pitch) place(lr * lz, true, model_.thrust_equation());
 }
 
 // Structural and inertial generalized forces from eqs 2.2-2.10, Galerkin-weighted (2.16-2.17)

@@ -238,6 +238,8 @@ class Report {
   void block(std::ostringstream& os, int eq, const Block& b, bool forcing) const;
   void absorbed(std::ostringstream& os) const;
   void equilibrium(std::ostringstream& os) const;
+  void cyclic(std::ostringstream& os) const;
+  void thrust(std::ostringstream& os) const;
 
   const DerivedModel& m_;
   const int n_;
@@ -267,6 +269,10 @@ std::string Report::text() {
   for (int eq = 0; eq < n_; ++eq) equation(os, eq);
   absorbed(os);
   equilibrium(os);
+  if (m_.spec.cyclic_pitch) {
+    cyclic(os);
+    thrust(os);
+  }
   os << "\n" << paper_differences_section(m_);
   return os.str();
 }
@@ -459,6 +465,60 @@ void Report::absorbed(std::ostringstream& os) const {
     os << "| " << m_.equation_name(a.equation) << " | " << m_.state_name(a.state) << " | "
        << factor_text(m_, a.term, false) << " | " << integral_text(m_, a.term) << " | "
        << a.term.origin << " |\n";
+  }
+}
+
+// Cyclic-pitch models: every term that theta1c or theta1s brings in, gathered from the entry
+// blocks above (where they also appear) so that the new terms can be audited at a glance.
+void Report::cyclic(std::ostringstream& os) const {
+  const int c1 = scalar_index(m_, "theta1c"), s1 = scalar_index(m_, "theta1s");
+  os << "\n## Terms of the cyclic pitch\n\n"
+     << "theta(psi) = theta + theta1c cos psi + theta1s sin psi in the section pitch of eqs "
+        "2.20-2.21 (theta1c, theta1s of the same eps order as theta); the droop slope "
+        "-beta_D theta and the elastic coupling keep the collective theta. The terms below are "
+        "part of the entries above; at the operating point of the value column theta1c = "
+        "theta1s = 0. Factors with (gamma/2)(l/R)^2 removed.\n\n"
+     << "| entry | harmonic | factor | integral | eps | origin | radial |\n"
+     << "|---|---|---|---|---|---|---|\n";
+  auto list = [&](const std::string& entry, int h, const Slot& slot) {
+    for (const auto& t : slot.terms) {
+      if (power_of(t, c1) == 0 && power_of(t, s1) == 0) continue;
+      os << "| " << entry << " | " << DerivedModel::harmonic_name(h) << " | "
+         << factor_text(m_, t, true) << " | " << integral_text(m_, t) << " | " << t.eps_order
+         << " | " << t.origin << " | " << (t.radial_flow ? "radial" : "") << " |\n";
+    }
+  };
+  for (int eq = 0; eq < n_; ++eq) {
+    for (int col = 0; col < 2 * n_; ++col) {
+      for (int h = 0; h < m_.H; ++h) {
+        list(a_entry_name(eq, col, m_.M, m_.N), h, m_.force[(h * n_ + eq) * 2 * n_ + col]);
+      }
+    }
+    for (int h = 0; h < m_.H; ++h) list(f_entry_name(eq, m_.M, m_.N), h, m_.forcing[h * n_ + eq]);
+  }
+}
+
+// Cyclic-pitch models: the rotor thrust T(psi) = (l/R) int L_z dx0 of ModelDescriptor::thrust.
+void Report::thrust(std::ostringstream& os) const {
+  os << "\n## Rotor thrust (for the trim)\n\n"
+     << "T(psi) = (l/R) int L_z dx0 over the aerodynamic span, with the flap load L_z of eq 2.20 "
+        "exactly as derived for the flap equation (truncated at O(eps^"
+     << m_.spec.kept_flap
+     << "), linear in the perturbation state) but not Galerkin-weighted; C_T = (sigma a / 2) "
+        "times its azimuth average (the runtime averages it over the normal and the reversed-flow "
+        "regions). Terms by state column (`-`: state-independent).\n\n"
+     << "| state | harmonic | factor | integral | eps | origin | radial |\n"
+     << "|---|---|---|---|---|---|---|\n";
+  auto list = [&](const std::string& state, int h, const Slot& slot) {
+    for (const auto& t : slot.terms) {
+      os << "| " << state << " | " << DerivedModel::harmonic_name(h) << " | "
+         << factor_text(m_, t, false) << " | " << integral_text(m_, t) << " | " << t.eps_order
+         << " | " << t.origin << " | " << (t.radial_flow ? "radial" : "") << " |\n";
+    }
+  };
+  for (int h = 0; h < m_.H; ++h) list("-", h, m_.thrust_forcing[h]);
+  for (int col = 0; col < 2 * n_; ++col) {
+    for (int h = 0; h < m_.H; ++h) list(m_.state_name(col), h, m_.thrust_force[h * 2 * n_ + col]);
   }
 }
 

@@ -23,6 +23,7 @@ int* kept_of(OrderingSpec& s, const char* key) {
   return std::string(key) == "flap" ? &s.kept_flap : &s.kept_lag;
 }
 bool* radial_flow_of(OrderingSpec& s, const char*) { return &s.radial_flow; }
+bool* cyclic_pitch_of(OrderingSpec& s, const char*) { return &s.cyclic_pitch; }
 
 std::string node_text(const toml::node& n) {
   std::ostringstream os;
@@ -250,6 +251,8 @@ const std::vector<SpecKey>& spec_keys() {
       {"kept", "flap", T::Integer, 2, 0, nullptr, true, nullptr, &kept_of, nullptr},
       {"kept", "lag", T::Integer, 3, 0, nullptr, true, nullptr, &kept_of, nullptr},
       {"terms", "radial_flow", T::Boolean, 1, 0, nullptr, true, nullptr, nullptr, &radial_flow_of},
+      {"terms", "cyclic_pitch", T::Boolean, 0, 0, nullptr, true, nullptr, nullptr, &cyclic_pitch_of,
+       true},
   };
   return keys;
 }
@@ -284,6 +287,10 @@ std::string OrderingSpec::canonical_text() const {
   std::string table;
   for (const auto& k : spec_keys()) {
     if (std::string(k.name) == "base" && !*k.table) continue;
+    if (k.omit_at_default && k.type == SpecKey::Type::Boolean &&
+        *k.boolean(self, k.name) == (k.default_value != 0)) {
+      continue;
+    }
     if (k.table != table) {
       table = k.table;
       os << "[" << table << "]\n";
@@ -310,6 +317,7 @@ std::string OrderingSpec::summary() const {
   os << name << ": " << flap_modes << " flap x " << lag_modes << " lag modes; flap loads to O(eps^"
      << kept_flap << "), lag loads to O(eps^" << kept_lag << "); radial flow "
      << (radial_flow ? "on" : "off");
+  if (cyclic_pitch) os << "; cyclic pitch";
   return os.str();
 }
 

@@ -111,6 +111,13 @@ struct DerivedModel {
   std::vector<Slot> forcing;  // [H*n]
   std::vector<Slot> S;        // [n*n]
   std::vector<Slot> c;        // [n]
+  // Cyclic-pitch models only (spec.cyclic_pitch; empty otherwise): the rotor thrust of one
+  // blade, lr int L_z dx0 with the flap load L_z of the derivation (eq 2.20, the same
+  // truncation), as harmonics of its state-independent part [H] and of its linear coefficient
+  // of the state [H*2n].  C_T = (sigma a / 2) times its azimuth average.
+  std::vector<Slot> thrust_forcing;              // [H]
+  std::vector<Slot> thrust_force;                // [H*2n]
+  int thrust_equation() const { return M + N; }  // pseudo-equation index used while placing
   // Centrifugal stiffness terms replaced by the modal stiffness M w^2 (orthogonality, eqs A.2,
   // A.4), listed in the report so that nothing derived disappears silently.
   std::vector<AbsorbedTerm> absorbed;

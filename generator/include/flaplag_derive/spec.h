@@ -39,6 +39,10 @@ struct OrderingSpec {
   int kept_flap = 0;         // highest eps order kept in the flap aerodynamic load
   int kept_lag = 0;          // ... in the lag aerodynamic load
   bool radial_flow = false;  // the mu cos(psi) dv/dx0 term of U_T (eq 2.23)
+  // Cyclic pitch theta(psi) = theta + theta1c cos psi + theta1s sin psi in the aerodynamic
+  // loads (eqs 2.20-2.21), theta1c and theta1s of the same eps order as theta; also emits the
+  // rotor thrust (ModelDescriptor::thrust) that a trim needs.
+  bool cyclic_pitch = false;
 
   int order(const std::string& key) const { return orders.at(key); }
   // Canonical TOML text of the resolved spec (what the generated code records).
@@ -62,6 +66,10 @@ struct SpecKey {
   std::string* (*text)(OrderingSpec&, const char* name);
   int* (*integer)(OrderingSpec&, const char* name);
   bool* (*boolean)(OrderingSpec&, const char* name);
+  // Keys added after models were shipped: written into the canonical text only when they
+  // differ from their default, so the recorded text (and generated code) of every older spec
+  // stays byte-identical.
+  bool omit_at_default = false;
 };
 const std::vector<SpecKey>& spec_keys();
 

@@ -132,8 +132,9 @@ std::vector<double> zeta_differences(const Evaluated& fine_e, const Evaluated& c
 }  // namespace
 
 struct Analysis::Impl {
-  Impl(const RotorParameters& p, const TransitionOptions& o)
-      : options(o), builder(p, find_model(p.model)) {
+  Impl(const RotorParameters& p, const TransitionOptions& o,
+       std::optional<double> inflow = std::nullopt)
+      : options(o), builder(p, find_model(p.model), inflow) {
     o.Check();
     hover = builder.hover();
     const auto& m = builder.model();
@@ -329,6 +330,8 @@ struct Analysis::Impl {
 
 Analysis::Analysis(const RotorParameters& params, const TransitionOptions& options)
     : impl_(std::make_unique<Impl>(params, options)) {}
+Analysis::Analysis(const RotorParameters& params, const TransitionOptions& options, double inflow)
+    : impl_(std::make_unique<Impl>(params, options, inflow)) {}
 Analysis::~Analysis() = default;
 Analysis::Analysis(Analysis&&) noexcept = default;
 Analysis& Analysis::operator=(Analysis&&) noexcept = default;

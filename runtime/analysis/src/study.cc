@@ -50,6 +50,7 @@ std::optional<InvalidInput> study_problem(const StudyOptions& o) {
   if (!o.critical.IsValid(&why)) {
     o.critical.Check();  // throws the precise InvalidInput
   }
+  o.trim.Check();
   return check_threads(o.threads);
 }
 
@@ -75,6 +76,7 @@ std::optional<InvalidInput> map_problem(const MapOptions& o) {
     return bad("mu", round_trip_text(o.mu), "must be in [0, 1000]");
   if (!(std::isfinite(o.scan_step) && o.scan_step > 0.0))
     return bad("scan_step", round_trip_text(o.scan_step), "must be > 0");
+  o.trim.Check();
   return check_threads(o.threads);
 }
 
@@ -185,8 +187,12 @@ StudyResult run_study(const RotorParameters& base, const TransitionOptions& tran
         StudyRow& row = out.rows[i];
         row.value = options.values[i];
         try {
-          const Analysis an(with_parameter(base, options.parameter, row.value), transition);
-          row.critical = an.critical(crit);
+          const RotorParameters p = with_parameter(base, options.parameter, row.value);
+          if (options.trim.kind != TrimKind::None) {
+            row.critical = trimmed_critical(p, transition, options.trim, crit);
+          } else {
+            row.critical = Analysis(p, transition).critical(crit);
+          }
         } catch (const InvalidInput& e) {
           row.critical = CriticalResult{};
           row.critical.mu_max = crit.mu_max;
@@ -224,8 +230,11 @@ MapResult run_map(const RotorParameters& base, const TransitionOptions& transiti
         (mu_x ? out.cells[l][k] : out.cells[k][l]) = std::move(c);
       };
       try {
-        const Analysis an(with_parameter(base, other.parameter, other.values[l]), transition);
-        const SweepResult s = an.track(mus, options.scan_step);
+        const RotorParameters p = with_parameter(base, other.parameter, other.values[l]);
+        const SweepResult s =
+            options.trim.kind != TrimKind::None
+                ? trimmed_track(p, transition, options.trim, mus, options.scan_step)
+                : Analysis(p, transition).track(mus, options.scan_step);
         for (std::size_t k = 0; k < mus.size(); ++k)
           put(k, k < s.points.size() ? cell_of(s.points[k])
                                      : failed_cell("continuation stopped: " + s.message));
@@ -239,7 +248,10 @@ MapResult run_map(const RotorParameters& base, const TransitionOptions& transiti
         const RotorParameters p =
             with_parameter(with_parameter(base, options.y.parameter, options.y.values[l]),
                            options.x.parameter, options.x.values[j]);
-        out.cells[l][j] = cell_of(Analysis(p, transition).point(options.mu, options.scan_step));
+        out.cells[l][j] =
+            cell_of(options.trim.kind != TrimKind::None
+                        ? trimmed_point(p, transition, options.trim, options.mu, options.scan_step)
+                        : Analysis(p, transition).point(options.mu, options.scan_step));
       } catch (const InvalidInput& e) {
         out.cells[l][j] = failed_cell(e.what());
       }

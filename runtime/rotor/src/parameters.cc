@@ -79,6 +79,12 @@ std::vector<ParameterSpec> build_table() {
                        Interval{0.0, 1.0, false, false}, "in [0, 1]"));
   t.push_back(real_row("theta", "theta", "rad", "collective pitch", &RotorParameters::theta, angle,
                        "in (-pi/2, pi/2)"));
+  t.push_back(real_row("theta1c", "theta_1c", "rad",
+                       "cyclic pitch, cos psi part (needs a cyclic-pitch model, e.g. paper-cyclic)",
+                       &RotorParameters::theta1c, angle, "in (-pi/2, pi/2)"));
+  t.push_back(real_row("theta1s", "theta_1s", "rad",
+                       "cyclic pitch, sin psi part (needs a cyclic-pitch model, e.g. paper-cyclic)",
+                       &RotorParameters::theta1s, angle, "in (-pi/2, pi/2)"));
   t.push_back(real_row("precone", "beta_P", "rad", "precone angle", &RotorParameters::precone,
                        angle, "in (-pi/2, pi/2)"));
   t.push_back(real_row("droop", "beta_D", "rad", "droop angle", &RotorParameters::droop, angle,
@@ -187,6 +193,12 @@ std::string parameter_text(const RotorParameters& p, const ParameterSpec& spec) 
 }
 
 void validate(const RotorParameters& p) {
+  validate_except_inflow(p);
+  // Every other check is per field; this one keeps hover_inflow() defined for valid input.
+  hover_inflow(p);
+}
+
+void validate_except_inflow(const RotorParameters& p) {
   for (const ParameterSpec& s : parameter_table()) {
     if (s.type == ParameterType::Integer) {
       const int v = p.*s.integer;
@@ -214,8 +226,6 @@ void validate(const RotorParameters& p) {
                        "needs the reversed flow switched on (the exact region replaces its "
                        "Appendix D sector)");
   }
-  // Every other check is per field; this one keeps hover_inflow() defined for valid input.
-  hover_inflow(p);
 }
 
 double hover_inflow(const RotorParameters& p) {

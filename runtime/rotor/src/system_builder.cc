@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 
 #include "flaplag/blade/rotating_modes.h"
 #include "flaplag/core/constants.h"
@@ -34,9 +35,28 @@ ExactReversedRegion exact_reversed_region(double mu, const RotorParameters& p) {
   return r;
 }
 
-SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescriptor& m)
+SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescriptor& m,
+                             std::optional<double> inflow)
     : p_(p), model_(&m), M_(m.flap_modes), N_(m.lag_modes), n_(M_ + N_), H_(m.n_harmonics) {
-  validate(p_);
+  if (inflow) {
+    validate_except_inflow(p_);  // eq 2.24 is not used
+  } else {
+    validate(p_);
+  }
+  if (!m.cyclic_pitch) {
+    for (const auto& [field, value] : {std::pair<const char*, double>{"theta1c", p_.theta1c},
+                                       std::pair<const char*, double>{"theta1s", p_.theta1s}}) {
+      if (value != 0.0) {
+        throw InvalidInput(field, round_trip_text(value),
+                           std::string("model '") + m.name +
+                               "' has no cyclic pitch: use a model with the cyclic_pitch switch "
+                               "(e.g. `model` = paper-cyclic)");
+      }
+    }
+  }
+  if (inflow && !std::isfinite(*inflow)) {
+    throw InvalidInput("inflow", round_trip_text(*inflow), "must be a finite number");
+  }
   if (p_.modes == ModeKind::Assumed) {
     if (M_ != 1 || N_ != 1) {
       throw InvalidInput("modes", "assumed",
@@ -76,7 +96,7 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   geometry_.lr = p_.length_ratio;
   geometry_.tip_loss_a = p_.tip_loss_a;
   geometry_.tip_loss_b = p_.tip_loss_b;
-  inflow_ = hover_inflow(p_);
+  inflow_ = inflow ? *inflow : hover_inflow(p_);
   // Structural damping ratios apply to every mode of a direction.
   damping_flap_.assign(M_, p_.damping_flap);
   damping_lag_.assign(N_, p_.damping_lag);
@@ -176,6 +196,8 @@ model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) co
   in.ecs_lag_flap = ecs_lag_flap_.data();
   in.aero = aero;
   in.structural = structural_.data();
+  in.theta1c = p_.theta1c;
+  in.theta1s = p_.theta1s;
   return in;
 }
 
@@ -350,6 +372,29 @@ HarmonicSet SystemBuilder::harmonics(double mu, const std::vector<double>& aero)
   HarmonicSet set;
   assemble(mu, aero, set);
   return set;
+}
+
+ThrustSystem SystemBuilder::thrust(double mu) const {
+  if (model_->thrust == nullptr) {
+    throw std::logic_error(std::string("model '") + model_->name + "' emits no thrust");
+  }
+  const int ns = 2 * n_;
+  auto eval = [&](const std::vector<double>& aero) {
+    std::vector<double> force(H_ * ns), forcing(H_);
+    model_->thrust(inputs(mu, aero.data()), {force.data(), forcing.data()});
+    ThrustHarmonics t;
+    t.t = forcing;
+    for (int h = 0; h < H_; ++h) {
+      Eigen::RowVectorXd r(ns);
+      for (int c = 0; c < ns; ++c) r(c) = force[h * ns + c];
+      t.tau.push_back(r);
+    }
+    return t;
+  };
+  ThrustSystem out;
+  out.normal = eval(aero_.normal());
+  out.reversed = p_.reversed_flow && mu > 0.0 ? eval(reversed_integrals(mu)) : out.normal;
+  return out;
 }
 
 PeriodicSystem SystemBuilder::system(double mu) const {

@@ -100,6 +100,9 @@ class Analysis {
  public:
   // Checks params (validate()) and options (TransitionOptions::Check()); throws InvalidInput.
   Analysis(const RotorParameters& params, const TransitionOptions& options);
+  // The same with the inflow ratio lambda given (e.g. a trim's eq 2.25 value, trim.h) instead
+  // of eq 2.24; lambda finite (else InvalidInput("inflow", ...)).
+  Analysis(const RotorParameters& params, const TransitionOptions& options, double inflow);
   ~Analysis();
   Analysis(Analysis&&) noexcept;
   Analysis& operator=(Analysis&&) noexcept;

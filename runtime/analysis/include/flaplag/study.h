@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "flaplag/analysis.h"
+#include "flaplag/trim.h"
 
 namespace flaplag {
 
@@ -32,7 +33,10 @@ struct StudyOptions {
   std::string parameter;       // the varied field (not "mu")
   std::vector<double> values;  // 1..kMaxStudyValues values
   CriticalOptions critical;    // the search at each value (all_intervals is always on)
-  int threads = 0;             // 0: as many as the hardware has; else 1..256
+  // kind != None: each row is trimmed at every mu of its search (trim.h, trimmed_critical):
+  // mu_c at fixed C_T.  The trim replaces theta (and, moment trim, theta1c, theta1s).
+  TrimOptions trim;
+  int threads = 0;  // 0: as many as the hardware has; else 1..256
 
   bool IsValid(std::string* error) const;
   void Check() const;
@@ -71,6 +75,7 @@ struct MapOptions {
   MapAxis x, y;             // at most one of them "mu"; each with 1..kMaxMapValues values
   double mu = 0.0;          // the advance ratio when neither axis is "mu"
   double scan_step = 0.01;  // continuation step in mu
+  TrimOptions trim;         // kind != None: every cell trimmed at its mu (trim.h)
   int threads = 0;
 
   bool IsValid(std::string* error) const;

@@ -140,6 +140,10 @@ struct CoefficientInputs {
   const double* ecs_lag_flap;  // [N*M] Ebar^cs_ik  (eq E.8), lag row i, flap column k
   const double* aero;          // [n_aero] values of the AeroIntegral list, for one flow region
   const double* structural;    // [n_structural] values of the StructuralIntegral list
+  // Cyclic pitch [rad]: theta(psi) = theta + theta1c cos psi + theta1s sin psi.  Read only by
+  // the models with ModelDescriptor::cyclic_pitch; the others ignore them.
+  double theta1c;
+  double theta1s;
 };
 
 // Outputs.  n = M + N equations, 2n states, H harmonics.
@@ -180,6 +184,16 @@ struct ModelDescriptor {
   void (*mass)(const CoefficientInputs& in, double* mass);
   void (*coefficients)(const CoefficientInputs&, const CoefficientOutputs&);
   void (*equilibrium)(const CoefficientInputs&, const EquilibriumOutputs&);
+  // Added after the first models shipped (trailing, with defaults, so that the generated code
+  // of the older models is unchanged):
+  // true when the model reads CoefficientInputs::theta1c/theta1s (spec switch cyclic_pitch).
+  bool cyclic_pitch = false;
+  // Rotor thrust of one blade, T = (l/R) int L_z dx0 over the aerodynamic span with the flap
+  // load L_z of the derivation (eq 2.20, same eps truncation, linear in the state), as
+  // harmonics: T(psi) = sum_h phi_h(psi) (out.forcing[h] + sum_c out.force[h*2n + c] y_c).
+  // out.forcing has H entries, out.force H*2n.  C_T = (sigma a / 2) * mean over psi of T.
+  // nullptr for the models without cyclic pitch.
+  void (*thrust)(const CoefficientInputs&, const CoefficientOutputs&) = nullptr;
 };
 
 // All models compiled into this build (generated registry), in spec-file order.

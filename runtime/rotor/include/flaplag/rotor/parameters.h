@@ -18,6 +18,8 @@ struct RotorParameters {
   double lift_slope = 6.283185307179586;  // a [1/rad], (0, 100]
   double cdo = 0.01;                      // profile drag coefficient C_Do, [0, 1]
   double theta = 0.15;                    // collective pitch [rad], (-pi/2, pi/2)
+  double theta1c = 0.0;                   // cyclic pitch, cos psi [rad], (-pi/2, pi/2) (*)
+  double theta1s = 0.0;                   // cyclic pitch, sin psi [rad], (-pi/2, pi/2) (*)
   double precone = 0.0;                   // beta_P [rad], (-pi/2, pi/2)
   double droop = 0.0;                     // beta_D [rad], (-pi/2, pi/2)
   double omega_flap = 1.175;              // first rotating flap frequency by Omega, (0, 1000]
@@ -37,9 +39,15 @@ struct RotorParameters {
       false;  // exact modes rebuilt with the 1974 sign slip (docs/validation.md)
 };
 
+// (*) theta(psi) = theta + theta1c cos psi + theta1s sin psi; nonzero values need a model with
+// cyclic pitch (the cyclic_pitch spec switch, e.g. paper-cyclic): SystemBuilder refuses others.
+//
 // Throws InvalidInput naming the first offending field ("omega_lag") and its value; the
 // admissible ranges are those of parameter_table.h (also noted above).
 void validate(const RotorParameters& p);
+// validate() without its last check (that eq 2.24 has a real inflow at theta): for an operating
+// point whose inflow is given instead (a trim, eq 2.25).
+void validate_except_inflow(const RotorParameters& p);
 
 // Inflow ratio for hover, eq 2.24: lambda = sigma a / 16 [sqrt(1 + 24 theta/(sigma a)) - 1].
 double hover_inflow(const RotorParameters& p);

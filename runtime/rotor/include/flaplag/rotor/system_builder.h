@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,10 +39,23 @@ struct ExactReversedRegion {
   std::vector<double> breaks;     // inside (begin, end), sorted
 };
 ExactReversedRegion exact_reversed_region(double mu, const RotorParameters& p);
+// The rotor thrust of one blade, T(psi) = sum_h phi_h(psi) (t[h] + tau[h] . y) for one flow
+// region (ModelDescriptor::thrust; y the perturbation state about the hover equilibrium).
+struct ThrustHarmonics {
+  std::vector<double> t;                // [H]
+  std::vector<Eigen::RowVectorXd> tau;  // [H] each 1 x 2n
+};
+struct ThrustSystem {
+  ThrustHarmonics normal, reversed;  // reversed: used inside the sector of system(mu)
+};
 
 class SystemBuilder {
  public:
-  SystemBuilder(const RotorParameters& p, const model::ModelDescriptor& m);
+  // inflow: lambda to use instead of eq 2.24 (a trim's eq 2.25 value); nullopt: eq 2.24.
+  // Throws InvalidInput("theta1c"/"theta1s", ...) when cyclic pitch is asked of a model
+  // without it.
+  SystemBuilder(const RotorParameters& p, const model::ModelDescriptor& m,
+                std::optional<double> inflow = std::nullopt);
 
   const RotorParameters& params() const { return p_; }
   const model::ModelDescriptor& model() const { return *model_; }
@@ -50,6 +64,9 @@ class SystemBuilder {
   int state_size() const { return 2 * n_; }
 
   PeriodicSystem system(double mu) const;
+  // Thrust harmonics at mu (models with ModelDescriptor::thrust only; else std::logic_error).
+  ThrustSystem thrust(double mu) const;
+  double inflow() const { return inflow_; }
   // Aerodynamic integrals used inside the reversed sector at mu.
   std::vector<double> reversed_integrals(double mu) const;
   // Aerodynamic integrals of the exact region at (mu, psi): -int_A^{x0} + int_{x0}^B with

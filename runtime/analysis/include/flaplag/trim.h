@@ -1,0 +1,142 @@
+// flaplag — rotor thrust and trim (issue 12 item 3): the collective and cyclic pitch and the
+// inflow that give a prescribed thrust coefficient, and (moment trim) no first-harmonic flap.
+//
+// Thrust.  The cyclic-pitch models (spec switch cyclic_pitch, e.g. `paper-cyclic`) emit the
+// thrust of one blade from the flap load of the derivation itself (ModelDescriptor::thrust):
+//   T(psi) = (l/R) int_A^B L_z dx0,   L_z = theta(psi) u_T^2 - u_T u_P   (eq 2.20 by rho a c
+//   (Omega R)^2 / 2), with theta(psi) = theta + theta1c cos psi + theta1s sin psi,
+// u_T, u_P of eqs 2.22-2.23 with the blade at the hover equilibrium q0 plus the perturbation y:
+// exactly the terms of the flap equation's load, truncated at the same order (O(eps^2) for the
+// paper ordering) and linear in y, but integrated over the span instead of Galerkin-weighted
+// (the audit report of the model lists every term).  The thrust coefficient is
+//   C_T = (sigma a / 2) (1/2 pi) int_0^2pi T(psi) dpsi     (b blades, sigma = b c / (pi R)),
+// the coefficients of the reversed-flow sector used inside it (Appendix D, as for A(psi)), and
+// y(psi) the periodic forced response of y' = A y + f about the hover equilibrium (numerics/
+// response.h), so that the steady flapping enters.  C_T is the thrust coefficient itself, not
+// C_T / sigma.  Uniform blade, no tip loss, hover: C_T = (sigma a / 2) (theta/3 - lambda/2).
+//
+// Inflow.  The trim uses the momentum relation of eq 2.25,
+//   lambda = mu tan(alpha_R) + C_T / (2 sqrt(mu^2 + lambda^2)),
+// with the target C_T, instead of the paper's eq 2.24 (which stays the untrimmed default).
+// Eq 2.24 is *not* eq 2.25 at mu = 0: it equates blade-element and momentum thrust at 3/4
+// radius, sigma a/16 [sqrt(1 + 24 theta/(sigma a)) - 1], whereas the model's own thrust with
+// eq 2.25 at mu = 0 (lambda = sqrt(C_T/2)) gives, for the uniform blade, sigma a/16 [sqrt(1 +
+// 64 theta/(3 sigma a)) - 1]: for the typical case (theta = 0.15, sigma = 0.05, a = 2 pi)
+// lambda = 0.04967 (eq 2.24) versus 0.04604 (eq 2.25), and the same C_T needs a different
+// theta (docs/validation.md, "Trim").
+//
+// Trim at advance ratio mu (RotorParameters::theta, theta1c, theta1s are replaced):
+//   - thrust: lambda from eq 2.25 with the target C_T, then theta0 (theta1c, theta1s as given)
+//     such that the model's C_T equals the target;
+//   - moment (wind-tunnel trim): theta0, theta1c, theta1s such that C_T equals the target and
+//     the first harmonic of the flap tip deflection (hover equilibrium plus periodic response,
+//     cos psi and sin psi parts) vanishes.
+// Newton's method: a forward finite-difference Jacobian at the start (or a previous trim's, see
+// trim()), updated by Broyden's rule after each step and re-evaluated when a step fails; each
+// step is halved until the residual decreases.  The periodic response uses fixed RK4 steps
+// (chosen at the first evaluation) so that the residual is a smooth function of the controls.
+// Starting point: blade-element theory for the uniform rigid blade.  Linearization: the system about which stability is then analysed is the paper's
+// (hover equilibrium at the trimmed theta0 and lambda; A(psi) carries the cyclic pitch).
+#pragma once
+
+#include <Eigen/Dense>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "flaplag/core/status.h"
+#include "flaplag/numerics/continuation.h"
+#include "flaplag/numerics/floquet.h"
+#include "flaplag/numerics/response.h"
+#include "flaplag/rotor/parameters.h"
+
+namespace flaplag {
+
+enum class TrimKind { None, Thrust, Moment };
+const char* trim_kind_name(TrimKind k);  // "none", "thrust", "moment"
+// false when `name` is none of them.
+bool trim_kind_from_name(std::string_view name, TrimKind* kind);
+
+struct TrimOptions {
+  TrimKind kind = TrimKind::None;
+  double thrust_coefficient = 0.005;  // target C_T (not C_T / sigma), in (0, 0.1]
+  double shaft_angle = 0.0;           // alpha_R of eq 2.25 [rad], in (-pi/2, pi/2)
+  int max_iterations = 30;            // Newton iterations, 1..1000
+  // Converged when |C_T - target| <= tolerance * target and (moment) |flap 1c|, |flap 1s| <=
+  // tolerance (tip deflection by l), in (0, 1e-3].
+  double tolerance = 1e-13;
+  ResponseOptions response;  // for the periodic response inside the thrust and the moment
+  bool IsValid(std::string* error) const;  // error names the field in backticks
+  void Check() const;                      // throws InvalidInput(field, value, reason)
+};
+
+// The model's thrust at one operating point.
+struct ThrustResult {
+  double mu = 0.0;
+  double inflow = 0.0;                  // lambda used
+  double thrust_coefficient = 0.0;      // C_T of the model's own lift distribution (see above)
+  double flap_1c = 0.0, flap_1s = 0.0;  // first harmonic of the flap tip deflection, by l
+  Status status = Status::Ok;           // Failed: no periodic response (a multiplier at 1)
+  std::string message;
+};
+
+// C_T at mu with inflow lambda (NaN: eq 2.24) and p's pitch.  p.model must emit the thrust
+// (a cyclic-pitch model), else InvalidInput("model", ...); p is validated.
+ThrustResult rotor_thrust(const RotorParameters& p, double mu, double inflow,
+                          const ResponseOptions& response = {});
+// C_T at mu with p's pitch and the inflow of eq 2.25 for that same C_T (solved together):
+// the thrust the rotor actually produces at this pitch.
+ThrustResult rotor_thrust_momentum(const RotorParameters& p, double mu, double shaft_angle,
+                                   const ResponseOptions& response = {});
+// Solves eq 2.25 for lambda given C_T > 0 and mu >= 0 (the root in (mu tan alpha_R, mu tan
+// alpha_R + C_T/(2 mu)] for mu > 0; sqrt(C_T/2) at mu = 0).
+double momentum_inflow(double thrust_coefficient, double mu, double shaft_angle);
+
+struct TrimResult {
+  double mu = 0.0;
+  TrimKind kind = TrimKind::None;
+  double theta0 = 0.0, theta1c = 0.0, theta1s = 0.0;  // [rad]
+  double inflow = 0.0;                                // lambda, eq 2.25
+  double thrust_coefficient = 0.0;                    // C_T achieved
+  double target = 0.0;                                // C_T asked for
+  double flap_1c = 0.0, flap_1s = 0.0;                // first flap tip harmonic at the trim
+  int iterations = 0;
+  RotorParameters parameters;  // the input with theta, theta1c, theta1s trimmed
+  bool converged = false;      // the residual met `tolerance`
+  // Jacobian of the residual [(C_T - target)/target, flap 1c, flap 1s] in (theta0, theta1c,
+  // theta1s) at the end (Broyden-updated): a warm start for a neighbouring mu.
+  Eigen::MatrixXd jacobian;
+  // Ok: converged.  Warning: converged but the trimmed system is unstable (the periodic
+  // solution is not what the blade settles to), or max_iterations reached (converged false;
+  // the last iterate is reported).  Failed: no periodic response, a Jacobian that does not
+  // reduce the residual (singular or unreachable target), a pitch outside (-pi/2, pi/2).
+  Status status = Status::Ok;
+  std::string message;
+};
+
+// o.Check() first; o.kind must not be None.  p.model must emit the thrust (InvalidInput
+// "model").  mu in [0, kMaxAdvanceRatio].
+// start: a previous trim (e.g. at a neighbouring mu) whose controls and Jacobian start the
+// Newton iteration; nullptr: blade-element estimate and a finite-difference Jacobian.
+TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
+                const TrimResult* start = nullptr);
+
+// Stability at fixed C_T: every mu at which the continuation evaluates the Floquet exponents is
+// trimmed first (trim() above; the hover labels come from the trim at mu = 0), so mu_c is the
+// critical advance ratio of the trimmed rotor, not of the rotor at fixed theta.  A trim that
+// fails at some mu makes that evaluation Failed (message from the trim).  The options are
+// checked as by Analysis and trim() (InvalidInput).  Each evaluation costs a trim (a few
+// periodic responses) on top of the Floquet analysis.
+PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, double mu, double scan_step = 0.01);
+SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, double mu0, double mu1, double step);
+// At the given advance ratios (nondecreasing), continued from hover in steps of at most
+// scan_step (as Analysis::track).
+SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, const std::vector<double>& mus,
+                          double scan_step = 0.01);
+CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOptions& t,
+                                const TrimOptions& o, const CriticalOptions& c);
+
+}  // namespace flaplag

@@ -1,0 +1,574 @@
+// Rotor thrust and trim: see trim.h for what is computed and at which order.
+#include "flaplag/trim.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "flaplag/analysis.h"
+#include "flaplag/core/constants.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
+#include "flaplag/numerics/brent.h"
+#include "flaplag/numerics/continuation.h"
+#include "flaplag/rotor/hover.h"
+#include "flaplag/rotor/system_builder.h"
+
+namespace flaplag {
+
+namespace {
+
+constexpr double kHalfPi = 1.5707963267948966;
+
+bool report(const char* name, const std::string& value, const std::string& reason,
+            std::string* error) {
+  if (error != nullptr) *error = std::string("`") + name + "` = " + value + ": " + reason;
+  return false;
+}
+
+void check_mu(double mu) {
+  if (!std::isfinite(mu) || mu < 0.0 || mu > kMaxAdvanceRatio) {
+    throw InvalidInput("mu", round_trip_text(mu),
+                       "advance ratio must be >= 0 and <= " + round_trip_text(kMaxAdvanceRatio));
+  }
+}
+
+const model::ModelDescriptor& thrust_model(const RotorParameters& p) {
+  const model::ModelDescriptor& m = find_model(p.model);
+  if (m.thrust == nullptr) {
+    throw InvalidInput("model", p.model,
+                       "emits no rotor thrust: the thrust and the trim need a model with the "
+                       "cyclic_pitch switch (e.g. paper-cyclic)");
+  }
+  return m;
+}
+
+// Value of one region's thrust at psi for state y.
+double thrust_at(const detail::ThrustHarmonics& t, double psi, const Eigen::VectorXd& y) {
+  double v = 0.0;
+  for (std::size_t h = 0; h < t.t.size(); ++h) {
+    v += harmonic_basis(static_cast<int>(h), psi) * (t.t[h] + t.tau[h].dot(y));
+  }
+  return v;
+}
+
+// (1/2 pi) int_0^2pi T(psi, y(psi)) dpsi along the periodic solution from y0: RK4 on the
+// augmented system [y; int T], equal steps split at the sector edges (as the response).
+double mean_thrust(const PeriodicSystem& sys, const detail::ThrustSystem& ts,
+                   const Eigen::VectorXd& y0, int steps) {
+  std::vector<double> cuts;
+  for (int i = 0; i <= steps; ++i) cuts.push_back(kTwoPi * i / steps);
+  for (double b : sys.breakpoints()) cuts.push_back(b);
+  std::sort(cuts.begin(), cuts.end());
+  Eigen::VectorXd y = y0;
+  double integral = 0.0;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    const double a = cuts[i], b = cuts[i + 1], h = b - a;
+    if (!(h > 0.0)) continue;
+    const double mid = 0.5 * (a + b);
+    const bool sector = sys.has_sector && sys.in_sector(mid);
+    const HarmonicSet& region = sector ? sys.reversed : sys.normal;
+    const detail::ThrustHarmonics& tr = sector ? ts.reversed : ts.normal;
+    auto rhs = [&](double psi, const Eigen::VectorXd& v) {
+      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(sys.n, sys.n);
+      Eigen::VectorXd f = Eigen::VectorXd::Zero(sys.n);
+      for (std::size_t k = 0; k < region.A.size(); ++k) {
+        const double phi = harmonic_basis(static_cast<int>(k), psi);
+        A += phi * region.A[k];
+        if (k < region.f.size() && region.f[k].size() == sys.n) f += phi * region.f[k];
+      }
+      return Eigen::VectorXd(A * v + f);
+    };
+    const Eigen::VectorXd k1 = rhs(a, y);
+    const double t1 = thrust_at(tr, a, y);
+    const Eigen::VectorXd y2 = y + 0.5 * h * k1;
+    const Eigen::VectorXd k2 = rhs(mid, y2);
+    const double t2 = thrust_at(tr, mid, y2);
+    const Eigen::VectorXd y3 = y + 0.5 * h * k2;
+    const Eigen::VectorXd k3 = rhs(mid, y3);
+    const double t3 = thrust_at(tr, mid, y3);
+    const Eigen::VectorXd y4 = y + h * k3;
+    const Eigen::VectorXd k4 = rhs(b, y4);
+    const double t4 = thrust_at(tr, b, y4);
+    y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    integral += h / 6.0 * (t1 + 2.0 * t2 + 2.0 * t3 + t4);
+  }
+  return integral / kTwoPi;
+}
+
+// One evaluation: thrust and first flap harmonic at (p's pitch, inflow).  response.steps is
+// updated to the steps used, so that later evaluations use the same grid.
+ThrustResult evaluate(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
+                      double inflow, ResponseOptions& response) {
+  ThrustResult out;
+  out.mu = mu;
+  const detail::SystemBuilder builder(p, m, inflow);
+  out.inflow = builder.inflow();
+  if (builder.hover().status == Status::Failed) {
+    out.status = Status::Failed;
+    out.message = builder.hover().message;
+    return out;
+  }
+  const PeriodicSystem sys = builder.system(mu);
+  const PeriodicResponse r = periodic_response(sys, response);
+  if (r.status == Status::Failed) {
+    out.status = Status::Failed;
+    out.message = "no periodic response at mu = " + round_trip_text(mu) + ": " + r.message;
+    return out;
+  }
+  response.steps = r.steps;
+  const detail::ThrustSystem ts = builder.thrust(mu);
+  const double sigma_a_2 = 0.5 * p.sigma * p.lift_slope;
+  out.thrust_coefficient = sigma_a_2 * mean_thrust(sys, ts, r.y0, std::max(r.steps, 256));
+  // First harmonic of the flap tip deflection (hover equilibrium: constant only).
+  const int M = m.flap_modes, N = m.lag_modes;
+  const double n = static_cast<double>(r.y.size());
+  for (std::size_t i = 0; i < r.y.size(); ++i) {
+    double w = 0.0;
+    for (int k = 0; k < M; ++k) {
+      w += builder.modes().flap[k]->value(0, 1.0) * r.y[i](model::flap_displacement_index(k, M, N));
+    }
+    out.flap_1c += 2.0 / n * w * std::cos(r.psi[i]);
+    out.flap_1s += 2.0 / n * w * std::sin(r.psi[i]);
+  }
+  if (!std::isfinite(out.thrust_coefficient)) {
+    out.status = Status::Failed;
+    out.message = "the thrust overflowed at mu = " + round_trip_text(mu);
+  } else if (r.status == Status::Warning) {
+    out.status = Status::Warning;
+    out.message = r.message;
+  }
+  return out;
+}
+
+}  // namespace
+
+const char* trim_kind_name(TrimKind k) {
+  switch (k) {
+    case TrimKind::None:
+      return "none";
+    case TrimKind::Thrust:
+      return "thrust";
+    case TrimKind::Moment:
+      return "moment";
+  }
+  return "none";
+}
+
+bool trim_kind_from_name(std::string_view name, TrimKind* kind) {
+  for (TrimKind k : {TrimKind::None, TrimKind::Thrust, TrimKind::Moment}) {
+    if (name == trim_kind_name(k)) {
+      *kind = k;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool TrimOptions::IsValid(std::string* error) const {
+  if (!(std::isfinite(thrust_coefficient) && thrust_coefficient > 0.0 &&
+        thrust_coefficient <= 0.1)) {
+    return report("thrust_coefficient", round_trip_text(thrust_coefficient),
+                  "must be in (0, 0.1] (C_T, not C_T/sigma)", error);
+  }
+  if (!(std::isfinite(shaft_angle) && std::abs(shaft_angle) < kHalfPi)) {
+    return report("shaft_angle", round_trip_text(shaft_angle), "must be in (-pi/2, pi/2)", error);
+  }
+  if (max_iterations < 1 || max_iterations > 1000) {
+    return report("max_iterations", std::to_string(max_iterations), "must be 1..1000", error);
+  }
+  if (!(std::isfinite(tolerance) && tolerance > 0.0 && tolerance <= 1e-3)) {
+    return report("tolerance", round_trip_text(tolerance), "must be in (0, 1e-3]", error);
+  }
+  return response.IsValid(error);
+}
+
+void TrimOptions::Check() const {
+  std::string why;
+  if (IsValid(&why)) return;
+  if (why.rfind("`", 0) != 0) {  // from ResponseOptions: "name = value: reason"
+    response.Check();
+  }
+  const auto close = why.find('`', 1);
+  const auto eq = why.find(" = ", close);
+  const auto colon = why.find(": ", eq);
+  throw InvalidInput(why.substr(1, close - 1), why.substr(eq + 3, colon - eq - 3),
+                     why.substr(colon + 2));
+}
+
+double momentum_inflow(double ct, double mu, double alpha) {
+  if (!(std::isfinite(ct) && ct > 0.0)) {
+    throw InvalidInput("thrust_coefficient", round_trip_text(ct), "must be > 0");
+  }
+  check_mu(mu);
+  if (!(std::isfinite(alpha) && std::abs(alpha) < kHalfPi)) {
+    throw InvalidInput("shaft_angle", round_trip_text(alpha), "must be in (-pi/2, pi/2)");
+  }
+  if (mu == 0.0) return std::sqrt(0.5 * ct);  // lambda = C_T / (2 |lambda|), lambda > 0
+  const double base = mu * std::tan(alpha);
+  auto f = [&](double lam) { return lam - base - ct / (2.0 * std::sqrt(mu * mu + lam * lam)); };
+  // f(base) < 0 and f(base + C_T/(2 mu)) >= 0 since the induced part is at most C_T/(2 mu).
+  BrentOptions bo;
+  bo.tolerance = 1e-17;
+  bo.max_evaluations = 400;
+  const double lo = base, hi = base + ct / (2.0 * mu);
+  const double flo = f(lo), fhi = f(hi);
+  if (fhi == 0.0) return hi;
+  const BrentResult r = brent_zero(f, lo, flo, hi, fhi, bo);
+  // Polish with Newton: the bracket tolerance is below rounding, one step fixes the last bit.
+  double lam = r.root.x;
+  for (int i = 0; i < 3; ++i) {
+    const double s = std::sqrt(mu * mu + lam * lam);
+    const double d = 1.0 + ct * lam / (2.0 * s * s * s);
+    const double step = f(lam) / d;
+    if (!std::isfinite(step)) break;
+    lam -= step;
+  }
+  return lam;
+}
+
+ThrustResult rotor_thrust(const RotorParameters& p, double mu, double inflow,
+                          const ResponseOptions& response) {
+  check_mu(mu);
+  response.Check();
+  if (std::isnan(inflow)) validate(p);
+  validate_except_inflow(p);
+  const model::ModelDescriptor& m = thrust_model(p);
+  ResponseOptions r = response;
+  return evaluate(p, m, mu, std::isnan(inflow) ? hover_inflow(p) : inflow, r);
+}
+
+ThrustResult rotor_thrust_momentum(const RotorParameters& p, double mu, double shaft_angle,
+                                   const ResponseOptions& response) {
+  check_mu(mu);
+  response.Check();
+  validate(p);
+  if (!(std::isfinite(shaft_angle) && std::abs(shaft_angle) < kHalfPi)) {
+    throw InvalidInput("shaft_angle", round_trip_text(shaft_angle), "must be in (-pi/2, pi/2)");
+  }
+  const model::ModelDescriptor& m = thrust_model(p);
+  ResponseOptions r = response;
+  // Fixed point C_T = thrust(lambda(C_T)): secant iteration on g(lambda) = lambda -
+  // lambda_2.25(thrust(lambda)), from eq 2.24's lambda.
+  ThrustResult last;
+  auto g = [&](double lam) {
+    last = evaluate(p, m, mu, lam, r);
+    if (last.status == Status::Failed) return std::numeric_limits<double>::quiet_NaN();
+    if (!(last.thrust_coefficient > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    return lam - momentum_inflow(last.thrust_coefficient, mu, shaft_angle);
+  };
+  double l0 = hover_inflow(p), l1 = l0 * 0.95;
+  double g0 = g(l0), g1 = g(l1);
+  for (int it = 0; it < 60 && std::isfinite(g1) && g1 != 0.0; ++it) {
+    const double d = (g1 - g0);
+    if (d == 0.0) break;
+    const double l2 = l1 - g1 * (l1 - l0) / d;
+    l0 = l1;
+    g0 = g1;
+    l1 = l2;
+    g1 = g(l1);
+    if (std::abs(l1 - l0) <= 1e-16 * std::max(1.0, std::abs(l1))) break;
+  }
+  if (!std::isfinite(g1)) {
+    last.status = Status::Failed;
+    if (last.message.empty())
+      last.message = "no positive thrust with the inflow of eq 2.25 at this pitch";
+    return last;
+  }
+  if (std::abs(g1) > 1e-12 * std::max(1e-3, std::abs(l1))) {
+    last.status = Status::Warning;
+    last.message = "inflow of eq 2.25 not converged (residual " + round_trip_text(g1) + ")";
+  }
+  return last;
+}
+
+TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
+                const TrimResult* start) {
+  o.Check();
+  check_mu(mu);
+  validate_except_inflow(p);
+  if (o.kind == TrimKind::None) {
+    throw InvalidInput("trim", "none", "nothing to trim: use thrust or moment");
+  }
+  const model::ModelDescriptor& m = thrust_model(p);
+  TrimResult out;
+  out.mu = mu;
+  out.kind = o.kind;
+  out.target = o.thrust_coefficient;
+  out.inflow = momentum_inflow(o.thrust_coefficient, mu, o.shaft_angle);
+  out.parameters = p;
+  ResponseOptions ropt = o.response;
+
+  const bool moment = o.kind == TrimKind::Moment;
+  const int nx = moment ? 3 : 1;
+  Eigen::VectorXd x(nx);
+  if (start != nullptr && start->kind == o.kind && start->status != Status::Failed) {
+    x(0) = start->theta0;
+    if (moment) {
+      x(1) = start->theta1c;
+      x(2) = start->theta1s;
+    }
+  } else {
+    // Start from blade-element theory for a uniform rigid blade without tip loss, C_T =
+    // (sigma a/2) [theta0 (1/3 + mu^2/2) + theta1s mu/2 - lambda/2] (the model's thrust at
+    // y = 0 and q0 = 0), clipped: Newton then corrects for the real blade.
+    const double sa2 = 0.5 * p.sigma * p.lift_slope;
+    const double guess = (o.thrust_coefficient / sa2 + 0.5 * out.inflow - 0.5 * mu * p.theta1s) /
+                         (1.0 / 3.0 + 0.5 * mu * mu);
+    x(0) = std::isfinite(guess) ? std::clamp(guess, -1.0, 1.0) : p.theta;
+    if (moment) {
+      x(1) = p.theta1c;
+      x(2) = p.theta1s;
+    }
+  }
+  auto params_of = [&](const Eigen::VectorXd& v) {
+    RotorParameters q = p;
+    q.theta = v(0);
+    if (moment) {
+      q.theta1c = v(1);
+      q.theta1s = v(2);
+    }
+    return q;
+  };
+  ThrustResult last;
+  // Residual: [C_T - target (relative to target), flap 1c, flap 1s].
+  auto residual = [&](const Eigen::VectorXd& v, Eigen::VectorXd* r) {
+    for (int j = 0; j < nx; ++j) {
+      if (!(std::abs(v(j)) < kHalfPi)) return false;
+    }
+    last = evaluate(params_of(v), m, mu, out.inflow, ropt);
+    if (last.status == Status::Failed) return false;
+    r->resize(nx);
+    (*r)(0) = (last.thrust_coefficient - o.thrust_coefficient) / o.thrust_coefficient;
+    if (moment) {
+      (*r)(1) = last.flap_1c;
+      (*r)(2) = last.flap_1s;
+    }
+    return true;
+  };
+  auto finish = [&](const Eigen::VectorXd& v, Status s, std::string msg) {
+    out.parameters = params_of(v);
+    out.theta0 = out.parameters.theta;
+    out.theta1c = out.parameters.theta1c;
+    out.theta1s = out.parameters.theta1s;
+    out.thrust_coefficient = last.thrust_coefficient;
+    out.flap_1c = last.flap_1c;
+    out.flap_1s = last.flap_1s;
+    out.status = s;
+    out.message = std::move(msg);
+    return out;
+  };
+  Eigen::VectorXd r;
+  if (!residual(x, &r)) {
+    return finish(
+        x, Status::Failed,
+        last.message.empty() ? "the starting pitch is outside (-pi/2, pi/2)" : last.message);
+  }
+  auto converged = [&](const Eigen::VectorXd& res) {
+    for (int j = 0; j < nx; ++j) {
+      if (!(std::abs(res(j)) <= o.tolerance)) return false;
+    }
+    return true;
+  };
+  // Forward-difference Jacobian at x (the residual is nearly linear in the pitch).
+  auto jacobian = [&](Eigen::MatrixXd* J) {
+    J->resize(nx, nx);
+    for (int j = 0; j < nx; ++j) {
+      const double h = 1e-6;
+      Eigen::VectorXd xp = x, rp;
+      xp(j) += h;
+      if (!residual(xp, &rp)) return false;
+      J->col(j) = (rp - r) / h;
+    }
+    residual(x, &r);  // restore `last` to x
+    return true;
+  };
+  // Newton with a Jacobian that is updated by Broyden's rule after each step and evaluated by
+  // finite differences only at the start (unless a warm start brings one) and when a step
+  // fails; each step is halved until the residual decreases (the thrust is strongly nonlinear
+  // in theta0 near the stability boundary, where the response is large).
+  Eigen::MatrixXd J;
+  bool fresh = false;
+  if (start != nullptr && start->jacobian.rows() == nx && start->jacobian.cols() == nx &&
+      start->kind == o.kind) {
+    J = start->jacobian;
+  } else {
+    if (!jacobian(&J)) {
+      return finish(x, Status::Failed, "the trim Jacobian could not be evaluated: " + last.message);
+    }
+    fresh = true;
+  }
+  out.iterations = 0;
+  while (!converged(r)) {
+    if (out.iterations >= o.max_iterations) {
+      out.jacobian = J;
+      return finish(x, Status::Warning,
+                    "trim not converged in " + std::to_string(out.iterations) +
+                        " iterations (`max_iterations`): |residual| = " +
+                        round_trip_text(r.cwiseAbs().maxCoeff()));
+    }
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(J);
+    bool accepted = false;
+    Eigen::VectorXd dx, trial, rt;
+    if (lu.isInvertible()) {
+      dx = lu.solve(r);
+      const double norm0 = r.norm();
+      for (int half = 0; half < (fresh ? 30 : 1); ++half, dx *= 0.5) {
+        trial = x - dx;
+        if (residual(trial, &rt) && (rt.norm() < norm0 || converged(rt))) {
+          accepted = true;
+          break;
+        }
+      }
+    }
+    if (!accepted) {
+      if (fresh) {
+        residual(x, &r);
+        out.jacobian = J;
+        return finish(x, Status::Failed,
+                      "the trim Newton step does not reduce the residual (|r| = " +
+                          round_trip_text(r.norm()) + "; singular or unreachable)" +
+                          (last.message.empty() ? std::string() : ": " + last.message));
+      }
+      residual(x, &r);
+      if (!jacobian(&J)) {
+        return finish(x, Status::Failed,
+                      "the trim Jacobian could not be evaluated: " + last.message);
+      }
+      fresh = true;
+      continue;
+    }
+    ++out.iterations;
+    const Eigen::VectorXd step = trial - x;
+    J += ((rt - r) - J * step) * step.transpose() / step.squaredNorm();  // Broyden
+    fresh = false;
+    x = trial;
+    r = rt;
+  }
+  out.jacobian = J;
+  out.converged = true;
+  return finish(x, last.status, last.message);
+}
+
+namespace {
+
+// The continuation's ingredients for a rotor trimmed at every mu.
+struct Trimmed {
+  Trimmed(const RotorParameters& p, const TransitionOptions& t, const TrimOptions& o)
+      : params(p), transition(t), options(o) {
+    t.Check();
+    o.Check();
+    if (o.kind == TrimKind::None) {
+      throw InvalidInput("trim", "none", "nothing to trim: use thrust or moment");
+    }
+    hover = trim(p, 0.0, o);
+    if (hover.status == Status::Failed) {
+      throw InvalidInput("thrust_coefficient", round_trip_text(o.thrust_coefficient),
+                         "the rotor cannot be trimmed in hover: " + hover.message);
+    }
+    const Analysis an(hover.parameters, t, hover.inflow);
+    const auto& m = an.model();
+    modes = label_hover_modes(an.hover().A0, m.flap_modes, m.lag_modes);
+  }
+
+  FloquetFunction function() const {
+    // Moment trim: warm start from the previous trim (the continuation moves in small steps of
+    // mu; the cold start can land on another branch where the response is large).  Thrust
+    // trim: always from the blade-element estimate, which is close and keeps each mu's trim
+    // independent of the order of evaluation.
+    auto previous = std::make_shared<TrimResult>(hover);
+    const bool warm = options.kind == TrimKind::Moment;
+    return [this, previous, warm](double mu, double zeta_tolerance) {
+      FloquetSample out;
+      const TrimResult tr = trim(params, mu, options, warm ? previous.get() : nullptr);
+      if (tr.status != Status::Failed) *previous = tr;
+      if (tr.status == Status::Failed) {
+        out.status = Status::Failed;
+        out.message = "trim failed at mu = " + round_trip_text(mu) + ": " + tr.message;
+        return out;
+      }
+      const Analysis an(tr.parameters, transition, tr.inflow);
+      out = an.floquet(mu, zeta_tolerance);
+      // (an unstable trimmed system is no problem of the sample: the exponents say so)
+      if (!tr.converged && out.status == Status::Ok) {
+        out.status = Status::Warning;
+        out.message = "trim at mu = " + round_trip_text(mu) + ": " + tr.message;
+      }
+      return out;
+    };
+  }
+
+  RotorParameters params;
+  TransitionOptions transition;
+  TrimOptions options;
+  TrimResult hover;  // the trim at mu = 0
+  HoverModes modes;
+};
+
+void sort_for_output(std::vector<LabelledExponent>& v) {
+  std::stable_sort(v.begin(), v.end(), [](const LabelledExponent& a, const LabelledExponent& b) {
+    return a.label != b.label ? a.label < b.label : a.omega > b.omega;
+  });
+}
+
+}  // namespace
+
+PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, double mu, double scan_step) {
+  check_mu(mu);
+  if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
+    throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
+  }
+  const Trimmed tr(p, t, o);
+  SweepResult sw = sweep_exponents(tr.modes, tr.function(), mu, mu, scan_step, t.zeta_tolerance);
+  PointResult r;
+  r.mu = mu;
+  if (sw.points.empty()) {
+    r.status = Status::Failed;
+    r.message = sw.message.empty() ? "continuation from hover failed" : sw.message;
+    return r;
+  }
+  r = std::move(sw.points.back());
+  r.mu = mu;
+  if (sw.status > r.status) {
+    r.status = sw.status;
+    r.message = r.message.empty() ? sw.message : r.message + "; " + sw.message;
+  }
+  sort_for_output(r.exponents);
+  return r;
+}
+
+SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, double mu0, double mu1, double step) {
+  const Trimmed tr(p, t, o);
+  SweepResult r = sweep_exponents(tr.modes, tr.function(), mu0, mu1, step, t.zeta_tolerance);
+  for (PointResult& pt : r.points) sort_for_output(pt.exponents);
+  return r;
+}
+
+SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, const std::vector<double>& mus, double scan_step) {
+  for (double mu : mus) check_mu(mu);
+  if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
+    throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
+  }
+  const Trimmed tr(p, t, o);
+  SweepResult r = track_exponents(tr.modes, tr.function(), mus, scan_step, t.zeta_tolerance);
+  for (PointResult& pt : r.points) sort_for_output(pt.exponents);
+  return r;
+}
+
+CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOptions& t,
+                                const TrimOptions& o, const CriticalOptions& c) {
+  c.Check();
+  const Trimmed tr(p, t, o);
+  CriticalOptions co = c;
+  co.scan_zeta_tolerance = std::min(c.scan_zeta_tolerance, t.zeta_tolerance);
+  CriticalResult r = find_critical(tr.modes, tr.function(), co);
+  sort_for_output(r.exponents);
+  return r;
+}
+
+}  // namespace flaplag

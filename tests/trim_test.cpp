@@ -1,0 +1,263 @@
+// Rotor thrust and trim (trim.h): the thrust against hand-derived blade-element results, the
+// inflow of eq 2.25, the round trips of issue 12 ("Checks: Trim"), moment trim, cyclic pitch
+// in the system, and bad input.
+#include "flaplag/trim.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "flaplag/analysis.h"
+#include "flaplag/core/errors.h"
+#include "test_util.h"
+
+namespace {
+
+using flaplag::InvalidInput;
+using flaplag::RotorParameters;
+using flaplag::Status;
+using flaplag::TrimKind;
+using flaplag::TrimOptions;
+
+RotorParameters cyclic_typical() {
+  RotorParameters p;
+  p.model = "paper-cyclic";
+  return p;
+}
+
+// The model's C_T at theta = 0.15 in hover with the inflow of eq 2.25 (solved together).
+double hover_thrust_at_015() {
+  const auto t = flaplag::rotor_thrust_momentum(cyclic_typical(), 0.0, 0.0);
+  EXPECT_EQ(t.status, Status::Ok) << t.message;
+  return t.thrust_coefficient;
+}
+
+}  // namespace
+
+// Uniform blade, no tip loss, hover: blade-element theory gives C_T = (sigma a/2)(theta/3 -
+// lambda/2) (the y = 0 response; the hover equilibrium does not enter at mu = 0).
+TEST(RotorThrust, HoverEqualsBladeElementFormula) {
+  const RotorParameters p = cyclic_typical();
+  const double lambda = 0.04;
+  const auto t = flaplag::rotor_thrust(p, 0.0, lambda);
+  ASSERT_EQ(t.status, Status::Ok) << t.message;
+  const double expected = 0.5 * p.sigma * p.lift_slope * (p.theta / 3.0 - lambda / 2.0);
+  EXPECT_NEAR(t.thrust_coefficient, expected, 1e-14) << "expected " << expected;
+  EXPECT_EQ(t.inflow, lambda);
+  // NaN inflow: eq 2.24.
+  const auto t24 = flaplag::rotor_thrust(p, 0.0, std::nan(""));
+  EXPECT_EQ(t24.inflow, flaplag::hover_inflow(p));
+}
+
+// In hover, eq 2.25 with the model's thrust is the quadratic 2 lambda^2 + (sigma a/4) lambda -
+// sigma a theta/6 = 0: lambda = (sigma a/16)[sqrt(1 + 64 theta/(3 sigma a)) - 1], not eq 2.24's
+// 24 theta/(sigma a) (the 3/4-radius relation).
+TEST(RotorThrust, MomentumInflowInHoverIsNotEq224) {
+  const RotorParameters p = cyclic_typical();
+  const auto t = flaplag::rotor_thrust_momentum(p, 0.0, 0.0);
+  ASSERT_EQ(t.status, Status::Ok) << t.message;
+  const double sa = p.sigma * p.lift_slope;
+  const double lambda = sa / 16.0 * (std::sqrt(1.0 + 64.0 * p.theta / (3.0 * sa)) - 1.0);
+  EXPECT_NEAR(t.inflow, lambda, 1e-14) << "expected " << lambda;
+  EXPECT_NEAR(t.inflow, std::sqrt(t.thrust_coefficient / 2.0), 1e-15);
+  EXPECT_GT(flaplag::hover_inflow(p) - t.inflow, 3e-3);  // 0.04967 vs 0.04604
+}
+
+TEST(MomentumInflow, SolvesEq225) {
+  for (double mu : {0.0, 0.05, 0.3, 1.2}) {
+    for (double alpha : {-0.1, 0.0, 0.08}) {
+      const double ct = 0.006;
+      const double lam = flaplag::momentum_inflow(ct, mu, alpha);
+      const double rhs = mu * std::tan(alpha) + ct / (2.0 * std::sqrt(mu * mu + lam * lam));
+      EXPECT_NEAR(lam, rhs, 1e-16) << "mu " << mu << " alpha " << alpha;
+    }
+  }
+}
+
+// Issue 12: C_T at theta = 0.15 in hover (eq 2.25 inflow), trimmed back: theta = 0.15 to 1e-12.
+TEST(Trim, HoverRoundTripRecoversThePitch) {
+  const double ct = hover_thrust_at_015();
+  RotorParameters p = cyclic_typical();
+  p.theta = 0.1;  // (the trim starts from its own estimate)
+  TrimOptions o;
+  o.kind = TrimKind::Thrust;
+  o.thrust_coefficient = ct;
+  const auto r = flaplag::trim(p, 0.0, o);
+  ASSERT_EQ(r.status, Status::Ok) << r.message;
+  EXPECT_NEAR(r.theta0, 0.15, 1e-12);
+  EXPECT_NEAR(r.thrust_coefficient, ct, 1e-15);
+  EXPECT_EQ(r.parameters.theta, r.theta0);
+}
+
+class ThrustTrimAtMu : public ::testing::TestWithParam<double> {};
+
+// Issue 12: the trimmed thrust equals the target to 1e-10 at mu = 0.3, 0.8, 1.2; and the trim
+// is a trim: a different target gives a different pitch, the thrust is independent of how it is
+// evaluated again.
+TEST_P(ThrustTrimAtMu, TrimmedThrustEqualsTarget) {
+  const double mu = GetParam();
+  TrimOptions o;
+  o.kind = TrimKind::Thrust;
+  o.thrust_coefficient = 0.005;
+  o.shaft_angle = 0.05;
+  const auto r = flaplag::trim(cyclic_typical(), mu, o);
+  ASSERT_NE(r.status, Status::Failed) << r.message;
+  EXPECT_EQ(r.status, Status::Ok) << r.message;
+  EXPECT_NEAR(r.thrust_coefficient, 0.005, 1e-10);
+  EXPECT_NEAR(r.inflow, flaplag::momentum_inflow(0.005, mu, 0.05), 0.0);
+  // independent re-evaluation of the thrust at the trimmed point
+  const auto again = flaplag::rotor_thrust(r.parameters, mu, r.inflow);
+  EXPECT_NEAR(again.thrust_coefficient, 0.005, 1e-10);
+}
+
+INSTANTIATE_TEST_SUITE_P(Mu, ThrustTrimAtMu, ::testing::Values(0.3, 0.8, 1.2));
+
+// Wind-tunnel trim: thrust at target and the first flap harmonic below 1e-10; the cyclic pitch
+// is really used (nonzero) and the untrimmed blade does flap at 1/rev.
+TEST(Trim, MomentTrimRemovesTheFirstFlapHarmonic) {
+  const double mu = 0.3;
+  TrimOptions o;
+  o.kind = TrimKind::Moment;
+  o.thrust_coefficient = 0.005;
+  const RotorParameters p = cyclic_typical();
+  const auto untrimmed = flaplag::rotor_thrust(p, mu, flaplag::momentum_inflow(0.005, mu, 0.0));
+  EXPECT_GT(std::hypot(untrimmed.flap_1c, untrimmed.flap_1s), 1e-3);
+  const auto r = flaplag::trim(p, mu, o);
+  ASSERT_EQ(r.status, Status::Ok) << r.message;
+  EXPECT_LT(std::abs(r.flap_1c), 1e-10);
+  EXPECT_LT(std::abs(r.flap_1s), 1e-10);
+  EXPECT_NEAR(r.thrust_coefficient, 0.005, 1e-10);
+  EXPECT_GT(std::hypot(r.theta1c, r.theta1s), 1e-3);
+  // the harmonic of the Analysis response agrees (independent harmonic extraction)
+  flaplag::Analysis an(r.parameters, {}, r.inflow);
+  const auto resp = an.response(mu);
+  ASSERT_NE(resp.status, Status::Failed) << resp.message;
+  EXPECT_LT(std::abs(resp.flap_harmonics[1]), 1e-10);
+  EXPECT_LT(std::abs(resp.flap_harmonics[2]), 1e-10);
+}
+
+// With theta1c = theta1s = 0 the cyclic model is the paper model: same A(psi), f(psi).
+TEST(CyclicPitch, ZeroCyclicEqualsPaperModel) {
+  RotorParameters p;
+  flaplag::Analysis paper(p, {});
+  p.model = "paper-cyclic";
+  flaplag::Analysis cyc(p, {});
+  for (double psi : {0.2, 2.0, 4.5}) {
+    const auto a = paper.snapshot(0.7, psi), b = cyc.snapshot(0.7, psi);
+    EXPECT_LT((a.A - b.A).cwiseAbs().maxCoeff(), 1e-15) << psi;
+    EXPECT_LT((a.f - b.f).cwiseAbs().maxCoeff(), 1e-15) << psi;
+  }
+  // and nonzero cyclic pitch changes the forcing at 1/rev even in hover
+  p.theta1s = 0.02;
+  flaplag::Analysis with(p, {});
+  EXPECT_GT((with.snapshot(0.0, 1.0).f - cyc.snapshot(0.0, 1.0).f).cwiseAbs().maxCoeff(), 1e-4);
+}
+
+TEST(CyclicPitch, NonzeroCyclicNeedsACyclicModel) {
+  RotorParameters p;  // model paper
+  p.theta1c = 0.01;
+  try {
+    flaplag::Analysis an(p, {});
+    FAIL() << "no error";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.name(), "theta1c");
+    EXPECT_NE(std::string(e.what()).find("paper-cyclic"), std::string::npos) << e.what();
+  }
+  p.theta1c = 0.0;
+  p.theta1s = 2.0;  // out of range is validate()'s error
+  EXPECT_THROW(flaplag::validate(p), InvalidInput);
+}
+
+TEST(Trim, BadInputNamesTheField) {
+  TrimOptions o;
+  o.kind = TrimKind::Thrust;
+  std::string why;
+  o.thrust_coefficient = -0.01;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("`thrust_coefficient`"), std::string::npos) << why;
+  try {
+    o.Check();
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.name(), "thrust_coefficient");
+    EXPECT_EQ(e.value(), "-0.01");
+  }
+  o.thrust_coefficient = std::nan("");
+  EXPECT_THROW(o.Check(), InvalidInput);
+  o.thrust_coefficient = 0.005;
+  o.shaft_angle = 2.0;
+  try {
+    o.Check();
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.name(), "shaft_angle");
+  }
+  o.shaft_angle = 0.0;
+  o.max_iterations = 0;
+  EXPECT_THROW(o.Check(), InvalidInput);
+  o.max_iterations = 30;
+  o.response.samples = 1;
+  try {
+    o.Check();
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.name(), "samples");
+  }
+  o.response.samples = 72;
+  // a model without the thrust
+  try {
+    flaplag::trim(RotorParameters{}, 0.3, o);
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.name(), "model");
+  }
+  // nothing to trim
+  o.kind = TrimKind::None;
+  EXPECT_THROW(flaplag::trim(cyclic_typical(), 0.3, o), InvalidInput);
+  o.kind = TrimKind::Thrust;
+  EXPECT_THROW(flaplag::trim(cyclic_typical(), -0.1, o), InvalidInput);
+  EXPECT_THROW(flaplag::trim(cyclic_typical(), std::nan(""), o), InvalidInput);
+  EXPECT_THROW(flaplag::momentum_inflow(0.0, 0.3, 0.0), InvalidInput);
+  TrimKind k;
+  EXPECT_TRUE(flaplag::trim_kind_from_name("moment", &k));
+  EXPECT_EQ(k, TrimKind::Moment);
+  EXPECT_FALSE(flaplag::trim_kind_from_name("Moment", &k));
+}
+
+// A thrust the pitch cannot reach within (-pi/2, pi/2) comes back Failed or Warning with a
+// message, never as ok.
+TEST(Trim, UnreachableThrustIsAStatus) {
+  TrimOptions o;
+  o.kind = TrimKind::Thrust;
+  o.thrust_coefficient = 0.1;
+  o.max_iterations = 3;
+  const auto r = flaplag::trim(cyclic_typical(), 0.3, o);
+  if (r.status == Status::Ok) {
+    EXPECT_LT(std::abs(r.theta0), 1.5707963267948966);
+    EXPECT_NEAR(r.thrust_coefficient, 0.1, 1e-10);
+  } else {
+    EXPECT_FALSE(r.message.empty());
+  }
+}
+
+// The exact-mode family of the cyclic model (paper-cyclic-2x2): the thrust sums over the modes.
+// In hover (y = 0) it is the blade-element value whatever the modes; at mu = 0.3 the two-mode
+// blade differs a little from the one-mode one.
+TEST(RotorThrust, ExactModesTwoByTwo) {
+  RotorParameters p = cyclic_typical();
+  p.model = "paper-cyclic-2x2";
+  p.modes = flaplag::ModeKind::Exact;
+  const double lambda = 0.04;
+  const auto hover = flaplag::rotor_thrust(p, 0.0, lambda);
+  ASSERT_EQ(hover.status, Status::Ok) << hover.message;
+  const double expected = 0.5 * p.sigma * p.lift_slope * (p.theta / 3.0 - lambda / 2.0);
+  EXPECT_NEAR(hover.thrust_coefficient, expected, 1e-13) << "expected " << expected;
+  const auto two = flaplag::rotor_thrust(p, 0.3, lambda);
+  p.model = "paper-cyclic";
+  const auto one = flaplag::rotor_thrust(p, 0.3, lambda);
+  ASSERT_EQ(two.status, Status::Ok) << two.message;
+  ASSERT_EQ(one.status, Status::Ok) << one.message;
+  EXPECT_NEAR(two.thrust_coefficient, one.thrust_coefficient, 0.05 * one.thrust_coefficient);
+  EXPECT_NE(two.thrust_coefficient, one.thrust_coefficient);
+}
