@@ -219,6 +219,17 @@ TEST(Trim, BadInputNamesTheField) {
   EXPECT_THROW(flaplag::trim(cyclic_typical(), -0.1, o), InvalidInput);
   EXPECT_THROW(flaplag::trim(cyclic_typical(), std::nan(""), o), InvalidInput);
   EXPECT_THROW(flaplag::momentum_inflow(0.0, 0.3, 0.0), InvalidInput);
+  // the thrust has no exact-circle form: refused, not a thrust of another region
+  {
+    RotorParameters p = cyclic_typical();
+    p.exact_reversed_flow = true;
+    try {
+      flaplag::trim(p, 0.3, o);
+      FAIL();
+    } catch (const InvalidInput& e) {
+      EXPECT_EQ(e.name(), "exact_reversed_flow");
+    }
+  }
   TrimKind k;
   EXPECT_TRUE(flaplag::trim_kind_from_name("moment", &k));
   EXPECT_EQ(k, TrimKind::Moment);

@@ -102,6 +102,13 @@ double mean_thrust(const PeriodicSystem& sys, const detail::ThrustSystem& ts,
 // updated to the steps used, so that later evaluations use the same grid.
 ThrustResult evaluate(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
                       double inflow, ResponseOptions& response) {
+  // The emitted thrust has a normal and a sector form only (ModelDescriptor::thrust); with the
+  // exact circle the thrust and A(psi) would model different reversed regions.
+  if (p.exact_reversed_flow) {
+    throw InvalidInput("exact_reversed_flow", "true",
+                       "the trim's rotor thrust is integrated with the Appendix D sector: trim "
+                       "with the sector (`exact_reversed_flow` = false)");
+  }
   ThrustResult out;
   out.mu = mu;
   const detail::SystemBuilder builder(p, m, inflow);
