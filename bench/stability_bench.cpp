@@ -9,6 +9,9 @@
 //   BM_RotorCritical_*:      the full mu_c search of `flaplag critical`, the same two settings.
 #include <benchmark/benchmark.h>
 
+#include <Eigen/Eigenvalues>
+
+#include "fixed_kernel.h"
 #include "flaplag/analysis.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/numerics/continuation.h"
@@ -35,6 +38,17 @@ void BM_RotorPointHsu_K50_J4(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_RotorPointHsu_K50_J4);
+
+// The comparison kernel (bench/fixed_kernel.h) on the same system: the arithmetic floor.
+void BM_RotorPointHsu_K50_J4_FixedKernel(benchmark::State& state) {
+  const auto an = typical();
+  const flaplag::bench::FixedKernel k(an.system(0.7), 50);
+  for (auto _ : state) {
+    Eigen::EigenSolver<Eigen::Matrix4d> es(k.phi(), false);
+    benchmark::DoNotOptimize(es.eigenvalues());
+  }
+}
+BENCHMARK(BM_RotorPointHsu_K50_J4_FixedKernel);
 
 void BM_RotorPointRK4_N50(benchmark::State& state) {
   const auto an = typical();

@@ -35,61 +35,67 @@ void require(bool ok, const char* name, double value, const char* reason) {
 
 Status worse(Status a, Status b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
 
-// Minimum-cost assignment of rows (tracked modes) to columns (new exponents).
+// Largest n solved exactly (branch and bound); beyond, greedy.  Also the size of the
+// stack buffers of ExponentTracker::advance, which allocates nothing up to it.
+constexpr int kExactAssignment = 8;
+
+// Minimum-cost assignment of rows (tracked modes) to columns (new exponents); cost(i, j) at
+// cost[i + n j] (column-major), match[i] the column of row i.
 class Assignment {
  public:
-  explicit Assignment(const Eigen::MatrixXd& cost)
-      : cost_(cost), n_(static_cast<int>(cost.rows())) {}
+  Assignment(const double* cost, int n) : cost_(cost), n_(n) {}
 
-  std::vector<int> solve() {
-    perm_.assign(static_cast<std::size_t>(n_), -1);
-    if (n_ <= 8) {
-      used_.assign(static_cast<std::size_t>(n_), false);
+  void solve(int* match) {
+    if (n_ <= kExactAssignment) {
+      for (int j = 0; j < n_; ++j) used_[j] = false;
       best_cost_ = std::numeric_limits<double>::infinity();
-      best_ = perm_;
+      for (int i = 0; i < n_; ++i) best_[i] = perm_[i] = -1;
       search(0, 0.0);
-      return best_;
+      for (int i = 0; i < n_; ++i) match[i] = best_[i];
+      return;
     }
     // Greedy: repeatedly take the cheapest remaining pair.
     std::vector<bool> row_done(static_cast<std::size_t>(n_), false), col_done = row_done;
+    for (int i = 0; i < n_; ++i) match[i] = -1;
     for (int step = 0; step < n_; ++step) {
       double c = std::numeric_limits<double>::infinity();
       int bi = 0, bj = 0;
       for (int i = 0; i < n_; ++i)
         for (int j = 0; j < n_; ++j)
-          if (!row_done[i] && !col_done[j] && cost_(i, j) < c) {
-            c = cost_(i, j);
+          if (!row_done[i] && !col_done[j] && at(i, j) < c) {
+            c = at(i, j);
             bi = i;
             bj = j;
           }
       row_done[bi] = col_done[bj] = true;
-      perm_[bi] = bj;
+      match[bi] = bj;
     }
-    return perm_;
   }
 
  private:
+  double at(int i, int j) const { return cost_[i + static_cast<std::size_t>(n_) * j]; }
+
   // Depth-first over permutations with the partial cost as bound (costs are >= 0).
   void search(int row, double partial) {
     if (partial >= best_cost_) return;
     if (row == n_) {
       best_cost_ = partial;
-      best_ = perm_;
+      for (int i = 0; i < n_; ++i) best_[i] = perm_[i];
       return;
     }
     for (int j = 0; j < n_; ++j) {
       if (used_[j]) continue;
       used_[j] = true;
       perm_[row] = j;
-      search(row + 1, partial + cost_(row, j));
+      search(row + 1, partial + at(row, j));
       used_[j] = false;
     }
   }
 
-  const Eigen::MatrixXd& cost_;
+  const double* cost_;
   int n_;
-  std::vector<int> perm_, best_;
-  std::vector<bool> used_;
+  int perm_[kExactAssignment] = {}, best_[kExactAssignment] = {};
+  bool used_[kExactAssignment] = {};
   double best_cost_ = 0.0;
 };
 
@@ -210,18 +216,38 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
   // distance of the new exponent from the prediction (omega modulo integers), times 2 pi so
   // that it is the relative change of the multiplier for small steps.  Both terms are O(1)
   // for a wrong match.
-  Eigen::MatrixXd cost(n, n), sim(n, n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      const FloquetExponent& e = next.exponents[j];
-      sim(i, j) = std::abs(vectors_[i].dot(e.eigenvector));  // dot() conjugates the left side
+  // Stack buffers up to kExactAssignment modes (nothing allocates on the common path).
+  constexpr int kSmall = kExactAssignment;
+  double cost_small[kSmall * kSmall], sim_small[kSmall * kSmall];
+  int match_small[kSmall];
+  std::vector<double> cost_big, sim_big;
+  std::vector<int> match_big;
+  double* cost = cost_small;
+  double* sim = sim_small;
+  int* match = match_small;
+  if (n > kSmall) {
+    cost_big.resize(static_cast<std::size_t>(n) * n);
+    sim_big.resize(static_cast<std::size_t>(n) * n);
+    match_big.resize(static_cast<std::size_t>(n));
+    cost = cost_big.data();
+    sim = sim_big.data();
+    match = match_big.data();
+  }
+  for (int j = 0; j < n; ++j) {
+    const FloquetExponent& e = next.exponents[j];
+    for (int i = 0; i < n; ++i) {
+      const std::size_t ij = static_cast<std::size_t>(i) + static_cast<std::size_t>(n) * j;
+      sim[ij] = std::abs(vectors_[i].dot(e.eigenvector));  // dot() conjugates the left side
       const double dw = e.omega - pw[i];
       const double dz = finite_zeta(e.zeta) - pz[i];
-      const double c = (1.0 - sim(i, j)) + kTwoPi * std::hypot(dz, dw - std::round(dw));
-      cost(i, j) = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
+      const double dr = dw - std::round(dw);
+      // sqrt, not hypot: both terms are finite (zeta is floored, omega is a principal value
+      // plus a continued integer) and an overflow to inf is capped below like any huge cost.
+      const double c = (1.0 - sim[ij]) + kTwoPi * std::sqrt(dz * dz + dr * dr);
+      cost[ij] = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
     }
   }
-  const std::vector<int> match = Assignment(cost).solve();
+  Assignment(cost, n).solve(match);
   for (int i = 0; i < n; ++i) {
     if (match[i] < 0 || match[i] >= n) {  // unreachable with finite costs; never index with it
       report.status = Status::Failed;
@@ -243,7 +269,8 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
     x.zeta = e.zeta;
     x.multiplier = e.multiplier;
     vectors_[i] = e.eigenvector;
-    report.min_similarity = std::min(report.min_similarity, sim(i, match[i]));
+    report.min_similarity =
+        std::min(report.min_similarity, sim[i + static_cast<std::size_t>(n) * match[i]]);
   }
   previous_mu_ = mu_;
   mu_ = mu;

@@ -370,6 +370,227 @@ class Kernel {
   std::vector<double> ones_;       // damping factors of point values
 };
 
+// ---- Hsu's product on plain fixed-size arrays (n = 4 and 8, J = 4) --------------------------
+//
+// The common state sizes (1x1 and 2x2 modes) get a kernel on plain column-major arrays whose
+// loops have compile-time bounds, so that GCC unrolls and vectorizes them for the target of
+// each clone: function multi-versioning (target_clones) builds an AVX2 and a baseline x86-64
+// version and the loader picks one per machine, so the binary runs on any x86-64.  Only add and
+// multiply appear (no FMA contraction: "avx2" does not enable FMA), each element is computed
+// by the same sequence of operations in either clone, so both give the same bits.  Nothing
+// here allocates: the grid is walked on the fly, the harmonic matrices are read in place.
+
+// Largest harmonic count and order the plain kernel takes (the generated models have 11
+// harmonics); beyond, the Eigen kernel is used.
+constexpr int kPlainMaxHarmonics = 64;
+
+struct PlainHsuInput {
+  int K = 0;
+  int n_edges = 0;
+  double edges[2] = {0.0, 0.0};
+  bool has_sector = false;
+  double sector_begin = 0.0, sector_end = 0.0;
+  int H[2] = {0, 0};                                  // harmonics of each region
+  const double* A[2][kPlainMaxHarmonics] = {{}, {}};  // column-major n x n, in place
+  double damp[kPlainMaxHarmonics / 2 + 2] = {};       // sinc(k d / 2), the equal-step means
+  int max_order = 0;
+};
+
+bool plain_reversed(const PlainHsuInput& in, double mid) {
+  return in.has_sector && mid >= in.sector_begin && mid < in.sector_end;
+}
+
+// Matrices of the plain kernel: column-major, each column as N/4 vectors of four doubles (GCC
+// vector extensions: one AVX register, or two SSE2 registers in the baseline clone).
+typedef double V4 __attribute__((vector_size(32)));
+
+template <int N>
+struct PlainMat {
+  static constexpr int Q = N / 4;  // vectors per column
+  V4 c[N * Q];
+  double& at(int i, int j) { return c[j * Q + i / 4][i % 4]; }
+  double at(int i, int j) const { return c[j * Q + i / 4][i % 4]; }
+};
+
+template <int N>
+[[gnu::always_inline]] inline void plain_load(const double* src, PlainMat<N>& m) {
+  __builtin_memcpy(m.c, src, sizeof m.c);
+}
+template <int N>
+[[gnu::always_inline]] inline void plain_store(const PlainMat<N>& m, double* dst) {
+  __builtin_memcpy(dst, m.c, sizeof m.c);
+}
+template <int N>
+[[gnu::always_inline]] inline void plain_identity(PlainMat<N>& m) {
+  for (V4& v : m.c) v = V4{0.0, 0.0, 0.0, 0.0};
+  for (int i = 0; i < N; ++i) m.at(i, i) = 1.0;
+}
+
+// C = A B: column j of C is sum_k A(:, k) B(k, j).
+template <int N>
+[[gnu::always_inline]] inline void plain_mul(const PlainMat<N>& A, const PlainMat<N>& B,
+                                             PlainMat<N>& C) {
+  constexpr int Q = N / 4;
+  for (int j = 0; j < N; ++j) {
+    for (int q = 0; q < Q; ++q) {
+      V4 acc = A.c[q] * B.at(0, j);
+      for (int k = 1; k < N; ++k) acc += A.c[k * Q + q] * B.at(k, j);
+      C.c[j * Q + q] = acc;
+    }
+  }
+}
+
+// X = delta C over one substep: the harmonics of the region weighted by w (w[0] = delta, w[h]
+// = delta times the interval mean of phi_h).
+template <int N>
+[[gnu::always_inline]] inline void plain_weighted_sum(const double* const* A, int H,
+                                                      const double* w, PlainMat<N>& X) {
+  constexpr int V = N * N / 4;
+  for (int e = 0; e < V; ++e) {
+    V4 a;
+    __builtin_memcpy(&a, A[0] + 4 * e, sizeof a);
+    X.c[e] = a * w[0];
+  }
+  for (int h = 1; h < H; ++h) {
+    const double* ah = A[h];
+    const double wh = w[h];
+    for (int e = 0; e < V; ++e) {
+      V4 a;
+      __builtin_memcpy(&a, ah + 4 * e, sizeof a);
+      X.c[e] += a * wh;
+    }
+  }
+}
+
+// Phi <- exp(X) Phi with exp(X) ~ I + X + X^2 (I/2 + X/6 + X^2/24) (eq 3.27, J = 4, two
+// products by Paterson-Stockmeyer) and one product for the accumulation (eq 3.25).
+template <int N>
+[[gnu::always_inline]] inline void plain_taylor4_step(const PlainMat<N>& X, PlainMat<N>& Phi) {
+  PlainMat<N> X2, T, E;
+  plain_mul<N>(X, X, X2);
+  for (int e = 0; e < N * N / 4; ++e) T.c[e] = X.c[e] * (1.0 / 6.0) + X2.c[e] * (1.0 / 24.0);
+  for (int i = 0; i < N; ++i) T.at(i, i) += 0.5;
+  plain_mul<N>(X2, T, E);
+  for (int e = 0; e < N * N / 4; ++e) E.c[e] += X.c[e];
+  for (int i = 0; i < N; ++i) E.at(i, i) += 1.0;
+  plain_mul<N>(E, Phi, X2);
+  Phi = X2;
+}
+
+// Weights of the harmonic sum for a substep of width delta centred at z = e^{i mid}, damped by
+// damp[k] (eqs 4.2-4.5); w[0] = delta.
+[[gnu::always_inline]] inline void plain_weights(double zc, double zs, int H, const double* damp,
+                                                 double delta, double* w) {
+  w[0] = delta;
+  double wc = zc, ws = zs;
+  for (int h = 1; h < H; h += 2) {
+    const double f = damp[(h + 1) / 2] * delta;
+    w[h] = wc * f;
+    if (h + 1 < H) w[h + 1] = ws * f;
+    const double t = wc * zc - ws * zs;
+    ws = wc * zs + ws * zc;
+    wc = t;
+  }
+}
+
+// The grid rule of make_grid() walked without storing it: step i of K, split at a sector edge
+// strictly inside it (beyond rounding), each substep in the region of its midpoint.
+template <int N>
+[[gnu::always_inline]] inline void plain_hsu_impl(const PlainHsuInput& in, double* out) {
+  PlainMat<N> Phi, X;
+  plain_identity<N>(Phi);
+  const int K = in.K;
+  const double d = kTwoPi / K;
+  const double slack = 1e-12 * kTwoPi;
+  const Phasor step = phasor(d);
+  double zc = 1.0, zs = 0.0;  // e^{i mid_i}, the rotation recurrence of phasor_grid()
+  double w[kPlainMaxHarmonics], dsub[kPlainMaxHarmonics / 2 + 2];
+  auto substep = [&](double a, double b) __attribute__((always_inline)) {
+    const double delta = b - a;
+    const double mid = 0.5 * (a + b);
+    const int r = plain_reversed(in, mid) ? 1 : 0;
+    dsub[0] = 1.0;
+    for (int k = 1; k <= in.max_order; ++k) dsub[k] = sinc(k * 0.5 * delta);
+    const Phasor z = phasor(mid);
+    plain_weights(z.c, z.s, in.H[r], dsub, delta, w);
+    plain_weighted_sum<N>(in.A[r], in.H[r], w, X);
+    plain_taylor4_step<N>(X, Phi);
+  };
+  for (int i = 0; i < K; ++i) {
+    if (i % kReseed == 0) {
+      const Phasor z = phasor(0.5 * d + i * d);
+      zc = z.c;
+      zs = z.s;
+    } else {
+      const double t = zc * step.c - zs * step.s;
+      zs = zc * step.s + zs * step.c;
+      zc = t;
+    }
+    const double a = i * d;
+    const double b = (i + 1 == K) ? kTwoPi : (i + 1) * d;
+    bool split = false;
+    for (int k = 0; k < in.n_edges; ++k)
+      split |= in.edges[k] > a + slack && in.edges[k] < b - slack;
+    if (!split) {
+      const int r = plain_reversed(in, 0.5 * (a + b)) ? 1 : 0;
+      plain_weights(zc, zs, in.H[r], in.damp, b - a, w);
+      plain_weighted_sum<N>(in.A[r], in.H[r], w, X);
+      plain_taylor4_step<N>(X, Phi);
+      continue;
+    }
+    double lo = a;
+    for (int k = 0; k < in.n_edges; ++k) {
+      if (in.edges[k] > a + slack && in.edges[k] < b - slack) {
+        substep(lo, in.edges[k]);
+        lo = in.edges[k];
+      }
+    }
+    substep(lo, b);
+  }
+  plain_store<N>(Phi, out);
+}
+
+__attribute__((target_clones("avx2", "default"))) void plain_hsu4(const PlainHsuInput& in,
+                                                                  double* Phi) {
+  plain_hsu_impl<4>(in, Phi);
+}
+
+__attribute__((target_clones("avx2", "default"))) void plain_hsu8(const PlainHsuInput& in,
+                                                                  double* Phi) {
+  plain_hsu_impl<8>(in, Phi);
+}
+
+// Hsu by the plain kernel when it applies (n = 4 or 8, J = 4, few harmonics); false otherwise.
+bool plain_hsu(const PeriodicSystem& sys, int K, int J, Eigen::MatrixXd& phi) {
+  if (J != 4 || (sys.n != 4 && sys.n != 8)) return false;
+  PlainHsuInput in;
+  in.K = K;
+  const HarmonicSet* sets[2] = {&sys.normal, sys.has_sector ? &sys.reversed : &sys.normal};
+  for (int r = 0; r < 2; ++r) {
+    const int H = static_cast<int>(sets[r]->A.size());
+    if (H > kPlainMaxHarmonics) return false;
+    in.H[r] = H;
+    for (int h = 0; h < H; ++h) in.A[r][h] = sets[r]->A[h].data();
+    in.max_order = std::max(in.max_order, H / 2);
+  }
+  in.has_sector = sys.has_sector;
+  in.sector_begin = sys.sector_begin;
+  in.sector_end = sys.sector_end;
+  if (sys.has_sector) {
+    if (sys.sector_begin > 0.0 && sys.sector_begin < kTwoPi)
+      in.edges[in.n_edges++] = sys.sector_begin;
+    if (sys.sector_end > 0.0 && sys.sector_end < kTwoPi) in.edges[in.n_edges++] = sys.sector_end;
+  }
+  in.damp[0] = 1.0;
+  for (int k = 1; k <= in.max_order; ++k) in.damp[k] = sinc(k * 0.5 * kTwoPi / K);
+  phi.resize(sys.n, sys.n);
+  if (sys.n == 4)
+    plain_hsu4(in, phi.data());
+  else
+    plain_hsu8(in, phi.data());
+  return true;
+}
+
 // Runs `fn` with the kernel of the right dimension and returns a MatrixXd.
 template <typename Fn>
 Eigen::MatrixXd dispatch(const PeriodicSystem& sys, Fn&& fn) {
@@ -434,6 +655,8 @@ Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, 
   check_count("intervals", intervals);
   check_count("terms", terms, TransitionOptions::kMaxTerms);
   sys.validate();
+  Eigen::MatrixXd phi;
+  if (plain_hsu(sys, intervals, terms, phi)) return phi;
   return dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.hsu(intervals, terms)); });
 }
 
