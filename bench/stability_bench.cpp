@@ -126,6 +126,15 @@ void BM_RotorCritical_HsuAuto(benchmark::State& state) {
 }
 BENCHMARK(BM_RotorCritical_HsuAuto)->Unit(benchmark::kMicrosecond);
 
+// The reference method (Magnus4 + Richardson, sixth order) with automatic steps.
+void BM_RotorCritical_MagnusAuto(benchmark::State& state) {
+  flaplag::TransitionOptions o;
+  o.method = flaplag::TransitionMethod::Magnus4;
+  const auto an = typical(o);
+  for (auto _ : state) benchmark::DoNotOptimize(an.critical({}));
+}
+BENCHMARK(BM_RotorCritical_MagnusAuto)->Unit(benchmark::kMicrosecond);
+
 void BM_RotorAnalysis_Setup(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(typical());
 }

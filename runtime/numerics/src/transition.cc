@@ -17,6 +17,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
@@ -393,6 +394,7 @@ struct PlainHsuInput {
   int H[2] = {0, 0};                                  // harmonics of each region
   const double* A[2][kPlainMaxHarmonics] = {{}, {}};  // column-major n x n, in place
   double damp[kPlainMaxHarmonics / 2 + 2] = {};       // sinc(k d / 2), the equal-step means
+  double ones[kPlainMaxHarmonics / 2 + 2] = {};       // 1: point values
   int max_order = 0;
 };
 
@@ -560,10 +562,121 @@ __attribute__((target_clones("avx2", "default"))) void plain_hsu8(const PlainHsu
   plain_hsu_impl<8>(in, Phi);
 }
 
-// Hsu by the plain kernel when it applies (n = 4 or 8, J = 4, few harmonics); false otherwise.
-bool plain_hsu(const PeriodicSystem& sys, int K, int J, Eigen::MatrixXd& phi) {
-  if (J != 4 || (sys.n != 4 && sys.n != 8)) return false;
-  PlainHsuInput in;
+// exp(X) by scaling and squaring with the degree-12 Taylor polynomial: X / 2^s with
+// ||X / 2^s||_1 <= 1/4 (then the truncation is below 0.25^13 / 13! = 2.4e-18 relative), the
+// polynomial in Paterson-Stockmeyer form with X^2, X^3, X^4 (five products in all), then s
+// squarings.  X is overwritten with exp(X); a non-finite X gives a non-finite result.
+template <int N>
+[[gnu::always_inline]] inline void plain_expm(PlainMat<N>& X) {
+  constexpr int V = N * N / 4;
+  double norm = 0.0;
+  for (int j = 0; j < N; ++j) {
+    double col = 0.0;
+    for (int i = 0; i < N; ++i) col += std::abs(X.at(i, j));
+    norm = std::max(norm, col);
+  }
+  if (!std::isfinite(norm)) {
+    for (V4& v : X.c) v = v * std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  int s = 0;
+  if (norm > 0.25) {
+    int e = 0;
+    std::frexp(norm / 0.25, &e);  // norm / 0.25 < 2^e
+    s = e;
+  }
+  const double scale = std::ldexp(1.0, -s);
+  for (V4& v : X.c) v = v * scale;
+  PlainMat<N> X2, X3, X4, P, Q;
+  plain_mul<N>(X, X, X2);
+  plain_mul<N>(X2, X, X3);
+  plain_mul<N>(X2, X2, X4);
+  // c_j = 1 / j!
+  constexpr double c[13] = {1.0,
+                            1.0,
+                            1.0 / 2,
+                            1.0 / 6,
+                            1.0 / 24,
+                            1.0 / 120,
+                            1.0 / 720,
+                            1.0 / 5040,
+                            1.0 / 40320,
+                            1.0 / 362880,
+                            1.0 / 3628800,
+                            1.0 / 39916800,
+                            1.0 / 479001600};
+  // B_k = c_{4k} I + c_{4k+1} X + c_{4k+2} X^2 + c_{4k+3} X^3; p = B0 + X4 (B1 + X4 (B2 + c12 X4)).
+  auto block = [&](int k, PlainMat<N>& B) __attribute__((always_inline)) {
+    for (int e = 0; e < V; ++e)
+      B.c[e] = X.c[e] * c[4 * k + 1] + X2.c[e] * c[4 * k + 2] + X3.c[e] * c[4 * k + 3];
+    for (int i = 0; i < N; ++i) B.at(i, i) += c[4 * k];
+  };
+  block(2, P);
+  for (int e = 0; e < V; ++e) P.c[e] += X4.c[e] * c[12];
+  plain_mul<N>(X4, P, Q);
+  block(1, P);
+  for (int e = 0; e < V; ++e) Q.c[e] += P.c[e];
+  plain_mul<N>(X4, Q, P);
+  block(0, Q);
+  for (int e = 0; e < V; ++e) X.c[e] = P.c[e] + Q.c[e];
+  for (int k = 0; k < s; ++k) {
+    plain_mul<N>(X, X, P);
+    X = P;
+  }
+}
+
+// A at psi in the given region into X (point values of the harmonics).
+template <int N>
+[[gnu::always_inline]] inline void plain_point(const PlainHsuInput& in, int r, double psi,
+                                               double* w, PlainMat<N>& X) {
+  const Phasor z = phasor(psi);
+  plain_weights(z.c, z.s, in.H[r], in.ones, 1.0, w);
+  plain_weighted_sum<N>(in.A[r], in.H[r], w, X);
+}
+
+// Fourth-order Magnus on the given grid, as Kernel::magnus: two-point Gauss nodes,
+//   Omega = h/2 (A1 + A2) + sqrt(3) h^2 / 12 [A2, A1],  Phi <- exp(Omega) Phi.
+template <int N>
+[[gnu::always_inline]] inline void plain_magnus_impl(const PlainHsuInput& in, const Segment* grid,
+                                                     int count, double* out) {
+  constexpr int V = N * N / 4;
+  const double g = std::sqrt(3.0) / 6.0;
+  PlainMat<N> Phi, A1, A2, Om, P, Q;
+  plain_identity<N>(Phi);
+  double w[kPlainMaxHarmonics];
+  for (int i = 0; i < count; ++i) {
+    const Segment& sg = grid[i];
+    const double h = sg.b - sg.a;
+    const int r = sg.reversed ? 1 : 0;
+    plain_point<N>(in, r, sg.a + (0.5 - g) * h, w, A1);
+    plain_point<N>(in, r, sg.a + (0.5 + g) * h, w, A2);
+    plain_mul<N>(A2, A1, P);
+    plain_mul<N>(A1, A2, Q);
+    const double c1 = 0.5 * h, c2 = std::sqrt(3.0) / 12.0 * h * h;
+    for (int e = 0; e < V; ++e) Om.c[e] = (A1.c[e] + A2.c[e]) * c1 + (P.c[e] - Q.c[e]) * c2;
+    plain_expm<N>(Om);
+    plain_mul<N>(Om, Phi, P);
+    Phi = P;
+  }
+  plain_store<N>(Phi, out);
+}
+
+__attribute__((target_clones("avx2", "default"))) void plain_magnus4(const PlainHsuInput& in,
+                                                                     const Segment* grid, int count,
+                                                                     double* Phi) {
+  plain_magnus_impl<4>(in, grid, count, Phi);
+}
+
+__attribute__((target_clones("avx2", "default"))) void plain_magnus8(const PlainHsuInput& in,
+                                                                     const Segment* grid, int count,
+                                                                     double* Phi) {
+  plain_magnus_impl<8>(in, grid, count, Phi);
+}
+
+// The input of the plain kernels for grids of K equal steps; false when they do not apply
+// (n other than 4 and 8, or more than kPlainMaxHarmonics harmonics).
+bool plain_input(const PeriodicSystem& sys, int K, PlainHsuInput& in) {
+  if (sys.n != 4 && sys.n != 8) return false;
   in.K = K;
   const HarmonicSet* sets[2] = {&sys.normal, sys.has_sector ? &sys.reversed : &sys.normal};
   for (int r = 0; r < 2; ++r) {
@@ -583,11 +696,33 @@ bool plain_hsu(const PeriodicSystem& sys, int K, int J, Eigen::MatrixXd& phi) {
   }
   in.damp[0] = 1.0;
   for (int k = 1; k <= in.max_order; ++k) in.damp[k] = sinc(k * 0.5 * kTwoPi / K);
+  for (double& one : in.ones) one = 1.0;
+  return true;
+}
+
+// Hsu by the plain kernel when it applies (n = 4 or 8, J = 4, few harmonics); false otherwise.
+bool plain_hsu(const PeriodicSystem& sys, int K, int J, Eigen::MatrixXd& phi) {
+  PlainHsuInput in;
+  if (J != 4 || !plain_input(sys, K, in)) return false;
   phi.resize(sys.n, sys.n);
   if (sys.n == 4)
     plain_hsu4(in, phi.data());
   else
     plain_hsu8(in, phi.data());
+  return true;
+}
+
+// Magnus on `grid` by the plain kernel when it applies; false otherwise.
+bool plain_magnus(const PeriodicSystem& sys, const std::vector<Segment>& grid,
+                  Eigen::MatrixXd& phi) {
+  PlainHsuInput in;
+  if (!plain_input(sys, 1, in)) return false;
+  phi.resize(sys.n, sys.n);
+  const int count = static_cast<int>(grid.size());
+  if (sys.n == 4)
+    plain_magnus4(in, grid.data(), count, phi.data());
+  else
+    plain_magnus8(in, grid.data(), count, phi.data());
   return true;
 }
 
@@ -675,10 +810,11 @@ TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps)
   sys.validate();
   const std::vector<Segment> coarse = make_grid(sys, steps);
   const std::vector<Segment> fine = bisect(coarse);
-  const Eigen::MatrixXd ph =
-      dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(coarse)); });
-  const Eigen::MatrixXd ph2 =
-      dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(fine)); });
+  Eigen::MatrixXd ph, ph2;
+  if (!plain_magnus(sys, coarse, ph))
+    ph = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(coarse)); });
+  if (!plain_magnus(sys, fine, ph2))
+    ph2 = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(fine)); });
   TransitionResult out;
   out.phi = (16.0 * ph2 - ph) / 15.0;
   out.error_estimate = (ph2 - ph).cwiseAbs().maxCoeff() / 15.0;
