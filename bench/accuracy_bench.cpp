@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "flaplag/analysis.h"
+#include "flaplag/core/constants.h"
 #include "flaplag/numerics/floquet.h"
 
 namespace {

@@ -72,8 +72,15 @@ BENCHMARK(BM_ScalingFloquet_Auto)->DenseRange(1, 5)->Unit(benchmark::kMillisecon
 
 void BM_ScalingCritical_Auto(benchmark::State& state) {
   const auto an = exact(size_of(state));
-  for (auto _ : state) benchmark::DoNotOptimize(an.critical({}));
+  flaplag::CriticalResult r;
+  for (auto _ : state) {
+    r = an.critical({});
+    benchmark::DoNotOptimize(r);
+  }
   label(state);
+  state.counters["evaluations"] = r.evaluations;
+  state.counters["mu_c"] = r.mu_c.value_or(0.0);
+  state.counters["mu_c_error"] = r.mu_c_error.value_or(-1.0);
 }
 // One search takes 25 ms (1 x 1) to about 15 s (5 x 5): one iteration per repetition from 3 x 3.
 BENCHMARK(BM_ScalingCritical_Auto)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
@@ -85,8 +92,15 @@ void BM_ScalingCritical_MagnusAuto(benchmark::State& state) {
   flaplag::TransitionOptions o;
   o.method = flaplag::TransitionMethod::Magnus4;
   const auto an = exact(size_of(state), o);
-  for (auto _ : state) benchmark::DoNotOptimize(an.critical({}));
+  flaplag::CriticalResult r;
+  for (auto _ : state) {
+    r = an.critical({});
+    benchmark::DoNotOptimize(r);
+  }
   label(state);
+  state.counters["evaluations"] = r.evaluations;
+  state.counters["mu_c"] = r.mu_c.value_or(0.0);
+  state.counters["mu_c_error"] = r.mu_c_error.value_or(-1.0);
 }
 BENCHMARK(BM_ScalingCritical_MagnusAuto)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
 

@@ -19,6 +19,12 @@ namespace {
 constexpr double kAmbiguousSimilarity = 0.5;
 // Exponent accuracy asked of continuation steps that are not reported (per rev).
 constexpr double kIdentificationTolerance = 1e-3;
+// A scan point of find_critical that only has to tell the sign of max zeta - threshold is
+// evaluated at kSignFraction times the margin of the previous point (at most
+// kIdentificationTolerance), and kept when the sign of f survives moving every zeta by
+// kSignMargin times its error estimate.
+constexpr double kSignFraction = 0.02;
+constexpr double kSignMargin = 10.0;
 // ln of the smallest normal double over 2 pi: a multiplier below it is indistinguishable from 0.
 // Zero multipliers have zeta = -inf; for prediction and matching their zeta is taken as this.
 const double kZetaFloor = std::log(std::numeric_limits<double>::min()) / kTwoPi;
@@ -107,7 +113,24 @@ struct Trial {
   TrackReport report;
   std::optional<double> error;  // the sample's error estimate of the largest zeta
   double liouville_residual = 0.0;
+  // The sign of f holds for every exponent moved by kSignMargin times its error estimate.
+  bool sign_certain = false;
 };
+
+// Whether max_k zeta_k - threshold keeps its sign when every zeta_k moves by kSignMargin times
+// its estimated error (false without estimates).
+bool sign_certain(const FloquetSample& s, double threshold) {
+  const std::size_t n = s.floquet.exponents.size();
+  if (n == 0 || s.zeta_errors.size() != n) return false;
+  double lo = -std::numeric_limits<double>::infinity(), hi = lo;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double z = s.floquet.exponents[k].zeta, e = kSignMargin * s.zeta_errors[k];
+    if (!std::isfinite(e)) return false;
+    lo = std::max(lo, z - e);
+    hi = std::max(hi, z + e);
+  }
+  return hi <= threshold || lo > threshold;
+}
 
 // Error estimate of the largest zeta of a sample (the one that decides stability).
 std::optional<double> largest_zeta_error(const FloquetSample& s) {
@@ -345,6 +368,7 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
       t.report.message = sample.message;
     }
     t.f = t.tracker.max_zeta() - opt.zeta_threshold;
+    t.sign_certain = sample.status == Status::Ok && sign_certain(sample, opt.zeta_threshold);
     return t;
   };
   auto failed = [&](const Trial& t) {
@@ -415,15 +439,61 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
     return err;
   };
 
+  // A scan point only has to tell the sign of f; far from the threshold that needs much less
+  // than scan_zeta_tolerance.  sign_only() evaluates at a tolerance scaled to the margin of the
+  // previous point and keeps the result when its own error estimates leave the sign beyond
+  // doubt (sign_certain(), sample resolved); otherwise, and for every
+  // point whose value is used (both ends of a bracket, the last point reported), the point is
+  // evaluated at scan_zeta_tolerance exactly as without the shortcut, so mu_c, its error and
+  // the reported exponents do not change.  `loose` marks a trial evaluated this way.
+  bool estimates = false;  // the FloquetFunction has given an error estimate
+  auto sign_only = [&](const ExponentTracker& from, double mu, double margin, bool& loose) {
+    const double tol = std::max(opt.scan_zeta_tolerance,
+                                std::min(kIdentificationTolerance, kSignFraction * margin));
+    loose = false;
+    // Only a FloquetFunction that estimates its errors can be asked for the sign alone.
+    if (tol > opt.scan_zeta_tolerance && estimates) {
+      Trial t = evaluate(from, mu, tol);
+      if (t.report.status == Status::Ok && t.sign_certain) {
+        loose = true;
+        return t;
+      }
+    }
+    return evaluate(from, mu, opt.scan_zeta_tolerance);
+  };
+
   // Bounded by Check(): at most kMaxContinuationSteps (+1 for rounding).
   const long steps = static_cast<long>(std::ceil(opt.mu_max / opt.scan_step - 1e-9));
   Trial prev{0.0, tracker.max_zeta() - opt.zeta_threshold, tracker, {}, std::nullopt, 0.0};
+  bool prev_loose = false;
+  ExponentTracker before_prev = tracker;  // the tracker one grid point below prev
   for (long i = 1; i <= steps; ++i) {
     const double mu = std::min(static_cast<double>(i) * opt.scan_step, opt.mu_max);
-    Trial hi = evaluate(prev.tracker, mu, opt.scan_zeta_tolerance);
+    bool hi_loose = false;
+    Trial hi = sign_only(prev.tracker, mu, std::abs(prev.f), hi_loose);
     if (hi.report.status == Status::Failed) return failed(hi);
-    note(mu, hi.report.status, hi.report.message);
+    estimates = estimates || hi.error.has_value();
     if ((hi.f > 0.0) == (prev.f > 0.0)) {
+      note(mu, hi.report.status, hi.report.message);
+      before_prev = prev.tracker;
+      prev = std::move(hi);
+      prev_loose = hi_loose;
+      continue;
+    }
+    // A sign change: both ends at the scan resolution, as the plain scan has them.
+    if (prev_loose) {
+      prev = evaluate(before_prev, prev.mu, opt.scan_zeta_tolerance);
+      if (prev.report.status == Status::Failed) return failed(prev);
+      note(prev.mu, prev.report.status, prev.report.message);
+      prev_loose = false;
+    }
+    if (hi_loose) {
+      hi = evaluate(prev.tracker, mu, opt.scan_zeta_tolerance);
+      if (hi.report.status == Status::Failed) return failed(hi);
+    }
+    note(mu, hi.report.status, hi.report.message);
+    if ((hi.f > 0.0) == (prev.f > 0.0)) {  // the sign change was within the loose estimates
+      before_prev = prev.tracker;
       prev = std::move(hi);
       continue;
     }
@@ -439,6 +509,7 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
       note(mu, Status::Warning,
            "a stability change seen at the scan resolution vanished when resolved (zeta = " +
                fmt(hi.f + opt.zeta_threshold) + " at the scan resolution)");
+      before_prev = prev.tracker;
       prev = std::move(b);
       continue;
     }
@@ -464,7 +535,14 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
       out.intervals.back().end = bb.mu;
       out.intervals.back().end_error = err;
     }
+    before_prev = prev.tracker;
     prev = std::move(b);
+    prev_loose = false;
+  }
+  if (prev_loose && out.intervals.empty()) {  // its exponents are reported: scan resolution
+    prev = evaluate(before_prev, prev.mu, opt.scan_zeta_tolerance);
+    if (prev.report.status == Status::Failed) return failed(prev);
+    note(prev.mu, prev.report.status, prev.report.message);
   }
 
   if (out.intervals.empty()) {
