@@ -10,6 +10,8 @@
 //   BM_ScalingFloquet_Auto:      Analysis::floquet(0.8) with the default automatic steps
 //                                (counter K: the intervals it settled on).
 //   BM_ScalingCritical_Auto:     the converged mu_c search of `flaplag critical`.
+//   BM_ScalingCritical_MagnusAuto: the same search with the reference method (Magnus4), 1 x 1
+//                                and 2 x 2.
 //   BM_ScalingAnalysis_Setup:    exact modes, spanwise integrals, hover (once per blade).
 #include <benchmark/benchmark.h>
 
@@ -70,12 +72,37 @@ BENCHMARK(BM_ScalingFloquet_Auto)->DenseRange(1, 5)->Unit(benchmark::kMillisecon
 
 void BM_ScalingCritical_Auto(benchmark::State& state) {
   const auto an = exact(size_of(state));
-  for (auto _ : state) benchmark::DoNotOptimize(an.critical({}));
+  flaplag::CriticalResult r;
+  for (auto _ : state) {
+    r = an.critical({});
+    benchmark::DoNotOptimize(r);
+  }
   label(state);
+  state.counters["evaluations"] = r.evaluations;
+  state.counters["mu_c"] = r.mu_c.value_or(0.0);
+  state.counters["mu_c_error"] = r.mu_c_error.value_or(-1.0);
 }
 // One search takes 25 ms (1 x 1) to about 15 s (5 x 5): one iteration per repetition from 3 x 3.
 BENCHMARK(BM_ScalingCritical_Auto)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ScalingCritical_Auto)->DenseRange(3, 5)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+// The reference method (Magnus4 with its Richardson pass, sixth order) with automatic steps:
+// the converged mu_c of `flaplag critical --method magnus` on 1 x 1 and 2 x 2 exact modes.
+void BM_ScalingCritical_MagnusAuto(benchmark::State& state) {
+  flaplag::TransitionOptions o;
+  o.method = flaplag::TransitionMethod::Magnus4;
+  const auto an = exact(size_of(state), o);
+  flaplag::CriticalResult r;
+  for (auto _ : state) {
+    r = an.critical({});
+    benchmark::DoNotOptimize(r);
+  }
+  label(state);
+  state.counters["evaluations"] = r.evaluations;
+  state.counters["mu_c"] = r.mu_c.value_or(0.0);
+  state.counters["mu_c_error"] = r.mu_c_error.value_or(-1.0);
+}
+BENCHMARK(BM_ScalingCritical_MagnusAuto)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
 
 void BM_ScalingAnalysis_Setup(benchmark::State& state) {
   const int k = size_of(state);

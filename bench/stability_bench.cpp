@@ -10,6 +10,9 @@
 //   *_ExactReversedFlow:     the same with the exact circular reversed-flow region.
 #include <benchmark/benchmark.h>
 
+#include <Eigen/Eigenvalues>
+
+#include "fixed_kernel.h"
 #include "flaplag/analysis.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/numerics/continuation.h"
@@ -36,6 +39,17 @@ void BM_RotorPointHsu_K50_J4(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_RotorPointHsu_K50_J4);
+
+// The comparison kernel (bench/fixed_kernel.h) on the same system: the arithmetic floor.
+void BM_RotorPointHsu_K50_J4_FixedKernel(benchmark::State& state) {
+  const auto an = typical();
+  const flaplag::bench::FixedKernel k(an.system(0.7), 50);
+  for (auto _ : state) {
+    Eigen::EigenSolver<Eigen::Matrix4d> es(k.phi(), false);
+    benchmark::DoNotOptimize(es.eigenvalues());
+  }
+}
+BENCHMARK(BM_RotorPointHsu_K50_J4_FixedKernel);
 
 void BM_RotorPointRK4_N50(benchmark::State& state) {
   const auto an = typical();
@@ -112,6 +126,15 @@ void BM_RotorCritical_HsuAuto(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(an.critical({}));
 }
 BENCHMARK(BM_RotorCritical_HsuAuto)->Unit(benchmark::kMicrosecond);
+
+// The reference method (Magnus4 + Richardson, sixth order) with automatic steps.
+void BM_RotorCritical_MagnusAuto(benchmark::State& state) {
+  flaplag::TransitionOptions o;
+  o.method = flaplag::TransitionMethod::Magnus4;
+  const auto an = typical(o);
+  for (auto _ : state) benchmark::DoNotOptimize(an.critical({}));
+}
+BENCHMARK(BM_RotorCritical_MagnusAuto)->Unit(benchmark::kMicrosecond);
 
 void BM_RotorAnalysis_Setup(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(typical());

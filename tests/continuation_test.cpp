@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <unsupported/Eigen/MatrixFunctions>
@@ -169,6 +170,72 @@ TEST(FindCritical, AllIntervalsOnsetAndRestabilization) {
   EXPECT_EQ(1u, first.intervals.size());
   EXPECT_FALSE(first.intervals[0].end.has_value());
   EXPECT_LT(first.evaluations, r.evaluations);
+}
+
+// A family whose samples are only as accurate as asked: every zeta is off by +tol / 2 and says
+// so (zeta_errors = tol).  `asked` records (mu, tol, max zeta) of every call.
+struct Request {
+  double mu, tol, max_zeta;
+};
+FloquetFunction inexact_family(std::function<Eigen::MatrixXd(double)> A, double cap,
+                               std::vector<Request>* asked) {
+  const FloquetFunction exact = constant_family(A);
+  return [=](double mu, double tol) {
+    tol = std::min(tol, cap);
+    FloquetSample s = exact(mu, tol);
+    double top = -1e300;
+    for (FloquetExponent& e : s.floquet.exponents) {
+      e.zeta += 0.5 * tol;
+      top = std::max(top, e.zeta);
+    }
+    s.zeta_errors.assign(s.floquet.exponents.size(), tol);
+    s.error = tol;
+    asked->push_back({mu, tol, top});
+    return s;
+  };
+}
+
+// Scan points far from the threshold are evaluated for their sign only (a looser tolerance);
+// both ends of the bracket and everything the search reports are at the scan resolution, so
+// mu_c, its error, mode and omega are those of a scan that asks scan_zeta_tolerance everywhere.
+TEST(FindCritical, ScanPointsFarFromTheThresholdAreEvaluatedForTheirSignOnly) {
+  auto A = [](double mu) {
+    const double ch = 2.0 * (0.5037 - mu);
+    return oscillators(1.2, stiffness(1.2, 1.17), ch, stiffness(ch, 1.28), 0.0);
+  };
+  const HoverModes hover = label_hover_modes(A(0.0), 1, 1);
+  CriticalOptions opt;
+  std::vector<Request> asked, strict_asked;
+  const CriticalResult r = find_critical(hover, inexact_family(A, 1.0, &asked), opt);
+  const CriticalResult strict =
+      find_critical(hover, inexact_family(A, opt.scan_zeta_tolerance, &strict_asked), opt);
+  ASSERT_TRUE(r.mu_c.has_value()) << r.message;
+  ASSERT_TRUE(strict.mu_c.has_value()) << strict.message;
+  EXPECT_EQ(*strict.mu_c, *r.mu_c);
+  EXPECT_EQ(strict.mu_c_error, r.mu_c_error);
+  EXPECT_EQ(strict.mode, r.mode);
+  EXPECT_EQ(strict.omega, r.omega);
+  EXPECT_EQ(Status::Ok, r.status) << r.message;
+  int loose = 0;
+  for (const Request& q : asked) {
+    if (q.tol <= opt.scan_zeta_tolerance) continue;
+    ++loose;
+    EXPECT_LE(q.tol, 1e-3);
+    // Asked only where the sign is beyond doubt or re-evaluated at the scan resolution.
+    const bool again = std::any_of(asked.begin(), asked.end(), [&](const Request& o) {
+      return o.mu == q.mu && o.tol <= opt.scan_zeta_tolerance;
+    });
+    EXPECT_TRUE(again || q.max_zeta + 10.0 * q.tol < 0.0) << "mu = " << q.mu;
+  }
+  EXPECT_GT(loose, 30);  // most of the 50 scan points below the crossing
+  // The last point of a stable scan is reported: at the scan resolution.
+  opt.mu_max = 0.3;
+  asked.clear();
+  const CriticalResult s = find_critical(hover, inexact_family(A, 1.0, &asked), opt);
+  EXPECT_FALSE(s.mu_c.has_value());
+  ASSERT_FALSE(asked.empty());
+  EXPECT_EQ(0.3, asked.back().mu);
+  EXPECT_LE(asked.back().tol, opt.scan_zeta_tolerance);
 }
 
 TEST(FindCritical, StableUpToMuMaxAndUnstableHover) {

@@ -297,6 +297,63 @@ TEST(Transition, ReducibleSystemsClosedForm) {
   }
 }
 
+// k decoupled copies of rotor_like() (block diagonal, the same sector): Phi is the block
+// diagonal of k copies of the 4-state Phi.
+PeriodicSystem copies_of_rotor_like(int k) {
+  const PeriodicSystem one = rotor_like();
+  PeriodicSystem s = one;
+  s.n = 4 * k;
+  for (HarmonicSet* set : {&s.normal, &s.reversed}) {
+    const HarmonicSet& src = set == &s.normal ? one.normal : one.reversed;
+    for (std::size_t h = 0; h < src.A.size(); ++h) {
+      set->A[h] = Eigen::MatrixXd::Zero(4 * k, 4 * k);
+      for (int b = 0; b < k; ++b) set->A[h].block(4 * b, 4 * b, 4, 4) = src.A[h];
+    }
+  }
+  return s;
+}
+
+// The fixed-size kernels (4, 8, 12, 16 states: plain arrays with AVX2/baseline clones, Hsu J = 4
+// and Magnus) and the general Eigen kernels (20 states) are different code: on k decoupled
+// copies each diagonal block must reproduce the 4-state result to rounding and the
+// off-diagonal blocks stay exactly zero.
+TEST(Transition, FixedSizeKernelsAgreeWithTheGeneralOnes) {
+  const PeriodicSystem one = rotor_like();
+  const Eigen::MatrixXd hsu4 = transition_matrix_hsu(one, 50, 4);
+  const Eigen::MatrixXd magnus4 = transition_matrix_magnus4(one, 25).phi;
+  // The 4-state kernel against an independent product of taylor() (eq 3.27) over the exact
+  // interval means A_mean(), split at the sector edges.
+  Eigen::MatrixXd product = Eigen::MatrixXd::Identity(4, 4);
+  for (int i = 0; i < 50; ++i) {
+    const double a = i * kTwoPi / 50, b = (i + 1) * kTwoPi / 50;
+    double lo = a;
+    for (double e : one.breakpoints()) {
+      if (e > a + 1e-12 && e < b - 1e-12) {
+        product = taylor((e - lo) * one.A_mean(lo, e), 4) * product;
+        lo = e;
+      }
+    }
+    product = taylor((b - lo) * one.A_mean(lo, b), 4) * product;
+  }
+  EXPECT_LT(rel_err(product, hsu4), 1e-13);
+  for (int k : {2, 3, 4, 5}) {
+    const PeriodicSystem s = copies_of_rotor_like(k);
+    const Eigen::MatrixXd h = transition_matrix_hsu(s, 50, 4);
+    const Eigen::MatrixXd m = transition_matrix_magnus4(s, 25).phi;
+    for (int b = 0; b < k; ++b) {
+      for (int c = 0; c < k; ++c) {
+        if (b == c) {
+          EXPECT_LT(rel_err(hsu4, h.block(4 * b, 4 * b, 4, 4)), 1e-13) << "k = " << k;
+          EXPECT_LT(rel_err(magnus4, m.block(4 * b, 4 * b, 4, 4)), 1e-12) << "k = " << k;
+        } else {
+          EXPECT_EQ(0.0, max_abs(h.block(4 * b, 4 * c, 4, 4))) << "k = " << k;
+          EXPECT_EQ(0.0, max_abs(m.block(4 * b, 4 * c, 4, 4))) << "k = " << k;
+        }
+      }
+    }
+  }
+}
+
 TEST(Transition, DispatchAndNames) {
   const PeriodicSystem s = mathieu(1.3, 0.9, 0.05);
   TransitionOptions o;

@@ -150,22 +150,21 @@ struct Analysis::Impl {
   // The automatic starting K at mu: |lambda| h <= 1 for the largest eigenvalue of A(psi) at a
   // few azimuths of each region (the spectrum sets the step a fixed-step method needs).
   int automatic_start(const PeriodicSystem& sys) const {
+    // An azimuth whose induced norm min(||A||_1, ||A||_inf) >= rho(A) keeps |lambda| h <= 1 at
+    // the minimum K with a step to spare cannot raise K: its eigen-solve is skipped (the same
+    // K as solving every one, at a fifth of the cost in the common case).
     double rho = 0.0;
-    for (int k = 0; k < 8; ++k) {
-      const double psi = (k + 0.5) * kTwoPi / 8.0;
-      Eigen::EigenSolver<Eigen::MatrixXd> es(sys.A(psi), false);
+    auto add = [&](double psi) {
+      const Eigen::MatrixXd a = sys.A(psi);
+      const double bound = std::min(a.cwiseAbs().colwise().sum().maxCoeff(),
+                                    a.cwiseAbs().rowwise().sum().maxCoeff());
+      if (bound * kTwoPi <= kMinAutomaticSteps - 1) return;
+      Eigen::EigenSolver<Eigen::MatrixXd> es(a, false);
       if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
-    }
-    if (sys.has_sector) {
-      Eigen::EigenSolver<Eigen::MatrixXd> es(sys.A(0.5 * (sys.sector_begin + sys.sector_end)),
-                                             false);
-      if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
-    }
-    if (sys.has_varying) {
-      Eigen::EigenSolver<Eigen::MatrixXd> es(sys.A(0.5 * (sys.varying_begin + sys.varying_end)),
-                                             false);
-      if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
-    }
+    };
+    for (int k = 0; k < 8; ++k) add((k + 0.5) * kTwoPi / 8.0);
+    if (sys.has_sector) add(0.5 * (sys.sector_begin + sys.sector_end));
+    if (sys.has_varying) add(0.5 * (sys.varying_begin + sys.varying_end));
     const double k = std::ceil(rho * kTwoPi / 1.0);
     if (!(k <= kMaxAutomaticSteps)) return kMaxAutomaticSteps;
     // an even count, so that K/2 is a whole number

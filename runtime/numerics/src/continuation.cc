@@ -19,6 +19,12 @@ namespace {
 constexpr double kAmbiguousSimilarity = 0.5;
 // Exponent accuracy asked of continuation steps that are not reported (per rev).
 constexpr double kIdentificationTolerance = 1e-3;
+// A scan point of find_critical that only has to tell the sign of max zeta - threshold is
+// evaluated at kSignFraction times the margin of the previous point (at most
+// kIdentificationTolerance), and kept when the sign of f survives moving every zeta by
+// kSignMargin times its error estimate.
+constexpr double kSignFraction = 0.02;
+constexpr double kSignMargin = 10.0;
 // ln of the smallest normal double over 2 pi: a multiplier below it is indistinguishable from 0.
 // Zero multipliers have zeta = -inf; for prediction and matching their zeta is taken as this.
 const double kZetaFloor = std::log(std::numeric_limits<double>::min()) / kTwoPi;
@@ -35,61 +41,67 @@ void require(bool ok, const char* name, double value, const char* reason) {
 
 Status worse(Status a, Status b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
 
-// Minimum-cost assignment of rows (tracked modes) to columns (new exponents).
+// Largest n solved exactly (branch and bound); beyond, greedy.  Also the size of the
+// stack buffers of ExponentTracker::advance, which allocates nothing up to it.
+constexpr int kExactAssignment = 8;
+
+// Minimum-cost assignment of rows (tracked modes) to columns (new exponents); cost(i, j) at
+// cost[i + n j] (column-major), match[i] the column of row i.
 class Assignment {
  public:
-  explicit Assignment(const Eigen::MatrixXd& cost)
-      : cost_(cost), n_(static_cast<int>(cost.rows())) {}
+  Assignment(const double* cost, int n) : cost_(cost), n_(n) {}
 
-  std::vector<int> solve() {
-    perm_.assign(static_cast<std::size_t>(n_), -1);
-    if (n_ <= 8) {
-      used_.assign(static_cast<std::size_t>(n_), false);
+  void solve(int* match) {
+    if (n_ <= kExactAssignment) {
+      for (int j = 0; j < n_; ++j) used_[j] = false;
       best_cost_ = std::numeric_limits<double>::infinity();
-      best_ = perm_;
+      for (int i = 0; i < n_; ++i) best_[i] = perm_[i] = -1;
       search(0, 0.0);
-      return best_;
+      for (int i = 0; i < n_; ++i) match[i] = best_[i];
+      return;
     }
     // Greedy: repeatedly take the cheapest remaining pair.
     std::vector<bool> row_done(static_cast<std::size_t>(n_), false), col_done = row_done;
+    for (int i = 0; i < n_; ++i) match[i] = -1;
     for (int step = 0; step < n_; ++step) {
       double c = std::numeric_limits<double>::infinity();
       int bi = 0, bj = 0;
       for (int i = 0; i < n_; ++i)
         for (int j = 0; j < n_; ++j)
-          if (!row_done[i] && !col_done[j] && cost_(i, j) < c) {
-            c = cost_(i, j);
+          if (!row_done[i] && !col_done[j] && at(i, j) < c) {
+            c = at(i, j);
             bi = i;
             bj = j;
           }
       row_done[bi] = col_done[bj] = true;
-      perm_[bi] = bj;
+      match[bi] = bj;
     }
-    return perm_;
   }
 
  private:
+  double at(int i, int j) const { return cost_[i + static_cast<std::size_t>(n_) * j]; }
+
   // Depth-first over permutations with the partial cost as bound (costs are >= 0).
   void search(int row, double partial) {
     if (partial >= best_cost_) return;
     if (row == n_) {
       best_cost_ = partial;
-      best_ = perm_;
+      for (int i = 0; i < n_; ++i) best_[i] = perm_[i];
       return;
     }
     for (int j = 0; j < n_; ++j) {
       if (used_[j]) continue;
       used_[j] = true;
       perm_[row] = j;
-      search(row + 1, partial + cost_(row, j));
+      search(row + 1, partial + at(row, j));
       used_[j] = false;
     }
   }
 
-  const Eigen::MatrixXd& cost_;
+  const double* cost_;
   int n_;
-  std::vector<int> perm_, best_;
-  std::vector<bool> used_;
+  int perm_[kExactAssignment] = {}, best_[kExactAssignment] = {};
+  bool used_[kExactAssignment] = {};
   double best_cost_ = 0.0;
 };
 
@@ -101,7 +113,24 @@ struct Trial {
   TrackReport report;
   std::optional<double> error;  // the sample's error estimate of the largest zeta
   double liouville_residual = 0.0;
+  // The sign of f holds for every exponent moved by kSignMargin times its error estimate.
+  bool sign_certain = false;
 };
+
+// Whether max_k zeta_k - threshold keeps its sign when every zeta_k moves by kSignMargin times
+// its estimated error (false without estimates).
+bool sign_certain(const FloquetSample& s, double threshold) {
+  const std::size_t n = s.floquet.exponents.size();
+  if (n == 0 || s.zeta_errors.size() != n) return false;
+  double lo = -std::numeric_limits<double>::infinity(), hi = lo;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double z = s.floquet.exponents[k].zeta, e = kSignMargin * s.zeta_errors[k];
+    if (!std::isfinite(e)) return false;
+    lo = std::max(lo, z - e);
+    hi = std::max(hi, z + e);
+  }
+  return hi <= threshold || lo > threshold;
+}
 
 // Error estimate of the largest zeta of a sample (the one that decides stability).
 std::optional<double> largest_zeta_error(const FloquetSample& s) {
@@ -218,18 +247,38 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
   // distance of the new exponent from the prediction (omega modulo integers), times 2 pi so
   // that it is the relative change of the multiplier for small steps.  Both terms are O(1)
   // for a wrong match.
-  Eigen::MatrixXd cost(n, n), sim(n, n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      const FloquetExponent& e = next.exponents[j];
-      sim(i, j) = std::abs(vectors_[i].dot(e.eigenvector));  // dot() conjugates the left side
+  // Stack buffers up to kExactAssignment modes (nothing allocates on the common path).
+  constexpr int kSmall = kExactAssignment;
+  double cost_small[kSmall * kSmall], sim_small[kSmall * kSmall];
+  int match_small[kSmall];
+  std::vector<double> cost_big, sim_big;
+  std::vector<int> match_big;
+  double* cost = cost_small;
+  double* sim = sim_small;
+  int* match = match_small;
+  if (n > kSmall) {
+    cost_big.resize(static_cast<std::size_t>(n) * n);
+    sim_big.resize(static_cast<std::size_t>(n) * n);
+    match_big.resize(static_cast<std::size_t>(n));
+    cost = cost_big.data();
+    sim = sim_big.data();
+    match = match_big.data();
+  }
+  for (int j = 0; j < n; ++j) {
+    const FloquetExponent& e = next.exponents[j];
+    for (int i = 0; i < n; ++i) {
+      const std::size_t ij = static_cast<std::size_t>(i) + static_cast<std::size_t>(n) * j;
+      sim[ij] = std::abs(vectors_[i].dot(e.eigenvector));  // dot() conjugates the left side
       const double dw = e.omega - pw[i];
       const double dz = finite_zeta(e.zeta) - pz[i];
-      const double c = (1.0 - sim(i, j)) + kTwoPi * std::hypot(dz, dw - std::round(dw));
-      cost(i, j) = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
+      const double dr = dw - std::round(dw);
+      // sqrt, not hypot: both terms are finite (zeta is floored, omega is a principal value
+      // plus a continued integer) and an overflow to inf is capped below like any huge cost.
+      const double c = (1.0 - sim[ij]) + kTwoPi * std::sqrt(dz * dz + dr * dr);
+      cost[ij] = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
     }
   }
-  const std::vector<int> match = Assignment(cost).solve();
+  Assignment(cost, n).solve(match);
   for (int i = 0; i < n; ++i) {
     if (match[i] < 0 || match[i] >= n) {  // unreachable with finite costs; never index with it
       report.status = Status::Failed;
@@ -251,7 +300,8 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
     x.zeta = e.zeta;
     x.multiplier = e.multiplier;
     vectors_[i] = e.eigenvector;
-    report.min_similarity = std::min(report.min_similarity, sim(i, match[i]));
+    report.min_similarity =
+        std::min(report.min_similarity, sim[i + static_cast<std::size_t>(n) * match[i]]);
   }
   previous_mu_ = mu_;
   mu_ = mu;
@@ -326,6 +376,7 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
       t.report.message = sample.message;
     }
     t.f = t.tracker.max_zeta() - opt.zeta_threshold;
+    t.sign_certain = sample.status == Status::Ok && sign_certain(sample, opt.zeta_threshold);
     return t;
   };
   auto failed = [&](const Trial& t) {
@@ -396,15 +447,61 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
     return err;
   };
 
+  // A scan point only has to tell the sign of f; far from the threshold that needs much less
+  // than scan_zeta_tolerance.  sign_only() evaluates at a tolerance scaled to the margin of the
+  // previous point and keeps the result when its own error estimates leave the sign beyond
+  // doubt (sign_certain(), sample resolved); otherwise, and for every
+  // point whose value is used (both ends of a bracket, the last point reported), the point is
+  // evaluated at scan_zeta_tolerance exactly as without the shortcut, so mu_c, its error and
+  // the reported exponents do not change.  `loose` marks a trial evaluated this way.
+  bool estimates = false;  // the FloquetFunction has given an error estimate
+  auto sign_only = [&](const ExponentTracker& from, double mu, double margin, bool& loose) {
+    const double tol = std::max(opt.scan_zeta_tolerance,
+                                std::min(kIdentificationTolerance, kSignFraction * margin));
+    loose = false;
+    // Only a FloquetFunction that estimates its errors can be asked for the sign alone.
+    if (tol > opt.scan_zeta_tolerance && estimates) {
+      Trial t = evaluate(from, mu, tol);
+      if (t.report.status == Status::Ok && t.sign_certain) {
+        loose = true;
+        return t;
+      }
+    }
+    return evaluate(from, mu, opt.scan_zeta_tolerance);
+  };
+
   // Bounded by Check(): at most kMaxContinuationSteps (+1 for rounding).
   const long steps = static_cast<long>(std::ceil(opt.mu_max / opt.scan_step - 1e-9));
   Trial prev{0.0, tracker.max_zeta() - opt.zeta_threshold, tracker, {}, std::nullopt, 0.0};
+  bool prev_loose = false;
+  ExponentTracker before_prev = tracker;  // the tracker one grid point below prev
   for (long i = 1; i <= steps; ++i) {
     const double mu = std::min(static_cast<double>(i) * opt.scan_step, opt.mu_max);
-    Trial hi = evaluate(prev.tracker, mu, opt.scan_zeta_tolerance);
+    bool hi_loose = false;
+    Trial hi = sign_only(prev.tracker, mu, std::abs(prev.f), hi_loose);
     if (hi.report.status == Status::Failed) return failed(hi);
-    note(mu, hi.report.status, hi.report.message);
+    estimates = estimates || hi.error.has_value();
     if ((hi.f > 0.0) == (prev.f > 0.0)) {
+      note(mu, hi.report.status, hi.report.message);
+      before_prev = prev.tracker;
+      prev = std::move(hi);
+      prev_loose = hi_loose;
+      continue;
+    }
+    // A sign change: both ends at the scan resolution, as the plain scan has them.
+    if (prev_loose) {
+      prev = evaluate(before_prev, prev.mu, opt.scan_zeta_tolerance);
+      if (prev.report.status == Status::Failed) return failed(prev);
+      note(prev.mu, prev.report.status, prev.report.message);
+      prev_loose = false;
+    }
+    if (hi_loose) {
+      hi = evaluate(prev.tracker, mu, opt.scan_zeta_tolerance);
+      if (hi.report.status == Status::Failed) return failed(hi);
+    }
+    note(mu, hi.report.status, hi.report.message);
+    if ((hi.f > 0.0) == (prev.f > 0.0)) {  // the sign change was within the loose estimates
+      before_prev = prev.tracker;
       prev = std::move(hi);
       continue;
     }
@@ -420,6 +517,7 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
       note(mu, Status::Warning,
            "a stability change seen at the scan resolution vanished when resolved (zeta = " +
                fmt(hi.f + opt.zeta_threshold) + " at the scan resolution)");
+      before_prev = prev.tracker;
       prev = std::move(b);
       continue;
     }
@@ -445,7 +543,14 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
       out.intervals.back().end = bb.mu;
       out.intervals.back().end_error = err;
     }
+    before_prev = prev.tracker;
     prev = std::move(b);
+    prev_loose = false;
+  }
+  if (prev_loose && out.intervals.empty()) {  // its exponents are reported: scan resolution
+    prev = evaluate(before_prev, prev.mu, opt.scan_zeta_tolerance);
+    if (prev.report.status == Status::Failed) return failed(prev);
+    note(prev.mu, prev.report.status, prev.report.message);
   }
 
   if (out.intervals.empty()) {

@@ -92,6 +92,16 @@ FloquetResult nan_result(Eigen::Index n, std::string message) {
   return out;
 }
 
+template <int N>
+FloquetResult fixed_size(const Eigen::MatrixXd& phi, double trace_integral,
+                         const char* unconverged) {
+  using Mat = Eigen::Matrix<double, N, N>;
+  const Mat p = phi;
+  Eigen::EigenSolver<Mat> es(p, true);
+  if (es.info() != Eigen::Success) return nan_result(N, unconverged);
+  return extract(es, liouville_residual(p, trace_integral));
+}
+
 }  // namespace
 
 FloquetResult floquet_exponents(const Eigen::MatrixXd& phi, double trace_integral) {
@@ -103,13 +113,10 @@ FloquetResult floquet_exponents(const Eigen::MatrixXd& phi, double trace_integra
   // A diverged integration is a numerical outcome: NaN exponents and Status::Failed.
   if (!phi.allFinite()) return nan_result(phi.rows(), "Phi has non-finite entries");
   const char* unconverged = "the eigen-solve of Phi did not converge";
-  // Fixed-size solver for the common 4x4 case keeps the eigen-solve off the heap.
-  if (phi.rows() == 4) {
-    const Eigen::Matrix4d p = phi;
-    Eigen::EigenSolver<Eigen::Matrix4d> es(p, true);
-    if (es.info() != Eigen::Success) return nan_result(4, unconverged);
-    return extract(es, liouville_residual(p, trace_integral));
-  }
+  // Fixed-size solvers for the common 4x4 and 8x8 cases (1x1 and 2x2 modes) keep the
+  // eigen-solve off the heap.
+  if (phi.rows() == 4) return fixed_size<4>(phi, trace_integral, unconverged);
+  if (phi.rows() == 8) return fixed_size<8>(phi, trace_integral, unconverged);
   Eigen::EigenSolver<Eigen::MatrixXd> es(phi, true);
   if (es.info() != Eigen::Success) return nan_result(phi.rows(), unconverged);
   return extract(es, liouville_residual(phi, trace_integral));

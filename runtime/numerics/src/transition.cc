@@ -14,10 +14,13 @@
 // e^{i(j+1)d} = e^{ijd} e^{id} instead of sin/cos calls (reseeded exactly every kReseed points
 // so that rounding cannot accumulate); Hsu's J = 4 Taylor polynomial takes two matrix products
 // (Paterson-Stockmeyer) plus one for the accumulated product.  Nothing in the interval loops
-// allocates.
+// allocates.  Hsu (J = 4) and Magnus at 4, 8, 12 and 16 states run on the plain kernels further
+// down (plain_input() decides; a system that the plain kernels cannot evaluate from harmonic
+// matrices alone must make it return false), everything else on Kernel<N>.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
@@ -372,6 +375,387 @@ class Kernel {
   std::vector<double> ones_;       // damping factors of point values
 };
 
+// ---- Hsu and Magnus on plain fixed-size arrays (n = 4, 8, 12, 16) ------------------------------
+//
+// The state sizes of 1x1 .. 4x4 modes (4 .. 16 states) get kernels on plain column-major arrays
+// whose loops have compile-time bounds, so that GCC unrolls and vectorizes them for the target of
+// each clone: function multi-versioning (target_clones) builds an AVX2 and a baseline x86-64
+// version and the loader picks one per machine, so the binary runs on any x86-64.  Only add and
+// multiply appear (no FMA contraction: "avx2" does not enable FMA), each element is computed
+// by the same sequence of operations in either clone, so both give the same bits.  Nothing
+// here allocates: the grid is walked on the fly, the harmonic matrices are read in place.
+
+// Largest harmonic count and order the plain kernel takes (the generated models have 11
+// harmonics); beyond, the Eigen kernel is used.
+constexpr int kPlainMaxHarmonics = 64;
+
+struct PlainHsuInput {
+  int K = 0;
+  int n_edges = 0;
+  double edges[2] = {0.0, 0.0};
+  bool has_sector = false;
+  double sector_begin = 0.0, sector_end = 0.0;
+  int H[2] = {0, 0};                                  // harmonics of each region
+  const double* A[2][kPlainMaxHarmonics] = {{}, {}};  // column-major n x n, in place
+  double damp[kPlainMaxHarmonics / 2 + 2] = {};       // sinc(k d / 2), the equal-step means
+  double ones[kPlainMaxHarmonics / 2 + 2] = {};       // 1: point values
+  int max_order = 0;
+};
+
+bool plain_reversed(const PlainHsuInput& in, double mid) {
+  return in.has_sector && mid >= in.sector_begin && mid < in.sector_end;
+}
+
+// Matrices of the plain kernel: column-major, each column as N/4 vectors of four doubles (GCC
+// vector extensions: one AVX register, or two SSE2 registers in the baseline clone).
+typedef double V4 __attribute__((vector_size(32)));
+
+template <int N>
+struct PlainMat {
+  static constexpr int Q = N / 4;  // vectors per column
+  V4 c[N * Q];
+  double& at(int i, int j) { return c[j * Q + i / 4][i % 4]; }
+  double at(int i, int j) const { return c[j * Q + i / 4][i % 4]; }
+};
+
+template <int N>
+[[gnu::always_inline]] inline void plain_load(const double* src, PlainMat<N>& m) {
+  __builtin_memcpy(m.c, src, sizeof m.c);
+}
+template <int N>
+[[gnu::always_inline]] inline void plain_store(const PlainMat<N>& m, double* dst) {
+  __builtin_memcpy(dst, m.c, sizeof m.c);
+}
+template <int N>
+[[gnu::always_inline]] inline void plain_identity(PlainMat<N>& m) {
+  for (V4& v : m.c) v = V4{0.0, 0.0, 0.0, 0.0};
+  for (int i = 0; i < N; ++i) m.at(i, i) = 1.0;
+}
+
+// C = A B: column j of C is sum_k A(:, k) B(k, j).
+template <int N>
+[[gnu::always_inline]] inline void plain_mul(const PlainMat<N>& A, const PlainMat<N>& B,
+                                             PlainMat<N>& C) {
+  constexpr int Q = N / 4;
+  for (int j = 0; j < N; ++j) {
+    for (int q = 0; q < Q; ++q) {
+      V4 acc = A.c[q] * B.at(0, j);
+      for (int k = 1; k < N; ++k) acc += A.c[k * Q + q] * B.at(k, j);
+      C.c[j * Q + q] = acc;
+    }
+  }
+}
+
+// X = delta C over one substep: the harmonics of the region weighted by w (w[0] = delta, w[h]
+// = delta times the interval mean of phi_h).
+template <int N>
+[[gnu::always_inline]] inline void plain_weighted_sum(const double* const* A, int H,
+                                                      const double* w, PlainMat<N>& X) {
+  constexpr int V = N * N / 4;
+  for (int e = 0; e < V; ++e) {
+    V4 a;
+    __builtin_memcpy(&a, A[0] + 4 * e, sizeof a);
+    X.c[e] = a * w[0];
+  }
+  for (int h = 1; h < H; ++h) {
+    const double* ah = A[h];
+    const double wh = w[h];
+    for (int e = 0; e < V; ++e) {
+      V4 a;
+      __builtin_memcpy(&a, ah + 4 * e, sizeof a);
+      X.c[e] += a * wh;
+    }
+  }
+}
+
+// Phi <- exp(X) Phi with exp(X) ~ I + X + X^2 (I/2 + X/6 + X^2/24) (eq 3.27, J = 4, two
+// products by Paterson-Stockmeyer) and one product for the accumulation (eq 3.25).
+template <int N>
+[[gnu::always_inline]] inline void plain_taylor4_step(const PlainMat<N>& X, PlainMat<N>& Phi) {
+  PlainMat<N> X2, T, E;
+  plain_mul<N>(X, X, X2);
+  for (int e = 0; e < N * N / 4; ++e) T.c[e] = X.c[e] * (1.0 / 6.0) + X2.c[e] * (1.0 / 24.0);
+  for (int i = 0; i < N; ++i) T.at(i, i) += 0.5;
+  plain_mul<N>(X2, T, E);
+  for (int e = 0; e < N * N / 4; ++e) E.c[e] += X.c[e];
+  for (int i = 0; i < N; ++i) E.at(i, i) += 1.0;
+  plain_mul<N>(E, Phi, X2);
+  Phi = X2;
+}
+
+// Weights of the harmonic sum for a substep of width delta centred at z = e^{i mid}, damped by
+// damp[k] (eqs 4.2-4.5); w[0] = delta.
+[[gnu::always_inline]] inline void plain_weights(double zc, double zs, int H, const double* damp,
+                                                 double delta, double* w) {
+  w[0] = delta;
+  double wc = zc, ws = zs;
+  for (int h = 1; h < H; h += 2) {
+    const double f = damp[(h + 1) / 2] * delta;
+    w[h] = wc * f;
+    if (h + 1 < H) w[h + 1] = ws * f;
+    const double t = wc * zc - ws * zs;
+    ws = wc * zs + ws * zc;
+    wc = t;
+  }
+}
+
+// The grid rule of make_grid() walked without storing it: step i of K, split at a sector edge
+// strictly inside it (beyond rounding), each substep in the region of its midpoint.
+template <int N>
+[[gnu::always_inline]] inline void plain_hsu_impl(const PlainHsuInput& in, double* out) {
+  PlainMat<N> Phi, X;
+  plain_identity<N>(Phi);
+  const int K = in.K;
+  const double d = kTwoPi / K;
+  const double slack = 1e-12 * kTwoPi;
+  const Phasor step = phasor(d);
+  double zc = 1.0, zs = 0.0;  // e^{i mid_i}, the rotation recurrence of phasor_grid()
+  double w[kPlainMaxHarmonics], dsub[kPlainMaxHarmonics / 2 + 2];
+  auto substep = [&](double a, double b) __attribute__((always_inline)) {
+    const double delta = b - a;
+    const double mid = 0.5 * (a + b);
+    const int r = plain_reversed(in, mid) ? 1 : 0;
+    dsub[0] = 1.0;
+    for (int k = 1; k <= in.max_order; ++k) dsub[k] = sinc(k * 0.5 * delta);
+    const Phasor z = phasor(mid);
+    plain_weights(z.c, z.s, in.H[r], dsub, delta, w);
+    plain_weighted_sum<N>(in.A[r], in.H[r], w, X);
+    plain_taylor4_step<N>(X, Phi);
+  };
+  for (int i = 0; i < K; ++i) {
+    if (i % kReseed == 0) {
+      const Phasor z = phasor(0.5 * d + i * d);
+      zc = z.c;
+      zs = z.s;
+    } else {
+      const double t = zc * step.c - zs * step.s;
+      zs = zc * step.s + zs * step.c;
+      zc = t;
+    }
+    const double a = i * d;
+    const double b = (i + 1 == K) ? kTwoPi : (i + 1) * d;
+    bool split = false;
+    for (int k = 0; k < in.n_edges; ++k)
+      split |= in.edges[k] > a + slack && in.edges[k] < b - slack;
+    if (!split) {
+      const int r = plain_reversed(in, 0.5 * (a + b)) ? 1 : 0;
+      plain_weights(zc, zs, in.H[r], in.damp, b - a, w);
+      plain_weighted_sum<N>(in.A[r], in.H[r], w, X);
+      plain_taylor4_step<N>(X, Phi);
+      continue;
+    }
+    double lo = a;
+    for (int k = 0; k < in.n_edges; ++k) {
+      if (in.edges[k] > a + slack && in.edges[k] < b - slack) {
+        substep(lo, in.edges[k]);
+        lo = in.edges[k];
+      }
+    }
+    substep(lo, b);
+  }
+  plain_store<N>(Phi, out);
+}
+
+// One clone pair per state size with a plain kernel (plain_size()).
+#define FLAPLAG_PLAIN_HSU(N)                                                                   \
+  __attribute__((target_clones("avx2", "default"))) void plain_hsu##N(const PlainHsuInput& in, \
+                                                                      double* Phi) {           \
+    plain_hsu_impl<N>(in, Phi);                                                                \
+  }
+FLAPLAG_PLAIN_HSU(4)
+FLAPLAG_PLAIN_HSU(8)
+FLAPLAG_PLAIN_HSU(12)
+FLAPLAG_PLAIN_HSU(16)
+#undef FLAPLAG_PLAIN_HSU
+
+// exp(X) by scaling and squaring with the degree-12 Taylor polynomial: X / 2^s with
+// ||X / 2^s||_1 <= 1/4 (then the truncation is below 0.25^13 / 13! = 2.4e-18 relative), the
+// polynomial in Paterson-Stockmeyer form with X^2, X^3, X^4 (five products in all), then s
+// squarings.  X is overwritten with exp(X); a non-finite X gives a non-finite result.
+template <int N>
+[[gnu::always_inline]] inline void plain_expm(PlainMat<N>& X) {
+  constexpr int V = N * N / 4;
+  double norm = 0.0;
+  for (int j = 0; j < N; ++j) {
+    double col = 0.0;
+    for (int i = 0; i < N; ++i) col += std::abs(X.at(i, j));
+    norm = std::max(norm, col);
+  }
+  if (!std::isfinite(norm)) {
+    for (V4& v : X.c) v = v * std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  int s = 0;
+  if (norm > 0.25) {
+    int e = 0;
+    std::frexp(norm / 0.25, &e);  // norm / 0.25 < 2^e
+    s = e;
+  }
+  const double scale = std::ldexp(1.0, -s);
+  for (V4& v : X.c) v = v * scale;
+  PlainMat<N> X2, X3, X4, P, Q;
+  plain_mul<N>(X, X, X2);
+  plain_mul<N>(X2, X, X3);
+  plain_mul<N>(X2, X2, X4);
+  // c_j = 1 / j!
+  constexpr double c[13] = {1.0,
+                            1.0,
+                            1.0 / 2,
+                            1.0 / 6,
+                            1.0 / 24,
+                            1.0 / 120,
+                            1.0 / 720,
+                            1.0 / 5040,
+                            1.0 / 40320,
+                            1.0 / 362880,
+                            1.0 / 3628800,
+                            1.0 / 39916800,
+                            1.0 / 479001600};
+  // B_k = c_{4k} I + c_{4k+1} X + c_{4k+2} X^2 + c_{4k+3} X^3; p = B0 + X4 (B1 + X4 (B2 + c12 X4)).
+  auto block = [&](int k, PlainMat<N>& B) __attribute__((always_inline)) {
+    for (int e = 0; e < V; ++e)
+      B.c[e] = X.c[e] * c[4 * k + 1] + X2.c[e] * c[4 * k + 2] + X3.c[e] * c[4 * k + 3];
+    for (int i = 0; i < N; ++i) B.at(i, i) += c[4 * k];
+  };
+  block(2, P);
+  for (int e = 0; e < V; ++e) P.c[e] += X4.c[e] * c[12];
+  plain_mul<N>(X4, P, Q);
+  block(1, P);
+  for (int e = 0; e < V; ++e) Q.c[e] += P.c[e];
+  plain_mul<N>(X4, Q, P);
+  block(0, Q);
+  for (int e = 0; e < V; ++e) X.c[e] = P.c[e] + Q.c[e];
+  for (int k = 0; k < s; ++k) {
+    plain_mul<N>(X, X, P);
+    X = P;
+  }
+}
+
+// A at psi in the given region into X (point values of the harmonics).
+template <int N>
+[[gnu::always_inline]] inline void plain_point(const PlainHsuInput& in, int r, double psi,
+                                               double* w, PlainMat<N>& X) {
+  const Phasor z = phasor(psi);
+  plain_weights(z.c, z.s, in.H[r], in.ones, 1.0, w);
+  plain_weighted_sum<N>(in.A[r], in.H[r], w, X);
+}
+
+// Fourth-order Magnus on the given grid, as Kernel::magnus: two-point Gauss nodes,
+//   Omega = h/2 (A1 + A2) + sqrt(3) h^2 / 12 [A2, A1],  Phi <- exp(Omega) Phi.
+template <int N>
+[[gnu::always_inline]] inline void plain_magnus_impl(const PlainHsuInput& in, const Segment* grid,
+                                                     int count, double* out) {
+  constexpr int V = N * N / 4;
+  const double g = std::sqrt(3.0) / 6.0;
+  PlainMat<N> Phi, A1, A2, Om, P, Q;
+  plain_identity<N>(Phi);
+  double w[kPlainMaxHarmonics];
+  for (int i = 0; i < count; ++i) {
+    const Segment& sg = grid[i];
+    const double h = sg.b - sg.a;
+    const int r = sg.reversed ? 1 : 0;
+    plain_point<N>(in, r, sg.a + (0.5 - g) * h, w, A1);
+    plain_point<N>(in, r, sg.a + (0.5 + g) * h, w, A2);
+    plain_mul<N>(A2, A1, P);
+    plain_mul<N>(A1, A2, Q);
+    const double c1 = 0.5 * h, c2 = std::sqrt(3.0) / 12.0 * h * h;
+    for (int e = 0; e < V; ++e) Om.c[e] = (A1.c[e] + A2.c[e]) * c1 + (P.c[e] - Q.c[e]) * c2;
+    plain_expm<N>(Om);
+    plain_mul<N>(Om, Phi, P);
+    Phi = P;
+  }
+  plain_store<N>(Phi, out);
+}
+
+#define FLAPLAG_PLAIN_MAGNUS(N)                                               \
+  __attribute__((target_clones("avx2", "default"))) void plain_magnus##N(     \
+      const PlainHsuInput& in, const Segment* grid, int count, double* Phi) { \
+    plain_magnus_impl<N>(in, grid, count, Phi);                               \
+  }
+FLAPLAG_PLAIN_MAGNUS(4)
+FLAPLAG_PLAIN_MAGNUS(8)
+FLAPLAG_PLAIN_MAGNUS(12)
+FLAPLAG_PLAIN_MAGNUS(16)
+#undef FLAPLAG_PLAIN_MAGNUS
+
+// The state sizes with a plain kernel.
+// (At 20 states the unrolled kernels spill registers and Eigen's blocked products are faster:
+// measured 0.67 vs 0.42 ms for a K = 50 point.)
+bool plain_size(int n) { return n == 4 || n == 8 || n == 12 || n == 16; }
+
+// The input of the plain kernels for grids of K equal steps; false when they do not apply
+// (n without a plain kernel, or more than kPlainMaxHarmonics harmonics).
+bool plain_input(const PeriodicSystem& sys, int K, PlainHsuInput& in) {
+  if (!plain_size(sys.n) || sys.has_varying) return false;  // varying: transition_varying.cc
+  in.K = K;
+  const HarmonicSet* sets[2] = {&sys.normal, sys.has_sector ? &sys.reversed : &sys.normal};
+  for (int r = 0; r < 2; ++r) {
+    const int H = static_cast<int>(sets[r]->A.size());
+    if (H > kPlainMaxHarmonics) return false;
+    in.H[r] = H;
+    for (int h = 0; h < H; ++h) in.A[r][h] = sets[r]->A[h].data();
+    in.max_order = std::max(in.max_order, H / 2);
+  }
+  in.has_sector = sys.has_sector;
+  in.sector_begin = sys.sector_begin;
+  in.sector_end = sys.sector_end;
+  if (sys.has_sector) {
+    if (sys.sector_begin > 0.0 && sys.sector_begin < kTwoPi)
+      in.edges[in.n_edges++] = sys.sector_begin;
+    if (sys.sector_end > 0.0 && sys.sector_end < kTwoPi) in.edges[in.n_edges++] = sys.sector_end;
+  }
+  in.damp[0] = 1.0;
+  for (int k = 1; k <= in.max_order; ++k) in.damp[k] = sinc(k * 0.5 * kTwoPi / K);
+  for (double& one : in.ones) one = 1.0;
+  return true;
+}
+
+// Hsu by the plain kernel when it applies (plain_size(n), J = 4, few harmonics); false otherwise.
+bool plain_hsu(const PeriodicSystem& sys, int K, int J, Eigen::MatrixXd& phi) {
+  PlainHsuInput in;
+  if (J != 4 || !plain_input(sys, K, in)) return false;
+  phi.resize(sys.n, sys.n);
+  switch (sys.n) {
+    case 4:
+      plain_hsu4(in, phi.data());
+      break;
+    case 8:
+      plain_hsu8(in, phi.data());
+      break;
+    case 12:
+      plain_hsu12(in, phi.data());
+      break;
+    default:
+      plain_hsu16(in, phi.data());
+      break;
+  }
+  return true;
+}
+
+// Magnus on `grid` by the plain kernel when it applies; false otherwise.
+bool plain_magnus(const PeriodicSystem& sys, const std::vector<Segment>& grid,
+                  Eigen::MatrixXd& phi) {
+  PlainHsuInput in;
+  if (!plain_input(sys, 1, in)) return false;
+  phi.resize(sys.n, sys.n);
+  const int count = static_cast<int>(grid.size());
+  switch (sys.n) {
+    case 4:
+      plain_magnus4(in, grid.data(), count, phi.data());
+      break;
+    case 8:
+      plain_magnus8(in, grid.data(), count, phi.data());
+      break;
+    case 12:
+      plain_magnus12(in, grid.data(), count, phi.data());
+      break;
+    default:
+      plain_magnus16(in, grid.data(), count, phi.data());
+      break;
+  }
+  return true;
+}
+
 // Runs `fn` with the kernel of the right dimension and returns a MatrixXd.
 template <typename Fn>
 Eigen::MatrixXd dispatch(const PeriodicSystem& sys, Fn&& fn) {
@@ -438,6 +822,8 @@ Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, 
   check_count("terms", terms, TransitionOptions::kMaxTerms);
   sys.validate();
   if (sys.has_varying) return detail::varying_hsu(sys, intervals, terms);
+  Eigen::MatrixXd phi;
+  if (plain_hsu(sys, intervals, terms, phi)) return phi;
   return dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.hsu(intervals, terms)); });
 }
 
@@ -457,10 +843,11 @@ TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps)
   if (sys.has_varying) return detail::varying_magnus4(sys, steps);
   const std::vector<Segment> coarse = make_grid(sys, steps);
   const std::vector<Segment> fine = bisect(coarse);
-  const Eigen::MatrixXd ph =
-      dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(coarse)); });
-  const Eigen::MatrixXd ph2 =
-      dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(fine)); });
+  Eigen::MatrixXd ph, ph2;
+  if (!plain_magnus(sys, coarse, ph))
+    ph = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(coarse)); });
+  if (!plain_magnus(sys, fine, ph2))
+    ph2 = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(fine)); });
   TransitionResult out;
   out.phi = (16.0 * ph2 - ph) / 15.0;
   out.error_estimate = (ph2 - ph).cwiseAbs().maxCoeff() / 15.0;

@@ -195,7 +195,13 @@ struct CriticalResult {
 // by Brent's method, each trial advancing a copy of the tracker from the grid point below (so
 // that labels and omega integers stay those of the continuation); the first onset is mu_c, and
 // with all_intervals the scan goes on to mu_max.  A mode that turns unstable and stable again
-// within one step is not seen.  Options are checked (Check()).
+// within one step is not seen.  Scan points far from the threshold only need their sign: when
+// the FloquetFunction estimates errors they are asked for a looser tolerance (2 % of the
+// previous margin, at most 1e-3 per rev) and kept only when the sign of max zeta -
+// zeta_threshold survives moving every zeta by ten times its estimate; the two ends of a
+// bracket and the last point of a stable scan are always evaluated at scan_zeta_tolerance, so
+// the results are those of a scan at scan_zeta_tolerance throughout (evaluations counts every
+// call).  Options are checked (Check()).
 CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& floquet,
                              const CriticalOptions& opt = {});
 
