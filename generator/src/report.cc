@@ -267,6 +267,7 @@ std::string Report::text() {
   for (int eq = 0; eq < n_; ++eq) equation(os, eq);
   absorbed(os);
   equilibrium(os);
+  os << nonlinear_report_section(m_);
   os << "\n" << paper_differences_section(m_);
   return os.str();
 }

@@ -23,6 +23,14 @@ int* kept_of(OrderingSpec& s, const char* key) {
   return std::string(key) == "flap" ? &s.kept_flap : &s.kept_lag;
 }
 bool* radial_flow_of(OrderingSpec& s, const char*) { return &s.radial_flow; }
+bool* nonlinear_of(OrderingSpec& s, const char*) { return &s.nonlinear; }
+
+// Keys that the canonical text (and hence the generated code) omits at their default: an
+// emission switch added after models were shipped must leave their generated output unchanged.
+bool omitted_at_default(const SpecKey& k, OrderingSpec& s) {
+  return std::string(k.table) == "emit" && k.type == SpecKey::Type::Boolean &&
+         *k.boolean(s, k.name) == (k.default_value != 0);
+}
 
 std::string node_text(const toml::node& n) {
   std::ostringstream os;
@@ -250,6 +258,9 @@ const std::vector<SpecKey>& spec_keys() {
       {"kept", "flap", T::Integer, 2, 0, nullptr, true, nullptr, &kept_of, nullptr},
       {"kept", "lag", T::Integer, 3, 0, nullptr, true, nullptr, &kept_of, nullptr},
       {"terms", "radial_flow", T::Boolean, 1, 0, nullptr, true, nullptr, nullptr, &radial_flow_of},
+      // Also emit the nonlinear generalized loads (every product of the coordinates that the
+      // ordering keeps), for the periodic equilibrium; a family of its own.
+      {"emit", "nonlinear", T::Boolean, 0, 0, nullptr, true, nullptr, nullptr, &nonlinear_of},
   };
   return keys;
 }
@@ -284,6 +295,7 @@ std::string OrderingSpec::canonical_text() const {
   std::string table;
   for (const auto& k : spec_keys()) {
     if (std::string(k.name) == "base" && !*k.table) continue;
+    if (omitted_at_default(k, self)) continue;
     if (k.table != table) {
       table = k.table;
       os << "[" << table << "]\n";
@@ -310,6 +322,7 @@ std::string OrderingSpec::summary() const {
   os << name << ": " << flap_modes << " flap x " << lag_modes << " lag modes; flap loads to O(eps^"
      << kept_flap << "), lag loads to O(eps^" << kept_lag << "); radial flow "
      << (radial_flow ? "on" : "off");
+  if (nonlinear) os << "; nonlinear loads";
   return os.str();
 }
 

@@ -39,6 +39,9 @@ struct OrderingSpec {
   int kept_flap = 0;         // highest eps order kept in the flap aerodynamic load
   int kept_lag = 0;          // ... in the lag aerodynamic load
   bool radial_flow = false;  // the mu cos(psi) dv/dx0 term of U_T (eq 2.23)
+  // [emit] nonlinear: also derive the nonlinear generalized loads as polynomials in the full
+  // state (not linearized about hover), for the periodic equilibrium (issue 12 item 4).
+  bool nonlinear = false;
 
   int order(const std::string& key) const { return orders.at(key); }
   // Canonical TOML text of the resolved spec (what the generated code records).
