@@ -193,7 +193,21 @@ struct Analysis::Impl {
 
   FloquetSample floquet(double mu, double zeta_tolerance) const {
     FloquetSample out;
-    const PeriodicSystem sys = builder.system(mu);
+    // The linear system about hover (the paper) or about the periodic equilibrium.
+    std::string equilibrium_note;
+    PeriodicSystem sys;
+    if (builder.params().periodic_linearization) {
+      PeriodicEquilibrium eq = flaplag::periodic_equilibrium(builder, mu, equilibrium_options);
+      if (eq.status == Status::Failed) {
+        out.status = Status::Failed;
+        out.message = eq.message;
+        return out;
+      }
+      equilibrium_note = eq.message;
+      sys = std::move(eq.linearization);
+    } else {
+      sys = builder.system(mu);
+    }
     bool system_finite = true;
     for (const HarmonicSet* set : {&sys.normal, &sys.reversed})
       for (const Eigen::MatrixXd& a : set->A) system_finite = system_finite && a.allFinite();
@@ -302,6 +316,9 @@ struct Analysis::Impl {
               " exponent(s) below the rounding floor of the transition matrix (zeta < " +
               short_text(zeta_floor) + " per rev): their zeta is only known to be below that bound";
     }
+    if (!equilibrium_note.empty()) {
+      note += std::string(note.empty() ? "" : "; ") + equilibrium_note;
+    }
     if (!note.empty()) {
       out.status = Status::Warning;
       out.message = note;
@@ -315,6 +332,12 @@ struct Analysis::Impl {
 
   TransitionOptions options;
   detail::SystemBuilder builder;
+  // The harmonic balance behind periodic_linearization (stability comes from the analysis).
+  PeriodicEquilibriumOptions equilibrium_options = [] {
+    PeriodicEquilibriumOptions o;
+    o.check_stability = false;
+    return o;
+  }();
   HoverResult hover;
   HoverModes hover_modes;
 };
@@ -334,6 +357,13 @@ const HoverResult& Analysis::hover() const { return impl_->hover; }
 PeriodicSystem Analysis::system(double mu) const {
   check_mu(mu, "mu");
   return impl_->builder.system(mu);
+}
+
+PeriodicEquilibrium Analysis::periodic_equilibrium(
+    double mu, const PeriodicEquilibriumOptions& options) const {
+  check_mu(mu, "mu");
+  options.Check();
+  return flaplag::periodic_equilibrium(impl_->builder, mu, options);
 }
 
 FloquetSample Analysis::floquet(double mu, double zeta_tolerance) const {
