@@ -228,6 +228,11 @@ const std::vector<BadInput> kBadInputs = {
     {"LengthRatioAboveOne", {"--length-ratio", "1.5"}, "--length-ratio", "1.5"},
     {"ModesBasisTooSmall", {"modes", "--flap-modes", "3", "--basis", "2"}, "--flap-modes", "3"},
     {"ModesOneFig9Point", {"modes", "--nonrotating", "0:1:2"}, "--nonrotating", "0:1:2"},
+    // the paper's model has no nonlinear loads to linearize about a periodic equilibrium
+    {"PeriodicLinearizationOfALinearModel",
+     {"point", "--mu", "0.3", "--periodic-linearization"},
+     "--periodic-linearization",
+     "true"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Table, CliBadInput, ::testing::ValuesIn(kBadInputs),

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
+#include <mutex>
+#include <optional>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -197,7 +200,7 @@ struct Analysis::Impl {
     std::string equilibrium_note;
     PeriodicSystem sys;
     if (builder.params().periodic_linearization) {
-      PeriodicEquilibrium eq = flaplag::periodic_equilibrium(builder, mu, equilibrium_options);
+      PeriodicEquilibrium eq = equilibrium(mu);
       if (eq.status == Status::Failed) {
         out.status = Status::Failed;
         out.message = eq.message;
@@ -330,8 +333,32 @@ struct Analysis::Impl {
     return [this](double mu, double tol) { return floquet(mu, tol); };
   }
 
+  // The periodic equilibrium at mu, continued from the nearest cached one below mu (the
+  // continuation from hover is the expensive part of a scan).  Converged equilibria are
+  // cached; the cache only shortens the continuation along the same branch.
+  PeriodicEquilibrium equilibrium(double mu) const {
+    std::optional<PeriodicEquilibrium> start;
+    {
+      std::lock_guard<std::mutex> lock(cache_mutex);
+      auto it = cache.upper_bound(mu);
+      if (it != cache.begin()) start = std::prev(it)->second;
+    }
+    PeriodicEquilibrium eq =
+        flaplag::periodic_equilibrium(builder, mu, equilibrium_options, start ? &*start : nullptr);
+    if (eq.status != Status::Failed) {
+      std::lock_guard<std::mutex> lock(cache_mutex);
+      if (cache.size() > 4096) cache.clear();
+      PeriodicEquilibrium stored = eq;
+      stored.linearization = PeriodicSystem{};
+      cache.emplace(mu, std::move(stored));
+    }
+    return eq;
+  }
+
   TransitionOptions options;
   detail::SystemBuilder builder;
+  mutable std::mutex cache_mutex;
+  mutable std::map<double, PeriodicEquilibrium> cache;
   // The harmonic balance behind periodic_linearization (stability comes from the analysis).
   PeriodicEquilibriumOptions equilibrium_options = [] {
     PeriodicEquilibriumOptions o;

@@ -304,7 +304,8 @@ Eigen::VectorXd PeriodicEquilibrium::state(double psi) const {
 }
 
 PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, double mu,
-                                         const PeriodicEquilibriumOptions& opt) {
+                                         const PeriodicEquilibriumOptions& opt,
+                                         const PeriodicEquilibrium* start) {
   opt.Check();
   const NonlinearSystem sys(builder, mu);
   const auto& m = builder.model();
@@ -321,8 +322,17 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
   constexpr double kMaxStep = 0.1, kMaxChange = 0.01;
   Eigen::MatrixXd X = Eigen::MatrixXd::Zero(n, 2 * K + 1);
   X.col(0) = builder.hover().q0;
-  Newton r = solve(NonlinearSystem(builder, 0.0), M, N, K, opt, X);
-  double reached = 0.0, step = std::min(mu, kMaxStep);
+  double reached = 0.0;
+  Newton r;
+  if (start != nullptr && start->status != Status::Failed && start->harmonics == K &&
+      start->mu <= mu && start->coefficients.rows() == n) {
+    X = start->coefficients;  // a point of the same branch, continued from hover before
+    reached = start->mu;
+    r.converged = true;
+  } else {
+    r = solve(NonlinearSystem(builder, 0.0), M, N, K, opt, X);
+  }
+  double step = std::min(mu - reached, kMaxStep);
   for (int tries = 0; r.converged && tries < 200 && reached < mu && step >= 1e-5; ++tries) {
     const double next = std::min(mu, reached + step);
     Eigen::MatrixXd trial = X;

@@ -111,7 +111,11 @@ struct PeriodicEquilibrium {
 // at most 0.1 that move no coefficient by more than 0.01, halved otherwise.  Where that branch
 // folds (a real multiplier reaches 1 and the branch turns back) there is no equilibrium beyond it:
 // status Failed, continued_to says where.
+// `start` (optional): an equilibrium of the same builder and K at start->mu <= mu, itself from
+// this function; the continuation then starts there instead of at hover (same branch, fewer
+// steps).  Ignored when it does not fit.
 PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, double mu,
-                                         const PeriodicEquilibriumOptions& opt = {});
+                                         const PeriodicEquilibriumOptions& opt = {},
+                                         const PeriodicEquilibrium* start = nullptr);
 
 }  // namespace flaplag
