@@ -19,6 +19,7 @@
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/numerics/floquet.h"
+#include "flaplag/rotor/system_builder.h"
 #include "test_util.h"
 
 namespace flaplag {

@@ -4,12 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <limits>
 #include <string>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/floquet.h"
+#include "flaplag/rotor/system_builder.h"
 
 namespace flaplag {
 namespace {
@@ -149,6 +152,7 @@ Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEqui
       out.converged = true;
       return out;
     }
+    if (out.step > 10.0) return out;  // diverging: no use iterating on
   }
   return out;
 }
@@ -333,7 +337,7 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
     r = solve(NonlinearSystem(builder, 0.0), M, N, K, opt, X);
   }
   double step = std::min(mu - reached, kMaxStep);
-  for (int tries = 0; r.converged && tries < 200 && reached < mu && step >= 1e-5; ++tries) {
+  for (int tries = 0; r.converged && tries < 100 && reached < mu && step >= 1e-5; ++tries) {
     const double next = std::min(mu, reached + step);
     Eigen::MatrixXd trial = X;
     const Newton t = solve(next == mu ? sys : NonlinearSystem(builder, next), M, N, K, opt, trial);

@@ -28,9 +28,12 @@
 
 #include "flaplag/core/status.h"
 #include "flaplag/numerics/periodic_system.h"
-#include "flaplag/rotor/system_builder.h"
 
 namespace flaplag {
+
+namespace detail {
+class SystemBuilder;  // flaplag/rotor/system_builder.h (internal)
+}
 
 // y' = F(y, psi) of the nonlinear equations at one mu (full state y, size 2n).  Holds a reference
 // to the builder: must not outlive it.
