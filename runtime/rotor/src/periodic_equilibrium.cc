@@ -152,7 +152,6 @@ Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEqui
       out.converged = true;
       return out;
     }
-    if (out.step > 10.0) return out;  // diverging: no use iterating on
   }
   return out;
 }
@@ -337,7 +336,7 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
     r = solve(NonlinearSystem(builder, 0.0), M, N, K, opt, X);
   }
   double step = std::min(mu - reached, kMaxStep);
-  for (int tries = 0; r.converged && tries < 100 && reached < mu && step >= 1e-5; ++tries) {
+  for (int tries = 0; r.converged && tries < 1000 && reached < mu && step >= 1e-5; ++tries) {
     const double next = std::min(mu, reached + step);
     Eigen::MatrixXd trial = X;
     const Newton t = solve(next == mu ? sys : NonlinearSystem(builder, next), M, N, K, opt, trial);
