@@ -378,7 +378,7 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
         "no periodic equilibrium on the branch from hover at mu = " + round_trip_text(mu) +
         ": the continuation from hover (harmonic balance, K = " + std::to_string(K) +
         ") stops at mu = " + short_text(reached) +
-        " (where the branch folds, a Floquet multiplier reaches 1)";
+        " (the branch ends there: typically a fold, where a real Floquet multiplier reaches 1)";
     return out;
   }
   const double big = X.cwiseAbs().maxCoeff();
