@@ -278,6 +278,12 @@ std::string header_text(const Analysis& an, bool with_method = true) {
             : p.exact_reversed_flow ? "on (exact circle)"
                                     : "on");
   kv.add("blade", blade);
+  if (p.periodic_linearization) {
+    kv.add("linearized", "about the periodic equilibrium of the nonlinear equations (harmonic "
+                         "balance, K = " +
+                             std::to_string(PeriodicEquilibriumOptions{}.harmonics) +
+                             "), not about hover");
+  }
   if (with_method) kv.add("method", method_text(an.options()));
   kv.add("parameters", parameters_text(p));
   return kv.render();

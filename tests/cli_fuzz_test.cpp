@@ -147,6 +147,7 @@ class Generator {
                                                 "--modes",
                                                 "--no-elastic-coupling",
                                                 "--paper-1974-shapes",
+                                                "--periodic-linearization",
                                                 "--method",
                                                 "--steps",
                                                 "--terms",

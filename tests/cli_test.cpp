@@ -276,6 +276,11 @@ const std::vector<BadInput> kBadInputs = {
      {"critical", "--modes", "exact", "--omega-lag", "0.2"},
      "--omega-lag",
      "0.2"},
+    // the paper's model has no nonlinear loads to linearize about a periodic equilibrium
+    {"PeriodicLinearizationOfALinearModel",
+     {"point", "--mu", "0.3", "--periodic-linearization"},
+     "--periodic-linearization",
+     "true"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Table, CliBadInput, ::testing::ValuesIn(kBadInputs),

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cmath>
+#include <map>
 #include <string>
 
 #include "flaplag/blade/blade.h"
@@ -326,4 +327,152 @@ INSTANTIATE_TEST_SUITE_P(Models, TruncationOrder,
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            }
                            return s;
+                         });
+
+// ----- the nonlinear loads (spec [emit] nonlinear) at a full state ---------------------------
+
+namespace {
+
+// State columns [g', g, h', h] of the runtime ordering from Q4 = [g, h, g', h'].
+std::array<double, 4> runtime_state(const Q4& q) { return {q[2], q[0], q[3], q[1]}; }
+
+double monomial(const std::vector<int>& powers, const std::array<double, 4>& y) {
+  double v = 1.0;
+  for (size_t c = 0; c < powers.size(); ++c) v *= std::pow(y[c], powers[c]);
+  return v;
+}
+
+// The derived nonlinear loads' aerodynamic part at (psi, q): GiNaC evaluation of every slot with
+// the structural inputs zeroed.
+std::array<double, 2> derived_nonlinear_aero(const fd::DerivedModel& m, const Operating& o,
+                                             double psi, const Q4& q) {
+  const auto vals = integrals(descriptors(m), o);
+  GiNaC::exmap sub;
+  for (const auto& s : m.scalars) sub[s.sym] = GiNaC::numeric(0);
+  const std::map<std::string, double> named = {
+      {"lock", o.lock},       {"lr", o.lr},       {"theta", o.theta}, {"inflow", o.inflow},
+      {"precone", o.precone}, {"droop", o.droop}, {"cdo_a", o.cdo_a}, {"mu", o.mu}};
+  for (const auto& s : m.scalars) {
+    auto it = named.find(s.name);
+    if (it != named.end()) sub[s.sym] = GiNaC::numeric(it->second);
+  }
+  for (size_t j = 0; j < m.aero_syms.size(); ++j) sub[m.aero_syms[j]] = GiNaC::numeric(vals[j]);
+  for (const auto& s : m.structural_syms) sub[s] = GiNaC::numeric(0);
+  std::array<double, 2> r{};
+  const auto y = runtime_state(q);
+  for (const auto& s : m.nonlinear) {
+    const double c = GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(s.slot.value.subs(sub))).to_double();
+    r[s.equation] += c * basis(s.harmonic, psi) * monomial(s.powers, y);
+  }
+  return r;
+}
+
+// The compiled nonlinear loads' aerodynamic part (structural inputs zeroed) and their Jacobian.
+struct NonlinearAero {
+  std::array<double, 2> F{};
+  std::array<std::array<double, 4>, 2> J{};
+};
+
+NonlinearAero compiled_nonlinear_aero(const fm::ModelDescriptor& m, const Operating& o, double psi,
+                                      const Q4& q) {
+  std::vector<fm::AeroIntegral> list(m.aero, m.aero + m.n_aero);
+  const auto vals = integrals(list, o);
+  const std::vector<double> zeros(64, 0.0), structural(m.n_structural, 0.0);
+  const double nan[1] = {std::nan("")};  // the nonlinear loads must not read g0, h0
+  fm::CoefficientInputs in{};
+  in.lock = o.lock;
+  in.lr = o.lr;
+  in.theta = o.theta;
+  in.inflow = o.inflow;
+  in.precone = o.precone;
+  in.droop = o.droop;
+  in.cdo_a = o.cdo_a;
+  in.mu = o.mu;
+  in.g0 = in.h0 = nan;
+  in.omega_flap = in.omega_lag = in.damping_flap = in.damping_lag = zeros.data();
+  in.es_flap = in.es_lag = in.ecs_flap_lag = in.ecs_lag_flap = zeros.data();
+  in.aero = vals.data();
+  in.structural = structural.data();
+  const int H = m.n_nonlinear_harmonics;
+  std::vector<double> force(H * 2), jac(H * 2 * 4);
+  const auto y = runtime_state(q);
+  m.nonlinear(in, y.data(), {force.data(), jac.data()});
+  NonlinearAero r;
+  for (int h = 0; h < H; ++h) {
+    for (int i = 0; i < 2; ++i) {
+      r.F[i] += basis(h, psi) * force[h * 2 + i];
+      for (int c = 0; c < 4; ++c) r.J[i][c] += basis(h, psi) * jac[(h * 2 + i) * 4 + c];
+    }
+  }
+  return r;
+}
+
+// States far from hover (flap up to ~0.2, lag rates of either sign), in [g, h, g', h'].
+const Q4 kStates[] = {
+    {0.12, 0.01, 0.03, -0.02}, {-0.05, 0.04, -0.06, 0.015}, {0.2, -0.03, 0.08, 0.05}};
+
+}  // namespace
+
+// Without truncation the nonlinear loads are the full loads at any state: a polynomial identity.
+TEST(NonlinearLoadsVsQuadrature, UntruncatedSpecEqualsFullNonlinearLoadsAtAnyState) {
+  const auto spec =
+      fd::load_spec(std::string(FLAPLAG_TEST_SPEC_DIR) + "/untruncated-nonlinear.toml");
+  ASSERT_TRUE(spec.nonlinear);
+  const auto m = fd::derive_model(spec);
+  const Operating o;
+  for (double psi : {0.3, 2.9, 4.4}) {
+    for (const auto& q : kStates) {
+      const auto d = derived_nonlinear_aero(m, o, psi, q);
+      const auto F = full_loads(o, psi, q);
+      for (int i = 0; i < 2; ++i) {
+        EXPECT_NEAR(d[i], F[i], 1e-12 * std::max(1.0, std::abs(F[i])))
+            << "psi " << psi << " row " << i << " q " << q[0] << " " << q[1];
+      }
+    }
+  }
+}
+
+// The compiled paper-nonlinear loads and their Jacobian against the full loads and their
+// central differences at states away from hover: the difference shrinks like s^(kept+1) when
+// every small quantity, the state included, is scaled by s (the first dropped eps order).
+class NonlinearTruncationOrder : public ::testing::TestWithParam<OrderCase> {};
+
+TEST_P(NonlinearTruncationOrder, DifferenceShrinksLikeTheFirstDroppedOrder) {
+  const auto& c = GetParam();
+  const auto& m = compiled(c.model);
+  ASSERT_NE(m.nonlinear, nullptr);
+  auto error = [&](double s) {
+    const Operating o = Operating{}.scaled(s);
+    double ef = 0.0, ej = 0.0;
+    for (double psi = 0.1; psi < flaplag::kTwoPi; psi += 0.71) {
+      for (const auto& q0 : kStates) {
+        const Q4 q = {s * q0[0], s * q0[1], s * q0[2], s * q0[3]};
+        const auto d = compiled_nonlinear_aero(m, o, psi, q);
+        ef = std::max(ef, std::abs(d.F[c.row] - full_loads(o, psi, q)[c.row]));
+        const int to_q[4] = {2, 0, 3, 1};
+        for (int col = 0; col < 4; ++col) {
+          Q4 qp = q, qm = q;
+          const double step = 1e-6;
+          qp[to_q[col]] += step;
+          qm[to_q[col]] -= step;
+          const double fdj =
+              (full_loads(o, psi, qp)[c.row] - full_loads(o, psi, qm)[c.row]) / (2 * step);
+          ej = std::max(ej, std::abs(d.J[c.row][col] - fdj));
+        }
+      }
+    }
+    return std::array<double, 2>{ef, ej};
+  };
+  const auto e1 = error(0.2), e2 = error(0.1);
+  EXPECT_NEAR(std::log2(e1[0] / e2[0]), c.kept + 1, 0.35)
+      << "loads: errors " << e1[0] << " -> " << e2[0];
+  EXPECT_NEAR(std::log2(e1[1] / e2[1]), c.kept, 0.35)
+      << "Jacobian: errors " << e1[1] << " -> " << e2[1];
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, NonlinearTruncationOrder,
+                         ::testing::Values(OrderCase{"paper-nonlinear", 0, 2},
+                                           OrderCase{"paper-nonlinear", 1, 3}),
+                         [](const auto& tp) {
+                           return std::string(tp.param.row == 0 ? "flap" : "lag");
                          });

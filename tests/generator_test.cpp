@@ -222,6 +222,88 @@ TEST_P(GeneratedModel, TruncationRespectsKeptOrders) {
   EXPECT_EQ(max_lag, spec.kept_lag);
 }
 
+// The nonlinear loads (spec [emit] nonlinear): models without the switch carry none; with it,
+// the compiled polynomial equals GiNaC's, its Jacobian is its derivative, and about the hover
+// state (0, q0) it reproduces the model's own linear coefficients and forcing.
+TEST_P(GeneratedModel, NonlinearLoadsLinearizeToTheLinearModel) {
+  const fm::ModelDescriptor* cm = compiled(GetParam());
+  ASSERT_NE(cm, nullptr);
+  const auto spec = spec_of(GetParam());
+  if (!spec.nonlinear) {
+    EXPECT_EQ(cm->nonlinear, nullptr);
+    EXPECT_EQ(cm->n_nonlinear_harmonics, 0);
+    return;
+  }
+  ASSERT_NE(cm->nonlinear, nullptr);
+  const fd::DerivedModel dm = fd::derive_model(spec);
+  ASSERT_EQ(cm->n_nonlinear_harmonics, dm.H_nonlinear);
+  ASSERT_FALSE(dm.nonlinear.empty());
+  const int n = dm.n(), ns = 2 * n, H = dm.H_nonlinear, HL = dm.H;
+  ASSERT_GE(H, HL);
+  int max_degree = 0;
+  for (const auto& s : dm.nonlinear) max_degree = std::max(max_degree, s.degree());
+  EXPECT_GE(max_degree, 2) << "no product of the coordinates was kept";
+  for (unsigned seed : {4u, 5u}) {
+    RandomInputs r(dm, seed);
+    const auto sub = r.substitution(dm);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-0.3, 0.3);
+    std::vector<double> y(ns);
+    for (auto& v : y) v = u(rng);
+    std::vector<double> force(H * n), jac(H * n * ns);
+    cm->nonlinear(r.inputs(), y.data(), {force.data(), jac.data()});
+    std::vector<double> expected(H * n, 0.0);
+    for (const auto& s : dm.nonlinear) {
+      double mono = 1.0;
+      for (int c = 0; c < ns; ++c) mono *= std::pow(y[c], s.powers[c]);
+      expected[s.harmonic * n + s.equation] += ginac_value(s.slot.value, sub) * mono;
+    }
+    for (int k = 0; k < H * n; ++k) {
+      EXPECT_NEAR(force[k], expected[k], 1e-12 * std::max(1.0, std::abs(expected[k]))) << k;
+    }
+    // Jacobian against central differences of the compiled loads (a polynomial of degree
+    // max_degree: the difference quotient is exact up to rounding for degree <= 2).
+    const double step = 1e-4;
+    for (int c = 0; c < ns; ++c) {
+      std::vector<double> yp = y, ym = y, fp(H * n), fm2(H * n), scratch(H * n * ns);
+      yp[c] += step;
+      ym[c] -= step;
+      cm->nonlinear(r.inputs(), yp.data(), {fp.data(), scratch.data()});
+      cm->nonlinear(r.inputs(), ym.data(), {fm2.data(), scratch.data()});
+      for (int k = 0; k < H * n; ++k) {
+        const double d = (fp[k] - fm2[k]) / (2 * step);
+        EXPECT_NEAR(jac[k * ns + c], d, 1e-7 * std::max(1.0, std::abs(d))) << k << " col " << c;
+      }
+    }
+    // About the hover state of these inputs: the linear model.
+    std::vector<double> yh(ns, 0.0);
+    for (int k = 0; k < dm.M; ++k) yh[fm::flap_displacement_index(k, dm.M, dm.N)] = r.g0[k];
+    for (int m = 0; m < dm.N; ++m) yh[fm::lag_displacement_index(m, dm.M, dm.N)] = r.h0[m];
+    std::vector<double> lin_force(HL * n * ns), lin_forcing(HL * n);
+    cm->coefficients(r.inputs(), {lin_force.data(), lin_forcing.data()});
+    cm->nonlinear(r.inputs(), yh.data(), {force.data(), jac.data()});
+    for (int h = 0; h < H; ++h) {
+      for (int i = 0; i < n; ++i) {
+        const double f_lin = h < HL ? lin_forcing[h * n + i] : 0.0;
+        EXPECT_NEAR(force[h * n + i], f_lin, 1e-12 * std::max(1.0, std::abs(f_lin)))
+            << "forcing h " << h << " eq " << i;
+        for (int c = 0; c < ns; ++c) {
+          const double a_lin = h < HL ? lin_force[(h * n + i) * ns + c] : 0.0;
+          EXPECT_NEAR(jac[(h * n + i) * ns + c], a_lin, 1e-12 * std::max(1.0, std::abs(a_lin)))
+              << "force h " << h << " eq " << i << " col " << c;
+        }
+      }
+    }
+  }
+  // Every aerodynamic term obeys its equation's kept order.
+  for (const auto& s : dm.nonlinear) {
+    for (const auto& t : s.slot.terms) {
+      if (t.ref != fd::IntegralRef::Aero) continue;
+      EXPECT_LE(t.eps_order, s.equation < dm.M ? spec.kept_flap : spec.kept_lag);
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(AllCompiledModels, GeneratedModel, ::testing::ValuesIn(compiled_names()),
                          [](const auto& tp) {
                            std::string s = tp.param;
@@ -367,6 +449,28 @@ TEST(TermClasses, LagOrderTwoRemovesExactlyTheThirdOrderLagTerms) {
 
 // The helpers of model_api.h against the layout written out by hand from eq 2.36 generalised:
 // y = [dg'_1..dg'_M, dg_1..dg_M, dh'_1..dh'_N, dh_1..dh_N].
+// The switch leaves the linear part alone: paper-nonlinear's linear coefficient code is the
+// paper's, term for term, and a spec without the switch does not mention it.
+TEST(NonlinearSwitch, LinearPartIsThePapersAndTheSwitchIsOmittedWhenOff) {
+  const auto paper = spec_of("paper"), nl = spec_of("paper-nonlinear");
+  EXPECT_FALSE(paper.nonlinear);
+  EXPECT_TRUE(nl.nonlinear);
+  EXPECT_EQ(paper.canonical_text().find("nonlinear"), std::string::npos);
+  EXPECT_NE(nl.canonical_text().find("[emit]\nnonlinear = true"), std::string::npos);
+  EXPECT_EQ(nl.family, "paper-nonlinear");  // not the paper family: (family, 1, 1) stays unique
+  auto body = [](const std::string& cc) {
+    const auto a = cc.find("void coefficients("), b = cc.find("// Hover static equilibrium");
+    return a == std::string::npos || b == std::string::npos ? std::string() : cc.substr(a, b - a);
+  };
+  const std::string p = body(fd::emit_cpp(fd::derive_model(paper)));
+  ASSERT_FALSE(p.empty());
+  EXPECT_EQ(p, body(fd::emit_cpp(fd::derive_model(nl))));
+  const std::string report = fd::emit_report(fd::derive_model(nl));
+  EXPECT_NE(report.find("## Nonlinear generalized loads"), std::string::npos);
+  EXPECT_NE(report.find("| g1 h1' |"), std::string::npos);  // Coriolis tension product
+  EXPECT_EQ(fd::emit_report(fd::derive_model(paper)).find("Nonlinear"), std::string::npos);
+}
+
 TEST(StateOrdering, HelpersFollowEquation236) {
   const std::vector<std::string> two_by_one = {"dg1'", "dg2'", "dg1", "dg2", "dh1'", "dh1"};
   const std::vector<std::string> one_by_two = {"dg1'", "dg1", "dh1'", "dh2'", "dh1", "dh2"};
@@ -727,6 +831,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "[terms]\ncyclic_pitch = \"yes\"\n",
                 {"terms.cyclic_pitch", "\"yes\"", "true or false"}},
         BadSpec{"UnknownTermClass", "[terms]\nstall = true\n", {"terms.stall"}},
+        BadSpec{"NonlinearNotBool", "[emit]\nnonlinear = 1\n", {"emit.nonlinear", "1"}},
+        BadSpec{"UnknownEmission", "[emit]\nthrust = true\n", {"emit.thrust"}},
         BadSpec{"ZeroOrderCoordinate", "[orders]\ng = 0\n", {"orders.g", "0"}},
         BadSpec{"BaseNotString", "base = 3\n", {"base = 3", "string"}},
         BadSpec{"BaseTable", "[base]\nname = \"paper\"\n", {"base = (table)", "string"}},

@@ -202,6 +202,7 @@ void Deriver::canonicalize() {
   for (auto& [k, v] : pending_forcing_) fix(v);
   for (auto& [k, v] : pending_mass_) fix(v);
   for (auto& [k, v] : pending_force_) fix(v);
+  for (auto& [k, v] : pending_nonlinear_) fix(v);
   // absorbed terms: sort by (equation, state, term)
   for (auto& a : model_.absorbed) remap(a.term);
   std::sort(model_.absorbed.begin(), model_.absorbed.end(),
@@ -215,6 +216,7 @@ void Deriver::canonicalize() {
 DerivedModel Deriver::run() {
   aerodynamic_loads();
   structural_loads();
+  if (spec_.nonlinear) nonlinear_pass();  // nonlinear.cc
   canonicalize();
   const int n = M_ + N_;
   const int H = model_.H;
@@ -311,6 +313,8 @@ DerivedModel Deriver::run() {
   collect(model_.mass);
   collect(model_.force);
   collect(model_.forcing);
+  assemble_nonlinear();
+  for (const auto& s : model_.nonlinear) collect({s.slot});
   for (const auto& a : model_.absorbed) {
     const Term& t = a.term;
     if (t.ref == IntegralRef::Structural && model_.structural[t.integral].paper_name.empty()) {

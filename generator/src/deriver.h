@@ -93,6 +93,7 @@ struct Mono {
   int eps = 0, dlt = 0, radial = 0, z = 0;   // powers of eps, dlt, rf, z
   std::string origin;                        // from the tag
   int state = -1;                            // state column of a perturbation (power 1)
+  std::vector<std::pair<int, int>> states;   // (state column, power), sorted (nonlinear pass)
   int accel = -1;                            // coordinate of an acceleration (power 1)
   int x_power = 0;
   std::vector<ShapeFactor> outer, inner;
@@ -138,8 +139,18 @@ class Deriver {
   Term make_term(const Mono& m, bool aero, int eq);
   int aero_index(const AeroIntegralKey& k);
   int structural_index(const StructuralIntegralKey& k);
-  // Splits the expanded residual of equation eq into harmonics and pending slots.
+  // Splits the expanded residual of equation eq into harmonics and pending slots (the
+  // nonlinear pending slots in the nonlinear pass).
   void place(const GiNaC::ex& expr, bool aero, int eq);
+  // The monomials of each harmonic index of an expanded residual (z powers to cos/sin).
+  std::map<int, GiNaC::exvector> harmonics(const GiNaC::ex& expr) const;
+
+  // ----- nonlinear loads (nonlinear.cc; spec [emit] nonlinear) -----------------------------
+  // Runs the physics again with nonlinear_ set: the hover amplitudes g0, h0 are zero (the
+  // state is the full coordinate) and trunc() keeps every perturbation degree.
+  void nonlinear_pass();
+  void place_nonlinear(const GiNaC::ex& expr, bool aero, int eq);
+  void assemble_nonlinear();
   void add_term(Slot& s, const Term& t);
 
   // ----- assembly (derive.cc) --------------------------------------------------------------
@@ -148,6 +159,8 @@ class Deriver {
   void canonicalize();
 
   const OrderingSpec& spec_;
+  bool nonlinear_ = false;   // inside nonlinear_pass()
+  GiNaC::exmap hover_zero_;  // g0, h0 -> 0 (nonlinear pass)
   int M_, N_;
   DerivedModel model_;
   std::map<std::string, SymRole> roles_;
@@ -172,6 +185,8 @@ class Deriver {
   std::map<std::pair<int, int>, std::vector<Term>> pending_forcing_;      // (h, eq)
   std::map<std::pair<int, int>, std::vector<Term>> pending_mass_;         // (eq, accel)
   std::map<std::tuple<int, int, int>, std::vector<Term>> pending_force_;  // (h, eq, state)
+  // (h, eq, powers) -> terms of the nonlinear generalized force.
+  std::map<std::tuple<int, int, std::vector<int>>, std::vector<Term>> pending_nonlinear_;
   // Origins of the linear centrifugal stiffness, replaced by the modal stiffness (A.2, A.4).
   std::set<std::string> absorbed_origins_;
 };

@@ -126,7 +126,73 @@ void emit_symbols(std::ostringstream& os, const DerivedModel& m) {
   os << "}\n\n";
 }
 
+// C++ name of full-state column c of the nonlinear loads: "q_g1_rate", "q_g1", "q_h1_rate".
+std::string full_state_ident(const DerivedModel& m, int col) {
+  const model::StateRef r = model::state_ref(col, m.M, m.N);
+  return std::string("q_") + (r.direction == model::Direction::Flap ? "g" : "h") +
+         std::to_string(r.mode + 1) + (r.rate ? "_rate" : "");
+}
+
+// The product of the columns in `powers` as C++ ("1.0" for degree 0).
+std::string monomial_cpp(const DerivedModel& m, const std::vector<int>& powers) {
+  std::string out;
+  for (size_t c = 0; c < powers.size(); ++c) {
+    for (int j = 0; j < powers[c]; ++j) {
+      out += (out.empty() ? "" : " * ") + full_state_ident(m, static_cast<int>(c));
+    }
+  }
+  return out.empty() ? "1.0" : out;
+}
+
+// The nonlinear generalized loads and their Jacobian (model_api.h NonlinearOutputs).
+void emit_nonlinear(std::ostringstream& os, const DerivedModel& m) {
+  const int n = m.n(), ns = 2 * n, H = m.H_nonlinear;
+  const std::string ind = "        ";
+  os << "// Nonlinear generalized loads: mass * q'' = sum_h phi_h(psi) force[h](y), y the full "
+        "state\n// (not a perturbation; g0, h0 are not read), every product of the coordinates "
+        "that the\n// ordering keeps; and d force / d y.  H_nl = "
+     << H << ".\n"
+     << "FLAPLAG_GENERATED_NO_UBSAN\n"
+     << "void nonlinear(const model::CoefficientInputs& in, const double* y,\n"
+     << "               const model::NonlinearOutputs& out) {\n"
+     << "  const Symbols s(in);\n";
+  for (int c = 0; c < ns; ++c) {
+    os << "  const double " << full_state_ident(m, c) << " = y[" << c << "];\n";
+  }
+  os << "  for (int k = 0; k < " << H * n << "; ++k) out.force[k] = 0.0;\n"
+     << "  for (int k = 0; k < " << H * n * ns << "; ++k) out.jacobian[k] = 0.0;\n";
+  for (const auto& nl : m.nonlinear) {
+    const int idx = nl.harmonic * n + nl.equation;
+    os << "  {  // " << m.equation_name(nl.equation) << " equation, "
+       << DerivedModel::harmonic_name(nl.harmonic) << ": " << monomial_text(m, nl.powers) << "\n"
+       << "    const double c =\n"
+       << ind << slot_cpp(m, nl.slot, ind) << ";\n"
+       << "    out.force[" << idx << "] += c * " << monomial_cpp(m, nl.powers) << ";\n";
+    for (int c = 0; c < ns; ++c) {
+      if (nl.powers[c] == 0) continue;
+      std::vector<int> d = nl.powers;
+      --d[c];
+      os << "    out.jacobian[" << idx * ns + c
+         << "] += " << (nl.powers[c] > 1 ? std::to_string(nl.powers[c]) + ".0 * " : "") << "c * "
+         << monomial_cpp(m, d) << ";\n";
+    }
+    os << "  }\n";
+  }
+  os << "}\n\n";
+}
+
 }  // namespace
+
+std::string monomial_text(const DerivedModel& m, const std::vector<int>& powers) {
+  std::string out;
+  for (size_t c = 0; c < powers.size(); ++c) {
+    if (powers[c] == 0) continue;
+    std::string name = model::state_name(static_cast<int>(c), m.M, m.N).substr(1);  // no "d"
+    if (powers[c] > 1) name += "^" + std::to_string(powers[c]);
+    out += (out.empty() ? "" : " ") + name;
+  }
+  return out.empty() ? "1" : out;
+}
 
 std::string generated_header(const DerivedModel& m, const std::string& comment) {
   std::ostringstream os;
@@ -287,6 +353,7 @@ std::string emit_cpp(const DerivedModel& m) {
     }
     os << "}\n\n";
   }
+  if (m.spec.nonlinear) emit_nonlinear(os, m);
   os << "}  // namespace\n}  // namespace flaplag::generated::" << id << "\n\n";
   os << "const flaplag::model::ModelDescriptor& flaplag_model_" << id << "() {\n";
   os << "  namespace g = flaplag::generated::" << id << ";\n";
@@ -303,8 +370,11 @@ std::string emit_cpp(const DerivedModel& m) {
      << "      &g::coefficients,\n"
      << "      &g::equilibrium";
   // Trailing members of the descriptor (model_api.h), written only when they differ from
-  // their defaults: the models without cyclic pitch stay byte-identical.
-  if (m.spec.cyclic_pitch) os << ",\n      true,\n      &g::thrust";
+  // their defaults: the models without cyclic pitch or nonlinear loads stay byte-identical.
+  if (m.spec.cyclic_pitch || m.spec.nonlinear)
+    os << ",\n      " << (m.spec.cyclic_pitch ? "true" : "false") << ",\n      "
+       << (m.spec.cyclic_pitch ? "&g::thrust" : "nullptr");
+  if (m.spec.nonlinear) os << ",\n      " << m.H_nonlinear << ", &g::nonlinear";
   os << "};\n";
   os << "  return d;\n}\n";
   return os.str();

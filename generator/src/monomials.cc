@@ -103,6 +103,7 @@ Mono Deriver::analyse(const ex& t) const {
         break;
       case Role::State:
         m.state = r.index;
+        m.states.emplace_back(r.index, p);
         break;
       case Role::Accel:
         m.accel = r.index;
@@ -136,6 +137,7 @@ Mono Deriver::analyse(const ex& t) const {
     take(t);
   }
   std::sort(m.scalars.begin(), m.scalars.end());
+  std::sort(m.states.begin(), m.states.end());
   std::sort(m.outer.begin(), m.outer.end());
   std::sort(m.inner.begin(), m.inner.end());
   return m;
@@ -242,8 +244,7 @@ void Deriver::add_term(Slot& s, const Term& t) {
   s.value = s.value + v;
 }
 
-// Splits an expanded residual of equation eq into harmonics and slots.
-void Deriver::place(const ex& expr, bool aero, int eq) {
+std::map<int, exvector> Deriver::harmonics(const ex& expr) const {
   std::map<int, exvector> buckets;  // harmonic index -> terms
   const ex e = expr.expand();
   auto bucket = [&](const ex& t) {
@@ -263,15 +264,27 @@ void Deriver::place(const ex& expr, bool aero, int eq) {
   } else if (!e.is_zero()) {
     bucket(e);
   }
+  std::map<int, exvector> out;
   for (auto& [h, terms] : buckets) {
     const ex sum = ex(GiNaC::add(terms)).expand();
     if (sum.is_zero()) continue;
-    exvector monos;
+    exvector& monos = out[h];
     if (GiNaC::is_a<GiNaC::add>(sum)) {
       for (const auto& t : sum) monos.push_back(t);
     } else {
       monos.push_back(sum);
     }
+  }
+  return out;
+}
+
+// Splits an expanded residual of equation eq into harmonics and slots.
+void Deriver::place(const ex& expr, bool aero, int eq) {
+  if (nonlinear_) {
+    place_nonlinear(expr, aero, eq);
+    return;
+  }
+  for (const auto& [h, monos] : harmonics(expr)) {
     if (h + 1 > model_.H) model_.H = h + 1;
     for (const auto& t : monos) {
       Mono m = analyse(t);

@@ -6,6 +6,7 @@
 #include "flaplag_derive/paper_print.h"
 
 #include <functional>
+#include <set>
 #include <sstream>
 
 namespace flaplag::derive {
@@ -77,8 +78,20 @@ int aero_index(const DerivedModel& m, const std::string& paper) {
 }
 
 // Any aerodynamic integral named paper_base_<indices> (e.g. "F15" matches F15_11, F15_12 ...).
+// Whether an integral of the linearized equations (mass, A, f, hover equilibrium: what Appendix C
+// prints) has an Appendix B name paper_base_*.  The nonlinear loads of [emit] nonlinear are not
+// part of Appendix C and may use more of Appendix B's integrals.
 bool any_aero_named(const DerivedModel& m, const std::string& paper_base) {
-  for (const auto& info : m.aero) {
+  std::set<int> used;
+  for (const auto* slots : {&m.mass, &m.force, &m.forcing, &m.S, &m.c}) {
+    for (const auto& s : *slots) {
+      for (const auto& t : s.terms) {
+        if (t.ref == IntegralRef::Aero) used.insert(t.integral);
+      }
+    }
+  }
+  for (int j : used) {
+    const auto& info = m.aero[j];
     std::stringstream ss(info.paper_name);
     std::string item;
     while (std::getline(ss, item, '/')) {

@@ -13,10 +13,11 @@ using GiNaC::numeric;
 using GiNaC::symbol;
 
 ex Deriver::trunc(const ex& e, int max_eps) const {
-  const ex x = e.expand();
+  // The nonlinear pass (nonlinear.cc) expands about q = 0 and keeps every degree.
+  const ex x = (nonlinear_ ? e.subs(hover_zero_) : e).expand();
   exvector keep;
   auto consider = [&](const ex& t) {
-    if (t.degree(dlt_) <= 1 && t.degree(eps_) <= max_eps) keep.push_back(t);
+    if ((nonlinear_ || t.degree(dlt_) <= 1) && t.degree(eps_) <= max_eps) keep.push_back(t);
   };
   if (GiNaC::is_a<GiNaC::add>(x)) {
     for (const auto& t : x) consider(t);

@@ -273,6 +273,7 @@ std::string Report::text() {
     cyclic(os);
     thrust(os);
   }
+  os << nonlinear_report_section(m_);
   os << "\n" << paper_differences_section(m_);
   return os.str();
 }

@@ -24,6 +24,7 @@ int* kept_of(OrderingSpec& s, const char* key) {
 }
 bool* radial_flow_of(OrderingSpec& s, const char*) { return &s.radial_flow; }
 bool* cyclic_pitch_of(OrderingSpec& s, const char*) { return &s.cyclic_pitch; }
+bool* nonlinear_of(OrderingSpec& s, const char*) { return &s.nonlinear; }
 
 std::string node_text(const toml::node& n) {
   std::ostringstream os;
@@ -253,6 +254,10 @@ const std::vector<SpecKey>& spec_keys() {
       {"terms", "radial_flow", T::Boolean, 1, 0, nullptr, true, nullptr, nullptr, &radial_flow_of},
       {"terms", "cyclic_pitch", T::Boolean, 0, 0, nullptr, true, nullptr, nullptr, &cyclic_pitch_of,
        true},
+      // Also emit the nonlinear generalized loads (every product of the coordinates that the
+      // ordering keeps), for the periodic equilibrium; a family of its own.
+      {"emit", "nonlinear", T::Boolean, 0, 0, nullptr, true, nullptr, nullptr, &nonlinear_of,
+       true},
   };
   return keys;
 }
@@ -318,6 +323,7 @@ std::string OrderingSpec::summary() const {
      << kept_flap << "), lag loads to O(eps^" << kept_lag << "); radial flow "
      << (radial_flow ? "on" : "off");
   if (cyclic_pitch) os << "; cyclic pitch";
+  if (nonlinear) os << "; nonlinear loads";
   return os.str();
 }
 

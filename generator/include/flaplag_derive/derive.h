@@ -94,6 +94,17 @@ struct Slot {
   GiNaC::ex value;  // sum of the terms, in scalar symbols and integral symbols
 };
 
+// One slot of the nonlinear generalized force (spec [emit] nonlinear): the coefficient of the
+// monomial prod_c y_c^powers[c] of the *full* state y = [g'_1..g'_M, g_1..g_M, h'_1..h'_N,
+// h_1..h_N] (model_api.h ordering, not a perturbation) in equation eq, harmonic h.
+struct NonlinearSlot {
+  int harmonic = 0;
+  int equation = 0;
+  std::vector<int> powers;  // [2n], total degree >= 0
+  Slot slot;
+  int degree() const;
+};
+
 struct DerivedModel {
   OrderingSpec spec;
   int M = 1, N = 1, H = 1;  // modes, harmonics
@@ -121,6 +132,13 @@ struct DerivedModel {
   // Centrifugal stiffness terms replaced by the modal stiffness M w^2 (orthogonality, eqs A.2,
   // A.4), listed in the report so that nothing derived disappears silently.
   std::vector<AbsorbedTerm> absorbed;
+  // Nonlinear generalized loads (empty unless spec.nonlinear): the same derivation and eps
+  // truncation without the degree-1 cut in the perturbation, about q = 0 instead of the hover
+  // equilibrium; sorted by (harmonic, equation, powers).  mass q'' = sum_h phi_h(psi) sum over
+  // the slots of harmonic h of slot * y^powers.  Its Jacobian at y = (0, q0) is `force`, its
+  // value there `forcing` (tests/generator_test.cpp).
+  std::vector<NonlinearSlot> nonlinear;
+  int H_nonlinear = 0;  // harmonics of the nonlinear slots
 
   std::string state_name(int col) const;     // "dg1'", "dg1", "dh1'", "dh1"
   std::string equation_name(int row) const;  // "flap 1", "lag 1"

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "flaplag_derive/derive.h"
 
@@ -25,6 +26,13 @@ std::string emit_report(const DerivedModel& m);
 // replaced by (precone + droop)^beta_power (the paper's (beta_P + beta_D)).
 std::string factor_text(const DerivedModel& m, const Term& t, bool strip_aero_scale,
                         int beta_power = 0);
+
+// A monomial of the full state of the nonlinear loads, e.g. "g1 h1'" or "g1^2" ("1": degree 0).
+std::string monomial_text(const DerivedModel& m, const std::vector<int>& powers);
+
+// The audit report's section on the nonlinear generalized loads (src/nonlinear_report.cc);
+// "" for models without them.
+std::string nonlinear_report_section(const DerivedModel& m);
 
 // The "generated -- do not edit" header of both outputs, each line starting with `comment`.
 std::string generated_header(const DerivedModel& m, const std::string& comment);

@@ -43,6 +43,9 @@ struct OrderingSpec {
   // loads (eqs 2.20-2.21), theta1c and theta1s of the same eps order as theta; also emits the
   // rotor thrust (ModelDescriptor::thrust) that a trim needs.
   bool cyclic_pitch = false;
+  // [emit] nonlinear: also derive the nonlinear generalized loads as polynomials in the full
+  // state (not linearized about hover), for the periodic equilibrium (issue 12 item 4).
+  bool nonlinear = false;
 
   int order(const std::string& key) const { return orders.at(key); }
   // Canonical TOML text of the resolved spec (what the generated code records).

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
+#include <mutex>
+#include <optional>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -198,7 +201,21 @@ struct Analysis::Impl {
 
   FloquetSample floquet(double mu, double zeta_tolerance) const {
     FloquetSample out;
-    const PeriodicSystem sys = builder.system(mu);
+    // The linear system about hover (the paper) or about the periodic equilibrium.
+    std::string equilibrium_note;
+    PeriodicSystem sys;
+    if (builder.params().periodic_linearization) {
+      PeriodicEquilibrium eq = equilibrium(mu);
+      if (eq.status == Status::Failed) {
+        out.status = Status::Failed;
+        out.message = eq.message;
+        return out;
+      }
+      equilibrium_note = eq.message;
+      sys = std::move(eq.linearization);
+    } else {
+      sys = builder.system(mu);
+    }
     bool system_finite = true;
     for (const HarmonicSet* set : {&sys.normal, &sys.reversed})
       for (const Eigen::MatrixXd& a : set->A) system_finite = system_finite && a.allFinite();
@@ -310,6 +327,9 @@ struct Analysis::Impl {
               " exponent(s) below the rounding floor of the transition matrix (zeta < " +
               short_text(zeta_floor) + " per rev): their zeta is only known to be below that bound";
     }
+    if (!equilibrium_note.empty()) {
+      note += std::string(note.empty() ? "" : "; ") + equilibrium_note;
+    }
     if (!note.empty()) {
       out.status = Status::Warning;
       out.message = note;
@@ -321,8 +341,38 @@ struct Analysis::Impl {
     return [this](double mu, double tol) { return floquet(mu, tol); };
   }
 
+  // The periodic equilibrium at mu, continued from the nearest cached one below mu (the
+  // continuation from hover is the expensive part of a scan).  Converged equilibria are
+  // cached; the cache only shortens the continuation along the same branch.
+  PeriodicEquilibrium equilibrium(double mu) const {
+    std::optional<PeriodicEquilibrium> start;
+    {
+      std::lock_guard<std::mutex> lock(cache_mutex);
+      auto it = cache.upper_bound(mu);
+      if (it != cache.begin()) start = std::prev(it)->second;
+    }
+    PeriodicEquilibrium eq =
+        flaplag::periodic_equilibrium(builder, mu, equilibrium_options, start ? &*start : nullptr);
+    if (eq.status != Status::Failed) {
+      std::lock_guard<std::mutex> lock(cache_mutex);
+      if (cache.size() > 4096) cache.clear();
+      PeriodicEquilibrium stored = eq;
+      stored.linearization = PeriodicSystem{};
+      cache.emplace(mu, std::move(stored));
+    }
+    return eq;
+  }
+
   TransitionOptions options;
   detail::SystemBuilder builder;
+  mutable std::mutex cache_mutex;
+  mutable std::map<double, PeriodicEquilibrium> cache;
+  // The harmonic balance behind periodic_linearization (stability comes from the analysis).
+  PeriodicEquilibriumOptions equilibrium_options = [] {
+    PeriodicEquilibriumOptions o;
+    o.check_stability = false;
+    return o;
+  }();
   HoverResult hover;
   HoverModes hover_modes;
 };
@@ -344,6 +394,13 @@ const HoverResult& Analysis::hover() const { return impl_->hover; }
 PeriodicSystem Analysis::system(double mu) const {
   check_mu(mu, "mu");
   return impl_->builder.system(mu);
+}
+
+PeriodicEquilibrium Analysis::periodic_equilibrium(
+    double mu, const PeriodicEquilibriumOptions& options) const {
+  check_mu(mu, "mu");
+  options.Check();
+  return flaplag::periodic_equilibrium(impl_->builder, mu, options);
 }
 
 FloquetSample Analysis::floquet(double mu, double zeta_tolerance) const {

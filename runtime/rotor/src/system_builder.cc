@@ -57,6 +57,12 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   if (inflow && !std::isfinite(*inflow)) {
     throw InvalidInput("inflow", round_trip_text(*inflow), "must be a finite number");
   }
+  if (p_.periodic_linearization && m.nonlinear == nullptr) {
+    throw InvalidInput("periodic_linearization", "true",
+                       std::string("model '") + m.name +
+                           "' has no nonlinear loads (its spec does not set [emit] nonlinear); "
+                           "use a model that has them, e.g. paper-nonlinear");
+  }
   if (p_.modes == ModeKind::Assumed) {
     if (M_ != 1 || N_ != 1) {
       throw InvalidInput("modes", "assumed",
@@ -230,6 +236,14 @@ void SystemBuilder::assemble(double mu, const std::vector<double>& aero, Harmoni
   for (int j = 0; j < n; ++j) out.A[0](disp_col(j), rate_col(j)) = 1.0;
   // Perturbation forcing: the hover balance is subtracted (it is exactly zero at mu = 0).
   if (hover_forcing_.size() == ns) out.f[0] -= hover_forcing_;
+}
+
+void SystemBuilder::nonlinear_loads(double mu, const std::vector<double>& aero, const double* y,
+                                    double* force, double* jacobian) const {
+  if (model_->nonlinear == nullptr) {
+    throw std::logic_error(std::string("model '") + model_->name + "' has no nonlinear loads");
+  }
+  model_->nonlinear(inputs(mu, aero.data()), y, {force, jacobian});
 }
 
 std::vector<double> SystemBuilder::reversed_integrals(double mu) const {

@@ -49,6 +49,7 @@
 #include "flaplag/numerics/response.h"
 #include "flaplag/rotor/hover.h"
 #include "flaplag/rotor/parameters.h"
+#include "flaplag/rotor/periodic_equilibrium.h"
 
 namespace flaplag {
 
@@ -113,8 +114,16 @@ class Analysis {
   const ModeSet& modes() const;
 
   const HoverResult& hover() const;
-  // mu in [0, kMaxAdvanceRatio] (else InvalidInput("mu", ...)).
+  // mu in [0, kMaxAdvanceRatio] (else InvalidInput("mu", ...)).  The linear system about the
+  // hover equilibrium (the paper), whatever periodic_linearization says; the system about the
+  // periodic equilibrium is periodic_equilibrium(mu).linearization.
   PeriodicSystem system(double mu) const;
+  // The periodic equilibrium of the nonlinear equations at mu and the linearization about it
+  // (rotor/periodic_equilibrium.h); needs a model with nonlinear loads (else InvalidInput
+  // "model").  With periodic_linearization, point, sweep, track, critical and floquet use this
+  // linearization (harmonic balance with the default options, K = 16) instead of the hover one.
+  PeriodicEquilibrium periodic_equilibrium(double mu,
+                                           const PeriodicEquilibriumOptions& options = {}) const;
   // psi any finite angle [rad], reduced to [0, 2 pi).
   SystemSnapshot snapshot(double mu, double psi) const;
 

@@ -161,6 +161,19 @@ struct EquilibriumOutputs {
   double* c;  // [n]
 };
 
+// Nonlinear generalized loads (models whose spec sets [emit] nonlinear; issue 12 item 4).  The
+// argument y is the *full* state [g'_1..g'_M, g_1..g_M, h'_1..h'_N, h_1..h_N] (the ordering
+// above, but absolute values: the hover amplitudes in.g0, in.h0 are not read), and
+//   mass * q'' = sum_h phi_h(psi) force[h](y)
+// with the same mass, harmonics and flow-region integrals (in.aero) as the linear functions.
+// The polynomials keep every product of the coordinates that the ordering keeps (the eps_D
+// truncation of each load product), so that their Jacobian at y = (0, q0) equals the linear
+// `force` and their value there the linear `forcing`.
+struct NonlinearOutputs {
+  double* force;     // [H_nl*n]     generalized force at y, per harmonic and equation
+  double* jacobian;  // [H_nl*n*2n]  d force / d y (row-major per harmonic: equation, state)
+};
+
 struct ModelDescriptor {
   const char* name;  // model name, e.g. "paper-2x2"
   // Model family, e.g. "paper" for paper, paper-2x1, paper-1x2, paper-2x2: the models of one
@@ -194,6 +207,11 @@ struct ModelDescriptor {
   // out.forcing has H entries, out.force H*2n.  C_T = (sigma a / 2) * mean over psi of T.
   // nullptr for the models without cyclic pitch.
   void (*thrust)(const CoefficientInputs&, const CoefficientOutputs&) = nullptr;
+  // Nonlinear loads (see NonlinearOutputs): H_nl harmonics; nullptr and 0 for models without
+  // them (the default member initializers keep the older generated descriptors unchanged).
+  int n_nonlinear_harmonics = 0;
+  void (*nonlinear)(const CoefficientInputs& in, const double* y,
+                    const NonlinearOutputs& out) = nullptr;
 };
 
 // All models compiled into this build (generated registry), in spec-file order.

@@ -37,6 +37,9 @@ struct RotorParameters {
   bool elastic_coupling = true;  // Appendix E; applies to exact modes only (paper 4.1(a))
   bool paper_1974_shapes =
       false;  // exact modes rebuilt with the 1974 sign slip (docs/validation.md)
+  // Linearize about the periodic equilibrium q°(psi) of the nonlinear equations instead of the
+  // hover equilibrium (the paper); needs a model with nonlinear loads (paper-nonlinear).
+  bool periodic_linearization = false;
 };
 
 // (*) theta(psi) = theta + theta1c cos psi + theta1s sin psi; nonzero values need a model with

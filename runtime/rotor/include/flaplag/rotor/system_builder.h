@@ -77,6 +77,14 @@ class SystemBuilder {
   // region, system(mu).A(psi) is harmonics(mu, exact_integrals(mu, psi)) summed at psi).
   HarmonicSet harmonics(double mu, const std::vector<double>& aero) const;
   const std::vector<double>& normal_integrals() const { return aero_.normal(); }
+
+  // The nonlinear generalized loads (model_api.h NonlinearOutputs) at mu with the aerodynamic
+  // integrals `aero` of one flow region, at the full state y [2n]: force [H_nl*n] and
+  // jacobian [H_nl*n*2n].  Only for models with nonlinear loads (model().nonlinear != nullptr).
+  void nonlinear_loads(double mu, const std::vector<double>& aero, const double* y, double* force,
+                       double* jacobian) const;
+  // generalized mass^-1 [n x n]
+  const Eigen::MatrixXd& mass_inverse() const { return mass_inverse_; }
   const std::vector<double>& structural_values() const { return structural_; }
 
  private:

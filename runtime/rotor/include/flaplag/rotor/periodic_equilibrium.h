@@ -1,0 +1,124 @@
+// flaplag — the periodic equilibrium q°(psi) of the nonlinear flap-lag equations at advance
+// ratio mu, and the linearization about it (issue 12 item 4).
+//
+// Equations: mass q'' = G(q, q', psi) = sum_h phi_h(psi) force_h(q, q'), the nonlinear loads of
+// a model whose spec sets [emit] nonlinear (model_api.h NonlinearOutputs), with the aerodynamic
+// integrals of the normal region or, inside the reversed-flow sector (Appendix D), of the sector.
+// In first-order form y' = F(y, psi), y = [g', g, h', h] the full state (model_api.h ordering).
+//
+// Method: harmonic balance + Newton.  q°(psi) = sum_{c <= 2K} X_c phi_c(psi); the Fourier
+// coefficients (c < 2K+1) of the residual q'' - mass^-1 G are set to zero; each Newton step
+// solves with the exact Jacobian of those coefficients (from the generated dG/dy).  Why not
+// shooting: harmonic balance gives q° as a finite Fourier series, so the linearization
+// A(psi) = dF/dy(q°(psi), psi) is again a finite Fourier series in each flow region (the model's
+// harmonics times those of q°).  The existing PeriodicSystem of harmonic sets, the transition
+// methods (Hsu's exact interval means included), their automatic step choice and error estimates,
+// and the continuation then work unchanged; shooting would give q° only point-wise and need a
+// point-wise evaluation path of A(psi).  The price is the truncation at K harmonics: with the
+// reversed-flow sector q°'' jumps at the sector edges, so the coefficients of q° fall like
+// k^-3 (the result reports the size of the last harmonic; docs/validation.md gives mu_c against
+// K).  The projections are integrals over each smooth piece (split at the sector edges) by
+// composite 8-point Gauss-Legendre rules fine enough for the trigonometric degree of the
+// integrand (converged to rounding).
+#pragma once
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "flaplag/core/status.h"
+#include "flaplag/numerics/periodic_system.h"
+
+namespace flaplag {
+
+namespace detail {
+class SystemBuilder;  // flaplag/rotor/system_builder.h (internal)
+}
+
+// y' = F(y, psi) of the nonlinear equations at one mu (full state y, size 2n).  Holds a reference
+// to the builder: must not outlive it.
+class NonlinearSystem {
+ public:
+  // InvalidInput("model", ...) when the model has no nonlinear loads; ("mu", ...) when mu is
+  // not finite and >= 0.
+  NonlinearSystem(const detail::SystemBuilder& builder, double mu);
+
+  int size() const { return ns_; }  // 2n
+  double mu() const { return mu_; }
+  // The reversed-flow sector [begin, end) of the linear system at mu (has_sector false: none).
+  const PeriodicSystem& sector() const { return sector_; }
+  bool reversed(double psi) const;
+
+  // F(y, psi) and, when J is not null, dF/dy [2n x 2n]; in_sector selects the region (callers
+  // on a sector edge choose the side).
+  void evaluate(double psi, bool in_sector, const Eigen::VectorXd& y, Eigen::VectorXd* F,
+                Eigen::MatrixXd* J) const;
+  void evaluate(double psi, const Eigen::VectorXd& y, Eigen::VectorXd* F,
+                Eigen::MatrixXd* J) const {
+    evaluate(psi, reversed(psi), y, F, J);
+  }
+
+  // Classical RK4 from (psi0, y0) over `revolutions` revolutions with `steps_per_rev` equal
+  // steps per revolution, each split at the sector edges.  Returns the state at the end of each
+  // revolution (revolutions entries).  For checks against the periodic equilibrium.
+  std::vector<Eigen::VectorXd> integrate(const Eigen::VectorXd& y0, int revolutions,
+                                         int steps_per_rev) const;
+
+ private:
+  const detail::SystemBuilder* builder_;
+  double mu_;
+  int n_, ns_, H_;
+  std::vector<double> normal_, reversed_;  // aerodynamic integrals of the two regions
+  PeriodicSystem sector_;
+};
+
+struct PeriodicEquilibriumOptions {
+  int harmonics = 16;           // K, harmonics of q°, 1..128
+  int max_iterations = 30;      // Newton iterations, 1..1000
+  double tolerance = 1e-12;     // on max |Newton step| / max(1, max |X|), (0, 1e-2]
+  bool check_stability = true;  // Floquet multipliers of the linearization (RK4, 4096 steps)
+  bool IsValid(std::string* error) const;
+  void Check() const;
+};
+
+struct PeriodicEquilibrium {
+  double mu = 0.0;
+  int harmonics = 0;   // K
+  int flap_modes = 0;  // M (the coordinates are M flap, then N lag amplitudes)
+  // Fourier coefficients of the coordinates q° = [g°_1..g°_M, h°_1..h°_N]: n x (2K+1), column c
+  // the harmonic index of periodic_system.h (0 const, 2k-1 cos k psi, 2k sin k psi).
+  Eigen::MatrixXd coefficients;
+  // The full state y°(psi) = [g°', g°, h°', h°] (model_api.h ordering).
+  Eigen::VectorXd state(double psi) const;
+  // y' = A(psi) y about y°: A = dF/dy(y°(psi), psi) as harmonic sets of the normal region and
+  // the sector (f = 0: y is the perturbation about the equilibrium).
+  PeriodicSystem linearization;
+  double continued_to = 0.0;  // the largest mu the continuation from hover reached
+  int iterations = 0;
+  double step = 0.0;        // last Newton step, max norm, relative
+  double residual = 0.0;    // max |projected residual| (generalized coordinates per rev^2)
+  double truncation = 0.0;  // amplitude of harmonic K of q° relative to max |q°| coefficient
+  // With check_stability: Floquet multipliers of the linearization (modulus sorted descending)
+  // and min_k |Lambda_k - 1|.
+  std::vector<double> multiplier_moduli;
+  double min_distance_to_one = 0.0;
+  // Failed: no convergence, a singular Newton matrix (a multiplier at 1: no unique periodic
+  // equilibrium) or overflow; Warning: unstable (the blade does not settle onto it), or a
+  // multiplier near 1, or the last harmonic is not small (increase `harmonics`).
+  Status status = Status::Ok;
+  std::string message;
+};
+
+// opt.Check() first (InvalidInput).  The equilibrium on the branch through the hover
+// equilibrium (which solves the equations at mu = 0): continuation in mu from hover in steps of
+// at most 0.1 that move no coefficient by more than 0.01, halved otherwise.  Where that branch
+// folds (a real multiplier reaches 1 and the branch turns back) there is no equilibrium beyond it:
+// status Failed, continued_to says where.
+// `start` (optional): an equilibrium of the same builder and K at start->mu <= mu, itself from
+// this function; the continuation then starts there instead of at hover (same branch, fewer
+// steps).  Ignored when it does not fit.
+PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, double mu,
+                                         const PeriodicEquilibriumOptions& opt = {},
+                                         const PeriodicEquilibrium* start = nullptr);
+
+}  // namespace flaplag

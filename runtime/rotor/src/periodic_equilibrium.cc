@@ -1,0 +1,428 @@
+// The periodic equilibrium of the nonlinear equations by harmonic balance + Newton, and the
+// linearization about it as harmonic sets (see periodic_equilibrium.h for the choice of method).
+#include "flaplag/rotor/periodic_equilibrium.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <string>
+
+#include "flaplag/core/constants.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
+#include "flaplag/numerics/floquet.h"
+#include "flaplag/rotor/system_builder.h"
+
+namespace flaplag {
+namespace {
+
+// 8-point Gauss-Legendre rule on [-1, 1].
+constexpr double kGaussX[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
+                               -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
+                               0.7966664774136267,  0.9602898564975363};
+constexpr double kGaussW[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
+                               0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
+                               0.2223810344533745, 0.1012285362903763};
+
+bool fail(const char* name, const std::string& value, const std::string& reason,
+          std::string* error) {
+  if (error != nullptr) *error = std::string(name) + " = " + value + ": " + reason;
+  return false;
+}
+
+// Smooth pieces of [0, 2 pi]: split at the sector edges; each flagged with its region.
+struct Piece {
+  double a, b;
+  bool reversed;
+};
+
+std::vector<Piece> pieces(const PeriodicSystem& s) {
+  if (!s.has_sector) return {{0.0, kTwoPi, false}};
+  std::vector<Piece> out;
+  if (s.sector_begin > 0.0) out.push_back({0.0, s.sector_begin, false});
+  out.push_back({s.sector_begin, s.sector_end, true});
+  if (s.sector_end < kTwoPi) out.push_back({s.sector_end, kTwoPi, false});
+  return out;
+}
+
+// Basis phi_c and its first two derivatives at psi, c = 0..2K.
+void basis(int K, double psi, Eigen::VectorXd& p, Eigen::VectorXd& d1, Eigen::VectorXd& d2) {
+  p.resize(2 * K + 1);
+  d1.resize(2 * K + 1);
+  d2.resize(2 * K + 1);
+  p(0) = 1.0;
+  d1(0) = d2(0) = 0.0;
+  for (int k = 1; k <= K; ++k) {
+    const double c = std::cos(k * psi), s = std::sin(k * psi);
+    p(2 * k - 1) = c;
+    p(2 * k) = s;
+    d1(2 * k - 1) = -k * s;
+    d1(2 * k) = k * c;
+    d2(2 * k - 1) = -k * k * c;
+    d2(2 * k) = -k * k * s;
+  }
+}
+
+struct QuadPoint {
+  double psi, weight;
+  bool reversed;
+};
+
+// Composite Gauss-Legendre on each piece, sub-intervals short enough that the highest frequency
+// `omega` of the integrand turns by at most 2 rad on one (8-point rule error ~ 1e-14).
+std::vector<QuadPoint> quadrature(const PeriodicSystem& s, double omega) {
+  const double hmax = 2.0 / std::max(1.0, omega);
+  std::vector<QuadPoint> out;
+  for (const Piece& pc : pieces(s)) {
+    const int m = std::max(1, static_cast<int>(std::ceil((pc.b - pc.a) / hmax)));
+    const double h = (pc.b - pc.a) / m;
+    for (int i = 0; i < m; ++i) {
+      const double mid = pc.a + (i + 0.5) * h;
+      for (int g = 0; g < 8; ++g)
+        out.push_back({mid + 0.5 * h * kGaussX[g], 0.5 * h * kGaussW[g], pc.reversed});
+    }
+  }
+  return out;
+}
+
+struct Newton {
+  bool converged = false, singular = false, finite = true;
+  int iterations = 0;
+  double step = 0.0, residual = 0.0;
+};
+
+// Harmonic balance of q'' = mass^-1 G(q, q', psi) for the coefficients X (n x (2K+1)).
+Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEquilibriumOptions& opt,
+             Eigen::MatrixXd& X) {
+  const int n = M + N, nb = 2 * K + 1, unknowns = n * nb;
+  // Integrand degree: residual (model order 2 plus 2K for a quadratic term) times phi_c.
+  const auto points = quadrature(sys.sector(), 3.0 * K + 4.0);
+  Newton out;
+  Eigen::VectorXd p, d1, d2, y(2 * n), F;
+  Eigen::MatrixXd J, B(n, unknowns);
+  Eigen::VectorXd R(unknowns);
+  Eigen::MatrixXd Jac(unknowns, unknowns);
+  for (int it = 1; it <= opt.max_iterations; ++it) {
+    R.setZero();
+    Jac.setZero();
+    for (const QuadPoint& qp : points) {
+      basis(K, qp.psi, p, d1, d2);
+      const Eigen::VectorXd q = X * p, qd = X * d1, qdd = X * d2;
+      for (int j = 0; j < n; ++j) {
+        y(model::rate_index(j, M, N)) = qd(j);
+        y(model::displacement_index(j, M, N)) = q(j);
+      }
+      sys.evaluate(qp.psi, qp.reversed, y, &F, &J);
+      // normalised weights: the projection onto phi_c is a Fourier coefficient
+      Eigen::VectorXd wp = p * (qp.weight / kPi);
+      wp(0) *= 0.5;
+      for (int i = 0; i < n; ++i) {
+        const int row = model::rate_index(i, M, N);
+        const double e = qdd(i) - F(row);
+        R.segment(i * nb, nb) += e * wp;
+        for (int j = 0; j < n; ++j) {
+          const double a = J(row, model::displacement_index(j, M, N));
+          const double b = J(row, model::rate_index(j, M, N));
+          for (int d = 0; d < nb; ++d) B(i, j * nb + d) = -(a * p(d) + b * d1(d));
+        }
+        for (int d = 0; d < nb; ++d) B(i, i * nb + d) += d2(d);
+        Jac.middleRows(i * nb, nb).noalias() += wp * B.row(i);
+      }
+    }
+    out.residual = R.cwiseAbs().maxCoeff();
+    if (!R.allFinite() || !Jac.allFinite()) {
+      out.finite = false;
+      return out;
+    }
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu(Jac);
+    if (!(lu.rcond() > 1e-13)) {
+      out.singular = true;
+      return out;
+    }
+    const Eigen::VectorXd dx = lu.solve(-R);
+    for (int i = 0; i < n; ++i) X.row(i) += dx.segment(i * nb, nb).transpose();
+    out.iterations = it;
+    out.step = dx.cwiseAbs().maxCoeff() / std::max(1.0, X.cwiseAbs().maxCoeff());
+    if (!X.allFinite()) {
+      out.finite = false;
+      return out;
+    }
+    if (out.step <= opt.tolerance) {
+      out.converged = true;
+      return out;
+    }
+  }
+  return out;
+}
+
+// Harmonic set of A(psi) = dF/dy(y°(psi), psi) in one region: exact DFT of a trigonometric
+// polynomial of order <= L (L = model order + 2K covers loads up to cubic in the state).
+HarmonicSet linear_set(const NonlinearSystem& sys, const PeriodicEquilibrium& eq, bool reversed,
+                       int L) {
+  const int ns = sys.size(), P = 2 * L + 2;
+  std::vector<Eigen::MatrixXd> A(2 * L + 1, Eigen::MatrixXd::Zero(ns, ns));
+  Eigen::VectorXd F;
+  Eigen::MatrixXd J;
+  for (int k = 0; k < P; ++k) {
+    const double psi = kTwoPi * k / P;
+    sys.evaluate(psi, reversed, eq.state(psi), &F, &J);
+    A[0] += J / P;
+    for (int h = 1; h <= L; ++h) {
+      A[2 * h - 1] += J * (2.0 * std::cos(h * psi) / P);
+      A[2 * h] += J * (2.0 * std::sin(h * psi) / P);
+    }
+  }
+  // Entries at rounding level are exact zeros (the transition kernels skip constant entries).
+  double scale = 0.0;
+  for (const auto& a : A) scale = std::max(scale, a.cwiseAbs().maxCoeff());
+  const double tiny = 1e-14 * scale;
+  int top = 0;
+  for (int h = 0; h <= 2 * L; ++h) {
+    A[h] = A[h].unaryExpr([tiny](double v) { return std::abs(v) <= tiny ? 0.0 : v; });
+    if (!A[h].isZero(0.0)) top = h;
+  }
+  const int H = top % 2 == 1 ? top + 2 : top + 1;  // whole harmonic orders (cos and sin)
+  HarmonicSet set;
+  set.A.assign(A.begin(), A.begin() + std::min(H, 2 * L + 1));
+  set.f.assign(1, Eigen::VectorXd::Zero(ns));
+  return set;
+}
+
+}  // namespace
+
+NonlinearSystem::NonlinearSystem(const detail::SystemBuilder& builder, double mu)
+    : builder_(&builder), mu_(mu) {
+  const auto& m = builder.model();
+  if (m.nonlinear == nullptr) {
+    throw InvalidInput("model", m.name,
+                       "has no nonlinear loads (its spec does not set [emit] nonlinear)");
+  }
+  n_ = m.flap_modes + m.lag_modes;
+  ns_ = 2 * n_;
+  H_ = m.n_nonlinear_harmonics;
+  sector_ = builder.system(mu);  // throws InvalidInput("mu", ...) for a bad mu
+  normal_ = builder.normal_integrals();
+  if (sector_.has_sector) reversed_ = builder.reversed_integrals(mu);
+}
+
+bool NonlinearSystem::reversed(double psi) const { return sector_.in_sector(psi); }
+
+void NonlinearSystem::evaluate(double psi, bool in_sector, const Eigen::VectorXd& y,
+                               Eigen::VectorXd* F, Eigen::MatrixXd* J) const {
+  const auto& m = builder_->model();
+  const int M = m.flap_modes, N = m.lag_modes;
+  std::vector<double> force(H_ * n_), jac(H_ * n_ * ns_);
+  builder_->nonlinear_loads(mu_, in_sector && sector_.has_sector ? reversed_ : normal_, y.data(),
+                            force.data(), jac.data());
+  Eigen::VectorXd G = Eigen::VectorXd::Zero(n_);
+  Eigen::MatrixXd Jg = Eigen::MatrixXd::Zero(n_, ns_);
+  for (int h = 0; h < H_; ++h) {
+    const double b = harmonic_basis(h, psi);
+    for (int i = 0; i < n_; ++i) {
+      G(i) += b * force[h * n_ + i];
+      if (J != nullptr)
+        for (int c = 0; c < ns_; ++c) Jg(i, c) += b * jac[(h * n_ + i) * ns_ + c];
+    }
+  }
+  const Eigen::MatrixXd& Minv = builder_->mass_inverse();
+  F->setZero(ns_);
+  const Eigen::VectorXd acc = Minv * G;
+  for (int j = 0; j < n_; ++j) {
+    (*F)(model::rate_index(j, M, N)) = acc(j);
+    (*F)(model::displacement_index(j, M, N)) = y(model::rate_index(j, M, N));
+  }
+  if (J != nullptr) {
+    J->setZero(ns_, ns_);
+    const Eigen::MatrixXd D = Minv * Jg;
+    for (int j = 0; j < n_; ++j) {
+      J->row(model::rate_index(j, M, N)) = D.row(j);
+      (*J)(model::displacement_index(j, M, N), model::rate_index(j, M, N)) = 1.0;
+    }
+  }
+}
+
+std::vector<Eigen::VectorXd> NonlinearSystem::integrate(const Eigen::VectorXd& y0, int revolutions,
+                                                        int steps_per_rev) const {
+  if (y0.size() != ns_) throw InvalidInput("y0", std::to_string(y0.size()), "must have 2n entries");
+  if (revolutions < 1)
+    throw InvalidInput("revolutions", std::to_string(revolutions), "must be >= 1");
+  if (steps_per_rev < 1)
+    throw InvalidInput("steps_per_rev", std::to_string(steps_per_rev), "must be >= 1");
+  std::vector<double> grid;
+  for (int i = 0; i <= steps_per_rev; ++i) grid.push_back(kTwoPi * i / steps_per_rev);
+  for (double e : sector_.breakpoints()) grid.push_back(e);
+  std::sort(grid.begin(), grid.end());
+  grid.erase(std::unique(grid.begin(), grid.end(),
+                         [](double a, double b) { return std::abs(a - b) < 1e-13; }),
+             grid.end());
+  std::vector<Eigen::VectorXd> out;
+  Eigen::VectorXd y = y0, k1, k2, k3, k4;
+  for (int r = 0; r < revolutions; ++r) {
+    for (std::size_t i = 0; i + 1 < grid.size(); ++i) {
+      const double a = grid[i], b = grid[i + 1], h = b - a;
+      const bool rev = sector_.has_sector && 0.5 * (a + b) >= sector_.sector_begin &&
+                       0.5 * (a + b) < sector_.sector_end;
+      evaluate(a, rev, y, &k1, nullptr);
+      evaluate(a + 0.5 * h, rev, y + 0.5 * h * k1, &k2, nullptr);
+      evaluate(a + 0.5 * h, rev, y + 0.5 * h * k2, &k3, nullptr);
+      evaluate(b, rev, y + h * k3, &k4, nullptr);
+      y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    }
+    out.push_back(y);
+  }
+  return out;
+}
+
+bool PeriodicEquilibriumOptions::IsValid(std::string* error) const {
+  if (harmonics < 1 || harmonics > 128)
+    return fail("harmonics", std::to_string(harmonics), "must be 1..128", error);
+  if (max_iterations < 1 || max_iterations > 1000)
+    return fail("max_iterations", std::to_string(max_iterations), "must be 1..1000", error);
+  if (!(std::isfinite(tolerance) && tolerance > 0.0 && tolerance <= 1e-2))
+    return fail("tolerance", round_trip_text(tolerance), "must be in (0, 1e-2]", error);
+  return true;
+}
+
+void PeriodicEquilibriumOptions::Check() const {
+  std::string why;
+  if (IsValid(&why)) return;
+  const auto eq = why.find(" = ");
+  const auto colon = why.find(": ", eq);
+  throw InvalidInput(why.substr(0, eq), why.substr(eq + 3, colon - eq - 3), why.substr(colon + 2));
+}
+
+Eigen::VectorXd PeriodicEquilibrium::state(double psi) const {
+  const int n = static_cast<int>(coefficients.rows()), K = harmonics;
+  const int M = flap_modes, N = n - flap_modes;
+  Eigen::VectorXd p, d1, d2;
+  basis(K, psi, p, d1, d2);
+  const Eigen::VectorXd q = coefficients * p, qd = coefficients * d1;
+  Eigen::VectorXd y(2 * n);
+  for (int j = 0; j < n; ++j) {
+    y(model::rate_index(j, M, N)) = qd(j);
+    y(model::displacement_index(j, M, N)) = q(j);
+  }
+  return y;
+}
+
+PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, double mu,
+                                         const PeriodicEquilibriumOptions& opt,
+                                         const PeriodicEquilibrium* start) {
+  opt.Check();
+  const NonlinearSystem sys(builder, mu);
+  const auto& m = builder.model();
+  const int M = m.flap_modes, N = m.lag_modes, n = M + N, K = opt.harmonics;
+  PeriodicEquilibrium out;
+  out.mu = mu;
+  out.harmonics = K;
+  out.flap_modes = M;
+  // The branch through the hover equilibrium: continuation in mu from hover (at mu = 0 the
+  // hover state solves the equations exactly), steps of at most kMaxStep, each Newton solve
+  // from the previous solution; a failed step, or one that moves any coefficient by more than
+  // kMaxChange, is halved, so that the steps shrink where the branch steepens towards a fold.
+  // Newton straight from the hover state at a large mu could land on another branch.
+  constexpr double kMaxStep = 0.1, kMaxChange = 0.01;
+  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(n, 2 * K + 1);
+  X.col(0) = builder.hover().q0;
+  double reached = 0.0;
+  Newton r;
+  if (start != nullptr && start->status != Status::Failed && start->harmonics == K &&
+      start->mu <= mu && start->coefficients.rows() == n) {
+    X = start->coefficients;  // a point of the same branch, continued from hover before
+    reached = start->mu;
+    r.converged = true;
+  } else {
+    r = solve(NonlinearSystem(builder, 0.0), M, N, K, opt, X);
+  }
+  double step = std::min(mu - reached, kMaxStep);
+  for (int tries = 0; r.converged && tries < 1000 && reached < mu && step >= 1e-5; ++tries) {
+    const double next = std::min(mu, reached + step);
+    Eigen::MatrixXd trial = X;
+    const Newton t = solve(next == mu ? sys : NonlinearSystem(builder, next), M, N, K, opt, trial);
+    if (!t.finite) {
+      r = t;
+      break;
+    }
+    // A step that moves the solution by more than kMaxChange may have jumped to another
+    // branch (beyond a fold there is no solution nearby): retry with half the step.
+    if (t.converged && (trial - X).cwiseAbs().maxCoeff() <= kMaxChange) {
+      X = trial;
+      reached = next;
+      r = t;
+      step = std::min(kMaxStep, 1.5 * step);
+    } else {
+      step *= 0.5;
+    }
+  }
+  out.continued_to = reached;
+  if (reached < mu) r.converged = false;
+  out.coefficients = X;
+  out.iterations = r.iterations;
+  out.step = r.step;
+  out.residual = r.residual;
+  if (!r.finite) {
+    out.status = Status::Failed;
+    out.message = "the harmonic balance overflowed at mu = " + round_trip_text(mu);
+    return out;
+  }
+  if (r.singular && reached >= mu) {
+    out.status = Status::Failed;
+    out.message = "the harmonic-balance Newton matrix is singular at mu = " + round_trip_text(mu) +
+                  ": a Floquet multiplier at 1, no unique periodic equilibrium";
+    return out;
+  }
+  if (!r.converged) {
+    out.status = Status::Failed;
+    out.message =
+        "no periodic equilibrium on the branch from hover at mu = " + round_trip_text(mu) +
+        ": the continuation from hover (harmonic balance, K = " + std::to_string(K) +
+        ") stops at mu = " + short_text(reached) +
+        " (the branch ends there: typically a fold, where a real Floquet multiplier reaches 1)";
+    return out;
+  }
+  const double big = X.cwiseAbs().maxCoeff();
+  double last = 0.0;
+  for (int j = 0; j < n; ++j) last = std::max(last, std::hypot(X(j, 2 * K - 1), X(j, 2 * K)));
+  out.truncation = big > 0.0 ? last / big : 0.0;
+
+  // The linearization: model order (H_nl - 1) / 2 plus 2K.
+  const int L = (m.n_nonlinear_harmonics - 1) / 2 + 2 * K;
+  out.linearization = sys.sector();
+  out.linearization.normal = linear_set(sys, out, false, L);
+  if (out.linearization.has_sector) out.linearization.reversed = linear_set(sys, out, true, L);
+
+  std::string note;
+  if (out.truncation > 1e-3) {
+    note = "harmonic " + std::to_string(K) + " of the periodic equilibrium is " +
+           short_text(out.truncation) + " of its largest coefficient; increase `harmonics`";
+  }
+  if (opt.check_stability) {
+    const Eigen::MatrixXd phi = transition_matrix_rk4(out.linearization, 4096);
+    const FloquetResult fl = floquet_exponents(phi, out.linearization.trace_integral());
+    out.min_distance_to_one = std::numeric_limits<double>::infinity();
+    for (const FloquetExponent& e : fl.exponents) {
+      out.multiplier_moduli.push_back(std::abs(e.multiplier));
+      out.min_distance_to_one =
+          std::min(out.min_distance_to_one, std::abs(e.multiplier - std::complex<double>(1.0)));
+    }
+    std::sort(out.multiplier_moduli.rbegin(), out.multiplier_moduli.rend());
+    if (fl.status != Status::Ok) {
+      note += std::string(note.empty() ? "" : "; ") + fl.message;
+    } else if (out.min_distance_to_one < 1e-8) {
+      note += std::string(note.empty() ? "" : "; ") + "a Floquet multiplier is at 1 (distance " +
+              short_text(out.min_distance_to_one) + "): the periodic equilibrium is not isolated";
+    } else if (!out.multiplier_moduli.empty() && out.multiplier_moduli[0] > 1.0) {
+      note += std::string(note.empty() ? "" : "; ") +
+              "the periodic equilibrium is unstable (largest multiplier modulus " +
+              short_text(out.multiplier_moduli[0]) + "): the blade does not settle onto it";
+    }
+  }
+  if (!note.empty()) {
+    out.status = Status::Warning;
+    out.message = note;
+  }
+  return out;
+}
+
+}  // namespace flaplag

@@ -1,0 +1,203 @@
+// The periodic equilibrium of the nonlinear equations and the linearization about it
+// (rotor/periodic_equilibrium.h, issue 12 "Checks: Periodic equilibrium"):
+//   - at mu = 0 it is the hover equilibrium and the linearization is the hover A;
+//   - at mu > 0 the nonlinear time-domain solution (RK4, independent of the harmonic balance)
+//     converges to it when it is stable, the closer the more harmonics;
+//   - the Floquet multipliers of the linearization are those of small perturbations of the
+//     nonlinear simulation (its monodromy by finite differences about the simulated orbit);
+//   - beyond the fold of the hover branch there is no equilibrium: status Failed;
+//   - options and models without nonlinear loads are rejected naming the input.
+#include "flaplag/rotor/periodic_equilibrium.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+#include "flaplag/analysis.h"
+#include "flaplag/core/constants.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/numerics/floquet.h"
+#include "flaplag/rotor/system_builder.h"
+#include "test_util.h"
+
+namespace flaplag {
+namespace {
+
+using testing::AbsClose;
+using testing::RelClose;
+
+RotorParameters nonlinear_case() {
+  RotorParameters p;
+  p.model = "paper-nonlinear";
+  // Structural lag damping: the lag mode then settles within tens of revolutions, so that the
+  // simulation checks stay cheap (the typical case's lag damping is -0.003 per rev at mu = 0.3).
+  p.damping_lag = 0.05;
+  return p;
+}
+
+TEST(PeriodicEquilibrium, AtHoverItIsTheHoverEquilibriumAndTheHoverA) {
+  RotorParameters p;
+  p.model = "paper-nonlinear";
+  const Analysis an(p, {});
+  const PeriodicEquilibrium eq = an.periodic_equilibrium(0.0);
+  ASSERT_EQ(Status::Ok, eq.status) << eq.message;
+  const Eigen::VectorXd& q0 = an.hover().q0;
+  for (int j = 0; j < 2; ++j) {
+    EXPECT_TRUE(RelClose(q0(j), eq.coefficients(j, 0), 1e-13));
+    for (int c = 1; c < eq.coefficients.cols(); ++c) EXPECT_EQ(0.0, eq.coefficients(j, c));
+  }
+  const PeriodicSystem hover = an.system(0.0);
+  ASSERT_EQ(1u, eq.linearization.normal.A.size());
+  ASSERT_FALSE(eq.linearization.has_sector);
+  const Eigen::MatrixXd& A = eq.linearization.normal.A[0];
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      EXPECT_TRUE(AbsClose(hover.normal.A[0](i, j), A(i, j), 1e-13)) << i << "," << j;
+  // The paper's own model gives the same A (paper-nonlinear's linear part is the paper's).
+  RotorParameters paper;
+  const Eigen::MatrixXd A_paper = Analysis(paper, {}).system(0.0).normal.A[0];
+  EXPECT_LT((A_paper - A).cwiseAbs().maxCoeff(), 1e-13);
+  // The analysis switch: identical exponents at hover.
+  RotorParameters pp = p;
+  pp.periodic_linearization = true;
+  const PointResult a = Analysis(p, {}).point(0.0), b = Analysis(pp, {}).point(0.0);
+  ASSERT_EQ(a.exponents.size(), b.exponents.size());
+  for (std::size_t k = 0; k < a.exponents.size(); ++k) {
+    EXPECT_TRUE(AbsClose(a.exponents[k].zeta, b.exponents[k].zeta, 1e-12));
+    EXPECT_TRUE(AbsClose(a.exponents[k].omega, b.exponents[k].omega, 1e-12));
+  }
+}
+
+// Distance of the state after many revolutions of the nonlinear RK4 simulation (started at the
+// hover state) from the harmonic-balance equilibrium at psi = 0.
+double simulated_distance(const Analysis& an, const detail::SystemBuilder& b, double mu, int K) {
+  PeriodicEquilibriumOptions o;
+  o.harmonics = K;
+  o.check_stability = false;
+  const PeriodicEquilibrium eq = an.periodic_equilibrium(mu, o);
+  EXPECT_EQ(Status::Ok, eq.status) << eq.message;  // converged, last harmonic small
+  const NonlinearSystem sys(b, mu);
+  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(4);
+  y0(1) = an.hover().q0(0);
+  y0(3) = an.hover().q0(1);
+  const auto revs = sys.integrate(y0, 60, 720);
+  return (revs.back() - eq.state(0.0)).cwiseAbs().maxCoeff() / eq.state(0.0).cwiseAbs().maxCoeff();
+}
+
+TEST(PeriodicEquilibrium, NonlinearSimulationConvergesToIt) {
+  const RotorParameters p = nonlinear_case();
+  const Analysis an(p, {});
+  const detail::SystemBuilder b(p, find_model(p.model));
+  const double mu = 0.5;  // with reversed flow: the sector's kinks limit the Fourier series
+  // (RK4 with 720 and 1440 steps per rev agree to 1e-10 here; after 60 revs the transient is
+  // below 1e-13.)  The Fourier coefficients of the equilibrium fall like k^-3 (its second
+  // derivative jumps at the sector edges): the distance falls like K^-2.
+  // Relative distances (measured: K = 8 1.4e-4, K = 16 3.9e-5, K = 32 9.2e-6).
+  const double d8 = simulated_distance(an, b, mu, 8), d16 = simulated_distance(an, b, mu, 16);
+  EXPECT_LT(d16, 8e-5) << "K = 8: " << d8;
+  EXPECT_LT(d16, 0.4 * d8) << "more harmonics must come closer";
+}
+
+TEST(PeriodicEquilibrium, FloquetMultipliersAreThoseOfPerturbedNonlinearSimulation) {
+  const RotorParameters p = nonlinear_case();
+  const Analysis an(p, {});
+  const detail::SystemBuilder b(p, find_model(p.model));
+  const double mu = 0.5;
+  PeriodicEquilibriumOptions o;
+  o.harmonics = 16;
+  const PeriodicEquilibrium eq = an.periodic_equilibrium(mu, o);
+  ASSERT_EQ(Status::Ok, eq.status) << eq.message;
+  ASSERT_EQ(4u, eq.multiplier_moduli.size());
+  const NonlinearSystem sys(b, mu);
+  // The simulated orbit: from the equilibrium, settled (the residual is the truncation only).
+  const Eigen::VectorXd y_orbit = sys.integrate(eq.state(0.0), 40, 720).back();
+  // Monodromy of small perturbations by central differences over one revolution.
+  const double delta = 1e-6;
+  Eigen::MatrixXd phi(4, 4);
+  for (int c = 0; c < 4; ++c) {
+    Eigen::VectorXd yp = y_orbit, ym = y_orbit;
+    yp(c) += delta;
+    ym(c) -= delta;
+    phi.col(c) =
+        (sys.integrate(yp, 1, 720).back() - sys.integrate(ym, 1, 720).back()) / (2 * delta);
+  }
+  // against the transition matrix of the linearization about the harmonic-balance equilibrium
+  const Eigen::MatrixXd phi_lin = transition_matrix_rk4(eq.linearization, 4096);
+  EXPECT_LT((phi - phi_lin).cwiseAbs().maxCoeff(), 1e-6);
+  Eigen::EigenSolver<Eigen::MatrixXd> es(phi, false);
+  std::vector<double> sim;
+  for (int k = 0; k < 4; ++k) sim.push_back(std::abs(es.eigenvalues()(k)));
+  std::sort(sim.rbegin(), sim.rend());
+  for (int k = 0; k < 4; ++k) {
+    // zeta = ln|Lambda| / 2 pi from both
+    EXPECT_TRUE(
+        AbsClose(std::log(sim[k]) / kTwoPi, std::log(eq.multiplier_moduli[k]) / kTwoPi, 1e-5))
+        << k;
+  }
+  // The analysis with the switch gives the same largest zeta, and it differs from the hover
+  // linearization's: the periodic equilibrium matters at this mu.
+  RotorParameters pp = p;
+  pp.periodic_linearization = true;
+  TransitionOptions fine;
+  fine.zeta_tolerance = 1e-7;
+  const PointResult periodic = Analysis(pp, fine).point(mu, 0.1), hover = an.point(mu, 0.1);
+  ASSERT_NE(Status::Failed, periodic.status) << periodic.message;
+  auto max_zeta = [](const PointResult& r) {
+    double z = -1e300;
+    for (const auto& e : r.exponents) z = std::max(z, e.zeta);
+    return z;
+  };
+  EXPECT_TRUE(AbsClose(std::log(sim[0]) / kTwoPi, max_zeta(periodic), 1e-6));
+  EXPECT_GT(std::abs(max_zeta(periodic) - max_zeta(hover)), 1e-3);
+}
+
+TEST(PeriodicEquilibrium, BeyondTheFoldOfTheHoverBranchThereIsNone) {
+  RotorParameters p;
+  p.model = "paper-nonlinear";
+  const Analysis an(p, {});
+  PeriodicEquilibriumOptions o;
+  o.harmonics = 8;
+  const PeriodicEquilibrium before = an.periodic_equilibrium(0.66, o);
+  ASSERT_EQ(Status::Ok, before.status) << before.message;
+  // approaching the fold a real multiplier approaches 1
+  EXPECT_LT(before.min_distance_to_one, 0.4);
+  o.check_stability = false;
+  const PeriodicEquilibrium after = an.periodic_equilibrium(0.7, o);
+  EXPECT_EQ(Status::Failed, after.status);
+  EXPECT_NE(std::string::npos, after.message.find("fold")) << after.message;
+  EXPECT_GT(after.continued_to, 0.66);
+  EXPECT_LT(after.continued_to, 0.68);
+}
+
+TEST(PeriodicEquilibrium, BadOptionsAndModelsWithoutNonlinearLoadsAreRejected) {
+  PeriodicEquilibriumOptions o;
+  std::string why;
+  EXPECT_TRUE(o.IsValid(&why));
+  o.harmonics = 0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(std::string::npos, why.find("harmonics = 0")) << why;
+  EXPECT_THROW(o.Check(), InvalidInput);
+  o = {};
+  o.tolerance = std::nan("");
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(std::string::npos, why.find("tolerance")) << why;
+  o = {};
+  o.max_iterations = 0;
+  EXPECT_THROW(o.Check(), InvalidInput);
+
+  RotorParameters p;  // the paper's model: linear only
+  EXPECT_THROW(Analysis(p, {}).periodic_equilibrium(0.3), InvalidInput);
+  p.periodic_linearization = true;
+  try {
+    Analysis an(p, {});
+    FAIL() << "accepted periodic_linearization with a linear-only model";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ("periodic_linearization", e.name());
+    EXPECT_NE(std::string::npos, std::string(e.what()).find("paper-nonlinear")) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace flaplag
