@@ -925,6 +925,8 @@ const flaplag::model::ModelDescriptor& flaplag_model_paper_nonlinear() {
       &g::mass,
       &g::coefficients,
       &g::equilibrium,
+      false,
+      nullptr,
       5, &g::nonlinear};
   return d;
 }
