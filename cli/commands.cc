@@ -279,10 +279,10 @@ std::string header_text(const Analysis& an, bool with_method = true) {
                                     : "on");
   kv.add("blade", blade);
   if (p.periodic_linearization) {
-    kv.add("linearized", "about the periodic equilibrium of the nonlinear equations (harmonic "
-                         "balance, K = " +
-                             std::to_string(PeriodicEquilibriumOptions{}.harmonics) +
-                             "), not about hover");
+    kv.add("linearized",
+           "about the periodic equilibrium of the nonlinear equations (harmonic "
+           "balance, K = " +
+               std::to_string(PeriodicEquilibriumOptions{}.harmonics) + "), not about hover");
   }
   if (with_method) kv.add("method", method_text(an.options()));
   kv.add("parameters", parameters_text(p));

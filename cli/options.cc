@@ -344,11 +344,10 @@ const char* command_name(Command c) {
 }
 
 const std::vector<Command>& subcommands() {
-  static const std::vector<Command> all = {Command::Point,    Command::Sweep,    Command::Critical,
-                                           Command::Study,    Command::Map,      Command::System,
-                                           Command::Response, Command::Simulate, Command::Trim,
-                                           Command::Models,   Command::Modes,    Command::Merge,
-                                           Command::Plot};
+  static const std::vector<Command> all = {
+      Command::Point,  Command::Sweep,    Command::Critical, Command::Study, Command::Map,
+      Command::System, Command::Response, Command::Simulate, Command::Trim,  Command::Models,
+      Command::Modes,  Command::Merge,    Command::Plot};
   return all;
 }
 

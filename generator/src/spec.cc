@@ -256,8 +256,7 @@ const std::vector<SpecKey>& spec_keys() {
        true},
       // Also emit the nonlinear generalized loads (every product of the coordinates that the
       // ordering keeps), for the periodic equilibrium; a family of its own.
-      {"emit", "nonlinear", T::Boolean, 0, 0, nullptr, true, nullptr, nullptr, &nonlinear_of,
-       true},
+      {"emit", "nonlinear", T::Boolean, 0, 0, nullptr, true, nullptr, nullptr, &nonlinear_of, true},
   };
   return keys;
 }

@@ -35,8 +35,9 @@
 // trim()), updated by Broyden's rule after each step and re-evaluated when a step fails; each
 // step is halved until the residual decreases.  The periodic response uses fixed RK4 steps
 // (chosen at the first evaluation) so that the residual is a smooth function of the controls.
-// Starting point: blade-element theory for the uniform rigid blade.  Linearization: the system about which stability is then analysed is the paper's
-// (hover equilibrium at the trimmed theta0 and lambda; A(psi) carries the cyclic pitch).
+// Starting point: blade-element theory for the uniform rigid blade.  Linearization: the system
+// about which stability is then analysed is the paper's (hover equilibrium at the trimmed theta0
+// and lambda; A(psi) carries the cyclic pitch).
 #pragma once
 
 #include <Eigen/Dense>
