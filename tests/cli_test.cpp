@@ -281,6 +281,21 @@ const std::vector<BadInput> kBadInputs = {
      {"point", "--mu", "0.3", "--periodic-linearization"},
      "--periodic-linearization",
      "true"},
+    // the harmonic balance has the sector form only: the exact circle would be left out
+    {"PeriodicLinearizationWithExactReversedFlow",
+     {"--model", "paper-nonlinear", "--periodic-linearization", "--exact-reversed-flow", "point",
+      "--mu", "0.5"},
+     "--exact-reversed-flow",
+     "true"},
+    // response, simulate and system are of the hover-linearized system
+    {"PeriodicLinearizationResponse",
+     {"--model", "paper-nonlinear", "--periodic-linearization", "response", "--mu", "0.3"},
+     "--periodic-linearization",
+     "true"},
+    {"PeriodicLinearizationSimulate",
+     {"--model", "paper-nonlinear", "--periodic-linearization", "simulate", "--mu", "0.3"},
+     "--periodic-linearization",
+     "true"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Table, CliBadInput, ::testing::ValuesIn(kBadInputs),

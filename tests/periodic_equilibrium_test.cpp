@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <string>
 
 #include "flaplag/analysis.h"
 #include "flaplag/core/constants.h"
@@ -197,6 +198,33 @@ TEST(PeriodicEquilibrium, BadOptionsAndModelsWithoutNonlinearLoadsAreRejected) {
     EXPECT_EQ("periodic_linearization", e.name());
     EXPECT_NE(std::string::npos, std::string(e.what()).find("paper-nonlinear")) << e.what();
   }
+}
+
+// Regression: the harmonic balance integrates the loads with the normal and sector integrals
+// only, so with the exact reversed-flow circle it used to answer for the sector silently; and
+// response/simulate/snapshot, which are of the hover system, ignored periodic_linearization.
+TEST(PeriodicEquilibrium, CombinationsItCannotAnswerAreRefusedByName) {
+  RotorParameters p;
+  p.model = "paper-nonlinear";
+  p.exact_reversed_flow = true;
+  auto field_of = [](const auto& call) {
+    try {
+      call();
+    } catch (const InvalidInput& e) {
+      return e.name();
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_EQ("exact_reversed_flow", field_of([&] { Analysis(p, {}).periodic_equilibrium(0.5); }));
+  p.periodic_linearization = true;
+  EXPECT_EQ("exact_reversed_flow", field_of([&] { Analysis an(p, {}); }));
+  p.exact_reversed_flow = false;
+  const Analysis an(p, {});
+  EXPECT_EQ("periodic_linearization", field_of([&] { an.response(0.3); }));
+  EXPECT_EQ("periodic_linearization",
+            field_of([&] { an.simulate(0.3, Eigen::VectorXd::Zero(an.state_size()), true); }));
+  EXPECT_EQ("periodic_linearization", field_of([&] { an.snapshot(0.3, 0.0); }));
+  EXPECT_EQ("(accepted)", field_of([&] { an.system(0.3); }));  // documented: the hover system
 }
 
 }  // namespace

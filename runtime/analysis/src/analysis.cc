@@ -63,6 +63,17 @@ void check_mu(double mu, const char* name) {
   }
 }
 
+// response, simulate and snapshot are of the hover-linearized system: with
+// periodic_linearization they would silently answer another question than the one asked.
+void require_hover_linearization(const RotorParameters& p, const char* what) {
+  if (!p.periodic_linearization) return;
+  throw InvalidInput("periodic_linearization", "true",
+                     std::string(what) +
+                         " is of the system linearized about hover; about the periodic "
+                         "equilibrium it is not built (the periodic equilibrium itself is "
+                         "periodic_equilibrium(mu))");
+}
+
 std::string snap12(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.12g", v);
@@ -412,6 +423,7 @@ FloquetSample Analysis::floquet(double mu, double zeta_tolerance) const {
 
 ForcedResponse Analysis::response(double mu, const ResponseOptions& options) const {
   check_mu(mu, "mu");
+  require_hover_linearization(parameters(), "the periodic forced response");
   options.Check();
   ForcedResponse out;
   out.mu = mu;
@@ -454,6 +466,7 @@ ForcedResponse Analysis::response(double mu, const ResponseOptions& options) con
 TipSimulation Analysis::simulate(double mu, const Eigen::VectorXd& y0, bool forced,
                                  const SimulationOptions& options) const {
   check_mu(mu, "mu");
+  require_hover_linearization(parameters(), "the time-domain simulation");
   TipSimulation out;
   out.mu = mu;
   out.simulation = flaplag::simulate(impl_->builder.system(mu), y0, forced, options);
@@ -479,6 +492,7 @@ int Analysis::state_size() const { return impl_->builder.state_size(); }
 
 SystemSnapshot Analysis::snapshot(double mu, double psi) const {
   check_mu(mu, "mu");
+  require_hover_linearization(parameters(), "the system snapshot");
   if (!std::isfinite(psi)) throw InvalidInput("psi", round_trip_text(psi), "must be finite");
   SystemSnapshot s;
   s.mu = mu;

@@ -198,6 +198,13 @@ NonlinearSystem::NonlinearSystem(const detail::SystemBuilder& builder, double mu
     throw InvalidInput("model", m.name,
                        "has no nonlinear loads (its spec does not set [emit] nonlinear)");
   }
+  // The loads are integrated with the normal and the sector integrals (the exact circle would
+  // be left out silently).
+  if (builder.params().exact_reversed_flow) {
+    throw InvalidInput("exact_reversed_flow", "true",
+                       "the periodic equilibrium is built with the Appendix D sector: use the "
+                       "sector (`exact_reversed_flow` = false)");
+  }
   n_ = m.flap_modes + m.lag_modes;
   ns_ = 2 * n_;
   H_ = m.n_nonlinear_harmonics;

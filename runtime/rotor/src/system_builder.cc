@@ -63,6 +63,14 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
                            "' has no nonlinear loads (its spec does not set [emit] nonlinear); "
                            "use a model that has them, e.g. paper-nonlinear");
   }
+  // The harmonic balance integrates the nonlinear loads region by region with the normal and
+  // the sector integrals; the exact circle has no such form there (it would silently be left
+  // out).
+  if (p_.periodic_linearization && p_.exact_reversed_flow) {
+    throw InvalidInput("exact_reversed_flow", "true",
+                       "the periodic equilibrium (`periodic_linearization`) is built with the "
+                       "Appendix D sector: use the sector (`exact_reversed_flow` = false)");
+  }
   if (p_.modes == ModeKind::Assumed) {
     if (M_ != 1 || N_ != 1) {
       throw InvalidInput("modes", "assumed",

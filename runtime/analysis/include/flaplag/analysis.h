@@ -124,7 +124,9 @@ class Analysis {
   // linearization (harmonic balance with the default options, K = 16) instead of the hover one.
   PeriodicEquilibrium periodic_equilibrium(double mu,
                                            const PeriodicEquilibriumOptions& options = {}) const;
-  // psi any finite angle [rad], reduced to [0, 2 pi).
+  // psi any finite angle [rad], reduced to [0, 2 pi).  response, simulate and snapshot are of
+  // the hover-linearized system: with periodic_linearization they throw
+  // InvalidInput("periodic_linearization") rather than answer for another system.
   SystemSnapshot snapshot(double mu, double psi) const;
 
   // Exponents at mu with labels from continuation (steps of at most scan_step from hover;
