@@ -744,6 +744,13 @@ Request CommandLine::interpret() const {
   if (const Given* g = given("--shaft-angle"))
     r.trim.shaft_angle = parse_real(g->spelling, g->text);
   if (r.trim.kind != TrimKind::None) r.trim.Check();  // errors name the option's field
+  // Without a trim they would be ignored: an answer for another rotor than the one described.
+  if (r.trim.kind == TrimKind::None) {
+    for (const char* name : {"--thrust-coefficient", "--shaft-angle"}) {
+      if (const Given* g = given(name))
+        throw InvalidInput(g->spelling, shown(g->text), "applies only with --trim thrust|moment");
+    }
+  }
   if (c == Command::Study || c == Command::Map) interpret_batch(r);
   if (const Given* g = given("--threads")) r.threads = parse_int(g->spelling, g->text, 0, 256);
   if (const Given* g = given("--plot")) {

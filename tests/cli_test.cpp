@@ -287,6 +287,15 @@ const std::vector<BadInput> kBadInputs = {
       "--mu", "0.5"},
      "--exact-reversed-flow",
      "true"},
+    // without a trim the thrust coefficient and the shaft angle would be ignored
+    {"ThrustCoefficientWithoutTrim",
+     {"--model", "paper-cyclic", "point", "--mu", "0.3", "--thrust-coefficient", "0.005"},
+     "--thrust-coefficient",
+     "0.005"},
+    {"ShaftAngleWithTrimNone",
+     {"--model", "paper-cyclic", "critical", "--trim", "none", "--shaft-angle", "0.1"},
+     "--shaft-angle",
+     "0.1"},
     // response, simulate and system are of the hover-linearized system
     {"PeriodicLinearizationResponse",
      {"--model", "paper-nonlinear", "--periodic-linearization", "response", "--mu", "0.3"},
