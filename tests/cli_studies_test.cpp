@@ -408,9 +408,11 @@ TEST(CliInterrupt, SigintDuringAStudyKeepsTheValuesFinished) {
 TEST(CliProgress, BarOnATerminalOnlyAndNeverInTheOutput) {
   const std::vector<std::string> map = {
       "map", "--x", "mu=0:1:0.25", "--y", "omega-lag=0.5:2.5:0.0005", "--json", "--threads", "2"};
-  // Interrupted after 2 s: long enough for the bar, cheap however slow the build.
-  const Outcome bar = flaplag::testing::run_process_on_terminal(
-      FLAPLAG_EXE, map, std::chrono::seconds(300), std::chrono::milliseconds(2000));
+  // Interrupted once the bar is on the terminal (at least 2 s in): the job is running and its
+  // handler installed, however slowly a loaded or instrumented build starts.
+  const Outcome bar =
+      flaplag::testing::run_process_on_terminal(FLAPLAG_EXE, map, std::chrono::seconds(300),
+                                                std::chrono::milliseconds(2000), "flaplag map [");
   ASSERT_EQ(130, bar.exit_code) << bar.err;
   EXPECT_TRUE(std::regex_search(
       bar.err, std::regex("\rflaplag map \\[#*\\.*\\] +[0-9]+%  [0-9]+/4001 rows  [0-9]+ s")))
@@ -421,8 +423,11 @@ TEST(CliProgress, BarOnATerminalOnlyAndNeverInTheOutput) {
   EXPECT_EQ("cancelled", Json::parse(bar.out)["status"]);
   std::vector<std::string> quiet = map;
   quiet.push_back("--quiet");
-  const Outcome q = flaplag::testing::run_process_on_terminal(
-      FLAPLAG_EXE, quiet, std::chrono::seconds(300), std::chrono::milliseconds(1500));
+  // Nothing on the terminal to wait for: interrupted as late as the bar run was, plus a margin.
+  const auto late = std::max(std::chrono::milliseconds(1500),
+                             bar.interrupted_at + std::chrono::milliseconds(500));
+  const Outcome q = flaplag::testing::run_process_on_terminal(FLAPLAG_EXE, quiet,
+                                                              std::chrono::seconds(300), late);
   ASSERT_EQ(130, q.exit_code) << q.err;
   EXPECT_TRUE(std::regex_match(q.err, std::regex("flaplag: interrupted: [^\r\n]*\r?\n"))) << q.err;
 }

@@ -24,6 +24,7 @@ namespace flaplag::testing {
 struct Outcome {
   int exit_code = -1;  // -1: did not exit normally (signal, or killed after the time limit)
   std::string out, err;
+  std::chrono::milliseconds interrupted_at{-1};  // when SIGINT was sent (from the start), or -1
 };
 
 inline std::string slurp(const std::string& path) {
@@ -120,11 +121,15 @@ inline Outcome run_process(const std::string& program, const std::vector<std::st
 
 // As run_process, but with stderr on a pseudo-terminal (isatty(2) is true in the child, as in an
 // interactive shell); Outcome::err is what the terminal received (the pty turns "\n" into
-// "\r\n").  `interrupt_after` > 0: SIGINT once, that long after the start.
+// "\r\n").  `interrupt_after` > 0: SIGINT once, that long after the start, and not before the
+// terminal has received `interrupt_when` (when given): a signal that arrives before the child
+// has installed its handler would end it, so a test that needs the handler waits for a sign of
+// the job (a loaded or instrumented build starts slowly).
 inline Outcome run_process_on_terminal(const std::string& program,
                                        const std::vector<std::string>& args,
                                        std::chrono::seconds limit,
-                                       std::chrono::milliseconds interrupt_after = {}) {
+                                       std::chrono::milliseconds interrupt_after = {},
+                                       const std::string& interrupt_when = {}) {
   TempDir io;
   const std::string out = io.file("stdout");
   const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
@@ -160,9 +165,11 @@ inline Outcome run_process_on_terminal(const std::string& program,
     const pid_t w = ::waitpid(pid, &status, WNOHANG);
     if (w == pid) break;
     const auto now = std::chrono::steady_clock::now();
-    if (interrupt_after.count() > 0 && !interrupted && now >= start + interrupt_after) {
+    if (interrupt_after.count() > 0 && !interrupted && now >= start + interrupt_after &&
+        (interrupt_when.empty() || r.err.find(interrupt_when) != std::string::npos)) {
       ::kill(pid, SIGINT);
       interrupted = true;
+      r.interrupted_at = std::chrono::duration_cast<std::chrono::milliseconds>(now - start);
     }
     if (w < 0 || now > start + limit) {
       ::kill(pid, SIGKILL);
