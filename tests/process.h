@@ -68,10 +68,23 @@ class TempDir {
   std::string path_;
 };
 
+// True once the process catches SIGINT (the SigCgt mask of /proc/PID/status): a SIGINT sent
+// before the child has installed its handler would end it instead of being handled, and a
+// loaded or instrumented build can take seconds to get there.
+inline bool catches_sigint(pid_t pid) {
+  std::ifstream f("/proc/" + std::to_string(pid) + "/status");
+  for (std::string line; std::getline(f, line);) {
+    if (line.rfind("SigCgt:", 0) == 0)
+      return (std::stoull(line.substr(7), nullptr, 16) >> (SIGINT - 1)) & 1u;
+  }
+  return false;
+}
+
 // fork + exec of `program` with stdout/stderr captured in files: no shell, so arguments arrive
 // verbatim (empty strings, '*', quotes).  A run longer than `limit` is killed (exit_code -1): a
 // test of an output that must not block (a FIFO nobody reads) fails instead of hanging.
-// `interrupt_after` > 0: SIGINT is sent once, that long after the start (Ctrl-C in a terminal).
+// `interrupt_after` > 0: SIGINT is sent once, that long after the start (Ctrl-C in a terminal)
+// and not before the child catches it (catches_sigint).
 inline Outcome run_process(const std::string& program, const std::vector<std::string>& args,
                            std::chrono::seconds limit = std::chrono::seconds(120),
                            const std::string& path_env = "",
@@ -101,7 +114,7 @@ inline Outcome run_process(const std::string& program, const std::vector<std::st
     const pid_t w = ::waitpid(pid, &status, WNOHANG);
     if (w == pid) break;
     if (interrupt_after.count() > 0 && !interrupted &&
-        std::chrono::steady_clock::now() >= start + interrupt_after) {
+        std::chrono::steady_clock::now() >= start + interrupt_after && catches_sigint(pid)) {
       ::kill(pid, SIGINT);
       interrupted = true;
     }
@@ -121,10 +134,9 @@ inline Outcome run_process(const std::string& program, const std::vector<std::st
 
 // As run_process, but with stderr on a pseudo-terminal (isatty(2) is true in the child, as in an
 // interactive shell); Outcome::err is what the terminal received (the pty turns "\n" into
-// "\r\n").  `interrupt_after` > 0: SIGINT once, that long after the start, and not before the
-// terminal has received `interrupt_when` (when given): a signal that arrives before the child
-// has installed its handler would end it, so a test that needs the handler waits for a sign of
-// the job (a loaded or instrumented build starts slowly).
+// "\r\n").  `interrupt_after` > 0: SIGINT once, that long after the start, not before the child
+// catches it (catches_sigint) and not before the terminal has received `interrupt_when` (when
+// given).
 inline Outcome run_process_on_terminal(const std::string& program,
                                        const std::vector<std::string>& args,
                                        std::chrono::seconds limit,
@@ -166,7 +178,8 @@ inline Outcome run_process_on_terminal(const std::string& program,
     if (w == pid) break;
     const auto now = std::chrono::steady_clock::now();
     if (interrupt_after.count() > 0 && !interrupted && now >= start + interrupt_after &&
-        (interrupt_when.empty() || r.err.find(interrupt_when) != std::string::npos)) {
+        (interrupt_when.empty() || r.err.find(interrupt_when) != std::string::npos) &&
+        catches_sigint(pid)) {
       ::kill(pid, SIGINT);
       interrupted = true;
       r.interrupted_at = std::chrono::duration_cast<std::chrono::milliseconds>(now - start);
