@@ -14,6 +14,7 @@
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/system_builder.h"
+#include "internal.h"
 
 namespace flaplag {
 
@@ -56,12 +57,7 @@ const model::ModelDescriptor& find_model(const std::string& base, int flap_modes
 
 namespace {
 
-void check_mu(double mu, const char* name) {
-  if (!std::isfinite(mu) || mu < 0.0 || mu > kMaxAdvanceRatio) {
-    throw InvalidInput(name, round_trip_text(mu),
-                       "advance ratio must be >= 0 and <= " + round_trip_text(kMaxAdvanceRatio));
-  }
-}
+using internal::check_mu;
 
 // response, simulate and snapshot are of the hover-linearized system: with
 // periodic_linearization they would silently answer another question than the one asked.
@@ -431,18 +427,12 @@ ForcedResponse Analysis::response(double mu, const ResponseOptions& options) con
   out.status = out.periodic.status;
   out.message = out.periodic.message;
   if (out.status == Status::Failed) return out;
-  const model::ModelDescriptor& m = model();
-  const ModeSet& modes = impl_->builder.modes();
-  const Eigen::VectorXd& q0 = impl_->hover.q0;
-  const int M = m.flap_modes, N = m.lag_modes;
+  const int M = model().flap_modes, N = model().lag_modes;
   for (const Eigen::VectorXd& y : out.periodic.y) {
-    double w = 0.0, v = 0.0;
-    for (int k = 0; k < M; ++k)
-      w += modes.flap[k]->value(0, 1.0) * (q0(k) + y(model::flap_displacement_index(k, M, N)));
-    for (int r = 0; r < N; ++r)
-      v += modes.lag[r]->value(0, 1.0) * (q0(M + r) + y(model::lag_displacement_index(r, M, N)));
-    out.flap_tip.push_back(w);
-    out.lag_tip.push_back(v);
+    const internal::TipDeflection t =
+        internal::tip_deflection(impl_->builder.modes(), M, N, y, &impl_->hover.q0);
+    out.flap_tip.push_back(t.flap);
+    out.lag_tip.push_back(t.lag);
   }
   // Discrete Fourier coefficients over the equally spaced samples.
   auto harmonics = [&](const std::vector<double>& s) {
@@ -471,16 +461,11 @@ TipSimulation Analysis::simulate(double mu, const Eigen::VectorXd& y0, bool forc
   out.mu = mu;
   out.simulation = flaplag::simulate(impl_->builder.system(mu), y0, forced, options);
   const Simulation& s = out.simulation;
-  const ModeSet& modes = impl_->builder.modes();
   const int M = model().flap_modes, N = model().lag_modes;
   for (const Eigen::VectorXd& y : s.y) {
-    double w = 0.0, v = 0.0;
-    for (int k = 0; k < M; ++k)
-      w += modes.flap[k]->value(0, 1.0) * y(model::flap_displacement_index(k, M, N));
-    for (int r = 0; r < N; ++r)
-      v += modes.lag[r]->value(0, 1.0) * y(model::lag_displacement_index(r, M, N));
-    out.flap_tip.push_back(w);
-    out.lag_tip.push_back(v);
+    const internal::TipDeflection t = internal::tip_deflection(impl_->builder.modes(), M, N, y);
+    out.flap_tip.push_back(t.flap);
+    out.lag_tip.push_back(t.lag);
   }
   // The first quarter holds the transient of the other modes.
   out.flap_growth_rate = envelope_growth_rate(s.psi, out.flap_tip, 0.25 * options.revolutions);

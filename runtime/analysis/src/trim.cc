@@ -15,6 +15,7 @@
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/hover.h"
 #include "flaplag/rotor/system_builder.h"
+#include "internal.h"
 
 namespace flaplag {
 
@@ -28,12 +29,7 @@ bool report(const char* name, const std::string& value, const std::string& reaso
   return false;
 }
 
-void check_mu(double mu) {
-  if (!std::isfinite(mu) || mu < 0.0 || mu > kMaxAdvanceRatio) {
-    throw InvalidInput("mu", round_trip_text(mu),
-                       "advance ratio must be >= 0 and <= " + round_trip_text(kMaxAdvanceRatio));
-  }
-}
+void check_mu(double mu) { internal::check_mu(mu, "mu"); }
 
 const model::ModelDescriptor& thrust_model(const RotorParameters& p) {
   const model::ModelDescriptor& m = find_model(p.model);
@@ -133,10 +129,7 @@ ThrustResult evaluate(const RotorParameters& p, const model::ModelDescriptor& m,
   const int M = m.flap_modes, N = m.lag_modes;
   const double n = static_cast<double>(r.y.size());
   for (std::size_t i = 0; i < r.y.size(); ++i) {
-    double w = 0.0;
-    for (int k = 0; k < M; ++k) {
-      w += builder.modes().flap[k]->value(0, 1.0) * r.y[i](model::flap_displacement_index(k, M, N));
-    }
+    const double w = internal::tip_deflection(builder.modes(), M, N, r.y[i]).flap;
     out.flap_1c += 2.0 / n * w * std::cos(r.psi[i]);
     out.flap_1s += 2.0 / n * w * std::sin(r.psi[i]);
   }

@@ -1,0 +1,42 @@
+// flaplag analysis — helpers shared by the sources of the analysis library (not installed).
+#pragma once
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "flaplag/blade/blade.h"
+#include "flaplag/core/errors.h"
+#include "flaplag/core/format.h"
+#include "flaplag/model_api.h"
+#include "flaplag/numerics/continuation.h"
+
+namespace flaplag::internal {
+
+// mu in [0, kMaxAdvanceRatio], else InvalidInput(name, ...).
+inline void check_mu(double mu, const char* name) {
+  if (!std::isfinite(mu) || mu < 0.0 || mu > kMaxAdvanceRatio) {
+    throw InvalidInput(name, round_trip_text(mu),
+                       "advance ratio must be >= 0 and <= " + round_trip_text(kMaxAdvanceRatio));
+  }
+}
+
+// Tip deflections w/l (flap) and v/l (lag) of the modal displacements q0 + y, y a state in the
+// order of model_api.h and q0 (M + N values: flap then lag) the hover equilibrium, or none.
+struct TipDeflection {
+  double flap = 0.0, lag = 0.0;
+};
+inline TipDeflection tip_deflection(const ModeSet& modes, int M, int N, const Eigen::VectorXd& y,
+                                    const Eigen::VectorXd* q0 = nullptr) {
+  TipDeflection t;
+  for (int k = 0; k < M; ++k) {
+    const double g = y(model::flap_displacement_index(k, M, N));
+    t.flap += modes.flap[k]->value(0, 1.0) * (q0 != nullptr ? (*q0)(k) + g : g);
+  }
+  for (int r = 0; r < N; ++r) {
+    const double h = y(model::lag_displacement_index(r, M, N));
+    t.lag += modes.lag[r]->value(0, 1.0) * (q0 != nullptr ? (*q0)(M + r) + h : h);
+  }
+  return t;
+}
+
+}  // namespace flaplag::internal
