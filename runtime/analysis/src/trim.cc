@@ -21,8 +21,6 @@ namespace flaplag {
 
 namespace {
 
-constexpr double kHalfPi = 1.5707963267948966;
-
 bool report(const char* name, const std::string& value, const std::string& reason,
             std::string* error) {
   if (error != nullptr) *error = std::string("`") + name + "` = " + value + ": " + reason;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "flaplag/blade/rotating_modes.h"
+#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/rotor/parameter_table.h"
@@ -13,8 +14,6 @@
 namespace flaplag {
 
 namespace {
-
-constexpr double kHalfPi = 1.5707963267948966;
 
 ParameterSpec real_row(const char* field, const char* symbol, const char* units,
                        const char* description, double RotorParameters::*member, Interval range,
