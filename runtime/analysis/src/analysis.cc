@@ -456,6 +456,7 @@ ForcedResponse Analysis::response(double mu, const ResponseOptions& options) con
 TipSimulation Analysis::simulate(double mu, const Eigen::VectorXd& y0, bool forced,
                                  const SimulationOptions& options) const {
   check_mu(mu, "mu");
+  if (options.nonlinear) return simulate_nonlinear(mu, y0, forced, options);
   require_hover_linearization(parameters(), "the time-domain simulation");
   TipSimulation out;
   out.mu = mu;
@@ -470,6 +471,75 @@ TipSimulation Analysis::simulate(double mu, const Eigen::VectorXd& y0, bool forc
   // The first quarter holds the transient of the other modes.
   out.flap_growth_rate = envelope_growth_rate(s.psi, out.flap_tip, 0.25 * options.revolutions);
   out.lag_growth_rate = envelope_growth_rate(s.psi, out.lag_tip, 0.25 * options.revolutions);
+  out.status = s.status;
+  out.message = s.message;
+  return out;
+}
+
+TipSimulation Analysis::simulate_nonlinear(double mu, const Eigen::VectorXd& y0, bool forced,
+                                           const SimulationOptions& options) const {
+  const model::ModelDescriptor& m = model();
+  if (m.nonlinear == nullptr) {
+    throw InvalidInput("nonlinear", "true",
+                       "the model " + std::string(m.name) +
+                           " has no nonlinear loads (its spec does not set [emit] nonlinear); "
+                           "use a model that emits them, e.g. paper-nonlinear");
+  }
+  if (forced) {
+    throw InvalidInput("forced", "true",
+                       "the nonlinear equations always carry their loads (f is part of them): "
+                       "leave `forced` off with `nonlinear`");
+  }
+  options.Check();
+  const int n = state_size();
+  if (y0.size() != n || !y0.allFinite())
+    throw InvalidInput("y0", std::to_string(y0.size()) + " values",
+                       "must be " + std::to_string(n) + " finite values");
+  const NonlinearSystem sys(impl_->builder, mu);  // refuses exact_reversed_flow by name
+  TipSimulation out;
+  out.mu = mu;
+  out.nonlinear = true;
+  // The reference: the periodic equilibrium on the branch from hover (at mu = 0 the hover
+  // equilibrium itself), or hover where that branch has ended (a fold below mu).
+  const PeriodicEquilibrium eq = impl_->equilibrium(mu);
+  const bool periodic = eq.status != Status::Failed;
+  const int M = m.flap_modes, N = m.lag_modes;
+  Eigen::VectorXd hover_state = Eigen::VectorXd::Zero(n);
+  for (int j = 0; j < M + N; ++j)
+    hover_state(model::displacement_index(j, M, N)) = impl_->hover.q0(j);
+  auto reference = [&](double psi) { return periodic ? eq.state(psi) : hover_state; };
+  out.reference = periodic ? "periodic equilibrium" : "hover equilibrium";
+  // The grid and the automatic steps from the linearization about the reference.
+  const PeriodicSystem grid = periodic ? eq.linearization : sys.sector();
+  const NonlinearRhs rhs = [&sys](double psi, bool reversed, const Eigen::VectorXd& y,
+                                  Eigen::VectorXd& F) {
+    sys.evaluate(psi, reversed, y, &F, nullptr);
+  };
+  out.simulation = flaplag::simulate_nonlinear(grid, rhs, reference(0.0) + y0, options);
+  const Simulation& s = out.simulation;
+  for (std::size_t k = 0; k < s.y.size(); ++k) {
+    const Eigen::VectorXd ref = reference(s.psi[k]);
+    const internal::TipDeflection d =
+        internal::tip_deflection(impl_->builder.modes(), M, N, s.y[k] - ref);
+    const internal::TipDeflection t =
+        internal::tip_deflection(impl_->builder.modes(), M, N, s.y[k]);
+    out.flap_tip.push_back(d.flap);
+    out.lag_tip.push_back(d.lag);
+    out.flap_total.push_back(t.flap);
+    out.lag_total.push_back(t.lag);
+  }
+  out.flap_growth_rate = envelope_growth_rate(s.psi, out.flap_tip, 0.25 * options.revolutions);
+  out.lag_growth_rate = envelope_growth_rate(s.psi, out.lag_tip, 0.25 * options.revolutions);
+  out.status = s.status;
+  out.message = s.message;
+  if (out.status != Status::Failed && eq.status != Status::Ok) {
+    out.status = Status::Warning;
+    out.message +=
+        std::string(out.message.empty() ? "" : "; ") +
+        (periodic ? "the reference periodic equilibrium: " + eq.message
+                  : "no periodic equilibrium at mu = " + round_trip_text(mu) + " (" + eq.message +
+                        "): started from and measured against the hover equilibrium");
+  }
   return out;
 }
 

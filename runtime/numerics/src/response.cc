@@ -247,25 +247,26 @@ PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOpti
   return out;
 }
 
-Simulation simulate(const PeriodicSystem& sys, const Eigen::VectorXd& y0, bool forced,
-                    const SimulationOptions& options) {
-  sys.validate();
-  options.Check();
+namespace {
+
+// The sampled RK4 run shared by simulate() and simulate_nonlinear(): equal steps per
+// revolution (a whole multiple of the samples, so that samples fall on grid points), split at
+// the sector edges of `sys`; step(segment, y) advances y over one segment.
+template <typename Step>
+Simulation sampled_run(const PeriodicSystem& sys, const Eigen::VectorXd& y0,
+                       const SimulationOptions& options, Step step) {
   if (y0.size() != sys.n || !y0.allFinite())
     throw InvalidInput("y0", std::to_string(y0.size()) + " values",
                        "must be " + std::to_string(sys.n) + " finite values");
   Simulation out;
   int steps = options.steps_per_rev > 0 ? options.steps_per_rev : automatic_steps(sys);
-  // whole multiples of the sample count, so that samples fall on grid points
   steps =
       ((steps + options.samples_per_rev - 1) / options.samples_per_rev) * options.samples_per_rev;
   out.steps_per_rev = steps;
   const int per = steps / options.samples_per_rev;
   const long total_samples =
       static_cast<long>(std::ceil(options.revolutions * options.samples_per_rev - 1e-9));
-  Stepper st{&sys, sys.n, {}, {}, {}, {}, {}, {}};
-  Eigen::MatrixXd Y = y0;
-  const Eigen::RowVectorXd c = Eigen::RowVectorXd::Constant(1, forced ? 1.0 : 0.0);
+  Eigen::VectorXd y = y0;
   out.psi.push_back(0.0);
   out.y.push_back(y0);
   for (long k = 0; k < total_samples; ++k) {
@@ -280,9 +281,9 @@ Simulation simulate(const PeriodicSystem& sys, const Eigen::VectorXd& y0, bool f
     std::sort(pts.begin(), pts.end());
     for (std::size_t i = 1; i < pts.size(); ++i) {
       if (pts[i] - pts[i - 1] <= 1e-14) continue;
-      st.step({pts[i - 1], pts[i], piece_set(sys, 0.5 * (pts[i] + pts[i - 1]))}, Y, c);
+      step(Segment{pts[i - 1], pts[i], piece_set(sys, 0.5 * (pts[i] + pts[i - 1]))}, y);
     }
-    if (!Y.allFinite()) {
+    if (!y.allFinite()) {
       out.status = Status::Failed;
       out.message = "the state overflowed after " +
                     short_text(base / kTwoPi + (j + 1.0) / options.samples_per_rev) +
@@ -290,9 +291,44 @@ Simulation simulate(const PeriodicSystem& sys, const Eigen::VectorXd& y0, bool f
       return out;
     }
     out.psi.push_back(base + b);
-    out.y.push_back(Y.col(0));
+    out.y.push_back(y);
   }
   return out;
+}
+
+}  // namespace
+
+Simulation simulate(const PeriodicSystem& sys, const Eigen::VectorXd& y0, bool forced,
+                    const SimulationOptions& options) {
+  sys.validate();
+  options.Check();
+  Stepper st{&sys, sys.n, {}, {}, {}, {}, {}, {}};
+  const Eigen::RowVectorXd c = Eigen::RowVectorXd::Constant(1, forced ? 1.0 : 0.0);
+  Eigen::MatrixXd Y;
+  return sampled_run(sys, y0, options, [&](const Segment& s, Eigen::VectorXd& y) {
+    Y = y;
+    st.step(s, Y, c);
+    y = Y.col(0);
+  });
+}
+
+Simulation simulate_nonlinear(const PeriodicSystem& grid, const NonlinearRhs& rhs,
+                              const Eigen::VectorXd& y0, const SimulationOptions& options) {
+  grid.validate();
+  options.Check();
+  if (!rhs) throw InvalidInput("rhs", "(empty)", "a right-hand side is required");
+  Eigen::VectorXd k1, k2, k3, k4;
+  return sampled_run(grid, y0, options, [&](const Segment& s, Eigen::VectorXd& y) {
+    // The region of the whole segment (its midpoint): a step never straddles a sector edge.
+    const double mid = 0.5 * (s.a + s.b);
+    const bool reversed = grid.in_varying(mid) || (grid.has_sector && grid.in_sector(mid));
+    const double h = s.b - s.a;
+    rhs(s.a, reversed, y, k1);
+    rhs(mid, reversed, y + 0.5 * h * k1, k2);
+    rhs(mid, reversed, y + 0.5 * h * k2, k3);
+    rhs(s.b, reversed, y + h * k3, k4);
+    y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+  });
 }
 
 std::optional<double> envelope_growth_rate(const std::vector<double>& psi,

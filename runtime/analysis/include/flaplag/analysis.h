@@ -84,17 +84,34 @@ struct ForcedResponse {
   std::string message;
 };
 
-// A time-domain simulation of the perturbation y about the hover equilibrium
-// (numerics/response.h) in blade terms.
+// A time-domain simulation (numerics/response.h) in blade terms.  Linear: the perturbation y
+// about the hover equilibrium, y' = A(psi) y (+ f).  Nonlinear (SimulationOptions::nonlinear):
+// the full state of the nonlinear equations (rotor/periodic_equilibrium.h NonlinearSystem),
+// started at the reference equilibrium plus the given perturbation.
 struct TipSimulation {
   double mu = 0.0;
-  Simulation simulation;  // psi [rad] from 0 and y(psi); its status and message
+  bool nonlinear = false;
+  // Linear: psi [rad] from 0 and the perturbation y(psi).  Nonlinear: the full state
+  // y(psi) = [g', g, h', h] (model_api.h order).  Its status and message.
+  Simulation simulation;
+  // Nonlinear: what the perturbation is measured from, "periodic equilibrium" (q°(psi) by
+  // harmonic balance with the default PeriodicEquilibriumOptions; at mu = 0 the hover
+  // equilibrium) or, where there is none at this mu (beyond the fold of the hover branch),
+  // "hover equilibrium" (then status Warning).  Linear: "hover equilibrium".
+  std::string reference = "hover equilibrium";
   // Tip perturbation deflections by l at simulation.psi: flap dw/l = sum_k eta_k(1) dg_k (up),
-  // lag dv/l = sum_m gamma_m(1) dh_m (positive lag); the hover equilibrium is not included.
+  // lag dv/l = sum_m gamma_m(1) dh_m (positive lag), of the state minus the reference.
   std::vector<double> flap_tip, lag_tip;
-  // Envelope growth rates per rev (envelope_growth_rate) over the last 3/4 of the run, to
-  // compare with the largest Floquet zeta; nullopt with fewer than 3 revolutions there.
+  // Nonlinear only: the total tip deflections w/l, v/l (reference included); empty otherwise.
+  std::vector<double> flap_total, lag_total;
+  // Envelope growth rates per rev (envelope_growth_rate) of flap_tip, lag_tip over the last 3/4
+  // of the run, to compare with the largest Floquet zeta (about the reference); nullopt with
+  // fewer than 3 revolutions there.
   std::optional<double> flap_growth_rate, lag_growth_rate;
+  // The simulation's status, or Warning when the nonlinear reference is hover for want of a
+  // periodic equilibrium.
+  Status status = Status::Ok;
+  std::string message;
 };
 
 class Analysis {
@@ -147,6 +164,11 @@ class Analysis {
 
   // Integrates y' = A(psi) y (+ f(psi) when forced) from y(0) = y0 (state_size() values, the
   // state order of model_api.h) at mu; options.Check() and y0 checked (InvalidInput "y0").
+  // With options.nonlinear: the nonlinear equations y' = F(y, psi) from y_ref(0) + y0 (y_ref the
+  // reference equilibrium, TipSimulation::reference), RK4 on the grid of the linearization
+  // about it; needs a model with nonlinear loads (else InvalidInput "nonlinear"); `forced` must
+  // be false (the loads are part of the equations; else InvalidInput "forced"); allowed with
+  // periodic_linearization (no linearization is involved).
   TipSimulation simulate(double mu, const Eigen::VectorXd& y0, bool forced,
                          const SimulationOptions& options = {}) const;
   // The size of the state y: 2 (M + N).
@@ -157,6 +179,8 @@ class Analysis {
   FloquetSample floquet(double mu, double zeta_tolerance) const;
 
  private:
+  TipSimulation simulate_nonlinear(double mu, const Eigen::VectorXd& y0, bool forced,
+                                   const SimulationOptions& options) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,6 +48,10 @@ struct SimulationOptions {
   double revolutions = 20.0;  // > 0, at most 1e5
   int steps_per_rev = 0;      // RK4 steps per revolution; 0: automatic (|lambda| h <= 1/2, >= 200)
   int samples_per_rev = 36;   // reported points per revolution (>= 1)
+  // For front ends that own a nonlinear system (Analysis::simulate): integrate the nonlinear
+  // equations instead of the linear ones.  The numerics do not read it: simulate() integrates
+  // the linear PeriodicSystem it is given, simulate_nonlinear() the callback it is given.
+  bool nonlinear = false;
   bool IsValid(std::string* error) const;
   void Check() const;
 };
@@ -62,6 +67,20 @@ struct Simulation {
 // Integrates y' = A y + (forced ? f : 0) from y(0) = y0 (size sys.n).
 Simulation simulate(const PeriodicSystem& sys, const Eigen::VectorXd& y0, bool forced,
                     const SimulationOptions& options = {});
+
+// y' = F(psi, y) of a nonlinear system (no rotor knowledge here: the caller's model).  F gets
+// the size of y.  `reversed`: the step lies in the reversed-flow region of the grid system (its
+// sector, or its point-wise region), so that one RK4 step uses one side of a sector edge only.
+using NonlinearRhs =
+    std::function<void(double psi, bool reversed, const Eigen::VectorXd& y, Eigen::VectorXd& F)>;
+
+// Integrates y' = F(psi, y) by classical RK4 on the grid of simulate(): `grid` (typically the
+// linearization of F about an equilibrium, size grid.n = y0.size()) supplies the sector edges
+// at which steps are split and, with steps_per_rev = 0, the automatic step count (|lambda| h
+// <= 1/2 for its A(psi)).  grid.validate() and options.Check() first (InvalidInput); y0 finite
+// (InvalidInput "y0").  Status Failed on overflow, the state kept up to there.
+Simulation simulate_nonlinear(const PeriodicSystem& grid, const NonlinearRhs& rhs,
+                              const Eigen::VectorXd& y0, const SimulationOptions& options = {});
 
 // The growth rate of a simulated signal per rev: the slope of ln max_{rev k} |s| over the
 // revolutions from `skip_revs` on, by least squares over whole revolutions (the envelope of
