@@ -228,7 +228,8 @@ const char* description(Command c) {
     case Command::Response:
       return "periodic forced response: tip flap and lag deflections over one revolution";
     case Command::Simulate:
-      return "time-domain simulation of the linear system from a perturbation";
+      return "time-domain simulation of the linear (or, --nonlinear, the nonlinear) equations "
+             "from a perturbation";
     case Command::Merge:
       return "join the --shard parts of a map or study into the file one run writes";
     case Command::Plot:
@@ -271,7 +272,8 @@ std::vector<std::string> examples(Command c) {
     case Command::Response:
       return {"flaplag response --mu 0.3", "flaplag response --mu 0.5 --json --plot tip.svg"};
     case Command::Simulate:
-      return {"flaplag simulate --mu 0.9 --revs 50", "flaplag simulate --mu 0.3 --forced --json"};
+      return {"flaplag simulate --mu 0.9 --revs 50", "flaplag simulate --mu 0.3 --forced --json",
+              "flaplag simulate --model paper-nonlinear --mu 0.6 --nonlinear --revs 40"};
     case Command::Merge:
       return {
           "flaplag map --x mu=0:2:0.02 --y omega-lag=0.3:2.5:0.02 --json --shard 2/8 -o "
@@ -702,6 +704,7 @@ Request CommandLine::interpret() const {
       if (const Given* g = given("--perturbation"))
         r.perturbation = parse_real(g->spelling, g->text);
       r.forced = given("--forced") != nullptr;
+      r.nonlinear = given("--nonlinear") != nullptr;
       r.samples = 36;
       if (const Given* g = given("--samples"))
         r.samples = parse_int(g->spelling, g->text, 1, 10000);

@@ -58,10 +58,10 @@ struct Request {
   bool quiet = false;
   // merge: the part files; plot: the data file (as typed)
   std::vector<std::string> inputs;
-  // response: --samples; simulate: --revs, --perturbation, --forced, --samples
+  // response: --samples; simulate: --revs, --perturbation, --forced, --nonlinear, --samples
   int samples = 0;
   double revolutions = 20.0, perturbation = 0.01;
-  bool forced = false;
+  bool forced = false, nonlinear = false;
   // point, sweep, critical, trim: --trim, --thrust-coefficient, --shaft-angle
   TrimOptions trim;
   // The arguments as given (after a case file is expanded), for the "case" of JSON outputs.

@@ -1121,6 +1121,7 @@ std::string simulate_command(const Request& r, const Analysis& an, std::string& 
   SimulationOptions so;
   so.revolutions = r.revolutions;
   so.samples_per_rev = r.samples;
+  so.nonlinear = r.nonlinear;
   const Eigen::VectorXd y0 = Eigen::VectorXd::Constant(an.state_size(), r.perturbation);
   const TipSimulation ts = an.simulate(r.mu, y0, r.forced, so);
   const Simulation& s = ts.simulation;
@@ -1135,29 +1136,50 @@ std::string simulate_command(const Request& r, const Analysis& an, std::string& 
     Json j = header_json("simulate", an, false);
     j["mu"] = r.mu;
     j["forced"] = r.forced;
+    j["nonlinear"] = ts.nonlinear;
+    j["reference"] = ts.reference;
     j["revolutions"] = r.revolutions;
     j["steps_per_rev"] = s.steps_per_rev;
     j["psi"] = s.psi;
     j["flap_tip"] = flap;
     j["lag_tip"] = lag;
+    if (ts.nonlinear) {
+      j["flap_total"] = ts.flap_total;
+      j["lag_total"] = ts.lag_total;
+    }
     j["flap_growth_rate"] = optional_json(flap_rate);
     j["lag_growth_rate"] = optional_json(lag_rate);
-    return dump(status_json(j, s.status, vocab(r, s.message)));
+    return dump(status_json(j, ts.status, vocab(r, ts.message)));
   }
   std::string out = header_text(an, false) + "\n";
-  out += std::string(r.forced ? "Forced" : "Free") + " response at mu = " + num(r.mu) +
-         " from y0 = " + num(r.perturbation) + " in every state, " + num(r.revolutions) +
-         " revolutions (" + std::to_string(s.steps_per_rev) + " RK4 steps per rev)\n";
-  TextTable t({"rev", "flap dw/l", "lag dv/l"});
+  if (ts.nonlinear) {
+    out += "Nonlinear response at mu = " + num(r.mu) + " from the " + ts.reference + " + " +
+           num(r.perturbation) + " in every state, " + num(r.revolutions) + " revolutions (" +
+           std::to_string(s.steps_per_rev) + " RK4 steps per rev); d: deviation from the " +
+           ts.reference + "\n";
+  } else {
+    out += std::string(r.forced ? "Forced" : "Free") + " response at mu = " + num(r.mu) +
+           " from y0 = " + num(r.perturbation) + " in every state, " + num(r.revolutions) +
+           " revolutions (" + std::to_string(s.steps_per_rev) + " RK4 steps per rev)\n";
+  }
+  TextTable t(ts.nonlinear
+                  ? std::vector<std::string>{"rev", "flap dw/l", "lag dv/l", "flap w/l", "lag v/l"}
+                  : std::vector<std::string>{"rev", "flap dw/l", "lag dv/l"});
   const std::size_t every = std::max<std::size_t>(1, s.y.size() / 20);
-  for (std::size_t k = 0; k < s.y.size(); k += every)
-    t.add_row({short_text(revs[k]), short_text(flap[k]), short_text(lag[k])});
+  for (std::size_t k = 0; k < s.y.size(); k += every) {
+    std::vector<std::string> row{short_text(revs[k]), short_text(flap[k]), short_text(lag[k])};
+    if (ts.nonlinear) {
+      row.push_back(short_text(ts.flap_total[k]));
+      row.push_back(short_text(ts.lag_total[k]));
+    }
+    t.add_row(row);
+  }
   out += t.render();
   out +=
       "  envelope growth rate (last 3/4 of the run; compare with the largest Floquet zeta): flap " +
       (flap_rate ? short_text(*flap_rate) : std::string("-")) + ", lag " +
       (lag_rate ? short_text(*lag_rate) : std::string("-")) + " per rev\n";
-  return out + status_text(s.status, vocab(r, s.message));
+  return out + status_text(ts.status, vocab(r, ts.message));
 }
 
 // The command line behind a result, as the "case" object of JSON outputs: `flaplag run` takes

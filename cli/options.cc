@@ -278,7 +278,19 @@ std::vector<OptionSpec> build(Command c) {
       v.push_back(value_option("--perturbation", "REAL",
                                "initial perturbation of every state (free response)", "0.01",
                                {"perturbation"}));
-      v.push_back(flag_option("--forced", "include the forcing f(psi) (default: free response)"));
+      {
+        OptionSpec forced =
+            flag_option("--forced", "include the forcing f(psi) (default: free response)");
+        forced.library_names = {"forced"};
+        v.push_back(forced);
+        OptionSpec nonlinear = flag_option(
+            "--nonlinear",
+            "integrate the nonlinear equations (full state, from the periodic equilibrium plus "
+            "the perturbation; the tip response is the deviation from it; needs a model with "
+            "nonlinear loads, e.g. --model paper-nonlinear; not with --forced)");
+        nonlinear.library_names = {"nonlinear"};
+        v.push_back(nonlinear);
+      }
       v.push_back(
           value_option("--samples", "N", "reported points per revolution", "36", {"samples"}));
       v.push_back(value_option("--plot", "FILE.svg|FILE.png",

@@ -174,6 +174,7 @@ class Generator {
                                                 "--revs",
                                                 "--perturbation",
                                                 "--forced",
+                                                "--nonlinear",
                                                 "--shard",
                                                 "--quiet",
                                                 "--theta1c",
@@ -333,6 +334,9 @@ class Generator {
         if (chance(0.5)) a.insert(a.end(), {"--samples", std::to_string(integer(12, 72))});
         if (chance(0.5)) a.insert(a.end(), {"--perturbation", text(log_uniform(1e-6, 10))});
         if (chance(0.3)) a.push_back("--forced");
+        // (mostly refused: only a model with nonlinear loads answers, at the cost of a
+        // periodic equilibrium)
+        if (chance(0.1)) a.push_back("--nonlinear");
         break;
       case cli::Command::Critical: {
         const double m = std::max(mu, 0.01);
@@ -404,7 +408,8 @@ class Generator {
       if (o.name == "-o" || o.name == "--mu" || o.name == "--scan-step" || o.name == "--psi" ||
           o.name == "--mu-max" || o.name == "--format" || o.name == "--steps" ||
           o.name == "--vary" || o.name == "--x" || o.name == "--y" || o.name == "--samples" ||
-          o.name == "--revs" || o.name == "--perturbation" || o.name == "--forced") {
+          o.name == "--revs" || o.name == "--perturbation" || o.name == "--forced" ||
+          o.name == "--nonlinear") {
         continue;
       }
       // gnuplot is slow to start: few pictures.

@@ -484,6 +484,34 @@ TEST(CliPlot, PlotOfTheDataIsThePictureOfPlotOption) {
   EXPECT_EQ(2, run({"plot", "--plot", d.file("x.svg")}).exit_code);
 }
 
+// simulate --nonlinear: the nonlinear equations from the periodic equilibrium; the tip deviation
+// from it decays at the largest zeta of `point --periodic-linearization` (within 1 %), and the
+// JSON carries the totals and the reference.
+TEST(CliSimulate, NonlinearDecaysAtTheZetaAboutThePeriodicEquilibrium) {
+  const Json p = Json::parse(run({"--model", "paper-nonlinear", "point", "--mu", "0.3",
+                                  "--periodic-linearization", "--json"})
+                                 .out);
+  double zeta = -1e9;
+  for (const Json& e : p["exponents"])
+    if (e["zeta"].is_number()) zeta = std::max(zeta, e["zeta"].get<double>());
+  const Outcome r = run({"--model", "paper-nonlinear", "simulate", "--mu", "0.3", "--nonlinear",
+                         "--revs", "40", "--perturbation", "0.001", "--samples", "180", "--json"});
+  ASSERT_EQ(0, r.exit_code) << r.err;
+  const Json s = Json::parse(r.out);
+  EXPECT_EQ("ok", s["status"]);
+  EXPECT_EQ(true, s["nonlinear"]);
+  EXPECT_EQ("periodic equilibrium", s["reference"]);
+  ASSERT_EQ(s["psi"].size(), s["flap_total"].size());
+  EXPECT_DOUBLE_EQ(0.001, s["flap_tip"][0].get<double>());
+  EXPECT_GT(std::abs(s["flap_total"][0].get<double>()), 0.01);  // the equilibrium included
+  ASSERT_TRUE(s["lag_growth_rate"].is_number()) << s;
+  EXPECT_NEAR(zeta, s["lag_growth_rate"].get<double>(), 0.01 * std::abs(zeta));
+  // the linear simulation has no totals
+  const Json lin = Json::parse(run({"simulate", "--mu", "0.3", "--revs", "1", "--json"}).out);
+  EXPECT_EQ(false, lin["nonlinear"]);
+  EXPECT_FALSE(lin.contains("flap_total"));
+}
+
 TEST(CliResponse, PeriodicTipResponseAndSimulatedGrowth) {
   const Outcome r = run({"response", "--mu", "0.3", "--json"});
   ASSERT_EQ(0, r.exit_code) << r.err;

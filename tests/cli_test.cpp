@@ -305,6 +305,20 @@ const std::vector<BadInput> kBadInputs = {
      {"--model", "paper-nonlinear", "--periodic-linearization", "simulate", "--mu", "0.3"},
      "--periodic-linearization",
      "true"},
+    // simulate --nonlinear needs the nonlinear loads, and carries the loads itself
+    {"NonlinearSimulationOfALinearModel",
+     {"simulate", "--mu", "0.3", "--nonlinear"},
+     "--nonlinear",
+     "true"},
+    {"NonlinearSimulationForced",
+     {"--model", "paper-nonlinear", "simulate", "--mu", "0.3", "--nonlinear", "--forced"},
+     "--forced",
+     "true"},
+    {"NonlinearSimulationExactReversedFlow",
+     {"--model", "paper-nonlinear", "simulate", "--mu", "0.5", "--nonlinear",
+      "--exact-reversed-flow"},
+     "--exact-reversed-flow",
+     "true"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Table, CliBadInput, ::testing::ValuesIn(kBadInputs),

@@ -101,6 +101,8 @@ struct TipSimulation {
   std::string reference = "hover equilibrium";
   // Tip perturbation deflections by l at simulation.psi: flap dw/l = sum_k eta_k(1) dg_k (up),
   // lag dv/l = sum_m gamma_m(1) dh_m (positive lag), of the state minus the reference.
+  // Nonlinear: q° is a K = 16 Fourier series, so a deviation below its truncation (~1e-5 of
+  // the state at mu = 0.5) is not resolved; a decay below that floor flattens the growth rate.
   std::vector<double> flap_tip, lag_tip;
   // Nonlinear only: the total tip deflections w/l, v/l (reference included); empty otherwise.
   std::vector<double> flap_total, lag_total;
