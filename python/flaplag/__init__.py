@@ -27,12 +27,15 @@ from ._results import (
     MapResult,
     ModelInfo,
     ModeShapes,
+    PeriodicEquilibriumResult,
     PointResult,
     ResponseResult,
     SimulationResult,
     StudyResult,
     SweepResult,
     SystemResult,
+    ThrustResult,
+    TrimResult,
 )
 
 __version__ = _flaplag.version
@@ -74,6 +77,9 @@ __all__ = [
     "StudyResult",
     "SweepResult",
     "SystemResult",
+    "PeriodicEquilibriumResult",
+    "TrimResult",
+    "ThrustResult",
     "__version__",
     "git_commit",
 ]

@@ -22,11 +22,14 @@ from ._results import (
     HoverResult,
     ModelInfo,
     ModeShapes,
+    PeriodicEquilibriumResult,
     PointResult,
     ResponseResult,
     SimulationResult,
     SweepResult,
     SystemResult,
+    ThrustResult,
+    TrimResult,
 )
 
 InvalidInput = _flaplag.InvalidInput
@@ -70,6 +73,8 @@ _ALL_FIELDS = {**_ROTOR_FIELDS, **_TRANSITION_FIELDS, **_COUNT_FIELDS}
 CRITICAL_DEFAULTS = dict(_flaplag.critical_defaults())
 RESPONSE_DEFAULTS = dict(_flaplag.response_defaults())  # C++ ResponseOptions
 SIMULATION_DEFAULTS = dict(_flaplag.simulation_defaults())  # C++ SimulationOptions
+EQUILIBRIUM_DEFAULTS = dict(_flaplag.equilibrium_defaults())  # C++ PeriodicEquilibriumOptions
+TRIM_DEFAULTS = dict(_flaplag.trim_defaults())  # C++ TrimOptions
 
 _INT_MAX = 2**31 - 1
 
@@ -360,12 +365,19 @@ class Analysis:
         forced=False,
         samples_per_rev=SIMULATION_DEFAULTS["samples_per_rev"],
         steps_per_rev=SIMULATION_DEFAULTS["steps_per_rev"],
+        nonlinear=False,
     ) -> SimulationResult:
         """Integrates the linear system at mu from y(0) = y0 (C++ Analysis::simulate, the
         command line's ``flaplag simulate``): y0 a number (every state, the command line's
         --perturbation) or one value per state (the order of ``Analysis.system(mu).states``);
         forced: include f(psi) (default: the free response).  ``revolutions`` (> 0), reported
-        ``samples_per_rev`` times per revolution; steps_per_rev: RK4 steps (0: automatic)."""
+        ``samples_per_rev`` times per revolution; steps_per_rev: RK4 steps (0: automatic).
+
+        nonlinear=True (``--nonlinear``): the nonlinear equations of a model with nonlinear
+        loads (e.g. model='paper-nonlinear'), the full state from the periodic equilibrium
+        q°(psi) plus y0; flap_tip, lag_tip are then the deviation from q°(psi) (their growth
+        rates compare with the largest zeta about it), flap_total, lag_total the total tip
+        deflections.  forced must stay False (the loads are part of the equations)."""
         n = self._native.state_size()
         if isinstance(y0, numbers.Real) and not isinstance(y0, (bool, np.bool_)):
             start = [float(y0)] * n
@@ -379,7 +391,79 @@ class Analysis:
                 _real("revolutions", revolutions),
                 _int("samples_per_rev", samples_per_rev),
                 _int("steps_per_rev", steps_per_rev),
+                _flag("nonlinear", nonlinear),
             )
+        )
+
+    def periodic_equilibrium(
+        self,
+        mu,
+        *,
+        harmonics=EQUILIBRIUM_DEFAULTS["harmonics"],
+        max_iterations=EQUILIBRIUM_DEFAULTS["max_iterations"],
+        tolerance=EQUILIBRIUM_DEFAULTS["tolerance"],
+        check_stability=EQUILIBRIUM_DEFAULTS["check_stability"],
+        samples=72,
+    ) -> PeriodicEquilibriumResult:
+        """The periodic equilibrium q°(psi) of the nonlinear equations at mu (C++
+        Analysis::periodic_equilibrium; a model with nonlinear loads, e.g.
+        model='paper-nonlinear'): harmonic balance with ``harmonics`` K and Newton to
+        ``tolerance``, continued from hover; its Fourier coefficients, the state and the tip
+        deflections at ``samples`` azimuths psi_k = 2 pi k / samples, and (check_stability)
+        the Floquet multipliers of the linearization about it.  The analysis' point, sweep and
+        critical use this linearization with periodic_linearization=True."""
+        return PeriodicEquilibriumResult._from(
+            self._native.periodic_equilibrium(
+                _real("mu", mu),
+                _int("harmonics", harmonics),
+                _int("max_iterations", max_iterations),
+                _real("tolerance", tolerance),
+                _flag("check_stability", check_stability),
+                _int("samples", samples),
+            )
+        )
+
+    def trim(
+        self,
+        mu,
+        *,
+        kind=TRIM_DEFAULTS["kind"],
+        thrust_coefficient=TRIM_DEFAULTS["thrust_coefficient"],
+        shaft_angle=TRIM_DEFAULTS["shaft_angle"],
+        max_iterations=TRIM_DEFAULTS["max_iterations"],
+        tolerance=TRIM_DEFAULTS["tolerance"],
+    ) -> TrimResult:
+        """Trims this rotor at mu (C++ flaplag::trim, the command line's ``flaplag trim``; a
+        model that emits the thrust, e.g. model='paper-cyclic'): kind 'thrust' (theta0 and the
+        inflow of eq 2.25) or 'moment' (also theta1c, theta1s with no first flap harmonic) such
+        that the model's C_T (not C_T / sigma) equals thrust_coefficient, with the shaft angle
+        alpha_R [rad] in eq 2.25.  Newton to ``tolerance`` in max_iterations."""
+        return TrimResult._from(
+            self._native.trim(
+                _real("mu", mu),
+                _text("kind", kind),
+                _real("thrust_coefficient", thrust_coefficient),
+                _real("shaft_angle", shaft_angle),
+                _int("max_iterations", max_iterations),
+                _real("tolerance", tolerance),
+            )
+        )
+
+    def thrust(self, mu, *, inflow="momentum", shaft_angle=0.0) -> ThrustResult:
+        """The model's own thrust coefficient at mu with this rotor's pitch (C++ rotor_thrust;
+        a model that emits the thrust, e.g. model='paper-cyclic').  inflow: 'momentum' (eq 2.25
+        solved together with C_T, shaft angle alpha_R [rad]: the thrust the rotor produces at
+        this pitch), 'paper' (eq 2.24, the untrimmed default) or a number (lambda itself)."""
+        if isinstance(inflow, str):
+            if inflow not in ("momentum", "paper"):
+                raise _invalid(
+                    InvalidInput, "inflow", inflow, "must be 'momentum', 'paper' or a real number"
+                )
+            source, value = inflow, 0.0
+        else:
+            source, value = "given", _real("inflow", inflow)
+        return ThrustResult._from(
+            self._native.thrust(_real("mu", mu), source, value, _real("shaft_angle", shaft_angle))
         )
 
     def floquet(self, mu, *, zeta_tolerance=None) -> FloquetSample:

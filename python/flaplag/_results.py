@@ -26,6 +26,9 @@ __all__ = [
     "FloquetSample",
     "ResponseResult",
     "SimulationResult",
+    "PeriodicEquilibriumResult",
+    "TrimResult",
+    "ThrustResult",
     "ModelInfo",
     "StudyResult",
     "MapResult",
@@ -552,15 +555,23 @@ class ResponseResult:
 
 @dataclass(frozen=True, repr=False, eq=False)
 class SimulationResult:
-    """A time-domain simulation of the linear system at one mu (the command line's
-    ``flaplag simulate``): y' = A(psi) y (+ f(psi) when forced) from y(0) = y0.
+    """A time-domain simulation at one mu (the command line's ``flaplag simulate``).
 
-    psi: [rad] from 0; revolutions: psi / 2 pi; y: the perturbation state (samples x states);
-    flap_tip, lag_tip: the tip perturbation deflections by l (no hover equilibrium);
-    flap_growth_rate, lag_growth_rate: the envelope growth rates per rev over the last 3/4 of
-    the run (None with fewer than 3 revolutions there), to compare with the largest Floquet
-    zeta; steps_per_rev: RK4 steps per revolution.  status 'failed' on overflow (the state is
-    kept up to there).
+    Linear (nonlinear False): y' = A(psi) y (+ f(psi) when forced) from y(0) = y0, y the
+    perturbation about the hover equilibrium.  Nonlinear: the full state of the nonlinear
+    equations (model with nonlinear loads, e.g. 'paper-nonlinear') from the reference
+    equilibrium plus y0; ``reference`` says which: 'periodic equilibrium' (q°(psi); at mu = 0
+    the hover equilibrium) or, where the branch from hover has no periodic equilibrium,
+    'hover equilibrium' (status 'warning').
+
+    psi: [rad] from 0; revolutions: psi / 2 pi; y: the state (samples x states): the
+    perturbation (linear) or the full state (nonlinear); flap_tip, lag_tip: the tip deflections
+    by l of the state minus the reference (the perturbation); flap_total, lag_total (nonlinear
+    only, else empty): the total tip deflections; flap_growth_rate, lag_growth_rate: the
+    envelope growth rates of flap_tip, lag_tip per rev over the last 3/4 of the run (None with
+    fewer than 3 revolutions there), to compare with the largest Floquet zeta about the
+    reference; steps_per_rev: RK4 steps per revolution.  status 'failed' on overflow (the state
+    is kept up to there).
     """
 
     mu: float
@@ -573,14 +584,19 @@ class SimulationResult:
     steps_per_rev: int
     status: str
     message: str
+    nonlinear: bool = False
+    reference: str = "hover equilibrium"
+    flap_total: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    lag_total: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def revolutions(self) -> np.ndarray:
         return self.psi / (2.0 * math.pi)
 
     def __repr__(self):
+        kind = "nonlinear, " if self.nonlinear else ""
         return (
-            f"SimulationResult(mu={_g(self.mu)}, {len(self.psi)} samples, "
+            f"SimulationResult(mu={_g(self.mu)}, {kind}{len(self.psi)} samples, "
             f"flap_growth_rate={_g(self.flap_growth_rate)}, "
             f"lag_growth_rate={_g(self.lag_growth_rate)}, {_status(self.status, self.message)})"
         )
@@ -596,6 +612,173 @@ class SimulationResult:
             d["flap_growth_rate"],
             d["lag_growth_rate"],
             d["steps_per_rev"],
+            d["status"],
+            d["message"],
+            d["nonlinear"],
+            d["reference"],
+            np.asarray(d["flap_total"]),
+            np.asarray(d["lag_total"]),
+        )
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class PeriodicEquilibriumResult:
+    """The periodic equilibrium q°(psi) of the nonlinear equations at one mu (C++
+    Analysis::periodic_equilibrium, harmonic balance + Newton, continued from hover).
+
+    coefficients: the Fourier coefficients of the coordinates q° = [g°_1..g°_M, h°_1..h°_N]
+    (modes x 2K+1; column 0 the constant, 2k-1 cos k psi, 2k sin k psi); harmonics: K;
+    psi: sample azimuths [rad] in [0, 2 pi); y: the full state y°(psi) = [g°', g°, h°', h°]
+    there (samples x states); flap_tip, lag_tip: the tip deflections w/l, v/l there;
+    multiplier_moduli: |Floquet multipliers| of the linearization about it, descending (with
+    check_stability; empty otherwise), min_distance_to_one: min |multiplier - 1| (None without
+    check_stability); truncation: the size of harmonic K relative to the largest coefficient;
+    continued_to: the largest mu the continuation from hover reached; iterations, step,
+    residual: of the last Newton solve.  status 'failed' (no samples) beyond the fold of the
+    hover branch or without convergence; 'warning' when unstable or the truncation is not small.
+    """
+
+    mu: float
+    harmonics: int
+    flap_modes: int
+    coefficients: np.ndarray
+    psi: np.ndarray
+    y: np.ndarray
+    flap_tip: np.ndarray
+    lag_tip: np.ndarray
+    continued_to: float
+    iterations: int
+    step: float
+    residual: float
+    truncation: float
+    multiplier_moduli: np.ndarray
+    min_distance_to_one: Optional[float]
+    status: str
+    message: str
+
+    @property
+    def max_zeta(self) -> Optional[float]:
+        """ln(largest |multiplier|) / 2 pi [per rev]: the largest damping exponent about the
+        equilibrium (None without check_stability)."""
+        if len(self.multiplier_moduli) == 0:
+            return None
+        return float(np.log(self.multiplier_moduli[0]) / (2.0 * math.pi))
+
+    def __repr__(self):
+        return (
+            f"PeriodicEquilibriumResult(mu={_g(self.mu)}, K={self.harmonics}, "
+            f"max_zeta={_g(self.max_zeta)}, truncation={_g(self.truncation)}, "
+            f"{_status(self.status, self.message)})"
+        )
+
+    @classmethod
+    def _from(cls, d):
+        return cls(
+            d["mu"],
+            d["harmonics"],
+            d["flap_modes"],
+            np.asarray(d["coefficients"]),
+            np.asarray(d["psi"]),
+            np.asarray(d["y"]),
+            np.asarray(d["flap_tip"]),
+            np.asarray(d["lag_tip"]),
+            d["continued_to"],
+            d["iterations"],
+            d["step"],
+            d["residual"],
+            d["truncation"],
+            np.asarray(d["multiplier_moduli"]),
+            d["min_distance_to_one"],
+            d["status"],
+            d["message"],
+        )
+
+
+@dataclass(frozen=True, repr=False)
+class TrimResult:
+    """A trim at one mu (C++ flaplag::trim, the command line's ``flaplag trim``): the controls
+    theta0, theta1c, theta1s [rad] and the inflow lambda (eq 2.25) at which the model's own
+    thrust coefficient C_T (not C_T / sigma) equals ``target``, and (kind 'moment') the first
+    flap tip harmonic flap_1c, flap_1s vanishes.  parameters: the rotor parameters with the
+    trimmed pitch (Analysis(**parameters) analyses the trimmed rotor at the eq 2.24 inflow; the
+    command line's trimmed studies use ``inflow``).  status 'warning' when not converged in
+    max_iterations or the trimmed rotor is unstable; 'failed' without a periodic response or
+    when the residual cannot be reduced.
+    """
+
+    mu: float
+    kind: str
+    theta0: float
+    theta1c: float
+    theta1s: float
+    inflow: float
+    thrust_coefficient: float
+    target: float
+    flap_1c: float
+    flap_1s: float
+    iterations: int
+    converged: bool
+    parameters: Dict[str, object]
+    status: str
+    message: str
+
+    def __repr__(self):
+        return (
+            f"TrimResult(mu={_g(self.mu)}, {self.kind}, theta0={_g(self.theta0)}, "
+            f"theta1c={_g(self.theta1c)}, theta1s={_g(self.theta1s)}, "
+            f"inflow={_g(self.inflow)}, C_T={_g(self.thrust_coefficient)}, "
+            f"{_status(self.status, self.message)})"
+        )
+
+    @classmethod
+    def _from(cls, d):
+        return cls(
+            d["mu"],
+            d["kind"],
+            d["theta0"],
+            d["theta1c"],
+            d["theta1s"],
+            d["inflow"],
+            d["thrust_coefficient"],
+            d["target"],
+            d["flap_1c"],
+            d["flap_1s"],
+            d["iterations"],
+            d["converged"],
+            dict(d["parameters"]),
+            d["status"],
+            d["message"],
+        )
+
+
+@dataclass(frozen=True, repr=False)
+class ThrustResult:
+    """The model's own thrust at one mu (C++ rotor_thrust): thrust_coefficient C_T (not
+    C_T / sigma) with the inflow lambda used, and the first flap tip harmonic flap_1c,
+    flap_1s (by l).  status 'failed' without a periodic response."""
+
+    mu: float
+    inflow: float
+    thrust_coefficient: float
+    flap_1c: float
+    flap_1s: float
+    status: str
+    message: str
+
+    def __repr__(self):
+        return (
+            f"ThrustResult(mu={_g(self.mu)}, inflow={_g(self.inflow)}, "
+            f"C_T={_g(self.thrust_coefficient)}, {_status(self.status, self.message)})"
+        )
+
+    @classmethod
+    def _from(cls, d):
+        return cls(
+            d["mu"],
+            d["inflow"],
+            d["thrust_coefficient"],
+            d["flap_1c"],
+            d["flap_1s"],
             d["status"],
             d["message"],
         )

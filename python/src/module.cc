@@ -31,10 +31,12 @@
 #include <vector>
 
 #include "flaplag/analysis.h"
+#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/study.h"
+#include "flaplag/trim.h"
 #include "flaplag/version.h"
 
 namespace py = pybind11;
@@ -673,8 +675,126 @@ py::dict simulation_dict(const Analysis& a, const TipSimulation& t) {
   d["flap_growth_rate"] = optional(t.flap_growth_rate);
   d["lag_growth_rate"] = optional(t.lag_growth_rate);
   d["steps_per_rev"] = s.steps_per_rev;
-  d["status"] = status_name(s.status);
-  d["message"] = s.message;
+  d["nonlinear"] = t.nonlinear;
+  d["reference"] = t.reference;
+  d["flap_total"] = to_numpy(t.flap_total);
+  d["lag_total"] = to_numpy(t.lag_total);
+  d["status"] = status_name(t.status);
+  d["message"] = t.message;
+  return d;
+}
+
+// ---- periodic equilibrium and trim -------------------------------------------------------------
+
+// Tip deflections w/l, v/l of a full state y (model_api.h order) with the analysis' modes.
+std::pair<double, double> tip_of(const Analysis& a, const Eigen::VectorXd& y) {
+  const int M = a.model().flap_modes, N = a.model().lag_modes;
+  double flap = 0.0, lag = 0.0;
+  for (int k = 0; k < M; ++k)
+    flap += a.modes().flap[k]->value(0, 1.0) * y(model::flap_displacement_index(k, M, N));
+  for (int r = 0; r < N; ++r)
+    lag += a.modes().lag[r]->value(0, 1.0) * y(model::lag_displacement_index(r, M, N));
+  return {flap, lag};
+}
+
+py::dict equilibrium_dict(const Analysis& a, const PeriodicEquilibrium& e, int samples) {
+  std::vector<double> psi, flap, lag;
+  std::vector<Eigen::VectorXd> y;
+  if (e.status != Status::Failed) {
+    for (int k = 0; k < samples; ++k) {
+      psi.push_back(kTwoPi * k / samples);
+      y.push_back(e.state(psi.back()));
+      const auto [f, l] = tip_of(a, y.back());
+      flap.push_back(f);
+      lag.push_back(l);
+    }
+  }
+  py::dict d;
+  d["mu"] = e.mu;
+  d["harmonics"] = e.harmonics;
+  d["flap_modes"] = e.flap_modes;
+  d["coefficients"] = to_numpy(e.coefficients);
+  d["psi"] = to_numpy(psi);
+  d["y"] = states_numpy(y, a.state_size());
+  d["flap_tip"] = to_numpy(flap);
+  d["lag_tip"] = to_numpy(lag);
+  d["continued_to"] = e.continued_to;
+  d["iterations"] = e.iterations;
+  d["step"] = e.step;
+  d["residual"] = e.residual;
+  d["truncation"] = e.truncation;
+  d["multiplier_moduli"] = to_numpy(e.multiplier_moduli);
+  d["min_distance_to_one"] = e.multiplier_moduli.empty()
+                                 ? py::object(py::none())
+                                 : py::object(py::float_(e.min_distance_to_one));
+  d["status"] = status_name(e.status);
+  d["message"] = e.message;
+  return d;
+}
+
+py::dict equilibrium_defaults() {
+  const PeriodicEquilibriumOptions o;
+  py::dict d;
+  d["harmonics"] = o.harmonics;
+  d["max_iterations"] = o.max_iterations;
+  d["tolerance"] = o.tolerance;
+  d["check_stability"] = o.check_stability;
+  return d;
+}
+
+TrimOptions trim_options(const std::string& kind, double thrust_coefficient, double shaft_angle,
+                         int max_iterations, double tolerance) {
+  TrimOptions o;
+  if (!trim_kind_from_name(kind, &o.kind) || o.kind == TrimKind::None)
+    throw InvalidInput("kind", quoted(kind), "must be 'thrust' or 'moment'");
+  o.thrust_coefficient = thrust_coefficient;
+  o.shaft_angle = shaft_angle;
+  o.max_iterations = max_iterations;
+  o.tolerance = tolerance;
+  o.Check();
+  return o;
+}
+
+py::dict trim_defaults() {
+  const TrimOptions o;
+  py::dict d;
+  d["kind"] = trim_kind_name(TrimKind::Thrust);
+  d["thrust_coefficient"] = o.thrust_coefficient;
+  d["shaft_angle"] = o.shaft_angle;
+  d["max_iterations"] = o.max_iterations;
+  d["tolerance"] = o.tolerance;
+  return d;
+}
+
+py::dict trim_dict(const TrimResult& t) {
+  py::dict d;
+  d["mu"] = t.mu;
+  d["kind"] = trim_kind_name(t.kind);
+  d["theta0"] = t.theta0;
+  d["theta1c"] = t.theta1c;
+  d["theta1s"] = t.theta1s;
+  d["inflow"] = t.inflow;
+  d["thrust_coefficient"] = t.thrust_coefficient;
+  d["target"] = t.target;
+  d["flap_1c"] = t.flap_1c;
+  d["flap_1s"] = t.flap_1s;
+  d["iterations"] = t.iterations;
+  d["converged"] = t.converged;
+  d["parameters"] = parameters_dict(t.parameters);
+  d["status"] = status_name(t.status);
+  d["message"] = t.message;
+  return d;
+}
+
+py::dict thrust_dict(const ThrustResult& t) {
+  py::dict d;
+  d["mu"] = t.mu;
+  d["inflow"] = t.inflow;
+  d["thrust_coefficient"] = t.thrust_coefficient;
+  d["flap_1c"] = t.flap_1c;
+  d["flap_1s"] = t.flap_1s;
+  d["status"] = status_name(t.status);
+  d["message"] = t.message;
   return d;
 }
 
@@ -820,6 +940,8 @@ PYBIND11_MODULE(_flaplag, m) {
   m.def("damping_ratio",
         [](double zeta, double omega) { return optional(damping_ratio(zeta, omega)); });
   m.def("simulation_defaults", &simulation_defaults);
+  m.def("equilibrium_defaults", &equilibrium_defaults);
+  m.def("trim_defaults", &trim_defaults);
   m.def("models", &model_rows);
   m.def("study_parameters", [] {
     py::list l;
@@ -917,11 +1039,12 @@ PYBIND11_MODULE(_flaplag, m) {
       .def("state_size", &Analysis::state_size)
       .def("simulate",
            [](const Analysis& a, double mu, const std::vector<double>& y0, bool forced,
-              double revolutions, int samples_per_rev, int steps_per_rev) {
+              double revolutions, int samples_per_rev, int steps_per_rev, bool nonlinear) {
              SimulationOptions o;
              o.revolutions = revolutions;
              o.samples_per_rev = samples_per_rev;
              o.steps_per_rev = steps_per_rev;
+             o.nonlinear = nonlinear;
              const Eigen::VectorXd y =
                  Eigen::Map<const Eigen::VectorXd>(y0.data(), static_cast<Eigen::Index>(y0.size()));
              TipSimulation t;
@@ -930,6 +1053,57 @@ PYBIND11_MODULE(_flaplag, m) {
                t = a.simulate(mu, y, forced, o);
              }
              return simulation_dict(a, t);
+           })
+      .def("periodic_equilibrium",
+           [](const Analysis& a, double mu, int harmonics, int max_iterations, double tolerance,
+              bool check_stability, int samples) {
+             PeriodicEquilibriumOptions o;
+             o.harmonics = harmonics;
+             o.max_iterations = max_iterations;
+             o.tolerance = tolerance;
+             o.check_stability = check_stability;
+             o.Check();
+             if (samples < 2 || samples > 100000)
+               throw InvalidInput("samples", std::to_string(samples), "must be 2..100000");
+             PeriodicEquilibrium e;
+             {
+               py::gil_scoped_release release;
+               e = a.periodic_equilibrium(mu, o);
+             }
+             return equilibrium_dict(a, e, samples);
+           })
+      .def("trim",
+           [](const Analysis& a, double mu, const std::string& kind, double thrust_coefficient,
+              double shaft_angle, int max_iterations, double tolerance) {
+             const TrimOptions o =
+                 trim_options(kind, thrust_coefficient, shaft_angle, max_iterations, tolerance);
+             TrimResult t;
+             {
+               py::gil_scoped_release release;
+               t = trim(a.parameters(), mu, o);
+             }
+             return trim_dict(t);
+           })
+      // inflow: "momentum" (eq 2.25 solved with the thrust), "paper" (eq 2.24) or "given"
+      // (lambda = value).
+      .def("thrust",
+           [](const Analysis& a, double mu, const std::string& inflow, double value,
+              double shaft_angle) {
+             if (!std::isfinite(shaft_angle))
+               throw InvalidInput("shaft_angle", round_trip_text(shaft_angle), "must be finite");
+             if (inflow != "momentum" && inflow != "paper" && !std::isfinite(value))
+               throw InvalidInput("inflow", round_trip_text(value), "must be finite");
+             ThrustResult t;
+             {
+               py::gil_scoped_release release;
+               if (inflow == "momentum")
+                 t = rotor_thrust_momentum(a.parameters(), mu, shaft_angle);
+               else if (inflow == "paper")
+                 t = rotor_thrust(a.parameters(), mu, std::numeric_limits<double>::quiet_NaN());
+               else
+                 t = rotor_thrust(a.parameters(), mu, value);
+             }
+             return thrust_dict(t);
            })
       .def("floquet", [](const Analysis& a, double mu, double zeta_tolerance) {
         FloquetSample s;

@@ -26,7 +26,12 @@ add_test(NAME python.example_stability_map
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tests/run_example.py
                  ${example_dir}/stability_map.py ${example_out}/stability_map.png
                  -- -o ${example_out}/stability_map.png)
+add_test(NAME python.example_forward_flight
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tests/run_example.py
+                 ${example_dir}/forward_flight.py ${example_out}/forward_flight.png
+                 -- -o ${example_out}/forward_flight.png)
 set_tests_properties(python.example_fig15 python.example_stability_map
+                     python.example_forward_flight
                      PROPERTIES ENVIRONMENT "${py_env}" TIMEOUT 120)
 
 # `cmake --install` puts the package under <prefix>/${FLAPLAG_PYTHON_INSTALL_DIR}; import it

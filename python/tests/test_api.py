@@ -382,3 +382,134 @@ def test_simulation_growth_rate_is_the_largest_zeta():
         an.simulate(0.9, revolutions=0.0)
     with pytest.raises(ValueError):
         an.response(-0.1)
+
+
+# ---- forward flight: periodic equilibrium, nonlinear simulation, trim (issue 12) --------------
+
+
+def test_periodic_linearization_keyword_reaches_the_analysis():
+    """The parameter table's switch: about the periodic equilibrium the exponents at mu > 0
+    differ from the hover linearization's, and a linear-only model is refused by name."""
+    hover = flaplag.Analysis(model="paper-nonlinear").point(0.3)
+    periodic = flaplag.Analysis(model="paper-nonlinear", periodic_linearization=True).point(0.3)
+    assert periodic.status != "failed", periodic.message
+    assert abs(periodic.max_zeta - hover.max_zeta) > 1e-4
+    with pytest.raises(ValueError) as err:
+        flaplag.Analysis(periodic_linearization=True)  # model 'paper': no nonlinear loads
+    assert err.value.field == "periodic_linearization"
+
+
+def test_periodic_equilibrium_arrays_and_its_hover_limit():
+    an = flaplag.Analysis(model="paper-nonlinear")
+    e = an.periodic_equilibrium(0.3, harmonics=8, samples=36)
+    assert e.status == "ok", e.message
+    assert e.coefficients.shape == (2, 17) and e.harmonics == 8
+    assert e.psi.shape == e.flap_tip.shape == (36,) and e.y.shape == (36, 4)
+    # the samples are the Fourier series of the coefficients (assumed modes: tip value 1)
+    g = e.coefficients[0, 0] + sum(
+        e.coefficients[0, 2 * k - 1] * np.cos(k * e.psi) + e.coefficients[0, 2 * k] * np.sin(k * e.psi)
+        for k in range(1, 9)
+    )
+    assert np.max(np.abs(g - e.flap_tip)) < 1e-14
+    assert np.max(np.abs(e.y[:, 1] - e.flap_tip)) == 0.0
+    assert len(e.multiplier_moduli) == 4 and e.max_zeta < 0.0
+    assert e.min_distance_to_one > 0.0
+    # at mu = 0 it is the hover equilibrium of eqs 2.29-2.32
+    h = an.periodic_equilibrium(0.0, check_stability=False)
+    assert abs(h.coefficients[0, 0] - an.hover.equilibrium["g0_1"]) < 1e-13
+    assert np.all(h.coefficients[:, 1:] == 0.0)
+    assert h.min_distance_to_one is None and h.max_zeta is None
+
+
+@pytest.mark.parametrize("call,field", [
+    (lambda an: an.periodic_equilibrium(0.3, harmonics=0), "harmonics"),
+    (lambda an: an.periodic_equilibrium(0.3, tolerance=1.0), "tolerance"),
+    (lambda an: an.periodic_equilibrium(0.3, samples=1), "samples"),
+    (lambda an: an.periodic_equilibrium(-0.3), "mu"),
+    (lambda an: an.periodic_equilibrium(0.3, check_stability=1), "check_stability"),
+    (lambda an: an.simulate(0.3, nonlinear=True, forced=True), "forced"),
+    (lambda an: an.simulate(0.3, nonlinear="yes"), "nonlinear"),
+])
+def test_forward_flight_bad_inputs_name_the_keyword(call, field):
+    with pytest.raises(ValueError) as err:
+        call(flaplag.Analysis(model="paper-nonlinear"))
+    assert err.value.field == field
+    assert str(err.value).startswith(field + " = ")
+
+
+def test_nonlinear_simulation_settles_on_the_periodic_equilibrium():
+    """The nonlinear equations from q°(0) + y0 come back to q°(psi) (damped lag mode), and the
+    tip deviation is measured from it."""
+    an = flaplag.Analysis(model="paper-nonlinear", damping_lag=0.05)
+    e = an.periodic_equilibrium(0.5, samples=12, check_stability=False)
+    s = an.simulate(0.5, nonlinear=True, revolutions=60, samples_per_rev=12)
+    assert s.status == "ok", s.message
+    assert s.nonlinear and s.reference == "periodic equilibrium"
+    assert s.flap_total.shape == s.flap_tip.shape == s.psi.shape
+    scale = np.max(np.abs(e.y))
+    last = slice(-13, -1)  # the last whole revolution, psi = 2 pi k / 12 as e.psi
+    assert np.allclose(s.psi[last] - 59 * 2 * math.pi, e.psi, atol=1e-12)
+    assert np.max(np.abs(s.y[last] - e.y)) < 1e-4 * scale  # (measured 7e-5: q°'s truncation)
+    assert np.max(np.abs(s.flap_total[last] - e.flap_tip)) < 1e-4 * scale
+    assert abs(s.flap_tip[0] - 0.01) < 1e-15
+    # the paper's model has no nonlinear loads: refused by name
+    with pytest.raises(ValueError) as err:
+        flaplag.Analysis().simulate(0.5, nonlinear=True)
+    assert err.value.field == "nonlinear"
+    # the linear simulation has no totals
+    lin = flaplag.Analysis().simulate(0.5, revolutions=1)
+    assert not lin.nonlinear and lin.flap_total.shape == (0,)
+
+
+def test_trim_round_trip_in_hover():
+    """Issue 12: the model's own C_T at theta = 0.15 in hover (eq 2.25 inflow), trimmed back,
+    gives theta = 0.15."""
+    c = flaplag.Analysis(model="paper-cyclic", theta=0.15).thrust(0.0)
+    assert c.status == "ok", c.message
+    assert 0.001 < c.thrust_coefficient < 0.02
+    assert abs(c.inflow - math.sqrt(c.thrust_coefficient / 2)) < 1e-12  # eq 2.25 at mu = 0
+    t = flaplag.Analysis(model="paper-cyclic", theta=0.1).trim(
+        0.0, thrust_coefficient=c.thrust_coefficient
+    )
+    assert t.status == "ok", t.message
+    assert t.converged and t.kind == "thrust"
+    assert abs(t.theta0 - 0.15) < 1e-12
+    assert abs(t.thrust_coefficient - c.thrust_coefficient) < 1e-15
+    assert t.parameters["theta"] == t.theta0
+    # the paper's eq 2.24 inflow gives another lambda at the same pitch
+    p = flaplag.Analysis(model="paper-cyclic", theta=0.15).thrust(0.0, inflow="paper")
+    assert abs(p.inflow - c.inflow) > 1e-3
+    g = flaplag.Analysis(model="paper-cyclic", theta=0.15).thrust(0.0, inflow=c.inflow)
+    assert abs(g.thrust_coefficient - c.thrust_coefficient) < 1e-15
+
+
+def test_moment_trim_removes_the_first_flap_harmonic():
+    t = flaplag.Analysis(model="paper-cyclic").trim(0.3, kind="moment", thrust_coefficient=0.005)
+    assert t.status == "ok", t.message
+    assert abs(t.flap_1c) < 1e-10 and abs(t.flap_1s) < 1e-10
+    assert abs(t.thrust_coefficient - 0.005) < 1e-10 * 0.005
+    assert t.theta1c != 0.0 and t.theta1s != 0.0
+
+
+@pytest.mark.parametrize("call,field", [
+    (lambda an: an.trim(0.3, kind="sideways"), "kind"),
+    (lambda an: an.trim(0.3, kind="none"), "kind"),
+    (lambda an: an.trim(0.3, thrust_coefficient=-0.005), "thrust_coefficient"),
+    (lambda an: an.trim(0.3, shaft_angle=2.0), "shaft_angle"),
+    (lambda an: an.trim(0.3, max_iterations=0), "max_iterations"),
+    (lambda an: an.trim(-1.0), "mu"),
+    (lambda an: an.trim(0.3, thrust_coefficient="0.005"), "thrust_coefficient"),
+    (lambda an: an.thrust(0.3, inflow="eq2.24"), "inflow"),
+    (lambda an: an.thrust(0.3, inflow=math.nan), "inflow"),
+])
+def test_trim_bad_inputs_name_the_keyword(call, field):
+    with pytest.raises(ValueError) as err:
+        call(flaplag.Analysis(model="paper-cyclic"))
+    assert err.value.field == field
+    assert str(err.value).startswith(field + " = ")
+
+
+def test_trim_needs_a_model_with_thrust():
+    with pytest.raises(ValueError) as err:
+        flaplag.Analysis().trim(0.3)
+    assert err.value.field == "model"

@@ -199,6 +199,7 @@ def test_response(params, mu, options):
 @pytest.mark.parametrize("params,mu,options", [
     ({}, "0.9", {"revolutions": 12.0}),
     ({"modes": "exact"}, "0.5", {"revolutions": 6.5, "samples_per_rev": 20, "forced": True}),
+    ({"model": "paper-nonlinear"}, "0.3", {"revolutions": 5.0, "nonlinear": True}),
 ])
 def test_simulate(params, mu, options):
     """`flaplag simulate` and Analysis.simulate: the same tip response and growth rates."""
@@ -209,6 +210,8 @@ def test_simulate(params, mu, options):
         args += ["--samples", str(options["samples_per_rev"])]
     if options.get("forced"):
         args.append("--forced")
+    if options.get("nonlinear"):
+        args.append("--nonlinear")
     doc = run_cli(*cli_args(**params), "simulate", "--mu", mu, *args)
     check_parameters(doc, an)
     assert find(doc, "status") == s.status
@@ -217,3 +220,8 @@ def test_simulate(params, mu, options):
         assert np.array(find(doc, key), dtype=float).tobytes() == values.tobytes(), key
     assert same(find(doc, "flap_growth_rate"), s.flap_growth_rate)
     assert same(find(doc, "lag_growth_rate"), s.lag_growth_rate)
+    assert find(doc, "nonlinear", default=False) == s.nonlinear
+    if s.nonlinear:
+        assert find(doc, "reference") == s.reference
+        for key, values in (("flap_total", s.flap_total), ("lag_total", s.lag_total)):
+            assert np.array(find(doc, key), dtype=float).tobytes() == values.tobytes(), key
