@@ -615,6 +615,24 @@ TEST_P(NonlinearEnvelope, GrowthRateIsTheLargestZetaOfThePeriodicLinearization) 
 
 INSTANTIATE_TEST_SUITE_P(TypicalCase, NonlinearEnvelope, ::testing::Values(0.3, 0.5));
 
+// Past the fold of the hover branch (mu ~ 0.666 for the typical case) there is no periodic
+// equilibrium: the simulation still runs, from and against the hover equilibrium, with status
+// Warning saying so (not ok, not an exception).
+TEST(NonlinearSimulation, PastTheFoldItStartsFromHoverWithAWarning) {
+  RotorParameters p;
+  p.model = "paper-nonlinear";
+  const Analysis an(p, {});
+  const flaplag::TipSimulation s =
+      an.simulate(0.7, Eigen::VectorXd::Constant(4, 0.01), false, nonlinear_options(1, 4));
+  EXPECT_EQ(s.status, flaplag::Status::Warning);
+  EXPECT_EQ(s.reference, "hover equilibrium");
+  EXPECT_NE(s.message.find("hover equilibrium"), std::string::npos) << s.message;
+  EXPECT_NE(s.message.find("fold"), std::string::npos) << s.message;
+  EXPECT_TRUE(AbsClose(an.hover().q0(0) + 0.01, s.simulation.y[0](1), 1e-15));
+  EXPECT_TRUE(AbsClose(0.01, s.flap_tip[0], 1e-15));
+  for (const auto& y : s.simulation.y) EXPECT_TRUE(y.allFinite());
+}
+
 // Inputs it cannot answer are refused naming the input: a model without nonlinear loads
 // ("nonlinear"), the forcing switch (its loads are part of the equations), the exact
 // reversed-flow circle (the nonlinear loads have the sector only), a bad perturbation.

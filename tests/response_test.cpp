@@ -166,7 +166,7 @@ TEST(Simulation, InvalidOptionsAndOverflow) {
 
 // simulate_nonlinear with the linear right-hand side A(psi) y + f(psi) (its region chosen by
 // the callback's flag) is the linear simulate(): the same RK4 on the same sector-split grid.
-TEST(NonlinearSimulation, WithALinearRightHandSideItIsTheLinearSimulation) {
+TEST(NonlinearIntegrator, WithALinearRightHandSideItIsTheLinearSimulation) {
   const Analysis an(RotorParameters{}, {});
   const PeriodicSystem sys = an.system(0.9);  // with the reversed-flow sector
   ASSERT_TRUE(sys.has_sector);
@@ -200,7 +200,7 @@ TEST(NonlinearSimulation, WithALinearRightHandSideItIsTheLinearSimulation) {
 // A genuinely nonlinear scalar equation with a closed-form solution: y' = -y^2, y(0) = 1 gives
 // y = 1 / (1 + psi); RK4 with 400 steps per revolution is accurate to ~1e-10 over 2 revs, and
 // the error falls like h^4 (a 2x finer grid: about 16x smaller).
-TEST(NonlinearSimulation, ClosedFormScalarSolutionAtFourthOrder) {
+TEST(NonlinearIntegrator, ClosedFormScalarSolutionAtFourthOrder) {
   PeriodicSystem grid;
   grid.n = 1;
   grid.normal.A = {Eigen::MatrixXd::Constant(1, 1, -1.0)};

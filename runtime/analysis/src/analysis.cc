@@ -534,11 +534,11 @@ TipSimulation Analysis::simulate_nonlinear(double mu, const Eigen::VectorXd& y0,
   out.message = s.message;
   if (out.status != Status::Failed && eq.status != Status::Ok) {
     out.status = Status::Warning;
-    out.message +=
-        std::string(out.message.empty() ? "" : "; ") +
-        (periodic ? "the reference periodic equilibrium: " + eq.message
-                  : "no periodic equilibrium at mu = " + round_trip_text(mu) + " (" + eq.message +
-                        "): started from and measured against the hover equilibrium");
+    out.message += std::string(out.message.empty() ? "" : "; ") +
+                   (periodic ? "the reference periodic equilibrium: " + eq.message
+                             : eq.message +
+                                   "; the simulation starts from and is measured against the "
+                                   "hover equilibrium");
   }
   return out;
 }
