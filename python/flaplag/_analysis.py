@@ -221,6 +221,24 @@ def parameters_doc():
     return "\n".join(out)
 
 
+def _trim_request(trim, thrust_coefficient, shaft_angle):
+    """None (no trim), or (kind, C_T, alpha_R) for the trimmed analyses; the command line's
+    --trim, --thrust-coefficient, --shaft-angle (which, without a trim, are refused)."""
+    if trim is None or (isinstance(trim, str) and trim == "none"):
+        for field, value in (("thrust_coefficient", thrust_coefficient),
+                             ("shaft_angle", shaft_angle)):
+            if value is not None:
+                raise _invalid(InvalidInput, field, value,
+                               "needs trim='thrust' or trim='moment' (without a trim it would be "
+                               "ignored)")
+        return None
+    if not isinstance(trim, str) or trim not in ("thrust", "moment"):
+        raise _invalid(InvalidInput, "trim", trim, "must be None, 'none', 'thrust' or 'moment'")
+    ct = TRIM_DEFAULTS["thrust_coefficient"] if thrust_coefficient is None else thrust_coefficient
+    alpha = TRIM_DEFAULTS["shaft_angle"] if shaft_angle is None else shaft_angle
+    return (trim, _real("thrust_coefficient", ct), _real("shaft_angle", alpha))
+
+
 def _rebuild(kwargs):
     return Analysis(**kwargs)
 
@@ -265,28 +283,55 @@ class Analysis:
 
     # -- analyses ------------------------------------------------------------------------------
 
-    def point(self, mu, *, scan_step=0.01) -> PointResult:
+    def point(
+        self, mu, *, scan_step=0.01, trim=None, thrust_coefficient=None, shaft_angle=None
+    ) -> PointResult:
         """The labelled exponents at advance ratio mu (0 <= mu <= 1000), continued from hover
         in steps of at most scan_step so that each exponent keeps its flap / lag label and its
-        omega its integer part.  zeta, omega per rev."""
+        omega its integer part.  zeta, omega per rev.
+
+        trim='thrust' or 'moment' (the command line's --trim; a model with the thrust, e.g.
+        model='paper-cyclic'): the rotor is trimmed to C_T = thrust_coefficient (shaft angle
+        alpha_R [rad]) at every mu the continuation evaluates (C++ trimmed_point); see trim()."""
+        t = _trim_request(trim, thrust_coefficient, shaft_angle)
+        if t is not None:
+            return PointResult._from(
+                self._native.trimmed_point(_real("mu", mu), _real("scan_step", scan_step), *t)
+            )
         return PointResult._from(
             self._native.point(_real("mu", mu), _real("scan_step", scan_step))
         )
 
-    def sweep(self, mu, stop=None, step=None, *, scan_step=0.01) -> SweepResult:
+    def sweep(
+        self,
+        mu,
+        stop=None,
+        step=None,
+        *,
+        scan_step=0.01,
+        trim=None,
+        thrust_coefficient=None,
+        shaft_angle=None,
+    ) -> SweepResult:
         """Exponents along advance ratios, continued from hover.
 
         sweep(mus): at the given advance ratios (nondecreasing, any spacing), continued in steps
         of at most scan_step (C++ Analysis::track).
         sweep(start, stop, step): at start, start + step, ..., stop inclusive, reported at the
         decimal grid values (C++ Analysis::sweep, the command line's --mu START:STOP:STEP).
+        trim, thrust_coefficient, shaft_angle: at fixed C_T, as point().
         """
+        t = _trim_request(trim, thrust_coefficient, shaft_angle)
         if stop is None and step is None:
-            raw = self._native.track(_real_array("mu", mu), _real("scan_step", scan_step))
+            mus, ss = _real_array("mu", mu), _real("scan_step", scan_step)
+            raw = self._native.track(mus, ss) if t is None else self._native.trimmed_track(
+                mus, ss, *t)
         elif stop is None or step is None:
             raise TypeError("sweep(start, stop, step) needs all three, or sweep(mus) an array")
         else:
-            raw = self._native.sweep(_real("mu0", mu), _real("mu1", stop), _real("step", step))
+            grid = (_real("mu0", mu), _real("mu1", stop), _real("step", step))
+            raw = self._native.sweep(*grid) if t is None else self._native.trimmed_sweep(
+                *grid, *t)
         return SweepResult._from(raw, self._labels())
 
     def critical(
@@ -299,13 +344,19 @@ class Analysis:
         zeta_threshold=CRITICAL_DEFAULTS["zeta_threshold"],
         periodic_omega_tolerance=CRITICAL_DEFAULTS["periodic_omega_tolerance"],
         scan_zeta_tolerance=CRITICAL_DEFAULTS["scan_zeta_tolerance"],
+        trim=None,
+        thrust_coefficient=None,
+        shaft_angle=None,
     ) -> CriticalResult:
         """The critical advance ratio mu_c: scans mu = scan_step, 2 scan_step, ... up to mu_max,
         continuing the exponents from hover, and refines the first crossing of
         max zeta = zeta_threshold [per rev] by Brent's method to ``tolerance`` in mu.
         all_intervals=True scans on to mu_max and reports every instability interval.
         periodic_omega_tolerance: |omega - k/2| [per rev] below which a crossing is 'periodic';
-        scan_zeta_tolerance: the exponent accuracy asked of the scan [per rev]."""
+        scan_zeta_tolerance: the exponent accuracy asked of the scan [per rev].
+        trim, thrust_coefficient, shaft_angle: mu_c at fixed C_T, as point() (C++
+        trimmed_critical)."""
+        t = _trim_request(trim, thrust_coefficient, shaft_angle)
         opts = {
             "mu_max": _real("mu_max", mu_max),
             "scan_step": _real("scan_step", scan_step),
@@ -315,6 +366,8 @@ class Analysis:
             "periodic_omega_tolerance": _real("periodic_omega_tolerance", periodic_omega_tolerance),
             "scan_zeta_tolerance": _real("scan_zeta_tolerance", scan_zeta_tolerance),
         }
+        if t is not None:
+            return CriticalResult._from(self._native.trimmed_critical(opts, *t))
         return CriticalResult._from(self._native.critical(opts))
 
     def system(self, mu, psi=0.0) -> SystemResult:

@@ -1105,6 +1105,60 @@ PYBIND11_MODULE(_flaplag, m) {
              }
              return thrust_dict(t);
            })
+      // Stability at fixed C_T (trim.h trimmed_*): the rotor trimmed at every mu evaluated.
+      .def("trimmed_point",
+           [](const Analysis& a, double mu, double scan_step, const std::string& kind,
+              double thrust_coefficient, double shaft_angle) {
+             const TrimOptions o =
+                 trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
+                              TrimOptions{}.tolerance);
+             PointResult r;
+             {
+               py::gil_scoped_release release;
+               r = trimmed_point(a.parameters(), a.options(), o, mu, scan_step);
+             }
+             return point_dict(r);
+           })
+      .def("trimmed_sweep",
+           [](const Analysis& a, double mu0, double mu1, double step, const std::string& kind,
+              double thrust_coefficient, double shaft_angle) {
+             const TrimOptions o =
+                 trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
+                              TrimOptions{}.tolerance);
+             SweepResult r;
+             {
+               py::gil_scoped_release release;
+               r = trimmed_sweep(a.parameters(), a.options(), o, mu0, mu1, step);
+             }
+             return sweep_dict(r);
+           })
+      .def("trimmed_track",
+           [](const Analysis& a, const std::vector<double>& mus, double scan_step,
+              const std::string& kind, double thrust_coefficient, double shaft_angle) {
+             const TrimOptions o =
+                 trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
+                              TrimOptions{}.tolerance);
+             SweepResult r;
+             {
+               py::gil_scoped_release release;
+               r = trimmed_track(a.parameters(), a.options(), o, mus, scan_step);
+             }
+             return sweep_dict(r);
+           })
+      .def("trimmed_critical",
+           [](const Analysis& a, const py::dict& options, const std::string& kind,
+              double thrust_coefficient, double shaft_angle) {
+             const CriticalOptions c = critical_options(options);
+             const TrimOptions o =
+                 trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
+                              TrimOptions{}.tolerance);
+             CriticalResult r;
+             {
+               py::gil_scoped_release release;
+               r = trimmed_critical(a.parameters(), a.options(), o, c);
+             }
+             return critical_dict(r);
+           })
       .def("floquet", [](const Analysis& a, double mu, double zeta_tolerance) {
         FloquetSample s;
         {

@@ -509,6 +509,22 @@ def test_trim_bad_inputs_name_the_keyword(call, field):
     assert str(err.value).startswith(field + " = ")
 
 
+@pytest.mark.parametrize("call,field", [
+    (lambda an: an.point(0.3, thrust_coefficient=0.005), "thrust_coefficient"),
+    (lambda an: an.critical(shaft_angle=0.1), "shaft_angle"),
+    (lambda an: an.sweep([0.1, 0.2], trim="none", thrust_coefficient=0.005), "thrust_coefficient"),
+    (lambda an: an.point(0.3, trim="sideways"), "trim"),
+    (lambda an: an.point(0.3, trim=True), "trim"),
+    (lambda an: an.point(0.3, trim="thrust", thrust_coefficient=0.5), "thrust_coefficient"),
+    (lambda an: an.sweep(0, 1, 0.5, trim="moment", shaft_angle="0"), "shaft_angle"),
+])
+def test_trimmed_analyses_bad_inputs_name_the_keyword(call, field):
+    with pytest.raises(ValueError) as err:
+        call(flaplag.Analysis(model="paper-cyclic"))
+    assert err.value.field == field
+    assert str(err.value).startswith(field + " = ")
+
+
 def test_trim_needs_a_model_with_thrust():
     with pytest.raises(ValueError) as err:
         flaplag.Analysis().trim(0.3)

@@ -149,6 +149,33 @@ def test_point():
     assert find(doc, "stable", "point.stable") == point.stable
 
 
+def test_trimmed_point_and_sweep():
+    """`point --trim` and `sweep --trim` (stability at fixed C_T) and Analysis.point/sweep with
+    trim=: the same exponents."""
+    an = flaplag.Analysis(model="paper-cyclic")
+    point = an.point(0.3, scan_step=0.1, trim="moment", thrust_coefficient=0.005)
+    assert point.status == "ok", point.message
+    doc = run_cli("--model", "paper-cyclic", "point", "--mu", "0.3", "--scan-step", "0.1",
+                  "--trim", "moment", "--thrust-coefficient", "0.005")
+    check_exponents(find(doc, "exponents", "point.exponents"), point.exponents)
+    # not the untrimmed rotor's exponents
+    assert abs(point.max_zeta - an.point(0.3, scan_step=0.1).max_zeta) > 1e-4
+    sweep = an.sweep(0.0, 0.2, 0.1, trim="thrust", thrust_coefficient=0.004, shaft_angle=0.05)
+    doc = run_cli("--model", "paper-cyclic", "sweep", "--mu", "0:0.2:0.1", "--trim", "thrust",
+                  "--thrust-coefficient", "0.004", "--shaft-angle", "0.05")
+    rows = find(doc, "rows", "sweep.rows")
+    assert len(rows) == len(sweep.points) == 3
+    for row, p in zip(rows, sweep.points):
+        assert same(row["mu"], p.mu)
+        check_exponents(row["exponents"], p.exponents)
+        for label in sweep.labels:
+            if isinstance(row.get(label), dict):
+                assert same(zeta_value(row[label]["zeta"]), p.dominant(label).zeta)
+                assert same(row[label]["omega"], p.dominant(label).omega)
+        if "status" in row:
+            assert row["status"] == p.status
+
+
 def test_system():
     an = flaplag.Analysis(modes="exact")
     sys_ = an.system(0.8, 4.7)
