@@ -636,6 +636,10 @@ Json trim_json(const Request& r, const TrimResult& t) {
   j["flap_1c"] = jnum(t.flap_1c);
   j["flap_1s"] = jnum(t.flap_1s);
   j["iterations"] = t.iterations;
+  if (t.parameters.periodic_linearization) {
+    j["equilibrium"] = Json{{"harmonics", t.equilibrium.harmonics},
+                            {"truncation", jnum(t.equilibrium.truncation)}};
+  }
   return status_json(j, t.status, vocab(r, t.message));
 }
 
@@ -650,6 +654,13 @@ std::string trim_text(const Request& r, const TrimResult& t) {
   kv.add("lambda", cell(t.inflow) + "  (eq 2.25)");
   kv.add("C_T achieved", cell(t.thrust_coefficient) + "  (the model's own lift, azimuth mean)");
   kv.add("flap tip 1st harmonic", cell(t.flap_1c) + " cos psi + " + cell(t.flap_1s) + " sin psi");
+  if (t.parameters.periodic_linearization) {
+    kv.add("trimmed about",
+           "the periodic equilibrium of the nonlinear equations (harmonic "
+           "balance, K = " +
+               std::to_string(t.equilibrium.harmonics) + "; last harmonic " +
+               cell(t.equilibrium.truncation) + " of the largest)");
+  }
   kv.add("iterations", std::to_string(t.iterations));
   out += kv.render();
   return out + status_text(t.status, vocab(r, t.message));
@@ -692,7 +703,13 @@ std::string sweep(const Request& r, const Analysis& an, std::string& warning) {
   // The trimmed controls at each point of the sweep.
   std::vector<TrimResult> trims;
   if (trimmed(r)) {
-    for (const PointResult& p : s.points) trims.push_back(trim(r.params, p.mu, r.trim));
+    // About the periodic equilibrium each trim continues from the previous one's q° (the
+    // continuation from hover at every mu would cost as much as the sweep).
+    for (const PointResult& p : s.points) {
+      const bool warm = r.params.periodic_linearization && !trims.empty() &&
+                        trims.back().status != Status::Failed;
+      trims.push_back(trim(r.params, p.mu, r.trim, warm ? &trims.back() : nullptr));
+    }
   }
   const std::vector<std::string> labels = mode_labels(an);
   if (!r.plot.empty()) {

@@ -295,6 +295,48 @@ TEST_P(GeneratedModel, NonlinearLoadsLinearizeToTheLinearModel) {
       }
     }
   }
+  // Cyclic pitch too: the thrust as a polynomial of the full state equals GiNaC's and
+  // linearizes about (0, q0) to the linear thrust (value thrust_forcing, Jacobian thrust_force).
+  ASSERT_EQ(cm->nonlinear_thrust != nullptr, spec.cyclic_pitch);
+  ASSERT_EQ(dm.nonlinear_thrust.empty(), !spec.cyclic_pitch);
+  if (spec.cyclic_pitch) {
+    RandomInputs r(dm, 7u);
+    const auto sub = r.substitution(dm);
+    std::mt19937 rng(7u);
+    std::uniform_real_distribution<double> u(-0.3, 0.3);
+    std::vector<double> y(ns), t(H), tj(H * ns);
+    for (auto& v : y) v = u(rng);
+    cm->nonlinear_thrust(r.inputs(), y.data(), {t.data(), tj.data()});
+    std::vector<double> expected(H, 0.0);
+    int max_thrust_degree = 0;
+    for (const auto& s : dm.nonlinear_thrust) {
+      double mono = 1.0;
+      for (int c = 0; c < ns; ++c) mono *= std::pow(y[c], s.powers[c]);
+      expected[s.harmonic] += ginac_value(s.slot.value, sub) * mono;
+      max_thrust_degree = std::max(max_thrust_degree, s.degree());
+    }
+    EXPECT_GE(max_thrust_degree, 2) << "the thrust keeps products of the coordinates";
+    for (int h = 0; h < H; ++h) {
+      EXPECT_NEAR(t[h], expected[h], 1e-12 * std::max(1.0, std::abs(expected[h]))) << h;
+    }
+    std::vector<double> yh(ns, 0.0);
+    for (int k = 0; k < dm.M; ++k) yh[fm::flap_displacement_index(k, dm.M, dm.N)] = r.g0[k];
+    for (int m = 0; m < dm.N; ++m) yh[fm::lag_displacement_index(m, dm.M, dm.N)] = r.h0[m];
+    std::vector<double> lin_force(HL * ns), lin_forcing(HL);
+    cm->thrust(r.inputs(), {lin_force.data(), lin_forcing.data()});
+    cm->nonlinear_thrust(r.inputs(), yh.data(), {t.data(), tj.data()});
+    for (int h = 0; h < H; ++h) {
+      const double f_lin = h < HL ? lin_forcing[h] : 0.0;
+      EXPECT_NEAR(t[h], f_lin, 1e-12 * std::max(1.0, std::abs(f_lin))) << "thrust h " << h;
+      for (int c = 0; c < ns; ++c) {
+        const double a_lin = h < HL ? lin_force[h * ns + c] : 0.0;
+        EXPECT_NEAR(tj[h * ns + c], a_lin, 1e-12 * std::max(1.0, std::abs(a_lin)))
+            << "thrust h " << h << " col " << c;
+      }
+    }
+    for (const auto& s : dm.nonlinear_thrust)
+      for (const auto& term : s.slot.terms) EXPECT_LE(term.eps_order, spec.kept_flap);
+  }
   // Every aerodynamic term obeys its equation's kept order.
   for (const auto& s : dm.nonlinear) {
     for (const auto& t : s.slot.terms) {

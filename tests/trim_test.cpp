@@ -272,3 +272,116 @@ TEST(RotorThrust, ExactModesTwoByTwo) {
   EXPECT_NEAR(two.thrust_coefficient, one.thrust_coefficient, 0.05 * one.thrust_coefficient);
   EXPECT_NE(two.thrust_coefficient, one.thrust_coefficient);
 }
+
+// ---- trim about the periodic equilibrium (model paper-cyclic-nonlinear) ----------------------
+
+namespace {
+
+RotorParameters periodic_typical() {
+  RotorParameters p;
+  p.model = "paper-cyclic-nonlinear";
+  p.periodic_linearization = true;
+  return p;
+}
+
+}  // namespace
+
+// In hover q° is the hover equilibrium, so the thrust about it is the hover-linearized model's
+// (paper-cyclic) to rounding, and the round trip of issue 12 holds about q° as well.
+TEST(PeriodicTrim, HoverThrustIsTheHoverModelsAndTheRoundTripHolds) {
+  const auto linear = flaplag::rotor_thrust_momentum(cyclic_typical(), 0.0, 0.0);
+  const auto about = flaplag::rotor_thrust_momentum(periodic_typical(), 0.0, 0.0);
+  ASSERT_EQ(about.status, Status::Ok) << about.message;
+  EXPECT_NEAR(about.thrust_coefficient, linear.thrust_coefficient, 1e-15);
+  RotorParameters p = periodic_typical();
+  p.theta = 0.1;
+  TrimOptions o;
+  o.kind = TrimKind::Thrust;
+  o.thrust_coefficient = about.thrust_coefficient;
+  const auto r = flaplag::trim(p, 0.0, o);
+  ASSERT_EQ(r.status, Status::Ok) << r.message;
+  EXPECT_NEAR(r.theta0, 0.15, 1e-12);
+  EXPECT_EQ(r.equilibrium.harmonics, 16);
+}
+
+// Thrust and moment trim at mu = 0.3 about q°: the thrust of the nonlinear equilibrium equals
+// the target to 1e-10, and (moment) the first flap harmonic of q° is below 1e-10, also for q°
+// computed again by the Analysis (continued from hover, not from the trim's warm starts).  The
+// trim is not the hover-linearized one: its controls differ.
+TEST(PeriodicTrim, ThrustAndFirstFlapHarmonicOfTheEquilibriumAreTrimmed) {
+  const double mu = 0.3, ct = 0.005;
+  TrimOptions o;
+  o.kind = TrimKind::Moment;
+  o.thrust_coefficient = ct;
+  const auto r = flaplag::trim(periodic_typical(), mu, o);
+  ASSERT_EQ(r.status, Status::Ok) << r.message;
+  EXPECT_NEAR(r.thrust_coefficient, ct, 1e-10 * ct);
+  EXPECT_LT(std::abs(r.flap_1c), 1e-10);
+  EXPECT_LT(std::abs(r.flap_1s), 1e-10);
+  ASSERT_EQ(r.equilibrium.coefficients.rows(), 2);
+  EXPECT_EQ(r.equilibrium.mu, mu);
+  const flaplag::Analysis an(r.parameters, {}, r.inflow);
+  const auto eq = an.periodic_equilibrium(mu);
+  ASSERT_NE(eq.status, Status::Failed) << eq.message;
+  const double tip = an.modes().flap[0]->value(0, 1.0);
+  EXPECT_LT(std::abs(tip * eq.coefficients(0, 1)), 1e-10);
+  EXPECT_LT(std::abs(tip * eq.coefficients(0, 2)), 1e-10);
+  EXPECT_NEAR(0.5 * r.parameters.sigma * r.parameters.lift_slope * eq.mean_thrust, ct, 1e-10 * ct);
+  // the hover-linearized moment trim of the same rotor needs other controls
+  const auto hover_linear = flaplag::trim(cyclic_typical(), mu, o);
+  ASSERT_EQ(hover_linear.status, Status::Ok) << hover_linear.message;
+  EXPECT_GT(std::abs(hover_linear.theta1s - r.theta1s) + std::abs(hover_linear.theta0 - r.theta0),
+            1e-5);
+  // Thrust trim about q° alone: the target to 1e-10, the flapping left in.
+  o.kind = TrimKind::Thrust;
+  const auto t = flaplag::trim(periodic_typical(), mu, o);
+  ASSERT_EQ(t.status, Status::Ok) << t.message;
+  EXPECT_NEAR(t.thrust_coefficient, ct, 1e-10 * ct);
+  EXPECT_GT(std::hypot(t.flap_1c, t.flap_1s), 1e-3);
+}
+
+// The stability of the trimmed rotor about q°: the exponents about the trim's equilibrium are
+// those of an Analysis that continues q° from hover itself at the trimmed controls.
+TEST(PeriodicTrim, TrimmedPointIsTheFloquetAnalysisAboutTheTrimmedEquilibrium) {
+  const double mu = 0.2;
+  TrimOptions o;
+  o.kind = TrimKind::Moment;
+  o.thrust_coefficient = 0.0042;
+  const flaplag::TransitionOptions t;
+  const auto pt = flaplag::trimmed_point(periodic_typical(), t, o, mu, 0.1);
+  ASSERT_NE(pt.status, Status::Failed) << pt.message;
+  const auto r = flaplag::trim(periodic_typical(), mu, o);
+  ASSERT_EQ(r.status, Status::Ok) << r.message;
+  const flaplag::Analysis an(r.parameters, t, r.inflow);
+  const auto direct = an.floquet(mu, t.zeta_tolerance);
+  ASSERT_NE(direct.status, Status::Failed) << direct.message;
+  double zmax_pt = -1e9, zmax_direct = -1e9;
+  for (const auto& e : pt.exponents) zmax_pt = std::max(zmax_pt, e.zeta);
+  for (const auto& e : direct.floquet.exponents) zmax_direct = std::max(zmax_direct, e.zeta);
+  EXPECT_NEAR(zmax_pt, zmax_direct, 1e-8);
+  // and about hover the same trimmed rotor has other exponents (the equilibrium matters)
+  RotorParameters hover_linear = r.parameters;
+  hover_linear.periodic_linearization = false;
+  const auto about_hover = flaplag::Analysis(hover_linear, t, r.inflow).floquet(mu, 1e-5);
+  double zmax_hover = -1e9;
+  for (const auto& e : about_hover.floquet.exponents) zmax_hover = std::max(zmax_hover, e.zeta);
+  EXPECT_GT(std::abs(zmax_hover - zmax_pt), 1e-4);
+}
+
+// About the periodic equilibrium the trim needs the nonlinear thrust: the models without it are
+// refused naming the model.
+TEST(PeriodicTrim, ModelsWithoutTheNonlinearThrustAreRefused) {
+  TrimOptions o;
+  o.kind = TrimKind::Thrust;
+  for (const char* model : {"paper-nonlinear", "paper-cyclic"}) {
+    RotorParameters p = periodic_typical();
+    p.model = model;
+    try {
+      flaplag::trim(p, 0.3, o);
+      FAIL() << model;
+    } catch (const InvalidInput& e) {
+      // paper-nonlinear has no thrust at all; paper-cyclic no nonlinear loads
+      EXPECT_TRUE(e.name() == "model" || e.name() == "periodic_linearization") << e.name();
+    }
+  }
+}

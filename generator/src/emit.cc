@@ -144,26 +144,22 @@ std::string monomial_cpp(const DerivedModel& m, const std::vector<int>& powers) 
   return out.empty() ? "1.0" : out;
 }
 
-// The nonlinear generalized loads and their Jacobian (model_api.h NonlinearOutputs).
-void emit_nonlinear(std::ostringstream& os, const DerivedModel& m) {
-  const int n = m.n(), ns = 2 * n, H = m.H_nonlinear;
+// Body of a polynomial function of the full state y: `rows` values per harmonic (the slots'
+// equation, or row 0 for the thrust) and their Jacobian.
+void emit_polynomial(std::ostringstream& os, const DerivedModel& m,
+                     const std::vector<NonlinearSlot>& slots, int rows, bool thrust) {
+  const int ns = 2 * m.n(), H = m.H_nonlinear;
   const std::string ind = "        ";
-  os << "// Nonlinear generalized loads: mass * q'' = sum_h phi_h(psi) force[h](y), y the full "
-        "state\n// (not a perturbation; g0, h0 are not read), every product of the coordinates "
-        "that the\n// ordering keeps; and d force / d y.  H_nl = "
-     << H << ".\n"
-     << "FLAPLAG_GENERATED_NO_UBSAN\n"
-     << "void nonlinear(const model::CoefficientInputs& in, const double* y,\n"
-     << "               const model::NonlinearOutputs& out) {\n"
-     << "  const Symbols s(in);\n";
+  os << "  const Symbols s(in);\n";
   for (int c = 0; c < ns; ++c) {
     os << "  const double " << full_state_ident(m, c) << " = y[" << c << "];\n";
   }
-  os << "  for (int k = 0; k < " << H * n << "; ++k) out.force[k] = 0.0;\n"
-     << "  for (int k = 0; k < " << H * n * ns << "; ++k) out.jacobian[k] = 0.0;\n";
-  for (const auto& nl : m.nonlinear) {
-    const int idx = nl.harmonic * n + nl.equation;
-    os << "  {  // " << m.equation_name(nl.equation) << " equation, "
+  os << "  for (int k = 0; k < " << H * rows << "; ++k) out.force[k] = 0.0;\n"
+     << "  for (int k = 0; k < " << H * rows * ns << "; ++k) out.jacobian[k] = 0.0;\n";
+  for (const auto& nl : slots) {
+    const int idx = nl.harmonic * rows + (thrust ? 0 : nl.equation);
+    os << "  {  // "
+       << (thrust ? std::string("thrust") : m.equation_name(nl.equation) + " equation") << ", "
        << DerivedModel::harmonic_name(nl.harmonic) << ": " << monomial_text(m, nl.powers) << "\n"
        << "    const double c =\n"
        << ind << slot_cpp(m, nl.slot, ind) << ";\n"
@@ -179,6 +175,31 @@ void emit_nonlinear(std::ostringstream& os, const DerivedModel& m) {
     os << "  }\n";
   }
   os << "}\n\n";
+}
+
+// The nonlinear generalized loads and their Jacobian (model_api.h NonlinearOutputs).
+void emit_nonlinear(std::ostringstream& os, const DerivedModel& m) {
+  const int n = m.n(), H = m.H_nonlinear;
+  os << "// Nonlinear generalized loads: mass * q'' = sum_h phi_h(psi) force[h](y), y the full "
+        "state\n// (not a perturbation; g0, h0 are not read), every product of the coordinates "
+        "that the\n// ordering keeps; and d force / d y.  H_nl = "
+     << H << ".\n"
+     << "FLAPLAG_GENERATED_NO_UBSAN\n"
+     << "void nonlinear(const model::CoefficientInputs& in, const double* y,\n"
+     << "               const model::NonlinearOutputs& out) {\n";
+  emit_polynomial(os, m, m.nonlinear, n, false);
+}
+
+// The rotor thrust as a polynomial in the full state (cyclic-pitch models with nonlinear
+// loads; model_api.h ModelDescriptor::nonlinear_thrust): one row per harmonic.
+void emit_nonlinear_thrust(std::ostringstream& os, const DerivedModel& m) {
+  os << "// Rotor thrust of one blade at the full state y: T(psi) = sum_h phi_h(psi) force[h](y),\n"
+        "// the load of `thrust` without its degree-1 cut; and d force / d y.  H_nl = "
+     << m.H_nonlinear << ".\n"
+     << "FLAPLAG_GENERATED_NO_UBSAN\n"
+     << "void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,\n"
+     << "                      const model::NonlinearOutputs& out) {\n";
+  emit_polynomial(os, m, m.nonlinear_thrust, 1, true);
 }
 
 }  // namespace
@@ -354,6 +375,7 @@ std::string emit_cpp(const DerivedModel& m) {
     os << "}\n\n";
   }
   if (m.spec.nonlinear) emit_nonlinear(os, m);
+  if (m.spec.nonlinear && m.spec.cyclic_pitch) emit_nonlinear_thrust(os, m);
   os << "}  // namespace\n}  // namespace flaplag::generated::" << id << "\n\n";
   os << "const flaplag::model::ModelDescriptor& flaplag_model_" << id << "() {\n";
   os << "  namespace g = flaplag::generated::" << id << ";\n";
@@ -375,6 +397,7 @@ std::string emit_cpp(const DerivedModel& m) {
     os << ",\n      " << (m.spec.cyclic_pitch ? "true" : "false") << ",\n      "
        << (m.spec.cyclic_pitch ? "&g::thrust" : "nullptr");
   if (m.spec.nonlinear) os << ",\n      " << m.H_nonlinear << ", &g::nonlinear";
+  if (m.spec.nonlinear && m.spec.cyclic_pitch) os << ",\n      &g::nonlinear_thrust";
   os << "};\n";
   os << "  return d;\n}\n";
   return os.str();

@@ -67,6 +67,7 @@ void Deriver::place_nonlinear(const ex& expr, bool aero, int eq) {
 
 void Deriver::assemble_nonlinear() {
   model_.nonlinear.clear();
+  model_.nonlinear_thrust.clear();
   for (const auto& [key, terms] : pending_nonlinear_) {
     NonlinearSlot s;
     s.harmonic = std::get<0>(key);
@@ -74,7 +75,9 @@ void Deriver::assemble_nonlinear() {
     s.powers = std::get<2>(key);
     s.slot.value = 0;
     for (const auto& t : terms) add_term(s.slot, t);
-    model_.nonlinear.push_back(std::move(s));
+    // The thrust pseudo-equation (cyclic-pitch models) is no generalized load: its own list.
+    (s.equation == model_.thrust_equation() ? model_.nonlinear_thrust : model_.nonlinear)
+        .push_back(std::move(s));
   }
 }
 

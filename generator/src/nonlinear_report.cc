@@ -61,6 +61,23 @@ std::string nonlinear_report_section(const DerivedModel& m) {
       }
     }
   }
+  if (!m.nonlinear_thrust.empty()) {
+    os << "\n### Rotor thrust, nonlinear\n\n"
+       << "The rotor thrust of one blade (section \"Rotor thrust\" above) at the full state: "
+          "the trim about the periodic equilibrium averages it along q°(psi). Factors as in that "
+          "section (nothing removed).\n\n"
+       << "| monomial | harmonic | factor | integral | paper | eps | origin | radial | value |\n"
+       << "|---|---|---|---|---|---|---|---|---|\n";
+    for (const auto& s : m.nonlinear_thrust) {
+      for (const auto& t : s.slot.terms) {
+        os << "| " << monomial_text(m, s.powers) << " | " << DerivedModel::harmonic_name(s.harmonic)
+           << " | " << factor_text(m, t, false) << " | " << integral_name(m, t) << " | "
+           << (t.paper_name.empty() ? "-" : t.paper_name) << " | " << t.eps_order << " | "
+           << t.origin << " | " << (t.radial_flow ? "radial" : "") << " | "
+           << value_text(pv.available ? pv.value(t) : NAN) << " |\n";
+      }
+    }
+  }
   return os.str();
 }
 

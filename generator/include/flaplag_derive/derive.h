@@ -138,7 +138,11 @@ struct DerivedModel {
   // the slots of harmonic h of slot * y^powers.  Its Jacobian at y = (0, q0) is `force`, its
   // value there `forcing` (tests/generator_test.cpp).
   std::vector<NonlinearSlot> nonlinear;
-  int H_nonlinear = 0;  // harmonics of the nonlinear slots
+  // Cyclic-pitch models with nonlinear loads: the rotor thrust of one blade (thrust_force's
+  // load) as the same kind of polynomial in the full state; equation = thrust_equation().
+  // Its Jacobian at (0, q0) is thrust_force, its value thrust_forcing.
+  std::vector<NonlinearSlot> nonlinear_thrust;
+  int H_nonlinear = 0;  // harmonics of the nonlinear slots (loads and thrust)
 
   std::string state_name(int col) const;     // "dg1'", "dg1", "dh1'", "dh1"
   std::string equation_name(int row) const;  // "flap 1", "lag 1"

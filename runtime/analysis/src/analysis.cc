@@ -207,22 +207,25 @@ struct Analysis::Impl {
   }
 
   FloquetSample floquet(double mu, double zeta_tolerance) const {
-    FloquetSample out;
     // The linear system about hover (the paper) or about the periodic equilibrium.
-    std::string equilibrium_note;
-    PeriodicSystem sys;
     if (builder.params().periodic_linearization) {
       PeriodicEquilibrium eq = equilibrium(mu);
       if (eq.status == Status::Failed) {
+        FloquetSample out;
         out.status = Status::Failed;
         out.message = eq.message;
         return out;
       }
-      equilibrium_note = eq.message;
-      sys = std::move(eq.linearization);
-    } else {
-      sys = builder.system(mu);
+      return floquet_of(eq.linearization, zeta_tolerance, eq.message);
     }
+    return floquet_of(builder.system(mu), zeta_tolerance, "");
+  }
+
+  // One resolved Floquet evaluation of sys; equilibrium_note (the periodic equilibrium's
+  // warning, if any) is appended to the message.
+  FloquetSample floquet_of(const PeriodicSystem& sys, double zeta_tolerance,
+                           const std::string& equilibrium_note) const {
+    FloquetSample out;
     bool system_finite = true;
     for (const HarmonicSet* set : {&sys.normal, &sys.reversed})
       for (const Eigen::MatrixXd& a : set->A) system_finite = system_finite && a.allFinite();
@@ -375,11 +378,7 @@ struct Analysis::Impl {
   mutable std::mutex cache_mutex;
   mutable std::map<double, PeriodicEquilibrium> cache;
   // The harmonic balance behind periodic_linearization (stability comes from the analysis).
-  PeriodicEquilibriumOptions equilibrium_options = [] {
-    PeriodicEquilibriumOptions o;
-    o.check_stability = false;
-    return o;
-  }();
+  PeriodicEquilibriumOptions equilibrium_options = internal::equilibrium_options();
   HoverResult hover;
   HoverModes hover_modes;
 };
@@ -408,6 +407,18 @@ PeriodicEquilibrium Analysis::periodic_equilibrium(
   check_mu(mu, "mu");
   options.Check();
   return flaplag::periodic_equilibrium(impl_->builder, mu, options);
+}
+
+FloquetSample Analysis::floquet(const PeriodicEquilibrium& equilibrium,
+                                double zeta_tolerance) const {
+  if (!(std::isfinite(zeta_tolerance) && zeta_tolerance > 0.0))
+    throw InvalidInput("zeta_tolerance", round_trip_text(zeta_tolerance), "must be > 0");
+  if (equilibrium.status == Status::Failed ||
+      equilibrium.linearization.n != impl_->builder.state_size()) {
+    throw InvalidInput("equilibrium", round_trip_text(equilibrium.mu),
+                       "is not a periodic equilibrium of this blade (failed, or another model)");
+  }
+  return impl_->floquet_of(equilibrium.linearization, zeta_tolerance, equilibrium.message);
 }
 
 FloquetSample Analysis::floquet(double mu, double zeta_tolerance) const {

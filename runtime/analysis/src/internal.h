@@ -9,6 +9,7 @@
 #include "flaplag/core/format.h"
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
+#include "flaplag/rotor/periodic_equilibrium.h"
 
 namespace flaplag::internal {
 
@@ -18,6 +19,14 @@ inline void check_mu(double mu, const char* name) {
     throw InvalidInput(name, round_trip_text(mu),
                        "advance ratio must be >= 0 and <= " + round_trip_text(kMaxAdvanceRatio));
   }
+}
+
+// The harmonic balance behind periodic_linearization, for the analysis and the trim alike (the
+// stability comes from the analysis' own Floquet evaluation, so none here).
+inline PeriodicEquilibriumOptions equilibrium_options() {
+  PeriodicEquilibriumOptions o;
+  o.check_stability = false;
+  return o;
 }
 
 // Tip deflections w/l (flap) and v/l (lag) of the modal displacements q0 + y, y a state in the

@@ -14,6 +14,7 @@
 #include "flaplag/numerics/brent.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/hover.h"
+#include "flaplag/rotor/periodic_equilibrium.h"
 #include "flaplag/rotor/system_builder.h"
 #include "internal.h"
 
@@ -34,7 +35,14 @@ const model::ModelDescriptor& thrust_model(const RotorParameters& p) {
   if (m.thrust == nullptr) {
     throw InvalidInput("model", p.model,
                        "emits no rotor thrust: the thrust and the trim need a model with the "
-                       "cyclic_pitch switch (e.g. paper-cyclic)");
+                       "cyclic_pitch switch (e.g. paper-cyclic, or paper-cyclic-nonlinear about "
+                       "the periodic equilibrium)");
+  }
+  if (p.periodic_linearization && m.nonlinear_thrust == nullptr) {
+    throw InvalidInput("model", p.model,
+                       "emits no nonlinear rotor thrust: the trim about the periodic equilibrium "
+                       "(`periodic_linearization`) needs a model with cyclic pitch and nonlinear "
+                       "loads (paper-cyclic-nonlinear)");
   }
   return m;
 }
@@ -92,10 +100,54 @@ double mean_thrust(const PeriodicSystem& sys, const detail::ThrustSystem& ts,
   return integral / kTwoPi;
 }
 
+// About the periodic equilibrium (p.periodic_linearization): thrust and first flap harmonic of
+// the nonlinear periodic equilibrium q°(psi) (the harmonic balance of Analysis, continued in mu
+// from hover on the branch through the hover equilibrium).
+// `warm` (in/out, may be null): a previous evaluation's equilibrium to continue from (a nearby
+// pitch or mu), replaced by this one's when it succeeds.
+ThrustResult evaluate_periodic(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
+                               double inflow, PeriodicEquilibrium* warm) {
+  ThrustResult out;
+  out.mu = mu;
+  const detail::SystemBuilder builder(p, m, inflow);
+  out.inflow = builder.inflow();
+  if (builder.hover().status == Status::Failed) {
+    out.status = Status::Failed;
+    out.message = builder.hover().message;
+    return out;
+  }
+  const bool has_start = warm != nullptr && warm->coefficients.size() > 0;
+  PeriodicEquilibrium eq = periodic_equilibrium(builder, mu, internal::equilibrium_options(),
+                                                has_start ? warm : nullptr);
+  if (eq.status == Status::Failed) {
+    out.status = Status::Failed;
+    out.message = eq.message;
+    return out;
+  }
+  out.thrust_coefficient = 0.5 * p.sigma * p.lift_slope * eq.mean_thrust;
+  // First harmonic of the flap tip deflection of q°: its cos psi and sin psi coefficients.
+  for (int k = 0; k < m.flap_modes; ++k) {
+    const double tip = builder.modes().flap[k]->value(0, 1.0);
+    out.flap_1c += tip * eq.coefficients(k, 1);
+    out.flap_1s += tip * eq.coefficients(k, 2);
+  }
+  if (!std::isfinite(out.thrust_coefficient)) {
+    out.status = Status::Failed;
+    out.message = "the thrust overflowed at mu = " + round_trip_text(mu);
+  } else if (eq.status == Status::Warning) {
+    out.status = Status::Warning;
+    out.message = eq.message;
+  }
+  if (warm != nullptr && out.status != Status::Failed) *warm = std::move(eq);
+  return out;
+}
+
 // One evaluation: thrust and first flap harmonic at (p's pitch, inflow).  response.steps is
 // updated to the steps used, so that later evaluations use the same grid.
 ThrustResult evaluate(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
-                      double inflow, ResponseOptions& response) {
+                      double inflow, ResponseOptions& response,
+                      PeriodicEquilibrium* warm = nullptr) {
+  if (p.periodic_linearization) return evaluate_periodic(p, m, mu, inflow, warm);
   // The emitted thrust has a normal and a sector form only (ModelDescriptor::thrust); with the
   // exact circle the thrust and A(psi) would model different reversed regions.
   if (p.exact_reversed_flow) {
@@ -291,6 +343,25 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
     throw InvalidInput("trim", "none", "nothing to trim: use thrust or moment");
   }
   const model::ModelDescriptor& m = thrust_model(p);
+  // About the periodic equilibrium without a start of its own: the trim continued in mu from
+  // hover (steps of kPeriodicTrimStep, each from the previous trim and its q°), since q° at
+  // fixed controls, continued from hover, may fold before the trimmed branch does.
+  constexpr double kPeriodicTrimStep = 0.1;
+  if (p.periodic_linearization && mu > kPeriodicTrimStep &&
+      (start == nullptr || start->equilibrium.coefficients.size() == 0 ||
+       start->status == Status::Failed)) {
+    TrimResult chain = trim(p, 0.0, o);
+    for (int i = 1; chain.status != Status::Failed && i * kPeriodicTrimStep < mu; ++i)
+      chain = trim(p, i * kPeriodicTrimStep, o, &chain);
+    if (chain.status == Status::Failed) {
+      chain.mu = mu;
+      chain.message =
+          "the trim continued from hover failed on the way to mu = " + round_trip_text(mu) + ": " +
+          chain.message;
+      return chain;
+    }
+    return trim(p, mu, o, &chain);
+  }
   TrimResult out;
   out.mu = mu;
   out.kind = o.kind;
@@ -298,6 +369,10 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
   out.inflow = momentum_inflow(o.thrust_coefficient, mu, o.shaft_angle);
   out.parameters = p;
   ResponseOptions ropt = o.response;
+  // About the periodic equilibrium: each evaluation continues from the previous one's q°
+  // (a start's, then this trim's), not from hover.
+  PeriodicEquilibrium warm;
+  if (start != nullptr && p.periodic_linearization) warm = start->equilibrium;
 
   const bool moment = o.kind == TrimKind::Moment;
   const int nx = moment ? 3 : 1;
@@ -336,7 +411,7 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
     for (int j = 0; j < nx; ++j) {
       if (!(std::abs(v(j)) < kHalfPi)) return false;
     }
-    last = evaluate(params_of(v), m, mu, out.inflow, ropt);
+    last = evaluate(params_of(v), m, mu, out.inflow, ropt, &warm);
     if (last.status == Status::Failed) return false;
     r->resize(nx);
     (*r)(0) = (last.thrust_coefficient - o.thrust_coefficient) / o.thrust_coefficient;
@@ -354,6 +429,7 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
     out.thrust_coefficient = last.thrust_coefficient;
     out.flap_1c = last.flap_1c;
     out.flap_1s = last.flap_1s;
+    if (p.periodic_linearization) out.equilibrium = warm;
     out.status = s;
     out.message = std::move(msg);
     return out;
@@ -477,7 +553,9 @@ struct Trimmed {
     // trim: always from the blade-element estimate, which is close and keeps each mu's trim
     // independent of the order of evaluation.
     auto previous = std::make_shared<TrimResult>(hover);
-    const bool warm = options.kind == TrimKind::Moment;
+    // About the periodic equilibrium both trims start warm: the previous trim's q° saves the
+    // continuation from hover at every evaluation.
+    const bool warm = options.kind == TrimKind::Moment || params.periodic_linearization;
     return [this, previous, warm](double mu, double zeta_tolerance) {
       FloquetSample out;
       const TrimResult tr = trim(params, mu, options, warm ? previous.get() : nullptr);
@@ -488,7 +566,9 @@ struct Trimmed {
         return out;
       }
       const Analysis an(tr.parameters, transition, tr.inflow);
-      out = an.floquet(mu, zeta_tolerance);
+      // About the periodic equilibrium: the trim's own q° (the one whose thrust was trimmed).
+      out = params.periodic_linearization ? an.floquet(tr.equilibrium, zeta_tolerance)
+                                          : an.floquet(mu, zeta_tolerance);
       // (an unstable trimmed system is no problem of the sample: the exponents say so)
       if (!tr.converged && out.status == Status::Ok) {
         out.status = Status::Warning;

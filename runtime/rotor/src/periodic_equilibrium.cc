@@ -37,12 +37,16 @@ struct Piece {
   bool reversed;
 };
 
+// (the edges from PeriodicSystem::breakpoints(), the one source of where the regions change).
 std::vector<Piece> pieces(const PeriodicSystem& s) {
-  if (!s.has_sector) return {{0.0, kTwoPi, false}};
+  std::vector<double> cuts{0.0};
+  for (double b : s.breakpoints()) cuts.push_back(b);
+  cuts.push_back(kTwoPi);
   std::vector<Piece> out;
-  if (s.sector_begin > 0.0) out.push_back({0.0, s.sector_begin, false});
-  out.push_back({s.sector_begin, s.sector_end, true});
-  if (s.sector_end < kTwoPi) out.push_back({s.sector_end, kTwoPi, false});
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    if (!(cuts[i + 1] > cuts[i])) continue;
+    out.push_back({cuts[i], cuts[i + 1], s.in_sector(0.5 * (cuts[i] + cuts[i + 1]))});
+  }
   return out;
 }
 
@@ -249,6 +253,15 @@ void NonlinearSystem::evaluate(double psi, bool in_sector, const Eigen::VectorXd
   }
 }
 
+double NonlinearSystem::thrust(double psi, bool in_sector, const Eigen::VectorXd& y) const {
+  std::vector<double> t(H_);
+  builder_->nonlinear_thrust(mu_, in_sector && sector_.has_sector ? reversed_ : normal_, y.data(),
+                             t.data(), nullptr);
+  double v = 0.0;
+  for (int h = 0; h < H_; ++h) v += harmonic_basis(h, psi) * t[h];
+  return v;
+}
+
 std::vector<Eigen::VectorXd> NonlinearSystem::integrate(const Eigen::VectorXd& y0, int revolutions,
                                                         int steps_per_rev) const {
   if (y0.size() != ns_) throw InvalidInput("y0", std::to_string(y0.size()), "must have 2n entries");
@@ -334,17 +347,30 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
   X.col(0) = builder.hover().q0;
   double reached = 0.0;
   Newton r;
+  bool from_start = false;
   if (start != nullptr && start->status != Status::Failed && start->harmonics == K &&
-      start->mu <= mu && start->coefficients.rows() == n) {
-    X = start->coefficients;  // a point of the same branch, continued from hover before
-    reached = start->mu;
-    r.converged = true;
-  } else {
-    r = solve(NonlinearSystem(builder, 0.0), M, N, K, opt, X);
+      start->coefficients.rows() == n && start->mu - mu <= kMaxStep) {
+    // A point of the same branch, perhaps of slightly different parameters (a neighbouring
+    // trim iterate): corrected at its own mu first (one Newton iteration when nothing changed).
+    Eigen::MatrixXd trial = start->coefficients;
+    const Newton t =
+        solve(start->mu == mu ? sys : NonlinearSystem(builder, start->mu), M, N, K, opt, trial);
+    if (t.finite && t.converged &&
+        (trial - start->coefficients).cwiseAbs().maxCoeff() <= kMaxChange) {
+      X = trial;
+      reached = start->mu;
+      r = t;
+      from_start = true;
+    }
   }
-  double step = std::min(mu - reached, kMaxStep);
-  for (int tries = 0; r.converged && tries < 1000 && reached < mu && step >= 1e-5; ++tries) {
-    const double next = std::min(mu, reached + step);
+  if (!from_start) r = solve(NonlinearSystem(builder, 0.0), M, N, K, opt, X);
+  // Continued towards mu from `reached` (downwards only from a start above mu).
+  const double dir = mu >= reached ? 1.0 : -1.0;
+  double step = std::min(std::abs(mu - reached), kMaxStep);
+  // (a start closer than that is a step of its own)
+  const double min_step = std::min(1e-5, step);
+  for (int tries = 0; r.converged && tries < 1000 && reached != mu && step >= min_step; ++tries) {
+    const double next = dir > 0.0 ? std::min(mu, reached + step) : std::max(mu, reached - step);
     Eigen::MatrixXd trial = X;
     const Newton t = solve(next == mu ? sys : NonlinearSystem(builder, next), M, N, K, opt, trial);
     if (!t.finite) {
@@ -363,7 +389,7 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
     }
   }
   out.continued_to = reached;
-  if (reached < mu) r.converged = false;
+  if (reached != mu) r.converged = false;
   out.coefficients = X;
   out.iterations = r.iterations;
   out.step = r.step;
@@ -373,7 +399,7 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
     out.message = "the harmonic balance overflowed at mu = " + round_trip_text(mu);
     return out;
   }
-  if (r.singular && reached >= mu) {
+  if (r.singular && reached == mu) {
     out.status = Status::Failed;
     out.message = "the harmonic-balance Newton matrix is singular at mu = " + round_trip_text(mu) +
                   ": a Floquet multiplier at 1, no unique periodic equilibrium";
@@ -392,6 +418,15 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
   double last = 0.0;
   for (int j = 0; j < n; ++j) last = std::max(last, std::hypot(X(j, 2 * K - 1), X(j, 2 * K)));
   out.truncation = big > 0.0 ? last / big : 0.0;
+
+  // The mean thrust along q° (a polynomial of degree <= 2 in y°: trigonometric degree model
+  // order + 2K, integrated exactly by the quadrature of the harmonic balance).
+  if (m.nonlinear_thrust != nullptr) {
+    double sum = 0.0;
+    for (const QuadPoint& qp : quadrature(sys.sector(), 3.0 * K + 4.0))
+      sum += qp.weight * sys.thrust(qp.psi, qp.reversed, out.state(qp.psi));
+    out.mean_thrust = sum / kTwoPi;
+  }
 
   // The linearization: model order (H_nl - 1) / 2 plus 2K.
   const int L = (m.n_nonlinear_harmonics - 1) / 2 + 2 * K;

@@ -254,6 +254,19 @@ void SystemBuilder::nonlinear_loads(double mu, const std::vector<double>& aero, 
   model_->nonlinear(inputs(mu, aero.data()), y, {force, jacobian});
 }
 
+void SystemBuilder::nonlinear_thrust(double mu, const std::vector<double>& aero, const double* y,
+                                     double* thrust, double* jacobian) const {
+  if (model_->nonlinear_thrust == nullptr) {
+    throw std::logic_error(std::string("model '") + model_->name + "' has no nonlinear thrust");
+  }
+  std::vector<double> scratch;
+  if (jacobian == nullptr) {
+    scratch.resize(static_cast<std::size_t>(model_->n_nonlinear_harmonics) * 2 * n_);
+    jacobian = scratch.data();
+  }
+  model_->nonlinear_thrust(inputs(mu, aero.data()), y, {thrust, jacobian});
+}
+
 std::vector<double> SystemBuilder::reversed_integrals(double mu) const {
   return aero_.reversed(mu);
 }

@@ -179,6 +179,10 @@ class Analysis {
   // One resolved Floquet evaluation at mu (the FloquetFunction of the numerics), for callers
   // that drive their own continuation.
   FloquetSample floquet(double mu, double zeta_tolerance) const;
+  // The same about a given periodic equilibrium (its linearization), e.g. a trim's (trim.h
+  // TrimResult::equilibrium), instead of the one this Analysis would continue from hover.
+  // InvalidInput("equilibrium") when it failed or belongs to a model of another size.
+  FloquetSample floquet(const PeriodicEquilibrium& equilibrium, double zeta_tolerance) const;
 
  private:
   TipSimulation simulate_nonlinear(double mu, const Eigen::VectorXd& y0, bool forced,

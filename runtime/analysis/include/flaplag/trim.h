@@ -38,6 +38,15 @@
 // Starting point: blade-element theory for the uniform rigid blade.  Linearization: the system
 // about which stability is then analysed is the paper's (hover equilibrium at the trimmed theta0
 // and lambda; A(psi) carries the cyclic pitch).
+//
+// About the periodic equilibrium (RotorParameters::periodic_linearization, a model with cyclic
+// pitch and nonlinear loads: paper-cyclic-nonlinear): the thrust is the azimuth mean of the
+// nonlinear thrust (ModelDescriptor::nonlinear_thrust) along the periodic equilibrium q°(psi) of
+// the nonlinear equations (periodic_equilibrium.h, harmonic balance with the options of the
+// analysis, K = 16), and the first flap harmonic is q°'s; stability is then analysed about that
+// q° (TrimResult::equilibrium).  q° of each evaluation is continued from the previous one's, and
+// a trim at mu > 0.1 without a start is continued in mu from hover (steps of 0.1), so that it
+// stays on the trimmed branch through the hover equilibrium.
 #pragma once
 
 #include <Eigen/Dense>
@@ -50,6 +59,7 @@
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/numerics/response.h"
 #include "flaplag/rotor/parameters.h"
+#include "flaplag/rotor/periodic_equilibrium.h"
 
 namespace flaplag {
 
@@ -107,6 +117,10 @@ struct TrimResult {
   // Jacobian of the residual [(C_T - target)/target, flap 1c, flap 1s] in (theta0, theta1c,
   // theta1s) at the end (Broyden-updated): a warm start for a neighbouring mu.
   Eigen::MatrixXd jacobian;
+  // With parameters.periodic_linearization: the periodic equilibrium q° at the trim (its
+  // linearization included), whose thrust and first flap harmonic were trimmed; empty
+  // coefficients otherwise.
+  PeriodicEquilibrium equilibrium;
   // Ok: converged.  Warning: converged but the trimmed system is unstable (the periodic
   // solution is not what the blade settles to), or max_iterations reached (converged false;
   // the last iterate is reported).  Failed: no periodic response, a Jacobian that does not

@@ -212,6 +212,12 @@ struct ModelDescriptor {
   int n_nonlinear_harmonics = 0;
   void (*nonlinear)(const CoefficientInputs& in, const double* y,
                     const NonlinearOutputs& out) = nullptr;
+  // Models with both cyclic pitch and nonlinear loads: the rotor thrust of one blade (`thrust`'s
+  // load, without its linearization) at the full state y, T(psi) = sum_h phi_h(psi)
+  // out.force[h](y), H_nl harmonics; out.force has H_nl entries, out.jacobian H_nl*2n.  For the
+  // trim about the periodic equilibrium.  nullptr for the other models.
+  void (*nonlinear_thrust)(const CoefficientInputs& in, const double* y,
+                           const NonlinearOutputs& out) = nullptr;
 };
 
 // All models compiled into this build (generated registry), in spec-file order.

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,10 @@ class NonlinearSystem {
                 Eigen::MatrixXd* J) const {
     evaluate(psi, reversed(psi), y, F, J);
   }
+  // The rotor thrust of one blade T(y, psi) (ModelDescriptor::nonlinear_thrust, the load of
+  // trim.h's thrust at the full state y) in the region in_sector selects; models with cyclic
+  // pitch and nonlinear loads only (else std::logic_error).
+  double thrust(double psi, bool in_sector, const Eigen::VectorXd& y) const;
 
   // Classical RK4 from (psi0, y0) over `revolutions` revolutions with `steps_per_rev` equal
   // steps per revolution, each split at the sector edges.  Returns the state at the end of each
@@ -93,11 +98,16 @@ struct PeriodicEquilibrium {
   // y' = A(psi) y about y°: A = dF/dy(y°(psi), psi) as harmonic sets of the normal region and
   // the sector (f = 0: y is the perturbation about the equilibrium).
   PeriodicSystem linearization;
-  double continued_to = 0.0;  // the largest mu the continuation from hover reached
+  double continued_to = 0.0;  // the mu nearest `mu` that the continuation reached
   int iterations = 0;
   double step = 0.0;        // last Newton step, max norm, relative
   double residual = 0.0;    // max |projected residual| (generalized coordinates per rev^2)
   double truncation = 0.0;  // amplitude of harmonic K of q° relative to max |q°| coefficient
+  // Models with cyclic pitch and nonlinear loads (ModelDescriptor::nonlinear_thrust): the
+  // azimuth mean of the thrust of one blade along q°, (1/2 pi) int T(y°(psi), psi) dpsi (the
+  // sector's integrals inside it), so that C_T = (sigma a / 2) mean_thrust (trim.h); NaN for
+  // the other models or when the equilibrium failed.
+  double mean_thrust = std::numeric_limits<double>::quiet_NaN();
   // With check_stability: Floquet multipliers of the linearization (modulus sorted descending)
   // and min_k |Lambda_k - 1|.
   std::vector<double> multiplier_moduli;
@@ -114,9 +124,11 @@ struct PeriodicEquilibrium {
 // at most 0.1 that move no coefficient by more than 0.01, halved otherwise.  Where that branch
 // folds (a real multiplier reaches 1 and the branch turns back) there is no equilibrium beyond it:
 // status Failed, continued_to says where.
-// `start` (optional): an equilibrium of the same builder and K at start->mu <= mu, itself from
-// this function; the continuation then starts there instead of at hover (same branch, fewer
-// steps).  Ignored when it does not fit.
+// `start` (optional): an equilibrium of the same K at start->mu <= mu + 0.1, itself from this
+// function, of this builder or of one with slightly different parameters (a neighbouring trim
+// iterate): it is corrected by Newton at start->mu, and the continuation then starts there
+// (upwards or downwards) instead of at hover (same branch, fewer steps).  Ignored when it does
+// not fit, when that correction fails or when it moves a coefficient by more than 0.01.
 PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, double mu,
                                          const PeriodicEquilibriumOptions& opt = {},
                                          const PeriodicEquilibrium* start = nullptr);

@@ -83,6 +83,11 @@ class SystemBuilder {
   // jacobian [H_nl*n*2n].  Only for models with nonlinear loads (model().nonlinear != nullptr).
   void nonlinear_loads(double mu, const std::vector<double>& aero, const double* y, double* force,
                        double* jacobian) const;
+  // The rotor thrust of one blade at the full state y [2n] (ModelDescriptor::nonlinear_thrust):
+  // thrust [H_nl] and jacobian [H_nl*2n] (jacobian may be null).  Only for models with both
+  // cyclic pitch and nonlinear loads (else std::logic_error).
+  void nonlinear_thrust(double mu, const std::vector<double>& aero, const double* y, double* thrust,
+                        double* jacobian) const;
   // generalized mass^-1 [n x n]
   const Eigen::MatrixXd& mass_inverse() const { return mass_inverse_; }
   const std::vector<double>& structural_values() const { return structural_; }
