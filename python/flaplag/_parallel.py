@@ -22,6 +22,7 @@ from ._analysis import (
     _real,
     _real_array,
     _text,
+    _trim_request,
     split_parameters,
 )
 from ._results import MapResult, StudyResult
@@ -49,6 +50,13 @@ def _base(kwargs, axes):
     # work is sent anywhere.
     _flaplag.check(rotor, transition, flap_modes, lag_modes)
     return rotor, transition, flap_modes, lag_modes
+
+
+def _trim_metadata(t):
+    """The trim of a study or map for its metadata: None, or its kind, C_T and alpha_R."""
+    if t is None:
+        return None
+    return {"kind": t[0], "thrust_coefficient": t[1], "shaft_angle": t[2]}
 
 
 def _chunks(n, client, chunk_lines):
@@ -84,10 +92,12 @@ def _gather(client, fn, jobs, progress, total):
 # -- study ---------------------------------------------------------------------------------------
 
 
-def _study_chunk(rotor, transition, flap_modes, lag_modes, parameter, values, critical, threads, n):
+def _study_chunk(
+    rotor, transition, flap_modes, lag_modes, parameter, values, critical, trim, threads, n
+):
     """One slice of a study (runs on a worker; n = len(values), for progress)."""
     return _flaplag.study(
-        rotor, transition, flap_modes, lag_modes, parameter, values, critical, threads, None
+        rotor, transition, flap_modes, lag_modes, parameter, values, critical, threads, None, trim
     )
 
 
@@ -101,6 +111,9 @@ def study(
     zeta_threshold=CRITICAL_DEFAULTS["zeta_threshold"],
     periodic_omega_tolerance=CRITICAL_DEFAULTS["periodic_omega_tolerance"],
     scan_zeta_tolerance=CRITICAL_DEFAULTS["scan_zeta_tolerance"],
+    trim=None,
+    thrust_coefficient=None,
+    shaft_angle=None,
     threads=0,
     progress=None,
     client=None,
@@ -114,6 +127,13 @@ def study(
     keyword arguments of Analysis (**parameters) set the rest of the blade.  At each value the
     critical search of Analysis.critical runs with all_intervals=True up to mu_max (the
     search options have the same meaning and defaults).
+
+    trim='thrust' or 'moment' (the command line's study --trim; a model with the thrust, e.g.
+    model='paper-cyclic'), thrust_coefficient (C_T, not C_T / sigma), shaft_angle (alpha_R
+    [rad]): mu_c at fixed C_T, each row's rotor trimmed at every mu its search evaluates (as
+    Analysis.critical(trim=...)).  Each row's ``trim`` is then the TrimResult at its mu_c, and
+    the result's theta0, theta1c, theta1s, inflow are those controls as arrays (nan without
+    mu_c).
 
     threads: worker threads (0: all cores; the result does not depend on it).
     progress: called as progress(values_done, values_total) from the calling thread.
@@ -135,17 +155,21 @@ def study(
         "all_intervals": True,
     }
     threads = _int("threads", threads)
-    metadata = _metadata(parameters, rotor, transition, critical=critical)
+    t = _trim_request(trim, thrust_coefficient, shaft_angle)
+    metadata = _metadata(parameters, rotor, transition, critical=critical, trim=_trim_metadata(t))
     if client is None:
         raw = _flaplag.study(
-            rotor, transition, flap_modes, lag_modes, parameter, vals, critical, threads, progress
+            rotor, transition, flap_modes, lag_modes, parameter, vals, critical, threads,
+            progress, t
         )
         return StudyResult._from(parameter, raw, metadata)
     # Check the whole study here (a worker sees only its slice).
-    _flaplag.check_study(rotor, transition, flap_modes, lag_modes, parameter, vals, critical, threads)
+    _flaplag.check_study(
+        rotor, transition, flap_modes, lag_modes, parameter, vals, critical, threads, t
+    )
     threads = threads or 1
     jobs = [
-        (rotor, transition, flap_modes, lag_modes, parameter, vals[s], critical, threads,
+        (rotor, transition, flap_modes, lag_modes, parameter, vals[s], critical, t, threads,
          len(vals[s]))
         for s in _chunks(len(vals), client, chunk_lines)
     ]
@@ -166,10 +190,12 @@ def _axis(name, axis):
     return _text(name, parameter), _real_array(name, values)
 
 
-def _map_chunk(rotor, transition, flap_modes, lag_modes, x, xv, y, yv, mu, scan_step, threads, n):
+def _map_chunk(
+    rotor, transition, flap_modes, lag_modes, x, xv, y, yv, mu, scan_step, trim, threads, n
+):
     """One slice of a map (runs on a worker; n = the number of lines, for progress)."""
     return _flaplag.map(
-        rotor, transition, flap_modes, lag_modes, x, xv, y, yv, mu, scan_step, threads, None
+        rotor, transition, flap_modes, lag_modes, x, xv, y, yv, mu, scan_step, threads, None, trim
     )
 
 
@@ -179,6 +205,9 @@ def map(
     *,
     mu=0.0,
     scan_step=0.01,
+    trim=None,
+    thrust_coefficient=None,
+    shaft_angle=None,
     threads=0,
     progress=None,
     client=None,
@@ -194,6 +223,9 @@ def map(
     the given mu.  The other keyword arguments of Analysis (**parameters) set the rest of the
     blade.
 
+    trim, thrust_coefficient, shaft_angle: every cell trimmed at its mu to C_T (the command
+    line's map --trim), as study().
+
     threads: worker threads (0: all cores; the result does not depend on it).
     progress: called as progress(lines_done, lines_total) from the calling thread.
     client: a dask.distributed.Client (or any executor with submit()): the grid is split into
@@ -208,21 +240,24 @@ def map(
     mu = _real("mu", mu)
     scan_step = _real("scan_step", scan_step)
     threads = _int("threads", threads)
-    metadata = _metadata(parameters, rotor, transition, mu=mu, scan_step=scan_step)
+    t = _trim_request(trim, thrust_coefficient, shaft_angle)
+    metadata = _metadata(
+        parameters, rotor, transition, mu=mu, scan_step=scan_step, trim=_trim_metadata(t)
+    )
     common = (rotor, transition, flap_modes, lag_modes)
     if client is None:
-        raw = _flaplag.map(*common, xname, xv, yname, yv, mu, scan_step, threads, progress)
+        raw = _flaplag.map(*common, xname, xv, yname, yv, mu, scan_step, threads, progress, t)
         return MapResult._assemble(xname, yname, [raw], 0, metadata)
     # The lines: along mu, one per value of the other axis; without mu, the rows.
     axis = 1 if yname == "mu" else 0
     lines = xv if axis == 1 else yv
     # Check the whole map here (a worker sees only its slice).
-    _flaplag.check_map(*common, xname, xv, yname, yv, mu, scan_step, threads)
+    _flaplag.check_map(*common, xname, xv, yname, yv, mu, scan_step, threads, t)
     threads = threads or 1
     jobs = []
     for s in _chunks(len(lines), client, chunk_lines):
         cx, cy = (xv[s], yv) if axis == 1 else (xv, yv[s])
-        jobs.append((*common, xname, cx, yname, cy, mu, scan_step, threads, len(lines[s])))
+        jobs.append((*common, xname, cx, yname, cy, mu, scan_step, t, threads, len(lines[s])))
     parts = _gather(client, _map_chunk, jobs, progress, len(lines))
     return MapResult._assemble(xname, yname, parts, axis, metadata)
 

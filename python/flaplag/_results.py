@@ -299,7 +299,9 @@ class CriticalResult:
     omega locked to 0, 1/2 or 1 per rev); otherwise these are None.  mu_c_error is the
     estimated |mu_c error|; intervals lists the instability intervals (every one up to mu_max
     with all_intervals=True); exponents are those at mu_c, at hover or at the last mu scanned;
-    evaluations counts the Floquet analyses.
+    evaluations counts the Floquet analyses.  trim: for a search at fixed C_T (trim='thrust' or
+    'moment') that found mu_c, the TrimResult at mu_c (its theta0, theta1c, theta1s, inflow; as
+    ``flaplag critical --trim`` reports it); otherwise None.
     """
 
     mu_c: Optional[float]
@@ -314,6 +316,7 @@ class CriticalResult:
     evaluations: int
     status: str
     message: str
+    trim: Optional["TrimResult"] = None
 
     def __repr__(self):
         if self.mu_c is not None:
@@ -347,6 +350,7 @@ class CriticalResult:
             d["evaluations"],
             d["status"],
             d["message"],
+            TrimResult._from(d["trim"]) if d.get("trim") is not None else None,
         )
 
 
@@ -822,10 +826,13 @@ class StudyResult:
     parameter: the field varied; values: its values (1-D array); rows: a CriticalResult per
     value (searched with all_intervals=True).  Columns as arrays, one entry per value: mu_c
     (nan where there is none), mu_c_error, omega [per rev] (nan without mu_c), mode and kind
-    ('' without mu_c), hover_unstable, row_status.  A value the analysis refuses (e.g. an
-    exact-mode frequency the basis cannot reach) is a row with status 'failed' and the reason
-    as message.  status / message: the worst row and the first problem met.  metadata: the
-    flaplag version and commit, the base parameters and the transition options.
+    ('' without mu_c), hover_unstable, row_status; for a trimmed study (trim='thrust' or
+    'moment') also the controls at mu_c: theta0, theta1c, theta1s [rad] and inflow (lambda,
+    eq 2.25), nan without mu_c (rows[i].trim: the whole TrimResult).  A value the analysis
+    refuses (e.g. an exact-mode frequency the basis cannot reach) is a row with status
+    'failed' and the reason as message.  status / message: the worst row and the first problem
+    met.  metadata: the flaplag version and commit, the base parameters, the transition
+    options and the trim (None, or its kind, thrust_coefficient and shaft_angle).
     """
 
     parameter: str
@@ -853,6 +860,29 @@ class StudyResult:
     @property
     def mode(self) -> np.ndarray:
         return np.array([r.mode or "" for r in self.rows], dtype=object)
+
+    def _trim_column(self, name):
+        return np.array([math.nan if r.trim is None else getattr(r.trim, name) for r in self.rows])
+
+    @property
+    def theta0(self) -> np.ndarray:
+        """The trimmed collective pitch at mu_c [rad] (nan: no mu_c, or not trimmed)."""
+        return self._trim_column("theta0")
+
+    @property
+    def theta1c(self) -> np.ndarray:
+        """The trimmed cyclic pitch (cos psi part) at mu_c [rad]."""
+        return self._trim_column("theta1c")
+
+    @property
+    def theta1s(self) -> np.ndarray:
+        """The trimmed cyclic pitch (sin psi part) at mu_c [rad]."""
+        return self._trim_column("theta1s")
+
+    @property
+    def inflow(self) -> np.ndarray:
+        """The inflow lambda of eq 2.25 at mu_c of the trimmed rotor."""
+        return self._trim_column("inflow")
 
     @property
     def kind(self) -> np.ndarray:
@@ -902,7 +932,8 @@ class MapResult:
     unknown, i.e. status 'failed'), omega of that exponent [per rev], mode (its label) and kind
     ('flutter' / 'periodic'; '' where unknown), cell_status and cell_message.  status /
     message: the worst cell and the first problem met (row by row).  metadata: the flaplag
-    version and commit, the base parameters, the transition options, mu and scan_step.
+    version and commit, the base parameters, the transition options, mu, scan_step and
+    the trim (None, or its kind, thrust_coefficient and shaft_angle).
     """
 
     x: str

@@ -27,6 +27,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -452,6 +453,18 @@ py::dict floquet_dict(const FloquetSample& s) {
 
 // ---- long runs: studies and maps ----------------------------------------------------------------
 
+TrimOptions trim_options(const std::string& kind, double thrust_coefficient, double shaft_angle,
+                         int max_iterations, double tolerance);
+py::dict trim_dict(const TrimResult& t);
+
+// The trim of a study or a map: None (untrimmed: kind None) or (kind, C_T, alpha_R), as
+// Python's _trim_request gives it; the trim's iteration options are the defaults (as --trim).
+TrimOptions trim_of(const py::object& request) {
+  if (request.is_none()) return TrimOptions{};
+  const auto [kind, ct, alpha] = request.cast<std::tuple<std::string, double, double>>();
+  return trim_options(kind, ct, alpha, TrimOptions{}.max_iterations, TrimOptions{}.tolerance);
+}
+
 // Runs work(cancel, progress) on a thread of its own.  The calling thread (which holds the GIL on
 // entry and exit) waits with the GIL released; every 50 ms, and when the work ends, it takes the
 // GIL to call progress_cb(done, total) when that changed and to check for signals.  A signal
@@ -525,11 +538,12 @@ Result run_cancellable(Work work, const py::object& progress_cb) {
 std::vector<double> values_of(const py::handle& v) { return v.cast<std::vector<double>>(); }
 
 StudyOptions study_options(const std::string& parameter, const py::handle& values,
-                           const py::dict& critical, int threads) {
+                           const py::dict& critical, int threads, const py::object& trim) {
   StudyOptions o;
   o.parameter = parameter;
   o.values = values_of(values);
   o.critical = critical_options(critical);
+  o.trim = trim_of(trim);
   o.threads = threads;
   o.Check();
   return o;
@@ -537,17 +551,35 @@ StudyOptions study_options(const std::string& parameter, const py::handle& value
 
 py::dict study(const py::dict& params, const py::dict& transition, int flap_modes, int lag_modes,
                const std::string& parameter, const py::handle& values, const py::dict& critical,
-               int threads, const py::object& progress) {
+               int threads, const py::object& progress, const py::object& trim_request) {
   const RotorParameters base = base_parameters(params, flap_modes, lag_modes);
   const TransitionOptions t = transition_options(transition);
-  const StudyOptions o = study_options(parameter, values, critical, threads);
+  const StudyOptions o = study_options(parameter, values, critical, threads, trim_request);
+  const bool trimmed = o.trim.kind != TrimKind::None;
+  // A trimmed row reports the trim at its mu_c (theta0, theta1c, theta1s, lambda there), as
+  // `flaplag critical --trim` does: trim() of the row's rotor at mu_c.
+  std::vector<std::optional<TrimResult>> trims;
   const StudyResult r = run_cancellable<StudyResult>(
       [&](const std::atomic<bool>* cancel, ProgressFunction report) {
-        return run_study(base, t, o, cancel, report);
+        StudyResult s = run_study(base, t, o, cancel, report);
+        trims.assign(s.rows.size(), std::nullopt);
+        // (A cancelled run raises in Python: its trims are not needed.)
+        for (std::size_t i = 0; trimmed && !s.cancelled && i < s.rows.size(); ++i) {
+          if (cancel->load()) break;
+          const StudyRow& row = s.rows[i];
+          if (row.critical.mu_c)
+            trims[i] =
+                trim(with_parameter(base, o.parameter, row.value), *row.critical.mu_c, o.trim);
+        }
+        return s;
       },
       progress);
   py::list rows;
-  for (const StudyRow& row : r.rows) rows.append(critical_dict(row.critical));
+  for (std::size_t i = 0; i < r.rows.size(); ++i) {
+    py::dict row = critical_dict(r.rows[i].critical);
+    row["trim"] = trims[i] ? py::object(trim_dict(*trims[i])) : py::object(py::none());
+    rows.append(row);
+  }
   py::dict d;
   d["values"] = to_numpy(o.values);
   d["rows"] = rows;
@@ -559,12 +591,14 @@ py::dict study(const py::dict& params, const py::dict& transition, int flap_mode
 }
 
 MapOptions map_options(const std::string& x, const py::handle& x_values, const std::string& y,
-                       const py::handle& y_values, double mu, double scan_step, int threads) {
+                       const py::handle& y_values, double mu, double scan_step, int threads,
+                       const py::object& trim) {
   MapOptions o;
   o.x = MapAxis{x, values_of(x_values)};
   o.y = MapAxis{y, values_of(y_values)};
   o.mu = mu;
   o.scan_step = scan_step;
+  o.trim = trim_of(trim);
   o.threads = threads;
   o.Check();
   return o;
@@ -573,10 +607,11 @@ MapOptions map_options(const std::string& x, const py::handle& x_values, const s
 py::dict stability_map(const py::dict& params, const py::dict& transition, int flap_modes,
                        int lag_modes, const std::string& x, const py::handle& x_values,
                        const std::string& y, const py::handle& y_values, double mu,
-                       double scan_step, int threads, const py::object& progress) {
+                       double scan_step, int threads, const py::object& progress,
+                       const py::object& trim) {
   const RotorParameters base = base_parameters(params, flap_modes, lag_modes);
   const TransitionOptions t = transition_options(transition);
-  const MapOptions o = map_options(x, x_values, y, y_values, mu, scan_step, threads);
+  const MapOptions o = map_options(x, x_values, y, y_values, mu, scan_step, threads, trim);
   const MapResult r = run_cancellable<MapResult>(
       [&](const std::atomic<bool>* cancel, ProgressFunction report) {
         return run_map(base, t, o, cancel, report);
@@ -1153,11 +1188,16 @@ PYBIND11_MODULE(_flaplag, m) {
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
              CriticalResult r;
+             std::optional<TrimResult> at_mu_c;
              {
                py::gil_scoped_release release;
                r = trimmed_critical(a.parameters(), a.options(), o, c);
+               // The trim at mu_c (as `flaplag critical --trim` reports it).
+               if (r.mu_c) at_mu_c = trim(a.parameters(), *r.mu_c, o);
              }
-             return critical_dict(r);
+             py::dict d = critical_dict(r);
+             d["trim"] = at_mu_c ? py::object(trim_dict(*at_mu_c)) : py::object(py::none());
+             return d;
            })
       .def("floquet", [](const Analysis& a, double mu, double zeta_tolerance) {
         FloquetSample s;
@@ -1173,17 +1213,17 @@ PYBIND11_MODULE(_flaplag, m) {
   // The checks of study() / map() without the work (for work sent to other processes).
   m.def("check_study", [](const py::dict& params, const py::dict& transition, int flap_modes,
                           int lag_modes, const std::string& parameter, const py::handle& values,
-                          const py::dict& critical, int threads) {
+                          const py::dict& critical, int threads, const py::object& trim) {
     base_parameters(params, flap_modes, lag_modes);
     transition_options(transition);
-    study_options(parameter, values, critical, threads);
+    study_options(parameter, values, critical, threads, trim);
   });
-  m.def("check_map",
-        [](const py::dict& params, const py::dict& transition, int flap_modes, int lag_modes,
-           const std::string& x, const py::handle& x_values, const std::string& y,
-           const py::handle& y_values, double mu, double scan_step, int threads) {
-          base_parameters(params, flap_modes, lag_modes);
-          transition_options(transition);
-          map_options(x, x_values, y, y_values, mu, scan_step, threads);
-        });
+  m.def("check_map", [](const py::dict& params, const py::dict& transition, int flap_modes,
+                        int lag_modes, const std::string& x, const py::handle& x_values,
+                        const std::string& y, const py::handle& y_values, double mu,
+                        double scan_step, int threads, const py::object& trim) {
+    base_parameters(params, flap_modes, lag_modes);
+    transition_options(transition);
+    map_options(x, x_values, y, y_values, mu, scan_step, threads, trim);
+  });
 }

@@ -525,6 +525,66 @@ def test_trimmed_analyses_bad_inputs_name_the_keyword(call, field):
     assert str(err.value).startswith(field + " = ")
 
 
+_AXES = dict(x=("mu", [0.0, 0.2, 0.4, 0.6]), y=("omega_lag", [0.5, 1.0, 1.5]))
+
+
+@pytest.mark.parametrize("call,field", [
+    (lambda: flaplag.study("omega_lag", [0.5], thrust_coefficient=0.005), "thrust_coefficient"),
+    (lambda: flaplag.study("omega_lag", [0.5], trim="none", shaft_angle=0.1), "shaft_angle"),
+    (lambda: flaplag.study("omega_lag", [0.5], trim="sideways"), "trim"),
+    (lambda: flaplag.study("omega_lag", [0.5], trim="thrust", thrust_coefficient=0.5),
+     "thrust_coefficient"),
+    (lambda: flaplag.map(**_AXES, shaft_angle=0.1), "shaft_angle"),
+    (lambda: flaplag.map(**_AXES, trim="Moment"), "trim"),
+    (lambda: flaplag.map(**_AXES, trim="moment", shaft_angle=2.0), "shaft_angle"),
+    (lambda: flaplag.map(**_AXES, trim="thrust", thrust_coefficient="0.005"),
+     "thrust_coefficient"),
+])
+def test_trimmed_study_and_map_bad_inputs_name_the_keyword(call, field):
+    with pytest.raises(ValueError) as err:
+        call()
+    assert err.value.field == field
+    assert str(err.value).startswith(field + " = ")
+
+
+class _Executor:
+    """A client with submit() (as flaplag.study/map accept) on a thread pool, counting jobs."""
+
+    def __init__(self):
+        import concurrent.futures
+
+        self.pool = concurrent.futures.ThreadPoolExecutor(2)
+        self.jobs = 0
+
+    def submit(self, fn, *args):
+        self.jobs += 1
+        return self.pool.submit(fn, *args)
+
+
+def test_trimmed_study_and_map_through_a_client_equal_the_local_ones():
+    """The chunks sent to a client carry the trim: the assembled result is the local one."""
+    ex = _Executor()
+    kw = dict(model="paper-cyclic", trim="thrust", thrust_coefficient=0.0042384)
+    local = flaplag.map(**_AXES, scan_step=0.2, **kw)
+    remote = flaplag.map(**_AXES, scan_step=0.2, **kw, client=ex, chunk_lines=1)
+    assert ex.jobs == 3 and remote == local
+    assert remote.metadata["trim"]["kind"] == "thrust"
+    # one value (test_dask.py splits a longer trimmed study on a cluster)
+    local = flaplag.study("omega_lag", [0.5], mu_max=1.1, scan_step=0.1, **kw)
+    remote = flaplag.study("omega_lag", [0.5], mu_max=1.1, scan_step=0.1, **kw, client=ex)
+    assert ex.jobs == 4
+    assert remote.mu_c.tobytes() == local.mu_c.tobytes() and not math.isnan(local.mu_c[0])
+    for name in ("theta0", "theta1c", "theta1s", "inflow"):
+        assert getattr(remote, name).tobytes() == getattr(local, name).tobytes(), name
+    # with a client, bad input raises before anything is sent
+    with pytest.raises(ValueError):
+        flaplag.study("omega_lag", [0.5], thrust_coefficient=0.005, client=ex)
+    with pytest.raises(ValueError):
+        flaplag.map(**_AXES, **dict(kw, thrust_coefficient=0.2), client=ex)
+    assert ex.jobs == 4
+    ex.pool.shutdown()
+
+
 def test_trim_needs_a_model_with_thrust():
     with pytest.raises(ValueError) as err:
         flaplag.Analysis().trim(0.3)

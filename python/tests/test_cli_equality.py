@@ -176,6 +176,110 @@ def test_trimmed_point_and_sweep():
             assert row["status"] == p.status
 
 
+TRIM_CT = "0.0042384"  # the typical case's C_T in hover (theta = 0.15, eq 2.25 inflow)
+
+
+def check_trim(doc, t):
+    """A trim of the CLI's JSON (`flaplag trim`, `critical --trim`) and a TrimResult."""
+    for key in ("mu", "theta0", "theta1c", "theta1s", "inflow", "thrust_coefficient",
+                "flap_1c", "flap_1s"):
+        assert same(doc[key], getattr(t, key)), key
+    assert same(doc["thrust_coefficient_target"], t.target)
+    assert doc["iterations"] == t.iterations and doc["status"] == t.status
+
+
+def test_trimmed_study():
+    """`study --trim` and flaplag.study(trim=...): mu_c at fixed C_T, the same rows bit for bit;
+    each row with mu_c carries the trim at mu_c, that of `flaplag trim --mu <mu_c>`."""
+    values = [0.45, 0.5, 0.55]
+    st = flaplag.study("omega_lag", values, model="paper-cyclic", mu_max=1.1, scan_step=0.1,
+                       trim="thrust", thrust_coefficient=float(TRIM_CT), threads=2)
+    doc = run_cli("--model", "paper-cyclic", "study", "--vary", "omega-lag=0.45,0.5,0.55",
+                  "--mu-max", "1.1", "--scan-step", "0.1", "--trim", "thrust",
+                  "--thrust-coefficient", TRIM_CT)
+    rows = find(doc, "rows", "study.rows")
+    assert len(rows) == len(st.rows) == 3
+    for row, value, crit in zip(rows, st.values, st.rows):
+        assert same(row["value"], value)
+        assert row["hover_unstable"] == crit.hover_unstable
+        assert same(row["mu_c"], crit.mu_c) and same(row["mu_c_error"], crit.mu_c_error)
+        assert row["mode"] == crit.mode and row["kind"] == crit.kind
+        assert same(row["omega"], crit.omega)
+        assert len(row["intervals"]) == len(crit.intervals)
+        for (onset, end), iv in zip(row["intervals"], crit.intervals):
+            assert same(onset, iv.onset) and same(end, iv.end)
+        assert row["status"] == crit.status
+        if "`" not in crit.message:
+            assert row["message"] == crit.message
+    assert find(doc, "status") == st.status
+    # rows with and without mu_c (the typical C_T: a periodic lag instability near mu = 1.02
+    # at omega_lag = 0.5 only, stable up to 1.1 beside it)
+    found = ~np.isnan(st.mu_c)
+    assert found.tolist() == [False, True, False]
+    assert np.isnan(st.theta0[~found]).all() and all(r.trim is None for r in st.rows[::2])
+    t = st.rows[1].trim
+    # converged; at mu_c the trimmed rotor is neutrally stable, which the trim flags (warning)
+    assert t.mu == st.mu_c[1] and t.kind == "thrust" and t.converged
+    assert abs(t.thrust_coefficient - t.target) <= 1e-10 * t.target
+    assert (st.theta0[1], st.theta1c[1], st.theta1s[1], st.inflow[1]) == (
+        t.theta0, t.theta1c, t.theta1s, t.inflow)
+    trim_doc = run_cli("--model", "paper-cyclic", "--omega-lag", "0.5", "trim", "--mu",
+                       repr(st.mu_c[1]), "--thrust-coefficient", TRIM_CT)
+    check_trim(trim_doc, t)
+    assert st.metadata["trim"] == {"kind": "thrust", "thrust_coefficient": float(TRIM_CT),
+                                   "shaft_angle": 0.0}
+
+
+def test_trimmed_critical_reports_the_trim_at_mu_c():
+    """`critical --trim` and Analysis.critical(trim=...): the same mu_c and the same trim there."""
+    an = flaplag.Analysis(model="paper-cyclic", omega_lag=0.5)
+    crit = an.critical(mu_max=1.1, scan_step=0.1, trim="thrust", thrust_coefficient=float(TRIM_CT))
+    doc = run_cli("--model", "paper-cyclic", "--omega-lag", "0.5", "critical", "--mu-max", "1.1",
+                  "--scan-step", "0.1", "--trim", "thrust", "--thrust-coefficient", TRIM_CT)
+    check_critical(doc, crit)
+    assert crit.trim is not None and crit.trim.mu == crit.mu_c
+    check_trim(find(doc, "trim"), crit.trim)
+    assert an.critical(mu_max=1.1, scan_step=0.1).trim is None
+
+
+def check_map(doc, m):
+    assert np.array(find(doc, "x.values"), dtype=float).tobytes() == m.x_values.tobytes()
+    assert np.array(find(doc, "y.values"), dtype=float).tobytes() == m.y_values.tobytes()
+    zeta = np.array([[math.nan if z is None else zeta_value(z) for z in row]
+                     for row in find(doc, "max_zeta")])
+    assert zeta.tobytes() == m.max_zeta.tobytes()
+    assert [[x or "" for x in row] for row in find(doc, "mode")] == m.mode.tolist()
+    assert [[x or "" for x in row] for row in find(doc, "kind")] == m.kind.tolist()
+    assert find(doc, "status") == m.status
+    if "`" not in m.message:
+        assert find(doc, "message") == m.message
+
+
+def test_trimmed_maps():
+    """`map --trim` and flaplag.map(trim=...): the same cells bit for bit, along mu (a trimmed
+    continuation per line) and at one mu (a trimmed point per cell)."""
+    m = flaplag.map(x=("mu", [0.0, 0.2, 0.4, 0.6]), y=("omega_lag", [0.5, 1.0, 1.5]),
+                    model="paper-cyclic", scan_step=0.2, trim="thrust",
+                    thrust_coefficient=float(TRIM_CT), threads=2)
+    assert m.shape == (3, 4) and m.status == "ok"
+    doc = run_cli("--model", "paper-cyclic", "map", "--x", "mu=0:0.6:0.2", "--y",
+                  "omega-lag=0.5,1.0,1.5", "--scan-step", "0.2", "--trim", "thrust",
+                  "--thrust-coefficient", TRIM_CT)
+    check_map(doc, m)
+    # not the map at fixed theta
+    plain = flaplag.map(x=("mu", [0.0, 0.2, 0.4, 0.6]), y=("omega_lag", [0.5, 1.0, 1.5]),
+                        model="paper-cyclic", scan_step=0.2)
+    assert np.abs(plain.max_zeta[:, 1:] - m.max_zeta[:, 1:]).min() > 1e-6
+    g = flaplag.map(x=("omega_lag", [0.5, 1.5]), y=("gamma", [8.0, 10.0]), mu=0.3,
+                    model="paper-cyclic", scan_step=0.3, trim="moment",
+                    thrust_coefficient=float(TRIM_CT), shaft_angle=0.02)
+    doc = run_cli("--model", "paper-cyclic", "map", "--x", "omega-lag=0.5,1.5", "--y",
+                  "gamma=8,10", "--mu", "0.3", "--scan-step", "0.3", "--trim", "moment",
+                  "--thrust-coefficient", TRIM_CT, "--shaft-angle", "0.02")
+    assert same(find(doc, "mu"), 0.3)
+    check_map(doc, g)
+
+
 def test_system():
     an = flaplag.Analysis(modes="exact")
     sys_ = an.system(0.8, 4.7)

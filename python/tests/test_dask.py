@@ -62,8 +62,26 @@ def test_study_on_the_cluster(client):
     assert [r.intervals for r in remote.rows] == [r.intervals for r in local.rows]
 
 
+def test_trimmed_map_and_study_on_the_cluster(client):
+    """At fixed C_T (trim=): the workers trim as a local run does."""
+    kw = dict(model="paper-cyclic", trim="thrust", thrust_coefficient=0.0042384)
+    axes = dict(x=("mu", [0.0, 0.2, 0.4, 0.6]), y=("omega_lag", [0.5, 1.0, 1.5]))
+    local = flaplag.map(**axes, scan_step=0.2, **kw)
+    remote = flaplag.map(**axes, scan_step=0.2, **kw, client=client, chunk_lines=1)
+    assert remote == local
+    values = [0.5, 0.55]
+    local = flaplag.study("omega_lag", values, mu_max=1.1, scan_step=0.1, **kw)
+    remote = flaplag.study("omega_lag", values, mu_max=1.1, scan_step=0.1, **kw, client=client,
+                           chunk_lines=1)
+    assert remote.mu_c.tobytes() == local.mu_c.tobytes()
+    assert remote.theta0.tobytes() == local.theta0.tobytes()
+    assert remote.inflow.tobytes() == local.inflow.tobytes()
+
+
 def test_bad_input_raises_before_anything_is_sent(client):
     with pytest.raises(ValueError):
         flaplag.map(x=("mu", [0.2, 0.1]), y=("theta", [0.1]), client=client)
     with pytest.raises(ValueError):
         flaplag.map(x=("mu", [0.1, 0.2]), y=("theta", [0.1]), gamma=-1.0, client=client)
+    with pytest.raises(ValueError):
+        flaplag.study("omega_lag", [0.5], thrust_coefficient=0.005, client=client)
