@@ -137,7 +137,8 @@ std::vector<OptionSpec> trim_options(bool for_trim_command) {
       value_option("--trim", for_trim_command ? "thrust|moment" : "none|thrust|moment",
                    "trim at each mu: thrust (theta0, lambda of eq 2.25 for --thrust-coefficient) "
                    "or moment (also theta1c, theta1s: no first flap harmonic); needs a "
-                   "cyclic-pitch model (--model paper-cyclic)",
+                   "cyclic-pitch model (--model paper-cyclic; with --periodic-linearization "
+                   "paper-cyclic-nonlinear, which trims the periodic equilibrium)",
                    for_trim_command ? "thrust" : "none", {"trim"}),
       value_option("--thrust-coefficient", "REAL",
                    "target thrust coefficient C_T (not C_T/sigma), in (0, 0.1]",

@@ -705,6 +705,36 @@ TEST(CliGood, TrimJsonAndTrimmedPoint) {
   expect_clean_text(text.out);
 }
 
+// flaplag trim about the periodic equilibrium (issue 12 items 3-4): the moment trim of q° from
+// the CLI, reported as such (JSON equilibrium block, text line), a different trim from the
+// hover-linearized one, and the combination with a model without the nonlinear thrust refused.
+TEST(CliGood, TrimAboutThePeriodicEquilibrium) {
+  const std::vector<std::string> base = {
+      "trim",   "--model", "paper-cyclic-nonlinear", "--mu",  "0.2",
+      "--trim", "moment",  "--thrust-coefficient",   "0.005", "--periodic-linearization"};
+  std::vector<std::string> json_args = base;
+  json_args.push_back("--json");
+  const Json m = parse_json(run(json_args));
+  EXPECT_EQ(m["status"], "ok") << m;
+  EXPECT_NEAR(m["thrust_coefficient"].get<double>(), 0.005, 1e-12);
+  EXPECT_LT(std::abs(m["flap_1c"].get<double>()), 1e-10);
+  EXPECT_LT(std::abs(m["flap_1s"].get<double>()), 1e-10);
+  ASSERT_TRUE(m.contains("equilibrium")) << m;
+  EXPECT_EQ(m["equilibrium"]["harmonics"], 16);
+  const Json h = parse_json(run({"trim", "--model", "paper-cyclic", "--mu", "0.2", "--trim",
+                                 "moment", "--thrust-coefficient", "0.005", "--json"}));
+  EXPECT_FALSE(h.contains("equilibrium"));
+  EXPECT_NE(h["theta1s"].get<double>(), m["theta1s"].get<double>());
+  const Outcome text = run(base);
+  EXPECT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("trimmed about"), std::string::npos) << text.out;
+  expect_clean_text(text.out);
+  const Outcome bad =
+      run({"trim", "--model", "paper-nonlinear", "--mu", "0.2", "--periodic-linearization"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--model"), std::string::npos) << bad.err;
+}
+
 // Unknown stability is never shown as stable (issue 8 item 7): a failed point says "unknown"
 // in text and null in JSON, with its status.
 TEST(CliGood, FailedPointIsOfUnknownStability) {

@@ -172,6 +172,32 @@ TEST(PeriodicEquilibrium, BeyondTheFoldOfTheHoverBranchThereIsNone) {
   EXPECT_LT(after.continued_to, 0.68);
 }
 
+// About the periodic equilibrium the typical case loses its equilibrium at the fold: critical
+// reports it as mu_c (kind periodic, omega 0, the message says the branch ends there), inside
+// the bracket where q° still exists below and no longer above, and a real multiplier near 1.
+TEST(PeriodicEquilibrium, CriticalReportsTheFoldAsTheStabilityBoundary) {
+  RotorParameters p;
+  p.model = "paper-nonlinear";
+  p.periodic_linearization = true;
+  const Analysis an(p, {});
+  CriticalOptions o;
+  o.scan_step = 0.1;
+  o.tolerance = 1e-3;  // (cheap; docs/validation.md has it to 1e-5)
+  const CriticalResult c = an.critical(o);
+  ASSERT_TRUE(c.mu_c.has_value()) << c.message;
+  EXPECT_EQ(Status::Ok, c.status) << c.message;
+  EXPECT_EQ(InstabilityKind::Periodic, c.kind);
+  EXPECT_EQ(0.0, c.omega);
+  ASSERT_TRUE(c.mu_c_error.has_value());
+  EXPECT_LE(*c.mu_c_error, 1e-3);
+  EXPECT_NE(std::string::npos, c.message.find("fold")) << c.message;
+  // q° exists just below mu_c, continued from hover independently of the search's probes (and
+  // not at 0.7: BeyondTheFoldOfTheHoverBranchThereIsNone), with a multiplier near 1
+  const PeriodicEquilibrium below = an.periodic_equilibrium(*c.mu_c - 2e-3);
+  ASSERT_NE(Status::Failed, below.status) << below.message;
+  EXPECT_LT(below.min_distance_to_one, 0.3);
+}
+
 TEST(PeriodicEquilibrium, BadOptionsAndModelsWithoutNonlinearLoadsAreRejected) {
   PeriodicEquilibriumOptions o;
   std::string why;

@@ -14,6 +14,7 @@
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/system_builder.h"
+#include "fold.h"
 #include "internal.h"
 
 namespace flaplag {
@@ -659,7 +660,24 @@ CriticalResult Analysis::critical(const CriticalOptions& opt) const {
   opt.Check();
   CriticalOptions o = opt;
   o.scan_zeta_tolerance = std::min(opt.scan_zeta_tolerance, impl_->options.zeta_tolerance);
-  CriticalResult r = find_critical(impl_->hover_modes, impl_->function(), o);
+  if (!parameters().periodic_linearization) {
+    CriticalResult r = find_critical(impl_->hover_modes, impl_->function(), o);
+    sort_for_output(r.exponents);
+    return r;
+  }
+  // About the periodic equilibrium the search can end at a fold of its branch (fold.h).
+  const internal::FoldWatch watch;
+  CriticalResult r = find_critical(impl_->hover_modes, watch.wrap(impl_->function()), o);
+  std::optional<PeriodicEquilibrium> last;
+  const internal::EquilibriumProbe probe = [&](double mu, PeriodicSystem* lin) {
+    PeriodicEquilibrium eq = flaplag::periodic_equilibrium(
+        impl_->builder, mu, impl_->equilibrium_options, last ? &*last : nullptr);
+    if (eq.status == Status::Failed) return false;
+    *lin = eq.linearization;
+    last = std::move(eq);
+    return true;
+  };
+  internal::report_fold(r, watch, probe, o);
   sort_for_output(r.exponents);
   return r;
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "flaplag/analysis.h"
 #include "flaplag/core/constants.h"
@@ -16,6 +17,7 @@
 #include "flaplag/rotor/hover.h"
 #include "flaplag/rotor/periodic_equilibrium.h"
 #include "flaplag/rotor/system_builder.h"
+#include "fold.h"
 #include "internal.h"
 
 namespace flaplag {
@@ -644,7 +646,24 @@ CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOption
   const Trimmed tr(p, t, o);
   CriticalOptions co = c;
   co.scan_zeta_tolerance = std::min(c.scan_zeta_tolerance, t.zeta_tolerance);
-  CriticalResult r = find_critical(tr.modes, tr.function(), co);
+  if (!p.periodic_linearization) {
+    CriticalResult r = find_critical(tr.modes, tr.function(), co);
+    sort_for_output(r.exponents);
+    return r;
+  }
+  // About the periodic equilibrium the trimmed branch can end at a fold (fold.h): the probe is
+  // the trim itself, continued from its last success.
+  const internal::FoldWatch watch;
+  CriticalResult r = find_critical(tr.modes, watch.wrap(tr.function()), co);
+  std::optional<TrimResult> last;
+  const internal::EquilibriumProbe probe = [&](double mu, PeriodicSystem* lin) {
+    TrimResult x = trim(p, mu, o, last ? &*last : nullptr);
+    if (x.status == Status::Failed) return false;
+    *lin = x.equilibrium.linearization;
+    last = std::move(x);
+    return true;
+  };
+  internal::report_fold(r, watch, probe, co);
   sort_for_output(r.exponents);
   return r;
 }

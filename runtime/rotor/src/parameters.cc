@@ -134,7 +134,7 @@ std::vector<ParameterSpec> build_table() {
   t.push_back(flag_row("periodic_linearization",
                        "the linearization about the periodic equilibrium of the nonlinear "
                        "equations instead of hover (needs a model with nonlinear loads, e.g. "
-                       "paper-nonlinear)",
+                       "paper-nonlinear, or paper-cyclic-nonlinear for a trim)",
                        &RotorParameters::periodic_linearization));
   return t;
 }

@@ -103,14 +103,20 @@ Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEqui
   // Integrand degree: residual (model order 2 plus 2K for a quadratic term) times phi_c.
   const auto points = quadrature(sys.sector(), 3.0 * K + 4.0);
   Newton out;
+  const int P = static_cast<int>(points.size());
   Eigen::VectorXd p, d1, d2, y(2 * n), F;
-  Eigen::MatrixXd J, B(n, unknowns);
+  Eigen::MatrixXd J;
   Eigen::VectorXd R(unknowns);
   Eigen::MatrixXd Jac(unknowns, unknowns);
+  // The projections as matrix products: W (nb x P) the weighted basis at the points, and per
+  // equation i the rows B_i (P x unknowns) of d(residual_i)/dX at each point; Jac_i = W B_i.
+  Eigen::MatrixXd W(nb, P);
+  std::vector<Eigen::MatrixXd> B(n, Eigen::MatrixXd(P, unknowns));
+  Eigen::MatrixXd E(n, P);  // residual at each point
+  double previous_step = std::numeric_limits<double>::infinity();
   for (int it = 1; it <= opt.max_iterations; ++it) {
-    R.setZero();
-    Jac.setZero();
-    for (const QuadPoint& qp : points) {
+    for (int k = 0; k < P; ++k) {
+      const QuadPoint& qp = points[k];
       basis(K, qp.psi, p, d1, d2);
       const Eigen::VectorXd q = X * p, qd = X * d1, qdd = X * d2;
       for (int j = 0; j < n; ++j) {
@@ -119,20 +125,22 @@ Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEqui
       }
       sys.evaluate(qp.psi, qp.reversed, y, &F, &J);
       // normalised weights: the projection onto phi_c is a Fourier coefficient
-      Eigen::VectorXd wp = p * (qp.weight / kPi);
-      wp(0) *= 0.5;
+      W.col(k) = p * (qp.weight / kPi);
+      W(0, k) *= 0.5;
       for (int i = 0; i < n; ++i) {
         const int row = model::rate_index(i, M, N);
-        const double e = qdd(i) - F(row);
-        R.segment(i * nb, nb) += e * wp;
+        E(i, k) = qdd(i) - F(row);
         for (int j = 0; j < n; ++j) {
           const double a = J(row, model::displacement_index(j, M, N));
           const double b = J(row, model::rate_index(j, M, N));
-          for (int d = 0; d < nb; ++d) B(i, j * nb + d) = -(a * p(d) + b * d1(d));
+          B[i].block(k, j * nb, 1, nb) = -(a * p + b * d1).transpose();
         }
-        for (int d = 0; d < nb; ++d) B(i, i * nb + d) += d2(d);
-        Jac.middleRows(i * nb, nb).noalias() += wp * B.row(i);
+        B[i].block(k, i * nb, 1, nb) += d2.transpose();
       }
+    }
+    for (int i = 0; i < n; ++i) {
+      R.segment(i * nb, nb).noalias() = W * E.row(i).transpose();
+      Jac.middleRows(i * nb, nb).noalias() = W * B[i];
     }
     out.residual = R.cwiseAbs().maxCoeff();
     if (!R.allFinite() || !Jac.allFinite()) {
@@ -156,6 +164,10 @@ Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEqui
       out.converged = true;
       return out;
     }
+    // Not converging (no longer contracting after the first iterations, e.g. beyond a fold):
+    // give up early, the continuation halves its step.
+    if (it >= 6 && out.step > 0.5 * previous_step) return out;
+    previous_step = out.step;
   }
   return out;
 }
@@ -301,6 +313,10 @@ bool PeriodicEquilibriumOptions::IsValid(std::string* error) const {
     return fail("max_iterations", std::to_string(max_iterations), "must be 1..1000", error);
   if (!(std::isfinite(tolerance) && tolerance > 0.0 && tolerance <= 1e-2))
     return fail("tolerance", round_trip_text(tolerance), "must be in (0, 1e-2]", error);
+  if (!(std::isfinite(min_continuation_step) && min_continuation_step > 0.0 &&
+        min_continuation_step <= 0.1))
+    return fail("min_continuation_step", round_trip_text(min_continuation_step),
+                "must be in (0, 0.1]", error);
   return true;
 }
 
@@ -368,7 +384,7 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
   const double dir = mu >= reached ? 1.0 : -1.0;
   double step = std::min(std::abs(mu - reached), kMaxStep);
   // (a start closer than that is a step of its own)
-  const double min_step = std::min(1e-5, step);
+  const double min_step = std::min(opt.min_continuation_step, step);
   for (int tries = 0; r.converged && tries < 1000 && reached != mu && step >= min_step; ++tries) {
     const double next = dir > 0.0 ? std::min(mu, reached + step) : std::max(mu, reached - step);
     Eigen::MatrixXd trial = X;

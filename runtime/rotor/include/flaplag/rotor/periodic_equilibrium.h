@@ -82,6 +82,8 @@ struct PeriodicEquilibriumOptions {
   int max_iterations = 30;      // Newton iterations, 1..1000
   double tolerance = 1e-12;     // on max |Newton step| / max(1, max |X|), (0, 1e-2]
   bool check_stability = true;  // Floquet multipliers of the linearization (RK4, 4096 steps)
+  // The continuation in mu gives up when its step falls below this (near a fold), (0, 0.1].
+  double min_continuation_step = 1e-5;
   bool IsValid(std::string* error) const;
   void Check() const;
 };

@@ -1,0 +1,120 @@
+// The fold of the periodic-equilibrium branch as the end of the critical search (fold.h).
+#include "fold.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include "flaplag/core/format.h"
+#include "flaplag/numerics/floquet.h"
+
+namespace flaplag::internal {
+
+FloquetFunction FoldWatch::wrap(FloquetFunction f) const {
+  auto s = state;
+  return [s, f](double mu, double tol) {
+    FloquetSample out = f(mu, tol);
+    if (out.status == Status::Failed) {
+      if (s->first_failed < 0.0 || mu < s->first_failed) s->first_failed = mu;
+    } else if (s->first_failed < 0.0 || mu < s->first_failed) {
+      s->last_ok = std::max(s->last_ok, mu);
+    }
+    return out;
+  };
+}
+
+namespace {
+
+// min |Lambda_k - 1| of the linearization (RK4, 4096 steps: the multiplier near 1 is the
+// slowest-varying one and needs no more), and the multiplier that attains it.
+double distance_to_one(const PeriodicSystem& lin) {
+  const FloquetResult fl =
+      floquet_exponents(transition_matrix_rk4(lin, 4096), lin.trace_integral());
+  double d = std::numeric_limits<double>::infinity();
+  for (const FloquetExponent& e : fl.exponents)
+    d = std::min(d, std::abs(e.multiplier - std::complex<double>(1.0)));
+  return d;
+}
+
+}  // namespace
+
+void report_fold(CriticalResult& r, const FoldWatch& watch, const EquilibriumProbe& probe,
+                 const CriticalOptions& o) {
+  const FoldWatch::State& s = *watch.state;
+  if (r.status != Status::Failed || r.mu_c || r.hover_unstable || s.first_failed <= 0.0) return;
+  double lo = std::min(s.last_ok, s.first_failed), hi = s.first_failed;
+  PeriodicSystem lin_lo;
+  if (!probe(lo, &lin_lo)) return;  // not reproducible: leave the failure as it is
+  PeriodicSystem lin;
+  // Bisection on existence; each probe continues from the last mu where q° exists.
+  for (int i = 0; i < 60 && hi - lo > 0.25 * o.tolerance; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (probe(mid, &lin)) {
+      lo = mid;
+      lin_lo = lin;
+    } else {
+      hi = mid;
+    }
+  }
+  const double d_lo = distance_to_one(lin_lo);
+  // Second estimate: |Lambda - 1|^2 is linear in mu near the fold; the slope from a point below.
+  std::optional<double> extrapolated;
+  const double below = lo - std::max(200.0 * o.tolerance, 20.0 * (hi - lo));
+  if (below > 0.0 && probe(below, &lin)) {
+    const double d_below = distance_to_one(lin);
+    const double slope = (d_below * d_below - d_lo * d_lo) / (lo - below);
+    if (slope > 0.0) extrapolated = lo + d_lo * d_lo / slope;
+  }
+  const std::string bracket = "(" + short_text(lo) + ", " + short_text(hi) + ")";
+  // A fold: the multiplier is near 1 where the branch ends.  Otherwise the failure stays one.
+  if (!(d_lo < 0.05)) {
+    r.message +=
+        "; the periodic equilibrium ends in " + bracket +
+        " but no Floquet multiplier approaches 1 there (min |Lambda - 1| = " + short_text(d_lo) +
+        "): not identified as a fold";
+    return;
+  }
+  const double mid = 0.5 * (lo + hi);
+  double error = 0.5 * (hi - lo);
+  if (extrapolated) error = std::max(error, std::abs(*extrapolated - mid));
+  r.mu_c = mid;
+  r.mu_c_error = error;
+  r.omega = 0.0;
+  r.kind = InstabilityKind::Periodic;
+  // The mode: the exponent reported with the multiplier nearest 1 (the continuation's last).
+  double best = std::numeric_limits<double>::infinity();
+  for (const LabelledExponent& e : r.exponents) {
+    const double d = std::abs(e.multiplier - std::complex<double>(1.0));
+    if (d < best) {
+      best = d;
+      r.mode = e.label;
+    }
+  }
+  InstabilityInterval iv;
+  iv.onset = mid;
+  iv.onset_error = error;
+  iv.mode = r.mode;
+  iv.omega = 0.0;
+  iv.kind = InstabilityKind::Periodic;
+  r.intervals.assign(1, iv);
+  std::string msg =
+      "the periodic equilibrium branch from hover ends at a fold at mu_c = " + short_text(mid) +
+      " (bracket " + bracket + ", a real Floquet multiplier at " + short_text(1.0 - d_lo) +
+      " where it last exists";
+  if (extrapolated)
+    msg += ", |Lambda - 1|^2 extrapolated to 0 at mu = " + short_text(*extrapolated);
+  msg += "): the blade loses its equilibrium there (divergence, 0 per rev)";
+  if (error <= o.tolerance) {
+    r.status = Status::Ok;
+    r.message = msg;
+  } else {
+    r.status = Status::Warning;
+    r.message = msg + "; not resolved to the tolerance " + short_text(o.tolerance) +
+                " (estimated error " + short_text(error) + ")";
+  }
+}
+
+}  // namespace flaplag::internal
