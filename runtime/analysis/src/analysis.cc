@@ -6,8 +6,11 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -110,6 +113,61 @@ struct Evaluated {
   double log_norm = 0.0;  // ln ||Phi||_F
 };
 
+// The multipliers of Phi and their exponents (eqs 3.18-3.19, the conventions of
+// floquet_exponents: zeta = -inf for a zero multiplier, omega the principal value in
+// (-1/2, 1/2]) without eigenvectors or Liouville residual: what the coarse level of an error
+// estimate needs, at about half the cost of the full eigen-decomposition.  Non-finite input or
+// an unconverged solve gives NaN multipliers (finite() below rejects them).
+template <typename Mat>
+void multipliers_into(const Mat& phi, FloquetResult& out) {
+  Eigen::EigenSolver<Mat> es(phi, false);
+  const Eigen::Index n = phi.rows();
+  out.exponents.resize(static_cast<std::size_t>(n));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const bool ok = es.info() == Eigen::Success;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    FloquetExponent& e = out.exponents[static_cast<std::size_t>(k)];
+    e.multiplier = ok ? es.eigenvalues()(k) : std::complex<double>(nan, nan);
+    const double mod = std::abs(e.multiplier);
+    if (mod == 0.0) {
+      e.zeta = -std::numeric_limits<double>::infinity();
+      e.omega = 0.0;
+      continue;
+    }
+    e.zeta = std::log(mod) / kTwoPi;
+    double arg = std::arg(e.multiplier);
+    if (arg <= -kPi) arg = kPi;
+    e.omega = arg / kTwoPi;
+  }
+  if (!ok) {
+    out.status = Status::Failed;
+    out.message = "the eigen-solve of Phi did not converge";
+  }
+}
+
+FloquetResult floquet_multipliers(const Eigen::MatrixXd& phi) {
+  FloquetResult out;
+  if (!phi.allFinite()) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    out.exponents.resize(static_cast<std::size_t>(phi.rows()));
+    for (FloquetExponent& e : out.exponents) {
+      e.multiplier = {nan, nan};
+      e.zeta = e.omega = nan;
+    }
+    out.status = Status::Failed;
+    out.message = "Phi has non-finite entries";
+    return out;
+  }
+  if (phi.rows() == 4) {  // fixed size: no heap (1x1 modes)
+    multipliers_into(Eigen::Matrix4d(phi), out);
+  } else if (phi.rows() == 8) {
+    multipliers_into(Eigen::Matrix<double, 8, 8>(phi), out);
+  } else {
+    multipliers_into(phi, out);
+  }
+  return out;
+}
+
 // |zeta_k(fine) - zeta_k(coarse)| for each exponent of `fine`, the multipliers paired greedily
 // by distance; zeta below each matrix's rounding floor counts as the floor (both are "zero" to
 // the precision of Phi).
@@ -159,7 +217,9 @@ struct Analysis::Impl {
 
   // The automatic starting K at mu: |lambda| h <= 1 for the largest eigenvalue of A(psi) at a
   // few azimuths of each region (the spectrum sets the step a fixed-step method needs).
-  int automatic_start(const PeriodicSystem& sys) const {
+  // `floor` (>= kMinAutomaticSteps) is the count the caller starts at anyway (a steps hint): an
+  // azimuth that cannot raise K above it needs no eigen-solve either.
+  int automatic_start(const PeriodicSystem& sys, int floor = kMinAutomaticSteps) const {
     // An azimuth whose induced norm min(||A||_1, ||A||_inf) >= rho(A) keeps |lambda| h <= 1 at
     // the minimum K with a step to spare cannot raise K: its eigen-solve is skipped (the same
     // K as solving every one, at a fifth of the cost in the common case).
@@ -168,7 +228,7 @@ struct Analysis::Impl {
       const Eigen::MatrixXd a = sys.A(psi);
       const double bound = std::min(a.cwiseAbs().colwise().sum().maxCoeff(),
                                     a.cwiseAbs().rowwise().sum().maxCoeff());
-      if (bound * kTwoPi <= kMinAutomaticSteps - 1) return;
+      if (bound * kTwoPi <= floor - 1) return;
       Eigen::EigenSolver<Eigen::MatrixXd> es(a, false);
       if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
     };
@@ -182,12 +242,14 @@ struct Analysis::Impl {
     return ki + (ki % 2);
   }
 
-  Evaluated at(const PeriodicSystem& sys, double trace, int steps) const {
+  // Phi at `steps` and its exponents; with_vectors = false: the multipliers and exponents only
+  // (no eigenvectors, no Liouville residual), enough for the coarse level of an error estimate.
+  Evaluated at(const PeriodicSystem& sys, double trace, int steps, bool with_vectors = true) const {
     TransitionOptions o = options;
     o.steps = steps;
     const Eigen::MatrixXd phi = transition_matrix(sys, o).phi;
     Evaluated e;
-    e.floquet = floquet_exponents(phi, trace);
+    e.floquet = with_vectors ? floquet_exponents(phi, trace) : floquet_multipliers(phi);
     // n max|Phi_ij| bounds ||Phi||_2 without the overflow of a sum of squares.
     const double n = static_cast<double>(phi.rows());
     const double big = phi.allFinite() ? phi.cwiseAbs().maxCoeff() : 0.0;
@@ -206,7 +268,32 @@ struct Analysis::Impl {
     return !e.floquet.exponents.empty();
   }
 
-  FloquetSample floquet(double mu, double zeta_tolerance) const {
+  // The steps that resolved the last automatic evaluation at each tolerance, shared by the
+  // evaluations of one continuation (one sweep, track or critical search: function()).  Along a
+  // continuation the step count needed changes little from one mu to the next, so each
+  // evaluation starts at the last count of the same tolerance (or the spectral start when that
+  // is larger) instead of climbing from the minimum: the same rule and the same error estimate
+  // (K/2 against K), fewer levels.  Keyed by the exact tolerance, so that the evaluations a
+  // continuation makes at one tolerance (its reported points) depend only on each other: a map
+  // line and the plain sweep over the same points give the same bits.
+  struct StepsHint {
+    std::vector<std::pair<double, int>> last;  // (zeta_tolerance, steps)
+    int find(double tol) const {
+      for (const auto& [t, k] : last)
+        if (t == tol) return k;
+      return 0;
+    }
+    void put(double tol, int steps) {
+      for (auto& [t, k] : last)
+        if (t == tol) {
+          k = steps;
+          return;
+        }
+      last.emplace_back(tol, steps);
+    }
+  };
+
+  FloquetSample floquet(double mu, double zeta_tolerance, StepsHint* hint = nullptr) const {
     FloquetSample out;
     // The linear system about hover (the paper) or about the periodic equilibrium.
     std::string equilibrium_note;
@@ -240,7 +327,10 @@ struct Analysis::Impl {
     const int order = method_order(options);
     const double richardson = std::ldexp(1.0, order) - 1.0;
     const bool automatic = options.steps == TransitionOptions::kAutomatic;
-    int steps = automatic ? automatic_start(sys) : options.steps;
+    const int hinted = automatic && hint != nullptr ? hint->find(zeta_tolerance) : 0;
+    int steps = automatic
+                    ? std::max(automatic_start(sys, std::max(kMinAutomaticSteps, hinted)), hinted)
+                    : options.steps;
 
     Evaluated fine = at(sys, trace, steps);
     auto resolved = [&](const std::vector<double>& err) {
@@ -266,7 +356,7 @@ struct Analysis::Impl {
       }
     } else {
       // Automatic: K/2 and K, doubling until resolved; the error estimate is that of K.
-      std::optional<Evaluated> coarse = at(sys, trace, steps / 2);
+      std::optional<Evaluated> coarse = at(sys, trace, steps / 2, false);
       for (;;) {
         if (!finite(fine) || !finite(*coarse)) {
           err.clear();
@@ -279,6 +369,7 @@ struct Analysis::Impl {
         steps *= 2;
         fine = at(sys, trace, steps);
       }
+      if (hint != nullptr && finite(fine)) hint->put(zeta_tolerance, steps);
     }
     const bool is_resolved = !err.empty() && resolved(err);
     out.steps = steps;
@@ -345,7 +436,8 @@ struct Analysis::Impl {
   }
 
   FloquetFunction function() const {
-    return [this](double mu, double tol) { return floquet(mu, tol); };
+    auto hint = std::make_shared<StepsHint>();
+    return [this, hint](double mu, double tol) { return floquet(mu, tol, hint.get()); };
   }
 
   // The periodic equilibrium at mu, continued from the nearest cached one below mu (the
