@@ -24,7 +24,11 @@
 //   - steps = kAutomatic (the default): K starts from the spectrum of A(psi) at mu (|lambda| h
 //     <= 1, inside the stability region of every method's one-step map, and at least 50) and
 //     doubles until every exponent is resolved or K reaches kMaxAutomaticSteps (then status
-//     Warning);
+//     Warning).  Along one continuation (a sweep, track, point or critical search) an
+//     evaluation starts instead at the K that resolved the previous evaluation at the same
+//     tolerance when that is larger (warm start: the same rule and estimate, fewer levels; the
+//     answer can differ from a cold start at the same mu within the two estimates, and is
+//     never resolved with fewer steps than the previous point needed);
 //   - fixed steps (e.g. TransitionOptions::Paper(), Hsu K = 50, J = 4): an unresolved exponent
 //     gives status Warning with the remedy (increase `steps`).
 // The Liouville identity det Phi = exp(int tr A) is checked as well: a relative residual far
