@@ -204,6 +204,15 @@ struct Analysis::Impl {
        std::optional<double> inflow = std::nullopt)
       : options(o), builder(p, find_model(p.model), inflow) {
     o.Check();
+    const int harmonics = builder.model().n_harmonics;
+    auto tabulate = [&](double psi) {
+      psi = reduce_azimuth(psi);
+      std::vector<double> v(static_cast<std::size_t>(harmonics));
+      for (int h = 0; h < harmonics; ++h) v[static_cast<std::size_t>(h)] = harmonic_basis(h, psi);
+      start_basis.emplace_back(psi, std::move(v));
+    };
+    for (int k = 0; k < 8; ++k) tabulate((k + 0.5) * kTwoPi / 8.0);
+    tabulate(1.5 * kPi);
     hover = builder.hover();
     const auto& m = builder.model();
     hover_modes = label_hover_modes(hover.A0, m.flap_modes, m.lag_modes);
@@ -224,8 +233,22 @@ struct Analysis::Impl {
     // the minimum K with a step to spare cannot raise K: its eigen-solve is skipped (the same
     // K as solving every one, at a fifth of the cost in the common case).
     double rho = 0.0;
+    Eigen::MatrixXd a;  // one buffer for every azimuth
     auto add = [&](double psi) {
-      const Eigen::MatrixXd a = sys.A(psi);
+      // A(psi) of the harmonic regions as PeriodicSystem::A sums it (the same operations),
+      // with cos/sin of the harmonics looked up for the azimuths that do not depend on mu.
+      psi = reduce_azimuth(psi);
+      if (sys.in_varying(psi)) {
+        a = sys.A(psi);
+      } else {
+        const HarmonicSet& set = sys.region(psi);
+        const std::vector<double>* table = nullptr;
+        for (const auto& [at, values] : start_basis)
+          if (at == psi && values.size() >= set.A.size()) table = &values;
+        a.setZero(sys.n, sys.n);
+        for (std::size_t h = 0; h < set.A.size(); ++h)
+          a += (table ? (*table)[h] : harmonic_basis(static_cast<int>(h), psi)) * set.A[h];
+      }
       const double bound = std::min(a.cwiseAbs().colwise().sum().maxCoeff(),
                                     a.cwiseAbs().rowwise().sum().maxCoeff());
       if (bound * kTwoPi <= floor - 1) return;
@@ -325,7 +348,7 @@ struct Analysis::Impl {
     }
     const double trace = sys.trace_integral();
     const int order = method_order(options);
-    const double richardson = std::ldexp(1.0, order) - 1.0;
+    const double richardson = std::ldexp(1.0, order) - 1.0;  // K against 2K or K/2
     const bool automatic = options.steps == TransitionOptions::kAutomatic;
     const int hinted = automatic && hint != nullptr ? hint->find(zeta_tolerance) : 0;
     int steps = automatic
@@ -355,21 +378,53 @@ struct Analysis::Impl {
         for (double& e : err) e *= finer ? (richardson + 1.0) / richardson : 1.0 / richardson;
       }
     } else {
-      // Automatic: K/2 and K, doubling until resolved; the error estimate is that of K.
-      std::optional<Evaluated> coarse = at(sys, trace, steps / 2, false);
+      // Automatic: K against the previous level Kc (K/2 at the start); with the error ~ c K^-p,
+      //   error(K) = |zeta_K - zeta_Kc| / ((K / Kc)^p - 1)
+      // (the rule's Richardson estimate for any ratio; 1 / (2^p - 1) when Kc = K / 2).  An
+      // unresolved K is followed by the K that the estimate predicts with a margin,
+      // 1.2 K q^(1/p) for q = the largest error / allowed ratio, at least 1.5 K (so that the
+      // estimate's divisor stays >= 1.25 for Hsu) and at most 4 K: fewer intervals than
+      // doubling when K is nearly enough.  The next evaluation of the continuation starts at
+      // the K so predicted for this point (never below 3/4 of it, so a gently easing point
+      // keeps a count it has shown to resolve).
+      auto excess = [&](const std::vector<double>& e) {
+        double q = 0.0;
+        for (std::size_t k = 0; k < e.size(); ++k) {
+          const double z = std::abs(std::max(fine.floquet.exponents[k].zeta, fine.zeta_floor));
+          const double allowed =
+              zeta_tolerance * std::max(1.0, 100.0 * (std::isfinite(z) ? z : 0.0));
+          q = std::max(q, e[k] / allowed);
+        }
+        return q;
+      };
+      auto predicted = [&](double q, double lo, double hi) {
+        const double factor =
+            std::isfinite(q) ? std::clamp(1.2 * std::pow(q, 1.0 / order), lo, hi) : hi;
+        const double k = std::ceil(factor * steps);
+        if (!(k < kMaxAutomaticSteps)) return kMaxAutomaticSteps;
+        const int ki = std::max(kMinAutomaticSteps, static_cast<int>(k));
+        return ki + (ki % 2);  // even, so that a warm start's K / 2 is a whole number
+      };
+      int coarse_steps = steps / 2;
+      std::optional<Evaluated> coarse = at(sys, trace, coarse_steps, false);
+      double q = std::numeric_limits<double>::infinity();
       for (;;) {
         if (!finite(fine) || !finite(*coarse)) {
           err.clear();
           break;
         }
         err = zeta_differences(fine, *coarse);
-        for (double& e : err) e /= richardson;
-        if (resolved(err) || 2 * steps > kMaxAutomaticSteps) break;
+        const double divisor =
+            std::pow(static_cast<double>(steps) / coarse_steps, static_cast<double>(order)) - 1.0;
+        for (double& e : err) e /= divisor;
+        q = excess(err);
+        if (resolved(err) || steps >= kMaxAutomaticSteps) break;
         coarse = std::move(fine);
-        steps *= 2;
+        coarse_steps = steps;
+        steps = predicted(q, 1.5, 4.0);
         fine = at(sys, trace, steps);
       }
-      if (hint != nullptr && finite(fine)) hint->put(zeta_tolerance, steps);
+      if (hint != nullptr && finite(fine)) hint->put(zeta_tolerance, predicted(q, 0.75, 1.0));
     }
     const bool is_resolved = !err.empty() && resolved(err);
     out.steps = steps;
@@ -464,6 +519,9 @@ struct Analysis::Impl {
 
   TransitionOptions options;
   detail::SystemBuilder builder;
+  // (psi, harmonic_basis(h, psi) for every h) at the azimuths of automatic_start that do not
+  // depend on mu: the eight fixed ones and the sector's middle (3 pi / 2).
+  std::vector<std::pair<double, std::vector<double>>> start_basis;
   mutable std::mutex cache_mutex;
   mutable std::map<double, PeriodicEquilibrium> cache;
   // The harmonic balance behind periodic_linearization (stability comes from the analysis).
