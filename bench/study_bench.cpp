@@ -7,6 +7,13 @@
 //                             mu = 0.01 j (0 .. 1.99), largest zeta per cell, 2 threads;
 //                             goal <= 1 s wall.
 //   BM_Map_..._Paper:         the same map with the paper's fixed Hsu K = 50, J = 4.
+//   BM_Map_OmegaLag_Mu_1000x1000: issue 10's map of 10^6 points, omega_lag = 0.3 + 0.0022 i
+//                             (0.3 .. 2.4978) by mu = 0.002 j (0 .. 1.998), 2 threads, one
+//                             iteration (about ten seconds); goal <= 5 s wall.
+//   BM_Map_OmegaLag_Mu_100x1000: every tenth omega_lag line of that map (10^5 points, the same
+//                             mu grid): each line is an independent continuation in mu on the
+//                             pool, so the full map costs ten times this (the repeatable
+//                             measurement; the full one checks the extrapolation).
 // Wall-clock times (UseRealTime): the work runs on a pool of threads.
 #include <benchmark/benchmark.h>
 
@@ -52,5 +59,32 @@ void BM_Map_OmegaLag_Mu_200x200_Paper(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_Map_OmegaLag_Mu_200x200_Paper)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+flaplag::MapOptions map_million(int stride) {
+  flaplag::MapOptions o;
+  o.x.parameter = "omega_lag";
+  o.y.parameter = "mu";
+  for (int i = 0; i < 1000; i += stride) o.x.values.push_back(0.3 + 0.0022 * i);
+  for (int j = 0; j < 1000; ++j) o.y.values.push_back(0.002 * j);
+  o.threads = 2;
+  return o;
+}
+
+void BM_Map_OmegaLag_Mu_1000x1000(benchmark::State& state) {
+  const flaplag::MapOptions o = map_million(1);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(flaplag::run_map(flaplag::RotorParameters{}, {}, o));
+}
+BENCHMARK(BM_Map_OmegaLag_Mu_1000x1000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+void BM_Map_OmegaLag_Mu_100x1000(benchmark::State& state) {
+  const flaplag::MapOptions o = map_million(10);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(flaplag::run_map(flaplag::RotorParameters{}, {}, o));
+}
+BENCHMARK(BM_Map_OmegaLag_Mu_100x1000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

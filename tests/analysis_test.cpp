@@ -355,6 +355,65 @@ INSTANTIATE_TEST_SUITE_P(
       return n;
     });
 
+// Along a sweep each evaluation starts at the step count of the previous point (warm start)
+// instead of climbing from the spectral start; the point keeps its own error estimate (K/2
+// against K).  That estimate must hold against a converged reference (Magnus, 200 fixed steps:
+// its own error is ~1e-12 here, accuracy_bench): the largest |zeta - zeta_ref| at most 3 times
+// the reported error (the Richardson estimate is asymptotic, not a bound) and within the
+// claimed tolerance; and the warm-started point agrees with the cold-started Analysis::point
+// within their estimates.
+class WarmStartSweep : public ::testing::TestWithParam<double> {
+ protected:
+  static const flaplag::SweepResult& sweep() {
+    static const flaplag::SweepResult s = Analysis(RotorParameters{}, {}).sweep(0.0, 1.5, 0.1);
+    return s;
+  }
+  static const flaplag::SweepResult& reference() {
+    static const flaplag::SweepResult s =
+        Analysis(RotorParameters{}, method(TransitionMethod::Magnus4, 200)).sweep(0.0, 1.5, 0.1);
+    return s;
+  }
+};
+
+TEST_P(WarmStartSweep, ErrorEstimateHoldsAgainstAConvergedReference) {
+  const double mu = GetParam();
+  const std::size_t i = static_cast<std::size_t>(std::lround(mu / 0.1));
+  ASSERT_EQ(16u, sweep().points.size());
+  ASSERT_EQ(16u, reference().points.size());
+  const auto& pt = sweep().points[i];
+  const auto& ref = reference().points[i];
+  ASSERT_DOUBLE_EQ(mu, pt.mu);
+  EXPECT_EQ(flaplag::Status::Ok, pt.status) << pt.message;
+  ASSERT_TRUE(pt.error.has_value() && ref.error.has_value());
+  ASSERT_LT(*ref.error, 1e-9);
+  ASSERT_EQ(ref.exponents.size(), pt.exponents.size());
+  const double tol = TransitionOptions{}.zeta_tolerance;
+  double worst = 0.0;
+  for (std::size_t k = 0; k < pt.exponents.size(); ++k) {
+    ASSERT_EQ(ref.exponents[k].label, pt.exponents[k].label);
+    const double z = ref.exponents[k].zeta;
+    worst = std::max(worst, std::abs(pt.exponents[k].zeta - z));
+    EXPECT_TRUE(AbsClose(z, pt.exponents[k].zeta, 3.0 * tol * std::max(1.0, 100.0 * std::abs(z))))
+        << pt.exponents[k].label << " at " << pt.steps << " steps";
+  }
+  EXPECT_LE(worst, 3.0 * *pt.error) << "at " << pt.steps << " steps";
+
+  const auto cold = Analysis(RotorParameters{}, {}).point(mu, 0.1);
+  ASSERT_TRUE(cold.error.has_value());
+  for (std::size_t k = 0; k < pt.exponents.size(); ++k) {
+    EXPECT_TRUE(
+        AbsClose(cold.exponents[k].zeta, pt.exponents[k].zeta, 3.0 * (*cold.error + *pt.error)))
+        << pt.exponents[k].label << ": " << cold.steps << " and " << pt.steps << " steps";
+  }
+  std::printf("[warm start] mu = %.1f: %d steps (cold %d), estimated %.2g, actual %.2g\n", mu,
+              pt.steps, cold.steps, *pt.error, worst);
+}
+
+INSTANTIATE_TEST_SUITE_P(Typical, WarmStartSweep, ::testing::Values(0.3, 0.6, 0.8, 1.0, 1.2, 1.5),
+                         [](const auto& tp) {
+                           return "mu" + std::to_string(std::lround(10 * tp.param));
+                         });
+
 // The forced response in hover is the static equilibrium (f = 0 at mu = 0): the tip flap and lag
 // deflections are eta(1) g0 and gamma(1) h0 (eta(1) = gamma(1) = 1 for the mode of eq 4.1) and
 // every harmonic but the constant is zero; in forward flight the first harmonics appear.

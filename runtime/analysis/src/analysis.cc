@@ -6,8 +6,11 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -111,6 +114,61 @@ struct Evaluated {
   double log_norm = 0.0;  // ln ||Phi||_F
 };
 
+// The multipliers of Phi and their exponents (eqs 3.18-3.19, the conventions of
+// floquet_exponents: zeta = -inf for a zero multiplier, omega the principal value in
+// (-1/2, 1/2]) without eigenvectors or Liouville residual: what the coarse level of an error
+// estimate needs, at about half the cost of the full eigen-decomposition.  Non-finite input or
+// an unconverged solve gives NaN multipliers (finite() below rejects them).
+template <typename Mat>
+void multipliers_into(const Mat& phi, FloquetResult& out) {
+  Eigen::EigenSolver<Mat> es(phi, false);
+  const Eigen::Index n = phi.rows();
+  out.exponents.resize(static_cast<std::size_t>(n));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const bool ok = es.info() == Eigen::Success;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    FloquetExponent& e = out.exponents[static_cast<std::size_t>(k)];
+    e.multiplier = ok ? es.eigenvalues()(k) : std::complex<double>(nan, nan);
+    const double mod = std::abs(e.multiplier);
+    if (mod == 0.0) {
+      e.zeta = -std::numeric_limits<double>::infinity();
+      e.omega = 0.0;
+      continue;
+    }
+    e.zeta = std::log(mod) / kTwoPi;
+    double arg = std::arg(e.multiplier);
+    if (arg <= -kPi) arg = kPi;
+    e.omega = arg / kTwoPi;
+  }
+  if (!ok) {
+    out.status = Status::Failed;
+    out.message = "the eigen-solve of Phi did not converge";
+  }
+}
+
+FloquetResult floquet_multipliers(const Eigen::MatrixXd& phi) {
+  FloquetResult out;
+  if (!phi.allFinite()) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    out.exponents.resize(static_cast<std::size_t>(phi.rows()));
+    for (FloquetExponent& e : out.exponents) {
+      e.multiplier = {nan, nan};
+      e.zeta = e.omega = nan;
+    }
+    out.status = Status::Failed;
+    out.message = "Phi has non-finite entries";
+    return out;
+  }
+  if (phi.rows() == 4) {  // fixed size: no heap (1x1 modes)
+    multipliers_into(Eigen::Matrix4d(phi), out);
+  } else if (phi.rows() == 8) {
+    multipliers_into(Eigen::Matrix<double, 8, 8>(phi), out);
+  } else {
+    multipliers_into(phi, out);
+  }
+  return out;
+}
+
 // |zeta_k(fine) - zeta_k(coarse)| for each exponent of `fine`, the multipliers paired greedily
 // by distance; zeta below each matrix's rounding floor counts as the floor (both are "zero" to
 // the precision of Phi).
@@ -147,6 +205,15 @@ struct Analysis::Impl {
        std::optional<double> inflow = std::nullopt)
       : options(o), builder(p, find_model(p.model), inflow) {
     o.Check();
+    const int harmonics = builder.model().n_harmonics;
+    auto tabulate = [&](double psi) {
+      psi = reduce_azimuth(psi);
+      std::vector<double> v(static_cast<std::size_t>(harmonics));
+      for (int h = 0; h < harmonics; ++h) v[static_cast<std::size_t>(h)] = harmonic_basis(h, psi);
+      start_basis.emplace_back(psi, std::move(v));
+    };
+    for (int k = 0; k < 8; ++k) tabulate((k + 0.5) * kTwoPi / 8.0);
+    tabulate(1.5 * kPi);
     hover = builder.hover();
     const auto& m = builder.model();
     hover_modes = label_hover_modes(hover.A0, m.flap_modes, m.lag_modes);
@@ -160,16 +227,45 @@ struct Analysis::Impl {
 
   // The automatic starting K at mu: |lambda| h <= 1 for the largest eigenvalue of A(psi) at a
   // few azimuths of each region (the spectrum sets the step a fixed-step method needs).
-  int automatic_start(const PeriodicSystem& sys) const {
+  // `floor` (>= kMinAutomaticSteps) is the count the caller starts at anyway (a steps hint): an
+  // azimuth that cannot raise K above it needs no eigen-solve either.
+  int automatic_start(const PeriodicSystem& sys, int floor = kMinAutomaticSteps) const {
     // An azimuth whose induced norm min(||A||_1, ||A||_inf) >= rho(A) keeps |lambda| h <= 1 at
     // the minimum K with a step to spare cannot raise K: its eigen-solve is skipped (the same
     // K as solving every one, at a fifth of the cost in the common case).
+    // Without a varying region, ||A(psi)||_1 <= sum_h ||A_h||_1 for every psi (|cos|, |sin| <=
+    // 1): when that bound keeps every azimuth below the floor, no azimuth can raise K and none
+    // needs evaluating (the same K as evaluating them).
+    if (!sys.has_varying) {
+      double bound = 0.0;
+      for (const HarmonicSet* set : {&sys.normal, &sys.reversed}) {
+        if (set == &sys.reversed && !sys.has_sector) continue;
+        double sum = 0.0;
+        for (const Eigen::MatrixXd& h : set->A) sum += h.cwiseAbs().colwise().sum().maxCoeff();
+        bound = std::max(bound, sum);
+      }
+      if (bound * kTwoPi <= floor - 1) return kMinAutomaticSteps;  // as when every one is skipped
+    }
     double rho = 0.0;
+    Eigen::MatrixXd a;  // one buffer for every azimuth
     auto add = [&](double psi) {
-      const Eigen::MatrixXd a = sys.A(psi);
+      // A(psi) of the harmonic regions as PeriodicSystem::A sums it (the same operations),
+      // with cos/sin of the harmonics looked up for the azimuths that do not depend on mu.
+      psi = reduce_azimuth(psi);
+      if (sys.in_varying(psi)) {
+        a = sys.A(psi);
+      } else {
+        const HarmonicSet& set = sys.region(psi);
+        const std::vector<double>* table = nullptr;
+        for (const auto& [at, values] : start_basis)
+          if (at == psi && values.size() >= set.A.size()) table = &values;
+        a.setZero(sys.n, sys.n);
+        for (std::size_t h = 0; h < set.A.size(); ++h)
+          a += (table ? (*table)[h] : harmonic_basis(static_cast<int>(h), psi)) * set.A[h];
+      }
       const double bound = std::min(a.cwiseAbs().colwise().sum().maxCoeff(),
                                     a.cwiseAbs().rowwise().sum().maxCoeff());
-      if (bound * kTwoPi <= kMinAutomaticSteps - 1) return;
+      if (bound * kTwoPi <= floor - 1) return;
       Eigen::EigenSolver<Eigen::MatrixXd> es(a, false);
       if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
     };
@@ -183,12 +279,14 @@ struct Analysis::Impl {
     return ki + (ki % 2);
   }
 
-  Evaluated at(const PeriodicSystem& sys, double trace, int steps) const {
+  // Phi at `steps` and its exponents; with_vectors = false: the multipliers and exponents only
+  // (no eigenvectors, no Liouville residual), enough for the coarse level of an error estimate.
+  Evaluated at(const PeriodicSystem& sys, double trace, int steps, bool with_vectors = true) const {
     TransitionOptions o = options;
     o.steps = steps;
     const Eigen::MatrixXd phi = transition_matrix(sys, o).phi;
     Evaluated e;
-    e.floquet = floquet_exponents(phi, trace);
+    e.floquet = with_vectors ? floquet_exponents(phi, trace) : floquet_multipliers(phi);
     // n max|Phi_ij| bounds ||Phi||_2 without the overflow of a sum of squares.
     const double n = static_cast<double>(phi.rows());
     const double big = phi.allFinite() ? phi.cwiseAbs().maxCoeff() : 0.0;
@@ -207,7 +305,32 @@ struct Analysis::Impl {
     return !e.floquet.exponents.empty();
   }
 
-  FloquetSample floquet(double mu, double zeta_tolerance) const {
+  // The steps that resolved the last automatic evaluation at each tolerance, shared by the
+  // evaluations of one continuation (one sweep, track or critical search: function()).  Along a
+  // continuation the step count needed changes little from one mu to the next, so each
+  // evaluation starts at the last count of the same tolerance (or the spectral start when that
+  // is larger) instead of climbing from the minimum: the same rule and the same error estimate
+  // (K/2 against K), fewer levels.  Keyed by the exact tolerance, so that the evaluations a
+  // continuation makes at one tolerance (its reported points) depend only on each other: a map
+  // line and the plain sweep over the same points give the same bits.
+  struct StepsHint {
+    std::vector<std::pair<double, int>> last;  // (zeta_tolerance, steps)
+    int find(double tol) const {
+      for (const auto& [t, k] : last)
+        if (t == tol) return k;
+      return 0;
+    }
+    void put(double tol, int steps) {
+      for (auto& [t, k] : last)
+        if (t == tol) {
+          k = steps;
+          return;
+        }
+      last.emplace_back(tol, steps);
+    }
+  };
+
+  FloquetSample floquet(double mu, double zeta_tolerance, StepsHint* hint = nullptr) const {
     // The linear system about hover (the paper) or about the periodic equilibrium.
     if (builder.params().periodic_linearization) {
       PeriodicEquilibrium eq = equilibrium(mu);
@@ -217,15 +340,16 @@ struct Analysis::Impl {
         out.message = eq.message;
         return out;
       }
-      return floquet_of(eq.linearization, zeta_tolerance, eq.message);
+      return floquet_of(eq.linearization, zeta_tolerance, eq.message, hint);
     }
-    return floquet_of(builder.system(mu), zeta_tolerance, "");
+    return floquet_of(builder.system(mu), zeta_tolerance, "", hint);
   }
 
   // One resolved Floquet evaluation of sys; equilibrium_note (the periodic equilibrium's
   // warning, if any) is appended to the message.
   FloquetSample floquet_of(const PeriodicSystem& sys, double zeta_tolerance,
-                           const std::string& equilibrium_note) const {
+                           const std::string& equilibrium_note,
+                           StepsHint* hint = nullptr) const {
     FloquetSample out;
     bool system_finite = true;
     for (const HarmonicSet* set : {&sys.normal, &sys.reversed})
@@ -242,9 +366,12 @@ struct Analysis::Impl {
     }
     const double trace = sys.trace_integral();
     const int order = method_order(options);
-    const double richardson = std::ldexp(1.0, order) - 1.0;
+    const double richardson = std::ldexp(1.0, order) - 1.0;  // K against 2K or K/2
     const bool automatic = options.steps == TransitionOptions::kAutomatic;
-    int steps = automatic ? automatic_start(sys) : options.steps;
+    const int hinted = automatic && hint != nullptr ? hint->find(zeta_tolerance) : 0;
+    int steps = automatic
+                    ? std::max(automatic_start(sys, std::max(kMinAutomaticSteps, hinted)), hinted)
+                    : options.steps;
 
     Evaluated fine = at(sys, trace, steps);
     auto resolved = [&](const std::vector<double>& err) {
@@ -269,20 +396,53 @@ struct Analysis::Impl {
         for (double& e : err) e *= finer ? (richardson + 1.0) / richardson : 1.0 / richardson;
       }
     } else {
-      // Automatic: K/2 and K, doubling until resolved; the error estimate is that of K.
-      std::optional<Evaluated> coarse = at(sys, trace, steps / 2);
+      // Automatic: K against the previous level Kc (K/2 at the start); with the error ~ c K^-p,
+      //   error(K) = |zeta_K - zeta_Kc| / ((K / Kc)^p - 1)
+      // (the rule's Richardson estimate for any ratio; 1 / (2^p - 1) when Kc = K / 2).  An
+      // unresolved K is followed by the K that the estimate predicts with a margin,
+      // 1.2 K q^(1/p) for q = the largest error / allowed ratio, at least 1.5 K (so that the
+      // estimate's divisor stays >= 1.25 for Hsu) and at most 4 K: fewer intervals than
+      // doubling when K is nearly enough.  The next evaluation of the continuation starts at
+      // the K so predicted for this point (never below 3/4 of it, so a gently easing point
+      // keeps a count it has shown to resolve).
+      auto excess = [&](const std::vector<double>& e) {
+        double q = 0.0;
+        for (std::size_t k = 0; k < e.size(); ++k) {
+          const double z = std::abs(std::max(fine.floquet.exponents[k].zeta, fine.zeta_floor));
+          const double allowed =
+              zeta_tolerance * std::max(1.0, 100.0 * (std::isfinite(z) ? z : 0.0));
+          q = std::max(q, e[k] / allowed);
+        }
+        return q;
+      };
+      auto predicted = [&](double q, double lo, double hi) {
+        const double factor =
+            std::isfinite(q) ? std::clamp(1.2 * std::pow(q, 1.0 / order), lo, hi) : hi;
+        const double k = std::ceil(factor * steps);
+        if (!(k < kMaxAutomaticSteps)) return kMaxAutomaticSteps;
+        const int ki = std::max(kMinAutomaticSteps, static_cast<int>(k));
+        return ki + (ki % 2);  // even, so that a warm start's K / 2 is a whole number
+      };
+      int coarse_steps = steps / 2;
+      std::optional<Evaluated> coarse = at(sys, trace, coarse_steps, false);
+      double q = std::numeric_limits<double>::infinity();
       for (;;) {
         if (!finite(fine) || !finite(*coarse)) {
           err.clear();
           break;
         }
         err = zeta_differences(fine, *coarse);
-        for (double& e : err) e /= richardson;
-        if (resolved(err) || 2 * steps > kMaxAutomaticSteps) break;
+        const double divisor =
+            std::pow(static_cast<double>(steps) / coarse_steps, static_cast<double>(order)) - 1.0;
+        for (double& e : err) e /= divisor;
+        q = excess(err);
+        if (resolved(err) || steps >= kMaxAutomaticSteps) break;
         coarse = std::move(fine);
-        steps *= 2;
+        coarse_steps = steps;
+        steps = predicted(q, 1.5, 4.0);
         fine = at(sys, trace, steps);
       }
+      if (hint != nullptr && finite(fine)) hint->put(zeta_tolerance, predicted(q, 0.75, 1.0));
     }
     const bool is_resolved = !err.empty() && resolved(err);
     out.steps = steps;
@@ -349,7 +509,8 @@ struct Analysis::Impl {
   }
 
   FloquetFunction function() const {
-    return [this](double mu, double tol) { return floquet(mu, tol); };
+    auto hint = std::make_shared<StepsHint>();
+    return [this, hint](double mu, double tol) { return floquet(mu, tol, hint.get()); };
   }
 
   // The periodic equilibrium at mu, continued from the nearest cached one below mu (the
@@ -376,6 +537,9 @@ struct Analysis::Impl {
 
   TransitionOptions options;
   detail::SystemBuilder builder;
+  // (psi, harmonic_basis(h, psi) for every h) at the azimuths of automatic_start that do not
+  // depend on mu: the eight fixed ones and the sector's middle (3 pi / 2).
+  std::vector<std::pair<double, std::vector<double>>> start_basis;
   mutable std::mutex cache_mutex;
   mutable std::map<double, PeriodicEquilibrium> cache;
   // The harmonic balance behind periodic_linearization (stability comes from the analysis).

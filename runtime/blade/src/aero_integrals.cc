@@ -11,7 +11,7 @@
 namespace flaplag {
 
 AeroIntegrals::AeroIntegrals(const model::ModelDescriptor& m, const ModeSet& modes,
-                                         const SpanGeometry& g)
+                             const SpanGeometry& g)
     : a_(g.tip_loss_a), b_(g.tip_loss_b), e1_(g.e1), lr_(g.lr) {
   validate(g);
   if (!(a_ < b_)) {
@@ -31,7 +31,9 @@ AeroIntegrals::AeroIntegrals(const model::ModelDescriptor& m, const ModeSet& mod
   for (int i = 0; i <= n; ++i)
     for (int k = 0; k <= n; ++k) cos_table[i * (n + 1) + k] = std::cos(kPi * i * k / n);
   const std::vector<std::vector<double>> values = aero_integrands(m, modes, g, x0);
-  coef_.resize(m.n_aero);
+  count_ = m.n_aero;
+  terms_ = n + 2;
+  coef_.assign(static_cast<std::size_t>(terms_) * count_, 0.0);
   std::vector<double> c(n + 1);
   for (int j = 0; j < m.n_aero; ++j) {
     const std::vector<double>& f = values[j];
@@ -54,7 +56,7 @@ AeroIntegrals::AeroIntegrals(const model::ModelDescriptor& m, const ModeSet& mod
     double at_minus1 = 0.0;
     for (int i = 1; i <= n + 1; ++i) at_minus1 += (i % 2 == 0 ? 1.0 : -1.0) * C[i];
     C[0] = -at_minus1;
-    coef_[j] = C;
+    for (int i = 0; i < terms_; ++i) coef_[static_cast<std::size_t>(i) * count_ + j] = C[i];
   }
   partial(b_, normal_);
 }
@@ -62,18 +64,24 @@ AeroIntegrals::AeroIntegrals(const model::ModelDescriptor& m, const ModeSet& mod
 void AeroIntegrals::partial(double s, std::vector<double>& out) const {
   s = std::clamp(s, a_, b_);
   const double t = (2.0 * s - a_ - b_) / (b_ - a_);
-  out.resize(coef_.size());
-  for (size_t j = 0; j < coef_.size(); ++j) {
-    const auto& C = coef_[j];
-    // Clenshaw recurrence for sum_i C_i T_i(t)
-    double b1 = 0.0, b2 = 0.0;
-    for (int i = static_cast<int>(C.size()) - 1; i >= 1; --i) {
-      const double b0 = 2.0 * t * b1 - b2 + C[i];
-      b2 = b1;
-      b1 = b0;
+  const std::size_t m = static_cast<std::size_t>(count_);
+  out.resize(m);
+  // Clenshaw recurrence for sum_i C_i T_i(t), every integral at once (b1 in `out`, b2 in
+  // `b2_`); the same operations per integral as one recurrence at a time.
+  thread_local std::vector<double> b2_;
+  b2_.assign(m, 0.0);
+  std::fill(out.begin(), out.end(), 0.0);
+  double* b1 = out.data();
+  double* b2 = b2_.data();
+  for (int i = terms_ - 1; i >= 1; --i) {
+    const double* C = coef_.data() + static_cast<std::size_t>(i) * m;
+    for (std::size_t j = 0; j < m; ++j) {
+      const double b0 = 2.0 * t * b1[j] - b2[j] + C[j];
+      b2[j] = b1[j];
+      b1[j] = b0;
     }
-    out[j] = t * b1 - b2 + C[0];
   }
+  for (std::size_t j = 0; j < m; ++j) b1[j] = t * b1[j] - b2[j] + coef_[j];
 }
 
 void AeroIntegrals::reversed(double mu, std::vector<double>& out) const {

@@ -23,8 +23,14 @@
 // zeta_tolerance = 1e-5).
 //   - steps = kAutomatic (the default): K starts from the spectrum of A(psi) at mu (|lambda| h
 //     <= 1, inside the stability region of every method's one-step map, and at least 50) and
-//     doubles until every exponent is resolved or K reaches kMaxAutomaticSteps (then status
-//     Warning);
+//     grows until every exponent is resolved or K reaches kMaxAutomaticSteps (then status
+//     Warning): an unresolved K is followed by the K its estimate predicts (1.2 K q^(1/p), q the
+//     largest error / allowed ratio; 1.5 K to 4 K), and each level's estimate compares it with
+//     the level before, |zeta_k(K) - zeta_k(Kc)| / ((K / Kc)^p - 1).  Along one continuation (a
+//     sweep, track, point or critical search) an evaluation starts instead at the K predicted by
+//     the previous evaluation at the same tolerance (between 3/4 of its K and its K) when that is
+//     larger (warm start: the same rule and estimate, fewer levels; the answer can differ from a
+//     cold start at the same mu within the two estimates);
 //   - fixed steps (e.g. TransitionOptions::Paper(), Hsu K = 50, J = 4): an unresolved exponent
 //     gives status Warning with the remedy (increase `steps`).
 // The Liouville identity det Phi = exp(int tr A) is checked as well: a relative residual far

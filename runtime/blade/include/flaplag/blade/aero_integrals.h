@@ -39,7 +39,11 @@ class AeroIntegrals {
 
  private:
   double a_ = 0.0, b_ = 1.0, e1_ = 0.0, lr_ = 1.0;
-  std::vector<std::vector<double>> coef_;  // Chebyshev coefficients of each antiderivative
+  // Chebyshev coefficients of the antiderivatives, term-major: coefficient i of integral j at
+  // coef_[i * count_ + j], so that partial() runs the Clenshaw recurrences of all integrals side
+  // by side (independent chains instead of one latency-bound chain per integral).
+  std::vector<double> coef_;
+  int count_ = 0, terms_ = 0;
   std::vector<double> normal_;
 };
 
