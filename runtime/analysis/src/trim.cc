@@ -682,7 +682,7 @@ CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOption
   const internal::FoldWatch watch;
   CriticalResult r = find_critical(tr.modes, watch.wrap(tr.function()), co);
   std::optional<TrimResult> last;
-  const internal::EquilibriumProbe probe = [&](double mu, PeriodicSystem* lin) {
+  const internal::EquilibriumProbe probe = [&](double mu, PeriodicSystem* lin, double*) {
     TrimResult x = trim(p, mu, o, last ? &*last : nullptr);
     if (x.status == Status::Failed) return false;
     *lin = x.equilibrium.linearization;
