@@ -88,6 +88,13 @@ void report_fold(CriticalResult& r, const FoldWatch& watch, const EquilibriumPro
     return;
   }
   const double mid = 0.5 * (lo + hi);
+  // With all_intervals an onset may have been found before the fold: mu_c is that onset, not
+  // the fold, which is only named.
+  if (!r.intervals.empty()) {
+    r.message += "; the periodic equilibrium branch ends at a fold near mu = " + short_text(mid) +
+                 " (bracket " + bracket + ")";
+    return;
+  }
   // Conservative: near the fold the existence test (convergence of the continuation) depends a
   // little on the path of the probes, so the whole bracket and twice the extrapolation's offset.
   double error = hi - lo;
