@@ -242,6 +242,9 @@ TEST_P(GeneratedModel, NonlinearLoadsLinearizeToTheLinearModel) {
   ASSERT_GE(H, HL);
   int max_degree = 0;
   for (const auto& s : dm.nonlinear) max_degree = std::max(max_degree, s.degree());
+  // Regression: the thrust pseudo-equation (cyclic-pitch models) is no generalized load; it was
+  // emitted as equation n, past the end of the loads array.
+  for (const auto& s : dm.nonlinear) ASSERT_LT(s.equation, n) << "slot of a pseudo-equation";
   EXPECT_GE(max_degree, 2) << "no product of the coordinates was kept";
   for (unsigned seed : {4u, 5u}) {
     RandomInputs r(dm, seed);

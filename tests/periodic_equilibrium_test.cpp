@@ -213,6 +213,11 @@ TEST(PeriodicEquilibrium, BadOptionsAndModelsWithoutNonlinearLoadsAreRejected) {
   o = {};
   o.max_iterations = 0;
   EXPECT_THROW(o.Check(), InvalidInput);
+  o = {};
+  o.min_continuation_step = 0.0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(std::string::npos, why.find("min_continuation_step")) << why;
+  EXPECT_THROW(o.Check(), InvalidInput);
 
   RotorParameters p;  // the paper's model: linear only
   EXPECT_THROW(Analysis(p, {}).periodic_equilibrium(0.3), InvalidInput);

@@ -833,10 +833,20 @@ CriticalResult Analysis::critical(const CriticalOptions& opt) const {
   const internal::FoldWatch watch;
   CriticalResult r = find_critical(impl_->hover_modes, watch.wrap(impl_->function()), o);
   std::optional<PeriodicEquilibrium> last;
-  const internal::EquilibriumProbe probe = [&](double mu, PeriodicSystem* lin) {
+  const internal::EquilibriumProbe probe = [&](double mu, PeriodicSystem* lin, double* reached) {
     PeriodicEquilibrium eq = flaplag::periodic_equilibrium(
         impl_->builder, mu, impl_->equilibrium_options, last ? &*last : nullptr);
-    if (eq.status == Status::Failed) return false;
+    if (eq.status == Status::Failed) {
+      // the continuation converged up to continued_to: its last solution is a start there
+      if (last && eq.continued_to > last->mu && eq.continued_to < mu &&
+          eq.coefficients.allFinite()) {
+        *reached = eq.continued_to;
+        eq.mu = eq.continued_to;
+        eq.status = Status::Warning;
+        last = std::move(eq);
+      }
+      return false;
+    }
     *lin = eq.linearization;
     last = std::move(eq);
     return true;

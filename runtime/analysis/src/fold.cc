@@ -47,23 +47,33 @@ void report_fold(CriticalResult& r, const FoldWatch& watch, const EquilibriumPro
   if (r.status != Status::Failed || r.mu_c || r.hover_unstable || s.first_failed <= 0.0) return;
   double lo = std::min(s.last_ok, s.first_failed), hi = s.first_failed;
   PeriodicSystem lin_lo;
-  if (!probe(lo, &lin_lo)) return;  // not reproducible: leave the failure as it is
+  double reached = -1.0;
+  if (!probe(lo, &lin_lo, &reached)) return;  // not reproducible: leave the failure as it is
   PeriodicSystem lin;
-  // Bisection on existence; each probe continues from the last mu where q° exists.
+  // Bisection on existence; each probe continues from the last mu where q° exists (and a failed
+  // one tells how far its continuation got, which is then the lower end).
+  bool lin_current = true;
   for (int i = 0; i < 60 && hi - lo > 0.25 * o.tolerance; ++i) {
     const double mid = 0.5 * (lo + hi);
-    if (probe(mid, &lin)) {
+    reached = -1.0;
+    if (probe(mid, &lin, &reached)) {
       lo = mid;
       lin_lo = lin;
+      lin_current = true;
     } else {
       hi = mid;
+      if (reached > lo && reached < mid) {
+        lo = reached;
+        lin_current = false;
+      }
     }
   }
+  if (!lin_current && !probe(lo, &lin_lo, &reached)) return;
   const double d_lo = distance_to_one(lin_lo);
   // Second estimate: |Lambda - 1|^2 is linear in mu near the fold; the slope from a point below.
   std::optional<double> extrapolated;
   const double below = lo - std::max(200.0 * o.tolerance, 20.0 * (hi - lo));
-  if (below > 0.0 && probe(below, &lin)) {
+  if (below > 0.0 && probe(below, &lin, &reached)) {
     const double d_below = distance_to_one(lin);
     const double slope = (d_below * d_below - d_lo * d_lo) / (lo - below);
     if (slope > 0.0) extrapolated = lo + d_lo * d_lo / slope;
@@ -78,8 +88,17 @@ void report_fold(CriticalResult& r, const FoldWatch& watch, const EquilibriumPro
     return;
   }
   const double mid = 0.5 * (lo + hi);
-  double error = 0.5 * (hi - lo);
-  if (extrapolated) error = std::max(error, std::abs(*extrapolated - mid));
+  // With all_intervals an onset may have been found before the fold: mu_c is that onset, not
+  // the fold, which is only named.
+  if (!r.intervals.empty()) {
+    r.message += "; the periodic equilibrium branch ends at a fold near mu = " + short_text(mid) +
+                 " (bracket " + bracket + ")";
+    return;
+  }
+  // Conservative: near the fold the existence test (convergence of the continuation) depends a
+  // little on the path of the probes, so the whole bracket and twice the extrapolation's offset.
+  double error = hi - lo;
+  if (extrapolated) error = std::max(error, 2.0 * std::abs(*extrapolated - mid));
   r.mu_c = mid;
   r.mu_c_error = error;
   r.omega = 0.0;

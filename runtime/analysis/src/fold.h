@@ -31,8 +31,10 @@ struct FoldWatch {
 };
 
 // Existence of the equilibrium at mu (continued from the probe's own last success, which then
-// moves to mu) and, when it exists, the linearization about it in *lin.
-using EquilibriumProbe = std::function<bool(double mu, PeriodicSystem* lin)>;
+// moves to mu) and, when it exists, the linearization about it in *lin.  When it does not,
+// *reached (if the probe knows it) is the largest mu below mu where the continuation still
+// converged (the probe's start then moves there), else left alone.
+using EquilibriumProbe = std::function<bool(double mu, PeriodicSystem* lin, double* reached)>;
 
 // When r failed without mu_c and the watch saw the equilibrium fail: mu_c at the fold (see
 // above); otherwise r is left alone.  o: the search's options (tolerance on mu_c).

@@ -336,6 +336,13 @@ ThrustResult rotor_thrust_momentum(const RotorParameters& p, double mu, double s
   return last;
 }
 
+namespace {
+// One trim at mu (Newton from the start's or the blade-element controls); trim() adds the
+// continuation in mu about the periodic equilibrium.
+TrimResult trim_once(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
+                     const TrimOptions& o, const TrimResult* start);
+}  // namespace
+
 TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
                 const TrimResult* start) {
   o.Check();
@@ -364,6 +371,23 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
     }
     return trim(p, mu, o, &chain);
   }
+  // From a start at another mu: q° of the start's controls, continued to mu, may fold before
+  // the trimmed branch does; then the trim is continued in halved steps of mu (down to 1e-3).
+  if (p.periodic_linearization && start != nullptr && start->status != Status::Failed &&
+      start->equilibrium.coefficients.size() > 0 && std::abs(mu - start->mu) > 1e-3) {
+    TrimResult direct = trim_once(p, m, mu, o, start);
+    if (direct.status != Status::Failed) return direct;
+    const TrimResult half = trim(p, 0.5 * (start->mu + mu), o, start);
+    if (half.status == Status::Failed) return direct;
+    return trim(p, mu, o, &half);
+  }
+  return trim_once(p, m, mu, o, start);
+}
+
+namespace {
+
+TrimResult trim_once(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
+                     const TrimOptions& o, const TrimResult* start) {
   TrimResult out;
   out.mu = mu;
   out.kind = o.kind;
@@ -528,6 +552,8 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
   return finish(x, last.status, last.message);
 }
 
+}  // namespace
+
 namespace {
 
 // The continuation's ingredients for a rotor trimmed at every mu.
@@ -656,7 +682,7 @@ CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOption
   const internal::FoldWatch watch;
   CriticalResult r = find_critical(tr.modes, watch.wrap(tr.function()), co);
   std::optional<TrimResult> last;
-  const internal::EquilibriumProbe probe = [&](double mu, PeriodicSystem* lin) {
+  const internal::EquilibriumProbe probe = [&](double mu, PeriodicSystem* lin, double*) {
     TrimResult x = trim(p, mu, o, last ? &*last : nullptr);
     if (x.status == Status::Failed) return false;
     *lin = x.equilibrium.linearization;

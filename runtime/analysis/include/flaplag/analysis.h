@@ -163,7 +163,13 @@ class Analysis {
   // Exponents at the given advance ratios (nondecreasing, each in [0, kMaxAdvanceRatio]),
   // continued from hover in steps of at most scan_step.  mu is reported as given.
   SweepResult track(const std::vector<double>& mus, double scan_step = 0.01) const;
-  // opt.Check() first.
+  // opt.Check() first.  With periodic_linearization the search can end at a fold of the branch
+  // of periodic equilibria through hover (a real multiplier reaches +1 and the equilibrium
+  // ceases to exist: the blade loses it, a divergence-type loss of stability): mu_c is then the
+  // fold, refined by bisection on the existence of q° and by the approach of that multiplier to
+  // 1 (mu_c_error the larger of the bracket and the two estimates' difference; status Warning
+  // when above opt.tolerance), kind Periodic at omega = 0, and the message says that the branch
+  // ends there.  A failure where no multiplier approaches 1 stays Failed.
   CriticalResult critical(const CriticalOptions& opt) const;
 
   // The periodic forced response at mu; status Failed when there is none (a multiplier at 1),

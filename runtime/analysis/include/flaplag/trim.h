@@ -151,6 +151,8 @@ SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
 SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
                           const TrimOptions& o, const std::vector<double>& mus,
                           double scan_step = 0.01);
+// With p.periodic_linearization a fold of the trimmed equilibrium branch ends the search as in
+// Analysis::critical (mu_c at the fold, kind Periodic at omega = 0).
 CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOptions& t,
                                 const TrimOptions& o, const CriticalOptions& c);
 
