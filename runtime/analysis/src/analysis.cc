@@ -96,11 +96,29 @@ int method_order(const TransitionOptions& o) {
   return 1;
 }
 
-// Fewest steps of the automatic rule.
+// Fewest steps of the automatic rule: the paper's K = 50.  A Magnus request looser than the
+// analysis's own tolerance (magnus_levels in floquet()) starts at 24: Magnus4 with its
+// Richardson pass is sixth order, and 24 steps give zeta to 3e-8 per rev on the typical case at
+// mu = 0.8 and to 2.5e-6 on the 2x2 exact model at mu = 1.4 (bench/README.md, accuracy per
+// time), far inside the 1e-3 of a scan point's sign check.
 constexpr int kMinAutomaticSteps = 50;
+constexpr int kMinLooseMagnusSteps = 24;
 
 // ln of the smallest normal double over 2 pi: zeta of a multiplier that underflowed.
 const double kZetaFloor = std::log(std::numeric_limits<double>::min()) / kTwoPi;
+
+// max |eigenvalue| of a (0 when the eigen-solve fails); fixed-size solvers for the 4- and
+// 8-state models keep it off the heap (the automatic start solves up to ten per evaluation).
+template <typename Mat>
+double spectral_radius_of(const Mat& a) {
+  Eigen::EigenSolver<Mat> es(a, false);
+  return es.info() == Eigen::Success ? es.eigenvalues().cwiseAbs().maxCoeff() : 0.0;
+}
+double spectral_radius(const Eigen::MatrixXd& a) {
+  if (a.rows() == 4) return spectral_radius_of(Eigen::Matrix4d(a));
+  if (a.rows() == 8) return spectral_radius_of(Eigen::Matrix<double, 8, 8>(a));
+  return spectral_radius_of(a);
+}
 
 // One transition matrix's Floquet analysis and its rounding floor: an eigenvalue of Phi below
 // ~n eps ||Phi|| is lost in rounding, so a zeta below ln(that) / 2 pi is only a bound.
@@ -159,7 +177,7 @@ struct Analysis::Impl {
 
   // The automatic starting K at mu: |lambda| h <= 1 for the largest eigenvalue of A(psi) at a
   // few azimuths of each region (the spectrum sets the step a fixed-step method needs).
-  int automatic_start(const PeriodicSystem& sys) const {
+  int automatic_start(const PeriodicSystem& sys, int min_steps) const {
     // An azimuth whose induced norm min(||A||_1, ||A||_inf) >= rho(A) keeps |lambda| h <= 1 at
     // the minimum K with a step to spare cannot raise K: its eigen-solve is skipped (the same
     // K as solving every one, at a fifth of the cost in the common case).
@@ -168,9 +186,8 @@ struct Analysis::Impl {
       const Eigen::MatrixXd a = sys.A(psi);
       const double bound = std::min(a.cwiseAbs().colwise().sum().maxCoeff(),
                                     a.cwiseAbs().rowwise().sum().maxCoeff());
-      if (bound * kTwoPi <= kMinAutomaticSteps - 1) return;
-      Eigen::EigenSolver<Eigen::MatrixXd> es(a, false);
-      if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
+      if (bound * kTwoPi <= min_steps - 1) return;
+      rho = std::max(rho, spectral_radius(a));
     };
     for (int k = 0; k < 8; ++k) add((k + 0.5) * kTwoPi / 8.0);
     if (sys.has_sector) add(0.5 * (sys.sector_begin + sys.sector_end));
@@ -178,16 +195,22 @@ struct Analysis::Impl {
     const double k = std::ceil(rho * kTwoPi / 1.0);
     if (!(k <= kMaxAutomaticSteps)) return kMaxAutomaticSteps;
     // an even count, so that K/2 is a whole number
-    const int ki = std::max(kMinAutomaticSteps, static_cast<int>(k));
+    const int ki = std::max(min_steps, static_cast<int>(k));
     return ki + (ki % 2);
   }
 
   Evaluated at(const PeriodicSystem& sys, double trace, int steps) const {
     TransitionOptions o = options;
     o.steps = steps;
-    const Eigen::MatrixXd phi = transition_matrix(sys, o).phi;
+    return evaluated(transition_matrix(sys, o).phi, trace);
+  }
+
+  // The Floquet analysis of one transition matrix.
+  static Evaluated evaluated(const Eigen::MatrixXd& phi, double trace) {
     Evaluated e;
-    e.floquet = floquet_exponents(phi, trace);
+    // Multipliers only: the mode identification (continuation.h) asks for the eigenvectors
+    // (from e.floquet.phi) only where two candidates are close.
+    floquet_exponents(phi, trace, FloquetVectors::OnDemand, &e.floquet);
     // n max|Phi_ij| bounds ||Phi||_2 without the overflow of a sum of squares.
     const double n = static_cast<double>(phi.rows());
     const double big = phi.allFinite() ? phi.cwiseAbs().maxCoeff() : 0.0;
@@ -240,9 +263,17 @@ struct Analysis::Impl {
     const int order = method_order(options);
     const double richardson = std::ldexp(1.0, order) - 1.0;
     const bool automatic = options.steps == TransitionOptions::kAutomatic;
-    int steps = automatic ? automatic_start(sys) : options.steps;
+    // Magnus with automatic steps asked for less than the analysis's own tolerance (a sign
+    // check of the mu_c scan, a continuation step that is not reported) walks its raw
+    // fourth-order levels from 24 steps (magnus_levels below); every result at the analysis's
+    // tolerance or tighter (the reported points, both ends of a bracket, the Brent trials) is
+    // computed by the rule of the other methods, so it does not change.
+    const bool levels = automatic && options.method == TransitionMethod::Magnus4 &&
+                        !sys.has_varying && zeta_tolerance > options.zeta_tolerance;
+    int steps = automatic ? automatic_start(sys, levels ? kMinLooseMagnusSteps : kMinAutomaticSteps)
+                          : options.steps;
 
-    Evaluated fine = at(sys, trace, steps);
+    Evaluated fine = levels ? Evaluated{} : at(sys, trace, steps);
     auto resolved = [&](const std::vector<double>& err) {
       for (std::size_t k = 0; k < err.size(); ++k) {
         const double z = std::abs(std::max(fine.floquet.exponents[k].zeta, fine.zeta_floor));
@@ -263,6 +294,45 @@ struct Analysis::Impl {
       if (finite(fine) && other && finite(*other)) {
         err = zeta_differences(fine, *other);
         for (double& e : err) e *= finer ? (richardson + 1.0) / richardson : 1.0 / richardson;
+      }
+    } else if (levels) {
+      // magnus_levels: P_l, Phi by raw Magnus4 on the grid of K/2 steps bisected l times, each
+      // level computed once; R_l = (16 P_{l+1} - P_l) / 15 is transition_matrix_magnus4's
+      // result at K/2 * 2^l steps (sixth order).  The request does not need the reference
+      // accuracy: first R_0 with the fourth-order estimate of P_1, |zeta(R_0) - zeta(P_0)| / 16
+      // (P_0's error is 16 times P_1's; pessimistic for the extrapolated R_0), from P_0 + P_1 =
+      // 1.5 K steps instead of the 4.5 K of the pair below; if that is not enough, the sixth-order
+      // pairs (R_l, R_{l+1}) as in the rule below, one new level per doubling.
+      const int base = steps / 2;
+      std::vector<Eigen::MatrixXd> P;
+      P.push_back(transition_matrix_magnus4_level(sys, base, 0));
+      P.push_back(transition_matrix_magnus4_level(sys, base, 1));
+      auto extrapolated = [&](std::size_t l) {
+        return evaluated((16.0 * P[l + 1] - P[l]) / 15.0, trace);
+      };
+      Evaluated coarse = extrapolated(0);
+      steps = base;
+      bool done = false;
+      const Evaluated raw = evaluated(P[0], trace);
+      if (finite(coarse) && finite(raw)) {
+        fine = std::move(coarse);
+        err = zeta_differences(fine, raw);
+        for (double& e : err) e /= 16.0;
+        done = resolved(err);
+        if (!done) coarse = std::move(fine);
+      }
+      while (!done) {
+        steps *= 2;
+        P.push_back(transition_matrix_magnus4_level(sys, base, static_cast<int>(P.size())));
+        fine = extrapolated(P.size() - 2);
+        if (!finite(fine) || !finite(coarse)) {
+          err.clear();
+          break;
+        }
+        err = zeta_differences(fine, coarse);
+        for (double& e : err) e /= richardson;
+        if (resolved(err) || 2 * steps > kMaxAutomaticSteps) break;
+        coarse = std::move(fine);
       }
     } else {
       // Automatic: K/2 and K, doubling until resolved; the error estimate is that of K.

@@ -24,7 +24,10 @@
 //   - steps = kAutomatic (the default): K starts from the spectrum of A(psi) at mu (|lambda| h
 //     <= 1, inside the stability region of every method's one-step map, and at least 50) and
 //     doubles until every exponent is resolved or K reaches kMaxAutomaticSteps (then status
-//     Warning);
+//     Warning).  A Magnus request looser than zeta_tolerance (the sign checks of the critical
+//     search's scan, continuation steps that are not reported) starts at 24 and first tries
+//     the extrapolation at K/2 with the fourth-order estimate of its finer half; results at
+//     zeta_tolerance or tighter are computed by the rule above;
 //   - fixed steps (e.g. TransitionOptions::Paper(), Hsu K = 50, J = 4): an unresolved exponent
 //     gives status Warning with the remedy (increase `steps`).
 // The Liouville identity det Phi = exp(int tr A) is checked as well: a relative residual far
