@@ -159,6 +159,16 @@ void BM_RotorCritical_MagnusAuto(benchmark::State& state) {
 }
 BENCHMARK(BM_RotorCritical_MagnusAuto)->Unit(benchmark::kMicrosecond);
 
+// One point with the reference method (`flaplag --method magnus point --mu 0.8`): the
+// continuation from hover in the CLI's steps of 0.01 and the point at the analysis's tolerance.
+void BM_RotorPoint_MagnusAuto_Mu08(benchmark::State& state) {
+  flaplag::TransitionOptions o;
+  o.method = flaplag::TransitionMethod::Magnus4;
+  const auto an = typical(o);
+  for (auto _ : state) benchmark::DoNotOptimize(an.point(0.8, 0.01));
+}
+BENCHMARK(BM_RotorPoint_MagnusAuto_Mu08)->Unit(benchmark::kMicrosecond);
+
 void BM_RotorAnalysis_Setup(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(typical());
 }
