@@ -1,6 +1,7 @@
 // Rotor-level timings for the paper's typical case (assumed modes, model "paper").
 //   BM_RotorPointHsu_K50_J4: one stability point at mu = 0.7 from a built system:
-//                            Phi by Hsu (K = 50, J = 4) + eigen-solve + identification.
+//                            Phi by Hsu (K = 50, J = 4) + eigen-solve + identification, in
+//                            place (_WithEigenvectors: every eigenvector computed).
 //   BM_RotorSystem_Build:    harmonic matrices for one mu (generated code, both regions).
 //   BM_RotorSweep151_*:      151-point sweep mu = 0..1.5 (build + Phi + identification each),
 //                            with the paper's fixed Hsu K = 50, J = 4 (_Hsu_K50_J4, plus the 2K
@@ -24,6 +25,9 @@ flaplag::Analysis typical(const flaplag::TransitionOptions& o = {}) {
   return flaplag::Analysis(flaplag::RotorParameters{}, o);
 }
 
+// The point path of the analysis: Phi into a reused matrix, the multipliers into a reused
+// FloquetResult (eigenvectors on demand), the identification (eigenvectors only when two
+// candidates are close); nothing allocates in the loop.
 void BM_RotorPointHsu_K50_J4(benchmark::State& state) {
   const auto an = typical();
   const auto sys = an.system(0.7);
@@ -31,14 +35,33 @@ void BM_RotorPointHsu_K50_J4(benchmark::State& state) {
   const double tr = sys.trace_integral();
   flaplag::ExponentTracker tracker(hover);
   tracker.advance(flaplag::floquet_exponents(flaplag::transition_matrix_hsu(sys, 50, 4), tr), 0.7);
+  Eigen::MatrixXd phi;
+  flaplag::FloquetResult r;
   // Advancing in place at the same mu keeps the tracker state fixed from one iteration to the
   // next, without timing a copy of it.
+  for (auto _ : state) {
+    flaplag::transition_matrix_hsu(sys, 50, 4, &phi);
+    flaplag::floquet_exponents(phi, tr, flaplag::FloquetVectors::OnDemand, &r);
+    benchmark::DoNotOptimize(tracker.advance(r, 0.7));
+  }
+}
+BENCHMARK(BM_RotorPointHsu_K50_J4);
+
+// The same with every eigenvector computed and matched (the point path before issue 10's
+// identification work), for comparison.
+void BM_RotorPointHsu_K50_J4_WithEigenvectors(benchmark::State& state) {
+  const auto an = typical();
+  const auto sys = an.system(0.7);
+  const auto hover = flaplag::label_hover_modes(an.hover().A0, 1, 1);
+  const double tr = sys.trace_integral();
+  flaplag::ExponentTracker tracker(hover);
+  tracker.advance(flaplag::floquet_exponents(flaplag::transition_matrix_hsu(sys, 50, 4), tr), 0.7);
   for (auto _ : state) {
     const auto phi = flaplag::transition_matrix_hsu(sys, 50, 4);
     benchmark::DoNotOptimize(tracker.advance(flaplag::floquet_exponents(phi, tr), 0.7));
   }
 }
-BENCHMARK(BM_RotorPointHsu_K50_J4);
+BENCHMARK(BM_RotorPointHsu_K50_J4_WithEigenvectors);
 
 // The comparison kernel (bench/fixed_kernel.h) on the same system: the arithmetic floor.
 void BM_RotorPointHsu_K50_J4_FixedKernel(benchmark::State& state) {
@@ -135,6 +158,16 @@ void BM_RotorCritical_MagnusAuto(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(an.critical({}));
 }
 BENCHMARK(BM_RotorCritical_MagnusAuto)->Unit(benchmark::kMicrosecond);
+
+// One point with the reference method (`flaplag --method magnus point --mu 0.8`): the
+// continuation from hover in the CLI's steps of 0.01 and the point at the analysis's tolerance.
+void BM_RotorPoint_MagnusAuto_Mu08(benchmark::State& state) {
+  flaplag::TransitionOptions o;
+  o.method = flaplag::TransitionMethod::Magnus4;
+  const auto an = typical(o);
+  for (auto _ : state) benchmark::DoNotOptimize(an.point(0.8, 0.01));
+}
+BENCHMARK(BM_RotorPoint_MagnusAuto_Mu08)->Unit(benchmark::kMicrosecond);
 
 void BM_RotorAnalysis_Setup(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(typical());

@@ -87,6 +87,51 @@ TEST(Floquet, LiouvilleResidualOfTheReferenceMethodIsBelow1e10) {
   }
 }
 
+// A Magnus request looser than the analysis's tolerance (the mu_c scan's sign checks) takes the
+// cheap path (raw Magnus4 levels, fourth-order first estimate): fewer steps than the reference
+// at the analysis's tolerance, every zeta within the tolerance it claims (1e-3 max(1, 100
+// |zeta|)) of the converged value, and the largest zeta, which decides the sign, within ten
+// times its estimate (the margin the scan's sign check applies); typical case and 2x2 exact
+// modes, below and above mu = 1.
+TEST(Floquet, LooseMagnusRequestsMeetTheirClaims) {
+  for (const bool two_by_two : {false, true}) {
+    RotorParameters p;
+    if (two_by_two) {
+      p.modes = flaplag::ModeKind::Exact;
+      p.model = flaplag::find_model("paper", 2, 2).name;
+    }
+    const Analysis an(p, method(TransitionMethod::Magnus4, TransitionOptions::kAutomatic));
+    for (double mu : {0.3, 0.8, 1.4}) {
+      const flaplag::FloquetSample loose = an.floquet(mu, 1e-3);
+      const flaplag::FloquetSample ref = an.floquet(mu, 1e-10);
+      ASSERT_EQ(flaplag::Status::Ok, loose.status) << loose.message;
+      ASSERT_EQ(loose.floquet.exponents.size(), loose.zeta_errors.size());
+      EXPECT_LT(loose.steps, ref.steps) << "mu = " << mu;
+      std::size_t top = 0;
+      double top_error = 0.0;
+      for (std::size_t k = 0; k < loose.zeta_errors.size(); ++k) {
+        const auto& e = loose.floquet.exponents[k];
+        double best = 1e300, zeta_ref = 0.0;
+        for (const auto& r : ref.floquet.exponents) {
+          if (std::abs(r.multiplier - e.multiplier) < best) {
+            best = std::abs(r.multiplier - e.multiplier);
+            zeta_ref = r.zeta;
+          }
+        }
+        const double error = std::abs(e.zeta - zeta_ref);
+        EXPECT_LE(error, 1e-3 * std::max(1.0, 100.0 * std::abs(zeta_ref)))
+            << (two_by_two ? "2x2" : "1x1") << " mu = " << mu << " k = " << k;
+        if (e.zeta > loose.floquet.exponents[top].zeta || k == 0) {
+          top = k;
+          top_error = error;
+        }
+      }
+      EXPECT_LE(top_error, 10.0 * loose.zeta_errors[top])
+          << (two_by_two ? "2x2" : "1x1") << " mu = " << mu;
+    }
+  }
+}
+
 // Hsu's method (eq 3.29): the error of zeta falls like K^-2.
 TEST(Floquet, HsuErrorInZetaFallsLikeKToTheMinusTwo) {
   RotorParameters p;

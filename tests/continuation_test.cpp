@@ -125,6 +125,62 @@ TEST(ExponentTracker, KeepsLabelsThroughCrossingAndIntegerWrap) {
   EXPECT_DOUBLE_EQ(0.6, sw.points.back().mu);
 }
 
+// The same family tracked with multipliers only (eigenvectors on demand) and with every
+// eigenvector: identical labels, zeta and omega at every step.  The multipliers alone decide
+// the well-separated steps (min_similarity NaN), including the flap-lag crossing of omega
+// (their zeta differ by 0.28 per rev); the eigenvectors are computed where the flap pair meets
+// at omega = 1.5 (mu = 0.33: one real multiplier twice).  Without eigenvectors or Phi such a
+// step is Failed with the state unchanged.
+TEST(ExponentTracker, MultipliersDecideWhereTheyLeaveNoDoubt) {
+  auto A = [](double mu) {
+    return oscillators(0.6, stiffness(0.6, 1.17 + mu), 0.04, stiffness(0.04, 1.28));
+  };
+  const HoverModes hover = label_hover_modes(A(0.0), 1, 1);
+  ExponentTracker full(hover), lazy(hover);
+  FloquetResult r;
+  int by_multipliers = 0, by_vectors = 0;
+  for (int k = 1; k <= 60; ++k) {
+    const double mu = 0.01 * k;
+    const Eigen::MatrixXd phi = (kTwoPi * A(mu)).exp();
+    const double tr = kTwoPi * A(mu).trace();
+    ASSERT_EQ(Status::Ok, full.advance(floquet_exponents(phi, tr), mu).status);
+    floquet_exponents(phi, tr, FloquetVectors::OnDemand, &r);
+    const TrackReport rep = lazy.advance(r, mu);
+    ASSERT_EQ(Status::Ok, rep.status) << "mu = " << mu << ": " << rep.message;
+    (std::isnan(rep.min_similarity) ? by_multipliers : by_vectors) += 1;
+    if (std::abs(mu - 0.33) < 1e-9) {
+      EXPECT_FALSE(std::isnan(rep.min_similarity));
+    }
+    for (std::size_t i = 0; i < 4; ++i) {
+      EXPECT_EQ(full.exponents()[i].label, lazy.exponents()[i].label);
+      EXPECT_EQ(full.exponents()[i].zeta, lazy.exponents()[i].zeta) << "mu = " << mu;
+      EXPECT_EQ(full.exponents()[i].omega, lazy.exponents()[i].omega) << "mu = " << mu;
+    }
+  }
+  EXPECT_GT(by_multipliers, 40);
+  EXPECT_GT(by_vectors, 0);
+  // The eigenvectors of the lazily tracked state, computed on request, are those of the full one.
+  for (std::size_t i = 0; i < 4; ++i)
+    EXPECT_GT(std::abs(full.eigenvectors()[i].dot(lazy.eigenvectors()[i])), 1.0 - 1e-12);
+
+  // At the double multiplier with neither eigenvectors nor Phi: Failed, state unchanged.
+  ExponentTracker t(hover);
+  for (int k = 1; k <= 32; ++k) {
+    const double mu = 0.01 * k;
+    ASSERT_EQ(
+        Status::Ok,
+        t.advance(floquet_exponents((kTwoPi * A(mu)).exp(), kTwoPi * A(mu).trace()), mu).status);
+  }
+  FloquetResult bare = floquet_exponents((kTwoPi * A(0.33)).exp(), kTwoPi * A(0.33).trace());
+  bare.phi.resize(0, 0);
+  for (FloquetExponent& e : bare.exponents) e.eigenvector.resize(0);
+  const std::vector<LabelledExponent> before = t.exponents();
+  const TrackReport rep = t.advance(bare, 0.33);
+  EXPECT_EQ(Status::Failed, rep.status);
+  EXPECT_NE(std::string::npos, rep.message.find("eigenvectors")) << rep.message;
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(before[i].zeta, t.exponents()[i].zeta);
+}
+
 // Lag damping falls linearly: zeta_lag(mu) = mu - 0.5037, a flutter crossing at mu = 0.5037
 // with omega = 1.28 (not the principal 0.28).
 TEST(FindCritical, FlutterCrossingOfConstantFamily) {

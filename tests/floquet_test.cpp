@@ -420,6 +420,63 @@ TEST(Floquet, NonFiniteTransitionMatrixIsReportedNotThrown) {
   }
 }
 
+// Multipliers only (FloquetVectors::OnDemand, into a reused result): the same exponents and
+// residual as with eigenvectors, no eigenvectors until add_eigenvectors(), which then gives the
+// eigenvectors of the full solve; for the fixed-size (4, 8) and the generic (6) paths, reusing
+// one result across sizes.
+TEST(Floquet, EigenvectorsOnDemandMatchTheFullSolve) {
+  FloquetResult on_demand;
+  for (const std::vector<std::pair<double, double>>& pairs :
+       std::vector<std::vector<std::pair<double, double>>>{
+           {{-0.1, 1.28}, {-0.6, 1.17}},
+           {{-0.02, 0.3}, {0.05, 2.71}, {-0.3, 0.45}},
+           {{-0.02, 0.3}, {0.05, 2.71}, {-0.3, 0.45}, {-0.01, 3.3}},
+           {{-0.1, 1.28}, {-0.6, 1.17}}}) {
+    const Eigen::MatrixXd A = with_eigenvalues(pairs);
+    const Eigen::MatrixXd phi = (kTwoPi * A).exp();
+    const FloquetResult full = floquet_exponents(phi, kTwoPi * A.trace());
+    floquet_exponents(phi, kTwoPi * A.trace(), FloquetVectors::OnDemand, &on_demand);
+    ASSERT_EQ(Status::Ok, on_demand.status) << on_demand.message;
+    ASSERT_EQ(full.exponents.size(), on_demand.exponents.size());
+    EXPECT_TRUE(full.has_eigenvectors());
+    EXPECT_FALSE(on_demand.has_eigenvectors());
+    EXPECT_EQ(full.liouville_residual, on_demand.liouville_residual);
+    for (std::size_t k = 0; k < full.exponents.size(); ++k) {
+      EXPECT_EQ(full.exponents[k].multiplier, on_demand.exponents[k].multiplier);
+      EXPECT_EQ(full.exponents[k].zeta, on_demand.exponents[k].zeta);
+      EXPECT_EQ(full.exponents[k].omega, on_demand.exponents[k].omega);
+      EXPECT_EQ(0, on_demand.exponents[k].eigenvector.size());
+    }
+    FloquetResult added = on_demand;
+    ASSERT_TRUE(add_eigenvectors(&added));
+    ASSERT_TRUE(added.has_eigenvectors());
+    for (std::size_t k = 0; k < full.exponents.size(); ++k) {
+      const FloquetExponent& e = added.exponents[k];
+      EXPECT_LT((full.exponents[k].eigenvector - e.eigenvector).norm(), 1e-15) << "k = " << k;
+      EXPECT_LT(
+          (phi.cast<std::complex<double>>() * e.eigenvector - e.multiplier * e.eigenvector).norm(),
+          1e-12 * phi.norm());
+    }
+  }
+  // Multipliers in another order than the solver's: each still gets its own eigenvector.
+  const Eigen::MatrixXd A = with_eigenvalues({{-0.1, 0.28}, {-0.6, 0.17}});
+  const Eigen::MatrixXd phi = (kTwoPi * A).exp();
+  const FloquetResult full = floquet_exponents(phi, kTwoPi * A.trace());
+  std::vector<std::complex<double>> reversed;
+  for (auto it = full.exponents.rbegin(); it != full.exponents.rend(); ++it)
+    reversed.push_back(it->multiplier);
+  std::vector<Eigen::VectorXcd> v;
+  ASSERT_TRUE(floquet_eigenvectors(phi, reversed, &v));
+  ASSERT_EQ(4u, v.size());
+  for (std::size_t k = 0; k < 4; ++k)
+    EXPECT_LT((phi.cast<std::complex<double>>() * v[k] - reversed[k] * v[k]).norm(), 1e-12);
+  // Nothing to compute them from: false, not a crash.
+  FloquetResult empty;
+  empty.exponents.resize(4);
+  EXPECT_FALSE(add_eigenvectors(&empty));
+  EXPECT_FALSE(floquet_eigenvectors(phi, {reversed[0]}, &v));
+}
+
 TEST(Floquet, InvalidArgumentsThrow) {
   EXPECT_THROW(floquet_exponents(Eigen::MatrixXd::Identity(3, 4), 0.0), InvalidInput);
   EXPECT_THROW(floquet_exponents(Eigen::MatrixXd(0, 0), 0.0), InvalidInput);

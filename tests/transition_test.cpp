@@ -231,6 +231,27 @@ TEST(Transition, MagnusOrderAndErrorEstimate) {
   }
 }
 
+// The raw Magnus levels (transition_matrix_magnus4_level): levels 0 and 1 are the pair behind
+// transition_matrix_magnus4 (the same extrapolation, bit for bit, on the rotor-like sector
+// system); each level is fourth order (the error against the reference falls ~16x per
+// bisection); a varying region and too many bisections are refused.
+TEST(Transition, MagnusLevelsArePairsOfTheRichardsonExtrapolation) {
+  const PeriodicSystem s = rotor_like();
+  const Eigen::MatrixXd p0 = transition_matrix_magnus4_level(s, 25, 0);
+  const Eigen::MatrixXd p1 = transition_matrix_magnus4_level(s, 25, 1);
+  const Eigen::MatrixXd p2 = transition_matrix_magnus4_level(s, 25, 2);
+  const TransitionResult m = transition_matrix_magnus4(s, 25);
+  EXPECT_EQ(0.0, max_abs((16.0 * p1 - p0) / 15.0 - m.phi));
+  const Eigen::MatrixXd ref = transition_matrix_magnus4(s, 800).phi;
+  const double order = std::log2(max_abs(p1 - ref) / max_abs(p2 - ref));
+  EXPECT_GT(order, 3.5);
+  EXPECT_LT(order, 4.5);
+  EXPECT_THROW(transition_matrix_magnus4_level(fixtures::sector_as_varying(s), 25, 0),
+               InvalidInput);
+  EXPECT_THROW(transition_matrix_magnus4_level(s, 25, -1), InvalidInput);
+  EXPECT_THROW(transition_matrix_magnus4_level(s, 25, 16), InvalidInput);  // > kMaxSteps
+}
+
 TEST(Transition, RotorLikeReferenceAccuracy) {
   const PeriodicSystem s = rotor_like();
   const Eigen::MatrixXd ref = transition_matrix_magnus4(s, 1000).phi;

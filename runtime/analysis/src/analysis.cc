@@ -100,11 +100,29 @@ int method_order(const TransitionOptions& o) {
   return 1;
 }
 
-// Fewest steps of the automatic rule.
+// Fewest steps of the automatic rule: the paper's K = 50.  A Magnus request looser than the
+// analysis's own tolerance (magnus_levels in floquet()) starts at 24: Magnus4 with its
+// Richardson pass is sixth order, and 24 steps give zeta to 3e-8 per rev on the typical case at
+// mu = 0.8 and to 2.5e-6 on the 2x2 exact model at mu = 1.4 (bench/README.md, accuracy per
+// time), far inside the 1e-3 of a scan point's sign check.
 constexpr int kMinAutomaticSteps = 50;
+constexpr int kMinLooseMagnusSteps = 24;
 
 // ln of the smallest normal double over 2 pi: zeta of a multiplier that underflowed.
 const double kZetaFloor = std::log(std::numeric_limits<double>::min()) / kTwoPi;
+
+// max |eigenvalue| of a (0 when the eigen-solve fails); fixed-size solvers for the 4- and
+// 8-state models keep it off the heap (the automatic start solves up to ten per evaluation).
+template <typename Mat>
+double spectral_radius_of(const Mat& a) {
+  Eigen::EigenSolver<Mat> es(a, false);
+  return es.info() == Eigen::Success ? es.eigenvalues().cwiseAbs().maxCoeff() : 0.0;
+}
+double spectral_radius(const Eigen::MatrixXd& a) {
+  if (a.rows() == 4) return spectral_radius_of(Eigen::Matrix4d(a));
+  if (a.rows() == 8) return spectral_radius_of(Eigen::Matrix<double, 8, 8>(a));
+  return spectral_radius_of(a);
+}
 
 // One transition matrix's Floquet analysis and its rounding floor: an eigenvalue of Phi below
 // ~n eps ||Phi|| is lost in rounding, so a zeta below ln(that) / 2 pi is only a bound.
@@ -113,61 +131,6 @@ struct Evaluated {
   double zeta_floor = kZetaFloor;
   double log_norm = 0.0;  // ln ||Phi||_F
 };
-
-// The multipliers of Phi and their exponents (eqs 3.18-3.19, the conventions of
-// floquet_exponents: zeta = -inf for a zero multiplier, omega the principal value in
-// (-1/2, 1/2]) without eigenvectors or Liouville residual: what the coarse level of an error
-// estimate needs, at about half the cost of the full eigen-decomposition.  Non-finite input or
-// an unconverged solve gives NaN multipliers (finite() below rejects them).
-template <typename Mat>
-void multipliers_into(const Mat& phi, FloquetResult& out) {
-  Eigen::EigenSolver<Mat> es(phi, false);
-  const Eigen::Index n = phi.rows();
-  out.exponents.resize(static_cast<std::size_t>(n));
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  const bool ok = es.info() == Eigen::Success;
-  for (Eigen::Index k = 0; k < n; ++k) {
-    FloquetExponent& e = out.exponents[static_cast<std::size_t>(k)];
-    e.multiplier = ok ? es.eigenvalues()(k) : std::complex<double>(nan, nan);
-    const double mod = std::abs(e.multiplier);
-    if (mod == 0.0) {
-      e.zeta = -std::numeric_limits<double>::infinity();
-      e.omega = 0.0;
-      continue;
-    }
-    e.zeta = std::log(mod) / kTwoPi;
-    double arg = std::arg(e.multiplier);
-    if (arg <= -kPi) arg = kPi;
-    e.omega = arg / kTwoPi;
-  }
-  if (!ok) {
-    out.status = Status::Failed;
-    out.message = "the eigen-solve of Phi did not converge";
-  }
-}
-
-FloquetResult floquet_multipliers(const Eigen::MatrixXd& phi) {
-  FloquetResult out;
-  if (!phi.allFinite()) {
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    out.exponents.resize(static_cast<std::size_t>(phi.rows()));
-    for (FloquetExponent& e : out.exponents) {
-      e.multiplier = {nan, nan};
-      e.zeta = e.omega = nan;
-    }
-    out.status = Status::Failed;
-    out.message = "Phi has non-finite entries";
-    return out;
-  }
-  if (phi.rows() == 4) {  // fixed size: no heap (1x1 modes)
-    multipliers_into(Eigen::Matrix4d(phi), out);
-  } else if (phi.rows() == 8) {
-    multipliers_into(Eigen::Matrix<double, 8, 8>(phi), out);
-  } else {
-    multipliers_into(phi, out);
-  }
-  return out;
-}
 
 // |zeta_k(fine) - zeta_k(coarse)| for each exponent of `fine`, the multipliers paired greedily
 // by distance; zeta below each matrix's rounding floor counts as the floor (both are "zero" to
@@ -227,9 +190,9 @@ struct Analysis::Impl {
 
   // The automatic starting K at mu: |lambda| h <= 1 for the largest eigenvalue of A(psi) at a
   // few azimuths of each region (the spectrum sets the step a fixed-step method needs).
-  // `floor` (>= kMinAutomaticSteps) is the count the caller starts at anyway (a steps hint): an
-  // azimuth that cannot raise K above it needs no eigen-solve either.
-  int automatic_start(const PeriodicSystem& sys, int floor = kMinAutomaticSteps) const {
+  // `min_steps` is the fewest it returns; `floor` (>= min_steps) is the count the caller starts
+  // at anyway (a steps hint): an azimuth that cannot raise K above it needs no eigen-solve either.
+  int automatic_start(const PeriodicSystem& sys, int min_steps, int floor) const {
     // An azimuth whose induced norm min(||A||_1, ||A||_inf) >= rho(A) keeps |lambda| h <= 1 at
     // the minimum K with a step to spare cannot raise K: its eigen-solve is skipped (the same
     // K as solving every one, at a fifth of the cost in the common case).
@@ -244,7 +207,7 @@ struct Analysis::Impl {
         for (const Eigen::MatrixXd& h : set->A) sum += h.cwiseAbs().colwise().sum().maxCoeff();
         bound = std::max(bound, sum);
       }
-      if (bound * kTwoPi <= floor - 1) return kMinAutomaticSteps;  // as when every one is skipped
+      if (bound * kTwoPi <= floor - 1) return min_steps;  // as when every one is skipped
     }
     double rho = 0.0;
     Eigen::MatrixXd a;  // one buffer for every azimuth
@@ -266,8 +229,7 @@ struct Analysis::Impl {
       const double bound = std::min(a.cwiseAbs().colwise().sum().maxCoeff(),
                                     a.cwiseAbs().rowwise().sum().maxCoeff());
       if (bound * kTwoPi <= floor - 1) return;
-      Eigen::EigenSolver<Eigen::MatrixXd> es(a, false);
-      if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
+      rho = std::max(rho, spectral_radius(a));
     };
     for (int k = 0; k < 8; ++k) add((k + 0.5) * kTwoPi / 8.0);
     if (sys.has_sector) add(0.5 * (sys.sector_begin + sys.sector_end));
@@ -275,18 +237,23 @@ struct Analysis::Impl {
     const double k = std::ceil(rho * kTwoPi / 1.0);
     if (!(k <= kMaxAutomaticSteps)) return kMaxAutomaticSteps;
     // an even count, so that K/2 is a whole number
-    const int ki = std::max(kMinAutomaticSteps, static_cast<int>(k));
+    const int ki = std::max(min_steps, static_cast<int>(k));
     return ki + (ki % 2);
   }
 
-  // Phi at `steps` and its exponents; with_vectors = false: the multipliers and exponents only
-  // (no eigenvectors, no Liouville residual), enough for the coarse level of an error estimate.
-  Evaluated at(const PeriodicSystem& sys, double trace, int steps, bool with_vectors = true) const {
+  // Phi at `steps` and its exponents (multipliers only: evaluated()).
+  Evaluated at(const PeriodicSystem& sys, double trace, int steps) const {
     TransitionOptions o = options;
     o.steps = steps;
-    const Eigen::MatrixXd phi = transition_matrix(sys, o).phi;
+    return evaluated(transition_matrix(sys, o).phi, trace);
+  }
+
+  // The Floquet analysis of one transition matrix.
+  static Evaluated evaluated(const Eigen::MatrixXd& phi, double trace) {
     Evaluated e;
-    e.floquet = with_vectors ? floquet_exponents(phi, trace) : floquet_multipliers(phi);
+    // Multipliers only: the mode identification (continuation.h) asks for the eigenvectors
+    // (from e.floquet.phi) only where two candidates are close.
+    floquet_exponents(phi, trace, FloquetVectors::OnDemand, &e.floquet);
     // n max|Phi_ij| bounds ||Phi||_2 without the overflow of a sum of squares.
     const double n = static_cast<double>(phi.rows());
     const double big = phi.allFinite() ? phi.cwiseAbs().maxCoeff() : 0.0;
@@ -348,8 +315,7 @@ struct Analysis::Impl {
   // One resolved Floquet evaluation of sys; equilibrium_note (the periodic equilibrium's
   // warning, if any) is appended to the message.
   FloquetSample floquet_of(const PeriodicSystem& sys, double zeta_tolerance,
-                           const std::string& equilibrium_note,
-                           StepsHint* hint = nullptr) const {
+                           const std::string& equilibrium_note, StepsHint* hint = nullptr) const {
     FloquetSample out;
     bool system_finite = true;
     for (const HarmonicSet* set : {&sys.normal, &sys.reversed})
@@ -368,12 +334,20 @@ struct Analysis::Impl {
     const int order = method_order(options);
     const double richardson = std::ldexp(1.0, order) - 1.0;  // K against 2K or K/2
     const bool automatic = options.steps == TransitionOptions::kAutomatic;
-    const int hinted = automatic && hint != nullptr ? hint->find(zeta_tolerance) : 0;
+    // Magnus with automatic steps asked for less than the analysis's own tolerance (a sign
+    // check of the mu_c scan, a continuation step that is not reported) walks its raw
+    // fourth-order levels from 24 steps (magnus_levels below); every result at the analysis's
+    // tolerance or tighter (the reported points, both ends of a bracket, the Brent trials) is
+    // computed by the rule of the other methods, so it does not change.
+    const bool levels = automatic && options.method == TransitionMethod::Magnus4 &&
+                        !sys.has_varying && zeta_tolerance > options.zeta_tolerance;
+    const int min_steps = levels ? kMinLooseMagnusSteps : kMinAutomaticSteps;
+    const int hinted = automatic && !levels && hint != nullptr ? hint->find(zeta_tolerance) : 0;
     int steps = automatic
-                    ? std::max(automatic_start(sys, std::max(kMinAutomaticSteps, hinted)), hinted)
+                    ? std::max(automatic_start(sys, min_steps, std::max(min_steps, hinted)), hinted)
                     : options.steps;
 
-    Evaluated fine = at(sys, trace, steps);
+    Evaluated fine = levels ? Evaluated{} : at(sys, trace, steps);
     auto resolved = [&](const std::vector<double>& err) {
       for (std::size_t k = 0; k < err.size(); ++k) {
         const double z = std::abs(std::max(fine.floquet.exponents[k].zeta, fine.zeta_floor));
@@ -394,6 +368,48 @@ struct Analysis::Impl {
       if (finite(fine) && other && finite(*other)) {
         err = zeta_differences(fine, *other);
         for (double& e : err) e *= finer ? (richardson + 1.0) / richardson : 1.0 / richardson;
+      }
+    } else if (levels) {
+      // magnus_levels: P_l, Phi by raw Magnus4 on the grid of K/2 steps bisected l times, each
+      // level computed once; R_l = (16 P_{l+1} - P_l) / 15 is transition_matrix_magnus4's
+      // result at K/2 * 2^l steps (sixth order).  The request does not need the reference
+      // accuracy: first R_0 with the fourth-order estimate of P_1, |zeta(R_0) - zeta(P_0)| / 16
+      // (P_0's error is 16 times P_1's), from P_0 + P_1 = 1.5 K steps instead of the 4.5 K of
+      // the pair below; if that is not enough, the sixth-order pairs (R_l, R_{l+1}) as in the
+      // rule below, one new level per doubling.  Like every Richardson estimate it is not a
+      // bound: before the asymptotic regime it can be low for a strongly damped mode (1x1 at
+      // mu = 1.4, zeta = -1.49: 1.5e-4 against an error of 2.9e-3, inside the 0.15 that mode
+      // is allowed; Floquet.LooseMagnusRequestsMeetTheirClaims).
+      const int base = steps / 2;
+      std::vector<Eigen::MatrixXd> P;
+      P.push_back(transition_matrix_magnus4_level(sys, base, 0));
+      P.push_back(transition_matrix_magnus4_level(sys, base, 1));
+      auto extrapolated = [&](std::size_t l) {
+        return evaluated((16.0 * P[l + 1] - P[l]) / 15.0, trace);
+      };
+      Evaluated coarse = extrapolated(0);
+      steps = base;
+      bool done = false;
+      const Evaluated raw = evaluated(P[0], trace);
+      if (finite(coarse) && finite(raw)) {
+        fine = std::move(coarse);
+        err = zeta_differences(fine, raw);
+        for (double& e : err) e /= 16.0;
+        done = resolved(err);
+        if (!done) coarse = std::move(fine);
+      }
+      while (!done) {
+        steps *= 2;
+        P.push_back(transition_matrix_magnus4_level(sys, base, static_cast<int>(P.size())));
+        fine = extrapolated(P.size() - 2);
+        if (!finite(fine) || !finite(coarse)) {
+          err.clear();
+          break;
+        }
+        err = zeta_differences(fine, coarse);
+        for (double& e : err) e /= richardson;
+        if (resolved(err) || 2 * steps > kMaxAutomaticSteps) break;
+        coarse = std::move(fine);
       }
     } else {
       // Automatic: K against the previous level Kc (K/2 at the start); with the error ~ c K^-p,
@@ -424,7 +440,7 @@ struct Analysis::Impl {
         return ki + (ki % 2);  // even, so that a warm start's K / 2 is a whole number
       };
       int coarse_steps = steps / 2;
-      std::optional<Evaluated> coarse = at(sys, trace, coarse_steps, false);
+      std::optional<Evaluated> coarse = at(sys, trace, coarse_steps);
       double q = std::numeric_limits<double>::infinity();
       for (;;) {
         if (!finite(fine) || !finite(*coarse)) {

@@ -199,26 +199,39 @@ ExponentTracker::ExponentTracker(const HoverModes& hover) {
   }
 }
 
+bool ExponentTracker::ensure_vectors() const {
+  if (vectors_valid_) return true;
+  std::vector<std::complex<double>> multipliers;
+  multipliers.reserve(exponents_.size());
+  for (const LabelledExponent& e : exponents_) multipliers.push_back(e.multiplier);
+  vectors_valid_ = floquet_eigenvectors(last_phi_, multipliers, &vectors_);
+  return vectors_valid_;
+}
+
+const std::vector<Eigen::VectorXcd>& ExponentTracker::eigenvectors() const {
+  ensure_vectors();
+  return vectors_;
+}
+
 TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
   const int n = static_cast<int>(exponents_.size());
   if (static_cast<int>(next.exponents.size()) != n)
     throw InvalidInput("exponents", std::to_string(next.exponents.size()),
                        "expected " + std::to_string(n) + " as tracked");
   TrackReport report;
-  if (next.status == Status::Failed) {
+  auto fail = [&](std::string message) {
     report.status = Status::Failed;
-    report.message = next.message + "; tracking state unchanged";
+    report.message = std::move(message);
     report.min_similarity = 0.0;
     return report;
-  }
+  };
+  if (next.status == Status::Failed) return fail(next.message + "; tracking state unchanged");
+  const bool given_vectors = next.has_eigenvectors();
   for (const FloquetExponent& e : next.exponents) {
     if (!std::isfinite(e.multiplier.real()) || !std::isfinite(e.multiplier.imag()) ||
-        std::isnan(e.zeta) || std::isnan(e.omega) || e.eigenvector.size() != vectors_[0].size() ||
-        !e.eigenvector.allFinite()) {
-      report.status = Status::Failed;
-      report.message = "non-finite multipliers or eigenvectors; tracking state unchanged";
-      report.min_similarity = 0.0;
-      return report;
+        std::isnan(e.zeta) || std::isnan(e.omega) ||
+        (given_vectors && !e.eigenvector.allFinite())) {
+      return fail("non-finite multipliers or eigenvectors; tracking state unchanged");
     }
   }
 
@@ -264,31 +277,94 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
     sim = sim_big.data();
     match = match_big.data();
   }
+  // The distance term first.
   for (int j = 0; j < n; ++j) {
     const FloquetExponent& e = next.exponents[j];
     for (int i = 0; i < n; ++i) {
       const std::size_t ij = static_cast<std::size_t>(i) + static_cast<std::size_t>(n) * j;
-      sim[ij] = std::abs(vectors_[i].dot(e.eigenvector));  // dot() conjugates the left side
       const double dw = e.omega - pw[i];
       const double dz = finite_zeta(e.zeta) - pz[i];
       const double dr = dw - std::round(dw);
       // sqrt, not hypot: both terms are finite (zeta is floored, omega is a principal value
       // plus a continued integer) and an overflow to inf is capped below like any huge cost.
-      const double c = (1.0 - sim[ij]) + kTwoPi * std::sqrt(dz * dz + dr * dr);
+      const double c = kTwoPi * std::sqrt(dz * dz + dr * dr);
       cost[ij] = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
     }
   }
-  Assignment(cost, n).solve(match);
-  for (int i = 0; i < n; ++i) {
-    if (match[i] < 0 || match[i] >= n) {  // unreachable with finite costs; never index with it
-      report.status = Status::Failed;
-      report.message = "mode identification found no assignment; tracking state unchanged";
-      report.min_similarity = 0.0;
-      return report;
+
+  // Without eigenvectors in `next`, the multipliers decide when they leave no doubt: each
+  // tracked exponent's nearest candidate is distinct, near its prediction and nearer than any
+  // other by more than the largest eigenvector term (1), so the full cost below could not
+  // choose otherwise.
+  bool decided = false;
+  if (!given_vectors) {
+    decided = true;
+    bool taken_small[kSmall] = {};
+    std::vector<bool> taken_big(n > kSmall ? static_cast<std::size_t>(n) : 0, false);
+    for (int i = 0; i < n && decided; ++i) {
+      double d1 = std::numeric_limits<double>::infinity(), d2 = d1;
+      int j1 = -1;
+      for (int j = 0; j < n; ++j) {
+        const double c = cost[i + static_cast<std::size_t>(n) * j];
+        if (c < d1) {
+          d2 = d1;
+          d1 = c;
+          j1 = j;
+        } else if (c < d2) {
+          d2 = c;
+        }
+      }
+      const bool taken = j1 < 0 || (n > kSmall ? bool(taken_big[j1]) : taken_small[j1]);
+      decided = !taken && d1 <= kMultiplierStep && d2 - d1 > 1.0;
+      if (decided) {
+        match[i] = j1;
+        if (n > kSmall)
+          taken_big[j1] = true;
+        else
+          taken_small[j1] = true;
+      }
     }
   }
 
+  const std::vector<Eigen::VectorXcd>* new_vectors = nullptr;
+  if (!decided) {
+    // The full rule: eigenvectors of both states.
+    if (given_vectors) {
+      next_vectors_.resize(static_cast<std::size_t>(n));
+      for (int j = 0; j < n; ++j) next_vectors_[j] = next.exponents[j].eigenvector;
+    } else {
+      std::vector<std::complex<double>> multipliers;
+      multipliers.reserve(static_cast<std::size_t>(n));
+      for (const FloquetExponent& e : next.exponents) multipliers.push_back(e.multiplier);
+      if (!floquet_eigenvectors(next.phi, multipliers, &next_vectors_))
+        return fail(next.phi.rows() == n
+                        ? "the eigenvectors of Phi needed to identify the modes are not finite; "
+                          "tracking state unchanged"
+                        : "no eigenvectors (nor Phi) to identify close modes by; tracking "
+                          "state unchanged");
+    }
+    if (!ensure_vectors())
+      return fail(
+          "the eigenvectors of the previous state could not be computed; tracking state "
+          "unchanged");
+    new_vectors = &next_vectors_;
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const std::size_t ij = static_cast<std::size_t>(i) + static_cast<std::size_t>(n) * j;
+        sim[ij] = std::abs(vectors_[i].dot(next_vectors_[j]));  // dot() conjugates the left side
+        const double c = (1.0 - sim[ij]) + cost[ij];
+        cost[ij] = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
+      }
+    }
+    Assignment(cost, n).solve(match);
+  }
+  for (int i = 0; i < n; ++i) {
+    if (match[i] < 0 || match[i] >= n)  // unreachable with finite costs; never index with it
+      return fail("mode identification found no assignment; tracking state unchanged");
+  }
+
   previous_.resize(static_cast<std::size_t>(n));
+  if (!decided) report.min_similarity = 1.0;
   for (int i = 0; i < n; ++i) {
     const FloquetExponent& e = next.exponents[match[i]];
     LabelledExponent& x = exponents_[i];
@@ -299,10 +375,16 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
       x.omega = e.omega + std::round(pw[i] - e.omega);
     x.zeta = e.zeta;
     x.multiplier = e.multiplier;
-    vectors_[i] = e.eigenvector;
-    report.min_similarity =
-        std::min(report.min_similarity, sim[i + static_cast<std::size_t>(n) * match[i]]);
+    if (new_vectors != nullptr) {
+      vectors_[i] = (*new_vectors)[match[i]];
+      report.min_similarity =
+          std::min(report.min_similarity, sim[i + static_cast<std::size_t>(n) * match[i]]);
+    }
   }
+  // Without new eigenvectors the tracked ones are those of next.phi, computed when needed.
+  vectors_valid_ = new_vectors != nullptr;
+  if (!vectors_valid_) last_phi_ = next.phi;
+  if (decided) report.min_similarity = std::numeric_limits<double>::quiet_NaN();
   previous_mu_ = mu_;
   mu_ = mu;
   has_previous_ = std::isfinite(mu);

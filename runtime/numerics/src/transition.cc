@@ -817,14 +817,23 @@ Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps) {
   return dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.rk4(steps)); });
 }
 
-Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms) {
+void transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms,
+                           Eigen::MatrixXd* phi) {
+  if (phi == nullptr) throw InvalidInput("phi", "null", "a matrix to fill is required");
   check_count("intervals", intervals);
   check_count("terms", terms, TransitionOptions::kMaxTerms);
   sys.validate();
-  if (sys.has_varying) return detail::varying_hsu(sys, intervals, terms);
+  if (sys.has_varying) {
+    *phi = detail::varying_hsu(sys, intervals, terms);
+  } else if (!plain_hsu(sys, intervals, terms, *phi)) {
+    *phi = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.hsu(intervals, terms)); });
+  }
+}
+
+Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms) {
   Eigen::MatrixXd phi;
-  if (plain_hsu(sys, intervals, terms, phi)) return phi;
-  return dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.hsu(intervals, terms)); });
+  transition_matrix_hsu(sys, intervals, terms, &phi);
+  return phi;
 }
 
 // Accuracy: Magnus4 is fourth order and symmetric, so Phi_h - Phi = c4 h^4 + c6 h^6 + ...
@@ -852,6 +861,28 @@ TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps)
   out.phi = (16.0 * ph2 - ph) / 15.0;
   out.error_estimate = (ph2 - ph).cwiseAbs().maxCoeff() / 15.0;
   return out;
+}
+
+Eigen::MatrixXd transition_matrix_magnus4_level(const PeriodicSystem& sys, int steps,
+                                                int bisections) {
+  check_count("steps", steps);
+  if (bisections < 0 || bisections > 20)
+    throw InvalidInput("bisections", std::to_string(bisections), "must be 0..20");
+  if (static_cast<double>(steps) * std::ldexp(1.0, bisections) > TransitionOptions::kMaxSteps)
+    throw InvalidInput(
+        "bisections", std::to_string(bisections),
+        "steps * 2^bisections must be at most " + std::to_string(TransitionOptions::kMaxSteps));
+  sys.validate();
+  if (sys.has_varying)
+    throw InvalidInput("sys", "varying region",
+                       "the Magnus levels are for sector systems (transition_magnus4 handles the "
+                       "varying region)");
+  std::vector<Segment> grid = make_grid(sys, steps);
+  for (int b = 0; b < bisections; ++b) grid = bisect(grid);
+  Eigen::MatrixXd phi;
+  if (!plain_magnus(sys, grid, phi))
+    phi = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(grid)); });
+  return phi;
 }
 
 bool TransitionOptions::IsValid(std::string* error) const {

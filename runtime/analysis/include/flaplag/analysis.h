@@ -30,7 +30,11 @@
 //     sweep, track, point or critical search) an evaluation starts instead at the K predicted by
 //     the previous evaluation at the same tolerance (between 3/4 of its K and its K) when that is
 //     larger (warm start: the same rule and estimate, fewer levels; the answer can differ from a
-//     cold start at the same mu within the two estimates);
+//     cold start at the same mu within the two estimates).  A Magnus request looser than
+//     zeta_tolerance (the sign checks of the critical search's scan, continuation steps that
+//     are not reported) starts at 24 and first tries the extrapolation at K/2 with the
+//     fourth-order estimate of its finer half; results at zeta_tolerance or tighter are
+//     computed by the rule above;
 //   - fixed steps (e.g. TransitionOptions::Paper(), Hsu K = 50, J = 4): an unresolved exponent
 //     gives status Warning with the remedy (increase `steps`).
 // The Liouville identity det Phi = exp(int tr A) is checked as well: a relative residual far

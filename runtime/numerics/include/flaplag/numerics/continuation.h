@@ -3,9 +3,9 @@
 // The Floquet exponents lambda = zeta + i omega of Phi(2 pi) fix omega only up to an integer
 // (eq 3.19).  At mu = 0 the system has constant coefficients and the exponents are exactly the
 // eigenvalues of A0, integer part included; labels (flap/lag) come from the eigenvectors there.
-// ExponentTracker carries both along small steps in mu by matching eigenvectors and multipliers
-// and choosing the integer that keeps omega continuous (paper 4.2 step 3: "the degrees of
-// freedom are identified by tracing back their history from mu = 0").
+// ExponentTracker carries both along small steps in mu by matching multipliers (and eigenvectors
+// where two candidates are close) and choosing the integer that keeps omega continuous (paper 4.2
+// step 3: "the degrees of freedom are identified by tracing back their history from mu = 0").
 //
 // Nothing here knows about rotors: labels are strings given with the hover modes.
 //
@@ -56,7 +56,9 @@ struct HoverModes {
 
 // Outcome of one continuation step.
 struct TrackReport {
-  double min_similarity = 1.0;  // smallest |v_old^H v_new| in the chosen assignment
+  // smallest |v_old^H v_new| in the chosen assignment; NaN when the multipliers alone decided
+  // it (no eigenvectors were computed: see ExponentTracker::advance)
+  double min_similarity = 1.0;
   Status status = Status::Ok;
   std::string message;
 };
@@ -80,20 +82,41 @@ class ExponentTracker {
   // multipliers leave the state unchanged and report Failed; a best match with eigenvector
   // similarity below 0.5 reports Warning.  Throws InvalidInput when the number of
   // exponents differs from the tracked one.
+  //
+  // Eigenvectors are needed only where the multipliers leave a doubt.  When `next` carries no
+  // eigenvectors (FloquetVectors::OnDemand), the assignment is first made by the prediction
+  // distance alone; it is kept when every tracked exponent's nearest new exponent is distinct,
+  // within kMultiplierStep of its prediction and nearer than every other candidate by more
+  // than 1 -- the most the eigenvector term can change a cost, so the full rule above gives
+  // the same assignment whatever the eigenvectors (report.min_similarity is then NaN).
+  // Otherwise the eigenvectors of next.phi and of the previous point's Phi are computed and
+  // the full rule applies; without them (no phi) the step reports Failed.
   TrackReport advance(const FloquetResult& next,
                       double mu = std::numeric_limits<double>::quiet_NaN());
 
+  // Largest 2 pi |lambda_new - lambda_predicted| (about the relative change of the multiplier)
+  // that the multipliers alone may decide; a larger jump is checked by the eigenvectors.
+  static constexpr double kMultiplierStep = 0.25;
+
   // In hover order (the order of HoverModes), conjugate pairs tracked individually.
   const std::vector<LabelledExponent>& exponents() const { return exponents_; }
-  const std::vector<Eigen::VectorXcd>& eigenvectors() const { return vectors_; }
+  // Eigenvectors of the current state (computed here if the last steps did not need them).
+  const std::vector<Eigen::VectorXcd>& eigenvectors() const;
   // Index and value of the largest zeta.
   int most_unstable() const;
   double max_zeta() const;
   double mu() const { return mu_; }  // parameter of the current state (0 at hover)
 
  private:
+  // The eigenvectors of the current state, valid when vectors_valid_; else they are those of
+  // last_phi_ (the Phi of the current state) for the current multipliers.
+  bool ensure_vectors() const;
+
   std::vector<LabelledExponent> exponents_;
-  std::vector<Eigen::VectorXcd> vectors_;
+  mutable std::vector<Eigen::VectorXcd> vectors_;
+  mutable bool vectors_valid_ = true;
+  Eigen::MatrixXd last_phi_;
+  std::vector<Eigen::VectorXcd> next_vectors_;  // scratch: eigenvectors of a next Phi
   std::vector<std::complex<double>> previous_;  // zeta + i omega one step back
   double mu_ = 0.0;
   double previous_mu_ = 0.0;

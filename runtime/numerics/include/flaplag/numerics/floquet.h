@@ -55,7 +55,18 @@ struct TransitionResult {
 TransitionResult transition_matrix(const PeriodicSystem& sys, const TransitionOptions& opt);
 Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps);
 Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms);
+// The same into *phi, reusing its storage (nothing allocates once it is n x n, for the state
+// sizes with a plain kernel: 4, 8, 12, 16).
+void transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms,
+                           Eigen::MatrixXd* phi);
 TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps);
+// Phi by fourth-order Magnus alone (no Richardson pass) on the grid of `steps` steps with every
+// substep bisected `bisections` times (0..20): level l + 1 is level l on a grid twice as fine,
+// so (16 level(l + 1) - level(l)) / 15 is transition_matrix_magnus4's extrapolation at
+// steps * 2^l and a caller walking consecutive levels computes each once.  Not for a system
+// with a varying region (InvalidInput); steps * 2^bisections <= kMaxSteps.
+Eigen::MatrixXd transition_matrix_magnus4_level(const PeriodicSystem& sys, int steps,
+                                                int bisections);
 
 // A zero multiplier (possible only for a Phi that no smooth ODE produces, e.g. an exactly
 // singular input) is represented by zeta = -infinity and omega = 0.
@@ -63,7 +74,9 @@ struct FloquetExponent {
   std::complex<double> multiplier;  // Lambda_k
   double zeta = 0.0;                // ln|Lambda| / T (-infinity for Lambda = 0)
   double omega = 0.0;               // arg(Lambda) / T, principal value in (-1/2, 1/2]
-  Eigen::VectorXcd eigenvector;     // eigenvector of Phi(T) (unit 2-norm)
+  // Eigenvector of Phi(T) (unit 2-norm).  Empty when the result was computed with
+  // FloquetVectors::OnDemand: add_eigenvectors() computes it then from FloquetResult::phi.
+  Eigen::VectorXcd eigenvector;
 };
 
 struct FloquetResult {
@@ -72,12 +85,43 @@ struct FloquetResult {
   // determinant need be representable; 1 for a singular Phi.
   double liouville_residual = 0.0;
   // Failed when Phi has non-finite entries or the eigen-solve does not give finite
-  // multipliers and eigenvectors: then the exponents are NaN (or partly so) and must not be
-  // used; message says why.
+  // multipliers (and, when computed, eigenvectors): then the exponents are NaN (or partly so)
+  // and must not be used; message says why.
   Status status = Status::Ok;
   std::string message;
+  // The transition matrix the exponents are of, kept so that the eigenvectors can be computed
+  // when they are needed (add_eigenvectors(); the mode identification of continuation.h asks
+  // for them only when two candidates are close).
+  Eigen::MatrixXd phi;
+
+  // Every exponent carries its eigenvector (of the size of Phi).
+  bool has_eigenvectors() const;
 };
 
+// Whether floquet_exponents computes the eigenvectors with the multipliers.  They cost about as
+// much as the eigenvalues themselves (4x4: the eigen-solve takes twice as long with them).
+enum class FloquetVectors {
+  Compute,   // every exponent gets its eigenvector
+  OnDemand,  // multipliers only; add_eigenvectors() adds the eigenvectors from phi later
+};
+
+// With eigenvectors.  phi square and non-empty, trace_integral finite (else InvalidInput).
 FloquetResult floquet_exponents(const Eigen::MatrixXd& phi, double trace_integral);
+// The same into *out, reusing its storage: once *out has held a result of the same size,
+// nothing allocates for 4x4 and 8x8 Phi with OnDemand (the point path of the analysis).
+void floquet_exponents(const Eigen::MatrixXd& phi, double trace_integral, FloquetVectors vectors,
+                       FloquetResult* out);
+
+// Unit-2-norm eigenvectors of phi for the multipliers `multipliers` (eigenvalues of phi as a
+// previous eigen-solve gave them): each gets the eigenvector of the eigen-solve's eigenvalue
+// equal to it (the eigen-solve is deterministic, so the same eigenvalues come out), else of the
+// nearest one not yet used.  *vectors is resized to multipliers.size().  false when the
+// eigen-solve does not converge or gives non-finite vectors, or the sizes do not match.
+bool floquet_eigenvectors(const Eigen::MatrixXd& phi,
+                          const std::vector<std::complex<double>>& multipliers,
+                          std::vector<Eigen::VectorXcd>* vectors);
+// Adds the eigenvectors to a result computed with OnDemand (nothing to do when it has them);
+// false when they cannot be computed (no phi, a Failed result, a failed eigen-solve).
+bool add_eigenvectors(FloquetResult* result);
 
 }  // namespace flaplag
