@@ -100,6 +100,72 @@ TEST(CliRun, CaseFileAndJsonRoundTripReproduceTheBytes) {
   EXPECT_TRUE(j["rows"][1]["mu_c"].is_null());  // eta_SL = 0.01: mu_c = 1.317 > 1
 }
 
+// study --trim (issue 12 item 3): each row with mu_c carries the trim at mu_c under the names
+// of `flaplag trim` (that trim, bit for bit), a row without mu_c a null trim; the text table
+// adds theta0, theta1c, theta1s, lambda; `flaplag run` of the JSON reproduces it, and so does
+// flaplag merge of its --shard parts.
+TEST(CliStudy, TrimmedRowsCarryTheTrimAtMuC) {
+  // The typical C_T: at omega_L1 = 0.5 a periodic lag instability near mu = 1.02, none at 0.45.
+  const std::vector<std::string> base = {
+      "--model",     "paper-cyclic", "study",  "--vary", "omega-lag=0.45,0.5",   "--mu-max", "1.1",
+      "--scan-step", "0.1",          "--trim", "thrust", "--thrust-coefficient", "0.0042384"};
+  std::vector<std::string> args = base;
+  args.push_back("--json");
+  const Outcome s = run(args);
+  ASSERT_EQ(0, s.exit_code) << s.err;
+  const Json j = Json::parse(s.out);
+  ASSERT_EQ(2u, j["rows"].size());
+  EXPECT_TRUE(j["rows"][0]["mu_c"].is_null());
+  EXPECT_TRUE(j["rows"][0]["trim"].is_null());
+  const Json& row = j["rows"][1];
+  ASSERT_TRUE(row["mu_c"].is_number()) << row;
+  const Json& t = row["trim"];
+  ASSERT_TRUE(t.is_object()) << row;
+  EXPECT_EQ(row["mu_c"], t["mu"]);
+  EXPECT_EQ("thrust", t["kind"]);
+  EXPECT_TRUE(t["converged"].get<bool>());
+  EXPECT_LE(std::abs(t["thrust_coefficient"].get<double>() - 0.0042384), 1e-10 * 0.0042384);
+  // The same trim as `flaplag trim` of that rotor at that mu, and the same keys.
+  TempDir d;
+  const Outcome one = run({"--model", "paper-cyclic", "--omega-lag", "0.5", "trim", "--mu",
+                           t["mu"].dump(), "--thrust-coefficient", "0.0042384", "--json"});
+  ASSERT_EQ(0, one.exit_code) << one.err;
+  const Json o = Json::parse(one.out);
+  for (const auto& [key, value] : t.items()) EXPECT_EQ(o[key], value) << key;
+  // The text table: the controls at mu_c ("-" without mu_c: a cheap row).
+  const Outcome text =
+      run({"--model", "paper-cyclic", "study", "--vary", "omega-lag=0.45", "--mu-max", "0.3",
+           "--scan-step", "0.1", "--trim", "thrust", "--thrust-coefficient", "0.0042384"});
+  ASSERT_EQ(0, text.exit_code) << text.err;
+  EXPECT_TRUE(std::regex_search(text.out, std::regex("theta0 +theta1c +theta1s +lambda +status\n")))
+      << text.out;
+  EXPECT_TRUE(std::regex_search(text.out, std::regex("\n +0\\.45 .* - +- +- +- +ok\n")))
+      << text.out;
+  // Sharded and merged: the same file.
+  std::vector<std::string> merge = {"merge"};
+  for (const char* part : {"2/2", "1/2"}) {
+    std::vector<std::string> a = args;
+    const std::string f = d.file(std::string("part") + part[0] + ".json");
+    a.insert(a.end(), {"--shard", part, "-o", f});
+    ASSERT_EQ(0, run(a).exit_code) << part;
+    merge.push_back(f);
+  }
+  const Outcome merged = run(merge);
+  ASSERT_EQ(0, merged.exit_code) << merged.err;
+  EXPECT_EQ(s.out, merged.out);
+  // The JSON as a case reproduces itself; an untrimmed study has no trim at all.
+  const std::string file = d.file("study.json");
+  std::ofstream(file) << s.out;
+  const Outcome again = run({"run", file});
+  ASSERT_EQ(0, again.exit_code) << again.err;
+  EXPECT_EQ(s.out, again.out);
+  const Outcome plain = run({"study", "--vary", "omega-lag=1.0", "--mu-max", "0.2", "--json"});
+  ASSERT_EQ(0, plain.exit_code) << plain.err;
+  EXPECT_FALSE(Json::parse(plain.out)["rows"][0].contains("trim"));
+  EXPECT_EQ(std::string::npos,
+            run({"study", "--vary", "omega-lag=1.0", "--mu-max", "0.2"}).out.find("theta0"));
+}
+
 struct BadCase {
   const char* name;
   const char* text;
