@@ -550,6 +550,70 @@ TEST(CliPlot, PlotOfTheDataIsThePictureOfPlotOption) {
   EXPECT_EQ(2, run({"plot", "--plot", d.file("x.svg")}).exit_code);
 }
 
+// flaplag plot A.json B.json: several sweeps in one picture, each curve labelled by its file's
+// case or by --label; --mode and --max-zeta select curves; one file is the single-file picture;
+// mixing kinds is refused naming the file.
+TEST(CliPlot, SweepsOverlaidInOnePicture) {
+  TempDir d;
+  const std::string a = d.file("a.json"), b = d.file("b.json"), one = d.file("one.svg");
+  ASSERT_EQ(0, run({"sweep", "--mu", "0:0.4:0.2", "--json", "-o", a, "--plot", one}).exit_code);
+  ASSERT_EQ(0, run({"--model", "paper-cyclic", "sweep", "--mu", "0:0.4:0.2", "--trim", "thrust",
+                    "--json", "-o", b})
+                   .exit_code);
+  const std::string study = d.file("study.json");
+  ASSERT_EQ(0, run({"study", "--vary", "omega-lag=1.0", "--mu-max", "0.2", "--json", "-o", study})
+                   .exit_code);
+  if (gnuplot_available()) {
+    // One file: byte for byte the picture of sweep --plot.
+    const std::string again = d.file("again.svg");
+    ASSERT_EQ(0, run({"plot", a, "--plot", again}).exit_code);
+    EXPECT_EQ(slurp(one), slurp(again));
+    // The curves' titles appear in gnuplot's SVG as text: count each.
+    auto count = [](const std::string& svg, const std::string& title) {
+      std::size_t n = 0;
+      for (std::size_t at = svg.find(">" + title + "<"); at != std::string::npos;
+           at = svg.find(">" + title + "<", at + 1))
+        ++n;
+      return n;
+    };
+    const std::string both = d.file("both.svg");
+    const Outcome o = run({"plot", a, b, "--plot", both});
+    ASSERT_EQ(0, o.exit_code) << o.err;
+    const std::string svg = slurp(both);
+    for (const char* title : {"paper: flap", "paper: lag", "paper-cyclic, thrust trim: flap",
+                              "paper-cyclic, thrust trim: lag"})
+      EXPECT_GT(count(svg, title), 0u) << title;
+    const std::string lag = d.file("lag.svg");
+    ASSERT_EQ(0, run({"plot", a, b, "--mode", "lag", "--label", "fixed theta", "--label", "trimmed",
+                      "--plot", lag})
+                     .exit_code);
+    const std::string l = slurp(lag);
+    EXPECT_GT(count(l, "fixed theta: lag"), 0u);
+    EXPECT_GT(count(l, "trimmed: lag"), 0u);
+    EXPECT_EQ(0u, count(l, "fixed theta: flap") + count(l, "paper: lag"));
+    const std::string largest = d.file("largest.svg");
+    ASSERT_EQ(0, run({"plot", a, b, "--max-zeta", "--plot", largest}).exit_code);
+    const std::string m = slurp(largest);
+    EXPECT_GT(count(m, "paper"), 0u);
+    EXPECT_GT(count(m, "paper-cyclic, thrust trim"), 0u);
+    EXPECT_EQ(0u, count(m, "frequency omega"));  // one zeta panel
+  }
+  // Refused, one line naming the file or option as typed, exit 2, nothing written.
+  const std::string x = d.file("x.svg");
+  for (const auto& [args, reason] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"plot", a, study, "--plot", x},
+            "argument = " + study + ": a flaplag study result, not a sweep like " + a + ": .*"},
+           {{"plot", study, study, "--plot", x}, "argument = " + study + ": a flaplag study .*"},
+           {{"plot", a, b, "--label", "one", "--plot", x},
+            "--label = one: given 1 times for 2 data files.*"},
+           {{"plot", a, b, "--mode", "pitch", "--plot", x}, "--mode = pitch: not a mode of .*"}}) {
+    const Outcome r = run(args);
+    EXPECT_EQ(2, r.exit_code) << reason;
+    EXPECT_TRUE(std::regex_match(r.err, std::regex("flaplag: error: " + reason + "\n"))) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(x));
+  }
+}
+
 // simulate --nonlinear: the nonlinear equations from the periodic equilibrium; the tip deviation
 // from it decays at the largest zeta of `point --periodic-linearization` (within 1 %), and the
 // JSON carries the totals and the reference.
