@@ -233,7 +233,8 @@ const char* description(Command c) {
     case Command::Merge:
       return "join the --shard parts of a map or study into the file one run writes";
     case Command::Plot:
-      return "draw an existing sweep, study, map, response or simulate result (--json output)";
+      return "draw an existing sweep, study, map, response or simulate result (--json output), "
+             "or several sweeps in one picture";
     case Command::Trim:
       return "trim: theta0, theta1c, theta1s and lambda (eq 2.25) for a thrust coefficient";
   }
@@ -281,6 +282,7 @@ std::vector<std::string> examples(Command c) {
           "flaplag merge part*.json -o map.json"};
     case Command::Plot:
       return {"flaplag plot map.json --plot map.png",
+              "flaplag plot a.json b.json --label paper --label trimmed --max-zeta --plot z.png",
               "flaplag study --vary theta=0:0.3:0.02 --json -o s.json && flaplag plot s.json "
               "--plot s.svg"};
     case Command::Trim:
@@ -306,8 +308,12 @@ std::string usage_notes(Command c) {
              "Parts of\nanother case, missing or repeated parts and files that are not "
              "flaplag parts are\nrefused (exit 2).\n";
     case Command::Plot:
-      return "\nThe same picture as --plot on the command that wrote DATA.json.  Without "
-             "gnuplot\n(Debian: gnuplot-nox) one line says so and flaplag exits with code 3.\n";
+      return "\nThe same picture as --plot on the command that wrote DATA.json.  Several sweep "
+             "results\nare drawn in one picture, each curve labelled by its file's case (model, "
+             "trim,\nperiodic linearization) or by --label (one per file, in order); --max-zeta "
+             "draws\nonly the largest zeta of each, --mode NAME only that mode's curves.  "
+             "Without\ngnuplot (Debian: gnuplot-nox) one line says so and flaplag exits with "
+             "code 3.\n";
     default:
       return "";
   }
@@ -717,13 +723,26 @@ Request CommandLine::interpret() const {
       r.inputs = inputs_;
       break;
     case Command::Plot:
-      if (inputs_.size() != 1)
-        throw InvalidInput("argument", inputs_.empty() ? kMissing : shown(inputs_[1]),
-                           inputs_.empty() ? "flaplag plot needs the data: flaplag plot "
-                                             "DATA.json --plot FILE.svg"
-                                           : "flaplag plot draws one file at a time");
+      if (inputs_.empty())
+        throw InvalidInput("argument", kMissing,
+                           "flaplag plot needs the data: flaplag plot DATA.json... --plot "
+                           "FILE.svg");
       required("--plot");
       r.inputs = inputs_;
+      // --label may be repeated: one per data file, in order.
+      for (const Given& g : given_)
+        if (g.name == "--label") r.labels.push_back(g.text);
+      if (!r.labels.empty() && r.labels.size() != r.inputs.size())
+        throw InvalidInput("--label", shown(r.labels.back()),
+                           "given " + std::to_string(r.labels.size()) + " times for " +
+                               std::to_string(r.inputs.size()) +
+                               " data files (one --label per file, in order)");
+      r.max_zeta = given("--max-zeta") != nullptr;
+      if (const Given* g = given("--mode")) {
+        if (r.max_zeta)
+          throw InvalidInput(g->spelling, shown(g->text), "does not go with --max-zeta");
+        r.mode = g->text;
+      }
       break;
     case Command::Trim: {
       const Given& mu = required("--mu");
@@ -804,7 +823,7 @@ std::string CommandLine::help_text() const {
     if (c == Command::Study) usage += " --vary NAME=...";
     if (c == Command::Map) usage += " --x NAME=... --y NAME=...";
     if (c == Command::Merge) usage += " PART.json...";
-    if (c == Command::Plot) usage += " DATA.json --plot FILE.svg|FILE.png";
+    if (c == Command::Plot) usage += " DATA.json... --plot FILE.svg|FILE.png";
     out += "Usage: " + usage + " [OPTIONS]\n\n" + description(c) + "\n";
     out += usage_notes(c);
   }

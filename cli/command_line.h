@@ -56,8 +56,12 @@ struct Request {
   // study, map: --shard I/N (1 <= I <= N; N = 0: the whole job) and --quiet (no progress bar)
   int shard_index = 0, shard_count = 0;
   bool quiet = false;
-  // merge: the part files; plot: the data file (as typed)
+  // merge: the part files; plot: the data files (as typed), --label per file (in order; empty:
+  // labels from each result's case), --max-zeta (the largest zeta of each sweep only) and --mode
   std::vector<std::string> inputs;
+  std::vector<std::string> labels;
+  bool max_zeta = false;
+  std::string mode;  // plot --mode NAME: only that mode's curves ("": all)
   // response: --samples; simulate: --revs, --perturbation, --forced, --nonlinear, --samples
   int samples = 0;
   double revolutions = 20.0, perturbation = 0.01;

@@ -623,19 +623,23 @@ std::string typical(const Request& r, const Analysis& an) {
 bool trimmed(const Request& r) { return r.trim.kind != TrimKind::None; }
 
 Json trim_json(const Request& r, const TrimResult& t) {
+  // The keys of the Python module's TrimResult (python/src/module.cc trim_dict): one
+  // vocabulary for `flaplag trim`, the trim of point/sweep/critical --trim and of study rows.
+  // (The trimmed rotor's parameters are the header's for `flaplag trim`; alpha_R is the case's
+  // shaft_angle.)
   Json j;
-  j["trim"] = trim_kind_name(t.kind);
   j["mu"] = jnum(t.mu);
+  j["kind"] = trim_kind_name(t.kind);
   j["theta0"] = jnum(t.theta0);
   j["theta1c"] = jnum(t.theta1c);
   j["theta1s"] = jnum(t.theta1s);
   j["inflow"] = jnum(t.inflow);
   j["thrust_coefficient"] = jnum(t.thrust_coefficient);
-  j["thrust_coefficient_target"] = jnum(t.target);
-  j["shaft_angle"] = jnum(r.trim.shaft_angle);
+  j["target"] = jnum(t.target);
   j["flap_1c"] = jnum(t.flap_1c);
   j["flap_1s"] = jnum(t.flap_1s);
   j["iterations"] = t.iterations;
+  j["converged"] = t.converged;
   if (t.parameters.periodic_linearization) {
     j["equilibrium"] = Json{{"harmonics", t.equilibrium.harmonics},
                             {"truncation", jnum(t.equilibrium.truncation)}};
@@ -954,6 +958,16 @@ std::string study(const Request& request, std::string& warning, RunControl* cont
   if (s.cancelled)
     note_cancelled(control, s.rows_done, so.values.size(), "values (" + word(r.vary) + ")");
   for (StudyRow& row : s.rows) audit(row.critical);
+  // A trimmed study reports each row's trim at its mu_c (theta0, theta1c, theta1s, lambda
+  // there), as `critical --trim` and the Python module's study rows do: trim() of the row's
+  // rotor at mu_c.  After a Ctrl-C the rows finished carry none (null).
+  std::vector<std::optional<TrimResult>> trims(s.rows.size());
+  for (std::size_t i = 0; trimmed(r) && i < s.rows.size(); ++i) {
+    if (s.cancelled || (control && control->cancel && control->cancel->load())) break;
+    const StudyRow& row = s.rows[i];
+    if (row.critical.mu_c)
+      trims[i] = trim(with_parameter(r.params, r.vary, row.value), *row.critical.mu_c, r.trim);
+  }
   if (!r.plot.empty()) {
     std::vector<StudyMark> marks;
     for (const StudyRow& row : s.rows) {
@@ -972,7 +986,8 @@ std::string study(const Request& request, std::string& warning, RunControl* cont
     j["mu_max"] = r.mu_max;
     j["scan_step"] = r.scan_step;
     Json rows = Json::array();
-    for (const StudyRow& row : s.rows) {
+    for (std::size_t k = 0; k < s.rows.size(); ++k) {
+      const StudyRow& row = s.rows[k];
       const CriticalResult& c = row.critical;
       Json x;
       x["value"] = row.value;
@@ -985,6 +1000,7 @@ std::string study(const Request& request, std::string& warning, RunControl* cont
       Json iv = Json::array();
       for (const InstabilityInterval& i : c.intervals) iv.push_back(interval_json(i));
       x["intervals"] = iv;
+      if (trimmed(r)) x["trim"] = trims[k] ? trim_json(r, *trims[k]) : Json(nullptr);
       rows.push_back(status_json(x, c.status, vocab(r, c.message)));
     }
     j["rows"] = rows;
@@ -993,18 +1009,36 @@ std::string study(const Request& request, std::string& warning, RunControl* cont
   std::string out = header_text(base) + "\n";
   out += "mu_c and instability intervals versus " + word(r.vary) + " (mu up to " + num(r.mu_max) +
          ")\n";
-  TextTable t({word(r.vary), "mu_c", "mode", "omega", "kind", "unstable for mu in", "status"});
-  t.left_align(6);
+  std::vector<std::string> head = {word(r.vary), "mu_c", "mode",
+                                   "omega",      "kind", "unstable for mu in"};
+  // Trimmed: the controls and inflow of the trim at mu_c [rad; lambda of eq 2.25].
+  if (trimmed(r)) head.insert(head.end(), {"theta0", "theta1c", "theta1s", "lambda"});
+  head.push_back("status");
+  TextTable t(head);
+  t.left_align(head.size() - 1);
   t.left_align(5);
-  for (const StudyRow& row : s.rows) {
+  for (std::size_t k = 0; k < s.rows.size(); ++k) {
+    const StudyRow& row = s.rows[k];
     const CriticalResult& c = row.critical;
     std::string ivs;
     for (const InstabilityInterval& i : c.intervals)
       ivs += (ivs.empty() ? "" : " ") + std::string("(") + short_text(i.onset) + ", " +
              (i.end ? short_text(*i.end) : std::string("mu-max")) + ")";
-    t.add_row({num(row.value), c.mu_c ? short_text(*c.mu_c) : (c.hover_unstable ? "hover" : "-"),
-               c.mu_c ? c.mode : "-", c.mu_c ? short_text(c.omega) : "-",
-               c.mu_c ? kind_name(c.kind) : "-", ivs.empty() ? "-" : ivs, status_name(c.status)});
+    std::vector<std::string> cells = {
+        num(row.value),
+        c.mu_c ? short_text(*c.mu_c) : (c.hover_unstable ? "hover" : "-"),
+        c.mu_c ? c.mode : "-",
+        c.mu_c ? short_text(c.omega) : "-",
+        c.mu_c ? kind_name(c.kind) : "-",
+        ivs.empty() ? "-" : ivs};
+    if (trimmed(r)) {
+      const std::optional<TrimResult>& x = trims[k];
+      for (double v :
+           {x ? x->theta0 : 0.0, x ? x->theta1c : 0.0, x ? x->theta1s : 0.0, x ? x->inflow : 0.0})
+        cells.push_back(x ? short_text(v) : "-");
+    }
+    cells.push_back(status_name(c.status));
+    t.add_row(cells);
   }
   out += t.render();
   for (const StudyRow& row : s.rows)
@@ -1282,7 +1316,7 @@ std::string run_command_text(const Request& r, std::string* warning, RunControl*
     case Command::Merge:
       return merge_parts(r);
     case Command::Plot:
-      return plot_data_file(r.inputs.front(), r.plot);
+      return plot_data_files(r.inputs, r.labels, r.max_zeta, r.mode, r.plot);
     case Command::Trim:
       return trim_command(r);
     default:

@@ -176,7 +176,15 @@ std::vector<OptionSpec> batch_options() {
 std::vector<OptionSpec> file_tool_options(Command c) {
   if (c == Command::Merge) return {output_options()[1]};  // -o: the output is JSON
   return {
-      value_option("--plot", "FILE.svg|FILE.png", "the picture to draw (gnuplot)", "", {"plot"})};
+      value_option("--plot", "FILE.svg|FILE.png", "the picture to draw (gnuplot)", "", {"plot"}),
+      value_option("--label", "TEXT",
+                   "the label of a data file's curves (repeated: one per file, in order; "
+                   "default: from the file's case)",
+                   "", {"label"}),
+      flag_option("--max-zeta", "sweeps: only the largest zeta over the modes at each mu"),
+      value_option("--mode", "NAME",
+                   "sweeps: only the curves of this mode (a label of the sweep: flap, lag, ...)",
+                   "", {"mode"})};
 }
 
 std::vector<OptionSpec> build(Command c) {

@@ -126,6 +126,33 @@ std::string sweep_plot_script(const std::string& model, const std::vector<double
   return line_plot_script("flaplag sweep: " + model, {pz, pw});
 }
 
+std::string sweep_overlay_script(const std::vector<SweepOverlay>& sweeps, bool max_zeta) {
+  Panel pz{max_zeta ? "largest damping exponent zeta over the modes"
+                    : "damping exponent zeta (real part of the characteristic exponent)",
+           "mu",
+           "zeta [1/rev]",
+           {},
+           true};
+  Panel pw{"frequency omega", "mu", "omega [per rev]", {}, false};
+  for (const SweepOverlay& s : sweeps) {
+    if (max_zeta) {
+      // NaN (a gap) where no mode has a zeta.
+      std::vector<double> z(s.mu.size(), NAN);
+      for (const ModeCurve& m : s.modes)
+        for (std::size_t i = 0; i < z.size() && i < m.zeta.size(); ++i)
+          if (std::isfinite(m.zeta[i]) && !(z[i] >= m.zeta[i])) z[i] = m.zeta[i];
+      pz.curves.push_back({s.label, s.mu, z, false, 7});
+      continue;
+    }
+    for (const ModeCurve& m : s.modes) {
+      pz.curves.push_back({s.label + ": " + m.label, s.mu, m.zeta, false, 7});
+      pw.curves.push_back({s.label + ": " + m.label, s.mu, m.omega, false, 7});
+    }
+  }
+  if (max_zeta) return line_plot_script("flaplag sweeps: largest zeta", {pz});
+  return line_plot_script("flaplag sweeps", {pz, pw});
+}
+
 std::string study_plot_script(const std::string& parameter, const std::vector<StudyMark>& rows) {
   Curve flutter{"mu_c, flutter", {}, {}, true, 7},
       periodic{"mu_c, periodic (omega = 0, 1/2, 1)", {}, {}, true, 5};

@@ -51,6 +51,16 @@ struct ModeCurve {
 std::string sweep_plot_script(const std::string& model, const std::vector<double>& mu,
                               const std::vector<ModeCurve>& modes);
 
+// Several sweeps in one picture (`flaplag plot A.json B.json ...`): each curve titled
+// "LABEL: MODE" (max_zeta: one curve per sweep, the largest zeta over its modes at each mu,
+// titled LABEL, in one zeta panel).
+struct SweepOverlay {
+  std::string label;
+  std::vector<double> mu;
+  std::vector<ModeCurve> modes;
+};
+std::string sweep_overlay_script(const std::vector<SweepOverlay>& sweeps, bool max_zeta);
+
 // study: mu_c per value, flutter and periodic marked differently (Fig 15), and the unstable
 // intervals (an open end drawn to mu-max).
 struct StudyMark {
@@ -77,6 +87,14 @@ std::string simulate_plot_script(double mu, const std::vector<double>& revolutio
 // for a file that cannot be read, is not JSON or not such a result; RendererUnavailable when
 // gnuplot is missing or fails.  Returns "" (nothing for stdout).
 std::string plot_data_file(const std::string& data, const std::string& plot);
+// `flaplag plot A.json B.json ... [--label L]... [--max-zeta | --mode M] --plot FILE`: one file
+// without labels, max_zeta or mode is plot_data_file (the same bytes); otherwise every file must be
+// a sweep result (InvalidInput("argument", the first other file as typed, reason) if not).  labels:
+// empty (each from its file's case: model, trim, periodic linearization) or one per file.
+// mode: "" or the label of the one mode to draw (each file must have it).
+std::string plot_data_files(const std::vector<std::string>& data,
+                            const std::vector<std::string>& labels, bool max_zeta,
+                            const std::string& mode, const std::string& plot);
 
 // gnuplot is not installed or failed (the message is one line).
 struct RendererUnavailable : std::runtime_error {

@@ -1,5 +1,6 @@
 // flaplag CLI — `flaplag plot DATA.json`: the picture of an existing result, from the numbers
 // its JSON holds, through the same script builders as --plot (plot.h).
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -29,19 +30,37 @@ std::vector<double> numbers(const Json& a) {
   return v;
 }
 
-std::string sweep_script(const Json& j) {
-  std::vector<double> mu;
-  std::vector<ModeCurve> modes;
-  for (const Json& l : j.at("labels")) modes.push_back({l.get<std::string>(), {}, {}});
+SweepOverlay sweep_data(const Json& j) {
+  SweepOverlay s;
+  for (const Json& l : j.at("labels")) s.modes.push_back({l.get<std::string>(), {}, {}});
   for (const Json& row : j.at("rows")) {
-    mu.push_back(number(row.at("mu")));
-    for (ModeCurve& m : modes) {
+    s.mu.push_back(number(row.at("mu")));
+    for (ModeCurve& m : s.modes) {
       const Json& e = row.at(m.label);
       m.zeta.push_back(e.is_object() ? number(e.at("zeta")) : NAN);
       m.omega.push_back(e.is_object() ? number(e.at("omega")) : NAN);
     }
   }
-  return sweep_plot_script(j.at("model").at("name").get<std::string>(), mu, modes);
+  return s;
+}
+
+std::string sweep_script(const Json& j) {
+  const SweepOverlay s = sweep_data(j);
+  return sweep_plot_script(j.at("model").at("name").get<std::string>(), s.mu, s.modes);
+}
+
+// A short label of a result from its case (the command line behind it): the model, the trim
+// and the periodic linearization, e.g. "paper-cyclic, moment trim, periodic".
+std::string case_label(const Json& j) {
+  std::string label = j.at("model").at("name").get<std::string>();
+  const Json& c = j.contains("case") && j["case"].is_object() ? j["case"] : Json::object();
+  if (c.contains("trim") && c["trim"].is_string() && c["trim"] != "none")
+    label += ", " + c["trim"].get<std::string>() + " trim";
+  // The resolved parameters say it whether the option or the case file set it.
+  const Json& p =
+      j.contains("parameters") && j["parameters"].is_object() ? j["parameters"] : Json::object();
+  if (p.value("periodic-linearization", false) == true) label += ", periodic linearization";
+  return label;
 }
 
 std::string study_script(const Json& j) {
@@ -83,9 +102,7 @@ std::string tip_script(const std::string& file, const std::string& command, cons
                                : simulate_plot_script(mu, x, flap, lag);
 }
 
-}  // namespace
-
-std::string plot_data_file(const std::string& data, const std::string& plot) {
+Json read_result(const std::string& data) {
   std::ifstream in(data, std::ios::binary);
   if (!in) refuse(data, "cannot be read");
   std::stringstream ss;
@@ -100,6 +117,13 @@ std::string plot_data_file(const std::string& data, const std::string& plot) {
   if (!j.is_object() || !j.contains("flaplag") || !j.contains("command") ||
       !j["command"].is_string())
     refuse(data, "not a flaplag --json output");
+  return j;
+}
+
+}  // namespace
+
+std::string plot_data_file(const std::string& data, const std::string& plot) {
+  const Json j = read_result(data);
   const std::string command = j["command"].get<std::string>();
   std::string script;
   try {
@@ -120,6 +144,56 @@ std::string plot_data_file(const std::string& data, const std::string& plot) {
            "a damaged flaplag " + command + " result (a key is missing or has the wrong type)");
   }
   const std::string warning = render_plot(script, plot);
+  if (!warning.empty()) throw RendererUnavailable(warning);
+  return "";
+}
+
+std::string plot_data_files(const std::vector<std::string>& data,
+                            const std::vector<std::string>& labels, bool max_zeta,
+                            const std::string& mode, const std::string& plot) {
+  if (data.size() == 1 && labels.empty() && !max_zeta && mode.empty())
+    return plot_data_file(data[0], plot);
+  std::vector<SweepOverlay> sweeps;
+  std::string first;  // the kind of the first file
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    const Json j = read_result(data[i]);
+    const std::string command = j["command"].get<std::string>();
+    if (i == 0) first = command;
+    if (command != first)
+      refuse(data[i], "a flaplag " + command + " result, not a " + first + " like " +
+                          shown(data[0]) + ": one picture draws results of one kind");
+    if (command != "sweep")
+      refuse(data[i], std::string("a flaplag ") + command + " result: " +
+                          (data.size() > 1 ? "several results in one picture"
+                                           : "--label, --max-zeta and --mode") +
+                          " are for sweep results only");
+    try {
+      SweepOverlay s = sweep_data(j);
+      s.label = labels.empty() ? case_label(j) : labels[i];
+      if (!mode.empty()) {
+        std::vector<ModeCurve> kept;
+        for (ModeCurve& m : s.modes)
+          if (m.label == mode) kept.push_back(std::move(m));
+        if (kept.empty())
+          throw InvalidInput(
+              "mode", shown(mode),
+              "not a mode of " + shown(data[i]) + " (its modes: " + j.at("labels").dump() + ")");
+        s.modes = std::move(kept);
+      }
+      sweeps.push_back(std::move(s));
+    } catch (const Json::exception&) {
+      refuse(data[i], "a damaged flaplag sweep result (a key is missing or has the wrong type)");
+    }
+  }
+  // Two files of the same case get the same label: number them to tell the curves apart.
+  if (labels.empty()) {
+    std::vector<std::string> base;
+    for (const SweepOverlay& s : sweeps) base.push_back(s.label);
+    for (std::size_t i = 0; i < sweeps.size(); ++i)
+      if (std::count(base.begin(), base.end(), base[i]) > 1)
+        sweeps[i].label += " (" + std::to_string(i + 1) + ")";
+  }
+  const std::string warning = render_plot(sweep_overlay_script(sweeps, max_zeta), plot);
   if (!warning.empty()) throw RendererUnavailable(warning);
   return "";
 }

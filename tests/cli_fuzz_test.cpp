@@ -170,6 +170,9 @@ class Generator {
                                                 "--y",
                                                 "--threads",
                                                 "--plot",
+                                                "--label",
+                                                "--max-zeta",
+                                                "--mode",
                                                 "--samples",
                                                 "--revs",
                                                 "--perturbation",
@@ -275,6 +278,8 @@ class Generator {
     if (option == "--x" || option == "--y") return axis(true);
     if (option == "--threads") return std::to_string(integer(0, 3));
     if (option == "--plot") return chance(0.5) ? "plot.svg" : "plot.png";
+    if (option == "--label") return pick(std::vector<std::string>{"(a) paper", "", "x\"y"});
+    if (option == "--mode") return pick(std::vector<std::string>{"lag", "flap", "lag2"});
     if (option == "--shard") {  // part I of N; now and then I > N (refused)
       const int n = integer(1, 4);
       return std::to_string(chance(0.9) ? integer(1, n) : n + 1) + "/" + std::to_string(n);

@@ -100,6 +100,72 @@ TEST(CliRun, CaseFileAndJsonRoundTripReproduceTheBytes) {
   EXPECT_TRUE(j["rows"][1]["mu_c"].is_null());  // eta_SL = 0.01: mu_c = 1.317 > 1
 }
 
+// study --trim (issue 12 item 3): each row with mu_c carries the trim at mu_c under the names
+// of `flaplag trim` (that trim, bit for bit), a row without mu_c a null trim; the text table
+// adds theta0, theta1c, theta1s, lambda; `flaplag run` of the JSON reproduces it, and so does
+// flaplag merge of its --shard parts.
+TEST(CliStudy, TrimmedRowsCarryTheTrimAtMuC) {
+  // The typical C_T: at omega_L1 = 0.5 a periodic lag instability near mu = 1.02, none at 0.45.
+  const std::vector<std::string> base = {
+      "--model",     "paper-cyclic", "study",  "--vary", "omega-lag=0.45,0.5",   "--mu-max", "1.1",
+      "--scan-step", "0.1",          "--trim", "thrust", "--thrust-coefficient", "0.0042384"};
+  std::vector<std::string> args = base;
+  args.push_back("--json");
+  const Outcome s = run(args);
+  ASSERT_EQ(0, s.exit_code) << s.err;
+  const Json j = Json::parse(s.out);
+  ASSERT_EQ(2u, j["rows"].size());
+  EXPECT_TRUE(j["rows"][0]["mu_c"].is_null());
+  EXPECT_TRUE(j["rows"][0]["trim"].is_null());
+  const Json& row = j["rows"][1];
+  ASSERT_TRUE(row["mu_c"].is_number()) << row;
+  const Json& t = row["trim"];
+  ASSERT_TRUE(t.is_object()) << row;
+  EXPECT_EQ(row["mu_c"], t["mu"]);
+  EXPECT_EQ("thrust", t["kind"]);
+  EXPECT_TRUE(t["converged"].get<bool>());
+  EXPECT_LE(std::abs(t["thrust_coefficient"].get<double>() - 0.0042384), 1e-10 * 0.0042384);
+  // The same trim as `flaplag trim` of that rotor at that mu, and the same keys.
+  TempDir d;
+  const Outcome one = run({"--model", "paper-cyclic", "--omega-lag", "0.5", "trim", "--mu",
+                           t["mu"].dump(), "--thrust-coefficient", "0.0042384", "--json"});
+  ASSERT_EQ(0, one.exit_code) << one.err;
+  const Json o = Json::parse(one.out);
+  for (const auto& [key, value] : t.items()) EXPECT_EQ(o[key], value) << key;
+  // The text table: the controls at mu_c ("-" without mu_c: a cheap row).
+  const Outcome text =
+      run({"--model", "paper-cyclic", "study", "--vary", "omega-lag=0.45", "--mu-max", "0.3",
+           "--scan-step", "0.1", "--trim", "thrust", "--thrust-coefficient", "0.0042384"});
+  ASSERT_EQ(0, text.exit_code) << text.err;
+  EXPECT_TRUE(std::regex_search(text.out, std::regex("theta0 +theta1c +theta1s +lambda +status\n")))
+      << text.out;
+  EXPECT_TRUE(std::regex_search(text.out, std::regex("\n +0\\.45 .* - +- +- +- +ok\n")))
+      << text.out;
+  // Sharded and merged: the same file.
+  std::vector<std::string> merge = {"merge"};
+  for (const char* part : {"2/2", "1/2"}) {
+    std::vector<std::string> a = args;
+    const std::string f = d.file(std::string("part") + part[0] + ".json");
+    a.insert(a.end(), {"--shard", part, "-o", f});
+    ASSERT_EQ(0, run(a).exit_code) << part;
+    merge.push_back(f);
+  }
+  const Outcome merged = run(merge);
+  ASSERT_EQ(0, merged.exit_code) << merged.err;
+  EXPECT_EQ(s.out, merged.out);
+  // The JSON as a case reproduces itself; an untrimmed study has no trim at all.
+  const std::string file = d.file("study.json");
+  std::ofstream(file) << s.out;
+  const Outcome again = run({"run", file});
+  ASSERT_EQ(0, again.exit_code) << again.err;
+  EXPECT_EQ(s.out, again.out);
+  const Outcome plain = run({"study", "--vary", "omega-lag=1.0", "--mu-max", "0.2", "--json"});
+  ASSERT_EQ(0, plain.exit_code) << plain.err;
+  EXPECT_FALSE(Json::parse(plain.out)["rows"][0].contains("trim"));
+  EXPECT_EQ(std::string::npos,
+            run({"study", "--vary", "omega-lag=1.0", "--mu-max", "0.2"}).out.find("theta0"));
+}
+
 struct BadCase {
   const char* name;
   const char* text;
@@ -482,6 +548,70 @@ TEST(CliPlot, PlotOfTheDataIsThePictureOfPlotOption) {
   }
   EXPECT_EQ(2, run({"plot", data}).exit_code);  // --plot is required
   EXPECT_EQ(2, run({"plot", "--plot", d.file("x.svg")}).exit_code);
+}
+
+// flaplag plot A.json B.json: several sweeps in one picture, each curve labelled by its file's
+// case or by --label; --mode and --max-zeta select curves; one file is the single-file picture;
+// mixing kinds is refused naming the file.
+TEST(CliPlot, SweepsOverlaidInOnePicture) {
+  TempDir d;
+  const std::string a = d.file("a.json"), b = d.file("b.json"), one = d.file("one.svg");
+  ASSERT_EQ(0, run({"sweep", "--mu", "0:0.4:0.2", "--json", "-o", a, "--plot", one}).exit_code);
+  ASSERT_EQ(0, run({"--model", "paper-cyclic", "sweep", "--mu", "0:0.4:0.2", "--trim", "thrust",
+                    "--json", "-o", b})
+                   .exit_code);
+  const std::string study = d.file("study.json");
+  ASSERT_EQ(0, run({"study", "--vary", "omega-lag=1.0", "--mu-max", "0.2", "--json", "-o", study})
+                   .exit_code);
+  if (gnuplot_available()) {
+    // One file: byte for byte the picture of sweep --plot.
+    const std::string again = d.file("again.svg");
+    ASSERT_EQ(0, run({"plot", a, "--plot", again}).exit_code);
+    EXPECT_EQ(slurp(one), slurp(again));
+    // The curves' titles appear in gnuplot's SVG as text: count each.
+    auto count = [](const std::string& svg, const std::string& title) {
+      std::size_t n = 0;
+      for (std::size_t at = svg.find(">" + title + "<"); at != std::string::npos;
+           at = svg.find(">" + title + "<", at + 1))
+        ++n;
+      return n;
+    };
+    const std::string both = d.file("both.svg");
+    const Outcome o = run({"plot", a, b, "--plot", both});
+    ASSERT_EQ(0, o.exit_code) << o.err;
+    const std::string svg = slurp(both);
+    for (const char* title : {"paper: flap", "paper: lag", "paper-cyclic, thrust trim: flap",
+                              "paper-cyclic, thrust trim: lag"})
+      EXPECT_GT(count(svg, title), 0u) << title;
+    const std::string lag = d.file("lag.svg");
+    ASSERT_EQ(0, run({"plot", a, b, "--mode", "lag", "--label", "fixed theta", "--label", "trimmed",
+                      "--plot", lag})
+                     .exit_code);
+    const std::string l = slurp(lag);
+    EXPECT_GT(count(l, "fixed theta: lag"), 0u);
+    EXPECT_GT(count(l, "trimmed: lag"), 0u);
+    EXPECT_EQ(0u, count(l, "fixed theta: flap") + count(l, "paper: lag"));
+    const std::string largest = d.file("largest.svg");
+    ASSERT_EQ(0, run({"plot", a, b, "--max-zeta", "--plot", largest}).exit_code);
+    const std::string m = slurp(largest);
+    EXPECT_GT(count(m, "paper"), 0u);
+    EXPECT_GT(count(m, "paper-cyclic, thrust trim"), 0u);
+    EXPECT_EQ(0u, count(m, "frequency omega"));  // one zeta panel
+  }
+  // Refused, one line naming the file or option as typed, exit 2, nothing written.
+  const std::string x = d.file("x.svg");
+  for (const auto& [args, reason] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"plot", a, study, "--plot", x},
+            "argument = " + study + ": a flaplag study result, not a sweep like " + a + ": .*"},
+           {{"plot", study, study, "--plot", x}, "argument = " + study + ": a flaplag study .*"},
+           {{"plot", a, b, "--label", "one", "--plot", x},
+            "--label = one: given 1 times for 2 data files.*"},
+           {{"plot", a, b, "--mode", "pitch", "--plot", x}, "--mode = pitch: not a mode of .*"}}) {
+    const Outcome r = run(args);
+    EXPECT_EQ(2, r.exit_code) << reason;
+    EXPECT_TRUE(std::regex_match(r.err, std::regex("flaplag: error: " + reason + "\n"))) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(x));
+  }
 }
 
 // simulate --nonlinear: the nonlinear equations from the periodic equilibrium; the tip deviation

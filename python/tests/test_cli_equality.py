@@ -179,13 +179,22 @@ def test_trimmed_point_and_sweep():
 TRIM_CT = "0.0042384"  # the typical case's C_T in hover (theta = 0.15, eq 2.25 inflow)
 
 
+# The fields of a trim in the CLI's JSON: those of TrimResult (one vocabulary), less its
+# ``parameters`` (the CLI's header holds them); its ``message`` names options as the CLI does.
+TRIM_FIELDS = ("mu", "kind", "theta0", "theta1c", "theta1s", "inflow", "thrust_coefficient",
+               "target", "flap_1c", "flap_1s", "iterations", "converged", "status")
+
+
 def check_trim(doc, t):
-    """A trim of the CLI's JSON (`flaplag trim`, `critical --trim`) and a TrimResult."""
-    for key in ("mu", "theta0", "theta1c", "theta1s", "inflow", "thrust_coefficient",
-                "flap_1c", "flap_1s"):
-        assert same(doc[key], getattr(t, key)), key
-    assert same(doc["thrust_coefficient_target"], t.target)
-    assert doc["iterations"] == t.iterations and doc["status"] == t.status
+    """A trim of the CLI's JSON (`flaplag trim`, `critical --trim`, a `study --trim` row) and a
+    TrimResult: the same fields, bit for bit."""
+    for key in TRIM_FIELDS:
+        value = getattr(t, key)
+        if isinstance(value, float):
+            assert same(doc[key], value), key
+        else:
+            assert doc[key] == value, key
+    assert doc.get("message", "") == t.message or "`" in t.message
 
 
 def test_trimmed_study():
@@ -211,6 +220,12 @@ def test_trimmed_study():
         assert row["status"] == crit.status
         if "`" not in crit.message:
             assert row["message"] == crit.message
+        # the trim at mu_c, under the names of StudyResult's rows (null without mu_c)
+        if crit.trim is None:
+            assert row["trim"] is None
+        else:
+            assert set(row["trim"]) - {"message"} == set(TRIM_FIELDS)
+            check_trim(row["trim"], crit.trim)
     assert find(doc, "status") == st.status
     # rows with and without mu_c (the typical C_T: a periodic lag instability near mu = 1.02
     # at omega_lag = 0.5 only, stable up to 1.1 beside it)
