@@ -336,15 +336,30 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
     }
     return trim(p, mu, o, &chain);
   }
-  // From a start at another mu: q° of the start's controls, continued to mu, may fold before
-  // the trimmed branch does; then the trim is continued in halved steps of mu (down to 1e-3).
-  if (p.periodic_linearization && start != nullptr && start->status != Status::Failed &&
-      start->equilibrium.coefficients.size() > 0 && std::abs(mu - start->mu) > 1e-3) {
+  // From a start at another mu: Newton from the start's controls may fail far from it (about
+  // hover: the moment trim from mu = 0.7 to 0.8 of the typical case; about the periodic
+  // equilibrium: q° of the start's controls, continued to mu, may fold before the trimmed
+  // branch does); then the trim is continued in halved steps of mu (down to 1e-3) from the
+  // last converged trim.
+  auto settled = [](const TrimResult& t) { return t.status != Status::Failed && t.converged; };
+  if (start != nullptr && settled(*start) && start->kind == o.kind &&
+      (!p.periodic_linearization || start->equilibrium.coefficients.size() > 0) &&
+      std::abs(mu - start->mu) > 1e-3) {
     TrimResult direct = trim_once(p, m, mu, o, start);
-    if (direct.status != Status::Failed) return direct;
+    if (settled(direct)) return direct;
     const TrimResult half = trim(p, 0.5 * (start->mu + mu), o, start);
-    if (half.status == Status::Failed) return direct;
+    if (!settled(half)) return direct;
     return trim(p, mu, o, &half);
+  }
+  // About hover without a start (the thrust trim of a study, from the blade-element controls):
+  // when that fails, the same continuation from the hover trim.
+  if (!p.periodic_linearization && start == nullptr && mu > 1e-3) {
+    TrimResult direct = trim_once(p, m, mu, o, nullptr);
+    if (settled(direct)) return direct;
+    const TrimResult hover = trim_once(p, m, 0.0, o, nullptr);
+    if (!settled(hover)) return direct;
+    TrimResult chained = trim(p, mu, o, &hover);
+    return settled(chained) ? chained : direct;
   }
   return trim_once(p, m, mu, o, start);
 }
