@@ -16,10 +16,11 @@
 // and the continuation then work unchanged; shooting would give q° only point-wise and need a
 // point-wise evaluation path of A(psi).  The price is the truncation at K harmonics: with the
 // reversed-flow sector q°'' jumps at the sector edges, so the coefficients of q° fall like
-// k^-3 (the result reports the size of the last harmonic; docs/validation.md gives mu_c against
-// K).  The projections are integrals over each smooth piece (split at the sector edges) by
-// composite 8-point Gauss-Legendre rules fine enough for the trigonometric degree of the
-// integrand (converged to rounding).
+// k^-3; by default K is chosen by doubling until two K agree (harmonics_error), and the result
+// also reports the size of the last harmonic (docs/validation.md gives mu_c against K).  The
+// projections are integrals over each smooth piece (split at the sector edges) by composite 8-point
+// Gauss-Legendre rules fine enough for the trigonometric degree of the integrand (converged to
+// rounding).
 #pragma once
 
 #include <Eigen/Dense>
