@@ -281,8 +281,11 @@ std::string header_text(const Analysis& an, bool with_method = true) {
   if (p.periodic_linearization) {
     kv.add("linearized",
            "about the periodic equilibrium of the nonlinear equations (harmonic "
-           "balance, K = " +
-               std::to_string(PeriodicEquilibriumOptions{}.harmonics) + "), not about hover");
+           "balance, K automatic: doubled from " +
+               std::to_string(PeriodicEquilibriumOptions::kFirstHarmonics) + " up to " +
+               std::to_string(PeriodicEquilibriumOptions::kMaxHarmonics) +
+               " until the coefficients agree to " +
+               short_text(PeriodicEquilibriumOptions{}.harmonics_tolerance) + "), not about hover");
   }
   if (with_method) kv.add("method", method_text(an.options()));
   kv.add("parameters", parameters_text(p));

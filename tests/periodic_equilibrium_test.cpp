@@ -198,6 +198,45 @@ TEST(PeriodicEquilibrium, CriticalReportsTheFoldAsTheStabilityBoundary) {
   EXPECT_LT(below.min_distance_to_one, 0.3);
 }
 
+// Automatic K: the K doubles until two successive K agree to harmonics_tolerance; the estimate
+// bounds the distance to the K = 64 solution (the cap, reached with a tolerance it cannot meet,
+// which is a warning naming the option); a fixed K is kept and has no estimate.
+TEST(PeriodicEquilibrium, AutomaticHarmonicsMeetTheirToleranceOrWarnAtTheCap) {
+  RotorParameters p;
+  p.model = "paper-nonlinear";
+  const Analysis an(p, {});
+  const double mu = 0.3;
+  PeriodicEquilibriumOptions o;
+  o.check_stability = false;
+  const PeriodicEquilibrium automatic = an.periodic_equilibrium(mu, o);
+  ASSERT_EQ(Status::Ok, automatic.status) << automatic.message;
+  ASSERT_TRUE(std::isfinite(automatic.harmonics_error));
+  EXPECT_LE(automatic.harmonics_error, o.harmonics_tolerance);
+  EXPECT_GE(automatic.harmonics, 2 * PeriodicEquilibriumOptions::kFirstHarmonics);
+  EXPECT_LT(automatic.harmonics, PeriodicEquilibriumOptions::kMaxHarmonics);
+
+  o.harmonics_tolerance = 1e-12;  // not reachable (the coefficients fall like k^-3)
+  const PeriodicEquilibrium capped = an.periodic_equilibrium(mu, o);
+  EXPECT_EQ(Status::Warning, capped.status);
+  EXPECT_NE(std::string::npos, capped.message.find("harmonics_tolerance")) << capped.message;
+  EXPECT_EQ(PeriodicEquilibriumOptions::kMaxHarmonics, capped.harmonics);
+  EXPECT_GT(capped.harmonics_error, 1e-12);
+  // the estimate is conservative: the K = 64 solution is within it
+  const Eigen::MatrixXd& fine = capped.coefficients;
+  const int cols = static_cast<int>(automatic.coefficients.cols());
+  double diff = fine.rightCols(fine.cols() - cols).cwiseAbs().maxCoeff();
+  diff = std::max(diff, (fine.leftCols(cols) - automatic.coefficients).cwiseAbs().maxCoeff());
+  EXPECT_LE(diff / fine.cwiseAbs().maxCoeff(), automatic.harmonics_error);
+
+  PeriodicEquilibriumOptions fixed;
+  fixed.check_stability = false;
+  fixed.harmonics = 8;
+  const PeriodicEquilibrium eight = an.periodic_equilibrium(mu, fixed);
+  EXPECT_EQ(8, eight.harmonics);
+  EXPECT_EQ(17, eight.coefficients.cols());
+  EXPECT_TRUE(std::isnan(eight.harmonics_error));
+}
+
 TEST(PeriodicEquilibrium, BadOptionsAndModelsWithoutNonlinearLoadsAreRejected) {
   PeriodicEquilibriumOptions o;
   std::string why;
@@ -210,6 +249,10 @@ TEST(PeriodicEquilibrium, BadOptionsAndModelsWithoutNonlinearLoadsAreRejected) {
   o.tolerance = std::nan("");
   EXPECT_FALSE(o.IsValid(&why));
   EXPECT_NE(std::string::npos, why.find("tolerance")) << why;
+  o = {};
+  o.harmonics_tolerance = 0.0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(std::string::npos, why.find("harmonics_tolerance = 0")) << why;
   o = {};
   o.max_iterations = 0;
   EXPECT_THROW(o.Check(), InvalidInput);

@@ -138,6 +138,30 @@ TEST(Trim, MomentTrimRemovesTheFirstFlapHarmonic) {
 }
 
 // With theta1c = theta1s = 0 the cyclic model is the paper model: same A(psi), f(psi).
+// Regression (moment trim from a far start): Newton from the hover trim's controls straight to
+// mu = 0.7 does not converge (the controls change by 0.2-0.4 rad on the way); the trim then
+// continues in halved steps of mu from the last converged trim, and lands on the trim that a
+// start at mu = 0.65 gives.
+TEST(Trim, FromAFarStartItContinuesInHalvedSteps) {
+  const RotorParameters p = cyclic_typical();
+  TrimOptions o;
+  o.kind = TrimKind::Moment;
+  o.thrust_coefficient = 0.005;
+  const auto hover = flaplag::trim(p, 0.0, o);
+  ASSERT_TRUE(hover.converged) << hover.message;
+  const auto far = flaplag::trim(p, 0.7, o, &hover);
+  ASSERT_TRUE(far.converged) << far.message;
+  ASSERT_NE(far.status, Status::Failed) << far.message;
+  EXPECT_NEAR(far.thrust_coefficient, o.thrust_coefficient, 1e-10 * o.thrust_coefficient);
+  const auto near_start = flaplag::trim(p, 0.65, o, &hover);
+  ASSERT_TRUE(near_start.converged) << near_start.message;
+  const auto near = flaplag::trim(p, 0.7, o, &near_start);
+  ASSERT_TRUE(near.converged) << near.message;
+  EXPECT_NEAR(far.theta0, near.theta0, 1e-8);
+  EXPECT_NEAR(far.theta1c, near.theta1c, 1e-8);
+  EXPECT_NEAR(far.theta1s, near.theta1s, 1e-8);
+}
+
 TEST(CyclicPitch, ZeroCyclicEqualsPaperModel) {
   RotorParameters p;
   flaplag::Analysis paper(p, {});

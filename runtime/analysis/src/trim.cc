@@ -58,48 +58,13 @@ double thrust_at(const detail::ThrustHarmonics& t, double psi, const Eigen::Vect
   return v;
 }
 
-// (1/2 pi) int_0^2pi T(psi, y(psi)) dpsi along the periodic solution from y0: RK4 on the
-// augmented system [y; int T], equal steps split at the sector edges (as the response).
+// (1/2 pi) int_0^2pi T(psi, y(psi)) dpsi along the periodic solution from y0 (numerics'
+// periodic_mean: RK4 on [y; int T] on the grid of the periodic response).
 double mean_thrust(const PeriodicSystem& sys, const detail::ThrustSystem& ts,
                    const Eigen::VectorXd& y0, int steps) {
-  std::vector<double> cuts;
-  for (int i = 0; i <= steps; ++i) cuts.push_back(kTwoPi * i / steps);
-  for (double b : sys.breakpoints()) cuts.push_back(b);
-  std::sort(cuts.begin(), cuts.end());
-  Eigen::VectorXd y = y0;
-  double integral = 0.0;
-  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
-    const double a = cuts[i], b = cuts[i + 1], h = b - a;
-    if (!(h > 0.0)) continue;
-    const double mid = 0.5 * (a + b);
-    const bool sector = sys.has_sector && sys.in_sector(mid);
-    const HarmonicSet& region = sector ? sys.reversed : sys.normal;
-    const detail::ThrustHarmonics& tr = sector ? ts.reversed : ts.normal;
-    auto rhs = [&](double psi, const Eigen::VectorXd& v) {
-      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(sys.n, sys.n);
-      Eigen::VectorXd f = Eigen::VectorXd::Zero(sys.n);
-      for (std::size_t k = 0; k < region.A.size(); ++k) {
-        const double phi = harmonic_basis(static_cast<int>(k), psi);
-        A += phi * region.A[k];
-        if (k < region.f.size() && region.f[k].size() == sys.n) f += phi * region.f[k];
-      }
-      return Eigen::VectorXd(A * v + f);
-    };
-    const Eigen::VectorXd k1 = rhs(a, y);
-    const double t1 = thrust_at(tr, a, y);
-    const Eigen::VectorXd y2 = y + 0.5 * h * k1;
-    const Eigen::VectorXd k2 = rhs(mid, y2);
-    const double t2 = thrust_at(tr, mid, y2);
-    const Eigen::VectorXd y3 = y + 0.5 * h * k2;
-    const Eigen::VectorXd k3 = rhs(mid, y3);
-    const double t3 = thrust_at(tr, mid, y3);
-    const Eigen::VectorXd y4 = y + h * k3;
-    const Eigen::VectorXd k4 = rhs(b, y4);
-    const double t4 = thrust_at(tr, b, y4);
-    y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-    integral += h / 6.0 * (t1 + 2.0 * t2 + 2.0 * t3 + t4);
-  }
-  return integral / kTwoPi;
+  return periodic_mean(sys, y0, steps, [&](double psi, bool reversed, const Eigen::VectorXd& y) {
+    return thrust_at(reversed ? ts.reversed : ts.normal, psi, y);
+  });
 }
 
 // About the periodic equilibrium (p.periodic_linearization): thrust and first flap harmonic of
@@ -371,15 +336,30 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
     }
     return trim(p, mu, o, &chain);
   }
-  // From a start at another mu: q° of the start's controls, continued to mu, may fold before
-  // the trimmed branch does; then the trim is continued in halved steps of mu (down to 1e-3).
-  if (p.periodic_linearization && start != nullptr && start->status != Status::Failed &&
-      start->equilibrium.coefficients.size() > 0 && std::abs(mu - start->mu) > 1e-3) {
+  // From a start at another mu: Newton from the start's controls may fail far from it (about
+  // hover: the moment trim from mu = 0.7 to 0.8 of the typical case; about the periodic
+  // equilibrium: q° of the start's controls, continued to mu, may fold before the trimmed
+  // branch does); then the trim is continued in halved steps of mu (down to 1e-3) from the
+  // last converged trim.
+  auto settled = [](const TrimResult& t) { return t.status != Status::Failed && t.converged; };
+  if (start != nullptr && settled(*start) && start->kind == o.kind &&
+      (!p.periodic_linearization || start->equilibrium.coefficients.size() > 0) &&
+      std::abs(mu - start->mu) > 1e-3) {
     TrimResult direct = trim_once(p, m, mu, o, start);
-    if (direct.status != Status::Failed) return direct;
+    if (settled(direct)) return direct;
     const TrimResult half = trim(p, 0.5 * (start->mu + mu), o, start);
-    if (half.status == Status::Failed) return direct;
+    if (!settled(half)) return direct;
     return trim(p, mu, o, &half);
+  }
+  // About hover without a start (the thrust trim of a study, from the blade-element controls):
+  // when that fails, the same continuation from the hover trim.
+  if (!p.periodic_linearization && start == nullptr && mu > 1e-3) {
+    TrimResult direct = trim_once(p, m, mu, o, nullptr);
+    if (settled(direct)) return direct;
+    const TrimResult hover = trim_once(p, m, 0.0, o, nullptr);
+    if (!settled(hover)) return direct;
+    TrimResult chained = trim(p, mu, o, &hover);
+    return settled(chained) ? chained : direct;
   }
   return trim_once(p, m, mu, o, start);
 }

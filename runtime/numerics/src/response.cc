@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -329,6 +330,41 @@ Simulation simulate_nonlinear(const PeriodicSystem& grid, const NonlinearRhs& rh
     rhs(s.b, reversed, y + h * k3, k4);
     y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
   });
+}
+
+double periodic_mean(const PeriodicSystem& sys, const Eigen::VectorXd& y0, int steps,
+                     const PeriodicQuantity& quantity) {
+  sys.validate();
+  if (steps < 1) throw InvalidInput("steps", std::to_string(steps), "must be >= 1");
+  if (y0.size() != sys.n || !y0.allFinite())
+    throw InvalidInput("y0", std::to_string(y0.size()) + " values",
+                       "must be " + std::to_string(sys.n) + " finite values");
+  if (!quantity) throw InvalidInput("quantity", "(empty)", "a quantity is required");
+  Stepper st{&sys, sys.n, {}, {}, {}, {}, {}, {}};
+  const Eigen::RowVectorXd c = Eigen::RowVectorXd::Ones(1);
+  Eigen::MatrixXd Y = y0;
+  double integral = 0.0;
+  for (const Segment& s : grid(sys, steps)) {
+    const double mid = 0.5 * (s.a + s.b), h = s.b - s.a;
+    const bool reversed = sys.in_varying(mid) || (sys.has_sector && sys.in_sector(mid));
+    // the stages of Stepper::step, with the quantity at each stage's state
+    st.at(s, s.a, st.A0, st.f0);
+    st.at(s, mid, st.A1, st.f1);
+    st.at(s, s.b, st.A2, st.f2);
+    const Eigen::MatrixXd k1 = st.A0 * Y + st.f0 * c;
+    const Eigen::MatrixXd y2 = Y + 0.5 * h * k1;
+    const Eigen::MatrixXd k2 = st.A1 * y2 + st.f1 * c;
+    const Eigen::MatrixXd y3 = Y + 0.5 * h * k2;
+    const Eigen::MatrixXd k3 = st.A1 * y3 + st.f1 * c;
+    const Eigen::MatrixXd y4 = Y + h * k3;
+    const Eigen::MatrixXd k4 = st.A2 * y4 + st.f2 * c;
+    const double t1 = quantity(s.a, reversed, Y.col(0)), t2 = quantity(mid, reversed, y2.col(0)),
+                 t3 = quantity(mid, reversed, y3.col(0)), t4 = quantity(s.b, reversed, y4.col(0));
+    Y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    integral += h / 6.0 * (t1 + 2.0 * t2 + 2.0 * t3 + t4);
+  }
+  return std::isfinite(integral) && Y.allFinite() ? integral / kTwoPi
+                                                  : std::numeric_limits<double>::quiet_NaN();
 }
 
 std::optional<double> envelope_growth_rate(const std::vector<double>& psi,

@@ -68,6 +68,25 @@ void basis(int K, double psi, Eigen::VectorXd& p, Eigen::VectorXd& d1, Eigen::Ve
   }
 }
 
+// X (n x (2K+1)) truncated or padded with zero harmonics to K2.
+Eigen::MatrixXd resized(const Eigen::MatrixXd& X, int K2) {
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(X.rows(), 2 * K2 + 1);
+  const int c = std::min<int>(static_cast<int>(X.cols()), 2 * K2 + 1);
+  out.leftCols(c) = X.leftCols(c);
+  return out;
+}
+
+// max_c |Xa_c - Xb_c| / max |Xb| over the coefficients of the Fourier series of q° (Xa padded
+// with zero harmonics to Xb's K): the A(psi) of the linearization and the mean thrust are
+// smooth functions of these coefficients.  (Not the point-wise difference of the states: q°'
+// has kinks at the sector edges, so its samples converge only like 1/K near them, while the
+// coefficients fall like k^-3.)
+double coefficient_difference(const Eigen::MatrixXd& Xa, const Eigen::MatrixXd& Xb, int Kb) {
+  const double big = Xb.cwiseAbs().maxCoeff();
+  const double diff = (resized(Xa, Kb) - Xb).cwiseAbs().maxCoeff();
+  return big > 0.0 ? diff / big : diff;
+}
+
 struct QuadPoint {
   double psi, weight;
   bool reversed;
@@ -307,8 +326,14 @@ std::vector<Eigen::VectorXd> NonlinearSystem::integrate(const Eigen::VectorXd& y
 }
 
 bool PeriodicEquilibriumOptions::IsValid(std::string* error) const {
-  if (harmonics < 1 || harmonics > 128)
-    return fail("harmonics", std::to_string(harmonics), "must be 1..128", error);
+  if (harmonics != kAutomaticHarmonics && (harmonics < 1 || harmonics > 128))
+    return fail("harmonics", std::to_string(harmonics),
+                "must be 1..128, or " + std::to_string(kAutomaticHarmonics) + " (automatic)",
+                error);
+  if (!(std::isfinite(harmonics_tolerance) && harmonics_tolerance > 0.0 &&
+        harmonics_tolerance <= 1e-2))
+    return fail("harmonics_tolerance", round_trip_text(harmonics_tolerance), "must be in (0, 1e-2]",
+                error);
   if (max_iterations < 1 || max_iterations > 1000)
     return fail("max_iterations", std::to_string(max_iterations), "must be 1..1000", error);
   if (!(std::isfinite(tolerance) && tolerance > 0.0 && tolerance <= 1e-2))
@@ -348,10 +373,18 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
   opt.Check();
   const NonlinearSystem sys(builder, mu);
   const auto& m = builder.model();
-  const int M = m.flap_modes, N = m.lag_modes, n = M + N, K = opt.harmonics;
+  const int M = m.flap_modes, N = m.lag_modes, n = M + N;
+  const bool automatic = opt.harmonics == PeriodicEquilibriumOptions::kAutomaticHarmonics;
+  // K of the continuation: fixed, or (automatic) one below the start's accepted K.
+  int K = opt.harmonics;
+  if (automatic) {
+    K = PeriodicEquilibriumOptions::kFirstHarmonics;
+    if (start != nullptr && std::isfinite(start->harmonics_error))
+      K = std::clamp(start->harmonics / 2, PeriodicEquilibriumOptions::kFirstHarmonics,
+                     PeriodicEquilibriumOptions::kMaxHarmonics / 2);
+  }
   PeriodicEquilibrium out;
   out.mu = mu;
-  out.harmonics = K;
   out.flap_modes = M;
   // The branch through the hover equilibrium: continuation in mu from hover (at mu = 0 the
   // hover state solves the equations exactly), steps of at most kMaxStep, each Newton solve
@@ -364,15 +397,15 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
   double reached = 0.0;
   Newton r;
   bool from_start = false;
-  if (start != nullptr && start->status != Status::Failed && start->harmonics == K &&
-      start->coefficients.rows() == n && start->mu - mu <= kMaxStep) {
+  if (start != nullptr && start->status != Status::Failed && start->coefficients.rows() == n &&
+      start->coefficients.allFinite() && start->mu - mu <= kMaxStep) {
     // A point of the same branch, perhaps of slightly different parameters (a neighbouring
     // trim iterate): corrected at its own mu first (one Newton iteration when nothing changed).
-    Eigen::MatrixXd trial = start->coefficients;
+    const Eigen::MatrixXd given = resized(start->coefficients, K);
+    Eigen::MatrixXd trial = given;
     const Newton t =
         solve(start->mu == mu ? sys : NonlinearSystem(builder, start->mu), M, N, K, opt, trial);
-    if (t.finite && t.converged &&
-        (trial - start->coefficients).cwiseAbs().maxCoeff() <= kMaxChange) {
+    if (t.finite && t.converged && (trial - given).cwiseAbs().maxCoeff() <= kMaxChange) {
       X = trial;
       reached = start->mu;
       r = t;
@@ -406,6 +439,34 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
   }
   out.continued_to = reached;
   if (reached != mu) r.converged = false;
+  // Automatic K: doubled at mu (Newton from the padded solution) until two successive K agree.
+  std::string k_note;
+  if (automatic && r.converged) {
+    while (true) {
+      const int K2 = 2 * K;
+      Eigen::MatrixXd X2 = resized(X, K2);
+      const Newton t = solve(sys, M, N, K2, opt, X2);
+      if (!t.finite || !t.converged) {
+        k_note = "the harmonic balance with K = " + std::to_string(K2) +
+                 " did not converge from the K = " + std::to_string(K) +
+                 " solution: K = " + std::to_string(K) + " without an error estimate";
+        out.harmonics_error = std::numeric_limits<double>::quiet_NaN();
+        break;
+      }
+      out.harmonics_error = coefficient_difference(X, X2, K2);
+      X = X2;
+      K = K2;
+      r = t;
+      if (out.harmonics_error <= opt.harmonics_tolerance) break;
+      if (K >= PeriodicEquilibriumOptions::kMaxHarmonics) {
+        k_note = "harmonics_error = " + short_text(out.harmonics_error) +
+                 " at the cap K = " + std::to_string(K) +
+                 " exceeds harmonics_tolerance = " + short_text(opt.harmonics_tolerance);
+        break;
+      }
+    }
+  }
+  out.harmonics = K;
   out.coefficients = X;
   out.iterations = r.iterations;
   out.step = r.step;
@@ -450,10 +511,11 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
   out.linearization.normal = linear_set(sys, out, false, L);
   if (out.linearization.has_sector) out.linearization.reversed = linear_set(sys, out, true, L);
 
-  std::string note;
+  std::string note = k_note;
   if (out.truncation > 1e-3) {
-    note = "harmonic " + std::to_string(K) + " of the periodic equilibrium is " +
-           short_text(out.truncation) + " of its largest coefficient; increase `harmonics`";
+    note += std::string(note.empty() ? "" : "; ") + "harmonic " + std::to_string(K) +
+            " of the periodic equilibrium is " + short_text(out.truncation) +
+            " of its largest coefficient; increase `harmonics`";
   }
   if (opt.check_stability) {
     const Eigen::MatrixXd phi = transition_matrix_rk4(out.linearization, 4096);

@@ -82,6 +82,17 @@ using NonlinearRhs =
 Simulation simulate_nonlinear(const PeriodicSystem& grid, const NonlinearRhs& rhs,
                               const Eigen::VectorXd& y0, const SimulationOptions& options = {});
 
+// A quantity T(psi, reversed, y) along the linear solution: `reversed` as for NonlinearRhs.
+using PeriodicQuantity = std::function<double(double psi, bool reversed, const Eigen::VectorXd& y)>;
+
+// (1/2 pi) int_0^2pi T(psi, y(psi)) dpsi along y' = A(psi) y + f(psi) from y(0) = y0 over one
+// revolution: classical RK4 on the augmented system [y; int T], on the grid of the periodic
+// response's monodromy (`steps` equal steps, split at the sector edges), so that y(psi) is the
+// one periodic_response integrates.  sys.validate() first; steps >= 1 and y0 of size sys.n,
+// finite (InvalidInput); NaN on overflow.
+double periodic_mean(const PeriodicSystem& sys, const Eigen::VectorXd& y0, int steps,
+                     const PeriodicQuantity& quantity);
+
 // The growth rate of a simulated signal per rev: the slope of ln max_{rev k} |s| over the
 // revolutions from `skip_revs` on, by least squares over whole revolutions (the envelope of
 // a Floquet solution grows like exp(zeta psi)).  nullopt with fewer than 3 revolutions left.
