@@ -453,6 +453,7 @@ class Analysis:
         mu,
         *,
         harmonics=EQUILIBRIUM_DEFAULTS["harmonics"],
+        harmonics_tolerance=EQUILIBRIUM_DEFAULTS["harmonics_tolerance"],
         max_iterations=EQUILIBRIUM_DEFAULTS["max_iterations"],
         tolerance=EQUILIBRIUM_DEFAULTS["tolerance"],
         check_stability=EQUILIBRIUM_DEFAULTS["check_stability"],
@@ -460,8 +461,9 @@ class Analysis:
     ) -> PeriodicEquilibriumResult:
         """The periodic equilibrium q°(psi) of the nonlinear equations at mu (C++
         Analysis::periodic_equilibrium; a model with nonlinear loads, e.g.
-        model='paper-nonlinear'): harmonic balance with ``harmonics`` K and Newton to
-        ``tolerance``, continued from hover; its Fourier coefficients, the state and the tip
+        model='paper-nonlinear'): harmonic balance with ``harmonics`` K (-1, the default:
+        doubled from 8 up to 64 until two K's coefficients agree to ``harmonics_tolerance``,
+        relative) and Newton to ``tolerance``, continued from hover; its Fourier coefficients, the state and the tip
         deflections at ``samples`` azimuths psi_k = 2 pi k / samples, and (check_stability)
         the Floquet multipliers of the linearization about it.  The analysis' point, sweep and
         critical use this linearization with periodic_linearization=True."""
@@ -469,6 +471,7 @@ class Analysis:
             self._native.periodic_equilibrium(
                 _real("mu", mu),
                 _int("harmonics", harmonics),
+                _real("harmonics_tolerance", harmonics_tolerance),
                 _int("max_iterations", max_iterations),
                 _real("tolerance", tolerance),
                 _flag("check_stability", check_stability),

@@ -637,6 +637,8 @@ class PeriodicEquilibriumResult:
     multiplier_moduli: |Floquet multipliers| of the linearization about it, descending (with
     check_stability; empty otherwise), min_distance_to_one: min |multiplier - 1| (None without
     check_stability); truncation: the size of harmonic K relative to the largest coefficient;
+    harmonics_error: with the automatic K, the largest coefficient difference between K/2 and
+    K relative to the largest coefficient (nan for a fixed K);
     continued_to: the largest mu the continuation from hover reached; iterations, step,
     residual: of the last Newton solve.  status 'failed' (no samples) beyond the fold of the
     hover branch or without convergence; 'warning' when unstable or the truncation is not small.
@@ -655,6 +657,7 @@ class PeriodicEquilibriumResult:
     step: float
     residual: float
     truncation: float
+    harmonics_error: float
     multiplier_moduli: np.ndarray
     min_distance_to_one: Optional[float]
     status: str
@@ -691,6 +694,7 @@ class PeriodicEquilibriumResult:
             d["step"],
             d["residual"],
             d["truncation"],
+            d["harmonics_error"],
             np.asarray(d["multiplier_moduli"]),
             d["min_distance_to_one"],
             d["status"],

@@ -758,6 +758,7 @@ py::dict equilibrium_dict(const Analysis& a, const PeriodicEquilibrium& e, int s
   d["step"] = e.step;
   d["residual"] = e.residual;
   d["truncation"] = e.truncation;
+  d["harmonics_error"] = e.harmonics_error;
   d["multiplier_moduli"] = to_numpy(e.multiplier_moduli);
   d["min_distance_to_one"] = e.multiplier_moduli.empty()
                                  ? py::object(py::none())
@@ -771,6 +772,7 @@ py::dict equilibrium_defaults() {
   const PeriodicEquilibriumOptions o;
   py::dict d;
   d["harmonics"] = o.harmonics;
+  d["harmonics_tolerance"] = o.harmonics_tolerance;
   d["max_iterations"] = o.max_iterations;
   d["tolerance"] = o.tolerance;
   d["check_stability"] = o.check_stability;
@@ -1090,10 +1092,11 @@ PYBIND11_MODULE(_flaplag, m) {
              return simulation_dict(a, t);
            })
       .def("periodic_equilibrium",
-           [](const Analysis& a, double mu, int harmonics, int max_iterations, double tolerance,
-              bool check_stability, int samples) {
+           [](const Analysis& a, double mu, int harmonics, double harmonics_tolerance,
+              int max_iterations, double tolerance, bool check_stability, int samples) {
              PeriodicEquilibriumOptions o;
              o.harmonics = harmonics;
+             o.harmonics_tolerance = harmonics_tolerance;
              o.max_iterations = max_iterations;
              o.tolerance = tolerance;
              o.check_stability = check_stability;

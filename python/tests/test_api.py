@@ -419,10 +419,29 @@ def test_periodic_equilibrium_arrays_and_its_hover_limit():
     assert abs(h.coefficients[0, 0] - an.hover.equilibrium["g0_1"]) < 1e-13
     assert np.all(h.coefficients[:, 1:] == 0.0)
     assert h.min_distance_to_one is None and h.max_zeta is None
+    assert math.isnan(e.harmonics_error)  # a fixed K has no estimate
+
+
+def test_periodic_equilibrium_automatic_harmonics_meet_their_tolerance():
+    an = flaplag.Analysis(model="paper-nonlinear")
+    auto = an.periodic_equilibrium(0.3, samples=12, check_stability=False)
+    assert auto.status == "ok", auto.message
+    assert auto.harmonics >= 16 and auto.harmonics_error <= 1e-4
+    # the estimate compares K with K/2: the K/2 solution differs from this one by about that
+    half = an.periodic_equilibrium(0.3, harmonics=auto.harmonics // 2, samples=12,
+                                   check_stability=False)
+    k = half.coefficients.shape[1]
+    diff = np.max(np.abs(auto.coefficients[:, :k] - half.coefficients))
+    assert diff <= 1.1 * auto.harmonics_error * np.max(np.abs(auto.coefficients))
+    tight = an.periodic_equilibrium(0.3, harmonics_tolerance=1e-12, samples=12,
+                                    check_stability=False)
+    assert tight.status == "warning" and "harmonics_tolerance" in tight.message
+    assert tight.harmonics == 64
 
 
 @pytest.mark.parametrize("call,field", [
     (lambda an: an.periodic_equilibrium(0.3, harmonics=0), "harmonics"),
+    (lambda an: an.periodic_equilibrium(0.3, harmonics_tolerance=0.0), "harmonics_tolerance"),
     (lambda an: an.periodic_equilibrium(0.3, tolerance=1.0), "tolerance"),
     (lambda an: an.periodic_equilibrium(0.3, samples=1), "samples"),
     (lambda an: an.periodic_equilibrium(-0.3), "mu"),
