@@ -198,6 +198,28 @@ TEST(PeriodicEquilibrium, CriticalReportsTheFoldAsTheStabilityBoundary) {
   EXPECT_LT(below.min_distance_to_one, 0.3);
 }
 
+// Regression: between the fold of the K = 16 (and 32) truncation, mu ~ 0.66603, and the later
+// fold of K = 8, mu ~ 0.66606, only the K = 8 solution exists.  The automatic K used to fall
+// back to it with a warning, so the critical search counted it as existing and put the fold,
+// mu_c, at the K = 8 fold with an error estimate 20 times too small; it is a failure now.
+TEST(PeriodicEquilibrium, AutomaticHarmonicsDoNotAcceptACoarseSolutionPastTheFinerFold) {
+  RotorParameters p;
+  p.model = "paper-nonlinear";
+  const Analysis an(p, {});
+  const double mu = 0.66605;
+  PeriodicEquilibriumOptions fixed;
+  fixed.check_stability = false;
+  fixed.harmonics = 8;
+  ASSERT_EQ(Status::Ok, an.periodic_equilibrium(mu, fixed).status);
+  fixed.harmonics = 16;
+  ASSERT_EQ(Status::Failed, an.periodic_equilibrium(mu, fixed).status);
+  PeriodicEquilibriumOptions automatic;
+  automatic.check_stability = false;
+  const PeriodicEquilibrium e = an.periodic_equilibrium(mu, automatic);
+  EXPECT_EQ(Status::Failed, e.status) << e.message;
+  EXPECT_NE(std::string::npos, e.message.find("K = 16")) << e.message;
+}
+
 // Automatic K: the K doubles until two successive K agree to harmonics_tolerance; the estimate
 // bounds the distance to the K = 64 solution (the cap, reached with a tolerance it cannot meet,
 // which is a warning naming the option); a fixed K is kept and has no estimate.

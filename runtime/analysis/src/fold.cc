@@ -62,9 +62,18 @@ void report_fold(CriticalResult& r, const FoldWatch& watch, const EquilibriumPro
       lin_current = true;
     } else {
       hi = mid;
-      if (reached > lo && reached < mid) {
-        lo = reached;
-        lin_current = false;
+      // The continuation got as far as `reached` in a coarse truncation (the automatic K
+      // continues at few harmonics): a lower end only if the converged q° exists there too.
+      const double got = reached;
+      if (got > lo && got < mid) {
+        reached = -1.0;
+        if (probe(got, &lin, &reached)) {
+          lo = got;
+          lin_lo = lin;
+          lin_current = true;
+        } else {
+          hi = got;
+        }
       }
     }
   }

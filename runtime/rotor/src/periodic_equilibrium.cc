@@ -447,11 +447,19 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
       Eigen::MatrixXd X2 = resized(X, K2);
       const Newton t = solve(sys, M, N, K2, opt, X2);
       if (!t.finite || !t.converged) {
-        k_note = "the harmonic balance with K = " + std::to_string(K2) +
-                 " did not converge from the K = " + std::to_string(K) +
-                 " solution: K = " + std::to_string(K) + " without an error estimate";
-        out.harmonics_error = std::numeric_limits<double>::quiet_NaN();
-        break;
+        // No solution of the finer truncation near this one: the K solution is an artefact of
+        // the truncation (between the folds of K and 2K the coarse branch still exists, the
+        // converged one no longer), so there is no converged periodic equilibrium here.
+        out.harmonics = K;
+        out.coefficients = X;
+        out.continued_to = reached;
+        out.status = Status::Failed;
+        out.message = "no periodic equilibrium converged in the number of harmonics at mu = " +
+                      round_trip_text(mu) + ": the harmonic balance with K = " + std::to_string(K) +
+                      " has one, but none near it with K = " + std::to_string(K2) +
+                      " (typically just past the fold of the branch, which the coarser "
+                      "truncation places too far out)";
+        return out;
       }
       out.harmonics_error = coefficient_difference(X, X2, K2);
       X = X2;
