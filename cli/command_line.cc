@@ -734,7 +734,7 @@ Request CommandLine::interpret() const {
         if (g.name == "--label") r.labels.push_back(g.text);
       if (!r.labels.empty() && r.labels.size() != r.inputs.size())
         throw InvalidInput("--label", shown(r.labels.back()),
-                           "given " + std::to_string(r.labels.size()) + " times for " +
+                           std::to_string(r.labels.size()) + " given for " +
                                std::to_string(r.inputs.size()) +
                                " data files (one --label per file, in order)");
       r.max_zeta = given("--max-zeta") != nullptr;

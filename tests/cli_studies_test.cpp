@@ -605,7 +605,7 @@ TEST(CliPlot, SweepsOverlaidInOnePicture) {
             "argument = " + study + ": a flaplag study result, not a sweep like " + a + ": .*"},
            {{"plot", study, study, "--plot", x}, "argument = " + study + ": a flaplag study .*"},
            {{"plot", a, b, "--label", "one", "--plot", x},
-            "--label = one: given 1 times for 2 data files.*"},
+            "--label = one: 1 given for 2 data files.*"},
            {{"plot", a, b, "--mode", "pitch", "--plot", x}, "--mode = pitch: not a mode of .*"}}) {
     const Outcome r = run(args);
     EXPECT_EQ(2, r.exit_code) << reason;
