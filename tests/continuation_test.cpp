@@ -228,6 +228,45 @@ TEST(FindCritical, AllIntervalsOnsetAndRestabilization) {
   EXPECT_LT(first.evaluations, r.evaluations);
 }
 
+// Regression: with all_intervals, an evaluation that fails past mu_c (a trimmed rotor whose
+// trim no longer converges beyond the instability) used to fail the whole search and lose
+// mu_c; the onset found stands, status Warning, the message says where the scan stopped.
+TEST(FindCritical, AFailurePastMuCKeepsTheOnsetFound) {
+  auto A = [](double mu) {
+    const double ch = 2.0 * (0.5037 - mu);
+    return oscillators(1.2, stiffness(1.2, 1.17), ch, stiffness(ch, 1.28), 0.0);
+  };
+  const FloquetFunction exact = constant_family(A);
+  const FloquetFunction fails_above = [&](double mu, double tol) {
+    FloquetSample s = exact(mu, tol);
+    if (mu > 0.7) {
+      s.status = Status::Failed;
+      s.message = "no answer here";
+    }
+    return s;
+  };
+  CriticalOptions opt;
+  opt.mu_max = 1.0;
+  opt.all_intervals = true;
+  const CriticalResult r = find_critical(label_hover_modes(A(0.0), 1, 1), fails_above, opt);
+  ASSERT_TRUE(r.mu_c.has_value()) << r.message;
+  EXPECT_TRUE(AbsClose(0.5037, *r.mu_c, 1e-5));
+  EXPECT_EQ(Status::Warning, r.status);
+  EXPECT_EQ(1u, r.intervals.size());
+  EXPECT_NE(std::string::npos, r.message.find("stopped at mu = 0.7 ")) << r.message;
+  EXPECT_NE(std::string::npos, r.message.find("no answer here")) << r.message;
+  // Before mu_c a failure is still the search's failure.
+  opt.all_intervals = false;
+  const FloquetFunction fails_early = [&](double mu, double tol) {
+    FloquetSample s = exact(mu, tol);
+    if (mu > 0.3) s.status = Status::Failed;
+    return s;
+  };
+  const CriticalResult f = find_critical(label_hover_modes(A(0.0), 1, 1), fails_early, opt);
+  EXPECT_EQ(Status::Failed, f.status);
+  EXPECT_FALSE(f.mu_c.has_value());
+}
+
 // A family whose samples are only as accurate as asked: every zeta is off by +tol / 2 and says
 // so (zeta_errors = tol).  `asked` records (mu, tol, max zeta) of every call.
 struct Request {

@@ -462,6 +462,22 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
     return t;
   };
   auto failed = [&](const Trial& t) {
+    if (!out.intervals.empty()) {
+      // all_intervals, past mu_c: the onsets found stand (mu_c is known); only the scan for
+      // further intervals ends here, and the last interval's end is then unknown.
+      const InstabilityInterval& first = out.intervals.front();
+      out.mu_c = first.onset;
+      out.mu_c_error = first.onset_error;
+      out.mode = first.mode;
+      out.omega = first.omega;
+      out.kind = first.kind;
+      out.status = Status::Warning;
+      out.message = "unstable above mu_c = " + fmt(first.onset) + " (" + out.mode + ", " +
+                    kind_name(out.kind) + ", omega = " + fmt(out.omega) +
+                    "); the scan for further instability intervals stopped at mu = " + fmt(t.mu) +
+                    " (the intervals are known only below it): " + t.report.message;
+      return out;
+    }
     out.status = Status::Failed;
     out.message = "at mu = " + fmt(t.mu) + ": " + t.report.message;
     out.exponents = t.tracker.exponents();
