@@ -461,21 +461,25 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
     t.sign_certain = sample.status == Status::Ok && sign_certain(sample, opt.zeta_threshold);
     return t;
   };
+  // mu_c, its mode, omega and kind from the first interval's onset, and the message's start.
+  auto set_mu_c = [&] {
+    const InstabilityInterval& first = out.intervals.front();
+    out.mu_c = first.onset;
+    out.mu_c_error = first.onset_error;
+    out.mode = first.mode;
+    out.omega = first.omega;
+    out.kind = first.kind;
+    out.message = "unstable above mu_c = " + fmt(first.onset) + " (" + out.mode + ", " +
+                  kind_name(out.kind) + ", omega = " + fmt(out.omega) + ")";
+  };
   auto failed = [&](const Trial& t) {
     if (!out.intervals.empty()) {
       // all_intervals, past mu_c: the onsets found stand (mu_c is known); only the scan for
       // further intervals ends here, and the last interval's end is then unknown.
-      const InstabilityInterval& first = out.intervals.front();
-      out.mu_c = first.onset;
-      out.mu_c_error = first.onset_error;
-      out.mode = first.mode;
-      out.omega = first.omega;
-      out.kind = first.kind;
+      set_mu_c();
       out.status = Status::Warning;
-      out.message = "unstable above mu_c = " + fmt(first.onset) + " (" + out.mode + ", " +
-                    kind_name(out.kind) + ", omega = " + fmt(out.omega) +
-                    "); the scan for further instability intervals stopped at mu = " + fmt(t.mu) +
-                    " (the intervals are known only below it): " + t.report.message;
+      out.message += "; the scan for further instability intervals stopped at mu = " + fmt(t.mu) +
+                     " (the intervals are known only below it): " + t.report.message;
       return out;
     }
     out.status = Status::Failed;
@@ -656,15 +660,8 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
     out.status = warnings.empty() ? Status::Ok : Status::Warning;
     out.message = "stable up to mu_max = " + fmt(opt.mu_max);
   } else {
-    const InstabilityInterval& first = out.intervals.front();
-    out.mu_c = first.onset;
-    out.mu_c_error = first.onset_error;
-    out.mode = first.mode;
-    out.omega = first.omega;
-    out.kind = first.kind;
+    set_mu_c();
     out.status = warnings.empty() && unresolved.empty() ? Status::Ok : Status::Warning;
-    out.message = "unstable above mu_c = " + fmt(first.onset) + " (" + out.mode + ", " +
-                  kind_name(out.kind) + ", omega = " + fmt(out.omega) + ")";
     if (opt.all_intervals) {
       out.message += "; " + std::to_string(out.intervals.size()) +
                      " instability interval(s) up to mu_max = " + fmt(opt.mu_max);
