@@ -5,8 +5,8 @@
 //   BM_RotorSystem_Build:    harmonic matrices for one mu (generated code, both regions).
 //   BM_RotorSweep151_*:      151-point sweep mu = 0..1.5 (build + Phi + identification each),
 //                            with the paper's fixed Hsu K = 50, J = 4 (_Hsu_K50_J4, plus the 2K
-//                            evaluation of the error estimate) and with the default automatic
-//                            steps (_HsuAuto).
+//                            evaluation of the error estimate), with the default automatic
+//                            steps (_HsuAuto) and with the reference method (_MagnusAuto).
 //   BM_RotorCritical_*:      the full mu_c search of `flaplag critical`, the same two settings.
 //   *_ExactReversedFlow:     the same with the exact circular reversed-flow region.
 #include <benchmark/benchmark.h>
@@ -137,6 +137,15 @@ void BM_RotorSweep151_HsuAuto(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(an.sweep(0.0, 1.5, 0.01));
 }
 BENCHMARK(BM_RotorSweep151_HsuAuto)->Unit(benchmark::kMicrosecond);
+
+// The same sweep with the reference method (Magnus4 + Richardson, sixth order).
+void BM_RotorSweep151_MagnusAuto(benchmark::State& state) {
+  flaplag::TransitionOptions o;
+  o.method = flaplag::TransitionMethod::Magnus4;
+  const auto an = typical(o);
+  for (auto _ : state) benchmark::DoNotOptimize(an.sweep(0.0, 1.5, 0.01));
+}
+BENCHMARK(BM_RotorSweep151_MagnusAuto)->Unit(benchmark::kMicrosecond);
 
 void BM_RotorCritical_Hsu_K50_J4(benchmark::State& state) {
   const auto an = typical(flaplag::TransitionOptions::Paper());
