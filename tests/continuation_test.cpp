@@ -333,6 +333,39 @@ TEST(FindCritical, ScanPointsFarFromTheThresholdAreEvaluatedForTheirSignOnly) {
   EXPECT_LE(asked.back().tol, opt.scan_zeta_tolerance);
 }
 
+// Regression: a scan point just above a shallow crossing whose scan-resolution zeta has the
+// wrong sign within its error estimate.  The lag zeta is 0.01 (mu - 0.4996); every sample is
+// low by tol / 2 and says so, so at the scan resolution (1e-5) the grid point 0.50 reads
+// zeta = 4e-6 - 5e-6 < 0 and the scan brackets [0.50, 0.51], which does not contain the
+// crossing.  The search used to stop at the bracket's end (mu_c = 0.50, 4e-4 off, with a
+// warning); it now resolves the lower end too and steps back to [0.49, 0.50].
+TEST(FindCritical, ALowerEndOfTheWrongSignWithinItsErrorIsResolvedAndSteppedBelow) {
+  const double mu_star = 0.4996, slope = 0.01;
+  auto A = [&](double mu) {
+    const double ch = -2.0 * slope * (mu - mu_star);  // lag zeta = -ch / 2
+    return oscillators(1.2, stiffness(1.2, 1.17), ch, stiffness(ch, 1.28), 0.0);
+  };
+  const FloquetFunction exact = constant_family(A);
+  const FloquetFunction low = [&](double mu, double tol) {
+    FloquetSample s = exact(mu, tol);
+    for (FloquetExponent& e : s.floquet.exponents) e.zeta -= 0.5 * tol;
+    s.zeta_errors.assign(s.floquet.exponents.size(), tol);
+    s.error = tol;
+    return s;
+  };
+  CriticalOptions opt;
+  ASSERT_EQ(1e-5, opt.scan_zeta_tolerance);  // the premise: 0.50 reads below the threshold
+  ASSERT_LT(slope * (0.50 - mu_star) - 0.5 * opt.scan_zeta_tolerance, 0.0);
+  const CriticalResult r = find_critical(label_hover_modes(A(0.0), 1, 1), low, opt);
+  ASSERT_TRUE(r.mu_c.has_value()) << r.message;
+  EXPECT_EQ(Status::Ok, r.status) << r.message;
+  // The refinement asks 0.1 slope tolerance = 1e-8 of zeta: the root is mu_star + 5e-7.
+  EXPECT_TRUE(AbsClose(mu_star, *r.mu_c, 2e-6));
+  ASSERT_TRUE(r.mu_c_error.has_value());
+  EXPECT_LE(*r.mu_c_error, 10.0 * opt.tolerance);
+  EXPECT_EQ("lag", r.mode);
+}
+
 TEST(FindCritical, StableUpToMuMaxAndUnstableHover) {
   auto stable = [](double mu) {
     return oscillators(1.2, stiffness(1.2, 1.17), 0.04 + mu, stiffness(0.04, 1.28));

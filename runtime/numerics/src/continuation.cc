@@ -623,13 +623,42 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
       prev = std::move(b);
       continue;
     }
-    const bool onset = prev.f <= 0.0;
-    auto [bb, cc] = brent(prev.tracker, prev, b, refine_tolerance);
+    // The lower end too, when its scan value is within twice its error estimate of the
+    // threshold: its sign may be wrong, and then the crossing lies below it and Brent would
+    // stop at the grid point (the exact-mode typical blade at gamma = 8.5: zeta = -2.8e-7 at
+    // the scan point 1.16 with an error of 1.5e-6; mu_c was reported as 1.16 with a warning
+    // instead of 1.15993).  If the resolved sign is that of the upper end, the bracket is the
+    // grid interval below, continued from the tracker at its lower end.
+    Trial lower = prev;
+    std::optional<Trial> stepped_back;  // the upper end of the grid interval below
+    const ExponentTracker* from = &prev.tracker;
+    if (prev.mu > 0.0 && prev.error && std::abs(prev.f) <= 2.0 * *prev.error) {
+      Trial a = evaluate(before_prev, prev.mu, refine_tolerance);
+      if (a.report.status == Status::Failed) return failed(a);
+      if ((a.f > 0.0) != (b.f > 0.0)) {
+        lower = std::move(a);
+      } else {
+        const double mu_lo = static_cast<double>(i - 2) * opt.scan_step;
+        Trial c = mu_lo > 0.0 ? evaluate(before_prev, mu_lo, refine_tolerance)
+                              : Trial{0.0,          tracker.max_zeta() - opt.zeta_threshold,
+                                      tracker,      {},
+                                      std::nullopt, 0.0};
+        if (c.report.status == Status::Failed) return failed(c);
+        if ((c.f > 0.0) != (b.f > 0.0)) {
+          lower = std::move(c);
+          stepped_back = std::move(a);
+          from = &before_prev;
+        }
+      }
+    }
+    const Trial& upper = stepped_back ? *stepped_back : b;
+    const bool onset = lower.f <= 0.0;
+    auto [bb, cc] = brent(*from, lower, upper, refine_tolerance);
     if (failure) return failed(*failure);
     const Trial& unstable = bb.f > 0.0 ? bb : cc;
     const LabelledExponent& x = unstable.tracker.exponents()[unstable.tracker.most_unstable()];
-    const std::optional<double> err =
-        crossing_error(prev.tracker, bb, cc, slope0, refine_tolerance);
+    const double slope = stepped_back ? (upper.f - lower.f) / (upper.mu - lower.mu) : slope0;
+    const std::optional<double> err = crossing_error(*from, bb, cc, slope, refine_tolerance);
     if (onset) {
       InstabilityInterval iv;
       iv.onset = bb.mu;
