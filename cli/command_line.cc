@@ -411,10 +411,13 @@ CommandLine::CommandLine(const std::vector<std::string>& args) {
     if (options_done || !is_option_word(a)) {
       if (!have_command) {
         have_command = true;
-        if (!command_from_name(a, &command_)) {
-          problem(i,
-                  InvalidInput("subcommand", shown(a),
-                               "unknown (one of " + subcommand_list() + "; see flaplag --help)"));
+        if (a == "run") {  // main.cc expands `flaplag run CASE` before this parser runs
+          problem(i, InvalidInput("subcommand", "run",
+                                  "must be the first word: flaplag run CASE [OPTIONS]"));
+        } else if (!command_from_name(a, &command_)) {
+          problem(i, InvalidInput(
+                         "subcommand", shown(a),
+                         "unknown (one of " + subcommand_list() + ", run; see flaplag --help)"));
         }
       } else if (command_ == Command::Merge || command_ == Command::Plot) {
         inputs_.push_back(a);

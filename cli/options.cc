@@ -106,11 +106,12 @@ std::vector<OptionSpec> transition_options() {
                    "transition matrix: rk4 (paper 3.3.2), hsu (eqs 3.21-3.28) or magnus "
                    "(4th-order Magnus, Richardson-extrapolated)",
                    method_name(defaults.method), {"method"}),
-      value_option("--steps", "N|auto",
-                   "RK4 steps, Hsu intervals K or Magnus steps per period, 1.." +
-                       std::to_string(TransitionOptions::kMaxSteps) +
-                       "; auto: doubled until the exponents meet --zeta-tolerance",
-                   "auto", {"steps"}),
+      value_option(
+          "--steps", "N|auto",
+          "RK4 steps, Hsu intervals K or Magnus steps per period, 1.." +
+              std::to_string(TransitionOptions::kMaxSteps) +
+              "; auto: raised from the error estimates until the exponents meet --zeta-tolerance",
+          "auto", {"steps"}),
       value_option("--terms", "J",
                    "Hsu Taylor terms J, 1.." + std::to_string(TransitionOptions::kMaxTerms),
                    std::to_string(defaults.terms), {"terms"}),

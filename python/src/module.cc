@@ -930,7 +930,7 @@ py::list transition_rows() {
   rows.append(method);
   rows.append(row("steps", "int", py::int_(defaults.steps), "-", ("0 or 1.." + max_steps).c_str(),
                   "RK4 steps, Hsu intervals K or Magnus steps per period; 0: automatic "
-                  "(doubled until the exponents meet zeta_tolerance)"));
+                  "(raised from the error estimates until the exponents meet zeta_tolerance)"));
   rows.append(row("terms", "int", py::int_(defaults.terms), "-", ("1.." + max_terms).c_str(),
                   "Hsu's Taylor terms J"));
   rows.append(row("zeta_tolerance", "real", py::float_(defaults.zeta_tolerance), "per rev", "> 0",
