@@ -58,6 +58,42 @@ TEST(PeriodicResponse, MultiplierAtOneHasNoUniqueSolution) {
   EXPECT_NE(std::string::npos, r.message.find("multiplier")) << r.message;
 }
 
+// y' = a y + cos psi: the periodic solution y = (sin psi - a cos psi) / (1 + a^2) exists for any
+// a != 0, but the samples are integrated forward from y0, which multiplies its rounding by up
+// to exp(2 pi a).  At a = 0.5 (multiplier 23) they are the closed form, with the warning that the
+// blade does not settle onto them; at a = 6 (multiplier 2.5e16) they do not close.  Regressions:
+// the typical rotor at mu = 20 (|multiplier| 2.7e14) missed y0 by 79 |y0|, and at mu = 50 by
+// 1e27 |y0|, and both came back as answers with a warning; and the instability was looked for
+// only when some multiplier lay within 1 of 1, so a = 0.5 (multiplier 23) came back "ok".
+TEST(PeriodicResponse, SamplesThatDoNotCloseAreNoAnswer) {
+  auto growing = [](double a) {
+    PeriodicSystem s;
+    s.n = 1;
+    s.normal.A = {Eigen::MatrixXd::Constant(1, 1, a), Eigen::MatrixXd::Zero(1, 1)};
+    s.normal.f = {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 1.0)};  // cos psi
+    return s;
+  };
+  const PeriodicResponse mild = periodic_response(growing(0.5));
+  ASSERT_EQ(Status::Warning, mild.status) << mild.message;
+  EXPECT_NE(std::string::npos, mild.message.find("unstable")) << mild.message;
+  EXPECT_LT(mild.closure, 1e-10);
+  for (std::size_t k = 0; k < mild.y.size(); ++k) {
+    const double psi = mild.psi[k];
+    EXPECT_TRUE(AbsClose((std::sin(psi) - 0.5 * std::cos(psi)) / 1.25, mild.y[k](0), 1e-9));
+  }
+  const PeriodicResponse steep = periodic_response(growing(6.0));
+  EXPECT_EQ(Status::Failed, steep.status) << steep.message;
+  EXPECT_NE(std::string::npos, steep.message.find("cannot be sampled")) << steep.message;
+  EXPECT_TRUE(steep.y.empty());
+
+  const Analysis an(RotorParameters{}, {});
+  const PeriodicResponse rotor = periodic_response(an.system(20.0));
+  EXPECT_EQ(Status::Failed, rotor.status) << rotor.message;
+  const PeriodicResponse moderate = periodic_response(an.system(5.0));  // |multiplier| 278
+  EXPECT_EQ(Status::Warning, moderate.status) << moderate.message;
+  EXPECT_LT(moderate.closure, 1e-10);
+}
+
 // The rotor: the response satisfies the ODE (finite-difference residual at sample points), is
 // periodic, and is what a long forced simulation from rest settles to.
 TEST(PeriodicResponse, RotorResponseIsTheLongTimeLimitOfTheSimulation) {
