@@ -260,7 +260,9 @@ PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOpti
     out.status = Status::Warning;
     out.message += std::string(out.message.empty() ? "" : "; ") +
                    "the system is unstable (largest |multiplier| " + short_text(rho_fine) +
-                   "): the periodic solution exists but the blade does not settle onto it";
+                   ", zeta = " + short_text(std::log(rho_fine) / kTwoPi) +
+                   " per rev): the periodic solution exists but the blade does not settle onto "
+                   "it";
   }
   if (automatic && out.error && *out.error > options.tolerance) {
     out.status = Status::Warning;
