@@ -90,7 +90,7 @@ BENCHMARK(BM_ScalingCritical_Auto)->DenseRange(1, 2)->Unit(benchmark::kMilliseco
 BENCHMARK(BM_ScalingCritical_Auto)->DenseRange(3, 5)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 // The reference method (Magnus4 with its Richardson pass, sixth order) with automatic steps:
-// the converged mu_c of `flaplag critical --method magnus` on 1 x 1 and 2 x 2 exact modes.
+// the converged mu_c of `flaplag critical --method magnus` on 1 x 1 to 5 x 5 exact modes.
 void BM_ScalingCritical_MagnusAuto(benchmark::State& state) {
   flaplag::TransitionOptions o;
   o.method = flaplag::TransitionMethod::Magnus4;
@@ -106,6 +106,11 @@ void BM_ScalingCritical_MagnusAuto(benchmark::State& state) {
   state.counters["mu_c_error"] = r.mu_c_error.value_or(-1.0);
 }
 BENCHMARK(BM_ScalingCritical_MagnusAuto)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
+// The many-mode models, where the higher order pays most (README, "Number of modes").
+BENCHMARK(BM_ScalingCritical_MagnusAuto)
+    ->DenseRange(3, 5)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_ScalingAnalysis_Setup(benchmark::State& state) {
   const int k = size_of(state);
