@@ -207,18 +207,21 @@ Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEqui
   Eigen::MatrixXd E(n, P);          // residual at each point
   Eigen::MatrixXd S(P, 2 * n * n);  // a_ij, b_ij at each point
   double previous_step = std::numeric_limits<double>::infinity();
+  Eigen::MatrixXd Q(n, P), Qd(n, P), Qdd(n, P);  // q, q', q'' at the points
   for (int it = 1; it <= opt.max_iterations; ++it) {
+    Q.noalias() = X * Pb;
+    Qd.noalias() = X * D1;
+    Qdd.noalias() = X * D2;
     for (int k = 0; k < P; ++k) {
       const QuadPoint& qp = points[k];
-      const Eigen::VectorXd q = X * Pb.col(k), qd = X * D1.col(k), qdd = X * D2.col(k);
       for (int j = 0; j < n; ++j) {
-        y(model::rate_index(j, M, N)) = qd(j);
-        y(model::displacement_index(j, M, N)) = q(j);
+        y(model::rate_index(j, M, N)) = Qd(j, k);
+        y(model::displacement_index(j, M, N)) = Q(j, k);
       }
       sys.evaluate(qp.psi, qp.reversed, y, &F, &J);
       for (int i = 0; i < n; ++i) {
         const int row = model::rate_index(i, M, N);
-        E(i, k) = qdd(i) - F(row);
+        E(i, k) = Qdd(i, k) - F(row);
         for (int j = 0; j < n; ++j) {
           S(k, 2 * (i * n + j)) = J(row, model::displacement_index(j, M, N));
           S(k, 2 * (i * n + j) + 1) = J(row, model::rate_index(j, M, N));
@@ -330,11 +333,17 @@ void NonlinearSystem::evaluate(double psi, bool in_sector, const Eigen::VectorXd
                                Eigen::VectorXd* F, Eigen::MatrixXd* J) const {
   const auto& m = builder_->model();
   const int M = m.flap_modes, N = m.lag_modes;
-  std::vector<double> force(H_ * n_), jac(H_ * n_ * ns_);
+  // Scratch of this thread, sized once: the harmonic balance evaluates at thousands of points
+  // per Newton iteration, and the allocations would cost more than the loads.
+  thread_local std::vector<double> force, jac;
+  thread_local Eigen::VectorXd G, acc;
+  thread_local Eigen::MatrixXd Jg, D;
+  force.assign(static_cast<std::size_t>(H_ * n_), 0.0);
+  jac.assign(static_cast<std::size_t>(H_ * n_ * ns_), 0.0);
   builder_->nonlinear_loads(mu_, in_sector && sector_.has_sector ? reversed_ : normal_, y.data(),
                             force.data(), jac.data());
-  Eigen::VectorXd G = Eigen::VectorXd::Zero(n_);
-  Eigen::MatrixXd Jg = Eigen::MatrixXd::Zero(n_, ns_);
+  G.setZero(n_);
+  if (J != nullptr) Jg.setZero(n_, ns_);
   for (int h = 0; h < H_; ++h) {
     const double b = harmonic_basis(h, psi);
     for (int i = 0; i < n_; ++i) {
@@ -345,14 +354,14 @@ void NonlinearSystem::evaluate(double psi, bool in_sector, const Eigen::VectorXd
   }
   const Eigen::MatrixXd& Minv = builder_->mass_inverse();
   F->setZero(ns_);
-  const Eigen::VectorXd acc = Minv * G;
+  acc.noalias() = Minv * G;
   for (int j = 0; j < n_; ++j) {
     (*F)(model::rate_index(j, M, N)) = acc(j);
     (*F)(model::displacement_index(j, M, N)) = y(model::rate_index(j, M, N));
   }
   if (J != nullptr) {
     J->setZero(ns_, ns_);
-    const Eigen::MatrixXd D = Minv * Jg;
+    D.noalias() = Minv * Jg;
     for (int j = 0; j < n_; ++j) {
       J->row(model::rate_index(j, M, N)) = D.row(j);
       (*J)(model::displacement_index(j, M, N), model::rate_index(j, M, N)) = 1.0;
