@@ -393,16 +393,19 @@ std::vector<Eigen::VectorXd> NonlinearSystem::integrate(const Eigen::VectorXd& y
                          [](double a, double b) { return std::abs(a - b) < 1e-13; }),
              grid.end());
   std::vector<Eigen::VectorXd> out;
-  Eigen::VectorXd y = y0, k1, k2, k3, k4;
+  Eigen::VectorXd y = y0, k1, k2, k3, k4, stage(ns_);  // (stage: no allocation per step)
   for (int r = 0; r < revolutions; ++r) {
     for (std::size_t i = 0; i + 1 < grid.size(); ++i) {
       const double a = grid[i], b = grid[i + 1], h = b - a;
       const bool rev = sector_.has_sector && 0.5 * (a + b) >= sector_.sector_begin &&
                        0.5 * (a + b) < sector_.sector_end;
       evaluate(a, rev, y, &k1, nullptr);
-      evaluate(a + 0.5 * h, rev, y + 0.5 * h * k1, &k2, nullptr);
-      evaluate(a + 0.5 * h, rev, y + 0.5 * h * k2, &k3, nullptr);
-      evaluate(b, rev, y + h * k3, &k4, nullptr);
+      stage = y + 0.5 * h * k1;
+      evaluate(a + 0.5 * h, rev, stage, &k2, nullptr);
+      stage = y + 0.5 * h * k2;
+      evaluate(a + 0.5 * h, rev, stage, &k3, nullptr);
+      stage = y + h * k3;
+      evaluate(b, rev, stage, &k4, nullptr);
       y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
     }
     out.push_back(y);
