@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/floquet.h"
@@ -15,8 +16,17 @@ namespace flaplag::internal {
 
 FloquetFunction FoldWatch::wrap(FloquetFunction f) const {
   auto s = state;
-  return [s, f](double mu, double tol) {
+  // The search asks the same mu again right away at a finer zeta tolerance (the scan's step
+  // past the end of the branch, a bracket's end).  A failure there is the equilibrium's (or
+  // the trim's), from the same last success, so the same failure: it is not solved again.
+  auto failed = std::make_shared<std::optional<std::pair<double, FloquetSample>>>();
+  return [s, f, failed](double mu, double tol) {
+    if (*failed && (*failed)->first == mu) return (*failed)->second;
     FloquetSample out = f(mu, tol);
+    if (out.status == Status::Failed)
+      *failed = std::make_pair(mu, out);
+    else
+      failed->reset();
     if (out.status == Status::Failed) {
       if (s->first_failed < 0.0 || mu < s->first_failed) s->first_failed = mu;
     } else if (s->first_failed < 0.0 || mu < s->first_failed) {

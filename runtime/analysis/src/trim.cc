@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -452,9 +453,14 @@ TrimResult trim_once(const RotorParameters& p, const model::ModelDescriptor& m, 
     }
     return true;
   };
-  // Forward-difference Jacobian at x (the residual is nearly linear in the pitch).
+  // Forward-difference Jacobian at x (the residual is nearly linear in the pitch).  The
+  // evaluation at x (`last`, and its q° in `warm`) is kept and put back afterwards rather than
+  // recomputed: the same solve again (about hover bit for bit: the response's grid is fixed
+  // after the first evaluation).
   auto jacobian = [&](Eigen::MatrixXd* J) {
     J->resize(nx, nx);
+    const ThrustResult at_x = last;
+    const PeriodicEquilibrium warm_at_x = p.periodic_linearization ? warm : PeriodicEquilibrium{};
     for (int j = 0; j < nx; ++j) {
       const double h = 1e-6;
       Eigen::VectorXd xp = x, rp;
@@ -462,7 +468,8 @@ TrimResult trim_once(const RotorParameters& p, const model::ModelDescriptor& m, 
       if (!residual(xp, &rp)) return false;
       J->col(j) = (rp - r) / h;
     }
-    residual(x, &r);  // restore `last` to x
+    last = at_x;
+    if (p.periodic_linearization) warm = warm_at_x;
     return true;
   };
   // Newton with a Jacobian that is updated by Broyden's rule after each step and evaluated by
@@ -564,9 +571,21 @@ struct Trimmed {
     // About the periodic equilibrium both trims start warm: the previous trim's q° saves the
     // continuation from hover at every evaluation.
     const bool warm = options.kind == TrimKind::Moment || params.periodic_linearization;
-    return [this, previous, warm](double mu, double zeta_tolerance) {
+    // A cold trim depends on mu alone: the search evaluates some mu more than once (at two
+    // zeta tolerances, or again after a scan), and gets the same trim without solving again.
+    auto cold = std::make_shared<std::map<double, TrimResult>>();
+    return [this, previous, warm, cold](double mu, double zeta_tolerance) {
       FloquetSample out;
-      const TrimResult tr = trim(params, mu, options, warm ? previous.get() : nullptr);
+      TrimResult tr;
+      if (const auto it = cold->find(mu); !warm && it != cold->end()) {
+        tr = it->second;
+      } else {
+        tr = trim(params, mu, options, warm ? previous.get() : nullptr);
+        if (!warm && tr.status != Status::Failed) {
+          if (cold->size() > 4096) cold->clear();
+          cold->emplace(mu, tr);
+        }
+      }
       if (tr.status != Status::Failed) *previous = tr;
       if (tr.status == Status::Failed) {
         out.status = Status::Failed;

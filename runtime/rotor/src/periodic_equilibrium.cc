@@ -123,43 +123,122 @@ Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEqui
   const auto points = quadrature(sys.sector(), 3.0 * K + 4.0);
   Newton out;
   const int P = static_cast<int>(points.size());
-  Eigen::VectorXd p, d1, d2, y(2 * n), F;
-  Eigen::MatrixXd J;
-  Eigen::VectorXd R(unknowns);
-  Eigen::MatrixXd Jac(unknowns, unknowns);
-  // The projections as matrix products: W (nb x P) the weighted basis at the points, and per
-  // equation i the rows B_i (P x unknowns) of d(residual_i)/dX at each point; Jac_i = W B_i.
-  Eigen::MatrixXd W(nb, P);
-  std::vector<Eigen::MatrixXd> B(n, Eigen::MatrixXd(P, unknowns));
-  Eigen::MatrixXd E(n, P);  // residual at each point
-  double previous_step = std::numeric_limits<double>::infinity();
-  for (int it = 1; it <= opt.max_iterations; ++it) {
+  // Fixed for the whole solve (the points do not move between iterations): the basis and its
+  // derivatives at the points, W (nb x P) the weighted basis (the projection onto phi_c is a
+  // Fourier coefficient), and H (P x (4K+1)) the weighted harmonics cos h psi (columns 0..2K)
+  // and sin h psi (columns 2K+1..4K, h = 1..2K), for the Jacobian below.
+  Eigen::MatrixXd Pb(nb, P), D1(nb, P), D2(nb, P), W(nb, P), H(P, 4 * K + 1);
+  {
+    Eigen::VectorXd p, d1, d2;
     for (int k = 0; k < P; ++k) {
       const QuadPoint& qp = points[k];
       basis(K, qp.psi, p, d1, d2);
-      const Eigen::VectorXd q = X * p, qd = X * d1, qdd = X * d2;
-      for (int j = 0; j < n; ++j) {
-        y(model::rate_index(j, M, N)) = qd(j);
-        y(model::displacement_index(j, M, N)) = q(j);
-      }
-      sys.evaluate(qp.psi, qp.reversed, y, &F, &J);
-      // normalised weights: the projection onto phi_c is a Fourier coefficient
-      W.col(k) = p * (qp.weight / kPi);
+      Pb.col(k) = p;
+      D1.col(k) = d1;
+      D2.col(k) = d2;
+      const double w = qp.weight / kPi;
+      W.col(k) = p * w;
       W(0, k) *= 0.5;
-      for (int i = 0; i < n; ++i) {
-        const int row = model::rate_index(i, M, N);
-        E(i, k) = qdd(i) - F(row);
-        for (int j = 0; j < n; ++j) {
-          const double a = J(row, model::displacement_index(j, M, N));
-          const double b = J(row, model::rate_index(j, M, N));
-          B[i].block(k, j * nb, 1, nb) = -(a * p + b * d1).transpose();
+      // cos, sin of (K + h) psi from those of K psi and h psi (angle addition)
+      const double cK = K > 0 ? p(2 * K - 1) : 1.0, sK = K > 0 ? p(2 * K) : 0.0;
+      H(k, 0) = w;
+      for (int h = 1; h <= 2 * K; ++h) {
+        double c, sn;
+        if (h <= K) {
+          c = p(2 * h - 1);
+          sn = p(2 * h);
+        } else {
+          const double ch = p(2 * (h - K) - 1), sh = p(2 * (h - K));
+          c = cK * ch - sK * sh;
+          sn = sK * ch + cK * sh;
         }
-        B[i].block(k, i * nb, 1, nb) += d2.transpose();
+        H(k, h) = w * c;
+        H(k, 2 * K + h) = w * sn;
       }
     }
+  }
+  // The Jacobian's block (i, j) is sum_k W_c(psi_k) [-a_ij phi_d - b_ij phi_d' + delta_ij
+  // phi_d''](psi_k), a_ij, b_ij the derivatives of equation i's load by displacement and rate
+  // j.  The product phi_c phi_d is a sum of two harmonics of order <= 2K (cos m cos n =
+  // (cos (m-n) + cos (m+n)) / 2, ...), so every block entry is a combination of the weighted
+  // harmonic sums of a_ij and b_ij: O(P K) work per pair instead of O(P K^2).
+  const auto harmonic_of = [](int c) { return (c + 1) / 2; };
+  const auto is_sine = [](int c) { return c > 0 && c % 2 == 0; };
+  // sum_k w_k f(psi_k) phi_c(psi_k) phi_d(psi_k) / pi from f's weighted sums `s` (a column of
+  // H^T f), with the factor 1/2 of the constant's projection.
+  const auto product_sum = [&](const auto& s, int c, int d) {
+    const auto A = [&](int h) { return s(std::abs(h)); };
+    const auto B = [&](int h) { return h == 0 ? 0.0 : h > 0 ? s(2 * K + h) : -s(2 * K - h); };
+    const int m = harmonic_of(c), l = harmonic_of(d);
+    double v;
+    if (c == 0 && d == 0)
+      v = A(0);
+    else if (c == 0)
+      v = is_sine(d) ? B(l) : A(l);
+    else if (d == 0)
+      v = is_sine(c) ? B(m) : A(m);
+    else if (!is_sine(c) && !is_sine(d))
+      v = 0.5 * (A(m - l) + A(m + l));
+    else if (is_sine(c) && is_sine(d))
+      v = 0.5 * (A(m - l) - A(m + l));
+    else if (!is_sine(c))
+      v = 0.5 * (B(m + l) - B(m - l));  // cos m sin l
+    else
+      v = 0.5 * (B(m + l) + B(m - l));  // sin m cos l
+    return c == 0 ? 0.5 * v : v;
+  };
+  // phi_d' = -l phi_{d+1} (cos l psi) or l phi_{d-1} (sin l psi); phi_d'' = -l^2 phi_d.
+  const auto derivative_sum = [&](const auto& s, int c, int d) {
+    if (d == 0) return 0.0;
+    const int l = harmonic_of(d);
+    return is_sine(d) ? l * product_sum(s, c, d - 1) : -l * product_sum(s, c, d + 1);
+  };
+  const Eigen::VectorXd unit_sums = H.colwise().sum().transpose();
+  Eigen::MatrixXd mass_block(nb, nb);  // sum W_c phi_d'' (the delta_ij term)
+  for (int c = 0; c < nb; ++c)
+    for (int d = 0; d < nb; ++d) {
+      const int l = harmonic_of(d);
+      mass_block(c, d) = -static_cast<double>(l * l) * product_sum(unit_sums, c, d);
+    }
+  Eigen::VectorXd y(2 * n), F;
+  Eigen::MatrixXd J;
+  Eigen::VectorXd R(unknowns);
+  Eigen::MatrixXd Jac(unknowns, unknowns);
+  Eigen::MatrixXd E(n, P);          // residual at each point
+  Eigen::MatrixXd S(P, 2 * n * n);  // a_ij, b_ij at each point
+  double previous_step = std::numeric_limits<double>::infinity();
+  Eigen::MatrixXd Q(n, P), Qd(n, P), Qdd(n, P);  // q, q', q'' at the points
+  for (int it = 1; it <= opt.max_iterations; ++it) {
+    Q.noalias() = X * Pb;
+    Qd.noalias() = X * D1;
+    Qdd.noalias() = X * D2;
+    for (int k = 0; k < P; ++k) {
+      const QuadPoint& qp = points[k];
+      for (int j = 0; j < n; ++j) {
+        y(model::rate_index(j, M, N)) = Qd(j, k);
+        y(model::displacement_index(j, M, N)) = Q(j, k);
+      }
+      sys.evaluate(qp.psi, qp.reversed, y, &F, &J);
+      for (int i = 0; i < n; ++i) {
+        const int row = model::rate_index(i, M, N);
+        E(i, k) = Qdd(i, k) - F(row);
+        for (int j = 0; j < n; ++j) {
+          S(k, 2 * (i * n + j)) = J(row, model::displacement_index(j, M, N));
+          S(k, 2 * (i * n + j) + 1) = J(row, model::rate_index(j, M, N));
+        }
+      }
+    }
+    const Eigen::MatrixXd sums = H.transpose() * S;  // (4K+1) x 2 n^2
     for (int i = 0; i < n; ++i) {
       R.segment(i * nb, nb).noalias() = W * E.row(i).transpose();
-      Jac.middleRows(i * nb, nb).noalias() = W * B[i];
+      for (int j = 0; j < n; ++j) {
+        const auto sa = sums.col(2 * (i * n + j)), sb = sums.col(2 * (i * n + j) + 1);
+        auto block = Jac.block(i * nb, j * nb, nb, nb);
+        for (int c = 0; c < nb; ++c)
+          for (int d = 0; d < nb; ++d)
+            block(c, d) = -product_sum(sa, c, d) - derivative_sum(sb, c, d);
+        if (i == j) block += mass_block;
+      }
     }
     out.residual = R.cwiseAbs().maxCoeff();
     if (!R.allFinite() || !Jac.allFinite()) {
@@ -254,11 +333,17 @@ void NonlinearSystem::evaluate(double psi, bool in_sector, const Eigen::VectorXd
                                Eigen::VectorXd* F, Eigen::MatrixXd* J) const {
   const auto& m = builder_->model();
   const int M = m.flap_modes, N = m.lag_modes;
-  std::vector<double> force(H_ * n_), jac(H_ * n_ * ns_);
+  // Scratch of this thread, sized once: the harmonic balance evaluates at thousands of points
+  // per Newton iteration, and the allocations would cost more than the loads.
+  thread_local std::vector<double> force, jac;
+  thread_local Eigen::VectorXd G, acc;
+  thread_local Eigen::MatrixXd Jg, D;
+  force.assign(static_cast<std::size_t>(H_ * n_), 0.0);
+  jac.assign(static_cast<std::size_t>(H_ * n_ * ns_), 0.0);
   builder_->nonlinear_loads(mu_, in_sector && sector_.has_sector ? reversed_ : normal_, y.data(),
                             force.data(), jac.data());
-  Eigen::VectorXd G = Eigen::VectorXd::Zero(n_);
-  Eigen::MatrixXd Jg = Eigen::MatrixXd::Zero(n_, ns_);
+  G.setZero(n_);
+  if (J != nullptr) Jg.setZero(n_, ns_);
   for (int h = 0; h < H_; ++h) {
     const double b = harmonic_basis(h, psi);
     for (int i = 0; i < n_; ++i) {
@@ -269,14 +354,14 @@ void NonlinearSystem::evaluate(double psi, bool in_sector, const Eigen::VectorXd
   }
   const Eigen::MatrixXd& Minv = builder_->mass_inverse();
   F->setZero(ns_);
-  const Eigen::VectorXd acc = Minv * G;
+  acc.noalias() = Minv * G;
   for (int j = 0; j < n_; ++j) {
     (*F)(model::rate_index(j, M, N)) = acc(j);
     (*F)(model::displacement_index(j, M, N)) = y(model::rate_index(j, M, N));
   }
   if (J != nullptr) {
     J->setZero(ns_, ns_);
-    const Eigen::MatrixXd D = Minv * Jg;
+    D.noalias() = Minv * Jg;
     for (int j = 0; j < n_; ++j) {
       J->row(model::rate_index(j, M, N)) = D.row(j);
       (*J)(model::displacement_index(j, M, N), model::rate_index(j, M, N)) = 1.0;
@@ -308,16 +393,19 @@ std::vector<Eigen::VectorXd> NonlinearSystem::integrate(const Eigen::VectorXd& y
                          [](double a, double b) { return std::abs(a - b) < 1e-13; }),
              grid.end());
   std::vector<Eigen::VectorXd> out;
-  Eigen::VectorXd y = y0, k1, k2, k3, k4;
+  Eigen::VectorXd y = y0, k1, k2, k3, k4, stage(ns_);  // (stage: no allocation per step)
   for (int r = 0; r < revolutions; ++r) {
     for (std::size_t i = 0; i + 1 < grid.size(); ++i) {
       const double a = grid[i], b = grid[i + 1], h = b - a;
       const bool rev = sector_.has_sector && 0.5 * (a + b) >= sector_.sector_begin &&
                        0.5 * (a + b) < sector_.sector_end;
       evaluate(a, rev, y, &k1, nullptr);
-      evaluate(a + 0.5 * h, rev, y + 0.5 * h * k1, &k2, nullptr);
-      evaluate(a + 0.5 * h, rev, y + 0.5 * h * k2, &k3, nullptr);
-      evaluate(b, rev, y + h * k3, &k4, nullptr);
+      stage = y + 0.5 * h * k1;
+      evaluate(a + 0.5 * h, rev, stage, &k2, nullptr);
+      stage = y + 0.5 * h * k2;
+      evaluate(a + 0.5 * h, rev, stage, &k3, nullptr);
+      stage = y + h * k3;
+      evaluate(b, rev, stage, &k4, nullptr);
       y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
     }
     out.push_back(y);
