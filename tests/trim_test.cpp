@@ -162,6 +162,34 @@ TEST(Trim, FromAFarStartItContinuesInHalvedSteps) {
   EXPECT_NEAR(far.theta1s, near.theta1s, 1e-8);
 }
 
+// Regression: where no trim exists (the moment trim at C_T = 0.005 ends near mu = 0.74), the
+// continuation in halved steps tried ever smaller steps with Newton solves that could not
+// converge (23 s for one trim at mu = 0.8 of the typical case).  A trim now makes at most
+// max_evaluations thrust evaluations (a small budget here, so that the test is quick) and says
+// so.
+TEST(Trim, WithoutASolutionItGivesUpWithinItsBudget) {
+  const RotorParameters p = cyclic_typical();
+  TrimOptions o;
+  o.kind = TrimKind::Moment;
+  o.thrust_coefficient = 0.005;
+  const auto hover = flaplag::trim(p, 0.0, o);
+  ASSERT_TRUE(hover.converged) << hover.message;
+  EXPECT_GT(hover.evaluations, 0);
+  EXPECT_LT(hover.evaluations, 60);
+  o.max_evaluations = 120;
+  const auto none = flaplag::trim(p, 0.8, o, &hover);
+  EXPECT_EQ(Status::Failed, none.status) << none.message;
+  EXPECT_FALSE(none.converged);
+  EXPECT_LE(none.evaluations, o.max_evaluations);
+  EXPECT_EQ(0.8, none.mu);
+  // Within the budget a trim that exists is still found (and the bound is an option).
+  const auto far = flaplag::trim(p, 0.7, o, &hover);
+  EXPECT_TRUE(far.converged) << far.message;
+  EXPECT_LE(far.evaluations, o.max_evaluations);
+  o.max_evaluations = 0;
+  EXPECT_THROW(flaplag::trim(p, 0.7, o, &hover), InvalidInput);
+}
+
 TEST(CyclicPitch, ZeroCyclicEqualsPaperModel) {
   RotorParameters p;
   flaplag::Analysis paper(p, {});

@@ -197,6 +197,9 @@ bool TrimOptions::IsValid(std::string* error) const {
   if (max_iterations < 1 || max_iterations > 1000) {
     return report("max_iterations", std::to_string(max_iterations), "must be 1..1000", error);
   }
+  if (max_evaluations < 1 || max_evaluations > 1000000) {
+    return report("max_evaluations", std::to_string(max_evaluations), "must be 1..1000000", error);
+  }
   if (!(std::isfinite(tolerance) && tolerance > 0.0 && tolerance <= 1e-3)) {
     return report("tolerance", round_trip_text(tolerance), "must be in (0, 1e-3]", error);
   }
@@ -303,10 +306,18 @@ ThrustResult rotor_thrust_momentum(const RotorParameters& p, double mu, double s
 }
 
 namespace {
+// The thrust evaluations one trim() has made, against TrimOptions::max_evaluations.
+struct TrimBudget {
+  int used = 0;
+};
+
 // One trim at mu (Newton from the start's or the blade-element controls); trim() adds the
 // continuation in mu about the periodic equilibrium.
 TrimResult trim_once(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
-                     const TrimOptions& o, const TrimResult* start);
+                     const TrimOptions& o, const TrimResult* start, TrimBudget& budget);
+
+TrimResult trim_continued(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
+                          const TrimOptions& o, const TrimResult* start, TrimBudget& budget);
 }  // namespace
 
 TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
@@ -318,6 +329,38 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
     throw InvalidInput("trim", "none", "nothing to trim: use thrust or moment");
   }
   const model::ModelDescriptor& m = thrust_model(p);
+  TrimBudget budget;
+  TrimResult out = trim_continued(p, m, mu, o, start, budget);
+  out.evaluations = budget.used;
+  return out;
+}
+
+namespace {
+
+// The result of a trim whose budget is spent: failed, with the controls of the last trim the
+// continuation settled (`last`, at another mu) or none.
+TrimResult out_of_budget(const RotorParameters& p, double mu, const TrimOptions& o,
+                         const TrimResult* last) {
+  TrimResult out;
+  if (last != nullptr) out = *last;
+  out.mu = mu;
+  out.kind = o.kind;
+  out.target = o.thrust_coefficient;
+  if (last == nullptr) out.parameters = p;
+  out.converged = false;
+  out.status = Status::Failed;
+  out.message = "no trim at mu = " + round_trip_text(mu) + " within " +
+                std::to_string(o.max_evaluations) + " thrust evaluations (`max_evaluations`)";
+  if (last != nullptr && last->status != Status::Failed && last->converged)
+    out.message +=
+        "; the continuation in mu had reached a trim at mu = " + round_trip_text(last->mu) +
+        " (the trimmed branch may end or turn between the two)";
+  return out;
+}
+
+TrimResult trim_continued(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
+                          const TrimOptions& o, const TrimResult* start, TrimBudget& budget) {
+  if (budget.used >= o.max_evaluations) return out_of_budget(p, mu, o, start);
   // About the periodic equilibrium without a start of its own: the trim continued in mu from
   // hover (steps of kPeriodicTrimStep, each from the previous trim and its q°), since q° at
   // fixed controls, continued from hover, may fold before the trimmed branch does.
@@ -325,9 +368,9 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
   if (p.periodic_linearization && mu > kPeriodicTrimStep &&
       (start == nullptr || start->equilibrium.coefficients.size() == 0 ||
        start->status == Status::Failed)) {
-    TrimResult chain = trim(p, 0.0, o);
+    TrimResult chain = trim_continued(p, m, 0.0, o, nullptr, budget);
     for (int i = 1; chain.status != Status::Failed && i * kPeriodicTrimStep < mu; ++i)
-      chain = trim(p, i * kPeriodicTrimStep, o, &chain);
+      chain = trim_continued(p, m, i * kPeriodicTrimStep, o, &chain, budget);
     if (chain.status == Status::Failed) {
       chain.mu = mu;
       chain.message =
@@ -335,7 +378,7 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
           chain.message;
       return chain;
     }
-    return trim(p, mu, o, &chain);
+    return trim_continued(p, m, mu, o, &chain, budget);
   }
   // From a start at another mu: Newton from the start's controls may fail far from it (about
   // hover: the moment trim from mu = 0.7 to 0.8 of the typical case; about the periodic
@@ -346,29 +389,27 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
   if (start != nullptr && settled(*start) && start->kind == o.kind &&
       (!p.periodic_linearization || start->equilibrium.coefficients.size() > 0) &&
       std::abs(mu - start->mu) > 1e-3) {
-    TrimResult direct = trim_once(p, m, mu, o, start);
+    TrimResult direct = trim_once(p, m, mu, o, start, budget);
     if (settled(direct)) return direct;
-    const TrimResult half = trim(p, 0.5 * (start->mu + mu), o, start);
+    const TrimResult half = trim_continued(p, m, 0.5 * (start->mu + mu), o, start, budget);
     if (!settled(half)) return direct;
-    return trim(p, mu, o, &half);
+    return trim_continued(p, m, mu, o, &half, budget);
   }
   // About hover without a start (the thrust trim of a study, from the blade-element controls):
   // when that fails, the same continuation from the hover trim.
   if (!p.periodic_linearization && start == nullptr && mu > 1e-3) {
-    TrimResult direct = trim_once(p, m, mu, o, nullptr);
+    TrimResult direct = trim_once(p, m, mu, o, nullptr, budget);
     if (settled(direct)) return direct;
-    const TrimResult hover = trim_once(p, m, 0.0, o, nullptr);
+    const TrimResult hover = trim_once(p, m, 0.0, o, nullptr, budget);
     if (!settled(hover)) return direct;
-    TrimResult chained = trim(p, mu, o, &hover);
+    TrimResult chained = trim_continued(p, m, mu, o, &hover, budget);
     return settled(chained) ? chained : direct;
   }
-  return trim_once(p, m, mu, o, start);
+  return trim_once(p, m, mu, o, start, budget);
 }
 
-namespace {
-
 TrimResult trim_once(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
-                     const TrimOptions& o, const TrimResult* start) {
+                     const TrimOptions& o, const TrimResult* start, TrimBudget& budget) {
   TrimResult out;
   out.mu = mu;
   out.kind = o.kind;
@@ -418,6 +459,13 @@ TrimResult trim_once(const RotorParameters& p, const model::ModelDescriptor& m, 
     for (int j = 0; j < nx; ++j) {
       if (!(std::abs(v(j)) < kHalfPi)) return false;
     }
+    if (budget.used >= o.max_evaluations) {
+      last.status = Status::Failed;
+      last.message = "gave up after " + std::to_string(o.max_evaluations) +
+                     " thrust evaluations (`max_evaluations`)";
+      return false;
+    }
+    ++budget.used;
     last = evaluate(params_of(v), m, mu, out.inflow, ropt, &warm);
     if (last.status == Status::Failed) return false;
     r->resize(nx);

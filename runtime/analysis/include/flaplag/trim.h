@@ -73,6 +73,14 @@ struct TrimOptions {
   double thrust_coefficient = 0.005;  // target C_T (not C_T / sigma), in (0, 0.1]
   double shaft_angle = 0.0;           // alpha_R of eq 2.25 [rad], in (-pi/2, pi/2)
   int max_iterations = 30;            // Newton iterations, 1..1000
+  // Evaluations of the rotor's thrust (each a periodic response; about q° a harmonic balance as
+  // well) that one trim(), its continuation in mu included, may make, 1..1000000; then status
+  // Failed, naming the last mu the continuation trimmed.  A converging Newton solve takes 5 to
+  // 50; the examples' trims take at most 668 (the moment trim of trim-study.toml at gamma = 8,
+  // mu = 0.79, where the branch turns).  The bound keeps a trim without a solution from trying
+  // halved steps of mu without end; it bounds their number, not their cost (at extreme mu a
+  // single periodic response can take a second).
+  int max_evaluations = 1000;
   // Converged when |C_T - target| <= tolerance * target and (moment) |flap 1c|, |flap 1s| <=
   // tolerance (tip deflection by l), in (0, 1e-3].
   double tolerance = 1e-13;
@@ -112,6 +120,7 @@ struct TrimResult {
   double target = 0.0;                                // C_T asked for
   double flap_1c = 0.0, flap_1s = 0.0;                // first flap tip harmonic at the trim
   int iterations = 0;
+  int evaluations = 0;         // thrust evaluations of the whole trim() (at most max_evaluations)
   RotorParameters parameters;  // the input with theta, theta1c, theta1s trimmed
   bool converged = false;      // the residual met `tolerance`
   // Jacobian of the residual [(C_T - target)/target, flap 1c, flap 1s] in (theta0, theta1c,
