@@ -201,6 +201,28 @@ TEST(PeriodicEquilibrium, CriticalReportsTheFoldAsTheStabilityBoundary) {
   EXPECT_LT(below.min_distance_to_one, 0.3);
 }
 
+// Regression (found by the command-line fuzzer): where q° ends at once (a flap frequency of
+// 0.001 with almost no lift) and the multipliers of the linearization there cannot be computed,
+// the failed search said "min |Lambda - 1| = inf"; it says so in words, and no "inf" is shown.
+TEST(PeriodicEquilibrium, AFailedFoldSearchWithoutMultipliersShowsNoInfinity) {
+  RotorParameters p;
+  p.model = "paper-cyclic-nonlinear";
+  p.periodic_linearization = true;
+  p.tip_loss_a = 0.4048;
+  p.lift_slope = 0.01;
+  p.cdo = 0.4416;
+  p.omega_flap = 0.001;
+  p.damping_lag = 8.2681090432109041;
+  const Analysis an(p, TransitionOptions{TransitionMethod::Hsu, 163, 4, 1e-5});
+  CriticalOptions o;
+  o.mu_max = 0.0742;
+  o.scan_step = 0.1;
+  const CriticalResult c = an.critical(o);
+  EXPECT_EQ(Status::Failed, c.status);
+  EXPECT_EQ(std::string::npos, c.message.find("inf")) << c.message;
+  EXPECT_NE(std::string::npos, c.message.find("could not be computed")) << c.message;
+}
+
 // Regression: between the fold of the K = 16 (and 32) truncation, mu ~ 0.66603, and the later
 // fold of K = 8, mu ~ 0.66606, only the K = 8 solution exists.  The automatic K used to fall
 // back to it with a warning, so the critical search counted it as existing and put the fold,

@@ -100,10 +100,14 @@ void report_fold(CriticalResult& r, const FoldWatch& watch, const EquilibriumPro
   const std::string bracket = "(" + short_text(lo) + ", " + short_text(hi) + ")";
   // A fold: the multiplier is near 1 where the branch ends.  Otherwise the failure stays one.
   if (!(d_lo < 0.05)) {
-    r.message +=
-        "; the periodic equilibrium ends in " + bracket +
-        " but no Floquet multiplier approaches 1 there (min |Lambda - 1| = " + short_text(d_lo) +
-        "): not identified as a fold";
+    // (d_lo is infinite when the multipliers could not be computed: no "inf" in a message.)
+    r.message += "; the periodic equilibrium ends in " + bracket +
+                 (std::isfinite(d_lo)
+                      ? " but no Floquet multiplier approaches 1 there (min |Lambda - 1| = " +
+                            short_text(d_lo) + ")"
+                      : " but the Floquet multipliers of the linearization there could not be "
+                        "computed (non-finite)") +
+                 ": not identified as a fold";
     return;
   }
   const double mid = 0.5 * (lo + hi);
