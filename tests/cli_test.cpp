@@ -348,6 +348,16 @@ TEST(CliErrors, OutputOptionNamedAsTyped) {
   EXPECT_EQ(b.err.rfind("flaplag: error: -o = ", 0), 0u) << b.err;
 }
 
+// Regression: `run` after an option (flaplag -o F run CASE) was called an unknown subcommand, by
+// a list of subcommands that left it out.
+TEST(CliErrors, RunMustBeTheFirstWord) {
+  const Outcome r = run({"--json", "run", "case.toml"});
+  ASSERT_TRUE(WellFormedError(r));
+  EXPECT_NE(r.err.find("must be the first word: flaplag run CASE"), std::string::npos) << r.err;
+  const Outcome u = run({"bogus"});
+  EXPECT_NE(u.err.find(", run; see flaplag --help"), std::string::npos) << u.err;
+}
+
 // A value with a line break or a control character still gives one line.
 TEST(CliErrors, ControlCharactersStayOnOneLine) {
   for (const std::string v : {"1\n2", "\t", "a\x01"}) {
