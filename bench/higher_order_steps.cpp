@@ -9,9 +9,9 @@
 // where that smallest K is accepted while an actual error exceeds its allowance (and by how
 // much); the ratio to the estimate is given for the other mu.
 //
-// The candidates are written here plainly (Eigen, 4 x 4) on the library's grid rule: equal steps
-// split at the sector edges, the harmonics of the region of each substep.
-//   hsu:     Hsu, the exact interval mean B0 and J = 4 Taylor terms (the library's method, p = 2);
+// The Magnus candidates are written here plainly (Eigen, 4 x 4) on the library's grid rule: equal
+// steps split at the sector edges, the harmonics of the region of each substep.
+//   hsu:     the library's Hsu (transition_matrix_hsu), J = 4 Taylor terms (p = 2);
 //   m4-tJ:   fourth-order Magnus from the exact moments, Omega = B0 + [B1, B0] with
 //            B1 = (1/h) int (psi - c) A (p = 4), exp(Omega) by J Taylor terms;
 //   m4-exp:  the same with an accurate exponential (Eigen's scaling and squaring).
@@ -61,6 +61,7 @@ struct Candidate {
 };
 
 Mat transition(const flaplag::PeriodicSystem& s, int K, const Candidate& c) {
+  if (!c.magnus) return flaplag::transition_matrix_hsu(s, K, c.terms);  // the library's Hsu
   const std::vector<double> edges = s.breakpoints();
   Mat phi = Mat::Identity();
   const double d = kTwoPi / K;
@@ -76,7 +77,7 @@ Mat transition(const flaplag::PeriodicSystem& s, int K, const Candidate& c) {
       B0 += (cosine ? cs : sn) * h * sinc(0.5 * k * h) * Mat(g.A[j]);
       B1 += (cosine ? -sn : cs) * h * h / 12.0 * k * first_moment_factor(0.5 * k * h) * Mat(g.A[j]);
     }
-    const Mat omega = c.magnus ? Mat(B0 + B1 * B0 - B0 * B1) : B0;
+    const Mat omega = B0 + B1 * B0 - B0 * B1;
     phi = (c.terms > 0 ? taylor(omega, c.terms) : Mat(omega.exp())) * phi;
   };
   for (int i = 0; i < K; ++i) {

@@ -26,6 +26,15 @@ RotorParameters cyclic_typical() {
   return p;
 }
 
+// The moment trim at C_T = 0.005, whose branch (typical blade, hover linearization) ends near
+// mu = 0.74.
+TrimOptions moment_trim_005() {
+  TrimOptions o;
+  o.kind = TrimKind::Moment;
+  o.thrust_coefficient = 0.005;
+  return o;
+}
+
 // The model's C_T at theta = 0.15 in hover with the inflow of eq 2.25 (solved together).
 double hover_thrust_at_015() {
   const auto t = flaplag::rotor_thrust_momentum(cyclic_typical(), 0.0, 0.0);
@@ -144,9 +153,7 @@ TEST(Trim, MomentTrimRemovesTheFirstFlapHarmonic) {
 // start at mu = 0.65 gives.
 TEST(Trim, FromAFarStartItContinuesInHalvedSteps) {
   const RotorParameters p = cyclic_typical();
-  TrimOptions o;
-  o.kind = TrimKind::Moment;
-  o.thrust_coefficient = 0.005;
+  TrimOptions o = moment_trim_005();
   const auto hover = flaplag::trim(p, 0.0, o);
   ASSERT_TRUE(hover.converged) << hover.message;
   const auto far = flaplag::trim(p, 0.7, o, &hover);
@@ -169,9 +176,7 @@ TEST(Trim, FromAFarStartItContinuesInHalvedSteps) {
 // so.
 TEST(Trim, WithoutASolutionItGivesUpWithinItsBudget) {
   const RotorParameters p = cyclic_typical();
-  TrimOptions o;
-  o.kind = TrimKind::Moment;
-  o.thrust_coefficient = 0.005;
+  TrimOptions o = moment_trim_005();
   const auto hover = flaplag::trim(p, 0.0, o);
   ASSERT_TRUE(hover.converged) << hover.message;
   EXPECT_GT(hover.evaluations, 0);

@@ -574,7 +574,10 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
 
   // Bounded by Check(): at most kMaxContinuationSteps (+1 for rounding).
   const long steps = static_cast<long>(std::ceil(opt.mu_max / opt.scan_step - 1e-9));
-  Trial prev{0.0, tracker.max_zeta() - opt.zeta_threshold, tracker, {}, std::nullopt, 0.0};
+  // Hover, the scan's start: exact exponents, no error estimate.
+  const Trial hover_trial{0.0, tracker.max_zeta() - opt.zeta_threshold, tracker, {}, std::nullopt,
+                          0.0};
+  Trial prev = hover_trial;
   bool prev_loose = false;
   ExponentTracker before_prev = tracker;  // the tracker one grid point below prev
   for (long i = 1; i <= steps; ++i) {
@@ -639,10 +642,7 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
         lower = std::move(a);
       } else {
         const double mu_lo = static_cast<double>(i - 2) * opt.scan_step;
-        Trial c = mu_lo > 0.0 ? evaluate(before_prev, mu_lo, refine_tolerance)
-                              : Trial{0.0,          tracker.max_zeta() - opt.zeta_threshold,
-                                      tracker,      {},
-                                      std::nullopt, 0.0};
+        Trial c = mu_lo > 0.0 ? evaluate(before_prev, mu_lo, refine_tolerance) : hover_trial;
         if (c.report.status == Status::Failed) return failed(c);
         if ((c.f > 0.0) != (b.f > 0.0)) {
           lower = std::move(c);
