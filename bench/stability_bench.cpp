@@ -132,11 +132,13 @@ void BM_RotorSweep151_Hsu_K50_J4(benchmark::State& state) {
 }
 BENCHMARK(BM_RotorSweep151_Hsu_K50_J4)->Unit(benchmark::kMicrosecond);
 
+// The argument is the number of threads (the stretches of the sweep: Analysis::sweep); wall time.
 void BM_RotorSweep151_HsuAuto(benchmark::State& state) {
   const auto an = typical();
-  for (auto _ : state) benchmark::DoNotOptimize(an.sweep(0.0, 1.5, 0.01));
+  const int threads = static_cast<int>(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(an.sweep(0.0, 1.5, 0.01, threads));
 }
-BENCHMARK(BM_RotorSweep151_HsuAuto)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RotorSweep151_HsuAuto)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
 
 // The same sweep with the reference method (Magnus4 + Richardson, sixth order).
 void BM_RotorSweep151_MagnusAuto(benchmark::State& state) {

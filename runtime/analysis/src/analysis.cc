@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -15,6 +16,7 @@
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/core/parallel.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/system_builder.h"
 #include "fold.h"
@@ -62,6 +64,7 @@ const model::ModelDescriptor& find_model(const std::string& base, int flap_modes
 namespace {
 
 using internal::check_mu;
+using internal::sort_for_output;
 
 // response, simulate and snapshot are of the hover-linearized system: with
 // periodic_linearization they would silently answer another question than the one asked.
@@ -74,17 +77,14 @@ void require_hover_linearization(const RotorParameters& p, const char* what) {
                          "periodic_equilibrium(mu))");
 }
 
-std::string snap12(double v) {
+// v rounded to 12 significant digits (the decimal grid value behind mu0 + k step), as
+// strtod of printf's "%.12g" (std::to_chars general with a precision is that format).
+double snap12(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.12g", v);
-  return buf;
-}
-
-// Sorted by label, then omega descending: the order in which results are shown.
-void sort_for_output(std::vector<LabelledExponent>& v) {
-  std::stable_sort(v.begin(), v.end(), [](const LabelledExponent& a, const LabelledExponent& b) {
-    return a.label != b.label ? a.label < b.label : a.omega > b.omega;
-  });
+  const auto printed = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 12);
+  double out = v;
+  std::from_chars(buf, printed.ptr, out);
+  return out;
 }
 
 // The order of a method's error in the step h, for the Richardson estimate from K and K/2.
@@ -529,6 +529,15 @@ struct Analysis::Impl {
     return [this, hint](double mu, double tol) { return floquet(mu, tol, hint.get()); };
   }
 
+  // A sweep or track in stretches (Analysis::sweep).  The periodic equilibria of one Analysis
+  // share a cache of starts, so their stretches run in order.
+  SweepResult track(const std::vector<double>& mus, double step, int threads) const {
+    if (auto p = threads_problem(threads)) throw *p;
+    return track_exponents(
+        hover_modes, [this] { return function(); }, mus, step, options.zeta_tolerance,
+        builder.params().periodic_linearization ? 1 : threads);
+  }
+
   // The periodic equilibrium at mu, continued from the nearest cached one below mu (the
   // continuation from hover is the expensive part of a scan).  Converged equilibria are
   // cached; the cache only shortens the continuation along the same branch.
@@ -800,7 +809,7 @@ PointResult Analysis::point(double mu, double scan_step) const {
   return r;
 }
 
-SweepResult Analysis::sweep(double mu0, double mu1, double step) const {
+SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads) const {
   check_mu(mu0, "mu0");
   check_mu(mu1, "mu1");
   if (!(step > 0.0) || !std::isfinite(step)) {
@@ -815,23 +824,21 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step) const {
         "step", round_trip_text(step),
         "too small: at most " + std::to_string(kMaxContinuationSteps) + " continuation steps");
   }
-  SweepResult r = sweep_exponents(impl_->hover_modes, impl_->function(), mu0, mu1, step,
-                                  impl_->options.zeta_tolerance);
+  SweepResult r = impl_->track(sweep_grid(mu0, mu1, step), step, threads);
   for (PointResult& p : r.points) {
     // mu0 + k step accumulates rounding (0.7999999999999999); report the decimal grid value.
-    p.mu = std::stod(snap12(p.mu));
+    p.mu = snap12(p.mu);
     sort_for_output(p.exponents);
   }
   return r;
 }
 
-SweepResult Analysis::track(const std::vector<double>& mus, double scan_step) const {
+SweepResult Analysis::track(const std::vector<double>& mus, double scan_step, int threads) const {
   for (double mu : mus) check_mu(mu, "mu");
   if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
     throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
   }
-  SweepResult r = track_exponents(impl_->hover_modes, impl_->function(), mus, scan_step,
-                                  impl_->options.zeta_tolerance);
+  SweepResult r = impl_->track(mus, scan_step, threads);
   for (PointResult& p : r.points) sort_for_output(p.exponents);
   return r;
 }

@@ -3,6 +3,8 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "flaplag/blade/blade.h"
 #include "flaplag/core/errors.h"
@@ -19,6 +21,16 @@ inline void check_mu(double mu, const char* name) {
     throw InvalidInput(name, round_trip_text(mu),
                        "advance ratio must be >= 0 and <= " + round_trip_text(kMaxAdvanceRatio));
   }
+}
+
+// Sorted by label, then omega descending: the order in which results are shown.  Stable (an
+// insertion sort: a handful of exponents, no temporary buffer).
+inline void sort_for_output(std::vector<LabelledExponent>& v) {
+  auto before = [](const LabelledExponent& a, const LabelledExponent& b) {
+    return a.label != b.label ? a.label < b.label : a.omega > b.omega;
+  };
+  for (std::size_t i = 1; i < v.size(); ++i)
+    for (std::size_t j = i; j > 0 && before(v[j], v[j - 1]); --j) std::swap(v[j], v[j - 1]);
 }
 
 // The harmonic balance behind periodic_linearization, for the analysis and the trim alike (the

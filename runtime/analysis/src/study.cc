@@ -3,11 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
-#include <thread>
 
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/core/parallel.h"
 #include "flaplag/rotor/parameter_table.h"
 
 namespace flaplag {
@@ -24,11 +23,6 @@ bool report(const std::optional<InvalidInput>& p, std::string* error) {
   return !p;
 }
 
-std::optional<InvalidInput> check_threads(int threads) {
-  if (threads < 0 || threads > 256)
-    return bad("threads", std::to_string(threads), "must be 0 (all cores) or 1..256");
-  return std::nullopt;
-}
 
 std::optional<InvalidInput> check_values(const char* name, const std::vector<double>& v,
                                          std::size_t max_count) {
@@ -51,7 +45,7 @@ std::optional<InvalidInput> study_problem(const StudyOptions& o) {
     o.critical.Check();  // throws the precise InvalidInput
   }
   o.trim.Check();
-  return check_threads(o.threads);
+  return threads_problem(o.threads);
 }
 
 std::optional<InvalidInput> map_problem(const MapOptions& o) {
@@ -77,38 +71,7 @@ std::optional<InvalidInput> map_problem(const MapOptions& o) {
   if (!(std::isfinite(o.scan_step) && o.scan_step > 0.0))
     return bad("scan_step", round_trip_text(o.scan_step), "must be > 0");
   o.trim.Check();
-  return check_threads(o.threads);
-}
-
-// Runs task(i) for i = 0..n-1 on `threads` threads, claiming indices in order; stops claiming
-// when *cancel is set.  Every claimed task finishes, so the finished tasks are 0..k-1.
-std::size_t parallel_for(std::size_t n, int threads, const std::atomic<bool>* cancel,
-                         const ProgressFunction& progress,
-                         const std::function<void(std::size_t)>& task) {
-  std::atomic<std::size_t> next{0};
-  std::atomic<std::size_t> finished{0};
-  std::mutex progress_mutex;
-  auto worker = [&] {
-    for (;;) {
-      if (cancel != nullptr && cancel->load()) return;
-      const std::size_t i = next.fetch_add(1);
-      if (i >= n) return;
-      task(i);
-      const std::size_t done = finished.fetch_add(1) + 1;
-      if (progress) {
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        progress(done, n);
-      }
-    }
-  };
-  std::size_t count = threads > 0 ? static_cast<std::size_t>(threads)
-                                  : std::max(1u, std::thread::hardware_concurrency());
-  count = std::min(count, n);
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < count; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  return std::min(next.load(), n) == finished.load() ? finished.load() : std::min(next.load(), n);
+  return threads_problem(o.threads);
 }
 
 Status worse(Status a, Status b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
@@ -234,7 +197,7 @@ MapResult run_map(const RotorParameters& base, const TransitionOptions& transiti
         const SweepResult s =
             options.trim.kind != TrimKind::None
                 ? trimmed_track(p, transition, options.trim, mus, options.scan_step)
-                : Analysis(p, transition).track(mus, options.scan_step);
+                : Analysis(p, transition).track(mus, options.scan_step, 1);
         for (std::size_t k = 0; k < mus.size(); ++k)
           put(k, k < s.points.size() ? cell_of(s.points[k])
                                      : failed_cell("continuation stopped: " + s.message));

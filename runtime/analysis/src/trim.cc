@@ -32,6 +32,7 @@ bool report(const char* name, const std::string& value, const std::string& reaso
 }
 
 void check_mu(double mu) { internal::check_mu(mu, "mu"); }
+using internal::sort_for_output;
 
 const model::ModelDescriptor& thrust_model(const RotorParameters& p) {
   const model::ModelDescriptor& m = find_model(p.model);
@@ -659,12 +660,6 @@ struct Trimmed {
   TrimResult hover;  // the trim at mu = 0
   HoverModes modes;
 };
-
-void sort_for_output(std::vector<LabelledExponent>& v) {
-  std::stable_sort(v.begin(), v.end(), [](const LabelledExponent& a, const LabelledExponent& b) {
-    return a.label != b.label ? a.label < b.label : a.omega > b.omega;
-  });
-}
 
 }  // namespace
 

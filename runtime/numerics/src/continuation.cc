@@ -4,13 +4,16 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <atomic>
 #include <cstdio>
+#include <exception>
 #include <limits>
 #include <utility>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/core/parallel.h"
 #include "flaplag/numerics/brent.h"
 
 namespace flaplag {
@@ -204,7 +207,9 @@ bool ExponentTracker::ensure_vectors() const {
   std::vector<std::complex<double>> multipliers;
   multipliers.reserve(exponents_.size());
   for (const LabelledExponent& e : exponents_) multipliers.push_back(e.multiplier);
-  vectors_valid_ = floquet_eigenvectors(last_phi_, multipliers, &vectors_);
+  vectors_valid_ = last_eigensystem_
+                      ? floquet_eigenvectors(*last_eigensystem_, multipliers, &vectors_)
+                      : floquet_eigenvectors(last_phi_, multipliers, &vectors_);
   return vectors_valid_;
 }
 
@@ -336,7 +341,9 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
       std::vector<std::complex<double>> multipliers;
       multipliers.reserve(static_cast<std::size_t>(n));
       for (const FloquetExponent& e : next.exponents) multipliers.push_back(e.multiplier);
-      if (!floquet_eigenvectors(next.phi, multipliers, &next_vectors_))
+      if (!(next.eigensystem
+                ? floquet_eigenvectors(*next.eigensystem, multipliers, &next_vectors_)
+                : floquet_eigenvectors(next.phi, multipliers, &next_vectors_)))
         return fail(next.phi.rows() == n
                         ? "the eigenvectors of Phi needed to identify the modes are not finite; "
                           "tracking state unchanged"
@@ -383,7 +390,10 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
   }
   // Without new eigenvectors the tracked ones are those of next.phi, computed when needed.
   vectors_valid_ = new_vectors != nullptr;
-  if (!vectors_valid_) last_phi_ = next.phi;
+  if (!vectors_valid_) {
+    last_phi_ = next.phi;
+    last_eigensystem_ = next.eigensystem;
+  }
   if (decided) report.min_similarity = std::numeric_limits<double>::quiet_NaN();
   previous_mu_ = mu_;
   mu_ = mu;
@@ -701,9 +711,9 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
   return out;
 }
 
-SweepResult track_exponents(const HoverModes& hover, const FloquetFunction& floquet,
-                            const std::vector<double>& mus, double max_step,
-                            double zeta_tolerance) {
+namespace {
+
+void check_track(const std::vector<double>& mus, double max_step, double zeta_tolerance) {
   require(std::isfinite(max_step) && max_step > 0.0, "step", max_step, "must be > 0");
   require(!mus.empty(), "mu", 0.0, "need at least one advance ratio");
   double last = 0.0;
@@ -717,53 +727,66 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunction& floq
           "step", max_step, "too small: at most 1000000 continuation steps");
   require(std::isfinite(zeta_tolerance) && zeta_tolerance > 0.0, "zeta_tolerance", zeta_tolerance,
           "must be > 0");
-  if (!floquet) throw InvalidInput("floquet", "empty", "a FloquetFunction is required");
+}
 
-  SweepResult out;
-  if (hover.status == Status::Failed) {
-    out.status = Status::Failed;
-    out.message = "hover modes unavailable: " + hover.message;
-    return out;
+// One evaluation of a continuation: a step that only carries the identification (reported
+// false) or a reported point.
+struct Evaluation {
+  double mu = 0.0;
+  bool reported = false;
+};
+
+// The evaluations that reach each of mus from the one before (from hover for the first) in
+// equal steps no longer than max_step, in order.
+std::vector<Evaluation> evaluations(const std::vector<double>& mus, double max_step) {
+  std::vector<Evaluation> plan;
+  double at = 0.0;
+  for (double mu : mus) {
+    const long pre = static_cast<long>(std::ceil((mu - at) / max_step - 1e-9));
+    for (long i = 1; i < pre; ++i)
+      plan.push_back({at + (mu - at) * static_cast<double>(i) / static_cast<double>(pre), false});
+    plan.push_back({mu, true});
+    at = mu;
   }
-  auto note = [&](double mu, const std::string& m) {
-    if (out.message.empty()) out.message = "at mu = " + fmt(mu) + ": " + m;
-  };
-  ExponentTracker tracker(hover);
-  auto sample_at = [&](double mu, double tol, TrackReport& r) {
-    FloquetSample sample = floquet(mu, tol);
+  return plan;
+}
+
+// The identification along a continuation: takes the samples in order and builds the result.
+class TrackPass {
+ public:
+  TrackPass(const HoverModes& hover, double zeta_tolerance)
+      : tracker_(hover), zeta_tolerance_(zeta_tolerance) {}
+
+  // The tolerance each evaluation is asked for.  Steps that are not reported only carry the
+  // identification: kIdentificationTolerance is plenty.
+  double tolerance(const Evaluation& e) const {
+    return e.reported ? zeta_tolerance_ : std::max(zeta_tolerance_, kIdentificationTolerance);
+  }
+
+  // false: the continuation stops here (out() is final).
+  bool take(const Evaluation& e, const FloquetSample& sample) {
+    TrackReport r;
     if (sample.status == Status::Failed) {
       r.status = Status::Failed;
       r.message = sample.message;
     } else {
-      r = tracker.advance(sample.floquet, mu);
+      r = tracker_.advance(sample.floquet, e.mu);
     }
-    return sample;
-  };
-  double at = 0.0;  // where the tracker is
-  for (double mu : mus) {
-    // Reach mu from the tracker's position in equal steps no longer than max_step.  Steps that
-    // are not reported only carry the identification: kIdentificationTolerance is plenty.
-    const long pre = static_cast<long>(std::ceil((mu - at) / max_step - 1e-9));
-    for (long i = 1; i < pre; ++i) {
-      const double m = at + (mu - at) * static_cast<double>(i) / static_cast<double>(pre);
-      TrackReport r;
-      sample_at(m, std::max(zeta_tolerance, kIdentificationTolerance), r);
+    if (!e.reported) {
       if (r.status == Status::Failed) {
-        out.status = Status::Failed;
-        out.message = "continuation failed at mu = " + fmt(m) + ": " + r.message;
-        return out;
+        out_.status = Status::Failed;
+        out_.message = "continuation failed at mu = " + fmt(e.mu) + ": " + r.message;
+        return false;
       }
       // Identification along the way matters; the resolution of points not reported does not.
       if (r.status == Status::Warning) {
-        out.status = worse(out.status, Status::Warning);
-        note(m, r.message);
+        out_.status = worse(out_.status, Status::Warning);
+        note(e.mu, r.message);
       }
+      return true;
     }
-    TrackReport r;
-    const FloquetSample sample = sample_at(mu, zeta_tolerance, r);
-    at = mu;
     PointResult p;
-    p.mu = mu;
+    p.mu = e.mu;
     if (std::isfinite(sample.floquet.liouville_residual))
       p.liouville_residual = sample.floquet.liouville_residual;
     p.error = sample.error;
@@ -771,26 +794,181 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunction& floq
     p.status = r.status;
     p.message = r.message;
     if (r.status == Status::Failed) {
-      out.points.push_back(std::move(p));
-      out.status = Status::Failed;
-      out.message = "at mu = " + fmt(mu) + ": " + r.message;
-      return out;
+      out_.points.push_back(std::move(p));
+      out_.status = Status::Failed;
+      out_.message = "at mu = " + fmt(e.mu) + ": " + r.message;
+      return false;
     }
     if (sample.status == Status::Warning) {
       p.status = Status::Warning;
       p.message = p.message.empty() ? sample.message : p.message + "; " + sample.message;
     }
-    p.exponents = tracker.exponents();
-    p.stable = tracker.max_zeta() <= 0.0;
-    if (p.status != Status::Ok) note(mu, p.message);
-    out.status = worse(out.status, p.status);
-    out.points.push_back(std::move(p));
+    p.exponents = tracker_.exponents();
+    p.stable = tracker_.max_zeta() <= 0.0;
+    if (p.status != Status::Ok) note(e.mu, p.message);
+    out_.status = worse(out_.status, p.status);
+    out_.points.push_back(std::move(p));
+    return true;
   }
+
+  SweepResult& out() { return out_; }
+
+ private:
+  void note(double mu, const std::string& m) {
+    if (out_.message.empty()) out_.message = "at mu = " + fmt(mu) + ": " + m;
+  }
+
+  ExponentTracker tracker_;
+  double zeta_tolerance_;
+  SweepResult out_;
+};
+
+// Whether ExponentTracker::advance may need the eigenvectors of r, or of the point before it,
+// to identify r's exponents: the multipliers alone decide when every tracked exponent's
+// nearest candidate is within kMultiplierStep of its prediction and nearer than every other
+// by more than 1, which two candidates further apart than 1 + 2 kMultiplierStep (in advance's
+// distance, a metric) guarantee for a distinct nearest one.  A miss (a jump, two tracked
+// predictions close to each other) costs only time: advance then computes the vectors itself.
+bool has_close_candidates(const FloquetResult& r) {
+  constexpr double kApart = 1.0 + 2.0 * ExponentTracker::kMultiplierStep;
+  const std::size_t n = r.exponents.size();
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t k = j + 1; k < n; ++k) {
+      const double dz = finite_zeta(r.exponents[j].zeta) - finite_zeta(r.exponents[k].zeta);
+      const double dw = r.exponents[j].omega - r.exponents[k].omega;
+      const double dr = dw - std::round(dw);
+      if (!(kTwoPi * std::sqrt(dz * dz + dr * dr) > kApart)) return true;
+    }
+  return false;
+}
+
+// Computes the eigen-decomposition that advance may need ahead, on the worker's thread.
+void add_eigensystem(FloquetSample& s) {
+  if (s.status == Status::Failed || s.floquet.eigensystem || s.floquet.phi.size() == 0) return;
+  s.floquet.eigensystem = std::make_shared<const FloquetEigenSystem>(
+      floquet_eigensystem(s.floquet.phi));
+}
+
+SweepResult hover_failed(const HoverModes& hover) {
+  SweepResult out;
+  out.status = Status::Failed;
+  out.message = "hover modes unavailable: " + hover.message;
   return out;
 }
 
-SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floquet, double mu0,
-                            double mu1, double step, double zeta_tolerance) {
+}  // namespace
+
+SweepResult track_exponents(const HoverModes& hover, const FloquetFunction& floquet,
+                            const std::vector<double>& mus, double max_step,
+                            double zeta_tolerance) {
+  check_track(mus, max_step, zeta_tolerance);
+  if (!floquet) throw InvalidInput("floquet", "empty", "a FloquetFunction is required");
+  if (hover.status == Status::Failed) return hover_failed(hover);
+  TrackPass pass(hover, zeta_tolerance);
+  for (const Evaluation& e : evaluations(mus, max_step))
+    if (!pass.take(e, floquet(e.mu, pass.tolerance(e)))) break;
+  return std::move(pass.out());
+}
+
+std::size_t continuation_stretch(std::size_t points) {
+  const std::size_t even = (points + kContinuationStretches - 1) / kContinuationStretches;
+  return std::clamp(even, kMinStretch, kMaxStretch);
+}
+
+SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactory& make,
+                            const std::vector<double>& mus, double max_step,
+                            double zeta_tolerance, int threads) {
+  check_track(mus, max_step, zeta_tolerance);
+  if (auto p = threads_problem(threads)) throw *p;
+  if (!make) throw InvalidInput("floquet", "empty", "a FloquetFunctionFactory is required");
+  if (hover.status == Status::Failed) return hover_failed(hover);
+  const std::vector<Evaluation> plan = evaluations(mus, max_step);
+  // Stretch s: the reported points s L .. (s + 1) L - 1 and the steps that lead to each, i.e.
+  // the evaluations first[s] .. first[s + 1] - 1 of the plan.
+  const std::size_t length = continuation_stretch(mus.size());
+  std::vector<std::size_t> first{0};
+  for (std::size_t i = 0, reported = 0; i < plan.size(); ++i)
+    if (plan[i].reported && ++reported % length == 0 && i + 1 < plan.size())
+      first.push_back(i + 1);
+  first.push_back(plan.size());
+  const std::size_t stretches = first.size() - 1;
+  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  TrackPass pass(hover, zeta_tolerance);
+  auto new_function = [&] {
+    FloquetFunction f = make();
+    if (!f) throw InvalidInput("floquet", "empty", "the factory made an empty FloquetFunction");
+    return f;
+  };
+  for (std::size_t w0 = 0; w0 < stretches;) {
+    // A window of stretches whose samples are held at once.
+    std::size_t w1 = w0 + 1;
+    while (w1 < stretches && w1 - w0 < kStretchesInMemory &&
+           first[w1 + 1] - first[w0] <= kSamplesInMemory)
+      ++w1;
+    const std::size_t begin = first[w0], end = first[w1];
+    if (end - begin > kSamplesInMemory) {
+      // One stretch too long to hold (many steps between reported points): evaluated and
+      // identified as it goes, the same evaluations in the same order.
+      const FloquetFunction f = new_function();
+      for (std::size_t i = begin; i < end; ++i)
+        if (!pass.take(plan[i], f(plan[i].mu, pass.tolerance(plan[i]))))
+          return std::move(pass.out());
+      w0 = w1;
+      continue;
+    }
+    std::vector<FloquetFunction> functions;
+    for (std::size_t k = w0; k < w1; ++k) functions.push_back(new_function());
+    std::vector<FloquetSample> samples(end - begin);
+    std::vector<std::exception_ptr> thrown(w1 - w0);
+    std::vector<std::size_t> thrown_at(w1 - w0, kNone);
+    // The first evaluation at which the pass is known to stop (a Failed sample or a throw):
+    // later ones are not needed.
+    std::atomic<std::size_t> stop{kNone};
+    auto lower_stop = [&](std::size_t i) {
+      std::size_t s = stop.load();
+      while (i < s && !stop.compare_exchange_weak(s, i)) {
+      }
+    };
+    // Last stretch first: along mu the steps per period grow, so the costliest stretches are
+    // claimed before the cheap ones fill the gaps (the order does not change any result).
+    parallel_for(w1 - w0, threads, nullptr, {}, [&](std::size_t claimed) {
+      const std::size_t k = w1 - w0 - 1 - claimed;
+      const std::size_t a = first[w0 + k], b = first[w0 + k + 1];
+      bool close_before = false;
+      for (std::size_t i = a; i < b && i <= stop.load(); ++i) {
+        FloquetSample& sample = samples[i - begin];
+        try {
+          sample = functions[k](plan[i].mu, pass.tolerance(plan[i]));
+        } catch (...) {
+          thrown[k] = std::current_exception();
+          thrown_at[k] = i;
+          lower_stop(i);
+          return;
+        }
+        if (sample.status == Status::Failed) {
+          lower_stop(i);
+          return;
+        }
+        // The identification of sample i may need its vectors and those of sample i - 1, and
+        // that of sample i + 1 those of sample i.
+        const bool close =
+            !sample.floquet.has_eigenvectors() && has_close_candidates(sample.floquet);
+        if (close || close_before) add_eigensystem(sample);
+        if (close && i > a) add_eigensystem(samples[i - 1 - begin]);
+        close_before = close;
+      }
+    });
+    for (std::size_t k = w0, i = begin; k < w1; ++k)
+      for (; i < first[k + 1]; ++i) {
+        if (thrown_at[k - w0] == i) std::rethrow_exception(thrown[k - w0]);
+        if (!pass.take(plan[i], samples[i - begin])) return std::move(pass.out());
+      }
+    w0 = w1;
+  }
+  return std::move(pass.out());
+}
+
+std::vector<double> sweep_grid(double mu0, double mu1, double step) {
   require(std::isfinite(mu0) && mu0 >= 0.0 && mu0 <= kMaxAdvanceRatio, "mu0", mu0,
           "must be >= 0 and <= 1000");
   require(std::isfinite(mu1) && mu1 >= mu0 && mu1 <= kMaxAdvanceRatio, "mu1", mu1,
@@ -805,7 +983,12 @@ SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floq
     mus.push_back(mu1);
   else
     mus.back() = std::min(mus.back(), mu1);
-  return track_exponents(hover, floquet, mus, step, zeta_tolerance);
+  return mus;
+}
+
+SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floquet, double mu0,
+                            double mu1, double step, double zeta_tolerance) {
+  return track_exponents(hover, floquet, sweep_grid(mu0, mu1, step), step, zeta_tolerance);
 }
 
 }  // namespace flaplag

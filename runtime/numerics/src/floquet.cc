@@ -105,47 +105,15 @@ void solve(const Mat& p, double trace_integral, bool vectors, FloquetResult* out
   }
 }
 
-// Eigenvectors of p for the given multipliers (see floquet_eigenvectors).
 template <typename Mat>
-bool vectors_of(const Mat& p, const std::vector<std::complex<double>>& multipliers,
-                std::vector<Eigen::VectorXcd>* out) {
+FloquetEigenSystem eigensystem_of(const Mat& p) {
+  FloquetEigenSystem out;
   Eigen::EigenSolver<Mat> es(p, true);
-  if (es.info() != Eigen::Success) return false;
-  const auto& values = es.eigenvalues();
-  const Eigen::Index n = values.size();
-  if (static_cast<Eigen::Index>(multipliers.size()) != n) return false;
-  out->resize(static_cast<std::size_t>(n));
-  // The same matrix gives the same eigenvalues in the same order (with or without vectors the
-  // Schur form is computed by the same operations): then column k belongs to multiplier k.
-  bool same = true;
-  for (Eigen::Index k = 0; k < n; ++k)
-    same = same && values(k) == multipliers[static_cast<std::size_t>(k)];
-  bool used[64] = {};
-  std::vector<bool> used_big(n > 64 ? static_cast<std::size_t>(n) : 0, false);
-  auto is_used = [&](Eigen::Index j) { return n > 64 ? bool(used_big[j]) : used[j]; };
-  for (Eigen::Index k = 0; k < n; ++k) {
-    Eigen::Index col = k;
-    if (!same) {  // the nearest eigenvalue not yet used
-      double best = std::numeric_limits<double>::infinity();
-      for (Eigen::Index j = 0; j < n; ++j) {
-        const double d = std::abs(values(j) - multipliers[static_cast<std::size_t>(k)]);
-        if (!is_used(j) && !(d >= best)) {
-          best = d;
-          col = j;
-        }
-      }
-      if (n > 64)
-        used_big[col] = true;
-      else
-        used[col] = true;
-    }
-    Eigen::VectorXcd& v = (*out)[static_cast<std::size_t>(k)];
-    v = es.eigenvectors().col(col);
-    const double nv = v.norm();
-    if (!std::isfinite(nv)) return false;
-    if (nv > 0.0) v /= nv;
-  }
-  return true;
+  if (es.info() != Eigen::Success) return out;
+  out.values = es.eigenvalues();
+  out.vectors = es.eigenvectors();
+  out.ok = true;
+  return out;
 }
 
 }  // namespace
@@ -184,15 +152,60 @@ FloquetResult floquet_exponents(const Eigen::MatrixXd& phi, double trace_integra
   return out;
 }
 
+FloquetEigenSystem floquet_eigensystem(const Eigen::MatrixXd& phi) {
+  if (phi.rows() != phi.cols() || phi.rows() < 1 || !phi.allFinite()) return {};
+  // The same fixed-size solvers as floquet_exponents, so that the same eigenvalues come out.
+  if (phi.rows() == 4) return eigensystem_of(Eigen::Matrix4d(phi));
+  if (phi.rows() == 8) return eigensystem_of(Eigen::Matrix<double, 8, 8>(phi));
+  return eigensystem_of(phi);
+}
+
+bool floquet_eigenvectors(const FloquetEigenSystem& system,
+                          const std::vector<std::complex<double>>& multipliers,
+                          std::vector<Eigen::VectorXcd>* out) {
+  if (out == nullptr || !system.ok) return false;
+  const Eigen::VectorXcd& values = system.values;
+  const Eigen::Index n = values.size();
+  if (static_cast<Eigen::Index>(multipliers.size()) != n) return false;
+  out->resize(static_cast<std::size_t>(n));
+  // The same matrix gives the same eigenvalues in the same order (with or without vectors the
+  // Schur form is computed by the same operations): then column k belongs to multiplier k.
+  bool same = true;
+  for (Eigen::Index k = 0; k < n; ++k)
+    same = same && values(k) == multipliers[static_cast<std::size_t>(k)];
+  bool used[64] = {};
+  std::vector<bool> used_big(n > 64 ? static_cast<std::size_t>(n) : 0, false);
+  auto is_used = [&](Eigen::Index j) { return n > 64 ? bool(used_big[j]) : used[j]; };
+  for (Eigen::Index k = 0; k < n; ++k) {
+    Eigen::Index col = k;
+    if (!same) {  // the nearest eigenvalue not yet used
+      double best = std::numeric_limits<double>::infinity();
+      for (Eigen::Index j = 0; j < n; ++j) {
+        const double d = std::abs(values(j) - multipliers[static_cast<std::size_t>(k)]);
+        if (!is_used(j) && !(d >= best)) {
+          best = d;
+          col = j;
+        }
+      }
+      if (n > 64)
+        used_big[col] = true;
+      else
+        used[col] = true;
+    }
+    Eigen::VectorXcd& v = (*out)[static_cast<std::size_t>(k)];
+    v = system.vectors.col(col);
+    const double nv = v.norm();
+    if (!std::isfinite(nv)) return false;
+    if (nv > 0.0) v /= nv;
+  }
+  return true;
+}
+
 bool floquet_eigenvectors(const Eigen::MatrixXd& phi,
                           const std::vector<std::complex<double>>& multipliers,
                           std::vector<Eigen::VectorXcd>* vectors) {
-  if (vectors == nullptr || phi.rows() != phi.cols() || phi.rows() < 1 || !phi.allFinite())
-    return false;
-  // The same fixed-size solvers as floquet_exponents, so that the same eigenvalues come out.
-  if (phi.rows() == 4) return vectors_of(Eigen::Matrix4d(phi), multipliers, vectors);
-  if (phi.rows() == 8) return vectors_of(Eigen::Matrix<double, 8, 8>(phi), multipliers, vectors);
-  return vectors_of(phi, multipliers, vectors);
+  if (vectors == nullptr) return false;
+  return floquet_eigenvectors(floquet_eigensystem(phi), multipliers, vectors);
 }
 
 bool add_eigenvectors(FloquetResult* result) {

@@ -163,10 +163,17 @@ class Analysis {
   PointResult point(double mu, double scan_step = 0.01) const;
   // Sweep mu0..mu1 inclusive with the given step (0 <= mu0 < mu1 <= kMaxAdvanceRatio, step > 0,
   // at most kMaxContinuationSteps points).  Points carry the decimal grid value of mu.
-  SweepResult sweep(double mu0, double mu1, double step) const;
+  // threads: 0 = all cores, else 1..kMaxThreads (core/parallel.h).  The evaluations run in
+  // stretches (track_exponents with a FloquetFunctionFactory, numerics/continuation.h), each
+  // with its own warm start, so the result is the same for any number of threads; about the
+  // periodic equilibrium (whose continuation cache is shared) the stretches run one after the
+  // other whatever `threads` says.
+  SweepResult sweep(double mu0, double mu1, double step, int threads = 0) const;
   // Exponents at the given advance ratios (nondecreasing, each in [0, kMaxAdvanceRatio]),
-  // continued from hover in steps of at most scan_step.  mu is reported as given.
-  SweepResult track(const std::vector<double>& mus, double scan_step = 0.01) const;
+  // continued from hover in steps of at most scan_step.  mu is reported as given.  Stretches
+  // and threads as sweep: a track over the points of a sweep (the same step) is that sweep.
+  SweepResult track(const std::vector<double>& mus, double scan_step = 0.01,
+                    int threads = 0) const;
   // opt.Check() first.  With periodic_linearization the search can end at a fold of the branch
   // of periodic equilibria through hover (a real multiplier reaches +1 and the equilibrium
   // ceases to exist: the blade loses it, a divergence-type loss of stability): mu_c is then the

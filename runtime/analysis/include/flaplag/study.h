@@ -14,13 +14,13 @@
 #include <vector>
 
 #include "flaplag/analysis.h"
+#include "flaplag/core/parallel.h"
 #include "flaplag/trim.h"
 
 namespace flaplag {
 
-// Called after each finished row with (rows finished, rows in all); from worker threads, one
-// call at a time.
-using ProgressFunction = std::function<void(std::size_t, std::size_t)>;
+// Progress: ProgressFunction (core/parallel.h), called after each finished row with (rows
+// finished, rows in all).
 
 // The name of an axis: "mu" or a Real field of the parameter table (rotor/parameter_table.h),
 // e.g. "omega_lag", "theta", "damping_lag".

@@ -17,6 +17,7 @@
 #include <complex>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -89,8 +90,9 @@ class ExponentTracker {
   // within kMultiplierStep of its prediction and nearer than every other candidate by more
   // than 1 -- the most the eigenvector term can change a cost, so the full rule above gives
   // the same assignment whatever the eigenvectors (report.min_similarity is then NaN).
-  // Otherwise the eigenvectors of next.phi and of the previous point's Phi are computed and
-  // the full rule applies; without them (no phi) the step reports Failed.
+  // Otherwise the eigenvectors of next.phi and of the previous point's Phi are computed (or
+  // drawn from their FloquetResult::eigensystem, the same bits) and the full rule applies;
+  // without them (no phi) the step reports Failed.
   TrackReport advance(const FloquetResult& next,
                       double mu = std::numeric_limits<double>::quiet_NaN());
 
@@ -116,6 +118,7 @@ class ExponentTracker {
   mutable std::vector<Eigen::VectorXcd> vectors_;
   mutable bool vectors_valid_ = true;
   Eigen::MatrixXd last_phi_;
+  std::shared_ptr<const FloquetEigenSystem> last_eigensystem_;  // of last_phi_, if computed
   std::vector<Eigen::VectorXcd> next_vectors_;  // scratch: eigenvectors of a next Phi
   std::vector<std::complex<double>> previous_;  // zeta + i omega one step back
   double mu_ = 0.0;
@@ -236,12 +239,46 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
 // can.
 // Labelled exponents at the given advance ratios (nondecreasing, in [0, kMaxAdvanceRatio]),
 // continued from hover in steps of at most max_step (intermediate steps are not reported).
-// sweep_exponents is this on the grid mu0, mu0 + step, ..., mu1.
+// sweep_exponents is this on the grid mu0, mu0 + step, ..., mu1.  One FloquetFunction makes
+// every evaluation, in order.
 SweepResult track_exponents(const HoverModes& hover, const FloquetFunction& floquet,
                             const std::vector<double>& mus, double max_step,
                             double zeta_tolerance = 1e-5);
 
+// Makes the FloquetFunction of one stretch of a continuation.  The functions it makes must be
+// safe to call from different threads at once; the evaluations of one function may depend on
+// each other (Analysis carries a steps hint along one function), never on another function's.
+using FloquetFunctionFactory = std::function<FloquetFunction()>;
+
+// The same continuation evaluated in stretches.  Stretch s holds the reported points
+// s L .. (s + 1) L - 1, L = continuation_stretch(mus.size()), with the steps that lead to each;
+// each stretch is evaluated in order by its own function from `make`, the stretches on
+// min(thread_count(threads), stretches) threads (core/parallel.h: threads 0 = all cores, else
+// 1..kMaxThreads), and then the exponents are identified along the whole continuation in
+// order, as above.  The stretches depend only on the number of reported points, so the result
+// is the same, bit for bit, for any number of threads, and for any max_step when the function
+// keeps the evaluations of the reported points apart from the others (Analysis keys its warm
+// start by tolerance): a map line that reaches its points in steps of scan_step equals the
+// plain sweep over the same points.  It can differ from the single-function track_exponents
+// within the error estimates, where a stretch starts without the history of the one before.
+// A FloquetFunction that throws throws here, from the first evaluation in continuation order
+// that threw, as the single-function form would (later evaluations may have been made; their
+// results are dropped).  At most kStretchesInMemory stretches and kSamplesInMemory samples are
+// held at a time (a longer stretch is evaluated and identified as it goes, on one thread).
+SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactory& make,
+                            const std::vector<double>& mus, double max_step,
+                            double zeta_tolerance, int threads);
+
+// Reported points per stretch of a continuation of `points` reported points: split into
+// kContinuationStretches nearly equal stretches, each of kMinStretch to kMaxStretch points.
+inline constexpr std::size_t kContinuationStretches = 8;
+inline constexpr std::size_t kMinStretch = 16, kMaxStretch = 128;
+inline constexpr std::size_t kStretchesInMemory = 16, kSamplesInMemory = 4096;
+std::size_t continuation_stretch(std::size_t points);
+
 SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floquet, double mu0,
                             double mu1, double step, double zeta_tolerance = 1e-5);
+// The grid of sweep_exponents (mu0, mu0 + step, ..., mu1; arguments checked the same way).
+std::vector<double> sweep_grid(double mu0, double mu1, double step);
 
 }  // namespace flaplag

@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 #include <complex>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,16 @@ struct FloquetExponent {
   Eigen::VectorXcd eigenvector;
 };
 
+// The eigen-decomposition of a transition matrix with its vectors, as the eigen-solve gives it
+// (the fixed-size solvers of floquet_exponents for 4 and 8 states, so the same eigenvalues in
+// the same order); ok false when phi is not square, not finite or the solve did not converge.
+struct FloquetEigenSystem {
+  Eigen::VectorXcd values;
+  Eigen::MatrixXcd vectors;  // column k belongs to values(k); not normalized
+  bool ok = false;
+};
+FloquetEigenSystem floquet_eigensystem(const Eigen::MatrixXd& phi);
+
 struct FloquetResult {
   std::vector<FloquetExponent> exponents;
   // |det Phi - exp(int trace A)| / exp(int trace A), from log|det Phi| so that neither
@@ -93,6 +104,10 @@ struct FloquetResult {
   // when they are needed (add_eigenvectors(); the mode identification of continuation.h asks
   // for them only when two candidates are close).
   Eigen::MatrixXd phi;
+  // The eigen-decomposition of phi with its vectors when it was computed ahead (track_exponents
+  // does so on worker threads where the identification may need it); null: computed from phi
+  // when needed.  The eigenvectors drawn from it are those drawn from phi, bit for bit.
+  std::shared_ptr<const FloquetEigenSystem> eigensystem;
 
   // Every exponent carries its eigenvector (of the size of Phi).
   bool has_eigenvectors() const;
@@ -118,6 +133,11 @@ void floquet_exponents(const Eigen::MatrixXd& phi, double trace_integral, Floque
 // nearest one not yet used.  *vectors is resized to multipliers.size().  false when the
 // eigen-solve does not converge or gives non-finite vectors, or the sizes do not match.
 bool floquet_eigenvectors(const Eigen::MatrixXd& phi,
+                          const std::vector<std::complex<double>>& multipliers,
+                          std::vector<Eigen::VectorXcd>* vectors);
+// The same from a decomposition computed before: floquet_eigenvectors(phi, m, v) is this on
+// floquet_eigensystem(phi).
+bool floquet_eigenvectors(const FloquetEigenSystem& system,
                           const std::vector<std::complex<double>>& multipliers,
                           std::vector<Eigen::VectorXcd>* vectors);
 // Adds the eigenvectors to a result computed with OnDemand (nothing to do when it has them);
