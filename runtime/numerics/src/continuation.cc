@@ -7,6 +7,8 @@
 #include <atomic>
 #include <cstdio>
 #include <exception>
+#include <memory>
+#include <thread>
 #include <limits>
 #include <utility>
 
@@ -929,10 +931,37 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactor
       while (i < s && !stop.compare_exchange_weak(s, i)) {
       }
     };
-    // Last stretch first: along mu the steps per period grow, so the costliest stretches are
-    // claimed before the cheap ones fill the gaps (the order does not change any result).
-    parallel_for(w1 - w0, threads, nullptr, {}, [&](std::size_t claimed) {
-      const std::size_t k = w1 - w0 - 1 - claimed;
+    // The calling thread identifies the finished stretches in order between its own (the
+    // other threads go on evaluating), so that the identification overlaps the evaluations.
+    std::unique_ptr<std::atomic<bool>[]> done(new std::atomic<bool>[w1 - w0]);
+    for (std::size_t k = 0; k < w1 - w0; ++k) done[k] = false;
+    const std::thread::id caller = std::this_thread::get_id();
+    std::size_t next_k = w0, next_i = begin;
+    bool ended = false;  // the pass stopped (Failed, a throw to pass on, or its own stop)
+    std::exception_ptr rethrow;
+    auto drain = [&] {
+      while (!ended && next_k < w1 && done[next_k - w0].load(std::memory_order_acquire)) {
+        for (; next_i < first[next_k + 1]; ++next_i) {
+          bool more = false;
+          if (thrown_at[next_k - w0] == next_i) {
+            rethrow = thrown[next_k - w0];
+          } else {
+            try {
+              more = pass.take(plan[next_i], samples[next_i - begin]);
+            } catch (...) {
+              rethrow = std::current_exception();
+            }
+          }
+          if (!more) {
+            ended = true;
+            lower_stop(next_i);
+            return;
+          }
+        }
+        ++next_k;
+      }
+    };
+    parallel_for(w1 - w0, threads, nullptr, {}, [&](std::size_t k) {
       const std::size_t a = first[w0 + k], b = first[w0 + k + 1];
       bool close_before = false;
       for (std::size_t i = a; i < b && i <= stop.load(); ++i) {
@@ -943,11 +972,11 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactor
           thrown[k] = std::current_exception();
           thrown_at[k] = i;
           lower_stop(i);
-          return;
+          break;
         }
         if (sample.status == Status::Failed) {
           lower_stop(i);
-          return;
+          break;
         }
         // The identification of sample i may need its vectors and those of sample i - 1, and
         // that of sample i + 1 those of sample i.
@@ -957,12 +986,12 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactor
         if (close && i > a) add_eigensystem(samples[i - 1 - begin]);
         close_before = close;
       }
+      done[k].store(true, std::memory_order_release);
+      if (std::this_thread::get_id() == caller) drain();
     });
-    for (std::size_t k = w0, i = begin; k < w1; ++k)
-      for (; i < first[k + 1]; ++i) {
-        if (thrown_at[k - w0] == i) std::rethrow_exception(thrown[k - w0]);
-        if (!pass.take(plan[i], samples[i - begin])) return std::move(pass.out());
-      }
+    drain();
+    if (rethrow) std::rethrow_exception(rethrow);
+    if (ended) return std::move(pass.out());
     w0 = w1;
   }
   return std::move(pass.out());

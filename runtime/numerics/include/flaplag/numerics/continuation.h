@@ -271,8 +271,8 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactor
 
 // Reported points per stretch of a continuation of `points` reported points: split into
 // kContinuationStretches nearly equal stretches, each of kMinStretch to kMaxStretch points.
-inline constexpr std::size_t kContinuationStretches = 8;
-inline constexpr std::size_t kMinStretch = 16, kMaxStretch = 128;
+inline constexpr std::size_t kContinuationStretches = 16;
+inline constexpr std::size_t kMinStretch = 8, kMaxStretch = 128;
 inline constexpr std::size_t kStretchesInMemory = 16, kSamplesInMemory = 4096;
 std::size_t continuation_stretch(std::size_t points);
 
