@@ -10,6 +10,7 @@
 #include "flaplag/analysis.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/core/parallel.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "plot.h"
 
@@ -777,7 +778,7 @@ Request CommandLine::interpret() const {
     }
   }
   if (c == Command::Study || c == Command::Map) interpret_batch(r);
-  if (const Given* g = given("--threads")) r.threads = parse_int(g->spelling, g->text, 0, 256);
+  if (const Given* g = given("--threads")) r.threads = parse_int(g->spelling, g->text, 0, kMaxThreads);
   if (const Given* g = given("--plot")) {
     if (!is_plot_path(g->text))
       throw InvalidInput(g->spelling, shown(g->text), "must end in .svg or .png");

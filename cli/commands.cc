@@ -705,7 +705,7 @@ std::string plot_if_asked(const Request& r, const std::string& script);
 std::string sweep(const Request& r, const Analysis& an, std::string& warning) {
   SweepResult s = trimmed(r) ? trimmed_sweep(r.params, r.transition, r.trim, r.sweep_start,
                                              r.sweep_stop, r.sweep_step)
-                             : an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step);
+                             : an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step, r.threads);
   audit(s);
   // The trimmed controls at each point of the sweep.
   std::vector<TrimResult> trims;

@@ -194,6 +194,9 @@ std::vector<OptionSpec> build(Command c) {
       "--mu", "REAL", "advance ratio (0.." + round_trip_text(kMaxAdvanceRatio) + ")", "", {"mu"});
   const OptionSpec scan_step = value_option(
       "--scan-step", "REAL", "continuation step in mu from hover (> 0)", "0.01", {"scan_step"});
+  const OptionSpec threads = value_option(
+      "--threads", "N", "worker threads (0: all cores; the answer does not depend on it)", "0",
+      {"threads"});
   switch (c) {
     case Command::Point:
       v.push_back(mu);
@@ -206,6 +209,7 @@ std::vector<OptionSpec> build(Command c) {
                                "", {"mu0", "mu1", "step", "mu"}));
       v.push_back(value_option("--format", "table|csv", "text layout (--json for JSON)", "table",
                                {"format"}));
+      v.push_back(threads);
       v.push_back(value_option("--plot", "FILE.svg|FILE.png",
                                "also draw zeta(mu) and omega(mu) of each mode (gnuplot)", "",
                                {"plot"}));
@@ -252,8 +256,7 @@ std::vector<OptionSpec> build(Command c) {
                        "scan limit (0 < mu-max <= " + round_trip_text(kMaxAdvanceRatio) + ")",
                        round_trip_text(defaults.mu_max), {"mu_max"}));
       v.push_back(scan_step);
-      v.push_back(
-          value_option("--threads", "N", "worker threads (0: all cores)", "0", {"threads"}));
+      v.push_back(threads);
       v.push_back(value_option("--plot", "FILE.svg|FILE.png",
                                "also draw mu_c and the instability intervals (gnuplot)", "",
                                {"plot"}));
@@ -267,8 +270,7 @@ std::vector<OptionSpec> build(Command c) {
       v.push_back(
           value_option("--mu", "REAL", "advance ratio when neither axis is mu", "0", {"mu"}));
       v.push_back(scan_step);
-      v.push_back(
-          value_option("--threads", "N", "worker threads (0: all cores)", "0", {"threads"}));
+      v.push_back(threads);
       v.push_back(value_option("--plot", "FILE.svg|FILE.png",
                                "also draw the max-zeta map with the zeta = 0 boundary (gnuplot)",
                                "", {"plot"}));

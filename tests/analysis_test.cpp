@@ -336,6 +336,8 @@ TEST(InvalidArguments, NegativeMuAndBadRanges) {
   EXPECT_THROW(an.sweep(0.5, 0.2, 0.1), flaplag::InvalidInput);
   EXPECT_THROW(an.sweep(0.5, 0.5, 0.1), flaplag::InvalidInput);
   EXPECT_THROW(an.sweep(0.0, 0.5, 0.0), flaplag::InvalidInput);
+  EXPECT_THROW(an.sweep(0.0, 0.5, 0.1, -1), flaplag::InvalidInput);
+  EXPECT_THROW(an.track({0.1}, 0.01, 257), flaplag::InvalidInput);
   EXPECT_THROW(Analysis(RotorParameters{}, method(TransitionMethod::Hsu, -1)),
                flaplag::InvalidInput);
   EXPECT_THROW(
@@ -458,6 +460,29 @@ INSTANTIATE_TEST_SUITE_P(Typical, WarmStartSweep, ::testing::Values(0.3, 0.6, 0.
                          [](const auto& tp) {
                            return "mu" + std::to_string(std::lround(10 * tp.param));
                          });
+
+// The sweep runs in stretches on the threads asked for (Analysis::sweep): the same bits for one
+// and for two threads, every point with its own estimate (stretch starts included).
+TEST(Sweep, TheSameBitsForOneAndTwoThreads) {
+  const Analysis an(RotorParameters{}, {});
+  const flaplag::SweepResult one = an.sweep(0.0, 1.5, 0.01, 1);
+  const flaplag::SweepResult two = an.sweep(0.0, 1.5, 0.01, 2);
+  ASSERT_EQ(151u, one.points.size());
+  ASSERT_EQ(one.points.size(), two.points.size());
+  EXPECT_EQ(one.status, two.status);
+  for (std::size_t i = 0; i < one.points.size(); ++i) {
+    const auto &a = one.points[i], &b = two.points[i];
+    EXPECT_EQ(a.mu, b.mu);
+    EXPECT_EQ(a.steps, b.steps) << "mu = " << a.mu;
+    ASSERT_TRUE(a.error.has_value()) << "mu = " << a.mu;
+    EXPECT_EQ(*a.error, *b.error);
+    ASSERT_EQ(a.exponents.size(), b.exponents.size());
+    for (std::size_t k = 0; k < a.exponents.size(); ++k) {
+      EXPECT_EQ(a.exponents[k].zeta, b.exponents[k].zeta) << "mu = " << a.mu;
+      EXPECT_EQ(a.exponents[k].omega, b.exponents[k].omega) << "mu = " << a.mu;
+    }
+  }
+}
 
 // The forced response in hover is the static equilibrium (f = 0 at mu = 0): the tip flap and lag
 // deflections are eta(1) g0 and gamma(1) h0 (eta(1) = gamma(1) = 1 for the mode of eq 4.1) and

@@ -5,8 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "flaplag/core/constants.h"
@@ -592,6 +596,156 @@ TEST(FindCritical, UnresolvedCrossingIsAWarningWithAnErrorEstimate) {
       find_critical(label_hover_modes(A(0.0), 1, 1), constant_family(A), {});
   EXPECT_FALSE(exact.mu_c_error.has_value());
   EXPECT_EQ(Status::Ok, exact.status);
+}
+
+// ---- track_exponents in stretches (FloquetFunctionFactory) -------------------------------------
+
+// A family whose functions carry state, as the analysis' warm start does: each evaluation is
+// shifted by 1e-9 per earlier call of the same function, so that the result shows where each
+// function (stretch) started.  `made` counts the functions.
+FloquetFunctionFactory stateful_family(std::atomic<int>* made, double throw_above = HUGE_VAL,
+                                       double fail_above = HUGE_VAL) {
+  return [=] {
+    ++*made;
+    auto calls = std::make_shared<int>(0);
+    return [calls, throw_above, fail_above](double mu, double) {
+      if (mu > throw_above) throw std::runtime_error("thrown at mu = " + std::to_string(mu));
+      const double shift = 1e-9 * (*calls)++;
+      Eigen::MatrixXd a = oscillators(0.6, stiffness(0.6, 1.17 + 0.3 * mu), 0.04 + shift,
+                                      stiffness(0.04, 1.28));
+      if (mu > fail_above)
+        return sample(floquet_exponents(
+            Eigen::MatrixXd::Constant(4, 4, std::numeric_limits<double>::quiet_NaN()), 0.0));
+      return sample(floquet_exponents((kTwoPi * a).exp(), kTwoPi * a.trace()));
+    };
+  };
+}
+
+HoverModes stateful_hover() {
+  return label_hover_modes(oscillators(0.6, stiffness(0.6, 1.17), 0.04, stiffness(0.04, 1.28)),
+                           1, 1);
+}
+
+std::vector<double> grid(int n, double step) {
+  std::vector<double> mus;
+  for (int k = 0; k < n; ++k) mus.push_back(step * k);
+  return mus;
+}
+
+void expect_same_bits(const SweepResult& a, const SweepResult& b) {
+  ASSERT_EQ(a.points.size(), b.points.size());
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.message, b.message);
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    ASSERT_EQ(a.points[i].exponents.size(), b.points[i].exponents.size());
+    EXPECT_EQ(a.points[i].mu, b.points[i].mu);
+    for (std::size_t k = 0; k < a.points[i].exponents.size(); ++k) {
+      const LabelledExponent &x = a.points[i].exponents[k], &y = b.points[i].exponents[k];
+      EXPECT_EQ(x.label, y.label);
+      EXPECT_EQ(x.zeta, y.zeta) << "point " << i;
+      EXPECT_EQ(x.omega, y.omega) << "point " << i;
+    }
+  }
+}
+
+TEST(ContinuationStretch, LengthsDependOnlyOnThePointCount) {
+  EXPECT_EQ(kMinStretch, continuation_stretch(1));
+  EXPECT_EQ(kMinStretch, continuation_stretch(100));
+  EXPECT_EQ(10u, continuation_stretch(151));  // 16 stretches of 10 (the last of 1)
+  EXPECT_EQ(kMaxStretch, continuation_stretch(1000000));
+}
+
+TEST(StretchedTrack, TheSameBitsForAnyNumberOfThreads) {
+  const HoverModes hover = stateful_hover();
+  const std::vector<double> mus = grid(151, 0.01);
+  std::atomic<int> made{0};
+  const SweepResult one = track_exponents(hover, stateful_family(&made), mus, 0.01, 1e-5, 1);
+  EXPECT_EQ(16, made.load());  // ceil(151 / 10) stretches, one function each
+  ASSERT_EQ(151u, one.points.size());
+  for (int threads : {2, 3, 0}) {
+    const SweepResult other =
+        track_exponents(hover, stateful_family(&made), mus, 0.01, 1e-5, threads);
+    expect_same_bits(one, other);
+  }
+  // Each stretch starts a new function: point 10 (the first of stretch 1) has no shift, the
+  // single-function form's has 10 calls' worth.
+  const SweepResult single = [&] {
+    std::atomic<int> n{0};
+    return track_exponents(hover, stateful_family(&n)(), mus, 0.01, 1e-5);
+  }();
+  auto lag_zeta = [](const PointResult& p) { return find(p.exponents, "lag", 1.0)->zeta; };
+  EXPECT_EQ(lag_zeta(single.points[9]) - lag_zeta(one.points[9]), 0.0);  // same function so far
+  EXPECT_NEAR(-0.5e-8, lag_zeta(single.points[10]) - lag_zeta(one.points[10]), 1e-12);
+}
+
+TEST(StretchedTrack, OneStretchIsTheSingleFunctionForm) {
+  const HoverModes hover = stateful_hover();
+  const std::vector<double> mus = {0.05, 0.2, 0.35};  // steps of at most 0.05 in between
+  std::atomic<int> made{0};
+  const SweepResult stretched = track_exponents(hover, stateful_family(&made), mus, 0.05, 1e-5, 2);
+  EXPECT_EQ(1, made.load());
+  expect_same_bits(track_exponents(hover, stateful_family(&made)(), mus, 0.05, 1e-5), stretched);
+}
+
+TEST(StretchedTrack, AStretchTooLongToHoldIsIdentifiedAsItGoes) {
+  // 5000 steps to mu = 0.5 and 5000 more to 1.0 (more than kSamplesInMemory in one stretch).
+  const HoverModes hover = stateful_hover();
+  std::atomic<int> made{0};
+  const SweepResult stretched =
+      track_exponents(hover, stateful_family(&made), {0.5, 1.0}, 1e-4, 1e-5, 2);
+  ASSERT_EQ(2u, stretched.points.size());
+  expect_same_bits(track_exponents(hover, stateful_family(&made)(), {0.5, 1.0}, 1e-4, 1e-5),
+                   stretched);
+}
+
+TEST(StretchedTrack, AFailedStepStopsItAsInTheSingleFunctionForm) {
+  const HoverModes hover = stateful_hover();
+  const std::vector<double> mus = grid(60, 0.01);
+  std::atomic<int> made{0};
+  const SweepResult single =
+      track_exponents(hover, stateful_family(&made, 0.4, 0.235)(), mus, 0.01, 1e-5);
+  std::vector<SweepResult> r;
+  for (int threads : {1, 2}) {
+    // Non-finite from mu > 0.235 on, and a throw only beyond the failure: never reached.
+    r.push_back(
+        track_exponents(hover, stateful_family(&made, 0.4, 0.235), mus, 0.01, 1e-5, threads));
+    EXPECT_EQ(Status::Failed, r.back().status);
+    ASSERT_EQ(25u, r.back().points.size());  // 0 .. 0.23 and the failed 0.24
+    EXPECT_FALSE(r.back().points.back().stable.has_value());
+    EXPECT_EQ(single.points.size(), r.back().points.size());
+    EXPECT_EQ(single.message, r.back().message);
+  }
+  expect_same_bits(r[0], r[1]);
+}
+
+TEST(StretchedTrack, AThrowComesFromTheFirstEvaluationThatThrew) {
+  const HoverModes hover = stateful_hover();
+  const std::vector<double> mus = grid(60, 0.01);
+  for (int threads : {1, 2}) {
+    std::atomic<int> made{0};
+    try {
+      track_exponents(hover, stateful_family(&made, 0.305), mus, 0.01, 1e-5, threads);
+      ADD_FAILURE() << "no throw";
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string("thrown at mu = ") + std::to_string(0.31), e.what());
+    }
+  }
+}
+
+TEST(StretchedTrack, InvalidArgumentsThrow) {
+  const HoverModes hover = stateful_hover();
+  std::atomic<int> made{0};
+  EXPECT_THROW(track_exponents(hover, stateful_family(&made), {0.1}, 0.01, 1e-5, -1),
+               InvalidInput);
+  EXPECT_THROW(track_exponents(hover, stateful_family(&made), {0.1}, 0.01, 1e-5, 257),
+               InvalidInput);
+  EXPECT_THROW(track_exponents(hover, FloquetFunctionFactory{}, {0.1}, 0.01, 1e-5, 1),
+               InvalidInput);
+  EXPECT_THROW(
+      track_exponents(hover, [] { return FloquetFunction{}; }, {0.1}, 0.01, 1e-5, 1),
+      InvalidInput);
+  EXPECT_THROW(track_exponents(hover, stateful_family(&made), {0.2, 0.1}, 0.01, 1e-5, 1),
+               InvalidInput);
 }
 
 }  // namespace

@@ -477,6 +477,43 @@ TEST(Floquet, EigenvectorsOnDemandMatchTheFullSolve) {
   EXPECT_FALSE(floquet_eigenvectors(phi, {reversed[0]}, &v));
 }
 
+// The decomposition computed ahead (on a worker thread, by track_exponents) gives the vectors
+// computed from phi itself, bit for bit, in the solver's order and in any other; a Phi that
+// cannot be decomposed gives none.
+TEST(Floquet, EigenvectorsFromAnEigensystemComputedAheadAreTheSameBits) {
+  for (const std::vector<std::pair<double, double>>& pairs :
+       std::vector<std::vector<std::pair<double, double>>>{
+           {{-0.1, 1.28}, {-0.6, 1.17}},
+           {{-0.02, 0.3}, {0.05, 2.71}, {-0.3, 0.45}},
+           {{-0.02, 0.3}, {0.05, 2.71}, {-0.3, 0.45}, {-0.01, 3.3}}}) {
+    const Eigen::MatrixXd A = with_eigenvalues(pairs);
+    const Eigen::MatrixXd phi = (kTwoPi * A).exp();
+    const FloquetResult r = floquet_exponents(phi, kTwoPi * A.trace());
+    std::vector<std::complex<double>> order, reversed;
+    for (const FloquetExponent& e : r.exponents) order.push_back(e.multiplier);
+    reversed.assign(order.rbegin(), order.rend());
+    const FloquetEigenSystem ahead = floquet_eigensystem(phi);
+    ASSERT_TRUE(ahead.ok);
+    for (const auto& m : {order, reversed}) {
+      std::vector<Eigen::VectorXcd> from_phi, from_system;
+      ASSERT_TRUE(floquet_eigenvectors(phi, m, &from_phi));
+      ASSERT_TRUE(floquet_eigenvectors(ahead, m, &from_system));
+      ASSERT_EQ(from_phi.size(), from_system.size());
+      for (std::size_t k = 0; k < m.size(); ++k) {
+        ASSERT_EQ(from_phi[k].size(), from_system[k].size());
+        for (Eigen::Index i = 0; i < from_phi[k].size(); ++i)
+          EXPECT_EQ(from_phi[k](i), from_system[k](i)) << "k = " << k << ", i = " << i;
+      }
+    }
+  }
+  EXPECT_FALSE(floquet_eigensystem(Eigen::MatrixXd::Zero(3, 4)).ok);
+  EXPECT_FALSE(
+      floquet_eigensystem(Eigen::MatrixXd::Constant(4, 4, std::numeric_limits<double>::infinity()))
+          .ok);
+  std::vector<Eigen::VectorXcd> v;
+  EXPECT_FALSE(floquet_eigenvectors(FloquetEigenSystem{}, {1.0}, &v));
+}
+
 TEST(Floquet, InvalidArgumentsThrow) {
   EXPECT_THROW(floquet_exponents(Eigen::MatrixXd::Identity(3, 4), 0.0), InvalidInput);
   EXPECT_THROW(floquet_exponents(Eigen::MatrixXd(0, 0), 0.0), InvalidInput);

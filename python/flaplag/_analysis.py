@@ -312,6 +312,7 @@ class Analysis:
         trim=None,
         thrust_coefficient=None,
         shaft_angle=None,
+        threads=0,
     ) -> SweepResult:
         """Exponents along advance ratios, continued from hover.
 
@@ -320,17 +321,20 @@ class Analysis:
         sweep(start, stop, step): at start, start + step, ..., stop inclusive, reported at the
         decimal grid values (C++ Analysis::sweep, the command line's --mu START:STOP:STEP).
         trim, thrust_coefficient, shaft_angle: at fixed C_T, as point().
+        threads: worker threads (0: all cores; the result does not depend on it; a trimmed
+        sweep runs on one).
         """
         t = _trim_request(trim, thrust_coefficient, shaft_angle)
+        threads = _int("threads", threads)
         if stop is None and step is None:
             mus, ss = _real_array("mu", mu), _real("scan_step", scan_step)
-            raw = self._native.track(mus, ss) if t is None else self._native.trimmed_track(
+            raw = self._native.track(mus, ss, threads) if t is None else self._native.trimmed_track(
                 mus, ss, *t)
         elif stop is None or step is None:
             raise TypeError("sweep(start, stop, step) needs all three, or sweep(mus) an array")
         else:
             grid = (_real("mu0", mu), _real("mu1", stop), _real("step", step))
-            raw = self._native.sweep(*grid) if t is None else self._native.trimmed_sweep(
+            raw = self._native.sweep(*grid, threads) if t is None else self._native.trimmed_sweep(
                 *grid, *t)
         return SweepResult._from(raw, self._labels())
 

@@ -1020,20 +1020,20 @@ PYBIND11_MODULE(_flaplag, m) {
              return point_dict(r);
            })
       .def("sweep",
-           [](const Analysis& a, double mu0, double mu1, double step) {
+           [](const Analysis& a, double mu0, double mu1, double step, int threads) {
              SweepResult r;
              {
                py::gil_scoped_release release;
-               r = a.sweep(mu0, mu1, step);
+               r = a.sweep(mu0, mu1, step, threads);
              }
              return sweep_dict(r);
            })
       .def("track",
-           [](const Analysis& a, const std::vector<double>& mus, double scan_step) {
+           [](const Analysis& a, const std::vector<double>& mus, double scan_step, int threads) {
              SweepResult r;
              {
                py::gil_scoped_release release;
-               r = a.track(mus, scan_step);
+               r = a.track(mus, scan_step, threads);
              }
              return sweep_dict(r);
            })

@@ -134,6 +134,8 @@ def test_bad_method_arguments():
         lambda: an.sweep(1.0, 0.5, 0.1),
         lambda: an.sweep(0.0, 1.0, 0.0),
         lambda: an.sweep([[0.1, 0.2]]),
+        lambda: an.sweep(0.0, 1.0, 0.1, threads=-1),
+        lambda: an.sweep([0.1], threads=257),
         lambda: an.critical(mu_max=0.0),
         lambda: an.critical(scan_step=-0.01),
         lambda: an.critical(tolerance=0.0),
@@ -215,6 +217,15 @@ def test_sweep_of_an_array():
     assert s.mu.tolist() == mus.tolist() and len(s) == 5
     assert s.stable[-1] is False and s.stable[0] is True
     assert "lag" in s.zeta and s.zeta["lag"].shape == (5,)
+
+
+def test_sweep_is_the_same_for_one_and_two_threads():
+    an = flaplag.Analysis()
+    one, two = an.sweep(0.0, 1.5, 0.01, threads=1), an.sweep(0.0, 1.5, 0.01, threads=2)
+    assert len(one) == 151
+    for label in one.zeta:
+        assert one.zeta[label].tolist() == two.zeta[label].tolist()
+        assert one.omega[label].tolist() == two.omega[label].tolist()
 
 
 def test_results_pickle():

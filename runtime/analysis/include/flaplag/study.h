@@ -36,7 +36,7 @@ struct StudyOptions {
   // kind != None: each row is trimmed at every mu of its search (trim.h, trimmed_critical):
   // mu_c at fixed C_T.  The trim replaces theta (and, moment trim, theta1c, theta1s).
   TrimOptions trim;
-  int threads = 0;  // 0: as many as the hardware has; else 1..256
+  int threads = 0;  // 0: as many as the hardware has; else 1..kMaxThreads (core/parallel.h)
 
   bool IsValid(std::string* error) const;
   void Check() const;
