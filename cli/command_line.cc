@@ -778,7 +778,8 @@ Request CommandLine::interpret() const {
     }
   }
   if (c == Command::Study || c == Command::Map) interpret_batch(r);
-  if (const Given* g = given("--threads")) r.threads = parse_int(g->spelling, g->text, 0, kMaxThreads);
+  if (const Given* g = given("--threads"))
+    r.threads = parse_int(g->spelling, g->text, 0, kMaxThreads);
   if (const Given* g = given("--plot")) {
     if (!is_plot_path(g->text))
       throw InvalidInput(g->spelling, shown(g->text), "must end in .svg or .png");

@@ -611,8 +611,8 @@ FloquetFunctionFactory stateful_family(std::atomic<int>* made, double throw_abov
     return [calls, throw_above, fail_above](double mu, double) {
       if (mu > throw_above) throw std::runtime_error("thrown at mu = " + std::to_string(mu));
       const double shift = 1e-9 * (*calls)++;
-      Eigen::MatrixXd a = oscillators(0.6, stiffness(0.6, 1.17 + 0.3 * mu), 0.04 + shift,
-                                      stiffness(0.04, 1.28));
+      Eigen::MatrixXd a =
+          oscillators(0.6, stiffness(0.6, 1.17 + 0.3 * mu), 0.04 + shift, stiffness(0.04, 1.28));
       if (mu > fail_above)
         return sample(floquet_exponents(
             Eigen::MatrixXd::Constant(4, 4, std::numeric_limits<double>::quiet_NaN()), 0.0));
@@ -622,8 +622,8 @@ FloquetFunctionFactory stateful_family(std::atomic<int>* made, double throw_abov
 }
 
 HoverModes stateful_hover() {
-  return label_hover_modes(oscillators(0.6, stiffness(0.6, 1.17), 0.04, stiffness(0.04, 1.28)),
-                           1, 1);
+  return label_hover_modes(oscillators(0.6, stiffness(0.6, 1.17), 0.04, stiffness(0.04, 1.28)), 1,
+                           1);
 }
 
 std::vector<double> grid(int n, double step) {
@@ -735,15 +735,14 @@ TEST(StretchedTrack, AThrowComesFromTheFirstEvaluationThatThrew) {
 TEST(StretchedTrack, InvalidArgumentsThrow) {
   const HoverModes hover = stateful_hover();
   std::atomic<int> made{0};
-  EXPECT_THROW(track_exponents(hover, stateful_family(&made), {0.1}, 0.01, 1e-5, -1),
-               InvalidInput);
+  EXPECT_THROW(track_exponents(hover, stateful_family(&made), {0.1}, 0.01, 1e-5, -1), InvalidInput);
   EXPECT_THROW(track_exponents(hover, stateful_family(&made), {0.1}, 0.01, 1e-5, 257),
                InvalidInput);
   EXPECT_THROW(track_exponents(hover, FloquetFunctionFactory{}, {0.1}, 0.01, 1e-5, 1),
                InvalidInput);
-  EXPECT_THROW(
-      track_exponents(hover, [] { return FloquetFunction{}; }, {0.1}, 0.01, 1e-5, 1),
-      InvalidInput);
+  EXPECT_THROW(track_exponents(
+                   hover, [] { return FloquetFunction{}; }, {0.1}, 0.01, 1e-5, 1),
+               InvalidInput);
   EXPECT_THROW(track_exponents(hover, stateful_family(&made), {0.2, 0.1}, 0.01, 1e-5, 1),
                InvalidInput);
 }

@@ -23,7 +23,6 @@ bool report(const std::optional<InvalidInput>& p, std::string* error) {
   return !p;
 }
 
-
 std::optional<InvalidInput> check_values(const char* name, const std::vector<double>& v,
                                          std::size_t max_count) {
   if (v.empty()) return bad(name, "[]", "need at least one value");

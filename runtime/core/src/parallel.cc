@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <mutex>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -42,7 +43,14 @@ std::size_t parallel_for(std::size_t n, int threads, const std::atomic<bool>* ca
   };
   const std::size_t count = std::min(thread_count(threads), n);
   std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < count; ++t) pool.emplace_back(worker);
+  if (count > 1) pool.reserve(count - 1);
+  for (std::size_t t = 1; t < count; ++t) {
+    try {
+      pool.emplace_back(worker);
+    } catch (const std::system_error&) {
+      break;  // no more threads to be had: the tasks run on those there are, the same results
+    }
+  }
   worker();
   for (std::thread& t : pool) t.join();
   return std::min(next.load(), n) == finished.load() ? finished.load() : std::min(next.load(), n);

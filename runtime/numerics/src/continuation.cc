@@ -3,13 +3,13 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <cmath>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <thread>
-#include <limits>
 #include <utility>
 
 #include "flaplag/core/constants.h"
@@ -210,8 +210,8 @@ bool ExponentTracker::ensure_vectors() const {
   multipliers.reserve(exponents_.size());
   for (const LabelledExponent& e : exponents_) multipliers.push_back(e.multiplier);
   vectors_valid_ = last_eigensystem_
-                      ? floquet_eigenvectors(*last_eigensystem_, multipliers, &vectors_)
-                      : floquet_eigenvectors(last_phi_, multipliers, &vectors_);
+                       ? floquet_eigenvectors(*last_eigensystem_, multipliers, &vectors_)
+                       : floquet_eigenvectors(last_phi_, multipliers, &vectors_);
   return vectors_valid_;
 }
 
@@ -343,9 +343,8 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
       std::vector<std::complex<double>> multipliers;
       multipliers.reserve(static_cast<std::size_t>(n));
       for (const FloquetExponent& e : next.exponents) multipliers.push_back(e.multiplier);
-      if (!(next.eigensystem
-                ? floquet_eigenvectors(*next.eigensystem, multipliers, &next_vectors_)
-                : floquet_eigenvectors(next.phi, multipliers, &next_vectors_)))
+      if (!(next.eigensystem ? floquet_eigenvectors(*next.eigensystem, multipliers, &next_vectors_)
+                             : floquet_eigenvectors(next.phi, multipliers, &next_vectors_)))
         return fail(next.phi.rows() == n
                         ? "the eigenvectors of Phi needed to identify the modes are not finite; "
                           "tracking state unchanged"
@@ -847,8 +846,8 @@ bool has_close_candidates(const FloquetResult& r) {
 // Computes the eigen-decomposition that advance may need ahead, on the worker's thread.
 void add_eigensystem(FloquetSample& s) {
   if (s.status == Status::Failed || s.floquet.eigensystem || s.floquet.phi.size() == 0) return;
-  s.floquet.eigensystem = std::make_shared<const FloquetEigenSystem>(
-      floquet_eigensystem(s.floquet.phi));
+  s.floquet.eigensystem =
+      std::make_shared<const FloquetEigenSystem>(floquet_eigensystem(s.floquet.phi));
 }
 
 SweepResult hover_failed(const HoverModes& hover) {
@@ -878,8 +877,8 @@ std::size_t continuation_stretch(std::size_t points) {
 }
 
 SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactory& make,
-                            const std::vector<double>& mus, double max_step,
-                            double zeta_tolerance, int threads) {
+                            const std::vector<double>& mus, double max_step, double zeta_tolerance,
+                            int threads) {
   check_track(mus, max_step, zeta_tolerance);
   if (auto p = threads_problem(threads)) throw *p;
   if (!make) throw InvalidInput("floquet", "empty", "a FloquetFunctionFactory is required");
@@ -890,8 +889,7 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactor
   const std::size_t length = continuation_stretch(mus.size());
   std::vector<std::size_t> first{0};
   for (std::size_t i = 0, reported = 0; i < plan.size(); ++i)
-    if (plan[i].reported && ++reported % length == 0 && i + 1 < plan.size())
-      first.push_back(i + 1);
+    if (plan[i].reported && ++reported % length == 0 && i + 1 < plan.size()) first.push_back(i + 1);
   first.push_back(plan.size());
   const std::size_t stretches = first.size() - 1;
   constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
@@ -982,8 +980,11 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactor
         // that of sample i + 1 those of sample i.
         const bool close =
             !sample.floquet.has_eigenvectors() && has_close_candidates(sample.floquet);
-        if (close || close_before) add_eigensystem(sample);
-        if (close && i > a) add_eigensystem(samples[i - 1 - begin]);
+        try {
+          if (close || close_before) add_eigensystem(sample);
+          if (close && i > a) add_eigensystem(samples[i - 1 - begin]);
+        } catch (...) {  // out of memory: the identification computes them itself if needed
+        }
         close_before = close;
       }
       done[k].store(true, std::memory_order_release);

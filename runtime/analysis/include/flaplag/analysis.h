@@ -172,8 +172,7 @@ class Analysis {
   // Exponents at the given advance ratios (nondecreasing, each in [0, kMaxAdvanceRatio]),
   // continued from hover in steps of at most scan_step.  mu is reported as given.  Stretches
   // and threads as sweep: a track over the points of a sweep (the same step) is that sweep.
-  SweepResult track(const std::vector<double>& mus, double scan_step = 0.01,
-                    int threads = 0) const;
+  SweepResult track(const std::vector<double>& mus, double scan_step = 0.01, int threads = 0) const;
   // opt.Check() first.  With periodic_linearization the search can end at a fold of the branch
   // of periodic equilibria through hover (a real multiplier reaches +1 and the equilibrium
   // ceases to exist: the blade loses it, a divergence-type loss of stability): mu_c is then the

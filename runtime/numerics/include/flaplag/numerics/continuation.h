@@ -266,8 +266,8 @@ using FloquetFunctionFactory = std::function<FloquetFunction()>;
 // results are dropped).  At most kStretchesInMemory stretches and kSamplesInMemory samples are
 // held at a time (a longer stretch is evaluated and identified as it goes, on one thread).
 SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactory& make,
-                            const std::vector<double>& mus, double max_step,
-                            double zeta_tolerance, int threads);
+                            const std::vector<double>& mus, double max_step, double zeta_tolerance,
+                            int threads);
 
 // Reported points per stretch of a continuation of `points` reported points: split into
 // kContinuationStretches nearly equal stretches, each of kMinStretch to kMaxStretch points.
