@@ -38,6 +38,16 @@ constexpr double kMaxCost = 1e12;
 
 double finite_zeta(double zeta) { return std::max(zeta, kZetaFloor); }
 
+// The distance of two exponents that mode identification uses (ExponentTracker::advance): 2 pi
+// |d lambda| with d omega taken modulo integers, about the relative change of the multiplier.
+// dz between floored zetas.  sqrt, not hypot: both terms are finite (zeta is floored, omega is
+// a principal value plus a continued integer) and an overflow to inf is capped by the caller
+// like any huge cost.
+double exponent_distance(double dz, double dw) {
+  const double dr = dw - std::round(dw);
+  return kTwoPi * std::sqrt(dz * dz + dr * dr);
+}
+
 std::string fmt(double v) { return short_text(v); }
 
 void require(bool ok, const char* name, double value, const char* reason) {
@@ -289,12 +299,7 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
     const FloquetExponent& e = next.exponents[j];
     for (int i = 0; i < n; ++i) {
       const std::size_t ij = static_cast<std::size_t>(i) + static_cast<std::size_t>(n) * j;
-      const double dw = e.omega - pw[i];
-      const double dz = finite_zeta(e.zeta) - pz[i];
-      const double dr = dw - std::round(dw);
-      // sqrt, not hypot: both terms are finite (zeta is floored, omega is a principal value
-      // plus a continued integer) and an overflow to inf is capped below like any huge cost.
-      const double c = kTwoPi * std::sqrt(dz * dz + dr * dr);
+      const double c = exponent_distance(finite_zeta(e.zeta) - pz[i], e.omega - pw[i]);
       cost[ij] = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
     }
   }
@@ -827,18 +832,18 @@ class TrackPass {
 // Whether ExponentTracker::advance may need the eigenvectors of r, or of the point before it,
 // to identify r's exponents: the multipliers alone decide when every tracked exponent's
 // nearest candidate is within kMultiplierStep of its prediction and nearer than every other
-// by more than 1, which two candidates further apart than 1 + 2 kMultiplierStep (in advance's
-// distance, a metric) guarantee for a distinct nearest one.  A miss (a jump, two tracked
+// by more than 1, which two candidates further apart than 1 + 2 kMultiplierStep (in
+// exponent_distance, a metric) guarantee for a distinct nearest one.  A miss (a jump, two tracked
 // predictions close to each other) costs only time: advance then computes the vectors itself.
 bool has_close_candidates(const FloquetResult& r) {
   constexpr double kApart = 1.0 + 2.0 * ExponentTracker::kMultiplierStep;
   const std::size_t n = r.exponents.size();
   for (std::size_t j = 0; j < n; ++j)
     for (std::size_t k = j + 1; k < n; ++k) {
-      const double dz = finite_zeta(r.exponents[j].zeta) - finite_zeta(r.exponents[k].zeta);
-      const double dw = r.exponents[j].omega - r.exponents[k].omega;
-      const double dr = dw - std::round(dw);
-      if (!(kTwoPi * std::sqrt(dz * dz + dr * dr) > kApart)) return true;
+      const double d =
+          exponent_distance(finite_zeta(r.exponents[j].zeta) - finite_zeta(r.exponents[k].zeta),
+                            r.exponents[j].omega - r.exponents[k].omega);
+      if (!(d > kApart)) return true;
     }
   return false;
 }
