@@ -75,6 +75,23 @@ TEST(CliMap, IdenticalBytesForOneAndTwoThreads) {
   EXPECT_EQ("mu", ja["x"]["name"]);
 }
 
+// A sweep in stretches (Analysis::sweep) on one and two threads: the same rows, bit for bit.
+TEST(CliSweep, IdenticalRowsForOneAndTwoThreads) {
+  const std::vector<std::string> base = {"sweep", "--mu", "0:1.2:0.01", "--json"};
+  std::vector<std::string> one = base, two = base;
+  one.insert(one.end(), {"--threads", "1"});
+  two.insert(two.end(), {"--threads", "2"});
+  const Outcome a = run(one), b = run(two);
+  ASSERT_EQ(0, a.exit_code) << a.err;
+  ASSERT_EQ(0, b.exit_code) << b.err;
+  Json ja = Json::parse(a.out), jb = Json::parse(b.out);
+  EXPECT_EQ("1", ja["case"]["threads"]);  // the case records what was given
+  ja.erase("case");
+  jb.erase("case");
+  EXPECT_EQ(ja.dump(), jb.dump());
+  EXPECT_EQ(121u, ja["rows"].size());
+}
+
 TEST(CliRun, CaseFileAndJsonRoundTripReproduceTheBytes) {
   TempDir d;
   const std::string toml = d.file("case.toml");

@@ -214,6 +214,8 @@ const std::vector<BadInput> kBadInputs = {
     {"MuAboveLimitJson", {"point", "--mu", "3e7", "--json"}, "--mu", "3e7"},
     {"MuMaxAboveLimit", {"critical", "--mu-max", "2000"}, "--mu-max", "2000"},
     {"SweepBeyondLimit", {"sweep", "--mu", "0:2000:100"}, "--mu", "0:2000:100"},
+    {"SweepNegativeThreads", {"sweep", "--mu", "0:1:0.1", "--threads", "-1"}, "--threads", "-1"},
+    {"SweepTooManyThreads", {"sweep", "--mu", "0:1:0.1", "--threads", "257"}, "--threads", "257"},
     {"ZeroScanStep", {"point", "--mu", "0.1", "--scan-step", "0"}, "--scan-step", "0"},
     {"TinyScanStep", {"critical", "--scan-step", "1e-9"}, "--scan-step", "1e-9"},
     {"ZeroZetaTolerance", {"--zeta-tolerance", "0"}, "--zeta-tolerance", "0"},
