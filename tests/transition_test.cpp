@@ -375,6 +375,104 @@ TEST(Transition, FixedSizeKernelsAgreeWithTheGeneralOnes) {
   }
 }
 
+// The system P S P^T for the state permutation `perm` (row i of the result is row perm[i] of S).
+PeriodicSystem permuted(const PeriodicSystem& s, const std::vector<int>& perm) {
+  PeriodicSystem out = s;
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(s.n, s.n);
+  for (int i = 0; i < s.n; ++i) P(i, perm[i]) = 1.0;
+  for (HarmonicSet* set : {&out.normal, &out.reversed})
+    for (Eigen::MatrixXd& a : set->A) a = P * a * P.transpose();
+  return out;
+}
+
+// Hsu's product over K intervals written out independently: taylor() (eq 3.27) of the exact
+// interval means A_mean(), split at the sector edges.
+Eigen::MatrixXd independent_hsu(const PeriodicSystem& s, int K) {
+  Eigen::MatrixXd product = Eigen::MatrixXd::Identity(s.n, s.n);
+  for (int i = 0; i < K; ++i) {
+    const double a = i * kTwoPi / K, b = (i + 1 == K) ? kTwoPi : (i + 1) * kTwoPi / K;
+    double lo = a;
+    for (double e : s.breakpoints()) {
+      if (e > a + 1e-12 && e < b - 1e-12) {
+        product = taylor((e - lo) * s.A_mean(lo, e), 4) * product;
+        lo = e;
+      }
+    }
+    product = taylor((b - lo) * s.A_mean(lo, b), 4) * product;
+  }
+  return product;
+}
+
+// The plain kernels sum the harmonics only into the rows of A that vary when those are the
+// even ones (the rotor's y = [q', q, ...]); with varying odd rows they take every row.  The
+// permutation puts rotor_like()'s varying rows 0 and 2 at 1 and 3.
+TEST(Transition, PlainHsuTakesEveryRowThatVaries) {
+  const PeriodicSystem even = rotor_like();
+  const PeriodicSystem odd = permuted(even, {1, 0, 3, 2});
+  for (int K : {8, 50, 101}) {
+    EXPECT_LT(rel_err(independent_hsu(odd, K), transition_matrix_hsu(odd, K, 4)), 1e-13)
+        << "K = " << K;
+    EXPECT_LT(rel_err(independent_hsu(even, K), transition_matrix_hsu(even, K, 4)), 1e-13)
+        << "K = " << K;
+  }
+}
+
+// transition_matrix_hsu_pair: Phi at K with the bits of transition_matrix_hsu, Phi at K / 2
+// equal to it to rounding, on grids where a sector edge falls inside a fine interval, on a
+// fine grid point that is a coarse midpoint (K = 8, 24: 1.25 pi = 5 and 15 fine steps) and on
+// a coarse grid point (K = 16); every state size and the fallbacks (6 states, J = 3,
+// a varying region) give the two separate calls.
+TEST(Transition, HsuPairIsBothGridsInOnePass) {
+  const PeriodicSystem one = rotor_like();
+  struct Case {
+    const char* name;
+    PeriodicSystem sys;
+    int terms;
+    bool exact_half;  // no plain kernel: *phi_half is the separate call itself
+  };
+  PeriodicSystem six;
+  six.n = 6;
+  for (HarmonicSet* set : {&six.normal, &six.reversed}) {
+    const HarmonicSet& src = set == &six.normal ? one.normal : one.reversed;
+    set->A.assign(src.A.size(), Eigen::MatrixXd::Zero(6, 6));
+    for (std::size_t h = 0; h < src.A.size(); ++h) {
+      set->A[h].topLeftCorner(4, 4) = src.A[h];
+      set->A[h].bottomRightCorner(2, 2) = src.A[h].topLeftCorner(2, 2);
+    }
+  }
+  six.has_sector = true;
+  six.sector_begin = one.sector_begin;
+  six.sector_end = one.sector_end;
+  const std::vector<Case> cases{{"rotor_like", one, 4, false},
+                                {"odd rows", permuted(one, {1, 0, 3, 2}), 4, false},
+                                {"8 states", copies_of_rotor_like(2), 4, false},
+                                {"16 states", copies_of_rotor_like(4), 4, false},
+                                {"6 states", six, 4, true},
+                                {"J = 3", one, 3, true},
+                                {"mathieu", mathieu(1.3, 0.9, 0.05), 4, true},
+                                {"varying region", fixtures::sector_as_varying(one), 4, true}};
+  for (const Case& c : cases) {
+    for (int K : {2, 8, 16, 24, 50, 100}) {
+      Eigen::MatrixXd phi, half;
+      transition_matrix_hsu_pair(c.sys, K, c.terms, &phi, &half);
+      const Eigen::MatrixXd ref = transition_matrix_hsu(c.sys, K, c.terms);
+      const Eigen::MatrixXd ref_half = transition_matrix_hsu(c.sys, K / 2, c.terms);
+      EXPECT_TRUE(phi == ref) << c.name << ", K = " << K;
+      if (c.exact_half) {
+        EXPECT_TRUE(half == ref_half) << c.name << ", K = " << K;
+      } else {
+        EXPECT_LT(rel_err(ref_half, half), 1e-13) << c.name << ", K = " << K;
+      }
+    }
+  }
+  Eigen::MatrixXd phi, half;
+  EXPECT_THROW(transition_matrix_hsu_pair(one, 51, 4, &phi, &half), InvalidInput);
+  EXPECT_THROW(transition_matrix_hsu_pair(one, 0, 4, &phi, &half), InvalidInput);
+  EXPECT_THROW(transition_matrix_hsu_pair(one, 50, 0, &phi, &half), InvalidInput);
+  EXPECT_THROW(transition_matrix_hsu_pair(one, 50, 4, nullptr, &half), InvalidInput);
+  EXPECT_THROW(transition_matrix_hsu_pair(one, 50, 4, &phi, nullptr), InvalidInput);
+}
+
 TEST(Transition, DispatchAndNames) {
   const PeriodicSystem s = mathieu(1.3, 0.9, 0.05);
   TransitionOptions o;

@@ -400,9 +400,10 @@ struct PlainHsuInput {
   double damp[kPlainMaxHarmonics / 2 + 2] = {};       // sinc(k d / 2), the equal-step means
   double ones[kPlainMaxHarmonics / 2 + 2] = {};       // 1: point values
   int max_order = 0;
+  bool even_rows_only = false;  // Hsu: only the rows 0, 2, 4, ... of A_h, h >= 1, are nonzero
 };
 
-bool plain_reversed(const PlainHsuInput& in, double mid) {
+[[gnu::always_inline]] inline bool plain_reversed(const PlainHsuInput& in, double mid) {
   return in.has_sector && mid >= in.sector_begin && mid < in.sector_end;
 }
 
@@ -430,6 +431,20 @@ template <int N>
 [[gnu::always_inline]] inline void plain_identity(PlainMat<N>& m) {
   for (V4& v : m.c) v = V4{0.0, 0.0, 0.0, 0.0};
   for (int i = 0; i < N; ++i) m.at(i, i) = 1.0;
+}
+
+// m += v I.  One vector add per diagonal entry, with -0.0 in the other lanes (x + -0.0 == x
+// for every x, signed zeros included, so the bits are those of adding v to the diagonal
+// alone): writing the diagonal entries one by one stores scalars into vectors that are loaded
+// whole right after, which stalls store forwarding (measured: a fifth of the Hsu interval).
+template <int N>
+[[gnu::always_inline]] inline void plain_add_diagonal(PlainMat<N>& m, double v) {
+  constexpr int Q = N / 4;
+  for (int j = 0; j < N; ++j) {
+    V4 d = {-0.0, -0.0, -0.0, -0.0};
+    d[j % 4] = v;
+    m.c[j * Q + j / 4] += d;
+  }
 }
 
 // C = A B: column j of C is sum_k A(:, k) B(k, j).
@@ -468,21 +483,6 @@ template <int N>
   }
 }
 
-// Phi <- exp(X) Phi with exp(X) ~ I + X + X^2 (I/2 + X/6 + X^2/24) (eq 3.27, J = 4, two
-// products by Paterson-Stockmeyer) and one product for the accumulation (eq 3.25).
-template <int N>
-[[gnu::always_inline]] inline void plain_taylor4_step(const PlainMat<N>& X, PlainMat<N>& Phi) {
-  PlainMat<N> X2, T, E;
-  plain_mul<N>(X, X, X2);
-  for (int e = 0; e < N * N / 4; ++e) T.c[e] = X.c[e] * (1.0 / 6.0) + X2.c[e] * (1.0 / 24.0);
-  for (int i = 0; i < N; ++i) T.at(i, i) += 0.5;
-  plain_mul<N>(X2, T, E);
-  for (int e = 0; e < N * N / 4; ++e) E.c[e] += X.c[e];
-  for (int i = 0; i < N; ++i) E.at(i, i) += 1.0;
-  plain_mul<N>(E, Phi, X2);
-  Phi = X2;
-}
-
 // Weights of the harmonic sum for a substep of width delta centred at z = e^{i mid}, damped by
 // damp[k] (eqs 4.2-4.5); w[0] = delta.
 [[gnu::always_inline]] inline void plain_weights(double zc, double zs, int H, const double* damp,
@@ -499,19 +499,87 @@ template <int N>
   }
 }
 
+// Hsu's plain kernel works on transposes: it computes Phi^T = E_1^T E_2^T ... E_K^T from the
+// transposed harmonics.  Each product is computed as the transpose of the one it stands for,
+// with the same terms summed in the same order (C^T(i, j) = sum_k B^T(i, k) A^T(k, j) against
+// C(j, i) = sum_k A(j, k) B(k, i)), so Phi has the bits of the untransposed product.  What the
+// layout buys: in the rotor equations (y = [q1', q1, q2', q2, ...]) every second row of A(psi),
+// q' = q', does not vary with psi, and rows of A are whole columns, i.e. whole vectors, of A^T,
+// so the harmonic sum skips them (kEvenRows: only the rows 0, 2, 4, ... take the harmonics
+// h >= 1).
+
+// X^T = sum_h w_h A_h^T over one substep, A_h^T column-major.
+template <int N, bool kEvenRows>
+[[gnu::always_inline]] inline void plain_weighted_sum_t(const double* const* At, int H,
+                                                        const double* w, PlainMat<N>& Y) {
+  constexpr int V = N * N / 4;
+  constexpr int Q = N / 4;
+  for (int e = 0; e < V; ++e) {
+    V4 a;
+    __builtin_memcpy(&a, At[0] + 4 * e, sizeof a);
+    Y.c[e] = a * w[0];
+  }
+  for (int h = 1; h < H; ++h) {
+    const double* ah = At[h];
+    const double wh = w[h];
+    for (int e = 0; e < V; ++e) {
+      if (kEvenRows && (e / Q) % 2 == 1) continue;  // column e / Q of A^T: an odd row of A
+      V4 a;
+      __builtin_memcpy(&a, ah + 4 * e, sizeof a);
+      Y.c[e] += a * wh;
+    }
+  }
+}
+
+// Phi^T <- Phi^T exp(X)^T, Y = X^T, with exp(X) ~ I + X + X^2 (I/2 + X/6 + X^2/24) (eq 3.27,
+// J = 4, two products by Paterson-Stockmeyer) and one product for the accumulation (eq 3.25).
+template <int N>
+[[gnu::always_inline]] inline void plain_taylor4_step_t(const PlainMat<N>& Y, PlainMat<N>& Phit) {
+  PlainMat<N> Y2, T, E;
+  plain_mul<N>(Y, Y, Y2);
+  for (int e = 0; e < N * N / 4; ++e) T.c[e] = Y.c[e] * (1.0 / 6.0) + Y2.c[e] * (1.0 / 24.0);
+  plain_add_diagonal<N>(T, 0.5);
+  plain_mul<N>(T, Y2, E);  // (X^2 T)^T
+  for (int e = 0; e < N * N / 4; ++e) E.c[e] += Y.c[e];
+  plain_add_diagonal<N>(E, 1.0);
+  plain_mul<N>(Phit, E, Y2);  // (E Phi)^T
+  Phit = Y2;
+}
+
+template <int N>
+[[gnu::always_inline]] inline void plain_store_transposed(const PlainMat<N>& Mt, double* dst) {
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i < N; ++i) dst[j * N + i] = Mt.at(j, i);
+}
+
 // The grid rule of make_grid() walked without storing it: step i of K, split at a sector edge
 // strictly inside it (beyond rounding), each substep in the region of its midpoint.
-template <int N>
-[[gnu::always_inline]] inline void plain_hsu_impl(const PlainHsuInput& in, double* out) {
-  PlainMat<N> Phi, X;
+//
+// kPair: Phi at K / 2 as well (K even) into out_half.  The exact interval means are additive,
+// so Delta C of an unsplit coarse step is the sum of those of its two fine steps (equal to its
+// own harmonic sum to rounding) and costs only its Taylor step; a coarse step that contains a
+// sector edge is computed as on its own grid.
+template <int N, bool kEvenRows, bool kPair>
+[[gnu::always_inline]] inline void plain_hsu_impl(const PlainHsuInput& in, double* out,
+                                                  double* out_half) {
+  PlainMat<N> Phi, Phic, Y, Ya;
   plain_identity<N>(Phi);
+  plain_identity<N>(Phic);
+  plain_identity<N>(Ya);  // set before use; quiets -Wmaybe-uninitialized
   const int K = in.K;
   const double d = kTwoPi / K;
+  const double dc = kTwoPi / (K / 2);  // the coarse step (kPair)
   const double slack = 1e-12 * kTwoPi;
   const Phasor step = phasor(d);
   double zc = 1.0, zs = 0.0;  // e^{i mid_i}, the rotation recurrence of phasor_grid()
   double w[kPlainMaxHarmonics], dsub[kPlainMaxHarmonics / 2 + 2];
-  auto substep = [&](double a, double b) __attribute__((always_inline)) {
+  auto split_inside = [&](double a, double b) __attribute__((always_inline)) {
+    bool split = false;
+    for (int k = 0; k < in.n_edges; ++k)
+      split |= in.edges[k] > a + slack && in.edges[k] < b - slack;
+    return split;
+  };
+  auto substep = [&](double a, double b, PlainMat<N>& P) __attribute__((always_inline)) {
     const double delta = b - a;
     const double mid = 0.5 * (a + b);
     const int r = plain_reversed(in, mid) ? 1 : 0;
@@ -519,9 +587,20 @@ template <int N>
     for (int k = 1; k <= in.max_order; ++k) dsub[k] = sinc(k * 0.5 * delta);
     const Phasor z = phasor(mid);
     plain_weights(z.c, z.s, in.H[r], dsub, delta, w);
-    plain_weighted_sum<N>(in.A[r], in.H[r], w, X);
-    plain_taylor4_step<N>(X, Phi);
+    plain_weighted_sum_t<N, kEvenRows>(in.A[r], in.H[r], w, Y);
+    plain_taylor4_step_t<N>(Y, P);
   };
+  auto split_step = [&](double a, double b, PlainMat<N>& P) __attribute__((always_inline)) {
+    double lo = a;
+    for (int k = 0; k < in.n_edges; ++k) {
+      if (in.edges[k] > a + slack && in.edges[k] < b - slack) {
+        substep(lo, in.edges[k], P);
+        lo = in.edges[k];
+      }
+    }
+    substep(lo, b, P);
+  };
+  bool first_unsplit = false;  // kPair: fine step i - 1 was unsplit and its X^T is in Ya
   for (int i = 0; i < K; ++i) {
     if (i % kReseed == 0) {
       const Phasor z = phasor(0.5 * d + i * d);
@@ -534,38 +613,77 @@ template <int N>
     }
     const double a = i * d;
     const double b = (i + 1 == K) ? kTwoPi : (i + 1) * d;
-    bool split = false;
-    for (int k = 0; k < in.n_edges; ++k)
-      split |= in.edges[k] > a + slack && in.edges[k] < b - slack;
+    const bool split = split_inside(a, b);
     if (!split) {
       const int r = plain_reversed(in, 0.5 * (a + b)) ? 1 : 0;
       plain_weights(zc, zs, in.H[r], in.damp, b - a, w);
-      plain_weighted_sum<N>(in.A[r], in.H[r], w, X);
-      plain_taylor4_step<N>(X, Phi);
-      continue;
+      plain_weighted_sum_t<N, kEvenRows>(in.A[r], in.H[r], w, Y);
+      plain_taylor4_step_t<N>(Y, Phi);
+    } else {
+      split_step(a, b, Phi);
     }
-    double lo = a;
-    for (int k = 0; k < in.n_edges; ++k) {
-      if (in.edges[k] > a + slack && in.edges[k] < b - slack) {
-        substep(lo, in.edges[k]);
-        lo = in.edges[k];
+    if constexpr (kPair) {
+      if (i % 2 == 0) {
+        first_unsplit = !split;
+        if (!split) Ya = Y;
+        continue;
+      }
+      const int ci = i / 2;
+      const double ac = ci * dc;
+      const double bc = (ci + 1 == K / 2) ? kTwoPi : (ci + 1) * dc;
+      if (first_unsplit && !split && !split_inside(ac, bc)) {
+        for (int e = 0; e < N * N / 4; ++e) Y.c[e] += Ya.c[e];
+        plain_taylor4_step_t<N>(Y, Phic);
+      } else if (split_inside(ac, bc)) {
+        split_step(ac, bc, Phic);
+      } else {
+        // Unsplit on its own grid while a fine step is split (cannot happen: a fine step's edge
+        // is inside the coarse step, beyond rounding): the coarse grid's own rule.
+        const Phasor z = phasor(0.5 * (ac + bc));
+        const int r = plain_reversed(in, 0.5 * (ac + bc)) ? 1 : 0;
+        dsub[0] = 1.0;
+        for (int k = 1; k <= in.max_order; ++k) dsub[k] = sinc(k * 0.5 * (bc - ac));
+        plain_weights(z.c, z.s, in.H[r], dsub, bc - ac, w);
+        plain_weighted_sum_t<N, kEvenRows>(in.A[r], in.H[r], w, Y);
+        plain_taylor4_step_t<N>(Y, Phic);
       }
     }
-    substep(lo, b);
   }
-  plain_store<N>(Phi, out);
+  plain_store_transposed<N>(Phi, out);
+  if constexpr (kPair) plain_store_transposed<N>(Phic, out_half);
 }
 
-// One clone pair per state size with a plain kernel (plain_size()).
-#define FLAPLAG_PLAIN_HSU(N)                                                                   \
-  __attribute__((target_clones("avx2", "default"))) void plain_hsu##N(const PlainHsuInput& in, \
-                                                                      double* Phi) {           \
-    plain_hsu_impl<N>(in, Phi);                                                                \
+// One clone pair per state size with a plain kernel (plain_size()) and variant: L the rows that
+// take harmonics (kEvenRows or all), P Phi at K / 2 as well.  in.A holds the transposed harmonics
+// (plain_hsu_input()).
+#define FLAPLAG_PLAIN_HSU_VARIANT(N, NAME, L, P)                             \
+  __attribute__((target_clones("avx2", "default"))) void plain_hsu##N##NAME( \
+      const PlainHsuInput& in, double* Phi, double* half) {                  \
+    plain_hsu_impl<N, L, P>(in, Phi, half);                                  \
+  }
+#define FLAPLAG_PLAIN_HSU(N)                                              \
+  FLAPLAG_PLAIN_HSU_VARIANT(N, _all, false, false)                        \
+  FLAPLAG_PLAIN_HSU_VARIANT(N, _all_pair, false, true)                    \
+  FLAPLAG_PLAIN_HSU_VARIANT(N, _even, true, false)                        \
+  FLAPLAG_PLAIN_HSU_VARIANT(N, _even_pair, true, true)                    \
+  void plain_hsu##N(const PlainHsuInput& in, double* Phi, double* half) { \
+    if (in.even_rows_only) {                                              \
+      if (half != nullptr)                                                \
+        plain_hsu##N##_even_pair(in, Phi, half);                          \
+      else                                                                \
+        plain_hsu##N##_even(in, Phi, nullptr);                            \
+    } else {                                                              \
+      if (half != nullptr)                                                \
+        plain_hsu##N##_all_pair(in, Phi, half);                           \
+      else                                                                \
+        plain_hsu##N##_all(in, Phi, nullptr);                             \
+    }                                                                     \
   }
 FLAPLAG_PLAIN_HSU(4)
 FLAPLAG_PLAIN_HSU(8)
 FLAPLAG_PLAIN_HSU(12)
 FLAPLAG_PLAIN_HSU(16)
+#undef FLAPLAG_PLAIN_HSU_VARIANT
 #undef FLAPLAG_PLAIN_HSU
 
 // exp(X) by scaling and squaring with the degree-12 Taylor polynomial: X / 2^s with
@@ -615,7 +733,7 @@ template <int N>
   auto block = [&](int k, PlainMat<N>& B) __attribute__((always_inline)) {
     for (int e = 0; e < V; ++e)
       B.c[e] = X.c[e] * c[4 * k + 1] + X2.c[e] * c[4 * k + 2] + X3.c[e] * c[4 * k + 3];
-    for (int i = 0; i < N; ++i) B.at(i, i) += c[4 * k];
+    plain_add_diagonal<N>(B, c[4 * k]);
   };
   block(2, P);
   for (int e = 0; e < V; ++e) P.c[e] += X4.c[e] * c[12];
@@ -710,23 +828,57 @@ bool plain_input(const PeriodicSystem& sys, int K, PlainHsuInput& in) {
   return true;
 }
 
+// The plain Hsu kernel's input: plain_input() with the harmonics transposed into `work` (the
+// kernel works on transposes) and the rows of A that vary found.
+bool plain_hsu_input(const PeriodicSystem& sys, int K, std::vector<double>& work,
+                     PlainHsuInput& in) {
+  if (!plain_input(sys, K, in)) return false;
+  const int n = sys.n;
+  const bool same = !sys.has_sector;  // region 1 is region 0
+  const std::size_t count = static_cast<std::size_t>(in.H[0] + (same ? 0 : in.H[1]));
+  if (work.size() < count * n * n) work.resize(count * n * n);
+  double* t = work.data();
+  bool even = true;
+  for (int r = 0; r < (same ? 1 : 2); ++r) {
+    for (int h = 0; h < in.H[r]; ++h, t += n * n) {
+      const double* a = in.A[r][h];
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          t[i * n + j] = a[j * n + i];
+          if (h > 0 && i % 2 == 1) even = even && a[j * n + i] == 0.0;
+        }
+      in.A[r][h] = t;
+    }
+  }
+  if (same)
+    for (int h = 0; h < in.H[1]; ++h) in.A[1][h] = in.A[0][h];
+  in.even_rows_only = even;
+  return true;
+}
+
 // Hsu by the plain kernel when it applies (plain_size(n), J = 4, few harmonics); false otherwise.
-bool plain_hsu(const PeriodicSystem& sys, int K, int J, Eigen::MatrixXd& phi) {
+// half != null: Phi at K / 2 as well (K even).
+bool plain_hsu(const PeriodicSystem& sys, int K, int J, Eigen::MatrixXd& phi,
+               Eigen::MatrixXd* half = nullptr) {
+  // The transposed harmonics, per thread: nothing allocates once they fit.
+  thread_local std::vector<double> work;
   PlainHsuInput in;
-  if (J != 4 || !plain_input(sys, K, in)) return false;
+  if (J != 4 || !plain_hsu_input(sys, K, work, in)) return false;
   phi.resize(sys.n, sys.n);
+  if (half != nullptr) half->resize(sys.n, sys.n);
+  double* h = half != nullptr ? half->data() : nullptr;
   switch (sys.n) {
     case 4:
-      plain_hsu4(in, phi.data());
+      plain_hsu4(in, phi.data(), h);
       break;
     case 8:
-      plain_hsu8(in, phi.data());
+      plain_hsu8(in, phi.data(), h);
       break;
     case 12:
-      plain_hsu12(in, phi.data());
+      plain_hsu12(in, phi.data(), h);
       break;
     default:
-      plain_hsu16(in, phi.data());
+      plain_hsu16(in, phi.data(), h);
       break;
   }
   return true;
@@ -827,6 +979,21 @@ void transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms,
     *phi = detail::varying_hsu(sys, intervals, terms);
   } else if (!plain_hsu(sys, intervals, terms, *phi)) {
     *phi = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.hsu(intervals, terms)); });
+  }
+}
+
+void transition_matrix_hsu_pair(const PeriodicSystem& sys, int intervals, int terms,
+                                Eigen::MatrixXd* phi, Eigen::MatrixXd* phi_half) {
+  if (phi == nullptr || phi_half == nullptr)
+    throw InvalidInput("phi", "null", "two matrices to fill are required");
+  check_count("intervals", intervals);
+  if (intervals % 2 != 0)
+    throw InvalidInput("intervals", std::to_string(intervals), "must be even");
+  check_count("terms", terms, TransitionOptions::kMaxTerms);
+  sys.validate();
+  if (sys.has_varying || !plain_hsu(sys, intervals, terms, *phi, phi_half)) {
+    transition_matrix_hsu(sys, intervals, terms, phi);
+    transition_matrix_hsu(sys, intervals / 2, terms, phi_half);
   }
 }
 

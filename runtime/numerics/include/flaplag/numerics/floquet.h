@@ -60,6 +60,14 @@ Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, 
 // sizes with a plain kernel: 4, 8, 12, 16).
 void transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms,
                            Eigen::MatrixXd* phi);
+// Hsu at `intervals` (even) and at intervals / 2 in one pass, into *phi and *phi_half.  An
+// interval of the coarse grid that holds no sector edge has Delta C_k = the sum of those of its
+// two fine intervals (the exact means are additive), so *phi_half costs only its Taylor steps.
+// *phi has the bits of transition_matrix_hsu(sys, intervals, terms); *phi_half equals
+// transition_matrix_hsu(sys, intervals / 2, terms) to rounding.  Systems without a plain kernel
+// (state size, J != 4, a varying region) get the two separate calls.
+void transition_matrix_hsu_pair(const PeriodicSystem& sys, int intervals, int terms,
+                                Eigen::MatrixXd* phi, Eigen::MatrixXd* phi_half);
 TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps);
 // Phi by fourth-order Magnus alone (no Richardson pass) on the grid of `steps` steps with every
 // substep bisected `bisections` times (0..20): level l + 1 is level l on a grid twice as fine,
