@@ -248,6 +248,14 @@ struct Analysis::Impl {
     return evaluated(transition_matrix(sys, o).phi, trace);
   }
 
+  // Hsu at `steps` and steps / 2 in one pass (transition_matrix_hsu_pair): {fine, coarse}.
+  std::pair<Evaluated, Evaluated> at_pair(const PeriodicSystem& sys, double trace,
+                                          int steps) const {
+    Eigen::MatrixXd phi, half;
+    transition_matrix_hsu_pair(sys, steps, options.terms, &phi, &half);
+    return {evaluated(phi, trace), evaluated(half, trace)};
+  }
+
   // The Floquet analysis of one transition matrix.
   static Evaluated evaluated(const Eigen::MatrixXd& phi, double trace) {
     Evaluated e;
@@ -347,7 +355,16 @@ struct Analysis::Impl {
                     ? std::max(automatic_start(sys, min_steps, std::max(min_steps, hinted)), hinted)
                     : options.steps;
 
-    Evaluated fine = levels ? Evaluated{} : at(sys, trace, steps);
+    // The automatic rule's first pair (K and K / 2) by Hsu comes from one pass.
+    std::optional<Evaluated> first_coarse;
+    Evaluated fine;
+    if (automatic && !levels && options.method == TransitionMethod::Hsu && steps % 2 == 0) {
+      auto pair = at_pair(sys, trace, steps);
+      fine = std::move(pair.first);
+      first_coarse = std::move(pair.second);
+    } else if (!levels) {
+      fine = at(sys, trace, steps);
+    }
     auto resolved = [&](const std::vector<double>& err) {
       for (std::size_t k = 0; k < err.size(); ++k) {
         const double z = std::abs(std::max(fine.floquet.exponents[k].zeta, fine.zeta_floor));
@@ -440,7 +457,8 @@ struct Analysis::Impl {
         return ki + (ki % 2);  // even, so that a warm start's K / 2 is a whole number
       };
       int coarse_steps = steps / 2;
-      std::optional<Evaluated> coarse = at(sys, trace, coarse_steps);
+      std::optional<Evaluated> coarse =
+          first_coarse ? std::move(first_coarse) : at(sys, trace, coarse_steps);
       double q = std::numeric_limits<double>::infinity();
       for (;;) {
         if (!finite(fine) || !finite(*coarse)) {
