@@ -1,10 +1,14 @@
 // The thread pool of core/parallel.h: every task once, in claimed order, the count of finished
-// tasks, cancellation between tasks, and the thread-count checks.
+// tasks, cancellation between tasks, the threads kept between calls, nested, concurrent and
+// forked calls, and the thread-count checks.
 #include "flaplag/core/parallel.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -59,6 +63,70 @@ TEST(ParallelFor, CancelStopsClaimingAndTheFinishedTasksAreAPrefix) {
   });
   EXPECT_EQ(10u, done);
   for (std::size_t i = 0; i < ran.size(); ++i) EXPECT_EQ(i < 10 ? 1 : 0, ran[i]) << i;
+}
+
+// The ids of the threads that ran a call's tasks.
+std::set<std::thread::id> threads_of_a_call(std::size_t n, int threads) {
+  std::mutex m;
+  std::set<std::thread::id> ids;
+  parallel_for(n, threads, nullptr, {}, [&](std::size_t) {
+    // Long enough that every thread asked for gets a task.
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    std::lock_guard<std::mutex> lock(m);
+    ids.insert(std::this_thread::get_id());
+  });
+  return ids;
+}
+
+// The workers are kept between calls (no thread started per call), and a call that asks for
+// more threads than the pool has gets them.
+TEST(ParallelFor, KeepsItsThreadsBetweenCalls) {
+  const std::set<std::thread::id> first = threads_of_a_call(8, 2);
+  const std::set<std::thread::id> second = threads_of_a_call(8, 2);
+  EXPECT_EQ(2u, first.size());
+  EXPECT_EQ(first, second);
+  const std::set<std::thread::id> more = threads_of_a_call(12, 3);
+  EXPECT_EQ(3u, more.size());
+  for (std::thread::id id : first) EXPECT_EQ(1u, more.count(id));
+  EXPECT_EQ(1u, threads_of_a_call(4, 1).size());
+}
+
+// A task that runs a call of its own (the pool is busy: that call starts threads of its own),
+// and two user threads calling at once: every task runs once, nothing waits forever.
+TEST(ParallelFor, NestedAndConcurrentCallsComplete) {
+  std::vector<std::atomic<int>> inner(4 * 10);
+  const std::size_t outer = parallel_for(4, 2, nullptr, {}, [&](std::size_t i) {
+    EXPECT_EQ(10u, parallel_for(10, 2, nullptr, {}, [&](std::size_t j) { inner[10 * i + j]++; }));
+  });
+  EXPECT_EQ(4u, outer);
+  for (const auto& r : inner) EXPECT_EQ(1, r.load());
+  std::vector<std::atomic<int>> a(200), b(200);
+  std::thread other(
+      [&] { parallel_for(a.size(), 2, nullptr, {}, [&](std::size_t i) { a[i]++; }); });
+  parallel_for(b.size(), 2, nullptr, {}, [&](std::size_t i) { b[i]++; });
+  other.join();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(1, a[i].load()) << i;
+    EXPECT_EQ(1, b[i].load()) << i;
+  }
+}
+
+// After fork() the child has none of the parent's threads: its calls start a pool of its own
+// (a child waiting for the parent's workers would hang; the alarm turns that into a failure).
+TEST(ParallelFor, WorksInAForkedChild) {
+  ASSERT_EQ(2u, threads_of_a_call(8, 2).size());  // the parent's pool is running
+  const pid_t pid = fork();
+  ASSERT_NE(-1, pid);
+  if (pid == 0) {
+    alarm(20);
+    std::atomic<int> ran{0};
+    const std::size_t done = parallel_for(50, 2, nullptr, {}, [&](std::size_t) { ran++; });
+    _exit(done == 50 && ran.load() == 50 ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(pid, waitpid(pid, &status, 0));
+  ASSERT_TRUE(WIFEXITED(status)) << "the child was killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(0, WEXITSTATUS(status));
 }
 
 TEST(ThreadCount, ZeroIsTheHardwareAndTheRangeIsChecked) {

@@ -843,10 +843,10 @@ bool plain_hsu_input(const PeriodicSystem& sys, int K, std::vector<double>& work
     for (int h = 0; h < in.H[r]; ++h, t += n * n) {
       const double* a = in.A[r][h];
       for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-          t[i * n + j] = a[j * n + i];
-          if (h > 0 && i % 2 == 1) even = even && a[j * n + i] == 0.0;
-        }
+        for (int i = 0; i < n; ++i) t[i * n + j] = a[j * n + i];
+      if (h > 0)
+        for (int j = 0; j < n; ++j)
+          for (int i = 1; i < n; i += 2) even &= a[j * n + i] == 0.0;
       in.A[r][h] = t;
     }
   }

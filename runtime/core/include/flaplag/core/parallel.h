@@ -28,7 +28,9 @@ using ProgressFunction = std::function<void(std::size_t, std::size_t)>;
 
 // Runs task(i) for i = 0 .. n-1 on min(thread_count(threads), n) threads (the calling thread
 // is one of them; fewer when the system refuses to start more), claiming indices in increasing
-// order; stops claiming when *cancel is set.
+// order; stops claiming when *cancel is set.  The other threads are the process's pool, kept
+// between calls (a call made while the pool runs another, e.g. from inside a task, starts
+// threads of its own; a forked child starts a new pool).  Safe to call from several threads.
 // Every claimed task finishes, so the finished tasks are 0 .. k-1; returns k.  A task must not
 // throw (catch inside and store what is needed: an exception escaping a worker ends the
 // process).
