@@ -13,6 +13,7 @@
 
 #include "flaplag/analysis.h"
 #include "flaplag/core/constants.h"
+#include "flaplag/core/errors.h"
 #include "test_util.h"
 
 namespace flaplag {
@@ -166,6 +167,47 @@ TEST(ExactReversedRegion, FullyReversedBetweenTheBreaks) {
   for (std::size_t j = 0; j < n.size(); ++j) EXPECT_DOUBLE_EQ(-n[j], r[j]);
   const std::vector<double> side = b.exact_integrals(1.5, 1.0);  // advancing side
   for (std::size_t j = 0; j < n.size(); ++j) EXPECT_DOUBLE_EQ(n[j], side[j]);
+}
+
+// system(mu, &out) reuses out's storage and gives the system of system(mu), every field and bit,
+// whatever out held before: a sector system after one without (mu = 0) and back, an exact
+// region after a sector (and back), and exact modes with their larger state.
+TEST(SystemBuilder, ReusedSystemIsTheSystemOfItsMu) {
+  auto same = [](const PeriodicSystem& a, const PeriodicSystem& b, const std::string& where) {
+    EXPECT_EQ(a.n, b.n) << where;
+    EXPECT_EQ(a.has_sector, b.has_sector) << where;
+    EXPECT_EQ(a.sector_begin, b.sector_begin) << where;
+    EXPECT_EQ(a.sector_end, b.sector_end) << where;
+    EXPECT_EQ(a.has_varying, b.has_varying) << where;
+    EXPECT_EQ(a.varying_begin, b.varying_begin) << where;
+    EXPECT_EQ(a.varying_end, b.varying_end) << where;
+    EXPECT_EQ(a.varying_breaks, b.varying_breaks) << where;
+    EXPECT_EQ(static_cast<bool>(a.varying), static_cast<bool>(b.varying)) << where;
+    for (auto [x, y] : {std::pair{&a.normal, &b.normal}, std::pair{&a.reversed, &b.reversed}}) {
+      ASSERT_EQ(x->A.size(), y->A.size()) << where;
+      ASSERT_EQ(x->f.size(), y->f.size()) << where;
+      for (std::size_t h = 0; h < x->A.size(); ++h) EXPECT_TRUE(x->A[h] == y->A[h]) << where;
+      for (std::size_t h = 0; h < x->f.size(); ++h) EXPECT_TRUE(x->f[h] == y->f[h]) << where;
+    }
+    for (double psi : {0.3, 4.2, 4.9})  // the varying region's evaluator too
+      EXPECT_TRUE(a.A(psi) == b.A(psi)) << where << ", psi = " << psi;
+  };
+  for (bool exact_modes : {false, true}) {
+    RotorParameters p = offset_blade(exact_modes, false), q = offset_blade(exact_modes, true);
+    const SystemBuilder sector(p, find_model(p.model)), exact(q, find_model(q.model));
+    PeriodicSystem reused;
+    for (double mu : {0.0, 0.6, 0.0, 1.3, 0.4}) {
+      const std::string where = std::string(exact_modes ? "exact modes" : "assumed modes") +
+                                ", mu = " + std::to_string(mu);
+      sector.system(mu, &reused);
+      same(sector.system(mu), reused, where + " (sector)");
+      exact.system(mu, &reused);
+      same(exact.system(mu), reused, where + " (exact region)");
+    }
+  }
+  const RotorParameters typical;
+  const SystemBuilder b(typical, find_model(typical.model));
+  EXPECT_THROW(b.system(0.1, nullptr), InvalidInput);
 }
 
 }  // namespace

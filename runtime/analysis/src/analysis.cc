@@ -305,7 +305,14 @@ struct Analysis::Impl {
     }
   };
 
-  FloquetSample floquet(double mu, double zeta_tolerance, StepsHint* hint = nullptr) const {
+  // What one continuation's evaluations carry from one mu to the next (function()).
+  struct Continuation {
+    StepsHint hint;
+    PeriodicSystem system;  // storage reused at every mu
+  };
+
+  FloquetSample floquet(double mu, double zeta_tolerance, Continuation* c = nullptr) const {
+    StepsHint* hint = c != nullptr ? &c->hint : nullptr;
     // The linear system about hover (the paper) or about the periodic equilibrium.
     if (builder.params().periodic_linearization) {
       PeriodicEquilibrium eq = equilibrium(mu);
@@ -317,7 +324,9 @@ struct Analysis::Impl {
       }
       return floquet_of(eq.linearization, zeta_tolerance, eq.message, hint);
     }
-    return floquet_of(builder.system(mu), zeta_tolerance, "", hint);
+    if (c == nullptr) return floquet_of(builder.system(mu), zeta_tolerance, "", hint);
+    builder.system(mu, &c->system);
+    return floquet_of(c->system, zeta_tolerance, "", hint);
   }
 
   // One resolved Floquet evaluation of sys; equilibrium_note (the periodic equilibrium's
@@ -543,8 +552,8 @@ struct Analysis::Impl {
   }
 
   FloquetFunction function() const {
-    auto hint = std::make_shared<StepsHint>();
-    return [this, hint](double mu, double tol) { return floquet(mu, tol, hint.get()); };
+    auto c = std::make_shared<Continuation>();
+    return [this, c](double mu, double tol) { return floquet(mu, tol, c.get()); };
   }
 
   // A sweep or track in stretches (Analysis::sweep).  The periodic equilibria of one Analysis

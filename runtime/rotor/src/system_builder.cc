@@ -218,15 +218,19 @@ model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) co
 // A rows: velocity rows get mass^-1 * generalized force; displacement rows the identity.
 void SystemBuilder::assemble(double mu, const std::vector<double>& aero, HarmonicSet& out) const {
   const int n = n_, ns = 2 * n_;
-  std::vector<double> buffer(H_ * n * ns + H_ * n);
+  thread_local std::vector<double> buffer;  // scratch of this thread
+  buffer.assign(static_cast<std::size_t>(H_ * n * ns + H_ * n), 0.0);
   double* force = buffer.data();
   double* forcing = force + H_ * n * ns;
   model_->coefficients(inputs(mu, aero.data()), {force, forcing});
   // state column of the rate / displacement of coordinate j
   auto rate_col = [&](int j) { return model::rate_index(j, M_, N_); };
   auto disp_col = [&](int j) { return model::displacement_index(j, M_, N_); };
-  out.A.assign(H_, Eigen::MatrixXd::Zero(ns, ns));
-  out.f.assign(H_, Eigen::VectorXd::Zero(ns));
+  // Sized in place: the storage of a reused system is kept.
+  out.A.resize(static_cast<std::size_t>(H_));
+  out.f.resize(static_cast<std::size_t>(H_));
+  for (Eigen::MatrixXd& a : out.A) a.setZero(ns, ns);
+  for (Eigen::VectorXd& v : out.f) v.setZero(ns);
   for (int h = 0; h < H_; ++h) {
     Eigen::MatrixXd& A = out.A[h];
     Eigen::VectorXd& f = out.f[h];
@@ -433,10 +437,22 @@ ThrustSystem SystemBuilder::thrust(double mu) const {
 }
 
 PeriodicSystem SystemBuilder::system(double mu) const {
+  PeriodicSystem sys;
+  system(mu, &sys);
+  return sys;
+}
+
+void SystemBuilder::system(double mu, PeriodicSystem* out) const {
+  if (out == nullptr) throw InvalidInput("out", "null", "a PeriodicSystem to fill is required");
   if (!(mu >= 0.0) || !std::isfinite(mu)) {
     throw InvalidInput("mu", round_trip_text(mu), "advance ratio must be finite and >= 0");
   }
-  PeriodicSystem sys;
+  // Every field as in a new system, the harmonics' storage kept.
+  HarmonicSet normal = std::move(out->normal), reversed = std::move(out->reversed);
+  *out = PeriodicSystem{};
+  out->normal = std::move(normal);
+  out->reversed = std::move(reversed);
+  PeriodicSystem& sys = *out;
   sys.n = 2 * n_;
   assemble(mu, aero_.normal(), sys.normal);
   if (p_.reversed_flow && p_.exact_reversed_flow && mu > 0.0) {
@@ -460,7 +476,10 @@ PeriodicSystem SystemBuilder::system(double mu) const {
     sys.sector_end = 1.5 * kPi + 0.5 * alpha;
     assemble(mu, reversed_integrals(mu), sys.reversed);
   }
-  return sys;
+  if (!sys.has_sector) {
+    sys.reversed.A.clear();
+    sys.reversed.f.clear();
+  }
 }
 
 }  // namespace flaplag::detail

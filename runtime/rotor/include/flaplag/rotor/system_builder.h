@@ -64,6 +64,9 @@ class SystemBuilder {
   int state_size() const { return 2 * n_; }
 
   PeriodicSystem system(double mu) const;
+  // The same into *out, reusing its storage: along a continuation the harmonic matrices have
+  // the same sizes at every mu, so nothing is allocated after the first call.
+  void system(double mu, PeriodicSystem* out) const;
   // Thrust harmonics at mu (models with ModelDescriptor::thrust only; else std::logic_error).
   ThrustSystem thrust(double mu) const;
   double inflow() const { return inflow_; }
