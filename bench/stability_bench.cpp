@@ -120,6 +120,33 @@ void BM_RotorPhi_Hsu_K50_J4(benchmark::State& state) {
 }
 BENCHMARK(BM_RotorPhi_Hsu_K50_J4);
 
+// The automatic rule's first pair, K = 100 and K / 2 = 50: in one pass (the coarse intervals
+// take the sums of the fine ones) and as the two separate products it replaces.
+void BM_RotorPhi_HsuPair_K100_K50(benchmark::State& state) {
+  const auto an = typical();
+  const auto sys = an.system(0.7);
+  Eigen::MatrixXd phi, half;
+  for (auto _ : state) {
+    flaplag::transition_matrix_hsu_pair(sys, 100, 4, &phi, &half);
+    benchmark::DoNotOptimize(phi.data());
+    benchmark::DoNotOptimize(half.data());
+  }
+}
+BENCHMARK(BM_RotorPhi_HsuPair_K100_K50);
+
+void BM_RotorPhi_Hsu_K100_Then_K50(benchmark::State& state) {
+  const auto an = typical();
+  const auto sys = an.system(0.7);
+  Eigen::MatrixXd phi, half;
+  for (auto _ : state) {
+    flaplag::transition_matrix_hsu(sys, 100, 4, &phi);
+    flaplag::transition_matrix_hsu(sys, 50, 4, &half);
+    benchmark::DoNotOptimize(phi.data());
+    benchmark::DoNotOptimize(half.data());
+  }
+}
+BENCHMARK(BM_RotorPhi_Hsu_K100_Then_K50);
+
 void BM_RotorSystem_Build(benchmark::State& state) {
   const auto an = typical();
   for (auto _ : state) benchmark::DoNotOptimize(an.system(0.7));

@@ -383,7 +383,9 @@ class Kernel {
 // version and the loader picks one per machine, so the binary runs on any x86-64.  Only add and
 // multiply appear (no FMA contraction: "avx2" does not enable FMA), each element is computed
 // by the same sequence of operations in either clone, so both give the same bits.  Nothing
-// here allocates: the grid is walked on the fly, the harmonic matrices are read in place.
+// here allocates: the grid is walked on the fly, Magnus reads the harmonic matrices in place and
+// Hsu a per-thread transposed copy (plain_hsu_input()).  Hsu's kernel can also give Phi at K / 2
+// in the same pass (transition_matrix_hsu_pair: the automatic rule's error estimate).
 
 // Largest harmonic count and order the plain kernel takes (the generated models have 11
 // harmonics); beyond, the Eigen kernel is used.
