@@ -334,6 +334,24 @@ PeriodicSystem copies_of_rotor_like(int k) {
   return s;
 }
 
+// Hsu's product over K intervals written out independently: taylor() (eq 3.27) of the exact
+// interval means A_mean(), split at the sector edges.
+Eigen::MatrixXd independent_hsu(const PeriodicSystem& s, int K) {
+  Eigen::MatrixXd product = Eigen::MatrixXd::Identity(s.n, s.n);
+  for (int i = 0; i < K; ++i) {
+    const double a = i * kTwoPi / K, b = (i + 1 == K) ? kTwoPi : (i + 1) * kTwoPi / K;
+    double lo = a;
+    for (double e : s.breakpoints()) {
+      if (e > a + 1e-12 && e < b - 1e-12) {
+        product = taylor((e - lo) * s.A_mean(lo, e), 4) * product;
+        lo = e;
+      }
+    }
+    product = taylor((b - lo) * s.A_mean(lo, b), 4) * product;
+  }
+  return product;
+}
+
 // The fixed-size kernels (4, 8, 12, 16 states: plain arrays with AVX2/baseline clones, Hsu J = 4
 // and Magnus) and the general Eigen kernels (20 states) are different code: on k decoupled
 // copies each diagonal block must reproduce the 4-state result to rounding and the
@@ -342,21 +360,8 @@ TEST(Transition, FixedSizeKernelsAgreeWithTheGeneralOnes) {
   const PeriodicSystem one = rotor_like();
   const Eigen::MatrixXd hsu4 = transition_matrix_hsu(one, 50, 4);
   const Eigen::MatrixXd magnus4 = transition_matrix_magnus4(one, 25).phi;
-  // The 4-state kernel against an independent product of taylor() (eq 3.27) over the exact
-  // interval means A_mean(), split at the sector edges.
-  Eigen::MatrixXd product = Eigen::MatrixXd::Identity(4, 4);
-  for (int i = 0; i < 50; ++i) {
-    const double a = i * kTwoPi / 50, b = (i + 1) * kTwoPi / 50;
-    double lo = a;
-    for (double e : one.breakpoints()) {
-      if (e > a + 1e-12 && e < b - 1e-12) {
-        product = taylor((e - lo) * one.A_mean(lo, e), 4) * product;
-        lo = e;
-      }
-    }
-    product = taylor((b - lo) * one.A_mean(lo, b), 4) * product;
-  }
-  EXPECT_LT(rel_err(product, hsu4), 1e-13);
+  // The 4-state kernel against an independent product.
+  EXPECT_LT(rel_err(independent_hsu(one, 50), hsu4), 1e-13);
   for (int k : {2, 3, 4, 5}) {
     const PeriodicSystem s = copies_of_rotor_like(k);
     const Eigen::MatrixXd h = transition_matrix_hsu(s, 50, 4);
@@ -383,24 +388,6 @@ PeriodicSystem permuted(const PeriodicSystem& s, const std::vector<int>& perm) {
   for (HarmonicSet* set : {&out.normal, &out.reversed})
     for (Eigen::MatrixXd& a : set->A) a = P * a * P.transpose();
   return out;
-}
-
-// Hsu's product over K intervals written out independently: taylor() (eq 3.27) of the exact
-// interval means A_mean(), split at the sector edges.
-Eigen::MatrixXd independent_hsu(const PeriodicSystem& s, int K) {
-  Eigen::MatrixXd product = Eigen::MatrixXd::Identity(s.n, s.n);
-  for (int i = 0; i < K; ++i) {
-    const double a = i * kTwoPi / K, b = (i + 1 == K) ? kTwoPi : (i + 1) * kTwoPi / K;
-    double lo = a;
-    for (double e : s.breakpoints()) {
-      if (e > a + 1e-12 && e < b - 1e-12) {
-        product = taylor((e - lo) * s.A_mean(lo, e), 4) * product;
-        lo = e;
-      }
-    }
-    product = taylor((b - lo) * s.A_mean(lo, b), 4) * product;
-  }
-  return product;
 }
 
 // The plain kernels sum the harmonics only into the rows of A that vary when those are the
