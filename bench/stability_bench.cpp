@@ -147,6 +147,14 @@ void BM_RotorPhi_Hsu_K100_Then_K50(benchmark::State& state) {
 }
 BENCHMARK(BM_RotorPhi_Hsu_K100_Then_K50);
 
+// The periodic forced response of the typical case at mu = 0.8 (RK4 monodromy with its step
+// doubling, then the samples): the kernel of every trim and response.
+void BM_RotorResponse_Mu08(benchmark::State& state) {
+  const auto an = typical();
+  for (auto _ : state) benchmark::DoNotOptimize(an.response(0.8));
+}
+BENCHMARK(BM_RotorResponse_Mu08)->Unit(benchmark::kMicrosecond);
+
 void BM_RotorSystem_Build(benchmark::State& state) {
   const auto an = typical();
   for (auto _ : state) benchmark::DoNotOptimize(an.system(0.7));

@@ -52,12 +52,21 @@ void eval(const HarmonicSet& set, double psi, int n, Eigen::MatrixXd& A, Eigen::
   }
 }
 
-// One RK4 step of z' = A z + c f (c = 1 forced, 0 free) for the columns of Z (n x m).
+// One RK4 step of z' = A z + c f (c = 1 forced, 0 free) for the columns of Z (n x m).  The
+// stage matrices are kept between steps (no allocation once sized), and A, f at a step's end
+// serve as the next step's start when that step continues in the same region: the same
+// values as evaluating them again, at two thirds of the evaluations.
 struct Stepper {
+  Stepper(const PeriodicSystem* system, int size) : sys(system), n(size) {}
   const PeriodicSystem* sys;
   int n;
   Eigen::MatrixXd A0, A1, A2;
   Eigen::VectorXd f0, f1, f2;
+  Eigen::MatrixXd k1, k2, k3, k4, y2, y3, y4;  // the stages and the states they are taken at
+  bool have_end = false;                       // A2, f2 hold A, f at end_psi in end_set
+  double end_psi = 0.0;
+  const HarmonicSet* end_set = nullptr;
+
   void at(const Segment& s, double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) const {
     if (s.set == nullptr) {
       sys->varying(psi, A, f);
@@ -65,15 +74,39 @@ struct Stepper {
       eval(*s.set, psi, n, A, f);
     }
   }
-  void step(const Segment& s, Eigen::MatrixXd& Y, const Eigen::RowVectorXd& c) {
-    const double h = s.b - s.a;
-    at(s, s.a, A0, f0);
+  // A, f at the start, middle and end of s into A0 .. A2, f0 .. f2.
+  void coefficients(const Segment& s) {
+    if (have_end && s.set != nullptr && end_set == s.set && end_psi == s.a) {
+      A0.swap(A2);
+      f0.swap(f2);
+    } else {
+      at(s, s.a, A0, f0);
+    }
     at(s, 0.5 * (s.a + s.b), A1, f1);
     at(s, s.b, A2, f2);
-    const Eigen::MatrixXd k1 = A0 * Y + f0 * c;
-    const Eigen::MatrixXd k2 = A1 * (Y + 0.5 * h * k1) + f1 * c;
-    const Eigen::MatrixXd k3 = A1 * (Y + 0.5 * h * k2) + f1 * c;
-    const Eigen::MatrixXd k4 = A2 * (Y + h * k3) + f2 * c;
+    have_end = s.set != nullptr;
+    end_psi = s.b;
+    end_set = s.set;
+  }
+  // The four stages of the step from Y over s (k1 .. k4, and y2 .. y4 the states of stages 2-4).
+  void stages(const Segment& s, const Eigen::MatrixXd& Y, const Eigen::RowVectorXd& c) {
+    const double h = s.b - s.a;
+    coefficients(s);
+    k1.noalias() = A0 * Y;
+    k1.noalias() += f0 * c;
+    y2 = Y + 0.5 * h * k1;
+    k2.noalias() = A1 * y2;
+    k2.noalias() += f1 * c;
+    y3 = Y + 0.5 * h * k2;
+    k3.noalias() = A1 * y3;
+    k3.noalias() += f1 * c;
+    y4 = Y + h * k3;
+    k4.noalias() = A2 * y4;
+    k4.noalias() += f2 * c;
+  }
+  void step(const Segment& s, Eigen::MatrixXd& Y, const Eigen::RowVectorXd& c) {
+    stages(s, Y, c);
+    const double h = s.b - s.a;
     Y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
   }
 };
@@ -98,7 +131,7 @@ void monodromy(const PeriodicSystem& sys, int steps, Eigen::MatrixXd& phi, Eigen
   Y.leftCols(n).setIdentity();
   Eigen::RowVectorXd c = Eigen::RowVectorXd::Zero(n + 1);
   c(n) = 1.0;  // the last column is the forced solution from 0
-  Stepper st{&sys, n, {}, {}, {}, {}, {}, {}};
+  Stepper st{&sys, n};
   for (const Segment& s : grid(sys, steps)) st.step(s, Y, c);
   phi = Y.leftCols(n);
   g = Y.col(n);
@@ -211,7 +244,7 @@ PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOpti
   // The response over one period, sampled at psi_k = 2 pi k / samples, integrated from y0 on
   // the same grid (refined so that every sample is a grid point).
   const int per = std::max(1, (steps + options.samples - 1) / options.samples);
-  Stepper st{&sys, n, {}, {}, {}, {}, {}, {}};
+  Stepper st{&sys, n};
   Eigen::MatrixXd Y = fine;
   const Eigen::RowVectorXd c = Eigen::RowVectorXd::Ones(1);
   std::vector<double> cuts;
@@ -327,7 +360,7 @@ Simulation simulate(const PeriodicSystem& sys, const Eigen::VectorXd& y0, bool f
                     const SimulationOptions& options) {
   sys.validate();
   options.Check();
-  Stepper st{&sys, sys.n, {}, {}, {}, {}, {}, {}};
+  Stepper st{&sys, sys.n};
   const Eigen::RowVectorXd c = Eigen::RowVectorXd::Constant(1, forced ? 1.0 : 0.0);
   Eigen::MatrixXd Y;
   return sampled_run(sys, y0, options, [&](const Segment& s, Eigen::VectorXd& y) {
@@ -364,7 +397,7 @@ double periodic_mean(const PeriodicSystem& sys, const Eigen::VectorXd& y0, int s
     throw InvalidInput("y0", std::to_string(y0.size()) + " values",
                        "must be " + std::to_string(sys.n) + " finite values");
   if (!quantity) throw InvalidInput("quantity", "(empty)", "a quantity is required");
-  Stepper st{&sys, sys.n, {}, {}, {}, {}, {}, {}};
+  Stepper st{&sys, sys.n};
   const Eigen::RowVectorXd c = Eigen::RowVectorXd::Ones(1);
   Eigen::MatrixXd Y = y0;
   double integral = 0.0;
@@ -372,19 +405,11 @@ double periodic_mean(const PeriodicSystem& sys, const Eigen::VectorXd& y0, int s
     const double mid = 0.5 * (s.a + s.b), h = s.b - s.a;
     const bool reversed = sys.in_varying(mid) || (sys.has_sector && sys.in_sector(mid));
     // the stages of Stepper::step, with the quantity at each stage's state
-    st.at(s, s.a, st.A0, st.f0);
-    st.at(s, mid, st.A1, st.f1);
-    st.at(s, s.b, st.A2, st.f2);
-    const Eigen::MatrixXd k1 = st.A0 * Y + st.f0 * c;
-    const Eigen::MatrixXd y2 = Y + 0.5 * h * k1;
-    const Eigen::MatrixXd k2 = st.A1 * y2 + st.f1 * c;
-    const Eigen::MatrixXd y3 = Y + 0.5 * h * k2;
-    const Eigen::MatrixXd k3 = st.A1 * y3 + st.f1 * c;
-    const Eigen::MatrixXd y4 = Y + h * k3;
-    const Eigen::MatrixXd k4 = st.A2 * y4 + st.f2 * c;
-    const double t1 = quantity(s.a, reversed, Y.col(0)), t2 = quantity(mid, reversed, y2.col(0)),
-                 t3 = quantity(mid, reversed, y3.col(0)), t4 = quantity(s.b, reversed, y4.col(0));
-    Y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    st.stages(s, Y, c);
+    const double t1 = quantity(s.a, reversed, Y.col(0)), t2 = quantity(mid, reversed, st.y2.col(0)),
+                 t3 = quantity(mid, reversed, st.y3.col(0)),
+                 t4 = quantity(s.b, reversed, st.y4.col(0));
+    Y += h / 6.0 * (st.k1 + 2.0 * st.k2 + 2.0 * st.k3 + st.k4);
     integral += h / 6.0 * (t1 + 2.0 * t2 + 2.0 * t3 + t4);
   }
   return std::isfinite(integral) && Y.allFinite() ? integral / kTwoPi
