@@ -602,7 +602,6 @@ template <int N, bool kEvenRows, bool kPair>
     }
     substep(lo, b, P);
   };
-  bool first_unsplit = false;  // kPair: fine step i - 1 was unsplit and its X^T is in Ya
   for (int i = 0; i < K; ++i) {
     if (i % kReseed == 0) {
       const Phasor z = phasor(0.5 * d + i * d);
@@ -626,28 +625,19 @@ template <int N, bool kEvenRows, bool kPair>
     }
     if constexpr (kPair) {
       if (i % 2 == 0) {
-        first_unsplit = !split;
-        if (!split) Ya = Y;
+        Ya = Y;  // X^T of the coarse step's first half (used only if the coarse step is unsplit)
         continue;
       }
+      // Coarse step i / 2 has the ends of fine steps i - 1 and i (dc = 2 d exactly), so if no
+      // edge is inside it, none is inside either fine step and Ya, Y hold their X^T.
       const int ci = i / 2;
       const double ac = ci * dc;
       const double bc = (ci + 1 == K / 2) ? kTwoPi : (ci + 1) * dc;
-      if (first_unsplit && !split && !split_inside(ac, bc)) {
+      if (!split_inside(ac, bc)) {
         for (int e = 0; e < N * N / 4; ++e) Y.c[e] += Ya.c[e];
         plain_taylor4_step_t<N>(Y, Phic);
-      } else if (split_inside(ac, bc)) {
-        split_step(ac, bc, Phic);
       } else {
-        // Unsplit on its own grid while a fine step is split (cannot happen: a fine step's edge
-        // is inside the coarse step, beyond rounding): the coarse grid's own rule.
-        const Phasor z = phasor(0.5 * (ac + bc));
-        const int r = plain_reversed(in, 0.5 * (ac + bc)) ? 1 : 0;
-        dsub[0] = 1.0;
-        for (int k = 1; k <= in.max_order; ++k) dsub[k] = sinc(k * 0.5 * (bc - ac));
-        plain_weights(z.c, z.s, in.H[r], dsub, bc - ac, w);
-        plain_weighted_sum_t<N, kEvenRows>(in.A[r], in.H[r], w, Y);
-        plain_taylor4_step_t<N>(Y, Phic);
+        split_step(ac, bc, Phic);
       }
     }
   }
@@ -993,7 +983,7 @@ void transition_matrix_hsu_pair(const PeriodicSystem& sys, int intervals, int te
     throw InvalidInput("intervals", std::to_string(intervals), "must be even");
   check_count("terms", terms, TransitionOptions::kMaxTerms);
   sys.validate();
-  if (sys.has_varying || !plain_hsu(sys, intervals, terms, *phi, phi_half)) {
+  if (!plain_hsu(sys, intervals, terms, *phi, phi_half)) {  // no plain kernel: two products
     transition_matrix_hsu(sys, intervals, terms, phi);
     transition_matrix_hsu(sys, intervals / 2, terms, phi_half);
   }
