@@ -33,15 +33,20 @@ Outcome run(const std::vector<std::string>& args, const std::string& path_env = 
   return flaplag::testing::run_process(FLAPLAG_EXE, args, std::chrono::seconds(300), path_env);
 }
 
+// The same command with --threads 1 and with --threads 2.
+std::pair<Outcome, Outcome> run_on_one_and_two_threads(const std::vector<std::string>& base) {
+  std::vector<std::string> one = base, two = base;
+  one.insert(one.end(), {"--threads", "1"});
+  two.insert(two.end(), {"--threads", "2"});
+  return {run(one), run(two)};
+}
+
 bool gnuplot_available() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
 
 TEST(CliStudy, RowsWithIntervalsIdenticalForOneAndTwoThreads) {
   const std::vector<std::string> base = {
       "--modes", "exact", "study", "--vary", "omega-lag=1.3,1.45", "--mu-max", "1.5", "--json"};
-  std::vector<std::string> one = base, two = base;
-  one.insert(one.end(), {"--threads", "1"});
-  two.insert(two.end(), {"--threads", "2"});
-  const Outcome a = run(one), b = run(two);
+  const auto [a, b] = run_on_one_and_two_threads(base);
   ASSERT_EQ(0, a.exit_code) << a.err;
   ASSERT_EQ(0, b.exit_code) << b.err;
   const Json ja = Json::parse(a.out), jb = Json::parse(b.out);
@@ -61,10 +66,7 @@ TEST(CliStudy, RowsWithIntervalsIdenticalForOneAndTwoThreads) {
 TEST(CliMap, IdenticalBytesForOneAndTwoThreads) {
   const std::vector<std::string> base = {
       "map", "--x", "mu=0:1:0.1", "--y", "omega-lag=0.8,1.2,1.6", "--json"};
-  std::vector<std::string> one = base, two = base;
-  one.insert(one.end(), {"--threads", "1"});
-  two.insert(two.end(), {"--threads", "2"});
-  const Outcome a = run(one), b = run(two);
+  const auto [a, b] = run_on_one_and_two_threads(base);
   ASSERT_EQ(0, a.exit_code) << a.err;
   Json ja = Json::parse(a.out), jb = Json::parse(b.out);
   ja.erase("case");
@@ -78,10 +80,7 @@ TEST(CliMap, IdenticalBytesForOneAndTwoThreads) {
 // A sweep in stretches (Analysis::sweep) on one and two threads: the same rows, bit for bit.
 TEST(CliSweep, IdenticalRowsForOneAndTwoThreads) {
   const std::vector<std::string> base = {"sweep", "--mu", "0:1.2:0.01", "--json"};
-  std::vector<std::string> one = base, two = base;
-  one.insert(one.end(), {"--threads", "1"});
-  two.insert(two.end(), {"--threads", "2"});
-  const Outcome a = run(one), b = run(two);
+  const auto [a, b] = run_on_one_and_two_threads(base);
   ASSERT_EQ(0, a.exit_code) << a.err;
   ASSERT_EQ(0, b.exit_code) << b.err;
   Json ja = Json::parse(a.out), jb = Json::parse(b.out);
