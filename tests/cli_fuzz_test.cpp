@@ -1,5 +1,5 @@
 // Fuzzing the `flaplag` command line (issue 8): generated argument vectors, run as a user runs
-// them, each checked against the output contract of README "Using flaplag":
+// them, each checked against the output contract of docs/cli.md:
 //   - no signal, exit code 0 or 2 (1 is an internal error: a bug);
 //   - exit 2: exactly one stderr line "flaplag: error: <option> = <value>: <reason>", nothing on
 //     stdout, no output file created or changed;
@@ -661,7 +661,7 @@ const std::regex kBadToken(R"((^|[^A-Za-z_-])[+]?(nan|inf|infinity)([^A-Za-z_]|$
 
 void check_json(const Json& j, const std::string& key, bool lenient,
                 std::vector<std::string>& problems) {
-  // README "Using flaplag": what a null means under each of these keys.
+  // docs/cli.md: what a null means under each of these keys.
   static const std::set<std::string> kNullable = {"stable",
                                                   "error_estimate",
                                                   "liouville_residual",

@@ -60,7 +60,7 @@ std::string joined(const std::vector<std::string>& args) {
   return s;
 }
 
-// The error-line contract (README "Using flaplag"): exactly one line on stderr,
+// The error-line contract (docs/cli.md): exactly one line on stderr,
 //   flaplag: error: <option> = <value>: <reason>
 // with <option> an option ("--omega-lag", "-o", "--output"), or "subcommand" / "argument" for
 // a word that is not an option.

@@ -132,10 +132,10 @@ TEST(ManyModesTracking, FiveByFiveKeepsTheLabelsOutToTheFlutterBoundary) {
   EXPECT_NEAR(std::abs(top->omega), 1.29, 0.02);
 }
 
-// mu_c of the typical case with 3 x 3 exact modes, automatic resolution: the value of the
-// README's mode-convergence table, and the same boundary from RK4 (an independent transition
-// method) within the two error estimates.  The scan steps by 0.05 (there is one crossing, and
-// Brent refines it to the same tolerance), a quarter of the default scan's cost.
+// mu_c of the typical case with 3 x 3 exact modes, automatic resolution: the value of
+// the mode-convergence table of docs/paper.md, and the same boundary from RK4 (an independent
+// transition method) within the two error estimates.  The scan steps by 0.05 (there is one
+// crossing, and Brent refines it to the same tolerance), a quarter of the default scan's cost.
 TEST(ManyModesCritical, ThreeByThreeMuCAgreesAcrossMethods) {
   flaplag::CriticalOptions opt;
   opt.scan_step = 0.05;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Forward flight about the periodic equilibrium (issue 12): the periodic equilibrium q°(psi)
+"""Forward flight about the periodic equilibrium: the periodic equilibrium q°(psi)
 of the nonlinear equations, a nonlinear time-domain simulation from it, and a thrust trim.
 
 Left: the tip flap and lag deflections of q°(psi) over one revolution at mu (model
