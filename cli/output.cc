@@ -101,9 +101,62 @@ void check_link_owner(const std::string& name, const std::string& given, const s
            ", neither yours nor the directory owner's: not followed");
 }
 
-// Follows symbolic links in the last component (the kernel resolves those in the directories)
-// and classifies what is found.  Fails for anything that is neither missing, a regular file, a
-// character device, a FIFO nor an open descriptor's name.
+// The same rule for the links among the directories of `dir` (e.g. -o /tmp/planted/out.json with
+// /tmp/planted another user's link to /root), which the kernel follows without asking: walks
+// `dir` component by component, links resolved as the kernel does (relative to the directory
+// holding them), and applies check_link_owner to each link met.  A missing component ends the
+// walk (creating the file there fails later with the reason).
+void check_directory_links(const std::string& name, const std::string& given,
+                           const std::string& dir) {
+  std::vector<std::string> todo;  // components still to walk, the next one last
+  const auto push_path = [&todo](const std::string& p) {
+    std::vector<std::string> parts;
+    std::string::size_type from = 0;
+    while (from <= p.size()) {
+      const auto slash = p.find('/', from);
+      const std::string part = p.substr(from, slash == std::string::npos ? slash : slash - from);
+      if (!part.empty() && part != ".") parts.push_back(part);
+      if (slash == std::string::npos) break;
+      from = slash + 1;
+    }
+    todo.insert(todo.end(), parts.rbegin(), parts.rend());
+  };
+  std::string at = "/";  // resolved so far: no links in it
+  if (dir.empty() || dir[0] != '/') {
+    std::vector<char> cwd(4096);
+    if (::getcwd(cwd.data(), cwd.size()) == nullptr) return;  // the kernel will say
+    at = cwd.data();
+  }
+  push_path(dir);
+  int links = 0;
+  while (!todo.empty()) {
+    const std::string part = todo.back();
+    todo.pop_back();
+    if (part == "..") {
+      at = directory_of(at);
+      continue;
+    }
+    const std::string next = (at == "/" ? "/" : at + "/") + part;
+    struct stat st {};
+    if (::lstat(next.c_str(), &st) != 0) return;
+    if (!S_ISLNK(st.st_mode)) {
+      at = next;
+      continue;
+    }
+    if (++links > 40) return;  // ELOOP, reported when the file is created
+    check_link_owner(name, given, next, st);
+    std::vector<char> buf(static_cast<std::size_t>(st.st_size > 0 ? st.st_size : 255) + 2);
+    const ssize_t n = ::readlink(next.c_str(), buf.data(), buf.size() - 1);
+    if (n <= 0) return;
+    const std::string to(buf.data(), static_cast<std::size_t>(n));
+    if (to[0] == '/') at = "/";
+    push_path(to);
+  }
+}
+
+// Follows symbolic links in the last component (the kernel resolves those in the directories,
+// after check_directory_links) and classifies what is found.  Fails for anything that is neither
+// missing, a regular file, a character device, a FIFO nor an open descriptor's name.
 Resolved resolve(const std::string& name, const std::string& given) {
   if (given.empty()) fail(name, given, "empty file name");
   if (given.back() == '/') fail(name, given, "names a directory (ends in /)");
@@ -112,6 +165,7 @@ Resolved resolve(const std::string& name, const std::string& given) {
   // Linux gives up after 40 links too (ELOOP).
   for (int hop = 0; hop <= 40; ++hop) {
     const std::string what = r.path == given ? "" : "symbolic link to " + r.path + ", which ";
+    check_directory_links(name, given, directory_of(r.path));
     if (const int fd = descriptor_of(r.path); fd >= 0) {
       const int flags = ::fcntl(fd, F_GETFL);
       if (flags < 0)

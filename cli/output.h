@@ -21,8 +21,9 @@ namespace flaplag::cli {
 //   - a symbolic link is followed (chains too, relative to the link's directory) and the rules
 //     above apply to its target: a regular target is replaced atomically in the target's
 //     directory and the link is kept; a dangling link creates its target.  As the kernel's
-//     protected_symlinks rule: a link in a sticky world-writable directory (/tmp) is followed
-//     only when it belongs to the caller (effective uid) or to the directory's owner;
+//     protected_symlinks rule, whether or not the system enables it: a link in a sticky
+//     world-writable directory (/tmp), the last component or a directory on the way, is
+//     followed only when it belongs to the caller (effective uid) or to the directory's owner;
 //   - a directory, block device or socket is refused.
 // Errors throw InvalidInput(name, path, reason): name "output" (the command line names it -o as
 // typed) or "plot" (--plot).

@@ -409,6 +409,23 @@ TEST_F(Results, AnotherUsersLinkInAStickyDirectoryIsNotFollowed) {
   EXPECT_NE(std::string::npos, s.err.find("--plot = ")) << s.err;
   EXPECT_EQ("root's picture\n", slurp(picture));
 
+  // A planted link among the directories of the path, directly or behind root's own link.
+  const std::string dir_link = sticky.file("d"), chain = sticky.file("chain");
+  ASSERT_EQ(0, ::symlink(safe.path().c_str(), dir_link.c_str()));
+  ASSERT_EQ(0, ::lchown(dir_link.c_str(), 65534, 65534));
+  ASSERT_EQ(0, ::symlink("d", chain.c_str()));
+  for (const std::string& through : {dir_link + "/victim.txt", dir_link + "/new.txt",
+                                     chain + "/victim.txt", chain + "/./new.txt"}) {
+    const Outcome t = run({"models", "-o", through});
+    EXPECT_EQ(2, t.exit_code) << through;
+    EXPECT_TRUE(
+        std::regex_match(t.err, std::regex("flaplag: error: -o = " + through + ": symbolic link " +
+                                           dir_link + " owned by uid 65534 .*not followed\n")))
+        << t.err;
+  }
+  EXPECT_EQ("root's file\n", slurp(victim));
+  EXPECT_FALSE(flaplag::testing::exists(safe.file("new.txt")));
+
   // Root's own link there is followed: the target is replaced, the link kept.
   const std::string own = sticky.file("own.txt");
   ASSERT_EQ(0, ::symlink(victim.c_str(), own.c_str()));
