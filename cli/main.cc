@@ -2,10 +2,13 @@
 //
 // Exit codes: 0 success (numerical outcomes such as an unstable hover or no mu_c below the scan
 // limit are results, not errors); 2 bad input, reported as ONE line on stderr
-// "flaplag: error: <option> = <value>: <reason>", with no output file created or changed;
-// 1 an internal failure (a bug), also one line on stderr; 3 (flaplag plot) gnuplot is missing
-// or failed; 130 a study or map interrupted by Ctrl-C (SIGINT): the rows finished are written
-// as a valid output with status "cancelled", and one line on stderr says so.
+// "flaplag: error: <option> = <value>: <reason>", with no output file created or changed (an
+// output that cannot be written, standard output included, is such an error too); 1 an
+// internal failure (a bug), also one line on stderr; 3 (flaplag plot) gnuplot is missing or
+// failed; a study or map stopped by a signal writes the rows finished as a valid output with
+// status "cancelled", says so in one line on stderr and exits with 128 + the signal's number,
+// as a shell reports a job the signal ended: 130 for Ctrl-C (SIGINT), 143 for SIGTERM (what a
+// batch scheduler sends at the time limit), so that a script can tell them apart.
 #include <signal.h>
 
 #include <atomic>
@@ -28,23 +31,41 @@ namespace {
 constexpr int kBadInput = 2;
 constexpr int kInternalError = 1;
 constexpr int kRendererMissing = 3;
-constexpr int kInterrupted = 130;  // 128 + SIGINT, as a shell reports a job killed by Ctrl-C
-
-// Set by SIGINT; the study and map poll it between rows.  A lock-free atomic is what a signal
-// handler may touch.
+// Set by SIGINT or SIGTERM; the study and map poll it between rows.  Lock-free atomics are what
+// a signal handler may touch.
 std::atomic<bool> interrupted{false};
-static_assert(std::atomic<bool>::is_always_lock_free);
+std::atomic<int> stop_signal{0};  // the signal that set it
+static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free);
 
-extern "C" void on_interrupt(int) { interrupted.store(true); }
+extern "C" void on_interrupt(int signal) {
+  stop_signal.store(signal);
+  interrupted.store(true);
+}
 
-// Ctrl-C during a study or map stops it after the rows being computed; a second Ctrl-C (the
-// handler is reset by the first) ends flaplag at once.
+// Ctrl-C (SIGINT) or SIGTERM during a study or map stops it after the rows being computed; a
+// second one of the same signal (its handler is reset by the first) ends flaplag at once.
 void catch_interrupt() {
   struct sigaction sa {};
   sa.sa_handler = on_interrupt;
   sigemptyset(&sa.sa_mask);
   sa.sa_flags = SA_RESETHAND | SA_RESTART;  // no EINTR for the writes of the output
   ::sigaction(SIGINT, &sa, nullptr);
+  ::sigaction(SIGTERM, &sa, nullptr);
+}
+
+// 128 + the signal, as a shell reports a job ended by it: 130 (SIGINT), 143 (SIGTERM).
+int interrupted_exit_code() {
+  const int signal = stop_signal.load();
+  return 128 + (signal > 0 ? signal : SIGINT);
+}
+
+// Standard output that cannot be written (a full disk) is an output error; a pipe whose reader
+// went away ends flaplag by SIGPIPE, as any filter.
+int write_stdout(const std::string& text) {
+  const std::string reason = flaplag::cli::write_descriptor(1, text, false);
+  if (reason.empty()) return 0;
+  std::cerr << "flaplag: error: standard output: " << reason << std::endl;
+  return kBadInput;
 }
 
 const char* const kVersion = "flaplag " FLAPLAG_VERSION;
@@ -114,19 +135,20 @@ int run(const std::vector<std::string>& raw) {
     return report(error.what(), kBadInput);
   }
   if (e.run_help) {
-    std::cout << flaplag::cli::CommandLine::run_help_text() << std::flush;
-    return std::cout ? 0 : kInternalError;
+    return write_stdout(flaplag::cli::CommandLine::run_help_text());
   }
   const flaplag::cli::CommandLine cl(e.args);
   if (cl.wants_help() || cl.wants_version()) {
-    std::cout << (cl.wants_help() ? cl.help_text() : std::string(kVersion) + "\n") << std::flush;
-    return std::cout ? 0 : kInternalError;
+    return write_stdout(cl.wants_help() ? cl.help_text() : std::string(kVersion) + "\n");
   }
   try {
     flaplag::cli::Request request = cl.interpret();
     request.arguments = e.args;
-    // Check the output path before a possibly long analysis; nothing is left behind.
-    const flaplag::cli::OutputTarget target(request.output);
+    // Check every output path before a possibly long analysis; nothing is left behind.
+    const flaplag::cli::OutputTarget target(request.output, "output");
+    const flaplag::cli::OutputTarget picture(request.plot, "plot");
+    // The picture is written after the output, so that a run that fails leaves none.
+    flaplag::cli::DeferredPictures pictures;
     std::string warning;
     using flaplag::cli::Command;
     const bool long_run = request.command == Command::Study || request.command == Command::Map;
@@ -143,15 +165,15 @@ int run(const std::vector<std::string>& raw) {
     const std::string text = flaplag::cli::run_command(request, &warning, &control);
     bar.finish();
     if (request.output.empty()) {
-      std::cout << text << std::flush;
-      if (!std::cout) return report("cannot write to standard output", kInternalError);
+      if (const int code = write_stdout(text); code != 0) return code;
     } else {
       target.write(text);
     }
+    pictures.commit();
     if (!warning.empty()) std::cerr << "flaplag: warning: " << one_line(warning) << std::endl;
     if (control.cancelled) {
       std::cerr << "flaplag: " << one_line(control.message) << std::endl;
-      return kInterrupted;
+      return interrupted_exit_code();
     }
     return 0;
   } catch (const flaplag::cli::RendererUnavailable& error) {

@@ -21,11 +21,11 @@ namespace flaplag::cli {
 
 namespace {
 
-// The library-style name of -o: the command line shows it as the user typed it.
-const char* const kOutputName = "output";
-
-[[noreturn]] void fail(const std::string& path, const std::string& reason) {
-  throw InvalidInput(kOutputName, path.empty() ? "\"\"" : path, reason);
+// `name` is the library-style name of the option ("output": -o, "plot": --plot); the command
+// line shows it as the user typed it.
+[[noreturn]] void fail(const std::string& name, const std::string& path,
+                       const std::string& reason) {
+  throw InvalidInput(name, path.empty() ? "\"\"" : path, reason);
 }
 
 std::string errno_text() { return std::strerror(errno); }
@@ -55,72 +55,179 @@ std::string directory_of(const std::string& path) {
   return slash == 0 ? "/" : path.substr(0, slash);
 }
 
-enum class Kind { Missing, Regular, Through };
+enum class Kind { Missing, Regular, Through, Descriptor };
 
 struct Resolved {
   std::string path;  // symlinks followed: what is replaced or written
   Kind kind = Kind::Missing;
+  int fd = -1;  // Descriptor: the open descriptor written to
   struct stat st {};
 };
 
-// Follows symbolic links in the last component (the kernel resolves those in the directories)
-// and classifies what is found.  Fails for anything that is neither missing, a regular file, a
-// character device nor a FIFO.
-Resolved resolve(const std::string& given) {
-  if (given.empty()) fail(given, "empty file name");
-  if (given.back() == '/') fail(given, "names a directory (ends in /)");
+// The descriptor a path names by itself: /dev/stdout (1), /dev/stderr (2), /dev/fd/N and
+// /proc/self/fd/N; -1 for any other path.  Following these as links would end in the kernel's
+// "pipe:[N]" or "socket:[N]", which name nothing on disk.
+int descriptor_of(const std::string& path) {
+  if (path == "/dev/stdout") return 1;
+  if (path == "/dev/stderr") return 2;
+  for (const char* prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+    const std::string p(prefix);
+    if (path.size() <= p.size() || path.size() > p.size() + 6 || path.compare(0, p.size(), p) != 0)
+      continue;
+    int fd = 0;
+    for (std::size_t i = p.size(); i < path.size(); ++i) {
+      if (path[i] < '0' || path[i] > '9') return -1;
+      fd = fd * 10 + (path[i] - '0');
+    }
+    return fd;
+  }
+  return -1;
+}
+
+// The kernel's protected_symlinks rule, applied whether or not the system enables it: in a
+// sticky world-writable directory (/tmp) a link is followed only when it belongs to the caller
+// or to the directory's owner, so that another user's planted link cannot redirect the output.
+void check_link_owner(const std::string& name, const std::string& given, const std::string& link,
+                      const struct stat& link_st) {
+  const std::string dir = directory_of(link);
+  struct stat d {};
+  if (::stat(dir.c_str(), &d) != 0) fail(name, given, "directory " + dir + ": " + errno_text());
+  const bool sticky_public = (d.st_mode & S_ISVTX) != 0 && (d.st_mode & S_IWOTH) != 0;
+  if (!sticky_public || link_st.st_uid == d.st_uid || link_st.st_uid == ::geteuid()) return;
+  fail(name, given,
+       (link == given ? std::string("a symbolic link") : "symbolic link " + link) +
+           " owned by uid " + std::to_string(link_st.st_uid) +
+           " in the sticky world-writable directory " + dir +
+           ", neither yours nor the directory owner's: not followed");
+}
+
+// The same rule for the links among the directories of `dir` (e.g. -o /tmp/planted/out.json with
+// /tmp/planted another user's link to /root), which the kernel follows without asking: walks
+// `dir` component by component, links resolved as the kernel does (relative to the directory
+// holding them), and applies check_link_owner to each link met.  A missing component ends the
+// walk (creating the file there fails later with the reason).
+void check_directory_links(const std::string& name, const std::string& given,
+                           const std::string& dir) {
+  std::vector<std::string> todo;  // components still to walk, the next one last
+  const auto push_path = [&todo](const std::string& p) {
+    std::vector<std::string> parts;
+    std::string::size_type from = 0;
+    while (from <= p.size()) {
+      const auto slash = p.find('/', from);
+      const std::string part = p.substr(from, slash == std::string::npos ? slash : slash - from);
+      if (!part.empty() && part != ".") parts.push_back(part);
+      if (slash == std::string::npos) break;
+      from = slash + 1;
+    }
+    todo.insert(todo.end(), parts.rbegin(), parts.rend());
+  };
+  std::string at = "/";  // resolved so far: no links in it
+  if (dir.empty() || dir[0] != '/') {
+    std::vector<char> cwd(4096);
+    if (::getcwd(cwd.data(), cwd.size()) == nullptr) return;  // the kernel will say
+    at = cwd.data();
+  }
+  push_path(dir);
+  int links = 0;
+  while (!todo.empty()) {
+    const std::string part = todo.back();
+    todo.pop_back();
+    if (part == "..") {
+      at = directory_of(at);
+      continue;
+    }
+    const std::string next = (at == "/" ? "/" : at + "/") + part;
+    struct stat st {};
+    if (::lstat(next.c_str(), &st) != 0) return;
+    if (!S_ISLNK(st.st_mode)) {
+      at = next;
+      continue;
+    }
+    if (++links > 40) return;  // ELOOP, reported when the file is created
+    check_link_owner(name, given, next, st);
+    std::vector<char> buf(static_cast<std::size_t>(st.st_size > 0 ? st.st_size : 255) + 2);
+    const ssize_t n = ::readlink(next.c_str(), buf.data(), buf.size() - 1);
+    if (n <= 0) return;
+    const std::string to(buf.data(), static_cast<std::size_t>(n));
+    if (to[0] == '/') at = "/";
+    push_path(to);
+  }
+}
+
+// Follows symbolic links in the last component (the kernel resolves those in the directories,
+// after check_directory_links) and classifies what is found.  Fails for anything that is neither
+// missing, a regular file, a character device, a FIFO nor an open descriptor's name.
+Resolved resolve(const std::string& name, const std::string& given) {
+  if (given.empty()) fail(name, given, "empty file name");
+  if (given.back() == '/') fail(name, given, "names a directory (ends in /)");
   Resolved r;
   r.path = given;
   // Linux gives up after 40 links too (ELOOP).
   for (int hop = 0; hop <= 40; ++hop) {
+    const std::string what = r.path == given ? "" : "symbolic link to " + r.path + ", which ";
+    check_directory_links(name, given, directory_of(r.path));
+    if (const int fd = descriptor_of(r.path); fd >= 0) {
+      const int flags = ::fcntl(fd, F_GETFL);
+      if (flags < 0)
+        fail(name, given, what + "names descriptor " + std::to_string(fd) + ": not open");
+      if ((flags & O_ACCMODE) == O_RDONLY)
+        fail(name, given,
+             what + "names descriptor " + std::to_string(fd) + ": open for reading only");
+      if (::fstat(fd, &r.st) != 0) fail(name, given, errno_text());
+      if (S_ISDIR(r.st.st_mode)) fail(name, given, what + "is a directory");
+      r.kind = Kind::Descriptor;
+      r.fd = fd;
+      return r;
+    }
     if (::lstat(r.path.c_str(), &r.st) != 0) {
       if (errno == ENOENT) {
         r.kind = Kind::Missing;
         return r;
       }
-      fail(given, (r.path == given ? "" : "target " + r.path + ": ") + errno_text());
+      fail(name, given, (r.path == given ? "" : "target " + r.path + ": ") + errno_text());
     }
     if (S_ISLNK(r.st.st_mode)) {
+      check_link_owner(name, given, r.path, r.st);
       std::vector<char> buf(static_cast<std::size_t>(r.st.st_size > 0 ? r.st.st_size : 255) + 2);
       const ssize_t n = ::readlink(r.path.c_str(), buf.data(), buf.size() - 1);
-      if (n < 0) fail(given, "cannot read the symbolic link: " + errno_text());
+      if (n < 0) fail(name, given, "cannot read the symbolic link: " + errno_text());
       const std::string to(buf.data(), static_cast<std::size_t>(n));
-      if (to.empty()) fail(given, "empty symbolic link");
+      if (to.empty()) fail(name, given, "empty symbolic link");
       r.path = to[0] == '/' ? to : directory_of(r.path) + "/" + to;
-      if (r.path.back() == '/') fail(given, "symbolic link to a directory: " + r.path);
+      if (r.path.back() == '/') fail(name, given, "symbolic link to a directory: " + r.path);
       continue;
     }
-    const std::string what = r.path == given ? "" : "symbolic link to " + r.path + ", which ";
     if (S_ISREG(r.st.st_mode)) {
       r.kind = Kind::Regular;
     } else if (S_ISCHR(r.st.st_mode) || S_ISFIFO(r.st.st_mode)) {
       r.kind = Kind::Through;
     } else if (S_ISDIR(r.st.st_mode)) {
-      fail(given, what + "is a directory");
+      fail(name, given, what + "is a directory");
     } else {
-      fail(given, what + "is neither a regular file, a character device nor a FIFO");
+      fail(name, given, what + "is neither a regular file, a character device nor a FIFO");
     }
     // Replacing a file the user may not write would bypass its permissions.
     if (::access(r.path.c_str(), W_OK) != 0) {
-      fail(given,
+      fail(name, given,
            (what.empty() ? "" : "target " + r.path + ": ") + "not writable: " + errno_text());
     }
     return r;
   }
-  fail(given, "too many levels of symbolic links");
+  fail(name, given, "too many levels of symbolic links");
 }
 
 // Creates a temporary file next to `path` (in its directory, so that rename() is atomic);
 // returns the descriptor and fills `tmp`.
-int make_temporary(const std::string& given, const std::string& path, std::string& tmp) {
+int make_temporary(const std::string& name, const std::string& given, const std::string& path,
+                   std::string& tmp) {
   const std::string pattern = directory_of(path) + "/.flaplag-tmp.XXXXXX";
-  std::vector<char> name(pattern.begin(), pattern.end());
-  name.push_back('\0');
-  const int fd = ::mkstemp(name.data());
+  std::vector<char> buf(pattern.begin(), pattern.end());
+  buf.push_back('\0');
+  const int fd = ::mkstemp(buf.data());
   if (fd < 0) {
-    fail(given, "cannot create a file in " + directory_of(path) + ": " + errno_text());
+    fail(name, given, "cannot create a file in " + directory_of(path) + ": " + errno_text());
   }
-  tmp.assign(name.data());
+  tmp.assign(buf.data());
   return fd;
 }
 
@@ -140,14 +247,15 @@ bool write_all(int fd, const std::string& content) {
   return true;
 }
 
-void replace_atomically(const std::string& given, const Resolved& r, const std::string& content) {
+void replace_atomically(const std::string& name, const std::string& given, const Resolved& r,
+                        const std::string& content) {
   std::string tmp;
-  const int fd = make_temporary(given, r.path, tmp);
+  const int fd = make_temporary(name, given, r.path, tmp);
   auto abandon = [&](const std::string& what) {
     const std::string reason = what + ": " + errno_text();
     ::close(fd);
     ::unlink(tmp.c_str());
-    fail(given, reason);
+    fail(name, given, reason);
   };
   // mkstemp creates mode 0600; give the file the mode it would have had if written directly.
   mode_t mode = 0;
@@ -167,44 +275,67 @@ void replace_atomically(const std::string& given, const Resolved& r, const std::
   if (::close(fd) != 0) {
     const std::string reason = "write failed: " + errno_text();
     ::unlink(tmp.c_str());
-    fail(given, reason);
+    fail(name, given, reason);
   }
   if (::rename(tmp.c_str(), r.path.c_str()) != 0) {
     const std::string reason = "cannot replace " + r.path + ": " + errno_text();
     ::unlink(tmp.c_str());
-    fail(given, reason);
+    fail(name, given, reason);
   }
 }
 
-void write_through(const std::string& given, const Resolved& r, const std::string& content) {
-  // A FIFO whose reader went away must give an error, not kill us with SIGPIPE.
+// Runs f with SIGPIPE ignored: a pipe or FIFO whose reader went away must give an error (EPIPE),
+// not kill us.
+template <class F>
+void without_sigpipe(F f) {
   struct sigaction ignore {
   }, previous{};
   ignore.sa_handler = SIG_IGN;
   sigemptyset(&ignore.sa_mask);
   ::sigaction(SIGPIPE, &ignore, &previous);
-  // No O_CREAT: a device or FIFO that vanished since resolve() is not recreated as a file.
-  const int fd = ::open(r.path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
-  std::string reason;
-  if (fd < 0) {
-    reason = "cannot open: " + errno_text();
-  } else {
-    if (!write_all(fd, content)) reason = "write failed: " + errno_text();
-    if (::close(fd) != 0 && reason.empty()) reason = "write failed: " + errno_text();
-  }
+  f();
   ::sigaction(SIGPIPE, &previous, nullptr);
-  if (!reason.empty()) fail(given, reason);
+}
+
+void write_through(const std::string& name, const std::string& given, const Resolved& r,
+                   const std::string& content) {
+  std::string reason;
+  without_sigpipe([&] {
+    // No O_CREAT: a device or FIFO that vanished since resolve() is not recreated as a file.
+    const int fd = ::open(r.path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0) {
+      reason = "cannot open: " + errno_text();
+    } else {
+      if (!write_all(fd, content)) reason = "write failed: " + errno_text();
+      if (::close(fd) != 0 && reason.empty()) reason = "write failed: " + errno_text();
+    }
+  });
+  if (!reason.empty()) fail(name, given, reason);
 }
 
 }  // namespace
 
-OutputTarget::OutputTarget(std::string path) : path_(std::move(path)) {
+std::string write_descriptor(int fd, const std::string& content, bool ignore_sigpipe) {
+  std::string reason;
+  const auto write = [&] {
+    if (!write_all(fd, content)) reason = "write failed: " + errno_text();
+  };
+  if (ignore_sigpipe)
+    without_sigpipe(write);
+  else
+    write();
+  return reason;
+}
+
+OutputTarget::OutputTarget(std::string path, std::string name)
+    : path_(std::move(path)), name_(std::move(name)) {
   if (path_.empty()) return;
-  const Resolved r = resolve(path_);
-  if (r.kind == Kind::Through) return;  // opening a FIFO would wait for a reader
+  const Resolved r = resolve(name_, path_);
+  // Opening a FIFO would wait for a reader; a descriptor is open already.
+  if (r.kind == Kind::Through || r.kind == Kind::Descriptor) return;
   // The rename needs a writable directory: find out now, leaving nothing behind.
   std::string tmp;
-  const int fd = make_temporary(path_, r.path, tmp);
+  const int fd = make_temporary(name_, path_, r.path, tmp);
   ::close(fd);
   ::unlink(tmp.c_str());
 }
@@ -212,11 +343,14 @@ OutputTarget::OutputTarget(std::string path) : path_(std::move(path)) {
 void OutputTarget::write(const std::string& content) const {
   if (path_.empty()) return;
   // Resolved again: the path may have changed during the analysis.
-  const Resolved r = resolve(path_);
-  if (r.kind == Kind::Through) {
-    write_through(path_, r, content);
+  const Resolved r = resolve(name_, path_);
+  if (r.kind == Kind::Descriptor) {
+    const std::string reason = write_descriptor(r.fd, content);
+    if (!reason.empty()) fail(name_, path_, reason);
+  } else if (r.kind == Kind::Through) {
+    write_through(name_, path_, r, content);
   } else {
-    replace_atomically(path_, r, content);
+    replace_atomically(name_, path_, r, content);
   }
 }
 

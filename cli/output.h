@@ -7,28 +7,41 @@
 
 namespace flaplag::cli {
 
-// Where `-o FILE` writes.  Constructed before the analysis, so that a long run does not end in
-// a lost result: it checks that the path can be written and decides how, and leaves nothing
-// behind (no file is created, opened or changed until write()).
+// Where `-o FILE` (and `--plot FILE`) writes.  Constructed before the analysis, so that a long
+// run does not end in a lost result: it checks that the path can be written and decides how, and
+// leaves nothing behind (no file is created, opened or changed until write()).
 //   - a missing path or a regular file is replaced atomically: a temporary file in the same
 //     directory is written, flushed to disk and renamed over the path (a new file gets mode
 //     0666 & ~umask, a replaced one keeps its mode and, where permitted, its owner);
 //   - a character device (/dev/null, a terminal) or a FIFO is written straight through: it is
 //     never replaced;
+//   - /dev/stdout, /dev/stderr, /dev/fd/N and /proc/self/fd/N (directly or through links) are
+//     written straight to that open descriptor, whatever it is (a pipe, a socket, a file the
+//     shell opened), as the shell's own redirection would;
 //   - a symbolic link is followed (chains too, relative to the link's directory) and the rules
 //     above apply to its target: a regular target is replaced atomically in the target's
-//     directory and the link is kept; a dangling link creates its target;
+//     directory and the link is kept; a dangling link creates its target.  As the kernel's
+//     protected_symlinks rule, whether or not the system enables it: a link in a sticky
+//     world-writable directory (/tmp), the last component or a directory on the way, is
+//     followed only when it belongs to the caller (effective uid) or to the directory's owner;
 //   - a directory, block device or socket is refused.
-// Errors throw InvalidInput("output", path, reason) (the command line names it -o).
+// Errors throw InvalidInput(name, path, reason): name "output" (the command line names it -o as
+// typed) or "plot" (--plot).
 class OutputTarget {
  public:
   // "" means standard output: nothing to check.
-  explicit OutputTarget(std::string path);
+  explicit OutputTarget(std::string path, std::string name = "output");
   void write(const std::string& content) const;
 
  private:
-  std::string path_;
+  std::string path_, name_;
 };
+
+// Writes all of `content` to the open descriptor fd; "" on success, else the reason ("write
+// failed: No space left on device").  ignore_sigpipe: a pipe whose reader went away is such a
+// failure (EPIPE) rather than the end of the process by SIGPIPE (which is what standard output
+// does, as every filter in a pipeline: `flaplag models | head -1`).
+std::string write_descriptor(int fd, const std::string& content, bool ignore_sigpipe = true);
 
 // Numbers in text output (tables, key-value lines, plot titles), for people: about six
 // significant digits (%.6g, exponent without leading zeros: "1e-5").  CSV uses exact_num() and

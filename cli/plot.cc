@@ -1,18 +1,22 @@
 // flaplag CLI — gnuplot scripts and rendering.
 #include "plot.h"
 
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "options.h"
 #include "output.h"
+
+extern char** environ;
 
 namespace flaplag::cli {
 namespace {
@@ -22,14 +26,23 @@ bool ends_with(const std::string& s, const char* suffix) {
   return s.size() >= t.size() && s.compare(s.size() - t.size(), t.size(), t) == 0;
 }
 
-// A gnuplot string literal.
+// Every text of a script (titles, labels, names read from a result file or typed) reaches
+// gnuplot through this function and nowhere else: a single-quoted gnuplot string, ' doubled.
+// gnuplot 5.4 expands neither backquotes (`cmd`: a shell command) nor @macros inside single
+// quotes, and a ';' or '"' there is text.  A line break would end the command and start a new
+// one, so every control character (newline, CR, tab, NUL, ...) becomes a blank.
 std::string quoted(const std::string& s) {
-  std::string q = "\"";
+  std::string q = "'";
   for (char c : s) {
-    if (c == '"' || c == '\\') q += '\\';
-    q += c == '\n' ? ' ' : c;
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\'')
+      q += "''";
+    else if (u < 0x20 || u == 0x7f)
+      q += ' ';
+    else
+      q += c;
   }
-  return q + "\"";
+  return q + "'";
 }
 
 // Data values in gnuplot's inline blocks: "NaN" marks a gap (gnuplot skips it).
@@ -94,7 +107,8 @@ std::string map_plot_script(const std::string& title, const std::string& xlabel,
   s += "EOD\n";
   s += "set title " + quoted(title) + "\nset xlabel " + quoted(xlabel) + "\nset ylabel " +
        quoted(ylabel) + "\n";
-  s += "set cblabel \"max zeta [1/rev]\"\nset palette defined (-1 '#2166ac', 0 '#f7f7f7', 1 "
+  s += "set cblabel " + quoted("max zeta [1/rev]") +
+       "\nset palette defined (-1 '#2166ac', 0 '#f7f7f7', 1 "
        "'#b2182b')\n";
   // Symmetric colour range so that white is zeta = 0.
   double zmax = 0.0;
@@ -202,39 +216,122 @@ std::string simulate_plot_script(double mu, const std::vector<double>& revolutio
   return line_plot_script("flaplag simulate at mu = " + num(mu), {pf, pl});
 }
 
+namespace {
+
+// write(2) until done; false on failure.
+bool write_all(int fd, const std::string& text) {
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+// An unlinked temporary file holding `text`, positioned at its start (-1 on failure): gnuplot
+// reads its script from it as standard input, so that no pipe can fill up while we read the
+// image, and no file name is left for anyone to replace meanwhile.
+int script_file(const std::string& text) {
+  const char* dir = std::getenv("TMPDIR");
+  std::string pattern = (dir != nullptr && dir[0] == '/' ? std::string(dir) : std::string("/tmp")) +
+                        "/flaplag-plot-XXXXXX";
+  std::vector<char> name(pattern.begin(), pattern.end());
+  name.push_back('\0');
+  const int fd = ::mkstemp(name.data());
+  if (fd < 0) return -1;
+  ::unlink(name.data());
+  ::fcntl(fd, F_SETFD, FD_CLOEXEC);
+  if (!write_all(fd, text) || ::lseek(fd, 0, SEEK_SET) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+enum class Gnuplot { Ok, Missing, Failed };
+
+// Runs gnuplot (found on PATH, executed directly: no shell) with `script` on its standard input,
+// its standard output (the image) captured into *image and its messages discarded.
+Gnuplot run_gnuplot(const std::string& script, std::string* image) {
+  const int in = script_file(script);
+  if (in < 0) return Gnuplot::Failed;
+  int out[2];
+  if (::pipe(out) != 0) {
+    ::close(in);
+    return Gnuplot::Failed;
+  }
+  ::fcntl(out[0], F_SETFD, FD_CLOEXEC);
+  ::fcntl(out[1], F_SETFD, FD_CLOEXEC);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, in, 0);
+  posix_spawn_file_actions_adddup2(&actions, out[1], 1);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  char program[] = "gnuplot";
+  char* argv[] = {program, nullptr};
+  pid_t pid = -1;
+  const int spawned = ::posix_spawnp(&pid, program, &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(in);
+  ::close(out[1]);
+  if (spawned != 0) {
+    ::close(out[0]);
+    return spawned == ENOENT ? Gnuplot::Missing : Gnuplot::Failed;
+  }
+  char buf[65536];
+  for (;;) {
+    const ssize_t n = ::read(out[0], buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    image->append(buf, static_cast<std::size_t>(n));
+  }
+  ::close(out[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return Gnuplot::Failed;
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return Gnuplot::Missing;
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || image->empty()) return Gnuplot::Failed;
+  return Gnuplot::Ok;
+}
+
+// The DeferredPictures of the running command, if any.
+DeferredPictures* deferred = nullptr;
+
+}  // namespace
+
+DeferredPictures::DeferredPictures() : previous_(deferred) { deferred = this; }
+
+DeferredPictures::~DeferredPictures() { deferred = previous_; }
+
+void DeferredPictures::commit() {
+  for (const auto& [target, image] : pictures_) target.write(image);
+  pictures_.clear();
+}
+
 std::string render_plot(const std::string& script, const std::string& path) {
   if (!is_plot_path(path)) throw InvalidInput("plot", shown(path), "must end in .svg or .png");
-  const OutputTarget target(path);  // checked before anything runs
+  OutputTarget target(path, "plot");  // checked before anything runs
   const bool svg = ends_with(path, ".svg");
   const std::string full =
       std::string(svg ? "set terminal svg size 900,700 dynamic enhanced font 'Sans,12'\n"
                       : "set terminal pngcairo size 1200,900 enhanced font 'Sans,11'\n") +
       "set output\n" + script;
-  char name[] = "/tmp/flaplag-plot-XXXXXX";
-  const int fd = mkstemp(name);
-  if (fd < 0) return "plot " + path + " not written: no temporary file for the gnuplot script";
-  {
-    std::ofstream f(name, std::ios::binary);
-    f << full;
-  }
-  close(fd);
-  // gnuplot writes the image to its standard output; its messages go to stderr, discarded.
-  const std::string command = "gnuplot " + std::string(name) + " 2>/dev/null";
-  std::FILE* pipe = popen(command.c_str(), "r");
   std::string image;
-  int status = -1;
-  if (pipe != nullptr) {
-    char buf[65536];
-    std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) image.append(buf, n);
-    status = pclose(pipe);
+  switch (run_gnuplot(full, &image)) {
+    case Gnuplot::Missing:
+      return "gnuplot is not installed (Debian: gnuplot-nox): plot " + path + " not written";
+    case Gnuplot::Failed:
+      return "gnuplot failed: plot " + path + " not written";
+    case Gnuplot::Ok:
+      break;
   }
-  std::remove(name);
-  const int code = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  if (code == 127)
-    return "gnuplot is not installed (Debian: gnuplot-nox): plot " + path + " not written";
-  if (code != 0 || image.empty()) return "gnuplot failed: plot " + path + " not written";
-  target.write(image);
+  if (deferred != nullptr)
+    deferred->pictures_.emplace_back(std::move(target), std::move(image));
+  else
+    target.write(image);
   return "";
 }
 

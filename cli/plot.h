@@ -1,7 +1,9 @@
 // flaplag CLI — pictures of results, rendered by gnuplot (Debian gnuplot-nox: svg and
 // pngcairo terminals).  flaplag writes a gnuplot script with the data inline and writes
-// gnuplot's image output to the requested file under the rules of -o (output.h).  Without
-// gnuplot the data is still written and the plot is skipped with one warning line.
+// gnuplot's image output to the requested file under the rules of -o (output.h).  Every text in
+// a script (a title, a label, a name read from a result file) is a single-quoted gnuplot string,
+// never code, and gnuplot is executed directly, without a shell.  Without gnuplot the data is
+// still written and the plot is skipped with one warning line.
 #pragma once
 
 #include <optional>
@@ -9,6 +11,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "output.h"
 
 namespace flaplag::cli {
 
@@ -101,9 +105,29 @@ struct RendererUnavailable : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Renders `script` (without terminal/output lines) into `path` (.svg or .png).  Returns "" on
-// success, or a one-line warning when gnuplot is not installed or fails (nothing is written
-// then).  Throws InvalidInput("plot", path, reason) for an output path that cannot be written.
+// Renders `script` (without terminal/output lines) into `path` (.svg or .png) by gnuplot,
+// executed directly (found on PATH, no shell) with the script on its standard input.  Returns ""
+// on success, or a one-line warning when gnuplot is not installed or fails (nothing is written
+// then).  Throws InvalidInput("plot", path, reason) for an output path that cannot be written
+// (OutputTarget).  While a DeferredPictures exists, the image is kept there instead of written.
 std::string render_plot(const std::string& script, const std::string& path);
+
+// The pictures of one command, written after its output (flaplag's main): a command whose
+// output cannot be written, or that fails after drawing, leaves no picture behind.  While one
+// exists, render_plot() renders into it; commit() writes what it holds (throwing as
+// OutputTarget::write, InvalidInput("plot", ...)); what is not committed is dropped.
+class DeferredPictures {
+ public:
+  DeferredPictures();
+  ~DeferredPictures();
+  DeferredPictures(const DeferredPictures&) = delete;
+  DeferredPictures& operator=(const DeferredPictures&) = delete;
+  void commit();
+
+ private:
+  friend std::string render_plot(const std::string& script, const std::string& path);
+  DeferredPictures* previous_;
+  std::vector<std::pair<OutputTarget, std::string>> pictures_;
+};
 
 }  // namespace flaplag::cli

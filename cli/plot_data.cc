@@ -1,6 +1,7 @@
 // flaplag CLI — `flaplag plot DATA.json`: the picture of an existing result, from the numbers
 // its JSON holds, through the same script builders as --plot (plot.h).
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -8,6 +9,8 @@
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/rotor/parameter_table.h"
+#include "flaplag/trim.h"
 #include "options.h"
 #include "plot.h"
 
@@ -30,9 +33,92 @@ std::vector<double> numbers(const Json& a) {
   return v;
 }
 
-SweepOverlay sweep_data(const Json& j) {
+// ---- the texts a result gives the picture ----------------------------------------------------
+// Every string of a result file that reaches the gnuplot script is checked against what flaplag
+// itself writes there (and quoted in the script in any case: plot.cc).  A refusal names the
+// file and the key: "key labels[1] = "...": not a mode label ...".
+
+[[noreturn]] void refuse_key(const std::string& file, const std::string& key, const Json& value,
+                             const std::string& reason) {
+  refuse(file, "key " + key + " = " + value.dump(-1, ' ', false, Json::error_handler_t::replace) +
+                   ": " + reason);
+}
+
+const std::string& text_at(const std::string& file, const std::string& key, const Json& v) {
+  if (!v.is_string()) refuse_key(file, key, v, "not a string");
+  return v.get_ref<const std::string&>();
+}
+
+// A mode label as the hover analysis names modes: flap, lag, or either with a mode number.
+bool is_mode_label(const std::string& s) {
+  for (const char* base : {"flap", "lag"}) {
+    const std::string b(base);
+    if (s.compare(0, b.size(), b) != 0) continue;
+    const std::string n = s.substr(b.size());
+    if (n.empty()) return true;
+    if (n.size() > 3 || n[0] == '0') return false;
+    return std::all_of(n.begin(), n.end(), [](char c) { return c >= '0' && c <= '9'; });
+  }
+  return false;
+}
+
+// A model name: a compiled model's or one of the same form (a result of another build).
+bool is_model_name(const std::string& s) {
+  if (s.empty() || s.size() > 64 || !std::isalnum(static_cast<unsigned char>(s[0]))) return false;
+  return std::all_of(s.begin(), s.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
+  });
+}
+
+std::string model_name(const std::string& file, const Json& j) {
+  const std::string& name = text_at(file, "model.name", j.at("model").at("name"));
+  if (!is_model_name(name))
+    refuse_key(file, "model.name", j["model"]["name"],
+               "not a model name (letters, digits, '-', '_' and '.')");
+  return name;
+}
+
+// A varied quantity (study vary, map axis names): a numeric rotor parameter's word, or "mu".
+std::string axis_name(const std::string& file, const std::string& key, const Json& v,
+                      bool allow_mu) {
+  const std::string& word = text_at(file, key, v);
+  std::string field = word;
+  for (char& c : field)
+    if (c == '-') c = '_';
+  const ParameterSpec* spec = find_parameter(field);
+  const bool known =
+      (allow_mu && field == "mu") ||
+      (spec != nullptr && spec->type == ParameterType::Real && word.find('_') == std::string::npos);
+  if (!known)
+    refuse_key(file, key, v,
+               std::string("not a numeric rotor parameter") + (allow_mu ? " or mu" : "") +
+                   " (e.g. omega-lag, theta)");
+  return word;
+}
+
+// A label typed with --label: any text but control characters (it is quoted in the script).
+void check_label(const std::string& label) {
+  for (char c : label) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f)
+      throw InvalidInput("--label",
+                         Json(label).dump(-1, ' ', false, Json::error_handler_t::replace),
+                         "a control character (newline, tab, ...) cannot be part of a label");
+  }
+}
+
+SweepOverlay sweep_data(const std::string& file, const Json& j) {
   SweepOverlay s;
-  for (const Json& l : j.at("labels")) s.modes.push_back({l.get<std::string>(), {}, {}});
+  const Json& labels = j.at("labels");
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    const std::string key = "labels[" + std::to_string(i) + "]";
+    const std::string& l = text_at(file, key, labels.at(i));
+    if (!is_mode_label(l))
+      refuse_key(file, key, labels[i], "not a mode label (flap, lag, lag2, ...)");
+    for (const ModeCurve& m : s.modes)
+      if (m.label == l) refuse_key(file, key, labels[i], "the same label twice");
+    s.modes.push_back({l, {}, {}});
+  }
   for (const Json& row : j.at("rows")) {
     s.mu.push_back(number(row.at("mu")));
     for (ModeCurve& m : s.modes) {
@@ -44,18 +130,22 @@ SweepOverlay sweep_data(const Json& j) {
   return s;
 }
 
-std::string sweep_script(const Json& j) {
-  const SweepOverlay s = sweep_data(j);
-  return sweep_plot_script(j.at("model").at("name").get<std::string>(), s.mu, s.modes);
+std::string sweep_script(const std::string& file, const Json& j) {
+  const SweepOverlay s = sweep_data(file, j);
+  return sweep_plot_script(model_name(file, j), s.mu, s.modes);
 }
 
 // A short label of a result from its case (the command line behind it): the model, the trim
 // and the periodic linearization, e.g. "paper-cyclic, moment trim, periodic".
-std::string case_label(const Json& j) {
-  std::string label = j.at("model").at("name").get<std::string>();
+std::string case_label(const std::string& file, const Json& j) {
+  std::string label = model_name(file, j);
   const Json& c = j.contains("case") && j["case"].is_object() ? j["case"] : Json::object();
-  if (c.contains("trim") && c["trim"].is_string() && c["trim"] != "none")
-    label += ", " + c["trim"].get<std::string>() + " trim";
+  if (c.contains("trim") && c["trim"].is_string() && c["trim"] != "none") {
+    TrimKind kind = TrimKind::None;
+    if (!trim_kind_from_name(c["trim"].get<std::string>(), &kind))
+      refuse_key(file, "case.trim", c["trim"], "not a trim (none, thrust or moment)");
+    label += std::string(", ") + trim_kind_name(kind) + " trim";
+  }
   // The resolved parameters say it whether the option or the case file set it.
   const Json& p =
       j.contains("parameters") && j["parameters"].is_object() ? j["parameters"] : Json::object();
@@ -63,7 +153,7 @@ std::string case_label(const Json& j) {
   return label;
 }
 
-std::string study_script(const Json& j) {
+std::string study_script(const std::string& file, const Json& j) {
   const double mu_max = j.at("mu_max").get<double>();
   std::vector<StudyMark> marks;
   for (const Json& row : j.at("rows")) {
@@ -77,15 +167,15 @@ std::string study_script(const Json& j) {
     }
     marks.push_back(m);
   }
-  return study_plot_script(j.at("vary").get<std::string>(), marks);
+  return study_plot_script(axis_name(file, "vary", j.at("vary"), false), marks);
 }
 
-std::string map_script(const Json& j) {
+std::string map_script(const std::string& file, const Json& j) {
   std::vector<std::vector<double>> z;
   for (const Json& row : j.at("max_zeta")) z.push_back(numbers(row));
   return max_zeta_plot_script(
-      j.at("x").at("name").get<std::string>(), numbers(j.at("x").at("values")),
-      j.at("y").at("name").get<std::string>(), numbers(j.at("y").at("values")), z);
+      axis_name(file, "x.name", j.at("x").at("name"), true), numbers(j.at("x").at("values")),
+      axis_name(file, "y.name", j.at("y").at("name"), true), numbers(j.at("y").at("values")), z);
 }
 
 std::string tip_script(const std::string& file, const std::string& command, const Json& j) {
@@ -128,11 +218,11 @@ std::string plot_data_file(const std::string& data, const std::string& plot) {
   std::string script;
   try {
     if (command == "sweep")
-      script = sweep_script(j);
+      script = sweep_script(data, j);
     else if (command == "study")
-      script = study_script(j);
+      script = study_script(data, j);
     else if (command == "map")
-      script = map_script(j);
+      script = map_script(data, j);
     else if (command == "response" || command == "simulate")
       script = tip_script(data, command, j);
     else
@@ -153,6 +243,7 @@ std::string plot_data_files(const std::vector<std::string>& data,
                             const std::string& mode, const std::string& plot) {
   if (data.size() == 1 && labels.empty() && !max_zeta && mode.empty())
     return plot_data_file(data[0], plot);
+  for (const std::string& l : labels) check_label(l);
   std::vector<SweepOverlay> sweeps;
   std::string first;  // the kind of the first file
   for (std::size_t i = 0; i < data.size(); ++i) {
@@ -168,8 +259,8 @@ std::string plot_data_files(const std::vector<std::string>& data,
                                            : "--label, --max-zeta and --mode") +
                           " are for sweep results only");
     try {
-      SweepOverlay s = sweep_data(j);
-      s.label = labels.empty() ? case_label(j) : labels[i];
+      SweepOverlay s = sweep_data(data[i], j);
+      s.label = labels.empty() ? case_label(data[i], j) : labels[i];
       if (!mode.empty()) {
         std::vector<ModeCurve> kept;
         for (ModeCurve& m : s.modes)

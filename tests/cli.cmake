@@ -17,3 +17,9 @@ add_dependencies(cli_fuzz_test flaplag)
 flaplag_test(cli_studies_test nlohmann_json::nlohmann_json)
 target_compile_definitions(cli_studies_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
 add_dependencies(cli_studies_test flaplag)
+
+# What received files and typed texts can make flaplag do (gnuplot, symbolic links, output
+# paths, descriptors, signals).
+flaplag_test(cli_security_test nlohmann_json::nlohmann_json)
+target_compile_definitions(cli_security_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
+add_dependencies(cli_security_test flaplag)
