@@ -301,8 +301,10 @@ std::string usage_notes(Command c) {
     case Command::Study:
     case Command::Map:
       return "\nOn a terminal a progress bar shows on stderr after 1 s (--quiet: none).  Ctrl-C "
-             "stops\nafter the rows being computed: the rows finished are written as a valid "
-             "file with\nstatus \"cancelled\", and flaplag exits with code 130.\n";
+             "(or SIGTERM)\nstops after the rows being computed: the rows finished are written as "
+             "a "
+             "valid file\nwith status \"cancelled\", and flaplag exits with code 130 (143 for "
+             "SIGTERM).\n";
     case Command::Merge:
       return "\nThe parts are the --json outputs of one command line run with --shard 1/N .. "
              "N/N.\nThe result is byte for byte the file the command writes without --shard.  "
@@ -841,7 +843,9 @@ std::string CommandLine::help_text() const {
       "\nExit codes: 0 a result (an unstable blade or an unresolved computation is a result with a "
       "status);\n2 bad input, one line on stderr: flaplag: error: <option> = <value>: <reason>\n";
   if (c == Command::Study || c == Command::Map)
-    out += "130 interrupted (Ctrl-C): the rows finished are written, status \"cancelled\"\n";
+    out +=
+        "130 interrupted (Ctrl-C), 143 stopped by SIGTERM: the rows finished are written, status "
+        "\"cancelled\"\n";
   if (c == Command::Plot) out += "3 gnuplot is missing or failed: no picture written\n";
   return out;
 }
