@@ -17,3 +17,9 @@ add_dependencies(cli_fuzz_test flaplag)
 flaplag_test(cli_studies_test nlohmann_json::nlohmann_json)
 target_compile_definitions(cli_studies_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
 add_dependencies(cli_studies_test flaplag)
+
+# The files flaplag reads: JSON cases never name outputs, bounded nesting and size, keys once
+# per case, merge's checks of a part against its case (maintained with cli/).
+flaplag_test(cli_files_test flaplag_cli nlohmann_json::nlohmann_json)
+target_compile_definitions(cli_files_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
+add_dependencies(cli_files_test flaplag)
