@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -470,6 +471,50 @@ TEST_F(CliMergeTampered, ResealedPartsThatContradictTheirCaseAreRefused) {
     expect_merge_refused({bad, f.other}, bad, f.reason);
     expect_merge_refused({f.other, bad}, bad, f.second.empty() ? f.reason : f.second);
   }
+}
+
+// Every change to one value of a part (any key, any depth, the digest too) is refused with one
+// line naming the part, whichever way the value is replaced.
+TEST_F(CliMergeTampered, AnyChangedValueOfAPartIsRefused) {
+  const std::string m1 = part("m1.json", 1, 2, kMap), m2 = part("m2.json", 2, 2, kMap);
+  const Ordered original = Ordered::parse(slurp(m2));
+  std::vector<Ordered::json_pointer> pointers;
+  const Ordered flat = original.flatten();  // the leaves; their parents are added below
+  for (const auto& [key, value] : flat.items()) {
+    Ordered::json_pointer p(key);
+    for (; !p.empty(); p = p.parent_pointer())
+      if (std::find(pointers.begin(), pointers.end(), p) == pointers.end()) pointers.push_back(p);
+  }
+  const std::vector<Ordered> replacements = {nullptr,
+                                             "x",
+                                             5,
+                                             -0.0,
+                                             true,
+                                             Ordered::array(),
+                                             Ordered::object(),
+                                             "-inf",
+                                             1e300,
+                                             Ordered::parse(repeat("[", 30) + repeat("]", 30))};
+  // Every value (about 100 in this part), each with three of the replacements in turn.
+  std::size_t runs = 0;
+  for (std::size_t i = 0; i < pointers.size(); ++i) {
+    for (const std::size_t k : {i, i + 3, i + 7}) {
+      Ordered j = original;
+      const Ordered& replacement = replacements[k % replacements.size()];
+      if (j.at(pointers[i]).dump() == replacement.dump()) continue;
+      j.at(pointers[i]) = replacement;
+      const std::string bad = d.file("mutated.json");
+      write(bad, j.dump(2) + "\n");
+      const Outcome r = run({"merge", m1, bad});
+      ++runs;
+      EXPECT_EQ(2, r.exit_code) << pointers[i].to_string() << " = " << replacement.dump();
+      EXPECT_TRUE(std::regex_match(
+          r.err, std::regex("flaplag: error: argument = " + quote(bad) + ": [^\\n]*\\n")))
+          << pointers[i].to_string() << " = " << replacement.dump() << "\n"
+          << r.err;
+    }
+  }
+  EXPECT_GT(runs, 250u) << pointers.size();
 }
 
 }  // namespace
