@@ -104,8 +104,13 @@ void add(Reader& in, const std::string& key, const std::string& where, bool is_b
     return;
   }
   if (is_bool) throw InvalidInput(where, bool_value ? "true" : "false", "needs a value");
-  out.args.push_back(spec->name);
-  out.args.push_back(text);
+  // "--name=value": the value is the value whatever it looks like (never another option).
+  if (spec->name.rfind("--", 0) == 0) {
+    out.args.push_back(spec->name + "=" + text);
+  } else {
+    out.args.push_back(spec->name);
+    out.args.push_back(text);
+  }
 }
 
 // The keys of a TOML table (and of its group tables) in file order: toml++ keeps a table's keys

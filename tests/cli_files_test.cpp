@@ -92,6 +92,18 @@ TEST(CliRunJson, OutputInTheCaseIsNeverAPath) {
   EXPECT_EQ(honest.dump(2) + "\n", slurp(mine));
 }
 
+// A value in a case is a value, whatever it looks like: never another option.
+TEST(CliRunJson, ValueThatLooksLikeAnOptionIsAValue) {
+  TempDir d;
+  const std::string picture = d.file("p.svg"), file = d.file("r.json");
+  write(file, "{\"case\": {\"command\": \"point\", \"mu\": \"0.1\", \"theta\": \"--plot=" +
+                  picture + "\"}}");
+  expect_refused(run({"run", file}),
+                 quote(file) + ": case\\.theta = --plot=" + quote(picture) + ": not a number",
+                 "theta");
+  EXPECT_FALSE(flaplag::testing::exists(picture));
+}
+
 // A result made with --plot records the picture in its case; rerunning it does not draw it again
 // (nor would a received one replace any file it names).
 TEST(CliRunJson, PlotInTheCaseIsNotRedrawn) {
