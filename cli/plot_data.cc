@@ -106,8 +106,8 @@ std::string tip_script(const std::string& file, const std::string& command, cons
 Json read_result(const std::string& data) {
   Json j;
   std::string error;
-  const JsonParse parsed =
-      parse_json(read_text_file(data, kMaxResultBytes, "result file", "cannot be read"), &j, &error);
+  const JsonParse parsed = parse_json(
+      read_text_file(data, kMaxResultBytes, "result file", "cannot be read"), &j, &error);
   if (parsed == JsonParse::NotJson)
     refuse(data, "not JSON (flaplag plot draws a --json output of flaplag)");
   if (parsed == JsonParse::Refused) refuse(data, "not a flaplag --json output: " + error);
