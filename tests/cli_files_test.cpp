@@ -529,4 +529,131 @@ TEST_F(CliMergeTampered, AnyChangedValueOfAPartIsRefused) {
   EXPECT_GT(runs, 250u) << pointers.size();
 }
 
+// ---- Mutated files keep the contract ----------------------------------------------------------
+
+// Exit 0 with output, or 2 (3: gnuplot failed) with one line "flaplag: error: ..."; never a
+// signal, never an internal error; and nothing written but the files the test typed.
+void expect_contract(const Outcome& r, const TempDir& d, const std::vector<std::string>& allowed,
+                     const std::string& what) {
+  EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 2 || r.exit_code == 3)
+      << what << ": exit " << r.exit_code << "\n"
+      << r.err;
+  if (r.exit_code != 0) {
+    // (Not std::regex: it recurses per character, and a line may be 100 kB.)
+    EXPECT_EQ(0u, r.err.rfind("flaplag: error: ", 0)) << what << r.err;
+    EXPECT_EQ(r.err.size() - 1, r.err.find('\n')) << what << r.err;
+  }
+  for (const std::string& name : d.entries())
+    EXPECT_NE(allowed.end(), std::find(allowed.begin(), allowed.end(), name))
+        << what << ": wrote " << name;
+}
+
+// Values that would be code, paths, options or resource bombs if taken for anything but data.
+std::vector<Ordered> hostile_values(const TempDir& d) {
+  return {"`touch " + d.file("pwned") + "`",
+          "a'b\"c\\d",
+          "line\nbreak",
+          "system(\"touch " + d.file("pwned") + "\")",
+          "@macro",
+          "--plot=" + d.file("pwned.svg"),
+          "-o",
+          d.file("pwned.json"),
+          "",
+          std::string(100000, '9'),
+          "nan",
+          "1e999",
+          -1e308,
+          0,
+          true,
+          nullptr,
+          Ordered::array({1, "x"}),
+          Ordered::object({{"output", d.file("pwned.json")}}),
+          Ordered::parse(repeat("[", 100) + repeat("]", 100))};
+}
+
+TEST(CliFiles, MutatedJsonCasesKeepTheContract) {
+  TempDir d;
+  const Ordered honest = point_result();
+  const std::vector<Ordered> values = hostile_values(d);
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : honest["case"].items()) keys.push_back(key);
+  keys.insert(keys.end(), {"output", "plot", "label", "shard", "json", "parameters"});
+  std::size_t runs = 0;
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    for (std::size_t v = k % 3; v < values.size(); v += 3) {
+      Ordered j = honest;
+      j["case"][keys[k]] = values[v];
+      write(d.file("case.json"), j.dump(2, ' ', false, Ordered::error_handler_t::replace));
+      expect_contract(run({"run", d.file("case.json")}), d, {"case.json"},
+                      keys[k] + " = " + values[v].dump().substr(0, 80));
+      ++runs;
+    }
+  }
+  EXPECT_GT(runs, 40u);
+}
+
+TEST(CliFiles, MutatedTomlCasesKeepTheContract) {
+  TempDir d;
+  const std::string base =
+      "command = \"point\"\n[parameters]\ntheta = 0.12\n[analysis]\nmu = 0.2\n";
+  std::vector<std::string> texts = {
+      // The user's own picture: the one file a case may write.
+      base + "[output]\njson = true\nplot = '" + d.file("pwned.svg") + "'\n",
+      base + "[parameters]\ngamma = 8\n",             // a table twice
+      base + "theta = 0.1\n",                         // a key twice
+      base + "[output]\njson = true\njson = true\n",  // twice in one table
+      base + "[output.deeper]\nx = 1\n",              // a table below a group
+      base + "x = " + repeat("[", 100) + repeat("]", 100) + "\n",
+      base + "x = " + repeat("{a=", 100) + "1" + repeat("}", 100) + "\n",
+      base + "a" + repeat(".a", 100) + " = 1\n",
+      base + "[a" + repeat(".a", 100) + "]\n",
+      base + "theta = 1979-05-27\n",
+      base + "\"theta\" = \"0.1\"\n",
+      base + "omega-lag = '''\n1.2'''\n",
+      "command = \"point\"\nmu = \"" + std::string(100000, '1') + "\"\n",
+      "command = \"point\"\nmu = 0.2\n\xff\xfe = 1\n",
+      "command = \"plot\"\nplot = '" + d.file("pwned.svg") + "'\n",
+      "command = \"merge\"\n",
+      "command = \"run\"\n",
+      std::string("command = \"point\"\0mu = 0.2\n", 28),
+      base.substr(0, base.size() / 2),
+  };
+  for (const Ordered& v : hostile_values(d))
+    if (v.is_string()) texts.push_back(base + "[method]\nsteps = " + v.dump() + "\n");
+  for (std::size_t i = 0; i < texts.size(); ++i) {
+    write(d.file("case.toml"), texts[i]);
+    const std::vector<std::string> allowed =
+        i == 0 ? std::vector<std::string>{"case.toml", "pwned.svg"}
+               : std::vector<std::string>{"case.toml"};
+    expect_contract(run({"run", d.file("case.toml")}), d, allowed, "case " + std::to_string(i));
+    std::filesystem::remove(d.file("pwned.svg"));
+  }
+}
+
+TEST(CliFiles, MutatedResultsGivenToPlotKeepTheContract) {
+  TempDir d;
+  const Outcome sweep = run({"sweep", "--mu", "0:0.2:0.1", "--json"});
+  ASSERT_EQ(0, sweep.exit_code) << sweep.err;
+  const Ordered original = Ordered::parse(sweep.out);
+  std::vector<Ordered::json_pointer> pointers;
+  const Ordered flat = original.flatten();  // the leaves; their parents are added below
+  for (const auto& [key, value] : flat.items()) {
+    Ordered::json_pointer p(key);
+    for (; !p.empty(); p = p.parent_pointer())
+      if (std::find(pointers.begin(), pointers.end(), p) == pointers.end()) pointers.push_back(p);
+  }
+  const std::vector<Ordered> values = hostile_values(d);
+  std::size_t runs = 0;
+  for (std::size_t i = 0; i < pointers.size(); i += 1 + pointers.size() / 60) {
+    Ordered j = original;
+    j.at(pointers[i]) = values[i % values.size()];
+    write(d.file("r.json"), j.dump(2, ' ', false, Ordered::error_handler_t::replace));
+    expect_contract(
+        run({"plot", d.file("r.json"), "--plot", d.file("x.svg")}), d, {"r.json", "x.svg"},
+        pointers[i].to_string() + " = " + values[i % values.size()].dump().substr(0, 80));
+    ++runs;
+  }
+  EXPECT_GT(runs, 30u);
+}
+
 }  // namespace
