@@ -1301,6 +1301,7 @@ std::string run_command(const Request& r, std::string* warning, RunControl* cont
   if (r.shard_count > 0) j["shard"] = shard_json(r);  // which part of a --shard job
   j["flaplag"] = Json{{"version", FLAPLAG_VERSION}, {"commit", FLAPLAG_GIT_COMMIT}};
   j["case"] = case_json(r);
+  if (r.shard_count > 0) seal_part(j);  // last: the digest covers everything above
   return dump(j);
 }
 

@@ -170,6 +170,8 @@ int run(const std::vector<std::string>& raw) {
       target.write(text);
     }
     pictures.commit();
+    for (const std::string& w : e.from_file.warnings)
+      std::cerr << "flaplag: warning: " << one_line(w) << std::endl;
     if (!warning.empty()) std::cerr << "flaplag: warning: " << one_line(warning) << std::endl;
     if (control.cancelled) {
       std::cerr << "flaplag: " << one_line(control.message) << std::endl;

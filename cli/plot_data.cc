@@ -13,6 +13,7 @@
 #include "flaplag/trim.h"
 #include "options.h"
 #include "plot.h"
+#include "read_file.h"
 
 namespace flaplag::cli {
 
@@ -193,17 +194,13 @@ std::string tip_script(const std::string& file, const std::string& command, cons
 }
 
 Json read_result(const std::string& data) {
-  std::ifstream in(data, std::ios::binary);
-  if (!in) refuse(data, "cannot be read");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) refuse(data, "cannot be read");
   Json j;
-  try {
-    j = Json::parse(ss.str());
-  } catch (const Json::exception&) {
+  std::string error;
+  const JsonParse parsed = parse_json(
+      read_text_file(data, kMaxResultBytes, "result file", "cannot be read"), &j, &error);
+  if (parsed == JsonParse::NotJson)
     refuse(data, "not JSON (flaplag plot draws a --json output of flaplag)");
-  }
+  if (parsed == JsonParse::Refused) refuse(data, "not a flaplag --json output: " + error);
   if (!j.is_object() || !j.contains("flaplag") || !j.contains("command") ||
       !j["command"].is_string())
     refuse(data, "not a flaplag --json output");

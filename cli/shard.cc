@@ -2,13 +2,16 @@
 #include "shard.h"
 
 #include <algorithm>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <vector>
 
+#include "case_file.h"
+#include "commands.h"
+#include "digest.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/core/status.h"
 #include "options.h"
+#include "read_file.h"
 
 namespace flaplag::cli {
 
@@ -44,19 +47,18 @@ struct Part {
   Json json;
   std::size_t index = 0, count = 0, first = 0, last = 0, total = 0;
   std::string axis;
+  Request request;  // what its case asks for (the whole job, shard_index = index)
 };
 
 Json read_json(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) refuse(file, "cannot be read");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) refuse(file, "cannot be read");
-  try {
-    return Json::parse(ss.str());
-  } catch (const Json::exception&) {
+  Json j;
+  std::string error;
+  const JsonParse parsed =
+      parse_json(read_text_file(file, kMaxResultBytes, "part", "cannot be read"), &j, &error);
+  if (parsed == JsonParse::NotJson)
     refuse(file, "not JSON (a part is the --json output of flaplag map or study with --shard)");
-  }
+  if (parsed == JsonParse::Refused) refuse(file, "damaged part: " + error);
+  return j;
 }
 
 std::size_t count_of(const Json& shard, const char* key, const std::string& file) {
@@ -66,11 +68,64 @@ std::size_t count_of(const Json& shard, const char* key, const std::string& file
   return it->get<std::size_t>();
 }
 
-// The values on the split axis of a part, and its data arrays, checked against the block.
-const Json& axis_values(const Part& p) {
-  const Json& j = p.json;
-  if (p.axis == "vary") return j.at("rows");
-  return j.at(p.axis).at("values");
+// The text a digest is computed over: the document without the digest, compact, keys in the
+// order written (parse and dump give back the same text for every value flaplag writes).
+std::string digested_text(Json j) {
+  j["shard"].erase("digest");
+  return j.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+const char* const kDigestPrefix = "sha256:";
+
+// The exact text of a JSON value, for comparisons that tell 1 from 1.0 and 0.0 from -0.0.
+std::string exact(const Json& v) { return v.dump(); }
+
+// The mode labels of a model with M flap and N lag modes (hover.cc): "flap" and "lag" for one
+// mode, "flap1".."flapM" for more.
+std::vector<std::string> mode_labels(const Json& model) {
+  std::vector<std::string> labels;
+  for (const char* kind : {"flap", "lag"}) {
+    const std::size_t count = model.at(std::string(kind) + "_modes").get<std::size_t>();
+    if (count == 1) labels.emplace_back(kind);
+    for (std::size_t i = 1; count > 1 && i <= count && i <= 1000; ++i)
+      labels.push_back(kind + std::to_string(i));
+  }
+  return labels;
+}
+
+bool one_of(const Json& v, const std::vector<std::string>& names) {
+  return v.is_string() &&
+         std::find(names.begin(), names.end(), v.get<std::string>()) != names.end();
+}
+
+const std::vector<std::string>& kind_names() {
+  static const std::vector<std::string> names = {kind_name(InstabilityKind::Flutter),
+                                                 kind_name(InstabilityKind::Periodic)};
+  return names;
+}
+
+const std::vector<std::string>& status_names() {
+  static const std::vector<std::string> names = {
+      status_name(Status::Ok), status_name(Status::Warning), status_name(Status::Failed)};
+  return names;
+}
+
+bool number_or_null(const Json& v) { return v.is_null() || v.is_number(); }
+
+// The part's case as a request: what the part claims to have computed.
+Request request_of(const std::string& file, const Json& j) {
+  const auto c = j.find("case");
+  if (c == j.end() || !c->is_object()) refuse(file, "damaged part: no \"case\" object");
+  try {
+    const CaseArguments a = case_object_arguments(file, *c);
+    const CommandLine cl(a.args);
+    Request r = cl.interpret();
+    r.arguments = a.args;
+    return r;
+  } catch (const InvalidInput& e) {
+    refuse(file,
+           std::string("damaged part: its case is not a command flaplag takes (") + e.what() + ")");
+  }
 }
 
 Part read_part(const std::string& file) {
@@ -97,41 +152,111 @@ Part read_part(const std::string& file) {
   if (!axis_ok || p.index < 1 || p.index > p.count || p.first > p.last || p.last > p.total ||
       p.count > kMaxCount || p.total > kMaxCount)
     refuse(file, "damaged part: inconsistent \"shard\" object");
-  const std::string status = j.value("status", "");
-  if (status == "cancelled")
+  const auto status = j.find("status");
+  if (status == j.end() || !status->is_string()) refuse(file, "damaged part: no valid \"status\"");
+  if (*status == "cancelled")
     refuse(file, "an interrupted part (status cancelled): run part " + std::to_string(p.index) +
                      "/" + std::to_string(p.count) + " again");
-  if (status != "ok" && status != "warning" && status != "failed")
-    refuse(file, "damaged part: no valid \"status\"");
-  // The data must have the block's shape.
-  const std::size_t n = p.last - p.first;
-  try {
-    const Json& values = axis_values(p);
-    bool ok = values.is_array() && values.size() == n;
-    if (command == "map") {
-      const std::size_t rows = j.at("y").at("values").size();
-      for (const std::string& key : data_keys(command)) {
-        const Json& d = j.at(key);
-        ok = ok && d.is_array() && d.size() == rows;
-        for (const Json& row : d)
-          ok = ok && row.is_array() && row.size() == j.at("x").at("values").size();
-      }
-    }
-    if (!ok) refuse(file, "damaged part: the data do not match its block of lines");
-  } catch (const Json::exception&) {
-    refuse(file, "damaged part: the data do not match its block of lines");
-  }
+  if (!one_of(*status, status_names())) refuse(file, "damaged part: no valid \"status\"");
+  if (j.contains("message") && !j["message"].is_string())
+    refuse(file, "damaged part: \"message\" is not text");
+  // The digest of what flaplag wrote: any later change to the file shows.
+  const auto digest = s.find("digest");
+  if (digest == s.end() || !digest->is_string())
+    refuse(file, "a part without a digest (written by another flaplag, or edited): run part " +
+                     std::to_string(p.index) + "/" + std::to_string(p.count) + " again");
+  if (digest->get<std::string>() != kDigestPrefix + sha256_hex(digested_text(j)))
+    refuse(file,
+           "damaged part: its data do not match its digest (the file was changed after "
+           "flaplag wrote it)");
+  // What its case asks for, and the block it says it is.
+  p.request = request_of(file, j);
+  const Request& r = p.request;
+  if (command_name(r.command) != command || !r.json || r.shard_index != static_cast<int>(p.index) ||
+      r.shard_count != static_cast<int>(p.count))
+    refuse(file, "damaged part: its \"shard\" or \"command\" is not what its case asks for");
+  const ShardBlock b = shard_block(r);
+  if (b.axis != p.axis || b.first != p.first || b.last != p.last || b.total != p.total)
+    refuse(file, "damaged part: part " + std::to_string(p.index) + "/" + std::to_string(p.count) +
+                     " of its case is lines " + std::to_string(b.first) + ".." +
+                     std::to_string(b.last) + " of " + std::to_string(b.total) + " (" + b.axis +
+                     "), not what its \"shard\" says");
   return p;
 }
 
+// The data of a part against what its case computes: the axis values of its block (exactly as
+// flaplag writes them), the shapes of its arrays, and each cell's type and vocabulary (labels
+// of the case's model, kinds, statuses).  `model` is the case's model (checked against the case).
+void check_data(const Part& p, const Json& model) {
+  const Json& j = p.json;
+  const Request block = shard_request(p.request);
+  const std::vector<std::string> labels = mode_labels(model);
+  auto fail = [&p](const std::string& what) {
+    refuse(p.file, "damaged part: " + what + " is not what its case computes");
+  };
+  auto same_values = [](const Json& values, const std::vector<double>& expected) {
+    if (!values.is_array() || values.size() != expected.size()) return false;
+    for (std::size_t i = 0; i < expected.size(); ++i)
+      if (exact(values[i]) != exact(Json(expected[i]))) return false;
+    return true;
+  };
+  if (p.axis == "vary") {
+    const Json& rows = j.at("rows");
+    if (!rows.is_array() || rows.size() != block.vary_values.size()) fail("the number of rows");
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const Json& row = rows[k];
+      const std::string at = "row " + std::to_string(k + 1);
+      if (!row.is_object()) fail(at);
+      if (exact(row.at("value")) != exact(Json(block.vary_values[k]))) fail(at + " value");
+      const bool found = !row.at("mode").is_null();
+      bool ok = row.at("hover_unstable").is_boolean() && number_or_null(row.at("mu_c")) &&
+                number_or_null(row.at("mu_c_error")) && number_or_null(row.at("omega")) &&
+                (found ? one_of(row["mode"], labels) : row.at("mu_c").is_null()) &&
+                (found ? one_of(row.at("kind"), kind_names()) : row.at("kind").is_null()) &&
+                one_of(row.at("status"), status_names()) && row.at("message").is_string() &&
+                row.at("intervals").is_array() &&
+                (!row.contains("trim") || row["trim"].is_null() || row["trim"].is_object());
+      for (const Json& iv : row.at("intervals"))
+        ok = ok && iv.is_array() && iv.size() == 2 && iv[0].is_number() && number_or_null(iv[1]);
+      if (!ok) fail(at);
+    }
+    return;
+  }
+  if (!same_values(j.at("x").at("values"), block.x_values)) fail("x.values");
+  if (!same_values(j.at("y").at("values"), block.y_values)) fail("y.values");
+  const std::size_t rows = block.y_values.size(), columns = block.x_values.size();
+  for (const std::string& key : data_keys("map")) {
+    const Json& d = j.at(key);
+    if (!d.is_array() || d.size() != rows) fail("the shape of " + key);
+    for (const Json& row : d)
+      if (!row.is_array() || row.size() != columns) fail("the shape of " + key);
+  }
+  for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t k = 0; k < columns; ++k) {
+      const Json& zeta = j["max_zeta"][i][k];
+      const Json& mode = j["mode"][i][k];
+      const Json& kind = j["kind"][i][k];
+      // A cell without a result is null in all three; a zeta that is not finite is null or
+      // "-inf" beside its mode and kind.
+      const bool ok = mode.is_null() ? zeta.is_null() && kind.is_null()
+                                     : one_of(mode, labels) && one_of(kind, kind_names()) &&
+                                           (zeta.is_number() || zeta.is_null() || zeta == "-inf");
+      if (!ok)
+        fail("the cell (" + std::to_string(i + 1) + ", " + std::to_string(k + 1) +
+             ") of max_zeta, mode and kind");
+    }
+  }
+}
+
 // What must be the same in all parts: everything but the block, its data and its status.
-Json case_part(const Part& p) {
-  Json j = p.json;
+Json case_part(const Json& part, const std::string& axis) {
+  Json j = part;
   j.erase("shard");
   j.erase("status");
   j.erase("message");
   for (const std::string& key : data_keys(j["command"].get<std::string>())) j.erase(key);
-  if (p.axis == "x" || p.axis == "y") j[p.axis].erase("values");
+  if ((axis == "x" || axis == "y") && j.contains(axis) && j[axis].is_object())
+    j[axis].erase("values");
   if (j.contains("case") && j["case"].is_object()) j["case"].erase("shard");
   return j;
 }
@@ -141,7 +266,7 @@ std::string first_difference(const Json& a, const Json& b, const std::string& pa
   for (const auto& [key, value] : a.items()) {
     const std::string at = path.empty() ? key : path + "." + key;
     if (!b.contains(key)) return at;
-    if (b[key] == value) continue;
+    if (exact(b[key]) == exact(value)) continue;
     if (value.is_object() && b[key].is_object()) return first_difference(value, b[key], at);
     return at;
   }
@@ -150,8 +275,66 @@ std::string first_difference(const Json& a, const Json& b, const std::string& pa
   return path.empty() ? "a key" : path;
 }
 
+// The part of a case's output that does not depend on the lines computed: the command run on no
+// lines (the model, method, parameters, the names and the other axis of a map, ...).
+Json skeleton(const Part& p) {
+  Request r = p.request;
+  r.shard_index = r.shard_count = 0;
+  r.output.clear();
+  r.plot.clear();
+  r.quiet = true;
+  if (p.axis == "vary") r.vary_values.clear();
+  if (p.axis == "x") r.x_values.clear();
+  if (p.axis == "y") r.y_values.clear();
+  std::string warning;
+  try {
+    return Json::parse(run_command(r, &warning, nullptr));
+  } catch (const InvalidInput& e) {
+    refuse(p.file,
+           std::string("damaged part: its case is not a command flaplag takes (") + e.what() + ")");
+  }
+}
+
 std::string part_name(std::size_t index, std::size_t count) {
   return std::to_string(index) + "/" + std::to_string(count);
+}
+
+// The parts joined in line order: the first part's document without its "shard", the data of
+// all parts in order, the worst status and the first message.
+std::string assemble(const Part& head, const std::map<std::size_t, const Part*>& by_index) {
+  Json out = head.json;
+  out.erase("shard");
+  if (out.contains("case") && out["case"].is_object()) out["case"].erase("shard");
+  const std::string command = out["command"].get<std::string>();
+  std::string status = "ok", message;
+  for (const std::string& key : data_keys(command)) {
+    if (head.axis != "x") out[key] = Json::array();
+    for (Json& row : out[key])
+      if (head.axis == "x") row = Json::array();
+  }
+  if (head.axis != "vary") out[head.axis]["values"] = Json::array();
+  for (const auto& [i, p] : by_index) {
+    const Json& j = p->json;
+    for (const std::string& key : data_keys(command)) {
+      if (head.axis == "x") {
+        for (std::size_t row = 0; row < out[key].size(); ++row)
+          for (const Json& cell : j[key][row]) out[key][row].push_back(cell);
+      } else {
+        for (const Json& row : j[key]) out[key].push_back(row);
+      }
+    }
+    if (head.axis != "vary")
+      for (const Json& v : j[head.axis]["values"]) out[head.axis]["values"].push_back(v);
+    // As the library reports a whole run: the worst status, the first problem met (in line
+    // order, so in the first part that has one).
+    const std::string s = j["status"].get<std::string>();
+    if (status_rank(s) > status_rank(status)) status = s;
+    if (message.empty() && j.contains("message") && j["message"].is_string())
+      message = j["message"].get<std::string>();
+  }
+  out["status"] = status;
+  out["message"] = message;
+  return out.dump(2) + "\n";
 }
 
 }  // namespace
@@ -191,11 +374,24 @@ Json shard_json(const Request& r) {
               {"first", b.first},       {"last", b.last},         {"total", b.total}};
 }
 
+void seal_part(Json& j) { j["shard"]["digest"] = kDigestPrefix + sha256_hex(digested_text(j)); }
+
 std::string merge_parts(const Request& r) {
   std::vector<Part> parts;
   for (const std::string& file : r.inputs) parts.push_back(read_part(file));
   const Part& head = parts.front();
-  const Json reference = case_part(head);
+  // The first part against what its case computes; the others against the first.
+  const Json reference = case_part(head.json, head.axis);
+  {
+    Json expected = case_part(skeleton(head), head.axis), got = reference;
+    for (Json* j : {&expected, &got}) {
+      j->erase("flaplag");
+      j->erase("case");
+    }
+    if (exact(got) != exact(expected))
+      refuse(head.file,
+             "damaged part: " + first_difference(expected, got) + " is not what its case computes");
+  }
   std::map<std::size_t, const Part*> by_index;
   for (const Part& p : parts) {
     if (p.count != head.count)
@@ -204,8 +400,8 @@ std::string merge_parts(const Request& r) {
     if (p.json["command"] != head.json["command"])
       refuse(p.file, "a part of a " + p.json["command"].get<std::string>() + ", but " + head.file +
                          " is a part of a " + head.json["command"].get<std::string>());
-    const Json c = case_part(p);
-    if (c != reference || p.total != head.total || p.axis != head.axis)
+    const Json c = case_part(p.json, p.axis);
+    if (exact(c) != exact(reference) || p.total != head.total || p.axis != head.axis)
       refuse(p.file, "not a part of the same case as " + head.file + " (" +
                          (p.total != head.total ? std::string("another number of lines")
                                                 : first_difference(reference, c)) +
@@ -214,12 +410,11 @@ std::string merge_parts(const Request& r) {
     if (!fresh)
       refuse(p.file,
              "part " + part_name(p.index, p.count) + " again (also " + it->second->file + ")");
-    // The block must be the one of its index (as flaplag computes it).
-    ShardBlock b;
-    block_of(p.total, p.index, p.count, b);
-    if (b.first != p.first || b.last != p.last)
-      refuse(p.file, "damaged part: part " + part_name(p.index, p.count) + " is not lines " +
-                         std::to_string(b.first) + ".." + std::to_string(b.last));
+    try {
+      check_data(p, head.json.at("model"));
+    } catch (const Json::exception&) {
+      refuse(p.file, "damaged part: a key is missing or has the wrong type");
+    }
   }
   std::string missing;
   for (std::size_t i = 1; i <= head.count; ++i)
@@ -232,40 +427,8 @@ std::string merge_parts(const Request& r) {
                        "part" + std::string(missing.find(',') == std::string::npos ? " " : "s ") +
                            missing + " missing (given: " + given + ")");
   }
-  // The first part's document without its "shard", the data of all parts in order.
-  Json out = head.json;
-  out.erase("shard");
-  if (out.contains("case") && out["case"].is_object()) out["case"].erase("shard");
-  const std::string command = out["command"].get<std::string>();
-  std::string status = "ok", message;
-  for (const std::string& key : data_keys(command)) {
-    if (head.axis != "x") out[key] = Json::array();
-    for (Json& row : out[key])
-      if (head.axis == "x") row = Json::array();
-  }
-  if (head.axis != "vary") out[head.axis]["values"] = Json::array();
-  for (const auto& [i, p] : by_index) {
-    const Json& j = p->json;
-    for (const std::string& key : data_keys(command)) {
-      if (head.axis == "x") {
-        for (std::size_t row = 0; row < out[key].size(); ++row)
-          for (const Json& cell : j[key][row]) out[key][row].push_back(cell);
-      } else {
-        for (const Json& row : j[key]) out[key].push_back(row);
-      }
-    }
-    if (head.axis != "vary")
-      for (const Json& v : j[head.axis]["values"]) out[head.axis]["values"].push_back(v);
-    // As the library reports a whole run: the worst status, the first problem met (in line
-    // order, so in the first part that has one).
-    const std::string s = j["status"].get<std::string>();
-    if (status_rank(s) > status_rank(status)) status = s;
-    if (message.empty() && j.contains("message") && j["message"].is_string())
-      message = j["message"].get<std::string>();
-  }
-  out["status"] = status;
-  out["message"] = message;
-  return out.dump(2) + "\n";
+  // Every part checked: the merged file is head.total lines of the case's grid.
+  return assemble(head, by_index);
 }
 
 }  // namespace flaplag::cli

@@ -32,10 +32,21 @@ Request shard_request(const Request& r);
 // The "shard" object of a part's JSON: index, count, axis, first, last, total.
 nlohmann::ordered_json shard_json(const Request& r);
 
+// Adds the part's digest to its "shard" object ("digest": "sha256:" + 64 hex digits): the SHA-256
+// (digest.h) of the compact dump of the document without the digest.  The last change made to a
+// part's JSON before it is written.
+void seal_part(nlohmann::ordered_json& j);
+
 // `flaplag merge`: the parts r.inputs (in any order) as the JSON text the command writes without
-// --shard.  Throws InvalidInput("argument", the file as typed, reason) for a file that cannot be
-// read, is not a flaplag --shard part or an interrupted one, belongs to another case (other
-// options, another count N, another flaplag) or repeats a part; and
+// --shard.  A part must prove it is what its case computes: its digest matches its data; its
+// case is a command line flaplag takes, of this part of the job; its "shard" block is the one
+// flaplag computes for that index; its axis values are exactly the block's values of the case's
+// grid (and the other axis all of it); everything but the data (model, method, parameters, names)
+// is what the case's command writes; its arrays have the block's shape; every cell and row has
+// the types flaplag writes, mode labels of the case's model, known kinds and statuses.  Throws
+// InvalidInput("argument", the file as typed, reason) for a file that cannot be read, is not a
+// flaplag --shard part or an interrupted one, fails one of those checks, belongs to another
+// case (other options, another count N, another flaplag) or repeats a part; and
 // InvalidInput("argument", "(missing)", reason) naming the parts that are missing.
 std::string merge_parts(const Request& r);
 

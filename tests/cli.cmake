@@ -23,3 +23,9 @@ add_dependencies(cli_studies_test flaplag)
 flaplag_test(cli_security_test nlohmann_json::nlohmann_json)
 target_compile_definitions(cli_security_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
 add_dependencies(cli_security_test flaplag)
+
+# The files flaplag reads: JSON cases never name outputs, bounded nesting and size, keys once
+# per case, merge's checks of a part against its case (maintained with cli/).
+flaplag_test(cli_files_test flaplag_cli nlohmann_json::nlohmann_json)
+target_compile_definitions(cli_files_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
+add_dependencies(cli_files_test flaplag)
