@@ -14,16 +14,20 @@
 //   - gnuplot, when flaplag spawns it, is a fake first in PATH that keeps the script it was
 //     given and draws a tiny SVG; in that script a payload may appear only inside a gnuplot
 //     single-quoted string (with ' doubled) or not at all (script_problems below);
-//   - the address space of every run is capped (RLIMIT_AS, 2 GiB): unbounded memory is an
-//     exit 1 or a signal, both violations;
+//   - the address space of every run is capped (RLIMIT_AS, 2 GiB) and so is the size of a file
+//     it writes (RLIMIT_FSIZE, 256 MiB): unbounded memory or output is an exit 1 or a signal,
+//     both violations;
 //   - merge: a part that is not what the case computes is refused; an exit 0 must write exactly
 //     the bytes of the unsharded run;
 //   - a case file that is not a valid case (a key twice, in one table or in two, nesting, an
 //     array, a directory) is refused, naming the file.
 //
 // Deterministic: a fixed seed (FLAPLAG_FUZZ_SEED overrides it) and a bounded budget per input
-// kind: FLAPLAG_FILE_FUZZ_VECTORS vectors (default: see kDefaultVectors), FLAPLAG_FUZZ_JOBS at a
-// time (default 2), each killed after FLAPLAG_FUZZ_TIMEOUT seconds (default 60: a hang).
+// kind: FLAPLAG_FILE_FUZZ_VECTORS vectors (default 200..400, at the TESTs below),
+// FLAPLAG_FUZZ_JOBS at a time (default 2), each killed after FLAPLAG_FUZZ_TIMEOUT seconds
+// (default 60: a hang).
+// The enumeration of every string field (EveryStringFieldToPlot) is not a budget: it runs every
+// field, with FLAPLAG_FILE_FUZZ_FIELD_PAYLOADS (1..3, default 3) payloads each.
 // FLAPLAG_FUZZ_KEEP=1 keeps the directories of the runs that failed (their paths are printed).
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -77,7 +81,8 @@ namespace {
 using Json = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
-constexpr rlim_t kMemoryCap = rlim_t{2} << 30;  // bytes of address space per run
+constexpr rlim_t kMemoryCap = rlim_t{2} << 30;      // bytes of address space per run
+constexpr rlim_t kFileSizeCap = rlim_t{256} << 20;  // bytes per file written by a run
 
 long env_long(const char* name, long fallback) {
   const char* v = std::getenv(name);
@@ -337,6 +342,10 @@ Outcome run_flaplag(const std::vector<std::string>& args, const std::string& cwd
       lim.rlim_cur = lim.rlim_max = kMemoryCap;
       ::setrlimit(RLIMIT_AS, &lim);
     }
+    // A file larger than this is a signal (SIGXFSZ), reported, instead of a full disk.
+    struct rlimit size {};
+    size.rlim_cur = size.rlim_max = kFileSizeCap;
+    ::setrlimit(RLIMIT_FSIZE, &size);
     ::execve(exe.c_str(), argv.data(), envp.data());
     ::_exit(126);
   }
@@ -403,7 +412,8 @@ class Workspace {
   std::string make_seed(const std::string& name) {
     static const std::map<std::string, std::vector<std::string>> kSeeds = {
         {"sweep", {"sweep", "--mu", "0:0.2:0.1", "--json"}},
-        {"sweep-cyclic", {"--model", "paper-cyclic", "sweep", "--mu", "0:0.1:0.1", "--json"}},
+        {"sweep-cyclic",
+         {"--model", "paper-cyclic", "--trim", "thrust", "sweep", "--mu", "0:0.1:0.1", "--json"}},
         {"sweep-plot", {"sweep", "--mu", "0:0.2:0.1", "--json", "--plot", "sweep.svg"}},
         {"study",
          {"study", "--vary", "omega-lag=0.6,1.4", "--mu-max", "0.3", "--scan-step", "0.1",
@@ -654,6 +664,20 @@ std::vector<Json::json_pointer> nodes(const Json& j, const std::function<bool(co
     if (keep(j.at(ptr)) && ptr.to_string().rfind(under, 0) == 0 && !ptr.empty())
       kept.push_back(ptr);
   return kept;
+}
+
+// The reference tokens of a JSON pointer text ("/a/0/b" -> a, 0, b; ~1 and ~0 decoded).
+std::vector<std::string> split_pointer(const std::string& text) {
+  std::vector<std::string> tokens;
+  std::size_t at = 0;
+  while (at < text.size() && text[at] == '/') {
+    const std::size_t end = text.find('/', at + 1);
+    std::string t =
+        text.substr(at + 1, end == std::string::npos ? std::string::npos : end - at - 1);
+    tokens.push_back(replace_all(replace_all(t, "~1", "/"), "~0", "~"));
+    at = end == std::string::npos ? text.size() : end;
+  }
+  return tokens;
 }
 
 std::string dump(const Json& j) { return j.dump(2) + "\n"; }
@@ -959,7 +983,14 @@ Vector run_result_vector(Random& rnd, Coverage& cov) {
   v.args = {"run", "received.json"};
   if (rnd.chance(0.2)) {
     v.args.insert(v.args.end(), {"-o", "typed.json"});
-    v.outputs = {"typed.json"};
+    v.outputs.push_back("typed.json");
+  }
+  // A picture the user asks for draws the received file's strings.
+  static const std::set<std::string> kPlottable = {"sweep", "sweep-plot", "study",   "map",
+                                                   "map-1", "response",   "simulate"};
+  if (kPlottable.count(seed) == 1 && rnd.chance(0.3)) {
+    v.args.insert(v.args.end(), {"--plot", "typed.svg"});
+    v.outputs.push_back("typed.svg");
   }
   v.kind = "run result: " + kind;
   v.what = seed + ".json: " + what;
@@ -1028,6 +1059,94 @@ Vector merge_vector(Random& rnd, Coverage& cov) {
   return v;
 }
 
+// Every string field of every plottable result (array elements as one field: all of them at
+// once), each with the backquote payload, the quote-and-system() payload and one more in turn
+// (FLAPLAG_FILE_FUZZ_FIELD_PAYLOADS below), and every mode label renamed everywhere:
+// to `flaplag plot`, and the case's fields also to `flaplag run FILE --plot` (a picture the user
+// asks for).  An enumeration, the same in every run.
+std::vector<Vector> every_string_field_vectors() {
+  // (sweep-plot and map-1 have the fields of sweep and map.)
+  static const std::vector<std::string> kSeeds = {"sweep",  "sweep-cyclic", "study",   "map",
+                                                  "map-mu", "response",     "simulate"};
+  // FLAPLAG_FILE_FUZZ_FIELD_PAYLOADS: 1 (one payload per field, in turn), 2 (and the backquote),
+  // 3 (and the quote with system(); the default).
+  const long payloads_per_field = std::min(env_long("FLAPLAG_FILE_FUZZ_FIELD_PAYLOADS", 3), 3L);
+  std::vector<Vector> all;
+  std::size_t turn = 0;
+  for (const std::string& seed : kSeeds) {
+    const Json j = seed_json(seed);
+    std::map<std::string, std::vector<Json::json_pointer>> groups;
+    for (const auto& ptr : nodes(j, [](const Json& n) { return n.is_string(); })) {
+      std::string pattern;
+      for (const std::string& token : split_pointer(ptr.to_string()))
+        pattern += "/" + (token.find_first_not_of("0123456789") == std::string::npos ? "*" : token);
+      groups[pattern].push_back(ptr);
+    }
+    // A mode label renamed consistently (the labels, the rows' keys, the exponents' labels).
+    std::vector<std::pair<std::string, Json>> mutated;
+    if (j.contains("labels") && j["labels"].is_array()) {
+      for (const Json& label : j["labels"]) {
+        const std::string l = label.get<std::string>();
+        const std::size_t k = ++turn % payloads().size();
+        const std::string& pay = payloads()[k];
+        Json m = j;
+        for (Json& e : m["labels"])
+          if (e == l) e = pay;
+        for (Json& row : m["rows"]) {
+          if (row.contains(l)) {
+            row[pay] = row[l];
+            row.erase(l);
+          }
+          if (row.contains("exponents"))
+            for (Json& e : row["exponents"])
+              if (e.value("label", "") == l) e["label"] = pay;
+        }
+        mutated.push_back({"mode label " + l + " renamed everywhere = payload " +
+                               std::to_string(k) + " " + shown(pay, 60),
+                           m});
+      }
+    }
+    for (const auto& [pattern, members] : groups) {
+      const std::size_t rotating = ++turn % payloads().size();
+      std::set<std::size_t> ks = {rotating};
+      if (payloads_per_field > 1) ks.insert(0);
+      if (payloads_per_field > 2) ks.insert(7);
+      for (std::size_t k : ks) {
+        Json m = j;
+        for (const auto& ptr : members) m[ptr] = payloads()[k];
+        mutated.push_back(
+            {pattern + " = payload " + std::to_string(k) + " " + shown(payloads()[k], 60), m});
+      }
+    }
+    const bool sweep = seed.rfind("sweep", 0) == 0;
+    for (const auto& [what, m] : mutated) {
+      // plot FILE; plot FILE OTHER (curves named from each file's case); run FILE --plot.
+      for (int command = 0; command < 3; ++command) {
+        if (command == 1 && !sweep) continue;
+        if (command == 2 && what.rfind("/case/", 0) != 0) continue;
+        Vector v;
+        v.inputs.push_back({"result.json", dump(m), false});
+        if (command == 0) {
+          v.args = {"plot", "result.json", "--plot", "o.svg"};
+          v.kind = "plot: every string field";
+        } else if (command == 1) {
+          v.inputs.push_back({"other.json", seed_text("sweep"), false});
+          v.args = {"plot", "result.json", "other.json", "--plot", "o.svg"};
+          v.kind = "plot two sweeps: every string field";
+        } else {
+          v.args = {"run", "result.json", "--plot", "o.svg"};
+          v.kind = "run --plot: every string field of the case";
+        }
+        v.plot_command = command < 2;
+        v.outputs = {"o.svg"};
+        v.what = seed + ".json: " + what;
+        all.push_back(v);
+      }
+    }
+  }
+  return all;
+}
+
 // ---- case files
 // ----------------------------------------------------------------------------------
 
@@ -1080,6 +1199,22 @@ std::string toml_string(const std::string& s) {
   return q + "\"";
 }
 
+// `key = value` in place of the key's line when the case has one (a second line for the key
+// would be a duplicate, another error), or as the first line.
+std::string set_key(const std::string& toml, const std::string& key, const std::string& value) {
+  std::istringstream in(toml);
+  std::string out, line;
+  bool done = false;
+  while (std::getline(in, line)) {
+    if (!done && line.rfind(key + " = ", 0) == 0) {
+      line = key + " = " + value;
+      done = true;
+    }
+    out += line + "\n";
+  }
+  return done ? out : key + " = " + value + "\n" + toml;
+}
+
 Vector case_vector(Random& rnd, Coverage& cov) {
   Vector v;
   v.error_names_file = true;
@@ -1111,7 +1246,7 @@ Vector case_vector(Random& rnd, Coverage& cov) {
       const std::string value = rnd.pick(std::vector<std::string>{
           "[1, 2]", "{ a = 1 }", "1979-05-27T07:32:00Z", "07:32:00", "true", "false", "[]", "{}",
           "[[1], [\"a\"]]", "-0", "0x10", "1e308", "\"\""});
-      toml = key + " = " + value + "\n" + toml;
+      toml = set_key(toml, key, value);
       what = key + " = " + value;
       if (value[0] == '[' || value[0] == '{' || value.find(':') != std::string::npos)
         v.must_refuse = "an array, table or date as a value";
@@ -1194,7 +1329,7 @@ Vector case_vector(Random& rnd, Coverage& cov) {
       kind = "hostile string";
       const std::string key = kStringKeys[cov.take("case-keys", kStringKeys.size())];
       const std::size_t k = rnd.index(payloads().size());
-      toml = key + " = " + toml_string(payloads()[k]) + "\n" + toml;
+      toml = set_key(toml, key, toml_string(payloads()[k]));
       what = key + " = payload " + std::to_string(k) + " " + shown(payloads()[k], 60);
       break;
     }
@@ -1204,7 +1339,7 @@ Vector case_vector(Random& rnd, Coverage& cov) {
       const std::string value =
           rnd.pick(std::vector<std::string>{"nan", "+inf", "-inf", "-nan", "\"nan\"", "\"inf\"",
                                             "1e999", "99999999999999999999", "\"1e999\""});
-      toml = key + " = " + value + "\n" + toml;
+      toml = set_key(toml, key, value);
       what = key + " = " + value;
       v.must_refuse = "a value that is not a finite number";
       break;
@@ -1236,12 +1371,13 @@ Vector case_vector(Random& rnd, Coverage& cov) {
       const std::size_t n = rnd.index(toml.size());
       toml = toml.substr(0, n);
       what = "the first " + std::to_string(n) + " bytes";
+      v.error_names_file = false;  // a valid case that lacks an option: the option is named
       break;
     }
     case 18: {
       kind = "long string";
       const std::size_t n = rnd.pick(std::vector<std::size_t>{4096, 1000000, 4000000});
-      toml = "model = \"" + std::string(n, 'm') + "\"\n" + toml;
+      toml = set_key(toml, "model", "\"" + std::string(n, 'm') + "\"");
       what = "model = a string of " + std::to_string(n);
       v.must_refuse = "an unknown model";
       break;
@@ -1299,9 +1435,11 @@ struct Summary {
   Verdict verdict;
 };
 
+// `fixed`: exactly default_vectors (an enumeration, not a budget).
 void fuzz(const char* name, long default_vectors,
-          const std::function<Vector(Random&, Coverage&)>& make) {
-  const long vectors = env_long("FLAPLAG_FILE_FUZZ_VECTORS", default_vectors);
+          const std::function<Vector(Random&, Coverage&)>& make, bool fixed = false) {
+  const long vectors =
+      fixed ? default_vectors : env_long("FLAPLAG_FILE_FUZZ_VECTORS", default_vectors);
   const long jobs = env_long("FLAPLAG_FUZZ_JOBS", 2);
   const std::uint64_t seed = static_cast<std::uint64_t>(env_long("FLAPLAG_FUZZ_SEED", 19740601));
   const std::chrono::seconds limit(env_long("FLAPLAG_FUZZ_TIMEOUT", 60));
@@ -1396,6 +1534,14 @@ TEST(FileFuzz, GnuplotScriptCheckFindsUnquotedPayloads) {
 TEST(FileFuzz, CaseFiles) { fuzz("case files", 300, case_vector); }
 
 TEST(FileFuzz, ResultFilesToPlot) { fuzz("results to plot", 400, plot_vector); }
+
+TEST(FileFuzz, EveryStringFieldToPlot) {
+  const std::vector<Vector> all = every_string_field_vectors();
+  std::size_t next = 0;
+  fuzz(
+      "every string field", static_cast<long>(all.size()),
+      [&](Random&, Coverage&) { return all[next++]; }, true);
+}
 
 TEST(FileFuzz, ResultFilesToRun) { fuzz("results to run", 200, run_result_vector); }
 

@@ -284,15 +284,24 @@ def run_cases(n):
     while i < n:
         proc = subprocess.Popen([sys.executable, __file__, "--worker", str(i), str(n)],
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                preexec_fn=_limit_memory, text=True)
-        current, started = None, time.monotonic()
-        buffer = ""
-        while True:
-            ready, _, _ = select.select([proc.stdout], [], [], 0.5)
-            if ready:
-                line = proc.stdout.readline()
-                if not line:
-                    break
+                                preexec_fn=_limit_memory)
+        current, started, pending, err = None, time.monotonic(), b"", b""
+        fds = [proc.stdout.fileno(), proc.stderr.fileno()]
+        open_fds = list(fds)
+        hang = False
+        while open_fds:
+            ready, _, _ = select.select(open_fds, [], [], 0.5)
+            for fd in ready:
+                chunk = os.read(fd, 65536)
+                if not chunk:
+                    open_fds.remove(fd)
+                elif fd == fds[1]:
+                    err = (err + chunk)[-4000:]
+                else:
+                    pending += chunk
+            while b"\n" in pending:
+                line, pending = pending.split(b"\n", 1)
+                line = line.decode()
                 if line.startswith("S "):
                     current, started = int(line.split()[1]), time.monotonic()
                 elif line.startswith("E "):
@@ -305,23 +314,22 @@ def run_cases(n):
                     if problems:
                         findings.append((idx, case, problems))
                     current, i = None, idx + 1
-            elif current is not None and time.monotonic() - started > TIMEOUT:
+            if current is not None and time.monotonic() - started > TIMEOUT:
+                hang = True
                 proc.kill()
                 break
         proc.wait()
-        err = proc.stderr.read()
-        proc.stderr.close()
         proc.stdout.close()
+        proc.stderr.close()
         if current is None and i >= n:
             break
         if current is None:
             # The worker ended between cases: it could not start (import failure).
-            raise AssertionError(f"the fuzz worker ended before case {i}: {err[-2000:]}")
+            raise AssertionError(f"the fuzz worker ended before case {i}: {err.decode()[-2000:]}")
         case = make_case(current, fields)
-        hang = time.monotonic() - started > TIMEOUT
         totals["hang" if hang else "crash"] += 1
         what = (f"hang: no answer after {TIMEOUT} s" if hang
-                else f"crash: exit {proc.returncode}: {err.strip()[-300:]}")
+                else f"crash: exit {proc.returncode}: {err.decode(errors='replace').strip()[-300:]}")
         findings.append((current, case, [what]))
         i = current + 1
     return findings, totals
