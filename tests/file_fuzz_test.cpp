@@ -563,6 +563,14 @@ Verdict run_vector(const Vector& v, std::size_t index, std::chrono::seconds limi
   }
   for (const auto& [name, content] : before)
     if (after.count(name) == 0) p.push_back("removed " + shown(name, 80));
+  // What the command line asked for is there after an exit 0 (a picture may be missing with
+  // its warning line).
+  for (std::size_t i = 0; code == 0 && i + 1 < v.args.size(); ++i) {
+    const bool picture = v.args[i] == "--plot";
+    if ((v.args[i] == "-o" || picture) && after.count(v.args[i + 1]) == 0 &&
+        !(picture && !o.err.empty()))
+      p.push_back("exit 0 without the file asked for: " + v.args[i] + " " + v.args[i + 1]);
+  }
   const std::map<std::string, std::string> watched = listing(watch);
   for (const auto& [name, content] : watched) {
     if (name == "victim") {

@@ -16,7 +16,6 @@ killed after FLAPLAG_PY_FUZZ_TIMEOUT seconds (default 20).
 """
 
 import json
-import math
 import os
 import random
 import re
