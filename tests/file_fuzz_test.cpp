@@ -477,7 +477,7 @@ struct Vector {
   std::string must_refuse;           // non-empty: exit 2 expected, for this reason
   bool must_succeed = false;         // an unmutated control: exit 0 expected
   std::string expected_output;       // non-empty: an exit 0 writes exactly this (merge)
-  bool error_names_file = false;     // an exit-2 line names inputs[0].name
+  std::string error_must_name;       // non-empty: an exit-2 line holds this (a file, an option)
   bool plot_command = false;         // `flaplag plot`: exit 3 is allowed (gnuplot failed)
 };
 
@@ -538,10 +538,8 @@ Verdict run_vector(const Vector& v, std::size_t index, std::chrono::seconds limi
         p.push_back("exit " + std::to_string(code) + " without one error line: [" + shown(o.err) +
                     "]");
       if (!o.out.empty()) p.push_back("stdout on exit " + std::to_string(code));
-      if (v.error_names_file && !v.inputs.empty() &&
-          o.err.find(v.inputs.front().name) == std::string::npos)
-        p.push_back("the error does not name the file " + v.inputs.front().name + ": " +
-                    shown(o.err));
+      if (!v.error_must_name.empty() && o.err.find(v.error_must_name) == std::string::npos)
+        p.push_back("the error does not name " + v.error_must_name + ": " + shown(o.err));
     } else if (!o.err.empty() && !one_line(o.err, "flaplag: warning: ")) {
       p.push_back("exit 0 with stderr: " + shown(o.err));
     }
@@ -946,8 +944,16 @@ Vector plot_vector(Random& rnd, Coverage& cov) {
   }
   if (rnd.chance(0.1)) v.args.push_back("--max-zeta");
   const std::string picture = rnd.chance(0.8) ? "o.svg" : "o.png";
-  v.args.insert(v.args.end(), {"--plot", picture});
-  v.outputs = {picture};
+  if (kind == "honest file" && options.empty() && rnd.chance(0.3)) {
+    // A picture path in a directory that does not exist: refused naming --plot, nothing written.
+    v.args.insert(v.args.end(), {"--plot", "missing/" + picture});
+    v.must_refuse = "--plot in a missing directory";
+    v.error_must_name = "--plot";
+    options += " --plot missing/" + picture;
+  } else {
+    v.args.insert(v.args.end(), {"--plot", picture});
+    v.outputs = {picture};
+  }
   v.kind =
       "plot: " + kind + (options.find("payload") != std::string::npos ? " + hostile option" : "");
   v.what = seed + ".json: " + what + options;
@@ -997,8 +1003,17 @@ Vector run_result_vector(Random& rnd, Coverage& cov) {
   static const std::set<std::string> kPlottable = {"sweep", "sweep-plot", "study",   "map",
                                                    "map-1", "response",   "simulate"};
   if (kPlottable.count(seed) == 1 && rnd.chance(0.3)) {
-    v.args.insert(v.args.end(), {"--plot", "typed.svg"});
-    v.outputs.push_back("typed.svg");
+    if (kind == "honest file" && rnd.chance(0.5)) {
+      // Checked before the run: refused naming --plot, nothing written (not even -o).
+      v.args.insert(v.args.end(), {"--plot", "missing/typed.svg"});
+      v.must_refuse = "--plot in a missing directory";
+      v.must_succeed = false;
+      v.error_must_name = "--plot";
+      what += ", --plot missing/typed.svg";
+    } else {
+      v.args.insert(v.args.end(), {"--plot", "typed.svg"});
+      v.outputs.push_back("typed.svg");
+    }
   }
   v.kind = "run result: " + kind;
   v.what = seed + ".json: " + what;
@@ -1225,7 +1240,7 @@ std::string set_key(const std::string& toml, const std::string& key, const std::
 
 Vector case_vector(Random& rnd, Coverage& cov) {
   Vector v;
-  v.error_names_file = true;
+  bool names_file = true;
   const CaseBase& base = rnd.pick(case_bases());
   std::string toml = base.toml;
   std::string what, kind;
@@ -1392,7 +1407,7 @@ Vector case_vector(Random& rnd, Coverage& cov) {
       const std::size_t n = rnd.index(toml.size());
       toml = toml.substr(0, n);
       what = "the first " + std::to_string(n) + " bytes";
-      v.error_names_file = false;  // a valid case that lacks an option: the option is named
+      names_file = false;  // a valid case that lacks an option: the option is named
       break;
     }
     case 18: {
@@ -1420,6 +1435,7 @@ Vector case_vector(Random& rnd, Coverage& cov) {
       break;
     }
   }
+  if (names_file) v.error_must_name = name;
   Input in{name, toml, kind == "directory"};
   v.inputs.push_back(in);
   v.args = {"run", name};
