@@ -392,6 +392,7 @@ class Workspace {
     return seeds_[name] = make_seed(name);
   }
   ~Workspace() {
+    if (env_long("FLAPLAG_FUZZ_KEEP", 0) > 0) return;  // the failed runs are kept in it
     std::error_code ec;
     fs::remove_all(base_, ec);
   }
