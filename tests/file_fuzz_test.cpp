@@ -1560,6 +1560,8 @@ void fuzz(const char* name, long default_vectors,
 TEST(FileFuzz, GnuplotScriptCheckFindsUnquotedPayloads) {
   EXPECT_TRUE(script_problems("set title 'a PWN`x`PWN b'\nplot $d title 'it''s PWN'\n").empty());
   EXPECT_TRUE(script_problems("$d << EOD\n1 2\nEOD\nplot $d using 1:2 title 'x'\n").empty());
+  // What a correct quoting makes of the quote-and-system() payload: one string.
+  EXPECT_TRUE(script_problems("set title 'PWN'' . system(''touch x'') . ''PWN: flap'\n").empty());
   EXPECT_FALSE(script_problems("set title \"a PWN`touch x`PWN\"\n").empty());
   EXPECT_FALSE(script_problems("set title 'PWN' . system('touch x') . 'PWN'\n").empty());
   EXPECT_FALSE(script_problems("set title 'PWN\n!touch x\nPWN'\n").empty());
