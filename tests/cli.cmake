@@ -29,3 +29,9 @@ add_dependencies(cli_security_test flaplag)
 flaplag_test(cli_files_test flaplag_cli nlohmann_json::nlohmann_json)
 target_compile_definitions(cli_files_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
 add_dependencies(cli_files_test flaplag)
+
+# Generated and mutated files against the output contract: case files (TOML, JSON) to `run`,
+# real results mutated to `run`, `plot` and `merge` (FLAPLAG_FILE_FUZZ_VECTORS per kind).
+flaplag_test(file_fuzz_test nlohmann_json::nlohmann_json)
+target_compile_definitions(file_fuzz_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
+add_dependencies(file_fuzz_test flaplag)

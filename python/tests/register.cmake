@@ -16,6 +16,14 @@ endforeach()
 # failure; the reason is in the output.
 set_tests_properties(python.dask PROPERTIES SKIP_RETURN_CODE 5)
 
+# Generated keyword values against the API's error contract (FLAPLAG_PY_FUZZ_VECTORS calls, each
+# in a worker process under a memory cap and a time limit).
+add_test(NAME python.fuzz_keywords
+         COMMAND ${Python3_EXECUTABLE} -m pytest -q -rs -s -p no:cacheprovider
+                 ${CMAKE_CURRENT_SOURCE_DIR}/tests/test_fuzz_keywords.py
+         WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/tests)
+set_tests_properties(python.fuzz_keywords PROPERTIES ENVIRONMENT "${py_env}" TIMEOUT 600)
+
 set(example_dir ${PROJECT_SOURCE_DIR}/examples/python)
 set(example_out ${CMAKE_CURRENT_BINARY_DIR}/examples)
 file(MAKE_DIRECTORY ${example_out})
