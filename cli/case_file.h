@@ -28,7 +28,8 @@ struct CaseArguments {
   std::vector<std::string> args;  // subcommand first (when the case names one), then options
   // Where each option came from, for error messages: "--theta" -> "case.toml:3: theta".
   std::map<std::string, std::string> origin;
-  // Keys that were read but not used, one message each (for "flaplag: warning: ..." lines).
+  // Keys that were read but not used, one message each (joined into the one
+  // "flaplag: warning: ..." line).
   std::vector<std::string> warnings;
 };
 

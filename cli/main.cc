@@ -170,9 +170,12 @@ int run(const std::vector<std::string>& raw) {
       target.write(text);
     }
     pictures.commit();
-    for (const std::string& w : e.from_file.warnings)
-      std::cerr << "flaplag: warning: " << one_line(w) << std::endl;
-    if (!warning.empty()) std::cerr << "flaplag: warning: " << one_line(warning) << std::endl;
+    // At most one warning line: what the case file left out, then what the run says.
+    std::vector<std::string> warnings = e.from_file.warnings;
+    if (!warning.empty()) warnings.push_back(warning);
+    std::string joined;
+    for (const std::string& w : warnings) joined += (joined.empty() ? "" : "; ") + w;
+    if (!joined.empty()) std::cerr << "flaplag: warning: " << one_line(joined) << std::endl;
     if (control.cancelled) {
       std::cerr << "flaplag: " << one_line(control.message) << std::endl;
       return interrupted_exit_code();
