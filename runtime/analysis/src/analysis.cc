@@ -19,6 +19,7 @@
 #include "flaplag/core/parallel.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/system_builder.h"
+#include "flaplag/rotor/validity.h"
 #include "fold.h"
 #include "internal.h"
 
@@ -161,6 +162,15 @@ std::vector<double> zeta_differences(const Evaluated& fine_e, const Evaluated& c
   return d;
 }
 
+// ||Phi||_1 ||Phi^-1||_1 (infinity for a singular or non-finite Phi).
+double condition_number(const Eigen::MatrixXd& phi) {
+  if (phi.size() == 0 || !phi.allFinite()) return std::numeric_limits<double>::infinity();
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(phi);
+  const Eigen::MatrixXd inverse = lu.inverse();
+  if (!inverse.allFinite()) return std::numeric_limits<double>::infinity();
+  return phi.cwiseAbs().colwise().sum().maxCoeff() * inverse.cwiseAbs().colwise().sum().maxCoeff();
+}
+
 }  // namespace
 
 struct Analysis::Impl {
@@ -186,6 +196,7 @@ struct Analysis::Impl {
       hover.status = hover_modes.status;
       hover.message = hover_modes.message;
     }
+    validity = internal::validity_of(builder);
   }
 
   // The automatic starting K at mu: |lambda| h <= 1 for the largest eigenvalue of A(psi) at a
@@ -519,14 +530,26 @@ struct Analysis::Impl {
                           : "increase `steps`");
       }
       // det Phi = exp(int tr A) can be checked only when that determinant is above the rounding
-      // of det computed from Phi (~ eps ||Phi||^n); otherwise the residual means nothing.
+      // of det computed from Phi.  That rounding is at most ~ eps ||Phi||^n relative to det Phi;
+      // where that bound is too coarse (several modes, some strongly damped: the blade models
+      // with more than one mode per direction) the relative rounding of det Phi is eps
+      // cond(Phi) (a backward-stable LU moves Phi by eps ||Phi||, det Phi by that times
+      // ||Phi^-1|| relative), which is checked instead; the residual means nothing only where
+      // that is not small either.
       const double n = static_cast<double>(out.floquet.exponents.size());
-      if (trace < std::log(1e3 * std::numeric_limits<double>::epsilon()) + n * log_norm) {
-        out.floquet.liouville_residual = std::numeric_limits<double>::quiet_NaN();
+      const double eps = std::numeric_limits<double>::epsilon();
+      double rounding = 0.0;  // relative rounding of det Phi beyond the first bound
+      if (trace < std::log(1e3 * eps) + n * log_norm) {
+        const double condition = condition_number(out.floquet.phi);
+        if (std::isfinite(condition) && 1e3 * eps * condition < 1.0) {
+          rounding = n * eps * condition;
+        } else {
+          out.floquet.liouville_residual = std::numeric_limits<double>::quiet_NaN();
+        }
       }
       const double residual = out.floquet.liouville_residual;
       const double implied = kTwoPi * n * *out.error;
-      if (std::isfinite(residual) && residual > 100.0 * implied + 1e-9) {
+      if (std::isfinite(residual) && residual > 100.0 * (implied + rounding) + 1e-9) {
         note += std::string(note.empty() ? "" : "; ") + "Liouville residual " +
                 short_text(residual) +
                 " far above the error estimate: the exponents are not resolved; increase `steps`";
@@ -598,6 +621,23 @@ struct Analysis::Impl {
   PeriodicEquilibriumOptions equilibrium_options = internal::equilibrium_options();
   HoverResult hover;
   HoverModes hover_modes;
+  std::string validity;  // rotor/validity.h: "" inside the envelope
+
+  // Outside the validity envelope every result is a Warning that says so.
+  void outside_envelope(CriticalResult& r) const {
+    if (validity.empty() || r.status == Status::Failed) return;
+    internal::combine(&r.status, &r.message, Status::Warning, validity);
+  }
+  void outside_envelope(SweepResult& r) const {
+    if (validity.empty()) return;
+    for (PointResult& p : r.points)
+      if (p.status != Status::Failed)
+        internal::combine(&p.status, &p.message, Status::Warning, validity);
+    if (r.status == Status::Ok) {
+      r.status = Status::Warning;
+      r.message = validity;
+    }
+  }
 };
 
 Analysis::Analysis(const RotorParameters& params, const TransitionOptions& options)
@@ -613,6 +653,7 @@ const TransitionOptions& Analysis::options() const { return impl_->options; }
 const model::ModelDescriptor& Analysis::model() const { return impl_->builder.model(); }
 const ModeSet& Analysis::modes() const { return impl_->builder.modes(); }
 const HoverResult& Analysis::hover() const { return impl_->hover; }
+const std::string& Analysis::validity() const { return impl_->validity; }
 
 PeriodicSystem Analysis::system(double mu) const {
   check_mu(mu, "mu");
@@ -832,6 +873,9 @@ PointResult Analysis::point(double mu, double scan_step) const {
   } else if (r.message.empty()) {
     r.message = sw.message;
   }
+  if (r.status != Status::Failed)
+    internal::combine(&r.status, &r.message, impl_->validity.empty() ? Status::Ok : Status::Warning,
+                      impl_->validity);
   sort_for_output(r.exponents);
   return r;
 }
@@ -857,6 +901,7 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads) co
     p.mu = snap12(p.mu);
     sort_for_output(p.exponents);
   }
+  impl_->outside_envelope(r);
   return r;
 }
 
@@ -867,6 +912,7 @@ SweepResult Analysis::track(const std::vector<double>& mus, double scan_step, in
   }
   SweepResult r = impl_->track(mus, scan_step, threads);
   for (PointResult& p : r.points) sort_for_output(p.exponents);
+  impl_->outside_envelope(r);
   return r;
 }
 
@@ -877,6 +923,7 @@ CriticalResult Analysis::critical(const CriticalOptions& opt) const {
   if (!parameters().periodic_linearization) {
     CriticalResult r = find_critical(impl_->hover_modes, impl_->function(), o);
     sort_for_output(r.exponents);
+    impl_->outside_envelope(r);
     return r;
   }
   // About the periodic equilibrium the search can end at a fold of its branch (fold.h).
@@ -903,6 +950,7 @@ CriticalResult Analysis::critical(const CriticalOptions& opt) const {
   };
   internal::report_fold(r, watch, probe, o);
   sort_for_output(r.exponents);
+  impl_->outside_envelope(r);
   return r;
 }
 

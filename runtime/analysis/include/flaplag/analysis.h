@@ -143,6 +143,11 @@ class Analysis {
   const ModeSet& modes() const;
 
   const HoverResult& hover() const;
+  // "" when the operating point (pitch, inflow, hover flap deflection) is inside the validity
+  // envelope of the ordering models (rotor/validity.h); otherwise what lies outside, by name,
+  // value and limit.  point, sweep, track and critical then come back with status Warning and
+  // this in their message (every point of a sweep or track).
+  const std::string& validity() const;
   // mu in [0, kMaxAdvanceRatio] (else InvalidInput("mu", ...)).  The linear system about the
   // hover equilibrium (the paper), whatever periodic_linearization says; the system about the
   // periodic equilibrium is periodic_equilibrium(mu).linearization.

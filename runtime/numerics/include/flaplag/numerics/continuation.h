@@ -51,6 +51,10 @@ struct HoverModes {
   std::vector<std::complex<double>> eigenvalues;  // eig(A0), per rev
   std::vector<Eigen::VectorXcd> eigenvectors;     // unit 2-norm
   std::vector<std::string> labels;
+  // The rounding level of the eigenvalues' real parts (per rev; label_hover_modes: a few ulps
+  // times ||A0||): a real part within it of the stability threshold leaves hover's stability
+  // unknown (find_critical).  0: exact.
+  double zeta_rounding = 0.0;
   Status status = Status::Ok;
   std::string message;
 };
@@ -157,7 +161,10 @@ struct PointResult {
   std::optional<double> liouville_residual;
   std::optional<double> error;  // estimated max zeta error, per rev (FloquetSample)
   int steps = 0;                // steps per period used (FloquetSample)
-  std::optional<bool> stable;   // all zeta <= 0; nullopt when unknown (Failed)
+  // all zeta <= 0; nullopt when unknown: Failed, or (status Warning) the largest zeta is
+  // within its own error estimate (or the rounding level of Phi) of 0, so that its sign is not
+  // known
+  std::optional<bool> stable;
   Status status = Status::Ok;
   std::string message;
 };
