@@ -449,7 +449,8 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
   };
 
   ExponentTracker tracker(hover);
-  if (std::abs(tracker.max_zeta() - opt.zeta_threshold) <= hover.zeta_rounding) {
+  if (hover.zeta_rounding > 0.0 &&
+      std::abs(tracker.max_zeta() - opt.zeta_threshold) <= hover.zeta_rounding) {
     // Within rounding of the threshold: neither stable nor unstable is known in hover, and the
     // scan has no sign to start from.
     const LabelledExponent& e = tracker.exponents()[tracker.most_unstable()];

@@ -234,7 +234,11 @@ struct CriticalResult {
 // zeta_threshold survives moving every zeta by ten times its estimate; the two ends of a
 // bracket and the last point of a stable scan are always evaluated at scan_zeta_tolerance, so
 // the results are those of a scan at scan_zeta_tolerance throughout (evaluations counts every
-// call).  Options are checked (Check()).
+// call).  A change of sign seen at the scan resolution that is gone at mu resolved can be a
+// narrow interval next to the grid point: that grid interval and the next are searched at
+// scan_step / 10, then / 100 (every point resolved) before the change is reported as vanished
+// (status Warning).  Hover with its largest zeta within hover.zeta_rounding of the threshold
+// is of unknown stability: status Warning, no search.  Options are checked (Check()).
 CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& floquet,
                              const CriticalOptions& opt = {});
 
