@@ -897,4 +897,12 @@ TEST(Honest, MultiModeResultsCarryTheLiouvilleResidual) {
     EXPECT_LT(*r.liouville_residual, 1e-4) << model;
     EXPECT_EQ(r.status, flaplag::Status::Ok) << model << ": " << r.message;
   }
+  // Where det Phi is below the rounding of Phi's determinant (a heavily damped lag mode) the
+  // residual cannot be had, and the result says why instead of leaving a bare null.
+  RotorParameters damped;
+  damped.damping_lag = 2.0;
+  const flaplag::PointResult r = Analysis(damped, {}).point(1.0);
+  EXPECT_FALSE(r.liouville_residual.has_value());
+  EXPECT_EQ(r.status, flaplag::Status::Ok) << r.message;
+  EXPECT_NE(r.message.find("no Liouville residual"), std::string::npos) << r.message;
 }

@@ -545,6 +545,10 @@ struct Analysis::Impl {
           rounding = n * eps * condition;
         } else {
           out.floquet.liouville_residual = std::numeric_limits<double>::quiet_NaN();
+          // Said, not warned: the exponents do not depend on this check.
+          out.message = "no Liouville residual: det Phi = exp(int tr A) = exp(" +
+                        short_text(trace) + ") is below the rounding of the determinant of Phi " +
+                        "(condition number " + short_text(condition) + ")";
         }
       }
       const double residual = out.floquet.liouville_residual;
@@ -569,7 +573,7 @@ struct Analysis::Impl {
     }
     if (!note.empty()) {
       out.status = Status::Warning;
-      out.message = note;
+      out.message = note + (out.message.empty() ? "" : "; " + out.message);
     }
     return out;
   }

@@ -884,9 +884,11 @@ class TrackPass {
       out_.message = "at mu = " + fmt(e.mu) + ": " + r.message;
       return false;
     }
-    if (sample.status == Status::Warning) {
-      p.status = Status::Warning;
-      p.message = p.message.empty() ? sample.message : p.message + "; " + sample.message;
+    // A Warning's message, or a note that comes with an Ok sample (what it could not check).
+    if (sample.status == Status::Warning || !sample.message.empty()) {
+      p.status = worse(p.status, sample.status);
+      if (!sample.message.empty())
+        p.message = p.message.empty() ? sample.message : p.message + "; " + sample.message;
     }
     p.exponents = tracker_.exponents();
     p.stable = tracker_.max_zeta() <= 0.0;
