@@ -320,6 +320,9 @@ struct Analysis::Impl {
   struct Continuation {
     StepsHint hint;
     PeriodicSystem system;  // storage reused at every mu
+    // About the periodic equilibrium: the equilibria that were not clean (status Warning), by
+    // mu, with their message (what a result at that mu rests on).
+    std::map<double, std::string> unclean_equilibria;
   };
 
   FloquetSample floquet(double mu, double zeta_tolerance, Continuation* c = nullptr) const {
@@ -333,6 +336,8 @@ struct Analysis::Impl {
         out.message = eq.message;
         return out;
       }
+      if (c != nullptr && eq.status != Status::Ok && c->unclean_equilibria.size() < 4096)
+        c->unclean_equilibria[mu] = eq.message;
       return floquet_of(eq.linearization, zeta_tolerance, eq.message, hint);
     }
     if (c == nullptr) return floquet_of(builder.system(mu), zeta_tolerance, "", hint);
@@ -578,8 +583,8 @@ struct Analysis::Impl {
     return out;
   }
 
-  FloquetFunction function() const {
-    auto c = std::make_shared<Continuation>();
+  FloquetFunction function(std::shared_ptr<Continuation> c = nullptr) const {
+    if (!c) c = std::make_shared<Continuation>();
     return [this, c](double mu, double tol) { return floquet(mu, tol, c.get()); };
   }
 
@@ -932,7 +937,9 @@ CriticalResult Analysis::critical(const CriticalOptions& opt) const {
   }
   // About the periodic equilibrium the search can end at a fold of its branch (fold.h).
   const internal::FoldWatch watch;
-  CriticalResult r = find_critical(impl_->hover_modes, watch.wrap(impl_->function()), o);
+  const auto continuation = std::make_shared<Impl::Continuation>();
+  CriticalResult r =
+      find_critical(impl_->hover_modes, watch.wrap(impl_->function(continuation)), o);
   std::optional<PeriodicEquilibrium> last;
   const internal::EquilibriumProbe probe = [&](double mu, PeriodicSystem* lin, double* reached) {
     PeriodicEquilibrium eq = flaplag::periodic_equilibrium(
@@ -954,6 +961,19 @@ CriticalResult Analysis::critical(const CriticalOptions& opt) const {
   };
   internal::report_fold(r, watch, probe, o);
   sort_for_output(r.exponents);
+  // mu_c (and every interval end) is no better than the periodic equilibrium there.
+  if (r.status != Status::Failed) {
+    for (const InstabilityInterval& iv : r.intervals) {
+      for (const std::optional<double>& at : {std::optional<double>(iv.onset), iv.end}) {
+        if (!at) continue;
+        const auto it = continuation->unclean_equilibria.find(*at);
+        if (it == continuation->unclean_equilibria.end()) continue;
+        internal::combine(&r.status, &r.message, Status::Warning,
+                          "the periodic equilibrium at mu = " + round_trip_text(*at) +
+                              ", where the result is found: " + it->second);
+      }
+    }
+  }
   impl_->outside_envelope(r);
   return r;
 }
