@@ -157,7 +157,9 @@ struct PointResult {
   double mu = 0.0;
   std::vector<LabelledExponent> exponents;  // hover order (Analysis sorts by label, then omega)
   // |det Phi - exp int tr A| / exp int tr A; nullopt when not representable (a multiplier
-  // underflowed to 0 while exp int tr A did not, or the reverse)
+  // underflowed to 0 while exp int tr A did not, or the reverse) or when the caller's Floquet
+  // analysis cannot check it (Analysis: det Phi below the rounding of Phi's determinant; its
+  // message says so)
   std::optional<double> liouville_residual;
   std::optional<double> error;  // estimated max zeta error, per rev (FloquetSample)
   int steps = 0;                // steps per period used (FloquetSample)
