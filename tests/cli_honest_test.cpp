@@ -57,6 +57,60 @@ TEST(CliHonest, TrimmedCriticalIsNoBetterThanItsTrim) {
       << j["message"];
 }
 
+// The same blade swept: each row reports the trim it rests on.  The sweep's trim table used
+// to come from separate trims, so that the row at mu = 0.8 failed on its trim while the table
+// showed an "ok" trim there, and a row resting on a trim outside the envelope said "ok".
+TEST(CliHonest, TrimmedSweepRowsRestOnTheirTrims) {
+  const Json j = run_json({"--model",
+                           "paper-cyclic",
+                           "--trim",
+                           "moment",
+                           "--thrust-coefficient",
+                           "0.0056",
+                           "--omega-flap",
+                           "1.12",
+                           "--omega-lag",
+                           "0.72",
+                           "--gamma",
+                           "6",
+                           "--sigma",
+                           "0.07",
+                           "--theta",
+                           "0.10",
+                           "--damping-lag",
+                           "0.01",
+                           "sweep",
+                           "--mu",
+                           "0.5:0.9:0.1"});
+  const Json& rows = j["rows"];
+  const Json& trims = j["trim"];
+  ASSERT_EQ(rows.size(), trims.size()) << j;
+  bool failed_seen = false;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const Json& r = rows[k];
+    const Json& t = trims[k];
+    EXPECT_EQ(r["mu"], t["mu"]);
+    const std::string rm = r["message"].get<std::string>();
+    // A row that failed on its trim shows that failed trim.
+    if (r["status"] == "failed" && rm.find("trim failed") != std::string::npos) {
+      failed_seen = true;
+      EXPECT_EQ(t["status"], "failed") << "mu = " << r["mu"] << ": " << t;
+    }
+    // A trim that did not converge, or lies outside the envelope, leaves its row no better
+    // than a warning.
+    const bool outside =
+        t["message"].get<std::string>().find("validity envelope") != std::string::npos;
+    if (!t["converged"].get<bool>() || outside) {
+      EXPECT_NE(r["status"], "ok") << "mu = " << r["mu"] << ": " << t;
+    }
+  }
+  EXPECT_TRUE(failed_seen) << "the example no longer fails a trim: " << j;
+  // mu = 0.7: the trimmed controls put the angle of attack past the envelope.
+  ASSERT_GE(rows.size(), 3u);
+  EXPECT_EQ(rows[2]["mu"], 0.7);
+  EXPECT_EQ(rows[2]["status"], "warning") << rows[2];
+}
+
 // The trim to C_T = 0.1 at mu = 0.3 gives theta0 = 80 deg: a warning naming theta0, its value
 // and the limit (it used to say "ok").
 TEST(CliHonest, TrimOutsideTheValidityEnvelopeWarns) {
