@@ -167,7 +167,7 @@ Hover audited_hover(const Analysis& an) {
   for (Eigen::Index i = 0; i < h.q0.size(); ++i) ok = ok && finite(h.q0[i]);
   for (const auto& z : h.eigenvalues) ok = ok && finite(z);
   if (!ok) demote(h.status, h.message, Status::Failed, "hover equilibrium or eigenvalue");
-  if (h.status == Status::Failed) r.stable.reset();
+  if (h.status == Status::Failed || h.neutral) r.stable.reset();
   return r;
 }
 
@@ -572,9 +572,15 @@ std::string sweep_csv(const Request& r, const SweepResult& s,
 }
 
 std::string warnings_text(const Analysis& an) {
-  return an.hover().stable
-             ? ""
-             : "warning: the hover equilibrium itself is unstable; see the hover exponents\n";
+  std::string out;
+  if (an.hover().neutral)
+    out +=
+        "warning: the stability of hover is unknown (an eigenvalue of A0 is within rounding "
+        "of the imaginary axis)\n";
+  else if (!an.hover().stable)
+    out += "warning: the hover equilibrium itself is unstable; see the hover exponents\n";
+  if (!an.validity().empty()) out += "warning: " + an.validity() + "\n";
+  return out;
 }
 
 // ---- commands --------------------------------------------------------------------------------
@@ -684,11 +690,14 @@ std::string trim_command(const Request& r) {
 }
 
 std::string point(const Request& r, const Analysis& an) {
-  PointResult p = trimmed(r) ? trimmed_point(r.params, r.transition, r.trim, r.mu, r.scan_step)
-                             : an.point(r.mu, r.scan_step);
+  // Trimmed: the trim the point rests on (its problems are in the point's status).
+  std::vector<TrimResult> trims;
+  PointResult p = trimmed(r)
+                      ? trimmed_point(r.params, r.transition, r.trim, r.mu, r.scan_step, &trims)
+                      : an.point(r.mu, r.scan_step);
   audit(p);
   std::optional<TrimResult> t;
-  if (trimmed(r)) t = trim(r.params, r.mu, r.trim);
+  if (!trims.empty()) t = trims.front();
   if (r.json) {
     Json j = header_json("point", an);
     j.update(point_json(r, p));
@@ -703,21 +712,13 @@ std::string point(const Request& r, const Analysis& an) {
 std::string plot_if_asked(const Request& r, const std::string& script);
 
 std::string sweep(const Request& r, const Analysis& an, std::string& warning) {
+  // The trimmed controls at each point of the sweep: the trims its points rest on (their
+  // problems are in the points' status).
+  std::vector<TrimResult> trims;
   SweepResult s = trimmed(r) ? trimmed_sweep(r.params, r.transition, r.trim, r.sweep_start,
-                                             r.sweep_stop, r.sweep_step)
+                                             r.sweep_stop, r.sweep_step, &trims)
                              : an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step, r.threads);
   audit(s);
-  // The trimmed controls at each point of the sweep.
-  std::vector<TrimResult> trims;
-  if (trimmed(r)) {
-    // About the periodic equilibrium each trim continues from the previous one's q° (the
-    // continuation from hover at every mu would cost as much as the sweep).
-    for (const PointResult& p : s.points) {
-      const bool warm = r.params.periodic_linearization && !trims.empty() &&
-                        trims.back().status != Status::Failed;
-      trims.push_back(trim(r.params, p.mu, r.trim, warm ? &trims.back() : nullptr));
-    }
-  }
   const std::vector<std::string> labels = mode_labels(an);
   if (!r.plot.empty()) {
     std::vector<double> mu;
@@ -768,11 +769,12 @@ std::string critical(const Request& r, const Analysis& an) {
   CriticalOptions opt;
   opt.mu_max = r.mu_max;
   opt.scan_step = r.scan_step;
+  std::vector<TrimResult> trims;  // the trim at mu_c the result rests on
   CriticalResult c =
-      trimmed(r) ? trimmed_critical(r.params, r.transition, r.trim, opt) : an.critical(opt);
+      trimmed(r) ? trimmed_critical(r.params, r.transition, r.trim, opt, &trims) : an.critical(opt);
   audit(c);
-  std::optional<TrimResult> t;  // the trim at mu_c
-  if (trimmed(r) && c.mu_c) t = trim(r.params, *c.mu_c, r.trim);
+  std::optional<TrimResult> t;
+  if (!trims.empty()) t = trims.front();
   if (r.json) {
     Json j = header_json("critical", an);
     j.update(critical_json(r, c));
@@ -962,15 +964,10 @@ std::string study(const Request& request, std::string& warning, RunControl* cont
     note_cancelled(control, s.rows_done, so.values.size(), "values (" + word(r.vary) + ")");
   for (StudyRow& row : s.rows) audit(row.critical);
   // A trimmed study reports each row's trim at its mu_c (theta0, theta1c, theta1s, lambda
-  // there), as `critical --trim` and the Python module's study rows do: trim() of the row's
-  // rotor at mu_c.  After a Ctrl-C the rows finished carry none (null).
+  // there), as `critical --trim` and the Python module's study rows do: the trim the row's
+  // search made there, whose problems are in the row's status.
   std::vector<std::optional<TrimResult>> trims(s.rows.size());
-  for (std::size_t i = 0; trimmed(r) && i < s.rows.size(); ++i) {
-    if (s.cancelled || (control && control->cancel && control->cancel->load())) break;
-    const StudyRow& row = s.rows[i];
-    if (row.critical.mu_c)
-      trims[i] = trim(with_parameter(r.params, r.vary, row.value), *row.critical.mu_c, r.trim);
-  }
+  for (std::size_t i = 0; trimmed(r) && i < s.rows.size(); ++i) trims[i] = s.rows[i].trim;
   if (!r.plot.empty()) {
     std::vector<StudyMark> marks;
     for (const StudyRow& row : s.rows) {

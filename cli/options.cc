@@ -116,7 +116,10 @@ std::vector<OptionSpec> transition_options() {
                    "Hsu Taylor terms J, 1.." + std::to_string(TransitionOptions::kMaxTerms),
                    std::to_string(defaults.terms), {"terms"}),
       value_option("--zeta-tolerance", "REAL",
-                   "target error of the damping exponents zeta, per rev (> 0)",
+                   "error allowed in each damping exponent zeta, per rev (> 0): an exponent "
+                   "counts as resolved when its estimated error is at most REAL * max(1, 100 "
+                   "|zeta|) -- absolute near zeta = 0, where stability is decided, relative "
+                   "(100 REAL |zeta|) for modes with |zeta| > 0.01",
                    round_trip_text(defaults.zeta_tolerance), {"zeta_tolerance"}),
   };
 }

@@ -787,3 +787,122 @@ TEST(NonlinearSimulation, RefusesWhatItCannotAnswerByName) {
   EXPECT_EQ("periodic_linearization",
             refused_field([&] { pa.simulate(0.0, y0, false, flaplag::SimulationOptions{}); }));
 }
+
+// ---- Honest results: what a result rests on ------------------------------------------------
+
+namespace {
+
+// The blade of a critical scan whose grid point 1.18 sees an instability only at the scan
+// resolution: the instability is a narrow interval just above that point (a scan at step
+// 0.001 puts its onset at 1.180865).
+RotorParameters narrow_interval_blade() {
+  RotorParameters p;
+  p.gamma = 9.95;
+  p.sigma = 0.03;
+  p.theta = 0.25;
+  p.omega_flap = 1.5;
+  p.omega_lag = 1.531;
+  p.damping_lag = 0.01435;
+  p.precone = 0.04798;
+  p.droop = 0.05;
+  p.modes = flaplag::ModeKind::Exact;
+  p.elastic_coupling = false;
+  return p;
+}
+
+}  // namespace
+
+// A stability change seen at the scan resolution is searched for at a finer step around the
+// grid point before it is called vanished: the narrow interval next to it is mu_c (the scan at
+// step 0.001 finds it at 1.180865; at step 0.01 it used to be dismissed and mu_c put at the
+// next interval, 1.50535).
+TEST(Honest, CriticalSearchFindsTheNarrowIntervalNextToAVanishedChange) {
+  const Analysis an(narrow_interval_blade(), {});
+  const flaplag::CriticalResult c = an.critical({});
+  ASSERT_TRUE(c.mu_c.has_value()) << c.message;
+  EXPECT_NEAR(*c.mu_c, 1.180865, 1e-4) << c.message;
+  EXPECT_EQ(c.message.find("vanished"), std::string::npos) << c.message;
+  // With every interval: the narrow one ends before the next one begins.
+  flaplag::CriticalOptions all;
+  all.all_intervals = true;
+  const flaplag::CriticalResult a = an.critical(all);
+  ASSERT_GE(a.intervals.size(), 2u) << a.message;
+  ASSERT_TRUE(a.intervals[0].end.has_value()) << a.message;
+  EXPECT_GT(*a.intervals[0].end, a.intervals[0].onset);
+  EXPECT_LT(*a.intervals[0].end, 1.19);
+  EXPECT_NEAR(a.intervals[1].onset, 1.50535, 1e-4);
+}
+
+// A blade of vanishing length has no aerodynamic damping: hover is neutral to rounding, and its
+// stability is unknown -- not "unstable" from zeta = 2e-92 -- and so is every point whose
+// largest zeta is within its own error estimate of zero.
+TEST(Honest, StabilityWithinRoundingOrErrorIsUnknown) {
+  RotorParameters p;
+  p.length_ratio = 1e-9;
+  const Analysis an(p, {});
+  EXPECT_TRUE(an.hover().neutral);
+  EXPECT_EQ(an.hover().status, flaplag::Status::Warning);
+  const flaplag::CriticalResult c = an.critical({});
+  EXPECT_FALSE(c.hover_unstable) << c.message;
+  EXPECT_FALSE(c.mu_c.has_value());
+  EXPECT_EQ(c.status, flaplag::Status::Warning);
+  EXPECT_NE(c.message.find("unknown"), std::string::npos) << c.message;
+  for (double mu : {0.0, 0.5}) {
+    const flaplag::PointResult r = an.point(mu);
+    ASSERT_FALSE(r.exponents.empty()) << r.message;
+    double largest = -1.0;
+    for (const auto& e : r.exponents) largest = std::max(largest, e.zeta);
+    ASSERT_TRUE(r.error.has_value());
+    ASSERT_LE(std::abs(largest), *r.error) << "the example no longer has |zeta| below its error";
+    EXPECT_FALSE(r.stable.has_value()) << "mu = " << mu;
+    EXPECT_EQ(r.status, flaplag::Status::Warning) << r.message;
+    EXPECT_NE(r.message.find("stability unknown"), std::string::npos) << r.message;
+  }
+  // The typical blade is unaffected: its points are decided.
+  const flaplag::PointResult typical = Analysis(RotorParameters{}, {}).point(0.5);
+  EXPECT_TRUE(typical.stable.has_value());
+  EXPECT_FALSE(Analysis(RotorParameters{}, {}).hover().neutral);
+}
+
+// Fixed controls outside the validity envelope (rotor/validity.h) come back with a warning
+// naming the quantity, its value and the limit; inside it nothing is said.
+TEST(Honest, ControlsOutsideTheValidityEnvelopeWarn) {
+  RotorParameters p;
+  p.theta = 0.5;  // 29 deg: beyond the small-angle ordering
+  const Analysis an(p, {});
+  EXPECT_NE(an.validity().find("theta0 = 0.5 rad"), std::string::npos) << an.validity();
+  EXPECT_NE(an.validity().find("0.35"), std::string::npos) << an.validity();
+  const flaplag::PointResult r = an.point(0.3);
+  EXPECT_EQ(r.status, flaplag::Status::Warning);
+  EXPECT_NE(r.message.find("validity envelope"), std::string::npos) << r.message;
+  const flaplag::SweepResult s = an.sweep(0.0, 0.2, 0.1);
+  EXPECT_EQ(s.status, flaplag::Status::Warning);
+  for (const auto& pt : s.points) EXPECT_EQ(pt.status, flaplag::Status::Warning);
+  const flaplag::CriticalResult c = an.critical({});
+  EXPECT_NE(c.status, flaplag::Status::Ok);
+  EXPECT_NE(c.message.find("theta0"), std::string::npos) << c.message;
+  // The typical case is inside.
+  EXPECT_TRUE(Analysis(RotorParameters{}, {}).validity().empty());
+}
+
+// The Liouville identity det Phi = exp int tr A holds for any number of modes: multi-mode
+// results report their residual (it used to be null on every one), small as the error implies.
+TEST(Honest, MultiModeResultsCarryTheLiouvilleResidual) {
+  for (const char* model : {"paper-2x2", "paper-3x3"}) {
+    RotorParameters p;
+    p.model = model;
+    p.modes = flaplag::ModeKind::Exact;
+    const flaplag::PointResult r = Analysis(p, {}).point(0.3);
+    ASSERT_TRUE(r.liouville_residual.has_value()) << model << ": " << r.message;
+    EXPECT_LT(*r.liouville_residual, 1e-4) << model;
+    EXPECT_EQ(r.status, flaplag::Status::Ok) << model << ": " << r.message;
+  }
+  // Where det Phi is below the rounding of Phi's determinant (a heavily damped lag mode) the
+  // residual cannot be had, and the result says why instead of leaving a bare null.
+  RotorParameters damped;
+  damped.damping_lag = 2.0;
+  const flaplag::PointResult r = Analysis(damped, {}).point(1.0);
+  EXPECT_FALSE(r.liouville_residual.has_value());
+  EXPECT_EQ(r.status, flaplag::Status::Ok) << r.message;
+  EXPECT_NE(r.message.find("no Liouville residual"), std::string::npos) << r.message;
+}

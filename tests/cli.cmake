@@ -35,3 +35,8 @@ add_dependencies(cli_files_test flaplag)
 flaplag_test(file_fuzz_test nlohmann_json::nlohmann_json)
 target_compile_definitions(file_fuzz_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
 add_dependencies(file_fuzz_test flaplag)
+
+# Honest results: statuses that rest on trims, validity, resolution; messages that say so.
+flaplag_test(cli_honest_test nlohmann_json::nlohmann_json)
+target_compile_definitions(cli_honest_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
+add_dependencies(cli_honest_test flaplag)

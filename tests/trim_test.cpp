@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "flaplag/analysis.h"
 #include "flaplag/core/errors.h"
@@ -440,5 +441,61 @@ TEST(PeriodicTrim, ModelsWithoutTheNonlinearThrustAreRefused) {
       // paper-nonlinear has no thrust at all; paper-cyclic no nonlinear loads
       EXPECT_TRUE(e.name() == "model" || e.name() == "periodic_linearization") << e.name();
     }
+  }
+}
+
+// ---- Honest results: a trim outside the validity envelope, and results resting on trims ---
+
+// C_T = 0.1 at mu = 0.3 trims the typical blade to theta0 near 80 deg: far outside the
+// small-angle ordering, so the trim warns, naming the quantity, its value and the limit (it
+// used to say "ok").
+TEST(TrimHonest, TrimOutsideTheValidityEnvelopeWarns) {
+  TrimOptions o;
+  o.kind = TrimKind::Thrust;
+  o.thrust_coefficient = 0.1;
+  const flaplag::TrimResult t = flaplag::trim(cyclic_typical(), 0.3, o);
+  ASSERT_NE(t.status, Status::Failed) << t.message;
+  ASSERT_GT(std::abs(t.theta0), 0.35) << "the example no longer leaves the envelope";
+  EXPECT_EQ(t.status, Status::Warning) << t.message;
+  EXPECT_NE(t.validity.find("theta0 = "), std::string::npos) << t.validity;
+  EXPECT_NE(t.validity.find("0.35 rad"), std::string::npos) << t.validity;
+  EXPECT_NE(t.message.find(t.validity), std::string::npos) << t.message;
+  EXPECT_EQ(flaplag::trim_problem(t), t.validity);
+  // The default C_T is inside: nothing to say.
+  o.thrust_coefficient = 0.005;
+  const flaplag::TrimResult ok = flaplag::trim(cyclic_typical(), 0.3, o);
+  EXPECT_EQ(ok.status, Status::Ok) << ok.message;
+  EXPECT_TRUE(ok.validity.empty()) << ok.validity;
+  EXPECT_TRUE(flaplag::trim_problem(ok).empty());
+}
+
+// A point resting on a trim outside the envelope is no better than that trim: a warning with
+// the trim's message; the trims reported are the ones the results rest on, one per point.
+TEST(TrimHonest, TrimmedResultsCarryTheirTrimsProblems) {
+  // C_T = 0.015 (C_T / sigma = 0.3) needs theta0 = 0.41 rad at mu = 0.05.
+  TrimOptions o;
+  o.kind = TrimKind::Thrust;
+  o.thrust_coefficient = 0.015;
+  std::vector<flaplag::TrimResult> trims;
+  const flaplag::PointResult p =
+      flaplag::trimmed_point(cyclic_typical(), {}, o, 0.05, 0.05, &trims);
+  ASSERT_EQ(trims.size(), 1u);
+  EXPECT_EQ(trims[0].mu, 0.05);
+  ASSERT_GT(trims[0].theta0, 0.35) << "the example no longer leaves the envelope";
+  EXPECT_FALSE(flaplag::trim_problem(trims[0]).empty());
+  ASSERT_NE(p.status, Status::Failed) << p.message;
+  EXPECT_EQ(p.status, Status::Warning) << p.message;
+  EXPECT_NE(p.message.find("trim at mu = 0.05: outside the model's validity envelope"),
+            std::string::npos)
+      << p.message;
+  // A sweep inside the envelope: every point ok, each with the converged trim at its mu.
+  o.thrust_coefficient = 0.005;
+  const flaplag::SweepResult s =
+      flaplag::trimmed_sweep(cyclic_typical(), {}, o, 0.0, 0.2, 0.1, &trims);
+  ASSERT_EQ(trims.size(), s.points.size());
+  for (std::size_t k = 0; k < trims.size(); ++k) {
+    EXPECT_EQ(trims[k].mu, s.points[k].mu);
+    EXPECT_TRUE(trims[k].converged);
+    EXPECT_EQ(s.points[k].status, Status::Ok) << s.points[k].message;
   }
 }

@@ -88,7 +88,8 @@ class HoverResult:
 
     inflow: lambda (eq 2.24); equilibrium: {'g0_1': ..., 'h0_1': ...} (modal amplitudes);
     A0: the constant A at mu = 0; eigenvalues: eig(A0) [per rev] with ``labels``; stable: all
-    zeta <= 0.
+    zeta <= 0 (None when unknown: the largest real part is within the rounding level of zero,
+    status 'warning').
     """
 
     inflow: float
@@ -96,7 +97,7 @@ class HoverResult:
     A0: np.ndarray
     eigenvalues: np.ndarray
     labels: Tuple[str, ...]
-    stable: bool
+    stable: Optional[bool]
     status: str
     message: str
 
@@ -134,7 +135,8 @@ class PointResult:
     exponents: sorted by label, then by omega (descending); liouville_residual: the relative
     |det Phi - exp int tr A| (None when not representable); error: the estimated largest zeta
     error [per rev] (None when not estimated); steps: the steps per period used; stable: all
-    zeta <= 0 (None when unknown, i.e. status 'failed').
+    zeta <= 0 (None when unknown: status 'failed', or status 'warning' when the largest zeta
+    is within its own error estimate of zero).
     """
 
     mu: float

@@ -346,7 +346,7 @@ py::dict hover_dict(const Analysis& an) {
   d["A0"] = to_numpy(h.A0);
   d["eigenvalues"] = to_numpy(h.eigenvalues);
   d["labels"] = h.labels;
-  d["stable"] = h.stable;
+  d["stable"] = h.neutral ? py::object(py::none()) : py::object(py::bool_(h.stable));
   d["status"] = status_name(h.status);
   d["message"] = h.message;
   return d;
@@ -557,27 +557,17 @@ py::dict study(const py::dict& params, const py::dict& transition, int flap_mode
   const StudyOptions o = study_options(parameter, values, critical, threads, trim_request);
   const bool trimmed = o.trim.kind != TrimKind::None;
   // A trimmed row reports the trim at its mu_c (theta0, theta1c, theta1s, lambda there), as
-  // `flaplag critical --trim` does: trim() of the row's rotor at mu_c.
-  std::vector<std::optional<TrimResult>> trims;
+  // `flaplag critical --trim` does: the trim the row's search made there (StudyRow::trim).
   const StudyResult r = run_cancellable<StudyResult>(
       [&](const std::atomic<bool>* cancel, ProgressFunction report) {
-        StudyResult s = run_study(base, t, o, cancel, report);
-        trims.assign(s.rows.size(), std::nullopt);
-        // (A cancelled run raises in Python: its trims are not needed.)
-        for (std::size_t i = 0; trimmed && !s.cancelled && i < s.rows.size(); ++i) {
-          if (cancel->load()) break;
-          const StudyRow& row = s.rows[i];
-          if (row.critical.mu_c)
-            trims[i] =
-                trim(with_parameter(base, o.parameter, row.value), *row.critical.mu_c, o.trim);
-        }
-        return s;
+        return run_study(base, t, o, cancel, report);
       },
       progress);
   py::list rows;
   for (std::size_t i = 0; i < r.rows.size(); ++i) {
     py::dict row = critical_dict(r.rows[i].critical);
-    row["trim"] = trims[i] ? py::object(trim_dict(*trims[i])) : py::object(py::none());
+    row["trim"] =
+        trimmed && r.rows[i].trim ? py::object(trim_dict(*r.rows[i].trim)) : py::object(py::none());
     rows.append(row);
   }
   py::dict d;
@@ -934,7 +924,9 @@ py::list transition_rows() {
   rows.append(row("terms", "int", py::int_(defaults.terms), "-", ("1.." + max_terms).c_str(),
                   "Hsu's Taylor terms J"));
   rows.append(row("zeta_tolerance", "real", py::float_(defaults.zeta_tolerance), "per rev", "> 0",
-                  "target error of the damping exponents zeta"));
+                  "error allowed in each damping exponent zeta: resolved when the estimated "
+                  "error is at most zeta_tolerance * max(1, 100 |zeta|) (absolute near "
+                  "zeta = 0, relative for modes with |zeta| > 0.01)"));
   return rows;
 }
 

@@ -19,6 +19,7 @@
 #include "flaplag/core/parallel.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/system_builder.h"
+#include "flaplag/rotor/validity.h"
 #include "fold.h"
 #include "internal.h"
 
@@ -161,6 +162,15 @@ std::vector<double> zeta_differences(const Evaluated& fine_e, const Evaluated& c
   return d;
 }
 
+// ||Phi||_1 ||Phi^-1||_1 (infinity for a singular or non-finite Phi).
+double condition_number(const Eigen::MatrixXd& phi) {
+  if (phi.size() == 0 || !phi.allFinite()) return std::numeric_limits<double>::infinity();
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(phi);
+  const Eigen::MatrixXd inverse = lu.inverse();
+  if (!inverse.allFinite()) return std::numeric_limits<double>::infinity();
+  return phi.cwiseAbs().colwise().sum().maxCoeff() * inverse.cwiseAbs().colwise().sum().maxCoeff();
+}
+
 }  // namespace
 
 struct Analysis::Impl {
@@ -186,6 +196,7 @@ struct Analysis::Impl {
       hover.status = hover_modes.status;
       hover.message = hover_modes.message;
     }
+    validity = internal::validity_of(builder);
   }
 
   // The automatic starting K at mu: |lambda| h <= 1 for the largest eigenvalue of A(psi) at a
@@ -309,6 +320,9 @@ struct Analysis::Impl {
   struct Continuation {
     StepsHint hint;
     PeriodicSystem system;  // storage reused at every mu
+    // About the periodic equilibrium: the equilibria that were not clean (status Warning), by
+    // mu, with their message (what a result at that mu rests on).
+    std::map<double, std::string> unclean_equilibria;
   };
 
   FloquetSample floquet(double mu, double zeta_tolerance, Continuation* c = nullptr) const {
@@ -322,6 +336,8 @@ struct Analysis::Impl {
         out.message = eq.message;
         return out;
       }
+      if (c != nullptr && eq.status != Status::Ok && c->unclean_equilibria.size() < 4096)
+        c->unclean_equilibria[mu] = eq.message;
       return floquet_of(eq.linearization, zeta_tolerance, eq.message, hint);
     }
     if (c == nullptr) return floquet_of(builder.system(mu), zeta_tolerance, "", hint);
@@ -519,14 +535,30 @@ struct Analysis::Impl {
                           : "increase `steps`");
       }
       // det Phi = exp(int tr A) can be checked only when that determinant is above the rounding
-      // of det computed from Phi (~ eps ||Phi||^n); otherwise the residual means nothing.
+      // of det computed from Phi.  That rounding is at most ~ eps ||Phi||^n relative to det Phi;
+      // where that bound is too coarse (several modes, some strongly damped: the blade models
+      // with more than one mode per direction) the relative rounding of det Phi is eps
+      // cond(Phi) (a backward-stable LU moves Phi by eps ||Phi||, det Phi by that times
+      // ||Phi^-1|| relative), which is checked instead; the residual means nothing only where
+      // that is not small either.
       const double n = static_cast<double>(out.floquet.exponents.size());
-      if (trace < std::log(1e3 * std::numeric_limits<double>::epsilon()) + n * log_norm) {
-        out.floquet.liouville_residual = std::numeric_limits<double>::quiet_NaN();
+      const double eps = std::numeric_limits<double>::epsilon();
+      double rounding = 0.0;  // relative rounding of det Phi beyond the first bound
+      if (trace < std::log(1e3 * eps) + n * log_norm) {
+        const double condition = condition_number(out.floquet.phi);
+        if (std::isfinite(condition) && 1e3 * eps * condition < 1.0) {
+          rounding = n * eps * condition;
+        } else {
+          out.floquet.liouville_residual = std::numeric_limits<double>::quiet_NaN();
+          // Said, not warned: the exponents do not depend on this check.
+          out.message = "no Liouville residual: det Phi = exp(int tr A) = exp(" +
+                        short_text(trace) + ") is below the rounding of the determinant of Phi " +
+                        "(condition number " + short_text(condition) + ")";
+        }
       }
       const double residual = out.floquet.liouville_residual;
       const double implied = kTwoPi * n * *out.error;
-      if (std::isfinite(residual) && residual > 100.0 * implied + 1e-9) {
+      if (std::isfinite(residual) && residual > 100.0 * (implied + rounding) + 1e-9) {
         note += std::string(note.empty() ? "" : "; ") + "Liouville residual " +
                 short_text(residual) +
                 " far above the error estimate: the exponents are not resolved; increase `steps`";
@@ -546,13 +578,13 @@ struct Analysis::Impl {
     }
     if (!note.empty()) {
       out.status = Status::Warning;
-      out.message = note;
+      out.message = note + (out.message.empty() ? "" : "; " + out.message);
     }
     return out;
   }
 
-  FloquetFunction function() const {
-    auto c = std::make_shared<Continuation>();
+  FloquetFunction function(std::shared_ptr<Continuation> c = nullptr) const {
+    if (!c) c = std::make_shared<Continuation>();
     return [this, c](double mu, double tol) { return floquet(mu, tol, c.get()); };
   }
 
@@ -598,6 +630,23 @@ struct Analysis::Impl {
   PeriodicEquilibriumOptions equilibrium_options = internal::equilibrium_options();
   HoverResult hover;
   HoverModes hover_modes;
+  std::string validity;  // rotor/validity.h: "" inside the envelope
+
+  // Outside the validity envelope every result is a Warning that says so.
+  void outside_envelope(CriticalResult& r) const {
+    if (validity.empty() || r.status == Status::Failed) return;
+    internal::combine(&r.status, &r.message, Status::Warning, validity);
+  }
+  void outside_envelope(SweepResult& r) const {
+    if (validity.empty()) return;
+    for (PointResult& p : r.points)
+      if (p.status != Status::Failed)
+        internal::combine(&p.status, &p.message, Status::Warning, validity);
+    if (r.status == Status::Ok) {
+      r.status = Status::Warning;
+      r.message = validity;
+    }
+  }
 };
 
 Analysis::Analysis(const RotorParameters& params, const TransitionOptions& options)
@@ -613,6 +662,7 @@ const TransitionOptions& Analysis::options() const { return impl_->options; }
 const model::ModelDescriptor& Analysis::model() const { return impl_->builder.model(); }
 const ModeSet& Analysis::modes() const { return impl_->builder.modes(); }
 const HoverResult& Analysis::hover() const { return impl_->hover; }
+const std::string& Analysis::validity() const { return impl_->validity; }
 
 PeriodicSystem Analysis::system(double mu) const {
   check_mu(mu, "mu");
@@ -832,6 +882,9 @@ PointResult Analysis::point(double mu, double scan_step) const {
   } else if (r.message.empty()) {
     r.message = sw.message;
   }
+  if (r.status != Status::Failed)
+    internal::combine(&r.status, &r.message, impl_->validity.empty() ? Status::Ok : Status::Warning,
+                      impl_->validity);
   sort_for_output(r.exponents);
   return r;
 }
@@ -857,6 +910,7 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads) co
     p.mu = snap12(p.mu);
     sort_for_output(p.exponents);
   }
+  impl_->outside_envelope(r);
   return r;
 }
 
@@ -867,6 +921,7 @@ SweepResult Analysis::track(const std::vector<double>& mus, double scan_step, in
   }
   SweepResult r = impl_->track(mus, scan_step, threads);
   for (PointResult& p : r.points) sort_for_output(p.exponents);
+  impl_->outside_envelope(r);
   return r;
 }
 
@@ -877,11 +932,14 @@ CriticalResult Analysis::critical(const CriticalOptions& opt) const {
   if (!parameters().periodic_linearization) {
     CriticalResult r = find_critical(impl_->hover_modes, impl_->function(), o);
     sort_for_output(r.exponents);
+    impl_->outside_envelope(r);
     return r;
   }
   // About the periodic equilibrium the search can end at a fold of its branch (fold.h).
   const internal::FoldWatch watch;
-  CriticalResult r = find_critical(impl_->hover_modes, watch.wrap(impl_->function()), o);
+  const auto continuation = std::make_shared<Impl::Continuation>();
+  CriticalResult r =
+      find_critical(impl_->hover_modes, watch.wrap(impl_->function(continuation)), o);
   std::optional<PeriodicEquilibrium> last;
   const internal::EquilibriumProbe probe = [&](double mu, PeriodicSystem* lin, double* reached) {
     PeriodicEquilibrium eq = flaplag::periodic_equilibrium(
@@ -903,6 +961,20 @@ CriticalResult Analysis::critical(const CriticalOptions& opt) const {
   };
   internal::report_fold(r, watch, probe, o);
   sort_for_output(r.exponents);
+  // mu_c (and every interval end) is no better than the periodic equilibrium there.
+  if (r.status != Status::Failed) {
+    for (const InstabilityInterval& iv : r.intervals) {
+      for (const std::optional<double>& at : {std::optional<double>(iv.onset), iv.end}) {
+        if (!at) continue;
+        const auto it = continuation->unclean_equilibria.find(*at);
+        if (it == continuation->unclean_equilibria.end()) continue;
+        internal::combine(&r.status, &r.message, Status::Warning,
+                          "the periodic equilibrium at mu = " + round_trip_text(*at) +
+                              ", where the result is found: " + it->second);
+      }
+    }
+  }
+  impl_->outside_envelope(r);
   return r;
 }
 

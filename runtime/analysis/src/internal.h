@@ -3,6 +3,8 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -12,6 +14,8 @@
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/periodic_equilibrium.h"
+#include "flaplag/rotor/system_builder.h"
+#include "flaplag/rotor/validity.h"
 
 namespace flaplag::internal {
 
@@ -58,6 +62,27 @@ inline TipDeflection tip_deflection(const ModeSet& modes, int M, int N, const Ei
     t.lag += modes.lag[r]->value(0, 1.0) * (q0 != nullptr ? (*q0)(M + r) + h : h);
   }
   return t;
+}
+
+// The validity envelope (rotor/validity.h) of the operating point a builder describes: its
+// pitch, inflow and the flap tip deflection of its hover equilibrium.
+inline std::string validity_of(const detail::SystemBuilder& b) {
+  const model::ModelDescriptor& m = b.model();
+  double flap_tip = std::numeric_limits<double>::quiet_NaN();
+  if (b.hover().q0.size() == m.flap_modes + m.lag_modes) {
+    flap_tip = 0.0;
+    for (int k = 0; k < m.flap_modes; ++k)
+      flap_tip += b.modes().flap[k]->value(0, 1.0) * b.hover().q0(k);
+  }
+  return validity_warning(b.params(), b.inflow(), flap_tip);
+}
+
+// A result is never better than what it rests on: `status` and `message` take the worse of
+// their own and (s, m), the messages joined.
+inline void combine(Status* status, std::string* message, Status s, const std::string& m) {
+  if (s == Status::Ok && m.empty()) return;
+  if (static_cast<int>(s) > static_cast<int>(*status)) *status = s;
+  if (!m.empty()) *message = message->empty() ? m : *message + "; " + m;
 }
 
 }  // namespace flaplag::internal

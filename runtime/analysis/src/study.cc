@@ -81,7 +81,7 @@ MapCell cell_of(const PointResult& p) {
   c.computed = true;
   c.status = p.status;
   c.message = p.message;
-  if (p.exponents.empty() || !p.stable) return c;
+  if (p.exponents.empty() || p.status == Status::Failed) return c;
   const LabelledExponent* best = &p.exponents.front();
   for (const LabelledExponent& e : p.exponents)
     if (e.zeta > best->zeta || (e.zeta == best->zeta && e.omega >= 0.0 && best->omega < 0.0))
@@ -151,7 +151,9 @@ StudyResult run_study(const RotorParameters& base, const TransitionOptions& tran
         try {
           const RotorParameters p = with_parameter(base, options.parameter, row.value);
           if (options.trim.kind != TrimKind::None) {
-            row.critical = trimmed_critical(p, transition, options.trim, crit);
+            std::vector<TrimResult> at_mu_c;
+            row.critical = trimmed_critical(p, transition, options.trim, crit, &at_mu_c);
+            if (!at_mu_c.empty()) row.trim = std::move(at_mu_c.front());
           } else {
             row.critical = Analysis(p, transition).critical(crit);
           }

@@ -333,7 +333,20 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
   TrimBudget budget;
   TrimResult out = trim_continued(p, m, mu, o, start, budget);
   out.evaluations = budget.used;
+  // The trimmed operating point against the validity envelope (rotor/validity.h).
+  out.validity.clear();
+  if (out.status != Status::Failed) {
+    const detail::SystemBuilder builder(out.parameters, m, out.inflow);
+    out.validity = internal::validity_of(builder);
+    internal::combine(&out.status, &out.message,
+                      out.validity.empty() ? Status::Ok : Status::Warning, out.validity);
+  }
   return out;
+}
+
+std::string trim_problem(const TrimResult& t) {
+  if (t.status == Status::Failed || !t.converged) return t.message;
+  return t.validity;
 }
 
 namespace {
@@ -623,6 +636,7 @@ struct Trimmed {
     // A cold trim depends on mu alone: the search evaluates some mu more than once (at two
     // zeta tolerances, or again after a scan), and gets the same trim without solving again.
     auto cold = std::make_shared<std::map<double, TrimResult>>();
+    used->clear();
     return [this, previous, warm, cold](double mu, double zeta_tolerance) {
       FloquetSample out;
       TrimResult tr;
@@ -636,6 +650,8 @@ struct Trimmed {
         }
       }
       if (tr.status != Status::Failed) *previous = tr;
+      if (used->size() > 4096) used->clear();
+      (*used)[mu] = tr;
       if (tr.status == Status::Failed) {
         out.status = Status::Failed;
         out.message = "trim failed at mu = " + round_trip_text(mu) + ": " + tr.message;
@@ -645,13 +661,66 @@ struct Trimmed {
       // About the periodic equilibrium: the trim's own q° (the one whose thrust was trimmed).
       out = params.periodic_linearization ? an.floquet(tr.equilibrium, zeta_tolerance)
                                           : an.floquet(mu, zeta_tolerance);
-      // (an unstable trimmed system is no problem of the sample: the exponents say so)
-      if (!tr.converged && out.status == Status::Ok) {
-        out.status = Status::Warning;
-        out.message = "trim at mu = " + round_trip_text(mu) + ": " + tr.message;
-      }
+      // A sample is never better than its trim: not converged or outside the validity
+      // envelope makes it (at least) Warning, whatever its own status (trim_problem; an
+      // unstable trimmed system is no problem of the sample: the exponents say so).
+      const std::string problem = trim_problem(tr);
+      if (!problem.empty())
+        internal::combine(&out.status, &out.message, Status::Warning,
+                          "trim at mu = " + round_trip_text(mu) + ": " + problem);
       return out;
     };
+  }
+
+  // The trim the last function() made at mu (nullptr: none).
+  const TrimResult* trim_at(double mu) const {
+    const auto it = used->find(mu);
+    return it == used->end() ? nullptr : &it->second;
+  }
+
+  // The trims of the reported points of a sweep or track, in order (a point without a trim of
+  // its own, which cannot happen along a continuation, gets a failed one naming it).
+  void trims_of(const SweepResult& r, std::vector<TrimResult>* trims) const {
+    if (trims == nullptr) return;
+    trims->clear();
+    for (const PointResult& pt : r.points) {
+      if (const TrimResult* x = trim_at(pt.mu)) {
+        trims->push_back(*x);
+      } else {
+        TrimResult none;
+        none.mu = pt.mu;
+        none.kind = options.kind;
+        none.target = options.thrust_coefficient;
+        none.parameters = params;
+        none.status = Status::Failed;
+        none.message = "no trim at mu = " + round_trip_text(pt.mu);
+        trims->push_back(std::move(none));
+      }
+    }
+  }
+
+  // A critical result rests on the trims at mu_c and at each interval's ends: their problems
+  // (trim_problem) make it at least Warning.
+  void rests_on_trims(CriticalResult& r, std::vector<TrimResult>* trims) const {
+    if (trims != nullptr) trims->clear();
+    if (r.mu_c && trims != nullptr) {
+      if (const TrimResult* x = trim_at(*r.mu_c)) trims->push_back(*x);
+    }
+    if (r.status == Status::Failed) return;
+    std::vector<double> ends;
+    for (const InstabilityInterval& iv : r.intervals) {
+      ends.push_back(iv.onset);
+      if (iv.end) ends.push_back(*iv.end);
+    }
+    for (double mu : ends) {
+      const TrimResult* x = trim_at(mu);
+      if (x == nullptr) continue;
+      const std::string problem = trim_problem(*x);
+      if (!problem.empty())
+        internal::combine(&r.status, &r.message, Status::Warning,
+                          "the trim at mu = " + round_trip_text(mu) +
+                              ", where the result is found, is not sound: " + problem);
+    }
   }
 
   RotorParameters params;
@@ -659,12 +728,16 @@ struct Trimmed {
   TrimOptions options;
   TrimResult hover;  // the trim at mu = 0
   HoverModes modes;
+  // The trims of the last function(), by mu (the last one made at each mu).
+  std::shared_ptr<std::map<double, TrimResult>> used =
+      std::make_shared<std::map<double, TrimResult>>();
 };
 
 }  // namespace
 
 PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, double mu, double scan_step) {
+                          const TrimOptions& o, double mu, double scan_step,
+                          std::vector<TrimResult>* trims) {
   check_mu(mu);
   if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
     throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
@@ -685,19 +758,27 @@ PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
     r.message = r.message.empty() ? sw.message : r.message + "; " + sw.message;
   }
   sort_for_output(r.exponents);
+  if (trims != nullptr) {
+    SweepResult one;
+    one.points.push_back(r);
+    tr.trims_of(one, trims);
+  }
   return r;
 }
 
 SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, double mu0, double mu1, double step) {
+                          const TrimOptions& o, double mu0, double mu1, double step,
+                          std::vector<TrimResult>* trims) {
   const Trimmed tr(p, t, o);
   SweepResult r = sweep_exponents(tr.modes, tr.function(), mu0, mu1, step, t.zeta_tolerance);
   for (PointResult& pt : r.points) sort_for_output(pt.exponents);
+  tr.trims_of(r, trims);
   return r;
 }
 
 SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, const std::vector<double>& mus, double scan_step) {
+                          const TrimOptions& o, const std::vector<double>& mus, double scan_step,
+                          std::vector<TrimResult>* trims) {
   for (double mu : mus) check_mu(mu);
   if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
     throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
@@ -705,11 +786,13 @@ SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
   const Trimmed tr(p, t, o);
   SweepResult r = track_exponents(tr.modes, tr.function(), mus, scan_step, t.zeta_tolerance);
   for (PointResult& pt : r.points) sort_for_output(pt.exponents);
+  tr.trims_of(r, trims);
   return r;
 }
 
 CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOptions& t,
-                                const TrimOptions& o, const CriticalOptions& c) {
+                                const TrimOptions& o, const CriticalOptions& c,
+                                std::vector<TrimResult>* trims) {
   c.Check();
   const Trimmed tr(p, t, o);
   CriticalOptions co = c;
@@ -717,6 +800,7 @@ CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOption
   if (!p.periodic_linearization) {
     CriticalResult r = find_critical(tr.modes, tr.function(), co);
     sort_for_output(r.exponents);
+    tr.rests_on_trims(r, trims);
     return r;
   }
   // About the periodic equilibrium the trimmed branch can end at a fold (fold.h): the probe is
@@ -733,6 +817,9 @@ CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOption
   };
   internal::report_fold(r, watch, probe, co);
   sort_for_output(r.exponents);
+  // A fold's mu_c is the probe's trim, not one of the search's.
+  if (last && r.mu_c && *r.mu_c == last->mu) (*tr.used)[last->mu] = *last;
+  tr.rests_on_trims(r, trims);
   return r;
 }
 

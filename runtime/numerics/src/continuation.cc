@@ -449,6 +449,19 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
   };
 
   ExponentTracker tracker(hover);
+  if (hover.zeta_rounding > 0.0 &&
+      std::abs(tracker.max_zeta() - opt.zeta_threshold) <= hover.zeta_rounding) {
+    // Within rounding of the threshold: neither stable nor unstable is known in hover, and the
+    // scan has no sign to start from.
+    const LabelledExponent& e = tracker.exponents()[tracker.most_unstable()];
+    out.exponents = tracker.exponents();
+    out.status = Status::Warning;
+    out.message = "the stability of hover is unknown: the least stable mode (" + e.label +
+                  ", zeta = " + fmt(e.zeta) + ") is within the rounding level " +
+                  fmt(hover.zeta_rounding) +
+                  " of the threshold (a neutral blade); no critical advance ratio is sought";
+    return out;
+  }
   if (tracker.max_zeta() > opt.zeta_threshold) {
     const LabelledExponent& e = tracker.exponents()[tracker.most_unstable()];
     out.hover_unstable = true;
@@ -634,61 +647,127 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
         std::max(1e-13, std::min(opt.scan_zeta_tolerance, 0.1 * std::abs(slope0) * opt.tolerance));
     Trial b = evaluate(prev.tracker, mu, refine_tolerance);
     if (b.report.status == Status::Failed) return failed(b);
-    if ((b.f > 0.0) == (prev.f > 0.0)) {  // seen at the scan resolution only
-      note(mu, Status::Warning,
-           "a stability change seen at the scan resolution vanished when resolved (zeta = " +
-               fmt(hi.f + opt.zeta_threshold) + " at the scan resolution)");
-      before_prev = prev.tracker;
-      prev = std::move(b);
-      continue;
-    }
-    // The lower end too, when its scan value is within twice its error estimate of the
-    // threshold: its sign may be wrong, and then the crossing lies below it and Brent would
-    // stop at the grid point (the exact-mode typical blade at gamma = 8.5: zeta = -2.8e-7 at
-    // the scan point 1.16 with an error of 1.5e-6; mu_c was reported as 1.16 with a warning
-    // instead of 1.15993).  If the resolved sign is that of the upper end, the bracket is the
-    // grid interval below, continued from the tracker at its lower end.
-    Trial lower = prev;
-    std::optional<Trial> stepped_back;  // the upper end of the grid interval below
-    const ExponentTracker* from = &prev.tracker;
-    if (prev.mu > 0.0 && prev.error && std::abs(prev.f) <= 2.0 * *prev.error) {
-      Trial a = evaluate(before_prev, prev.mu, refine_tolerance);
-      if (a.report.status == Status::Failed) return failed(a);
-      if ((a.f > 0.0) != (b.f > 0.0)) {
-        lower = std::move(a);
-      } else {
-        const double mu_lo = static_cast<double>(i - 2) * opt.scan_step;
-        Trial c = mu_lo > 0.0 ? evaluate(before_prev, mu_lo, refine_tolerance) : hover_trial;
-        if (c.report.status == Status::Failed) return failed(c);
-        if ((c.f > 0.0) != (b.f > 0.0)) {
-          lower = std::move(c);
-          stepped_back = std::move(a);
-          from = &before_prev;
+    // The brackets to refine, in order: (lower, upper, the tracker the trials continue from,
+    // the zeta slope).  Normally the grid interval [prev.mu, mu] (or the one below it).
+    struct Bracket {
+      Trial lower, upper;
+      ExponentTracker from;
+      double slope;
+    };
+    std::vector<Bracket> brackets;
+    // Set when the search below covered the next grid interval too: the trial at its end.
+    std::optional<Trial> searched_to;
+    ExponentTracker before_searched_to = prev.tracker;
+    if ((b.f > 0.0) == (prev.f > 0.0)) {
+      // Seen at the scan resolution but not at mu resolved.  Before calling it vanished, the
+      // neighbourhood -- this grid interval and the next -- is searched at a finer step
+      // (scan_step / 10, then / 100), every point resolved as the ends of a bracket are: what
+      // the scan saw can be a narrow interval of instability next to mu (its resolved zeta
+      // within a few error estimates of the threshold, where the scan resolution can miss it).
+      const double end_mu = i < steps ? std::min(mu + (mu - prev.mu), opt.mu_max) : mu;
+      const double width = end_mu - prev.mu;
+      Trial start = evaluate(before_prev, prev.mu, refine_tolerance);
+      if (start.report.status == Status::Failed) return failed(start);
+      for (int parts : {10, 100}) {
+        const int count = static_cast<int>(std::lround(parts * width / (mu - prev.mu)));
+        Trial at = start;  // the last sub-point, continued along the interval
+        ExponentTracker before_at = before_prev;
+        for (int j = 1; j <= count && brackets.size() < 8; ++j) {
+          const double m = j == count ? end_mu : prev.mu + width * static_cast<double>(j) / count;
+          Trial next = evaluate(at.tracker, m, refine_tolerance);
+          if (next.report.status == Status::Failed) return failed(next);
+          if ((next.f > 0.0) != (at.f > 0.0)) {
+            const double slope = (next.f - at.f) / (next.mu - at.mu);
+            brackets.push_back({at, next, at.tracker, slope});
+          }
+          before_at = at.tracker;
+          at = std::move(next);
+        }
+        if (!brackets.empty()) {
+          if (end_mu > mu) {
+            searched_to = std::move(at);
+            before_searched_to = std::move(before_at);
+          }
+          break;
         }
       }
+      if (brackets.empty()) {
+        note(mu, Status::Warning,
+             "a stability change seen at the scan resolution vanished when resolved (zeta = " +
+                 fmt(hi.f + opt.zeta_threshold) +
+                 " at the scan resolution), and no change was found at steps of scan_step / 100 "
+                 "from mu = " +
+                 fmt(prev.mu) + " to " + fmt(end_mu));
+        before_prev = prev.tracker;
+        prev = std::move(b);
+        continue;
+      }
+    } else {
+      // The lower end too, when its scan value is within twice its error estimate of the
+      // threshold: its sign may be wrong, and then the crossing lies below it and Brent would
+      // stop at the grid point (the exact-mode typical blade at gamma = 8.5: zeta = -2.8e-7 at
+      // the scan point 1.16 with an error of 1.5e-6; mu_c was reported as 1.16 with a warning
+      // instead of 1.15993).  If the resolved sign is that of the upper end, the bracket is the
+      // grid interval below, continued from the tracker at its lower end.
+      Trial lower = prev;
+      std::optional<Trial> stepped_back;  // the upper end of the grid interval below
+      const ExponentTracker* from = &prev.tracker;
+      if (prev.mu > 0.0 && prev.error && std::abs(prev.f) <= 2.0 * *prev.error) {
+        Trial a = evaluate(before_prev, prev.mu, refine_tolerance);
+        if (a.report.status == Status::Failed) return failed(a);
+        if ((a.f > 0.0) != (b.f > 0.0)) {
+          lower = std::move(a);
+        } else {
+          const double mu_lo = static_cast<double>(i - 2) * opt.scan_step;
+          Trial c = mu_lo > 0.0 ? evaluate(before_prev, mu_lo, refine_tolerance) : hover_trial;
+          if (c.report.status == Status::Failed) return failed(c);
+          if ((c.f > 0.0) != (b.f > 0.0)) {
+            lower = std::move(c);
+            stepped_back = std::move(a);
+            from = &before_prev;
+          }
+        }
+      }
+      const double slope =
+          stepped_back ? (stepped_back->f - lower.f) / (stepped_back->mu - lower.mu) : slope0;
+      Trial upper = stepped_back ? std::move(*stepped_back) : b;
+      const ExponentTracker from_copy = *from;
+      brackets.push_back({std::move(lower), std::move(upper), from_copy, slope});
     }
-    const Trial& upper = stepped_back ? *stepped_back : b;
-    const bool onset = lower.f <= 0.0;
-    auto [bb, cc] = brent(*from, lower, upper, refine_tolerance);
-    if (failure) return failed(*failure);
-    const Trial& unstable = bb.f > 0.0 ? bb : cc;
-    const LabelledExponent& x = unstable.tracker.exponents()[unstable.tracker.most_unstable()];
-    const double slope = stepped_back ? (upper.f - lower.f) / (upper.mu - lower.mu) : slope0;
-    const std::optional<double> err = crossing_error(*from, bb, cc, slope, refine_tolerance);
-    if (onset) {
-      InstabilityInterval iv;
-      iv.onset = bb.mu;
-      iv.onset_error = err;
-      iv.mode = x.label;
-      // A conjugate pair crosses together; report the member with omega >= 0.
-      iv.omega = std::abs(x.omega);
-      iv.kind = classify_crossing(x.omega, opt.periodic_omega_tolerance);
-      out.intervals.push_back(iv);
-      if (out.intervals.size() == 1) out.exponents = unstable.tracker.exponents();
-      if (!opt.all_intervals) break;
-    } else if (!out.intervals.empty()) {
-      out.intervals.back().end = bb.mu;
-      out.intervals.back().end_error = err;
+    bool done = false;
+    for (const Bracket& k : brackets) {
+      const bool onset = k.lower.f <= 0.0;
+      auto [bb, cc] = brent(k.from, k.lower, k.upper, refine_tolerance);
+      if (failure) return failed(*failure);
+      const Trial& unstable = bb.f > 0.0 ? bb : cc;
+      const LabelledExponent& x = unstable.tracker.exponents()[unstable.tracker.most_unstable()];
+      const std::optional<double> err = crossing_error(k.from, bb, cc, k.slope, refine_tolerance);
+      if (onset) {
+        InstabilityInterval iv;
+        iv.onset = bb.mu;
+        iv.onset_error = err;
+        iv.mode = x.label;
+        // A conjugate pair crosses together; report the member with omega >= 0.
+        iv.omega = std::abs(x.omega);
+        iv.kind = classify_crossing(x.omega, opt.periodic_omega_tolerance);
+        out.intervals.push_back(iv);
+        if (out.intervals.size() == 1) out.exponents = unstable.tracker.exponents();
+        if (!opt.all_intervals) {
+          done = true;
+          break;
+        }
+      } else if (!out.intervals.empty()) {
+        out.intervals.back().end = bb.mu;
+        out.intervals.back().end_error = err;
+      }
+    }
+    if (done) break;
+    if (searched_to) {  // the next grid interval is searched already
+      before_prev = std::move(before_searched_to);
+      prev = std::move(*searched_to);
+      prev_loose = false;
+      ++i;
+      continue;
     }
     before_prev = prev.tracker;
     prev = std::move(b);
@@ -805,12 +884,36 @@ class TrackPass {
       out_.message = "at mu = " + fmt(e.mu) + ": " + r.message;
       return false;
     }
-    if (sample.status == Status::Warning) {
-      p.status = Status::Warning;
-      p.message = p.message.empty() ? sample.message : p.message + "; " + sample.message;
+    // A Warning's message, or a note that comes with an Ok sample (what it could not check).
+    if (sample.status == Status::Warning || !sample.message.empty()) {
+      p.status = worse(p.status, sample.status);
+      if (!sample.message.empty())
+        p.message = p.message.empty() ? sample.message : p.message + "; " + sample.message;
     }
     p.exponents = tracker_.exponents();
     p.stable = tracker_.max_zeta() <= 0.0;
+    // The sign of the largest zeta is known only beyond its own error: the estimate, or the
+    // rounding of Phi (a multiplier rho of Phi moves by ~ n eps ||Phi|| in the eigen-solve, its
+    // zeta by that over 2 pi |rho|), whichever is larger.
+    {
+      const LabelledExponent& x = tracker_.exponents()[tracker_.most_unstable()];
+      double uncertain = largest_zeta_error(sample).value_or(0.0);
+      const Eigen::MatrixXd& phi = sample.floquet.phi;
+      const double rho = std::abs(x.multiplier);
+      if (phi.size() > 0 && phi.allFinite() && rho > 0.0) {
+        const double n = static_cast<double>(phi.rows());
+        uncertain = std::max(uncertain, 8.0 * n * n * std::numeric_limits<double>::epsilon() *
+                                            phi.cwiseAbs().maxCoeff() / (kTwoPi * rho));
+      }
+      if (std::isfinite(x.zeta) && std::abs(x.zeta) <= uncertain) {
+        p.stable.reset();
+        p.status = worse(p.status, Status::Warning);
+        const std::string m = "stability unknown: the least stable exponent (" + x.label +
+                              ", zeta = " + fmt(x.zeta) + " per rev) is within its error (" +
+                              fmt(uncertain) + " per rev) of zero";
+        p.message = p.message.empty() ? m : p.message + "; " + m;
+      }
+    }
     if (p.status != Status::Ok) note(e.mu, p.message);
     out_.status = worse(out_.status, p.status);
     out_.points.push_back(std::move(p));

@@ -19,6 +19,7 @@ HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_
   if (!A0.allFinite()) throw InvalidInput("A0", "non-finite", "hover matrix must be finite");
 
   HoverModes out;
+  out.zeta_rounding = hover_zeta_rounding(A0);
   Eigen::EigenSolver<Eigen::MatrixXd> es(A0, true);
   if (es.info() != Eigen::Success) {
     out.status = Status::Failed;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -175,12 +176,23 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   hover_.A0 = h0set.A[0];
   Eigen::EigenSolver<Eigen::MatrixXd> es(hover_.A0);
   hover_.stable = true;
+  double largest = -std::numeric_limits<double>::infinity();
   for (Eigen::Index k = 0; k < es.eigenvalues().size(); ++k) {
     const auto lam = es.eigenvalues()(k);
     hover_.eigenvalues.push_back(lam);
     if (lam.real() > 0.0) hover_.stable = false;
+    largest = std::max(largest, lam.real());
   }
-  if (!hover_.stable && hover_.status == Status::Ok) {
+  const double rounding = hover_zeta_rounding(hover_.A0);
+  hover_.neutral = std::abs(largest) <= rounding;
+  if (hover_.neutral && hover_.status == Status::Ok) {
+    hover_.status = Status::Warning;
+    hover_.message =
+        "the stability of hover is unknown: the largest real part of an eigenvalue "
+        "of A0, " +
+        short_text(largest) + ", is within the rounding level " + short_text(rounding) +
+        " of zero (a neutral blade)";
+  } else if (!hover_.stable && hover_.status == Status::Ok) {
     hover_.status = Status::Warning;
     hover_.message =
         "the hover equilibrium itself is unstable (an eigenvalue of A0 has a "

@@ -37,8 +37,10 @@
 //     computed by the rule above;
 //   - fixed steps (e.g. TransitionOptions::Paper(), Hsu K = 50, J = 4): an unresolved exponent
 //     gives status Warning with the remedy (increase `steps`).
-// The Liouville identity det Phi = exp(int tr A) is checked as well: a relative residual far
-// above what the error estimate implies (2 pi n error) gives status Warning.  The critical
+// The Liouville identity det Phi = exp(int tr A) is checked as well, for any number of modes: a
+// relative residual far above what the error estimate (2 pi n error) and the rounding of det Phi
+// (n eps cond(Phi)) imply gives status Warning; where det Phi is below that rounding (eps
+// cond(Phi) > 1e-3) there is no residual and the message says so (status unchanged).  The critical
 // search refines mu_c with exponents resolved to 0.1 |d zeta/d mu| * tolerance and reports
 // CriticalResult::mu_c_error.
 #pragma once
@@ -143,6 +145,11 @@ class Analysis {
   const ModeSet& modes() const;
 
   const HoverResult& hover() const;
+  // "" when the operating point (pitch, inflow, hover flap deflection) is inside the validity
+  // envelope of the ordering models (rotor/validity.h); otherwise what lies outside, by name,
+  // value and limit.  point, sweep, track and critical then come back with status Warning and
+  // this in their message (every point of a sweep or track).
+  const std::string& validity() const;
   // mu in [0, kMaxAdvanceRatio] (else InvalidInput("mu", ...)).  The linear system about the
   // hover equilibrium (the paper), whatever periodic_linearization says; the system about the
   // periodic equilibrium is periodic_equilibrium(mu).linearization.

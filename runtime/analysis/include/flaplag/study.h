@@ -50,6 +50,9 @@ struct StudyRow {
   // An InvalidInput at this value (e.g. an exact-mode frequency the basis cannot reach) gives
   // status Failed with the reason as message.
   CriticalResult critical;
+  // Trimmed studies: the trim at mu_c that the row's result rests on (trimmed_critical; its
+  // problems are in critical's status and message); nullopt without mu_c or without a trim.
+  std::optional<TrimResult> trim;
 };
 
 struct StudyResult {

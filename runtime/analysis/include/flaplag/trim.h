@@ -130,13 +130,23 @@ struct TrimResult {
   // linearization included), whose thrust and first flap harmonic were trimmed; empty
   // coefficients otherwise.
   PeriodicEquilibrium equilibrium;
+  // "" when the trimmed controls, inflow and hover flap deflection are inside the validity
+  // envelope of the ordering models (rotor/validity.h); otherwise what lies outside (by name,
+  // value and limit), also in `message` with status (at least) Warning.
+  std::string validity;
   // Ok: converged.  Warning: converged but the trimmed system is unstable (the periodic
-  // solution is not what the blade settles to), or max_iterations reached (converged false;
-  // the last iterate is reported).  Failed: no periodic response, a Jacobian that does not
-  // reduce the residual (singular or unreachable target), a pitch outside (-pi/2, pi/2).
+  // solution is not what the blade settles to), max_iterations reached (converged false;
+  // the last iterate is reported), or outside the validity envelope.  Failed: no periodic
+  // response, a Jacobian that does not reduce the residual (singular or unreachable target), a
+  // pitch outside (-pi/2, pi/2).
   Status status = Status::Ok;
   std::string message;
 };
+
+// What is wrong with a trim that a result at its mu rests on: "" for a converged trim inside
+// the validity envelope; else its message (not converged, failed) or what lies outside the
+// envelope.  (An unstable trimmed system is no problem of the trim: the exponents say so.)
+std::string trim_problem(const TrimResult& t);
 
 // o.Check() first; o.kind must not be None.  p.model must emit the thrust (InvalidInput
 // "model").  mu in [0, kMaxAdvanceRatio].
@@ -147,22 +157,30 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
 
 // Stability at fixed C_T: every mu at which the continuation evaluates the Floquet exponents is
 // trimmed first (trim() above; the hover labels come from the trim at mu = 0), so mu_c is the
-// critical advance ratio of the trimmed rotor, not of the rotor at fixed theta.  A trim that
-// fails at some mu makes that evaluation Failed (message from the trim).  The options are
-// checked as by Analysis and trim() (InvalidInput).  Each evaluation costs a trim (a few
-// periodic responses) on top of the Floquet analysis.
+// critical advance ratio of the trimmed rotor, not of the rotor at fixed theta.  A result is
+// never better than the trim it rests on: a trim that fails at some mu makes that evaluation
+// Failed (message from the trim), and one that did not converge or lies outside the validity
+// envelope (trim_problem) makes the point, the sweep point or mu_c (and each interval end)
+// at least Warning, with the trim's message.  The options are checked as by Analysis and
+// trim() (InvalidInput).  Each evaluation costs a trim (a few periodic responses) on top of
+// the Floquet analysis.
+// `trims` (optional): the trims the result rests on -- the one at mu (point), one per reported
+// point (sweep, track, in order), the one at mu_c (critical; empty without mu_c).
 PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, double mu, double scan_step = 0.01);
+                          const TrimOptions& o, double mu, double scan_step = 0.01,
+                          std::vector<TrimResult>* trims = nullptr);
 SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, double mu0, double mu1, double step);
+                          const TrimOptions& o, double mu0, double mu1, double step,
+                          std::vector<TrimResult>* trims = nullptr);
 // At the given advance ratios (nondecreasing), continued from hover in steps of at most
 // scan_step (as Analysis::track).
 SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
                           const TrimOptions& o, const std::vector<double>& mus,
-                          double scan_step = 0.01);
+                          double scan_step = 0.01, std::vector<TrimResult>* trims = nullptr);
 // With p.periodic_linearization a fold of the trimmed equilibrium branch ends the search as in
 // Analysis::critical (mu_c at the fold, kind Periodic at omega = 0).
 CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOptions& t,
-                                const TrimOptions& o, const CriticalOptions& c);
+                                const TrimOptions& o, const CriticalOptions& c,
+                                std::vector<TrimResult>* trims = nullptr);
 
 }  // namespace flaplag

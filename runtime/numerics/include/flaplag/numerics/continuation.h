@@ -51,6 +51,10 @@ struct HoverModes {
   std::vector<std::complex<double>> eigenvalues;  // eig(A0), per rev
   std::vector<Eigen::VectorXcd> eigenvectors;     // unit 2-norm
   std::vector<std::string> labels;
+  // The rounding level of the eigenvalues' real parts (per rev; label_hover_modes: a few ulps
+  // times ||A0||): a real part within it of the stability threshold leaves hover's stability
+  // unknown (find_critical).  0: exact.
+  double zeta_rounding = 0.0;
   Status status = Status::Ok;
   std::string message;
 };
@@ -153,11 +157,16 @@ struct PointResult {
   double mu = 0.0;
   std::vector<LabelledExponent> exponents;  // hover order (Analysis sorts by label, then omega)
   // |det Phi - exp int tr A| / exp int tr A; nullopt when not representable (a multiplier
-  // underflowed to 0 while exp int tr A did not, or the reverse)
+  // underflowed to 0 while exp int tr A did not, or the reverse) or when the caller's Floquet
+  // analysis cannot check it (Analysis: det Phi below the rounding of Phi's determinant; its
+  // message says so)
   std::optional<double> liouville_residual;
   std::optional<double> error;  // estimated max zeta error, per rev (FloquetSample)
   int steps = 0;                // steps per period used (FloquetSample)
-  std::optional<bool> stable;   // all zeta <= 0; nullopt when unknown (Failed)
+  // all zeta <= 0; nullopt when unknown: Failed, or (status Warning) the largest zeta is
+  // within its own error estimate (or the rounding level of Phi) of 0, so that its sign is not
+  // known
+  std::optional<bool> stable;
   Status status = Status::Ok;
   std::string message;
 };
@@ -227,7 +236,11 @@ struct CriticalResult {
 // zeta_threshold survives moving every zeta by ten times its estimate; the two ends of a
 // bracket and the last point of a stable scan are always evaluated at scan_zeta_tolerance, so
 // the results are those of a scan at scan_zeta_tolerance throughout (evaluations counts every
-// call).  Options are checked (Check()).
+// call).  A change of sign seen at the scan resolution that is gone at mu resolved can be a
+// narrow interval next to the grid point: that grid interval and the next are searched at
+// scan_step / 10, then / 100 (every point resolved) before the change is reported as vanished
+// (status Warning).  Hover with its largest zeta within hover.zeta_rounding of the threshold
+// is of unknown stability: status Warning, no search.  Options are checked (Check()).
 CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& floquet,
                              const CriticalOptions& opt = {});
 

@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <complex>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -21,13 +22,24 @@ struct HoverResult {
   std::vector<std::string> labels;                // "flap"/"lag" per eigenvalue ("flap1", "flap2",
                                                   // ... when the model has several modes of a kind)
   bool stable = true;
+  // The least stable eigenvalue's real part is within the rounding level of zero
+  // (hover_zeta_rounding): its sign, and so the stability of hover, is unknown (status
+  // Warning; `stable` then holds only the sign found).
+  bool neutral = false;
   Status status = Status::Ok;
   std::string message;
 };
 
-// A0 is 2(M+N) x 2(M+N) in the state ordering of model_api.h (M, N >= 0, M + N >= 1).  An eigenvalue is
-// "flap" when the flap displacements g dominate its eigenvector (|g|^2 >= |h|^2) and "lag"
-// otherwise; with several modes of that kind the suffix is 1 + the index of the largest
+// The rounding level of the real parts of eig(A0), per rev: the eigen-solve is backward
+// stable, so an eigenvalue moves by about n eps ||A0|| (a few ulps of the matrix' norm); 8 n
+// eps ||A0||_F leaves room for the modest non-normality of the blade's A0.
+inline double hover_zeta_rounding(const Eigen::MatrixXd& A0) {
+  return 8.0 * static_cast<double>(A0.rows()) * std::numeric_limits<double>::epsilon() * A0.norm();
+}
+
+// A0 is 2(M+N) x 2(M+N) in the state ordering of model_api.h (M, N >= 0, M + N >= 1).  An
+// eigenvalue is "flap" when the flap displacements g dominate its eigenvector (|g|^2 >= |h|^2) and
+// "lag" otherwise; with several modes of that kind the suffix is 1 + the index of the largest
 // displacement component ("flap1", "flap2").  Throws InvalidInput for wrong sizes or NaN.
 HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_modes);
 
