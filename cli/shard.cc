@@ -265,6 +265,7 @@ std::string merge_parts(const Request& r) {
   }
   out["status"] = status;
   out["message"] = message;
+  check_merged_output(r, out);  // the text's size against --memory-limit, before making it
   return out.dump(2) + "\n";
 }
 

@@ -17,3 +17,9 @@ add_dependencies(cli_fuzz_test flaplag)
 flaplag_test(cli_studies_test nlohmann_json::nlohmann_json)
 target_compile_definitions(cli_studies_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
 add_dependencies(cli_studies_test flaplag)
+
+# The memory limit (--memory-limit): large runs refused before they allocate (maintained with
+# cli/ and runtime/analysis limits.h).
+flaplag_test(cli_limits_test flaplag_cli nlohmann_json::nlohmann_json)
+target_compile_definitions(cli_limits_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
+add_dependencies(cli_limits_test flaplag)
