@@ -378,7 +378,7 @@ class Analysis:
             if t is None:
                 raw = self._native.track(mus, ss, threads, progress, limit)
             else:
-                raw = self._native.trimmed_track(mus, ss, *t)
+                raw = self._native.trimmed_track(mus, ss, *t, progress, limit)
         elif stop is None or step is None:
             raise TypeError("sweep(start, stop, step) needs all three, or sweep(mus) an array")
         else:
@@ -390,7 +390,7 @@ class Analysis:
             if t is None:
                 raw = self._native.sweep(*grid, threads, progress, limit)
             else:
-                raw = self._native.trimmed_sweep(*grid, *t)
+                raw = self._native.trimmed_sweep(*grid, *t, progress, limit)
         return SweepResult._from(raw, self._labels())
 
     def critical(

@@ -1241,28 +1241,46 @@ PYBIND11_MODULE(_flaplag, m) {
            })
       .def("trimmed_sweep",
            [](const Analysis& a, double mu0, double mu1, double step, const std::string& kind,
-              double thrust_coefficient, double shaft_angle) {
+              double thrust_coefficient, double shaft_angle, const py::object& progress,
+              std::uint64_t memory_limit) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
-             SweepResult r;
-             {
-               py::gil_scoped_release release;
-               r = trimmed_sweep(a.parameters(), a.options(), o, mu0, mu1, step);
-             }
+             const std::size_t points = sweep_grid(mu0, mu1, step).size();
+             check_memory(sweep_memory(points, a.state_size()), memory_limit, "step",
+                          round_trip_text(step));
+             const SweepResult r = run_cancellable<SweepResult>(
+                 [&](const std::atomic<bool>* cancel, ProgressFunction report) {
+                   try {
+                     return trimmed_sweep(a.parameters(), a.options(), o, mu0, mu1, step, cancel,
+                                          report);
+                   } catch (const Cancelled&) {
+                     return SweepResult{};
+                   }
+                 },
+                 progress);
              return sweep_dict(r);
            })
       .def("trimmed_track",
            [](const Analysis& a, const std::vector<double>& mus, double scan_step,
-              const std::string& kind, double thrust_coefficient, double shaft_angle) {
+              const std::string& kind, double thrust_coefficient, double shaft_angle,
+              const py::object& progress, std::uint64_t memory_limit) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
-             SweepResult r;
-             {
-               py::gil_scoped_release release;
-               r = trimmed_track(a.parameters(), a.options(), o, mus, scan_step);
-             }
+             if (mus.size() <= static_cast<std::size_t>(kMaxContinuationSteps))
+               check_memory(sweep_memory(mus.size(), a.state_size()), memory_limit, "mu",
+                            std::to_string(mus.size()) + " advance ratios");
+             const SweepResult r = run_cancellable<SweepResult>(
+                 [&](const std::atomic<bool>* cancel, ProgressFunction report) {
+                   try {
+                     return trimmed_track(a.parameters(), a.options(), o, mus, scan_step, cancel,
+                                          report);
+                   } catch (const Cancelled&) {
+                     return SweepResult{};
+                   }
+                 },
+                 progress);
              return sweep_dict(r);
            })
       .def("trimmed_critical",

@@ -121,6 +121,7 @@ def test_sweep_reports_progress():
     calls = []
     r = an.sweep(0.0, 0.2, 0.05, progress=lambda d, n: calls.append((d, n)), threads=1)
     assert len(r.mu) == 5
+    assert np.array_equal(r.max_zeta, an.sweep(0.0, 0.2, 0.05, threads=1).max_zeta)
     assert calls and calls[-1][0] == calls[-1][1]
     assert [d for d, _ in calls] == sorted(d for d, _ in calls)
     calls.clear()
@@ -206,3 +207,14 @@ def test_a_client_without_submit_is_named(client):
     with pytest.raises(flaplag.InvalidInput) as ei:
         flaplag.map(x=("mu", [0.1]), y=("theta", [0.1]), client=client)
     assert ei.value.field == "client"
+
+
+def test_a_trimmed_sweep_reports_progress_too():
+    an = flaplag.Analysis(model="paper-cyclic")
+    calls = []
+    r = an.sweep(0.0, 0.2, 0.1, trim="thrust", progress=lambda d, n: calls.append((d, n)))
+    assert len(r.mu) == 3
+    assert calls[-1] == (3, 3)
+    # The same numbers as without progress.
+    plain = an.sweep(0.0, 0.2, 0.1, trim="thrust")
+    assert np.array_equal(r.max_zeta, plain.max_zeta)

@@ -566,37 +566,9 @@ struct Analysis::Impl {
     if (cancel == nullptr && !progress)
       return track_exponents(
           hover_modes, [this] { return function(); }, mus, step, options.zeta_tolerance, used);
-    // Every function of the stretches counts its evaluations into one ticker and looks at the
-    // cancel flag first.  The evaluations are those of the plan of track_exponents: for each
-    // advance ratio, the equal steps from the one before that reach it.
-    struct Ticker {
-      const std::atomic<bool>* cancel;
-      ProgressFunction progress;
-      std::mutex mutex;
-      std::size_t done = 0, total = 0;
-    };
-    auto ticker = std::make_shared<Ticker>();
-    ticker->cancel = cancel;
-    ticker->progress = progress;
-    double at = 0.0;
-    for (double mu : mus) {
-      const double pre = std::ceil((mu - at) / step - 1e-9);
-      ticker->total += pre > 1.0 ? static_cast<std::size_t>(pre) : 1;
-      at = mu;
-    }
-    auto make = [this, ticker]() -> FloquetFunction {
-      FloquetFunction f = function();
-      return [f, ticker](double mu, double tol) {
-        if (ticker->cancel != nullptr && ticker->cancel->load()) throw Cancelled();
-        FloquetSample sample = f(mu, tol);
-        if (ticker->progress) {
-          const std::lock_guard<std::mutex> lock(ticker->mutex);
-          ticker->done = std::min(ticker->done + 1, ticker->total);
-          ticker->progress(ticker->done, ticker->total);
-        }
-        return sample;
-      };
-    };
+    // Every function of the stretches counts its evaluations into one ticker.
+    auto ticker = std::make_shared<internal::Ticker>(mus, step, cancel, progress);
+    auto make = [this, ticker] { return internal::ticking(function(), ticker); };
     return track_exponents(hover_modes, make, mus, step, options.zeta_tolerance, used);
   }
 
