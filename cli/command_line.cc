@@ -4,15 +4,20 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
+#include <system_error>
+#include <utility>
 #include <vector>
 
 #include "flaplag/analysis.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/core/parallel.h"
+#include "flaplag/limits.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "plot.h"
+#include "shard.h"
 
 namespace flaplag::cli {
 
@@ -395,6 +400,107 @@ std::string options_block(const std::vector<OptionSpec>& options) {
 }
 
 }  // namespace
+
+namespace {
+
+// The memory a run will take, from the request alone (limits.h), against --memory-limit.  The
+// error names the option that sets the size (the larger axis of a map); a --shard part is
+// estimated for its own block.
+void check_run_memory(const Request& r) {
+  const model::ModelDescriptor* m = compiled_model(r.params.model);
+  const int state = m != nullptr ? 2 * (m->flap_modes + m->lag_modes) : 4;
+  const std::uint64_t limit = r.memory_limit;
+  switch (r.command) {
+    case Command::Map: {
+      const Request part = shard_request(r);
+      const bool y = part.y_values.size() >= part.x_values.size();
+      check_memory(map_memory(part.x_values.size(), part.y_values.size()), limit, y ? "y" : "x",
+                   std::to_string((y ? part.y_values : part.x_values).size()) + " values");
+      break;
+    }
+    case Command::Study: {
+      const Request part = shard_request(r);
+      check_memory(study_memory(part.vary_values.size(), state), limit, "values",
+                   std::to_string(part.vary_values.size()) + " values");
+      break;
+    }
+    case Command::Sweep: {
+      // The points of parse_range (the grid may add the stop: one more).
+      const double n =
+          std::floor((r.sweep_stop - r.sweep_start) / r.sweep_step * (1.0 + 1e-12)) + 1.0;
+      check_memory(sweep_memory(static_cast<std::size_t>(std::min(n, 1e15)), state), limit, "step",
+                   round_trip_text(r.sweep_step));
+      break;
+    }
+    case Command::Response:
+      check_memory(response_memory(r.samples, state), limit, "samples", std::to_string(r.samples));
+      break;
+    case Command::Simulate:
+      check_memory(simulation_memory(r.revolutions, r.samples, state, r.nonlinear), limit,
+                   "revolutions", round_trip_text(r.revolutions));
+      break;
+    default:
+      break;
+  }
+}
+
+// The length of j.dump(2): containers laid out as nlohmann::json does (one element per line,
+// two spaces per level), each scalar as its own dump.  Iterative: no recursion on nesting.
+std::uint64_t json_text_size(const nlohmann::ordered_json& root) {
+  std::uint64_t total = 0;
+  std::vector<std::pair<const nlohmann::ordered_json*, std::uint64_t>> stack{{&root, 0}};
+  while (!stack.empty()) {
+    const auto [j, depth] = stack.back();
+    stack.pop_back();
+    if (!j->is_structured()) {
+      total += j->dump().size();
+      continue;
+    }
+    const std::uint64_t n = j->size();
+    if (n == 0) {
+      total += 2;  // [] or {}
+      continue;
+    }
+    // "[\n", each element on a line of its own indented by 2 (depth + 1) and ended by ",\n"
+    // (the last by "\n"), then the closing bracket indented by 2 depth.
+    total += 2 + n * (2 * (depth + 1) + 2) - 1 + 2 * depth + 1;
+    if (j->is_object()) {
+      for (auto it = j->begin(); it != j->end(); ++it) {
+        total += nlohmann::ordered_json(it.key()).dump().size() + 2;  // "key":
+        stack.emplace_back(&it.value(), depth + 1);
+      }
+    } else {
+      for (const auto& e : *j) stack.emplace_back(&e, depth + 1);
+    }
+  }
+  return total;
+}
+
+}  // namespace
+
+void check_merged_output(const Request& r, const nlohmann::ordered_json& merged) {
+  const std::uint64_t text = json_text_size(merged) + 1;  // and the final newline
+  const MemoryEstimate e = json_output_memory(text);
+  if (e.memory <= r.memory_limit) return;
+  std::uint64_t parts = 0;
+  for (const std::string& file : r.inputs) {
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(file, ec);
+    if (!ec) parts += size;
+  }
+  std::string reason = "the merged output of " + std::to_string(r.inputs.size()) + " part" +
+                       (r.inputs.size() == 1 ? "" : "s") + " (" + memory_text(parts) +
+                       ") would be " + memory_text(text) + " of JSON, needing about " +
+                       memory_text(e.memory) + " of memory, more than the memory limit of " +
+                       memory_text(r.memory_limit) + " (`memory_limit`)";
+  if (text > 4 * parts + 65536)
+    reason +=
+        ": parts written by flaplag are as large as their merge, so a part was not made by "
+        "flaplag; raise `memory_limit` only for parts you trust";
+  else
+    reason += ": raise `memory_limit`";
+  throw InvalidInput("memory_limit", memory_text(r.memory_limit), reason);
+}
 
 std::string reason_of(const InvalidInput& e) {
   const std::string what = e.what();
@@ -787,6 +893,9 @@ Request CommandLine::interpret() const {
       throw InvalidInput(g->spelling, shown(g->text), "must end in .svg or .png");
     r.plot = g->text;
   }
+  if (const Given* g = given("--memory-limit"))
+    r.memory_limit = parse_memory_size(g->spelling, g->text);
+  check_run_memory(r);
   return r;
 }
 

@@ -9,11 +9,14 @@
 // repeated option wins.
 #pragma once
 
+#include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "flaplag/core/errors.h"
+#include "flaplag/limits.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/rotor/parameters.h"
@@ -68,12 +71,21 @@ struct Request {
   bool forced = false, nonlinear = false;
   // point, sweep, critical, trim: --trim, --thrust-coefficient, --shaft-angle
   TrimOptions trim;
+  // sweep, study, map, response, simulate, merge: --memory-limit (limits.h), checked against
+  // the run's estimate by interpret() (merge: by check_merged_output)
+  std::uint64_t memory_limit = kDefaultMemoryLimit;
   // The arguments as given (after a case file is expanded), for the "case" of JSON outputs.
   std::vector<std::string> arguments;
 };
 
 // The reason part of an InvalidInput message ("name = value: reason").
 std::string reason_of(const InvalidInput& e);
+
+// flaplag merge, before the text is made: throws InvalidInput("--memory-limit", ...) when the
+// JSON text of `merged` (dump(2), computed exactly without making it) and the documents behind
+// it need more than r.memory_limit (limits.h json_output_memory), saying how large the parts
+// r.inputs are: a part that grows a thousandfold when written out was not written by flaplag.
+void check_merged_output(const Request& r, const nlohmann::ordered_json& merged);
 
 class CommandLine {
  public:

@@ -11,6 +11,7 @@
 
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/limits.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/trim.h"
@@ -176,9 +177,18 @@ std::vector<OptionSpec> batch_options() {
       flag_option("--quiet", "no progress bar on stderr (shown only on a terminal, after 1 s)")};
 }
 
+// The runs whose size the user chooses (cells, values, points, samples): their memory is
+// estimated before they start and checked against this budget (limits.h).
+OptionSpec memory_limit_option() {
+  return value_option("--memory-limit", "SIZE",
+                      "the memory this run may take, e.g. 512M, 8G (units K, M, G, T: powers of "
+                      "1024); a larger run is refused before it starts, naming its estimate",
+                      memory_text(kDefaultMemoryLimit), {"memory_limit"});
+}
+
 // flaplag merge and flaplag plot read files given as arguments.
 std::vector<OptionSpec> file_tool_options(Command c) {
-  if (c == Command::Merge) return {output_options()[1]};  // -o: the output is JSON
+  if (c == Command::Merge) return {output_options()[1], memory_limit_option()};  // -o: JSON
   return {
       value_option("--plot", "FILE.svg|FILE.png", "the picture to draw (gnuplot)", "", {"plot"}),
       value_option("--label", "TEXT",
@@ -325,6 +335,9 @@ std::vector<OptionSpec> build(Command c) {
       c == Command::Map)
     append(v, trim_options(false));
   if (c == Command::Study || c == Command::Map) append(v, batch_options());
+  if (c == Command::Sweep || c == Command::Study || c == Command::Map || c == Command::Response ||
+      c == Command::Simulate)
+    v.push_back(memory_limit_option());
   append(v, rotor_options());
   if (c != Command::System && c != Command::Response && c != Command::Simulate &&
       c != Command::Trim)

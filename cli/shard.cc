@@ -300,8 +300,10 @@ std::string part_name(std::size_t index, std::size_t count) {
 }
 
 // The parts joined in line order: the first part's document without its "shard", the data of
-// all parts in order, the worst status and the first message.
-std::string assemble(const Part& head, const std::map<std::size_t, const Part*>& by_index) {
+// all parts in order, the worst status and the first message.  The text's size is checked
+// against --memory-limit before it is made.
+std::string assemble(const Request& r, const Part& head,
+                     const std::map<std::size_t, const Part*>& by_index) {
   Json out = head.json;
   out.erase("shard");
   if (out.contains("case") && out["case"].is_object()) out["case"].erase("shard");
@@ -334,6 +336,7 @@ std::string assemble(const Part& head, const std::map<std::size_t, const Part*>&
   }
   out["status"] = status;
   out["message"] = message;
+  check_merged_output(r, out);
   return out.dump(2) + "\n";
 }
 
@@ -428,7 +431,7 @@ std::string merge_parts(const Request& r) {
                            missing + " missing (given: " + given + ")");
   }
   // Every part checked: the merged file is head.total lines of the case's grid.
-  return assemble(head, by_index);
+  return assemble(r, head, by_index);
 }
 
 }  // namespace flaplag::cli

@@ -40,3 +40,9 @@ add_dependencies(file_fuzz_test flaplag)
 flaplag_test(cli_honest_test nlohmann_json::nlohmann_json)
 target_compile_definitions(cli_honest_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
 add_dependencies(cli_honest_test flaplag)
+
+# The memory limit (--memory-limit): large runs refused before they allocate (maintained with
+# cli/ and runtime/analysis limits.h).
+flaplag_test(cli_limits_test flaplag_cli nlohmann_json::nlohmann_json)
+target_compile_definitions(cli_limits_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
+add_dependencies(cli_limits_test flaplag)

@@ -143,6 +143,23 @@ def _real_array(field, values):
     return [float(v) for v in np.atleast_1d(a).astype(float)]
 
 
+def _real_array_np(field, values):
+    """As _real_array, as a float64 numpy array (no list of Python floats)."""
+    if isinstance(values, (str, bytes)):
+        raise _invalid(InvalidInput, field, values, "must be real numbers")
+    try:
+        a = np.asarray(values)
+    except Exception:  # ragged input
+        raise _invalid(InvalidInput, field, values, "must be real numbers") from None
+    if a.dtype == bool or not (
+        np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.integer)
+    ):
+        raise _invalid(InvalidInput, field, values, "must be real numbers")
+    if a.ndim > 1:
+        raise _invalid(InvalidInput, field, a, "must be one-dimensional", f"<{a.ndim}-D array>")
+    return np.ascontiguousarray(np.atleast_1d(a), dtype=float)
+
+
 def _coerce(field, value):
     row = _ALL_FIELDS[field]
     t = row["type"]
@@ -239,6 +256,23 @@ def _trim_request(trim, thrust_coefficient, shaft_angle):
     return (trim, _real("thrust_coefficient", ct), _real("shaft_angle", alpha))
 
 
+def _memory_limit(value):
+    """The memory limit in bytes: None (the default, 2 GiB), a number of bytes or a size text
+    such as '8G' or '512M' (units K, M, G, T, P: powers of 1024)."""
+    if value is None:
+        return _flaplag.default_memory_limit
+    if isinstance(value, np.generic):
+        value = value.item()
+    return _flaplag.memory_limit(value)
+
+
+def _progress(progress):
+    if progress is not None and not callable(progress):
+        raise _invalid(InvalidInput, "progress", progress,
+                       "must be None or a function progress(done, total)")
+    return progress
+
+
 def _rebuild(kwargs):
     return Analysis(**kwargs)
 
@@ -313,6 +347,8 @@ class Analysis:
         thrust_coefficient=None,
         shaft_angle=None,
         threads=0,
+        progress=None,
+        memory_limit=None,
     ) -> SweepResult:
         """Exponents along advance ratios, continued from hover.
 
@@ -323,19 +359,38 @@ class Analysis:
         trim, thrust_coefficient, shaft_angle: at fixed C_T, as point().
         threads: worker threads (0: all cores; the result does not depend on it; a trimmed
         sweep runs on one).
+        progress: called as progress(evaluations_done, evaluations_total) from the calling
+        thread (the steps from hover included); Ctrl-C stops the sweep (KeyboardInterrupt).
+        memory_limit: the memory the result may take (bytes, or a size such as '8G'; default
+        2 GiB): a sweep estimated to need more is refused before it starts.
         """
         t = _trim_request(trim, thrust_coefficient, shaft_angle)
         threads = _int("threads", threads)
+        progress = _progress(progress)
+        limit = _memory_limit(memory_limit)
+        # The continuation step: the step between the points of a grid, scan_step between
+        # given advance ratios; checked in both forms.
+        ss = _real("scan_step", scan_step)
+        if not (math.isfinite(ss) and ss > 0.0):
+            raise _invalid(InvalidInput, "scan_step", ss, "must be finite and > 0")
         if stop is None and step is None:
-            mus, ss = _real_array("mu", mu), _real("scan_step", scan_step)
-            raw = self._native.track(mus, ss, threads) if t is None else self._native.trimmed_track(
-                mus, ss, *t)
+            mus = _real_array("mu", mu)
+            if t is None:
+                raw = self._native.track(mus, ss, threads, progress, limit)
+            else:
+                raw = self._native.trimmed_track(mus, ss, *t, progress, limit)
         elif stop is None or step is None:
             raise TypeError("sweep(start, stop, step) needs all three, or sweep(mus) an array")
         else:
+            if ss != 0.01:
+                raise _invalid(InvalidInput, "scan_step", scan_step,
+                               "applies to sweep(mus) only: sweep(start, stop, step) continues "
+                               "in steps of `step`")
             grid = (_real("mu0", mu), _real("mu1", stop), _real("step", step))
-            raw = self._native.sweep(*grid, threads) if t is None else self._native.trimmed_sweep(
-                *grid, *t)
+            if t is None:
+                raw = self._native.sweep(*grid, threads, progress, limit)
+            else:
+                raw = self._native.trimmed_sweep(*grid, *t, progress, limit)
         return SweepResult._from(raw, self._labels())
 
     def critical(
@@ -380,17 +435,22 @@ class Analysis:
         every spanwise integral and generalized mass by name."""
         return SystemResult._from(self._native.snapshot(_real("mu", mu), _real("psi", psi)))
 
-    def modes(self, x=101, *, derivative=0) -> ModeShapes:
+    def modes(self, x=101, *, derivative=0, memory_limit=None) -> ModeShapes:
         """The blade's mode shapes (flap eta_k, lag gamma_m) at stations x in [0, 1] (x0 = r/l):
         an array of stations, or a number of equally spaced ones (default 101).  derivative:
-        0..3, the d/dx0 derivative to sample."""
-        if isinstance(x, numbers.Integral) and not isinstance(x, bool):
+        0..3, the d/dx0 derivative to sample.  memory_limit: as sweep() (default 2 GiB)."""
+        limit = _memory_limit(memory_limit)
+        if isinstance(x, numbers.Integral) and not isinstance(x, (bool, np.bool_)):
             if x < 2:
                 raise _invalid(InvalidInput, "x", x, "need at least 2 stations")
-            stations = np.linspace(0.0, 1.0, int(x)).tolist()
+            if x > 2**62:
+                raise _invalid(InvalidInput, "x", x, "too many stations")
+            stations = int(x)
         else:
-            stations = _real_array("x", x)
-        return ModeShapes._from(self._native.modes(stations, _int("derivative", derivative)))
+            stations = _real_array_np("x", x)
+        return ModeShapes._from(
+            self._native.modes(stations, _int("derivative", derivative), limit)
+        )
 
     def response(
         self,
@@ -399,17 +459,19 @@ class Analysis:
         samples=RESPONSE_DEFAULTS["samples"],
         steps=RESPONSE_DEFAULTS["steps"],
         tolerance=RESPONSE_DEFAULTS["tolerance"],
+        memory_limit=None,
     ) -> ResponseResult:
         """The periodic forced response at mu (C++ Analysis::response, the command line's
         ``flaplag response``): the tip deflections at ``samples`` azimuths psi_k = 2 pi k / n
         over one revolution and their harmonics.  steps: RK4 steps per period (0: automatic,
-        doubled until y(0) agrees to ``tolerance``, relative)."""
+        doubled until y(0) agrees to ``tolerance``, relative).  memory_limit: as sweep()."""
         return ResponseResult._from(
             self._native.response(
                 _real("mu", mu),
                 _int("samples", samples),
                 _int("steps", steps),
                 _real("tolerance", tolerance),
+                _memory_limit(memory_limit),
             )
         )
 
@@ -423,6 +485,7 @@ class Analysis:
         samples_per_rev=SIMULATION_DEFAULTS["samples_per_rev"],
         steps_per_rev=SIMULATION_DEFAULTS["steps_per_rev"],
         nonlinear=False,
+        memory_limit=None,
     ) -> SimulationResult:
         """Integrates the linear system at mu from y(0) = y0 (C++ Analysis::simulate, the
         command line's ``flaplag simulate``): y0 a number (every state, the command line's
@@ -434,7 +497,8 @@ class Analysis:
         loads (e.g. model='paper-nonlinear'), the full state from the periodic equilibrium
         q°(psi) plus y0; flap_tip, lag_tip are then the deviation from q°(psi) (their growth
         rates compare with the largest zeta about it), flap_total, lag_total the total tip
-        deflections.  forced must stay False (the loads are part of the equations)."""
+        deflections.  forced must stay False (the loads are part of the equations).
+        memory_limit: as sweep() (default 2 GiB): about five million samples fit in it."""
         n = self._native.state_size()
         if isinstance(y0, numbers.Real) and not isinstance(y0, (bool, np.bool_)):
             start = [float(y0)] * n
@@ -449,6 +513,7 @@ class Analysis:
                 _int("samples_per_rev", samples_per_rev),
                 _int("steps_per_rev", steps_per_rev),
                 _flag("nonlinear", nonlinear),
+                _memory_limit(memory_limit),
             )
         )
 

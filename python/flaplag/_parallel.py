@@ -19,6 +19,8 @@ from ._analysis import (
     _flag,
     _int,
     _invalid,
+    _memory_limit,
+    _progress,
     _real,
     _real_array,
     _text,
@@ -59,6 +61,30 @@ def _trim_metadata(t):
     return {"kind": t[0], "thrust_coefficient": t[1], "shaft_angle": t[2]}
 
 
+def _distribution(client, chunk_lines):
+    """Checks client= and chunk_lines= before any work: a client must have submit(), and
+    chunk_lines (an integer >= 1) applies only with a client."""
+    if client is not None and not callable(getattr(client, "submit", None)):
+        raise _invalid(
+            InvalidInput,
+            "client",
+            client,
+            "must be a dask.distributed.Client or an executor with submit() "
+            "(concurrent.futures), or None for this machine's threads",
+        )
+    if chunk_lines is not None:
+        lines = _int("chunk_lines", chunk_lines)
+        if lines < 1:
+            raise _invalid(InvalidInput, "chunk_lines", chunk_lines, "must be >= 1")
+        if client is None:
+            raise _invalid(
+                InvalidInput,
+                "chunk_lines",
+                chunk_lines,
+                "applies only with client= (without a client the run is not split into chunks)",
+            )
+
+
 def _chunks(n, client, chunk_lines):
     """Slices of range(n): chunk_lines long, or about four per worker of the client."""
     if chunk_lines is None:
@@ -93,11 +119,13 @@ def _gather(client, fn, jobs, progress, total):
 
 
 def _study_chunk(
-    rotor, transition, flap_modes, lag_modes, parameter, values, critical, trim, threads, n
+    rotor, transition, flap_modes, lag_modes, parameter, values, critical, trim, threads,
+    memory_limit, n
 ):
     """One slice of a study (runs on a worker; n = len(values), for progress)."""
     return _flaplag.study(
-        rotor, transition, flap_modes, lag_modes, parameter, values, critical, threads, None, trim
+        rotor, transition, flap_modes, lag_modes, parameter, values, critical, threads, None, trim,
+        memory_limit
     )
 
 
@@ -118,6 +146,7 @@ def study(
     progress=None,
     client=None,
     chunk_lines=None,
+    memory_limit=None,
     **parameters,
 ) -> StudyResult:
     """mu_c and every instability interval versus one rotor parameter.
@@ -141,7 +170,12 @@ def study(
     into chunks of chunk_lines (default: about four chunks per worker) and run on its workers
     (each chunk with ``threads`` threads; 0 means 1 with a client), giving exactly the local
     result.  Ctrl-C cancels a local run (KeyboardInterrupt).
+    memory_limit: the memory the result may take (bytes, or a size such as '8G'; default
+    2 GiB): a study estimated to need more is refused before it starts.
     """
+    _distribution(client, chunk_lines)
+    progress = _progress(progress)
+    limit = _memory_limit(memory_limit)
     rotor, transition, flap_modes, lag_modes = _base(parameters, [parameter])
     parameter = _text("parameter", parameter)
     vals = _real_array("values", values)
@@ -160,17 +194,17 @@ def study(
     if client is None:
         raw = _flaplag.study(
             rotor, transition, flap_modes, lag_modes, parameter, vals, critical, threads,
-            progress, t
+            progress, t, limit
         )
         return StudyResult._from(parameter, raw, metadata)
     # Check the whole study here (a worker sees only its slice).
     _flaplag.check_study(
-        rotor, transition, flap_modes, lag_modes, parameter, vals, critical, threads, t
+        rotor, transition, flap_modes, lag_modes, parameter, vals, critical, threads, t, limit
     )
     threads = threads or 1
     jobs = [
         (rotor, transition, flap_modes, lag_modes, parameter, vals[s], critical, t, threads,
-         len(vals[s]))
+         limit, len(vals[s]))
         for s in _chunks(len(vals), client, chunk_lines)
     ]
     parts = _gather(client, _study_chunk, jobs, progress, len(vals))
@@ -191,11 +225,13 @@ def _axis(name, axis):
 
 
 def _map_chunk(
-    rotor, transition, flap_modes, lag_modes, x, xv, y, yv, mu, scan_step, trim, threads, n
+    rotor, transition, flap_modes, lag_modes, x, xv, y, yv, mu, scan_step, trim, threads,
+    memory_limit, n
 ):
     """One slice of a map (runs on a worker; n = the number of lines, for progress)."""
     return _flaplag.map(
-        rotor, transition, flap_modes, lag_modes, x, xv, y, yv, mu, scan_step, threads, None, trim
+        rotor, transition, flap_modes, lag_modes, x, xv, y, yv, mu, scan_step, threads, None, trim,
+        memory_limit
     )
 
 
@@ -212,6 +248,7 @@ def map(
     progress=None,
     client=None,
     chunk_lines=None,
+    memory_limit=None,
     **parameters,
 ) -> MapResult:
     """A stability map: the largest damping exponent zeta [per rev] over a grid.
@@ -233,7 +270,12 @@ def map(
     default: about four chunks per worker), run on its workers with ``threads`` threads each
     (0 means 1 with a client), and assembled into exactly the array a local run returns.
     Ctrl-C cancels a local run (KeyboardInterrupt).
+    memory_limit: the memory the result may take (bytes, or a size such as '8G'; default
+    2 GiB; about two million cells fit in it): a larger map is refused before it starts.
     """
+    _distribution(client, chunk_lines)
+    progress = _progress(progress)
+    limit = _memory_limit(memory_limit)
     xname, xv = _axis("x", x)
     yname, yv = _axis("y", y)
     rotor, transition, flap_modes, lag_modes = _base(parameters, [xname, yname])
@@ -246,18 +288,22 @@ def map(
     )
     common = (rotor, transition, flap_modes, lag_modes)
     if client is None:
-        raw = _flaplag.map(*common, xname, xv, yname, yv, mu, scan_step, threads, progress, t)
+        raw = _flaplag.map(
+            *common, xname, xv, yname, yv, mu, scan_step, threads, progress, t, limit
+        )
         return MapResult._assemble(xname, yname, [raw], 0, metadata)
     # The lines: along mu, one per value of the other axis; without mu, the rows.
     axis = 1 if yname == "mu" else 0
     lines = xv if axis == 1 else yv
     # Check the whole map here (a worker sees only its slice).
-    _flaplag.check_map(*common, xname, xv, yname, yv, mu, scan_step, threads, t)
+    _flaplag.check_map(*common, xname, xv, yname, yv, mu, scan_step, threads, t, limit)
     threads = threads or 1
     jobs = []
     for s in _chunks(len(lines), client, chunk_lines):
         cx, cy = (xv[s], yv) if axis == 1 else (xv, yv[s])
-        jobs.append((*common, xname, cx, yname, cy, mu, scan_step, t, threads, len(lines[s])))
+        jobs.append(
+            (*common, xname, cx, yname, cy, mu, scan_step, t, threads, limit, len(lines[s]))
+        )
     parts = _gather(client, _map_chunk, jobs, progress, len(lines))
     return MapResult._assemble(xname, yname, parts, axis, metadata)
 

@@ -35,6 +35,7 @@
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/limits.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/study.h"
 #include "flaplag/trim.h"
@@ -102,6 +103,8 @@ py::object optional(const std::optional<bool>& v) {
 }
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+std::string values_text(std::size_t n) { return std::to_string(n) + " values"; }
 
 // The value of a parameter field, for messages.
 std::string shown(const py::handle& v) { return py::repr(v).cast<std::string>(); }
@@ -400,26 +403,55 @@ py::dict snapshot_dict(const Analysis& an, const SystemSnapshot& s) {
   return d;
 }
 
-py::dict modes_dict(const ModeSet& modes, const std::vector<double>& x, int derivative) {
+// The stations: an array of them, or (an integer n) n equally spaced ones over [0, 1], made
+// here so that no list of n Python floats is built first.  Checked against the memory limit
+// before anything is allocated; the shapes are sampled with the GIL released.
+py::dict modes_dict(const ModeSet& modes, const py::object& stations, int derivative,
+                    std::uint64_t memory_limit) {
   if (derivative < 0 || derivative > 3)
     throw InvalidInput("derivative", std::to_string(derivative), "must be 0, 1, 2 or 3");
-  for (double v : x) {
-    if (!(v >= 0.0 && v <= 1.0))
-      throw InvalidInput("x", round_trip_text(v), "stations must be in [0, 1] (x0 = r / l)");
+  const int shapes = static_cast<int>(modes.flap.size() + modes.lag.size());
+  py::array_t<double> x;
+  if (py::isinstance<py::int_>(stations)) {
+    const long long n = stations.cast<long long>();
+    if (n < 2) throw InvalidInput("x", std::to_string(n), "need at least 2 stations");
+    check_memory(stations_memory(static_cast<std::size_t>(n), shapes), memory_limit, "x",
+                 std::to_string(n));
+    x = py::array_t<double>(static_cast<py::ssize_t>(n));
+    double* p = x.mutable_data();
+    {
+      // numpy.linspace(0, 1, n), bit for bit: i * (1 / (n - 1)), the last exactly 1.
+      py::gil_scoped_release release;
+      const double step = 1.0 / static_cast<double>(n - 1);
+      for (long long i = 0; i < n; ++i) p[i] = static_cast<double>(i) * step + 0.0;
+      p[n - 1] = 1.0;
+    }
+  } else {
+    x = stations.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+    if (x.ndim() != 1) throw InvalidInput("x", "an array", "must be one-dimensional");
+    check_memory(stations_memory(static_cast<std::size_t>(x.size()), shapes), memory_limit, "x",
+                 values_text(static_cast<std::size_t>(x.size())));
+    for (py::ssize_t i = 0; i < x.size(); ++i) {
+      const double v = x.data()[i];
+      if (!(v >= 0.0 && v <= 1.0))
+        throw InvalidInput("x", round_trip_text(v), "stations must be in [0, 1] (x0 = r / l)");
+    }
   }
-  auto sample = [&](const std::vector<std::shared_ptr<const ModeShape>>& shapes) {
-    py::array_t<double> a(
-        {static_cast<py::ssize_t>(shapes.size()), static_cast<py::ssize_t>(x.size())});
-    auto r = a.mutable_unchecked<2>();
-    for (std::size_t k = 0; k < shapes.size(); ++k)
-      for (std::size_t q = 0; q < x.size(); ++q)
-        r(static_cast<py::ssize_t>(k), static_cast<py::ssize_t>(q)) =
-            shapes[k]->value(derivative, x[q]);
+  const std::size_t n = static_cast<std::size_t>(x.size());
+  const double* xs = x.data();
+  auto sample = [&](const std::vector<std::shared_ptr<const ModeShape>>& set) {
+    py::array_t<double> a({static_cast<py::ssize_t>(set.size()), static_cast<py::ssize_t>(n)});
+    double* out = a.mutable_data();
+    {
+      py::gil_scoped_release release;
+      for (std::size_t k = 0; k < set.size(); ++k)
+        for (std::size_t q = 0; q < n; ++q) out[k * n + q] = set[k]->value(derivative, xs[q]);
+    }
     return a;
   };
   py::dict d;
   d["kind"] = modes.kind;
-  d["x"] = to_numpy(x);
+  d["x"] = x;
   d["derivative"] = derivative;
   d["flap"] = sample(modes.flap);
   d["lag"] = sample(modes.lag);
@@ -549,12 +581,32 @@ StudyOptions study_options(const std::string& parameter, const py::handle& value
   return o;
 }
 
+// 2 (M + N) of the model of p.
+int state_size_of(const RotorParameters& p) {
+  const model::ModelDescriptor& m = find_model(p.model);
+  return 2 * (m.flap_modes + m.lag_modes);
+}
+
+void check_study_memory(const RotorParameters& base, const StudyOptions& o,
+                        std::uint64_t memory_limit) {
+  check_memory(study_memory(o.values.size(), state_size_of(base)), memory_limit, "values",
+               values_text(o.values.size()));
+}
+
+void check_map_memory(const MapOptions& o, std::uint64_t memory_limit) {
+  const bool y = o.y.values.size() >= o.x.values.size();
+  check_memory(map_memory(o.x.values.size(), o.y.values.size()), memory_limit, y ? "y" : "x",
+               values_text((y ? o.y : o.x).values.size()));
+}
+
 py::dict study(const py::dict& params, const py::dict& transition, int flap_modes, int lag_modes,
                const std::string& parameter, const py::handle& values, const py::dict& critical,
-               int threads, const py::object& progress, const py::object& trim_request) {
+               int threads, const py::object& progress, const py::object& trim_request,
+               std::uint64_t memory_limit) {
   const RotorParameters base = base_parameters(params, flap_modes, lag_modes);
   const TransitionOptions t = transition_options(transition);
   const StudyOptions o = study_options(parameter, values, critical, threads, trim_request);
+  check_study_memory(base, o, memory_limit);
   const bool trimmed = o.trim.kind != TrimKind::None;
   // A trimmed row reports the trim at its mu_c (theta0, theta1c, theta1s, lambda there), as
   // `flaplag critical --trim` does: the trim the row's search made there (StudyRow::trim).
@@ -598,10 +650,11 @@ py::dict stability_map(const py::dict& params, const py::dict& transition, int f
                        int lag_modes, const std::string& x, const py::handle& x_values,
                        const std::string& y, const py::handle& y_values, double mu,
                        double scan_step, int threads, const py::object& progress,
-                       const py::object& trim) {
+                       const py::object& trim, std::uint64_t memory_limit) {
   const RotorParameters base = base_parameters(params, flap_modes, lag_modes);
   const TransitionOptions t = transition_options(transition);
   const MapOptions o = map_options(x, x_values, y, y_values, mu, scan_step, threads, trim);
+  check_map_memory(o, memory_limit);
   const MapResult r = run_cancellable<MapResult>(
       [&](const std::atomic<bool>* cancel, ProgressFunction report) {
         return run_map(base, t, o, cancel, report);
@@ -1011,22 +1064,40 @@ PYBIND11_MODULE(_flaplag, m) {
              }
              return point_dict(r);
            })
+      // sweep and track: progress(evaluations done, in all) and Ctrl-C as study and map.
       .def("sweep",
-           [](const Analysis& a, double mu0, double mu1, double step, int threads) {
-             SweepResult r;
-             {
-               py::gil_scoped_release release;
-               r = a.sweep(mu0, mu1, step, threads);
-             }
+           [](const Analysis& a, double mu0, double mu1, double step, int threads,
+              const py::object& progress, std::uint64_t memory_limit) {
+             // The grid's own checks first (they name mu0, mu1, step), then its size.
+             const std::size_t points = sweep_grid(mu0, mu1, step).size();
+             check_memory(sweep_memory(points, a.state_size()), memory_limit, "step",
+                          round_trip_text(step));
+             const SweepResult r = run_cancellable<SweepResult>(
+                 [&](const std::atomic<bool>* cancel, ProgressFunction report) {
+                   try {
+                     return a.sweep(mu0, mu1, step, threads, cancel, report);
+                   } catch (const Cancelled&) {
+                     return SweepResult{};  // run_cancellable raises what cancelled it
+                   }
+                 },
+                 progress);
              return sweep_dict(r);
            })
       .def("track",
-           [](const Analysis& a, const std::vector<double>& mus, double scan_step, int threads) {
-             SweepResult r;
-             {
-               py::gil_scoped_release release;
-               r = a.track(mus, scan_step, threads);
-             }
+           [](const Analysis& a, const std::vector<double>& mus, double scan_step, int threads,
+              const py::object& progress, std::uint64_t memory_limit) {
+             if (mus.size() <= static_cast<std::size_t>(kMaxContinuationSteps))
+               check_memory(sweep_memory(mus.size(), a.state_size()), memory_limit, "mu",
+                            std::to_string(mus.size()) + " advance ratios");
+             const SweepResult r = run_cancellable<SweepResult>(
+                 [&](const std::atomic<bool>* cancel, ProgressFunction report) {
+                   try {
+                     return a.track(mus, scan_step, threads, cancel, report);
+                   } catch (const Cancelled&) {
+                     return SweepResult{};
+                   }
+                 },
+                 progress);
              return sweep_dict(r);
            })
       .def("critical",
@@ -1050,14 +1121,20 @@ PYBIND11_MODULE(_flaplag, m) {
              }
              return snapshot_dict(a, s);
            })
-      .def("modes", [](const Analysis& a, const std::vector<double>& x,
-                       int derivative) { return modes_dict(a.modes(), x, derivative); })
+      .def("modes",
+           [](const Analysis& a, const py::object& x, int derivative, std::uint64_t memory_limit) {
+             return modes_dict(a.modes(), x, derivative, memory_limit);
+           })
       .def("response",
-           [](const Analysis& a, double mu, int samples, int steps, double tolerance) {
+           [](const Analysis& a, double mu, int samples, int steps, double tolerance,
+              std::uint64_t memory_limit) {
              ResponseOptions o;
              o.samples = samples;
              o.steps = steps;
              o.tolerance = tolerance;
+             o.Check();
+             check_memory(response_memory(samples, a.state_size()), memory_limit, "samples",
+                          std::to_string(samples));
              ForcedResponse f;
              {
                py::gil_scoped_release release;
@@ -1068,12 +1145,17 @@ PYBIND11_MODULE(_flaplag, m) {
       .def("state_size", &Analysis::state_size)
       .def("simulate",
            [](const Analysis& a, double mu, const std::vector<double>& y0, bool forced,
-              double revolutions, int samples_per_rev, int steps_per_rev, bool nonlinear) {
+              double revolutions, int samples_per_rev, int steps_per_rev, bool nonlinear,
+              std::uint64_t memory_limit) {
              SimulationOptions o;
              o.revolutions = revolutions;
              o.samples_per_rev = samples_per_rev;
              o.steps_per_rev = steps_per_rev;
              o.nonlinear = nonlinear;
+             o.Check();
+             check_memory(
+                 simulation_memory(revolutions, samples_per_rev, a.state_size(), nonlinear),
+                 memory_limit, "revolutions", round_trip_text(revolutions));
              const Eigen::VectorXd y =
                  Eigen::Map<const Eigen::VectorXd>(y0.data(), static_cast<Eigen::Index>(y0.size()));
              TipSimulation t;
@@ -1151,28 +1233,46 @@ PYBIND11_MODULE(_flaplag, m) {
            })
       .def("trimmed_sweep",
            [](const Analysis& a, double mu0, double mu1, double step, const std::string& kind,
-              double thrust_coefficient, double shaft_angle) {
+              double thrust_coefficient, double shaft_angle, const py::object& progress,
+              std::uint64_t memory_limit) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
-             SweepResult r;
-             {
-               py::gil_scoped_release release;
-               r = trimmed_sweep(a.parameters(), a.options(), o, mu0, mu1, step);
-             }
+             const std::size_t points = sweep_grid(mu0, mu1, step).size();
+             check_memory(sweep_memory(points, a.state_size()), memory_limit, "step",
+                          round_trip_text(step));
+             const SweepResult r = run_cancellable<SweepResult>(
+                 [&](const std::atomic<bool>* cancel, ProgressFunction report) {
+                   try {
+                     return trimmed_sweep(a.parameters(), a.options(), o, mu0, mu1, step, cancel,
+                                          report);
+                   } catch (const Cancelled&) {
+                     return SweepResult{};
+                   }
+                 },
+                 progress);
              return sweep_dict(r);
            })
       .def("trimmed_track",
            [](const Analysis& a, const std::vector<double>& mus, double scan_step,
-              const std::string& kind, double thrust_coefficient, double shaft_angle) {
+              const std::string& kind, double thrust_coefficient, double shaft_angle,
+              const py::object& progress, std::uint64_t memory_limit) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
-             SweepResult r;
-             {
-               py::gil_scoped_release release;
-               r = trimmed_track(a.parameters(), a.options(), o, mus, scan_step);
-             }
+             if (mus.size() <= static_cast<std::size_t>(kMaxContinuationSteps))
+               check_memory(sweep_memory(mus.size(), a.state_size()), memory_limit, "mu",
+                            std::to_string(mus.size()) + " advance ratios");
+             const SweepResult r = run_cancellable<SweepResult>(
+                 [&](const std::atomic<bool>* cancel, ProgressFunction report) {
+                   try {
+                     return trimmed_track(a.parameters(), a.options(), o, mus, scan_step, cancel,
+                                          report);
+                   } catch (const Cancelled&) {
+                     return SweepResult{};
+                   }
+                 },
+                 progress);
              return sweep_dict(r);
            })
       .def("trimmed_critical",
@@ -1205,20 +1305,34 @@ PYBIND11_MODULE(_flaplag, m) {
 
   m.def("study", &study);
   m.def("map", &stability_map);
+  m.attr("default_memory_limit") = kDefaultMemoryLimit;
+  // memory_limit= as given: a number of bytes or a size text ("8G"); the bytes.
+  m.def("memory_limit", [](const py::object& v) -> std::uint64_t {
+    if (py::isinstance<py::str>(v)) return parse_memory_size("memory_limit", v.cast<std::string>());
+    if (py::isinstance<py::bool_>(v) ||
+        !(py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v)))
+      throw InvalidInput("memory_limit", shown(v),
+                         "must be a number of bytes or a size such as '8G' or '512M'");
+    return checked_memory_size("memory_limit", v.cast<double>());
+  });
   // The checks of study() / map() without the work (for work sent to other processes).
-  m.def("check_study", [](const py::dict& params, const py::dict& transition, int flap_modes,
-                          int lag_modes, const std::string& parameter, const py::handle& values,
-                          const py::dict& critical, int threads, const py::object& trim) {
-    base_parameters(params, flap_modes, lag_modes);
-    transition_options(transition);
-    study_options(parameter, values, critical, threads, trim);
-  });
-  m.def("check_map", [](const py::dict& params, const py::dict& transition, int flap_modes,
-                        int lag_modes, const std::string& x, const py::handle& x_values,
-                        const std::string& y, const py::handle& y_values, double mu,
-                        double scan_step, int threads, const py::object& trim) {
-    base_parameters(params, flap_modes, lag_modes);
-    transition_options(transition);
-    map_options(x, x_values, y, y_values, mu, scan_step, threads, trim);
-  });
+  m.def("check_study",
+        [](const py::dict& params, const py::dict& transition, int flap_modes, int lag_modes,
+           const std::string& parameter, const py::handle& values, const py::dict& critical,
+           int threads, const py::object& trim, std::uint64_t memory_limit) {
+          const RotorParameters base = base_parameters(params, flap_modes, lag_modes);
+          transition_options(transition);
+          check_study_memory(base, study_options(parameter, values, critical, threads, trim),
+                             memory_limit);
+        });
+  m.def("check_map",
+        [](const py::dict& params, const py::dict& transition, int flap_modes, int lag_modes,
+           const std::string& x, const py::handle& x_values, const std::string& y,
+           const py::handle& y_values, double mu, double scan_step, int threads,
+           const py::object& trim, std::uint64_t memory_limit) {
+          base_parameters(params, flap_modes, lag_modes);
+          transition_options(transition);
+          check_map_memory(map_options(x, x_values, y, y_values, mu, scan_step, threads, trim),
+                           memory_limit);
+        });
 }

@@ -590,11 +590,18 @@ struct Analysis::Impl {
 
   // A sweep or track in stretches (Analysis::sweep).  The periodic equilibria of one Analysis
   // share a cache of starts, so their stretches run in order.
-  SweepResult track(const std::vector<double>& mus, double step, int threads) const {
+  SweepResult track(const std::vector<double>& mus, double step, int threads,
+                    const std::atomic<bool>* cancel = nullptr,
+                    const ProgressFunction& progress = {}) const {
     if (auto p = threads_problem(threads)) throw *p;
-    return track_exponents(
-        hover_modes, [this] { return function(); }, mus, step, options.zeta_tolerance,
-        builder.params().periodic_linearization ? 1 : threads);
+    const int used = builder.params().periodic_linearization ? 1 : threads;
+    if (cancel == nullptr && !progress)
+      return track_exponents(
+          hover_modes, [this] { return function(); }, mus, step, options.zeta_tolerance, used);
+    // Every function of the stretches counts its evaluations into one ticker.
+    auto ticker = std::make_shared<internal::Ticker>(mus, step, cancel, progress);
+    auto make = [this, ticker] { return internal::ticking(function(), ticker); };
+    return track_exponents(hover_modes, make, mus, step, options.zeta_tolerance, used);
   }
 
   // The periodic equilibrium at mu, continued from the nearest cached one below mu (the
@@ -890,6 +897,12 @@ PointResult Analysis::point(double mu, double scan_step) const {
 }
 
 SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads) const {
+  return sweep(mu0, mu1, step, threads, nullptr, {});
+}
+
+SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads,
+                            const std::atomic<bool>* cancel,
+                            const ProgressFunction& progress) const {
   check_mu(mu0, "mu0");
   check_mu(mu1, "mu1");
   if (!(step > 0.0) || !std::isfinite(step)) {
@@ -904,7 +917,7 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads) co
         "step", round_trip_text(step),
         "too small: at most " + std::to_string(kMaxContinuationSteps) + " continuation steps");
   }
-  SweepResult r = impl_->track(sweep_grid(mu0, mu1, step), step, threads);
+  SweepResult r = impl_->track(sweep_grid(mu0, mu1, step), step, threads, cancel, progress);
   for (PointResult& p : r.points) {
     // mu0 + k step accumulates rounding (0.7999999999999999); report the decimal grid value.
     p.mu = snap12(p.mu);
@@ -915,11 +928,30 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads) co
 }
 
 SweepResult Analysis::track(const std::vector<double>& mus, double scan_step, int threads) const {
+  return track(mus, scan_step, threads, nullptr, {});
+}
+
+SweepResult Analysis::track(const std::vector<double>& mus, double scan_step, int threads,
+                            const std::atomic<bool>* cancel,
+                            const ProgressFunction& progress) const {
+  // The advance ratios themselves first: too many of them is their fault, not the step's.
+  if (mus.size() > static_cast<std::size_t>(kMaxContinuationSteps)) {
+    throw InvalidInput("mu", std::to_string(mus.size()) + " advance ratios",
+                       "at most " + std::to_string(kMaxContinuationSteps) + " advance ratios");
+  }
   for (double mu : mus) check_mu(mu, "mu");
   if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
     throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
   }
-  SweepResult r = impl_->track(mus, scan_step, threads);
+  if (!mus.empty() && mus.back() / scan_step + static_cast<double>(mus.size()) >
+                          static_cast<double>(kMaxContinuationSteps)) {
+    throw InvalidInput("scan_step", round_trip_text(scan_step),
+                       "too small for " + std::to_string(mus.size()) +
+                           " advance ratios up to mu = " + round_trip_text(mus.back()) +
+                           ": at most " + std::to_string(kMaxContinuationSteps) +
+                           " continuation steps in all");
+  }
+  SweepResult r = impl_->track(mus, scan_step, threads, cancel, progress);
   for (PointResult& p : r.points) sort_for_output(p.exponents);
   impl_->outside_envelope(r);
   return r;

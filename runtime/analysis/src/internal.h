@@ -2,15 +2,21 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "flaplag/analysis.h"
 #include "flaplag/blade/blade.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/core/parallel.h"
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/periodic_equilibrium.h"
@@ -25,6 +31,40 @@ inline void check_mu(double mu, const char* name) {
     throw InvalidInput(name, round_trip_text(mu),
                        "advance ratio must be >= 0 and <= " + round_trip_text(kMaxAdvanceRatio));
   }
+}
+
+// The cancel flag and progress of a continuation (Analysis::sweep, track, trimmed_sweep,
+// trimmed_track): every FloquetFunction made by ticking() looks at the flag first (set: throws
+// Cancelled) and counts its evaluation.  The evaluations planned are those of the plan of
+// track_exponents: for each advance ratio, the equal steps from the one before that reach it.
+struct Ticker {
+  Ticker(const std::vector<double>& mus, double step, const std::atomic<bool>* c,
+         ProgressFunction p)
+      : cancel(c), progress(std::move(p)) {
+    double at = 0.0;
+    for (double mu : mus) {
+      const double pre = std::ceil((mu - at) / step - 1e-9);
+      total += pre > 1.0 ? static_cast<std::size_t>(pre) : 1;
+      at = mu;
+    }
+  }
+  const std::atomic<bool>* cancel;
+  ProgressFunction progress;
+  std::mutex mutex;
+  std::size_t done = 0, total = 0;
+};
+
+inline FloquetFunction ticking(FloquetFunction f, std::shared_ptr<Ticker> ticker) {
+  return [f = std::move(f), ticker = std::move(ticker)](double mu, double tol) {
+    if (ticker->cancel != nullptr && ticker->cancel->load()) throw Cancelled();
+    FloquetSample sample = f(mu, tol);
+    if (ticker->progress) {
+      const std::lock_guard<std::mutex> lock(ticker->mutex);
+      ticker->done = std::min(ticker->done + 1, ticker->total);
+      ticker->progress(ticker->done, ticker->total);
+    }
+    return sample;
+  };
 }
 
 // Sorted by label, then omega descending: the order in which results are shown.  Stable (an

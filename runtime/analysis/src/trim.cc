@@ -769,8 +769,19 @@ PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
 SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
                           const TrimOptions& o, double mu0, double mu1, double step,
                           std::vector<TrimResult>* trims) {
+  return trimmed_sweep(p, t, o, mu0, mu1, step, nullptr, {}, trims);
+}
+
+SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, double mu0, double mu1, double step,
+                          const std::atomic<bool>* cancel, const ProgressFunction& progress,
+                          std::vector<TrimResult>* trims) {
   const Trimmed tr(p, t, o);
-  SweepResult r = sweep_exponents(tr.modes, tr.function(), mu0, mu1, step, t.zeta_tolerance);
+  FloquetFunction f = tr.function();
+  if (cancel != nullptr || progress)
+    f = internal::ticking(std::move(f), std::make_shared<internal::Ticker>(
+                                            sweep_grid(mu0, mu1, step), step, cancel, progress));
+  SweepResult r = sweep_exponents(tr.modes, f, mu0, mu1, step, t.zeta_tolerance);
   for (PointResult& pt : r.points) sort_for_output(pt.exponents);
   tr.trims_of(r, trims);
   return r;
@@ -779,12 +790,23 @@ SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
 SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
                           const TrimOptions& o, const std::vector<double>& mus, double scan_step,
                           std::vector<TrimResult>* trims) {
+  return trimmed_track(p, t, o, mus, scan_step, nullptr, {}, trims);
+}
+
+SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, const std::vector<double>& mus, double scan_step,
+                          const std::atomic<bool>* cancel, const ProgressFunction& progress,
+                          std::vector<TrimResult>* trims) {
   for (double mu : mus) check_mu(mu);
   if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
     throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
   }
   const Trimmed tr(p, t, o);
-  SweepResult r = track_exponents(tr.modes, tr.function(), mus, scan_step, t.zeta_tolerance);
+  FloquetFunction f = tr.function();
+  if (cancel != nullptr || progress)
+    f = internal::ticking(std::move(f),
+                          std::make_shared<internal::Ticker>(mus, scan_step, cancel, progress));
+  SweepResult r = track_exponents(tr.modes, f, mus, scan_step, t.zeta_tolerance);
   for (PointResult& pt : r.points) sort_for_output(pt.exponents);
   tr.trims_of(r, trims);
   return r;

@@ -46,13 +46,16 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <atomic>
 #include <complex>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "flaplag/blade/blade.h"
+#include "flaplag/core/parallel.h"
 #include "flaplag/core/status.h"
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
@@ -77,6 +80,12 @@ struct SystemSnapshot {
   std::vector<std::pair<std::string, double>> aero_integrals;         // normal region values
   std::vector<std::pair<std::string, double>> aero_integrals_region;  // values used at psi
   std::vector<std::pair<std::string, double>> structural_integrals;
+};
+
+// Thrown by Analysis::sweep and track when their cancel flag is set.
+class Cancelled : public std::runtime_error {
+ public:
+  Cancelled() : std::runtime_error("cancelled") {}
 };
 
 // Automatic steps never exceed this (a blade so stiff that it needs more gets status Warning).
@@ -180,6 +189,14 @@ class Analysis {
   // continued from hover in steps of at most scan_step.  mu is reported as given.  Stretches
   // and threads as sweep: a track over the points of a sweep (the same step) is that sweep.
   SweepResult track(const std::vector<double>& mus, double scan_step = 0.01, int threads = 0) const;
+  // The same two with a cancel flag, polled before every evaluation (once set, the run stops
+  // after the evaluations under way and throws Cancelled), and progress (evaluations done,
+  // evaluations in all, the steps from hover included; from the evaluating threads, one call at
+  // a time).  The result does not depend on them.
+  SweepResult sweep(double mu0, double mu1, double step, int threads,
+                    const std::atomic<bool>* cancel, const ProgressFunction& progress) const;
+  SweepResult track(const std::vector<double>& mus, double scan_step, int threads,
+                    const std::atomic<bool>* cancel, const ProgressFunction& progress) const;
   // opt.Check() first.  With periodic_linearization the search can end at a fold of the branch
   // of periodic equilibria through hover (a real multiplier reaches +1 and the equilibrium
   // ceases to exist: the blade loses it, a divergence-type loss of stability): mu_c is then the

@@ -50,10 +50,12 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <atomic>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "flaplag/core/parallel.h"
 #include "flaplag/core/status.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
@@ -177,6 +179,15 @@ SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
 SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
                           const TrimOptions& o, const std::vector<double>& mus,
                           double scan_step = 0.01, std::vector<TrimResult>* trims = nullptr);
+// The same two with a cancel flag and progress, as Analysis::sweep and track (Cancelled).
+SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, double mu0, double mu1, double step,
+                          const std::atomic<bool>* cancel, const ProgressFunction& progress,
+                          std::vector<TrimResult>* trims = nullptr);
+SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, const std::vector<double>& mus, double scan_step,
+                          const std::atomic<bool>* cancel, const ProgressFunction& progress,
+                          std::vector<TrimResult>* trims = nullptr);
 // With p.periodic_linearization a fold of the trimmed equilibrium branch ends the search as in
 // Analysis::critical (mu_c at the fold, kind Periodic at omega = 0).
 CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOptions& t,
