@@ -185,7 +185,8 @@ class Generator {
                                                 "--theta1s",
                                                 "--trim",
                                                 "--thrust-coefficient",
-                                                "--shaft-angle"};
+                                                "--shaft-angle",
+                                                "--memory-limit"};
     return known.count(option) == 1;
   }
 
@@ -278,6 +279,9 @@ class Generator {
     if (option == "--vary") return axis(false);
     if (option == "--x" || option == "--y") return axis(true);
     if (option == "--threads") return std::to_string(integer(0, 3));
+    if (option == "--memory-limit")  // 1M refuses most runs (exit 2, one line)
+      return pick(
+          std::vector<std::string>{"2G", "512M", "1M", "64G", "0.5G", "8GiB", "3000000000"});
     if (option == "--plot") return chance(0.5) ? "plot.svg" : "plot.png";
     if (option == "--label") return pick(std::vector<std::string>{"(a) paper", "", "x\"y"});
     if (option == "--mode") return pick(std::vector<std::string>{"lag", "flap", "lag2"});
