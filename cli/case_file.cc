@@ -232,10 +232,11 @@ CaseArguments case_object_arguments(const std::string& name,
   return out;
 }
 
-CaseArguments read_case_file(const std::string& path) {
-  // A JSON result (any size flaplag writes) or a TOML case (checked against its own limit).
+CaseArguments read_case_file(const std::string& path, std::uint64_t memory_limit) {
+  // A JSON result (read within the memory limit) or a TOML case (checked against its own,
+  // smaller limit after reading).
   return parse_case_text(
-      path, read_text_file(path, kMaxResultBytes, "case file", "case file cannot be read"));
+      path, read_json_file(path, memory_limit, "case file", "case file cannot be read"));
 }
 
 }  // namespace flaplag::cli

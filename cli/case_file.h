@@ -17,6 +17,7 @@
 // unless the command line says otherwise.  Files are read with the bounds of read_file.h.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -39,7 +40,9 @@ struct CaseArguments {
 // with the value as written: unknown keys, keys given twice, wrong types (arrays, dates, nested
 // tables below the grouping level), nesting deeper than kMaxNesting, and so on.  Values are checked
 // by the command line like typed ones.
-CaseArguments read_case_file(const std::string& path);
+// A JSON file is read up to json_read_limit(memory_limit) bytes (read_file.h), the
+// --memory-limit typed after the file (the default otherwise).
+CaseArguments read_case_file(const std::string& path, std::uint64_t memory_limit);
 
 // The same from text already read (`name` stands for the file in messages).
 CaseArguments parse_case_text(const std::string& name, const std::string& text);

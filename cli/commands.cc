@@ -1317,7 +1317,7 @@ std::string run_command_text(const Request& r, std::string* warning, RunControl*
     case Command::Merge:
       return merge_parts(r);
     case Command::Plot:
-      return plot_data_files(r.inputs, r.labels, r.max_zeta, r.mode, r.plot);
+      return plot_data_files(r.inputs, r.labels, r.max_zeta, r.mode, r.plot, r.memory_limit);
     case Command::Trim:
       return trim_command(r);
     default:

@@ -21,6 +21,7 @@
 #include "command_line.h"
 #include "commands.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/limits.h"
 #include "flaplag/version.h"
 #include "output.h"
 #include "plot.h"
@@ -94,6 +95,22 @@ struct Expanded {
   bool run_help = false;           // flaplag run --help
 };
 
+// The --memory-limit typed after `flaplag run FILE` (the last one; the default without one): it
+// bounds the reading of the file itself, before the file's own options are known.
+std::uint64_t typed_memory_limit(const std::vector<std::string>& args) {
+  std::uint64_t limit = flaplag::kDefaultMemoryLimit;
+  const std::string name = "--memory-limit";
+  for (std::size_t i = 2; i < args.size(); ++i) {
+    if (args[i] == name && i + 1 < args.size()) {
+      limit = flaplag::parse_memory_size(name, args[i + 1]);
+      ++i;
+    } else if (args[i].rfind(name + "=", 0) == 0) {
+      limit = flaplag::parse_memory_size(name, args[i].substr(name.size() + 1));
+    }
+  }
+  return limit;
+}
+
 Expanded expand(const std::vector<std::string>& args) {
   Expanded e;
   if (args.empty() || args[0] != "run") {
@@ -108,7 +125,7 @@ Expanded expand(const std::vector<std::string>& args) {
     throw flaplag::InvalidInput("argument", args.size() < 2 ? "(missing)" : args[1],
                                 "flaplag run needs a case file: flaplag run CASE.toml (or a "
                                 "--json output of flaplag)");
-  e.from_file = flaplag::cli::read_case_file(args[1]);
+  e.from_file = flaplag::cli::read_case_file(args[1], typed_memory_limit(args));
   e.args = e.from_file.args;
   e.typed.assign(args.begin() + 2, args.end());
   e.args.insert(e.args.end(), e.typed.begin(), e.typed.end());

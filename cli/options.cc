@@ -190,6 +190,7 @@ OptionSpec memory_limit_option() {
 std::vector<OptionSpec> file_tool_options(Command c) {
   if (c == Command::Merge) return {output_options()[1], memory_limit_option()};  // -o: JSON
   return {
+      memory_limit_option(),
       value_option("--plot", "FILE.svg|FILE.png", "the picture to draw (gnuplot)", "", {"plot"}),
       value_option("--label", "TEXT",
                    "the label of a data file's curves (repeated: one per file, in order; "

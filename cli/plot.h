@@ -6,6 +6,7 @@
 // still written and the plot is skipped with one warning line.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -89,8 +90,10 @@ std::string simulate_plot_script(double mu, const std::vector<double>& revolutio
 // `flaplag plot DATA.json --plot FILE`: the picture of a sweep, study, map, response or
 // simulate result written by --json.  Throws InvalidInput("argument", data as typed, reason)
 // for a file that cannot be read, is not JSON or not such a result; RendererUnavailable when
-// gnuplot is missing or fails.  Returns "" (nothing for stdout).
-std::string plot_data_file(const std::string& data, const std::string& plot);
+// gnuplot is missing or fails.  Returns "" (nothing for stdout).  A file is read up to
+// json_read_limit(memory_limit) bytes (read_file.h).
+std::string plot_data_file(const std::string& data, const std::string& plot,
+                           std::uint64_t memory_limit);
 // `flaplag plot A.json B.json ... [--label L]... [--max-zeta | --mode M] --plot FILE`: one file
 // without labels, max_zeta or mode is plot_data_file (the same bytes); otherwise every file must be
 // a sweep result (InvalidInput("argument", the first other file as typed, reason) if not).  labels:
@@ -98,7 +101,8 @@ std::string plot_data_file(const std::string& data, const std::string& plot);
 // mode: "" or the label of the one mode to draw (each file must have it).
 std::string plot_data_files(const std::vector<std::string>& data,
                             const std::vector<std::string>& labels, bool max_zeta,
-                            const std::string& mode, const std::string& plot);
+                            const std::string& mode, const std::string& plot,
+                            std::uint64_t memory_limit);
 
 // gnuplot is not installed or failed (the message is one line).
 struct RendererUnavailable : std::runtime_error {

@@ -193,11 +193,11 @@ std::string tip_script(const std::string& file, const std::string& command, cons
                                : simulate_plot_script(mu, x, flap, lag);
 }
 
-Json read_result(const std::string& data) {
+Json read_result(const std::string& data, std::uint64_t memory_limit) {
   Json j;
   std::string error;
-  const JsonParse parsed = parse_json(
-      read_text_file(data, kMaxResultBytes, "result file", "cannot be read"), &j, &error);
+  const JsonParse parsed =
+      parse_json(read_json_file(data, memory_limit, "result file", "cannot be read"), &j, &error);
   if (parsed == JsonParse::NotJson)
     refuse(data, "not JSON (flaplag plot draws a --json output of flaplag)");
   if (parsed == JsonParse::Refused) refuse(data, "not a flaplag --json output: " + error);
@@ -209,8 +209,9 @@ Json read_result(const std::string& data) {
 
 }  // namespace
 
-std::string plot_data_file(const std::string& data, const std::string& plot) {
-  const Json j = read_result(data);
+std::string plot_data_file(const std::string& data, const std::string& plot,
+                           std::uint64_t memory_limit) {
+  const Json j = read_result(data, memory_limit);
   const std::string command = j["command"].get<std::string>();
   std::string script;
   try {
@@ -237,14 +238,15 @@ std::string plot_data_file(const std::string& data, const std::string& plot) {
 
 std::string plot_data_files(const std::vector<std::string>& data,
                             const std::vector<std::string>& labels, bool max_zeta,
-                            const std::string& mode, const std::string& plot) {
+                            const std::string& mode, const std::string& plot,
+                            std::uint64_t memory_limit) {
   if (data.size() == 1 && labels.empty() && !max_zeta && mode.empty())
-    return plot_data_file(data[0], plot);
+    return plot_data_file(data[0], plot, memory_limit);
   for (const std::string& l : labels) check_label(l);
   std::vector<SweepOverlay> sweeps;
   std::string first;  // the kind of the first file
   for (std::size_t i = 0; i < data.size(); ++i) {
-    const Json j = read_result(data[i]);
+    const Json j = read_result(data[i], memory_limit);
     const std::string command = j["command"].get<std::string>();
     if (i == 0) first = command;
     if (command != first)

@@ -6,10 +6,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <limits>
 #include <set>
 #include <vector>
 
 #include "flaplag/core/errors.h"
+#include "flaplag/limits.h"
 #include "options.h"
 
 namespace flaplag::cli {
@@ -142,14 +144,14 @@ std::string size_text(std::size_t bytes) {
 }
 
 std::string read_text_file(const std::string& path, std::size_t max_bytes, const std::string& noun,
-                           const std::string& cannot_read) {
+                           const std::string& cannot_read, const std::string& why) {
   const Descriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY));
   if (fd.get() < 0) refuse(path, cannot_read);
   struct stat st {};
   if (::fstat(fd.get(), &st) != 0) refuse(path, cannot_read);
   if (S_ISDIR(st.st_mode)) refuse(path, "is a directory, not a " + noun);
   const std::string too_large =
-      "larger than " + size_text(max_bytes) + " (the limit on a " + noun + ")";
+      "larger than " + size_text(max_bytes) + " (the limit on a " + noun + why + ")";
   if (S_ISREG(st.st_mode) && static_cast<unsigned long long>(st.st_size) > max_bytes)
     refuse(path, too_large);
   std::string text;
@@ -275,6 +277,24 @@ JsonParse parse_json(const std::string& text, nlohmann::json* out, std::string* 
 
 JsonParse parse_json(const std::string& text, nlohmann::ordered_json* out, std::string* error) {
   return parse_json_as(text, out, error);
+}
+
+}  // namespace flaplag::cli
+
+namespace flaplag::cli {
+
+std::size_t json_read_limit(std::uint64_t memory_limit) {
+  const std::uint64_t bytes = memory_limit / kJsonMemoryFactor;
+  return bytes > std::numeric_limits<std::size_t>::max() / 2
+             ? std::numeric_limits<std::size_t>::max() / 2
+             : static_cast<std::size_t>(bytes);
+}
+
+std::string read_json_file(const std::string& path, std::uint64_t memory_limit,
+                           const std::string& noun, const std::string& cannot_read) {
+  return read_text_file(path, json_read_limit(memory_limit), noun, cannot_read,
+                        " under --memory-limit " + memory_text(memory_limit) +
+                            ", which reading JSON of this size may need: raise --memory-limit");
 }
 
 }  // namespace flaplag::cli

@@ -7,17 +7,20 @@
 // - kMaxNesting = 64 levels.  flaplag writes at most 5 (a study row's intervals), a case file
 //   2 ([group] key = value).  toml++ and nlohmann recurse per level (in parsing, comparing,
 //   printing or freeing), and a few ten thousand levels overflow the stack.
-// - kMaxResultBytes = 64 MiB for a JSON file (a result given to plot, run or merge, or a JSON
-//   case).  flaplag writes about 58 bytes per map cell, so this is a map of a million cells
-//   (1000 x 1000), far beyond what a part or a picture needs.  Reading JSON takes about 2.2
-//   times the file in memory for flaplag's results and at most about 20 times for any JSON
-//   (the worst being "[0,0,0,...]"), so a file at the limit is read in at most ~1.3 GB.
+// - A JSON file (a result given to plot, run or merge, or a JSON case; merge: all its parts
+//   together) is read up to json_read_limit(memory limit) = the memory limit / kJsonMemoryFactor
+//   (128 MiB at the default 2 GiB): reading JSON takes about 2.2 times the file in memory for
+//   flaplag's results and about 16 times at the worst (measured: "[0,0,0,...]" of 64 MiB
+//   peaks at 1.05 GB), so a file takes about the memory limit --memory-limit sets (limits.h)
+//   at the most.  flaplag writes about 58 bytes per map cell: 2.3 million cells at the
+//   default; a larger result is read with --memory-limit raised, as it was written.
 // - kMaxCaseBytes = 4 MiB for a TOML case file.  A case is a few dozen keys; its longest value,
 //   an explicit list of 100 000 values for --vary, is about 1 MB.  toml++ takes up to ~40
 //   times the text in memory (short array items), ~160 MB at the limit.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
@@ -25,7 +28,9 @@
 namespace flaplag::cli {
 
 inline constexpr std::size_t kMaxNesting = 64;
-inline constexpr std::size_t kMaxResultBytes = std::size_t{64} << 20;
+inline constexpr std::uint64_t kJsonMemoryFactor = 16;
+// The largest JSON file read under a memory limit (bytes): limit / kJsonMemoryFactor.
+std::size_t json_read_limit(std::uint64_t memory_limit);
 inline constexpr std::size_t kMaxCaseBytes = std::size_t{4} << 20;
 
 // "64 MiB".
@@ -33,10 +38,14 @@ std::string size_text(std::size_t bytes);
 
 // The whole file at `path` (as typed).  Throws InvalidInput("argument", shown(path), reason):
 // `cannot_read` when it cannot be opened or read, "is a directory, not a <noun>", or "larger
-// than <max_bytes> (the limit on a <noun>)".  Reads at most max_bytes + 1 bytes whatever the
+// than <max_bytes> (the limit on a <noun><why>)".  Reads at most max_bytes + 1 bytes whatever the
 // file is (a device, a FIFO, a file that grows).
 std::string read_text_file(const std::string& path, std::size_t max_bytes, const std::string& noun,
-                           const std::string& cannot_read);
+                           const std::string& cannot_read, const std::string& why = "");
+// A JSON file under the memory limit: read_text_file with json_read_limit(memory_limit), the
+// reason naming the limit and how to raise it.
+std::string read_json_file(const std::string& path, std::uint64_t memory_limit,
+                           const std::string& noun, const std::string& cannot_read);
 
 // The line (1-based) at which the nesting of JSON text first exceeds `limit` levels of [ and {
 // outside strings, or 0 when it never does.  One pass, constant stack.

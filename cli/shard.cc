@@ -10,6 +10,7 @@
 #include "digest.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/status.h"
+#include "flaplag/limits.h"
 #include "options.h"
 #include "read_file.h"
 
@@ -50,11 +51,18 @@ struct Part {
   Request request;  // what its case asks for (the whole job, shard_index = index)
 };
 
-Json read_json(const std::string& file) {
+// A part, read within what the parts before it left of the memory limit's JSON budget
+// (*budget: bytes, json_read_limit(--memory-limit) for the first part), so that the parts
+// together cannot take more memory than the limit.
+Json read_json(const std::string& file, std::uint64_t memory_limit, std::size_t* budget) {
   Json j;
   std::string error;
-  const JsonParse parsed =
-      parse_json(read_text_file(file, kMaxResultBytes, "part", "cannot be read"), &j, &error);
+  const std::string text = read_text_file(
+      file, *budget, "part", "cannot be read",
+      " (with the parts before it) under --memory-limit " + memory_text(memory_limit) +
+          ", which reading JSON of this size may need: raise --memory-limit");
+  *budget -= text.size();
+  const JsonParse parsed = parse_json(text, &j, &error);
   if (parsed == JsonParse::NotJson)
     refuse(file, "not JSON (a part is the --json output of flaplag map or study with --shard)");
   if (parsed == JsonParse::Refused) refuse(file, "damaged part: " + error);
@@ -128,10 +136,10 @@ Request request_of(const std::string& file, const Json& j) {
   }
 }
 
-Part read_part(const std::string& file) {
+Part read_part(const std::string& file, std::uint64_t memory_limit, std::size_t* budget) {
   Part p;
   p.file = file;
-  p.json = read_json(file);
+  p.json = read_json(file, memory_limit, budget);
   const Json& j = p.json;
   if (!j.is_object() || !j.contains("flaplag") || !j.contains("command") ||
       !j["command"].is_string())
@@ -381,7 +389,9 @@ void seal_part(Json& j) { j["shard"]["digest"] = kDigestPrefix + sha256_hex(dige
 
 std::string merge_parts(const Request& r) {
   std::vector<Part> parts;
-  for (const std::string& file : r.inputs) parts.push_back(read_part(file));
+  std::size_t budget = json_read_limit(r.memory_limit);
+  for (const std::string& file : r.inputs)
+    parts.push_back(read_part(file, r.memory_limit, &budget));
   const Part& head = parts.front();
   // The first part against what its case computes; the others against the first.
   const Json reference = case_part(head.json, head.axis);

@@ -190,22 +190,36 @@ TEST(CliFiles, DeepJsonIsRefusedWithOneLineByRunPlotAndMerge) {
 
 TEST(CliFiles, TooLargeOrNotAFileIsRefused) {
   TempDir d;
-  // A sparse file just over the limit: refused from its size, before reading.
+  // A sparse file just over the limit (the memory limit / 16: 128 MiB at the default 2 GiB):
+  // refused from its size, before reading.
   const std::string big = d.file("big.json");
   write(big, "{");
-  ASSERT_EQ(0, ::truncate(big.c_str(), (64 << 20) + 1));
+  ASSERT_EQ(0, ::truncate(big.c_str(), (std::int64_t{128} << 20) + 1));
+  const std::string why =
+      " under --memory-limit 2 GiB, which reading JSON of this size may need: raise "
+      "--memory-limit\\)";
   expect_refused(
       run({"plot", big, "--plot", d.file("x.svg")}),
-      "argument = " + quote(big) + ": larger than 64 MiB \\(the limit on a result file\\)", "plot");
+      "argument = " + quote(big) + ": larger than 128 MiB \\(the limit on a result file" + why,
+      "plot");
   expect_refused(run({"merge", big}),
-                 "argument = " + quote(big) + ": larger than 64 MiB \\(the limit on a part\\)",
+                 "argument = " + quote(big) +
+                     ": larger than 128 MiB \\(the limit on a part \\(with the parts before "
+                     "it\\)" +
+                     why,
                  "merge");
-  expect_refused(run({"run", big}),
-                 "argument = " + quote(big) + ": larger than 64 MiB \\(the limit on a case file\\)",
-                 "run");
+  expect_refused(
+      run({"run", big}),
+      "argument = " + quote(big) + ": larger than 128 MiB \\(the limit on a case file" + why,
+      "run");
+  // Under a raised limit the same file is read, and is then refused for what it holds.
+  expect_refused(run({"plot", big, "--plot", d.file("x.svg"), "--memory-limit", "4G"}),
+                 "argument = " + quote(big) + ": not JSON .*", "plot 4G");
+  expect_refused(run({"run", big, "--memory-limit=4G"}),
+                 quote(big) + " = \\(JSON\\): does not parse: .*", "run 4G");
   // A device that never ends is read up to the limit only.
   expect_refused(run({"run", "/dev/zero"}),
-                 "argument = /dev/zero: larger than 64 MiB \\(the limit on a case file\\)",
+                 "argument = /dev/zero: larger than 128 MiB \\(the limit on a case file" + why,
                  "/dev/zero");
   // A TOML case has a smaller limit.
   const std::string toml = d.file("big.toml");
