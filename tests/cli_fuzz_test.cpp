@@ -43,6 +43,7 @@
 
 #include "flaplag/analysis.h"
 #include "options.h"
+#include "process.h"
 
 #ifndef FLAPLAG_EXE
 #error "FLAPLAG_EXE must name the flaplag binary"
@@ -631,24 +632,11 @@ Result run_one(const Generator::Vector& v, std::chrono::seconds limit) {
     fs::remove_all(dir);
     return r;
   }
-  int status = 0;
-  for (;;) {
-    const pid_t w = ::waitpid(pid, &status, WNOHANG);
-    if (w == pid) break;
-    if (w < 0) break;
-    if (std::chrono::steady_clock::now() - start > limit) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
-      r.timed_out = true;
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!r.timed_out) {
-    if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-    if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
-  }
+  const flaplag::testing::ChildEnd end = flaplag::testing::wait_for_child(pid, start, limit);
+  r.exit_code = end.exit_code;
+  r.signal = end.signal;
+  r.timed_out = end.timed_out;
+  r.seconds = end.seconds;
   r.out = slurp(out);
   r.err = slurp(err);
   for (const auto& e : fs::directory_iterator(out_dir)) {

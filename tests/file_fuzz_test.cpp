@@ -57,6 +57,8 @@
 #include <thread>
 #include <vector>
 
+#include "process.h"
+
 #ifndef FLAPLAG_EXE
 #error "FLAPLAG_EXE must name the flaplag binary"
 #endif
@@ -353,23 +355,11 @@ Outcome run_flaplag(const std::vector<std::string>& args, const std::string& cwd
     r.err = "fork failed";
     return r;
   }
-  int status = 0;
-  for (;;) {
-    const pid_t w = ::waitpid(pid, &status, WNOHANG);
-    if (w == pid || w < 0) break;
-    if (std::chrono::steady_clock::now() - start > limit) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
-      r.timed_out = true;
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!r.timed_out) {
-    if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-    if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
-  }
+  const flaplag::testing::ChildEnd end = flaplag::testing::wait_for_child(pid, start, limit);
+  r.exit_code = end.exit_code;
+  r.signal = end.signal;
+  r.timed_out = end.timed_out;
+  r.seconds = end.seconds;
   r.out = slurp(out);
   r.err = slurp(err);
   return r;

@@ -68,6 +68,37 @@ class TempDir {
   std::string path_;
 };
 
+// How a child ended: waits for `pid` (started at `start`) and kills it (SIGKILL) once `limit`
+// has passed, a hang then being `timed_out`.
+struct ChildEnd {
+  int exit_code = -1;  // when it exited
+  int signal = 0;      // when a signal ended it
+  bool timed_out = false;
+  double seconds = 0.0;
+};
+inline ChildEnd wait_for_child(pid_t pid, std::chrono::steady_clock::time_point start,
+                               std::chrono::seconds limit) {
+  ChildEnd e;
+  int status = 0;
+  for (;;) {
+    const pid_t w = ::waitpid(pid, &status, WNOHANG);
+    if (w == pid || w < 0) break;
+    if (std::chrono::steady_clock::now() - start > limit) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      e.timed_out = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!e.timed_out) {
+    if (WIFEXITED(status)) e.exit_code = WEXITSTATUS(status);
+    if (WIFSIGNALED(status)) e.signal = WTERMSIG(status);
+  }
+  return e;
+}
+
 // True once the process catches SIGINT (the SigCgt mask of /proc/PID/status): a SIGINT sent
 // before the child has installed its handler would end it instead of being handled, and a
 // loaded or instrumented build can take seconds to get there.
