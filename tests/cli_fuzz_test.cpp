@@ -57,20 +57,8 @@ using Json = nlohmann::json;
 namespace cli = flaplag::cli;
 namespace fs = std::filesystem;
 
-long env_long(const char* name, long fallback) {
-  const char* v = std::getenv(name);
-  if (v == nullptr || *v == '\0') return fallback;
-  char* end = nullptr;
-  const long n = std::strtol(v, &end, 10);
-  return end != v && *end == '\0' && n > 0 ? n : fallback;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
+using flaplag::testing::env_long;
+using flaplag::testing::slurp;
 
 std::string shell_quoted(const std::vector<std::string>& args) {
   std::string s = "flaplag";

@@ -86,20 +86,8 @@ namespace fs = std::filesystem;
 constexpr rlim_t kMemoryCap = rlim_t{2} << 30;      // bytes of address space per run
 constexpr rlim_t kFileSizeCap = rlim_t{256} << 20;  // bytes per file written by a run
 
-long env_long(const char* name, long fallback) {
-  const char* v = std::getenv(name);
-  if (v == nullptr || *v == '\0') return fallback;
-  char* end = nullptr;
-  const long n = std::strtol(v, &end, 10);
-  return end != v && *end == '\0' && n > 0 ? n : fallback;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
+using flaplag::testing::env_long;
+using flaplag::testing::slurp;
 
 void spit(const std::string& path, const std::string& text) {
   std::ofstream f(path, std::ios::binary);

@@ -34,6 +34,16 @@ inline std::string slurp(const std::string& path) {
   return ss.str();
 }
 
+// A positive whole number from the environment variable `name`, or `fallback` when it is not
+// set or not such a number (the fuzzers' budgets).
+inline long env_long(const char* name, long fallback) {
+  const char* v = std::getenv(name);
+  if (v == nullptr || *v == '\0') return fallback;
+  char* end = nullptr;
+  const long n = std::strtol(v, &end, 10);
+  return end != v && *end == '\0' && n > 0 ? n : fallback;
+}
+
 inline bool exists(const std::string& path) {
   struct stat st {};
   return ::lstat(path.c_str(), &st) == 0;
