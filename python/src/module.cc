@@ -52,14 +52,41 @@ namespace {
 // lives as long as the interpreter).
 PyObject* invalid_input_type = nullptr;
 
+// The most characters of a value shown in a message (as the Python layer's _shown).
+constexpr std::size_t kShownMax = 60;
+
+// Text for a one-line message: every run of white space (newlines included) one space, at
+// most `max` characters (cut with "...").
+std::string one_line(const std::string& text, std::size_t max) {
+  std::string out;
+  bool space = false;
+  for (const char c : text) {
+    if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f') {
+      space = !out.empty();
+      continue;
+    }
+    if (space) out += ' ';
+    space = false;
+    out += c;
+    if (out.size() > max) break;
+  }
+  if (out.size() > max) out = out.substr(0, max - 3) + "...";
+  return out;
+}
+
+// The library's InvalidInput as flaplag.InvalidInput: "<field> = <value>: <reason>" on one
+// line, the value bounded (a value the user gave, e.g. a model name, may be any text).
 void translate_invalid_input(const InvalidInput& e) {
   const std::string what = e.what();
   const std::string head = e.name() + " = " + e.value() + ": ";
+  const std::string value = one_line(e.value(), kShownMax);
+  const std::string reason =
+      one_line(what.compare(0, head.size(), head) == 0 ? what.substr(head.size()) : what, 1000);
   py::object type = py::reinterpret_borrow<py::object>(invalid_input_type);
-  py::object exc = type(what);
+  py::object exc = type(one_line(e.name(), kShownMax) + " = " + value + ": " + reason);
   exc.attr("field") = e.name();
-  exc.attr("value") = e.value();
-  exc.attr("reason") = what.compare(0, head.size(), head) == 0 ? what.substr(head.size()) : what;
+  exc.attr("value") = value;
+  exc.attr("reason") = reason;
   PyErr_SetObject(invalid_input_type, exc.ptr());
 }
 
@@ -102,12 +129,28 @@ py::object optional(const std::optional<bool>& v) {
   return v ? py::object(py::bool_(*v)) : py::object(py::none());
 }
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+// A name the user gave, quoted for a message (bounded: it may be any text).
+std::string quoted(const std::string& s) {
+  return s.size() <= kShownMax - 2 ? "'" + s + "'" : "'" + s.substr(0, kShownMax - 5) + "'...";
+}
 
 std::string values_text(std::size_t n) { return std::to_string(n) + " values"; }
 
-// The value of a parameter field, for messages.
-std::string shown(const py::handle& v) { return py::repr(v).cast<std::string>(); }
+// A Python value for a message: one line, bounded; an array by its shape (as the Python
+// layer's _shown).
+std::string shown(const py::handle& v) {
+  if (py::isinstance<py::array>(v)) {
+    const py::array a = py::reinterpret_borrow<py::array>(v);
+    if (a.ndim() != 1 || a.size() > 8) {
+      std::string shape;
+      for (py::ssize_t i = 0; i < a.ndim(); ++i)
+        shape += (i ? ", " : "") + std::to_string(a.shape(i));
+      return "array of shape (" + shape + (a.ndim() == 1 ? ",)" : ")");
+    }
+  }
+  if (py::isinstance<py::str>(v) && py::len(v) > kShownMax) return quoted(v.cast<std::string>());
+  return one_line(py::repr(v).cast<std::string>(), kShownMax);
+}
 
 // RotorParameters from {field: value}; field names and Python types are the caller's check, the
 // values are validate()'s (called by Analysis).
