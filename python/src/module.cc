@@ -526,6 +526,23 @@ py::dict floquet_dict(const FloquetSample& s) {
   return d;
 }
 
+// ---- the advance ratio of a trim
+// -----------------------------------------------------------------
+
+// The smallest positive advance ratio a trim resolves: the momentum inflow of eq 2.25 (trim.h
+// momentum_inflow) divides C_T by sqrt(mu^2 + lambda^2), which is 0 or infinite once mu^2
+// underflows, and the library then reports its Brent bracket ("b = inf") instead of mu.  Below
+// sqrt(DBL_MIN) mu^2 is subnormal: refused here, naming the keyword; 0 (hover) is exact.
+const double kMinTrimmedMu = std::sqrt(std::numeric_limits<double>::min());
+
+void check_trim_mu(double mu, const std::string& name) {
+  if (mu > 0.0 && mu < kMinTrimmedMu)
+    throw InvalidInput(name, round_trip_text(mu),
+                       "too small for a trim: the momentum inflow (eq 2.25) needs mu^2, which "
+                       "underflows below mu = " +
+                           round_trip_text(kMinTrimmedMu) + " (use 0 for hover)");
+}
+
 // ---- long runs: studies and maps ----------------------------------------------------------------
 
 TrimOptions trim_options(const std::string& kind, double thrust_coefficient, double shaft_angle,
@@ -651,6 +668,7 @@ py::dict study(const py::dict& params, const py::dict& transition, int flap_mode
   const StudyOptions o = study_options(parameter, values, critical, threads, trim_request);
   check_study_memory(base, o, memory_limit);
   const bool trimmed = o.trim.kind != TrimKind::None;
+  if (trimmed) check_trim_mu(o.critical.scan_step, "scan_step");
   // A trimmed row reports the trim at its mu_c (theta0, theta1c, theta1s, lambda there), as
   // `flaplag critical --trim` does: the trim the row's search made there (StudyRow::trim).
   const StudyResult r = run_cancellable<StudyResult>(
@@ -686,6 +704,13 @@ MapOptions map_options(const std::string& x, const py::handle& x_values, const s
   o.trim = trim_of(trim);
   o.threads = threads;
   o.Check();
+  if (o.trim.kind != TrimKind::None) {
+    for (const auto& [name, axis] : {std::pair{"x", &o.x}, {"y", &o.y}}) {
+      if (axis->parameter != "mu") continue;
+      for (const double v : axis->values) check_trim_mu(v, name);
+    }
+    if (o.x.parameter != "mu" && o.y.parameter != "mu") check_trim_mu(o.mu, "mu");
+  }
   return o;
 }
 
@@ -1232,6 +1257,7 @@ PYBIND11_MODULE(_flaplag, m) {
               double shaft_angle, int max_iterations, double tolerance) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, max_iterations, tolerance);
+             check_trim_mu(mu, "mu");
              TrimResult t;
              {
                py::gil_scoped_release release;
@@ -1248,6 +1274,14 @@ PYBIND11_MODULE(_flaplag, m) {
                throw InvalidInput("shaft_angle", round_trip_text(shaft_angle), "must be finite");
              if (inflow != "momentum" && inflow != "paper" && !std::isfinite(value))
                throw InvalidInput("inflow", round_trip_text(value), "must be finite");
+             // A given inflow ratio is bounded as the advance ratio is: beyond it the periodic
+             // system overflows and the library could only name a coefficient the user never saw.
+             if (inflow == "given" && !(std::abs(value) <= kMaxAdvanceRatio))
+               throw InvalidInput("inflow", round_trip_text(value),
+                                  "must be in [-" + round_trip_text(kMaxAdvanceRatio) + ", " +
+                                      round_trip_text(kMaxAdvanceRatio) +
+                                      "] (an inflow ratio, bounded as mu is)");
+             if (inflow == "momentum") check_trim_mu(mu, "mu");
              ThrustResult t;
              {
                py::gil_scoped_release release;
@@ -1267,6 +1301,7 @@ PYBIND11_MODULE(_flaplag, m) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
+             check_trim_mu(mu, "mu");
              PointResult r;
              {
                py::gil_scoped_release release;
@@ -1284,6 +1319,7 @@ PYBIND11_MODULE(_flaplag, m) {
              const std::size_t points = sweep_grid(mu0, mu1, step).size();
              check_memory(sweep_memory(points, a.state_size()), memory_limit, "step",
                           round_trip_text(step));
+             check_trim_mu(mu0, "mu0");
              const SweepResult r = run_cancellable<SweepResult>(
                  [&](const std::atomic<bool>* cancel, ProgressFunction report) {
                    try {
@@ -1306,6 +1342,7 @@ PYBIND11_MODULE(_flaplag, m) {
              if (mus.size() <= static_cast<std::size_t>(kMaxContinuationSteps))
                check_memory(sweep_memory(mus.size(), a.state_size()), memory_limit, "mu",
                             std::to_string(mus.size()) + " advance ratios");
+             for (const double mu : mus) check_trim_mu(mu, "mu");
              const SweepResult r = run_cancellable<SweepResult>(
                  [&](const std::atomic<bool>* cancel, ProgressFunction report) {
                    try {
@@ -1325,6 +1362,7 @@ PYBIND11_MODULE(_flaplag, m) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
+             check_trim_mu(c.scan_step, "scan_step");
              CriticalResult r;
              std::optional<TrimResult> at_mu_c;
              {

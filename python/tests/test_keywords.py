@@ -127,3 +127,43 @@ def test_study_parameter_of_the_wrong_type_names_parameter(value):
     with pytest.raises(flaplag.InvalidInput) as ei:
         flaplag.study(value, [0.6, 1.4], mu_max=0.3, scan_step=0.1)
     _one_line(ei, "parameter", "must be a string")
+
+
+TINY_MUS = [5e-324, 1e-310, 1e-200]  # mu^2 underflows: the trim's momentum inflow breaks
+
+
+@pytest.mark.parametrize("mu", TINY_MUS)
+def test_a_trim_at_a_vanishing_advance_ratio_names_mu(mu):
+    an = flaplag.Analysis(model="paper-cyclic")
+    calls = [
+        ("mu", lambda: an.trim(mu)),
+        ("mu", lambda: an.thrust(mu)),
+        ("mu", lambda: an.point(mu, scan_step=0.1, trim="thrust")),
+        ("mu", lambda: an.sweep([0.0, mu], scan_step=0.1, trim="thrust")),
+        ("mu", lambda: an.sweep(mu, 0.2, 0.1, trim="thrust")),
+        ("x", lambda: flaplag.map(("mu", [0.0, mu]), ("omega_lag", [0.6]), model="paper-cyclic",
+                                  trim="thrust", scan_step=0.1)),
+        ("mu", lambda: flaplag.map(("theta", [0.1]), ("omega_lag", [0.6]), mu=mu,
+                                   model="paper-cyclic", trim="thrust")),
+    ]
+    for keyword, call in calls:
+        with pytest.raises(flaplag.InvalidInput) as ei:
+            call()
+        message = _one_line(ei, keyword, "too small for a trim")
+        assert " b = " not in message and "fa = " not in message, message
+
+
+def test_a_trim_at_hover_and_at_a_small_normal_advance_ratio_still_runs():
+    an = flaplag.Analysis(model="paper-cyclic")
+    assert an.trim(0.0).status == "ok"
+    assert an.trim(1e-150).status == "ok"
+    # Without the momentum inflow a tiny mu is no trouble.
+    assert an.thrust(5e-324, inflow="paper").status == "ok"
+
+
+@pytest.mark.parametrize("inflow", [1e308, -1e308, 1e6])
+def test_a_huge_given_inflow_names_inflow(inflow):
+    an = flaplag.Analysis(model="paper-cyclic")
+    with pytest.raises(flaplag.InvalidInput) as ei:
+        an.thrust(0.2, inflow=inflow)
+    _one_line(ei, "inflow", "must be in [-1000, 1000]")
