@@ -99,7 +99,7 @@ def _shown(value):
     the repr of a large object."""
     if isinstance(value, float):
         return repr(value)
-    if isinstance(value, np.ndarray) and (value.ndim != 1 or value.size > 8):
+    if isinstance(value, np.ndarray) and (value.ndim > 1 or value.size > 8):
         return f"array of shape {value.shape}"
     if isinstance(value, (list, tuple)) and len(value) > 8:
         return f"{type(value).__name__} of {len(value)} items"

@@ -141,7 +141,7 @@ std::string values_text(std::size_t n) { return std::to_string(n) + " values"; }
 std::string shown(const py::handle& v) {
   if (py::isinstance<py::array>(v)) {
     const py::array a = py::reinterpret_borrow<py::array>(v);
-    if (a.ndim() != 1 || a.size() > 8) {
+    if (a.ndim() > 1 || a.size() > 8) {
       std::string shape;
       for (py::ssize_t i = 0; i < a.ndim(); ++i)
         shape += (i ? ", " : "") + std::to_string(a.shape(i));

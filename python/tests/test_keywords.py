@@ -167,3 +167,13 @@ def test_a_huge_given_inflow_names_inflow(inflow):
     with pytest.raises(flaplag.InvalidInput) as ei:
         an.thrust(0.2, inflow=inflow)
     _one_line(ei, "inflow", "must be in [-1000, 1000]")
+
+
+def test_a_small_array_is_shown_as_its_repr():
+    an = flaplag.Analysis()
+    with pytest.raises(flaplag.InvalidInput) as ei:
+        an.floquet(np.array([0.1, np.nan]))
+    _one_line(ei, "mu", "array([0.1, nan])")
+    with pytest.raises(flaplag.InvalidInput) as ei:
+        an.floquet(np.array("a"))
+    _one_line(ei, "mu", "array('a'")
