@@ -267,9 +267,20 @@ void select_mode_counts(RotorParameters& p, int flap_modes, int lag_modes) {
   p.model = find_model(p.model, flap_modes, lag_modes).name;
 }
 
+// The largest C_Do / a the module passes on.  The table admits any lift_slope in (0, 100], but
+// the aerodynamic loads carry C_Do / a (system_builder), and a lift slope near the bottom of
+// double's range overflows the hover matrix: the library then reports "A0 = non-finite", a
+// matrix the user never gave.  C_Do / a is about 0.002 for a real blade; 1e300 leaves the loads
+// finite for every admissible C_Do (the first overflow seen is near 1e307).
+constexpr double kMaxDragOverLiftSlope = 1e300;
+
 RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_modes) {
   RotorParameters p = rotor_parameters(params);
   validate(p);
+  if (!(p.cdo / p.lift_slope <= kMaxDragOverLiftSlope))
+    throw InvalidInput("lift_slope", round_trip_text(p.lift_slope),
+                       "too small for cdo = " + round_trip_text(p.cdo) +
+                           ": C_Do / a must be at most 1e300 (the aerodynamic loads overflow)");
   find_model(p.model);
   select_mode_counts(p, flap_modes, lag_modes);
   return p;
@@ -1109,10 +1120,7 @@ PYBIND11_MODULE(_flaplag, m) {
   py::class_<Analysis>(m, "Analysis")
       .def(py::init([](const py::dict& params, const py::dict& transition, int flap_modes,
                        int lag_modes) {
-             RotorParameters p = rotor_parameters(params);
-             validate(p);
-             find_model(p.model);
-             select_mode_counts(p, flap_modes, lag_modes);
+             const RotorParameters p = base_parameters(params, flap_modes, lag_modes);
              const TransitionOptions t = transition_options(transition);
              py::gil_scoped_release release;
              return Analysis(p, t);

@@ -177,3 +177,26 @@ def test_a_small_array_is_shown_as_its_repr():
     with pytest.raises(flaplag.InvalidInput) as ei:
         an.floquet(np.array("a"))
     _one_line(ei, "mu", "array('a'")
+
+
+@pytest.mark.parametrize("lift_slope", [5e-324, 1e-310])
+def test_a_vanishing_lift_slope_names_lift_slope(lift_slope):
+    # C_Do / a overflowed the hover matrix: the library named "A0", a matrix nobody typed.
+    with pytest.raises(flaplag.InvalidInput) as ei:
+        flaplag.Analysis(lift_slope=lift_slope)
+    _one_line(ei, "lift_slope", "too small for cdo = 0.01")
+    with pytest.raises(flaplag.InvalidInput) as ei:
+        flaplag.study("omega_lag", [0.6], lift_slope=lift_slope, client=_Executor())
+    _one_line(ei, "lift_slope")
+
+
+def test_a_small_lift_slope_without_profile_drag_still_builds():
+    assert flaplag.Analysis(lift_slope=5e-324, cdo=0.0).hover.status != "failed"
+    assert flaplag.Analysis(lift_slope=1e-300).hover is not None
+
+
+class _Executor:
+    """An executor with submit() that must never be reached (the checks come first)."""
+
+    def submit(self, *args, **kwargs):
+        raise AssertionError("work was submitted before the parameters were checked")
