@@ -6,11 +6,13 @@ the names, units, ranges, defaults and descriptions have one source.  The comman
 the same names as options (``omega_lag`` is ``--omega-lag``).
 """
 
+import contextlib
 import difflib
 import inspect
 import math
 import numbers
 import operator
+import re
 import textwrap
 
 import numpy as np
@@ -88,11 +90,46 @@ def _invalid(cls, field, value, reason, text=None):
     return e
 
 
+_SHOWN_MAX = 60  # characters of a value shown in a message
+
+
 def _shown(value):
+    """A value as a message shows it: one line of at most _SHOWN_MAX characters, whatever the
+    value (an array by its shape, a long list by its length, a long text cut), computed without
+    the repr of a large object."""
     if isinstance(value, float):
         return repr(value)
-    r = repr(value)
-    return r if len(r) <= 60 else r[:57] + "..."
+    if isinstance(value, np.ndarray) and (value.ndim > 1 or value.size > 8):
+        return f"array of shape {value.shape}"
+    if isinstance(value, (list, tuple)) and len(value) > 8:
+        return f"{type(value).__name__} of {len(value)} items"
+    if isinstance(value, (str, bytes)) and len(value) > _SHOWN_MAX:
+        value = value[:_SHOWN_MAX]  # the repr of the start: the rest would be cut anyway
+    try:
+        r = repr(value)
+    except Exception:  # a user's object whose repr fails
+        r = f"<{type(value).__name__}>"
+    r = " ".join(r.split())  # one line
+    return r if len(r) <= _SHOWN_MAX else r[: _SHOWN_MAX - 3] + "..."
+
+
+@contextlib.contextmanager
+def _keywords(**names):
+    """Names the library's checks after the keywords the user typed: an InvalidInput from the
+    library whose field is a key of `names` (the C++ argument, e.g. mu0) is raised again naming
+    the keyword (names[field], e.g. mu), and the other C++ names in its reason are replaced as
+    well ("must be >= mu0" becomes "must be >= mu")."""
+    try:
+        yield
+    except InvalidInput as e:
+        field = getattr(e, "field", None)
+        if field not in names:
+            raise
+        reason = getattr(e, "reason", str(e))
+        for cxx, python in names.items():
+            reason = re.sub(r"(?<![A-Za-z0-9_`])" + re.escape(cxx) + r"(?![A-Za-z0-9_`])",
+                            python, reason)
+        raise _invalid(type(e), names[field], None, reason, getattr(e, "value", "?")) from None
 
 
 def _real(field, value):
@@ -386,11 +423,14 @@ class Analysis:
                 raise _invalid(InvalidInput, "scan_step", scan_step,
                                "applies to sweep(mus) only: sweep(start, stop, step) continues "
                                "in steps of `step`")
-            grid = (_real("mu0", mu), _real("mu1", stop), _real("step", step))
-            if t is None:
-                raw = self._native.sweep(*grid, threads, progress, limit)
-            else:
-                raw = self._native.trimmed_sweep(*grid, *t, progress, limit)
+            grid = (_real("mu", mu), _real("stop", stop), _real("step", step))
+            # The library names the grid mu0, mu1 (its arguments, the command line's
+            # START:STOP): the user typed mu and stop.
+            with _keywords(mu0="mu", mu1="stop"):
+                if t is None:
+                    raw = self._native.sweep(*grid, threads, progress, limit)
+                else:
+                    raw = self._native.trimmed_sweep(*grid, *t, progress, limit)
         return SweepResult._from(raw, self._labels())
 
     def critical(
@@ -504,18 +544,20 @@ class Analysis:
             start = [float(y0)] * n
         else:
             start = _real_array("y0", y0)
-        return SimulationResult._from(
-            self._native.simulate(
-                _real("mu", mu),
-                start,
-                _flag("forced", forced),
-                _real("revolutions", revolutions),
-                _int("samples_per_rev", samples_per_rev),
-                _int("steps_per_rev", steps_per_rev),
-                _flag("nonlinear", nonlinear),
-                _memory_limit(memory_limit),
-            )
+        args = (
+            _real("mu", mu),
+            start,
+            _flag("forced", forced),
+            _real("revolutions", revolutions),
+            _int("samples_per_rev", samples_per_rev),
+            _int("steps_per_rev", steps_per_rev),
+            _flag("nonlinear", nonlinear),
+            _memory_limit(memory_limit),
         )
+        # The library's SimulationOptions checks use the command line's names.
+        with _keywords(samples="samples_per_rev", steps="steps_per_rev"):
+            raw = self._native.simulate(*args)
+        return SimulationResult._from(raw)
 
     def periodic_equilibrium(
         self,

@@ -176,8 +176,9 @@ def study(
     _distribution(client, chunk_lines)
     progress = _progress(progress)
     limit = _memory_limit(memory_limit)
-    rotor, transition, flap_modes, lag_modes = _base(parameters, [parameter])
+    # The type first: the name is looked up among the keywords next.
     parameter = _text("parameter", parameter)
+    rotor, transition, flap_modes, lag_modes = _base(parameters, [parameter])
     vals = _real_array("values", values)
     critical = {
         "mu_max": _real("mu_max", mu_max),

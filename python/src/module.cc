@@ -52,14 +52,41 @@ namespace {
 // lives as long as the interpreter).
 PyObject* invalid_input_type = nullptr;
 
+// The most characters of a value shown in a message (as the Python layer's _shown).
+constexpr std::size_t kShownMax = 60;
+
+// Text for a one-line message: every run of white space (newlines included) one space, at
+// most `max` characters (cut with "...").
+std::string one_line(const std::string& text, std::size_t max) {
+  std::string out;
+  bool space = false;
+  for (const char c : text) {
+    if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f') {
+      space = !out.empty();
+      continue;
+    }
+    if (space) out += ' ';
+    space = false;
+    out += c;
+    if (out.size() > max) break;
+  }
+  if (out.size() > max) out = out.substr(0, max - 3) + "...";
+  return out;
+}
+
+// The library's InvalidInput as flaplag.InvalidInput: "<field> = <value>: <reason>" on one
+// line, the value bounded (a value the user gave, e.g. a model name, may be any text).
 void translate_invalid_input(const InvalidInput& e) {
   const std::string what = e.what();
   const std::string head = e.name() + " = " + e.value() + ": ";
+  const std::string value = one_line(e.value(), kShownMax);
+  const std::string reason =
+      one_line(what.compare(0, head.size(), head) == 0 ? what.substr(head.size()) : what, 1000);
   py::object type = py::reinterpret_borrow<py::object>(invalid_input_type);
-  py::object exc = type(what);
+  py::object exc = type(one_line(e.name(), kShownMax) + " = " + value + ": " + reason);
   exc.attr("field") = e.name();
-  exc.attr("value") = e.value();
-  exc.attr("reason") = what.compare(0, head.size(), head) == 0 ? what.substr(head.size()) : what;
+  exc.attr("value") = value;
+  exc.attr("reason") = reason;
   PyErr_SetObject(invalid_input_type, exc.ptr());
 }
 
@@ -102,12 +129,28 @@ py::object optional(const std::optional<bool>& v) {
   return v ? py::object(py::bool_(*v)) : py::object(py::none());
 }
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+// A name the user gave, quoted for a message (bounded: it may be any text).
+std::string quoted(const std::string& s) {
+  return s.size() <= kShownMax - 2 ? "'" + s + "'" : "'" + s.substr(0, kShownMax - 5) + "'...";
+}
 
 std::string values_text(std::size_t n) { return std::to_string(n) + " values"; }
 
-// The value of a parameter field, for messages.
-std::string shown(const py::handle& v) { return py::repr(v).cast<std::string>(); }
+// A Python value for a message: one line, bounded; an array by its shape (as the Python
+// layer's _shown).
+std::string shown(const py::handle& v) {
+  if (py::isinstance<py::array>(v)) {
+    const py::array a = py::reinterpret_borrow<py::array>(v);
+    if (a.ndim() > 1 || a.size() > 8) {
+      std::string shape;
+      for (py::ssize_t i = 0; i < a.ndim(); ++i)
+        shape += (i ? ", " : "") + std::to_string(a.shape(i));
+      return "array of shape (" + shape + (a.ndim() == 1 ? ",)" : ")");
+    }
+  }
+  if (py::isinstance<py::str>(v) && py::len(v) > kShownMax) return quoted(v.cast<std::string>());
+  return one_line(py::repr(v).cast<std::string>(), kShownMax);
+}
 
 // RotorParameters from {field: value}; field names and Python types are the caller's check, the
 // values are validate()'s (called by Analysis).
@@ -224,9 +267,20 @@ void select_mode_counts(RotorParameters& p, int flap_modes, int lag_modes) {
   p.model = find_model(p.model, flap_modes, lag_modes).name;
 }
 
+// The largest C_Do / a the module passes on.  The table admits any lift_slope in (0, 100], but
+// the aerodynamic loads carry C_Do / a (system_builder), and a lift slope near the bottom of
+// double's range overflows the hover matrix: the library then reports "A0 = non-finite", a
+// matrix the user never gave.  C_Do / a is about 0.002 for a real blade; 1e300 leaves the loads
+// finite for every admissible C_Do (the first overflow seen is near 1e307).
+constexpr double kMaxDragOverLiftSlope = 1e300;
+
 RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_modes) {
   RotorParameters p = rotor_parameters(params);
   validate(p);
+  if (!(p.cdo / p.lift_slope <= kMaxDragOverLiftSlope))
+    throw InvalidInput("lift_slope", round_trip_text(p.lift_slope),
+                       "too small for cdo = " + round_trip_text(p.cdo) +
+                           ": C_Do / a must be at most 1e300 (the aerodynamic loads overflow)");
   find_model(p.model);
   select_mode_counts(p, flap_modes, lag_modes);
   return p;
@@ -483,6 +537,23 @@ py::dict floquet_dict(const FloquetSample& s) {
   return d;
 }
 
+// ---- the advance ratio of a trim
+// -----------------------------------------------------------------
+
+// The smallest positive advance ratio a trim resolves: the momentum inflow of eq 2.25 (trim.h
+// momentum_inflow) divides C_T by sqrt(mu^2 + lambda^2), which is 0 or infinite once mu^2
+// underflows, and the library then reports its Brent bracket ("b = inf") instead of mu.  Below
+// sqrt(DBL_MIN) mu^2 is subnormal: refused here, naming the keyword; 0 (hover) is exact.
+const double kMinTrimmedMu = std::sqrt(std::numeric_limits<double>::min());
+
+void check_trim_mu(double mu, const std::string& name) {
+  if (mu > 0.0 && mu < kMinTrimmedMu)
+    throw InvalidInput(name, round_trip_text(mu),
+                       "too small for a trim: the momentum inflow (eq 2.25) needs mu^2, which "
+                       "underflows below mu = " +
+                           round_trip_text(kMinTrimmedMu) + " (use 0 for hover)");
+}
+
 // ---- long runs: studies and maps ----------------------------------------------------------------
 
 TrimOptions trim_options(const std::string& kind, double thrust_coefficient, double shaft_angle,
@@ -608,6 +679,7 @@ py::dict study(const py::dict& params, const py::dict& transition, int flap_mode
   const StudyOptions o = study_options(parameter, values, critical, threads, trim_request);
   check_study_memory(base, o, memory_limit);
   const bool trimmed = o.trim.kind != TrimKind::None;
+  if (trimmed) check_trim_mu(o.critical.scan_step, "scan_step");
   // A trimmed row reports the trim at its mu_c (theta0, theta1c, theta1s, lambda there), as
   // `flaplag critical --trim` does: the trim the row's search made there (StudyRow::trim).
   const StudyResult r = run_cancellable<StudyResult>(
@@ -643,6 +715,13 @@ MapOptions map_options(const std::string& x, const py::handle& x_values, const s
   o.trim = trim_of(trim);
   o.threads = threads;
   o.Check();
+  if (o.trim.kind != TrimKind::None) {
+    for (const auto& [name, axis] : {std::pair{"x", &o.x}, {"y", &o.y}}) {
+      if (axis->parameter != "mu") continue;
+      for (const double v : axis->values) check_trim_mu(v, name);
+    }
+    if (o.x.parameter != "mu" && o.y.parameter != "mu") check_trim_mu(o.mu, "mu");
+  }
   return o;
 }
 
@@ -1041,10 +1120,7 @@ PYBIND11_MODULE(_flaplag, m) {
   py::class_<Analysis>(m, "Analysis")
       .def(py::init([](const py::dict& params, const py::dict& transition, int flap_modes,
                        int lag_modes) {
-             RotorParameters p = rotor_parameters(params);
-             validate(p);
-             find_model(p.model);
-             select_mode_counts(p, flap_modes, lag_modes);
+             const RotorParameters p = base_parameters(params, flap_modes, lag_modes);
              const TransitionOptions t = transition_options(transition);
              py::gil_scoped_release release;
              return Analysis(p, t);
@@ -1189,6 +1265,7 @@ PYBIND11_MODULE(_flaplag, m) {
               double shaft_angle, int max_iterations, double tolerance) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, max_iterations, tolerance);
+             check_trim_mu(mu, "mu");
              TrimResult t;
              {
                py::gil_scoped_release release;
@@ -1205,6 +1282,14 @@ PYBIND11_MODULE(_flaplag, m) {
                throw InvalidInput("shaft_angle", round_trip_text(shaft_angle), "must be finite");
              if (inflow != "momentum" && inflow != "paper" && !std::isfinite(value))
                throw InvalidInput("inflow", round_trip_text(value), "must be finite");
+             // A given inflow ratio is bounded as the advance ratio is: beyond it the periodic
+             // system overflows and the library could only name a coefficient the user never saw.
+             if (inflow == "given" && !(std::abs(value) <= kMaxAdvanceRatio))
+               throw InvalidInput("inflow", round_trip_text(value),
+                                  "must be in [-" + round_trip_text(kMaxAdvanceRatio) + ", " +
+                                      round_trip_text(kMaxAdvanceRatio) +
+                                      "] (an inflow ratio, bounded as mu is)");
+             if (inflow == "momentum") check_trim_mu(mu, "mu");
              ThrustResult t;
              {
                py::gil_scoped_release release;
@@ -1224,6 +1309,7 @@ PYBIND11_MODULE(_flaplag, m) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
+             check_trim_mu(mu, "mu");
              PointResult r;
              {
                py::gil_scoped_release release;
@@ -1241,6 +1327,7 @@ PYBIND11_MODULE(_flaplag, m) {
              const std::size_t points = sweep_grid(mu0, mu1, step).size();
              check_memory(sweep_memory(points, a.state_size()), memory_limit, "step",
                           round_trip_text(step));
+             check_trim_mu(mu0, "mu0");
              const SweepResult r = run_cancellable<SweepResult>(
                  [&](const std::atomic<bool>* cancel, ProgressFunction report) {
                    try {
@@ -1263,6 +1350,7 @@ PYBIND11_MODULE(_flaplag, m) {
              if (mus.size() <= static_cast<std::size_t>(kMaxContinuationSteps))
                check_memory(sweep_memory(mus.size(), a.state_size()), memory_limit, "mu",
                             std::to_string(mus.size()) + " advance ratios");
+             for (const double mu : mus) check_trim_mu(mu, "mu");
              const SweepResult r = run_cancellable<SweepResult>(
                  [&](const std::atomic<bool>* cancel, ProgressFunction report) {
                    try {
@@ -1282,6 +1370,7 @@ PYBIND11_MODULE(_flaplag, m) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
+             check_trim_mu(c.scan_step, "scan_step");
              CriticalResult r;
              std::optional<TrimResult> at_mu_c;
              {
