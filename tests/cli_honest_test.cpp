@@ -127,6 +127,28 @@ TEST(CliHonest, TrimOutsideTheValidityEnvelopeWarns) {
   EXPECT_NE(p["message"].get<std::string>().find("theta0 = 0.5 rad"), std::string::npos) << p;
 }
 
+// A trim at a vanishing advance ratio is the hover trim: at mu = 1e-150 the momentum inflow's
+// bracket was too wide for its root finder and a wrong trim (theta0 = 0.095, inflow 0) came
+// back "ok"; at 5e-324 the run failed naming the root finder's bracket ("fa = -inf").
+TEST(CliHonest, TrimAtAVanishingAdvanceRatioIsTheHoverTrim) {
+  const Json hover = run_json({"trim", "--model", "paper-cyclic", "--mu", "0"});
+  for (const char* mu : {"1e-150", "5e-324"}) {
+    const Json j = run_json({"trim", "--model", "paper-cyclic", "--mu", mu});
+    EXPECT_EQ(j["status"], "ok") << j;
+    EXPECT_NEAR(j["theta0"].get<double>(), hover["theta0"].get<double>(), 1e-12) << mu;
+    EXPECT_NEAR(j["inflow"].get<double>(), hover["inflow"].get<double>(), 1e-12) << mu;
+  }
+}
+
+// A lift slope so small that C_Do / a overflows the loads was an internal error naming a
+// derived matrix ("A0 = non-finite"); it is bad input naming --lift-slope.
+TEST(CliHonest, ALiftSlopeThatOverflowsTheLoadsIsBadInput) {
+  const Outcome o = run({"point", "--mu", "0.3", "--lift-slope", "5e-324"});
+  EXPECT_EQ(o.exit_code, 2) << o.err;
+  EXPECT_EQ(o.err.rfind("flaplag: error: --lift-slope = 5e-324: too small for --cdo=0.01", 0), 0u)
+      << o.err;
+}
+
 // A blade of vanishing length: hover used to be "unstable" from zeta = 2e-92 and mu = 0.5
 // "stable: true" with |zeta| below its own error estimate.  Both are unknown.
 TEST(CliHonest, StabilityFromRoundingNoiseIsUnknown) {

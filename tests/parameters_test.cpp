@@ -232,6 +232,9 @@ const BadCase kBad[] = {
     {"BasisZero", [](RotorParameters& p) { p.basis = 0; }, "basis"},
     {"BasisNegative", [](RotorParameters& p) { p.basis = -5; }, "basis"},
     {"BasisThirteen", [](RotorParameters& p) { p.basis = 13; }, "basis"},
+    // C_Do / a overflowed the aerodynamic loads, and the failure named a derived matrix (A0).
+    {"LiftSlopeOverflowingDragOverLiftSlope", [](RotorParameters& p) { p.lift_slope = 5e-324; },
+     "lift_slope"},
     {"ExactReversedFlowWithoutReversedFlow",
      [](RotorParameters& p) {
        p.reversed_flow = false;
@@ -255,6 +258,16 @@ TEST(Validate, TipLossMessageNamesTheOtherFieldInBackticks) {
   } catch (const InvalidInput& e) {
     EXPECT_EQ(std::string(e.what()), "tip_loss_a = 0.6: must be below `tip_loss_b` = 0.5");
   }
+}
+
+TEST(Validate, ASmallLiftSlopeWithoutProfileDragIsAccepted) {
+  RotorParameters p;
+  p.cdo = 0.0;
+  p.lift_slope = 5e-324;
+  EXPECT_NO_THROW(validate(p));
+  p.cdo = 0.01;
+  p.lift_slope = 1e-301;  // C_Do / a = 1e299, near the largest admitted
+  EXPECT_NO_THROW(validate(p));
 }
 
 TEST(Validate, AcceptsUpperBoundaryValues) {

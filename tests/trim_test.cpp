@@ -85,6 +85,21 @@ TEST(MomentumInflow, SolvesEq225) {
   }
 }
 
+// A vanishing advance ratio is hover: below mu ~ 1e-154 mu^2 underflowed and the bracket's end
+// C_T / (2 mu) overflowed ("b = inf" was reported), and at mu = 1e-150 the bracket [0, 2e147]
+// outlasted Brent's evaluations and a wrong inflow (0) came back.  Regression test.
+TEST(MomentumInflow, AVanishingAdvanceRatioIsHover) {
+  const double ct = 0.006, hover = std::sqrt(ct / 2.0);
+  for (double mu : {5e-324, 1e-310, 1e-200, 1e-150, 1e-20, 1e-8}) {
+    for (double alpha : {-0.1, 0.0, 0.08}) {
+      const double lam = flaplag::momentum_inflow(ct, mu, alpha);
+      // lambda (lambda - mu tan(alpha)) = C_T / 2 to O(mu^2): lambda = hover + mu tan(alpha) / 2.
+      EXPECT_NEAR(lam, hover + 0.5 * mu * std::tan(alpha), 4e-15)
+          << "mu " << mu << " alpha " << alpha;
+    }
+  }
+}
+
 // Issue 12: C_T at theta = 0.15 in hover (eq 2.25 inflow), trimmed back: theta = 0.15 to 1e-12.
 TEST(Trim, HoverRoundTripRecoversThePitch) {
   const double ct = hover_thrust_at_015();

@@ -267,20 +267,9 @@ void select_mode_counts(RotorParameters& p, int flap_modes, int lag_modes) {
   p.model = find_model(p.model, flap_modes, lag_modes).name;
 }
 
-// The largest C_Do / a the module passes on.  The table admits any lift_slope in (0, 100], but
-// the aerodynamic loads carry C_Do / a (system_builder), and a lift slope near the bottom of
-// double's range overflows the hover matrix: the library then reports "A0 = non-finite", a
-// matrix the user never gave.  C_Do / a is about 0.002 for a real blade; 1e300 leaves the loads
-// finite for every admissible C_Do (the first overflow seen is near 1e307).
-constexpr double kMaxDragOverLiftSlope = 1e300;
-
 RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_modes) {
   RotorParameters p = rotor_parameters(params);
   validate(p);
-  if (!(p.cdo / p.lift_slope <= kMaxDragOverLiftSlope))
-    throw InvalidInput("lift_slope", round_trip_text(p.lift_slope),
-                       "too small for cdo = " + round_trip_text(p.cdo) +
-                           ": C_Do / a must be at most 1e300 (the aerodynamic loads overflow)");
   find_model(p.model);
   select_mode_counts(p, flap_modes, lag_modes);
   return p;
@@ -537,23 +526,6 @@ py::dict floquet_dict(const FloquetSample& s) {
   return d;
 }
 
-// ---- the advance ratio of a trim
-// -----------------------------------------------------------------
-
-// The smallest positive advance ratio a trim resolves: the momentum inflow of eq 2.25 (trim.h
-// momentum_inflow) divides C_T by sqrt(mu^2 + lambda^2), which is 0 or infinite once mu^2
-// underflows, and the library then reports its Brent bracket ("b = inf") instead of mu.  Below
-// sqrt(DBL_MIN) mu^2 is subnormal: refused here, naming the keyword; 0 (hover) is exact.
-const double kMinTrimmedMu = std::sqrt(std::numeric_limits<double>::min());
-
-void check_trim_mu(double mu, const std::string& name) {
-  if (mu > 0.0 && mu < kMinTrimmedMu)
-    throw InvalidInput(name, round_trip_text(mu),
-                       "too small for a trim: the momentum inflow (eq 2.25) needs mu^2, which "
-                       "underflows below mu = " +
-                           round_trip_text(kMinTrimmedMu) + " (use 0 for hover)");
-}
-
 // ---- long runs: studies and maps ----------------------------------------------------------------
 
 TrimOptions trim_options(const std::string& kind, double thrust_coefficient, double shaft_angle,
@@ -679,7 +651,6 @@ py::dict study(const py::dict& params, const py::dict& transition, int flap_mode
   const StudyOptions o = study_options(parameter, values, critical, threads, trim_request);
   check_study_memory(base, o, memory_limit);
   const bool trimmed = o.trim.kind != TrimKind::None;
-  if (trimmed) check_trim_mu(o.critical.scan_step, "scan_step");
   // A trimmed row reports the trim at its mu_c (theta0, theta1c, theta1s, lambda there), as
   // `flaplag critical --trim` does: the trim the row's search made there (StudyRow::trim).
   const StudyResult r = run_cancellable<StudyResult>(
@@ -715,13 +686,6 @@ MapOptions map_options(const std::string& x, const py::handle& x_values, const s
   o.trim = trim_of(trim);
   o.threads = threads;
   o.Check();
-  if (o.trim.kind != TrimKind::None) {
-    for (const auto& [name, axis] : {std::pair{"x", &o.x}, {"y", &o.y}}) {
-      if (axis->parameter != "mu") continue;
-      for (const double v : axis->values) check_trim_mu(v, name);
-    }
-    if (o.x.parameter != "mu" && o.y.parameter != "mu") check_trim_mu(o.mu, "mu");
-  }
   return o;
 }
 
@@ -1265,7 +1229,6 @@ PYBIND11_MODULE(_flaplag, m) {
               double shaft_angle, int max_iterations, double tolerance) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, max_iterations, tolerance);
-             check_trim_mu(mu, "mu");
              TrimResult t;
              {
                py::gil_scoped_release release;
@@ -1289,7 +1252,6 @@ PYBIND11_MODULE(_flaplag, m) {
                                   "must be in [-" + round_trip_text(kMaxAdvanceRatio) + ", " +
                                       round_trip_text(kMaxAdvanceRatio) +
                                       "] (an inflow ratio, bounded as mu is)");
-             if (inflow == "momentum") check_trim_mu(mu, "mu");
              ThrustResult t;
              {
                py::gil_scoped_release release;
@@ -1309,7 +1271,6 @@ PYBIND11_MODULE(_flaplag, m) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
-             check_trim_mu(mu, "mu");
              PointResult r;
              {
                py::gil_scoped_release release;
@@ -1327,7 +1288,6 @@ PYBIND11_MODULE(_flaplag, m) {
              const std::size_t points = sweep_grid(mu0, mu1, step).size();
              check_memory(sweep_memory(points, a.state_size()), memory_limit, "step",
                           round_trip_text(step));
-             check_trim_mu(mu0, "mu0");
              const SweepResult r = run_cancellable<SweepResult>(
                  [&](const std::atomic<bool>* cancel, ProgressFunction report) {
                    try {
@@ -1350,7 +1310,6 @@ PYBIND11_MODULE(_flaplag, m) {
              if (mus.size() <= static_cast<std::size_t>(kMaxContinuationSteps))
                check_memory(sweep_memory(mus.size(), a.state_size()), memory_limit, "mu",
                             std::to_string(mus.size()) + " advance ratios");
-             for (const double mu : mus) check_trim_mu(mu, "mu");
              const SweepResult r = run_cancellable<SweepResult>(
                  [&](const std::atomic<bool>* cancel, ProgressFunction report) {
                    try {
@@ -1370,7 +1329,6 @@ PYBIND11_MODULE(_flaplag, m) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
-             check_trim_mu(c.scan_step, "scan_step");
              CriticalResult r;
              std::optional<TrimResult> at_mu_c;
              {

@@ -224,6 +224,14 @@ void validate_except_inflow(const RotorParameters& p) {
     throw InvalidInput(row("tip_loss_a").field, round_trip_text(p.tip_loss_a),
                        "must be below `tip_loss_b` = " + round_trip_text(p.tip_loss_b));
   }
+  // The aerodynamic loads carry C_Do / a: a lift slope near the bottom of double's range would
+  // overflow them (first seen near 1e307) and the failure would name a derived matrix.  A real
+  // blade has C_Do / a of about 0.002.
+  if (!(p.cdo / p.lift_slope <= kMaxDragOverLiftSlope)) {
+    throw InvalidInput(row("lift_slope").field, round_trip_text(p.lift_slope),
+                       "too small for `cdo` = " + round_trip_text(p.cdo) +
+                           ": C_Do / a must be at most 1e300 (the aerodynamic loads overflow)");
+  }
   // The exact region is a way of modelling the reversed flow, not a second switch for it.
   if (p.exact_reversed_flow && !p.reversed_flow) {
     throw InvalidInput(row("exact_reversed_flow").field, "true",

@@ -46,7 +46,9 @@ struct RotorParameters {
 // cyclic pitch (the cyclic_pitch spec switch, e.g. paper-cyclic): SystemBuilder refuses others.
 //
 // Throws InvalidInput naming the first offending field ("omega_lag") and its value; the
-// admissible ranges are those of parameter_table.h (also noted above).
+// admissible ranges are those of parameter_table.h (also noted above), with tip_loss_a <
+// tip_loss_b and C_Do / a <= kMaxDragOverLiftSlope besides.
+inline constexpr double kMaxDragOverLiftSlope = 1e300;
 void validate(const RotorParameters& p);
 // validate() without its last check (that eq 2.24 has a real inflow at theta): for an operating
 // point whose inflow is given instead (a trim, eq 2.25).
