@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands_internal.h"
@@ -69,7 +70,7 @@ Json case_json(const Request& r) {
   return c;
 }
 
-// The commands that need no analysis of the case's rotor.
+// The commands that do not rest on one Analysis of the case's rotor.
 std::optional<Output> run_standalone(const Request& r, std::string& w, RunControl* control) {
   switch (r.command) {
     case Command::Models:

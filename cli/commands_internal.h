@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "command_line.h"
@@ -19,7 +20,8 @@ namespace flaplag::cli::cmd {
 
 using Json = nlohmann::ordered_json;
 
-// What a command produced: a JSON document (json set) or text.
+// What a command produced: a JSON document (json set; the command's `return j;`) or text (the
+// command's `return out;`), taken as they are.
 struct Output {
   Output(std::string t) : text(std::move(t)) {}
   Output(Json j) : json(std::move(j)) {}
