@@ -31,8 +31,6 @@ struct RunControl {
 // `control` (optional) carries the cancel flag and progress function of a study or map.
 std::string run_command(const Request& request, std::string* warning = nullptr,
                         RunControl* control = nullptr);
-std::string run_command_text(const Request& request, std::string* warning,
-                             RunControl* control = nullptr);
 
 // `flaplag modes` (modes_command.cc).
 std::string run_modes(const Request& request);

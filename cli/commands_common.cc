@@ -1,0 +1,286 @@
+// flaplag CLI — what every subcommand's output shares: numbers that may not be finite and their
+// audit, the header (model, method, parameters), status lines, warnings.
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "commands_internal.h"
+#include "flaplag/core/format.h"
+#include "flaplag/rotor/parameter_table.h"
+#include "options.h"
+#include "output.h"
+#include "plot.h"
+
+namespace flaplag::cli::cmd {
+
+namespace {
+
+Json parameters_json(const RotorParameters& p) {
+  Json j = Json::object();
+  for (const ParameterSpec& s : parameter_table()) {
+    switch (s.type) {
+      case ParameterType::Real:
+        j[json_key(s)] = p.*s.real;
+        break;
+      case ParameterType::Integer:
+        j[json_key(s)] = p.*s.integer;
+        break;
+      case ParameterType::Flag:
+        j[json_key(s)] = p.*s.flag;
+        break;
+      case ParameterType::Choice:
+      case ParameterType::Text:
+        j[json_key(s)] = parameter_text(p, s);
+        break;
+    }
+  }
+  return j;
+}
+
+// "symbol = value" pairs, several lines; flags and the model are shown elsewhere.
+std::string parameters_text(const RotorParameters& p) {
+  std::string out, line;
+  for (const ParameterSpec& s : parameter_table()) {
+    if (s.type != ParameterType::Real) continue;
+    std::string item = std::string(s.symbol) + " = " + num(p.*s.real);
+    if (std::string(s.units) == "rad") item += " rad";
+    if (!line.empty() && line.size() + item.size() + 2 > 80) {
+      out += line + ",\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : ", ") + item;
+  }
+  return out + line;
+}
+
+}  // namespace
+
+// ---- numbers that may not be finite ------------------------------------------------------------
+//
+// The library promises finite results, with two documented exceptions: the zeta of a zero
+// multiplier is -inf, and optional diagnostics are absent rather than NaN.  The printers do not
+// take that on trust: every result is audited first (audit_*), and a value that breaks the
+// promise marks its result "failed" with a message saying what was not shown; the printers then
+// show such values as "-" (text), an empty field (CSV) or null (JSON).  num() itself refuses
+// non-finite values, so a value no audit covered ends the run as an internal error instead of
+// printing "nan".
+
+bool finite(double v) { return std::isfinite(v); }
+bool finite(std::complex<double> z) { return finite(z.real()) && finite(z.imag()); }
+bool zeta_ok(double zeta) {
+  return finite(zeta) || zeta == -std::numeric_limits<double>::infinity();
+}
+
+std::string cell(double v) { return finite(v) ? num(v) : "-"; }
+std::string zeta_cell(double zeta) { return zeta_ok(zeta) ? zeta_text(zeta) : "-"; }
+Json jnum(double v) { return finite(v) ? Json(v) : Json(nullptr); }
+// zeta of a zero multiplier is -inf, which JSON cannot hold: it is written as the string "-inf".
+Json zeta_json(double zeta) {
+  if (finite(zeta)) return Json(zeta);
+  return zeta_ok(zeta) ? Json("-inf") : Json(nullptr);
+}
+Json complex_json(std::complex<double> z) {
+  return Json{{"re", jnum(z.real())}, {"im", jnum(z.imag())}};
+}
+
+std::string complex_text(std::complex<double> z) {
+  if (!finite(z)) return "-";
+  return num(z.real()) + (std::signbit(z.imag()) ? " - " : " + ") + num(std::abs(z.imag())) + "i";
+}
+
+Json optional_json(const std::optional<double>& v) { return v ? jnum(*v) : Json(nullptr); }
+std::string optional_text(const std::optional<double>& v) { return v ? cell(*v) : "-"; }
+
+// The locked frequency of a periodic-kind exponent (classify_crossing: omega within 1e-3 of a
+// multiple of 1/2) as "0", "1/2", "1", "3/2", ...; "" when omega is not locked.
+std::string locked_text(double omega) {
+  if (!finite(omega) || classify_crossing(omega) != InstabilityKind::Periodic) return "";
+  const long k = std::lround(2.0 * omega);
+  if (k % 2 == 0) return std::to_string(k / 2);
+  return std::to_string(k) + "/2";
+}
+
+std::string ratio_cell(double zeta, double omega) {
+  const std::optional<double> r = damping_ratio(zeta, omega);
+  return r ? num(*r) : "-";
+}
+Json ratio_json(double zeta, double omega) { return optional_json(damping_ratio(zeta, omega)); }
+
+Json stable_json(const std::optional<bool>& v) { return v ? Json(*v) : Json(nullptr); }
+std::string stable_text(const std::optional<bool>& v) { return !v ? "unknown" : *v ? "yes" : "NO"; }
+
+// Records that `what` could not be shown: the result becomes `worst` (at least) and says why.
+void demote(Status& status, std::string& message, Status worst, const std::string& what) {
+  if (static_cast<int>(status) < static_cast<int>(worst)) status = worst;
+  const std::string note = "non-finite " + what + " (not shown)";
+  message = message.empty() ? note : message + "; " + note;
+}
+
+void audit_exponents(const std::vector<LabelledExponent>& ex, Status& status,
+                     std::string& message) {
+  for (const LabelledExponent& e : ex) {
+    if (!zeta_ok(e.zeta) || !finite(e.omega) || !finite(e.multiplier)) {
+      demote(status, message, Status::Failed, "exponent of mode " + e.label);
+      return;
+    }
+  }
+}
+
+void audit(PointResult& p) {
+  const Status before = p.status;
+  audit_exponents(p.exponents, p.status, p.message);
+  if (!finite(p.mu)) demote(p.status, p.message, Status::Failed, "mu");
+  // The exponents are what stability is read from: without them it is unknown.
+  if (p.status == Status::Failed && before != Status::Failed) p.stable.reset();
+  if (p.liouville_residual && !finite(*p.liouville_residual)) {
+    demote(p.status, p.message, Status::Warning, "Liouville residual");
+  }
+  if (p.error && !finite(*p.error)) demote(p.status, p.message, Status::Warning, "error estimate");
+}
+
+void audit(SweepResult& s) {
+  for (PointResult& p : s.points) {
+    audit(p);
+    if (static_cast<int>(p.status) > static_cast<int>(s.status)) {
+      s.status = p.status;
+      if (s.message.empty()) s.message = "at mu = " + cell(p.mu) + ": " + p.message;
+    }
+  }
+}
+
+void audit(CriticalResult& c) {
+  if (c.mu_c && (!finite(*c.mu_c) || !finite(c.omega))) {
+    demote(c.status, c.message, Status::Failed, "mu_c or omega");
+    c.mu_c.reset();
+  }
+  if (c.mu_c_error && !finite(*c.mu_c_error)) {
+    demote(c.status, c.message, Status::Warning, "mu_c error estimate");
+  }
+  if (!finite(c.mu_max)) demote(c.status, c.message, Status::Failed, "mu_max");
+}
+
+std::string vocab(const Request& r, const std::string& message) {
+  return in_cli_vocabulary(r.command, message);
+}
+
+Json model_json(const model::ModelDescriptor& m) {
+  return Json{{"name", m.name},           {"spec_file", m.spec_file},
+              {"summary", m.summary},     {"flap_modes", m.flap_modes},
+              {"lag_modes", m.lag_modes}, {"harmonics", m.n_harmonics}};
+}
+
+Json method_json(const TransitionOptions& o) {
+  Json j{{"name", method_name(o.method)}};
+  j["steps"] = o.steps == TransitionOptions::kAutomatic ? Json("automatic") : Json(o.steps);
+  if (o.method == TransitionMethod::Hsu) j["terms"] = o.terms;
+  j["zeta-tolerance"] = o.zeta_tolerance;
+  return j;
+}
+
+std::string method_text(const TransitionOptions& o) {
+  const bool automatic = o.steps == TransitionOptions::kAutomatic;
+  const std::string n = automatic ? "automatic" : std::to_string(o.steps);
+  std::string t;
+  switch (o.method) {
+    case TransitionMethod::RK4:
+      t = "rk4, N = " + n + " steps per period";
+      break;
+    case TransitionMethod::Hsu:
+      t = "hsu, K = " + n + " intervals, J = " + std::to_string(o.terms) + " Taylor terms";
+      break;
+    case TransitionMethod::Magnus4:
+      t = "magnus (4th order, Richardson-extrapolated), " + n + " steps per period";
+      break;
+  }
+  return t + (automatic ? " (zeta resolved to " + num(o.zeta_tolerance) + " per rev)" : "");
+}
+
+bool coupling_on(const Analysis& an) {
+  return an.parameters().elastic_coupling && an.modes().kind == "exact";
+}
+
+// The part every analysis output starts with: what was computed, and how.
+Json header_json(const char* command, const Analysis& an, bool with_method) {
+  const model::ModelDescriptor& m = an.model();
+  Json j;
+  j["command"] = command;
+  j["model"] = model_json(m);
+  j["mode_shapes"] = an.modes().kind;
+  j["elastic_coupling"] = coupling_on(an);
+  if (with_method) j["method"] = method_json(an.options());
+  j["parameters"] = parameters_json(an.parameters());
+  return j;
+}
+
+std::string header_text(const Analysis& an, bool with_method) {
+  const RotorParameters& p = an.parameters();
+  const model::ModelDescriptor& m = an.model();
+  KeyValues kv;
+  kv.add("model", std::string(m.name) + " (" + m.spec_file + "): " + m.summary);
+  std::string blade =
+      an.modes().kind == "exact"
+          ? "exact rotating mode shapes (" + std::to_string(p.basis) + " cantilever functions)"
+          : "assumed mode shape (eq 4.1)";
+  if (p.paper_1974_shapes && an.modes().kind == "exact") blade += " (1974 shapes)";
+  blade += ", " + std::to_string(m.flap_modes) + " flap x " + std::to_string(m.lag_modes) +
+           " lag; elastic coupling " + (coupling_on(an) ? "on" : "off") + "; reversed flow " +
+           (!p.reversed_flow        ? "off"
+            : p.exact_reversed_flow ? "on (exact circle)"
+                                    : "on");
+  kv.add("blade", blade);
+  if (p.periodic_linearization) {
+    kv.add("linearized",
+           "about the periodic equilibrium of the nonlinear equations (harmonic "
+           "balance, K automatic: doubled from " +
+               std::to_string(PeriodicEquilibriumOptions::kFirstHarmonics) + " up to " +
+               std::to_string(PeriodicEquilibriumOptions::kMaxHarmonics) +
+               " until the coefficients agree to " +
+               short_text(PeriodicEquilibriumOptions{}.harmonics_tolerance) + "), not about hover");
+  }
+  if (with_method) kv.add("method", method_text(an.options()));
+  kv.add("parameters", parameters_text(p));
+  return kv.render();
+}
+
+Json status_json(Json j, Status status, const std::string& message) {
+  j["status"] = status_name(status);
+  j["message"] = message;
+  return j;
+}
+
+std::string status_text(Status status, const std::string& message) {
+  if (status == Status::Ok && message.empty()) return "";
+  return std::string("  status: ") + status_name(status) + (message.empty() ? "" : ": " + message) +
+         "\n";
+}
+
+std::string warnings_text(const Analysis& an) {
+  std::string out;
+  if (an.hover().neutral)
+    out +=
+        "warning: the stability of hover is unknown (an eigenvalue of A0 is within rounding "
+        "of the imaginary axis)\n";
+  else if (!an.hover().stable)
+    out += "warning: the hover equilibrium itself is unstable; see the hover exponents\n";
+  if (!an.validity().empty()) out += "warning: " + an.validity() + "\n";
+  return out;
+}
+
+// The word of a field in this command line's vocabulary ("omega_lag" -> "omega-lag").
+std::string word(const std::string& field) {
+  std::string s = field;
+  for (char& c : s)
+    if (c == '_') c = '-';
+  return s;
+}
+
+// A plot, if asked for: "" or a warning line for stderr (the data is written in any case).
+std::string plot_if_asked(const Request& r, const std::string& script) {
+  if (r.plot.empty()) return "";
+  return render_plot(script, r.plot);
+}
+
+}  // namespace flaplag::cli::cmd

@@ -1,0 +1,110 @@
+// flaplag CLI — what the files of the subcommands share (commands_*.cc); not part of the CLI's
+// interface (commands.h).  Each command returns its Output: the text to write, or the JSON
+// document that run_command completes (version, commit, case, shard) and writes once.
+#pragma once
+
+#include <complex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "command_line.h"
+#include "commands.h"
+#include "flaplag/analysis.h"
+#include "flaplag/study.h"
+#include "flaplag/trim.h"
+
+namespace flaplag::cli::cmd {
+
+using Json = nlohmann::ordered_json;
+
+// What a command produced: a JSON document (json set; the command's `return j;`) or text (the
+// command's `return out;`), taken as they are.
+struct Output {
+  Output(std::string t) : text(std::move(t)) {}
+  Output(Json j) : json(std::move(j)) {}
+  std::optional<Json> json;
+  std::string text;
+};
+
+// ---- numbers that may not be finite, and the audit of results (commands_common.cc) -------------
+//
+// The library promises finite results, with two documented exceptions: the zeta of a zero
+// multiplier is -inf, and optional diagnostics are absent rather than NaN.  The printers do not
+// take that on trust: every result is audited first (audit), and a value that breaks the promise
+// marks its result "failed" with a message saying what was not shown; the printers then show
+// such values as "-" (text), an empty field (CSV) or null (JSON).
+
+bool finite(double v);
+bool finite(std::complex<double> z);
+bool zeta_ok(double zeta);  // finite, or the -inf of a zero multiplier
+std::string cell(double v);
+std::string zeta_cell(double zeta);
+Json jnum(double v);
+Json zeta_json(double zeta);  // -inf as the string "-inf"
+Json complex_json(std::complex<double> z);
+std::string complex_text(std::complex<double> z);
+Json optional_json(const std::optional<double>& v);
+std::string optional_text(const std::optional<double>& v);
+std::string locked_text(double omega);  // "0", "1/2", "1", ... or "" when not locked
+std::string ratio_cell(double zeta, double omega);
+Json ratio_json(double zeta, double omega);
+Json stable_json(const std::optional<bool>& v);
+std::string stable_text(const std::optional<bool>& v);
+
+// Records that `what` could not be shown: the result becomes `worst` (at least) and says why.
+void demote(Status& status, std::string& message, Status worst, const std::string& what);
+void audit(PointResult& p);
+void audit(SweepResult& s);
+void audit(CriticalResult& c);
+
+// ---- the parts every output shares (commands_common.cc) ----------------------------------------
+
+// A runtime message in this command line's vocabulary.
+std::string vocab(const Request& r, const std::string& message);
+// The word of a field in this command line's vocabulary ("omega_lag" -> "omega-lag").
+std::string word(const std::string& field);
+Json model_json(const model::ModelDescriptor& m);
+// The part every analysis output starts with: what was computed, and how.
+Json header_json(const char* command, const Analysis& an, bool with_method = true);
+std::string header_text(const Analysis& an, bool with_method = true);
+Json status_json(Json j, Status status, const std::string& message);
+std::string status_text(Status status, const std::string& message);
+std::string warnings_text(const Analysis& an);
+// A plot, if asked for: "" or a warning line for stderr (the data is written in any case).
+std::string plot_if_asked(const Request& r, const std::string& script);
+
+// ---- hover and the stability of one rotor (commands_point.cc) ----------------------------------
+
+Json hover_json(const Request& r, const Analysis& an);
+std::string hover_text(const Request& r, const Analysis& an);
+Output typical(const Request& r, const Analysis& an);
+Output point(const Request& r, const Analysis& an);
+Output sweep(const Request& r, const Analysis& an, std::string& warning);
+Output critical(const Request& r, const Analysis& an);
+
+// ---- trim (commands_trim.cc) --------------------------------------------------------------------
+
+bool trimmed(const Request& r);  // --trim given
+Json trim_json(const Request& r, const TrimResult& t);
+std::string trim_text(const Request& r, const TrimResult& t);
+Output trim_command(const Request& r);
+
+// ---- the equations: system and models (commands_model.cc) ---------------------------------------
+
+Output system_snapshot(const Request& r, const Analysis& an);
+Output models(const Request& r);
+
+// ---- studies and maps (commands_studies.cc) -----------------------------------------------------
+
+Output study(const Request& request, std::string& warning, RunControl* control);
+Output map(const Request& request, std::string& warning, RunControl* control);
+
+// ---- response and simulation (commands_time.cc) -------------------------------------------------
+
+Output response(const Request& r, const Analysis& an, std::string& warning);
+Output simulate_command(const Request& r, const Analysis& an, std::string& warning);
+
+}  // namespace flaplag::cli::cmd

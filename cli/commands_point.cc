@@ -1,0 +1,454 @@
+// flaplag CLI — the stability of one rotor: the typical case, point, sweep and critical, and the
+// hover equilibrium they rest on.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "commands_internal.h"
+#include "flaplag/core/format.h"
+#include "flaplag/trim.h"
+#include "output.h"
+#include "plot.h"
+
+namespace flaplag::cli::cmd {
+
+namespace {
+
+// The short zeta(mu) table of the typical case: mu = 0, 0.1, ..., 1.0, continued from hover in
+// steps of kTableScan (every kTableEvery-th point of the continuation is shown).
+constexpr double kTableStop = 1.0;
+constexpr double kTableScan = 0.01;
+constexpr int kTableEvery = 10;
+
+// ---- exponents in tables: damping ratio and locked frequencies (issue 9 item 6) ----------------
+
+// What the exponent columns mean, above every table that has them.
+const char* const kExponentLegend =
+    "  zeta: real part of the characteristic exponent lambda = zeta + i omega, 1/rev (> 0: "
+    "unstable)\n"
+    "  damping ratio: -zeta/|lambda|; for omega = 0 (a real exponent) +1 if decaying, -1 if "
+    "growing\n"
+    "  locked: omega locked to 0, 1/2 or 1 per rev (mod 1; a real multiplier: the periodic kind)\n";
+// The same, short, above the zeta(mu) tables.
+const char* const kSweepLegend =
+    "  zeta in 1/rev (real part of the exponent lambda = zeta + i omega); ratio: damping ratio\n"
+    "  -zeta/|lambda|; p after omega: locked to 0, 1/2 or 1 per rev (mod 1: the periodic kind)\n";
+
+// The hover result with its own audit (HoverResult is the analysis' const member).
+struct Hover {
+  HoverResult h;
+  std::optional<bool> stable;  // unknown when the hover analysis failed
+};
+
+Hover audited_hover(const Analysis& an) {
+  Hover r{an.hover(), an.hover().stable};
+  HoverResult& h = r.h;
+  bool ok = finite(h.inflow);
+  for (Eigen::Index i = 0; i < h.q0.size(); ++i) ok = ok && finite(h.q0[i]);
+  for (const auto& z : h.eigenvalues) ok = ok && finite(z);
+  if (!ok) demote(h.status, h.message, Status::Failed, "hover equilibrium or eigenvalue");
+  if (h.status == Status::Failed || h.neutral) r.stable.reset();
+  return r;
+}
+
+std::vector<std::string> equilibrium_names(int M, int N) {
+  std::vector<std::string> s;
+  for (int k = 1; k <= M; ++k) s.push_back("g0_" + std::to_string(k));
+  for (int k = 1; k <= N; ++k) s.push_back("h0_" + std::to_string(k));
+  return s;
+}
+
+// Mode labels in the order hover reports them, each once.
+std::vector<std::string> mode_labels(const Analysis& an) {
+  std::vector<std::string> labels;
+  for (const std::string& l : an.hover().labels) {
+    if (std::find(labels.begin(), labels.end(), l) == labels.end()) labels.push_back(l);
+  }
+  return labels;
+}
+
+// The exponent that decides a mode's stability: largest zeta; of a conjugate pair the one with
+// omega >= 0.
+const LabelledExponent* dominant(const PointResult& r, const std::string& label) {
+  const LabelledExponent* best = nullptr;
+  for (const LabelledExponent& e : r.exponents) {
+    if (e.label != label) continue;
+    if (best == nullptr || e.zeta > best->zeta ||
+        (e.zeta == best->zeta && e.omega >= 0.0 && best->omega < 0.0)) {
+      best = &e;
+    }
+  }
+  return best;
+}
+Json exponent_json(const LabelledExponent& e) {
+  return Json{{"label", e.label},
+              {"zeta", zeta_json(e.zeta)},
+              {"omega", jnum(e.omega)},
+              {"damping_ratio", ratio_json(e.zeta, e.omega)},
+              {"multiplier", complex_json(e.multiplier)}};
+}
+
+Json point_json(const Request& r, const PointResult& p) {
+  Json j;
+  j["mu"] = jnum(p.mu);
+  Json ex = Json::array(), mult = Json::array();
+  for (const LabelledExponent& e : p.exponents) {
+    ex.push_back(exponent_json(e));
+    mult.push_back(complex_json(e.multiplier));
+  }
+  j["exponents"] = ex;
+  j["multipliers"] = mult;
+  j["liouville_residual"] = optional_json(p.liouville_residual);
+  j["error_estimate"] = optional_json(p.error);
+  j["stable"] = stable_json(p.stable);
+  return status_json(j, p.status, vocab(r, p.message));
+}
+
+std::string point_text(const Request& r, const PointResult& p) {
+  std::string out = "Characteristic exponents at mu = " + cell(p.mu) + " (per rev)\n";
+  out += kExponentLegend;
+  TextTable t({"mode", "zeta [1/rev]", "omega [per rev]", "damping ratio", "locked", "multiplier"});
+  for (const LabelledExponent& e : p.exponents) {
+    const std::string locked = locked_text(e.omega);
+    t.add_row({e.label, zeta_cell(e.zeta), cell(e.omega), ratio_cell(e.zeta, e.omega),
+               locked.empty() ? "-" : locked, complex_text(e.multiplier)});
+  }
+  out += t.render();
+  KeyValues kv;
+  kv.add("stable", stable_text(p.stable));
+  kv.add("Liouville residual",
+         optional_text(p.liouville_residual) + "  (|det Phi - exp int tr A|, relative)");
+  kv.add("error estimate",
+         optional_text(p.error) + "  (largest zeta error, per rev: Richardson from K and K/2)");
+  out += kv.render();
+  return out + status_text(p.status, vocab(r, p.message));
+}
+
+Json critical_json(const Request& r, const CriticalResult& c) {
+  Json j;
+  const bool found = c.mu_c.has_value();
+  j["hover_unstable"] = c.hover_unstable;
+  j["mu_c"] = optional_json(c.mu_c);
+  j["mu_c_error"] = optional_json(c.mu_c_error);
+  j["omega"] = found ? jnum(c.omega) : Json(nullptr);
+  j["mode"] = found ? Json(c.mode) : Json(nullptr);
+  j["kind"] = found ? Json(kind_name(c.kind)) : Json(nullptr);
+  j["mu_max"] = jnum(c.mu_max);
+  return status_json(j, c.status, vocab(r, c.message));
+}
+
+std::string critical_text(const Request& r, const CriticalResult& c) {
+  std::string out =
+      "Critical advance ratio (first mu in 0.." + cell(c.mu_max) + " with zeta > 0)\n";
+  KeyValues kv;
+  if (c.mu_c) {
+    kv.add("mu_c", num(*c.mu_c) + (c.mu_c_error && finite(*c.mu_c_error)
+                                       ? "  (estimated error " + num(*c.mu_c_error) + ")"
+                                       : ""));
+    kv.add("mode", c.mode);
+    kv.add("omega", cell(c.omega) + " per rev");
+    kv.add("kind", c.kind == InstabilityKind::Flutter
+                       ? "flutter (omega not locked to 0, 1/2 or 1 per rev)"
+                       : "periodic (omega locked to 0, 1/2 or 1 per rev)");
+  } else if (c.hover_unstable) {
+    kv.add("mu_c", "none: the blade is unstable already in hover");
+  } else if (c.status == Status::Failed) {
+    kv.add("mu_c", "unknown: the search failed");
+  } else {
+    kv.add("mu_c", "none: stable up to mu = " + cell(c.mu_max));
+  }
+  out += kv.render();
+  return out + status_text(c.status, vocab(r, c.message));
+}
+
+// Largest Liouville residual over the points that have one; nullopt when none has.
+std::optional<double> max_liouville(const SweepResult& s) {
+  std::optional<double> m;
+  for (const PointResult& p : s.points) {
+    if (p.liouville_residual && finite(*p.liouville_residual)) {
+      m = std::max(m.value_or(0.0), *p.liouville_residual);
+    }
+  }
+  return m;
+}
+
+Json sweep_rows_json(const Request& r, const SweepResult& s,
+                     const std::vector<std::string>& labels) {
+  Json rows = Json::array();
+  for (const PointResult& p : s.points) {
+    Json row;
+    row["mu"] = jnum(p.mu);
+    for (const std::string& l : labels) {
+      const LabelledExponent* e = dominant(p, l);
+      row[l] = e ? Json{{"zeta", zeta_json(e->zeta)}, {"omega", jnum(e->omega)}} : Json(nullptr);
+    }
+    row["liouville_residual"] = optional_json(p.liouville_residual);
+    row["error_estimate"] = optional_json(p.error);
+    row["stable"] = stable_json(p.stable);
+    row["status"] = status_name(p.status);
+    row["message"] = vocab(r, p.message);
+    Json ex = Json::array();
+    for (const LabelledExponent& e : p.exponents) ex.push_back(exponent_json(e));
+    row["exponents"] = ex;
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::string sweep_table_text(const Request& r, const SweepResult& s,
+                             const std::vector<std::string>& labels) {
+  std::vector<std::string> header{"mu"};
+  for (const std::string& l : labels) {
+    header.push_back(l + " zeta");
+    header.push_back(l + " omega");
+    header.push_back(l + " ratio");
+  }
+  header.push_back("stable");
+  header.push_back("Liouville");
+  TextTable t(header);
+  std::string notes;
+  for (const PointResult& p : s.points) {
+    std::vector<std::string> row{cell(p.mu)};
+    for (const std::string& l : labels) {
+      const LabelledExponent* e = dominant(p, l);
+      row.push_back(e ? zeta_cell(e->zeta) : "-");
+      // " p": locked (periodic kind), as the paper marks Fig 15's periodic points.
+      row.push_back(e ? cell(e->omega) + (locked_text(e->omega).empty() ? "  " : " p") : "-");
+      row.push_back(e ? ratio_cell(e->zeta, e->omega) : "-");
+    }
+    row.push_back(stable_text(p.stable));
+    row.push_back(optional_text(p.liouville_residual));
+    t.add_row(row);
+    if (p.status != Status::Ok || !p.message.empty()) {
+      notes +=
+          "  mu = " + cell(p.mu) + ": " + status_name(p.status) + ": " + vocab(r, p.message) + "\n";
+    }
+  }
+  return kSweepLegend + t.render() + notes + status_text(s.status, vocab(r, s.message));
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+// Empty fields for what is not known (no exponent of a label, no residual, unknown stability).
+std::string sweep_csv(const Request& r, const SweepResult& s,
+                      const std::vector<std::string>& labels) {
+  auto field = [](double v) { return finite(v) ? exact_num(v) : std::string(); };
+  std::string out = "mu";
+  for (const std::string& l : labels) out += "," + l + "_zeta," + l + "_omega";
+  out += ",liouville_residual,error_estimate,stable,status,message\n";
+  for (const PointResult& p : s.points) {
+    out += field(p.mu);
+    for (const std::string& l : labels) {
+      const LabelledExponent* e = dominant(p, l);
+      out += "," + (e && zeta_ok(e->zeta) ? exact_zeta_text(e->zeta) : std::string()) + "," +
+             (e ? field(e->omega) : std::string());
+    }
+    out += "," + (p.liouville_residual ? field(*p.liouville_residual) : std::string());
+    out += "," + (p.error ? field(*p.error) : std::string());
+    out += "," + std::string(!p.stable ? "" : *p.stable ? "true" : "false");
+    out += "," + csv_field(status_name(p.status)) + "," + csv_field(vocab(r, p.message)) + "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+Json hover_json(const Request& r, const Analysis& an) {
+  const Hover hv = audited_hover(an);
+  const HoverResult& h = hv.h;
+  const model::ModelDescriptor& m = an.model();
+  Json j;
+  j["inflow"] = jnum(h.inflow);
+  Json q0 = Json::object();
+  const auto names = equilibrium_names(m.flap_modes, m.lag_modes);
+  for (Eigen::Index i = 0; i < h.q0.size() && i < static_cast<Eigen::Index>(names.size()); ++i) {
+    q0[names[static_cast<std::size_t>(i)]] = jnum(h.q0[i]);
+  }
+  j["equilibrium"] = q0;
+  Json ex = Json::array();
+  for (std::size_t i = 0; i < h.eigenvalues.size(); ++i) {
+    ex.push_back(
+        Json{{"zeta", jnum(h.eigenvalues[i].real())},
+             {"omega", jnum(h.eigenvalues[i].imag())},
+             {"damping_ratio", ratio_json(h.eigenvalues[i].real(), h.eigenvalues[i].imag())},
+             {"label", i < h.labels.size() ? h.labels[i] : ""}});
+  }
+  j["exponents"] = ex;
+  j["stable"] = stable_json(hv.stable);
+  return status_json(j, h.status, vocab(r, h.message));
+}
+
+std::string hover_text(const Request& r, const Analysis& an) {
+  const Hover hv = audited_hover(an);
+  const HoverResult& h = hv.h;
+  const model::ModelDescriptor& m = an.model();
+  std::string out = "Hover equilibrium (eqs 2.24, 2.29-2.32)\n";
+  KeyValues kv;
+  kv.add("inflow lambda", cell(h.inflow));
+  const auto names = equilibrium_names(m.flap_modes, m.lag_modes);
+  for (Eigen::Index i = 0; i < h.q0.size() && i < static_cast<Eigen::Index>(names.size()); ++i) {
+    kv.add(names[static_cast<std::size_t>(i)], cell(h.q0[i]));
+  }
+  out += kv.render();
+  out += "\nHover exponents (eigenvalues of A at mu = 0, per rev)\n";
+  out += kExponentLegend;
+  TextTable t({"mode", "zeta [1/rev]", "omega [per rev]", "damping ratio", "locked"});
+  for (std::size_t i = 0; i < h.eigenvalues.size(); ++i) {
+    const double zeta = h.eigenvalues[i].real(), omega = h.eigenvalues[i].imag();
+    const std::string locked = locked_text(omega);
+    t.add_row({i < h.labels.size() ? h.labels[i] : "?", cell(zeta), cell(omega),
+               ratio_cell(zeta, omega), locked.empty() ? "-" : locked});
+  }
+  out += t.render();
+  out += std::string("  hover is ") +
+         (!hv.stable   ? "of unknown stability"
+          : *hv.stable ? "stable"
+                       : "UNSTABLE") +
+         "\n";
+  return out + status_text(h.status, vocab(r, h.message));
+}
+
+Output typical(const Request& r, const Analysis& an) {
+  CriticalResult crit = an.critical(CriticalOptions{});
+  audit(crit);
+  // One continuation from hover in steps of kTableScan, shown every kTableEvery-th point: the
+  // exponents of each row are continued exactly as `flaplag point` continues them, at a tenth of
+  // the cost of continuing every row from hover again.
+  const SweepResult all = an.sweep(0.0, kTableStop, kTableScan);
+  SweepResult table;
+  table.status = all.status;
+  table.message = all.message;
+  for (std::size_t i = 0; i < all.points.size(); ++i) {
+    // A sweep that stopped early ends with the failed point: show it too.
+    if (i % kTableEvery == 0 || i + 1 == all.points.size()) table.points.push_back(all.points[i]);
+  }
+  audit(table);
+  const std::vector<std::string> labels = mode_labels(an);
+  const std::optional<double> max_res = max_liouville(table);
+  if (r.json) {
+    Json j = header_json("typical", an);
+    j["hover"] = hover_json(r, an);
+    j["critical"] = critical_json(r, crit);
+    Json t;
+    t["labels"] = labels;
+    t["rows"] = sweep_rows_json(r, table, labels);
+    t["max_liouville_residual"] = optional_json(max_res);
+    j["table"] = status_json(t, table.status, vocab(r, table.message));
+    return j;
+  }
+  std::string out =
+      "flaplag: coupled flap-lag stability of a hingeless blade in forward flight "
+      "(NASA CR-132431)\n";
+  out += header_text(an) + "\n";
+  out += warnings_text(an);
+  out += hover_text(r, an) + "\n";
+  out += critical_text(r, crit) + "\n";
+  out += "Exponents zeta(mu), omega(mu) per rev (dominant exponent of each mode)\n";
+  out += sweep_table_text(r, table, labels);
+  out += "  Liouville residual |det Phi - exp int tr A| (relative), max over the table: " +
+         optional_text(max_res) + "\n";
+  return out;
+}
+
+Output point(const Request& r, const Analysis& an) {
+  // Trimmed: the trim the point rests on (its problems are in the point's status).
+  std::vector<TrimResult> trims;
+  PointResult p = trimmed(r)
+                      ? trimmed_point(r.params, r.transition, r.trim, r.mu, r.scan_step, &trims)
+                      : an.point(r.mu, r.scan_step);
+  audit(p);
+  std::optional<TrimResult> t;
+  if (!trims.empty()) t = trims.front();
+  if (r.json) {
+    Json j = header_json("point", an);
+    j.update(point_json(r, p));
+    j["hover"] = hover_json(r, an);
+    if (t) j["trim"] = trim_json(r, *t);
+    return j;
+  }
+  return header_text(an) + "\n" + warnings_text(an) + (t ? trim_text(r, *t) + "\n" : "") +
+         point_text(r, p);
+}
+
+Output sweep(const Request& r, const Analysis& an, std::string& warning) {
+  // The trimmed controls at each point of the sweep: the trims its points rest on (their
+  // problems are in the points' status).
+  std::vector<TrimResult> trims;
+  SweepResult s = trimmed(r) ? trimmed_sweep(r.params, r.transition, r.trim, r.sweep_start,
+                                             r.sweep_stop, r.sweep_step, &trims)
+                             : an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step, r.threads);
+  audit(s);
+  const std::vector<std::string> labels = mode_labels(an);
+  if (!r.plot.empty()) {
+    std::vector<double> mu;
+    for (const PointResult& p : s.points) mu.push_back(p.mu);
+    std::vector<ModeCurve> modes;
+    for (const std::string& l : labels) {
+      ModeCurve m{l, {}, {}};
+      for (const PointResult& p : s.points) {
+        const LabelledExponent* e = dominant(p, l);
+        m.zeta.push_back(e != nullptr && finite(e->zeta) ? e->zeta : NAN);
+        m.omega.push_back(e != nullptr ? e->omega : NAN);
+      }
+      modes.push_back(m);
+    }
+    warning = plot_if_asked(r, sweep_plot_script(an.model().name, mu, modes));
+  }
+  if (r.csv) return sweep_csv(r, s, labels);
+  if (r.json) {
+    Json j = header_json("sweep", an);
+    j["mu"] = Json{{"start", r.sweep_start}, {"stop", r.sweep_stop}, {"step", r.sweep_step}};
+    j["labels"] = labels;
+    j["rows"] = sweep_rows_json(r, s, labels);
+    j["max_liouville_residual"] = optional_json(max_liouville(s));
+    if (trimmed(r)) {
+      Json tj = Json::array();
+      for (const TrimResult& t : trims) tj.push_back(trim_json(r, t));
+      j["trim"] = tj;
+    }
+    return status_json(j, s.status, vocab(r, s.message));
+  }
+  std::string trim_table;
+  if (trimmed(r)) {
+    trim_table = std::string("\nTrim (") + trim_kind_name(r.trim.kind) +
+                 ") at each mu, C_T = " + cell(r.trim.thrust_coefficient) + "\n";
+    TextTable t({"mu", "theta0", "theta1c", "theta1s", "lambda", "C_T", "status"});
+    for (const TrimResult& x : trims) {
+      t.add_row({cell(x.mu), cell(x.theta0), cell(x.theta1c), cell(x.theta1s), cell(x.inflow),
+                 cell(x.thrust_coefficient), status_name(x.status)});
+    }
+    trim_table += t.render();
+  }
+  return header_text(an) + "\n" + warnings_text(an) +
+         "Exponents per rev (dominant exponent of each mode)\n" + sweep_table_text(r, s, labels) +
+         trim_table;
+}
+
+Output critical(const Request& r, const Analysis& an) {
+  CriticalOptions opt;
+  opt.mu_max = r.mu_max;
+  opt.scan_step = r.scan_step;
+  std::vector<TrimResult> trims;  // the trim at mu_c the result rests on
+  CriticalResult c =
+      trimmed(r) ? trimmed_critical(r.params, r.transition, r.trim, opt, &trims) : an.critical(opt);
+  audit(c);
+  std::optional<TrimResult> t;
+  if (!trims.empty()) t = trims.front();
+  if (r.json) {
+    Json j = header_json("critical", an);
+    j.update(critical_json(r, c));
+    if (trimmed(r)) j["trim"] = t ? trim_json(r, *t) : Json(nullptr);
+    return j;
+  }
+  return header_text(an) + "\n" + warnings_text(an) + critical_text(r, c) +
+         (t ? "\n" + trim_text(r, *t) : "");
+}
+
+}  // namespace flaplag::cli::cmd

@@ -1,0 +1,247 @@
+// flaplag CLI — runs over a grid: `flaplag study` (mu_c versus one parameter) and `flaplag map`
+// (the largest zeta over two), with --shard parts, progress and cancellation.
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "commands_internal.h"
+#include "flaplag/core/format.h"
+#include "output.h"
+#include "plot.h"
+#include "shard.h"
+
+namespace flaplag::cli::cmd {
+
+namespace {
+
+// A run stopped by RunControl::cancel: what the output holds.
+void note_cancelled(RunControl* control, std::size_t done, std::size_t all,
+                    const std::string& lines) {
+  if (control == nullptr) return;
+  control->cancelled = true;
+  control->message = "interrupted: " + std::to_string(done) + " of " + std::to_string(all) + " " +
+                     lines + " finished; the output holds those";
+}
+
+Json interval_json(const InstabilityInterval& iv) {
+  Json j = Json::array();
+  j.push_back(jnum(iv.onset));
+  j.push_back(iv.end ? jnum(*iv.end) : Json(nullptr));
+  return j;
+}
+
+// The study's rows: run_study on this part's values (none: an empty part of a job with more
+// parts than values), each row's critical result audited.
+StudyResult run_study_part(const Request& r, RunControl* control) {
+  StudyOptions so;
+  so.parameter = r.vary;
+  so.values = r.vary_values;
+  so.critical.mu_max = r.mu_max;
+  so.critical.scan_step = r.scan_step;
+  so.threads = r.threads;
+  so.trim = r.trim;
+  StudyResult s;
+  if (!so.values.empty()) {
+    s = run_study(r.params, r.transition, so, control ? control->cancel : nullptr,
+                  control ? control->progress : ProgressFunction{});
+  }
+  if (s.cancelled)
+    note_cancelled(control, s.rows_done, so.values.size(), "values (" + word(r.vary) + ")");
+  for (StudyRow& row : s.rows) audit(row.critical);
+  return s;
+}
+
+// --plot: mu_c and the instability intervals versus the parameter; "" or a warning line.
+std::string study_plot(const Request& r, const StudyResult& s) {
+  if (r.plot.empty()) return "";
+  std::vector<StudyMark> marks;
+  for (const StudyRow& row : s.rows) {
+    const CriticalResult& c = row.critical;
+    StudyMark m{row.value, c.mu_c, c.kind == InstabilityKind::Periodic, {}};
+    // An open interval is drawn to the scan limit (r.mu_max: what the JSON output holds).
+    for (const InstabilityInterval& iv : c.intervals)
+      m.intervals.emplace_back(iv.onset, iv.end.value_or(r.mu_max));
+    marks.push_back(m);
+  }
+  return plot_if_asked(r, study_plot_script(word(r.vary), marks));
+}
+
+// A trimmed study reports each row's trim at its mu_c (theta0, theta1c, theta1s, lambda there),
+// as `critical --trim` and the Python module's study rows do: the trim the row's search made
+// there, whose problems are in the row's status.
+Json study_row_json(const Request& r, const StudyRow& row) {
+  const CriticalResult& c = row.critical;
+  Json x;
+  x["value"] = row.value;
+  x["hover_unstable"] = c.hover_unstable;
+  x["mu_c"] = optional_json(c.mu_c);
+  x["mu_c_error"] = optional_json(c.mu_c_error);
+  x["mode"] = c.mu_c ? Json(c.mode) : Json(nullptr);
+  x["omega"] = c.mu_c ? jnum(c.omega) : Json(nullptr);
+  x["kind"] = c.mu_c ? Json(kind_name(c.kind)) : Json(nullptr);
+  Json iv = Json::array();
+  for (const InstabilityInterval& i : c.intervals) iv.push_back(interval_json(i));
+  x["intervals"] = iv;
+  if (trimmed(r)) x["trim"] = row.trim ? trim_json(r, *row.trim) : Json(nullptr);
+  return status_json(x, c.status, vocab(r, c.message));
+}
+
+Json study_json(const Request& r, const Analysis& base, const StudyResult& s) {
+  Json j = header_json("study", base);
+  j["vary"] = word(r.vary);
+  j["mu_max"] = r.mu_max;
+  j["scan_step"] = r.scan_step;
+  Json rows = Json::array();
+  for (const StudyRow& row : s.rows) rows.push_back(study_row_json(r, row));
+  j["rows"] = rows;
+  return status_json(j, s.status, vocab(r, s.message));
+}
+
+// One line of the study's table (the trimmed columns: the trim at mu_c [rad; lambda of eq
+// 2.25]).
+std::vector<std::string> study_row_cells(const Request& r, const StudyRow& row) {
+  const CriticalResult& c = row.critical;
+  std::string ivs;
+  for (const InstabilityInterval& i : c.intervals)
+    ivs += (ivs.empty() ? "" : " ") + std::string("(") + short_text(i.onset) + ", " +
+           (i.end ? short_text(*i.end) : std::string("mu-max")) + ")";
+  std::vector<std::string> cells = {
+      num(row.value),
+      c.mu_c ? short_text(*c.mu_c) : (c.hover_unstable ? "hover" : "-"),
+      c.mu_c ? c.mode : "-",
+      c.mu_c ? short_text(c.omega) : "-",
+      c.mu_c ? kind_name(c.kind) : "-",
+      ivs.empty() ? "-" : ivs};
+  if (trimmed(r)) {
+    const std::optional<TrimResult>& x = row.trim;
+    for (double v :
+         {x ? x->theta0 : 0.0, x ? x->theta1c : 0.0, x ? x->theta1s : 0.0, x ? x->inflow : 0.0})
+      cells.push_back(x ? short_text(v) : "-");
+  }
+  cells.push_back(status_name(c.status));
+  return cells;
+}
+
+std::string study_text(const Request& r, const Analysis& base, const StudyResult& s) {
+  std::string out = header_text(base) + "\n";
+  out += "mu_c and instability intervals versus " + word(r.vary) + " (mu up to " + num(r.mu_max) +
+         ")\n";
+  std::vector<std::string> head = {word(r.vary), "mu_c", "mode",
+                                   "omega",      "kind", "unstable for mu in"};
+  if (trimmed(r)) head.insert(head.end(), {"theta0", "theta1c", "theta1s", "lambda"});
+  head.push_back("status");
+  TextTable t(head);
+  t.left_align(head.size() - 1);
+  t.left_align(5);
+  for (const StudyRow& row : s.rows) t.add_row(study_row_cells(r, row));
+  out += t.render();
+  for (const StudyRow& row : s.rows)
+    if (row.critical.status != Status::Ok)
+      out += "  " + word(r.vary) + " = " + num(row.value) + ": " +
+             status_name(row.critical.status) + ": " + vocab(r, row.critical.message) + "\n";
+  return out;
+}
+
+// The map's cells: run_map on this part's lines (none: an empty part).  A cancelled run keeps
+// the lines finished, and r's values on the cut axis are cut to them.
+MapResult run_map_part(Request& r, RunControl* control) {
+  MapOptions mo;
+  mo.x = {r.x_name, r.x_values};
+  mo.y = {r.y_name, r.y_values};
+  mo.mu = r.mu;
+  mo.scan_step = r.scan_step;
+  mo.threads = r.threads;
+  mo.trim = r.trim;
+  MapResult m;
+  m.cells.assign(r.y_values.size(), {});
+  if (!r.x_values.empty() && !r.y_values.empty()) {
+    m = run_map(r.params, r.transition, mo, control ? control->cancel : nullptr,
+                control ? control->progress : ProgressFunction{});
+  }
+  if (m.cancelled) {
+    // The output is the map of the lines finished: rows, or columns when y is mu.
+    const bool columns = r.y_name == "mu";
+    note_cancelled(control, m.lines_done, columns ? r.x_values.size() : r.y_values.size(),
+                   (columns ? "columns (" + word(r.x_name) : "rows (" + word(r.y_name)) + ")");
+    if (columns) {
+      r.x_values.resize(m.lines_done);
+      for (auto& row : m.cells) row.resize(m.lines_done);
+    } else {
+      r.y_values.resize(m.lines_done);
+      m.cells.resize(m.lines_done);
+    }
+  }
+  return m;
+}
+
+// --plot: the largest zeta over the two parameters; "" or a warning line.
+std::string map_plot(const Request& r, const MapResult& m) {
+  std::vector<std::vector<double>> z(r.y_values.size());
+  for (std::size_t i = 0; i < m.cells.size(); ++i)
+    for (const MapCell& c : m.cells[i])
+      z[i].push_back(c.max_zeta && finite(*c.max_zeta) ? *c.max_zeta : NAN);
+  return plot_if_asked(
+      r, max_zeta_plot_script(word(r.x_name), r.x_values, word(r.y_name), r.y_values, z));
+}
+
+Json map_json(const Request& r, const Analysis& base, const MapResult& m) {
+  Json j = header_json("map", base);
+  j["x"] = Json{{"name", word(r.x_name)}, {"values", r.x_values}};
+  j["y"] = Json{{"name", word(r.y_name)}, {"values", r.y_values}};
+  if (r.x_name != "mu" && r.y_name != "mu") j["mu"] = r.mu;
+  Json zeta = Json::array(), mode = Json::array(), kind = Json::array();
+  for (const auto& row : m.cells) {
+    Json a = Json::array(), b = Json::array(), c = Json::array();
+    for (const MapCell& cell : row) {
+      a.push_back(cell.max_zeta ? zeta_json(*cell.max_zeta) : Json(nullptr));
+      b.push_back(cell.max_zeta ? Json(cell.mode) : Json(nullptr));
+      c.push_back(cell.max_zeta ? Json(kind_name(cell.kind)) : Json(nullptr));
+    }
+    zeta.push_back(a);
+    mode.push_back(b);
+    kind.push_back(c);
+  }
+  j["max_zeta"] = zeta;
+  j["mode"] = mode;
+  j["kind"] = kind;
+  return status_json(j, m.status, vocab(r, m.message));
+}
+
+std::string map_text(const Request& r, const Analysis& base, const MapResult& m) {
+  std::string out = header_text(base) + "\n";
+  out += "Largest zeta (per rev) over " + word(r.y_name) + " (rows) x " + word(r.x_name) +
+         " (columns); * marks an unstable point\n";
+  std::vector<std::string> header{word(r.y_name) + " \\ " + word(r.x_name)};
+  for (double x : r.x_values) header.push_back(short_text(x));
+  TextTable t(header);
+  for (std::size_t i = 0; i < m.cells.size(); ++i) {
+    std::vector<std::string> row{short_text(r.y_values[i])};
+    for (const MapCell& c : m.cells[i])
+      row.push_back(c.max_zeta ? short_text(*c.max_zeta) + (*c.max_zeta > 0 ? "*" : " ") : "-");
+    t.add_row(row);
+  }
+  return out + t.render() + status_text(m.status, vocab(r, m.message));
+}
+
+}  // namespace
+
+Output study(const Request& request, std::string& warning, RunControl* control) {
+  const Request r = shard_request(request);     // --shard: this part's values only
+  const Analysis base(r.params, r.transition);  // the header, and the base parameters checked
+  const StudyResult s = run_study_part(r, control);
+  if (!r.plot.empty()) warning = study_plot(r, s);
+  if (r.json) return study_json(r, base, s);
+  return study_text(r, base, s);
+}
+
+Output map(const Request& request, std::string& warning, RunControl* control) {
+  Request r = shard_request(request);  // --shard: this part's lines only
+  const Analysis base(r.params, r.transition);
+  const MapResult m = run_map_part(r, control);
+  warning = map_plot(r, m);
+  if (r.json) return map_json(r, base, m);
+  return map_text(r, base, m);
+}
+
+}  // namespace flaplag::cli::cmd

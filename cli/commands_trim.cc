@@ -1,0 +1,74 @@
+// flaplag CLI — trim (trim.h): `flaplag trim`, and the trim shown by point, sweep, critical and
+// study under --trim.
+#include <string>
+
+#include "commands_internal.h"
+#include "flaplag/core/format.h"
+#include "flaplag/trim.h"
+#include "output.h"
+
+namespace flaplag::cli::cmd {
+
+// ---- trim (trim.h) ----------------------------------------------------------------------------
+
+bool trimmed(const Request& r) { return r.trim.kind != TrimKind::None; }
+
+Json trim_json(const Request& r, const TrimResult& t) {
+  // The keys of the Python module's TrimResult (python/src/module.cc trim_dict): one
+  // vocabulary for `flaplag trim`, the trim of point/sweep/critical --trim and of study rows.
+  // (The trimmed rotor's parameters are the header's for `flaplag trim`; alpha_R is the case's
+  // shaft_angle.)
+  Json j;
+  j["mu"] = jnum(t.mu);
+  j["kind"] = trim_kind_name(t.kind);
+  j["theta0"] = jnum(t.theta0);
+  j["theta1c"] = jnum(t.theta1c);
+  j["theta1s"] = jnum(t.theta1s);
+  j["inflow"] = jnum(t.inflow);
+  j["thrust_coefficient"] = jnum(t.thrust_coefficient);
+  j["target"] = jnum(t.target);
+  j["flap_1c"] = jnum(t.flap_1c);
+  j["flap_1s"] = jnum(t.flap_1s);
+  j["iterations"] = t.iterations;
+  j["converged"] = t.converged;
+  if (t.parameters.periodic_linearization) {
+    j["equilibrium"] = Json{{"harmonics", t.equilibrium.harmonics},
+                            {"truncation", jnum(t.equilibrium.truncation)}};
+  }
+  return status_json(j, t.status, vocab(r, t.message));
+}
+
+std::string trim_text(const Request& r, const TrimResult& t) {
+  std::string out = std::string("Trim (") + trim_kind_name(t.kind) + ") at mu = " + cell(t.mu) +
+                    ", C_T = " + cell(t.target) + ", alpha_R = " + cell(r.trim.shaft_angle) +
+                    " rad\n";
+  KeyValues kv;
+  kv.add("theta0", cell(t.theta0) + " rad");
+  kv.add("theta1c", cell(t.theta1c) + " rad");
+  kv.add("theta1s", cell(t.theta1s) + " rad");
+  kv.add("lambda", cell(t.inflow) + "  (eq 2.25)");
+  kv.add("C_T achieved", cell(t.thrust_coefficient) + "  (the model's own lift, azimuth mean)");
+  kv.add("flap tip 1st harmonic", cell(t.flap_1c) + " cos psi + " + cell(t.flap_1s) + " sin psi");
+  if (t.parameters.periodic_linearization) {
+    kv.add("trimmed about",
+           "the periodic equilibrium of the nonlinear equations (harmonic "
+           "balance, K = " +
+               std::to_string(t.equilibrium.harmonics) + "; last harmonic " +
+               cell(t.equilibrium.truncation) + " of the largest)");
+  }
+  kv.add("iterations", std::to_string(t.iterations));
+  out += kv.render();
+  return out + status_text(t.status, vocab(r, t.message));
+}
+
+Output trim_command(const Request& r) {
+  const TrimResult t = trim(r.params, r.mu, r.trim);
+  if (r.json) {
+    Json j = header_json("trim", Analysis(t.parameters, r.transition, t.inflow), false);
+    j.update(trim_json(r, t));
+    return j;
+  }
+  return trim_text(r, t);
+}
+
+}  // namespace flaplag::cli::cmd
