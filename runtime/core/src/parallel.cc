@@ -138,10 +138,13 @@ std::size_t parallel_for(std::size_t n, int threads, const std::atomic<bool>* ca
       const std::size_t i = next.fetch_add(1);
       if (i >= n) return;
       task(i);
-      const std::size_t done = finished.fetch_add(1) + 1;
       if (progress) {
+        // Counted under the lock, so that the counts reported rise strictly (counted before it,
+        // a thread could report 65 after another had reported 74).
         std::lock_guard<std::mutex> lock(progress_mutex);
-        progress(done, n);
+        progress(finished.fetch_add(1) + 1, n);
+      } else {
+        finished.fetch_add(1);
       }
     }
   };
