@@ -1,11 +1,8 @@
 #include "flaplag/analysis.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -13,11 +10,11 @@
 #include <utility>
 #include <vector>
 
-#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/core/parallel.h"
 #include "flaplag/numerics/continuation.h"
+#include "flaplag/numerics/floquet_evaluator.h"
 #include "flaplag/rotor/system_builder.h"
 #include "flaplag/rotor/validity.h"
 #include "fold.h"
@@ -88,105 +85,14 @@ double snap12(double v) {
   return out;
 }
 
-// The order of a method's error in the step h, for the Richardson estimate from K and K/2.
-int method_order(const TransitionOptions& o) {
-  switch (o.method) {
-    case TransitionMethod::RK4:
-      return 4;
-    case TransitionMethod::Hsu:
-      return std::min(o.terms, 2);  // interval means O(h^2); J = 1 Taylor truncation O(h)
-    case TransitionMethod::Magnus4:
-      return 6;  // transition_matrix_magnus4 returns its own Richardson extrapolation
-  }
-  return 1;
-}
-
-// Fewest steps of the automatic rule: the paper's K = 50.  A Magnus request looser than the
-// analysis's own tolerance (magnus_levels in floquet()) starts at 24: Magnus4 with its
-// Richardson pass is sixth order, and 24 steps give zeta to 3e-8 per rev on the typical case at
-// mu = 0.8 and to 2.5e-6 on the 2x2 exact model at mu = 1.4 (bench/README.md, accuracy per
-// time), far inside the 1e-3 of a scan point's sign check.
-constexpr int kMinAutomaticSteps = 50;
-constexpr int kMinLooseMagnusSteps = 24;
-
-// ln of the smallest normal double over 2 pi: zeta of a multiplier that underflowed.
-const double kZetaFloor = std::log(std::numeric_limits<double>::min()) / kTwoPi;
-
-// max |eigenvalue| of a (0 when the eigen-solve fails); fixed-size solvers for the 4- and
-// 8-state models keep it off the heap (the automatic start solves up to ten per evaluation).
-template <typename Mat>
-double spectral_radius_of(const Mat& a) {
-  Eigen::EigenSolver<Mat> es(a, false);
-  return es.info() == Eigen::Success ? es.eigenvalues().cwiseAbs().maxCoeff() : 0.0;
-}
-double spectral_radius(const Eigen::MatrixXd& a) {
-  if (a.rows() == 4) return spectral_radius_of(Eigen::Matrix4d(a));
-  if (a.rows() == 8) return spectral_radius_of(Eigen::Matrix<double, 8, 8>(a));
-  return spectral_radius_of(a);
-}
-
-// One transition matrix's Floquet analysis and its rounding floor: an eigenvalue of Phi below
-// ~n eps ||Phi|| is lost in rounding, so a zeta below ln(that) / 2 pi is only a bound.
-struct Evaluated {
-  FloquetResult floquet;
-  double zeta_floor = kZetaFloor;
-  double log_norm = 0.0;  // ln ||Phi||_F
-};
-
-// |zeta_k(fine) - zeta_k(coarse)| for each exponent of `fine`, the multipliers paired greedily
-// by distance; zeta below each matrix's rounding floor counts as the floor (both are "zero" to
-// the precision of Phi).
-std::vector<double> zeta_differences(const Evaluated& fine_e, const Evaluated& coarse_e) {
-  const FloquetResult& fine = fine_e.floquet;
-  const FloquetResult& coarse = coarse_e.floquet;
-  const double floor = std::max(fine_e.zeta_floor, coarse_e.zeta_floor);
-  const std::size_t n = fine.exponents.size();
-  std::vector<double> d(n, 0.0);
-  std::vector<bool> used(n, false);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::complex<double> a = fine.exponents[i].multiplier;
-    double best = std::numeric_limits<double>::infinity();
-    std::size_t bj = 0;
-    for (std::size_t j = 0; j < n; ++j) {
-      if (used[j]) continue;
-      const double dist = std::abs(a - coarse.exponents[j].multiplier);
-      if (dist < best) {
-        best = dist;
-        bj = j;
-      }
-    }
-    used[bj] = true;
-    d[i] = std::abs(std::max(fine.exponents[i].zeta, floor) -
-                    std::max(coarse.exponents[bj].zeta, floor));
-  }
-  return d;
-}
-
-// ||Phi||_1 ||Phi^-1||_1 (infinity for a singular or non-finite Phi).
-double condition_number(const Eigen::MatrixXd& phi) {
-  if (phi.size() == 0 || !phi.allFinite()) return std::numeric_limits<double>::infinity();
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(phi);
-  const Eigen::MatrixXd inverse = lu.inverse();
-  if (!inverse.allFinite()) return std::numeric_limits<double>::infinity();
-  return phi.cwiseAbs().colwise().sum().maxCoeff() * inverse.cwiseAbs().colwise().sum().maxCoeff();
-}
-
 }  // namespace
 
 struct Analysis::Impl {
   Impl(const RotorParameters& p, const TransitionOptions& o,
        std::optional<double> inflow = std::nullopt)
-      : options(o), builder(p, find_model(p.model), inflow) {
-    o.Check();
-    const int harmonics = builder.model().n_harmonics;
-    auto tabulate = [&](double psi) {
-      psi = reduce_azimuth(psi);
-      std::vector<double> v(static_cast<std::size_t>(harmonics));
-      for (int h = 0; h < harmonics; ++h) v[static_cast<std::size_t>(h)] = harmonic_basis(h, psi);
-      start_basis.emplace_back(psi, std::move(v));
-    };
-    for (int k = 0; k < 8; ++k) tabulate((k + 0.5) * kTwoPi / 8.0);
-    tabulate(1.5 * kPi);
+      : options(o),
+        builder(p, find_model(p.model), inflow),
+        evaluator(FloquetEvaluator::Create(o)) {
     hover = builder.hover();
     const auto& m = builder.model();
     hover_modes = label_hover_modes(hover.A0, m.flap_modes, m.lag_modes);
@@ -198,123 +104,6 @@ struct Analysis::Impl {
     }
     validity = internal::validity_of(builder);
   }
-
-  // The automatic starting K at mu: |lambda| h <= 1 for the largest eigenvalue of A(psi) at a
-  // few azimuths of each region (the spectrum sets the step a fixed-step method needs).
-  // `min_steps` is the fewest it returns; `floor` (>= min_steps) is the count the caller starts
-  // at anyway (a steps hint): an azimuth that cannot raise K above it needs no eigen-solve either.
-  int automatic_start(const PeriodicSystem& sys, int min_steps, int floor) const {
-    // An azimuth whose induced norm min(||A||_1, ||A||_inf) >= rho(A) keeps |lambda| h <= 1 at
-    // the minimum K with a step to spare cannot raise K: its eigen-solve is skipped (the same
-    // K as solving every one, at a fifth of the cost in the common case).
-    // Without a varying region, ||A(psi)||_1 <= sum_h ||A_h||_1 for every psi (|cos|, |sin| <=
-    // 1): when that bound keeps every azimuth below the floor, no azimuth can raise K and none
-    // needs evaluating (the same K as evaluating them).
-    if (!sys.has_varying) {
-      double bound = 0.0;
-      for (const HarmonicSet* set : {&sys.normal, &sys.reversed}) {
-        if (set == &sys.reversed && !sys.has_sector) continue;
-        double sum = 0.0;
-        for (const Eigen::MatrixXd& h : set->A) sum += h.cwiseAbs().colwise().sum().maxCoeff();
-        bound = std::max(bound, sum);
-      }
-      if (bound * kTwoPi <= floor - 1) return min_steps;  // as when every one is skipped
-    }
-    double rho = 0.0;
-    Eigen::MatrixXd a;  // one buffer for every azimuth
-    auto add = [&](double psi) {
-      // A(psi) of the harmonic regions as PeriodicSystem::A sums it (the same operations),
-      // with cos/sin of the harmonics looked up for the azimuths that do not depend on mu.
-      psi = reduce_azimuth(psi);
-      if (sys.in_varying(psi)) {
-        a = sys.A(psi);
-      } else {
-        const HarmonicSet& set = sys.region(psi);
-        const std::vector<double>* table = nullptr;
-        for (const auto& [at, values] : start_basis)
-          if (at == psi && values.size() >= set.A.size()) table = &values;
-        a.setZero(sys.n, sys.n);
-        for (std::size_t h = 0; h < set.A.size(); ++h)
-          a += (table ? (*table)[h] : harmonic_basis(static_cast<int>(h), psi)) * set.A[h];
-      }
-      const double bound = std::min(a.cwiseAbs().colwise().sum().maxCoeff(),
-                                    a.cwiseAbs().rowwise().sum().maxCoeff());
-      if (bound * kTwoPi <= floor - 1) return;
-      rho = std::max(rho, spectral_radius(a));
-    };
-    for (int k = 0; k < 8; ++k) add((k + 0.5) * kTwoPi / 8.0);
-    if (sys.has_sector) add(0.5 * (sys.sector_begin + sys.sector_end));
-    if (sys.has_varying) add(0.5 * (sys.varying_begin + sys.varying_end));
-    const double k = std::ceil(rho * kTwoPi / 1.0);
-    if (!(k <= kMaxAutomaticSteps)) return kMaxAutomaticSteps;
-    // an even count, so that K/2 is a whole number
-    const int ki = std::max(min_steps, static_cast<int>(k));
-    return ki + (ki % 2);
-  }
-
-  // Phi at `steps` and its exponents (multipliers only: evaluated()).
-  Evaluated at(const PeriodicSystem& sys, double trace, int steps) const {
-    TransitionOptions o = options;
-    o.steps = steps;
-    return evaluated(transition_matrix(sys, o).phi, trace);
-  }
-
-  // Hsu at `steps` and steps / 2 in one pass (transition_matrix_hsu_pair): {fine, coarse}.
-  std::pair<Evaluated, Evaluated> at_pair(const PeriodicSystem& sys, double trace,
-                                          int steps) const {
-    Eigen::MatrixXd phi, half;
-    transition_matrix_hsu_pair(sys, steps, options.terms, &phi, &half);
-    return {evaluated(phi, trace), evaluated(half, trace)};
-  }
-
-  // The Floquet analysis of one transition matrix.
-  static Evaluated evaluated(const Eigen::MatrixXd& phi, double trace) {
-    Evaluated e;
-    // Multipliers only: the mode identification (continuation.h) asks for the eigenvectors
-    // (from e.floquet.phi) only where two candidates are close.
-    floquet_exponents(phi, trace, FloquetVectors::OnDemand, &e.floquet);
-    // n max|Phi_ij| bounds ||Phi||_2 without the overflow of a sum of squares.
-    const double n = static_cast<double>(phi.rows());
-    const double big = phi.allFinite() ? phi.cwiseAbs().maxCoeff() : 0.0;
-    if (big > 0.0) {
-      e.log_norm = std::log(n) + std::log(big);
-      e.zeta_floor = std::max(
-          kZetaFloor,
-          (std::log(64.0 * n * std::numeric_limits<double>::epsilon()) + e.log_norm) / kTwoPi);
-    }
-    return e;
-  }
-
-  static bool finite(const Evaluated& e) {
-    for (const FloquetExponent& x : e.floquet.exponents)
-      if (!std::isfinite(x.multiplier.real()) || !std::isfinite(x.multiplier.imag())) return false;
-    return !e.floquet.exponents.empty();
-  }
-
-  // The steps that resolved the last automatic evaluation at each tolerance, shared by the
-  // evaluations of one continuation (one sweep, track or critical search: function()).  Along a
-  // continuation the step count needed changes little from one mu to the next, so each
-  // evaluation starts at the last count of the same tolerance (or the spectral start when that
-  // is larger) instead of climbing from the minimum: the same rule and the same error estimate
-  // (K/2 against K), fewer levels.  Keyed by the exact tolerance, so that the evaluations a
-  // continuation makes at one tolerance (its reported points) depend only on each other: a map
-  // line and the plain sweep over the same points give the same bits.
-  struct StepsHint {
-    std::vector<std::pair<double, int>> last;  // (zeta_tolerance, steps)
-    int find(double tol) const {
-      for (const auto& [t, k] : last)
-        if (t == tol) return k;
-      return 0;
-    }
-    void put(double tol, int steps) {
-      for (auto& [t, k] : last)
-        if (t == tol) {
-          k = steps;
-          return;
-        }
-      last.emplace_back(tol, steps);
-    }
-  };
 
   // What one continuation's evaluations carry from one mu to the next (function()).
   struct Continuation {
@@ -338,249 +127,11 @@ struct Analysis::Impl {
       }
       if (c != nullptr && eq.status != Status::Ok && c->unclean_equilibria.size() < 4096)
         c->unclean_equilibria[mu] = eq.message;
-      return floquet_of(eq.linearization, zeta_tolerance, eq.message, hint);
+      return evaluator->evaluate(eq.linearization, zeta_tolerance, hint, eq.message);
     }
-    if (c == nullptr) return floquet_of(builder.system(mu), zeta_tolerance, "", hint);
+    if (c == nullptr) return evaluator->evaluate(builder.system(mu), zeta_tolerance, hint);
     builder.system(mu, &c->system);
-    return floquet_of(c->system, zeta_tolerance, "", hint);
-  }
-
-  // One resolved Floquet evaluation of sys; equilibrium_note (the periodic equilibrium's
-  // warning, if any) is appended to the message.
-  FloquetSample floquet_of(const PeriodicSystem& sys, double zeta_tolerance,
-                           const std::string& equilibrium_note, StepsHint* hint = nullptr) const {
-    FloquetSample out;
-    bool system_finite = true;
-    for (const HarmonicSet* set : {&sys.normal, &sys.reversed})
-      for (const Eigen::MatrixXd& a : set->A) system_finite = system_finite && a.allFinite();
-    if (sys.has_varying)  // the exact region's fully reversed middle (the largest values)
-      system_finite =
-          system_finite && sys.A(0.5 * (sys.varying_begin + sys.varying_end)).allFinite();
-    if (!system_finite) {
-      out.status = Status::Failed;
-      out.message =
-          "the periodic system overflows at this mu (the parameters are too extreme "
-          "for double precision)";
-      return out;
-    }
-    const double trace = sys.trace_integral();
-    const int order = method_order(options);
-    const double richardson = std::ldexp(1.0, order) - 1.0;  // K against 2K or K/2
-    const bool automatic = options.steps == TransitionOptions::kAutomatic;
-    // Magnus with automatic steps asked for less than the analysis's own tolerance (a sign
-    // check of the mu_c scan, a continuation step that is not reported) walks its raw
-    // fourth-order levels from 24 steps (magnus_levels below); every result at the analysis's
-    // tolerance or tighter (the reported points, both ends of a bracket, the Brent trials) is
-    // computed by the rule of the other methods, so it does not change.
-    const bool levels = automatic && options.method == TransitionMethod::Magnus4 &&
-                        !sys.has_varying && zeta_tolerance > options.zeta_tolerance;
-    const int min_steps = levels ? kMinLooseMagnusSteps : kMinAutomaticSteps;
-    const int hinted = automatic && !levels && hint != nullptr ? hint->find(zeta_tolerance) : 0;
-    int steps = automatic
-                    ? std::max(automatic_start(sys, min_steps, std::max(min_steps, hinted)), hinted)
-                    : options.steps;
-
-    // The automatic rule's first pair (K and K / 2) by Hsu comes from one pass.
-    std::optional<Evaluated> first_coarse;
-    Evaluated fine;
-    if (automatic && !levels && options.method == TransitionMethod::Hsu && steps % 2 == 0) {
-      auto pair = at_pair(sys, trace, steps);
-      fine = std::move(pair.first);
-      first_coarse = std::move(pair.second);
-    } else if (!levels) {
-      fine = at(sys, trace, steps);
-    }
-    auto resolved = [&](const std::vector<double>& err) {
-      for (std::size_t k = 0; k < err.size(); ++k) {
-        const double z = std::abs(std::max(fine.floquet.exponents[k].zeta, fine.zeta_floor));
-        const double allowed = zeta_tolerance * std::max(1.0, 100.0 * (std::isfinite(z) ? z : 0.0));
-        if (!(err[k] <= allowed)) return false;
-      }
-      return true;
-    };
-    std::vector<double> err;
-    if (!automatic) {
-      // Fixed steps (the user's K): the estimate compares with 2K, which is nearer the
-      // asymptotic regime than K/2 (at K = 25 Hsu's error is far from c h^2 on shallow
-      // crossings); error(K) = (zeta_K - zeta_2K) 2^p / (2^p - 1).
-      const bool finer = 2 * steps <= TransitionOptions::kMaxSteps;
-      const std::optional<Evaluated> other =
-          finer ? std::optional<Evaluated>(at(sys, trace, 2 * steps))
-                : (steps >= 2 ? std::optional<Evaluated>(at(sys, trace, steps / 2)) : std::nullopt);
-      if (finite(fine) && other && finite(*other)) {
-        err = zeta_differences(fine, *other);
-        for (double& e : err) e *= finer ? (richardson + 1.0) / richardson : 1.0 / richardson;
-      }
-    } else if (levels) {
-      // magnus_levels: P_l, Phi by raw Magnus4 on the grid of K/2 steps bisected l times, each
-      // level computed once; R_l = (16 P_{l+1} - P_l) / 15 is transition_matrix_magnus4's
-      // result at K/2 * 2^l steps (sixth order).  The request does not need the reference
-      // accuracy: first R_0 with the fourth-order estimate of P_1, |zeta(R_0) - zeta(P_0)| / 16
-      // (P_0's error is 16 times P_1's), from P_0 + P_1 = 1.5 K steps instead of the 4.5 K of
-      // the pair below; if that is not enough, the sixth-order pairs (R_l, R_{l+1}) as in the
-      // rule below, one new level per doubling.  Like every Richardson estimate it is not a
-      // bound: before the asymptotic regime it can be low for a strongly damped mode (1x1 at
-      // mu = 1.4, zeta = -1.49: 1.5e-4 against an error of 2.9e-3, inside the 0.15 that mode
-      // is allowed; Floquet.LooseMagnusRequestsMeetTheirClaims).
-      const int base = steps / 2;
-      std::vector<Eigen::MatrixXd> P;
-      P.push_back(transition_matrix_magnus4_level(sys, base, 0));
-      P.push_back(transition_matrix_magnus4_level(sys, base, 1));
-      auto extrapolated = [&](std::size_t l) {
-        return evaluated((16.0 * P[l + 1] - P[l]) / 15.0, trace);
-      };
-      Evaluated coarse = extrapolated(0);
-      steps = base;
-      bool done = false;
-      const Evaluated raw = evaluated(P[0], trace);
-      if (finite(coarse) && finite(raw)) {
-        fine = std::move(coarse);
-        err = zeta_differences(fine, raw);
-        for (double& e : err) e /= 16.0;
-        done = resolved(err);
-        if (!done) coarse = std::move(fine);
-      }
-      while (!done) {
-        steps *= 2;
-        P.push_back(transition_matrix_magnus4_level(sys, base, static_cast<int>(P.size())));
-        fine = extrapolated(P.size() - 2);
-        if (!finite(fine) || !finite(coarse)) {
-          err.clear();
-          break;
-        }
-        err = zeta_differences(fine, coarse);
-        for (double& e : err) e /= richardson;
-        if (resolved(err) || 2 * steps > kMaxAutomaticSteps) break;
-        coarse = std::move(fine);
-      }
-    } else {
-      // Automatic: K against the previous level Kc (K/2 at the start); with the error ~ c K^-p,
-      //   error(K) = |zeta_K - zeta_Kc| / ((K / Kc)^p - 1)
-      // (the rule's Richardson estimate for any ratio; 1 / (2^p - 1) when Kc = K / 2).  An
-      // unresolved K is followed by the K that the estimate predicts with a margin,
-      // 1.2 K q^(1/p) for q = the largest error / allowed ratio, at least 1.5 K (so that the
-      // estimate's divisor stays >= 1.25 for Hsu) and at most 4 K: fewer intervals than
-      // doubling when K is nearly enough.  The next evaluation of the continuation starts at
-      // the K so predicted for this point (never below 3/4 of it, so a gently easing point
-      // keeps a count it has shown to resolve).
-      auto excess = [&](const std::vector<double>& e) {
-        double q = 0.0;
-        for (std::size_t k = 0; k < e.size(); ++k) {
-          const double z = std::abs(std::max(fine.floquet.exponents[k].zeta, fine.zeta_floor));
-          const double allowed =
-              zeta_tolerance * std::max(1.0, 100.0 * (std::isfinite(z) ? z : 0.0));
-          q = std::max(q, e[k] / allowed);
-        }
-        return q;
-      };
-      auto predicted = [&](double q, double lo, double hi) {
-        const double factor =
-            std::isfinite(q) ? std::clamp(1.2 * std::pow(q, 1.0 / order), lo, hi) : hi;
-        const double k = std::ceil(factor * steps);
-        if (!(k < kMaxAutomaticSteps)) return kMaxAutomaticSteps;
-        const int ki = std::max(kMinAutomaticSteps, static_cast<int>(k));
-        return ki + (ki % 2);  // even, so that a warm start's K / 2 is a whole number
-      };
-      int coarse_steps = steps / 2;
-      std::optional<Evaluated> coarse =
-          first_coarse ? std::move(first_coarse) : at(sys, trace, coarse_steps);
-      double q = std::numeric_limits<double>::infinity();
-      for (;;) {
-        if (!finite(fine) || !finite(*coarse)) {
-          err.clear();
-          break;
-        }
-        err = zeta_differences(fine, *coarse);
-        const double divisor =
-            std::pow(static_cast<double>(steps) / coarse_steps, static_cast<double>(order)) - 1.0;
-        for (double& e : err) e /= divisor;
-        q = excess(err);
-        if (resolved(err) || steps >= kMaxAutomaticSteps) break;
-        coarse = std::move(fine);
-        coarse_steps = steps;
-        steps = predicted(q, 1.5, 4.0);
-        fine = at(sys, trace, steps);
-      }
-      if (hint != nullptr && finite(fine)) hint->put(zeta_tolerance, predicted(q, 0.75, 1.0));
-    }
-    const bool is_resolved = !err.empty() && resolved(err);
-    out.steps = steps;
-    const bool fine_finite = finite(fine);
-    const double zeta_floor = fine.zeta_floor;
-    const double log_norm = fine.log_norm;
-    out.floquet = std::move(fine.floquet);
-    if (!fine_finite) {
-      out.status = Status::Failed;
-      out.message = "the transition matrix overflowed or its eigenvalues did not converge at " +
-                    std::to_string(steps) +
-                    " steps: an exponent is too large for double precision over one revolution";
-      return out;
-    }
-    std::string note;
-    for (double e : err) {
-      if (!std::isfinite(e)) {  // cannot happen with finite floors; never report a NaN
-        err.clear();
-        break;
-      }
-    }
-    if (!err.empty()) {
-      out.error = *std::max_element(err.begin(), err.end());
-      out.zeta_errors = err;
-      if (!is_resolved) {
-        note = "exponents not resolved: estimated zeta error " + short_text(*out.error) +
-               " per rev at " + std::to_string(steps) + " steps (tolerance " +
-               short_text(zeta_tolerance) + "); " +
-               (automatic ? "the automatic limit of " + std::to_string(kMaxAutomaticSteps) +
-                                " steps is reached"
-                          : "increase `steps`");
-      }
-      // det Phi = exp(int tr A) can be checked only when that determinant is above the rounding
-      // of det computed from Phi.  That rounding is at most ~ eps ||Phi||^n relative to det Phi;
-      // where that bound is too coarse (several modes, some strongly damped: the blade models
-      // with more than one mode per direction) the relative rounding of det Phi is eps
-      // cond(Phi) (a backward-stable LU moves Phi by eps ||Phi||, det Phi by that times
-      // ||Phi^-1|| relative), which is checked instead; the residual means nothing only where
-      // that is not small either.
-      const double n = static_cast<double>(out.floquet.exponents.size());
-      const double eps = std::numeric_limits<double>::epsilon();
-      double rounding = 0.0;  // relative rounding of det Phi beyond the first bound
-      if (trace < std::log(1e3 * eps) + n * log_norm) {
-        const double condition = condition_number(out.floquet.phi);
-        if (std::isfinite(condition) && 1e3 * eps * condition < 1.0) {
-          rounding = n * eps * condition;
-        } else {
-          out.floquet.liouville_residual = std::numeric_limits<double>::quiet_NaN();
-          // Said, not warned: the exponents do not depend on this check.
-          out.message = "no Liouville residual: det Phi = exp(int tr A) = exp(" +
-                        short_text(trace) + ") is below the rounding of the determinant of Phi " +
-                        "(condition number " + short_text(condition) + ")";
-        }
-      }
-      const double residual = out.floquet.liouville_residual;
-      const double implied = kTwoPi * n * *out.error;
-      if (std::isfinite(residual) && residual > 100.0 * (implied + rounding) + 1e-9) {
-        note += std::string(note.empty() ? "" : "; ") + "Liouville residual " +
-                short_text(residual) +
-                " far above the error estimate: the exponents are not resolved; increase `steps`";
-      }
-    } else if (steps < 2) {
-      note = "no error estimate with 1 step; increase `steps`";
-    }
-    int below = 0;
-    for (const FloquetExponent& e : out.floquet.exponents) below += e.zeta < zeta_floor ? 1 : 0;
-    if (below > 0) {
-      note += std::string(note.empty() ? "" : "; ") + std::to_string(below) +
-              " exponent(s) below the rounding floor of the transition matrix (zeta < " +
-              short_text(zeta_floor) + " per rev): their zeta is only known to be below that bound";
-    }
-    if (!equilibrium_note.empty()) {
-      note += std::string(note.empty() ? "" : "; ") + equilibrium_note;
-    }
-    if (!note.empty()) {
-      out.status = Status::Warning;
-      out.message = note + (out.message.empty() ? "" : "; " + out.message);
-    }
-    return out;
+    return evaluator->evaluate(c->system, zeta_tolerance, hint);
   }
 
   FloquetFunction function(std::shared_ptr<Continuation> c = nullptr) const {
@@ -628,9 +179,8 @@ struct Analysis::Impl {
 
   TransitionOptions options;
   detail::SystemBuilder builder;
-  // (psi, harmonic_basis(h, psi) for every h) at the azimuths of automatic_start that do not
-  // depend on mu: the eight fixed ones and the sector's middle (3 pi / 2).
-  std::vector<std::pair<double, std::vector<double>>> start_basis;
+  // The method and its step control (Create checks the options, after the parameters).
+  std::unique_ptr<const FloquetEvaluator> evaluator;
   mutable std::mutex cache_mutex;
   mutable std::map<double, PeriodicEquilibrium> cache;
   // The harmonic balance behind periodic_linearization (stability comes from the analysis).
@@ -692,7 +242,8 @@ FloquetSample Analysis::floquet(const PeriodicEquilibrium& equilibrium,
     throw InvalidInput("equilibrium", round_trip_text(equilibrium.mu),
                        "is not a periodic equilibrium of this blade (failed, or another model)");
   }
-  return impl_->floquet_of(equilibrium.linearization, zeta_tolerance, equilibrium.message);
+  return impl_->evaluator->evaluate(equilibrium.linearization, zeta_tolerance, nullptr,
+                                    equilibrium.message);
 }
 
 FloquetSample Analysis::floquet(double mu, double zeta_tolerance) const {

@@ -954,6 +954,23 @@ const char* method_name(TransitionMethod m) {
   return "unknown";
 }
 
+bool method_from_name(const std::string& name, TransitionMethod* method) {
+  for (TransitionMethod m : kTransitionMethods) {
+    if (name == method_name(m)) {
+      *method = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string method_names() {
+  std::string names;
+  for (TransitionMethod m : kTransitionMethods)
+    names += (names.empty() ? "" : ", ") + std::string(method_name(m));
+  return names;
+}
+
 Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps) {
   check_count("steps", steps);
   sys.validate();

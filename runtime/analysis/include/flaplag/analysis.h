@@ -12,37 +12,10 @@
 // field names inside messages are written in backticks (`steps`) so that a front end can show
 // them in its own vocabulary.
 //
-// Accuracy.  Every Floquet evaluation estimates its own error of the damping exponents zeta:
-// Phi(2 pi) is computed with K steps and with K/2, the multipliers are paired, and the
-// Richardson estimate  |zeta_k(K) - zeta_k(K/2)| / (2^p - 1)  (p = the method's order: RK4 4,
-// Hsu min(J, 2), Magnus 6 after its built-in extrapolation; conservative where the error falls
-// faster, e.g. Hsu in hover, where the interval means are exact and only the J-term Taylor
-// truncation is left) is reported with the exponents (PointResult::error: the largest, per rev). An
-// exponent counts as resolved when its error is at most zeta_tolerance * max(1, 100 |zeta_k|)
-// (absolute near zeta = 0, where stability is decided; 1e-3 relative for strongly damped modes when
-// zeta_tolerance = 1e-5).
-//   - steps = kAutomatic (the default): K starts from the spectrum of A(psi) at mu (|lambda| h
-//     <= 1, inside the stability region of every method's one-step map, and at least 50) and
-//     grows until every exponent is resolved or K reaches kMaxAutomaticSteps (then status
-//     Warning): an unresolved K is followed by the K its estimate predicts (1.2 K q^(1/p), q the
-//     largest error / allowed ratio; 1.5 K to 4 K), and each level's estimate compares it with
-//     the level before, |zeta_k(K) - zeta_k(Kc)| / ((K / Kc)^p - 1).  Along one continuation (a
-//     sweep, track, point or critical search) an evaluation starts instead at the K predicted by
-//     the previous evaluation at the same tolerance (between 3/4 of its K and its K) when that is
-//     larger (warm start: the same rule and estimate, fewer levels; the answer can differ from a
-//     cold start at the same mu within the two estimates).  A Magnus request looser than
-//     zeta_tolerance (the sign checks of the critical search's scan, continuation steps that
-//     are not reported) starts at 24 and first tries the extrapolation at K/2 with the
-//     fourth-order estimate of its finer half; results at zeta_tolerance or tighter are
-//     computed by the rule above;
-//   - fixed steps (e.g. TransitionOptions::Paper(), Hsu K = 50, J = 4): an unresolved exponent
-//     gives status Warning with the remedy (increase `steps`).
-// The Liouville identity det Phi = exp(int tr A) is checked as well, for any number of modes: a
-// relative residual far above what the error estimate (2 pi n error) and the rounding of det Phi
-// (n eps cond(Phi)) imply gives status Warning; where det Phi is below that rounding (eps
-// cond(Phi) > 1e-3) there is no residual and the message says so (status unchanged).  The critical
-// search refines mu_c with exponents resolved to 0.1 |d zeta/d mu| * tolerance and reports
-// CriticalResult::mu_c_error.
+// Accuracy: every Floquet evaluation estimates its own exponent error and resolves it to
+// TransitionOptions::zeta_tolerance (numerics/floquet_evaluator.h; the rule: docs/numerics.md).
+// The critical search refines mu_c with exponents resolved to 0.1 |d zeta/d mu| * tolerance and
+// reports CriticalResult::mu_c_error.
 #pragma once
 
 #include <Eigen/Dense>
@@ -60,6 +33,7 @@
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
+#include "flaplag/numerics/floquet_evaluator.h"
 #include "flaplag/numerics/periodic_system.h"
 #include "flaplag/numerics/response.h"
 #include "flaplag/rotor/hover.h"
@@ -87,9 +61,6 @@ class Cancelled : public std::runtime_error {
  public:
   Cancelled() : std::runtime_error("cancelled") {}
 };
-
-// Automatic steps never exceed this (a blade so stiff that it needs more gets status Warning).
-inline constexpr int kMaxAutomaticSteps = 65536;
 
 // The periodic forced response at one mu (numerics/response.h) in blade terms.
 struct ForcedResponse {

@@ -2,7 +2,7 @@
 //
 // Exponents lambda_k = zeta_k + i omega_k = ln(Lambda_k) / T, T = 2 pi, per rev (eqs 3.16-3.19).
 // omega is defined only up to an integer; floquet_exponents() returns the principal value and
-// the continuation in analysis.h fixes the integer.
+// the continuation in continuation.h fixes the integer.
 #pragma once
 
 #include <Eigen/Dense>
@@ -22,7 +22,14 @@ enum class TransitionMethod {
   Magnus4,  // 4th-order Magnus with Richardson error estimate (reference method)
 };
 
+// The methods in the order of their names in help texts, and names <-> enum (the one place).
+inline constexpr TransitionMethod kTransitionMethods[] = {
+    TransitionMethod::RK4, TransitionMethod::Hsu, TransitionMethod::Magnus4};
 const char* method_name(TransitionMethod m);  // "rk4", "hsu", "magnus"
+// The method called `name` (exactly method_name's text) into *method; false when none is.
+bool method_from_name(const std::string& name, TransitionMethod* method);
+// "rk4, hsu, magnus": the names for an error message.
+std::string method_names();
 
 // How Phi(2 pi, 0) is computed.  IsValid() is the Ceres-style check (false and "field = value:
 // reason" in *error); Check() throws the same as InvalidInput.
@@ -33,11 +40,12 @@ struct TransitionOptions {
 
   TransitionMethod method = TransitionMethod::Hsu;
   // RK4 steps / Hsu intervals K / Magnus steps per period, 1..kMaxSteps; kAutomatic (the
-  // default): the analysis chooses them per mu so that the estimated exponent error is at most
-  // zeta_tolerance (analysis.h).  The transition_matrix* functions need a fixed count.
+  // default): the step control chooses them per system so that the estimated exponent error is
+  // at most zeta_tolerance (floquet_evaluator.h).  The transition_matrix* functions need a fixed
+  // count.
   int steps = kAutomatic;
   int terms = 4;                 // Hsu Taylor terms J, 1..kMaxTerms
-  double zeta_tolerance = 1e-5;  // target exponent error per rev (see analysis.h), > 0
+  double zeta_tolerance = 1e-5;  // target exponent error per rev (floquet_evaluator.h), > 0
 
   // The paper's setting: Hsu, K = 50 intervals, J = 4 terms (Section 3.3, Fig. 3).
   static TransitionOptions Paper() { return {TransitionMethod::Hsu, 50, 4, 1e-5}; }
