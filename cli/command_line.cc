@@ -643,14 +643,8 @@ Request CommandLine::interpret() const {
   if (lag_given) lag_modes = parse_int(spelled(lag_given), lag_given->text, 1, kMaxModes);
 
   if (const Given* g = given("--method")) {
-    if (g->text == "rk4")
-      r.transition.method = TransitionMethod::RK4;
-    else if (g->text == "hsu")
-      r.transition.method = TransitionMethod::Hsu;
-    else if (g->text == "magnus")
-      r.transition.method = TransitionMethod::Magnus4;
-    else
-      throw InvalidInput(g->spelling, shown(g->text), "must be one of rk4, hsu, magnus");
+    if (!method_from_name(g->text, &r.transition.method))
+      throw InvalidInput(g->spelling, shown(g->text), "must be one of " + method_names());
   }
   if (const Given* g = given("--steps")) {
     r.transition.steps = g->text == "auto"

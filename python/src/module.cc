@@ -210,23 +210,14 @@ py::dict parameters_dict(const RotorParameters& p) {
   return d;
 }
 
-const TransitionMethod kMethods[] = {TransitionMethod::RK4, TransitionMethod::Hsu,
-                                     TransitionMethod::Magnus4};
-
 TransitionOptions transition_options(const py::dict& d) {
   TransitionOptions o;
   for (const auto& [key, value] : d) {
     const std::string field = key.cast<std::string>();
     if (field == "method") {
       const std::string name = value.cast<std::string>();
-      bool found = false;
-      for (TransitionMethod m : kMethods) {
-        if (name == method_name(m)) {
-          o.method = m;
-          found = true;
-        }
-      }
-      if (!found) throw InvalidInput("method", quoted(name), "must be one of rk4, hsu, magnus");
+      if (!method_from_name(name, &o.method))
+        throw InvalidInput("method", quoted(name), "must be one of " + method_names());
     } else if (field == "steps") {
       o.steps = value.cast<int>();
     } else if (field == "terms") {
@@ -1011,7 +1002,7 @@ py::list transition_rows() {
           "transition matrix Phi(2 pi): rk4 (paper 3.3.2), hsu (Hsu's method, "
           "eqs 3.21-3.28) or magnus (4th-order Magnus, Richardson-extrapolated)");
   py::list choices;
-  for (TransitionMethod m : kMethods) choices.append(method_name(m));
+  for (TransitionMethod m : kTransitionMethods) choices.append(method_name(m));
   method["choices"] = choices;
   rows.append(method);
   rows.append(row("steps", "int", py::int_(defaults.steps), "-", ("0 or 1.." + max_steps).c_str(),
