@@ -163,25 +163,8 @@ def _text(field, value):
     return value
 
 
-def _real_array(field, values):
-    """A 1-D list of floats from a scalar or an array-like of real numbers."""
-    if isinstance(values, (str, bytes)):
-        raise _invalid(InvalidInput, field, values, "must be real numbers")
-    try:
-        a = np.asarray(values)
-    except Exception:  # ragged input
-        raise _invalid(InvalidInput, field, values, "must be real numbers") from None
-    if a.dtype == bool or not (
-        np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.integer)
-    ):
-        raise _invalid(InvalidInput, field, values, "must be real numbers")
-    if a.ndim > 1:
-        raise _invalid(InvalidInput, field, a, "must be one-dimensional", f"<{a.ndim}-D array>")
-    return [float(v) for v in np.atleast_1d(a).astype(float)]
-
-
 def _real_array_np(field, values):
-    """As _real_array, as a float64 numpy array (no list of Python floats)."""
+    """A 1-D float64 numpy array from a scalar or an array-like of real numbers."""
     if isinstance(values, (str, bytes)):
         raise _invalid(InvalidInput, field, values, "must be real numbers")
     try:
@@ -195,6 +178,11 @@ def _real_array_np(field, values):
     if a.ndim > 1:
         raise _invalid(InvalidInput, field, a, "must be one-dimensional", f"<{a.ndim}-D array>")
     return np.ascontiguousarray(np.atleast_1d(a), dtype=float)
+
+
+def _real_array(field, values):
+    """As _real_array_np, as a list of Python floats."""
+    return _real_array_np(field, values).tolist()
 
 
 def _coerce(field, value):
