@@ -63,18 +63,6 @@
 #error "FLAPLAG_EXE must name the flaplag binary"
 #endif
 
-// AddressSanitizer reserves terabytes of virtual address space (its shadow memory): a cap on
-// RLIMIT_AS would stop every instrumented run at startup, so sanitizer builds run uncapped.
-#if defined(__SANITIZE_ADDRESS__)
-#define FLAPLAG_FUZZ_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define FLAPLAG_FUZZ_ASAN 1
-#endif
-#endif
-#ifndef FLAPLAG_FUZZ_ASAN
-#define FLAPLAG_FUZZ_ASAN 0
-#endif
 
 extern char** environ;
 
@@ -327,7 +315,7 @@ Outcome run_flaplag(const std::vector<std::string>& args, const std::string& cwd
     if (in < 0 || fo < 0 || fe < 0 || ::dup2(in, 0) < 0 || ::dup2(fo, 1) < 0 || ::dup2(fe, 2) < 0 ||
         ::chdir(cwd.c_str()) != 0)
       ::_exit(125);
-    if (!FLAPLAG_FUZZ_ASAN) {
+    if (!FLAPLAG_TEST_ASAN) {
       struct rlimit lim {};
       lim.rlim_cur = lim.rlim_max = kMemoryCap;
       ::setrlimit(RLIMIT_AS, &lim);
@@ -1235,7 +1223,7 @@ Vector case_vector(Random& rnd, Coverage& cov) {
   // 10^9 simulation samples): refused before the run, or run within the caps (memory, time,
   // output size).  Not under AddressSanitizer: without the memory cap they would take the
   // machine's memory (pass 1 of the CI runs them).
-  const bool huge = rnd.chance(0.01) && !FLAPLAG_FUZZ_ASAN;
+  const bool huge = rnd.chance(0.01) && !FLAPLAG_TEST_ASAN;
   const int choice = huge ? -1 : rnd.integer(0, 19);
   switch (choice) {
     case -1:
@@ -1523,7 +1511,7 @@ void fuzz(const char* name, long default_vectors,
       "file fuzz %s: seed %llu, %ld vectors, %ld jobs, %.1f s wall, memory cap %s; %d "
       "violations\n",
       name, static_cast<unsigned long long>(seed), vectors, jobs, wall,
-      FLAPLAG_FUZZ_ASAN ? "off (AddressSanitizer)" : "1 GiB", violations);
+      FLAPLAG_TEST_ASAN ? "off (AddressSanitizer)" : "1 GiB", violations);
   for (const auto& [k, n] : exits) std::printf("  %s: %d\n", k.c_str(), n);
   for (const auto& [k, n] : kinds) std::printf("  %s: %d\n", k.c_str(), n);
   for (const auto& [c, n] : classes)

@@ -19,6 +19,20 @@
 #include <thread>
 #include <vector>
 
+// AddressSanitizer reserves terabytes of virtual address space (its shadow memory): a cap on
+// the address space (RLIMIT_AS, ulimit -v) stops every instrumented run at startup, so tests
+// that cap it run uncapped in sanitizer builds.
+#if defined(__SANITIZE_ADDRESS__)
+#define FLAPLAG_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define FLAPLAG_TEST_ASAN 1
+#endif
+#endif
+#ifndef FLAPLAG_TEST_ASAN
+#define FLAPLAG_TEST_ASAN 0
+#endif
+
 namespace flaplag::testing {
 
 struct Outcome {
