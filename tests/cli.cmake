@@ -3,46 +3,37 @@
 # validation that the command line relies on.
 flaplag_test(parameters_test flaplag_rotor)
 
-flaplag_test(cli_test flaplag_cli nlohmann_json::nlohmann_json)
-target_compile_definitions(cli_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>"
-                                            FLAPLAG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-add_dependencies(cli_test flaplag)
+# A test that runs the built flaplag binary (FLAPLAG_EXE), built before it.
+function(flaplag_cli_test name)
+  flaplag_test(${name} ${ARGN})
+  target_compile_definitions(${name} PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
+  add_dependencies(${name} flaplag)
+endfunction()
+
+flaplag_cli_test(cli_test flaplag_cli nlohmann_json::nlohmann_json)
+target_compile_definitions(cli_test PRIVATE FLAPLAG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 # Generated command lines against the output contract (FLAPLAG_FUZZ_VECTORS, default 1000).
-flaplag_test(cli_fuzz_test flaplag_cli nlohmann_json::nlohmann_json)
-target_compile_definitions(cli_fuzz_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
-add_dependencies(cli_fuzz_test flaplag)
+flaplag_cli_test(cli_fuzz_test flaplag_cli nlohmann_json::nlohmann_json)
 
 # study, map, run (case files), --plot, response, simulate (maintained with cli/).
-flaplag_test(cli_studies_test nlohmann_json::nlohmann_json)
-target_compile_definitions(cli_studies_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
-add_dependencies(cli_studies_test flaplag)
+flaplag_cli_test(cli_studies_test nlohmann_json::nlohmann_json)
 
 # What received files and typed texts can make flaplag do (gnuplot, symbolic links, output
 # paths, descriptors, signals).
-flaplag_test(cli_security_test nlohmann_json::nlohmann_json)
-target_compile_definitions(cli_security_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
-add_dependencies(cli_security_test flaplag)
+flaplag_cli_test(cli_security_test nlohmann_json::nlohmann_json)
 
 # The files flaplag reads: JSON cases never name outputs, bounded nesting and size, keys once
 # per case, merge's checks of a part against its case (maintained with cli/).
-flaplag_test(cli_files_test flaplag_cli nlohmann_json::nlohmann_json)
-target_compile_definitions(cli_files_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
-add_dependencies(cli_files_test flaplag)
+flaplag_cli_test(cli_files_test flaplag_cli nlohmann_json::nlohmann_json)
 
 # Generated and mutated files against the output contract: case files (TOML, JSON) to `run`,
 # real results mutated to `run`, `plot` and `merge` (FLAPLAG_FILE_FUZZ_VECTORS per kind).
-flaplag_test(file_fuzz_test nlohmann_json::nlohmann_json)
-target_compile_definitions(file_fuzz_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
-add_dependencies(file_fuzz_test flaplag)
+flaplag_cli_test(file_fuzz_test nlohmann_json::nlohmann_json)
 
 # Honest results: statuses that rest on trims, validity, resolution; messages that say so.
-flaplag_test(cli_honest_test nlohmann_json::nlohmann_json)
-target_compile_definitions(cli_honest_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
-add_dependencies(cli_honest_test flaplag)
+flaplag_cli_test(cli_honest_test nlohmann_json::nlohmann_json)
 
 # The memory limit (--memory-limit): large runs refused before they allocate (maintained with
 # cli/ and runtime/analysis limits.h).
-flaplag_test(cli_limits_test flaplag_cli nlohmann_json::nlohmann_json)
-target_compile_definitions(cli_limits_test PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
-add_dependencies(cli_limits_test flaplag)
+flaplag_cli_test(cli_limits_test flaplag_cli nlohmann_json::nlohmann_json)
