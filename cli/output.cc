@@ -231,22 +231,6 @@ int make_temporary(const std::string& name, const std::string& given, const std:
   return fd;
 }
 
-// write(2) until done; false with errno set on failure.
-bool write_all(int fd, const std::string& content) {
-  const char* p = content.data();
-  std::size_t left = content.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return false;
-    }
-    p += n;
-    left -= static_cast<std::size_t>(n);
-  }
-  return true;
-}
-
 void replace_atomically(const std::string& name, const std::string& given, const Resolved& r,
                         const std::string& content) {
   std::string tmp;
@@ -433,6 +417,21 @@ std::string KeyValues::render(const std::string& indent) const {
     out += indent + pad_right(kv.first, w) + "  " + value + "\n";
   }
   return out;
+}
+
+bool write_all(int fd, const std::string& content) {
+  const char* p = content.data();
+  std::size_t left = content.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  return true;
 }
 
 }  // namespace flaplag::cli

@@ -82,4 +82,7 @@ class KeyValues {
   std::vector<std::pair<std::string, std::string>> items_;
 };
 
+// write(2) of all of `content` to fd, retried on EINTR; false with errno set on failure.
+bool write_all(int fd, const std::string& content);
+
 }  // namespace flaplag::cli

@@ -218,18 +218,6 @@ std::string simulate_plot_script(double mu, const std::vector<double>& revolutio
 
 namespace {
 
-// write(2) until done; false on failure.
-bool write_all(int fd, const std::string& text) {
-  std::size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    done += static_cast<std::size_t>(n);
-  }
-  return true;
-}
-
 // An unlinked temporary file holding `text`, positioned at its start (-1 on failure): gnuplot
 // reads its script from it as standard input, so that no pipe can fill up while we read the
 // image, and no file name is left for anyone to replace meanwhile.
