@@ -25,27 +25,21 @@ namespace {
 
 // Upper limits that only keep absurd requests from running for hours or overflowing; they are
 // far above anything the paper or the tests use.
-constexpr int kMaxModes = 12;       // exact modes: at most the Galerkin basis (rotating_modes.h)
 constexpr int kMaxPoints = 100001;  // sweep points, Fig 9 rows, spanwise stations
 constexpr int kMaxShards = 100000;  // parts of a --shard job (a map has at most 10000 lines)
 
 const char* const kMissing = "(missing)";
 const char* const kNoValue = "(no value)";
 
-std::string join_model_names() {
-  std::string names;
-  for (const model::ModelDescriptor* m : compiled_models()) {
-    if (!names.empty()) names += ", ";
-    names += m->name;
+// The model of that name ("<family>" or "<family>-<M>x<N>"), or nullptr with the library's
+// reason in *why.
+const model::ModelDescriptor* compiled_model(const std::string& name, std::string* why = nullptr) {
+  try {
+    return &find_model(name);
+  } catch (const InvalidInput& e) {
+    if (why != nullptr) *why = e.reason();
+    return nullptr;
   }
-  return names.empty() ? "none" : names;
-}
-
-const model::ModelDescriptor* compiled_model(const std::string& name) {
-  for (const model::ModelDescriptor* m : compiled_models()) {
-    if (name == m->name) return m;
-  }
-  return nullptr;
 }
 
 std::string subcommand_list() {
@@ -639,8 +633,8 @@ Request CommandLine::interpret() const {
   int flap_modes = 1, lag_modes = 1;
   const Given* flap_given = given("--flap-modes");
   const Given* lag_given = given("--lag-modes");
-  if (flap_given) flap_modes = parse_int(spelled(flap_given), flap_given->text, 1, kMaxModes);
-  if (lag_given) lag_modes = parse_int(spelled(lag_given), lag_given->text, 1, kMaxModes);
+  if (flap_given) flap_modes = parse_int(spelled(flap_given), flap_given->text, 1, model::kMaxModes);
+  if (lag_given) lag_modes = parse_int(spelled(lag_given), lag_given->text, 1, model::kMaxModes);
 
   if (const Given* g = given("--method")) {
     if (!method_from_name(g->text, &r.transition.method))
@@ -668,37 +662,22 @@ Request CommandLine::interpret() const {
   if (analysis) {
     // --flap-modes M --lag-modes N select the model "<model>-<M>x<N>"; 1x1 is <model> itself.
     if (flap_given || lag_given) {
-      // Named in errors: --flap-modes when it asks for more than one mode or is all there is.
-      const Given* which = flap_given != nullptr && (flap_modes != 1 || lag_given == nullptr)
-                               ? flap_given
-                               : lag_given;
       if ((flap_modes > 1 || lag_modes > 1) && r.params.modes == ModeKind::Assumed) {
         const Given* many = flap_modes > 1 ? flap_given : lag_given;
         throw InvalidInput(many->spelling, shown(many->text),
                            "more than one mode needs --modes exact (the assumed mode of eq 4.1 "
                            "is one flap and one lag mode)");
       }
-      const std::string base = r.params.model;
-      const model::ModelDescriptor* m = nullptr;
-      for (const model::ModelDescriptor* d : compiled_models()) {
-        if (base == d->base && d->flap_modes == flap_modes && d->lag_modes == lag_modes) m = d;
+      std::string why;
+      const model::ModelDescriptor* named = compiled_model(r.params.model, &why);
+      if (named == nullptr) {
+        const Given* g = given("--model");
+        throw InvalidInput(g != nullptr ? g->spelling : "--model", shown(r.params.model), why);
       }
-      if (m == nullptr) {
-        throw InvalidInput(which->spelling, shown(which->text),
-                           "no compiled model of family \"" + base + "\" for " +
-                               std::to_string(flap_modes) + " flap x " + std::to_string(lag_modes) +
-                               " lag modes (compiled: " + join_model_names() + ")");
-      }
-      r.params.model = m->name;
-      if (m->flap_modes != flap_modes || m->lag_modes != lag_modes) {
-        throw InvalidInput(which->spelling, shown(which->text),
-                           "model \"" + r.params.model + "\" has " + std::to_string(m->flap_modes) +
-                               " flap x " + std::to_string(m->lag_modes) + " lag modes");
-      }
-    } else if (compiled_model(r.params.model) == nullptr) {
+      r.params.model = find_model(named->base, flap_modes, lag_modes).name;
+    } else if (std::string why; compiled_model(r.params.model, &why) == nullptr) {
       const Given* g = given("--model");
-      throw InvalidInput(g != nullptr ? g->spelling : "--model", shown(r.params.model),
-                         "unknown model (compiled: " + join_model_names() + ")");
+      throw InvalidInput(g != nullptr ? g->spelling : "--model", shown(r.params.model), why);
     }
   }
 
@@ -742,10 +721,8 @@ Request CommandLine::interpret() const {
       break;
     case Command::Models:
       if (const Given* g = given("--spec")) {
-        if (compiled_model(g->text) == nullptr) {
-          throw InvalidInput(g->spelling, shown(g->text),
-                             "unknown model (compiled: " + join_model_names() + ")");
-        }
+        if (std::string why; compiled_model(g->text, &why) == nullptr)
+          throw InvalidInput(g->spelling, shown(g->text), why);
         r.spec = g->text;
       }
       break;

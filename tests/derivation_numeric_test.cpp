@@ -249,7 +249,8 @@ TEST(DerivationVsQuadrature, UntruncatedSpecMatchesFullNonlinearLoadsToFiniteDif
 // The untruncated spec with cyclic pitch: flap and lag loads and the thrust equal the full
 // nonlinear ones (pitch theta + theta1c cos psi + theta1s sin psi) and their linearization.
 TEST(DerivationVsQuadrature, UntruncatedCyclicPitchMatchesFullNonlinearLoadsAndThrust) {
-  const auto spec = fd::load_spec(std::string(FLAPLAG_TEST_SPEC_DIR) + "/untruncated-cyclic.toml");
+  auto spec = fd::load_spec(std::string(FLAPLAG_TEST_SPEC_DIR) + "/untruncated.toml");
+  spec.cyclic_pitch = true;
   const auto m = fd::derive_model(spec);
   ASSERT_FALSE(m.thrust_forcing.empty());
   Operating o;
@@ -415,9 +416,8 @@ const Q4 kStates[] = {
 
 // Without truncation the nonlinear loads are the full loads at any state: a polynomial identity.
 TEST(NonlinearLoadsVsQuadrature, UntruncatedSpecEqualsFullNonlinearLoadsAtAnyState) {
-  const auto spec =
-      fd::load_spec(std::string(FLAPLAG_TEST_SPEC_DIR) + "/untruncated-nonlinear.toml");
-  ASSERT_TRUE(spec.nonlinear);
+  auto spec = fd::load_spec(std::string(FLAPLAG_TEST_SPEC_DIR) + "/untruncated.toml");
+  spec.nonlinear = true;
   const auto m = fd::derive_model(spec);
   const Operating o;
   for (double psi : {0.3, 2.9, 4.4}) {

@@ -11,6 +11,7 @@
 
 #include "flaplag_derive/derive.h"
 #include "flaplag_derive/emit.h"
+#include "flaplag_derive/generic.h"
 #include "flaplag_derive/spec.h"
 
 namespace {
@@ -50,12 +51,19 @@ int main(int argc, char** argv) {
   if (spec_path.empty() || out_dir.empty()) return usage();
   try {
     const auto spec = flaplag::derive::load_spec(spec_path);
-    const auto model = flaplag::derive::derive_model(spec);
+    // The family (any M x N) is the code; the report audits the spec's own mode counts in the
+    // paper's layout, then every term with its mode indices.
+    const auto family = flaplag::derive::extract_generic(spec);
+    auto concrete_spec = spec;
+    concrete_spec.cyclic_pitch = true;
+    concrete_spec.nonlinear = true;
+    const auto model = flaplag::derive::derive_model(concrete_spec);
     std::filesystem::create_directories(out_dir);
     write_file(std::filesystem::path(out_dir) / (spec.name + ".cc"),
-               flaplag::derive::emit_cpp(model));
+               flaplag::derive::emit_family_cpp(family));
     write_file(std::filesystem::path(out_dir) / (spec.name + ".md"),
-               flaplag::derive::emit_report(model));
+               flaplag::derive::emit_report(model) +
+                   flaplag::derive::emit_family_report(family));
   } catch (const flaplag::derive::SpecError& e) {
     std::cerr << "flaplag-derive: error: " << e.what() << "\n";
     return 2;

@@ -23,8 +23,6 @@ int* kept_of(OrderingSpec& s, const char* key) {
   return std::string(key) == "flap" ? &s.kept_flap : &s.kept_lag;
 }
 bool* radial_flow_of(OrderingSpec& s, const char*) { return &s.radial_flow; }
-bool* cyclic_pitch_of(OrderingSpec& s, const char*) { return &s.cyclic_pitch; }
-bool* nonlinear_of(OrderingSpec& s, const char*) { return &s.nonlinear; }
 
 std::string node_text(const toml::node& n) {
   std::ostringstream os;
@@ -212,6 +210,11 @@ OrderingSpec parse_layer(const std::string& text, const std::string& file_label,
       apply(*sk, v, f, spec);
       continue;
     }
+    // Features of the tool, not physics: every model has them.
+    if (key == "emit") {
+      throw SpecError(f, key, node_text(v),
+                      "no longer a spec key: every model has the nonlinear loads");
+    }
     const auto t = tables();
     if (key.empty() || std::find(t.begin(), t.end(), key) == t.end()) {
       throw SpecError(f, key, node_text(v), unknown(""));
@@ -221,6 +224,10 @@ OrderingSpec parse_layer(const std::string& text, const std::string& file_label,
     for (const auto& [k2, v2] : *table) {
       const std::string name2(k2.str());
       const SpecKey* sk2 = find_key(key, name2);
+      if (key == "terms" && name2 == "cyclic_pitch") {
+        throw SpecError(f, key + "." + name2, node_text(v2),
+                        "no longer a spec key: every model has cyclic pitch and the rotor thrust");
+      }
       if (sk2 == nullptr) throw SpecError(f, key + "." + name2, node_text(v2), unknown(key));
       apply(*sk2, v2, f, spec);
     }
@@ -252,11 +259,6 @@ const std::vector<SpecKey>& spec_keys() {
       {"kept", "flap", T::Integer, 2, 0, nullptr, true, nullptr, &kept_of, nullptr},
       {"kept", "lag", T::Integer, 3, 0, nullptr, true, nullptr, &kept_of, nullptr},
       {"terms", "radial_flow", T::Boolean, 1, 0, nullptr, true, nullptr, nullptr, &radial_flow_of},
-      {"terms", "cyclic_pitch", T::Boolean, 0, 0, nullptr, true, nullptr, nullptr, &cyclic_pitch_of,
-       true},
-      // Also emit the nonlinear generalized loads (every product of the coordinates that the
-      // ordering keeps), for the periodic equilibrium; a family of its own.
-      {"emit", "nonlinear", T::Boolean, 0, 0, nullptr, true, nullptr, nullptr, &nonlinear_of, true},
   };
   return keys;
 }

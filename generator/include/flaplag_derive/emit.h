@@ -15,6 +15,14 @@ std::string model_ident(const std::string& name);
 // the descriptor accessor `const flaplag::model::ModelDescriptor& flaplag_model_<ident>()`.
 std::string emit_cpp(const DerivedModel& m);
 
+struct GenericModel;
+// The generated translation unit of a model family (generic.h): integral templates, functions
+// with loops over the mode indices and the accessor
+// `const flaplag::model::ModelFamily& flaplag_family_<ident>()`.
+std::string emit_family_cpp(const GenericModel& g);
+// The audit report's section on a family: every term with its mode indices.
+std::string emit_family_report(const GenericModel& g);
+
 // The audit report (Markdown, src/report.cc), laid out like Appendix C: one block per entry
 // A_ij and f_i with every retained term (factor, eps order, origin, radial-flow flag, spanwise
 // integral, paper name, value at the typical case); the generalized mass, the absorbed terms,

@@ -39,12 +39,12 @@ struct OrderingSpec {
   int kept_flap = 0;         // highest eps order kept in the flap aerodynamic load
   int kept_lag = 0;          // ... in the lag aerodynamic load
   bool radial_flow = false;  // the mu cos(psi) dv/dx0 term of U_T (eq 2.23)
-  // Cyclic pitch theta(psi) = theta + theta1c cos psi + theta1s sin psi in the aerodynamic
-  // loads (eqs 2.20-2.21), theta1c and theta1s of the same eps order as theta; also emits the
-  // rotor thrust (ModelDescriptor::thrust) that a trim needs.
+  // Derivation switches (not spec keys: every model family has both, extract_generic() and
+  // the generator turn them on).  cyclic_pitch: theta(psi) = theta + theta1c cos psi +
+  // theta1s sin psi in the aerodynamic loads (eqs 2.20-2.21), theta1c and theta1s of theta's
+  // eps order, and the rotor thrust.  nonlinear: also the nonlinear generalized loads as
+  // polynomials in the full state (not linearized about hover), for the periodic equilibrium.
   bool cyclic_pitch = false;
-  // [emit] nonlinear: also derive the nonlinear generalized loads as polynomials in the full
-  // state (not linearized about hover), for the periodic equilibrium (issue 12 item 4).
   bool nonlinear = false;
 
   int order(const std::string& key) const { return orders.at(key); }

@@ -34,29 +34,70 @@ const std::vector<const model::ModelDescriptor*>& compiled_models() {
   return models;
 }
 
-const model::ModelDescriptor& find_model(const std::string& name) {
-  for (const auto* m : compiled_models()) {
-    if (name == m->name) return *m;
-  }
+namespace {
+
+// Names of the models that one family per spec replaced: every model now has cyclic pitch, the
+// rotor thrust and the nonlinear loads.
+const char* replaced_model(const std::string& name) {
+  if (name == "paper-cyclic" || name == "paper-nonlinear" || name == "paper-cyclic-nonlinear")
+    return "paper";
+  if (name == "paper-cyclic-2x2") return "paper-2x2";
+  return nullptr;
+}
+
+const model::ModelFamily* find_family(const std::string& name) {
+  for (const model::ModelFamily* f : model::registered_families())
+    if (name == f->name) return f;
+  return nullptr;
+}
+
+std::string family_names() {
   std::string known;
-  for (const auto* m : compiled_models())
-    known += (known.empty() ? "" : ", ") + std::string(m->name);
-  throw InvalidInput("model", name, "unknown model (compiled: " + known + ")");
+  for (const model::ModelFamily* f : model::registered_families())
+    known += (known.empty() ? "" : ", ") + std::string(f->name);
+  return known;
+}
+
+// "<family>-<M>x<N>" with one- or two-digit counts: the family and the counts, or nullptr.
+const model::ModelFamily* sized_name(const std::string& name, int* M, int* N) {
+  const auto dash = name.rfind('-');
+  if (dash == std::string::npos) return nullptr;
+  const std::string size = name.substr(dash + 1);
+  const auto x = size.find('x');
+  if (x == std::string::npos || x == 0 || x > 2 || size.size() - x - 1 < 1 ||
+      size.size() - x - 1 > 2 || size.find_first_not_of("0123456789x") != std::string::npos ||
+      size.find('x', x + 1) != std::string::npos)
+    return nullptr;
+  *M = std::stoi(size.substr(0, x));
+  *N = std::stoi(size.substr(x + 1));
+  return find_family(name.substr(0, dash));
+}
+
+}  // namespace
+
+const model::ModelDescriptor& find_model(const std::string& name) {
+  if (const char* now = replaced_model(name)) return find_model(now);
+  if (const model::ModelFamily* f = find_family(name))
+    return model::instantiate(*f, f->default_flap_modes, f->default_lag_modes);
+  int M = 0, N = 0;
+  if (const model::ModelFamily* f = sized_name(name, &M, &N)) return find_model(f->name, M, N);
+  throw InvalidInput("model", name,
+                     "unknown model (models: " + family_names() +
+                         "; each also as <model>-<M>x<N> for M flap x N lag modes, 1.." +
+                         std::to_string(model::kMaxModes) + ")");
 }
 
 const model::ModelDescriptor& find_model(const std::string& base, int flap_modes, int lag_modes) {
-  std::string sizes;
-  for (const auto* m : compiled_models()) {
-    if (base != m->base) continue;
-    if (m->flap_modes == flap_modes && m->lag_modes == lag_modes) return *m;
-    sizes += (sizes.empty() ? "" : ", ") + std::to_string(m->flap_modes) + "x" +
-             std::to_string(m->lag_modes);
+  const model::ModelFamily* f = find_family(base);
+  if (!f) throw InvalidInput("model", base, "unknown model (models: " + family_names() + ")");
+  for (const int m : {flap_modes, lag_modes}) {
+    if (m < 1 || m > model::kMaxModes) {
+      throw InvalidInput(m == flap_modes ? "flap modes" : "lag modes", std::to_string(m),
+                         "must be 1.." + std::to_string(model::kMaxModes) +
+                             " (the Galerkin basis of the exact rotating modes)");
+    }
   }
-  throw InvalidInput("model", base,
-                     sizes.empty()
-                         ? "no compiled model family of that name"
-                         : "has no " + std::to_string(flap_modes) + " flap x " +
-                               std::to_string(lag_modes) + " lag model (compiled: " + sizes + ")");
+  return model::instantiate(*f, flap_modes, lag_modes);
 }
 
 namespace {

@@ -224,6 +224,8 @@ model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) co
   in.structural = structural_.data();
   in.theta1c = p_.theta1c;
   in.theta1s = p_.theta1s;
+  in.flap_modes = model_->flap_modes;
+  in.lag_modes = model_->lag_modes;
   return in;
 }
 

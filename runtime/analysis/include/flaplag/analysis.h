@@ -208,12 +208,13 @@ class Analysis {
   std::unique_ptr<Impl> impl_;
 };
 
-// Compiled models (generated/), in name order.
+// The compiled model families (generated/) at their specs' mode counts, in name order.
 const std::vector<const model::ModelDescriptor*>& compiled_models();
 // Throws InvalidInput("model", name, ...) when unknown.
 const model::ModelDescriptor& find_model(const std::string& name);
+// Models are named "<family>" (its spec's mode counts) or "<family>-<M>x<N>".
 // The model of family `base` (ModelDescriptor::base, e.g. "paper") with M flap and N lag modes.
-// Throws InvalidInput("model", base, ...) naming the sizes that family has compiled.
+// Throws InvalidInput for an unknown family or mode counts outside 1..model::kMaxModes.
 const model::ModelDescriptor& find_model(const std::string& base, int flap_modes, int lag_modes);
 
 }  // namespace flaplag

@@ -16,6 +16,7 @@
 // The functions below are the one place this ordering is written down.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -144,6 +145,9 @@ struct CoefficientInputs {
   // the models with ModelDescriptor::cyclic_pitch; the others ignore them.
   double theta1c;
   double theta1s;
+  // Mode counts M, N: read by the functions of a ModelFamily (instantiate() descriptors).
+  int flap_modes;
+  int lag_modes;
 };
 
 // Outputs.  n = M + N equations, 2n states, H harmonics.
@@ -219,6 +223,111 @@ struct ModelDescriptor {
   void (*nonlinear_thrust)(const CoefficientInputs& in, const double* y,
                            const NonlinearOutputs& out) = nullptr;
 };
+
+// ----- model families: one per ordering spec, for any number of modes ----------------------
+//
+// The generator derives a spec once with variable mode indices (a term of the flap equation of
+// mode i is a coefficient times an integral such as int eta_i eta_k' gamma_j' dx0, summed over
+// k).  A family's functions assemble the outputs above for the M x N given in
+// CoefficientInputs::flap_modes/lag_modes from integral *tensors*: each template below is
+// evaluated for every assignment of its mode variables, and instantiate() lists those concrete
+// integrals in the order the functions read them (template by template, each row-major over
+// its variables, variable 0 slowest, a flap variable ranging over M modes and a lag one over N).
+
+// A spanwise integral whose factors carry template variables (FactorRef::mode = variable,
+// 0 for X0/Arm).  Aerodynamic: x^x_power prod(factors).  Structural: as StructuralIntegral,
+// with factors the outer factors.
+struct IntegralTemplate {
+  const char* name;   // e.g. "x eta_a eta_b'" (letters a, b, c, d name the variables)
+  const char* ident;  // C identifier form
+  int n_vars;
+  Direction var_dirs[kMaxFactors];
+  int x_power;
+  int outer_mass;
+  int n_factors;
+  FactorRef factors[kMaxFactors];
+  Inner inner;
+  int inner_mass;
+  int n_inner;
+  FactorRef inner_factors[kMaxFactors];
+  const char* paper_name;  // Appendix B name with the letters, e.g. "F6_ab", or ""
+};
+
+// Concrete integrals of a template: prod over its variables of M or N.
+inline int template_size(const IntegralTemplate& t, int M, int N) {
+  int size = 1;
+  for (int v = 0; v < t.n_vars; ++v) size *= t.var_dirs[v] == Direction::Flap ? M : N;
+  return size;
+}
+
+// Read access to the integral tensors of a list of templates (what the generated code uses).
+class TemplateTensors {
+ public:
+  TemplateTensors(const IntegralTemplate* t, int count, const double* values, int M, int N)
+      : values_(values), entries_(static_cast<std::size_t>(count)) {
+    int offset = 0;
+    for (int j = 0; j < count; ++j) {
+      Entry& e = entries_[static_cast<std::size_t>(j)];
+      e.offset = offset;
+      int stride = 1;
+      for (int v = t[j].n_vars - 1; v >= 0; --v) {
+        e.stride[v] = stride;
+        stride *= t[j].var_dirs[v] == Direction::Flap ? M : N;
+      }
+      offset += stride;
+    }
+  }
+  double operator()(int t, int a = 0, int b = 0, int c = 0, int d = 0) const {
+    const Entry& e = entries_[static_cast<std::size_t>(t)];
+    return values_[e.offset + a * e.stride[0] + b * e.stride[1] + c * e.stride[2] +
+                   d * e.stride[3]];
+  }
+
+ private:
+  struct Entry {
+    int offset = 0;
+    int stride[kMaxFactors] = {0, 0, 0, 0};
+  };
+  const double* values_;
+  std::vector<Entry> entries_;
+};
+
+struct ModelFamily {
+  const char* name;       // spec name, e.g. "paper"
+  const char* spec_file;  // e.g. "paper.toml"
+  const char* spec_text;  // the resolved spec (canonical TOML)
+  const char* summary;    // orders and term classes (no mode counts)
+  int default_flap_modes;  // the spec's [modes]
+  int default_lag_modes;
+  int n_harmonics;            // H
+  int n_nonlinear_harmonics;  // H_nl
+  int n_aero;
+  const IntegralTemplate* aero;
+  int n_structural;
+  const IntegralTemplate* structural;
+  // As in ModelDescriptor, for in.flap_modes x in.lag_modes (every one is set: each family has
+  // cyclic pitch, the rotor thrust and the nonlinear loads).
+  void (*mass)(const CoefficientInputs& in, double* mass);
+  void (*coefficients)(const CoefficientInputs&, const CoefficientOutputs&);
+  void (*equilibrium)(const CoefficientInputs&, const EquilibriumOutputs&);
+  void (*thrust)(const CoefficientInputs&, const CoefficientOutputs&);
+  void (*nonlinear)(const CoefficientInputs& in, const double* y, const NonlinearOutputs& out);
+  void (*nonlinear_thrust)(const CoefficientInputs& in, const double* y,
+                           const NonlinearOutputs& out);
+};
+
+// The largest mode count per direction a family is instantiated for (the Galerkin basis of the
+// exact rotating modes).
+constexpr int kMaxModes = 12;
+
+// All model families compiled into this build (generated registry), in spec-file order.
+std::vector<const ModelFamily*> registered_families();
+
+// The descriptor of family f for M flap x N lag modes (1 <= M, N <= kMaxModes): named f.name
+// when M x N is the spec's [modes], else "<name>-<M>x<N>"; its integral lists are the templates'
+// concrete integrals.  Made once per (family, M, N) and kept for the life of the program;
+// thread-safe.  Throws std::invalid_argument for mode counts out of range.
+const ModelDescriptor& instantiate(const ModelFamily& f, int M, int N);
 
 // All models compiled into this build (generated registry), in spec-file order.
 std::vector<const ModelDescriptor*> registered_models();
