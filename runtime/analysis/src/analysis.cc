@@ -356,12 +356,6 @@ TipSimulation Analysis::simulate(double mu, const Eigen::VectorXd& y0, bool forc
 TipSimulation Analysis::simulate_nonlinear(double mu, const Eigen::VectorXd& y0, bool forced,
                                            const SimulationOptions& options) const {
   const model::ModelDescriptor& m = model();
-  if (m.nonlinear == nullptr) {
-    throw InvalidInput("nonlinear", "true",
-                       "the model " + std::string(m.name) +
-                           " has no nonlinear loads (its spec does not set [emit] nonlinear); "
-                           "use a model that emits them, e.g. paper-nonlinear");
-  }
   if (forced) {
     throw InvalidInput("forced", "true",
                        "the nonlinear equations always carry their loads (f is part of them): "

@@ -34,23 +34,6 @@ bool report(const char* name, const std::string& value, const std::string& reaso
 void check_mu(double mu) { internal::check_mu(mu, "mu"); }
 using internal::sort_for_output;
 
-const model::ModelDescriptor& thrust_model(const RotorParameters& p) {
-  const model::ModelDescriptor& m = find_model(p.model);
-  if (m.thrust == nullptr) {
-    throw InvalidInput("model", p.model,
-                       "emits no rotor thrust: the thrust and the trim need a model with the "
-                       "cyclic_pitch switch (e.g. paper-cyclic, or paper-cyclic-nonlinear about "
-                       "the periodic equilibrium)");
-  }
-  if (p.periodic_linearization && m.nonlinear_thrust == nullptr) {
-    throw InvalidInput("model", p.model,
-                       "emits no nonlinear rotor thrust: the trim about the periodic equilibrium "
-                       "(`periodic_linearization`) needs a model with cyclic pitch and nonlinear "
-                       "loads (paper-cyclic-nonlinear)");
-  }
-  return m;
-}
-
 // Value of one region's thrust at psi for state y.
 double thrust_at(const detail::ThrustHarmonics& t, double psi, const Eigen::VectorXd& y) {
   double v = 0.0;
@@ -275,7 +258,7 @@ ThrustResult rotor_thrust(const RotorParameters& p, double mu, double inflow,
   response.Check();
   if (std::isnan(inflow)) validate(p);
   validate_except_inflow(p);
-  const model::ModelDescriptor& m = thrust_model(p);
+  const model::ModelDescriptor& m = find_model(p.model);
   ResponseOptions r = response;
   return evaluate(p, m, mu, std::isnan(inflow) ? hover_inflow(p) : inflow, r);
 }
@@ -288,7 +271,7 @@ ThrustResult rotor_thrust_momentum(const RotorParameters& p, double mu, double s
   if (!(std::isfinite(shaft_angle) && std::abs(shaft_angle) < kHalfPi)) {
     throw InvalidInput("shaft_angle", round_trip_text(shaft_angle), "must be in (-pi/2, pi/2)");
   }
-  const model::ModelDescriptor& m = thrust_model(p);
+  const model::ModelDescriptor& m = find_model(p.model);
   ResponseOptions r = response;
   // Fixed point C_T = thrust(lambda(C_T)): secant iteration on g(lambda) = lambda -
   // lambda_2.25(thrust(lambda)), from eq 2.24's lambda.
@@ -347,7 +330,7 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
   if (o.kind == TrimKind::None) {
     throw InvalidInput("trim", "none", "nothing to trim: use thrust or moment");
   }
-  const model::ModelDescriptor& m = thrust_model(p);
+  const model::ModelDescriptor& m = find_model(p.model);
   TrimBudget budget;
   TrimResult out = trim_continued(p, m, mu, o, start, budget);
   out.evaluations = budget.used;

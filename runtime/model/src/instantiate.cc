@@ -170,7 +170,6 @@ std::unique_ptr<Instance> make(const ModelFamily& f, int M, int N) {
   d.mass = f.mass;
   d.coefficients = f.coefficients;
   d.equilibrium = f.equilibrium;
-  d.cyclic_pitch = true;
   d.thrust = f.thrust;
   d.n_nonlinear_harmonics = f.n_nonlinear_harmonics;
   d.nonlinear = f.nonlinear;

@@ -79,10 +79,10 @@ std::vector<ParameterSpec> build_table() {
   t.push_back(real_row("theta", "theta", "rad", "collective pitch", &RotorParameters::theta, angle,
                        "in (-pi/2, pi/2)"));
   t.push_back(real_row("theta1c", "theta_1c", "rad",
-                       "cyclic pitch, cos psi part (needs a cyclic-pitch model, e.g. paper-cyclic)",
+                       "cyclic pitch, cos psi part",
                        &RotorParameters::theta1c, angle, "in (-pi/2, pi/2)"));
   t.push_back(real_row("theta1s", "theta_1s", "rad",
-                       "cyclic pitch, sin psi part (needs a cyclic-pitch model, e.g. paper-cyclic)",
+                       "cyclic pitch, sin psi part",
                        &RotorParameters::theta1s, angle, "in (-pi/2, pi/2)"));
   t.push_back(real_row("precone", "beta_P", "rad", "precone angle", &RotorParameters::precone,
                        angle, "in (-pi/2, pi/2)"));
@@ -133,8 +133,7 @@ std::vector<ParameterSpec> build_table() {
                        &RotorParameters::paper_1974_shapes));
   t.push_back(flag_row("periodic_linearization",
                        "the linearization about the periodic equilibrium of the nonlinear "
-                       "equations instead of hover (needs a model with nonlinear loads, e.g. "
-                       "paper-nonlinear, or paper-cyclic-nonlinear for a trim)",
+                       "equations instead of hover",
                        &RotorParameters::periodic_linearization));
   return t;
 }

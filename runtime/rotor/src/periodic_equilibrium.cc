@@ -308,10 +308,6 @@ HarmonicSet linear_set(const NonlinearSystem& sys, const PeriodicEquilibrium& eq
 NonlinearSystem::NonlinearSystem(const detail::SystemBuilder& builder, double mu)
     : builder_(&builder), mu_(mu) {
   const auto& m = builder.model();
-  if (m.nonlinear == nullptr) {
-    throw InvalidInput("model", m.name,
-                       "has no nonlinear loads (its spec does not set [emit] nonlinear)");
-  }
   // The loads are integrated with the normal and the sector integrals (the exact circle would
   // be left out silently).
   if (builder.params().exact_reversed_flow) {
@@ -594,7 +590,7 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
 
   // The mean thrust along q° (a polynomial of degree <= 2 in y°: trigonometric degree model
   // order + 2K, integrated exactly by the quadrature of the harmonic balance).
-  if (m.nonlinear_thrust != nullptr) {
+  {
     double sum = 0.0;
     for (const QuadPoint& qp : quadrature(sys.sector(), 3.0 * K + 4.0))
       sum += qp.weight * sys.thrust(qp.psi, qp.reversed, out.state(qp.psi));

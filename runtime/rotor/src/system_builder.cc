@@ -44,25 +44,8 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   } else {
     validate(p_);
   }
-  if (!m.cyclic_pitch) {
-    for (const auto& [field, value] : {std::pair<const char*, double>{"theta1c", p_.theta1c},
-                                       std::pair<const char*, double>{"theta1s", p_.theta1s}}) {
-      if (value != 0.0) {
-        throw InvalidInput(field, round_trip_text(value),
-                           std::string("model '") + m.name +
-                               "' has no cyclic pitch: use a model with the cyclic_pitch switch "
-                               "(e.g. `model` = paper-cyclic)");
-      }
-    }
-  }
   if (inflow && !std::isfinite(*inflow)) {
     throw InvalidInput("inflow", round_trip_text(*inflow), "must be a finite number");
-  }
-  if (p_.periodic_linearization && m.nonlinear == nullptr) {
-    throw InvalidInput("periodic_linearization", "true",
-                       std::string("model '") + m.name +
-                           "' has no nonlinear loads (its spec does not set [emit] nonlinear); "
-                           "use a model that has them, e.g. paper-nonlinear");
   }
   // The harmonic balance integrates the nonlinear loads region by region with the normal and
   // the sector integrals; the exact circle has no such form there (it would silently be left
@@ -266,17 +249,11 @@ void SystemBuilder::assemble(double mu, const std::vector<double>& aero, Harmoni
 
 void SystemBuilder::nonlinear_loads(double mu, const std::vector<double>& aero, const double* y,
                                     double* force, double* jacobian) const {
-  if (model_->nonlinear == nullptr) {
-    throw std::logic_error(std::string("model '") + model_->name + "' has no nonlinear loads");
-  }
   model_->nonlinear(inputs(mu, aero.data()), y, {force, jacobian});
 }
 
 void SystemBuilder::nonlinear_thrust(double mu, const std::vector<double>& aero, const double* y,
                                      double* thrust, double* jacobian) const {
-  if (model_->nonlinear_thrust == nullptr) {
-    throw std::logic_error(std::string("model '") + model_->name + "' has no nonlinear thrust");
-  }
   std::vector<double> scratch;
   if (jacobian == nullptr) {
     scratch.resize(static_cast<std::size_t>(model_->n_nonlinear_harmonics) * 2 * n_);
@@ -428,9 +405,6 @@ HarmonicSet SystemBuilder::harmonics(double mu, const std::vector<double>& aero)
 }
 
 ThrustSystem SystemBuilder::thrust(double mu) const {
-  if (model_->thrust == nullptr) {
-    throw std::logic_error(std::string("model '") + model_->name + "' emits no thrust");
-  }
   const int ns = 2 * n_;
   auto eval = [&](const std::vector<double>& aero) {
     std::vector<double> force(H_ * ns), forcing(H_);

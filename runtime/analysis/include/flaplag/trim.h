@@ -1,8 +1,7 @@
-// flaplag — rotor thrust and trim (issue 12 item 3): the collective and cyclic pitch and the
+// flaplag — rotor thrust and trim: the collective and cyclic pitch and the
 // inflow that give a prescribed thrust coefficient, and (moment trim) no first-harmonic flap.
 //
-// Thrust.  The cyclic-pitch models (spec switch cyclic_pitch, e.g. `paper-cyclic`) emit the
-// thrust of one blade from the flap load of the derivation itself (ModelDescriptor::thrust):
+// Thrust.  Every model emits the thrust of one blade from the flap load of the derivation itself (ModelDescriptor::thrust):
 //   T(psi) = (l/R) int_A^B L_z dx0,   L_z = theta(psi) u_T^2 - u_T u_P   (eq 2.20 by rho a c
 //   (Omega R)^2 / 2), with theta(psi) = theta + theta1c cos psi + theta1s sin psi,
 // u_T, u_P of eqs 2.22-2.23 with the blade at the hover equilibrium q0 plus the perturbation y:
@@ -39,8 +38,7 @@
 // about which stability is then analysed is the paper's (hover equilibrium at the trimmed theta0
 // and lambda; A(psi) carries the cyclic pitch).
 //
-// About the periodic equilibrium (RotorParameters::periodic_linearization, a model with cyclic
-// pitch and nonlinear loads: paper-cyclic-nonlinear): the thrust is the azimuth mean of the
+// About the periodic equilibrium (RotorParameters::periodic_linearization): the thrust is the azimuth mean of the
 // nonlinear thrust (ModelDescriptor::nonlinear_thrust) along the periodic equilibrium q°(psi) of
 // the nonlinear equations (periodic_equilibrium.h, harmonic balance with the options of the
 // analysis, K = 16), and the first flap harmonic is q°'s; stability is then analysed about that

@@ -1,7 +1,8 @@
 // flaplag — the contract between generated model code and the runtime.
 //
 // The generator (generator/, GiNaC, build time) writes one translation unit per ordering spec
-// that fills a ModelDescriptor.  Everything the generated code needs comes in through
+// that fills a ModelFamily (any M x N; instantiate() makes its ModelDescriptor for given mode
+// counts).  Everything the generated code needs comes in through
 // CoefficientInputs; everything it computes goes out through plain arrays, so the generated
 // code depends on nothing but this header.
 //
@@ -141,8 +142,7 @@ struct CoefficientInputs {
   const double* ecs_lag_flap;  // [N*M] Ebar^cs_ik  (eq E.8), lag row i, flap column k
   const double* aero;          // [n_aero] values of the AeroIntegral list, for one flow region
   const double* structural;    // [n_structural] values of the StructuralIntegral list
-  // Cyclic pitch [rad]: theta(psi) = theta + theta1c cos psi + theta1s sin psi.  Read only by
-  // the models with ModelDescriptor::cyclic_pitch; the others ignore them.
+  // Cyclic pitch [rad]: theta(psi) = theta + theta1c cos psi + theta1s sin psi.
   double theta1c;
   double theta1s;
   // Mode counts M, N: read by the functions of a ModelFamily (instantiate() descriptors).
@@ -165,7 +165,7 @@ struct EquilibriumOutputs {
   double* c;  // [n]
 };
 
-// Nonlinear generalized loads (models whose spec sets [emit] nonlinear; issue 12 item 4).  The
+// Nonlinear generalized loads.  The
 // argument y is the *full* state [g'_1..g'_M, g_1..g_M, h'_1..h'_N, h_1..h_N] (the ordering
 // above, but absolute values: the hover amplitudes in.g0, in.h0 are not read), and
 //   mass * q'' = sum_h phi_h(psi) force[h](y)
@@ -178,12 +178,12 @@ struct NonlinearOutputs {
   double* jacobian;  // [H_nl*n*2n]  d force / d y (row-major per harmonic: equation, state)
 };
 
+// One model: a family (below) instantiated for M x N modes (instantiate()).  Every function is
+// set: each model has cyclic pitch, the rotor thrust and the nonlinear loads.
 struct ModelDescriptor {
-  const char* name;  // model name, e.g. "paper-2x2"
-  // Model family, e.g. "paper" for paper, paper-2x1, paper-1x2, paper-2x2: the models of one
-  // family have the same ordering and term classes and differ only in their mode counts, so a
-  // model is identified by (base, flap_modes, lag_modes).  A spec without `base`, or one that
-  // changes more than [modes] of its base, is its own family (base == name).
+  const char* name;  // model name, e.g. "paper" or "paper-2x2"
+  // Model family (ordering spec), e.g. "paper" for paper, paper-2x1, paper-2x2: the models of
+  // one family differ only in their mode counts, so a model is (base, flap_modes, lag_modes).
   const char* base;
   const char* spec_file;  // spec file name, e.g. "paper.toml"
   const char* spec_text;  // the resolved spec (canonical TOML; a comment line names its base)
@@ -201,27 +201,19 @@ struct ModelDescriptor {
   void (*mass)(const CoefficientInputs& in, double* mass);
   void (*coefficients)(const CoefficientInputs&, const CoefficientOutputs&);
   void (*equilibrium)(const CoefficientInputs&, const EquilibriumOutputs&);
-  // Added after the first models shipped (trailing, with defaults, so that the generated code
-  // of the older models is unchanged):
-  // true when the model reads CoefficientInputs::theta1c/theta1s (spec switch cyclic_pitch).
-  bool cyclic_pitch = false;
   // Rotor thrust of one blade, T = (l/R) int L_z dx0 over the aerodynamic span with the flap
   // load L_z of the derivation (eq 2.20, same eps truncation, linear in the state), as
   // harmonics: T(psi) = sum_h phi_h(psi) (out.forcing[h] + sum_c out.force[h*2n + c] y_c).
   // out.forcing has H entries, out.force H*2n.  C_T = (sigma a / 2) * mean over psi of T.
-  // nullptr for the models without cyclic pitch.
-  void (*thrust)(const CoefficientInputs&, const CoefficientOutputs&) = nullptr;
-  // Nonlinear loads (see NonlinearOutputs): H_nl harmonics; nullptr and 0 for models without
-  // them (the default member initializers keep the older generated descriptors unchanged).
-  int n_nonlinear_harmonics = 0;
-  void (*nonlinear)(const CoefficientInputs& in, const double* y,
-                    const NonlinearOutputs& out) = nullptr;
-  // Models with both cyclic pitch and nonlinear loads: the rotor thrust of one blade (`thrust`'s
-  // load, without its linearization) at the full state y, T(psi) = sum_h phi_h(psi)
-  // out.force[h](y), H_nl harmonics; out.force has H_nl entries, out.jacobian H_nl*2n.  For the
-  // trim about the periodic equilibrium.  nullptr for the other models.
+  void (*thrust)(const CoefficientInputs&, const CoefficientOutputs&);
+  // Nonlinear loads (see NonlinearOutputs), H_nl harmonics.
+  int n_nonlinear_harmonics;
+  void (*nonlinear)(const CoefficientInputs& in, const double* y, const NonlinearOutputs& out);
+  // The rotor thrust of one blade (`thrust`'s load, without its linearization) at the full
+  // state y, T(psi) = sum_h phi_h(psi) out.force[h](y), H_nl harmonics; out.force has H_nl
+  // entries, out.jacobian H_nl*2n.  For the trim about the periodic equilibrium.
   void (*nonlinear_thrust)(const CoefficientInputs& in, const double* y,
-                           const NonlinearOutputs& out) = nullptr;
+                           const NonlinearOutputs& out);
 };
 
 // ----- model families: one per ordering spec, for any number of modes ----------------------
@@ -305,8 +297,7 @@ struct ModelFamily {
   const IntegralTemplate* aero;
   int n_structural;
   const IntegralTemplate* structural;
-  // As in ModelDescriptor, for in.flap_modes x in.lag_modes (every one is set: each family has
-  // cyclic pitch, the rotor thrust and the nonlinear loads).
+  // As in ModelDescriptor, for in.flap_modes x in.lag_modes.
   void (*mass)(const CoefficientInputs& in, double* mass);
   void (*coefficients)(const CoefficientInputs&, const CoefficientOutputs&);
   void (*equilibrium)(const CoefficientInputs&, const EquilibriumOutputs&);

@@ -38,12 +38,11 @@ struct RotorParameters {
   bool paper_1974_shapes =
       false;  // exact modes rebuilt with the 1974 sign slip (docs/validation.md)
   // Linearize about the periodic equilibrium q°(psi) of the nonlinear equations instead of the
-  // hover equilibrium (the paper); needs a model with nonlinear loads (paper-nonlinear).
+  // hover equilibrium (the paper).
   bool periodic_linearization = false;
 };
 
-// (*) theta(psi) = theta + theta1c cos psi + theta1s sin psi; nonzero values need a model with
-// cyclic pitch (the cyclic_pitch spec switch, e.g. paper-cyclic): SystemBuilder refuses others.
+// (*) theta(psi) = theta + theta1c cos psi + theta1s sin psi (every model has cyclic pitch).
 //
 // Throws InvalidInput naming the first offending field ("omega_lag") and its value; the
 // admissible ranges are those of parameter_table.h (also noted above), with tip_loss_a <

@@ -1,8 +1,8 @@
 // flaplag — the periodic equilibrium q°(psi) of the nonlinear flap-lag equations at advance
-// ratio mu, and the linearization about it (issue 12 item 4).
+// ratio mu, and the linearization about it.
 //
 // Equations: mass q'' = G(q, q', psi) = sum_h phi_h(psi) force_h(q, q'), the nonlinear loads of
-// a model whose spec sets [emit] nonlinear (model_api.h NonlinearOutputs), with the aerodynamic
+// the model (model_api.h NonlinearOutputs), with the aerodynamic
 // integrals of the normal region or, inside the reversed-flow sector (Appendix D), of the sector.
 // In first-order form y' = F(y, psi), y = [g', g, h', h] the full state (model_api.h ordering).
 //
@@ -86,7 +86,7 @@ struct PeriodicEquilibriumOptions {
   int harmonics = kAutomaticHarmonics;       // K, harmonics of q°: 1..128 fixed, or automatic
   // Automatic K: accepted when the estimate of the relative error of the coefficients of q°
   // (harmonics_error of the result) is at most this, (0, 1e-2].  1e-4: in the typical case
-  // (paper-nonlinear, mu = 0.6) the coefficients of K = 8, 16, 32 differ by 9e-5 and 1.3e-5
+  // (paper, mu = 0.6) the coefficients of K = 8, 16, 32 differ by 9e-5 and 1.3e-5
   // while the largest zeta of the linearization agrees to 1e-7, far below the analysis's
   // zeta tolerance 1e-5 (TransitionOptions); the K is then 16 (8 near hover, 32 near the fold).
   double harmonics_tolerance = 1e-4;
