@@ -549,14 +549,26 @@ TEST(Models, LookedUpByFamilyAndModeCounts) {
   EXPECT_EQ(2, m.flap_modes);
   EXPECT_EQ(2, m.lag_modes);
   EXPECT_STREQ("paper", m.base);
+  EXPECT_STREQ("paper-2x2", m.name);
+  // every family exists for any M x N up to the Galerkin basis, under either spelling
+  const auto& big = flaplag::find_model("lag-order-2", 7, 3);
+  EXPECT_STREQ("lag-order-2-7x3", big.name);
+  EXPECT_EQ(&big, &flaplag::find_model("lag-order-2-7x3"));
+  EXPECT_EQ(&flaplag::find_model("paper"), &flaplag::find_model("paper-1x1"));
   try {
-    flaplag::find_model("paper", 7, 7);
-    FAIL() << "no 7x7 model is compiled";
+    flaplag::find_model("paper", 13, 1);
+    FAIL() << "13 flap modes exceed the Galerkin basis";
   } catch (const flaplag::InvalidInput& e) {
-    EXPECT_EQ("model", e.name());
-    EXPECT_NE(std::string::npos, std::string(e.what()).find("2x2")) << e.what();
+    EXPECT_EQ("flap modes", e.name());
+    EXPECT_NE(std::string::npos, e.reason().find("1..12")) << e.what();
   }
+  EXPECT_THROW(flaplag::find_model("paper", 1, 0), flaplag::InvalidInput);
   EXPECT_THROW(flaplag::find_model("no-such-family", 1, 1), flaplag::InvalidInput);
+  EXPECT_THROW(flaplag::find_model("paper-0x1"), flaplag::InvalidInput);
+  EXPECT_THROW(flaplag::find_model("paper-2x2x2"), flaplag::InvalidInput);
+  // the names of the models one family per spec replaced
+  EXPECT_STREQ("paper", flaplag::find_model("paper-cyclic-nonlinear").name);
+  EXPECT_STREQ("paper-2x2", flaplag::find_model("paper-cyclic-2x2").name);
 }
 
 TEST(Models, PaperModelsAreCompiled) {
@@ -762,14 +774,14 @@ TEST(NonlinearSimulation, PastTheFoldItStartsFromHoverWithAWarning) {
   for (const auto& y : s.simulation.y) EXPECT_TRUE(y.allFinite());
 }
 
-// Inputs it cannot answer are refused naming the input: a model without nonlinear loads
-// ("nonlinear"), the forcing switch (its loads are part of the equations), the exact
+// Inputs it cannot answer are refused naming the input: the forcing switch (its loads are part of the equations), the exact
 // reversed-flow circle (the nonlinear loads have the sector only), a bad perturbation.
 TEST(NonlinearSimulation, RefusesWhatItCannotAnswerByName) {
   const Eigen::VectorXd y0 = Eigen::VectorXd::Constant(4, 0.01);
   const auto o = nonlinear_options(2);
+  // every model has the nonlinear loads, the default one included
   const Analysis paper(RotorParameters{}, {});
-  EXPECT_EQ("nonlinear", refused_field([&] { paper.simulate(0.3, y0, false, o); }));
+  EXPECT_EQ("(accepted)", refused_field([&] { paper.simulate(0.3, y0, false, o); }));
   const Analysis an(damped_nonlinear(), {});
   EXPECT_EQ("forced", refused_field([&] { an.simulate(0.3, y0, true, o); }));
   EXPECT_EQ("y0", refused_field([&] { an.simulate(0.3, Eigen::VectorXd::Zero(3), false, o); }));

@@ -33,7 +33,7 @@ struct Operating {
   double lock = 10.0, lr = 0.9, e1 = 0.05, theta = 0.15, inflow = 0.05, precone = 0.02,
          droop = 0.03, cdo_a = 0.0016, mu = 0.8;
   double g0 = 0.09, h0 = 0.006;
-  double theta1c = 0.0, theta1s = 0.0;  // cyclic pitch (models with cyclic_pitch only)
+  double theta1c = 0.0, theta1s = 0.0;  // cyclic pitch
 
   Operating scaled(double s) const {
     Operating o = *this;
@@ -186,6 +186,8 @@ LinearAero compiled_aero(const fm::ModelDescriptor& m, const Operating& o, doubl
   const std::vector<double> zeros(64, 0.0), structural(m.n_structural, 0.0);
   const double g0[1] = {o.g0}, h0[1] = {o.h0};
   fm::CoefficientInputs in{};
+  in.flap_modes = m.flap_modes;
+  in.lag_modes = m.lag_modes;
   in.lock = o.lock;
   in.lr = o.lr;
   in.theta = o.theta;
@@ -220,8 +222,8 @@ LinearAero compiled_aero(const fm::ModelDescriptor& m, const Operating& o, doubl
 }
 
 const fm::ModelDescriptor& compiled(const std::string& name) {
-  for (const auto* m : fm::registered_models()) {
-    if (name == m->name) return *m;
+  for (const auto* f : fm::registered_families()) {
+    if (name == f->name) return fm::instantiate(*f, 1, 1);
   }
   throw std::runtime_error("model not compiled: " + name);
 }
@@ -292,8 +294,9 @@ std::array<double, 2> truncation_error(const fm::ModelDescriptor& m, const Opera
 
 struct OrderCase {
   const char* model;
-  int row;  // 0 flap, 1 lag
+  int row;  // 0 flap, 1 lag, 2 thrust
   int kept;
+  bool cyclic = false;  // with cyclic pitch
 };
 
 class TruncationOrder : public ::testing::TestWithParam<OrderCase> {};
@@ -304,7 +307,7 @@ TEST_P(TruncationOrder, DifferenceShrinksLikeTheFirstDroppedOrder) {
   const auto& c = GetParam();
   const auto& m = compiled(c.model);
   Operating base;
-  if (m.cyclic_pitch) {
+  if (c.cyclic) {
     base.theta1c = 0.04;
     base.theta1s = -0.07;
   }
@@ -319,11 +322,13 @@ TEST_P(TruncationOrder, DifferenceShrinksLikeTheFirstDroppedOrder) {
 INSTANTIATE_TEST_SUITE_P(Models, TruncationOrder,
                          ::testing::Values(OrderCase{"paper", 0, 2}, OrderCase{"paper", 1, 3},
                                            OrderCase{"lag-order-2", 1, 2},
-                                           OrderCase{"paper-cyclic", 0, 2},
-                                           OrderCase{"paper-cyclic", 1, 3},
-                                           OrderCase{"paper-cyclic", 2, 2}),
+                                           OrderCase{"paper", 0, 2, true},
+                                           OrderCase{"paper", 1, 3, true},
+                                           OrderCase{"paper", 2, 2, true}),
                          [](const auto& tp) {
-                           std::string s = std::string(tp.param.model) + row_name(tp.param.row);
+                           std::string s = std::string(tp.param.model) +
+                                           (tp.param.cyclic ? "_cyclic" : "") +
+                                           row_name(tp.param.row);
                            for (char& ch : s) {
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            }
@@ -381,6 +386,8 @@ NonlinearAero compiled_nonlinear_aero(const fm::ModelDescriptor& m, const Operat
   const std::vector<double> zeros(64, 0.0), structural(m.n_structural, 0.0);
   const double nan[1] = {std::nan("")};  // the nonlinear loads must not read g0, h0
   fm::CoefficientInputs in{};
+  in.flap_modes = m.flap_modes;
+  in.lag_modes = m.lag_modes;
   in.lock = o.lock;
   in.lr = o.lr;
   in.theta = o.theta;
@@ -432,7 +439,7 @@ TEST(NonlinearLoadsVsQuadrature, UntruncatedSpecEqualsFullNonlinearLoadsAtAnySta
   }
 }
 
-// The compiled paper-nonlinear loads and their Jacobian against the full loads and their
+// The compiled paper model's nonlinear loads and their Jacobian against the full loads and their
 // central differences at states away from hover: the difference shrinks like s^(kept+1) when
 // every small quantity, the state included, is scaled by s (the first dropped eps order).
 class NonlinearTruncationOrder : public ::testing::TestWithParam<OrderCase> {};
@@ -440,7 +447,6 @@ class NonlinearTruncationOrder : public ::testing::TestWithParam<OrderCase> {};
 TEST_P(NonlinearTruncationOrder, DifferenceShrinksLikeTheFirstDroppedOrder) {
   const auto& c = GetParam();
   const auto& m = compiled(c.model);
-  ASSERT_NE(m.nonlinear, nullptr);
   auto error = [&](double s) {
     const Operating o = Operating{}.scaled(s);
     double ef = 0.0, ej = 0.0;
@@ -471,8 +477,7 @@ TEST_P(NonlinearTruncationOrder, DifferenceShrinksLikeTheFirstDroppedOrder) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, NonlinearTruncationOrder,
-                         ::testing::Values(OrderCase{"paper-nonlinear", 0, 2},
-                                           OrderCase{"paper-nonlinear", 1, 3}),
+                         ::testing::Values(OrderCase{"paper", 0, 2}, OrderCase{"paper", 1, 3}),
                          [](const auto& tp) {
                            return std::string(tp.param.row == 0 ? "flap" : "lag");
                          });

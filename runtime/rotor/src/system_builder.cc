@@ -245,6 +245,12 @@ void SystemBuilder::assemble(double mu, const std::vector<double>& aero, Harmoni
   for (int j = 0; j < n; ++j) out.A[0](disp_col(j), rate_col(j)) = 1.0;
   // Perturbation forcing: the hover balance is subtracted (it is exactly zero at mu = 0).
   if (hover_forcing_.size() == ns) out.f[0] -= hover_forcing_;
+  // Trailing harmonics that are exactly zero here (the 3/rev terms of a zero cyclic pitch) would
+  // cost every evaluation of A(psi) and add nothing.
+  while (out.A.size() > 1 && out.A.back().isZero(0.0) && out.f.back().isZero(0.0)) {
+    out.A.pop_back();
+    out.f.pop_back();
+  }
 }
 
 void SystemBuilder::nonlinear_loads(double mu, const std::vector<double>& aero, const double* y,
