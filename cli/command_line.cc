@@ -633,7 +633,8 @@ Request CommandLine::interpret() const {
   int flap_modes = 1, lag_modes = 1;
   const Given* flap_given = given("--flap-modes");
   const Given* lag_given = given("--lag-modes");
-  if (flap_given) flap_modes = parse_int(spelled(flap_given), flap_given->text, 1, model::kMaxModes);
+  if (flap_given)
+    flap_modes = parse_int(spelled(flap_given), flap_given->text, 1, model::kMaxModes);
   if (lag_given) lag_modes = parse_int(spelled(lag_given), lag_given->text, 1, model::kMaxModes);
 
   if (const Given* g = given("--method")) {

@@ -77,7 +77,8 @@ std::vector<double> gauss_reversed(const model::ModelDescriptor& d, const ModeSe
 // Every integral of the compiled 2 x 2 model with exact rotating modes, at several split points:
 // the interpolated antiderivatives agree with Gauss quadrature to near rounding.
 TEST(AeroIntegrals, ExactModesMatchGaussQuadrature) {
-  const model::ModelDescriptor* d = &model::instantiate(*model::registered_families().front(), 2, 2);
+  const model::ModelDescriptor* d =
+      &model::instantiate(*model::registered_families().front(), 2, 2);
   ExactModeOptions opt;
   opt.flap_modes = 2;
   opt.lag_modes = 2;

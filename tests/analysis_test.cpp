@@ -774,8 +774,9 @@ TEST(NonlinearSimulation, PastTheFoldItStartsFromHoverWithAWarning) {
   for (const auto& y : s.simulation.y) EXPECT_TRUE(y.allFinite());
 }
 
-// Inputs it cannot answer are refused naming the input: the forcing switch (its loads are part of the equations), the exact
-// reversed-flow circle (the nonlinear loads have the sector only), a bad perturbation.
+// Inputs it cannot answer are refused naming the input: the forcing switch (its loads are part of
+// the equations), the exact reversed-flow circle (the nonlinear loads have the sector only), a bad
+// perturbation.
 TEST(NonlinearSimulation, RefusesWhatItCannotAnswerByName) {
   const Eigen::VectorXd y0 = Eigen::VectorXd::Constant(4, 0.01);
   const auto o = nonlinear_options(2);

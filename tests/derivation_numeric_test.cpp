@@ -319,21 +319,19 @@ TEST_P(TruncationOrder, DifferenceShrinksLikeTheFirstDroppedOrder) {
   EXPECT_NEAR(order_f, c.kept + 1, 0.35) << "forcing: errors " << e1[1] << " -> " << e2[1];
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, TruncationOrder,
-                         ::testing::Values(OrderCase{"paper", 0, 2}, OrderCase{"paper", 1, 3},
-                                           OrderCase{"lag-order-2", 1, 2},
-                                           OrderCase{"paper", 0, 2, true},
-                                           OrderCase{"paper", 1, 3, true},
-                                           OrderCase{"paper", 2, 2, true}),
-                         [](const auto& tp) {
-                           std::string s = std::string(tp.param.model) +
-                                           (tp.param.cyclic ? "_cyclic" : "") +
-                                           row_name(tp.param.row);
-                           for (char& ch : s) {
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           }
-                           return s;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Models, TruncationOrder,
+    ::testing::Values(OrderCase{"paper", 0, 2}, OrderCase{"paper", 1, 3},
+                      OrderCase{"lag-order-2", 1, 2}, OrderCase{"paper", 0, 2, true},
+                      OrderCase{"paper", 1, 3, true}, OrderCase{"paper", 2, 2, true}),
+    [](const auto& tp) {
+      std::string s =
+          std::string(tp.param.model) + (tp.param.cyclic ? "_cyclic" : "") + row_name(tp.param.row);
+      for (char& ch : s) {
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      }
+      return s;
+    });
 
 // ----- the nonlinear loads (spec [emit] nonlinear) at a full state ---------------------------
 

@@ -157,14 +157,14 @@ struct RandomInputs {
       const auto it = s.find(structural_key(cm.structural[j]));
       compiled_structural.push_back(it != s.end() ? it->second : 0.41 + 0.01 * j);
     }
-    M = cm.flap_modes;
-    N = cm.lag_modes;
+    flap_modes = cm.flap_modes;
+    lag_modes = cm.lag_modes;
   }
 
   fm::CoefficientInputs inputs() const {
     fm::CoefficientInputs in{};
-    in.flap_modes = M;
-    in.lag_modes = N;
+    in.flap_modes = flap_modes;
+    in.lag_modes = lag_modes;
     in.lock = value.at("lock");
     in.lr = value.at("lr");
     in.theta = value.at("theta");
@@ -202,7 +202,7 @@ struct RandomInputs {
   std::map<std::string, double> value;
   std::vector<double> aero, structural, g0, h0, wf, wl, zf, zl, esf, esl, ecsfl, ecslf;
   std::vector<double> compiled_aero, compiled_structural;
-  int M = 0, N = 0;
+  int flap_modes = 0, lag_modes = 0;
 };
 
 double ginac_value(const GiNaC::ex& e, const GiNaC::exmap& sub) {

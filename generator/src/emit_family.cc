@@ -73,9 +73,7 @@ std::string dir_text(ModeDir d) { return d == ModeDir::Flap ? "flap" : "lag"; }
 std::string count_of(ModeDir d) { return d == ModeDir::Flap ? "M" : "N"; }
 
 // Equation row of mode variable v of direction d.
-std::string row_cpp(ModeDir d, const std::string& v) {
-  return d == ModeDir::Flap ? v : "M + " + v;
-}
+std::string row_cpp(ModeDir d, const std::string& v) { return d == ModeDir::Flap ? v : "M + " + v; }
 // State column: rate or displacement of mode v.
 std::string col_cpp(ModeDir d, bool rate, const std::string& v) {
   if (d == ModeDir::Flap) return rate ? v : "M + " + v;
@@ -115,8 +113,8 @@ std::string term_cpp(const GenericModel& g, const GenericTerm& t) {
     int idx = 0;
     for (int j = 0; j < t.integral; ++j)
       if (g.integrals[static_cast<size_t>(j)].ref == tp.ref) ++idx;
-    std::string call = std::string(tp.ref == IntegralRef::Aero ? "A" : "S") + "(" +
-                       std::to_string(idx);
+    std::string call =
+        std::string(tp.ref == IntegralRef::Aero ? "A" : "S") + "(" + std::to_string(idx);
     for (int a : t.integral_args) call += ", " + var_name(a);
     f.push_back(call + ")");
   }
@@ -179,8 +177,8 @@ void emit_linear_slot(std::ostringstream& os, const GenericModel& g, const Gener
     }
     if (s.has_col()) {
       const std::string jv = s.has_eq() ? "j" : "i";
-      os << ind << std::string(2 * static_cast<size_t>(depth), ' ') << "for (int " << jv
-         << " = 0; " << jv << " < " << count_of(s.col) << "; ++" << jv << ") {\n";
+      os << ind << std::string(2 * static_cast<size_t>(depth), ' ') << "for (int " << jv << " = 0; "
+         << jv << " < " << count_of(s.col) << "; ++" << jv << ") {\n";
       ++depth;
     }
     if (depth == 0) os << ind << "{\n";
@@ -296,15 +294,15 @@ void emit_thrust(std::ostringstream& os, const GenericModel& g) {
      << "  std::fill(out.forcing, out.forcing + " << g.H << ", 0.0);\n";
   for (const GenericSlot* s : slots_of(g, SlotKind::ThrustForce)) {
     const std::string h = std::to_string(s->harmonic);
-    emit_linear_slot(
-        os, g, *s, "thrust, " + harmonic_name(s->harmonic) + ": coefficient of " +
-                       state_text(s->col, s->rate, "i"),
-        "out.force[" + h + " * 2 * n + " + col_cpp(s->col, s->rate, "i") + "]", "");
+    emit_linear_slot(os, g, *s,
+                     "thrust, " + harmonic_name(s->harmonic) + ": coefficient of " +
+                         state_text(s->col, s->rate, "i"),
+                     "out.force[" + h + " * 2 * n + " + col_cpp(s->col, s->rate, "i") + "]", "");
   }
   for (const GenericSlot* s : slots_of(g, SlotKind::ThrustForcing)) {
     const std::string t = "out.forcing[" + std::to_string(s->harmonic) + "]";
-    emit_linear_slot(os, g, *s, "thrust, " + harmonic_name(s->harmonic) + ": state-independent",
-                     t, t);
+    emit_linear_slot(os, g, *s, "thrust, " + harmonic_name(s->harmonic) + ": state-independent", t,
+                     t);
   }
   os << "}\n\n";
 }
@@ -318,8 +316,7 @@ void emit_polynomial(std::ostringstream& os, const GenericModel& g, SlotKind kin
      << "  (void)A;\n  (void)S;\n  (void)M;\n  (void)N;\n"
      << "  const int rows = " << (thrust ? "1" : "n") << ";\n"
      << "  std::fill(out.force, out.force + " << g.H_nonlinear << " * rows, 0.0);\n"
-     << "  std::fill(out.jacobian, out.jacobian + " << g.H_nonlinear
-     << " * rows * 2 * n, 0.0);\n";
+     << "  std::fill(out.jacobian, out.jacobian + " << g.H_nonlinear << " * rows * 2 * n, 0.0);\n";
   for (const GenericSlot* s : slots_of(g, kind)) {
     const std::string h = std::to_string(s->harmonic);
     const std::string row = thrust ? "0" : row_cpp(s->eq, "i");
@@ -334,7 +331,9 @@ void emit_polynomial(std::ostringstream& os, const GenericModel& g, SlotKind kin
       ind += "  ";
     }
     os << ind << "double* f = out.force + " << h << " * rows + " << row << ";\n"
-       << ind << "double* jac = out.jacobian + (" << h << " * rows + " << row << ") * 2 * n;\n" << ind << "(void)f;\n" << ind << "(void)jac;\n";
+       << ind << "double* jac = out.jacobian + (" << h << " * rows + " << row << ") * 2 * n;\n"
+       << ind << "(void)f;\n"
+       << ind << "(void)jac;\n";
     for (const auto& t : s->terms) {
       const int b = thrust ? 0 : 1;
       os << ind << "// " << term_comment(t) << "\n" << open_loops(t, b, ind);
@@ -377,7 +376,8 @@ std::string family_summary(const GenericModel& g) {
 std::string factor_md(const GenericModel& g, const GenericTerm& t) {
   std::ostringstream os;
   os << t.coef;
-  for (const auto& [name, p] : t.scalars) os << " " << name << (p > 1 ? "^" + std::to_string(p) : "");
+  for (const auto& [name, p] : t.scalars)
+    os << " " << name << (p > 1 ? "^" + std::to_string(p) : "");
   for (const auto& x : t.indexed) {
     os << " " << x.family << "_";
     for (int a : x.args) os << var_name(a);
@@ -433,8 +433,10 @@ std::string slot_title(const GenericSlot& s) {
     case SlotKind::NonlinearThrust:
       return "thrust, " + h + ": nonlinear load";
     case SlotKind::Absorbed:
-      return dir_text(s.eq) + " equation i: centrifugal stiffness absorbed into the modal "
-             "stiffness, coefficient of " + state_text(s.col, s.rate, "j");
+      return dir_text(s.eq) +
+             " equation i: centrifugal stiffness absorbed into the modal "
+             "stiffness, coefficient of " +
+             state_text(s.col, s.rate, "j");
   }
   return "";
 }
@@ -444,10 +446,12 @@ std::string slot_title(const GenericSlot& s) {
 std::string emit_family_report(const GenericModel& g) {
   std::ostringstream os;
   os << "\n## Every term, for any number of modes\n\n"
-     << "The code in `" << g.spec.name << ".cc` assembles the equations for any M flap x N lag "
+     << "The code in `" << g.spec.name
+     << ".cc` assembles the equations for any M flap x N lag "
         "modes from the terms below (extracted from the derivation at "
      << g.P << " x " << g.P << " modes, checked to reproduce it exactly and to be the same at "
-     << g.P + 1 << " x " << g.P + 1 << ").  Letters: i = the equation's mode, j = the "
+     << g.P + 1 << " x " << g.P + 1
+     << ").  Letters: i = the equation's mode, j = the "
         "state's or coordinate's mode, k, l, p = modes summed over all modes of their "
         "direction (flap: 1..M for eta, g; lag: 1..N for gamma, h).  A term marked `j = i` "
         "exists only on the diagonal.  Factors: `g0_k`, `h0_k` hover amplitudes, "
@@ -458,8 +462,8 @@ std::string emit_family_report(const GenericModel& g) {
     int idx = 0;
     for (const auto& t : g.integrals) {
       if (t.ref != ref) continue;
-      os << "| " << (ref == IntegralRef::Aero ? "A" : "S") << idx++ << " | int " << t.name
-         << " | " << (t.paper_name.empty() ? "-" : t.paper_name) << " |\n";
+      os << "| " << (ref == IntegralRef::Aero ? "A" : "S") << idx++ << " | int " << t.name << " | "
+         << (t.paper_name.empty() ? "-" : t.paper_name) << " |\n";
     }
   }
   for (const auto& s : g.slots) {
@@ -467,8 +471,8 @@ std::string emit_family_report(const GenericModel& g) {
        << "|---|---|---|---|---|\n";
     for (const auto& t : s.terms) {
       os << "| " << factor_md(g, t) << (t.diagonal ? " (j = i)" : "") << " | " << integral_md(g, t)
-         << " | " << t.eps_order << " | " << t.origin << (t.radial_flow ? " (radial)" : "")
-         << " | " << (t.paper_name.empty() ? "-" : t.paper_name) << " |\n";
+         << " | " << t.eps_order << " | " << t.origin << (t.radial_flow ? " (radial)" : "") << " | "
+         << (t.paper_name.empty() ? "-" : t.paper_name) << " |\n";
     }
   }
   return os.str();

@@ -118,8 +118,8 @@ std::string key(const Lab& t) {
     os << ")^" << s.power << " ";
   }
   os << "|" << static_cast<int>(t.ref) << " x" << t.x_power << " m" << t.outer_mass << " ["
-     << factors_text(t.outer) << "] " << static_cast<int>(t.inner) << " mi" << t.inner_mass
-     << " [" << factors_text(t.inner_f) << "]|";
+     << factors_text(t.outer) << "] " << static_cast<int>(t.inner) << " mi" << t.inner_mass << " ["
+     << factors_text(t.inner_f) << "]|";
   for (const auto& s : t.states)
     os << static_cast<int>(s.dir) << (s.rate ? "'" : "") << s.var << "^" << s.power << " ";
   os << "|" << t.eps << "|" << t.origin << "|" << t.radial;
@@ -179,9 +179,7 @@ struct Coord {
   ModeDir dir;
   int mode;
 };
-Coord coord(int j, int M) {
-  return j < M ? Coord{ModeDir::Flap, j} : Coord{ModeDir::Lag, j - M};
-}
+Coord coord(int j, int M) { return j < M ? Coord{ModeDir::Flap, j} : Coord{ModeDir::Lag, j - M}; }
 
 class Collector {
  public:
@@ -394,8 +392,8 @@ void assignments(const std::vector<ModeDir>& vars, const std::vector<int>& bound
 }
 
 // The concrete terms a pattern produces in the slot with the given bound values.
-std::map<std::string, std::pair<numeric, Lab>> expand(const Pattern& p, const std::vector<int>& bound,
-                                                      int M, int N) {
+std::map<std::string, std::pair<numeric, Lab>> expand(const Pattern& p,
+                                                      const std::vector<int>& bound, int M, int N) {
   std::map<std::string, std::pair<numeric, Lab>> out;
   assignments(p.vars, bound, M, N, [&](const std::vector<int>& v) {
     Lab t = substitute(p.lab, v);
@@ -804,8 +802,10 @@ void template_paper_names(GenericModel& g) {
         bool ok = e < part.size() || part.find('_') == std::string::npos;
         for (size_t j = e; j < part.size() && ok; ++j) {
           const int v = static_cast<int>(std::string(kTermLetters).find(part[j]));
-          if (to_template[static_cast<size_t>(v)] < 0) ok = false;
-          else sub += kTemplateLetters[to_template[static_cast<size_t>(v)]];
+          if (to_template[static_cast<size_t>(v)] < 0)
+            ok = false;
+          else
+            sub += kTemplateLetters[to_template[static_cast<size_t>(v)]];
         }
         if (!ok) continue;
         if (("/" + tp.paper_name + "/").find("/" + sub + "/") == std::string::npos) {
@@ -818,7 +818,8 @@ void template_paper_names(GenericModel& g) {
     if (s.kind != SlotKind::Absorbed) continue;
     for (const auto& t : s.terms) {
       if (t.integral >= 0 && g.integrals[static_cast<size_t>(t.integral)].paper_name.empty())
-        g.integrals[static_cast<size_t>(t.integral)].paper_name = "centrifugal stiffness (absorbed)";
+        g.integrals[static_cast<size_t>(t.integral)].paper_name =
+            "centrifugal stiffness (absorbed)";
     }
   }
 }
@@ -878,7 +879,8 @@ GenericModel extract_generic_from(const DerivedModel& m) {
                       it == got.end() ? "-" : coef_text(it->second.first).c_str());
           }
           for (const auto& [kk, v] : got)
-            if (!want.count(kk)) fprintf(stderr, "extra %s : %s\n", kk.c_str(), coef_text(v.first).c_str());
+            if (!want.count(kk))
+              fprintf(stderr, "extra %s : %s\n", kk.c_str(), coef_text(v.first).c_str());
         }
         throw std::logic_error("generic extraction does not reproduce slot " + class_text(k, b) +
                                " of the " + std::to_string(m.M) + "x" + std::to_string(m.N) +
@@ -925,8 +927,8 @@ std::string GenericModel::serialize() const {
   for (size_t j = 0; j < integrals.size(); ++j)
     os << "integral " << j << " " << integrals[j].key() << " " << integrals[j].paper_name << "\n";
   for (const auto& s : slots) {
-    os << "slot " << static_cast<int>(s.kind) << " h" << s.harmonic << " "
-       << static_cast<int>(s.eq) << " " << static_cast<int>(s.col) << (s.rate ? "'" : "") << "\n";
+    os << "slot " << static_cast<int>(s.kind) << " h" << s.harmonic << " " << static_cast<int>(s.eq)
+       << " " << static_cast<int>(s.col) << (s.rate ? "'" : "") << "\n";
     for (const auto& t : s.terms) {
       os << "  " << t.coef << " v";
       for (auto d : t.vars) os << static_cast<int>(d);
@@ -941,10 +943,9 @@ std::string GenericModel::serialize() const {
       for (int a : t.integral_args) os << a << ",";
       os << ") |";
       for (const auto& st : t.states)
-        os << " " << static_cast<int>(st.dir) << (st.rate ? "'" : "") << st.var << "^"
-           << st.power;
-      os << " | " << t.eps_order << " " << t.origin << " " << t.radial_flow << " "
-         << t.paper_name << "\n";
+        os << " " << static_cast<int>(st.dir) << (st.rate ? "'" : "") << st.var << "^" << st.power;
+      os << " | " << t.eps_order << " " << t.origin << " " << t.radial_flow << " " << t.paper_name
+         << "\n";
     }
   }
   return os.str();

@@ -87,25 +87,25 @@ struct GenericTerm {
 };
 
 enum class SlotKind {
-  Mass,            // eq i, acceleration of coordinate j
-  Force,           // harmonic, eq i, state column (direction, rate, mode j)
-  Forcing,         // harmonic, eq i
-  HoverStiffness,  // S: eq i, coordinate j   (hover equilibrium S q0 = c)
-  HoverLoad,       // c: eq i
-  ThrustForce,     // harmonic, state column j
-  ThrustForcing,   // harmonic
-  Nonlinear,       // harmonic, eq i; terms carry their states
-  NonlinearThrust, // harmonic; terms carry their states
-  Absorbed,        // report only: centrifugal stiffness replaced by the modal stiffness
+  Mass,             // eq i, acceleration of coordinate j
+  Force,            // harmonic, eq i, state column (direction, rate, mode j)
+  Forcing,          // harmonic, eq i
+  HoverStiffness,   // S: eq i, coordinate j   (hover equilibrium S q0 = c)
+  HoverLoad,        // c: eq i
+  ThrustForce,      // harmonic, state column j
+  ThrustForcing,    // harmonic
+  Nonlinear,        // harmonic, eq i; terms carry their states
+  NonlinearThrust,  // harmonic; terms carry their states
+  Absorbed,         // report only: centrifugal stiffness replaced by the modal stiffness
 };
 
 struct GenericSlot {
   SlotKind kind;
   int harmonic = 0;
-  ModeDir eq = ModeDir::Flap;    // equation direction (kinds with an equation)
-  ModeDir col = ModeDir::Flap;   // column direction (Mass, Force, HoverStiffness, ThrustForce,
-                                 // Absorbed)
-  bool rate = false;             // Force, ThrustForce, Absorbed: rate column
+  ModeDir eq = ModeDir::Flap;   // equation direction (kinds with an equation)
+  ModeDir col = ModeDir::Flap;  // column direction (Mass, Force, HoverStiffness, ThrustForce,
+                                // Absorbed)
+  bool rate = false;            // Force, ThrustForce, Absorbed: rate column
   std::vector<GenericTerm> terms;
   bool has_eq() const;
   bool has_col() const;

@@ -245,13 +245,20 @@ void SystemBuilder::assemble(double mu, const std::vector<double>& aero, Harmoni
   for (int j = 0; j < n; ++j) out.A[0](disp_col(j), rate_col(j)) = 1.0;
   // Perturbation forcing: the hover balance is subtracted (it is exactly zero at mu = 0).
   if (hover_forcing_.size() == ns) out.f[0] -= hover_forcing_;
-  // Trailing harmonics that are exactly zero here (the 3/rev terms of a zero cyclic pitch) would
-  // cost every evaluation of A(psi) and add nothing.
-  while (out.A.size() > 1 && out.A.back().isZero(0.0) && out.f.back().isZero(0.0)) {
-    out.A.pop_back();
-    out.f.pop_back();
+}
+
+namespace {
+
+// Trailing harmonics that are exactly zero (the 3/rev terms of a zero cyclic pitch) would cost
+// every evaluation of A(psi) and add nothing.
+void drop_zero_harmonics(HarmonicSet& set) {
+  while (set.A.size() > 1 && set.A.back().isZero(0.0) && set.f.back().isZero(0.0)) {
+    set.A.pop_back();
+    set.f.pop_back();
   }
 }
+
+}  // namespace
 
 void SystemBuilder::nonlinear_loads(double mu, const std::vector<double>& aero, const double* y,
                                     double* force, double* jacobian) const {
@@ -474,6 +481,8 @@ void SystemBuilder::system(double mu, PeriodicSystem* out) const {
     sys.reversed.A.clear();
     sys.reversed.f.clear();
   }
+  drop_zero_harmonics(sys.normal);
+  if (sys.has_sector) drop_zero_harmonics(sys.reversed);
 }
 
 }  // namespace flaplag::detail

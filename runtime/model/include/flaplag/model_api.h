@@ -285,10 +285,10 @@ class TemplateTensors {
 };
 
 struct ModelFamily {
-  const char* name;       // spec name, e.g. "paper"
-  const char* spec_file;  // e.g. "paper.toml"
-  const char* spec_text;  // the resolved spec (canonical TOML)
-  const char* summary;    // orders and term classes (no mode counts)
+  const char* name;        // spec name, e.g. "paper"
+  const char* spec_file;   // e.g. "paper.toml"
+  const char* spec_text;   // the resolved spec (canonical TOML)
+  const char* summary;     // orders and term classes (no mode counts)
   int default_flap_modes;  // the spec's [modes]
   int default_lag_modes;
   int n_harmonics;            // H
