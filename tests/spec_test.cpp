@@ -284,6 +284,9 @@ TEST(SpecTermKeys, LagDampingOnlyAtTheTopOrder) {
     }
     EXPECT_EQ(kept_names.count("L13"), 1u);
     EXPECT_EQ(kept_names.count("L14"), 1u);
+    // and it is lag-order-2 plus those damping terms
+    EXPECT_EQ(texts(fd::derive_model(shipped("lag-order-2", M, N))),
+              texts(damping, [&](const Row& r) { return !top_lag(r); }));
   }
 }
 
