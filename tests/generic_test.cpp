@@ -1,7 +1,8 @@
 // The mode-generic model of a spec (generic.h): its index patterns, expanded for M x N modes,
 // are term for term the concrete derivation at M x N (exact rational coefficients), for every
-// shipped spec and the untruncated test spec, including sizes below and above the size the
-// patterns were extracted from; the extraction refuses to work from too few modes.
+// shipped spec, the untruncated test spec and specs with the term keys of examples/specs, including
+// sizes below and above the size the patterns were extracted from; the extraction refuses to work
+// from too few modes.
 #include "flaplag_derive/generic.h"
 
 #include <gtest/gtest.h>
@@ -53,19 +54,25 @@ TEST_P(GenericModel, ExpandsToTheConcreteDerivationAtEverySize) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Specs, GenericModel,
-                         ::testing::Values(std::string(FLAPLAG_SPEC_DIR) + "/paper.toml",
-                                           std::string(FLAPLAG_SPEC_DIR) + "/no-radial-flow.toml",
-                                           std::string(FLAPLAG_SPEC_DIR) + "/lag-order-2.toml",
-                                           std::string(FLAPLAG_TEST_SPEC_DIR) +
-                                               "/untruncated.toml"),
-                         [](const auto& tp) {
-                           std::string s = tp.param.substr(tp.param.rfind('/') + 1);
-                           s = s.substr(0, s.find('.'));
-                           for (char& ch : s)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return s;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Specs, GenericModel,
+    ::testing::Values(std::string(FLAPLAG_SPEC_DIR) + "/paper.toml",
+                      std::string(FLAPLAG_SPEC_DIR) + "/no-radial-flow.toml",
+                      std::string(FLAPLAG_SPEC_DIR) + "/lag-order-2.toml",
+                      std::string(FLAPLAG_TEST_SPEC_DIR) + "/untruncated.toml",
+                      // the per-equation term classes, exclusions and
+                      // the order of mu (spec keys of the examples)
+                      std::string(FLAPLAG_EXAMPLE_SPEC_DIR) + "/fig06-07-radial-flow-lag-only.toml",
+                      std::string(FLAPLAG_EXAMPLE_SPEC_DIR) + "/fig08-lag-damping-only.toml",
+                      std::string(FLAPLAG_EXAMPLE_SPEC_DIR) + "/no-induced-lag-damping.toml",
+                      std::string(FLAPLAG_TEST_SPEC_DIR) + "/mu-small.toml"),
+    [](const auto& tp) {
+      std::string s = tp.param.substr(tp.param.rfind('/') + 1);
+      s = s.substr(0, s.find('.'));
+      for (char& ch : s)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return s;
+    });
 
 // From one mode per direction no pattern with two different flap modes can be seen: the
 // saturation check (patterns at P and P + 1 modes equal) must refuse it.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <tuple>
 
 #include "deriver.h"
 
@@ -203,6 +204,14 @@ void Deriver::canonicalize() {
   for (auto& [k, v] : pending_mass_) fix(v);
   for (auto& [k, v] : pending_force_) fix(v);
   for (auto& [k, v] : pending_nonlinear_) fix(v);
+  std::sort(model_.dropped.begin(), model_.dropped.end(),
+            [](const DroppedTerm& a, const DroppedTerm& b) {
+              return std::tie(a.equation, a.state, a.harmonic, a.integral) <
+                         std::tie(b.equation, b.state, b.harmonic, b.integral) ||
+                     (std::tie(a.equation, a.state, a.harmonic, a.integral) ==
+                          std::tie(b.equation, b.state, b.harmonic, b.integral) &&
+                      term_less(a.term, b.term));
+            });
   // absorbed terms: sort by (equation, state, term)
   for (auto& a : model_.absorbed) remap(a.term);
   std::sort(model_.absorbed.begin(), model_.absorbed.end(),

@@ -137,6 +137,11 @@ class Deriver {
   // ----- monomial analysis and slot placement (monomials.cc) -------------------------------
   Mono analyse(const GiNaC::ex& t) const;
   Term make_term(const Mono& m, bool aero, int eq);
+  // Why the spec drops this monomial of equation eq ([terms.flap], [terms.lag], [exclude]);
+  // "" when it is kept.  The rotor thrust (eq = M + N) follows the flap equation's classes.
+  std::string spec_drops(const Mono& m, bool aero, int eq) const;
+  // Records a dropped monomial of the linear pass (harmonic h) for the report.
+  void record_dropped(const Mono& m, int eq, int h, const std::string& reason);
   int aero_index(const AeroIntegralKey& k);
   int structural_index(const StructuralIntegralKey& k);
   // Splits the expanded residual of equation eq into harmonics and pending slots (the

@@ -143,12 +143,10 @@ Mono Deriver::analyse(const ex& t) const {
   return m;
 }
 
-int Deriver::aero_index(const AeroIntegralKey& k) {
-  auto it = aero_index_.find(k);
-  if (it != aero_index_.end()) return it->second;
-  const int idx = static_cast<int>(model_.aero_keys.size());
-  aero_index_.emplace(k, idx);
-  model_.aero_keys.push_back(k);
+namespace {
+
+// Name ("x eta1 gamma1'") and C identifier ("x1_eta1_dgam1") of an aerodynamic integral.
+IntegralInfo aero_info(const AeroIntegralKey& k) {
   IntegralInfo info;
   std::ostringstream name, id;
   if (k.x_power > 0) {
@@ -163,6 +161,18 @@ int Deriver::aero_index(const AeroIntegralKey& k) {
   }
   info.name = name.str().empty() ? "1" : name.str();
   info.ident = id.str().empty() ? "one" : id.str();
+  return info;
+}
+
+}  // namespace
+
+int Deriver::aero_index(const AeroIntegralKey& k) {
+  auto it = aero_index_.find(k);
+  if (it != aero_index_.end()) return it->second;
+  const int idx = static_cast<int>(model_.aero_keys.size());
+  aero_index_.emplace(k, idx);
+  model_.aero_keys.push_back(k);
+  const IntegralInfo info = aero_info(k);
   model_.aero.push_back(info);
   model_.aero_syms.push_back(symbol("A_" + info.ident));
   return idx;
@@ -235,6 +245,55 @@ Term Deriver::make_term(const Mono& m, bool aero, int eq) {
   return t;
 }
 
+std::string Deriver::spec_drops(const Mono& m, bool aero, int eq) const {
+  if (!aero) return "";
+  const bool thrust = eq == M_ + N_;
+  const bool flap = thrust || model::is_flap_coordinate(eq, M_);
+  const std::string where = flap ? "flap" : "lag";
+  if (m.radial > 0 && !spec_.radial_flow_in(flap)) {
+    return "radial flow off in the " + where + " equation";
+  }
+  const int kept = flap ? spec_.kept_flap : spec_.kept_lag;
+  if (spec_.damping_only_at_top_order(flap) && m.eps >= kept) {
+    bool rate = false;
+    if (nonlinear_) {
+      for (const auto& [col, p] : m.states) rate = rate || model::state_ref(col, M_, N_).rate;
+    } else {
+      rate = m.dlt == 1 && m.state >= 0 && model::state_ref(m.state, M_, N_).rate;
+    }
+    if (!rate) return "O(eps^" + std::to_string(kept) + ") without a state rate (" + where + ")";
+  }
+  if (!thrust && !spec_.excluded.empty()) {
+    const int eq_mode = flap ? eq : eq - M_;
+    const std::string name =
+        paper_base_name(paper_aero_name(flap, eq_mode, AeroIntegralKey{m.x_power, m.outer}));
+    if (!name.empty() &&
+        std::find(spec_.excluded.begin(), spec_.excluded.end(), name) != spec_.excluded.end()) {
+      return "excluded: " + name;
+    }
+  }
+  return "";
+}
+
+void Deriver::record_dropped(const Mono& m, int eq, int h, const std::string& reason) {
+  DroppedTerm d;
+  d.equation = eq;
+  d.harmonic = h;
+  d.state = m.dlt == 0 ? -1 : m.state;
+  d.term.coef = m.coef;
+  d.term.scalars = m.scalars;
+  d.term.eps_order = m.eps;
+  d.term.origin = m.origin;
+  d.term.radial_flow = m.radial > 0;
+  d.term.ref = IntegralRef::Aero;
+  const AeroIntegralKey k{m.x_power, m.outer};
+  const bool flap = model::is_flap_coordinate(eq, M_);
+  if (eq < M_ + N_) d.term.paper_name = paper_aero_name(flap, flap ? eq : eq - M_, k);
+  d.integral = aero_info(k).name;
+  d.reason = reason;
+  model_.dropped.push_back(std::move(d));
+}
+
 void Deriver::add_term(Slot& s, const Term& t) {
   ex v = t.coef;
   for (const auto& [idx, p] : t.scalars) v *= GiNaC::pow(model_.scalars[idx].sym, p);
@@ -285,10 +344,15 @@ void Deriver::place(const ex& expr, bool aero, int eq) {
     return;
   }
   for (const auto& [h, monos] : harmonics(expr)) {
-    if (h + 1 > model_.H) model_.H = h + 1;
     for (const auto& t : monos) {
       Mono m = analyse(t);
       if (!m.coef.is_real()) throw std::logic_error("complex coefficient after harmonic split");
+      const std::string dropped = spec_drops(m, aero, eq);
+      if (!dropped.empty()) {
+        record_dropped(m, eq, h, dropped);
+        continue;
+      }
+      if (h + 1 > model_.H) model_.H = h + 1;
       if (!aero && absorbed_origins_.count(m.origin) > 0) {
         // Linear rotating-beam stiffness: replaced by M w^2 through the orthogonality
         // relations (A.2, A.4), which define the rotating frequencies.

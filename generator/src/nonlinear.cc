@@ -39,10 +39,12 @@ void Deriver::nonlinear_pass() {
 void Deriver::place_nonlinear(const ex& expr, bool aero, int eq) {
   const int ns = 2 * (M_ + N_);
   for (const auto& [h, monos] : harmonics(expr.subs(hover_zero_))) {
-    if (h + 1 > model_.H_nonlinear) model_.H_nonlinear = h + 1;
     for (const auto& t : monos) {
       Mono m = analyse(t);
       if (!m.coef.is_real()) throw std::logic_error("complex coefficient after harmonic split");
+      // The spec's per-equation classes and exclusions, as in place() (linear pass).
+      if (!spec_drops(m, aero, eq).empty()) continue;
+      if (h + 1 > model_.H_nonlinear) model_.H_nonlinear = h + 1;
       int degree = 0;
       for (const auto& [col, p] : m.states) degree += p;
       if (degree != m.dlt - (m.accel >= 0 ? 1 : 0)) {

@@ -74,6 +74,19 @@ std::string indexed_name(const char* base, int eq_mode, const std::vector<Factor
 
 }  // namespace
 
+const std::vector<std::string>& paper_aero_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> v;
+    for (const auto& e : paper_aero_table()) v.emplace_back(e.name);
+    return v;
+  }();
+  return names;
+}
+
+std::string paper_base_name(const std::string& indexed) {
+  return indexed.substr(0, indexed.find('_'));
+}
+
 std::string paper_aero_name(bool flap_eq, int eq_mode, const AeroIntegralKey& key) {
   const ShapeFactor weight{flap_eq ? FactorKind::Eta : FactorKind::Gamma, eq_mode};
   std::vector<ShapeFactor> rest = key.factors;

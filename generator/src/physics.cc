@@ -49,7 +49,8 @@ void Deriver::aerodynamic_loads() {
   const ex beta = eps_pow("precone") * scalar(precone_) + eps_pow("droop") * scalar(droop_);
   const ex beta_d = eps_pow("droop") * scalar(droop_);
   const ex cdo = eps_pow("cdo_a") * scalar(cdo_);
-  const ex mu = scalar(mu_), lr = scalar(lr_);
+  // mu is O(1) in the paper ([orders] mu = 0); a spec may make it a small quantity.
+  const ex mu = eps_pow("mu") * scalar(mu_), lr = scalar(lr_);
   const int kf = spec_.kept_flap, kl = spec_.kept_lag;
   const int kmax = std::max(kf, kl);
 

@@ -237,6 +237,7 @@ class Report {
   void equation(std::ostringstream& os, int eq) const;
   void block(std::ostringstream& os, int eq, const Block& b, bool forcing) const;
   void absorbed(std::ostringstream& os) const;
+  void dropped(std::ostringstream& os) const;
   void equilibrium(std::ostringstream& os) const;
   void cyclic(std::ostringstream& os) const;
   void thrust(std::ostringstream& os) const;
@@ -268,6 +269,7 @@ std::string Report::text() {
   mass(os);
   for (int eq = 0; eq < n_; ++eq) equation(os, eq);
   absorbed(os);
+  if (!m_.dropped.empty()) dropped(os);
   equilibrium(os);
   if (m_.spec.cyclic_pitch) {
     cyclic(os);
@@ -453,6 +455,25 @@ void Report::block(std::ostringstream& os, int eq, const Block& b, bool forcing)
     if (pv_.available) {
       os << "\nSum at the hover equilibrium: " << num(sum) << " (zero up to rounding).\n";
     }
+  }
+}
+
+// Specs with per-equation term classes or exclusions: every aerodynamic term they dropped.
+void Report::dropped(std::ostringstream& os) const {
+  os << "\n## Terms dropped by the spec\n\n"
+     << "Aerodynamic terms the derivation produced and the spec's `[terms.flap]`, `[terms.lag]` "
+        "or `[exclude]` keys removed (they are in no entry above). Factors with "
+        "(gamma/2)(l/R)^2 removed.\n\n"
+     << "| entry | harmonic | factor | integral | paper | eps | origin | radial | reason |\n"
+     << "|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& d : m_.dropped) {
+    const std::string entry = d.equation == n_ ? "thrust"
+                              : d.state < 0    ? f_entry_name(d.equation, m_.M, m_.N)
+                                               : a_entry_name(d.equation, d.state, m_.M, m_.N);
+    os << "| " << entry << " | " << DerivedModel::harmonic_name(d.harmonic) << " | "
+       << factor_text(m_, d.term, true) << " | int " << d.integral << " | " << d.term.paper_name
+       << " | " << d.term.eps_order << " | " << d.term.origin << " | "
+       << (d.term.radial_flow ? "radial" : "") << " | " << d.reason << " |\n";
   }
 }
 

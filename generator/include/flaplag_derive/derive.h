@@ -89,6 +89,17 @@ struct AbsorbedTerm {
   Term term;
 };
 
+// An aerodynamic term the spec dropped from an equation by its per-equation term classes or
+// its exclusions ([terms.flap], [terms.lag], [exclude]): listed in the report.
+struct DroppedTerm {
+  int equation;          // row (flap 1..M, lag 1..N); M + N: the rotor thrust
+  int harmonic;          // as in the slots
+  int state;             // state column it multiplies, -1: forcing
+  Term term;             // ref = Aero, integral = -1 (dropped terms add no integral)
+  std::string integral;  // the integral's name, e.g. "x eta1 gamma1'"
+  std::string reason;
+};
+
 struct Slot {
   std::vector<Term> terms;
   GiNaC::ex value;  // sum of the terms, in scalar symbols and integral symbols
@@ -132,6 +143,9 @@ struct DerivedModel {
   // Centrifugal stiffness terms replaced by the modal stiffness M w^2 (orthogonality, eqs A.2,
   // A.4), listed in the report so that nothing derived disappears silently.
   std::vector<AbsorbedTerm> absorbed;
+  // Terms dropped by the spec's per-equation term classes and exclusions (linear model),
+  // sorted by (equation, state, harmonic, integral, term).  Empty at the paper's defaults.
+  std::vector<DroppedTerm> dropped;
   // Nonlinear generalized loads (empty unless spec.nonlinear): the same derivation and eps
   // truncation without the degree-1 cut in the perturbation, about q = 0 instead of the hover
   // equilibrium; sorted by (harmonic, equation, powers).  mass q'' = sum_h phi_h(psi) sum over

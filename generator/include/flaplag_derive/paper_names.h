@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "flaplag_derive/derive.h"
 
@@ -11,6 +12,11 @@ namespace flaplag::derive {
 // Appendix B name of an aerodynamic integral in the flap (flap_eq) or lag equation of mode
 // eq_mode (0-based), e.g. "F6_11"; "" when the paper has no name for it.
 std::string paper_aero_name(bool flap_eq, int eq_mode, const AeroIntegralKey& key);
+// The Appendix B names the derivation can give an aerodynamic term, without mode subscripts
+// ("F1", ..., "L24"), flap first, in the paper's order: what a spec's [exclude] terms accepts.
+const std::vector<std::string>& paper_aero_names();
+// "F23" of "F23_112" (or of "F23_ijk"): the name without its mode subscripts.
+std::string paper_base_name(const std::string& indexed);
 
 // Appendix B name of a structural integral (generalized mass), e.g. "B3_11", "P_111"; "".
 std::string paper_structural_name(bool flap_eq, int eq_mode, const StructuralIntegralKey& k);

@@ -2,9 +2,10 @@
 // is kept in each equation, which term classes are switched on, how many modes.
 //
 // One spec file = one model.  The model name is the file name without ".toml".  A spec may
-// inherit from another spec of the same directory (`base = "paper"`): it starts from the
-// resolved base spec and overrides the keys it gives, so that variants (e.g. the paper ordering
-// with more modes) cannot drift from their base.  Every key is declared once, in spec_keys().
+// inherit from another spec (`base = "paper"`, looked up in the spec's own directory, then among
+// the shipped specs, shipped_spec_dir()): it starts from the resolved base spec and overrides
+// the keys it gives, so that variants (e.g. the paper ordering with more modes) cannot drift
+// from their base.  Every key is declared once, in spec_keys().
 #pragma once
 
 #include <map>
@@ -38,7 +39,19 @@ struct OrderingSpec {
   std::map<std::string, int> orders;
   int kept_flap = 0;         // highest eps order kept in the flap aerodynamic load
   int kept_lag = 0;          // ... in the lag aerodynamic load
-  bool radial_flow = false;  // the mu cos(psi) dv/dx0 term of U_T (eq 2.23)
+  bool radial_flow = false;  // the mu cos(psi) dv/dx0 term of U_T (eq 2.23), both equations
+  // Term classes of one equation's aerodynamic load ([terms.flap], [terms.lag]).  A class is
+  // kept in an equation when it is on both for the spec ([terms]) and for that equation.
+  struct EquationTerms {
+    bool radial_flow = true;
+    // Of the terms of the equation's highest kept order (O(eps^kept)): "all", or "damping" =
+    // only those that multiply a state rate g'_k or h'_m (the aerodynamic damping).
+    std::string top_order = "all";
+  };
+  EquationTerms flap_terms, lag_terms;
+  // Appendix B names (without mode subscripts, e.g. "F23", "L13") of the aerodynamic terms
+  // dropped from the equations ([exclude] terms); in the order of paper_aero_names(), no repeats.
+  std::vector<std::string> excluded;
   // Derivation switches (not spec keys: every model family has both, extract_generic() and
   // the generator turn them on).  cyclic_pitch: theta(psi) = theta + theta1c cos psi +
   // theta1s sin psi in the aerodynamic loads (eqs 2.20-2.21), theta1c and theta1s of theta's
@@ -48,6 +61,13 @@ struct OrderingSpec {
   bool nonlinear = false;
 
   int order(const std::string& key) const { return orders.at(key); }
+  // Radial flow and the top-order rule of the flap (flap = true) or lag equation's load.
+  bool radial_flow_in(bool flap) const {
+    return radial_flow && (flap ? flap_terms : lag_terms).radial_flow;
+  }
+  bool damping_only_at_top_order(bool flap) const {
+    return (flap ? flap_terms : lag_terms).top_order == "damping";
+  }
   // Canonical TOML text of the resolved spec (what the generated code records).
   std::string canonical_text() const;
   // One-line summary.
@@ -57,7 +77,7 @@ struct OrderingSpec {
 // One key of the spec format.  spec_keys() is the single list: parsing, defaults, the "expected
 // ..." lists of error messages, the family rule and the canonical text all read it.
 struct SpecKey {
-  enum class Type { Text, Integer, Boolean };
+  enum class Type { Text, Integer, Boolean, TextList };
   const char* table;  // "" for a top-level key, else the [table] it belongs to
   const char* name;
   Type type;
@@ -73,16 +93,25 @@ struct SpecKey {
   // differ from their default, so the recorded text (and generated code) of every older spec
   // stays byte-identical.
   bool omit_at_default = false;
+  std::vector<std::string>* (*list)(OrderingSpec&, const char* name) = nullptr;  // TextList
+  // The accepted values of a Text key (the first is its default) or of the items of a TextList
+  // key (default: empty list); nullptr: any text.
+  const std::vector<std::string>& (*choices)() = nullptr;
 };
 const std::vector<SpecKey>& spec_keys();
 
 // A spec with every key at its default (the paper's ordering, one mode each).
 OrderingSpec default_spec();
 
-// Parse a spec file; throws SpecError.  A `base` is looked up in the same directory.
+// The directory of the shipped specs (generator/orderings of the source tree), where a `base`
+// not found next to the spec is looked up.
+std::string shipped_spec_dir();
+
+// Parse a spec file; throws SpecError.  A `base` is looked up in the same directory, then in
+// shipped_spec_dir().
 OrderingSpec load_spec(const std::string& path);
 // Parse spec text (file_label is used in messages and as OrderingSpec::file; a `base` is looked
-// up in file_label's directory).
+// up in file_label's directory, then in shipped_spec_dir()).
 OrderingSpec parse_spec(const std::string& text, const std::string& file_label);
 
 }  // namespace flaplag::derive
