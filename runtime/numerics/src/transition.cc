@@ -1258,8 +1258,16 @@ const char* method_name(TransitionMethod m) {
       return "hsu";
     case TransitionMethod::Magnus4:
       return "magnus";
+    case TransitionMethod::Automatic:
+      return "auto";
   }
   return "unknown";
+}
+
+TransitionMethod automatic_method(int state_size) {
+  if (state_size < 1)
+    throw InvalidInput("state_size", std::to_string(state_size), "must be at least 1");
+  return state_size <= 4 ? TransitionMethod::Hsu : TransitionMethod::Magnus4;
 }
 
 bool method_from_name(const std::string& name, TransitionMethod* method) {
@@ -1372,7 +1380,7 @@ Eigen::MatrixXd transition_matrix_magnus4_level(const PeriodicSystem& sys, int s
 bool TransitionOptions::IsValid(std::string* error) const {
   std::string why;
   if (method != TransitionMethod::RK4 && method != TransitionMethod::Hsu &&
-      method != TransitionMethod::Magnus4) {
+      method != TransitionMethod::Magnus4 && method != TransitionMethod::Automatic) {
     why = "method = " + std::to_string(static_cast<int>(method)) + ": unknown method";
   } else if (steps < 0 || steps > kMaxSteps) {
     why = "steps = " + std::to_string(steps) + ": must be 0 (automatic) or 1.." +
@@ -1399,13 +1407,17 @@ TransitionResult transition_matrix(const PeriodicSystem& sys, const TransitionOp
   opt.Check();
   if (opt.steps == TransitionOptions::kAutomatic)
     throw InvalidInput("steps", "0", "transition_matrix needs a fixed step count");
-  switch (opt.method) {
+  const TransitionMethod method =
+      opt.method == TransitionMethod::Automatic ? automatic_method(sys.n) : opt.method;
+  switch (method) {
     case TransitionMethod::RK4:
       return {transition_matrix_rk4(sys, opt.steps), 0.0};
     case TransitionMethod::Hsu:
       return {transition_matrix_hsu(sys, opt.steps, opt.terms), 0.0};
     case TransitionMethod::Magnus4:
       return transition_matrix_magnus4(sys, opt.steps);
+    case TransitionMethod::Automatic:  // resolved above
+      break;
   }
   throw InvalidInput("method", std::to_string(static_cast<int>(opt.method)), "unknown method");
 }
