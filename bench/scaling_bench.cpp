@@ -9,12 +9,19 @@
 //                                build, Phi at K = 50 and at 2K for the error estimate.
 //   BM_ScalingFloquet_Auto:      Analysis::floquet(0.8) with the default automatic steps
 //                                (counter K: the intervals it settled on).
-//   BM_ScalingCritical_Auto:     the converged mu_c search of `flaplag critical`.
-//   BM_ScalingCritical_MagnusAuto: the same search with the reference method (Magnus4), 1 x 1
-//                                and 2 x 2.
+//   BM_ScalingCritical_Auto:     the converged mu_c search of `flaplag critical` (the default
+//                                method).
+//   BM_ScalingCritical_HsuAuto:  the same search with Hsu asked for explicitly.
+//   BM_ScalingCritical_MagnusAuto: the same search with Magnus4 asked for explicitly.
 //   BM_ScalingAnalysis_Setup:    exact modes, spanwise integrals, hover (once per blade).
+//   BM_RotorPointHsu_K50_J4_FixedKernel: the comparison kernel of stability_bench (one 1 x 1
+//                                point's arithmetic, bench/fixed_kernel.h), measured in the same
+//                                run so that the figures above can be compared across runs.
 #include <benchmark/benchmark.h>
 
+#include <Eigen/Eigenvalues>
+
+#include "fixed_kernel.h"
 #include "flaplag/analysis.h"
 #include "flaplag/numerics/continuation.h"
 
@@ -73,27 +80,7 @@ void BM_ScalingFloquet_Auto(benchmark::State& state) {
 }
 BENCHMARK(BM_ScalingFloquet_Auto)->DenseRange(1, 5)->Unit(benchmark::kMillisecond);
 
-void BM_ScalingCritical_Auto(benchmark::State& state) {
-  const auto an = exact(size_of(state));
-  flaplag::CriticalResult r;
-  for (auto _ : state) {
-    r = an.critical({});
-    benchmark::DoNotOptimize(r);
-  }
-  label(state);
-  state.counters["evaluations"] = r.evaluations;
-  state.counters["mu_c"] = r.mu_c.value_or(0.0);
-  state.counters["mu_c_error"] = r.mu_c_error.value_or(-1.0);
-}
-// One search takes 25 ms (1 x 1) to about 15 s (5 x 5): one iteration per repetition from 3 x 3.
-BENCHMARK(BM_ScalingCritical_Auto)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ScalingCritical_Auto)->DenseRange(3, 5)->Iterations(1)->Unit(benchmark::kMillisecond);
-
-// The reference method (Magnus4 with its Richardson pass, sixth order) with automatic steps:
-// the converged mu_c of `flaplag critical --method magnus` on 1 x 1 to 5 x 5 exact modes.
-void BM_ScalingCritical_MagnusAuto(benchmark::State& state) {
-  flaplag::TransitionOptions o;
-  o.method = flaplag::TransitionMethod::Magnus4;
+void critical(benchmark::State& state, const flaplag::TransitionOptions& o) {
   const auto an = exact(size_of(state), o);
   flaplag::CriticalResult r;
   for (auto _ : state) {
@@ -105,8 +92,33 @@ void BM_ScalingCritical_MagnusAuto(benchmark::State& state) {
   state.counters["mu_c"] = r.mu_c.value_or(0.0);
   state.counters["mu_c_error"] = r.mu_c_error.value_or(-1.0);
 }
+
+flaplag::TransitionOptions with_method(flaplag::TransitionMethod m) {
+  flaplag::TransitionOptions o;
+  o.method = m;
+  return o;
+}
+
+// The converged mu_c of `flaplag critical` on 1 x 1 to 5 x 5 exact modes, with the default
+// method and with each of Hsu and Magnus4 asked for.  One search takes a few ms (1 x 1) to
+// seconds (5 x 5 with Hsu): one iteration per repetition from 3 x 3.
+void BM_ScalingCritical_Auto(benchmark::State& state) { critical(state, {}); }
+BENCHMARK(BM_ScalingCritical_Auto)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ScalingCritical_Auto)->DenseRange(3, 5)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+void BM_ScalingCritical_HsuAuto(benchmark::State& state) {
+  critical(state, with_method(flaplag::TransitionMethod::Hsu));
+}
+BENCHMARK(BM_ScalingCritical_HsuAuto)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ScalingCritical_HsuAuto)
+    ->DenseRange(3, 5)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+
+void BM_ScalingCritical_MagnusAuto(benchmark::State& state) {
+  critical(state, with_method(flaplag::TransitionMethod::Magnus4));
+}
 BENCHMARK(BM_ScalingCritical_MagnusAuto)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
-// The many-mode models, where the higher order pays most (README, "Number of modes").
 BENCHMARK(BM_ScalingCritical_MagnusAuto)
     ->DenseRange(3, 5)
     ->Iterations(1)
@@ -118,5 +130,16 @@ void BM_ScalingAnalysis_Setup(benchmark::State& state) {
   label(state);
 }
 BENCHMARK(BM_ScalingAnalysis_Setup)->DenseRange(1, 5)->Unit(benchmark::kMillisecond);
+
+// The comparison kernel (bench/README.md): the typical case's 1 x 1 point at mu = 0.7.
+void BM_RotorPointHsu_K50_J4_FixedKernel(benchmark::State& state) {
+  const flaplag::Analysis an(flaplag::RotorParameters{}, flaplag::TransitionOptions::Paper());
+  const flaplag::bench::FixedKernel k(an.system(0.7), 50);
+  for (auto _ : state) {
+    Eigen::EigenSolver<Eigen::Matrix4d> es(k.phi(), false);
+    benchmark::DoNotOptimize(es.eigenvalues());
+  }
+}
+BENCHMARK(BM_RotorPointHsu_K50_J4_FixedKernel);
 
 }  // namespace

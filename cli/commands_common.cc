@@ -194,6 +194,9 @@ std::string method_text(const TransitionOptions& o) {
     case TransitionMethod::Magnus4:
       t = "magnus (4th order, Richardson-extrapolated), " + n + " steps per period";
       break;
+    case TransitionMethod::Automatic:  // an Analysis's options name the method it stands for
+      t = "auto, " + n + " steps per period";
+      break;
   }
   return t + (automatic ? " (zeta resolved to " + num(o.zeta_tolerance) + " per rev)" : "");
 }

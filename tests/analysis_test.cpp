@@ -7,8 +7,10 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -350,7 +352,11 @@ TEST(InvalidArguments, NegativeMuAndBadRanges) {
 // Issue 8: with default settings every shipped model gives a resolved answer, and the claimed
 // accuracy holds against an independent, much finer reference (RK4, automatic steps at a
 // tolerance of 1e-10): each zeta within max(tol, 100 tol |zeta|) of the reference, tol = 1e-5,
-// up to a factor 3 for the Richardson estimate's own uncertainty.
+// up to a factor 3 for the Richardson estimate's own uncertainty.  The continuation takes the
+// default step (0.01): paper-2x1's flap2 pair locks to 4 per rev (real multipliers) between
+// mu = 0.64 and 0.70, and a step of 0.05 into that region leaves its identification ambiguous
+// with Magnus4 (the default method for 6 states; a Warning that says so), while Hsu's and
+// RK4's multipliers happen to pass the similarity threshold there.
 struct ResolutionCase {
   const char* model;
   bool exact_modes;
@@ -364,20 +370,33 @@ TEST_P(DefaultResolution, ResolvedAndWithinTheClaimedToleranceOfAFineReference) 
   p.model = GetParam().model;
   p.modes = GetParam().exact_modes ? flaplag::ModeKind::Exact : flaplag::ModeKind::Assumed;
   const Analysis an(p, {});
-  const auto pt = an.point(GetParam().mu, 0.05);
+  const auto pt = an.point(GetParam().mu);
   ASSERT_NE(flaplag::Status::Failed, pt.status) << pt.message;
   EXPECT_EQ(flaplag::Status::Ok, pt.status) << pt.message;
   ASSERT_TRUE(pt.error.has_value());
   TransitionOptions fine = method(TransitionMethod::RK4, TransitionOptions::kAutomatic);
   fine.zeta_tolerance = 1e-10;
-  const auto ref = Analysis(p, fine).point(GetParam().mu, 0.05);
+  const auto ref = Analysis(p, fine).point(GetParam().mu);
   ASSERT_EQ(ref.exponents.size(), pt.exponents.size());
+  // zeta per label in increasing order (the two members of a real pair have one label and,
+  // locked to the same omega, no order of their own)
+  auto by_label = [](const flaplag::PointResult& r) {
+    std::map<std::string, std::vector<double>> z;
+    for (const auto& e : r.exponents) z[e.label].push_back(e.zeta);
+    for (auto& [label, zs] : z) std::sort(zs.begin(), zs.end());
+    return z;
+  };
+  const auto want = by_label(ref), got = by_label(pt);
+  ASSERT_EQ(want.size(), got.size());
   const double tol = TransitionOptions{}.zeta_tolerance;
-  for (std::size_t k = 0; k < pt.exponents.size(); ++k) {
-    const double z = ref.exponents[k].zeta;
-    EXPECT_EQ(ref.exponents[k].label, pt.exponents[k].label);
-    EXPECT_TRUE(AbsClose(z, pt.exponents[k].zeta, 3.0 * tol * std::max(1.0, 100.0 * std::abs(z))))
-        << pt.exponents[k].label << " at " << pt.steps << " steps, estimated error " << *pt.error;
+  for (const auto& [label, zs] : want) {
+    ASSERT_EQ(got.count(label), 1u) << label;
+    ASSERT_EQ(got.at(label).size(), zs.size()) << label;
+    for (std::size_t k = 0; k < zs.size(); ++k) {
+      const double z = zs[k];
+      EXPECT_TRUE(AbsClose(z, got.at(label)[k], 3.0 * tol * std::max(1.0, 100.0 * std::abs(z))))
+          << label << " at " << pt.steps << " steps, estimated error " << *pt.error;
+    }
   }
   std::printf("[resolution] %-16s %-7s mu = %.1f: %d steps, estimated zeta error %.2g\n",
               GetParam().model, GetParam().exact_modes ? "exact" : "assumed", GetParam().mu,

@@ -555,6 +555,29 @@ TEST(CliGood, DefaultMethodIsAutomatic) {
   EXPECT_EQ(k["method"]["steps"], "automatic");
 }
 
+// The default method is chosen for the model's size and reported as the method that ran: hsu
+// for 1 x 1 (4 states), magnus above; --method (auto included) is what runs when given.
+TEST(CliGood, DefaultMethodIsChosenForTheModelsSize) {
+  const std::vector<std::string> two = {"point",        "--mu", "0.2",         "--modes", "exact",
+                                        "--flap-modes", "2",    "--lag-modes", "2",       "--json"};
+  EXPECT_EQ(parse_json(run(two))["method"]["name"], "magnus");
+  std::vector<std::string> hsu = two;
+  hsu.insert(hsu.end(), {"--method", "hsu"});
+  EXPECT_EQ(parse_json(run(hsu))["method"]["name"], "hsu");
+  std::vector<std::string> automatic = two;
+  automatic.insert(automatic.end(), {"--method", "auto"});
+  EXPECT_EQ(parse_json(run(automatic))["method"]["name"], "magnus");
+  const Outcome t =
+      run({"point", "--mu", "0.2", "--modes", "exact", "--flap-modes", "2", "--lag-modes", "2"});
+  EXPECT_NE(t.out.find("magnus (4th order"), std::string::npos) << t.out;
+  EXPECT_EQ(
+      parse_json(run({"point", "--mu", "0.2", "--modes", "exact", "--json"}))["method"]["name"],
+      "hsu");
+  EXPECT_EQ(
+      parse_json(run({"point", "--mu", "0.2", "--method", "auto", "--json"}))["method"]["name"],
+      "hsu");
+}
+
 TEST(CliGood, PointJsonHasExponentsMultipliersResidual) {
   const Json j = parse_json(run(fast({"point", "--mu", "0.2", "--json"})));
   ASSERT_TRUE(j["exponents"].is_array());

@@ -86,7 +86,7 @@ TEST(FloquetEvaluator, FixedStepsGiveTheKernelsOwnPhi) {
   for (TransitionMethod m : kTransitionMethods) {
     SCOPED_TRACE(method_name(m));
     const TransitionOptions o = options_of(m, 60);
-    const auto e = FloquetEvaluator::Create(o);
+    const auto e = FloquetEvaluator::Create(o, sys.n);
     const FloquetSample s = e->evaluate(sys, o.zeta_tolerance);
     EXPECT_EQ(s.steps, 60);
     const Eigen::MatrixXd phi = transition_matrix(sys, o).phi;
@@ -127,7 +127,7 @@ TEST(FloquetEvaluator, AutomaticStepsResolveExactExponentsToTheTolerance) {
       for (double tol : {1e-5, 1e-7}) {
         SCOPED_TRACE(std::string(c.name) + ", " + method_name(m) + ", tol " + std::to_string(tol));
         const auto e =
-            FloquetEvaluator::Create(options_of(m, TransitionOptions::kAutomatic, 4, tol));
+            FloquetEvaluator::Create(options_of(m, TransitionOptions::kAutomatic, 4, tol), c.sys.n);
         const FloquetSample s = e->evaluate(c.sys, tol);
         ASSERT_EQ(s.status, Status::Ok) << s.message;
         EXPECT_GE(s.steps, 50);
@@ -211,7 +211,49 @@ TEST(TransitionMethodNames, RoundTripInOnePlace) {
   EXPECT_FALSE(method_from_name("magnus4", &unchanged));
   EXPECT_FALSE(method_from_name("", &unchanged));
   EXPECT_EQ(unchanged, TransitionMethod::Hsu);
-  EXPECT_EQ(method_names(), "rk4, hsu, magnus");
+  EXPECT_EQ(method_names(), "rk4, hsu, magnus, auto");
+}
+
+// The default method is Automatic: Hsu for up to 4 states, Magnus4 above.  Create() resolves it
+// for the state size it is given (and needs one); options() names the method it became; an
+// explicit method is kept whatever the size.
+TEST(AutomaticMethod, HsuForFourStatesMagnusAbove) {
+  EXPECT_EQ(TransitionOptions{}.method, TransitionMethod::Automatic);
+  EXPECT_EQ(TransitionOptions::Paper().method, TransitionMethod::Hsu);
+  for (int n : {1, 2, 3, 4}) EXPECT_EQ(automatic_method(n), TransitionMethod::Hsu) << n;
+  for (int n : {5, 6, 8, 12, 16, 20, 24, 96}) {
+    EXPECT_EQ(automatic_method(n), TransitionMethod::Magnus4) << n;
+  }
+  EXPECT_THROW(automatic_method(0), InvalidInput);
+
+  TransitionOptions o;
+  o.terms = 3;
+  o.zeta_tolerance = 1e-7;
+  const auto four = FloquetEvaluator::Create(o, 4);
+  EXPECT_EQ(four->options().method, TransitionMethod::Hsu);
+  EXPECT_EQ(four->options().terms, 3);
+  EXPECT_EQ(four->options().zeta_tolerance, 1e-7);
+  EXPECT_EQ(four->order(), 2);
+  for (int n : {8, 20}) {
+    const auto many = FloquetEvaluator::Create(o, n);
+    EXPECT_EQ(many->options().method, TransitionMethod::Magnus4) << n;
+    EXPECT_EQ(many->order(), 6) << n;
+  }
+  EXPECT_THROW(FloquetEvaluator::Create(o), InvalidInput);  // no size to choose for
+  for (TransitionMethod m :
+       {TransitionMethod::RK4, TransitionMethod::Hsu, TransitionMethod::Magnus4}) {
+    o.method = m;
+    for (int n : {0, 4, 20}) EXPECT_EQ(FloquetEvaluator::Create(o, n)->options().method, m) << n;
+  }
+}
+
+// transition_matrix() with an Automatic method is the chosen method's, bit for bit.
+TEST(AutomaticMethod, TransitionMatrixUsesTheChosenMethod) {
+  const PeriodicSystem s = fixtures::rotor_like();
+  TransitionOptions o;
+  o.steps = 40;
+  const Eigen::MatrixXd automatic = transition_matrix(s, o).phi;
+  EXPECT_EQ(0.0, (automatic - transition_matrix_hsu(s, 40, 4)).cwiseAbs().maxCoeff());
 }
 
 }  // namespace

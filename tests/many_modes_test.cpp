@@ -132,6 +132,25 @@ TEST(ManyModesTracking, FiveByFiveKeepsTheLabelsOutToTheFlutterBoundary) {
   EXPECT_NEAR(std::abs(top->omega), 1.29, 0.02);
 }
 
+// The default method is chosen for the model's size: Hsu for the 4 states of 1 x 1 (assumed
+// and exact modes), Magnus4 from 2 x 2 (8 states) on; Analysis::options() names the method that
+// runs, and an explicit method is kept whatever the size.
+TEST(ManyModesMethod, DefaultIsHsuForOneByOneAndMagnusAbove) {
+  EXPECT_EQ(Analysis(RotorParameters{}, {}).options().method, flaplag::TransitionMethod::Hsu);
+  EXPECT_EQ(Analysis(exact(1), {}).options().method, flaplag::TransitionMethod::Hsu);
+  for (int k = 2; k <= 5; ++k) {
+    EXPECT_EQ(Analysis(exact(k), {}).options().method, flaplag::TransitionMethod::Magnus4) << k;
+  }
+  TransitionOptions hsu;
+  hsu.method = flaplag::TransitionMethod::Hsu;
+  EXPECT_EQ(Analysis(exact(5), hsu).options().method, flaplag::TransitionMethod::Hsu);
+  TransitionOptions rk4;
+  rk4.method = flaplag::TransitionMethod::RK4;
+  EXPECT_EQ(Analysis(exact(3), rk4).options().method, flaplag::TransitionMethod::RK4);
+  EXPECT_EQ(Analysis(RotorParameters{}, TransitionOptions::Paper()).options().method,
+            flaplag::TransitionMethod::Hsu);
+}
+
 // mu_c of the typical case with 3 x 3 exact modes, automatic resolution: the value of
 // the mode-convergence table of docs/paper.md, and the same boundary from RK4 (an independent
 // transition method) within the two error estimates.  The scan steps by 0.05 (there is one
@@ -139,8 +158,8 @@ TEST(ManyModesTracking, FiveByFiveKeepsTheLabelsOutToTheFlutterBoundary) {
 TEST(ManyModesCritical, ThreeByThreeMuCAgreesAcrossMethods) {
   flaplag::CriticalOptions opt;
   opt.scan_step = 0.05;
-  Analysis hsu(exact(3), {});
-  const auto c = hsu.critical(opt);
+  Analysis automatic(exact(3), {});
+  const auto c = automatic.critical(opt);
   ASSERT_EQ(c.status, Status::Ok) << c.message;
   ASSERT_TRUE(c.mu_c.has_value() && c.mu_c_error.has_value());
   EXPECT_LT(*c.mu_c_error, 2e-5);

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <unsupported/Eigen/MatrixFunctions>
+#include <utility>
+#include <vector>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -250,6 +252,76 @@ TEST(Transition, MagnusLevelsArePairsOfTheRichardsonExtrapolation) {
                InvalidInput);
   EXPECT_THROW(transition_matrix_magnus4_level(s, 25, -1), InvalidInput);
   EXPECT_THROW(transition_matrix_magnus4_level(s, 25, 16), InvalidInput);  // > kMaxSteps
+}
+
+// Magnus on many states (more than 8 without a plain kernel: the wide kernel, which balances
+// the state by powers of two).  A block-diagonal system of similarity transforms
+// T_k^-1 R T_k of the rotor-like 4-state system R (T_k with scales from 1e-3 to 1e3, so that the
+// blocks are badly balanced, as the stiffness entries of the many-mode models make them) has
+// Phi = blockdiag(T_k^-1 Phi_R T_k), with Phi_R from the 4-state kernel at the same steps; a
+// constant 2-state block (exact: exp(2 pi B)) makes sizes that are not a multiple of 4.
+TEST(Transition, MagnusOnManyStatesMatchesTheBlocksItIsMadeOf) {
+  const PeriodicSystem r = rotor_like();
+  Eigen::Matrix2d b;
+  b << -0.05, 1.0, -30.0, -0.2;  // a stiff oscillator, |lambda| ~ 5.5
+  const std::vector<Eigen::Vector4d> scales = {
+      Eigen::Vector4d(1.0, 1.0, 1.0, 1.0), Eigen::Vector4d(1e3, 1.0, 3.0, 1e-3),
+      Eigen::Vector4d(0.1, 70.0, 1e-2, 5.0), Eigen::Vector4d(1e-3, 1e-3, 1e3, 1e3),
+      Eigen::Vector4d(7.0, 0.3, 0.3, 7.0)};
+  // 14, 20 and 22 states (12 and 16 have plain kernels of their own)
+  for (auto [blocks, with_constant] :
+       {std::pair{3, true}, std::pair{5, false}, std::pair{5, true}}) {
+    const int n = 4 * blocks + (with_constant ? 2 : 0);
+    PeriodicSystem s;
+    s.n = n;
+    s.has_sector = true;
+    s.sector_begin = r.sector_begin;
+    s.sector_end = r.sector_end;
+    for (auto [set, from] :
+         {std::pair{&s.normal, &r.normal}, std::pair{&s.reversed, &r.reversed}}) {
+      set->A.assign(from->A.size(), Eigen::MatrixXd::Zero(n, n));
+      for (std::size_t h = 0; h < from->A.size(); ++h) {
+        for (int k = 0; k < blocks; ++k) {
+          const Eigen::DiagonalMatrix<double, 4> t(scales[k]);
+          set->A[h].block(4 * k, 4 * k, 4, 4) = t.inverse() * from->A[h] * t;
+        }
+        if (with_constant && h == 0) set->A[0].bottomRightCorner(2, 2) = b;
+      }
+    }
+    for (int steps : {25, 60}) {
+      for (int bisections : {0, 1}) {
+        const Eigen::MatrixXd block = transition_matrix_magnus4_level(r, steps, bisections);
+        const Eigen::MatrixXd phi = transition_matrix_magnus4_level(s, steps, bisections);
+        ASSERT_EQ(phi.rows(), n);
+        Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(n, n);
+        for (int k = 0; k < blocks; ++k) {
+          const Eigen::DiagonalMatrix<double, 4> t(scales[k]);
+          expected.block(4 * k, 4 * k, 4, 4) = t.inverse() * block * t;
+        }
+        if (with_constant) expected.bottomRightCorner(2, 2) = (kTwoPi * b).exp();
+        // each block to the rounding of its own scale: relative to the block's largest entry
+        for (int k = 0; k < blocks; ++k) {
+          EXPECT_LT(rel_err(expected.block(4 * k, 4 * k, 4, 4), phi.block(4 * k, 4 * k, 4, 4)),
+                    1e-12)
+              << "n = " << n << ", block " << k << ", steps " << steps;
+        }
+        if (with_constant) {
+          EXPECT_LT(rel_err(expected.bottomRightCorner(2, 2), phi.bottomRightCorner(2, 2)), 1e-12)
+              << "n = " << n;
+        }
+        // nothing leaks between the blocks
+        Eigen::MatrixXd off = phi;
+        for (int k = 0; k < blocks; ++k) off.block(4 * k, 4 * k, 4, 4).setZero();
+        if (with_constant) off.bottomRightCorner(2, 2).setZero();
+        EXPECT_EQ(0.0, max_abs(off)) << "n = " << n;
+      }
+    }
+    // transition_matrix_magnus4 is the Richardson pass over the same levels
+    const TransitionResult m = transition_matrix_magnus4(s, 25);
+    const Eigen::MatrixXd p0 = transition_matrix_magnus4_level(s, 25, 0);
+    const Eigen::MatrixXd p1 = transition_matrix_magnus4_level(s, 25, 1);
+    EXPECT_EQ(0.0, max_abs((16.0 * p1 - p0) / 15.0 - m.phi)) << "n = " << n;
+  }
 }
 
 TEST(Transition, RotorLikeReferenceAccuracy) {

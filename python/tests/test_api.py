@@ -35,7 +35,7 @@ def test_keywords_are_the_library_fields():
     # defaults: the paper's typical case (Fig 3)
     assert sig.parameters["omega_lag"].default == 1.28303
     assert sig.parameters["gamma"].default == 10.0
-    assert sig.parameters["method"].default == "hsu"
+    assert sig.parameters["method"].default == "auto"
     assert sig.parameters["steps"].default == 0
 
 

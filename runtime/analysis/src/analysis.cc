@@ -133,7 +133,8 @@ struct Analysis::Impl {
        std::optional<double> inflow = std::nullopt)
       : options(o),
         builder(p, find_model(p.model), inflow),
-        evaluator(FloquetEvaluator::Create(o)) {
+        evaluator(FloquetEvaluator::Create(o, builder.state_size())) {
+    options = evaluator->options();  // an automatic method resolved for this model's size
     hover = builder.hover();
     const auto& m = builder.model();
     hover_modes = label_hover_modes(hover.A0, m.flap_modes, m.lag_modes);

@@ -533,8 +533,11 @@ void StepsHint::put(double zeta_tolerance, int steps) {
   last_.emplace_back(zeta_tolerance, steps);
 }
 
-std::unique_ptr<FloquetEvaluator> FloquetEvaluator::Create(const TransitionOptions& options) {
-  options.Check();
+std::unique_ptr<FloquetEvaluator> FloquetEvaluator::Create(const TransitionOptions& given,
+                                                           int state_size) {
+  given.Check();
+  TransitionOptions options = given;
+  if (options.method == TransitionMethod::Automatic) options.method = automatic_method(state_size);
   switch (options.method) {
     case TransitionMethod::RK4:
       return std::make_unique<Rk4Evaluator>(options);
@@ -542,6 +545,8 @@ std::unique_ptr<FloquetEvaluator> FloquetEvaluator::Create(const TransitionOptio
       return std::make_unique<HsuEvaluator>(options);
     case TransitionMethod::Magnus4:
       return std::make_unique<Magnus4Evaluator>(options);
+    case TransitionMethod::Automatic:  // resolved above
+      break;
   }
   throw InvalidInput("method", std::to_string(static_cast<int>(options.method)), "unknown method");
 }

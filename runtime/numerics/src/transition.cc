@@ -16,11 +16,13 @@
 // (Paterson-Stockmeyer) plus one for the accumulated product.  Nothing in the interval loops
 // allocates.  Hsu (J = 4) and Magnus at 4, 8, 12 and 16 states run on the plain kernels further
 // down (plain_input() decides; a system that the plain kernels cannot evaluate from harmonic
-// matrices alone must make it return false), everything else on Kernel<N>.
+// matrices alone must make it return false), Magnus at more than 8 other states on the wide
+// kernel (balanced, any size: wide_magnus()), everything else on Kernel<N>.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
@@ -900,6 +902,312 @@ bool plain_magnus(const PeriodicSystem& sys, const std::vector<Segment>& grid,
   return true;
 }
 
+// ---- Magnus on many states (more than 8, no plain kernel) -------------------------------------
+//
+// The models with many modes (20 states at 5 x 5) have no plain kernel; on Eigen's dynamic
+// matrices a Magnus step costs about 26 us at 20 states (measured), most of it Eigen's Pade
+// exponential (an LU solve and, at the norms of the rotor's Omega, four squarings) and the
+// packing of its blocked products, built for SSE2 in a baseline build.  This kernel takes a few
+// times less (bench/README.md, "Many modes") by three changes:
+// - the state is balanced once per system: D = diag(2^e_i) from the Parlett-Reinsch iteration
+//   (radix 2) on sum_h |A_h| of both regions, so that the exponential works on D^-1 Omega D,
+//   whose norm is set by the frequencies rather than by the stiffness entries (20 states at 436
+//   steps: ||Omega||_1 from 76 to 1.6).  Powers of two make the similarity exact:
+//   exp(D^-1 Omega D) = D^-1 exp(Omega) D and Phi = D Phi_b D^-1 with no rounding of their own;
+// - exp by plain_expm's rule (degree-12 Taylor polynomial, ||X||_1 <= 1/4 after scaling, five
+//   products, then the squarings), no solve;
+// - products on columns of four-double vectors (the size padded to a multiple of four; the
+//   padding stays zero in A and the identity in exp and Phi, so it never reaches the states),
+//   in AVX2 and baseline clones with the same operations, hence the same bits, in either.
+
+// A wide matrix: np x np column-major, np = n rounded up to a multiple of 4, each column as
+// np / 4 vectors of four doubles.
+struct WideShape {
+  int n = 0, np = 0, q = 0;  // states, padded size, vectors per column
+  std::size_t size() const { return static_cast<std::size_t>(np) * q; }
+};
+
+// Zeroed storage of `count` V4 aligned for vector loads (a std::vector<V4> would not be: the
+// vector type's alignment does not survive as a template argument).
+class WideBuffer {
+ public:
+  WideBuffer() = default;
+  explicit WideBuffer(std::size_t count) { resize(count); }
+  WideBuffer(const WideBuffer&) = delete;
+  WideBuffer& operator=(const WideBuffer&) = delete;
+  void resize(std::size_t count) {
+    raw_.assign(4 * count + 4, 0.0);
+    void* p = raw_.data();
+    std::size_t space = raw_.size() * sizeof(double);
+    data_ = static_cast<V4*>(std::align(sizeof(V4), count * sizeof(V4), p, space));
+  }
+  V4* data() { return data_; }
+  const V4* data() const { return data_; }
+
+ private:
+  std::vector<double> raw_;
+  V4* data_ = nullptr;
+};
+
+// The balanced, padded harmonics of both regions and the sector, for the wide kernel.
+struct WideInput {
+  WideShape shape;
+  int H[2] = {0, 0};
+  WideBuffer A[2];  // harmonic h of region r at A[r].data() + h * shape.size()
+  bool has_sector = false;
+  double sector_begin = 0.0, sector_end = 0.0;
+};
+
+// C = A B on wide matrices: column j of C is sum_k A(:, k) B(k, j), in blocks of B vectors of
+// a column whose sums stay in registers.
+template <int B>
+[[gnu::always_inline]] inline void wide_mul_block(const V4* A, const V4* bcol, V4* ccol, int np,
+                                                  int q, int q0) {
+  V4 acc[B];
+  const double b0 = bcol[0][0];
+  for (int i = 0; i < B; ++i) acc[i] = A[q0 + i] * b0;
+  for (int k = 1; k < np; ++k) {
+    const double bk = bcol[k / 4][k % 4];
+    const V4* ak = A + static_cast<std::size_t>(k) * q + q0;
+    for (int i = 0; i < B; ++i) acc[i] += ak[i] * bk;
+  }
+  for (int i = 0; i < B; ++i) ccol[q0 + i] = acc[i];
+}
+
+[[gnu::always_inline]] inline void wide_mul(const WideShape& s, const V4* A, const V4* B, V4* C) {
+  // blocks of at most five vectors (ten AVX registers of sums and loads), as even as possible
+  const int blocks = (s.q + 4) / 5;
+  for (int j = 0; j < s.np; ++j) {
+    const V4* bcol = B + static_cast<std::size_t>(j) * s.q;
+    V4* ccol = C + static_cast<std::size_t>(j) * s.q;
+    int q0 = 0;
+    for (int b = 0; b < blocks; ++b) {
+      const int width = (s.q - q0) / (blocks - b);
+      switch (width) {
+        case 1:
+          wide_mul_block<1>(A, bcol, ccol, s.np, s.q, q0);
+          break;
+        case 2:
+          wide_mul_block<2>(A, bcol, ccol, s.np, s.q, q0);
+          break;
+        case 3:
+          wide_mul_block<3>(A, bcol, ccol, s.np, s.q, q0);
+          break;
+        case 4:
+          wide_mul_block<4>(A, bcol, ccol, s.np, s.q, q0);
+          break;
+        default:
+          wide_mul_block<5>(A, bcol, ccol, s.np, s.q, q0);
+          break;
+      }
+      q0 += width;
+    }
+  }
+}
+
+// m += v I over the padded size (plain_add_diagonal's -0.0 lanes: the bits of adding v alone).
+[[gnu::always_inline]] inline void wide_add_diagonal(const WideShape& s, V4* m, double v) {
+  for (int j = 0; j < s.np; ++j) {
+    V4 d = {-0.0, -0.0, -0.0, -0.0};
+    d[j % 4] = v;
+    m[static_cast<std::size_t>(j) * s.q + j / 4] += d;
+  }
+}
+
+// exp(X) into X by plain_expm's rule; t holds five wide matrices of scratch.
+[[gnu::always_inline]] inline void wide_expm(const WideShape& s, V4* X, V4* t) {
+  const std::size_t size = s.size();
+  double norm = 0.0;
+  for (int j = 0; j < s.np; ++j) {
+    V4 col = {0.0, 0.0, 0.0, 0.0};
+    for (int i = 0; i < s.q; ++i) {
+      const V4 x = X[static_cast<std::size_t>(j) * s.q + i];
+      col += x < 0.0 ? -x : x;
+    }
+    norm = std::max(norm, col[0] + col[1] + col[2] + col[3]);
+  }
+  if (!std::isfinite(norm)) {
+    for (std::size_t e = 0; e < size; ++e) X[e] = X[e] * std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  int sq = 0;
+  if (norm > 0.25) {
+    int e = 0;
+    std::frexp(norm / 0.25, &e);  // norm / 0.25 < 2^e
+    sq = e;
+  }
+  const double scale = std::ldexp(1.0, -sq);
+  for (std::size_t e = 0; e < size; ++e) X[e] = X[e] * scale;
+  V4 *X2 = t, *X3 = t + size, *X4 = t + 2 * size, *P = t + 3 * size, *Q = t + 4 * size;
+  wide_mul(s, X, X, X2);
+  wide_mul(s, X2, X, X3);
+  wide_mul(s, X2, X2, X4);
+  constexpr double c[13] = {1.0,
+                            1.0,
+                            1.0 / 2,
+                            1.0 / 6,
+                            1.0 / 24,
+                            1.0 / 120,
+                            1.0 / 720,
+                            1.0 / 5040,
+                            1.0 / 40320,
+                            1.0 / 362880,
+                            1.0 / 3628800,
+                            1.0 / 39916800,
+                            1.0 / 479001600};
+  // B_k = c_{4k} I + c_{4k+1} X + c_{4k+2} X^2 + c_{4k+3} X^3; p = B0 + X4 (B1 + X4 (B2 + c12 X4)).
+  auto block = [&](int k, V4* B) __attribute__((always_inline)) {
+    for (std::size_t e = 0; e < size; ++e)
+      B[e] = X[e] * c[4 * k + 1] + X2[e] * c[4 * k + 2] + X3[e] * c[4 * k + 3];
+    wide_add_diagonal(s, B, c[4 * k]);
+  };
+  block(2, P);
+  for (std::size_t e = 0; e < size; ++e) P[e] += X4[e] * c[12];
+  wide_mul(s, X4, P, Q);
+  block(1, P);
+  for (std::size_t e = 0; e < size; ++e) Q[e] += P[e];
+  wide_mul(s, X4, Q, P);
+  block(0, Q);
+  for (std::size_t e = 0; e < size; ++e) X[e] = P[e] + Q[e];
+  for (int k = 0; k < sq; ++k) {
+    wide_mul(s, X, X, P);
+    std::copy(P, P + size, X);
+  }
+}
+
+// A at psi in region r into X (point values of the harmonics).
+[[gnu::always_inline]] inline void wide_point(const WideInput& in, int r, double psi, V4* X) {
+  const WideShape& s = in.shape;
+  const std::size_t size = s.size();
+  double w[kPlainMaxHarmonics], ones[kPlainMaxHarmonics / 2 + 2];
+  for (double& one : ones) one = 1.0;
+  const Phasor z = phasor(psi);
+  plain_weights(z.c, z.s, in.H[r], ones, 1.0, w);
+  const V4* a = in.A[r].data();
+  for (std::size_t e = 0; e < size; ++e) X[e] = a[e] * w[0];
+  for (int h = 1; h < in.H[r]; ++h) {
+    const V4* ah = a + h * size;
+    const double wh = w[h];
+    for (std::size_t e = 0; e < size; ++e) X[e] += ah[e] * wh;
+  }
+}
+
+// Fourth-order Magnus on the given grid (Kernel::magnus's step) into phi (a wide matrix);
+// work holds nine wide matrices of scratch.
+__attribute__((target_clones("avx2", "default"))) void wide_magnus_steps(const WideInput& in,
+                                                                         const Segment* grid,
+                                                                         int count, V4* phi,
+                                                                         V4* work) {
+  const WideShape& s = in.shape;
+  const std::size_t size = s.size();
+  V4 *A1 = work, *A2 = work + size, *P = work + 2 * size, *Q = work + 3 * size;
+  V4* t = work + 4 * size;  // five matrices for wide_expm
+  const double g = std::sqrt(3.0) / 6.0;
+  std::fill(phi, phi + size, V4{0.0, 0.0, 0.0, 0.0});
+  wide_add_diagonal(s, phi, 1.0);
+  for (int i = 0; i < count; ++i) {
+    const Segment& sg = grid[i];
+    const double h = sg.b - sg.a;
+    const int r = sg.reversed ? 1 : 0;
+    wide_point(in, r, sg.a + (0.5 - g) * h, A1);
+    wide_point(in, r, sg.a + (0.5 + g) * h, A2);
+    wide_mul(s, A2, A1, P);
+    wide_mul(s, A1, A2, Q);
+    const double c1 = 0.5 * h, c2 = std::sqrt(3.0) / 12.0 * h * h;
+    for (std::size_t e = 0; e < size; ++e) A1[e] = (A1[e] + A2[e]) * c1 + (P[e] - Q[e]) * c2;
+    wide_expm(s, A1, t);
+    wide_mul(s, A1, phi, P);
+    std::copy(P, P + size, phi);
+  }
+}
+
+// Powers of two e_i that balance the state (Parlett & Reinsch, radix 2) on M = sum over the
+// regions and harmonics of |A_h|: each state's off-diagonal row and column sums of
+// D^-1 M D, D = diag(2^e_i), end within a factor of about 2 of each other.
+std::vector<int> balancing_exponents(const PeriodicSystem& sys) {
+  const int n = sys.n;
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
+  for (const HarmonicSet* set : {&sys.normal, sys.has_sector ? &sys.reversed : nullptr})
+    if (set != nullptr)
+      for (const Eigen::MatrixXd& a : set->A) m += a.cwiseAbs();
+  std::vector<int> e(static_cast<std::size_t>(n), 0);
+  for (int sweep = 0; sweep < 64; ++sweep) {
+    bool done = true;
+    for (int i = 0; i < n; ++i) {
+      double c = m.col(i).sum() - m(i, i), r = m.row(i).sum() - m(i, i);
+      if (!(c > 0.0 && r > 0.0 && std::isfinite(c + r))) continue;
+      const double total = c + r;
+      int f = 0;  // scale state i by 2^f
+      while (c < r / 2.0 && f < 64) {
+        c *= 4.0;
+        ++f;
+      }
+      while (c >= r * 2.0 && f > -64) {
+        c /= 4.0;
+        --f;
+      }
+      if (f == 0 || !((c + r) / std::ldexp(1.0, f) < 0.95 * total)) continue;
+      // D^-1 M D with d_i *= 2^f: column i times 2^f, row i over 2^f
+      m.col(i) *= std::ldexp(1.0, f);
+      m.row(i) *= std::ldexp(1.0, -f);
+      e[static_cast<std::size_t>(i)] += f;
+      done = false;
+    }
+    if (done) break;
+  }
+  return e;
+}
+
+// The wide kernel's input: the harmonics balanced by e (entry (i, j) times 2^(e_j - e_i), exact)
+// and padded; false when the system has more harmonics than the kernel takes.
+bool wide_input(const PeriodicSystem& sys, const std::vector<int>& e, WideInput& in) {
+  WideShape& s = in.shape;
+  s.n = sys.n;
+  s.np = (sys.n + 3) / 4 * 4;
+  s.q = s.np / 4;
+  const HarmonicSet* sets[2] = {&sys.normal, sys.has_sector ? &sys.reversed : &sys.normal};
+  for (int r = 0; r < 2; ++r) {
+    const int H = static_cast<int>(sets[r]->A.size());
+    if (H > kPlainMaxHarmonics) return false;
+    in.H[r] = H;
+    in.A[r].resize(static_cast<std::size_t>(H) * s.size());
+    for (int h = 0; h < H; ++h) {
+      V4* dst = in.A[r].data() + static_cast<std::size_t>(h) * s.size();
+      const Eigen::MatrixXd& a = sets[r]->A[static_cast<std::size_t>(h)];
+      for (int j = 0; j < s.n; ++j)
+        for (int i = 0; i < s.n; ++i)
+          dst[static_cast<std::size_t>(j) * s.q + i / 4][i % 4] =
+              std::ldexp(a(i, j), e[static_cast<std::size_t>(j)] - e[static_cast<std::size_t>(i)]);
+    }
+  }
+  in.has_sector = sys.has_sector;
+  in.sector_begin = sys.sector_begin;
+  in.sector_end = sys.sector_end;
+  return true;
+}
+
+// The state sizes that take the wide kernel: more than 8 states without a plain kernel.
+bool wide_size(int n) { return n > 8 && !plain_size(n); }
+
+// Magnus on `grid` by the wide kernel when it applies; false otherwise.
+bool wide_magnus(const PeriodicSystem& sys, const std::vector<Segment>& grid,
+                 Eigen::MatrixXd& phi) {
+  if (!wide_size(sys.n) || sys.has_varying) return false;
+  const std::vector<int> e = balancing_exponents(sys);
+  WideInput in;
+  if (!wide_input(sys, e, in)) return false;
+  const WideShape& s = in.shape;
+  WideBuffer out(s.size()), work(9 * s.size());
+  wide_magnus_steps(in, grid.data(), static_cast<int>(grid.size()), out.data(), work.data());
+  // Phi = D Phi_b D^-1: entry (i, j) times 2^(e_i - e_j)
+  phi.resize(s.n, s.n);
+  for (int j = 0; j < s.n; ++j)
+    for (int i = 0; i < s.n; ++i)
+      phi(i, j) = std::ldexp(out.data()[static_cast<std::size_t>(j) * s.q + i / 4][i % 4],
+                             e[static_cast<std::size_t>(i)] - e[static_cast<std::size_t>(j)]);
+  return true;
+}
+
 // Runs `fn` with the kernel of the right dimension and returns a MatrixXd.
 template <typename Fn>
 Eigen::MatrixXd dispatch(const PeriodicSystem& sys, Fn&& fn) {
@@ -950,8 +1258,16 @@ const char* method_name(TransitionMethod m) {
       return "hsu";
     case TransitionMethod::Magnus4:
       return "magnus";
+    case TransitionMethod::Automatic:
+      return "auto";
   }
   return "unknown";
+}
+
+TransitionMethod automatic_method(int state_size) {
+  if (state_size < 1)
+    throw InvalidInput("state_size", std::to_string(state_size), "must be at least 1");
+  return state_size <= 4 ? TransitionMethod::Hsu : TransitionMethod::Magnus4;
 }
 
 bool method_from_name(const std::string& name, TransitionMethod* method) {
@@ -1029,9 +1345,9 @@ TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps)
   const std::vector<Segment> coarse = make_grid(sys, steps);
   const std::vector<Segment> fine = bisect(coarse);
   Eigen::MatrixXd ph, ph2;
-  if (!plain_magnus(sys, coarse, ph))
+  if (!plain_magnus(sys, coarse, ph) && !wide_magnus(sys, coarse, ph))
     ph = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(coarse)); });
-  if (!plain_magnus(sys, fine, ph2))
+  if (!plain_magnus(sys, fine, ph2) && !wide_magnus(sys, fine, ph2))
     ph2 = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(fine)); });
   TransitionResult out;
   out.phi = (16.0 * ph2 - ph) / 15.0;
@@ -1056,7 +1372,7 @@ Eigen::MatrixXd transition_matrix_magnus4_level(const PeriodicSystem& sys, int s
   std::vector<Segment> grid = make_grid(sys, steps);
   for (int b = 0; b < bisections; ++b) grid = bisect(grid);
   Eigen::MatrixXd phi;
-  if (!plain_magnus(sys, grid, phi))
+  if (!plain_magnus(sys, grid, phi) && !wide_magnus(sys, grid, phi))
     phi = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(grid)); });
   return phi;
 }
@@ -1064,7 +1380,7 @@ Eigen::MatrixXd transition_matrix_magnus4_level(const PeriodicSystem& sys, int s
 bool TransitionOptions::IsValid(std::string* error) const {
   std::string why;
   if (method != TransitionMethod::RK4 && method != TransitionMethod::Hsu &&
-      method != TransitionMethod::Magnus4) {
+      method != TransitionMethod::Magnus4 && method != TransitionMethod::Automatic) {
     why = "method = " + std::to_string(static_cast<int>(method)) + ": unknown method";
   } else if (steps < 0 || steps > kMaxSteps) {
     why = "steps = " + std::to_string(steps) + ": must be 0 (automatic) or 1.." +
@@ -1091,13 +1407,17 @@ TransitionResult transition_matrix(const PeriodicSystem& sys, const TransitionOp
   opt.Check();
   if (opt.steps == TransitionOptions::kAutomatic)
     throw InvalidInput("steps", "0", "transition_matrix needs a fixed step count");
-  switch (opt.method) {
+  const TransitionMethod method =
+      opt.method == TransitionMethod::Automatic ? automatic_method(sys.n) : opt.method;
+  switch (method) {
     case TransitionMethod::RK4:
       return {transition_matrix_rk4(sys, opt.steps), 0.0};
     case TransitionMethod::Hsu:
       return {transition_matrix_hsu(sys, opt.steps, opt.terms), 0.0};
     case TransitionMethod::Magnus4:
       return transition_matrix_magnus4(sys, opt.steps);
+    case TransitionMethod::Automatic:  // resolved above
+      break;
   }
   throw InvalidInput("method", std::to_string(static_cast<int>(opt.method)), "unknown method");
 }

@@ -120,6 +120,8 @@ class Analysis {
   Analysis& operator=(Analysis&&) noexcept;
 
   const RotorParameters& parameters() const;
+  // The options as given, an Automatic method replaced by the one it stands for on this model
+  // (automatic_method() of its state size).
   const TransitionOptions& options() const;
   const model::ModelDescriptor& model() const;
   const ModeSet& modes() const;

@@ -20,16 +20,26 @@ enum class TransitionMethod {
   RK4,      // classical Runge-Kutta, N equal steps per period (paper 3.3.2), split at sector edges
   Hsu,      // K intervals, exact interval means of A, J Taylor terms (eqs 3.21-3.28)
   Magnus4,  // 4th-order Magnus with Richardson error estimate (reference method)
+  // The fastest of them at the default accuracy for the system's size: automatic_method().
+  Automatic,
 };
 
 // The methods in the order of their names in help texts, and names <-> enum (the one place).
 inline constexpr TransitionMethod kTransitionMethods[] = {
-    TransitionMethod::RK4, TransitionMethod::Hsu, TransitionMethod::Magnus4};
-const char* method_name(TransitionMethod m);  // "rk4", "hsu", "magnus"
+    TransitionMethod::RK4, TransitionMethod::Hsu, TransitionMethod::Magnus4,
+    TransitionMethod::Automatic};
+const char* method_name(TransitionMethod m);  // "rk4", "hsu", "magnus", "auto"
 // The method called `name` (exactly method_name's text) into *method; false when none is.
 bool method_from_name(const std::string& name, TransitionMethod* method);
-// "rk4, hsu, magnus": the names for an error message.
+// "rk4, hsu, magnus, auto": the names for an error message.
 std::string method_names();
+
+// The method Automatic stands for on a system of `state_size` states (>= 1): Hsu for up to 4
+// states (one flap and one lag mode: its pair of counts from one pass is the cheapest resolved
+// evaluation there), Magnus4 above, where the highest mode sets the step and Magnus4's sixth
+// order (after its Richardson pass) and its raw levels for the sign checks need the fewest
+// matrix products (bench/README.md, "Many modes").
+TransitionMethod automatic_method(int state_size);
 
 // How Phi(2 pi, 0) is computed.  IsValid() is the Ceres-style check (false and "field = value:
 // reason" in *error); Check() throws the same as InvalidInput.
@@ -38,7 +48,8 @@ struct TransitionOptions {
   static constexpr int kMaxSteps = 1000000;
   static constexpr int kMaxTerms = 30;
 
-  TransitionMethod method = TransitionMethod::Hsu;
+  // Automatic (the default): the method of automatic_method() for the system's state size.
+  TransitionMethod method = TransitionMethod::Automatic;
   // RK4 steps / Hsu intervals K / Magnus steps per period, 1..kMaxSteps; kAutomatic (the
   // default): the step control chooses them per system so that the estimated exponent error is
   // at most zeta_tolerance (floquet_evaluator.h).  The transition_matrix* functions need a fixed
@@ -60,7 +71,8 @@ struct TransitionResult {
                                 // (the analysis estimates exponent errors itself)
 };
 
-// opt.Check() and a fixed step count (not kAutomatic) are required, else InvalidInput.
+// opt.Check() and a fixed step count (not kAutomatic) are required, else InvalidInput.  An
+// Automatic method is automatic_method(sys.n).
 TransitionResult transition_matrix(const PeriodicSystem& sys, const TransitionOptions& opt);
 Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps);
 Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms);

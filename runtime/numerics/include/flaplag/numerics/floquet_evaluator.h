@@ -38,8 +38,11 @@ class StepsHint {
 // lower-order levels.  Immutable once made; safe to share between threads.
 class FloquetEvaluator {
  public:
-  // options.Check() (InvalidInput), then the evaluator of options.method.
-  static std::unique_ptr<FloquetEvaluator> Create(const TransitionOptions& options);
+  // options.Check() (InvalidInput), then the evaluator of options.method.  An Automatic method
+  // becomes automatic_method(state_size), the size of the systems it will evaluate (>= 1, else
+  // InvalidInput), and options() names the method it became; state_size is not used otherwise.
+  static std::unique_ptr<FloquetEvaluator> Create(const TransitionOptions& options,
+                                                  int state_size = 0);
   virtual ~FloquetEvaluator();
 
   const TransitionOptions& options() const { return options_; }
