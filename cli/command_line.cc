@@ -32,12 +32,12 @@ const char* const kMissing = "(missing)";
 const char* const kNoValue = "(no value)";
 
 // The model of that name ("<family>" or "<family>-<M>x<N>"), or nullptr with the library's
-// reason in *why.
+// reason in *why (for "paper-13x1", the mode count and its reason).
 const model::ModelDescriptor* compiled_model(const std::string& name, std::string* why = nullptr) {
   try {
     return &find_model(name);
   } catch (const InvalidInput& e) {
-    if (why != nullptr) *why = e.reason();
+    if (why != nullptr) *why = e.name() == "model" ? e.reason() : e.what();
     return nullptr;
   }
 }
@@ -218,7 +218,7 @@ const char* description(Command c) {
     case Command::System:
       return "A(psi), f(psi), flow region, hover equilibrium, spanwise integrals";
     case Command::Models:
-      return "compiled ordering models and their specs";
+      return "compiled ordering models (one per spec, each for any M x N modes) and their specs";
     case Command::Modes:
       return "exact rotating modes: the Fig 9 frequency relation and a blade's mode shapes";
     case Command::Study:
@@ -254,11 +254,13 @@ std::vector<std::string> examples(Command c) {
       return {"flaplag sweep --mu 0:1:0.05",
               "flaplag sweep --mu 0:1.5:0.01 --format csv -o sweep.csv"};
     case Command::Critical:
-      return {"flaplag critical", "flaplag critical --mu-max 1.5 --modes exact --flap-modes 2"};
+      return {"flaplag critical", "flaplag critical --mu-max 1.5 --modes exact --flap-modes 2",
+              "flaplag critical --modes exact --flap-modes 4 --lag-modes 2",
+              "flaplag critical --trim moment --thrust-coefficient 0.004"};
     case Command::System:
       return {"flaplag system --mu 0.8 --psi 4.7", "flaplag system --mu 0.3 --json"};
     case Command::Models:
-      return {"flaplag models", "flaplag models --spec paper"};
+      return {"flaplag models", "flaplag models --spec paper", "flaplag models --json"};
     case Command::Modes:
       return {"flaplag modes", "flaplag modes --omega-lag 1.4 --flap-modes 2 --json"};
     case Command::Study:
@@ -274,7 +276,7 @@ std::vector<std::string> examples(Command c) {
       return {"flaplag response --mu 0.3", "flaplag response --mu 0.5 --json --plot tip.svg"};
     case Command::Simulate:
       return {"flaplag simulate --mu 0.9 --revs 50", "flaplag simulate --mu 0.3 --forced --json",
-              "flaplag simulate --model paper-nonlinear --mu 0.6 --nonlinear --revs 40"};
+              "flaplag simulate --mu 0.6 --nonlinear --revs 40"};
     case Command::Merge:
       return {
           "flaplag map --x mu=0:2:0.02 --y omega-lag=0.3:2.5:0.02 --json --shard 2/8 -o "
@@ -286,8 +288,9 @@ std::vector<std::string> examples(Command c) {
               "flaplag study --vary theta=0:0.3:0.02 --json -o s.json && flaplag plot s.json "
               "--plot s.svg"};
     case Command::Trim:
-      return {"flaplag trim --model paper-cyclic --mu 0.3 --thrust-coefficient 0.005",
-              "flaplag critical --model paper-cyclic --trim moment --thrust-coefficient 0.0042"};
+      return {"flaplag trim --mu 0.3 --thrust-coefficient 0.005",
+              "flaplag critical --trim moment --thrust-coefficient 0.0042",
+              "flaplag --periodic-linearization trim --mu 0.2 --trim moment"};
   }
   return {};
 }
@@ -304,6 +307,14 @@ std::string usage_notes(Command c) {
              "a "
              "valid file\nwith status \"cancelled\", and flaplag exits with code 130 (143 for "
              "SIGTERM).\n";
+    case Command::Models:
+      return "\nOne model per ordering spec, listed at the spec's mode counts.  Each model also "
+             "exists for\nM flap x N lag exact modes, 1 <= M, N <= " +
+             std::to_string(model::kMaxModes) +
+             ": <model>-<M>x<N> (e.g. paper-4x2), which the\noptions --modes exact --flap-modes "
+             "M --lag-modes N select (at most --basis modes per\ndirection).  Every model has "
+             "the cyclic pitch, the rotor thrust and the nonlinear loads\n(trim, periodic "
+             "linearization, simulate --nonlinear).\n";
     case Command::Merge:
       return "\nThe parts are the --json outputs of one command line run with --shard 1/N .. "
              "N/N.\nThe result is byte for byte the file the command writes without --shard.  "
@@ -676,6 +687,19 @@ Request CommandLine::interpret() const {
         throw InvalidInput(g != nullptr ? g->spelling : "--model", shown(r.params.model), why);
       }
       r.params.model = find_model(named->base, flap_modes, lag_modes).name;
+      // Galerkin's method gives at most --basis rotating modes per direction.  Asked for more
+      // without --basis, the error names the mode count typed (with --basis, the library's
+      // names --basis).
+      const Given* more = flap_modes > r.params.basis ? flap_given : lag_given;
+      if (r.params.modes == ModeKind::Exact && given("--basis") == nullptr && more != nullptr &&
+          std::max(flap_modes, lag_modes) > r.params.basis) {
+        throw InvalidInput(
+            more->spelling, shown(more->text),
+            "more modes than the exact-mode basis of --basis = " + std::to_string(r.params.basis) +
+                " cantilever functions per direction gives: add --basis " +
+                std::to_string(std::max(flap_modes, lag_modes)) + " (up to " +
+                std::to_string(model::kMaxModes) + ")");
+      }
     } else if (std::string why; compiled_model(r.params.model, &why) == nullptr) {
       const Given* g = given("--model");
       throw InvalidInput(g != nullptr ? g->spelling : "--model", shown(r.params.model), why);

@@ -156,10 +156,17 @@ Output models(const Request& r) {
     if (!text.empty() && text.back() != '\n') text += '\n';
     return text;
   }
+  // Each model is listed at its spec's mode counts; every other M x N is made on demand.
   if (r.json) {
     Json list = Json::array();
     for (const model::ModelDescriptor* m : compiled_models()) list.push_back(model_json(*m));
-    return Json{{"command", "models"}, {"models", list}};
+    return Json{{"command", "models"},
+                {"models", list},
+                {"max_modes", model::kMaxModes},
+                {"modes",
+                 "each model also as <model>-<M>x<N> for M flap x N lag exact modes, "
+                 "1 <= M, N <= " +
+                     std::to_string(model::kMaxModes)}};
   }
   TextTable t({"model", "spec file", "modes", "summary"});
   t.left_align(1);
@@ -168,8 +175,11 @@ Output models(const Request& r) {
     t.add_row({m->name, m->spec_file,
                std::to_string(m->flap_modes) + "x" + std::to_string(m->lag_modes), m->summary});
   }
-  return "Compiled ordering models (flaplag --model NAME; flaplag models --spec NAME)\n" +
-         t.render();
+  return "Compiled ordering models, one per spec (flaplag --model NAME; flaplag models --spec "
+         "NAME)\n" +
+         t.render() + "\nEach model also exists for M flap x N lag exact modes, 1 <= M, N <= " +
+         std::to_string(model::kMaxModes) +
+         ":\n<model>-<M>x<N>, e.g. paper-4x2 (or --modes exact --flap-modes M --lag-modes N).\n";
 }
 
 }  // namespace flaplag::cli::cmd

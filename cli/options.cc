@@ -12,6 +12,7 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/limits.h"
+#include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/trim.h"
@@ -128,8 +129,9 @@ std::vector<OptionSpec> transition_options() {
 std::vector<OptionSpec> mode_count_options() {
   return {
       value_option("--flap-modes", "M",
-                   "flap modes M: selects the model <model>-<M>x<N> (<model> itself for 1x1; "
-                   "more than one mode needs --modes exact)",
+                   "flap modes M, 1.." + std::to_string(model::kMaxModes) +
+                       ": selects the model <model>-<M>x<N> (<model> itself for 1x1; more than "
+                       "one mode needs --modes exact and at most --basis modes per direction)",
                    "1", {"flap_modes"}),
       value_option("--lag-modes", "N", "lag modes N (see --flap-modes)", "1", {"lag_modes"}),
   };
@@ -141,9 +143,8 @@ std::vector<OptionSpec> trim_options(bool for_trim_command) {
   return {
       value_option("--trim", for_trim_command ? "thrust|moment" : "none|thrust|moment",
                    "trim at each mu: thrust (theta0, lambda of eq 2.25 for --thrust-coefficient) "
-                   "or moment (also theta1c, theta1s: no first flap harmonic); needs a "
-                   "cyclic-pitch model (--model paper-cyclic; with --periodic-linearization "
-                   "paper-cyclic-nonlinear, which trims the periodic equilibrium)",
+                   "or moment (also theta1c, theta1s: no first flap harmonic); with "
+                   "--periodic-linearization the periodic equilibrium is trimmed",
                    for_trim_command ? "thrust" : "none", {"trim"}),
       value_option("--thrust-coefficient", "REAL",
                    "target thrust coefficient C_T (not C_T/sigma), in (0, 0.1]",
@@ -312,8 +313,7 @@ std::vector<OptionSpec> build(Command c) {
         OptionSpec nonlinear = flag_option(
             "--nonlinear",
             "integrate the nonlinear equations (full state, from the periodic equilibrium plus "
-            "the perturbation; the tip response is the deviation from it; needs a model with "
-            "nonlinear loads, e.g. --model paper-nonlinear; not with --forced)");
+            "the perturbation; the tip response is the deviation from it; not with --forced)");
         nonlinear.library_names = {"nonlinear"};
         v.push_back(nonlinear);
       }

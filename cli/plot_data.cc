@@ -137,7 +137,7 @@ std::string sweep_script(const std::string& file, const Json& j) {
 }
 
 // A short label of a result from its case (the command line behind it): the model, the trim
-// and the periodic linearization, e.g. "paper-cyclic, moment trim, periodic".
+// and the periodic linearization, e.g. "paper-2x2, moment trim, periodic".
 std::string case_label(const std::string& file, const Json& j) {
   std::string label = model_name(file, j);
   const Json& c = j.contains("case") && j["case"].is_object() ? j["case"] : Json::object();

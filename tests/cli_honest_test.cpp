@@ -37,10 +37,9 @@ Json run_json(std::vector<std::string> args) {
 // search's own trim there lies far outside the validity envelope (theta0 ~ 65 deg).  The
 // result reports the trim it rests on, and is no better than it.
 TEST(CliHonest, TrimmedCriticalIsNoBetterThanItsTrim) {
-  const Json j =
-      run_json({"--model", "paper-cyclic", "--trim", "moment", "--thrust-coefficient", "0.0056",
-                "--omega-flap", "1.12", "--omega-lag", "0.72", "--gamma", "6", "--sigma", "0.07",
-                "--theta", "0.10", "--damping-lag", "0.01", "critical"});
+  const Json j = run_json({"--trim", "moment", "--thrust-coefficient", "0.0056", "--omega-flap",
+                           "1.12", "--omega-lag", "0.72", "--gamma", "6", "--sigma", "0.07",
+                           "--theta", "0.10", "--damping-lag", "0.01", "critical"});
   ASSERT_TRUE(j["mu_c"].is_number()) << j;
   const Json& t = j["trim"];
   ASSERT_TRUE(t.is_object()) << j;
@@ -61,27 +60,10 @@ TEST(CliHonest, TrimmedCriticalIsNoBetterThanItsTrim) {
 // to come from separate trims, so that the row at mu = 0.8 failed on its trim while the table
 // showed an "ok" trim there, and a row resting on a trim outside the envelope said "ok".
 TEST(CliHonest, TrimmedSweepRowsRestOnTheirTrims) {
-  const Json j = run_json({"--model",
-                           "paper-cyclic",
-                           "--trim",
-                           "moment",
-                           "--thrust-coefficient",
-                           "0.0056",
-                           "--omega-flap",
-                           "1.12",
-                           "--omega-lag",
-                           "0.72",
-                           "--gamma",
-                           "6",
-                           "--sigma",
-                           "0.07",
-                           "--theta",
-                           "0.10",
-                           "--damping-lag",
-                           "0.01",
-                           "sweep",
-                           "--mu",
-                           "0.5:0.9:0.1"});
+  const Json j =
+      run_json({"--trim", "moment", "--thrust-coefficient", "0.0056", "--omega-flap", "1.12",
+                "--omega-lag", "0.72", "--gamma", "6", "--sigma", "0.07", "--theta", "0.10",
+                "--damping-lag", "0.01", "sweep", "--mu", "0.5:0.9:0.1"});
   const Json& rows = j["rows"];
   const Json& trims = j["trim"];
   ASSERT_EQ(rows.size(), trims.size()) << j;
@@ -114,8 +96,7 @@ TEST(CliHonest, TrimmedSweepRowsRestOnTheirTrims) {
 // The trim to C_T = 0.1 at mu = 0.3 gives theta0 = 80 deg: a warning naming theta0, its value
 // and the limit (it used to say "ok").
 TEST(CliHonest, TrimOutsideTheValidityEnvelopeWarns) {
-  const Json j =
-      run_json({"trim", "--model", "paper-cyclic", "--mu", "0.3", "--thrust-coefficient", "0.1"});
+  const Json j = run_json({"trim", "--mu", "0.3", "--thrust-coefficient", "0.1"});
   ASSERT_GT(j["theta0"].get<double>(), 1.0) << j;
   EXPECT_EQ(j["status"], "warning") << j;
   const std::string m = j["message"].get<std::string>();
@@ -131,9 +112,9 @@ TEST(CliHonest, TrimOutsideTheValidityEnvelopeWarns) {
 // bracket was too wide for its root finder and a wrong trim (theta0 = 0.095, inflow 0) came
 // back "ok"; at 5e-324 the run failed naming the root finder's bracket ("fa = -inf").
 TEST(CliHonest, TrimAtAVanishingAdvanceRatioIsTheHoverTrim) {
-  const Json hover = run_json({"trim", "--model", "paper-cyclic", "--mu", "0"});
+  const Json hover = run_json({"trim", "--mu", "0"});
   for (const char* mu : {"1e-150", "5e-324"}) {
-    const Json j = run_json({"trim", "--model", "paper-cyclic", "--mu", mu});
+    const Json j = run_json({"trim", "--mu", mu});
     EXPECT_EQ(j["status"], "ok") << j;
     EXPECT_NEAR(j["theta0"].get<double>(), hover["theta0"].get<double>(), 1e-12) << mu;
     EXPECT_NEAR(j["inflow"].get<double>(), hover["inflow"].get<double>(), 1e-12) << mu;

@@ -125,8 +125,8 @@ TEST(CliStudy, TrimmedRowsCarryTheTrimAtMuC) {
   // (The study is computed three times below: a coarse scan, two steps to just past mu_c, keeps
   // it cheap; each trim is a full one at its mu either way.)
   const std::vector<std::string> base = {
-      "--model",     "paper-cyclic", "study",  "--vary", "omega-lag=0.45,0.5",   "--mu-max", "1.05",
-      "--scan-step", "0.525",        "--trim", "thrust", "--thrust-coefficient", "0.0042384"};
+      "study",  "--vary", "omega-lag=0.45,0.5",   "--mu-max", "1.05", "--scan-step", "0.525",
+      "--trim", "thrust", "--thrust-coefficient", "0.0042384"};
   std::vector<std::string> args = base;
   args.push_back("--json");
   const Outcome s = run(args);
@@ -145,15 +145,14 @@ TEST(CliStudy, TrimmedRowsCarryTheTrimAtMuC) {
   EXPECT_LE(std::abs(t["thrust_coefficient"].get<double>() - 0.0042384), 1e-10 * 0.0042384);
   // The same trim as `flaplag trim` of that rotor at that mu, and the same keys.
   TempDir d;
-  const Outcome one = run({"--model", "paper-cyclic", "--omega-lag", "0.5", "trim", "--mu",
-                           t["mu"].dump(), "--thrust-coefficient", "0.0042384", "--json"});
+  const Outcome one = run({"--omega-lag", "0.5", "trim", "--mu", t["mu"].dump(),
+                           "--thrust-coefficient", "0.0042384", "--json"});
   ASSERT_EQ(0, one.exit_code) << one.err;
   const Json o = Json::parse(one.out);
   for (const auto& [key, value] : t.items()) EXPECT_EQ(o[key], value) << key;
   // The text table: the controls at mu_c ("-" without mu_c: a cheap row).
-  const Outcome text =
-      run({"--model", "paper-cyclic", "study", "--vary", "omega-lag=0.45", "--mu-max", "0.3",
-           "--scan-step", "0.1", "--trim", "thrust", "--thrust-coefficient", "0.0042384"});
+  const Outcome text = run({"study", "--vary", "omega-lag=0.45", "--mu-max", "0.3", "--scan-step",
+                            "0.1", "--trim", "thrust", "--thrust-coefficient", "0.0042384"});
   ASSERT_EQ(0, text.exit_code) << text.err;
   EXPECT_TRUE(std::regex_search(text.out, std::regex("theta0 +theta1c +theta1s +lambda +status\n")))
       << text.out;
@@ -575,9 +574,8 @@ TEST(CliPlot, SweepsOverlaidInOnePicture) {
   TempDir d;
   const std::string a = d.file("a.json"), b = d.file("b.json"), one = d.file("one.svg");
   ASSERT_EQ(0, run({"sweep", "--mu", "0:0.4:0.2", "--json", "-o", a, "--plot", one}).exit_code);
-  ASSERT_EQ(0, run({"--model", "paper-cyclic", "sweep", "--mu", "0:0.4:0.2", "--trim", "thrust",
-                    "--json", "-o", b})
-                   .exit_code);
+  ASSERT_EQ(0,
+            run({"sweep", "--mu", "0:0.4:0.2", "--trim", "thrust", "--json", "-o", b}).exit_code);
   const std::string study = d.file("study.json");
   ASSERT_EQ(0, run({"study", "--vary", "omega-lag=1.0", "--mu-max", "0.2", "--json", "-o", study})
                    .exit_code);
@@ -598,8 +596,8 @@ TEST(CliPlot, SweepsOverlaidInOnePicture) {
     const Outcome o = run({"plot", a, b, "--plot", both});
     ASSERT_EQ(0, o.exit_code) << o.err;
     const std::string svg = slurp(both);
-    for (const char* title : {"paper: flap", "paper: lag", "paper-cyclic, thrust trim: flap",
-                              "paper-cyclic, thrust trim: lag"})
+    for (const char* title :
+         {"paper: flap", "paper: lag", "paper, thrust trim: flap", "paper, thrust trim: lag"})
       EXPECT_GT(count(svg, title), 0u) << title;
     const std::string lag = d.file("lag.svg");
     ASSERT_EQ(0, run({"plot", a, b, "--mode", "lag", "--label", "fixed theta", "--label", "trimmed",
@@ -613,7 +611,7 @@ TEST(CliPlot, SweepsOverlaidInOnePicture) {
     ASSERT_EQ(0, run({"plot", a, b, "--max-zeta", "--plot", largest}).exit_code);
     const std::string m = slurp(largest);
     EXPECT_GT(count(m, "paper"), 0u);
-    EXPECT_GT(count(m, "paper-cyclic, thrust trim"), 0u);
+    EXPECT_GT(count(m, "paper, thrust trim"), 0u);
     EXPECT_EQ(0u, count(m, "frequency omega"));  // one zeta panel
   }
   // Refused, one line naming the file or option as typed, exit 2, nothing written.
@@ -636,14 +634,13 @@ TEST(CliPlot, SweepsOverlaidInOnePicture) {
 // from it decays at the largest zeta of `point --periodic-linearization` (within 1 %), and the
 // JSON carries the totals and the reference.
 TEST(CliSimulate, NonlinearDecaysAtTheZetaAboutThePeriodicEquilibrium) {
-  const Json p = Json::parse(run({"--model", "paper-nonlinear", "point", "--mu", "0.3",
-                                  "--periodic-linearization", "--json"})
-                                 .out);
+  const Json p =
+      Json::parse(run({"point", "--mu", "0.3", "--periodic-linearization", "--json"}).out);
   double zeta = -1e9;
   for (const Json& e : p["exponents"])
     if (e["zeta"].is_number()) zeta = std::max(zeta, e["zeta"].get<double>());
-  const Outcome r = run({"--model", "paper-nonlinear", "simulate", "--mu", "0.3", "--nonlinear",
-                         "--revs", "40", "--perturbation", "0.001", "--samples", "180", "--json"});
+  const Outcome r = run({"simulate", "--mu", "0.3", "--nonlinear", "--revs", "40", "--perturbation",
+                         "0.001", "--samples", "180", "--json"});
   ASSERT_EQ(0, r.exit_code) << r.err;
   const Json s = Json::parse(r.out);
   EXPECT_EQ("ok", s["status"]);

@@ -63,7 +63,6 @@
 #error "FLAPLAG_EXE must name the flaplag binary"
 #endif
 
-
 extern char** environ;
 
 namespace {
@@ -379,8 +378,7 @@ class Workspace {
   std::string make_seed(const std::string& name) {
     static const std::map<std::string, std::vector<std::string>> kSeeds = {
         {"sweep", {"sweep", "--mu", "0:0.2:0.1", "--json"}},
-        {"sweep-cyclic",
-         {"--model", "paper-cyclic", "--trim", "thrust", "sweep", "--mu", "0:0.1:0.1", "--json"}},
+        {"sweep-trimmed", {"--trim", "thrust", "sweep", "--mu", "0:0.1:0.1", "--json"}},
         {"sweep-plot", {"sweep", "--mu", "0:0.2:0.1", "--json", "--plot", "sweep.svg"}},
         {"study",
          {"study", "--vary", "omega-lag=0.6,1.4", "--mu-max", "0.3", "--scan-step", "0.1",
@@ -868,7 +866,7 @@ Json seed_json(const std::string& name) {
 
 // `flaplag plot` of a mutated result (sometimes two sweeps, with --label, --mode, --max-zeta).
 Vector plot_vector(Random& rnd, Coverage& cov) {
-  static const std::vector<std::string> kSeeds = {"sweep", "sweep-plot", "sweep-cyclic",
+  static const std::vector<std::string> kSeeds = {"sweep", "sweep-plot", "sweep-trimmed",
                                                   "study", "map",        "map-mu",
                                                   "map-1", "response",   "simulate"};
   Vector v;
@@ -891,7 +889,7 @@ Vector plot_vector(Random& rnd, Coverage& cov) {
   v.args = {"plot", "result.json"};
   const bool sweep = seed.rfind("sweep", 0) == 0;
   if (sweep && rnd.chance(0.3)) {
-    v.inputs.push_back({"other.json", seed_text(rnd.chance(0.5) ? "sweep" : "sweep-cyclic")});
+    v.inputs.push_back({"other.json", seed_text(rnd.chance(0.5) ? "sweep" : "sweep-trimmed")});
     v.args.push_back("other.json");
   }
   std::string options;
@@ -1056,8 +1054,8 @@ Vector merge_vector(Random& rnd, Coverage& cov) {
 // asks for).  An enumeration, the same in every run.
 std::vector<Vector> every_string_field_vectors() {
   // (sweep-plot and map-1 have the fields of sweep and map.)
-  static const std::vector<std::string> kSeeds = {"sweep",  "sweep-cyclic", "study",   "map",
-                                                  "map-mu", "response",     "simulate"};
+  static const std::vector<std::string> kSeeds = {"sweep",  "sweep-trimmed", "study",   "map",
+                                                  "map-mu", "response",      "simulate"};
   // FLAPLAG_FILE_FUZZ_FIELD_PAYLOADS: 1 (one payload per field, in turn), 2 (and the backquote),
   // 3 (and the quote with system(); the default).
   const long payloads_per_field = std::min(env_long("FLAPLAG_FILE_FUZZ_FIELD_PAYLOADS", 3), 3L);
@@ -1166,7 +1164,7 @@ const std::vector<CaseBase>& case_bases() {
        "json = true\n",
        {}},
       {"command = \"simulate\"\nmu = 0.3\nrevs = 1\nsamples = 12\n", {}},
-      {"command = \"trim\"\nmodel = \"paper-cyclic\"\nmu = 0.2\nthrust-coefficient = 0.005\n", {}},
+      {"command = \"trim\"\nmu = 0.2\nthrust-coefficient = 0.005\n", {}},
   };
   return b;
 }

@@ -2,8 +2,8 @@
 """Forward flight about the periodic equilibrium: the periodic equilibrium q°(psi)
 of the nonlinear equations, a nonlinear time-domain simulation from it, and a thrust trim.
 
-Left: the tip flap and lag deflections of q°(psi) over one revolution at mu (model
-'paper-nonlinear', the typical case otherwise).  Right: the nonlinear simulation from q°(0)
+Left: the tip flap and lag deflections of q°(psi) over one revolution at mu (the typical
+case).  Right: the nonlinear simulation from q°(0)
 plus a small perturbation; the lag deviation from q°(psi) decays like exp(zeta psi) with zeta
 the largest Floquet exponent of the linearization about q° (dashed).  Run:
 
@@ -25,7 +25,7 @@ def main():
     ap.add_argument("--revs", type=float, default=40.0, help="revolutions simulated")
     args = ap.parse_args()
 
-    an = flaplag.Analysis(model="paper-nonlinear")
+    an = flaplag.Analysis()
     eq = an.periodic_equilibrium(args.mu, samples=180)
     print(eq)
     sim = an.simulate(args.mu, nonlinear=True, y0=1e-3, revolutions=args.revs,
@@ -33,9 +33,8 @@ def main():
     print(sim)
     print(f"largest zeta about q°: {eq.max_zeta:.6g} per rev; "
           f"simulated lag envelope rate: {sim.lag_growth_rate:.6g} per rev")
-    # The same blade with cyclic pitch, trimmed to C_T = 0.005 at mu = 0.3 (moment trim).
-    print(flaplag.Analysis(model="paper-cyclic").trim(0.3, kind="moment",
-                                                      thrust_coefficient=0.005))
+    # The same blade trimmed to C_T = 0.005 at mu = 0.3 (moment trim: with cyclic pitch).
+    print(an.trim(0.3, kind="moment", thrust_coefficient=0.005))
 
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 4))
     deg = np.degrees(eq.psi)

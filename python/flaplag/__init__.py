@@ -44,7 +44,9 @@ max_advance_ratio = _flaplag.max_advance_ratio
 
 
 def models():
-    """The compiled ordering models (the command line's ``flaplag models``)."""
+    """The compiled ordering models, one per spec at the spec's mode counts (the command
+    line's ``flaplag models``); each also exists as '<name>-<M>x<N>' for any 1 <= M, N <= 12
+    exact modes (Analysis(model=..., modes='exact', flap_modes=M, lag_modes=N))."""
     return [ModelInfo._from(m) for m in _flaplag.models()]
 
 

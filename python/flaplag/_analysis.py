@@ -54,9 +54,10 @@ _MODE_COUNTS = (
         "type": "int",
         "default": 1,
         "units": "-",
-        "requirement": ">= 1",
-        "description": "flap modes M: selects the compiled model '<model>-<M>x<N>' "
-        "(<model> itself for 1 x 1; more than one mode needs modes='exact')",
+        "requirement": "in 1..12",
+        "description": "flap modes M: selects the model '<model>-<M>x<N>' "
+        "(<model> itself for 1 x 1; more than one mode needs modes='exact' and at most "
+        "basis modes per direction)",
     },
     {
         "field": "lag_modes",
@@ -64,7 +65,7 @@ _MODE_COUNTS = (
         "type": "int",
         "default": 1,
         "units": "-",
-        "requirement": ">= 1",
+        "requirement": "in 1..12",
         "description": "lag modes N (see flap_modes)",
     },
 )
@@ -323,7 +324,7 @@ class Analysis:
 
     @property
     def model(self) -> ModelInfo:
-        """The compiled ordering model of this analysis."""
+        """The ordering model of this analysis (its family and mode counts)."""
         return ModelInfo._from(self._native.model())
 
     @property
@@ -349,8 +350,8 @@ class Analysis:
         in steps of at most scan_step so that each exponent keeps its flap / lag label and its
         omega its integer part.  zeta, omega per rev.
 
-        trim='thrust' or 'moment' (the command line's --trim; a model with the thrust, e.g.
-        model='paper-cyclic'): the rotor is trimmed to C_T = thrust_coefficient (shaft angle
+        trim='thrust' or 'moment' (the command line's --trim; every model has the thrust and
+        the cyclic pitch): the rotor is trimmed to C_T = thrust_coefficient (shaft angle
         alpha_R [rad]) at every mu the continuation evaluates (C++ trimmed_point); see trim()."""
         t = _trim_request(trim, thrust_coefficient, shaft_angle)
         if t is not None:
@@ -521,8 +522,8 @@ class Analysis:
         forced: include f(psi) (default: the free response).  ``revolutions`` (> 0), reported
         ``samples_per_rev`` times per revolution; steps_per_rev: RK4 steps (0: automatic).
 
-        nonlinear=True (``--nonlinear``): the nonlinear equations of a model with nonlinear
-        loads (e.g. model='paper-nonlinear'), the full state from the periodic equilibrium
+        nonlinear=True (``--nonlinear``): the nonlinear equations (every model has the
+        nonlinear loads), the full state from the periodic equilibrium
         q°(psi) plus y0; flap_tip, lag_tip are then the deviation from q°(psi) (their growth
         rates compare with the largest zeta about it), flap_total, lag_total the total tip
         deflections.  forced must stay False (the loads are part of the equations).
@@ -559,8 +560,7 @@ class Analysis:
         samples=72,
     ) -> PeriodicEquilibriumResult:
         """The periodic equilibrium q°(psi) of the nonlinear equations at mu (C++
-        Analysis::periodic_equilibrium; a model with nonlinear loads, e.g.
-        model='paper-nonlinear'): harmonic balance with ``harmonics`` K (-1, the default:
+        Analysis::periodic_equilibrium; every model has the nonlinear loads): harmonic balance with ``harmonics`` K (-1, the default:
         doubled from 8 up to 64 until two K's coefficients agree to ``harmonics_tolerance``,
         relative) and Newton to ``tolerance``, continued from hover; its Fourier coefficients, the state and the tip
         deflections at ``samples`` azimuths psi_k = 2 pi k / samples, and (check_stability)
@@ -588,8 +588,8 @@ class Analysis:
         max_iterations=TRIM_DEFAULTS["max_iterations"],
         tolerance=TRIM_DEFAULTS["tolerance"],
     ) -> TrimResult:
-        """Trims this rotor at mu (C++ flaplag::trim, the command line's ``flaplag trim``; a
-        model that emits the thrust, e.g. model='paper-cyclic'): kind 'thrust' (theta0 and the
+        """Trims this rotor at mu (C++ flaplag::trim, the command line's ``flaplag trim``; any
+        model: each has the thrust and the cyclic pitch): kind 'thrust' (theta0 and the
         inflow of eq 2.25) or 'moment' (also theta1c, theta1s with no first flap harmonic) such
         that the model's C_T (not C_T / sigma) equals thrust_coefficient, with the shaft angle
         alpha_R [rad] in eq 2.25.  Newton to ``tolerance`` in max_iterations."""
@@ -605,8 +605,8 @@ class Analysis:
         )
 
     def thrust(self, mu, *, inflow="momentum", shaft_angle=0.0) -> ThrustResult:
-        """The model's own thrust coefficient at mu with this rotor's pitch (C++ rotor_thrust;
-        a model that emits the thrust, e.g. model='paper-cyclic').  inflow: 'momentum' (eq 2.25
+        """The model's own thrust coefficient at mu with this rotor's pitch (C++
+        rotor_thrust).  inflow: 'momentum' (eq 2.25
         solved together with C_T, shaft angle alpha_R [rad]: the thrust the rotor produces at
         this pitch), 'paper' (eq 2.24, the untrimmed default) or a number (lambda itself)."""
         if isinstance(inflow, str):

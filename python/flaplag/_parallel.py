@@ -157,8 +157,8 @@ def study(
     critical search of Analysis.critical runs with all_intervals=True up to mu_max (the
     search options have the same meaning and defaults).
 
-    trim='thrust' or 'moment' (the command line's study --trim; a model with the thrust, e.g.
-    model='paper-cyclic'), thrust_coefficient (C_T, not C_T / sigma), shaft_angle (alpha_R
+    trim='thrust' or 'moment' (the command line's study --trim; any model),
+    thrust_coefficient (C_T, not C_T / sigma), shaft_angle (alpha_R
     [rad]): mu_c at fixed C_T, each row's rotor trimmed at every mu its search evaluates (as
     Analysis.critical(trim=...)).  Each row's ``trim`` is then the TrimResult at its mu_c, and
     the result's theta0, theta1c, theta1s, inflow are those controls as arrays (nan without

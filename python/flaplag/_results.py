@@ -565,7 +565,7 @@ class SimulationResult:
 
     Linear (nonlinear False): y' = A(psi) y (+ f(psi) when forced) from y(0) = y0, y the
     perturbation about the hover equilibrium.  Nonlinear: the full state of the nonlinear
-    equations (model with nonlinear loads, e.g. 'paper-nonlinear') from the reference
+    equations (with the model's nonlinear loads) from the reference
     equilibrium plus y0; ``reference`` says which: 'periodic equilibrium' (q°(psi); at mu = 0
     the hover equilibrium) or, where the branch from hover has no periodic equilibrium,
     'hover equilibrium' (status 'warning').
@@ -796,8 +796,9 @@ class ThrustResult:
 
 @dataclass(frozen=True)
 class ModelInfo:
-    """A compiled ordering model: name (e.g. 'paper-2x2'), base (its family, 'paper'),
-    flap_modes M, lag_modes N, harmonics, spec_file and a one-line summary."""
+    """An ordering model: name (e.g. 'paper-2x2'), base (its family: one per ordering spec,
+    'paper'), flap_modes M, lag_modes N (any 1..12 per family), harmonics, spec_file and a
+    one-line summary."""
 
     name: str
     base: str

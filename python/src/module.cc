@@ -16,6 +16,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -242,10 +243,13 @@ py::dict transition_dict(const TransitionOptions& o) {
 }
 
 // The model of M flap and N lag modes in the family of p.model (the command line's
-// --flap-modes / --lag-modes); 1 x 1 is p.model itself.
+// --flap-modes / --lag-modes; any 1..model::kMaxModes); 1 x 1 is p.model itself.
 void select_mode_counts(RotorParameters& p, int flap_modes, int lag_modes) {
   for (const auto& [name, n] : {std::pair{"flap_modes", flap_modes}, {"lag_modes", lag_modes}}) {
-    if (n < 1) throw InvalidInput(name, std::to_string(n), "must be >= 1");
+    if (n < 1 || n > model::kMaxModes)
+      throw InvalidInput(
+          name, std::to_string(n),
+          "must be 1.." + std::to_string(model::kMaxModes) + " (the largest exact-mode basis)");
   }
   if (flap_modes == 1 && lag_modes == 1) return;
   if (p.modes == ModeKind::Assumed) {
@@ -258,11 +262,30 @@ void select_mode_counts(RotorParameters& p, int flap_modes, int lag_modes) {
   p.model = find_model(p.model, flap_modes, lag_modes).name;
 }
 
+// Galerkin's method gives at most `basis` rotating modes per direction.  Asked for more without
+// basis=, the error names the mode count (with it, the library's names basis).
+void check_basis_holds_the_modes(const RotorParameters& p, bool basis_given, int flap_modes,
+                                 int lag_modes) {
+  const int most = std::max(flap_modes, lag_modes);
+  if (p.modes != ModeKind::Exact || basis_given || most <= p.basis) return;
+  const bool flap = flap_modes > p.basis;
+  throw InvalidInput(
+      flap ? "flap_modes" : "lag_modes", std::to_string(flap ? flap_modes : lag_modes),
+      "more modes than the exact-mode basis of basis = " + std::to_string(p.basis) +
+          " cantilever functions per direction gives: add basis=" + std::to_string(most) +
+          " (up to " + std::to_string(model::kMaxModes) + ")");
+}
+
 RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_modes) {
   RotorParameters p = rotor_parameters(params);
   validate(p);
-  find_model(p.model);
+  try {
+    find_model(p.model);
+  } catch (const InvalidInput& e) {  // "paper-13x1": the library names the mode count
+    throw InvalidInput("model", p.model, e.name() == "model" ? e.reason() : e.what());
+  }
   select_mode_counts(p, flap_modes, lag_modes);
+  check_basis_holds_the_modes(p, params.contains("basis"), flap_modes, lag_modes);
   return p;
 }
 

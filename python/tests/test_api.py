@@ -60,6 +60,24 @@ def test_parameters_round_trip():
     assert flaplag.Analysis(modes="exact", flap_modes=2, lag_modes=2).model.name == "paper-2x2"
 
 
+def test_any_mode_counts_up_to_twelve():
+    """One model per spec, instantiated for any M x N (1..12) with exact modes."""
+    m = flaplag.Analysis(modes="exact", flap_modes=4, lag_modes=1).model
+    assert (m.name, m.base, m.flap_modes, m.lag_modes) == ("paper-4x1", "paper", 4, 1)
+    m = flaplag.Analysis(model="lag-order-2", modes="exact", flap_modes=3, lag_modes=2).model
+    assert (m.name, m.base, m.flap_modes, m.lag_modes) == ("lag-order-2-3x2", "lag-order-2", 3, 2)
+    m = flaplag.Analysis(modes="exact", flap_modes=6, lag_modes=6, basis=6).model
+    assert m.name == "paper-6x6"
+    assert flaplag.Analysis(model="paper-3x2", modes="exact").model.name == "paper-3x2"
+    # the models are one per spec, at the spec's mode counts
+    assert sorted(m.name for m in flaplag.models()) == ["lag-order-2", "no-radial-flow", "paper"]
+    # the names of before one model per spec still run, as the model that replaced them
+    for old, now in (("paper-cyclic", "paper"), ("paper-nonlinear", "paper"),
+                     ("paper-cyclic-nonlinear", "paper")):
+        assert flaplag.Analysis(model=old).model.name == now
+    assert flaplag.Analysis(model="paper-cyclic-2x2", modes="exact").model.name == "paper-2x2"
+
+
 def test_numpy_scalars_are_numbers():
     a = flaplag.Analysis(theta=np.float64(0.15), steps=np.int64(50), reversed_flow=np.bool_(True))
     b = flaplag.Analysis(theta=0.15, steps=50)
@@ -102,7 +120,10 @@ def test_invalid_value_has_the_cli_reason(field, value):
     ({"steps": 50.5}, "steps"),
     ({"steps": True}, "steps"),
     ({"flap_modes": 2}, "flap_modes"),  # more than one mode needs exact modes
-    ({"modes": "exact", "flap_modes": 9}, "model"),  # no such compiled model
+    ({"modes": "exact", "flap_modes": 9}, "flap_modes"),  # more than the basis (5) gives
+    ({"modes": "exact", "lag_modes": 13, "basis": 12}, "lag_modes"),  # more than 12
+    ({"modes": "exact", "flap_modes": 6, "basis": 5}, "basis"),  # the basis given: it is named
+    ({"model": "paper-13x1", "modes": "exact"}, "model"),
     ({"flap_modes": 0}, "flap_modes"),
     ({"basis": 2.5}, "basis"),
     ({"basis": "5"}, "basis"),
@@ -400,18 +421,18 @@ def test_simulation_growth_rate_is_the_largest_zeta():
 
 def test_periodic_linearization_keyword_reaches_the_analysis():
     """The parameter table's switch: about the periodic equilibrium the exponents at mu > 0
-    differ from the hover linearization's, and a linear-only model is refused by name."""
-    hover = flaplag.Analysis(model="paper-nonlinear").point(0.3)
-    periodic = flaplag.Analysis(model="paper-nonlinear", periodic_linearization=True).point(0.3)
+    differ from the hover linearization's, with the default model (every model has the
+    nonlinear loads) and with the old name of the model that had them."""
+    hover = flaplag.Analysis().point(0.3)
+    periodic = flaplag.Analysis(periodic_linearization=True).point(0.3)
     assert periodic.status != "failed", periodic.message
     assert abs(periodic.max_zeta - hover.max_zeta) > 1e-4
-    with pytest.raises(ValueError) as err:
-        flaplag.Analysis(periodic_linearization=True)  # model 'paper': no nonlinear loads
-    assert err.value.field == "periodic_linearization"
+    old = flaplag.Analysis(model="paper-nonlinear", periodic_linearization=True).point(0.3)
+    assert old.max_zeta == periodic.max_zeta
 
 
 def test_periodic_equilibrium_arrays_and_its_hover_limit():
-    an = flaplag.Analysis(model="paper-nonlinear")
+    an = flaplag.Analysis()
     e = an.periodic_equilibrium(0.3, harmonics=8, samples=36)
     assert e.status == "ok", e.message
     assert e.coefficients.shape == (2, 17) and e.harmonics == 8
@@ -434,7 +455,7 @@ def test_periodic_equilibrium_arrays_and_its_hover_limit():
 
 
 def test_periodic_equilibrium_automatic_harmonics_meet_their_tolerance():
-    an = flaplag.Analysis(model="paper-nonlinear")
+    an = flaplag.Analysis()
     auto = an.periodic_equilibrium(0.3, samples=12, check_stability=False)
     assert auto.status == "ok", auto.message
     assert auto.harmonics >= 16 and auto.harmonics_error <= 1e-4
@@ -462,7 +483,7 @@ def test_periodic_equilibrium_automatic_harmonics_meet_their_tolerance():
 ])
 def test_forward_flight_bad_inputs_name_the_keyword(call, field):
     with pytest.raises(ValueError) as err:
-        call(flaplag.Analysis(model="paper-nonlinear"))
+        call(flaplag.Analysis())
     assert err.value.field == field
     assert str(err.value).startswith(field + " = ")
 
@@ -470,7 +491,7 @@ def test_forward_flight_bad_inputs_name_the_keyword(call, field):
 def test_nonlinear_simulation_settles_on_the_periodic_equilibrium():
     """The nonlinear equations from q°(0) + y0 come back to q°(psi) (damped lag mode), and the
     tip deviation is measured from it."""
-    an = flaplag.Analysis(model="paper-nonlinear", damping_lag=0.05)
+    an = flaplag.Analysis(damping_lag=0.05)
     e = an.periodic_equilibrium(0.5, samples=12, check_stability=False)
     s = an.simulate(0.5, nonlinear=True, revolutions=60, samples_per_rev=12)
     assert s.status == "ok", s.message
@@ -482,10 +503,6 @@ def test_nonlinear_simulation_settles_on_the_periodic_equilibrium():
     assert np.max(np.abs(s.y[last] - e.y)) < 1e-4 * scale  # (measured 7e-5: q°'s truncation)
     assert np.max(np.abs(s.flap_total[last] - e.flap_tip)) < 1e-4 * scale
     assert abs(s.flap_tip[0] - 0.01) < 1e-15
-    # the paper's model has no nonlinear loads: refused by name
-    with pytest.raises(ValueError) as err:
-        flaplag.Analysis().simulate(0.5, nonlinear=True)
-    assert err.value.field == "nonlinear"
     # the linear simulation has no totals
     lin = flaplag.Analysis().simulate(0.5, revolutions=1)
     assert not lin.nonlinear and lin.flap_total.shape == (0,)
@@ -494,11 +511,11 @@ def test_nonlinear_simulation_settles_on_the_periodic_equilibrium():
 def test_trim_round_trip_in_hover():
     """Issue 12: the model's own C_T at theta = 0.15 in hover (eq 2.25 inflow), trimmed back,
     gives theta = 0.15."""
-    c = flaplag.Analysis(model="paper-cyclic", theta=0.15).thrust(0.0)
+    c = flaplag.Analysis(theta=0.15).thrust(0.0)
     assert c.status == "ok", c.message
     assert 0.001 < c.thrust_coefficient < 0.02
     assert abs(c.inflow - math.sqrt(c.thrust_coefficient / 2)) < 1e-12  # eq 2.25 at mu = 0
-    t = flaplag.Analysis(model="paper-cyclic", theta=0.1).trim(
+    t = flaplag.Analysis(theta=0.1).trim(
         0.0, thrust_coefficient=c.thrust_coefficient
     )
     assert t.status == "ok", t.message
@@ -507,14 +524,14 @@ def test_trim_round_trip_in_hover():
     assert abs(t.thrust_coefficient - c.thrust_coefficient) < 1e-15
     assert t.parameters["theta"] == t.theta0
     # the paper's eq 2.24 inflow gives another lambda at the same pitch
-    p = flaplag.Analysis(model="paper-cyclic", theta=0.15).thrust(0.0, inflow="paper")
+    p = flaplag.Analysis(theta=0.15).thrust(0.0, inflow="paper")
     assert abs(p.inflow - c.inflow) > 1e-3
-    g = flaplag.Analysis(model="paper-cyclic", theta=0.15).thrust(0.0, inflow=c.inflow)
+    g = flaplag.Analysis(theta=0.15).thrust(0.0, inflow=c.inflow)
     assert abs(g.thrust_coefficient - c.thrust_coefficient) < 1e-15
 
 
 def test_moment_trim_removes_the_first_flap_harmonic():
-    t = flaplag.Analysis(model="paper-cyclic").trim(0.3, kind="moment", thrust_coefficient=0.005)
+    t = flaplag.Analysis().trim(0.3, kind="moment", thrust_coefficient=0.005)
     assert t.status == "ok", t.message
     assert abs(t.flap_1c) < 1e-10 and abs(t.flap_1s) < 1e-10
     assert abs(t.thrust_coefficient - 0.005) < 1e-10 * 0.005
@@ -534,7 +551,7 @@ def test_moment_trim_removes_the_first_flap_harmonic():
 ])
 def test_trim_bad_inputs_name_the_keyword(call, field):
     with pytest.raises(ValueError) as err:
-        call(flaplag.Analysis(model="paper-cyclic"))
+        call(flaplag.Analysis())
     assert err.value.field == field
     assert str(err.value).startswith(field + " = ")
 
@@ -550,7 +567,7 @@ def test_trim_bad_inputs_name_the_keyword(call, field):
 ])
 def test_trimmed_analyses_bad_inputs_name_the_keyword(call, field):
     with pytest.raises(ValueError) as err:
-        call(flaplag.Analysis(model="paper-cyclic"))
+        call(flaplag.Analysis())
     assert err.value.field == field
     assert str(err.value).startswith(field + " = ")
 
@@ -594,7 +611,7 @@ class _Executor:
 def test_trimmed_study_and_map_through_a_client_equal_the_local_ones():
     """The chunks sent to a client carry the trim: the assembled result is the local one."""
     ex = _Executor()
-    kw = dict(model="paper-cyclic", trim="thrust", thrust_coefficient=0.0042384)
+    kw = dict(trim="thrust", thrust_coefficient=0.0042384)
     local = flaplag.map(**_AXES, scan_step=0.2, **kw)
     remote = flaplag.map(**_AXES, scan_step=0.2, **kw, client=ex, chunk_lines=1)
     assert ex.jobs == 3 and remote == local
@@ -615,7 +632,12 @@ def test_trimmed_study_and_map_through_a_client_equal_the_local_ones():
     ex.pool.shutdown()
 
 
-def test_trim_needs_a_model_with_thrust():
-    with pytest.raises(ValueError) as err:
-        flaplag.Analysis().trim(0.3)
-    assert err.value.field == "model"
+def test_trim_in_every_model():
+    """Every model has the cyclic pitch and the thrust: the trim of the default model, of the
+    other specs' and of more modes (zero cyclic pitch is the paper's rotor)."""
+    for kw in ({}, {"model": "no-radial-flow"}, {"model": "lag-order-2"},
+               {"modes": "exact", "flap_modes": 2, "lag_modes": 2}):
+        t = flaplag.Analysis(**kw).trim(0.3, kind="moment", thrust_coefficient=0.005)
+        assert t.converged, (kw, t.message)
+        assert abs(t.thrust_coefficient - 0.005) < 1e-10 * 0.005
+        assert abs(t.flap_1c) < 1e-10 and abs(t.flap_1s) < 1e-10

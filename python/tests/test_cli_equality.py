@@ -152,16 +152,16 @@ def test_point():
 def test_trimmed_point_and_sweep():
     """`point --trim` and `sweep --trim` (stability at fixed C_T) and Analysis.point/sweep with
     trim=: the same exponents."""
-    an = flaplag.Analysis(model="paper-cyclic")
+    an = flaplag.Analysis()
     point = an.point(0.3, scan_step=0.1, trim="moment", thrust_coefficient=0.005)
     assert point.status == "ok", point.message
-    doc = run_cli("--model", "paper-cyclic", "point", "--mu", "0.3", "--scan-step", "0.1",
+    doc = run_cli("point", "--mu", "0.3", "--scan-step", "0.1",
                   "--trim", "moment", "--thrust-coefficient", "0.005")
     check_exponents(find(doc, "exponents", "point.exponents"), point.exponents)
     # not the untrimmed rotor's exponents
     assert abs(point.max_zeta - an.point(0.3, scan_step=0.1).max_zeta) > 1e-4
     sweep = an.sweep(0.0, 0.2, 0.1, trim="thrust", thrust_coefficient=0.004, shaft_angle=0.05)
-    doc = run_cli("--model", "paper-cyclic", "sweep", "--mu", "0:0.2:0.1", "--trim", "thrust",
+    doc = run_cli("sweep", "--mu", "0:0.2:0.1", "--trim", "thrust",
                   "--thrust-coefficient", "0.004", "--shaft-angle", "0.05")
     rows = find(doc, "rows", "sweep.rows")
     assert len(rows) == len(sweep.points) == 3
@@ -201,9 +201,9 @@ def test_trimmed_study():
     """`study --trim` and flaplag.study(trim=...): mu_c at fixed C_T, the same rows bit for bit;
     each row with mu_c carries the trim at mu_c, that of `flaplag trim --mu <mu_c>`."""
     values = [0.45, 0.5, 0.55]
-    st = flaplag.study("omega_lag", values, model="paper-cyclic", mu_max=1.1, scan_step=0.1,
+    st = flaplag.study("omega_lag", values, mu_max=1.1, scan_step=0.1,
                        trim="thrust", thrust_coefficient=float(TRIM_CT), threads=2)
-    doc = run_cli("--model", "paper-cyclic", "study", "--vary", "omega-lag=0.45,0.5,0.55",
+    doc = run_cli("study", "--vary", "omega-lag=0.45,0.5,0.55",
                   "--mu-max", "1.1", "--scan-step", "0.1", "--trim", "thrust",
                   "--thrust-coefficient", TRIM_CT)
     rows = find(doc, "rows", "study.rows")
@@ -238,7 +238,7 @@ def test_trimmed_study():
     assert abs(t.thrust_coefficient - t.target) <= 1e-10 * t.target
     assert (st.theta0[1], st.theta1c[1], st.theta1s[1], st.inflow[1]) == (
         t.theta0, t.theta1c, t.theta1s, t.inflow)
-    trim_doc = run_cli("--model", "paper-cyclic", "--omega-lag", "0.5", "trim", "--mu",
+    trim_doc = run_cli("--omega-lag", "0.5", "trim", "--mu",
                        repr(st.mu_c[1]), "--thrust-coefficient", TRIM_CT)
     check_trim(trim_doc, t)
     assert st.metadata["trim"] == {"kind": "thrust", "thrust_coefficient": float(TRIM_CT),
@@ -247,9 +247,9 @@ def test_trimmed_study():
 
 def test_trimmed_critical_reports_the_trim_at_mu_c():
     """`critical --trim` and Analysis.critical(trim=...): the same mu_c and the same trim there."""
-    an = flaplag.Analysis(model="paper-cyclic", omega_lag=0.5)
+    an = flaplag.Analysis(omega_lag=0.5)
     crit = an.critical(mu_max=1.1, scan_step=0.1, trim="thrust", thrust_coefficient=float(TRIM_CT))
-    doc = run_cli("--model", "paper-cyclic", "--omega-lag", "0.5", "critical", "--mu-max", "1.1",
+    doc = run_cli("--omega-lag", "0.5", "critical", "--mu-max", "1.1",
                   "--scan-step", "0.1", "--trim", "thrust", "--thrust-coefficient", TRIM_CT)
     check_critical(doc, crit)
     assert crit.trim is not None and crit.trim.mu == crit.mu_c
@@ -274,21 +274,21 @@ def test_trimmed_maps():
     """`map --trim` and flaplag.map(trim=...): the same cells bit for bit, along mu (a trimmed
     continuation per line) and at one mu (a trimmed point per cell)."""
     m = flaplag.map(x=("mu", [0.0, 0.2, 0.4, 0.6]), y=("omega_lag", [0.5, 1.0, 1.5]),
-                    model="paper-cyclic", scan_step=0.2, trim="thrust",
+                    scan_step=0.2, trim="thrust",
                     thrust_coefficient=float(TRIM_CT), threads=2)
     assert m.shape == (3, 4) and m.status == "ok"
-    doc = run_cli("--model", "paper-cyclic", "map", "--x", "mu=0:0.6:0.2", "--y",
+    doc = run_cli("map", "--x", "mu=0:0.6:0.2", "--y",
                   "omega-lag=0.5,1.0,1.5", "--scan-step", "0.2", "--trim", "thrust",
                   "--thrust-coefficient", TRIM_CT)
     check_map(doc, m)
     # not the map at fixed theta
     plain = flaplag.map(x=("mu", [0.0, 0.2, 0.4, 0.6]), y=("omega_lag", [0.5, 1.0, 1.5]),
-                        model="paper-cyclic", scan_step=0.2)
+                        scan_step=0.2)
     assert np.abs(plain.max_zeta[:, 1:] - m.max_zeta[:, 1:]).min() > 1e-6
     g = flaplag.map(x=("omega_lag", [0.5, 1.5]), y=("gamma", [8.0, 10.0]), mu=0.3,
-                    model="paper-cyclic", scan_step=0.3, trim="moment",
+                    scan_step=0.3, trim="moment",
                     thrust_coefficient=float(TRIM_CT), shaft_angle=0.02)
-    doc = run_cli("--model", "paper-cyclic", "map", "--x", "omega-lag=0.5,1.5", "--y",
+    doc = run_cli("map", "--x", "omega-lag=0.5,1.5", "--y",
                   "gamma=8,10", "--mu", "0.3", "--scan-step", "0.3", "--trim", "moment",
                   "--thrust-coefficient", TRIM_CT, "--shaft-angle", "0.02")
     assert same(find(doc, "mu"), 0.3)
@@ -345,7 +345,7 @@ def test_response(params, mu, options):
 @pytest.mark.parametrize("params,mu,options", [
     ({}, "0.9", {"revolutions": 12.0}),
     ({"modes": "exact"}, "0.5", {"revolutions": 6.5, "samples_per_rev": 20, "forced": True}),
-    ({"model": "paper-nonlinear"}, "0.3", {"revolutions": 5.0, "nonlinear": True}),
+    ({"model": "no-radial-flow"}, "0.3", {"revolutions": 5.0, "nonlinear": True}),
 ])
 def test_simulate(params, mu, options):
     """`flaplag simulate` and Analysis.simulate: the same tip response and growth rates."""

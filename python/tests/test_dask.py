@@ -64,7 +64,7 @@ def test_study_on_the_cluster(client):
 
 def test_trimmed_map_and_study_on_the_cluster(client):
     """At fixed C_T (trim=): the workers trim as a local run does."""
-    kw = dict(model="paper-cyclic", trim="thrust", thrust_coefficient=0.0042384)
+    kw = dict(trim="thrust", thrust_coefficient=0.0042384)
     axes = dict(x=("mu", [0.0, 0.2, 0.4, 0.6]), y=("omega_lag", [0.5, 1.0, 1.5]))
     local = flaplag.map(**axes, scan_step=0.2, **kw)
     remote = flaplag.map(**axes, scan_step=0.2, **kw, client=client, chunk_lines=1)

@@ -141,10 +141,6 @@ TARGETS = {
             {"x": ("mu", [0.0, 0.1]), "y": ("omega_lag", [0.6, 1.4]), "scan_step": 0.1}),
 }
 
-MODEL_OF = {"trim": "paper-cyclic", "thrust": "paper-cyclic",
-            "periodic_equilibrium": "paper-nonlinear"}
-
-
 def make_case(i, fields):
     """Case i: (target, keyword, token). `fields`: the Analysis keywords."""
     rnd = random.Random(SEED * 1000003 + i)
@@ -182,8 +178,7 @@ def call(target, keyword, token):
     import flaplag
 
     receiver, args, kw = invocation(target, keyword, build(token))
-    model = MODEL_OF.get(target)
-    an = flaplag.Analysis(model=model) if model else flaplag.Analysis()
+    an = flaplag.Analysis()
     owner, name = receiver.split(".")
     return getattr(flaplag if owner == "flaplag" else an, name)(*args, **kw)
 
@@ -228,8 +223,7 @@ def describe(target, keyword, token):
             return "value"
 
     receiver, args, kw = invocation(target, keyword, Value())
-    model = MODEL_OF.get(target)
-    setup = f"an = flaplag.Analysis({'model=' + repr(model) if model else ''}); "
+    setup = "an = flaplag.Analysis(); "
     given = [repr(a) for a in args] + [f"{k}={v!r}" for k, v in kw.items()]
     return (f"value = {HOSTILE[token]}; {setup if receiver.startswith('an.') else ''}"
             f"{receiver}({', '.join(given)})")

@@ -57,7 +57,7 @@ def test_a_big_value_is_shown_short_on_one_line(value, shown):
     ]
     if not isinstance(value, str):
         calls.append(("check_stability",
-                      lambda: flaplag.Analysis(model="paper-nonlinear").periodic_equilibrium(
+                      lambda: flaplag.Analysis().periodic_equilibrium(
                           0.3, check_stability=value)))
     for keyword, call in calls:
         with pytest.raises((ValueError, TypeError)) as ei:
@@ -74,7 +74,7 @@ def test_a_long_text_from_the_library_is_cut():
         flaplag.Analysis(model="paper\nsecond line")
     _one_line(ei, "model", "paper second line")
     with pytest.raises(flaplag.InvalidInput) as ei:
-        flaplag.Analysis(model="paper-cyclic").trim(0.2, kind="k" * 100_000)
+        flaplag.Analysis().trim(0.2, kind="k" * 100_000)
     _one_line(ei, "kind", "'kkk", "...")
     with pytest.raises(flaplag.InvalidInput) as ei:
         flaplag.Analysis().modes(memory_limit=np.zeros((3, 3)))
@@ -105,7 +105,7 @@ def test_sweep_start_stop_step_names_mu_and_stop(args, keyword, words):
 
 
 def test_trimmed_sweep_start_stop_step_names_mu_and_stop():
-    an = flaplag.Analysis(model="paper-cyclic")
+    an = flaplag.Analysis()
     with pytest.raises(flaplag.InvalidInput) as ei:
         an.sweep(0.3, 0.1, 0.1, trim="thrust")
     message = _one_line(ei, "stop", "must be >= mu")
@@ -137,7 +137,7 @@ def test_a_trim_at_a_vanishing_advance_ratio_is_the_hover_trim(mu):
     # The momentum inflow of eq 2.25 divided by |(mu, lambda)| and bracketed its root up to
     # C_T / (2 mu): below mu ~ 1e-154 the library reported its Brent bracket ("b = inf"), and at
     # mu = 1e-150 it returned a wrong trim (theta0 = 0.095 instead of 0.170, inflow 0) as "ok".
-    an = flaplag.Analysis(model="paper-cyclic")
+    an = flaplag.Analysis()
     hover = an.trim(0.0)
     t = an.trim(mu)
     assert t.status == "ok", t.message
@@ -149,7 +149,7 @@ def test_a_trim_at_a_vanishing_advance_ratio_is_the_hover_trim(mu):
 
 @pytest.mark.parametrize("inflow", [1e308, -1e308, 1e6])
 def test_a_huge_given_inflow_names_inflow(inflow):
-    an = flaplag.Analysis(model="paper-cyclic")
+    an = flaplag.Analysis()
     with pytest.raises(flaplag.InvalidInput) as ei:
         an.thrust(0.2, inflow=inflow)
     _one_line(ei, "inflow", "must be in [-1000, 1000]")

@@ -210,7 +210,7 @@ def test_a_client_without_submit_is_named(client):
 
 
 def test_a_trimmed_sweep_reports_progress_too():
-    an = flaplag.Analysis(model="paper-cyclic")
+    an = flaplag.Analysis()
     calls = []
     r = an.sweep(0.0, 0.2, 0.1, trim="thrust", progress=lambda d, n: calls.append((d, n)))
     assert len(r.mu) == 3
