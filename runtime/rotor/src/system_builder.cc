@@ -209,6 +209,7 @@ model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) co
   in.theta1s = p_.theta1s;
   in.flap_modes = model_->flap_modes;
   in.lag_modes = model_->lag_modes;
+  in.context = model_->context;
   return in;
 }
 
