@@ -139,6 +139,7 @@ Program::Program(const derive::GenericModel& g) : H_(g.H), H_nonlinear_(g.H_nonl
           r.factors.push_back(f);
         }
       }
+      r.n_scalars = r.factors.size();
       for (const derive::IndexedScalar& x : t.indexed) {
         Factor f{Factor::Kind::Indexed};
         f.array = indexed_scalar(x.family);
@@ -168,15 +169,25 @@ Program::Program(const derive::GenericModel& g) : H_(g.H), H_nonlinear_(g.H_nonl
 
 // The emitted product: [coefficient] * scalars * indexed * integral, left to right, the sign on
 // the first factor (rounding is symmetric: -(a*b) == (-a)*b).
-double Program::value(const Term& t, const Context& c) const {
-  double p = 1.0;
-  bool first = true;
+Program::Partial Program::prefix(const Term& t, const Context& c) {
+  Partial p{t.has_coef ? t.coef : 1.0, t.has_coef};
+  for (std::size_t k = 0; k < t.n_scalars; ++k) {
+    const double x = c.in.*t.factors[k].scalar;
+    p.value = p.started ? p.value * x : x;
+    p.started = true;
+  }
+  return p;
+}
+
+double Program::value(const Term& t, const Context& c, Partial pre) const {
+  double p = pre.value;
+  bool first = !pre.started;
   auto times = [&](double x) {
     p = first ? x : p * x;
     first = false;
   };
-  if (t.has_coef) times(t.coef);
-  for (const Factor& f : t.factors) {
+  for (std::size_t k = t.n_scalars; k < t.factors.size(); ++k) {
+    const Factor& f = t.factors[k];
     switch (f.kind) {
       case Factor::Kind::Scalar:
         times(c.in.*f.scalar);
@@ -191,7 +202,7 @@ double Program::value(const Term& t, const Context& c) const {
       case Factor::Kind::Structural: {
         const model::TemplateTensors& T = f.kind == Factor::Kind::Aero ? c.A : c.S;
         int a[model::kMaxFactors] = {0, 0, 0, 0};
-        for (int k = 0; k < f.n_args; ++k) a[k] = c.v[f.args[k]];
+        for (int arg = 0; arg < f.n_args; ++arg) a[arg] = c.v[f.args[arg]];
         times(T(f.index, a[0], a[1], a[2], a[3]));
         break;
       }
@@ -225,7 +236,8 @@ void Program::linear(SlotKind kind, Context& c, Target target) const {
       for (const Term& t : s.terms) {
         if (t.diagonal != diagonal) continue;
         const int bound = (s.has_eq ? 1 : 0) + (s.has_col && !t.diagonal ? 1 : 0);
-        for_free(t, bound, c, [&] { v += value(t, c); });
+        const Partial pre = prefix(t, c);
+        for_free(t, bound, c, [&] { v += value(t, c, pre); });
       }
       return v;
     };
@@ -318,8 +330,9 @@ void Program::polynomial(SlotKind kind, const CoefficientInputs& in, const doubl
       double* jac = out.jacobian + (s.harmonic * rows + row) * 2 * n;
       if (!thrust) c.v[0] = i;
       for (const Term& t : s.terms) {
+        const Partial pre = prefix(t, c);
         for_free(t, thrust ? 0 : 1, c, [&] {
-          const double k = value(t, c);
+          const double k = value(t, c, pre);
           auto y_of = [&](const State& st) { return y[c.col(st.dir, st.rate, c.v[st.var])]; };
           double prod = k;
           for (const State& st : t.states)

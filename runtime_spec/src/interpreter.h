@@ -55,7 +55,8 @@ class Program {
     bool negative = false;
     bool has_coef = false;
     double coef = 1.0;
-    std::vector<Factor> factors;
+    std::vector<Factor> factors;  // the plain scalars first (n_scalars of them)
+    std::size_t n_scalars = 0;
     std::vector<derive::ModeDir> vars;
     bool diagonal = false;
     std::vector<State> states;
@@ -70,7 +71,16 @@ class Program {
   };
   struct Context;  // the inputs of one call: tensors, mode counts, variable values
 
-  double value(const Term& t, const Context& c) const;
+  // The product so far: its value and whether it has a factor yet.
+  struct Partial {
+    double value;
+    bool started;
+  };
+  // The coefficient times the plain scalars: the same for every mode of a call, so computed
+  // once per call (the left end of the product, so the result is the same to the bit).
+  static Partial prefix(const Term& t, const Context& c);
+  // The term's value for the variables in c.
+  double value(const Term& t, const Context& c, Partial prefix) const;
   // Calls f() for every value of the term's variables from `first` on (first slowest).
   template <class F>
   static void for_free(const Term& t, int first, Context& c, F f);
