@@ -56,6 +56,18 @@ TEST(CliSpec, CriticalOfTheShippedSpecEqualsTheCompiledModel) {
   EXPECT_NE(run_time.out.find("spec:paper"), std::string::npos);
 }
 
+// The audit report of a shipped spec is its checked-in report.
+TEST(CliSpec, AuditOfTheShippedSpecIsItsGeneratedReport) {
+  TempDir dir;
+  const Outcome o =
+      flaplag_run({"--spec", kPaper, "--audit", dir.file("paper.md"), "point", "--mu", "0.1"});
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  const std::string golden =
+      flaplag::testing::slurp(std::string(FLAPLAG_SPEC_DIR) + "/../../generated/paper.md");
+  ASSERT_FALSE(golden.empty());
+  EXPECT_TRUE(flaplag::testing::slurp(dir.file("paper.md")) == golden);
+}
+
 TEST(CliSpec, AnyModeCounts) {
   const std::vector<std::string> args = {"--json",      "--modes", "exact", "--flap-modes", "2",
                                          "--lag-modes", "2",       "point", "--mu",         "0.3"};
