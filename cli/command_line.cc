@@ -16,6 +16,7 @@
 #include "flaplag/core/parallel.h"
 #include "flaplag/limits.h"
 #include "flaplag/rotor/parameter_table.h"
+#include "flaplag_spec/runtime_spec.h"
 #include "plot.h"
 #include "shard.h"
 
@@ -672,6 +673,23 @@ Request CommandLine::interpret() const {
 
   const bool analysis = c != Command::Models && c != Command::Modes;
   if (analysis) {
+    // --spec FILE.toml: the model is derived from the file now (runtime_spec.h).
+    if (const Given* g = given("--spec")) {
+      if (const Given* m = given("--model"))
+        throw InvalidInput(m->spelling, shown(m->text), "not with --spec (the spec is the model)");
+      try {
+        r.params.model = spec::load_spec(g->text).name;
+      } catch (const InvalidInput& e) {
+        throw InvalidInput(g->spelling, shown(g->text), e.reason());
+      }
+    }
+    if (const Given* g = given("--audit")) {
+      if (given("--spec") == nullptr)
+        throw InvalidInput(g->spelling, shown(g->text),
+                           "needs --spec (the report of a compiled model is generated/<model>.md)");
+      if (g->text.empty()) throw InvalidInput(g->spelling, shown(g->text), "empty file name");
+      r.audit = g->text;
+    }
     // --flap-modes M --lag-modes N select the model "<model>-<M>x<N>"; 1x1 is <model> itself.
     if (flap_given || lag_given) {
       if ((flap_modes > 1 || lag_modes > 1) && r.params.modes == ModeKind::Assumed) {

@@ -42,6 +42,8 @@ struct Request {
   bool csv = false;
   // models: --spec NAME ("" lists the models)
   std::string spec;
+  // analysis commands: --audit FILE.md, the audit report of the --spec model ("": none)
+  std::string audit;
   // modes: the Fig 9 table over nonrotating first frequencies START:STOP:STEP (fig9_points of
   // them), and M flap / N lag rotating mode shapes from params.basis cantilever functions,
   // tabulated at shape_points stations

@@ -23,6 +23,7 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/limits.h"
 #include "flaplag/version.h"
+#include "flaplag_spec/runtime_spec.h"
 #include "output.h"
 #include "plot.h"
 #include "progress.h"
@@ -164,6 +165,7 @@ int run(const std::vector<std::string>& raw) {
     // Check every output path before a possibly long analysis; nothing is left behind.
     const flaplag::cli::OutputTarget target(request.output, "output");
     const flaplag::cli::OutputTarget picture(request.plot, "plot");
+    const flaplag::cli::OutputTarget audit(request.audit, "audit");
     // The picture is written after the output, so that a run that fails leaves none.
     flaplag::cli::DeferredPictures pictures;
     std::string warning;
@@ -187,6 +189,9 @@ int run(const std::vector<std::string>& raw) {
       target.write(text);
     }
     pictures.commit();
+    // The audit report of a --spec model, after the result (a failed run writes none).
+    if (!request.audit.empty())
+      audit.write(flaplag::spec::audit_report(flaplag::find_model(request.params.model).base));
     // At most one warning line: what the case file left out, then what the run says.
     std::vector<std::string> warnings = e.from_file.warnings;
     if (!warning.empty()) warnings.push_back(warning);

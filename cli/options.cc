@@ -137,6 +137,21 @@ std::vector<OptionSpec> mode_count_options() {
   };
 }
 
+// A model derived at run time from an ordering spec file (runtime_spec/): no build needed.
+std::vector<OptionSpec> spec_options() {
+  return {
+      value_option("--spec", "SPEC.toml",
+                   "derive the model of this ordering spec file now (GiNaC) instead of using a "
+                   "compiled one: the model spec:<name>, any --flap-modes/--lag-modes; a `base` "
+                   "is looked up in the file's directory; not with --model",
+                   "", {"spec"}),
+      value_option("--audit", "FILE.md",
+                   "with --spec: also write the spec's audit report (every term with its eps "
+                   "order, origin and paper name) to FILE.md",
+                   "", {"audit"}),
+  };
+}
+
 // Trim (runtime/analysis trim.h): a trimmed rotor at every mu (point, sweep, critical, trim).
 std::vector<OptionSpec> trim_options(bool for_trim_command) {
   const TrimOptions defaults;
@@ -344,6 +359,7 @@ std::vector<OptionSpec> build(Command c) {
       c != Command::Trim)
     append(v, transition_options());
   append(v, mode_count_options());
+  append(v, spec_options());
   append(v, output_options());
   return v;
 }

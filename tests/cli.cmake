@@ -37,3 +37,10 @@ flaplag_cli_test(cli_honest_test nlohmann_json::nlohmann_json)
 # The memory limit (--memory-limit): large runs refused before they allocate (maintained with
 # cli/ and runtime/analysis limits.h).
 flaplag_cli_test(cli_limits_test flaplag_cli nlohmann_json::nlohmann_json)
+
+# --spec FILE.toml: a model derived at run time (runtime_spec/; needs GiNaC).
+if(TARGET flaplag_derive)
+  flaplag_cli_test(cli_spec_test nlohmann_json::nlohmann_json)
+  target_compile_definitions(cli_spec_test PRIVATE
+    FLAPLAG_SPEC_DIR="${PROJECT_SOURCE_DIR}/generator/orderings")
+endif()

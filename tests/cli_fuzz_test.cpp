@@ -155,6 +155,7 @@ class Generator {
                                                 "--mu-max",
                                                 "--psi",
                                                 "--spec",
+                                                "--audit",
                                                 "--basis",
                                                 "--nonrotating",
                                                 "--points",
@@ -276,6 +277,7 @@ class Generator {
       return pick(
           std::vector<std::string>{"2G", "512M", "1M", "64G", "0.5G", "8GiB", "3000000000"});
     if (option == "--plot") return chance(0.5) ? "plot.svg" : "plot.png";
+    if (option == "--audit") return "audit.md";
     if (option == "--label") return pick(std::vector<std::string>{"(a) paper", "", "x\"y"});
     if (option == "--mode") return pick(std::vector<std::string>{"lag", "flap", "lag2"});
     if (option == "--shard") {  // part I of N; now and then I > N (refused)
@@ -411,8 +413,9 @@ class Generator {
           o.name == "--mu-max" || o.name == "--format" || o.name == "--steps" ||
           o.name == "--vary" || o.name == "--x" || o.name == "--y" || o.name == "--samples" ||
           o.name == "--revs" || o.name == "--perturbation" || o.name == "--forced" ||
-          o.name == "--nonlinear") {
-        continue;
+          o.name == "--nonlinear" || (o.name == "--spec" && c != cli::Command::Models) ||
+          o.name == "--audit") {
+        continue;  // (--spec FILE.toml derives a model: tests/cli_spec_test.cpp)
       }
       // gnuplot is slow to start: few pictures.  A periodic equilibrium (harmonic balance
       // continued from hover) at every mu is the costliest switch: rarely, and in the heavy

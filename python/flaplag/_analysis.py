@@ -12,6 +12,7 @@ import inspect
 import math
 import numbers
 import operator
+import os
 import re
 import textwrap
 
@@ -205,6 +206,15 @@ def split_parameters(kwargs):
     names checked and values converted to the field types; the values themselves are checked
     by the library."""
     rotor, transition, counts = {}, {}, {"flap_modes": 1, "lag_modes": 1}
+    if "spec" in kwargs:
+        # spec="my.toml": the model derived from that ordering spec file now (spec:<name>).
+        kwargs = dict(kwargs)
+        spec = kwargs.pop("spec")
+        if "model" in kwargs:
+            raise _invalid(InvalidInput, "model", kwargs["model"], "not with spec (the spec is the model)")
+        if not isinstance(spec, (str, os.PathLike)):
+            raise _invalid(InvalidInput, "spec", spec, "must be the path of a spec file (str)")
+        kwargs["model"] = _flaplag.load_spec(os.fspath(spec))
     for field, value in kwargs.items():
         if field not in _ALL_FIELDS:
             close = difflib.get_close_matches(field, list(_ALL_FIELDS), n=1)

@@ -41,6 +41,7 @@
 #include "flaplag/study.h"
 #include "flaplag/trim.h"
 #include "flaplag/version.h"
+#include "flaplag_spec/runtime_spec.h"
 
 namespace py = pybind11;
 
@@ -1082,6 +1083,14 @@ PYBIND11_MODULE(_flaplag, m) {
   m.def("equilibrium_defaults", &equilibrium_defaults);
   m.def("trim_defaults", &trim_defaults);
   m.def("models", &model_rows);
+  // spec="my.toml": derives the spec now and registers its model (runtime_spec.h).
+  m.def("load_spec", [](const std::string& path) {
+    const std::string name = flaplag::spec::load_spec(path).name;
+    return name;
+  });
+  m.def("audit_report", [](const std::string& model) {
+    return flaplag::spec::audit_report(flaplag::find_model(model).base);
+  });
   m.def("study_parameters", [] {
     py::list l;
     for (const ParameterSpec& s : parameter_table())

@@ -16,6 +16,16 @@ endforeach()
 # failure; the reason is in the output.
 set_tests_properties(python.dask PROPERTIES SKIP_RETURN_CODE 5)
 
+# spec="my.toml": a model derived at run time (needs GiNaC, as the generator).
+if(TARGET flaplag_derive)
+  add_test(NAME python.spec
+           COMMAND ${Python3_EXECUTABLE} -m pytest -q -rs -p no:cacheprovider
+                   ${CMAKE_CURRENT_SOURCE_DIR}/tests/test_spec.py
+           WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/tests)
+  set_tests_properties(python.spec PROPERTIES
+    ENVIRONMENT "${py_env};FLAPLAG_SPEC_DIR=${PROJECT_SOURCE_DIR}/generator/orderings" TIMEOUT 300)
+endif()
+
 # Generated keyword values against the API's error contract (FLAPLAG_PY_FUZZ_VECTORS calls, each
 # in a worker process under a memory cap and a time limit).
 add_test(NAME python.fuzz_keywords

@@ -174,6 +174,7 @@ std::unique_ptr<Instance> make(const ModelFamily& f, int M, int N) {
   d.n_nonlinear_harmonics = f.n_nonlinear_harmonics;
   d.nonlinear = f.nonlinear;
   d.nonlinear_thrust = f.nonlinear_thrust;
+  d.context = f.context;
   return in;
 }
 
@@ -192,9 +193,43 @@ const ModelDescriptor& instantiate(const ModelFamily& f, int M, int N) {
   return slot->descriptor;
 }
 
+namespace {
+
+// The families registered at run time, under their lock.
+struct RunTimeFamilies {
+  std::mutex mutex;
+  std::vector<const ModelFamily*> families;
+};
+RunTimeFamilies& run_time_families() {
+  static RunTimeFamilies r;
+  return r;
+}
+
+}  // namespace
+
+void register_family(const ModelFamily& f) {
+  RunTimeFamilies& r = run_time_families();
+  const std::lock_guard<std::mutex> lock(r.mutex);
+  std::vector<const ModelFamily*> all = compiled_families();
+  all.insert(all.end(), r.families.begin(), r.families.end());
+  for (const ModelFamily* g : all) {
+    if (std::string(g->name) == f.name)
+      throw std::invalid_argument("a model family named " + std::string(f.name) + " exists");
+  }
+  r.families.push_back(&f);
+}
+
+std::vector<const ModelFamily*> registered_families() {
+  std::vector<const ModelFamily*> out = compiled_families();
+  RunTimeFamilies& r = run_time_families();
+  const std::lock_guard<std::mutex> lock(r.mutex);
+  out.insert(out.end(), r.families.begin(), r.families.end());
+  return out;
+}
+
 std::vector<const ModelDescriptor*> registered_models() {
   std::vector<const ModelDescriptor*> out;
-  for (const ModelFamily* f : registered_families())
+  for (const ModelFamily* f : compiled_families())
     out.push_back(&instantiate(*f, f->default_flap_modes, f->default_lag_modes));
   return out;
 }

@@ -209,6 +209,7 @@ model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) co
   in.theta1s = p_.theta1s;
   in.flap_modes = model_->flap_modes;
   in.lag_modes = model_->lag_modes;
+  in.context = model_->context;
   return in;
 }
 
@@ -303,9 +304,10 @@ class SystemBuilder::ExactTable {
     // Harmonics packed as columns [vec(A_h); f_h]; the table holds the change from the normal
     // harmonics, so that entries the reversed flow does not touch (the identity rows of A)
     // stay exact.
+    // assemble() drops trailing harmonics that are exactly zero: those columns stay zero.
     auto pack = [&](const HarmonicSet& set) {
-      Eigen::MatrixXd v(rows, H_);
-      for (int h = 0; h < H_; ++h) {
+      Eigen::MatrixXd v = Eigen::MatrixXd::Zero(rows, H_);
+      for (int h = 0; h < static_cast<int>(set.A.size()); ++h) {
         v.col(h).head(static_cast<Eigen::Index>(ns_) * ns_) =
             Eigen::Map<const Eigen::VectorXd>(set.A[h].data(), set.A[h].size());
         v.col(h).tail(ns_) = set.f[h];

@@ -148,6 +148,9 @@ struct CoefficientInputs {
   // Mode counts M, N: read by the functions of a ModelFamily (instantiate() descriptors).
   int flap_modes;
   int lag_modes;
+  // The model's ModelDescriptor::context (SystemBuilder copies it): the data of a family made at
+  // run time, nullptr for a compiled one (which never reads it).
+  const void* context = nullptr;
 };
 
 // Outputs.  n = M + N equations, 2n states, H harmonics.
@@ -214,6 +217,9 @@ struct ModelDescriptor {
   // entries, out.jacobian H_nl*2n.  For the trim about the periodic equilibrium.
   void (*nonlinear_thrust)(const CoefficientInputs& in, const double* y,
                            const NonlinearOutputs& out);
+  // ModelFamily::context: every caller of the functions above passes it in
+  // CoefficientInputs::context.
+  const void* context = nullptr;
 };
 
 // ----- model families: one per ordering spec, for any number of modes ----------------------
@@ -305,6 +311,10 @@ struct ModelFamily {
   void (*nonlinear)(const CoefficientInputs& in, const double* y, const NonlinearOutputs& out);
   void (*nonlinear_thrust)(const CoefficientInputs& in, const double* y,
                            const NonlinearOutputs& out);
+  // What the functions of a family made at run time read (they are plain function pointers):
+  // instantiate() copies it into ModelDescriptor::context, the caller into
+  // CoefficientInputs::context.  nullptr for a compiled family.
+  const void* context = nullptr;
 };
 
 // The largest mode count per direction a family is instantiated for (the Galerkin basis of the
@@ -312,6 +322,15 @@ struct ModelFamily {
 constexpr int kMaxModes = 12;
 
 // All model families compiled into this build (generated registry), in spec-file order.
+std::vector<const ModelFamily*> compiled_families();
+
+// Adds a family made at run time (an ordering spec derived in-process by the CLI's or the
+// Python module's --spec): registered_families() lists it after the compiled ones.  f must live
+// for the rest of the program.  Throws std::invalid_argument when a family of that name exists.
+// Thread-safe.
+void register_family(const ModelFamily& f);
+
+// The compiled families, then those registered at run time (in registration order).
 std::vector<const ModelFamily*> registered_families();
 
 // The descriptor of family f for M flap x N lag modes (1 <= M, N <= kMaxModes): named f.name
@@ -320,7 +339,8 @@ std::vector<const ModelFamily*> registered_families();
 // thread-safe.  Throws std::invalid_argument for mode counts out of range.
 const ModelDescriptor& instantiate(const ModelFamily& f, int M, int N);
 
-// All models compiled into this build (generated registry), in spec-file order.
+// All models compiled into this build (generated registry), in spec-file order: each compiled
+// family at its spec's mode counts.
 std::vector<const ModelDescriptor*> registered_models();
 
 }  // namespace flaplag::model
