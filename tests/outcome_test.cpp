@@ -124,7 +124,7 @@ TEST(InvalidInput, CarriesNameValueAndReasonApart) {
 }
 
 // An options struct as the library writes them.
-struct ToyOptions : Validated<ToyOptions> {
+struct ToyOptions {
   static constexpr Range kToleranceRange{{0.0, 1e-2, true, false}, "in (0, 1e-2]"};
   static constexpr Range kIterationsRange{{1, 1000, false, false}, "1..1000"};
   double tolerance = 1e-6;
@@ -137,6 +137,8 @@ struct ToyOptions : Validated<ToyOptions> {
         .Require(low < high, [&] { return InvalidInput("low", "0", "must be below `high`"); })
         .Result();
   }
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
 TEST(Validation, ValidOptionsPassEveryForm) {

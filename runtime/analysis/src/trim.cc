@@ -25,12 +25,6 @@ namespace flaplag {
 
 namespace {
 
-bool report(const char* name, const std::string& value, const std::string& reason,
-            std::string* error) {
-  if (error != nullptr) *error = std::string("`") + name + "` = " + value + ": " + reason;
-  return false;
-}
-
 void check_mu(double mu) { internal::check_mu(mu, "mu"); }
 using internal::sort_for_output;
 
@@ -186,38 +180,15 @@ bool trim_kind_from_name(std::string_view name, TrimKind* kind) {
   return false;
 }
 
-bool TrimOptions::IsValid(std::string* error) const {
-  if (!(std::isfinite(thrust_coefficient) && thrust_coefficient > 0.0 &&
-        thrust_coefficient <= 0.1)) {
-    return report("thrust_coefficient", round_trip_text(thrust_coefficient),
-                  "must be in (0, 0.1] (C_T, not C_T/sigma)", error);
-  }
-  if (!(std::isfinite(shaft_angle) && std::abs(shaft_angle) < kHalfPi)) {
-    return report("shaft_angle", round_trip_text(shaft_angle), "must be in (-pi/2, pi/2)", error);
-  }
-  if (max_iterations < 1 || max_iterations > 1000) {
-    return report("max_iterations", std::to_string(max_iterations), "must be 1..1000", error);
-  }
-  if (max_evaluations < 1 || max_evaluations > 1000000) {
-    return report("max_evaluations", std::to_string(max_evaluations), "must be 1..1000000", error);
-  }
-  if (!(std::isfinite(tolerance) && tolerance > 0.0 && tolerance <= 1e-3)) {
-    return report("tolerance", round_trip_text(tolerance), "must be in (0, 1e-3]", error);
-  }
-  return response.IsValid(error);
-}
-
-void TrimOptions::Check() const {
-  std::string why;
-  if (IsValid(&why)) return;
-  if (why.rfind("`", 0) != 0) {  // from ResponseOptions: "name = value: reason"
-    response.Check();
-  }
-  const auto close = why.find('`', 1);
-  const auto eq = why.find(" = ", close);
-  const auto colon = why.find(": ", eq);
-  throw InvalidInput(why.substr(1, close - 1), why.substr(eq + 3, colon - eq - 3),
-                     why.substr(colon + 2));
+std::optional<InvalidInput> TrimOptions::Validate() const {
+  return Requirements()
+      .InRange("thrust_coefficient", thrust_coefficient, kThrustRange)
+      .InRange("shaft_angle", shaft_angle, kShaftAngleRange)
+      .InRange("max_iterations", max_iterations, kIterationsRange)
+      .InRange("max_evaluations", max_evaluations, kEvaluationsRange)
+      .InRange("tolerance", tolerance, kToleranceRange)
+      .Include(response.Validate())
+      .Result();
 }
 
 double momentum_inflow(double ct, double mu, double alpha) {

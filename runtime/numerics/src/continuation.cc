@@ -54,8 +54,6 @@ void require(bool ok, const char* name, double value, const char* reason) {
   if (!ok) throw InvalidInput(name, round_trip_text(value), reason);
 }
 
-Status worse(Status a, Status b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
-
 // Largest n solved exactly (branch and bound); beyond, greedy.  Also the size of the
 // stack buffers of ExponentTracker::advance, which allocates nothing up to it.
 constexpr int kExactAssignment = 8;
@@ -157,29 +155,6 @@ std::optional<double> largest_zeta_error(const FloquetSample& s) {
 }
 
 // The InvalidInput of the first invalid field, or nothing.
-std::optional<InvalidInput> problem(const CriticalOptions& o) {
-  auto bad = [](const char* name, double v, const std::string& reason) {
-    return std::optional<InvalidInput>(InvalidInput(name, round_trip_text(v), reason));
-  };
-  if (!(std::isfinite(o.mu_max) && o.mu_max > 0.0 && o.mu_max <= kMaxAdvanceRatio))
-    return bad("mu_max", o.mu_max, "must be > 0 and <= " + round_trip_text(kMaxAdvanceRatio));
-  if (!(std::isfinite(o.scan_step) && o.scan_step > 0.0))
-    return bad("scan_step", o.scan_step, "must be > 0");
-  if (o.mu_max / o.scan_step > static_cast<double>(kMaxContinuationSteps))
-    return bad("scan_step", o.scan_step,
-               "too small: mu_max / scan_step must be at most " +
-                   std::to_string(kMaxContinuationSteps) + " steps");
-  if (!(std::isfinite(o.tolerance) && o.tolerance > 0.0))
-    return bad("tolerance", o.tolerance, "must be > 0");
-  if (!(std::isfinite(o.zeta_threshold) && o.zeta_threshold >= 0.0))
-    return bad("zeta_threshold", o.zeta_threshold, "must be >= 0");
-  if (!(std::isfinite(o.periodic_omega_tolerance) && o.periodic_omega_tolerance >= 0.0 &&
-        o.periodic_omega_tolerance < 0.25))
-    return bad("periodic_omega_tolerance", o.periodic_omega_tolerance, "must be in [0, 0.25)");
-  if (!(std::isfinite(o.scan_zeta_tolerance) && o.scan_zeta_tolerance > 0.0))
-    return bad("scan_zeta_tolerance", o.scan_zeta_tolerance, "must be > 0");
-  return std::nullopt;
-}
 
 }  // namespace
 
@@ -421,14 +396,21 @@ int ExponentTracker::most_unstable() const {
 
 double ExponentTracker::max_zeta() const { return exponents_[most_unstable()].zeta; }
 
-bool CriticalOptions::IsValid(std::string* error) const {
-  const auto p = problem(*this);
-  if (p && error != nullptr) *error = p->what();
-  return !p;
-}
-
-void CriticalOptions::Check() const {
-  if (auto p = problem(*this)) throw *p;
+std::optional<InvalidInput> CriticalOptions::Validate() const {
+  return Requirements()
+      .InRange("mu_max", mu_max, kMuMaxRange)
+      .InRange("scan_step", scan_step, kPositive)
+      .Require(mu_max / scan_step <= static_cast<double>(kMaxContinuationSteps),
+               [&] {
+                 return InvalidInput("scan_step", round_trip_text(scan_step),
+                                     "too small: mu_max / scan_step must be at most " +
+                                         std::to_string(kMaxContinuationSteps) + " steps");
+               })
+      .InRange("tolerance", tolerance, kPositive)
+      .InRange("zeta_threshold", zeta_threshold, kZetaThresholdRange)
+      .InRange("periodic_omega_tolerance", periodic_omega_tolerance, kOmegaToleranceRange)
+      .InRange("scan_zeta_tolerance", scan_zeta_tolerance, kPositive)
+      .Result();
 }
 
 CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& floquet,

@@ -38,8 +38,9 @@ struct StudyOptions {
   TrimOptions trim;
   int threads = 0;  // 0: as many as the hardware has; else 1..kMaxThreads (core/parallel.h)
 
-  bool IsValid(std::string* error) const;
-  void Check() const;
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
 inline constexpr std::size_t kMaxStudyValues = 100000;
@@ -81,8 +82,9 @@ struct MapOptions {
   TrimOptions trim;         // kind != None: every cell trimmed at its mu (trim.h)
   int threads = 0;
 
-  bool IsValid(std::string* error) const;
-  void Check() const;
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
 inline constexpr std::size_t kMaxMapValues = 10000;

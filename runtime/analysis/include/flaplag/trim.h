@@ -55,6 +55,7 @@
 #include <string_view>
 #include <vector>
 
+#include "flaplag/core/constants.h"
 #include "flaplag/core/parallel.h"
 #include "flaplag/core/status.h"
 #include "flaplag/numerics/continuation.h"
@@ -71,6 +72,11 @@ const char* trim_kind_name(TrimKind k);  // "none", "thrust", "moment"
 bool trim_kind_from_name(std::string_view name, TrimKind* kind);
 
 struct TrimOptions {
+  static constexpr Range kThrustRange{{0.0, 0.1, true, false}, "in (0, 0.1] (C_T, not C_T/sigma)"};
+  static constexpr Range kShaftAngleRange{{-kHalfPi, kHalfPi, true, true}, "in (-pi/2, pi/2)"};
+  static constexpr Range kIterationsRange{{1, 1000, false, false}, "1..1000"};
+  static constexpr Range kEvaluationsRange{{1, 1000000, false, false}, "1..1000000"};
+  static constexpr Range kToleranceRange{{0.0, 1e-3, true, false}, "in (0, 1e-3]"};
   TrimKind kind = TrimKind::None;
   double thrust_coefficient = 0.005;  // target C_T (not C_T / sigma), in (0, 0.1]
   double shaft_angle = 0.0;           // alpha_R of eq 2.25 [rad], in (-pi/2, pi/2)
@@ -87,8 +93,9 @@ struct TrimOptions {
   // tolerance (tip deflection by l), in (0, 1e-3].
   double tolerance = 1e-13;
   ResponseOptions response;  // for the periodic response inside the thrust and the moment
-  bool IsValid(std::string* error) const;  // error names the field in backticks
-  void Check() const;                      // throws InvalidInput(field, value, reason)
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
 // The model's thrust at one operating point.

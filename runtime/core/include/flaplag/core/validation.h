@@ -1,15 +1,19 @@
 // flaplag — the one validation mechanism of options structs.
 //
-// An options struct O derives from Validated<O> and defines
+// Every options struct O defines one check,
 //   std::optional<InvalidInput> Validate() const;  // its first invalid field; nullopt if none
-// which never throws.  Validated<O> derives from it the two forms callers use:
-//   bool IsValid(std::string* error) const;  // false and "<field> = <value>: <reason>" in *error
-//   void Check() const;                      // throws the InvalidInput of Validate()
-// Admissible values are data (Range: an interval and its words), public in each struct, so that a
-// front end can show them in its help; Requirements turns them into the first InvalidInput.
+// which never throws, and the two forms callers use, both made from it (the structs stay
+// aggregates):
+//   bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+//   void Check() const { ThrowIfInvalid(Validate()); }
+// IsValid is Ceres' form: false and "<field> = <value>: <reason>" in *error.  Check throws that
+// InvalidInput.  Admissible values are data (Range: an interval and its words), public in each
+// struct, so that a front end can show them in its help; Requirements turns them into the first
+// InvalidInput.
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -35,6 +39,10 @@ struct Range {
   const char* words;
 };
 
+// The bound of a half-line, and the range used most: a positive number.
+inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+inline constexpr Range kPositive{{0.0, kUnbounded, true, false}, "> 0"};
+
 // The first unmet requirement of a Validate(); later requirements are not looked at.
 class Requirements {
  public:
@@ -58,16 +66,13 @@ class Requirements {
   std::optional<InvalidInput> first_;
 };
 
-template <typename Options>
-struct Validated {
-  bool IsValid(std::string* error) const {
-    const std::optional<InvalidInput> p = static_cast<const Options&>(*this).Validate();
-    if (p && error != nullptr) *error = p->what();
-    return !p;
-  }
-  void Check() const {
-    if (std::optional<InvalidInput> p = static_cast<const Options&>(*this).Validate()) throw *p;
-  }
-};
+// The two forms of every options struct (above).
+inline bool IsValidReport(const std::optional<InvalidInput>& problem, std::string* error) {
+  if (problem && error != nullptr) *error = problem->what();
+  return !problem;
+}
+inline void ThrowIfInvalid(const std::optional<InvalidInput>& problem) {
+  if (problem) throw *problem;
+}
 
 }  // namespace flaplag

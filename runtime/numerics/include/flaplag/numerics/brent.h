@@ -18,16 +18,24 @@
 // the bracket end on the positive side without evaluating again.
 #pragma once
 
+#include <climits>
 #include <functional>
+#include <optional>
 #include <string>
 
-#include "flaplag/core/status.h"
+#include "flaplag/core/outcome.h"
+#include "flaplag/core/validation.h"
 
 namespace flaplag {
 
 struct BrentOptions {
+  static constexpr Range kToleranceRange{{0.0, kUnbounded, true, false}, "finite and > 0"};
+  static constexpr Range kEvaluationsRange{{1, INT_MAX, false, false}, ">= 1"};
   double tolerance = 1e-10;   // absolute tolerance on the root (> 0)
   int max_evaluations = 100;  // calls of f that brent_zero may make (>= 1)
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
 // A point at which f is known.  index: 0 = a and 1 = b (the ends passed in), k >= 2 = the

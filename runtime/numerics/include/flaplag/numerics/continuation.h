@@ -177,9 +177,12 @@ struct SweepResult {
   std::string message;         // the first problem met
 };
 
-// Search for the critical advance ratio.  IsValid() is the Ceres-style check (false and
-// "field = value: reason" in *error); Check() throws the same as InvalidInput.
+// Search for the critical advance ratio.  Validated as every options struct (core/validation.h).
 struct CriticalOptions {
+  static constexpr Range kMuMaxRange{{0.0, kMaxAdvanceRatio, true, false}, "> 0 and <= 1000"};
+  static constexpr Range kZetaThresholdRange{{0.0, kUnbounded, false, false}, ">= 0"};
+  static constexpr Range kOmegaToleranceRange{{0.0, 0.25, false, true}, "in [0, 0.25)"};
+
   double mu_max = 2.0;                     // scan limit, 0 < mu_max <= kMaxAdvanceRatio
   double scan_step = 0.01;                 // scan / continuation step, > 0, at most
                                            // kMaxContinuationSteps steps up to mu_max
@@ -193,8 +196,9 @@ struct CriticalOptions {
   // instability (onset and re-stabilization).
   bool all_intervals = false;
 
-  bool IsValid(std::string* error) const;
-  void Check() const;
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
 // One interval of instability in mu: max zeta > zeta_threshold for onset < mu < end.

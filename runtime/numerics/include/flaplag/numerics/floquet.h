@@ -8,10 +8,12 @@
 #include <Eigen/Dense>
 #include <complex>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "flaplag/core/status.h"
+#include "flaplag/core/outcome.h"
+#include "flaplag/core/validation.h"
 #include "flaplag/numerics/periodic_system.h"
 
 namespace flaplag {
@@ -31,12 +33,13 @@ bool method_from_name(const std::string& name, TransitionMethod* method);
 // "rk4, hsu, magnus": the names for an error message.
 std::string method_names();
 
-// How Phi(2 pi, 0) is computed.  IsValid() is the Ceres-style check (false and "field = value:
-// reason" in *error); Check() throws the same as InvalidInput.
+// How Phi(2 pi, 0) is computed.  Validated as every options struct (core/validation.h).
 struct TransitionOptions {
   static constexpr int kAutomatic = 0;
   static constexpr int kMaxSteps = 1000000;
   static constexpr int kMaxTerms = 30;
+  static constexpr Range kStepsRange{{0, kMaxSteps, false, false}, "0 (automatic) or 1..1000000"};
+  static constexpr Range kTermsRange{{1, kMaxTerms, false, false}, "1..30"};
 
   TransitionMethod method = TransitionMethod::Hsu;
   // RK4 steps / Hsu intervals K / Magnus steps per period, 1..kMaxSteps; kAutomatic (the
@@ -50,8 +53,9 @@ struct TransitionOptions {
   // The paper's setting: Hsu, K = 50 intervals, J = 4 terms (Section 3.3, Fig. 3).
   static TransitionOptions Paper() { return {TransitionMethod::Hsu, 50, 4, 1e-5}; }
 
-  bool IsValid(std::string* error) const;
-  void Check() const;
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
 struct TransitionResult {
