@@ -141,12 +141,8 @@ StudyResult run_study(const RotorParameters& base, const TransitionOptions& tran
       });
   out.cancelled = out.rows_done < out.rows.size();
   out.rows.resize(out.rows_done);
-  for (const StudyRow& r : out.rows) {
-    out.status = worse(out.status, r.critical.status);
-    if (out.message.empty() && r.critical.status != Status::Ok)
-      out.message =
-          options.parameter + " = " + round_trip_text(r.value) + ": " + r.critical.message;
-  }
+  for (const StudyRow& r : out.rows)
+    out.Include(r.critical, options.parameter + " = " + round_trip_text(r.value) + ": ");
   return out;
 }
 
@@ -203,9 +199,7 @@ MapResult run_map(const RotorParameters& base, const TransitionOptions& transiti
   for (std::size_t l = 0; l < lines; ++l)
     for (std::size_t k = 0; k < along; ++k) {
       const MapCell& c = mu_y ? out.cells[k][l] : out.cells[l][k];
-      if (!c.computed) continue;
-      out.status = worse(out.status, c.status);
-      if (out.message.empty() && c.status != Status::Ok) out.message = c.message;
+      if (c.computed) out.Include(c);
     }
   return out;
 }

@@ -327,8 +327,7 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
   if (out.status != Status::Failed) {
     const detail::SystemBuilder builder(out.parameters, m, out.inflow);
     out.validity = internal::validity_of(builder);
-    internal::combine(&out.status, &out.message,
-                      out.validity.empty() ? Status::Ok : Status::Warning, out.validity);
+    out.Worsen(out.validity.empty() ? Status::Ok : Status::Warning, out.validity);
   }
   return out;
 }
@@ -655,8 +654,7 @@ struct Trimmed {
       // unstable trimmed system is no problem of the sample: the exponents say so).
       const std::string problem = trim_problem(tr);
       if (!problem.empty())
-        internal::combine(&out.status, &out.message, Status::Warning,
-                          "trim at mu = " + round_trip_text(mu) + ": " + problem);
+        out.Worsen(Status::Warning, "trim at mu = " + round_trip_text(mu) + ": " + problem);
       return out;
     };
   }
@@ -706,9 +704,8 @@ struct Trimmed {
       if (x == nullptr) continue;
       const std::string problem = trim_problem(*x);
       if (!problem.empty())
-        internal::combine(&r.status, &r.message, Status::Warning,
-                          "the trim at mu = " + round_trip_text(mu) +
-                              ", where the result is found, is not sound: " + problem);
+        r.Worsen(Status::Warning, "the trim at mu = " + round_trip_text(mu) +
+                                      ", where the result is found, is not sound: " + problem);
     }
   }
 
@@ -742,10 +739,7 @@ PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
   }
   r = std::move(sw.points.back());
   r.mu = mu;
-  if (sw.status > r.status) {
-    r.status = sw.status;
-    r.message = r.message.empty() ? sw.message : r.message + "; " + sw.message;
-  }
+  if (sw.status > r.status) r.Worsen(sw.status, sw.message);
   sort_for_output(r.exponents);
   if (trims != nullptr) {
     SweepResult one;

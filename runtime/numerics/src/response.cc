@@ -263,17 +263,15 @@ PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOpti
   }
   // Some |Lambda| > 1 means the blade does not settle onto this solution.
   if (rho_fine > 1.0) {
-    out.status = Status::Warning;
-    out.message += std::string(out.message.empty() ? "" : "; ") +
-                   "the system is unstable (largest |multiplier| " + short_text(rho_fine) +
+    out.Worsen(Status::Warning,
+               "the system is unstable (largest |multiplier| " + short_text(rho_fine) +
                    ", zeta = " + short_text(std::log(rho_fine) / kTwoPi) +
                    " per rev): the periodic solution exists but the blade does not settle onto "
-                   "it";
+                   "it");
   }
   if (automatic && out.error && *out.error > options.tolerance) {
-    out.status = Status::Warning;
-    out.message += std::string(out.message.empty() ? "" : "; ") +
-                   "not resolved to the tolerance: estimated error " + short_text(*out.error);
+    out.Worsen(Status::Warning,
+               "not resolved to the tolerance: estimated error " + short_text(*out.error));
   }
   return out;
 }

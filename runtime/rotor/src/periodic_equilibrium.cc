@@ -584,11 +584,13 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
   out.linearization.normal = linear_set(sys, out, false, L);
   if (out.linearization.has_sector) out.linearization.reversed = linear_set(sys, out, true, L);
 
-  std::string note = k_note;
+  Outcome note;  // the problems, in this order
+  note.Worsen(Status::Warning, k_note);
   if (out.truncation > 1e-3) {
-    note += std::string(note.empty() ? "" : "; ") + "harmonic " + std::to_string(K) +
-            " of the periodic equilibrium is " + short_text(out.truncation) +
-            " of its largest coefficient; increase `harmonics`";
+    note.Worsen(Status::Warning, "harmonic " + std::to_string(K) +
+                                     " of the periodic equilibrium is " +
+                                     short_text(out.truncation) +
+                                     " of its largest coefficient; increase `harmonics`");
   }
   if (opt.check_stability) {
     const Eigen::MatrixXd phi = transition_matrix_rk4(out.linearization, 4096);
@@ -601,19 +603,21 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
     }
     std::sort(out.multiplier_moduli.rbegin(), out.multiplier_moduli.rend());
     if (fl.status != Status::Ok) {
-      note += std::string(note.empty() ? "" : "; ") + fl.message;
+      note.Worsen(Status::Warning, fl.message);
     } else if (out.min_distance_to_one < 1e-8) {
-      note += std::string(note.empty() ? "" : "; ") + "a Floquet multiplier is at 1 (distance " +
-              short_text(out.min_distance_to_one) + "): the periodic equilibrium is not isolated";
+      note.Worsen(Status::Warning, "a Floquet multiplier is at 1 (distance " +
+                                       short_text(out.min_distance_to_one) +
+                                       "): the periodic equilibrium is not isolated");
     } else if (!out.multiplier_moduli.empty() && out.multiplier_moduli[0] > 1.0) {
-      note += std::string(note.empty() ? "" : "; ") +
-              "the periodic equilibrium is unstable (largest multiplier modulus " +
-              short_text(out.multiplier_moduli[0]) + "): the blade does not settle onto it";
+      note.Worsen(Status::Warning,
+                  "the periodic equilibrium is unstable (largest multiplier modulus " +
+                      short_text(out.multiplier_moduli[0]) +
+                      "): the blade does not settle onto it");
     }
   }
-  if (!note.empty()) {
+  if (!note.message.empty()) {
     out.status = Status::Warning;
-    out.message = note;
+    out.message = note.message;
   }
   return out;
 }

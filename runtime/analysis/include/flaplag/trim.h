@@ -56,8 +56,8 @@
 #include <vector>
 
 #include "flaplag/core/constants.h"
+#include "flaplag/core/outcome.h"
 #include "flaplag/core/parallel.h"
-#include "flaplag/core/status.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/numerics/response.h"
@@ -99,13 +99,12 @@ struct TrimOptions {
 };
 
 // The model's thrust at one operating point.
-struct ThrustResult {
+struct ThrustResult : Outcome {
   double mu = 0.0;
   double inflow = 0.0;                  // lambda used
   double thrust_coefficient = 0.0;      // C_T of the model's own lift distribution (see above)
   double flap_1c = 0.0, flap_1s = 0.0;  // first harmonic of the flap tip deflection, by l
-  Status status = Status::Ok;           // Failed: no periodic response (a multiplier at 1)
-  std::string message;
+  // Outcome: Failed: no periodic response (a multiplier at 1)
 };
 
 // C_T at mu with inflow lambda (NaN: eq 2.24) and p's pitch.  p.model must emit the thrust
@@ -120,7 +119,7 @@ ThrustResult rotor_thrust_momentum(const RotorParameters& p, double mu, double s
 // alpha_R + C_T/(2 mu)] for mu > 0; sqrt(C_T/2) at mu = 0).
 double momentum_inflow(double thrust_coefficient, double mu, double shaft_angle);
 
-struct TrimResult {
+struct TrimResult : Outcome {
   double mu = 0.0;
   TrimKind kind = TrimKind::None;
   double theta0 = 0.0, theta1c = 0.0, theta1s = 0.0;  // [rad]
@@ -148,8 +147,6 @@ struct TrimResult {
   // the last iterate is reported), or outside the validity envelope.  Failed: no periodic
   // response, a Jacobian that does not reduce the residual (singular or unreachable target), a
   // pitch outside (-pi/2, pi/2).
-  Status status = Status::Ok;
-  std::string message;
 };
 
 // What is wrong with a trim that a result at its mu rests on: "" for a converged trim inside

@@ -46,14 +46,13 @@ struct BrentPoint {
   int index = -1;
 };
 
-struct BrentResult {
+struct BrentResult : Outcome {
   // Ok: converged (hi.x - lo.x <= tolerance + 4 eps |root.x|, or f(root.x) == 0).
   // Warning: max_evaluations reached first; the bracket is still valid, only wider.
   // Failed: f returned a non-finite value (the message says where); the bracket is the last
   // valid one, and the failing point is the last call of f (index evaluations + 1).
-  Status status = Status::Failed;
-  bool converged = false;  // status == Ok
-  std::string message;
+  BrentResult() { status = Status::Failed; }  // until brent_zero says otherwise
+  bool converged = false;                     // status == Ok
   // The best estimate (zeroin's b): one of the bracket ends, the one with the smaller |f|.
   BrentPoint root;
   // The final bracket, lo.x <= hi.x: f(lo) and f(hi) have opposite signs or one is zero.

@@ -110,7 +110,7 @@ struct FloquetEigenSystem {
 };
 FloquetEigenSystem floquet_eigensystem(const Eigen::MatrixXd& phi);
 
-struct FloquetResult {
+struct FloquetResult : Outcome {
   std::vector<FloquetExponent> exponents;
   // |det Phi - exp(int trace A)| / exp(int trace A), from log|det Phi| so that neither
   // determinant need be representable; 1 for a singular Phi.
@@ -118,8 +118,6 @@ struct FloquetResult {
   // Failed when Phi has non-finite entries or the eigen-solve does not give finite
   // multipliers (and, when computed, eigenvectors): then the exponents are NaN (or partly so)
   // and must not be used; message says why.
-  Status status = Status::Ok;
-  std::string message;
   // The transition matrix the exponents are of, kept so that the eigenvectors can be computed
   // when they are needed (add_eigenvectors(); the mode identification of continuation.h asks
   // for them only when two candidates are close).

@@ -32,7 +32,7 @@ struct ResponseOptions {
   void Check() const { ThrowIfInvalid(Validate()); }
 };
 
-struct PeriodicResponse {
+struct PeriodicResponse : Outcome {
   Eigen::VectorXd y0;                // the periodic state at psi = 0
   std::vector<double> psi;           // sample azimuths [rad], [0, 2 pi)
   std::vector<Eigen::VectorXd> y;    // y(psi_k)
@@ -40,8 +40,7 @@ struct PeriodicResponse {
   std::optional<double> error;       // estimated error of y0 (max norm, relative)
   double min_distance_to_one = 0.0;  // min_k |Lambda_k - 1| (near 0: no unique solution)
   int steps = 0;
-  Status status = Status::Ok;  // Failed: a multiplier at 1 (singular I - Phi) or overflow
-  std::string message;
+  // Outcome: Failed: a multiplier at 1 (singular I - Phi) or overflow
 };
 
 // sys.validate() and options.Check() first (InvalidInput).  An unstable system still has a
@@ -64,12 +63,11 @@ struct SimulationOptions {
   void Check() const { ThrowIfInvalid(Validate()); }
 };
 
-struct Simulation {
+struct Simulation : Outcome {
   std::vector<double> psi;         // [rad] from 0
   std::vector<Eigen::VectorXd> y;  // y(psi)
   int steps_per_rev = 0;
-  Status status = Status::Ok;  // Failed on overflow (the state is kept up to there)
-  std::string message;
+  // Outcome: Failed on overflow (the state is kept up to there)
 };
 
 // Integrates y' = A y + (forced ? f : 0) from y(0) = y0 (size sys.n).

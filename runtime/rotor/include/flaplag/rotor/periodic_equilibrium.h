@@ -106,7 +106,7 @@ struct PeriodicEquilibriumOptions {
   void Check() const { ThrowIfInvalid(Validate()); }
 };
 
-struct PeriodicEquilibrium {
+struct PeriodicEquilibrium : Outcome {
   double mu = 0.0;
   int harmonics = 0;   // K
   int flap_modes = 0;  // M (the coordinates are M flap, then N lag amplitudes)
@@ -141,8 +141,6 @@ struct PeriodicEquilibrium {
   // equilibrium) or overflow; Warning: unstable (the blade does not settle onto it), or a
   // multiplier near 1, or the last harmonic is not small (increase `harmonics`), or the
   // automatic K reached kMaxHarmonics with harmonics_error above `harmonics_tolerance`.
-  Status status = Status::Ok;
-  std::string message;
 };
 
 // opt.Check() first (InvalidInput).  The equilibrium on the branch through the hover
