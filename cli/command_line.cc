@@ -103,7 +103,7 @@ Range parse_range(const std::string& option, const std::string& text) {
       v[i] = parse_real(option, parts[i]);
     } catch (const InvalidInput& e) {
       // Keep the whole range as the value; say which part is wrong.
-      throw InvalidInput(option, value, std::string(names[i]) + " " + reason_of(e));
+      throw InvalidInput(option, value, std::string(names[i]) + " " + e.reason());
     }
   }
   Range r{v[0], v[1], v[2], 0};
@@ -163,7 +163,7 @@ void parse_axis(const std::string& option, const std::string& text, bool allow_m
       try {
         v[i] = parse_real(option, parts[i]);
       } catch (const InvalidInput& e) {
-        throw InvalidInput(option, value, std::string(names[i]) + " " + reason_of(e));
+        throw InvalidInput(option, value, std::string(names[i]) + " " + e.reason());
       }
     }
     if (!(v[2] > 0.0)) throw InvalidInput(option, value, "STEP must be > 0");
@@ -188,7 +188,7 @@ void parse_axis(const std::string& option, const std::string& text, bool allow_m
       try {
         values.push_back(parse_real(option, item));
       } catch (const InvalidInput& e) {
-        throw InvalidInput(option, value, "value \"" + item + "\" " + reason_of(e));
+        throw InvalidInput(option, value, "value \"" + item + "\" " + e.reason());
       }
       if (values.size() > static_cast<std::size_t>(kMaxPoints))
         throw InvalidInput(option, value, "more than " + std::to_string(kMaxPoints) + " values");
@@ -506,12 +506,6 @@ void check_merged_output(const Request& r, const nlohmann::ordered_json& merged)
   else
     reason += ": raise `memory_limit`";
   throw InvalidInput("memory_limit", memory_text(r.memory_limit), reason);
-}
-
-std::string reason_of(const InvalidInput& e) {
-  const std::string what = e.what();
-  const std::size_t prefix = e.name().size() + 3 + e.value().size() + 2;  // "name = value: "
-  return prefix <= what.size() ? what.substr(prefix) : what;
 }
 
 CommandLine::CommandLine(const std::vector<std::string>& args) {
@@ -916,7 +910,7 @@ Request CommandLine::interpret() const {
 std::optional<std::string> CommandLine::error_line(const InvalidInput& e) const {
   // Raised by the CLI itself: already named by the option as typed.
   if (!e.name().empty() && e.name()[0] == '-') {
-    return e.name() + " = " + e.value() + ": " + vocabulary(reason_of(e));
+    return e.name() + " = " + e.value() + ": " + vocabulary(e.reason());
   }
   if (e.name() == "subcommand" || e.name() == "argument") return std::string(e.what());
   const OptionSpec* o = option_for_library_name(command_, e.name());
@@ -924,7 +918,7 @@ std::optional<std::string> CommandLine::error_line(const InvalidInput& e) const 
   const Given* g = given(o->name);
   std::string value = e.value();
   if (g != nullptr && o->takes_value) value = shown(g->text);
-  return (g != nullptr ? g->spelling : o->name) + " = " + value + ": " + vocabulary(reason_of(e));
+  return (g != nullptr ? g->spelling : o->name) + " = " + value + ": " + vocabulary(e.reason());
 }
 
 std::string CommandLine::vocabulary(const std::string& message) const {
@@ -1003,7 +997,7 @@ void CommandLine::interpret_batch(Request& r) const {
     r.shard_index = parse_int(g->spelling, g->text.substr(0, slash), 1, count);
   } catch (const InvalidInput& e) {
     throw InvalidInput(g->spelling, value,
-                       std::string(count == 0 ? "N " : "I ") + reason_of(e) + " (expected I/N)");
+                       std::string(count == 0 ? "N " : "I ") + e.reason() + " (expected I/N)");
   }
   r.shard_count = count;
   if (!r.json)

@@ -80,9 +80,6 @@ struct Request {
   std::vector<std::string> arguments;
 };
 
-// The reason part of an InvalidInput message ("name = value: reason").
-std::string reason_of(const InvalidInput& e);
-
 // flaplag merge, before the text is made: throws InvalidInput("--memory-limit", ...) when the
 // JSON text of `merged` (dump(2), computed exactly without making it) and the documents behind
 // it need more than r.memory_limit (limits.h json_output_memory), saying how large the parts

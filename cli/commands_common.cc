@@ -1,5 +1,5 @@
 // flaplag CLI — what every subcommand's output shares: numbers that may not be finite and their
-// audit, the header (model, method, parameters), status lines, warnings.
+// printers, the header (model, method, parameters), status lines, warnings.
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -61,11 +61,10 @@ std::string parameters_text(const RotorParameters& p) {
 // ---- numbers that may not be finite ------------------------------------------------------------
 //
 // The library promises finite results, with two documented exceptions: the zeta of a zero
-// multiplier is -inf, and optional diagnostics are absent rather than NaN.  The printers do not
-// take that on trust: every result is audited first (audit_*), and a value that breaks the
-// promise marks its result "failed" with a message saying what was not shown; the printers then
-// show such values as "-" (text), an empty field (CSV) or null (JSON).  num() itself refuses
-// non-finite values, so a value no audit covered ends the run as an internal error instead of
+// multiplier is -inf, and optional diagnostics are absent rather than NaN; a result that breaks
+// the promise has a non-ok status from the library itself (check_finite).  The printers show
+// such values as "-" (text), an empty field (CSV) or null (JSON).  num() itself refuses
+// non-finite values, so a value no check covered ends the run as an internal error instead of
 // printing "nan".
 
 bool finite(double v) { return std::isfinite(v); }
@@ -111,56 +110,6 @@ Json ratio_json(double zeta, double omega) { return optional_json(damping_ratio(
 
 Json stable_json(const std::optional<bool>& v) { return v ? Json(*v) : Json(nullptr); }
 std::string stable_text(const std::optional<bool>& v) { return !v ? "unknown" : *v ? "yes" : "NO"; }
-
-// Records that `what` could not be shown: the result becomes `worst` (at least) and says why.
-void demote(Status& status, std::string& message, Status worst, const std::string& what) {
-  if (static_cast<int>(status) < static_cast<int>(worst)) status = worst;
-  const std::string note = "non-finite " + what + " (not shown)";
-  message = message.empty() ? note : message + "; " + note;
-}
-
-void audit_exponents(const std::vector<LabelledExponent>& ex, Status& status,
-                     std::string& message) {
-  for (const LabelledExponent& e : ex) {
-    if (!zeta_ok(e.zeta) || !finite(e.omega) || !finite(e.multiplier)) {
-      demote(status, message, Status::Failed, "exponent of mode " + e.label);
-      return;
-    }
-  }
-}
-
-void audit(PointResult& p) {
-  const Status before = p.status;
-  audit_exponents(p.exponents, p.status, p.message);
-  if (!finite(p.mu)) demote(p.status, p.message, Status::Failed, "mu");
-  // The exponents are what stability is read from: without them it is unknown.
-  if (p.status == Status::Failed && before != Status::Failed) p.stable.reset();
-  if (p.liouville_residual && !finite(*p.liouville_residual)) {
-    demote(p.status, p.message, Status::Warning, "Liouville residual");
-  }
-  if (p.error && !finite(*p.error)) demote(p.status, p.message, Status::Warning, "error estimate");
-}
-
-void audit(SweepResult& s) {
-  for (PointResult& p : s.points) {
-    audit(p);
-    if (static_cast<int>(p.status) > static_cast<int>(s.status)) {
-      s.status = p.status;
-      if (s.message.empty()) s.message = "at mu = " + cell(p.mu) + ": " + p.message;
-    }
-  }
-}
-
-void audit(CriticalResult& c) {
-  if (c.mu_c && (!finite(*c.mu_c) || !finite(c.omega))) {
-    demote(c.status, c.message, Status::Failed, "mu_c or omega");
-    c.mu_c.reset();
-  }
-  if (c.mu_c_error && !finite(*c.mu_c_error)) {
-    demote(c.status, c.message, Status::Warning, "mu_c error estimate");
-  }
-  if (!finite(c.mu_max)) demote(c.status, c.message, Status::Failed, "mu_max");
-}
 
 std::string vocab(const Request& r, const std::string& message) {
   return in_cli_vocabulary(r.command, message);

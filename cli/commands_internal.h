@@ -29,13 +29,13 @@ struct Output {
   std::string text;
 };
 
-// ---- numbers that may not be finite, and the audit of results (commands_common.cc) -------------
+// ---- numbers that may not be finite (commands_common.cc) ---------------------------------------
 //
 // The library promises finite results, with two documented exceptions: the zeta of a zero
-// multiplier is -inf, and optional diagnostics are absent rather than NaN.  The printers do not
-// take that on trust: every result is audited first (audit), and a value that breaks the promise
-// marks its result "failed" with a message saying what was not shown; the printers then show
-// such values as "-" (text), an empty field (CSV) or null (JSON).
+// multiplier is -inf, and optional diagnostics are absent rather than NaN; it checks the promise
+// itself and gives a result that breaks it a non-ok status (numerics/continuation.h
+// check_finite).  The printers show such values as "-" (text), an empty field (CSV) or null
+// (JSON).
 
 bool finite(double v);
 bool finite(std::complex<double> z);
@@ -53,12 +53,6 @@ std::string ratio_cell(double zeta, double omega);
 Json ratio_json(double zeta, double omega);
 Json stable_json(const std::optional<bool>& v);
 std::string stable_text(const std::optional<bool>& v);
-
-// Records that `what` could not be shown: the result becomes `worst` (at least) and says why.
-void demote(Status& status, std::string& message, Status worst, const std::string& what);
-void audit(PointResult& p);
-void audit(SweepResult& s);
-void audit(CriticalResult& c);
 
 // ---- the parts every output shares (commands_common.cc) ----------------------------------------
 

@@ -26,18 +26,6 @@ std::string paper_name(const Integral* list, int n, const std::string& name) {
   return "";
 }
 
-// The snapshot has no status of its own: the audit gives it one.
-void audit_snapshot(const SystemSnapshot& s, Status& status, std::string& message) {
-  if (!s.A.allFinite() || !s.f.allFinite() || !finite(s.psi)) {
-    demote(status, message, Status::Failed, "entries of A(psi) or f(psi)");
-  }
-  bool integrals_ok = true;
-  for (const auto& v : {&s.aero_integrals, &s.aero_integrals_region, &s.structural_integrals}) {
-    for (const auto& [name, value] : *v) integrals_ok = integrals_ok && finite(value);
-  }
-  if (!integrals_ok) demote(status, message, Status::Failed, "spanwise integrals");
-}
-
 void add_integrals_json(const SystemSnapshot& s, const model::ModelDescriptor& m, Json& j) {
   Json aero = Json::array();
   for (std::size_t i = 0; i < s.aero_integrals.size(); ++i) {
@@ -139,11 +127,8 @@ std::string system_text(const Request& r, const Analysis& an, const SystemSnapsh
 
 Output system_snapshot(const Request& r, const Analysis& an) {
   const SystemSnapshot s = an.snapshot(r.mu, r.psi);
-  Status status = Status::Ok;
-  std::string message;
-  audit_snapshot(s, status, message);
-  if (r.json) return system_json(r, an, s, status, message);
-  return system_text(r, an, s, status, message);
+  if (r.json) return system_json(r, an, s, s.status, s.message);
+  return system_text(r, an, s, s.status, s.message);
 }
 
 Output models(const Request& r) {

@@ -36,20 +36,16 @@ const char* const kSweepLegend =
     "  zeta in 1/rev (real part of the exponent lambda = zeta + i omega); ratio: damping ratio\n"
     "  -zeta/|lambda|; p after omega: locked to 0, 1/2 or 1 per rev (mod 1: the periodic kind)\n";
 
-// The hover result with its own audit (HoverResult is the analysis' const member).
+// The hover result with its stability as shown: unknown when the hover analysis failed or is
+// neutral.
 struct Hover {
   HoverResult h;
-  std::optional<bool> stable;  // unknown when the hover analysis failed
+  std::optional<bool> stable;
 };
 
 Hover audited_hover(const Analysis& an) {
   Hover r{an.hover(), an.hover().stable};
-  HoverResult& h = r.h;
-  bool ok = finite(h.inflow);
-  for (Eigen::Index i = 0; i < h.q0.size(); ++i) ok = ok && finite(h.q0[i]);
-  for (const auto& z : h.eigenvalues) ok = ok && finite(z);
-  if (!ok) demote(h.status, h.message, Status::Failed, "hover equilibrium or eigenvalue");
-  if (h.status == Status::Failed || h.neutral) r.stable.reset();
+  if (r.h.status == Status::Failed || r.h.neutral) r.stable.reset();
   return r;
 }
 
@@ -317,7 +313,6 @@ std::string hover_text(const Request& r, const Analysis& an) {
 
 Output typical(const Request& r, const Analysis& an) {
   CriticalResult crit = an.critical(CriticalOptions{});
-  audit(crit);
   // One continuation from hover in steps of kTableScan, shown every kTableEvery-th point: the
   // exponents of each row are continued exactly as `flaplag point` continues them, at a tenth of
   // the cost of continuing every row from hover again.
@@ -329,7 +324,6 @@ Output typical(const Request& r, const Analysis& an) {
     // A sweep that stopped early ends with the failed point: show it too.
     if (i % kTableEvery == 0 || i + 1 == all.points.size()) table.points.push_back(all.points[i]);
   }
-  audit(table);
   const std::vector<std::string> labels = mode_labels(an);
   const std::optional<double> max_res = max_liouville(table);
   if (r.json) {
@@ -363,7 +357,6 @@ Output point(const Request& r, const Analysis& an) {
   PointResult p = trimmed(r)
                       ? trimmed_point(r.params, r.transition, r.trim, r.mu, r.scan_step, &trims)
                       : an.point(r.mu, r.scan_step);
-  audit(p);
   std::optional<TrimResult> t;
   if (!trims.empty()) t = trims.front();
   if (r.json) {
@@ -384,7 +377,6 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
   SweepResult s = trimmed(r) ? trimmed_sweep(r.params, r.transition, r.trim, r.sweep_start,
                                              r.sweep_stop, r.sweep_step, &trims)
                              : an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step, r.threads);
-  audit(s);
   const std::vector<std::string> labels = mode_labels(an);
   if (!r.plot.empty()) {
     std::vector<double> mu;
@@ -438,7 +430,6 @@ Output critical(const Request& r, const Analysis& an) {
   std::vector<TrimResult> trims;  // the trim at mu_c the result rests on
   CriticalResult c =
       trimmed(r) ? trimmed_critical(r.params, r.transition, r.trim, opt, &trims) : an.critical(opt);
-  audit(c);
   std::optional<TrimResult> t;
   if (!trims.empty()) t = trims.front();
   if (r.json) {

@@ -32,7 +32,7 @@ Json interval_json(const InstabilityInterval& iv) {
 }
 
 // The study's rows: run_study on this part's values (none: an empty part of a job with more
-// parts than values), each row's critical result audited.
+// parts than values).
 StudyResult run_study_part(const Request& r, RunControl* control) {
   StudyOptions so;
   so.parameter = r.vary;
@@ -48,7 +48,6 @@ StudyResult run_study_part(const Request& r, RunControl* control) {
   }
   if (s.cancelled)
     note_cancelled(control, s.rows_done, so.values.size(), "values (" + word(r.vary) + ")");
-  for (StudyRow& row : s.rows) audit(row.critical);
   return s;
 }
 

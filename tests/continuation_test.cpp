@@ -747,5 +747,70 @@ TEST(StretchedTrack, InvalidArgumentsThrow) {
                InvalidInput);
 }
 
+// Finiteness is the library's promise, checked where results are made, so that every front end
+// (the command line, Python) reports the same status for the same result.
+TEST(CheckFinite, ANonFiniteErrorEstimateMakesTheSweepPointAWarning) {
+  auto A = [](double) {
+    return oscillators(0.6, stiffness(0.6, 1.17), 0.04, stiffness(0.04, 1.28));
+  };
+  const FloquetFunction exact = constant_family(A);
+  const FloquetFunction nan_error = [&](double mu, double tol) {
+    FloquetSample s = exact(mu, tol);
+    s.error = std::numeric_limits<double>::quiet_NaN();
+    return s;
+  };
+  const SweepResult sw = sweep_exponents(label_hover_modes(A(0.0), 1, 1), nan_error, 0.0, 0.2, 0.1);
+  ASSERT_EQ(3u, sw.points.size());
+  for (const PointResult& p : sw.points) {
+    EXPECT_EQ(Status::Warning, p.status);
+    EXPECT_EQ("non-finite error estimate (not shown)", p.message);
+    ASSERT_TRUE(p.stable.has_value());  // the exponents themselves are fine
+    EXPECT_TRUE(*p.stable);
+  }
+  EXPECT_EQ(Status::Warning, sw.status);
+  EXPECT_EQ("at mu = 0: non-finite error estimate (not shown)", sw.message);
+}
+
+TEST(CheckFinite, ANonFiniteExponentFailsThePointAndItsStability) {
+  PointResult p;
+  p.mu = 0.3;
+  p.stable = true;
+  LabelledExponent ok{"flap", -0.1, 0.2, {0.5, 0.1}};
+  LabelledExponent zero{"flap", -std::numeric_limits<double>::infinity(), 0.0, {0.0, 0.0}};
+  LabelledExponent bad{"lag", -0.01, std::numeric_limits<double>::quiet_NaN(), {0.9, 0.0}};
+  p.exponents = {ok, zero};  // the -inf zeta of a zero multiplier is allowed
+  check_finite(p);
+  EXPECT_EQ(Status::Ok, p.status);
+  EXPECT_EQ("", p.message);
+  p.exponents.push_back(bad);
+  p.Worsen(Status::Warning, "ambiguous");
+  check_finite(p);
+  EXPECT_EQ(Status::Failed, p.status);
+  EXPECT_EQ("ambiguous; non-finite exponent of mode lag (not shown)", p.message);
+  EXPECT_FALSE(p.stable.has_value());
+  EXPECT_FALSE(p.IsUsable());
+}
+
+TEST(CheckFinite, ANonFiniteMuCIsDroppedAndFails) {
+  CriticalResult c;
+  c.mu_max = 2.0;
+  c.mu_c = std::numeric_limits<double>::infinity();
+  c.mu_c_error = 1e-6;
+  c.message = "unstable above mu_c";
+  check_finite(c);
+  EXPECT_EQ(Status::Failed, c.status);
+  EXPECT_FALSE(c.mu_c.has_value());
+  EXPECT_EQ("unstable above mu_c; non-finite mu_c or omega (not shown)", c.message);
+  CriticalResult d;
+  d.mu_max = 2.0;
+  d.mu_c = 0.5;
+  d.mu_c_error = std::numeric_limits<double>::quiet_NaN();
+  check_finite(d);
+  EXPECT_EQ(Status::Warning, d.status);
+  ASSERT_TRUE(d.mu_c.has_value());
+  EXPECT_EQ(0.5, *d.mu_c);
+  EXPECT_EQ("non-finite mu_c error estimate (not shown)", d.message);
+}
+
 }  // namespace
 }  // namespace flaplag

@@ -79,11 +79,8 @@ std::string one_line(const std::string& text, std::size_t max) {
 // The library's InvalidInput as flaplag.InvalidInput: "<field> = <value>: <reason>" on one
 // line, the value bounded (a value the user gave, e.g. a model name, may be any text).
 void translate_invalid_input(const InvalidInput& e) {
-  const std::string what = e.what();
-  const std::string head = e.name() + " = " + e.value() + ": ";
   const std::string value = one_line(e.value(), kShownMax);
-  const std::string reason =
-      one_line(what.compare(0, head.size(), head) == 0 ? what.substr(head.size()) : what, 1000);
+  const std::string reason = one_line(e.reason(), 1000);
   py::object type = py::reinterpret_borrow<py::object>(invalid_input_type);
   py::object exc = type(one_line(e.name(), kShownMax) + " = " + value + ": " + reason);
   exc.attr("field") = e.name();

@@ -144,6 +144,7 @@ struct Analysis::Impl {
       hover.status = hover_modes.status;
       hover.message = hover_modes.message;
     }
+    check_finite(hover);
     validity = internal::validity_of(builder);
   }
 
@@ -234,13 +235,12 @@ struct Analysis::Impl {
   // Outside the validity envelope every result is a Warning that says so.
   void outside_envelope(CriticalResult& r) const {
     if (validity.empty() || r.status == Status::Failed) return;
-    internal::combine(&r.status, &r.message, Status::Warning, validity);
+    r.Worsen(Status::Warning, validity);
   }
   void outside_envelope(SweepResult& r) const {
     if (validity.empty()) return;
     for (PointResult& p : r.points)
-      if (p.status != Status::Failed)
-        internal::combine(&p.status, &p.message, Status::Warning, validity);
+      if (p.status != Status::Failed) p.Worsen(Status::Warning, validity);
     if (r.status == Status::Ok) {
       r.status = Status::Warning;
       r.message = validity;
@@ -402,15 +402,12 @@ TipSimulation Analysis::simulate_nonlinear(double mu, const Eigen::VectorXd& y0,
   }
   out.flap_growth_rate = envelope_growth_rate(s.psi, out.flap_tip, 0.25 * options.revolutions);
   out.lag_growth_rate = envelope_growth_rate(s.psi, out.lag_tip, 0.25 * options.revolutions);
-  out.status = s.status;
-  out.message = s.message;
-  if (out.status != Status::Failed && eq.status != Status::Ok) {
-    out.status = Status::Warning;
-    out.message += std::string(out.message.empty() ? "" : "; ") +
-                   (periodic ? "the reference periodic equilibrium: " + eq.message
-                             : eq.message +
-                                   "; the simulation starts from and is measured against the "
-                                   "hover equilibrium");
+  out.Merge(s);
+  if (out.IsUsable() && eq.status != Status::Ok) {
+    out.Worsen(Status::Warning, periodic ? "the reference periodic equilibrium: " + eq.message
+                                         : eq.message +
+                                               "; the simulation starts from and is measured "
+                                               "against the hover equilibrium");
   }
   return out;
 }
@@ -443,6 +440,12 @@ SystemSnapshot Analysis::snapshot(double mu, double psi) const {
   for (int j = 0; j < m.n_structural; ++j) {
     s.structural_integrals.emplace_back(m.structural[j].name, st[j]);
   }
+  if (!s.A.allFinite() || !s.f.allFinite())
+    s.Worsen(Status::Failed, "non-finite entries of A(psi) or f(psi) (not shown)");
+  bool integrals_ok = true;
+  for (const auto* v : {&s.aero_integrals, &s.aero_integrals_region, &s.structural_integrals})
+    for (const auto& [name, value] : *v) integrals_ok = integrals_ok && std::isfinite(value);
+  if (!integrals_ok) s.Worsen(Status::Failed, "non-finite spanwise integrals (not shown)");
   return s;
 }
 
@@ -469,16 +472,12 @@ PointResult Analysis::point(double mu, double scan_step) const {
   r.mu = mu;
   if (r.status != Status::Failed) {
     // A problem on the way (identification) matters for the point too.
-    if (sw.status > r.status) {
-      r.status = sw.status;
-      r.message = r.message.empty() ? sw.message : r.message + "; " + sw.message;
-    }
+    if (sw.status > r.status) r.Worsen(sw.status, sw.message);
   } else if (r.message.empty()) {
     r.message = sw.message;
   }
   if (r.status != Status::Failed)
-    internal::combine(&r.status, &r.message, impl_->validity.empty() ? Status::Ok : Status::Warning,
-                      impl_->validity);
+    r.Worsen(impl_->validity.empty() ? Status::Ok : Status::Warning, impl_->validity);
   sort_for_output(r.exponents);
   return r;
 }
@@ -587,9 +586,8 @@ CriticalResult Analysis::critical(const CriticalOptions& opt) const {
         if (!at) continue;
         const auto it = continuation->unclean_equilibria.find(*at);
         if (it == continuation->unclean_equilibria.end()) continue;
-        internal::combine(&r.status, &r.message, Status::Warning,
-                          "the periodic equilibrium at mu = " + round_trip_text(*at) +
-                              ", where the result is found: " + it->second);
+        r.Worsen(Status::Warning, "the periodic equilibrium at mu = " + round_trip_text(*at) +
+                                      ", where the result is found: " + it->second);
       }
     }
   }

@@ -101,21 +101,22 @@ void report_fold(CriticalResult& r, const FoldWatch& watch, const EquilibriumPro
   // A fold: the multiplier is near 1 where the branch ends.  Otherwise the failure stays one.
   if (!(d_lo < 0.05)) {
     // (d_lo is infinite when the multipliers could not be computed: no "inf" in a message.)
-    r.message += "; the periodic equilibrium ends in " + bracket +
-                 (std::isfinite(d_lo)
-                      ? " but no Floquet multiplier approaches 1 there (min |Lambda - 1| = " +
-                            short_text(d_lo) + ")"
-                      : " but the Floquet multipliers of the linearization there could not be "
-                        "computed (non-finite)") +
-                 ": not identified as a fold";
+    r.Worsen(r.status, "the periodic equilibrium ends in " + bracket +
+                           (std::isfinite(d_lo)
+                                ? " but no Floquet multiplier approaches 1 there (min |Lambda - "
+                                  "1| = " +
+                                      short_text(d_lo) + ")"
+                                : " but the Floquet multipliers of the linearization there "
+                                  "could not be computed (non-finite)") +
+                           ": not identified as a fold");
     return;
   }
   const double mid = 0.5 * (lo + hi);
   // With all_intervals an onset may have been found before the fold: mu_c is that onset, not
   // the fold, which is only named.
   if (!r.intervals.empty()) {
-    r.message += "; the periodic equilibrium branch ends at a fold near mu = " + short_text(mid) +
-                 " (bracket " + bracket + ")";
+    r.Worsen(r.status, "the periodic equilibrium branch ends at a fold near mu = " +
+                           short_text(mid) + " (bracket " + bracket + ")");
     return;
   }
   // Conservative: near the fold the existence test (convergence of the continuation) depends a

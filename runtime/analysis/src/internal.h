@@ -117,12 +117,4 @@ inline std::string validity_of(const detail::SystemBuilder& b) {
   return validity_warning(b.params(), b.inflow(), flap_tip);
 }
 
-// A result is never better than what it rests on: `status` and `message` take the worse of
-// their own and (s, m), the messages joined.
-inline void combine(Status* status, std::string* message, Status s, const std::string& m) {
-  if (s == Status::Ok && m.empty()) return;
-  if (static_cast<int>(s) > static_cast<int>(*status)) *status = s;
-  if (!m.empty()) *message = message->empty() ? m : *message + "; " + m;
-}
-
 }  // namespace flaplag::internal

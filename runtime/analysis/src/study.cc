@@ -17,12 +17,6 @@ std::optional<InvalidInput> bad(const char* name, const std::string& value,
   return InvalidInput(name, value, reason);
 }
 
-// Ceres-style check helpers: "field = value: reason" from an InvalidInput.
-bool report(const std::optional<InvalidInput>& p, std::string* error) {
-  if (p && error != nullptr) *error = p->what();
-  return !p;
-}
-
 std::optional<InvalidInput> check_values(const char* name, const std::vector<double>& v,
                                          std::size_t max_count) {
   if (v.empty()) return bad(name, "[]", "need at least one value");
@@ -39,12 +33,11 @@ std::optional<InvalidInput> study_problem(const StudyOptions& o) {
     return bad("parameter", o.parameter.empty() ? "\"\"" : o.parameter,
                "must name a numeric rotor parameter (not mu: mu_c is what a study finds)");
   if (auto p = check_values("values", o.values, kMaxStudyValues)) return p;
-  std::string why;
-  if (!o.critical.IsValid(&why)) {
-    o.critical.Check();  // throws the precise InvalidInput
-  }
-  o.trim.Check();
-  return threads_problem(o.threads);
+  return Requirements()
+      .Include(o.critical.Validate())
+      .Include(o.trim.Validate())
+      .Include(threads_problem(o.threads))
+      .Result();
 }
 
 std::optional<InvalidInput> map_problem(const MapOptions& o) {
@@ -69,11 +62,8 @@ std::optional<InvalidInput> map_problem(const MapOptions& o) {
     return bad("mu", round_trip_text(o.mu), "must be in [0, 1000]");
   if (!(std::isfinite(o.scan_step) && o.scan_step > 0.0))
     return bad("scan_step", round_trip_text(o.scan_step), "must be > 0");
-  o.trim.Check();
-  return threads_problem(o.threads);
+  return Requirements().Include(o.trim.Validate()).Include(threads_problem(o.threads)).Result();
 }
-
-Status worse(Status a, Status b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
 
 // The least stable exponent of a point as a map cell.
 MapCell cell_of(const PointResult& p) {
@@ -116,24 +106,9 @@ RotorParameters with_parameter(RotorParameters p, const std::string& name, doubl
   return p;
 }
 
-bool StudyOptions::IsValid(std::string* error) const {
-  try {
-    return report(study_problem(*this), error);
-  } catch (const InvalidInput& e) {
-    if (error != nullptr) *error = e.what();
-    return false;
-  }
-}
+std::optional<InvalidInput> StudyOptions::Validate() const { return study_problem(*this); }
 
-void StudyOptions::Check() const {
-  if (auto p = study_problem(*this)) throw *p;
-}
-
-bool MapOptions::IsValid(std::string* error) const { return report(map_problem(*this), error); }
-
-void MapOptions::Check() const {
-  if (auto p = map_problem(*this)) throw *p;
-}
+std::optional<InvalidInput> MapOptions::Validate() const { return map_problem(*this); }
 
 StudyResult run_study(const RotorParameters& base, const TransitionOptions& transition,
                       const StudyOptions& options, const std::atomic<bool>* cancel,
@@ -166,12 +141,8 @@ StudyResult run_study(const RotorParameters& base, const TransitionOptions& tran
       });
   out.cancelled = out.rows_done < out.rows.size();
   out.rows.resize(out.rows_done);
-  for (const StudyRow& r : out.rows) {
-    out.status = worse(out.status, r.critical.status);
-    if (out.message.empty() && r.critical.status != Status::Ok)
-      out.message =
-          options.parameter + " = " + round_trip_text(r.value) + ": " + r.critical.message;
-  }
+  for (const StudyRow& r : out.rows)
+    out.Include(r.critical, options.parameter + " = " + round_trip_text(r.value) + ": ");
   return out;
 }
 
@@ -228,9 +199,7 @@ MapResult run_map(const RotorParameters& base, const TransitionOptions& transiti
   for (std::size_t l = 0; l < lines; ++l)
     for (std::size_t k = 0; k < along; ++k) {
       const MapCell& c = mu_y ? out.cells[k][l] : out.cells[l][k];
-      if (!c.computed) continue;
-      out.status = worse(out.status, c.status);
-      if (out.message.empty() && c.status != Status::Ok) out.message = c.message;
+      if (c.computed) out.Include(c);
     }
   return out;
 }

@@ -25,12 +25,6 @@ namespace flaplag {
 
 namespace {
 
-bool report(const char* name, const std::string& value, const std::string& reason,
-            std::string* error) {
-  if (error != nullptr) *error = std::string("`") + name + "` = " + value + ": " + reason;
-  return false;
-}
-
 void check_mu(double mu) { internal::check_mu(mu, "mu"); }
 using internal::sort_for_output;
 
@@ -169,38 +163,15 @@ bool trim_kind_from_name(std::string_view name, TrimKind* kind) {
   return false;
 }
 
-bool TrimOptions::IsValid(std::string* error) const {
-  if (!(std::isfinite(thrust_coefficient) && thrust_coefficient > 0.0 &&
-        thrust_coefficient <= 0.1)) {
-    return report("thrust_coefficient", round_trip_text(thrust_coefficient),
-                  "must be in (0, 0.1] (C_T, not C_T/sigma)", error);
-  }
-  if (!(std::isfinite(shaft_angle) && std::abs(shaft_angle) < kHalfPi)) {
-    return report("shaft_angle", round_trip_text(shaft_angle), "must be in (-pi/2, pi/2)", error);
-  }
-  if (max_iterations < 1 || max_iterations > 1000) {
-    return report("max_iterations", std::to_string(max_iterations), "must be 1..1000", error);
-  }
-  if (max_evaluations < 1 || max_evaluations > 1000000) {
-    return report("max_evaluations", std::to_string(max_evaluations), "must be 1..1000000", error);
-  }
-  if (!(std::isfinite(tolerance) && tolerance > 0.0 && tolerance <= 1e-3)) {
-    return report("tolerance", round_trip_text(tolerance), "must be in (0, 1e-3]", error);
-  }
-  return response.IsValid(error);
-}
-
-void TrimOptions::Check() const {
-  std::string why;
-  if (IsValid(&why)) return;
-  if (why.rfind("`", 0) != 0) {  // from ResponseOptions: "name = value: reason"
-    response.Check();
-  }
-  const auto close = why.find('`', 1);
-  const auto eq = why.find(" = ", close);
-  const auto colon = why.find(": ", eq);
-  throw InvalidInput(why.substr(1, close - 1), why.substr(eq + 3, colon - eq - 3),
-                     why.substr(colon + 2));
+std::optional<InvalidInput> TrimOptions::Validate() const {
+  return Requirements()
+      .InRange("thrust_coefficient", thrust_coefficient, kThrustRange)
+      .InRange("shaft_angle", shaft_angle, kShaftAngleRange)
+      .InRange("max_iterations", max_iterations, kIterationsRange)
+      .InRange("max_evaluations", max_evaluations, kEvaluationsRange)
+      .InRange("tolerance", tolerance, kToleranceRange)
+      .Include(response.Validate())
+      .Result();
 }
 
 double momentum_inflow(double ct, double mu, double alpha) {
@@ -339,8 +310,7 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
   if (out.status != Status::Failed) {
     const detail::SystemBuilder builder(out.parameters, m, out.inflow);
     out.validity = internal::validity_of(builder);
-    internal::combine(&out.status, &out.message,
-                      out.validity.empty() ? Status::Ok : Status::Warning, out.validity);
+    out.Worsen(out.validity.empty() ? Status::Ok : Status::Warning, out.validity);
   }
   return out;
 }
@@ -667,8 +637,7 @@ struct Trimmed {
       // unstable trimmed system is no problem of the sample: the exponents say so).
       const std::string problem = trim_problem(tr);
       if (!problem.empty())
-        internal::combine(&out.status, &out.message, Status::Warning,
-                          "trim at mu = " + round_trip_text(mu) + ": " + problem);
+        out.Worsen(Status::Warning, "trim at mu = " + round_trip_text(mu) + ": " + problem);
       return out;
     };
   }
@@ -718,9 +687,8 @@ struct Trimmed {
       if (x == nullptr) continue;
       const std::string problem = trim_problem(*x);
       if (!problem.empty())
-        internal::combine(&r.status, &r.message, Status::Warning,
-                          "the trim at mu = " + round_trip_text(mu) +
-                              ", where the result is found, is not sound: " + problem);
+        r.Worsen(Status::Warning, "the trim at mu = " + round_trip_text(mu) +
+                                      ", where the result is found, is not sound: " + problem);
     }
   }
 
@@ -754,10 +722,7 @@ PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
   }
   r = std::move(sw.points.back());
   r.mu = mu;
-  if (sw.status > r.status) {
-    r.status = sw.status;
-    r.message = r.message.empty() ? sw.message : r.message + "; " + sw.message;
-  }
+  if (sw.status > r.status) r.Worsen(sw.status, sw.message);
   sort_for_output(r.exponents);
   if (trims != nullptr) {
     SweepResult one;

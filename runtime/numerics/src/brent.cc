@@ -21,6 +21,13 @@ void require_finite(const char* name, double v) {
 
 }  // namespace
 
+std::optional<InvalidInput> BrentOptions::Validate() const {
+  return Requirements()
+      .InRange("tolerance", tolerance, kToleranceRange)
+      .InRange("max_evaluations", max_evaluations, kEvaluationsRange)
+      .Result();
+}
+
 BrentResult brent_zero(const std::function<double(double)>& f, double a, double fa, double b,
                        double fb, const BrentOptions& opt) {
   if (!f) throw InvalidInput("f", "empty", "a function is required");
@@ -32,10 +39,7 @@ BrentResult brent_zero(const std::function<double(double)>& f, double a, double 
     throw InvalidInput("fb", round_trip_text(fb),
                        "must have the opposite sign of fa = " + round_trip_text(fa) +
                            " (or one be zero): [a, b] does not bracket a sign change");
-  if (!(std::isfinite(opt.tolerance) && opt.tolerance > 0.0))
-    throw InvalidInput("tolerance", round_trip_text(opt.tolerance), "must be finite and > 0");
-  if (opt.max_evaluations < 1)
-    throw InvalidInput("max_evaluations", std::to_string(opt.max_evaluations), "must be >= 1");
+  opt.Check();
 
   BrentResult out;
   BrentPoint pa{a, fa, 0}, pb{b, fb, 1}, pc = pa;

@@ -54,8 +54,6 @@ void require(bool ok, const char* name, double value, const char* reason) {
   if (!ok) throw InvalidInput(name, round_trip_text(value), reason);
 }
 
-Status worse(Status a, Status b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
-
 // Largest n solved exactly (branch and bound); beyond, greedy.  Also the size of the
 // stack buffers of ExponentTracker::advance, which allocates nothing up to it.
 constexpr int kExactAssignment = 8;
@@ -154,31 +152,6 @@ std::optional<double> largest_zeta_error(const FloquetSample& s) {
   for (std::size_t i = 1; i < s.floquet.exponents.size(); ++i)
     if (s.floquet.exponents[i].zeta > s.floquet.exponents[k].zeta) k = i;
   return s.zeta_errors[k];
-}
-
-// The InvalidInput of the first invalid field, or nothing.
-std::optional<InvalidInput> problem(const CriticalOptions& o) {
-  auto bad = [](const char* name, double v, const std::string& reason) {
-    return std::optional<InvalidInput>(InvalidInput(name, round_trip_text(v), reason));
-  };
-  if (!(std::isfinite(o.mu_max) && o.mu_max > 0.0 && o.mu_max <= kMaxAdvanceRatio))
-    return bad("mu_max", o.mu_max, "must be > 0 and <= " + round_trip_text(kMaxAdvanceRatio));
-  if (!(std::isfinite(o.scan_step) && o.scan_step > 0.0))
-    return bad("scan_step", o.scan_step, "must be > 0");
-  if (o.mu_max / o.scan_step > static_cast<double>(kMaxContinuationSteps))
-    return bad("scan_step", o.scan_step,
-               "too small: mu_max / scan_step must be at most " +
-                   std::to_string(kMaxContinuationSteps) + " steps");
-  if (!(std::isfinite(o.tolerance) && o.tolerance > 0.0))
-    return bad("tolerance", o.tolerance, "must be > 0");
-  if (!(std::isfinite(o.zeta_threshold) && o.zeta_threshold >= 0.0))
-    return bad("zeta_threshold", o.zeta_threshold, "must be >= 0");
-  if (!(std::isfinite(o.periodic_omega_tolerance) && o.periodic_omega_tolerance >= 0.0 &&
-        o.periodic_omega_tolerance < 0.25))
-    return bad("periodic_omega_tolerance", o.periodic_omega_tolerance, "must be in [0, 0.25)");
-  if (!(std::isfinite(o.scan_zeta_tolerance) && o.scan_zeta_tolerance > 0.0))
-    return bad("scan_zeta_tolerance", o.scan_zeta_tolerance, "must be > 0");
-  return std::nullopt;
 }
 
 }  // namespace
@@ -421,18 +394,75 @@ int ExponentTracker::most_unstable() const {
 
 double ExponentTracker::max_zeta() const { return exponents_[most_unstable()].zeta; }
 
-bool CriticalOptions::IsValid(std::string* error) const {
-  const auto p = problem(*this);
-  if (p && error != nullptr) *error = p->what();
-  return !p;
+std::optional<InvalidInput> CriticalOptions::Validate() const {
+  return Requirements()
+      .InRange("mu_max", mu_max, kMuMaxRange)
+      .InRange("scan_step", scan_step, kPositive)
+      .Require(mu_max / scan_step <= static_cast<double>(kMaxContinuationSteps),
+               [&] {
+                 return InvalidInput("scan_step", round_trip_text(scan_step),
+                                     "too small: mu_max / scan_step must be at most " +
+                                         std::to_string(kMaxContinuationSteps) + " steps");
+               })
+      .InRange("tolerance", tolerance, kPositive)
+      .InRange("zeta_threshold", zeta_threshold, kZetaThresholdRange)
+      .InRange("periodic_omega_tolerance", periodic_omega_tolerance, kOmegaToleranceRange)
+      .InRange("scan_zeta_tolerance", scan_zeta_tolerance, kPositive)
+      .Result();
 }
 
-void CriticalOptions::Check() const {
-  if (auto p = problem(*this)) throw *p;
+namespace {
+
+bool finite(std::complex<double> z) { return std::isfinite(z.real()) && std::isfinite(z.imag()); }
+bool zeta_ok(double zeta) {
+  return std::isfinite(zeta) || zeta == -std::numeric_limits<double>::infinity();
+}
+void not_shown(Outcome& o, Status s, const std::string& what) {
+  o.Worsen(s, "non-finite " + what + " (not shown)");
+}
+
+CriticalResult critical_search(const HoverModes& hover, const FloquetFunction& floquet,
+                               const CriticalOptions& opt);
+
+}  // namespace
+
+void check_finite(PointResult& p) {
+  const Status before = p.status;
+  for (const LabelledExponent& e : p.exponents) {
+    if (!zeta_ok(e.zeta) || !std::isfinite(e.omega) || !finite(e.multiplier)) {
+      not_shown(p, Status::Failed, "exponent of mode " + e.label);
+      break;
+    }
+  }
+  if (!std::isfinite(p.mu)) not_shown(p, Status::Failed, "mu");
+  // The exponents are what stability is read from: without them it is unknown.
+  if (p.status == Status::Failed && before != Status::Failed) p.stable.reset();
+  if (p.liouville_residual && !std::isfinite(*p.liouville_residual))
+    not_shown(p, Status::Warning, "Liouville residual");
+  if (p.error && !std::isfinite(*p.error)) not_shown(p, Status::Warning, "error estimate");
+}
+
+void check_finite(CriticalResult& c) {
+  if (c.mu_c && (!std::isfinite(*c.mu_c) || !std::isfinite(c.omega))) {
+    not_shown(c, Status::Failed, "mu_c or omega");
+    c.mu_c.reset();
+  }
+  if (c.mu_c_error && !std::isfinite(*c.mu_c_error))
+    not_shown(c, Status::Warning, "mu_c error estimate");
+  if (!std::isfinite(c.mu_max)) not_shown(c, Status::Failed, "mu_max");
 }
 
 CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& floquet,
                              const CriticalOptions& opt) {
+  CriticalResult out = critical_search(hover, floquet, opt);
+  check_finite(out);
+  return out;
+}
+
+namespace {
+
+CriticalResult critical_search(const HoverModes& hover, const FloquetFunction& floquet,
+                               const CriticalOptions& opt) {
   opt.Check();
   if (!floquet) throw InvalidInput("floquet", "empty", "a FloquetFunction is required");
 
@@ -787,16 +817,14 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
     set_mu_c();
     out.status = warnings.empty() && unresolved.empty() ? Status::Ok : Status::Warning;
     if (opt.all_intervals) {
-      out.message += "; " + std::to_string(out.intervals.size()) +
-                     " instability interval(s) up to mu_max = " + fmt(opt.mu_max);
+      out.Worsen(out.status, std::to_string(out.intervals.size()) +
+                                 " instability interval(s) up to mu_max = " + fmt(opt.mu_max));
     }
   }
-  if (!unresolved.empty()) out.message += "; " + unresolved;
-  if (!warnings.empty()) out.message += "; " + warnings;
+  out.Worsen(out.status, unresolved);
+  out.Worsen(out.status, warnings);
   return out;
 }
-
-namespace {
 
 void check_track(const std::vector<double>& mus, double max_step, double zeta_tolerance) {
   require(std::isfinite(max_step) && max_step > 0.0, "step", max_step, "must be > 0");
@@ -864,10 +892,7 @@ class TrackPass {
         return false;
       }
       // Identification along the way matters; the resolution of points not reported does not.
-      if (r.status == Status::Warning) {
-        out_.status = worse(out_.status, Status::Warning);
-        note(e.mu, r.message);
-      }
+      if (r.status == Status::Warning) out_.Include(r, where(e.mu));
       return true;
     }
     PointResult p;
@@ -879,17 +904,14 @@ class TrackPass {
     p.status = r.status;
     p.message = r.message;
     if (r.status == Status::Failed) {
+      check_finite(p);
       out_.points.push_back(std::move(p));
       out_.status = Status::Failed;
       out_.message = "at mu = " + fmt(e.mu) + ": " + r.message;
       return false;
     }
     // A Warning's message, or a note that comes with an Ok sample (what it could not check).
-    if (sample.status == Status::Warning || !sample.message.empty()) {
-      p.status = worse(p.status, sample.status);
-      if (!sample.message.empty())
-        p.message = p.message.empty() ? sample.message : p.message + "; " + sample.message;
-    }
+    p.Worsen(sample.status, sample.message);
     p.exponents = tracker_.exponents();
     p.stable = tracker_.max_zeta() <= 0.0;
     // The sign of the largest zeta is known only beyond its own error: the estimate, or the
@@ -907,15 +929,14 @@ class TrackPass {
       }
       if (std::isfinite(x.zeta) && std::abs(x.zeta) <= uncertain) {
         p.stable.reset();
-        p.status = worse(p.status, Status::Warning);
-        const std::string m = "stability unknown: the least stable exponent (" + x.label +
-                              ", zeta = " + fmt(x.zeta) + " per rev) is within its error (" +
-                              fmt(uncertain) + " per rev) of zero";
-        p.message = p.message.empty() ? m : p.message + "; " + m;
+        p.Worsen(Status::Warning, "stability unknown: the least stable exponent (" + x.label +
+                                      ", zeta = " + fmt(x.zeta) +
+                                      " per rev) is within its error (" + fmt(uncertain) +
+                                      " per rev) of zero");
       }
     }
-    if (p.status != Status::Ok) note(e.mu, p.message);
-    out_.status = worse(out_.status, p.status);
+    check_finite(p);
+    out_.Include(p, where(e.mu));
     out_.points.push_back(std::move(p));
     return true;
   }
@@ -923,9 +944,7 @@ class TrackPass {
   SweepResult& out() { return out_; }
 
  private:
-  void note(double mu, const std::string& m) {
-    if (out_.message.empty()) out_.message = "at mu = " + fmt(mu) + ": " + m;
-  }
+  static std::string where(double mu) { return "at mu = " + fmt(mu) + ": "; }
 
   ExponentTracker tracker_;
   double zeta_tolerance_;

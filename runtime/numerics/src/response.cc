@@ -137,50 +137,23 @@ void monodromy(const PeriodicSystem& sys, int steps, Eigen::MatrixXd& phi, Eigen
   g = Y.col(n);
 }
 
-bool report(const char* name, const std::string& value, const std::string& reason,
-            std::string* error) {
-  if (error != nullptr) *error = std::string(name) + " = " + value + ": " + reason;
-  return false;
-}
-
 }  // namespace
 
-bool ResponseOptions::IsValid(std::string* error) const {
-  if (steps < 0 || steps > kMaxSteps)
-    return report("steps", std::to_string(steps), "must be 0 (automatic) or 1..1048576", error);
-  if (samples < 2 || samples > 100000)
-    return report("samples", std::to_string(samples), "must be 2..100000", error);
-  if (!(std::isfinite(tolerance) && tolerance > 0.0))
-    return report("tolerance", round_trip_text(tolerance), "must be > 0", error);
-  return true;
+std::optional<InvalidInput> ResponseOptions::Validate() const {
+  return Requirements()
+      .InRange("steps", steps, kStepsRange)
+      .InRange("samples", samples, kSamplesRange)
+      .InRange("tolerance", tolerance, kPositive)
+      .Result();
 }
 
-void ResponseOptions::Check() const {
-  if (steps < 0 || steps > kMaxSteps)
-    throw InvalidInput("steps", std::to_string(steps), "must be 0 (automatic) or 1..1048576");
-  if (samples < 2 || samples > 100000)
-    throw InvalidInput("samples", std::to_string(samples), "must be 2..100000");
-  if (!(std::isfinite(tolerance) && tolerance > 0.0))
-    throw InvalidInput("tolerance", round_trip_text(tolerance), "must be > 0");
-}
-
-bool SimulationOptions::IsValid(std::string* error) const {
-  if (!(std::isfinite(revolutions) && revolutions > 0.0 && revolutions <= 1e5))
-    return report("revolutions", round_trip_text(revolutions), "must be in (0, 1e5]", error);
-  if (steps_per_rev < 0 || steps_per_rev > kMaxSteps)
-    return report("steps", std::to_string(steps_per_rev), "must be 0 (automatic) or 1..1048576",
-                  error);
-  if (samples_per_rev < 1 || samples_per_rev > 10000)
-    return report("samples", std::to_string(samples_per_rev), "must be 1..10000", error);
-  return true;
-}
-
-void SimulationOptions::Check() const {
-  std::string why;
-  if (IsValid(&why)) return;
-  const auto eq = why.find(" = ");
-  const auto colon = why.find(": ", eq);
-  throw InvalidInput(why.substr(0, eq), why.substr(eq + 3, colon - eq - 3), why.substr(colon + 2));
+// The fields are named as the front ends' options ("steps", "samples").
+std::optional<InvalidInput> SimulationOptions::Validate() const {
+  return Requirements()
+      .InRange("revolutions", revolutions, kRevolutionsRange)
+      .InRange("steps", steps_per_rev, kStepsRange)
+      .InRange("samples", samples_per_rev, kSamplesRange)
+      .Result();
 }
 
 PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOptions& options) {
@@ -290,17 +263,15 @@ PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOpti
   }
   // Some |Lambda| > 1 means the blade does not settle onto this solution.
   if (rho_fine > 1.0) {
-    out.status = Status::Warning;
-    out.message += std::string(out.message.empty() ? "" : "; ") +
-                   "the system is unstable (largest |multiplier| " + short_text(rho_fine) +
+    out.Worsen(Status::Warning,
+               "the system is unstable (largest |multiplier| " + short_text(rho_fine) +
                    ", zeta = " + short_text(std::log(rho_fine) / kTwoPi) +
                    " per rev): the periodic solution exists but the blade does not settle onto "
-                   "it";
+                   "it");
   }
   if (automatic && out.error && *out.error > options.tolerance) {
-    out.status = Status::Warning;
-    out.message += std::string(out.message.empty() ? "" : "; ") +
-                   "not resolved to the tolerance: estimated error " + short_text(*out.error);
+    out.Worsen(Status::Warning,
+               "not resolved to the tolerance: estimated error " + short_text(*out.error));
   }
   return out;
 }

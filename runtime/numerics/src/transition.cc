@@ -1377,30 +1377,19 @@ Eigen::MatrixXd transition_matrix_magnus4_level(const PeriodicSystem& sys, int s
   return phi;
 }
 
-bool TransitionOptions::IsValid(std::string* error) const {
-  std::string why;
-  if (method != TransitionMethod::RK4 && method != TransitionMethod::Hsu &&
-      method != TransitionMethod::Magnus4 && method != TransitionMethod::Automatic) {
-    why = "method = " + std::to_string(static_cast<int>(method)) + ": unknown method";
-  } else if (steps < 0 || steps > kMaxSteps) {
-    why = "steps = " + std::to_string(steps) + ": must be 0 (automatic) or 1.." +
-          std::to_string(kMaxSteps);
-  } else if (terms < 1 || terms > kMaxTerms) {
-    why = "terms = " + std::to_string(terms) + ": must be 1.." + std::to_string(kMaxTerms);
-  } else if (!(std::isfinite(zeta_tolerance) && zeta_tolerance > 0.0)) {
-    why = "zeta_tolerance = " + round_trip_text(zeta_tolerance) + ": must be > 0";
-  }
-  if (!why.empty() && error != nullptr) *error = why;
-  return why.empty();
-}
-
-void TransitionOptions::Check() const {
-  std::string why;
-  if (IsValid(&why)) return;
-  // "field = value: reason"
-  const auto eq = why.find(" = ");
-  const auto colon = why.find(": ", eq);
-  throw InvalidInput(why.substr(0, eq), why.substr(eq + 3, colon - eq - 3), why.substr(colon + 2));
+std::optional<InvalidInput> TransitionOptions::Validate() const {
+  const bool known = method == TransitionMethod::RK4 || method == TransitionMethod::Hsu ||
+                     method == TransitionMethod::Magnus4 || method == TransitionMethod::Automatic;
+  return Requirements()
+      .Require(known,
+               [&] {
+                 return InvalidInput("method", std::to_string(static_cast<int>(method)),
+                                     "unknown method");
+               })
+      .InRange("steps", steps, kStepsRange)
+      .InRange("terms", terms, kTermsRange)
+      .InRange("zeta_tolerance", zeta_tolerance, kPositive)
+      .Result();
 }
 
 TransitionResult transition_matrix(const PeriodicSystem& sys, const TransitionOptions& opt) {

@@ -2,10 +2,19 @@
 #include "flaplag/rotor/hover.h"
 
 #include <Eigen/Eigenvalues>
+#include <cmath>
+#include <complex>
 
 #include "flaplag/core/errors.h"
 
 namespace flaplag {
+
+void check_finite(HoverResult& h) {
+  bool ok = std::isfinite(h.inflow) && h.q0.allFinite();
+  for (const std::complex<double>& z : h.eigenvalues)
+    ok = ok && std::isfinite(z.real()) && std::isfinite(z.imag());
+  if (!ok) h.Worsen(Status::Failed, "non-finite hover equilibrium or eigenvalue (not shown)");
+}
 
 HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_modes) {
   if (flap_modes < 0 || lag_modes < 0 || flap_modes + lag_modes < 1)

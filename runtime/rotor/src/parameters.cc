@@ -159,13 +159,7 @@ const ParameterSpec* find_parameter(std::string_view field) {
   return nullptr;
 }
 
-bool in_range(const ParameterSpec& spec, double v) {
-  const Interval& r = spec.range;
-  if (!std::isfinite(v)) return false;
-  const bool lo_ok = r.lo_open ? v > r.lo : v >= r.lo;
-  const bool hi_ok = r.hi_open ? v < r.hi : v <= r.hi;
-  return lo_ok && hi_ok;
-}
+bool in_range(const ParameterSpec& spec, double v) { return spec.range.Contains(v); }
 
 const char* mode_kind_name(ModeKind k) { return k == ModeKind::Exact ? "exact" : "assumed"; }
 

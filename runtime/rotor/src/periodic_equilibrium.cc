@@ -25,12 +25,6 @@ constexpr double kGaussW[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066
                                0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
                                0.2223810344533745, 0.1012285362903763};
 
-bool fail(const char* name, const std::string& value, const std::string& reason,
-          std::string* error) {
-  if (error != nullptr) *error = std::string(name) + " = " + value + ": " + reason;
-  return false;
-}
-
 // Smooth pieces of [0, 2 pi]: split at the sector edges; each flagged with its region.
 struct Piece {
   double a, b;
@@ -409,32 +403,15 @@ std::vector<Eigen::VectorXd> NonlinearSystem::integrate(const Eigen::VectorXd& y
   return out;
 }
 
-bool PeriodicEquilibriumOptions::IsValid(std::string* error) const {
-  if (harmonics != kAutomaticHarmonics && (harmonics < 1 || harmonics > 128))
-    return fail("harmonics", std::to_string(harmonics),
-                "must be 1..128, or " + std::to_string(kAutomaticHarmonics) + " (automatic)",
-                error);
-  if (!(std::isfinite(harmonics_tolerance) && harmonics_tolerance > 0.0 &&
-        harmonics_tolerance <= 1e-2))
-    return fail("harmonics_tolerance", round_trip_text(harmonics_tolerance), "must be in (0, 1e-2]",
-                error);
-  if (max_iterations < 1 || max_iterations > 1000)
-    return fail("max_iterations", std::to_string(max_iterations), "must be 1..1000", error);
-  if (!(std::isfinite(tolerance) && tolerance > 0.0 && tolerance <= 1e-2))
-    return fail("tolerance", round_trip_text(tolerance), "must be in (0, 1e-2]", error);
-  if (!(std::isfinite(min_continuation_step) && min_continuation_step > 0.0 &&
-        min_continuation_step <= 0.1))
-    return fail("min_continuation_step", round_trip_text(min_continuation_step),
-                "must be in (0, 0.1]", error);
-  return true;
-}
-
-void PeriodicEquilibriumOptions::Check() const {
-  std::string why;
-  if (IsValid(&why)) return;
-  const auto eq = why.find(" = ");
-  const auto colon = why.find(": ", eq);
-  throw InvalidInput(why.substr(0, eq), why.substr(eq + 3, colon - eq - 3), why.substr(colon + 2));
+std::optional<InvalidInput> PeriodicEquilibriumOptions::Validate() const {
+  static_assert(kAutomaticHarmonics == -1, "the words of kHarmonicsRange name it");
+  return Requirements()
+      .InRange("harmonics", harmonics == kAutomaticHarmonics ? 1 : harmonics, kHarmonicsRange)
+      .InRange("harmonics_tolerance", harmonics_tolerance, kToleranceRange)
+      .InRange("max_iterations", max_iterations, kIterationsRange)
+      .InRange("tolerance", tolerance, kToleranceRange)
+      .InRange("min_continuation_step", min_continuation_step, kMinStepRange)
+      .Result();
 }
 
 Eigen::VectorXd PeriodicEquilibrium::state(double psi) const {
@@ -603,11 +580,13 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
   out.linearization.normal = linear_set(sys, out, false, L);
   if (out.linearization.has_sector) out.linearization.reversed = linear_set(sys, out, true, L);
 
-  std::string note = k_note;
+  Outcome note;  // the problems, in this order
+  note.Worsen(Status::Warning, k_note);
   if (out.truncation > 1e-3) {
-    note += std::string(note.empty() ? "" : "; ") + "harmonic " + std::to_string(K) +
-            " of the periodic equilibrium is " + short_text(out.truncation) +
-            " of its largest coefficient; increase `harmonics`";
+    note.Worsen(Status::Warning, "harmonic " + std::to_string(K) +
+                                     " of the periodic equilibrium is " +
+                                     short_text(out.truncation) +
+                                     " of its largest coefficient; increase `harmonics`");
   }
   if (opt.check_stability) {
     const Eigen::MatrixXd phi = transition_matrix_rk4(out.linearization, 4096);
@@ -620,19 +599,21 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
     }
     std::sort(out.multiplier_moduli.rbegin(), out.multiplier_moduli.rend());
     if (fl.status != Status::Ok) {
-      note += std::string(note.empty() ? "" : "; ") + fl.message;
+      note.Worsen(Status::Warning, fl.message);
     } else if (out.min_distance_to_one < 1e-8) {
-      note += std::string(note.empty() ? "" : "; ") + "a Floquet multiplier is at 1 (distance " +
-              short_text(out.min_distance_to_one) + "): the periodic equilibrium is not isolated";
+      note.Worsen(Status::Warning, "a Floquet multiplier is at 1 (distance " +
+                                       short_text(out.min_distance_to_one) +
+                                       "): the periodic equilibrium is not isolated");
     } else if (!out.multiplier_moduli.empty() && out.multiplier_moduli[0] > 1.0) {
-      note += std::string(note.empty() ? "" : "; ") +
-              "the periodic equilibrium is unstable (largest multiplier modulus " +
-              short_text(out.multiplier_moduli[0]) + "): the blade does not settle onto it";
+      note.Worsen(Status::Warning,
+                  "the periodic equilibrium is unstable (largest multiplier modulus " +
+                      short_text(out.multiplier_moduli[0]) +
+                      "): the blade does not settle onto it");
     }
   }
-  if (!note.empty()) {
+  if (!note.message.empty()) {
     out.status = Status::Warning;
-    out.message = note;
+    out.message = note.message;
   }
   return out;
 }

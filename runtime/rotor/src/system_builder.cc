@@ -83,8 +83,7 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
       modes_ = exact_modes(p_.omega_flap, p_.omega_lag, opt);
     } catch (const InvalidInput& e) {
       // The blade layer calls the basis size `n_basis` (ExactModeOptions); here it is `basis`.
-      const std::string head = e.name() + " = " + e.value() + ": ";
-      std::string reason = std::string(e.what()).substr(head.size());
+      std::string reason = e.reason();
       for (std::size_t at; (at = reason.find("`n_basis`")) != std::string::npos;)
         reason.replace(at, 9, "`basis`");
       throw InvalidInput(e.name() == "n_basis" ? "basis" : e.name(), e.value(), reason);

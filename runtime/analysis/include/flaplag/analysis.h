@@ -28,8 +28,8 @@
 #include <vector>
 
 #include "flaplag/blade/blade.h"
+#include "flaplag/core/outcome.h"
 #include "flaplag/core/parallel.h"
-#include "flaplag/core/status.h"
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
@@ -45,8 +45,9 @@ namespace flaplag {
 // Results are the numerics' types (numerics/continuation.h): PointResult, SweepResult,
 // CriticalResult, with exponents sorted by label, then by omega (descending).
 
-// The numbers an auditor needs at one (mu, psi).
-struct SystemSnapshot {
+// The numbers an auditor needs at one (mu, psi).  Outcome: Failed when an entry of A or f or an
+// integral is not finite.
+struct SystemSnapshot : Outcome {
   double mu = 0.0, psi = 0.0;
   std::string region;  // "normal" or "reversed" (sector, or exact circle at this psi)
   Eigen::MatrixXd A;
@@ -63,7 +64,7 @@ class Cancelled : public std::runtime_error {
 };
 
 // The periodic forced response at one mu (numerics/response.h) in blade terms.
-struct ForcedResponse {
+struct ForcedResponse : Outcome {
   double mu = 0.0;
   PeriodicResponse periodic;  // of the perturbation state y about the hover equilibrium
   // Tip deflections over one revolution at periodic.psi, hover equilibrium included, by l:
@@ -72,15 +73,13 @@ struct ForcedResponse {
   // Their harmonics: value = c[0] + sum_n (c[2n-1] cos n psi + c[2n] sin n psi), n = 1..5
   // (the harmonic index of periodic_system.h).
   std::vector<double> flap_harmonics, lag_harmonics;
-  Status status = Status::Ok;
-  std::string message;
 };
 
 // A time-domain simulation (numerics/response.h) in blade terms.  Linear: the perturbation y
 // about the hover equilibrium, y' = A(psi) y (+ f).  Nonlinear (SimulationOptions::nonlinear):
 // the full state of the nonlinear equations (rotor/periodic_equilibrium.h NonlinearSystem),
 // started at the reference equilibrium plus the given perturbation.
-struct TipSimulation {
+struct TipSimulation : Outcome {
   double mu = 0.0;
   bool nonlinear = false;
   // Linear: psi [rad] from 0 and the perturbation y(psi).  Nonlinear: the full state
@@ -104,8 +103,6 @@ struct TipSimulation {
   std::optional<double> flap_growth_rate, lag_growth_rate;
   // The simulation's status, or Warning when the nonlinear reference is hover for want of a
   // periodic equilibrium.
-  Status status = Status::Ok;
-  std::string message;
 };
 
 class Analysis {

@@ -38,8 +38,9 @@ struct StudyOptions {
   TrimOptions trim;
   int threads = 0;  // 0: as many as the hardware has; else 1..kMaxThreads (core/parallel.h)
 
-  bool IsValid(std::string* error) const;
-  void Check() const;
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
 inline constexpr std::size_t kMaxStudyValues = 100000;
@@ -55,12 +56,11 @@ struct StudyRow {
   std::optional<TrimResult> trim;
 };
 
-struct StudyResult {
+struct StudyResult : Outcome {
   std::vector<StudyRow> rows;  // rows_done of them when cancelled
   std::size_t rows_done = 0;
   bool cancelled = false;
-  Status status = Status::Ok;  // worst over the rows
-  std::string message;         // the first problem met
+  // Outcome: the worst row's status, and the first problem met (Outcome::Include)
 };
 
 // Options are checked (Check()); so is every value (rows with invalid values are Failed rows,
@@ -81,31 +81,29 @@ struct MapOptions {
   TrimOptions trim;         // kind != None: every cell trimmed at its mu (trim.h)
   int threads = 0;
 
-  bool IsValid(std::string* error) const;
-  void Check() const;
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
 inline constexpr std::size_t kMaxMapValues = 10000;
 
-struct MapCell {
+struct MapCell : Outcome {
   bool computed = false;           // false: not reached (cancelled run)
   std::optional<double> max_zeta;  // largest zeta, per rev; nullopt when unknown (Failed)
   std::string mode;                // label of the least stable exponent
   double omega = 0.0;              // its omega, per rev
   InstabilityKind kind = InstabilityKind::Flutter;  // periodic when omega is locked (0, 1/2, 1)
-  Status status = Status::Ok;
-  std::string message;
 };
 
-struct MapResult {
+struct MapResult : Outcome {
   // cells[i][j]: y.values[i], x.values[j].  The work is done in lines along the "mu" axis (one
   // continuation in mu per value of the other parameter) or, without a "mu" axis, in rows; a
   // cancelled run has the first lines_done lines computed (MapCell::computed).
   std::vector<std::vector<MapCell>> cells;
   std::size_t lines_done = 0;
   bool cancelled = false;
-  Status status = Status::Ok;  // worst over the computed cells
-  std::string message;         // the first problem met, in line order
+  // Outcome: the worst computed cell's status, and the first problem met in line order
 };
 
 MapResult run_map(const RotorParameters& base, const TransitionOptions& transition,

@@ -53,8 +53,9 @@
 #include <string_view>
 #include <vector>
 
+#include "flaplag/core/constants.h"
+#include "flaplag/core/outcome.h"
 #include "flaplag/core/parallel.h"
-#include "flaplag/core/status.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/numerics/response.h"
@@ -69,6 +70,11 @@ const char* trim_kind_name(TrimKind k);  // "none", "thrust", "moment"
 bool trim_kind_from_name(std::string_view name, TrimKind* kind);
 
 struct TrimOptions {
+  static constexpr Range kThrustRange{{0.0, 0.1, true, false}, "in (0, 0.1] (C_T, not C_T/sigma)"};
+  static constexpr Range kShaftAngleRange{{-kHalfPi, kHalfPi, true, true}, "in (-pi/2, pi/2)"};
+  static constexpr Range kIterationsRange{{1, 1000, false, false}, "1..1000"};
+  static constexpr Range kEvaluationsRange{{1, 1000000, false, false}, "1..1000000"};
+  static constexpr Range kToleranceRange{{0.0, 1e-3, true, false}, "in (0, 1e-3]"};
   TrimKind kind = TrimKind::None;
   double thrust_coefficient = 0.005;  // target C_T (not C_T / sigma), in (0, 0.1]
   double shaft_angle = 0.0;           // alpha_R of eq 2.25 [rad], in (-pi/2, pi/2)
@@ -85,18 +91,18 @@ struct TrimOptions {
   // tolerance (tip deflection by l), in (0, 1e-3].
   double tolerance = 1e-13;
   ResponseOptions response;  // for the periodic response inside the thrust and the moment
-  bool IsValid(std::string* error) const;  // error names the field in backticks
-  void Check() const;                      // throws InvalidInput(field, value, reason)
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
 // The model's thrust at one operating point.
-struct ThrustResult {
+struct ThrustResult : Outcome {
   double mu = 0.0;
   double inflow = 0.0;                  // lambda used
   double thrust_coefficient = 0.0;      // C_T of the model's own lift distribution (see above)
   double flap_1c = 0.0, flap_1s = 0.0;  // first harmonic of the flap tip deflection, by l
-  Status status = Status::Ok;           // Failed: no periodic response (a multiplier at 1)
-  std::string message;
+  // Outcome: Failed: no periodic response (a multiplier at 1)
 };
 
 // C_T at mu with inflow lambda (NaN: eq 2.24) and p's pitch.  p.model must emit the thrust
@@ -111,7 +117,7 @@ ThrustResult rotor_thrust_momentum(const RotorParameters& p, double mu, double s
 // alpha_R + C_T/(2 mu)] for mu > 0; sqrt(C_T/2) at mu = 0).
 double momentum_inflow(double thrust_coefficient, double mu, double shaft_angle);
 
-struct TrimResult {
+struct TrimResult : Outcome {
   double mu = 0.0;
   TrimKind kind = TrimKind::None;
   double theta0 = 0.0, theta1c = 0.0, theta1s = 0.0;  // [rad]
@@ -139,8 +145,6 @@ struct TrimResult {
   // the last iterate is reported), or outside the validity envelope.  Failed: no periodic
   // response, a Jacobian that does not reduce the residual (singular or unreachable target), a
   // pitch outside (-pi/2, pi/2).
-  Status status = Status::Ok;
-  std::string message;
 };
 
 // What is wrong with a trim that a result at its mu rests on: "" for a converged trim inside

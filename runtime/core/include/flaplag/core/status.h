@@ -1,7 +1,7 @@
 // flaplag — outcome vocabulary shared by the numerics and the rotor analysis.
 //
-// Numerical outcomes are never exceptions: results carry a Status and a message (the model is
-// Ceres' Solver::Summary).
+// Numerical outcomes are never exceptions: results carry an Outcome (core/outcome.h) with a
+// Status and a message (the model is Ceres' Solver::Summary).
 #pragma once
 
 namespace flaplag {

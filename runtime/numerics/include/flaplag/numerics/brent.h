@@ -18,16 +18,24 @@
 // the bracket end on the positive side without evaluating again.
 #pragma once
 
+#include <climits>
 #include <functional>
+#include <optional>
 #include <string>
 
-#include "flaplag/core/status.h"
+#include "flaplag/core/outcome.h"
+#include "flaplag/core/validation.h"
 
 namespace flaplag {
 
 struct BrentOptions {
+  static constexpr Range kToleranceRange{{0.0, kUnbounded, true, false}, "finite and > 0"};
+  static constexpr Range kEvaluationsRange{{1, INT_MAX, false, false}, ">= 1"};
   double tolerance = 1e-10;   // absolute tolerance on the root (> 0)
   int max_evaluations = 100;  // calls of f that brent_zero may make (>= 1)
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
 // A point at which f is known.  index: 0 = a and 1 = b (the ends passed in), k >= 2 = the
@@ -38,14 +46,13 @@ struct BrentPoint {
   int index = -1;
 };
 
-struct BrentResult {
+struct BrentResult : Outcome {
   // Ok: converged (hi.x - lo.x <= tolerance + 4 eps |root.x|, or f(root.x) == 0).
   // Warning: max_evaluations reached first; the bracket is still valid, only wider.
   // Failed: f returned a non-finite value (the message says where); the bracket is the last
   // valid one, and the failing point is the last call of f (index evaluations + 1).
-  Status status = Status::Failed;
-  bool converged = false;  // status == Ok
-  std::string message;
+  BrentResult() { status = Status::Failed; }  // until brent_zero says otherwise
+  bool converged = false;                     // status == Ok
   // The best estimate (zeroin's b): one of the bracket ends, the one with the smaller |f|.
   BrentPoint root;
   // The final bracket, lo.x <= hi.x: f(lo) and f(hi) have opposite signs or one is zero.

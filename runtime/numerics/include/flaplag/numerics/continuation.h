@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "flaplag/core/status.h"
+#include "flaplag/core/outcome.h"
 #include "flaplag/numerics/floquet.h"
 
 namespace flaplag {
@@ -47,7 +47,7 @@ struct LabelledExponent {
 
 // Eigen-decomposition of the hover matrix A0 with a label per eigenvalue (the rotor layer
 // labels them: rotor/hover.h).
-struct HoverModes {
+struct HoverModes : Outcome {
   std::vector<std::complex<double>> eigenvalues;  // eig(A0), per rev
   std::vector<Eigen::VectorXcd> eigenvectors;     // unit 2-norm
   std::vector<std::string> labels;
@@ -55,17 +55,13 @@ struct HoverModes {
   // times ||A0||): a real part within it of the stability threshold leaves hover's stability
   // unknown (find_critical).  0: exact.
   double zeta_rounding = 0.0;
-  Status status = Status::Ok;
-  std::string message;
 };
 
 // Outcome of one continuation step.
-struct TrackReport {
+struct TrackReport : Outcome {
   // smallest |v_old^H v_new| in the chosen assignment; NaN when the multipliers alone decided
   // it (no eigenvectors were computed: see ExponentTracker::advance)
   double min_similarity = 1.0;
-  Status status = Status::Ok;
-  std::string message;
 };
 
 class ExponentTracker {
@@ -131,16 +127,16 @@ class ExponentTracker {
 };
 
 // One evaluation of the caller's Floquet analysis at mu.
-struct FloquetSample {
+struct FloquetSample : Outcome {
   FloquetResult floquet;
   // Estimated error of zeta_k for each exponent of `floquet` (same order), per rev (the
   // method's own estimate, e.g. Richardson from a coarser resolution); empty: not estimated.
   std::vector<double> zeta_errors;
   // max of zeta_errors; nullopt: not estimated.
   std::optional<double> error;
-  int steps = 0;               // steps per period behind `floquet` (0: not a stepping method)
-  Status status = Status::Ok;  // Warning: not resolved to the requested tolerance; Failed: no
-  std::string message;         // usable multipliers (message says why)
+  int steps = 0;  // steps per period behind `floquet` (0: not a stepping method)
+  // Outcome: Warning: not resolved to the requested tolerance; Failed: no usable multipliers
+  // (message says why)
 };
 
 // The caller builds the periodic system at mu and returns its Floquet analysis, resolved so that
@@ -153,7 +149,7 @@ inline constexpr double kMaxAdvanceRatio = 1000.0;      // mu beyond this is ref
 inline constexpr long kMaxContinuationSteps = 1000000;  // steps of a scan or sweep
 
 // The labelled exponents at one mu.
-struct PointResult {
+struct PointResult : Outcome {
   double mu = 0.0;
   std::vector<LabelledExponent> exponents;  // hover order (Analysis sorts by label, then omega)
   // |det Phi - exp int tr A| / exp int tr A; nullopt when not representable (a multiplier
@@ -167,19 +163,19 @@ struct PointResult {
   // within its own error estimate (or the rounding level of Phi) of 0, so that its sign is not
   // known
   std::optional<bool> stable;
-  Status status = Status::Ok;
-  std::string message;
 };
 
-struct SweepResult {
+struct SweepResult : Outcome {
   std::vector<PointResult> points;
-  Status status = Status::Ok;  // worst over the points
-  std::string message;         // the first problem met
+  // Outcome: the worst point's status, and the first problem met (Outcome::Include)
 };
 
-// Search for the critical advance ratio.  IsValid() is the Ceres-style check (false and
-// "field = value: reason" in *error); Check() throws the same as InvalidInput.
+// Search for the critical advance ratio.  Validated as every options struct (core/validation.h).
 struct CriticalOptions {
+  static constexpr Range kMuMaxRange{{0.0, kMaxAdvanceRatio, true, false}, "> 0 and <= 1000"};
+  static constexpr Range kZetaThresholdRange{{0.0, kUnbounded, false, false}, ">= 0"};
+  static constexpr Range kOmegaToleranceRange{{0.0, 0.25, false, true}, "in [0, 0.25)"};
+
   double mu_max = 2.0;                     // scan limit, 0 < mu_max <= kMaxAdvanceRatio
   double scan_step = 0.01;                 // scan / continuation step, > 0, at most
                                            // kMaxContinuationSteps steps up to mu_max
@@ -193,8 +189,9 @@ struct CriticalOptions {
   // instability (onset and re-stabilization).
   bool all_intervals = false;
 
-  bool IsValid(std::string* error) const;
-  void Check() const;
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
 // One interval of instability in mu: max zeta > zeta_threshold for onset < mu < end.
@@ -207,7 +204,7 @@ struct InstabilityInterval {
   InstabilityKind kind = InstabilityKind::Flutter;
 };
 
-struct CriticalResult {
+struct CriticalResult : Outcome {
   bool hover_unstable = false;       // true: unstable already at mu = 0 (no mu_c; see exponents)
   std::optional<double> mu_c;        // first mu in (0, mu_max] with zeta > zeta_threshold; nullopt:
                                      // stable up to mu_max, hover unstable, or the search failed
@@ -221,9 +218,16 @@ struct CriticalResult {
   // The first interval starts at mu_c; with all_intervals, every interval up to mu_max.
   std::vector<InstabilityInterval> intervals;
   int evaluations = 0;  // calls of the FloquetFunction
-  Status status = Status::Ok;
-  std::string message;
 };
+
+// Every number of a result is finite (the zeta of a zero multiplier excepted: -inf), and an
+// optional diagnostic is absent rather than NaN.  The continuation and the search check it on
+// every result they make: a value that breaks it makes the result Failed (an exponent, mu, mu_c
+// or its omega, mu_max; stable and mu_c are then unknown) or Warning (the Liouville residual, an
+// error estimate), with "non-finite <what> (not shown)" in its message, so that every front end
+// reports the same status; front ends show such a value as absent.
+void check_finite(PointResult& p);
+void check_finite(CriticalResult& c);
 
 // Scans mu = step, 2 step, ... up to mu_max, continuing the exponents from hover.  Where the
 // sign of max_k zeta_k(mu) - zeta_threshold changes between grid points the crossing is refined

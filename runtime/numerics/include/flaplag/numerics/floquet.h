@@ -8,10 +8,12 @@
 #include <Eigen/Dense>
 #include <complex>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "flaplag/core/status.h"
+#include "flaplag/core/outcome.h"
+#include "flaplag/core/validation.h"
 #include "flaplag/numerics/periodic_system.h"
 
 namespace flaplag {
@@ -41,12 +43,13 @@ std::string method_names();
 // matrix products (bench/README.md, "Many modes").
 TransitionMethod automatic_method(int state_size);
 
-// How Phi(2 pi, 0) is computed.  IsValid() is the Ceres-style check (false and "field = value:
-// reason" in *error); Check() throws the same as InvalidInput.
+// How Phi(2 pi, 0) is computed.  Validated as every options struct (core/validation.h).
 struct TransitionOptions {
   static constexpr int kAutomatic = 0;
   static constexpr int kMaxSteps = 1000000;
   static constexpr int kMaxTerms = 30;
+  static constexpr Range kStepsRange{{0, kMaxSteps, false, false}, "0 (automatic) or 1..1000000"};
+  static constexpr Range kTermsRange{{1, kMaxTerms, false, false}, "1..30"};
 
   // Automatic (the default): the method of automatic_method() for the system's state size.
   TransitionMethod method = TransitionMethod::Automatic;
@@ -61,8 +64,9 @@ struct TransitionOptions {
   // The paper's setting: Hsu, K = 50 intervals, J = 4 terms (Section 3.3, Fig. 3).
   static TransitionOptions Paper() { return {TransitionMethod::Hsu, 50, 4, 1e-5}; }
 
-  bool IsValid(std::string* error) const;
-  void Check() const;
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
 struct TransitionResult {
@@ -118,7 +122,7 @@ struct FloquetEigenSystem {
 };
 FloquetEigenSystem floquet_eigensystem(const Eigen::MatrixXd& phi);
 
-struct FloquetResult {
+struct FloquetResult : Outcome {
   std::vector<FloquetExponent> exponents;
   // |det Phi - exp(int trace A)| / exp(int trace A), from log|det Phi| so that neither
   // determinant need be representable; 1 for a singular Phi.
@@ -126,8 +130,6 @@ struct FloquetResult {
   // Failed when Phi has non-finite entries or the eigen-solve does not give finite
   // multipliers (and, when computed, eigenvectors): then the exponents are NaN (or partly so)
   // and must not be used; message says why.
-  Status status = Status::Ok;
-  std::string message;
   // The transition matrix the exponents are of, kept so that the eigenvectors can be computed
   // when they are needed (add_eigenvectors(); the mode identification of continuation.h asks
   // for them only when two candidates are close).

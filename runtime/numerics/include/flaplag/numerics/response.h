@@ -14,21 +14,25 @@
 #include <string>
 #include <vector>
 
-#include "flaplag/core/status.h"
+#include "flaplag/core/outcome.h"
+#include "flaplag/core/validation.h"
 #include "flaplag/numerics/periodic_system.h"
 
 namespace flaplag {
 
 struct ResponseOptions {
+  static constexpr Range kStepsRange{{0, 1 << 20, false, false}, "0 (automatic) or 1..1048576"};
+  static constexpr Range kSamplesRange{{2, 100000, false, false}, "2..100000"};
   int steps = 0;             // RK4 steps per period; 0: automatic (|lambda| h <= 1/2, >= 200,
                              // doubled until the periodic state agrees to `tolerance`)
   int samples = 72;          // points of y(psi) reported over one period (>= 2), psi_k = 2 pi k / n
   double tolerance = 1e-10;  // on max |y0(N) - y0(N/2)| relative to max |y0| (automatic steps)
-  bool IsValid(std::string* error) const;
-  void Check() const;
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
-struct PeriodicResponse {
+struct PeriodicResponse : Outcome {
   Eigen::VectorXd y0;                // the periodic state at psi = 0
   std::vector<double> psi;           // sample azimuths [rad], [0, 2 pi)
   std::vector<Eigen::VectorXd> y;    // y(psi_k)
@@ -36,8 +40,7 @@ struct PeriodicResponse {
   std::optional<double> error;       // estimated error of y0 (max norm, relative)
   double min_distance_to_one = 0.0;  // min_k |Lambda_k - 1| (near 0: no unique solution)
   int steps = 0;
-  Status status = Status::Ok;  // Failed: a multiplier at 1 (singular I - Phi) or overflow
-  std::string message;
+  // Outcome: Failed: a multiplier at 1 (singular I - Phi) or overflow
 };
 
 // sys.validate() and options.Check() first (InvalidInput).  An unstable system still has a
@@ -45,6 +48,9 @@ struct PeriodicResponse {
 PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOptions& options = {});
 
 struct SimulationOptions {
+  static constexpr Range kRevolutionsRange{{0.0, 1e5, true, false}, "in (0, 1e5]"};
+  static constexpr Range kStepsRange = ResponseOptions::kStepsRange;
+  static constexpr Range kSamplesRange{{1, 10000, false, false}, "1..10000"};
   double revolutions = 20.0;  // > 0, at most 1e5
   int steps_per_rev = 0;      // RK4 steps per revolution; 0: automatic (|lambda| h <= 1/2, >= 200)
   int samples_per_rev = 36;   // reported points per revolution (>= 1)
@@ -52,16 +58,16 @@ struct SimulationOptions {
   // equations instead of the linear ones.  The numerics do not read it: simulate() integrates
   // the linear PeriodicSystem it is given, simulate_nonlinear() the callback it is given.
   bool nonlinear = false;
-  bool IsValid(std::string* error) const;
-  void Check() const;
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
-struct Simulation {
+struct Simulation : Outcome {
   std::vector<double> psi;         // [rad] from 0
   std::vector<Eigen::VectorXd> y;  // y(psi)
   int steps_per_rev = 0;
-  Status status = Status::Ok;  // Failed on overflow (the state is kept up to there)
-  std::string message;
+  // Outcome: Failed on overflow (the state is kept up to there)
 };
 
 // Integrates y' = A y + (forced ? f : 0) from y(0) = y0 (size sys.n).

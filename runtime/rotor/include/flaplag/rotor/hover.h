@@ -7,14 +7,14 @@
 #include <string>
 #include <vector>
 
-#include "flaplag/core/status.h"
+#include "flaplag/core/outcome.h"
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 
 namespace flaplag {
 
 // Hover static equilibrium (eqs 2.29-2.32) and hover stability.
-struct HoverResult {
+struct HoverResult : Outcome {
   double inflow = 0.0;                            // lambda, eq 2.24
   Eigen::VectorXd q0;                             // [g0_1..g0_M, h0_1..h0_N]
   Eigen::MatrixXd A0;                             // constant A at mu = 0
@@ -26,9 +26,11 @@ struct HoverResult {
   // (hover_zeta_rounding): its sign, and so the stability of hover, is unknown (status
   // Warning; `stable` then holds only the sign found).
   bool neutral = false;
-  Status status = Status::Ok;
-  std::string message;
 };
+
+// Failed, with "non-finite hover equilibrium or eigenvalue (not shown)" in the message, when
+// the inflow, q0 or an eigenvalue is not finite (Analysis checks its hover result so).
+void check_finite(HoverResult& h);
 
 // The rounding level of the real parts of eig(A0), per rev: the eigen-solve is backward
 // stable, so an eigenvalue moves by about n eps ||A0|| (a few ulps of the matrix' norm); 8 n

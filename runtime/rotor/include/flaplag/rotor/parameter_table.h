@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "flaplag/core/validation.h"
 #include "flaplag/rotor/parameters.h"
 
 namespace flaplag {
@@ -24,15 +25,9 @@ enum class ParameterType {
   Choice,   // ModeKind field, one of `choices`
 };
 
-// Admissible values of a Real parameter.  Every bound is finite: each admissible value is a
-// blade the analysis can answer for (possibly with a non-ok status), and NaN and inf are never
-// admissible.
-struct Interval {
-  double lo;
-  double hi;
-  bool lo_open;  // true: value > lo; false: value >= lo
-  bool hi_open;  // true: value < hi; false: value <= hi
-};
+// Admissible values of a Real parameter: an Interval (core/validation.h) whose bounds are all
+// finite: each admissible value is a blade the analysis can answer for (possibly with a non-ok
+// status), and NaN and inf are never admissible.
 
 struct ParameterSpec {
   const char* field;        // RotorParameters member: the name in InvalidInput and messages

@@ -25,10 +25,12 @@
 
 #include <Eigen/Dense>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "flaplag/core/status.h"
+#include "flaplag/core/outcome.h"
+#include "flaplag/core/validation.h"
 #include "flaplag/numerics/periodic_system.h"
 
 namespace flaplag {
@@ -83,7 +85,11 @@ struct PeriodicEquilibriumOptions {
   static constexpr int kAutomaticHarmonics = -1;
   static constexpr int kFirstHarmonics = 8;  // the automatic K starts here without a start
   static constexpr int kMaxHarmonics = 64;   // and doubles up to this cap
-  int harmonics = kAutomaticHarmonics;       // K, harmonics of q°: 1..128 fixed, or automatic
+  static constexpr Range kHarmonicsRange{{1, 128, false, false}, "1..128, or -1 (automatic)"};
+  static constexpr Range kToleranceRange{{0.0, 1e-2, true, false}, "in (0, 1e-2]"};
+  static constexpr Range kIterationsRange{{1, 1000, false, false}, "1..1000"};
+  static constexpr Range kMinStepRange{{0.0, 0.1, true, false}, "in (0, 0.1]"};
+  int harmonics = kAutomaticHarmonics;  // K, harmonics of q°: 1..128 fixed, or automatic
   // Automatic K: accepted when the estimate of the relative error of the coefficients of q°
   // (harmonics_error of the result) is at most this, (0, 1e-2].  1e-4: in the typical case
   // (paper, mu = 0.6) the coefficients of K = 8, 16, 32 differ by 9e-5 and 1.3e-5
@@ -95,11 +101,12 @@ struct PeriodicEquilibriumOptions {
   bool check_stability = true;  // Floquet multipliers of the linearization (RK4, 4096 steps)
   // The continuation in mu gives up when its step falls below this (near a fold), (0, 0.1].
   double min_continuation_step = 1e-5;
-  bool IsValid(std::string* error) const;
-  void Check() const;
+  std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
 
-struct PeriodicEquilibrium {
+struct PeriodicEquilibrium : Outcome {
   double mu = 0.0;
   int harmonics = 0;   // K
   int flap_modes = 0;  // M (the coordinates are M flap, then N lag amplitudes)
@@ -134,8 +141,6 @@ struct PeriodicEquilibrium {
   // equilibrium) or overflow; Warning: unstable (the blade does not settle onto it), or a
   // multiplier near 1, or the last harmonic is not small (increase `harmonics`), or the
   // automatic K reached kMaxHarmonics with harmonics_error above `harmonics_tolerance`.
-  Status status = Status::Ok;
-  std::string message;
 };
 
 // opt.Check() first (InvalidInput).  The equilibrium on the branch through the hover
