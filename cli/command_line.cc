@@ -699,19 +699,12 @@ Request CommandLine::interpret() const {
         throw InvalidInput(g != nullptr ? g->spelling : "--model", shown(r.params.model), why);
       }
       r.params.model = find_model(named->base, flap_modes, lag_modes).name;
-      // Galerkin's method gives at most --basis rotating modes per direction.  Asked for more
-      // without --basis, the error names the mode count typed (with --basis, the library's
-      // names --basis).
-      const Given* more = flap_modes > r.params.basis ? flap_given : lag_given;
-      if (r.params.modes == ModeKind::Exact && given("--basis") == nullptr && more != nullptr &&
-          std::max(flap_modes, lag_modes) > r.params.basis) {
-        throw InvalidInput(
-            more->spelling, shown(more->text),
-            "more modes than the exact-mode basis of --basis = " + std::to_string(r.params.basis) +
-                " cantilever functions per direction gives: add --basis " +
-                std::to_string(std::max(flap_modes, lag_modes)) + " (up to " +
-                std::to_string(model::kMaxModes) + ")");
-      }
+      // Galerkin's method gives at most --basis rotating modes per direction: without --basis
+      // the basis grows to the mode counts asked for (the paper's 5 otherwise, so that every
+      // size up to 5 x 5 keeps its numbers); with --basis the library refuses a basis below
+      // them, naming --basis.
+      if (r.params.modes == ModeKind::Exact && given("--basis") == nullptr)
+        r.params.basis = std::max({r.params.basis, flap_modes, lag_modes});
     } else if (std::string why; compiled_model(r.params.model, &why) == nullptr) {
       const Given* g = given("--model");
       throw InvalidInput(g != nullptr ? g->spelling : "--model", shown(r.params.model), why);

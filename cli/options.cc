@@ -104,9 +104,10 @@ std::vector<OptionSpec> modes_rotor_options() {
 std::vector<OptionSpec> transition_options() {
   const TransitionOptions defaults;
   return {
-      value_option("--method", "rk4|hsu|magnus",
-                   "transition matrix: rk4 (paper 3.3.2), hsu (eqs 3.21-3.28) or magnus "
-                   "(4th-order Magnus, Richardson-extrapolated)",
+      value_option("--method", "rk4|hsu|magnus|auto",
+                   "transition matrix: rk4 (paper 3.3.2), hsu (eqs 3.21-3.28), magnus "
+                   "(4th-order Magnus, Richardson-extrapolated) or auto (hsu for one flap and "
+                   "one lag mode, magnus above)",
                    method_name(defaults.method), {"method"}),
       value_option(
           "--steps", "N|auto",

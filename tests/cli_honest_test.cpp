@@ -187,4 +187,33 @@ TEST(CliHonest, MultiModeResultsCarryTheLiouvilleResidual) {
   EXPECT_LT(j["liouville_residual"].get<double>(), 1e-4);
 }
 
+// A transition matrix singular to working precision (an extremely damped lag mode on a blade
+// with gamma = 0.002): the note used to print its condition number as "inf".
+TEST(CliHonest, SingularTransitionMatrixIsSaidInWords) {
+  const Outcome o = run({"sweep",
+                         "--mu",
+                         "0.0958233:0.1437:0.0130618",
+                         "--gamma",
+                         "0.002098",
+                         "--omega-flap",
+                         "100",
+                         "--damping-lag",
+                         "7.169",
+                         "--exact-reversed-flow",
+                         "--no-elastic-coupling",
+                         "--terms",
+                         "8",
+                         "--zeta-tolerance",
+                         "5.303e-07",
+                         "--flap-modes",
+                         "2",
+                         "--steps",
+                         "393",
+                         "--modes",
+                         "exact"});
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_EQ(o.out.find("inf"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("singular to working precision"), std::string::npos) << o.out;
+}
+
 }  // namespace

@@ -227,12 +227,12 @@ const std::vector<BadInput> kBadInputs = {
     {"ZeroFlapModes", {"--flap-modes", "0"}, "--flap-modes", "0"},
     {"ZeroLagModes", {"--lag-modes", "0"}, "--lag-modes", "0"},
     {"TwoModesNeedExactModes", {"--flap-modes", "2"}, "--flap-modes", "2"},
-    // Any 1..12 modes per direction have a model; Galerkin's method gives at most --basis
-    // (default 5) of them: the error names the count typed, or --basis when it was given.
+    // Any 1..12 modes per direction have a model; a --basis typed below them is refused
+    // (without --basis the basis grows to them).
     {"ModeCountAboveBasis",
-     {"--modes", "exact", "--flap-modes", "3", "--lag-modes", "7"},
-     "--lag-modes",
-     "7"},
+     {"--modes", "exact", "--flap-modes", "3", "--lag-modes", "7", "--basis", "6"},
+     "--basis",
+     "6"},
     {"FlapModesAboveTwelve", {"--modes", "exact", "--flap-modes", "13"}, "--flap-modes", "13"},
     {"LagModesAboveTwelve",
      {"critical", "--modes", "exact", "--lag-modes", "13", "--basis", "12"},
@@ -870,9 +870,9 @@ TEST(CliGood, AnyModeCountsRun) {
       fast({"--model", "lag-order-2-3x2", "--modes", "exact", "point", "--mu", "0.2", "--json"})));
   EXPECT_EQ(s["model"]["name"], "lag-order-2-3x2");
   EXPECT_EQ(s["exponents"].size(), 10u);
-  // beyond the default basis of five functions with --basis
-  const Json b = parse_json(run(fast({"--modes", "exact", "--flap-modes", "6", "--basis", "6",
-                                      "point", "--mu", "0.1", "--json"})));
+  // beyond the default basis of five functions: the basis grows to the mode count
+  const Json b = parse_json(
+      run(fast({"--modes", "exact", "--flap-modes", "6", "point", "--mu", "0.1", "--json"})));
   EXPECT_EQ(b["model"]["name"], "paper-6x1");
   EXPECT_EQ(b["exponents"].size(), 14u);
 }

@@ -260,18 +260,12 @@ void select_mode_counts(RotorParameters& p, int flap_modes, int lag_modes) {
   p.model = find_model(p.model, flap_modes, lag_modes).name;
 }
 
-// Galerkin's method gives at most `basis` rotating modes per direction.  Asked for more without
-// basis=, the error names the mode count (with it, the library's names basis).
-void check_basis_holds_the_modes(const RotorParameters& p, bool basis_given, int flap_modes,
-                                 int lag_modes) {
+// Galerkin's method gives at most `basis` rotating modes per direction: without basis=, the
+// basis grows to the mode count asked for (the paper's 5 otherwise, so that every size up to
+// 5 x 5 keeps its numbers); with basis=, the library refuses a basis below the mode counts.
+void fit_basis_to_the_modes(RotorParameters& p, bool basis_given, int flap_modes, int lag_modes) {
   const int most = std::max(flap_modes, lag_modes);
-  if (p.modes != ModeKind::Exact || basis_given || most <= p.basis) return;
-  const bool flap = flap_modes > p.basis;
-  throw InvalidInput(
-      flap ? "flap_modes" : "lag_modes", std::to_string(flap ? flap_modes : lag_modes),
-      "more modes than the exact-mode basis of basis = " + std::to_string(p.basis) +
-          " cantilever functions per direction gives: add basis=" + std::to_string(most) +
-          " (up to " + std::to_string(model::kMaxModes) + ")");
+  if (p.modes == ModeKind::Exact && !basis_given && most > p.basis) p.basis = most;
 }
 
 RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_modes) {
@@ -283,7 +277,7 @@ RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_
     throw InvalidInput("model", p.model, e.name() == "model" ? e.reason() : e.what());
   }
   select_mode_counts(p, flap_modes, lag_modes);
-  check_basis_holds_the_modes(p, params.contains("basis"), flap_modes, lag_modes);
+  fit_basis_to_the_modes(p, params.contains("basis"), flap_modes, lag_modes);
   return p;
 }
 
@@ -1018,10 +1012,11 @@ py::list transition_rows() {
   const std::string max_steps = std::to_string(TransitionOptions::kMaxSteps);
   const std::string max_terms = std::to_string(TransitionOptions::kMaxTerms);
   py::list rows;
-  py::dict method =
-      row("method", "choice", py::str(method_name(defaults.method)), "-", "rk4, hsu or magnus",
-          "transition matrix Phi(2 pi): rk4 (paper 3.3.2), hsu (Hsu's method, "
-          "eqs 3.21-3.28) or magnus (4th-order Magnus, Richardson-extrapolated)");
+  py::dict method = row(
+      "method", "choice", py::str(method_name(defaults.method)), "-", "rk4, hsu, magnus or auto",
+      "transition matrix Phi(2 pi): rk4 (paper 3.3.2), hsu (Hsu's method, "
+      "eqs 3.21-3.28), magnus (4th-order Magnus, Richardson-extrapolated) or auto (hsu "
+      "for one flap and one lag mode, magnus above)");
   py::list choices;
   for (TransitionMethod m : kTransitionMethods) choices.append(method_name(m));
   method["choices"] = choices;

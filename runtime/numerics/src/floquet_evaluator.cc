@@ -489,9 +489,11 @@ class StepControl {
       } else {
         out->floquet.liouville_residual = std::numeric_limits<double>::quiet_NaN();
         // Said, not warned: the exponents do not depend on this check.
-        out->message = "no Liouville residual: det Phi = exp(int tr A) = exp(" +
-                       short_text(trace_) + ") is below the rounding of the determinant of Phi " +
-                       "(condition number " + short_text(condition) + ")";
+        out->message =
+            "no Liouville residual: det Phi = exp(int tr A) = exp(" + short_text(trace_) +
+            ") is below the rounding of the determinant of Phi " +
+            (std::isfinite(condition) ? "(condition number " + short_text(condition) + ")"
+                                      : std::string("(Phi is singular to working precision)"));
       }
     }
     const double residual = out->floquet.liouville_residual;
