@@ -5,29 +5,16 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "emit_text.h"
 #include "flaplag_derive/paper_names.h"
 
 namespace flaplag::derive {
 
 namespace {
 
-const char* factor_enum(FactorKind k) {
-  switch (k) {
-    case FactorKind::Eta:
-      return "Factor::Eta";
-    case FactorKind::EtaPrime:
-      return "Factor::EtaPrime";
-    case FactorKind::Gamma:
-      return "Factor::Gamma";
-    case FactorKind::GammaPrime:
-      return "Factor::GammaPrime";
-    case FactorKind::X0:
-      return "Factor::X0";
-    case FactorKind::Arm:
-      return "Factor::Arm";
-  }
-  return "";
-}
+using detail::c_string;
+using detail::factor_enum;
+using detail::rational_cpp;
 
 std::string factors_init(const std::vector<ShapeFactor>& f) {
   if (f.size() > static_cast<size_t>(model::kMaxFactors)) {
@@ -39,14 +26,6 @@ std::string factors_init(const std::vector<ShapeFactor>& f) {
     os << (j ? ", " : "") << "{" << factor_enum(f[j].kind) << ", " << f[j].mode << "}";
   }
   os << "}";
-  return os.str();
-}
-
-std::string rational_cpp(const GiNaC::numeric& q) {
-  std::ostringstream os;
-  const GiNaC::numeric num = q.numer(), den = q.denom();
-  os << num << ".0";
-  if (den != 1) os << " / " << den << ".0";
   return os.str();
 }
 
@@ -81,21 +60,6 @@ std::string slot_cpp(const DerivedModel& m, const Slot& s, const std::string& in
     if (j == 0 && t.rfind("- ", 0) == 0) t = "-" + t.substr(2);
     os << (j ? "\n" + indent : "") << t;
   }
-  return os.str();
-}
-
-std::string c_string(const std::string& s) {
-  std::ostringstream os;
-  os << '"';
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') os << '\\';
-    if (ch == '\n') {
-      os << "\\n";
-      continue;
-    }
-    os << ch;
-  }
-  os << '"';
   return os.str();
 }
 

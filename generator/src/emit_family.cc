@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "emit_text.h"
 #include "flaplag_derive/emit.h"
 #include "flaplag_derive/generic.h"
 
@@ -13,49 +14,13 @@ namespace flaplag::derive {
 
 namespace {
 
+using detail::c_string;
+using detail::factor_enum;
+using detail::rational_cpp;
+
 const char kLetters[] = "ijklpqrstuvw";
 
 std::string var_name(int v) { return std::string(1, kLetters[v]); }
-
-std::string c_str_lit(const std::string& s) {
-  std::ostringstream os;
-  os << '"';
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') os << '\\';
-    if (ch == '\n') {
-      os << "\\n";
-      continue;
-    }
-    os << ch;
-  }
-  os << '"';
-  return os.str();
-}
-
-std::string rational(const GiNaC::numeric& q) {
-  std::ostringstream os;
-  os << q.numer() << ".0";
-  if (q.denom() != 1) os << " / " << q.denom() << ".0";
-  return os.str();
-}
-
-const char* factor_enum(FactorKind k) {
-  switch (k) {
-    case FactorKind::Eta:
-      return "Factor::Eta";
-    case FactorKind::EtaPrime:
-      return "Factor::EtaPrime";
-    case FactorKind::Gamma:
-      return "Factor::Gamma";
-    case FactorKind::GammaPrime:
-      return "Factor::GammaPrime";
-    case FactorKind::X0:
-      return "Factor::X0";
-    case FactorKind::Arm:
-      return "Factor::Arm";
-  }
-  return "";
-}
 
 std::string factors_init(const std::vector<TemplateFactor>& f) {
   if (f.size() > static_cast<size_t>(model::kMaxFactors)) {
@@ -103,7 +68,7 @@ std::string term_cpp(const GenericModel& g, const GenericTerm& t) {
   GiNaC::numeric c = t.coef;
   const bool neg = c < 0;
   if (neg) c = -c;
-  if (c != 1) f.push_back("(" + rational(c) + ")");
+  if (c != 1) f.push_back("(" + rational_cpp(c) + ")");
   for (const auto& [name, p] : t.scalars)
     for (int j = 0; j < p; ++j) f.push_back("s." + name);
   for (const auto& x : t.indexed) f.push_back(indexed_cpp(x));
@@ -507,7 +472,7 @@ std::string emit_family_cpp(const GenericModel& g) {
       const char* inner = t.inner == InnerKind::None   ? "Inner::None"
                           : t.inner == InnerKind::Tail ? "Inner::Tail"
                                                        : "Inner::Head";
-      os << "    /* " << idx++ << " */ {" << c_str_lit(t.name) << ", " << c_str_lit(t.ident) << ", "
+      os << "    /* " << idx++ << " */ {" << c_string(t.name) << ", " << c_string(t.ident) << ", "
          << t.vars.size() << ", {";
       for (size_t v = 0; v < t.vars.size(); ++v)
         os << (v ? ", " : "")
@@ -515,11 +480,11 @@ std::string emit_family_cpp(const GenericModel& g) {
       os << "}, " << t.x_power << ", " << t.outer_mass << ", " << t.factors.size() << ", "
          << factors_init(t.factors) << ", " << inner << ", " << t.inner_mass << ", "
          << t.inner_factors.size() << ", " << factors_init(t.inner_factors) << ", "
-         << c_str_lit(t.paper_name) << "},\n";
+         << c_string(t.paper_name) << "},\n";
     }
     os << "};\n\n";
   }
-  os << "const char kSpecText[] = " << c_str_lit(g.spec.canonical_text()) << ";\n\n";
+  os << "const char kSpecText[] = " << c_string(g.spec.canonical_text()) << ";\n\n";
   os << "// The integral tensors of in.aero, in.structural and the mode counts.\n"
      << "struct Tensors {\n"
      << "  explicit Tensors(const model::CoefficientInputs& in)\n"
@@ -557,10 +522,10 @@ std::string emit_family_cpp(const GenericModel& g) {
   os << "const flaplag::model::ModelFamily& flaplag_family_" << id << "() {\n"
      << "  namespace g = flaplag::generated::" << id << ";\n"
      << "  static const flaplag::model::ModelFamily f = {\n"
-     << "      " << c_str_lit(g.spec.name) << ",\n"
-     << "      " << c_str_lit(g.spec.file) << ",\n"
+     << "      " << c_string(g.spec.name) << ",\n"
+     << "      " << c_string(g.spec.file) << ",\n"
      << "      g::kSpecText,\n"
-     << "      " << c_str_lit(family_summary(g)) << ",\n"
+     << "      " << c_string(family_summary(g)) << ",\n"
      << "      " << g.spec.flap_modes << ", " << g.spec.lag_modes << ",\n"
      << "      " << g.H << ", " << g.H_nonlinear << ",\n"
      << "      static_cast<int>(std::size(g::kAero)), g::kAero,\n"
