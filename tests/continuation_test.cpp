@@ -11,10 +11,10 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <unsupported/Eigen/MatrixFunctions>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/numerics/dense.h"
 #include "flaplag/rotor/hover.h"
 #include "test_util.h"
 
@@ -53,7 +53,7 @@ FloquetSample sample(FloquetResult r) {
 FloquetFunction constant_family(std::function<Eigen::MatrixXd(double)> A) {
   return [A](double mu, double) {
     const Eigen::MatrixXd a = A(mu);
-    return sample(floquet_exponents((kTwoPi * a).exp(), kTwoPi * a.trace()));
+    return sample(floquet_exponents(matrix_exponential(kTwoPi * a), kTwoPi * a.trace()));
   };
 }
 
@@ -145,7 +145,7 @@ TEST(ExponentTracker, MultipliersDecideWhereTheyLeaveNoDoubt) {
   int by_multipliers = 0, by_vectors = 0;
   for (int k = 1; k <= 60; ++k) {
     const double mu = 0.01 * k;
-    const Eigen::MatrixXd phi = (kTwoPi * A(mu)).exp();
+    const Eigen::MatrixXd phi = matrix_exponential(kTwoPi * A(mu));
     const double tr = kTwoPi * A(mu).trace();
     ASSERT_EQ(Status::Ok, full.advance(floquet_exponents(phi, tr), mu).status);
     floquet_exponents(phi, tr, FloquetVectors::OnDemand, &r);
@@ -173,9 +173,11 @@ TEST(ExponentTracker, MultipliersDecideWhereTheyLeaveNoDoubt) {
     const double mu = 0.01 * k;
     ASSERT_EQ(
         Status::Ok,
-        t.advance(floquet_exponents((kTwoPi * A(mu)).exp(), kTwoPi * A(mu).trace()), mu).status);
+        t.advance(floquet_exponents(matrix_exponential(kTwoPi * A(mu)), kTwoPi * A(mu).trace()), mu)
+            .status);
   }
-  FloquetResult bare = floquet_exponents((kTwoPi * A(0.33)).exp(), kTwoPi * A(0.33).trace());
+  FloquetResult bare =
+      floquet_exponents(matrix_exponential(kTwoPi * A(0.33)), kTwoPi * A(0.33).trace());
   bare.phi.resize(0, 0);
   for (FloquetExponent& e : bare.exponents) e.eigenvector.resize(0);
   const std::vector<LabelledExponent> before = t.exponents();
@@ -547,7 +549,7 @@ TEST(ExponentTracker, ZeroMultiplierIsMatchedNotACrash) {
   const HoverModes hover = label_hover_modes(A0, 1, 1);
   ExponentTracker t(hover);
   // Phi with the flap pair decayed to exactly 0 and the lag pair as at hover.
-  const Eigen::MatrixXd phi_lag = (kTwoPi * A0).exp();
+  const Eigen::MatrixXd phi_lag = matrix_exponential(kTwoPi * A0);
   Eigen::MatrixXd phi = phi_lag;
   phi.block(0, 0, 2, 4).setZero();
   phi.block(0, 0, 4, 2).setZero();
@@ -616,7 +618,7 @@ FloquetFunctionFactory stateful_family(std::atomic<int>* made, double throw_abov
       if (mu > fail_above)
         return sample(floquet_exponents(
             Eigen::MatrixXd::Constant(4, 4, std::numeric_limits<double>::quiet_NaN()), 0.0));
-      return sample(floquet_exponents((kTwoPi * a).exp(), kTwoPi * a.trace()));
+      return sample(floquet_exponents(matrix_exponential(kTwoPi * a), kTwoPi * a.trace()));
     };
   };
 }

@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,6 +13,7 @@
 #include <vector>
 
 #include "flaplag/core/errors.h"
+#include "flaplag/numerics/dense.h"
 #include "periodic_fixtures.h"
 
 namespace flaplag {
@@ -37,7 +37,7 @@ std::vector<double> sorted_zetas(const FloquetResult& r) {
 
 // The exact exponents eig(B) of a reducible system, real parts sorted.
 std::vector<double> exact_zetas(const Eigen::MatrixXd& B) {
-  const Eigen::VectorXcd ev = B.eigenvalues();
+  const Eigen::VectorXcd ev = real_eigen_system(B, false, EigenStorage::Dynamic).values;
   std::vector<double> z;
   for (Eigen::Index k = 0; k < ev.size(); ++k) z.push_back(ev(k).real());
   std::sort(z.begin(), z.end());

@@ -19,6 +19,7 @@
 #include "flaplag/analysis.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/numerics/dense.h"
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/rotor/system_builder.h"
 #include "test_util.h"
@@ -127,9 +128,9 @@ TEST(PeriodicEquilibrium, FloquetMultipliersAreThoseOfPerturbedNonlinearSimulati
   // against the transition matrix of the linearization about the harmonic-balance equilibrium
   const Eigen::MatrixXd phi_lin = transition_matrix_rk4(eq.linearization, 4096);
   EXPECT_LT((phi - phi_lin).cwiseAbs().maxCoeff(), 1e-6);
-  Eigen::EigenSolver<Eigen::MatrixXd> es(phi, false);
+  const RealEigenSystem es = real_eigen_system(phi, false, EigenStorage::Dynamic);
   std::vector<double> sim;
-  for (int k = 0; k < 4; ++k) sim.push_back(std::abs(es.eigenvalues()(k)));
+  for (int k = 0; k < 4; ++k) sim.push_back(std::abs(es.values(k)));
   std::sort(sim.rbegin(), sim.rend());
   for (int k = 0; k < 4; ++k) {
     // zeta = ln|Lambda| / 2 pi from both

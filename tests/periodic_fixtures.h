@@ -17,10 +17,10 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
 #include "flaplag/core/constants.h"
+#include "flaplag/numerics/dense.h"
 #include "flaplag/numerics/periodic_system.h"
 
 namespace flaplag::fixtures {
@@ -123,7 +123,7 @@ inline PeriodicSystem reducible_system(const Eigen::MatrixXd& B, const Frame& no
 
 inline Eigen::MatrixXd reducible_phi(const Eigen::MatrixXd& B, const Frame& normal) {
   const Eigen::MatrixXd P0 = normal.P(0.0);
-  return P0 * (kTwoPi * B).exp() * P0.inverse();
+  return P0 * matrix_exponential(kTwoPi * B) * P0.inverse();
 }
 
 // dA/dpsi inside the region that contains psi, from the harmonic coefficients.

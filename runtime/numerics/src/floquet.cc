@@ -1,7 +1,6 @@
 // flaplag — characteristic multipliers and exponents of Phi(2 pi, 0) (eqs 3.15-3.20).
 #include "flaplag/numerics/floquet.h"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <cmath>
 #include <complex>
@@ -11,6 +10,7 @@
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/numerics/dense.h"
 
 namespace flaplag {
 namespace {
@@ -73,12 +73,13 @@ void nan_result(Eigen::Index n, const char* message, FloquetResult* out) {
 
 const char* const kUnconverged = "the eigen-solve of Phi did not converge";
 
-// The eigen-solve on a Mat (fixed 4x4 and 8x8 keep it off the heap), into *out.
+// The eigen-solve of p (fixed 4x4 and 8x8 solvers keep it off the heap), into *out; the
+// Liouville residual on the same Mat type as the solve.
 template <typename Mat>
 void solve(const Mat& p, double trace_integral, bool vectors, FloquetResult* out) {
-  Eigen::EigenSolver<Mat> es(p, vectors);
-  if (es.info() != Eigen::Success) return nan_result(p.rows(), kUnconverged, out);
-  const auto& values = es.eigenvalues();
+  const RealEigenSystem es = real_eigen_system(p, vectors, EigenStorage::FixedWhenSmall);
+  if (!es.ok) return nan_result(p.rows(), kUnconverged, out);
+  const Eigen::VectorXcd& values = es.values;
   const Eigen::Index n = values.size();
   out->exponents.resize(static_cast<std::size_t>(n));
   bool finite = true;
@@ -87,7 +88,7 @@ void solve(const Mat& p, double trace_integral, bool vectors, FloquetResult* out
     set_exponent(values(k), e);
     finite = finite && std::isfinite(std::abs(e.multiplier));
     if (vectors) {
-      e.eigenvector = es.eigenvectors().col(k);
+      e.eigenvector = es.vectors.col(k);
       const double nv = e.eigenvector.norm();
       if (nv > 0.0) e.eigenvector /= nv;
       finite = finite && std::isfinite(nv);
@@ -103,17 +104,6 @@ void solve(const Mat& p, double trace_integral, bool vectors, FloquetResult* out
     out->message = vectors ? "the eigen-solve of Phi gave non-finite multipliers or eigenvectors"
                            : "the eigen-solve of Phi gave non-finite multipliers";
   }
-}
-
-template <typename Mat>
-FloquetEigenSystem eigensystem_of(const Mat& p) {
-  FloquetEigenSystem out;
-  Eigen::EigenSolver<Mat> es(p, true);
-  if (es.info() != Eigen::Success) return out;
-  out.values = es.eigenvalues();
-  out.vectors = es.eigenvectors();
-  out.ok = true;
-  return out;
 }
 
 }  // namespace
@@ -155,9 +145,13 @@ FloquetResult floquet_exponents(const Eigen::MatrixXd& phi, double trace_integra
 FloquetEigenSystem floquet_eigensystem(const Eigen::MatrixXd& phi) {
   if (phi.rows() != phi.cols() || phi.rows() < 1 || !phi.allFinite()) return {};
   // The same fixed-size solvers as floquet_exponents, so that the same eigenvalues come out.
-  if (phi.rows() == 4) return eigensystem_of(Eigen::Matrix4d(phi));
-  if (phi.rows() == 8) return eigensystem_of(Eigen::Matrix<double, 8, 8>(phi));
-  return eigensystem_of(phi);
+  RealEigenSystem es = real_eigen_system(phi, true, EigenStorage::FixedWhenSmall);
+  FloquetEigenSystem out;
+  if (!es.ok) return out;
+  out.values = std::move(es.values);
+  out.vectors = std::move(es.vectors);
+  out.ok = true;
+  return out;
 }
 
 bool floquet_eigenvectors(const FloquetEigenSystem& system,

@@ -2,7 +2,7 @@
 // resolves their exponents to a tolerance (docs/numerics.md).
 #include "flaplag/numerics/floquet_evaluator.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -15,6 +15,7 @@
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/numerics/dense.h"
 
 namespace flaplag {
 namespace {
@@ -76,15 +77,8 @@ class Magnus4Evaluator final : public FloquetEvaluator {
 
 // max |eigenvalue| of a (0 when the eigen-solve fails); fixed-size solvers for the 4- and
 // 8-state models keep it off the heap (the automatic start solves up to ten per evaluation).
-template <typename Mat>
-double spectral_radius_of(const Mat& a) {
-  Eigen::EigenSolver<Mat> es(a, false);
-  return es.info() == Eigen::Success ? es.eigenvalues().cwiseAbs().maxCoeff() : 0.0;
-}
 double spectral_radius(const Eigen::MatrixXd& a) {
-  if (a.rows() == 4) return spectral_radius_of(Eigen::Matrix4d(a));
-  if (a.rows() == 8) return spectral_radius_of(Eigen::Matrix<double, 8, 8>(a));
-  return spectral_radius_of(a);
+  return flaplag::spectral_radius(a, EigenStorage::FixedWhenSmall);
 }
 
 // One transition matrix's Floquet analysis and its rounding floor: an eigenvalue of Phi below

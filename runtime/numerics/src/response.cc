@@ -1,7 +1,7 @@
 // flaplag — periodic forced response and time-domain simulation (RK4 on the sector-split grid).
 #include "flaplag/numerics/response.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,6 +9,7 @@
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/numerics/dense.h"
 
 namespace flaplag {
 namespace {
@@ -115,8 +116,7 @@ struct Stepper {
 int automatic_steps(const PeriodicSystem& sys) {
   double rho = 0.0;
   for (int k = 0; k < 8; ++k) {
-    Eigen::EigenSolver<Eigen::MatrixXd> es(sys.A((k + 0.5) * kTwoPi / 8.0), false);
-    if (es.info() == Eigen::Success) rho = std::max(rho, es.eigenvalues().cwiseAbs().maxCoeff());
+    rho = std::max(rho, spectral_radius(sys.A((k + 0.5) * kTwoPi / 8.0), EigenStorage::Dynamic));
   }
   const double k = std::ceil(rho * kTwoPi / 0.5);
   if (!(k <= kMaxSteps / 4)) return kMaxSteps / 4;
@@ -169,13 +169,13 @@ PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOpti
     Eigen::VectorXd g;
     monodromy(sys, k, phi, g);
     if (!phi.allFinite() || !g.allFinite()) return false;
-    Eigen::EigenSolver<Eigen::MatrixXd> es(phi, false);
+    const RealEigenSystem es = real_eigen_system(phi, false, EigenStorage::Dynamic);
     dist = HUGE_VAL;
     rho = 0.0;
-    if (es.info() == Eigen::Success) {
+    if (es.ok) {
       for (Eigen::Index i = 0; i < n; ++i)
-        dist = std::min(dist, std::abs(es.eigenvalues()(i) - std::complex<double>(1.0, 0.0)));
-      rho = es.eigenvalues().cwiseAbs().maxCoeff();
+        dist = std::min(dist, std::abs(es.values(i) - std::complex<double>(1.0, 0.0)));
+      rho = es.values.cwiseAbs().maxCoeff();
     }
     const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
     y0 = (I - phi).fullPivLu().solve(g);

@@ -24,12 +24,12 @@
 #include <limits>
 #include <memory>
 #include <string>
-#include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/numerics/dense.h"
 #include "flaplag/numerics/floquet.h"
 #include "transition_varying.h"
 
@@ -265,7 +265,7 @@ class Kernel {
       P.noalias() = A2 * A1;
       P.noalias() -= A1 * A2;
       Om += (std::sqrt(3.0) / 12.0 * h * h) * P;
-      E = Om.exp();  // scaling and squaring with a Pade approximant (Eigen MatrixFunctions)
+      E = matrix_exponential(Om);  // scaling and squaring, Pade approximant (dense.h)
       P.noalias() = E * Phi;
       Phi = P;
     }

@@ -10,10 +10,10 @@
 #include "transition_varying.h"
 
 #include <cmath>
-#include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
 #include "flaplag/core/constants.h"
+#include "flaplag/numerics/dense.h"
 
 namespace flaplag::detail {
 namespace {
@@ -100,7 +100,7 @@ Eigen::MatrixXd magnus(const PeriodicSystem& sys, const std::vector<Piece>& grid
     ev.at(p, p.a + (0.5 + g) * h, A2);
     Eigen::MatrixXd Om = (0.5 * h) * (A1 + A2);
     Om += (std::sqrt(3.0) / 12.0 * h * h) * (A2 * A1 - A1 * A2);
-    const Eigen::MatrixXd E = Om.exp();
+    const Eigen::MatrixXd E = matrix_exponential(Om);
     Phi = E * Phi;
   }
   return Phi;

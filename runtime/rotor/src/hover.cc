@@ -1,11 +1,11 @@
 // flaplag — flap/lag labels of the hover modes.
 #include "flaplag/rotor/hover.h"
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <complex>
 
 #include "flaplag/core/errors.h"
+#include "flaplag/numerics/dense.h"
 
 namespace flaplag {
 
@@ -29,14 +29,14 @@ HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_
 
   HoverModes out;
   out.zeta_rounding = hover_zeta_rounding(A0);
-  Eigen::EigenSolver<Eigen::MatrixXd> es(A0, true);
-  if (es.info() != Eigen::Success) {
+  const RealEigenSystem es = real_eigen_system(A0, true, EigenStorage::Dynamic);
+  if (!es.ok) {
     out.status = Status::Failed;
     out.message = "eigen-decomposition of the hover matrix did not converge";
     return out;
   }
   for (int k = 0; k < n; ++k) {
-    Eigen::VectorXcd v = es.eigenvectors().col(k);
+    Eigen::VectorXcd v = es.vectors.col(k);
     v /= v.norm();
     const Eigen::VectorXcd g = v.segment(model::flap_displacement_index(0, M, N), M);
     const Eigen::VectorXcd h = v.segment(model::lag_displacement_index(0, M, N), N);
@@ -48,7 +48,7 @@ HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_
       part.cwiseAbs().maxCoeff(&idx);
       label += std::to_string(idx + 1);
     }
-    out.eigenvalues.push_back(es.eigenvalues()(k));
+    out.eigenvalues.push_back(es.values(k));
     out.eigenvectors.push_back(std::move(v));
     out.labels.push_back(std::move(label));
   }

@@ -11,6 +11,7 @@
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/numerics/dense.h"
 
 namespace flaplag::detail {
 
@@ -156,11 +157,11 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   assemble(0.0, aero_.normal(), h0set);
   hover_forcing_ = h0set.f[0];
   hover_.A0 = h0set.A[0];
-  Eigen::EigenSolver<Eigen::MatrixXd> es(hover_.A0);
+  const RealEigenSystem es = real_eigen_system(hover_.A0, true, EigenStorage::Dynamic);
   hover_.stable = true;
   double largest = -std::numeric_limits<double>::infinity();
-  for (Eigen::Index k = 0; k < es.eigenvalues().size(); ++k) {
-    const auto lam = es.eigenvalues()(k);
+  for (Eigen::Index k = 0; k < es.values.size(); ++k) {
+    const auto lam = es.values(k);
     hover_.eigenvalues.push_back(lam);
     if (lam.real() > 0.0) hover_.stable = false;
     largest = std::max(largest, lam.real());

@@ -1,0 +1,42 @@
+// flaplag — the dense eigen-solves and matrix exponentials of the numerics, compiled once.
+//
+// Eigen's EigenSolver and MatrixFunctions exp are templates that cost GCC 10-20 s per
+// instantiation; every translation unit that used them paid that again for the same types.
+// These functions are thin wrappers that give exactly the bits the templates give inline (same
+// types, same flags, the same code compiled once in dense.cc).
+#pragma once
+
+#include <Eigen/Core>
+
+namespace flaplag {
+
+// Which EigenSolver instantiation a real eigen-solve uses.  The fixed-size solvers keep the
+// frequent 4 x 4 and 8 x 8 solves (1 x 1 and 2 x 2 modes) off the heap; a caller that has always
+// used the dynamic one keeps it, so that its results keep their last bits.
+enum class EigenStorage {
+  Dynamic,         // Eigen::EigenSolver<Eigen::MatrixXd> at every size
+  FixedWhenSmall,  // Eigen::Matrix4d and Eigen::Matrix<double, 8, 8> for 4 and 8 rows
+};
+
+// Eigenvalues (and, when with_vectors, the eigenvectors as columns, unnormalized as Eigen gives
+// them) of a real square matrix.  ok is false when the QR iteration did not converge; then
+// values and vectors are empty.
+struct RealEigenSystem {
+  bool ok = false;
+  Eigen::VectorXcd values;
+  Eigen::MatrixXcd vectors;  // empty unless with_vectors
+};
+RealEigenSystem real_eigen_system(const Eigen::MatrixXd& a, bool with_vectors,
+                                  EigenStorage storage);
+
+// max |eigenvalue| of a real square matrix, 0 when the eigen-solve does not converge.
+double spectral_radius(const Eigen::MatrixXd& a, EigenStorage storage);
+
+// exp(a) by Eigen's scaling and squaring with a Pade approximant (unsupported/MatrixFunctions),
+// for a square matrix of any size (an Eigen expression converts to it), and, as a template
+// instantiated in dense.cc for N = 2, 4, 6, 8 only, of the fixed sizes transition.cc's kernels use.
+Eigen::MatrixXd matrix_exponential(const Eigen::MatrixXd& a);
+template <int N>
+Eigen::Matrix<double, N, N> matrix_exponential(const Eigen::Matrix<double, N, N>& a);
+
+}  // namespace flaplag
