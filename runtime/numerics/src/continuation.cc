@@ -154,6 +154,177 @@ std::optional<double> largest_zeta_error(const FloquetSample& s) {
   return s.zeta_errors[k];
 }
 
+// The scratch of ExponentTracker::advance: on the stack up to kExactAssignment modes (the
+// prediction up to kStackPrediction), so that nothing allocates on the common path.
+class AdvanceScratch {
+ public:
+  explicit AdvanceScratch(int n) {
+    if (n > kStackPrediction) {
+      big_zeta_.resize(static_cast<std::size_t>(n));
+      big_omega_.resize(static_cast<std::size_t>(n));
+      predicted_zeta = big_zeta_.data();
+      predicted_omega = big_omega_.data();
+    }
+    if (n > kExactAssignment) {
+      cost_big_.resize(static_cast<std::size_t>(n) * n);
+      sim_big_.resize(static_cast<std::size_t>(n) * n);
+      match_big_.resize(static_cast<std::size_t>(n));
+      cost = cost_big_.data();
+      sim = sim_big_.data();
+      match = match_big_.data();
+    }
+  }
+  AdvanceScratch(const AdvanceScratch&) = delete;
+  AdvanceScratch& operator=(const AdvanceScratch&) = delete;
+
+ private:
+  static constexpr int kStackPrediction = 64;
+  static constexpr int kSmall = kExactAssignment;
+  double zeta_small_[kStackPrediction], omega_small_[kStackPrediction];
+  double cost_small_[kSmall * kSmall], sim_small_[kSmall * kSmall];
+  int match_small_[kSmall];
+  std::vector<double> big_zeta_, big_omega_, cost_big_, sim_big_;
+  std::vector<int> match_big_;
+
+ public:
+  // The predicted zeta and omega of tracked mode i; cost(i, j) and the eigenvector similarity
+  // at [i + n j]; the new exponent match[i] assigned to tracked mode i.
+  double* predicted_zeta = zeta_small_;
+  double* predicted_omega = omega_small_;
+  double* cost = cost_small_;
+  double* sim = sim_small_;
+  int* match = match_small_;
+};
+
+// Why the exponents of `next` cannot be tracked (it failed, or they are not finite), if so.
+std::optional<std::string> untrackable(const FloquetResult& next) {
+  if (next.status == Status::Failed) return next.message + "; tracking state unchanged";
+  const bool given_vectors = next.has_eigenvectors();
+  for (const FloquetExponent& e : next.exponents) {
+    if (!std::isfinite(e.multiplier.real()) || !std::isfinite(e.multiplier.imag()) ||
+        std::isnan(e.zeta) || std::isnan(e.omega) ||
+        (given_vectors && !e.eigenvector.allFinite())) {
+      return std::string("non-finite multipliers or eigenvectors; tracking state unchanged");
+    }
+  }
+  return std::nullopt;
+}
+
+// The exponents predicted at mu: linear in mu through the last two states (`now` and
+// `before`, t the step to mu in units of the last one) when extrapolating, else `now`.
+void predict(const std::vector<LabelledExponent>& now,
+             const std::vector<std::complex<double>>& before, bool extrapolate, double t,
+             double* pz, double* pw) {
+  for (std::size_t i = 0; i < now.size(); ++i) {
+    const LabelledExponent& e = now[i];
+    const double z = finite_zeta(e.zeta);
+    pz[i] = z + (extrapolate ? t * (z - finite_zeta(before[i].real())) : 0.0);
+    pw[i] = e.omega + (extrapolate ? t * (e.omega - before[i].imag()) : 0.0);
+  }
+}
+
+// Cost of assigning tracked mode i to new exponent j: eigenvector dissimilarity plus the
+// distance of the new exponent from the prediction (omega modulo integers), times 2 pi so
+// that it is the relative change of the multiplier for small steps.  Both terms are O(1)
+// for a wrong match.  The distance term, first.
+void distance_costs(const FloquetResult& next, const double* pz, const double* pw, int n,
+                    double* cost) {
+  for (int j = 0; j < n; ++j) {
+    const FloquetExponent& e = next.exponents[j];
+    for (int i = 0; i < n; ++i) {
+      const std::size_t ij = static_cast<std::size_t>(i) + static_cast<std::size_t>(n) * j;
+      const double c = exponent_distance(finite_zeta(e.zeta) - pz[i], e.omega - pw[i]);
+      cost[ij] = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
+    }
+  }
+}
+
+// Whether the multipliers decide (then `match` is the assignment): when they leave no doubt,
+// each tracked exponent's nearest candidate is distinct, near its prediction and nearer than
+// any other by more than the largest eigenvector term (1), so the full cost could not choose
+// otherwise.  `cost` holds the distance term alone.
+bool decided_by_multipliers(const double* cost, int n, int* match) {
+  constexpr int kSmall = kExactAssignment;
+  bool decided = true;
+  bool taken_small[kSmall] = {};
+  std::vector<bool> taken_big(n > kSmall ? static_cast<std::size_t>(n) : 0, false);
+  for (int i = 0; i < n && decided; ++i) {
+    double d1 = std::numeric_limits<double>::infinity(), d2 = d1;
+    int j1 = -1;
+    for (int j = 0; j < n; ++j) {
+      const double c = cost[i + static_cast<std::size_t>(n) * j];
+      if (c < d1) {
+        d2 = d1;
+        d1 = c;
+        j1 = j;
+      } else if (c < d2) {
+        d2 = c;
+      }
+    }
+    const bool taken = j1 < 0 || (n > kSmall ? bool(taken_big[j1]) : taken_small[j1]);
+    decided = !taken && d1 <= ExponentTracker::kMultiplierStep && d2 - d1 > 1.0;
+    if (decided) {
+      match[i] = j1;
+      if (n > kSmall)
+        taken_big[j1] = true;
+      else
+        taken_small[j1] = true;
+    }
+  }
+  return decided;
+}
+
+// The eigenvectors of the exponents of `next` in `vectors` (given, or computed from its Phi),
+// or why there are none.
+std::optional<std::string> new_eigenvectors(const FloquetResult& next, int n,
+                                            std::vector<Eigen::VectorXcd>& vectors) {
+  if (next.has_eigenvectors()) {
+    vectors.resize(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) vectors[j] = next.exponents[j].eigenvector;
+    return std::nullopt;
+  }
+  std::vector<std::complex<double>> multipliers;
+  multipliers.reserve(static_cast<std::size_t>(n));
+  for (const FloquetExponent& e : next.exponents) multipliers.push_back(e.multiplier);
+  if (next.eigensystem ? floquet_eigenvectors(*next.eigensystem, multipliers, &vectors)
+                       : floquet_eigenvectors(next.phi, multipliers, &vectors))
+    return std::nullopt;
+  return std::string(next.phi.rows() == n
+                         ? "the eigenvectors of Phi needed to identify the modes are not finite; "
+                           "tracking state unchanged"
+                         : "no eigenvectors (nor Phi) to identify close modes by; tracking "
+                           "state unchanged");
+}
+
+// The eigenvector term added to the costs: 1 - |v_old^H v_new|, the similarity kept in `sim`.
+void add_similarity_costs(const std::vector<Eigen::VectorXcd>& old_vectors,
+                          const std::vector<Eigen::VectorXcd>& new_vectors, int n, double* sim,
+                          double* cost) {
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const std::size_t ij = static_cast<std::size_t>(i) + static_cast<std::size_t>(n) * j;
+      sim[ij] = std::abs(old_vectors[i].dot(new_vectors[j]));  // dot() conjugates the left side
+      const double c = (1.0 - sim[ij]) + cost[ij];
+      cost[ij] = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
+    }
+  }
+}
+
+// Whether every match[i] is a new exponent's index.
+bool is_assignment(const int* match, int n) {
+  for (int i = 0; i < n; ++i)
+    if (match[i] < 0 || match[i] >= n) return false;
+  return true;
+}
+
+void warn_if_ambiguous(TrackReport& report) {
+  if (report.min_similarity < kAmbiguousSimilarity) {
+    report.status = Status::Warning;
+    report.message = "ambiguous mode identification (eigenvector similarity " +
+                     fmt(report.min_similarity) + "); consider a smaller step";
+  }
+}
+
 }  // namespace
 
 InstabilityKind classify_crossing(double omega, double tolerance) {
@@ -215,140 +386,33 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
     report.min_similarity = 0.0;
     return report;
   };
-  if (next.status == Status::Failed) return fail(next.message + "; tracking state unchanged");
-  const bool given_vectors = next.has_eigenvectors();
-  for (const FloquetExponent& e : next.exponents) {
-    if (!std::isfinite(e.multiplier.real()) || !std::isfinite(e.multiplier.imag()) ||
-        std::isnan(e.zeta) || std::isnan(e.omega) ||
-        (given_vectors && !e.eigenvector.allFinite())) {
-      return fail("non-finite multipliers or eigenvectors; tracking state unchanged");
-    }
-  }
+  if (std::optional<std::string> why = untrackable(next)) return fail(std::move(*why));
 
-  // Predicted exponents at mu: linear in mu through the last two states.
+  AdvanceScratch s(n);
   const bool extrapolate =
       std::isfinite(mu) && has_previous_ && mu_ != previous_mu_ && std::isfinite(mu_);
   const double t = extrapolate ? (mu - mu_) / (mu_ - previous_mu_) : 0.0;
-  double predicted_zeta[64], predicted_omega[64];
-  std::vector<double> big_zeta, big_omega;
-  double* pz = predicted_zeta;
-  double* pw = predicted_omega;
-  if (n > 64) {
-    big_zeta.resize(static_cast<std::size_t>(n));
-    big_omega.resize(static_cast<std::size_t>(n));
-    pz = big_zeta.data();
-    pw = big_omega.data();
-  }
-  for (int i = 0; i < n; ++i) {
-    const LabelledExponent& e = exponents_[i];
-    const double z = finite_zeta(e.zeta);
-    pz[i] = z + (extrapolate ? t * (z - finite_zeta(previous_[i].real())) : 0.0);
-    pw[i] = e.omega + (extrapolate ? t * (e.omega - previous_[i].imag()) : 0.0);
-  }
-
-  // Cost of assigning tracked mode i to new exponent j: eigenvector dissimilarity plus the
-  // distance of the new exponent from the prediction (omega modulo integers), times 2 pi so
-  // that it is the relative change of the multiplier for small steps.  Both terms are O(1)
-  // for a wrong match.
-  // Stack buffers up to kExactAssignment modes (nothing allocates on the common path).
-  constexpr int kSmall = kExactAssignment;
-  double cost_small[kSmall * kSmall], sim_small[kSmall * kSmall];
-  int match_small[kSmall];
-  std::vector<double> cost_big, sim_big;
-  std::vector<int> match_big;
-  double* cost = cost_small;
-  double* sim = sim_small;
-  int* match = match_small;
-  if (n > kSmall) {
-    cost_big.resize(static_cast<std::size_t>(n) * n);
-    sim_big.resize(static_cast<std::size_t>(n) * n);
-    match_big.resize(static_cast<std::size_t>(n));
-    cost = cost_big.data();
-    sim = sim_big.data();
-    match = match_big.data();
-  }
-  // The distance term first.
-  for (int j = 0; j < n; ++j) {
-    const FloquetExponent& e = next.exponents[j];
-    for (int i = 0; i < n; ++i) {
-      const std::size_t ij = static_cast<std::size_t>(i) + static_cast<std::size_t>(n) * j;
-      const double c = exponent_distance(finite_zeta(e.zeta) - pz[i], e.omega - pw[i]);
-      cost[ij] = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
-    }
-  }
-
-  // Without eigenvectors in `next`, the multipliers decide when they leave no doubt: each
-  // tracked exponent's nearest candidate is distinct, near its prediction and nearer than any
-  // other by more than the largest eigenvector term (1), so the full cost below could not
-  // choose otherwise.
-  bool decided = false;
-  if (!given_vectors) {
-    decided = true;
-    bool taken_small[kSmall] = {};
-    std::vector<bool> taken_big(n > kSmall ? static_cast<std::size_t>(n) : 0, false);
-    for (int i = 0; i < n && decided; ++i) {
-      double d1 = std::numeric_limits<double>::infinity(), d2 = d1;
-      int j1 = -1;
-      for (int j = 0; j < n; ++j) {
-        const double c = cost[i + static_cast<std::size_t>(n) * j];
-        if (c < d1) {
-          d2 = d1;
-          d1 = c;
-          j1 = j;
-        } else if (c < d2) {
-          d2 = c;
-        }
-      }
-      const bool taken = j1 < 0 || (n > kSmall ? bool(taken_big[j1]) : taken_small[j1]);
-      decided = !taken && d1 <= kMultiplierStep && d2 - d1 > 1.0;
-      if (decided) {
-        match[i] = j1;
-        if (n > kSmall)
-          taken_big[j1] = true;
-        else
-          taken_small[j1] = true;
-      }
-    }
-  }
-
+  predict(exponents_, previous_, extrapolate, t, s.predicted_zeta, s.predicted_omega);
+  distance_costs(next, s.predicted_zeta, s.predicted_omega, n, s.cost);
+  const bool decided = !next.has_eigenvectors() && decided_by_multipliers(s.cost, n, s.match);
   const std::vector<Eigen::VectorXcd>* new_vectors = nullptr;
   if (!decided) {
     // The full rule: eigenvectors of both states.
-    if (given_vectors) {
-      next_vectors_.resize(static_cast<std::size_t>(n));
-      for (int j = 0; j < n; ++j) next_vectors_[j] = next.exponents[j].eigenvector;
-    } else {
-      std::vector<std::complex<double>> multipliers;
-      multipliers.reserve(static_cast<std::size_t>(n));
-      for (const FloquetExponent& e : next.exponents) multipliers.push_back(e.multiplier);
-      if (!(next.eigensystem ? floquet_eigenvectors(*next.eigensystem, multipliers, &next_vectors_)
-                             : floquet_eigenvectors(next.phi, multipliers, &next_vectors_)))
-        return fail(next.phi.rows() == n
-                        ? "the eigenvectors of Phi needed to identify the modes are not finite; "
-                          "tracking state unchanged"
-                        : "no eigenvectors (nor Phi) to identify close modes by; tracking "
-                          "state unchanged");
-    }
+    if (std::optional<std::string> why = new_eigenvectors(next, n, next_vectors_))
+      return fail(std::move(*why));
     if (!ensure_vectors())
       return fail(
           "the eigenvectors of the previous state could not be computed; tracking state "
           "unchanged");
     new_vectors = &next_vectors_;
-    for (int j = 0; j < n; ++j) {
-      for (int i = 0; i < n; ++i) {
-        const std::size_t ij = static_cast<std::size_t>(i) + static_cast<std::size_t>(n) * j;
-        sim[ij] = std::abs(vectors_[i].dot(next_vectors_[j]));  // dot() conjugates the left side
-        const double c = (1.0 - sim[ij]) + cost[ij];
-        cost[ij] = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
-      }
-    }
-    Assignment(cost, n).solve(match);
+    add_similarity_costs(vectors_, next_vectors_, n, s.sim, s.cost);
+    Assignment(s.cost, n).solve(s.match);
   }
-  for (int i = 0; i < n; ++i) {
-    if (match[i] < 0 || match[i] >= n)  // unreachable with finite costs; never index with it
-      return fail("mode identification found no assignment; tracking state unchanged");
-  }
+  const int* match = s.match;
+  if (!is_assignment(match, n))  // unreachable with finite costs; never index with it
+    return fail("mode identification found no assignment; tracking state unchanged");
 
+  // The new state: the matched exponents, omega continued.
   previous_.resize(static_cast<std::size_t>(n));
   if (!decided) report.min_similarity = 1.0;
   for (int i = 0; i < n; ++i) {
@@ -358,13 +422,13 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
     // omega = principal + k with the integer k that puts omega closest to its prediction.  A
     // zero multiplier has no argument: its omega stays where the mode was last seen.
     if (e.multiplier != std::complex<double>(0.0, 0.0))
-      x.omega = e.omega + std::round(pw[i] - e.omega);
+      x.omega = e.omega + std::round(s.predicted_omega[i] - e.omega);
     x.zeta = e.zeta;
     x.multiplier = e.multiplier;
     if (new_vectors != nullptr) {
       vectors_[i] = (*new_vectors)[match[i]];
       report.min_similarity =
-          std::min(report.min_similarity, sim[i + static_cast<std::size_t>(n) * match[i]]);
+          std::min(report.min_similarity, s.sim[i + static_cast<std::size_t>(n) * match[i]]);
     }
   }
   // Without new eigenvectors the tracked ones are those of next.phi, computed when needed.
@@ -377,11 +441,7 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
   previous_mu_ = mu_;
   mu_ = mu;
   has_previous_ = std::isfinite(mu);
-  if (report.min_similarity < kAmbiguousSimilarity) {
-    report.status = Status::Warning;
-    report.message = "ambiguous mode identification (eigenvector similarity " +
-                     fmt(report.min_similarity) + "); consider a smaller step";
-  }
+  warn_if_ambiguous(report);
   return report;
 }
 
