@@ -1162,6 +1162,143 @@ SweepResult hover_failed(const HoverModes& hover) {
   return out;
 }
 
+// The first evaluation of every stretch of `plan` (`length` reported points and the steps
+// that lead to each), then plan.size(): stretch s is the evaluations first[s] .. first[s + 1]
+// - 1.
+std::vector<std::size_t> stretch_starts(const std::vector<Evaluation>& plan, std::size_t length) {
+  std::vector<std::size_t> first{0};
+  for (std::size_t i = 0, reported = 0; i < plan.size(); ++i)
+    if (plan[i].reported && ++reported % length == 0 && i + 1 < plan.size()) first.push_back(i + 1);
+  first.push_back(plan.size());
+  return first;
+}
+
+// The end of the window of stretches from w0 whose samples are held at once.
+std::size_t window_end(const std::vector<std::size_t>& first, std::size_t w0) {
+  const std::size_t stretches = first.size() - 1;
+  std::size_t w1 = w0 + 1;
+  while (w1 < stretches && w1 - w0 < kStretchesInMemory &&
+         first[w1 + 1] - first[w0] <= kSamplesInMemory)
+    ++w1;
+  return w1;
+}
+
+// The stretches w0 .. w1 - 1 of a continuation's plan, evaluated in parallel (one
+// FloquetFunction each); the calling thread identifies the finished stretches in order between
+// its own (the other threads go on evaluating), so that the identification overlaps the
+// evaluations.
+class ParallelWindow {
+ public:
+  ParallelWindow(const std::vector<Evaluation>& plan, const std::vector<std::size_t>& first,
+                 std::size_t w0, std::size_t w1, TrackPass& pass)
+      : plan_(plan),
+        first_(first),
+        w0_(w0),
+        w1_(w1),
+        begin_(first[w0]),
+        pass_(pass),
+        samples_(first[w1] - first[w0]),
+        thrown_(w1 - w0),
+        thrown_at_(w1 - w0, kNone),
+        done_(new std::atomic<bool>[w1 - w0]),
+        next_k_(w0),
+        next_i_(first[w0]) {
+    for (std::size_t k = 0; k < w1 - w0; ++k) done_[k] = false;
+  }
+
+  // false: the pass stopped (its result is final).  Rethrows what an evaluation or the
+  // identification threw.
+  bool run(const std::vector<FloquetFunction>& functions, int threads) {
+    const std::thread::id caller = std::this_thread::get_id();
+    parallel_for(w1_ - w0_, threads, nullptr, {}, [&](std::size_t k) {
+      evaluate_stretch(functions[k], k);
+      done_[k].store(true, std::memory_order_release);
+      if (std::this_thread::get_id() == caller) identify_finished();
+    });
+    identify_finished();
+    if (rethrow_) std::rethrow_exception(rethrow_);
+    return !ended_;
+  }
+
+ private:
+  static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+
+  // Stretch w0 + k in order, until it ends, fails or passes where the pass is known to stop.
+  void evaluate_stretch(const FloquetFunction& f, std::size_t k) {
+    const std::size_t a = first_[w0_ + k], b = first_[w0_ + k + 1];
+    bool close_before = false;
+    for (std::size_t i = a; i < b && i <= stop_.load(); ++i) {
+      FloquetSample& sample = samples_[i - begin_];
+      try {
+        sample = f(plan_[i].mu, pass_.tolerance(plan_[i]));
+      } catch (...) {
+        thrown_[k] = std::current_exception();
+        thrown_at_[k] = i;
+        lower_stop(i);
+        break;
+      }
+      if (sample.status == Status::Failed) {
+        lower_stop(i);
+        break;
+      }
+      // The identification of sample i may need its vectors and those of sample i - 1, and
+      // that of sample i + 1 those of sample i.
+      const bool close = !sample.floquet.has_eigenvectors() && has_close_candidates(sample.floquet);
+      try {
+        if (close || close_before) add_eigensystem(sample);
+        if (close && i > a) add_eigensystem(samples_[i - 1 - begin_]);
+      } catch (...) {  // out of memory: the identification computes them itself if needed
+      }
+      close_before = close;
+    }
+  }
+
+  // The finished stretches not yet identified, in order, up to the first unfinished one.
+  void identify_finished() {
+    while (!ended_ && next_k_ < w1_ && done_[next_k_ - w0_].load(std::memory_order_acquire)) {
+      for (; next_i_ < first_[next_k_ + 1]; ++next_i_) {
+        bool more = false;
+        if (thrown_at_[next_k_ - w0_] == next_i_) {
+          rethrow_ = thrown_[next_k_ - w0_];
+        } else {
+          try {
+            more = pass_.take(plan_[next_i_], samples_[next_i_ - begin_]);
+          } catch (...) {
+            rethrow_ = std::current_exception();
+          }
+        }
+        if (!more) {
+          ended_ = true;
+          lower_stop(next_i_);
+          return;
+        }
+      }
+      ++next_k_;
+    }
+  }
+
+  void lower_stop(std::size_t i) {
+    std::size_t s = stop_.load();
+    while (i < s && !stop_.compare_exchange_weak(s, i)) {
+    }
+  }
+
+  const std::vector<Evaluation>& plan_;
+  const std::vector<std::size_t>& first_;
+  const std::size_t w0_, w1_, begin_;
+  TrackPass& pass_;
+  std::vector<FloquetSample> samples_;
+  std::vector<std::exception_ptr> thrown_;
+  std::vector<std::size_t> thrown_at_;
+  // The first evaluation at which the pass is known to stop (a Failed sample or a throw):
+  // later ones are not needed.
+  std::atomic<std::size_t> stop_{kNone};
+  std::unique_ptr<std::atomic<bool>[]> done_;
+  std::size_t next_k_, next_i_;  // the next evaluation to identify, and its stretch
+  bool ended_ = false;           // the pass stopped (Failed, a throw to pass on, or its own stop)
+  std::exception_ptr rethrow_;
+};
+
 }  // namespace
 
 SweepResult track_exponents(const HoverModes& hover, const FloquetFunction& floquet,
@@ -1189,15 +1326,9 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactor
   if (!make) throw InvalidInput("floquet", "empty", "a FloquetFunctionFactory is required");
   if (hover.status == Status::Failed) return hover_failed(hover);
   const std::vector<Evaluation> plan = evaluations(mus, max_step);
-  // Stretch s: the reported points s L .. (s + 1) L - 1 and the steps that lead to each, i.e.
-  // the evaluations first[s] .. first[s + 1] - 1 of the plan.
-  const std::size_t length = continuation_stretch(mus.size());
-  std::vector<std::size_t> first{0};
-  for (std::size_t i = 0, reported = 0; i < plan.size(); ++i)
-    if (plan[i].reported && ++reported % length == 0 && i + 1 < plan.size()) first.push_back(i + 1);
-  first.push_back(plan.size());
+  // Stretch s: the reported points s L .. (s + 1) L - 1 and the steps that lead to each.
+  const std::vector<std::size_t> first = stretch_starts(plan, continuation_stretch(mus.size()));
   const std::size_t stretches = first.size() - 1;
-  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
   TrackPass pass(hover, zeta_tolerance);
   auto new_function = [&] {
     FloquetFunction f = make();
@@ -1205,11 +1336,7 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactor
     return f;
   };
   for (std::size_t w0 = 0; w0 < stretches;) {
-    // A window of stretches whose samples are held at once.
-    std::size_t w1 = w0 + 1;
-    while (w1 < stretches && w1 - w0 < kStretchesInMemory &&
-           first[w1 + 1] - first[w0] <= kSamplesInMemory)
-      ++w1;
+    const std::size_t w1 = window_end(first, w0);
     const std::size_t begin = first[w0], end = first[w1];
     if (end - begin > kSamplesInMemory) {
       // One stretch too long to hold (many steps between reported points): evaluated and
@@ -1223,81 +1350,8 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactor
     }
     std::vector<FloquetFunction> functions;
     for (std::size_t k = w0; k < w1; ++k) functions.push_back(new_function());
-    std::vector<FloquetSample> samples(end - begin);
-    std::vector<std::exception_ptr> thrown(w1 - w0);
-    std::vector<std::size_t> thrown_at(w1 - w0, kNone);
-    // The first evaluation at which the pass is known to stop (a Failed sample or a throw):
-    // later ones are not needed.
-    std::atomic<std::size_t> stop{kNone};
-    auto lower_stop = [&](std::size_t i) {
-      std::size_t s = stop.load();
-      while (i < s && !stop.compare_exchange_weak(s, i)) {
-      }
-    };
-    // The calling thread identifies the finished stretches in order between its own (the
-    // other threads go on evaluating), so that the identification overlaps the evaluations.
-    std::unique_ptr<std::atomic<bool>[]> done(new std::atomic<bool>[w1 - w0]);
-    for (std::size_t k = 0; k < w1 - w0; ++k) done[k] = false;
-    const std::thread::id caller = std::this_thread::get_id();
-    std::size_t next_k = w0, next_i = begin;
-    bool ended = false;  // the pass stopped (Failed, a throw to pass on, or its own stop)
-    std::exception_ptr rethrow;
-    auto drain = [&] {
-      while (!ended && next_k < w1 && done[next_k - w0].load(std::memory_order_acquire)) {
-        for (; next_i < first[next_k + 1]; ++next_i) {
-          bool more = false;
-          if (thrown_at[next_k - w0] == next_i) {
-            rethrow = thrown[next_k - w0];
-          } else {
-            try {
-              more = pass.take(plan[next_i], samples[next_i - begin]);
-            } catch (...) {
-              rethrow = std::current_exception();
-            }
-          }
-          if (!more) {
-            ended = true;
-            lower_stop(next_i);
-            return;
-          }
-        }
-        ++next_k;
-      }
-    };
-    parallel_for(w1 - w0, threads, nullptr, {}, [&](std::size_t k) {
-      const std::size_t a = first[w0 + k], b = first[w0 + k + 1];
-      bool close_before = false;
-      for (std::size_t i = a; i < b && i <= stop.load(); ++i) {
-        FloquetSample& sample = samples[i - begin];
-        try {
-          sample = functions[k](plan[i].mu, pass.tolerance(plan[i]));
-        } catch (...) {
-          thrown[k] = std::current_exception();
-          thrown_at[k] = i;
-          lower_stop(i);
-          break;
-        }
-        if (sample.status == Status::Failed) {
-          lower_stop(i);
-          break;
-        }
-        // The identification of sample i may need its vectors and those of sample i - 1, and
-        // that of sample i + 1 those of sample i.
-        const bool close =
-            !sample.floquet.has_eigenvectors() && has_close_candidates(sample.floquet);
-        try {
-          if (close || close_before) add_eigensystem(sample);
-          if (close && i > a) add_eigensystem(samples[i - 1 - begin]);
-        } catch (...) {  // out of memory: the identification computes them itself if needed
-        }
-        close_before = close;
-      }
-      done[k].store(true, std::memory_order_release);
-      if (std::this_thread::get_id() == caller) drain();
-    });
-    drain();
-    if (rethrow) std::rethrow_exception(rethrow);
-    if (ended) return std::move(pass.out());
+    if (!ParallelWindow(plan, first, w0, w1, pass).run(functions, threads))
+      return std::move(pass.out());
     w0 = w1;
   }
   return std::move(pass.out());
