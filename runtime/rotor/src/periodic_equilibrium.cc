@@ -109,33 +109,59 @@ struct Newton {
   double step = 0.0, residual = 0.0;
 };
 
-// Harmonic balance of q'' = mass^-1 G(q, q', psi) for the coefficients X (n x (2K+1)).
-Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEquilibriumOptions& opt,
-             Eigen::MatrixXd& X) {
-  const int n = M + N, nb = 2 * K + 1, unknowns = n * nb;
-  // Integrand degree: residual (model order 2 plus 2K for a quadratic term) times phi_c.
-  const auto points = quadrature(sys.sector(), 3.0 * K + 4.0);
-  Newton out;
-  const int P = static_cast<int>(points.size());
+// The harmonic balance of q'' = mass^-1 G(q, q', psi) for the coefficients X (n x (2K+1)) of
+// q in the basis phi_c: the residual R, the projections onto phi_c of q'' - mass^-1 G at the
+// quadrature points (fixed for the whole solve), and its Jacobian by X.
+class HarmonicBalance {
+ public:
+  HarmonicBalance(const NonlinearSystem& sys, int M, int N, int K)
+      : sys_(sys),
+        M_(M),
+        N_(N),
+        K_(K),
+        n_(M + N),
+        nb_(2 * K + 1),
+        // Integrand degree: residual (model order 2 plus 2K for a quadratic term) times phi_c.
+        points_(quadrature(sys.sector(), 3.0 * K + 4.0)),
+        P_(static_cast<int>(points_.size())) {
+    tabulate_basis();
+    tabulate_mass_block();
+  }
+
+  // R (n (2K+1)) and Jac (n (2K+1) square) at X, sized by the caller.
+  void evaluate(const Eigen::MatrixXd& X, Eigen::VectorXd& R, Eigen::MatrixXd& Jac) {
+    sample_residual(X);
+    project(R, Jac);
+  }
+
+ private:
+  static int harmonic_of(int c) { return (c + 1) / 2; }
+  static bool is_sine(int c) { return c > 0 && c % 2 == 0; }
+
   // Fixed for the whole solve (the points do not move between iterations): the basis and its
   // derivatives at the points, W (nb x P) the weighted basis (the projection onto phi_c is a
   // Fourier coefficient), and H (P x (4K+1)) the weighted harmonics cos h psi (columns 0..2K)
   // and sin h psi (columns 2K+1..4K, h = 1..2K), for the Jacobian below.
-  Eigen::MatrixXd Pb(nb, P), D1(nb, P), D2(nb, P), W(nb, P), H(P, 4 * K + 1);
-  {
+  void tabulate_basis() {
+    const int K = K_, P = P_;
+    Pb_.resize(nb_, P);
+    D1_.resize(nb_, P);
+    D2_.resize(nb_, P);
+    W_.resize(nb_, P);
+    H_.resize(P, 4 * K + 1);
     Eigen::VectorXd p, d1, d2;
     for (int k = 0; k < P; ++k) {
-      const QuadPoint& qp = points[k];
+      const QuadPoint& qp = points_[k];
       basis(K, qp.psi, p, d1, d2);
-      Pb.col(k) = p;
-      D1.col(k) = d1;
-      D2.col(k) = d2;
+      Pb_.col(k) = p;
+      D1_.col(k) = d1;
+      D2_.col(k) = d2;
       const double w = qp.weight / kPi;
-      W.col(k) = p * w;
-      W(0, k) *= 0.5;
+      W_.col(k) = p * w;
+      W_(0, k) *= 0.5;
       // cos, sin of (K + h) psi from those of K psi and h psi (angle addition)
       const double cK = K > 0 ? p(2 * K - 1) : 1.0, sK = K > 0 ? p(2 * K) : 0.0;
-      H(k, 0) = w;
+      H_(k, 0) = w;
       for (int h = 1; h <= 2 * K; ++h) {
         double c, sn;
         if (h <= K) {
@@ -146,21 +172,77 @@ Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEqui
           c = cK * ch - sK * sh;
           sn = sK * ch + cK * sh;
         }
-        H(k, h) = w * c;
-        H(k, 2 * K + h) = w * sn;
+        H_(k, h) = w * c;
+        H_(k, 2 * K + h) = w * sn;
       }
     }
   }
-  // The Jacobian's block (i, j) is sum_k W_c(psi_k) [-a_ij phi_d - b_ij phi_d' + delta_ij
-  // phi_d''](psi_k), a_ij, b_ij the derivatives of equation i's load by displacement and rate
-  // j.  The product phi_c phi_d is a sum of two harmonics of order <= 2K (cos m cos n =
+
+  // sum W_c phi_d'' (the delta_ij term of the Jacobian).
+  void tabulate_mass_block() {
+    const Eigen::VectorXd unit_sums = H_.colwise().sum().transpose();
+    mass_block_.resize(nb_, nb_);
+    for (int c = 0; c < nb_; ++c)
+      for (int d = 0; d < nb_; ++d) {
+        const int l = harmonic_of(d);
+        mass_block_(c, d) = -static_cast<double>(l * l) * product_sum(unit_sums, c, d);
+      }
+  }
+
+  // The residual E (n x P) of q'' = mass^-1 G at each point, and S (P x 2 n^2) the
+  // derivatives a_ij, b_ij of equation i's load by displacement and rate j there.
+  void sample_residual(const Eigen::MatrixXd& X) {
+    const int n = n_, M = M_, N = N_, P = P_;
+    y_.resize(2 * n);
+    E_.resize(n, P);
+    S_.resize(P, 2 * n * n);
+    Q_.noalias() = X * Pb_;
+    Qd_.noalias() = X * D1_;
+    Qdd_.noalias() = X * D2_;
+    for (int k = 0; k < P; ++k) {
+      const QuadPoint& qp = points_[k];
+      for (int j = 0; j < n; ++j) {
+        y_(model::rate_index(j, M, N)) = Qd_(j, k);
+        y_(model::displacement_index(j, M, N)) = Q_(j, k);
+      }
+      sys_.evaluate(qp.psi, qp.reversed, y_, &F_, &J_);
+      for (int i = 0; i < n; ++i) {
+        const int row = model::rate_index(i, M, N);
+        E_(i, k) = Qdd_(i, k) - F_(row);
+        for (int j = 0; j < n; ++j) {
+          S_(k, 2 * (i * n + j)) = J_(row, model::displacement_index(j, M, N));
+          S_(k, 2 * (i * n + j) + 1) = J_(row, model::rate_index(j, M, N));
+        }
+      }
+    }
+  }
+
+  // The projections onto phi_c: R from E, and the Jacobian's blocks from the harmonic sums of
+  // S.  Block (i, j) is sum_k W_c(psi_k) [-a_ij phi_d - b_ij phi_d' + delta_ij phi_d''](psi_k).
+  void project(Eigen::VectorXd& R, Eigen::MatrixXd& Jac) const {
+    const int n = n_, nb = nb_;
+    const Eigen::MatrixXd sums = H_.transpose() * S_;  // (4K+1) x 2 n^2
+    for (int i = 0; i < n; ++i) {
+      R.segment(i * nb, nb).noalias() = W_ * E_.row(i).transpose();
+      for (int j = 0; j < n; ++j) {
+        const auto sa = sums.col(2 * (i * n + j)), sb = sums.col(2 * (i * n + j) + 1);
+        auto block = Jac.block(i * nb, j * nb, nb, nb);
+        for (int c = 0; c < nb; ++c)
+          for (int d = 0; d < nb; ++d)
+            block(c, d) = -product_sum(sa, c, d) - derivative_sum(sb, c, d);
+        if (i == j) block += mass_block_;
+      }
+    }
+  }
+
+  // The product phi_c phi_d is a sum of two harmonics of order <= 2K (cos m cos n =
   // (cos (m-n) + cos (m+n)) / 2, ...), so every block entry is a combination of the weighted
   // harmonic sums of a_ij and b_ij: O(P K) work per pair instead of O(P K^2).
-  const auto harmonic_of = [](int c) { return (c + 1) / 2; };
-  const auto is_sine = [](int c) { return c > 0 && c % 2 == 0; };
   // sum_k w_k f(psi_k) phi_c(psi_k) phi_d(psi_k) / pi from f's weighted sums `s` (a column of
   // H^T f), with the factor 1/2 of the constant's projection.
-  const auto product_sum = [&](const auto& s, int c, int d) {
+  template <typename Sums>
+  double product_sum(const Sums& s, int c, int d) const {
+    const int K = K_;
     const auto A = [&](int h) { return s(std::abs(h)); };
     const auto B = [&](int h) { return h == 0 ? 0.0 : h > 0 ? s(2 * K + h) : -s(2 * K - h); };
     const int m = harmonic_of(c), l = harmonic_of(d);
@@ -180,60 +262,41 @@ Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEqui
     else
       v = 0.5 * (B(m + l) + B(m - l));  // sin m cos l
     return c == 0 ? 0.5 * v : v;
-  };
+  }
+
   // phi_d' = -l phi_{d+1} (cos l psi) or l phi_{d-1} (sin l psi); phi_d'' = -l^2 phi_d.
-  const auto derivative_sum = [&](const auto& s, int c, int d) {
+  template <typename Sums>
+  double derivative_sum(const Sums& s, int c, int d) const {
     if (d == 0) return 0.0;
     const int l = harmonic_of(d);
     return is_sine(d) ? l * product_sum(s, c, d - 1) : -l * product_sum(s, c, d + 1);
-  };
-  const Eigen::VectorXd unit_sums = H.colwise().sum().transpose();
-  Eigen::MatrixXd mass_block(nb, nb);  // sum W_c phi_d'' (the delta_ij term)
-  for (int c = 0; c < nb; ++c)
-    for (int d = 0; d < nb; ++d) {
-      const int l = harmonic_of(d);
-      mass_block(c, d) = -static_cast<double>(l * l) * product_sum(unit_sums, c, d);
-    }
-  Eigen::VectorXd y(2 * n), F;
-  Eigen::MatrixXd J;
+  }
+
+  const NonlinearSystem& sys_;
+  const int M_, N_, K_, n_, nb_;
+  const std::vector<QuadPoint> points_;
+  const int P_;
+  Eigen::MatrixXd Pb_, D1_, D2_, W_, H_, mass_block_;
+  // Scratch of an evaluation.
+  Eigen::VectorXd y_, F_;
+  Eigen::MatrixXd J_;
+  Eigen::MatrixXd E_;             // residual at each point
+  Eigen::MatrixXd S_;             // a_ij, b_ij at each point
+  Eigen::MatrixXd Q_, Qd_, Qdd_;  // q, q', q'' at the points
+};
+
+// Newton on the harmonic balance (HarmonicBalance) for the coefficients X (n x (2K+1)), from
+// the X given.
+Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEquilibriumOptions& opt,
+             Eigen::MatrixXd& X) {
+  const int n = M + N, nb = 2 * K + 1, unknowns = n * nb;
+  HarmonicBalance balance(sys, M, N, K);
+  Newton out;
   Eigen::VectorXd R(unknowns);
   Eigen::MatrixXd Jac(unknowns, unknowns);
-  Eigen::MatrixXd E(n, P);          // residual at each point
-  Eigen::MatrixXd S(P, 2 * n * n);  // a_ij, b_ij at each point
   double previous_step = std::numeric_limits<double>::infinity();
-  Eigen::MatrixXd Q(n, P), Qd(n, P), Qdd(n, P);  // q, q', q'' at the points
   for (int it = 1; it <= opt.max_iterations; ++it) {
-    Q.noalias() = X * Pb;
-    Qd.noalias() = X * D1;
-    Qdd.noalias() = X * D2;
-    for (int k = 0; k < P; ++k) {
-      const QuadPoint& qp = points[k];
-      for (int j = 0; j < n; ++j) {
-        y(model::rate_index(j, M, N)) = Qd(j, k);
-        y(model::displacement_index(j, M, N)) = Q(j, k);
-      }
-      sys.evaluate(qp.psi, qp.reversed, y, &F, &J);
-      for (int i = 0; i < n; ++i) {
-        const int row = model::rate_index(i, M, N);
-        E(i, k) = Qdd(i, k) - F(row);
-        for (int j = 0; j < n; ++j) {
-          S(k, 2 * (i * n + j)) = J(row, model::displacement_index(j, M, N));
-          S(k, 2 * (i * n + j) + 1) = J(row, model::rate_index(j, M, N));
-        }
-      }
-    }
-    const Eigen::MatrixXd sums = H.transpose() * S;  // (4K+1) x 2 n^2
-    for (int i = 0; i < n; ++i) {
-      R.segment(i * nb, nb).noalias() = W * E.row(i).transpose();
-      for (int j = 0; j < n; ++j) {
-        const auto sa = sums.col(2 * (i * n + j)), sb = sums.col(2 * (i * n + j) + 1);
-        auto block = Jac.block(i * nb, j * nb, nb, nb);
-        for (int c = 0; c < nb; ++c)
-          for (int d = 0; d < nb; ++d)
-            block(c, d) = -product_sum(sa, c, d) - derivative_sum(sb, c, d);
-        if (i == j) block += mass_block;
-      }
-    }
+    balance.evaluate(X, R, Jac);
     out.residual = R.cwiseAbs().maxCoeff();
     if (!R.allFinite() || !Jac.allFinite()) {
       out.finite = false;
