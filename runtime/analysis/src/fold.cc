@@ -49,54 +49,103 @@ double distance_to_one(const PeriodicSystem& lin) {
   return d;
 }
 
+// Where the branch ends: q° exists at lo (lin_lo its linearization), not at hi.
+struct BranchEnd {
+  double lo, hi;
+  PeriodicSystem lin_lo;
+};
+
+// Bisection on existence from the watch's last success and first failure; each probe continues
+// from the last mu where q° exists (and a failed one tells how far its continuation got, which
+// is then the lower end).  Nothing when the last success is not reproducible.
+std::optional<BranchEnd> bracket_branch_end(const FoldWatch::State& s,
+                                            const EquilibriumProbe& probe,
+                                            const CriticalOptions& o) {
+  BranchEnd e;
+  e.lo = std::min(s.last_ok, s.first_failed);
+  e.hi = s.first_failed;
+  double reached = -1.0;
+  if (!probe(e.lo, &e.lin_lo, &reached)) return std::nullopt;
+  PeriodicSystem lin;
+  bool lin_current = true;
+  for (int i = 0; i < 60 && e.hi - e.lo > 0.25 * o.tolerance; ++i) {
+    const double mid = 0.5 * (e.lo + e.hi);
+    reached = -1.0;
+    if (probe(mid, &lin, &reached)) {
+      e.lo = mid;
+      e.lin_lo = lin;
+      lin_current = true;
+    } else {
+      e.hi = mid;
+      // The continuation got as far as `reached` in a coarse truncation (the automatic K
+      // continues at few harmonics): a lower end only if the converged q° exists there too.
+      const double got = reached;
+      if (got > e.lo && got < mid) {
+        reached = -1.0;
+        if (probe(got, &lin, &reached)) {
+          e.lo = got;
+          e.lin_lo = lin;
+          lin_current = true;
+        } else {
+          e.hi = got;
+        }
+      }
+    }
+  }
+  if (!lin_current && !probe(e.lo, &e.lin_lo, &reached)) return std::nullopt;
+  return e;
+}
+
+// Second estimate of the fold: |Lambda - 1|^2 is linear in mu near it, extrapolated to 0 with
+// the slope from a point below e.lo (d_lo: |Lambda - 1| at e.lo).
+std::optional<double> extrapolated_fold(const BranchEnd& e, double d_lo,
+                                        const EquilibriumProbe& probe, const CriticalOptions& o) {
+  const double below = e.lo - std::max(200.0 * o.tolerance, 20.0 * (e.hi - e.lo));
+  PeriodicSystem lin;
+  double reached = -1.0;
+  if (below > 0.0 && probe(below, &lin, &reached)) {
+    const double d_below = distance_to_one(lin);
+    const double slope = (d_below * d_below - d_lo * d_lo) / (e.lo - below);
+    if (slope > 0.0) return e.lo + d_lo * d_lo / slope;
+  }
+  return std::nullopt;
+}
+
+// mu_c at the fold mid (error `error`): divergence, 0 per rev, in the mode reported with the
+// multiplier nearest 1 (the continuation's last).
+void set_fold(CriticalResult& r, double mid, double error) {
+  r.mu_c = mid;
+  r.mu_c_error = error;
+  r.omega = 0.0;
+  r.kind = InstabilityKind::Periodic;
+  double best = std::numeric_limits<double>::infinity();
+  for (const LabelledExponent& e : r.exponents) {
+    const double d = std::abs(e.multiplier - std::complex<double>(1.0));
+    if (d < best) {
+      best = d;
+      r.mode = e.label;
+    }
+  }
+  InstabilityInterval iv;
+  iv.onset = mid;
+  iv.onset_error = error;
+  iv.mode = r.mode;
+  iv.omega = 0.0;
+  iv.kind = InstabilityKind::Periodic;
+  r.intervals.assign(1, iv);
+}
+
 }  // namespace
 
 void report_fold(CriticalResult& r, const FoldWatch& watch, const EquilibriumProbe& probe,
                  const CriticalOptions& o) {
   const FoldWatch::State& s = *watch.state;
   if (r.status != Status::Failed || r.mu_c || r.hover_unstable || s.first_failed <= 0.0) return;
-  double lo = std::min(s.last_ok, s.first_failed), hi = s.first_failed;
-  PeriodicSystem lin_lo;
-  double reached = -1.0;
-  if (!probe(lo, &lin_lo, &reached)) return;  // not reproducible: leave the failure as it is
-  PeriodicSystem lin;
-  // Bisection on existence; each probe continues from the last mu where q° exists (and a failed
-  // one tells how far its continuation got, which is then the lower end).
-  bool lin_current = true;
-  for (int i = 0; i < 60 && hi - lo > 0.25 * o.tolerance; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    reached = -1.0;
-    if (probe(mid, &lin, &reached)) {
-      lo = mid;
-      lin_lo = lin;
-      lin_current = true;
-    } else {
-      hi = mid;
-      // The continuation got as far as `reached` in a coarse truncation (the automatic K
-      // continues at few harmonics): a lower end only if the converged q° exists there too.
-      const double got = reached;
-      if (got > lo && got < mid) {
-        reached = -1.0;
-        if (probe(got, &lin, &reached)) {
-          lo = got;
-          lin_lo = lin;
-          lin_current = true;
-        } else {
-          hi = got;
-        }
-      }
-    }
-  }
-  if (!lin_current && !probe(lo, &lin_lo, &reached)) return;
-  const double d_lo = distance_to_one(lin_lo);
-  // Second estimate: |Lambda - 1|^2 is linear in mu near the fold; the slope from a point below.
-  std::optional<double> extrapolated;
-  const double below = lo - std::max(200.0 * o.tolerance, 20.0 * (hi - lo));
-  if (below > 0.0 && probe(below, &lin, &reached)) {
-    const double d_below = distance_to_one(lin);
-    const double slope = (d_below * d_below - d_lo * d_lo) / (lo - below);
-    if (slope > 0.0) extrapolated = lo + d_lo * d_lo / slope;
-  }
+  const std::optional<BranchEnd> end = bracket_branch_end(s, probe, o);
+  if (!end) return;  // not reproducible: leave the failure as it is
+  const double lo = end->lo, hi = end->hi;
+  const double d_lo = distance_to_one(end->lin_lo);
+  const std::optional<double> extrapolated = extrapolated_fold(*end, d_lo, probe, o);
   const std::string bracket = "(" + short_text(lo) + ", " + short_text(hi) + ")";
   // A fold: the multiplier is near 1 where the branch ends.  Otherwise the failure stays one.
   if (!(d_lo < 0.05)) {
@@ -123,26 +172,7 @@ void report_fold(CriticalResult& r, const FoldWatch& watch, const EquilibriumPro
   // little on the path of the probes, so the whole bracket and twice the extrapolation's offset.
   double error = hi - lo;
   if (extrapolated) error = std::max(error, 2.0 * std::abs(*extrapolated - mid));
-  r.mu_c = mid;
-  r.mu_c_error = error;
-  r.omega = 0.0;
-  r.kind = InstabilityKind::Periodic;
-  // The mode: the exponent reported with the multiplier nearest 1 (the continuation's last).
-  double best = std::numeric_limits<double>::infinity();
-  for (const LabelledExponent& e : r.exponents) {
-    const double d = std::abs(e.multiplier - std::complex<double>(1.0));
-    if (d < best) {
-      best = d;
-      r.mode = e.label;
-    }
-  }
-  InstabilityInterval iv;
-  iv.onset = mid;
-  iv.onset_error = error;
-  iv.mode = r.mode;
-  iv.omega = 0.0;
-  iv.kind = InstabilityKind::Periodic;
-  r.intervals.assign(1, iv);
+  set_fold(r, mid, error);
   std::string msg =
       "the periodic equilibrium branch from hover ends at a fold at mu_c = " + short_text(mid) +
       " (bracket " + bracket + ", a real Floquet multiplier at " + short_text(1.0 - d_lo) +

@@ -393,183 +393,224 @@ TrimResult trim_continued(const RotorParameters& p, const model::ModelDescriptor
   return trim_once(p, m, mu, o, start, budget);
 }
 
-TrimResult trim_once(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
-                     const TrimOptions& o, const TrimResult* start, TrimBudget& budget) {
-  TrimResult out;
-  out.mu = mu;
-  out.kind = o.kind;
-  out.target = o.thrust_coefficient;
-  out.inflow = momentum_inflow(o.thrust_coefficient, mu, o.shaft_angle);
-  out.parameters = p;
-  ResponseOptions ropt = o.response;
-  // About the periodic equilibrium: each evaluation continues from the previous one's q°
-  // (a start's, then this trim's), not from hover.
-  PeriodicEquilibrium warm;
-  if (start != nullptr && p.periodic_linearization) warm = start->equilibrium;
-
-  const bool moment = o.kind == TrimKind::Moment;
-  const int nx = moment ? 3 : 1;
-  Eigen::VectorXd x(nx);
-  if (start != nullptr && start->kind == o.kind && start->status != Status::Failed) {
-    x(0) = start->theta0;
-    if (moment) {
-      x(1) = start->theta1c;
-      x(2) = start->theta1s;
-    }
-  } else {
-    // Start from blade-element theory for a uniform rigid blade without tip loss, C_T =
-    // (sigma a/2) [theta0 (1/3 + mu^2/2) + theta1s mu/2 - lambda/2] (the model's thrust at
-    // y = 0 and q0 = 0), clipped: Newton then corrects for the real blade.
-    const double sa2 = 0.5 * p.sigma * p.lift_slope;
-    const double guess = (o.thrust_coefficient / sa2 + 0.5 * out.inflow - 0.5 * mu * p.theta1s) /
-                         (1.0 / 3.0 + 0.5 * mu * mu);
-    x(0) = std::isfinite(guess) ? std::clamp(guess, -1.0, 1.0) : p.theta;
-    if (moment) {
-      x(1) = p.theta1c;
-      x(2) = p.theta1s;
-    }
+// One trim at mu: Newton on the controls x (theta0 for a thrust trim; theta0, theta1c, theta1s
+// for a moment trim) with a Jacobian that is updated by Broyden's rule after each step and
+// evaluated by finite differences only at the start (unless a warm start brings one) and when
+// a step fails; each step is halved until the residual decreases (the thrust is strongly
+// nonlinear in theta0 near the stability boundary, where the response is large).
+class TrimNewton {
+ public:
+  TrimNewton(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
+             const TrimOptions& o, const TrimResult* start, TrimBudget& budget)
+      : p_(p),
+        m_(m),
+        mu_(mu),
+        o_(o),
+        start_(start),
+        budget_(budget),
+        ropt_(o.response),
+        moment_(o.kind == TrimKind::Moment),
+        nx_(moment_ ? 3 : 1) {
+    out_.mu = mu;
+    out_.kind = o.kind;
+    out_.target = o.thrust_coefficient;
+    out_.inflow = momentum_inflow(o.thrust_coefficient, mu, o.shaft_angle);
+    out_.parameters = p;
+    // About the periodic equilibrium: each evaluation continues from the previous one's q°
+    // (a start's, then this trim's), not from hover.
+    if (start != nullptr && p.periodic_linearization) warm_ = start->equilibrium;
   }
-  auto params_of = [&](const Eigen::VectorXd& v) {
-    RotorParameters q = p;
+
+  TrimResult run() {
+    x_ = starting_controls();
+    if (!residual(x_, &r_)) {
+      return finish(Status::Failed, last_.message.empty()
+                                        ? "the starting pitch is outside (-pi/2, pi/2)"
+                                        : last_.message);
+    }
+    Eigen::MatrixXd J;
+    bool fresh = false;  // J is a finite-difference Jacobian at x_
+    if (start_ != nullptr && start_->jacobian.rows() == nx_ && start_->jacobian.cols() == nx_ &&
+        start_->kind == o_.kind) {
+      J = start_->jacobian;
+    } else {
+      if (!jacobian(&J)) {
+        return finish(Status::Failed, "the trim Jacobian could not be evaluated: " + last_.message);
+      }
+      fresh = true;
+    }
+    out_.iterations = 0;
+    while (!converged(r_)) {
+      if (out_.iterations >= o_.max_iterations) {
+        out_.jacobian = J;
+        return finish(Status::Warning, "trim not converged in " + std::to_string(out_.iterations) +
+                                           " iterations (`max_iterations`): |residual| = " +
+                                           round_trip_text(r_.cwiseAbs().maxCoeff()));
+      }
+      Eigen::VectorXd trial, rt;
+      if (!damped_step(J, fresh, trial, rt)) {
+        residual(x_, &r_);
+        if (fresh) {
+          out_.jacobian = J;
+          return finish(Status::Failed,
+                        "the trim Newton step does not reduce the residual (|r| = " +
+                            round_trip_text(r_.norm()) + "; singular or unreachable)" +
+                            (last_.message.empty() ? std::string() : ": " + last_.message));
+        }
+        if (!jacobian(&J)) {
+          return finish(Status::Failed,
+                        "the trim Jacobian could not be evaluated: " + last_.message);
+        }
+        fresh = true;
+        continue;
+      }
+      ++out_.iterations;
+      const Eigen::VectorXd step = trial - x_;
+      J += ((rt - r_) - J * step) * step.transpose() / step.squaredNorm();  // Broyden
+      fresh = false;
+      x_ = trial;
+      r_ = rt;
+    }
+    out_.jacobian = J;
+    out_.converged = true;
+    return finish(last_.status, last_.message);
+  }
+
+ private:
+  // The start's controls, or blade-element theory for a uniform rigid blade without tip loss,
+  // C_T = (sigma a/2) [theta0 (1/3 + mu^2/2) + theta1s mu/2 - lambda/2] (the model's thrust at
+  // y = 0 and q0 = 0), clipped: Newton then corrects for the real blade.
+  Eigen::VectorXd starting_controls() const {
+    Eigen::VectorXd x(nx_);
+    if (start_ != nullptr && start_->kind == o_.kind && start_->status != Status::Failed) {
+      x(0) = start_->theta0;
+      if (moment_) {
+        x(1) = start_->theta1c;
+        x(2) = start_->theta1s;
+      }
+      return x;
+    }
+    const double sa2 = 0.5 * p_.sigma * p_.lift_slope;
+    const double guess =
+        (o_.thrust_coefficient / sa2 + 0.5 * out_.inflow - 0.5 * mu_ * p_.theta1s) /
+        (1.0 / 3.0 + 0.5 * mu_ * mu_);
+    x(0) = std::isfinite(guess) ? std::clamp(guess, -1.0, 1.0) : p_.theta;
+    if (moment_) {
+      x(1) = p_.theta1c;
+      x(2) = p_.theta1s;
+    }
+    return x;
+  }
+
+  RotorParameters params_of(const Eigen::VectorXd& v) const {
+    RotorParameters q = p_;
     q.theta = v(0);
-    if (moment) {
+    if (moment_) {
       q.theta1c = v(1);
       q.theta1s = v(2);
     }
     return q;
-  };
-  ThrustResult last;
-  // Residual: [C_T - target (relative to target), flap 1c, flap 1s].
-  auto residual = [&](const Eigen::VectorXd& v, Eigen::VectorXd* r) {
-    for (int j = 0; j < nx; ++j) {
+  }
+
+  // Residual at v: [C_T - target (relative to target), flap 1c, flap 1s]; false when the
+  // pitch leaves (-pi/2, pi/2), the budget is spent or the evaluation fails (last_ says why).
+  bool residual(const Eigen::VectorXd& v, Eigen::VectorXd* r) {
+    for (int j = 0; j < nx_; ++j) {
       if (!(std::abs(v(j)) < kHalfPi)) return false;
     }
-    if (budget.used >= o.max_evaluations) {
-      last.status = Status::Failed;
-      last.message = "gave up after " + std::to_string(o.max_evaluations) +
-                     " thrust evaluations (`max_evaluations`)";
+    if (budget_.used >= o_.max_evaluations) {
+      last_.status = Status::Failed;
+      last_.message = "gave up after " + std::to_string(o_.max_evaluations) +
+                      " thrust evaluations (`max_evaluations`)";
       return false;
     }
-    ++budget.used;
-    last = evaluate(params_of(v), m, mu, out.inflow, ropt, &warm);
-    if (last.status == Status::Failed) return false;
-    r->resize(nx);
-    (*r)(0) = (last.thrust_coefficient - o.thrust_coefficient) / o.thrust_coefficient;
-    if (moment) {
-      (*r)(1) = last.flap_1c;
-      (*r)(2) = last.flap_1s;
+    ++budget_.used;
+    last_ = evaluate(params_of(v), m_, mu_, out_.inflow, ropt_, &warm_);
+    if (last_.status == Status::Failed) return false;
+    r->resize(nx_);
+    (*r)(0) = (last_.thrust_coefficient - o_.thrust_coefficient) / o_.thrust_coefficient;
+    if (moment_) {
+      (*r)(1) = last_.flap_1c;
+      (*r)(2) = last_.flap_1s;
     }
     return true;
-  };
-  auto finish = [&](const Eigen::VectorXd& v, Status s, std::string msg) {
-    out.parameters = params_of(v);
-    out.theta0 = out.parameters.theta;
-    out.theta1c = out.parameters.theta1c;
-    out.theta1s = out.parameters.theta1s;
-    out.thrust_coefficient = last.thrust_coefficient;
-    out.flap_1c = last.flap_1c;
-    out.flap_1s = last.flap_1s;
-    if (p.periodic_linearization) out.equilibrium = warm;
-    out.status = s;
-    out.message = std::move(msg);
-    return out;
-  };
-  Eigen::VectorXd r;
-  if (!residual(x, &r)) {
-    return finish(
-        x, Status::Failed,
-        last.message.empty() ? "the starting pitch is outside (-pi/2, pi/2)" : last.message);
   }
-  auto converged = [&](const Eigen::VectorXd& res) {
-    for (int j = 0; j < nx; ++j) {
-      if (!(std::abs(res(j)) <= o.tolerance)) return false;
+
+  bool converged(const Eigen::VectorXd& res) const {
+    for (int j = 0; j < nx_; ++j) {
+      if (!(std::abs(res(j)) <= o_.tolerance)) return false;
     }
     return true;
-  };
-  // Forward-difference Jacobian at x (the residual is nearly linear in the pitch).  The
-  // evaluation at x (`last`, and its q° in `warm`) is kept and put back afterwards rather than
+  }
+
+  // Forward-difference Jacobian at x_ (the residual is nearly linear in the pitch).  The
+  // evaluation at x_ (last_, and its q° in warm_) is kept and put back afterwards rather than
   // recomputed: the same solve again (about hover bit for bit: the response's grid is fixed
   // after the first evaluation).
-  auto jacobian = [&](Eigen::MatrixXd* J) {
-    J->resize(nx, nx);
-    const ThrustResult at_x = last;
-    const PeriodicEquilibrium warm_at_x = p.periodic_linearization ? warm : PeriodicEquilibrium{};
-    for (int j = 0; j < nx; ++j) {
+  bool jacobian(Eigen::MatrixXd* J) {
+    J->resize(nx_, nx_);
+    const ThrustResult at_x = last_;
+    const PeriodicEquilibrium warm_at_x = p_.periodic_linearization ? warm_ : PeriodicEquilibrium{};
+    for (int j = 0; j < nx_; ++j) {
       const double h = 1e-6;
-      Eigen::VectorXd xp = x, rp;
+      Eigen::VectorXd xp = x_, rp;
       xp(j) += h;
       if (!residual(xp, &rp)) return false;
-      J->col(j) = (rp - r) / h;
+      J->col(j) = (rp - r_) / h;
     }
-    last = at_x;
-    if (p.periodic_linearization) warm = warm_at_x;
+    last_ = at_x;
+    if (p_.periodic_linearization) warm_ = warm_at_x;
     return true;
-  };
-  // Newton with a Jacobian that is updated by Broyden's rule after each step and evaluated by
-  // finite differences only at the start (unless a warm start brings one) and when a step
-  // fails; each step is halved until the residual decreases (the thrust is strongly nonlinear
-  // in theta0 near the stability boundary, where the response is large).
-  Eigen::MatrixXd J;
-  bool fresh = false;
-  if (start != nullptr && start->jacobian.rows() == nx && start->jacobian.cols() == nx &&
-      start->kind == o.kind) {
-    J = start->jacobian;
-  } else {
-    if (!jacobian(&J)) {
-      return finish(x, Status::Failed, "the trim Jacobian could not be evaluated: " + last.message);
-    }
-    fresh = true;
   }
-  out.iterations = 0;
-  while (!converged(r)) {
-    if (out.iterations >= o.max_iterations) {
-      out.jacobian = J;
-      return finish(x, Status::Warning,
-                    "trim not converged in " + std::to_string(out.iterations) +
-                        " iterations (`max_iterations`): |residual| = " +
-                        round_trip_text(r.cwiseAbs().maxCoeff()));
-    }
+
+  // The Newton step from x_ by J, halved (up to 30 times with a fresh J, else not) until the
+  // residual decreases: the accepted controls and their residual, or false.
+  bool damped_step(const Eigen::MatrixXd& J, bool fresh, Eigen::VectorXd& trial,
+                   Eigen::VectorXd& rt) {
     Eigen::FullPivLU<Eigen::MatrixXd> lu(J);
-    bool accepted = false;
-    Eigen::VectorXd dx, trial, rt;
-    if (lu.isInvertible()) {
-      dx = lu.solve(r);
-      const double norm0 = r.norm();
-      for (int half = 0; half < (fresh ? 30 : 1); ++half, dx *= 0.5) {
-        trial = x - dx;
-        if (residual(trial, &rt) && (rt.norm() < norm0 || converged(rt))) {
-          accepted = true;
-          break;
-        }
-      }
+    if (!lu.isInvertible()) return false;
+    Eigen::VectorXd dx = lu.solve(r_);
+    const double norm0 = r_.norm();
+    for (int half = 0; half < (fresh ? 30 : 1); ++half, dx *= 0.5) {
+      trial = x_ - dx;
+      if (residual(trial, &rt) && (rt.norm() < norm0 || converged(rt))) return true;
     }
-    if (!accepted) {
-      if (fresh) {
-        residual(x, &r);
-        out.jacobian = J;
-        return finish(x, Status::Failed,
-                      "the trim Newton step does not reduce the residual (|r| = " +
-                          round_trip_text(r.norm()) + "; singular or unreachable)" +
-                          (last.message.empty() ? std::string() : ": " + last.message));
-      }
-      residual(x, &r);
-      if (!jacobian(&J)) {
-        return finish(x, Status::Failed,
-                      "the trim Jacobian could not be evaluated: " + last.message);
-      }
-      fresh = true;
-      continue;
-    }
-    ++out.iterations;
-    const Eigen::VectorXd step = trial - x;
-    J += ((rt - r) - J * step) * step.transpose() / step.squaredNorm();  // Broyden
-    fresh = false;
-    x = trial;
-    r = rt;
+    return false;
   }
-  out.jacobian = J;
-  out.converged = true;
-  return finish(x, last.status, last.message);
+
+  // The result at the controls x_.
+  TrimResult finish(Status s, std::string msg) {
+    out_.parameters = params_of(x_);
+    out_.theta0 = out_.parameters.theta;
+    out_.theta1c = out_.parameters.theta1c;
+    out_.theta1s = out_.parameters.theta1s;
+    out_.thrust_coefficient = last_.thrust_coefficient;
+    out_.flap_1c = last_.flap_1c;
+    out_.flap_1s = last_.flap_1s;
+    if (p_.periodic_linearization) out_.equilibrium = warm_;
+    out_.status = s;
+    out_.message = std::move(msg);
+    return out_;
+  }
+
+  const RotorParameters& p_;
+  const model::ModelDescriptor& m_;
+  const double mu_;
+  const TrimOptions& o_;
+  const TrimResult* start_;
+  TrimBudget& budget_;
+  TrimResult out_;
+  ResponseOptions ropt_;
+  PeriodicEquilibrium warm_;
+  const bool moment_;
+  const int nx_;
+  Eigen::VectorXd x_, r_;  // the controls and their residual
+  ThrustResult last_;      // the last evaluation
+};
+
+TrimResult trim_once(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
+                     const TrimOptions& o, const TrimResult* start, TrimBudget& budget) {
+  return TrimNewton(p, m, mu, o, start, budget).run();
 }
 
 }  // namespace

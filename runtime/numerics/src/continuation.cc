@@ -154,6 +154,177 @@ std::optional<double> largest_zeta_error(const FloquetSample& s) {
   return s.zeta_errors[k];
 }
 
+// The scratch of ExponentTracker::advance: on the stack up to kExactAssignment modes (the
+// prediction up to kStackPrediction), so that nothing allocates on the common path.
+class AdvanceScratch {
+ public:
+  explicit AdvanceScratch(int n) {
+    if (n > kStackPrediction) {
+      big_zeta_.resize(static_cast<std::size_t>(n));
+      big_omega_.resize(static_cast<std::size_t>(n));
+      predicted_zeta = big_zeta_.data();
+      predicted_omega = big_omega_.data();
+    }
+    if (n > kExactAssignment) {
+      cost_big_.resize(static_cast<std::size_t>(n) * n);
+      sim_big_.resize(static_cast<std::size_t>(n) * n);
+      match_big_.resize(static_cast<std::size_t>(n));
+      cost = cost_big_.data();
+      sim = sim_big_.data();
+      match = match_big_.data();
+    }
+  }
+  AdvanceScratch(const AdvanceScratch&) = delete;
+  AdvanceScratch& operator=(const AdvanceScratch&) = delete;
+
+ private:
+  static constexpr int kStackPrediction = 64;
+  static constexpr int kSmall = kExactAssignment;
+  double zeta_small_[kStackPrediction], omega_small_[kStackPrediction];
+  double cost_small_[kSmall * kSmall], sim_small_[kSmall * kSmall];
+  int match_small_[kSmall];
+  std::vector<double> big_zeta_, big_omega_, cost_big_, sim_big_;
+  std::vector<int> match_big_;
+
+ public:
+  // The predicted zeta and omega of tracked mode i; cost(i, j) and the eigenvector similarity
+  // at [i + n j]; the new exponent match[i] assigned to tracked mode i.
+  double* predicted_zeta = zeta_small_;
+  double* predicted_omega = omega_small_;
+  double* cost = cost_small_;
+  double* sim = sim_small_;
+  int* match = match_small_;
+};
+
+// Why the exponents of `next` cannot be tracked (it failed, or they are not finite), if so.
+std::optional<std::string> untrackable(const FloquetResult& next) {
+  if (next.status == Status::Failed) return next.message + "; tracking state unchanged";
+  const bool given_vectors = next.has_eigenvectors();
+  for (const FloquetExponent& e : next.exponents) {
+    if (!std::isfinite(e.multiplier.real()) || !std::isfinite(e.multiplier.imag()) ||
+        std::isnan(e.zeta) || std::isnan(e.omega) ||
+        (given_vectors && !e.eigenvector.allFinite())) {
+      return std::string("non-finite multipliers or eigenvectors; tracking state unchanged");
+    }
+  }
+  return std::nullopt;
+}
+
+// The exponents predicted at mu: linear in mu through the last two states (`now` and
+// `before`, t the step to mu in units of the last one) when extrapolating, else `now`.
+void predict(const std::vector<LabelledExponent>& now,
+             const std::vector<std::complex<double>>& before, bool extrapolate, double t,
+             double* pz, double* pw) {
+  for (std::size_t i = 0; i < now.size(); ++i) {
+    const LabelledExponent& e = now[i];
+    const double z = finite_zeta(e.zeta);
+    pz[i] = z + (extrapolate ? t * (z - finite_zeta(before[i].real())) : 0.0);
+    pw[i] = e.omega + (extrapolate ? t * (e.omega - before[i].imag()) : 0.0);
+  }
+}
+
+// Cost of assigning tracked mode i to new exponent j: eigenvector dissimilarity plus the
+// distance of the new exponent from the prediction (omega modulo integers), times 2 pi so
+// that it is the relative change of the multiplier for small steps.  Both terms are O(1)
+// for a wrong match.  The distance term, first.
+void distance_costs(const FloquetResult& next, const double* pz, const double* pw, int n,
+                    double* cost) {
+  for (int j = 0; j < n; ++j) {
+    const FloquetExponent& e = next.exponents[j];
+    for (int i = 0; i < n; ++i) {
+      const std::size_t ij = static_cast<std::size_t>(i) + static_cast<std::size_t>(n) * j;
+      const double c = exponent_distance(finite_zeta(e.zeta) - pz[i], e.omega - pw[i]);
+      cost[ij] = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
+    }
+  }
+}
+
+// Whether the multipliers decide (then `match` is the assignment): when they leave no doubt,
+// each tracked exponent's nearest candidate is distinct, near its prediction and nearer than
+// any other by more than the largest eigenvector term (1), so the full cost could not choose
+// otherwise.  `cost` holds the distance term alone.
+bool decided_by_multipliers(const double* cost, int n, int* match) {
+  constexpr int kSmall = kExactAssignment;
+  bool decided = true;
+  bool taken_small[kSmall] = {};
+  std::vector<bool> taken_big(n > kSmall ? static_cast<std::size_t>(n) : 0, false);
+  for (int i = 0; i < n && decided; ++i) {
+    double d1 = std::numeric_limits<double>::infinity(), d2 = d1;
+    int j1 = -1;
+    for (int j = 0; j < n; ++j) {
+      const double c = cost[i + static_cast<std::size_t>(n) * j];
+      if (c < d1) {
+        d2 = d1;
+        d1 = c;
+        j1 = j;
+      } else if (c < d2) {
+        d2 = c;
+      }
+    }
+    const bool taken = j1 < 0 || (n > kSmall ? bool(taken_big[j1]) : taken_small[j1]);
+    decided = !taken && d1 <= ExponentTracker::kMultiplierStep && d2 - d1 > 1.0;
+    if (decided) {
+      match[i] = j1;
+      if (n > kSmall)
+        taken_big[j1] = true;
+      else
+        taken_small[j1] = true;
+    }
+  }
+  return decided;
+}
+
+// The eigenvectors of the exponents of `next` in `vectors` (given, or computed from its Phi),
+// or why there are none.
+std::optional<std::string> new_eigenvectors(const FloquetResult& next, int n,
+                                            std::vector<Eigen::VectorXcd>& vectors) {
+  if (next.has_eigenvectors()) {
+    vectors.resize(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) vectors[j] = next.exponents[j].eigenvector;
+    return std::nullopt;
+  }
+  std::vector<std::complex<double>> multipliers;
+  multipliers.reserve(static_cast<std::size_t>(n));
+  for (const FloquetExponent& e : next.exponents) multipliers.push_back(e.multiplier);
+  if (next.eigensystem ? floquet_eigenvectors(*next.eigensystem, multipliers, &vectors)
+                       : floquet_eigenvectors(next.phi, multipliers, &vectors))
+    return std::nullopt;
+  return std::string(next.phi.rows() == n
+                         ? "the eigenvectors of Phi needed to identify the modes are not finite; "
+                           "tracking state unchanged"
+                         : "no eigenvectors (nor Phi) to identify close modes by; tracking "
+                           "state unchanged");
+}
+
+// The eigenvector term added to the costs: 1 - |v_old^H v_new|, the similarity kept in `sim`.
+void add_similarity_costs(const std::vector<Eigen::VectorXcd>& old_vectors,
+                          const std::vector<Eigen::VectorXcd>& new_vectors, int n, double* sim,
+                          double* cost) {
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const std::size_t ij = static_cast<std::size_t>(i) + static_cast<std::size_t>(n) * j;
+      sim[ij] = std::abs(old_vectors[i].dot(new_vectors[j]));  // dot() conjugates the left side
+      const double c = (1.0 - sim[ij]) + cost[ij];
+      cost[ij] = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
+    }
+  }
+}
+
+// Whether every match[i] is a new exponent's index.
+bool is_assignment(const int* match, int n) {
+  for (int i = 0; i < n; ++i)
+    if (match[i] < 0 || match[i] >= n) return false;
+  return true;
+}
+
+void warn_if_ambiguous(TrackReport& report) {
+  if (report.min_similarity < kAmbiguousSimilarity) {
+    report.status = Status::Warning;
+    report.message = "ambiguous mode identification (eigenvector similarity " +
+                     fmt(report.min_similarity) + "); consider a smaller step";
+  }
+}
+
 }  // namespace
 
 InstabilityKind classify_crossing(double omega, double tolerance) {
@@ -215,140 +386,33 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
     report.min_similarity = 0.0;
     return report;
   };
-  if (next.status == Status::Failed) return fail(next.message + "; tracking state unchanged");
-  const bool given_vectors = next.has_eigenvectors();
-  for (const FloquetExponent& e : next.exponents) {
-    if (!std::isfinite(e.multiplier.real()) || !std::isfinite(e.multiplier.imag()) ||
-        std::isnan(e.zeta) || std::isnan(e.omega) ||
-        (given_vectors && !e.eigenvector.allFinite())) {
-      return fail("non-finite multipliers or eigenvectors; tracking state unchanged");
-    }
-  }
+  if (std::optional<std::string> why = untrackable(next)) return fail(std::move(*why));
 
-  // Predicted exponents at mu: linear in mu through the last two states.
+  AdvanceScratch s(n);
   const bool extrapolate =
       std::isfinite(mu) && has_previous_ && mu_ != previous_mu_ && std::isfinite(mu_);
   const double t = extrapolate ? (mu - mu_) / (mu_ - previous_mu_) : 0.0;
-  double predicted_zeta[64], predicted_omega[64];
-  std::vector<double> big_zeta, big_omega;
-  double* pz = predicted_zeta;
-  double* pw = predicted_omega;
-  if (n > 64) {
-    big_zeta.resize(static_cast<std::size_t>(n));
-    big_omega.resize(static_cast<std::size_t>(n));
-    pz = big_zeta.data();
-    pw = big_omega.data();
-  }
-  for (int i = 0; i < n; ++i) {
-    const LabelledExponent& e = exponents_[i];
-    const double z = finite_zeta(e.zeta);
-    pz[i] = z + (extrapolate ? t * (z - finite_zeta(previous_[i].real())) : 0.0);
-    pw[i] = e.omega + (extrapolate ? t * (e.omega - previous_[i].imag()) : 0.0);
-  }
-
-  // Cost of assigning tracked mode i to new exponent j: eigenvector dissimilarity plus the
-  // distance of the new exponent from the prediction (omega modulo integers), times 2 pi so
-  // that it is the relative change of the multiplier for small steps.  Both terms are O(1)
-  // for a wrong match.
-  // Stack buffers up to kExactAssignment modes (nothing allocates on the common path).
-  constexpr int kSmall = kExactAssignment;
-  double cost_small[kSmall * kSmall], sim_small[kSmall * kSmall];
-  int match_small[kSmall];
-  std::vector<double> cost_big, sim_big;
-  std::vector<int> match_big;
-  double* cost = cost_small;
-  double* sim = sim_small;
-  int* match = match_small;
-  if (n > kSmall) {
-    cost_big.resize(static_cast<std::size_t>(n) * n);
-    sim_big.resize(static_cast<std::size_t>(n) * n);
-    match_big.resize(static_cast<std::size_t>(n));
-    cost = cost_big.data();
-    sim = sim_big.data();
-    match = match_big.data();
-  }
-  // The distance term first.
-  for (int j = 0; j < n; ++j) {
-    const FloquetExponent& e = next.exponents[j];
-    for (int i = 0; i < n; ++i) {
-      const std::size_t ij = static_cast<std::size_t>(i) + static_cast<std::size_t>(n) * j;
-      const double c = exponent_distance(finite_zeta(e.zeta) - pz[i], e.omega - pw[i]);
-      cost[ij] = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
-    }
-  }
-
-  // Without eigenvectors in `next`, the multipliers decide when they leave no doubt: each
-  // tracked exponent's nearest candidate is distinct, near its prediction and nearer than any
-  // other by more than the largest eigenvector term (1), so the full cost below could not
-  // choose otherwise.
-  bool decided = false;
-  if (!given_vectors) {
-    decided = true;
-    bool taken_small[kSmall] = {};
-    std::vector<bool> taken_big(n > kSmall ? static_cast<std::size_t>(n) : 0, false);
-    for (int i = 0; i < n && decided; ++i) {
-      double d1 = std::numeric_limits<double>::infinity(), d2 = d1;
-      int j1 = -1;
-      for (int j = 0; j < n; ++j) {
-        const double c = cost[i + static_cast<std::size_t>(n) * j];
-        if (c < d1) {
-          d2 = d1;
-          d1 = c;
-          j1 = j;
-        } else if (c < d2) {
-          d2 = c;
-        }
-      }
-      const bool taken = j1 < 0 || (n > kSmall ? bool(taken_big[j1]) : taken_small[j1]);
-      decided = !taken && d1 <= kMultiplierStep && d2 - d1 > 1.0;
-      if (decided) {
-        match[i] = j1;
-        if (n > kSmall)
-          taken_big[j1] = true;
-        else
-          taken_small[j1] = true;
-      }
-    }
-  }
-
+  predict(exponents_, previous_, extrapolate, t, s.predicted_zeta, s.predicted_omega);
+  distance_costs(next, s.predicted_zeta, s.predicted_omega, n, s.cost);
+  const bool decided = !next.has_eigenvectors() && decided_by_multipliers(s.cost, n, s.match);
   const std::vector<Eigen::VectorXcd>* new_vectors = nullptr;
   if (!decided) {
     // The full rule: eigenvectors of both states.
-    if (given_vectors) {
-      next_vectors_.resize(static_cast<std::size_t>(n));
-      for (int j = 0; j < n; ++j) next_vectors_[j] = next.exponents[j].eigenvector;
-    } else {
-      std::vector<std::complex<double>> multipliers;
-      multipliers.reserve(static_cast<std::size_t>(n));
-      for (const FloquetExponent& e : next.exponents) multipliers.push_back(e.multiplier);
-      if (!(next.eigensystem ? floquet_eigenvectors(*next.eigensystem, multipliers, &next_vectors_)
-                             : floquet_eigenvectors(next.phi, multipliers, &next_vectors_)))
-        return fail(next.phi.rows() == n
-                        ? "the eigenvectors of Phi needed to identify the modes are not finite; "
-                          "tracking state unchanged"
-                        : "no eigenvectors (nor Phi) to identify close modes by; tracking "
-                          "state unchanged");
-    }
+    if (std::optional<std::string> why = new_eigenvectors(next, n, next_vectors_))
+      return fail(std::move(*why));
     if (!ensure_vectors())
       return fail(
           "the eigenvectors of the previous state could not be computed; tracking state "
           "unchanged");
     new_vectors = &next_vectors_;
-    for (int j = 0; j < n; ++j) {
-      for (int i = 0; i < n; ++i) {
-        const std::size_t ij = static_cast<std::size_t>(i) + static_cast<std::size_t>(n) * j;
-        sim[ij] = std::abs(vectors_[i].dot(next_vectors_[j]));  // dot() conjugates the left side
-        const double c = (1.0 - sim[ij]) + cost[ij];
-        cost[ij] = std::isfinite(c) ? std::min(c, kMaxCost) : kMaxCost;
-      }
-    }
-    Assignment(cost, n).solve(match);
+    add_similarity_costs(vectors_, next_vectors_, n, s.sim, s.cost);
+    Assignment(s.cost, n).solve(s.match);
   }
-  for (int i = 0; i < n; ++i) {
-    if (match[i] < 0 || match[i] >= n)  // unreachable with finite costs; never index with it
-      return fail("mode identification found no assignment; tracking state unchanged");
-  }
+  const int* match = s.match;
+  if (!is_assignment(match, n))  // unreachable with finite costs; never index with it
+    return fail("mode identification found no assignment; tracking state unchanged");
 
+  // The new state: the matched exponents, omega continued.
   previous_.resize(static_cast<std::size_t>(n));
   if (!decided) report.min_similarity = 1.0;
   for (int i = 0; i < n; ++i) {
@@ -358,13 +422,13 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
     // omega = principal + k with the integer k that puts omega closest to its prediction.  A
     // zero multiplier has no argument: its omega stays where the mode was last seen.
     if (e.multiplier != std::complex<double>(0.0, 0.0))
-      x.omega = e.omega + std::round(pw[i] - e.omega);
+      x.omega = e.omega + std::round(s.predicted_omega[i] - e.omega);
     x.zeta = e.zeta;
     x.multiplier = e.multiplier;
     if (new_vectors != nullptr) {
       vectors_[i] = (*new_vectors)[match[i]];
       report.min_similarity =
-          std::min(report.min_similarity, sim[i + static_cast<std::size_t>(n) * match[i]]);
+          std::min(report.min_similarity, s.sim[i + static_cast<std::size_t>(n) * match[i]]);
     }
   }
   // Without new eigenvectors the tracked ones are those of next.phi, computed when needed.
@@ -377,11 +441,7 @@ TrackReport ExponentTracker::advance(const FloquetResult& next, double mu) {
   previous_mu_ = mu_;
   mu_ = mu;
   has_previous_ = std::isfinite(mu);
-  if (report.min_similarity < kAmbiguousSimilarity) {
-    report.status = Status::Warning;
-    report.message = "ambiguous mode identification (eigenvector similarity " +
-                     fmt(report.min_similarity) + "); consider a smaller step";
-  }
+  warn_if_ambiguous(report);
   return report;
 }
 
@@ -461,369 +521,487 @@ CriticalResult find_critical(const HoverModes& hover, const FloquetFunction& flo
 
 namespace {
 
+// A stability change to refine: its ends, the tracker the trials between them continue from
+// (that at the grid point below the bracket, so that labels and omega integers stay those of
+// the continuation), and the zeta slope across it.
+struct Bracket {
+  Trial lower, upper;
+  ExponentTracker from;
+  double slope;
+};
+
+// The scan's last grid point: its trial, whether that was evaluated for the sign alone
+// (CriticalSearch::sign_only), and the tracker one grid point below it.
+struct GridPoint {
+  Trial at;
+  bool loose;
+  ExponentTracker below;
+
+  void step_to(Trial next, bool next_loose) {
+    below = at.tracker;
+    at = std::move(next);
+    loose = next_loose;
+  }
+};
+
+// The stability changes found in one grid interval, and the grid point the search for them
+// reached when it covered the next grid interval too.
+struct Crossings {
+  std::vector<Bracket> brackets;
+  std::optional<GridPoint> searched_to;
+};
+
+// The search for the critical advance ratio: f(mu) = max zeta - zeta_threshold is scanned
+// from hover in steps of scan_step; each change of sign is bracketed at the resolution its
+// refinement needs, refined by Brent, and its error verified; onsets and re-stabilizations
+// make the instability intervals.
+class CriticalSearch {
+ public:
+  CriticalSearch(const HoverModes& hover, const FloquetFunction& floquet,
+                 const CriticalOptions& opt)
+      : hover_(hover), floquet_(floquet), opt_(opt) {}
+
+  CriticalResult run();
+
+ private:
+  // What the scan does after a grid interval.
+  enum class Next { Continue, SkipInterval, Stop, Failed };
+
+  bool hover_decides(const ExponentTracker& tracker);
+  Next scan_interval(GridPoint& prev, long i);
+  Next resolve_change(GridPoint& prev, const Trial& hi, long i);
+  bool search_neighbourhood(const GridPoint& prev, const Trial& hi, long i, double zeta_tolerance,
+                            Crossings& found);
+  bool bracket_grid_interval(const GridPoint& prev, const Trial& b, long i, double slope0,
+                             double zeta_tolerance, Crossings& found);
+  Next refine_by_brent(const std::vector<Bracket>& brackets, double zeta_tolerance);
+  void record_onset(const Trial& unstable, double mu, std::optional<double> error);
+  void conclude(const Trial& last);
+
+  Trial evaluate(const ExponentTracker& from, double mu, double zeta_tolerance);
+  Trial sign_only(const ExponentTracker& from, double mu, double margin, bool& loose);
+  std::pair<Trial, Trial> brent(const ExponentTracker& from, const Trial& a, const Trial& b,
+                                double zeta_tolerance);
+  std::optional<double> crossing_error(const ExponentTracker& from, const Trial& b, const Trial& c,
+                                       double slope0, double zeta_tolerance);
+  void note(double mu, Status status, const std::string& m);
+  void set_mu_c();
+  bool failed(const Trial& t);
+  void fail(const Trial& t);
+
+  const HoverModes& hover_;
+  const FloquetFunction& floquet_;
+  const CriticalOptions& opt_;
+  CriticalResult out_;
+  long steps_ = 0;                    // grid intervals of the scan
+  std::optional<Trial> hover_trial_;  // the scan's start
+  std::string warnings_;              // the first problem of a point, for the message
+  std::string unresolved_;            // the first crossing not resolved to `tolerance`
+  std::optional<Trial> failure_;      // a Brent trial that failed
+  bool estimates_ = false;            // the FloquetFunction has given an error estimate
+};
+
+CriticalResult CriticalSearch::run() {
+  out_.mu_max = opt_.mu_max;
+  if (hover_.status == Status::Failed) {
+    out_.status = Status::Failed;
+    out_.message = "hover modes unavailable: " + hover_.message;
+    return std::move(out_);
+  }
+  const ExponentTracker tracker(hover_);
+  if (hover_decides(tracker)) return std::move(out_);
+
+  // Bounded by Check(): at most kMaxContinuationSteps (+1 for rounding).
+  steps_ = static_cast<long>(std::ceil(opt_.mu_max / opt_.scan_step - 1e-9));
+  // Hover, the scan's start: exact exponents, no error estimate.
+  hover_trial_ =
+      Trial{0.0, tracker.max_zeta() - opt_.zeta_threshold, tracker, {}, std::nullopt, 0.0};
+  GridPoint prev{*hover_trial_, false, tracker};
+  for (long i = 1; i <= steps_; ++i) {
+    const Next next = scan_interval(prev, i);
+    if (next == Next::Failed) return std::move(out_);
+    if (next == Next::Stop) break;
+    if (next == Next::SkipInterval) ++i;  // the next grid interval is searched already
+  }
+  if (prev.loose && out_.intervals.empty()) {  // its exponents are reported: scan resolution
+    prev.at = evaluate(prev.below, prev.at.mu, opt_.scan_zeta_tolerance);
+    if (failed(prev.at)) return std::move(out_);
+    note(prev.at.mu, prev.at.report.status, prev.at.report.message);
+  }
+  conclude(prev.at);
+  return std::move(out_);
+}
+
+// Whether hover alone gives the answer (true: out_ is final): unstable in hover, or within
+// rounding of the threshold.
+bool CriticalSearch::hover_decides(const ExponentTracker& tracker) {
+  if (hover_.zeta_rounding > 0.0 &&
+      std::abs(tracker.max_zeta() - opt_.zeta_threshold) <= hover_.zeta_rounding) {
+    // Within rounding of the threshold: neither stable nor unstable is known in hover, and the
+    // scan has no sign to start from.
+    const LabelledExponent& e = tracker.exponents()[tracker.most_unstable()];
+    out_.exponents = tracker.exponents();
+    out_.status = Status::Warning;
+    out_.message = "the stability of hover is unknown: the least stable mode (" + e.label +
+                   ", zeta = " + fmt(e.zeta) + ") is within the rounding level " +
+                   fmt(hover_.zeta_rounding) +
+                   " of the threshold (a neutral blade); no critical advance ratio is sought";
+    return true;
+  }
+  if (tracker.max_zeta() > opt_.zeta_threshold) {
+    const LabelledExponent& e = tracker.exponents()[tracker.most_unstable()];
+    out_.hover_unstable = true;
+    out_.exponents = tracker.exponents();
+    out_.status = Status::Warning;
+    out_.message = "unstable in hover (" + e.label + ", zeta = " + fmt(e.zeta) +
+                   "): there is no critical advance ratio";
+    return true;
+  }
+  return false;
+}
+
+// The scan's grid interval (prev, i scan_step]: the sign of f at its end, and a change of it
+// resolved.
+CriticalSearch::Next CriticalSearch::scan_interval(GridPoint& prev, long i) {
+  const double mu = std::min(static_cast<double>(i) * opt_.scan_step, opt_.mu_max);
+  bool hi_loose = false;
+  Trial hi = sign_only(prev.at.tracker, mu, std::abs(prev.at.f), hi_loose);
+  if (failed(hi)) return Next::Failed;
+  estimates_ = estimates_ || hi.error.has_value();
+  if ((hi.f > 0.0) == (prev.at.f > 0.0)) {
+    note(mu, hi.report.status, hi.report.message);
+    prev.step_to(std::move(hi), hi_loose);
+    return Next::Continue;
+  }
+  // A sign change: both ends at the scan resolution, as the plain scan has them.
+  if (prev.loose) {
+    prev.at = evaluate(prev.below, prev.at.mu, opt_.scan_zeta_tolerance);
+    if (failed(prev.at)) return Next::Failed;
+    note(prev.at.mu, prev.at.report.status, prev.at.report.message);
+    prev.loose = false;
+  }
+  if (hi_loose) {
+    hi = evaluate(prev.at.tracker, mu, opt_.scan_zeta_tolerance);
+    if (failed(hi)) return Next::Failed;
+  }
+  note(mu, hi.report.status, hi.report.message);
+  if ((hi.f > 0.0) == (prev.at.f > 0.0)) {  // the sign change was within the loose estimates
+    prev.step_to(std::move(hi), false);
+    return Next::Continue;
+  }
+  return resolve_change(prev, hi, i);
+}
+
+// A stability change in [prev, hi] seen at the scan resolution: bracketed at the resolution of
+// the refinement, refined by Brent and recorded; the scan then moves on past it.
+CriticalSearch::Next CriticalSearch::resolve_change(GridPoint& prev, const Trial& hi, long i) {
+  const double mu = hi.mu;
+  // It is only as good as zeta near it: the refinement asks for a zeta error well below
+  // |d zeta/d mu| * tolerance.
+  const double slope0 = (hi.f - prev.at.f) / (mu - prev.at.mu);
+  const double refine_tolerance =
+      std::max(1e-13, std::min(opt_.scan_zeta_tolerance, 0.1 * std::abs(slope0) * opt_.tolerance));
+  Trial b = evaluate(prev.at.tracker, mu, refine_tolerance);
+  if (failed(b)) return Next::Failed;
+  Crossings found;
+  if ((b.f > 0.0) == (prev.at.f > 0.0)) {
+    if (!search_neighbourhood(prev, hi, i, refine_tolerance, found)) return Next::Failed;
+    if (found.brackets.empty()) {  // the change vanished when resolved
+      prev.step_to(std::move(b), false);
+      return Next::Continue;
+    }
+  } else if (!bracket_grid_interval(prev, b, i, slope0, refine_tolerance, found)) {
+    return Next::Failed;
+  }
+  const Next refined = refine_by_brent(found.brackets, refine_tolerance);
+  if (refined != Next::Continue) return refined;
+  if (found.searched_to) {
+    prev = std::move(*found.searched_to);
+    return Next::SkipInterval;
+  }
+  prev.step_to(std::move(b), false);
+  return Next::Continue;
+}
+
+// Seen at the scan resolution but not at mu resolved.  Before calling it vanished, the
+// neighbourhood -- this grid interval and the next -- is searched at a finer step (scan_step /
+// 10, then / 100), every point resolved as the ends of a bracket are: what the scan saw can be
+// a narrow interval of instability next to mu (its resolved zeta within a few error estimates
+// of the threshold, where the scan resolution can miss it).  false: failed (out_ is final).
+bool CriticalSearch::search_neighbourhood(const GridPoint& prev, const Trial& hi, long i,
+                                          double zeta_tolerance, Crossings& found) {
+  const double mu = hi.mu;
+  const double end_mu = i < steps_ ? std::min(mu + (mu - prev.at.mu), opt_.mu_max) : mu;
+  const double width = end_mu - prev.at.mu;
+  Trial start = evaluate(prev.below, prev.at.mu, zeta_tolerance);
+  if (failed(start)) return false;
+  for (int parts : {10, 100}) {
+    const int count = static_cast<int>(std::lround(parts * width / (mu - prev.at.mu)));
+    Trial at = start;  // the last sub-point, continued along the interval
+    ExponentTracker before_at = prev.below;
+    for (int j = 1; j <= count && found.brackets.size() < 8; ++j) {
+      const double m = j == count ? end_mu : prev.at.mu + width * static_cast<double>(j) / count;
+      Trial next = evaluate(at.tracker, m, zeta_tolerance);
+      if (failed(next)) return false;
+      if ((next.f > 0.0) != (at.f > 0.0)) {
+        const double slope = (next.f - at.f) / (next.mu - at.mu);
+        found.brackets.push_back({at, next, at.tracker, slope});
+      }
+      before_at = at.tracker;
+      at = std::move(next);
+    }
+    if (!found.brackets.empty()) {
+      if (end_mu > mu) found.searched_to = GridPoint{std::move(at), false, std::move(before_at)};
+      return true;
+    }
+  }
+  note(mu, Status::Warning,
+       "a stability change seen at the scan resolution vanished when resolved (zeta = " +
+           fmt(hi.f + opt_.zeta_threshold) +
+           " at the scan resolution), and no change was found at steps of scan_step / 100 "
+           "from mu = " +
+           fmt(prev.at.mu) + " to " + fmt(end_mu));
+  return true;
+}
+
+// The grid interval [prev, b] as the bracket of a change seen resolved at b.  The lower end is
+// resolved too when its scan value is within twice its error estimate of the threshold: its
+// sign may be wrong, and then the crossing lies below it and Brent would stop at the grid
+// point (the exact-mode typical blade at gamma = 8.5: zeta = -2.8e-7 at the scan point 1.16
+// with an error of 1.5e-6; mu_c was reported as 1.16 with a warning instead of 1.15993).  If
+// the resolved sign is that of the upper end, the bracket is the grid interval below,
+// continued from the tracker at its lower end.  false: failed (out_ is final).
+bool CriticalSearch::bracket_grid_interval(const GridPoint& prev, const Trial& b, long i,
+                                           double slope0, double zeta_tolerance, Crossings& found) {
+  Trial lower = prev.at;
+  std::optional<Trial> stepped_back;  // the upper end of the grid interval below
+  const ExponentTracker* from = &prev.at.tracker;
+  if (prev.at.mu > 0.0 && prev.at.error && std::abs(prev.at.f) <= 2.0 * *prev.at.error) {
+    Trial a = evaluate(prev.below, prev.at.mu, zeta_tolerance);
+    if (failed(a)) return false;
+    if ((a.f > 0.0) != (b.f > 0.0)) {
+      lower = std::move(a);
+    } else {
+      const double mu_lo = static_cast<double>(i - 2) * opt_.scan_step;
+      Trial c = mu_lo > 0.0 ? evaluate(prev.below, mu_lo, zeta_tolerance) : *hover_trial_;
+      if (failed(c)) return false;
+      if ((c.f > 0.0) != (b.f > 0.0)) {
+        lower = std::move(c);
+        stepped_back = std::move(a);
+        from = &prev.below;
+      }
+    }
+  }
+  const double slope =
+      stepped_back ? (stepped_back->f - lower.f) / (stepped_back->mu - lower.mu) : slope0;
+  Trial upper = stepped_back ? std::move(*stepped_back) : b;
+  const ExponentTracker from_copy = *from;
+  found.brackets.push_back({std::move(lower), std::move(upper), from_copy, slope});
+  return true;
+}
+
+// Each bracket refined by Brent and its error verified: an onset opens an instability
+// interval (the first only, unless all_intervals), a re-stabilization ends the last one.
+CriticalSearch::Next CriticalSearch::refine_by_brent(const std::vector<Bracket>& brackets,
+                                                     double zeta_tolerance) {
+  for (const Bracket& k : brackets) {
+    const bool onset = k.lower.f <= 0.0;
+    auto [bb, cc] = brent(k.from, k.lower, k.upper, zeta_tolerance);
+    if (failure_) {
+      fail(*failure_);
+      return Next::Failed;
+    }
+    const Trial& unstable = bb.f > 0.0 ? bb : cc;
+    const std::optional<double> err = crossing_error(k.from, bb, cc, k.slope, zeta_tolerance);
+    if (onset) {
+      record_onset(unstable, bb.mu, err);
+      if (!opt_.all_intervals) return Next::Stop;
+    } else if (!out_.intervals.empty()) {
+      out_.intervals.back().end = bb.mu;
+      out_.intervals.back().end_error = err;
+    }
+  }
+  return Next::Continue;
+}
+
+// An instability interval opening at mu, in the least stable mode of `unstable`.
+void CriticalSearch::record_onset(const Trial& unstable, double mu, std::optional<double> error) {
+  const LabelledExponent& x = unstable.tracker.exponents()[unstable.tracker.most_unstable()];
+  InstabilityInterval iv;
+  iv.onset = mu;
+  iv.onset_error = error;
+  iv.mode = x.label;
+  // A conjugate pair crosses together; report the member with omega >= 0.
+  iv.omega = std::abs(x.omega);
+  iv.kind = classify_crossing(x.omega, opt_.periodic_omega_tolerance);
+  out_.intervals.push_back(iv);
+  if (out_.intervals.size() == 1) out_.exponents = unstable.tracker.exponents();
+}
+
+// The result of a scan that ran to its end (`last` its last grid point) or stopped at mu_c.
+void CriticalSearch::conclude(const Trial& last) {
+  if (out_.intervals.empty()) {
+    out_.exponents = last.tracker.exponents();
+    out_.status = warnings_.empty() ? Status::Ok : Status::Warning;
+    out_.message = "stable up to mu_max = " + fmt(opt_.mu_max);
+  } else {
+    set_mu_c();
+    out_.status = warnings_.empty() && unresolved_.empty() ? Status::Ok : Status::Warning;
+    if (opt_.all_intervals) {
+      out_.Worsen(out_.status, std::to_string(out_.intervals.size()) +
+                                   " instability interval(s) up to mu_max = " + fmt(opt_.mu_max));
+    }
+  }
+  out_.Worsen(out_.status, unresolved_);
+  out_.Worsen(out_.status, warnings_);
+}
+
+// f at mu, the exponents continued from `from`.
+Trial CriticalSearch::evaluate(const ExponentTracker& from, double mu, double zeta_tolerance) {
+  const FloquetSample sample = floquet_(mu, zeta_tolerance);
+  ++out_.evaluations;
+  Trial t{mu, 0.0, from, {}, largest_zeta_error(sample), sample.floquet.liouville_residual};
+  if (sample.status == Status::Failed) {
+    t.report.status = Status::Failed;
+    t.report.message = sample.message;
+    return t;
+  }
+  t.report = t.tracker.advance(sample.floquet, mu);
+  if (t.report.status == Status::Ok && sample.status != Status::Ok) {
+    t.report.status = sample.status;
+    t.report.message = sample.message;
+  }
+  t.f = t.tracker.max_zeta() - opt_.zeta_threshold;
+  t.sign_certain = sample.status == Status::Ok && sign_certain(sample, opt_.zeta_threshold);
+  return t;
+}
+
+// A scan point only has to tell the sign of f; far from the threshold that needs much less
+// than scan_zeta_tolerance.  sign_only() evaluates at a tolerance scaled to the margin of the
+// previous point and keeps the result when its own error estimates leave the sign beyond
+// doubt (sign_certain(), sample resolved); otherwise, and for every
+// point whose value is used (both ends of a bracket, the last point reported), the point is
+// evaluated at scan_zeta_tolerance exactly as without the shortcut, so mu_c, its error and
+// the reported exponents do not change.  `loose` marks a trial evaluated this way.
+Trial CriticalSearch::sign_only(const ExponentTracker& from, double mu, double margin,
+                                bool& loose) {
+  const double tol = std::max(opt_.scan_zeta_tolerance,
+                              std::min(kIdentificationTolerance, kSignFraction * margin));
+  loose = false;
+  // Only a FloquetFunction that estimates its errors can be asked for the sign alone.
+  if (tol > opt_.scan_zeta_tolerance && estimates_) {
+    Trial t = evaluate(from, mu, tol);
+    if (t.report.status == Status::Ok && t.sign_certain) {
+      loose = true;
+      return t;
+    }
+  }
+  return evaluate(from, mu, opt_.scan_zeta_tolerance);
+}
+
+// Brent's method (brent.h) on f(mu) = max zeta - zeta_threshold over [a.mu, b.mu] (signs of
+// a.f and b.f differ), every trial continued from `from`.  Returns the trials (b, c): b the
+// estimate, [b, c] the final bracket.  A trial that fails stops it (failure_).
+std::pair<Trial, Trial> CriticalSearch::brent(const ExponentTracker& from, const Trial& a,
+                                              const Trial& b, double zeta_tolerance) {
+  std::vector<Trial> trials{a, b};  // by BrentPoint::index
+  auto f = [&](double mu) {
+    trials.push_back(evaluate(from, mu, zeta_tolerance));
+    const Trial& t = trials.back();
+    if (t.report.status == Status::Failed) {
+      failure_ = t;
+      return std::numeric_limits<double>::quiet_NaN();  // stops the iteration
+    }
+    return t.f;
+  };
+  BrentOptions bo;
+  bo.tolerance = opt_.tolerance;
+  bo.max_evaluations = 200;
+  const BrentResult r = brent_zero(f, a.mu, a.f, b.mu, b.f, bo);
+  const BrentPoint& other = r.root.index == r.lo.index ? r.hi : r.lo;
+  return std::make_pair(trials[static_cast<std::size_t>(r.root.index)],
+                        trials[static_cast<std::size_t>(other.index)]);
+}
+
+// Error of a crossing.  With a zeta error e the true crossing lies where |f| <= e, not only
+// within e / |slope| of mu_c: zeta(mu) can be curved (shallow crossings) or kinked (at mu = 1
+// the reversed region changes form).  So the linear estimate d = e / |slope| is verified by
+// evaluating f at mu_c -+ 2d: the bound holds when f < -2e below and f > +2e above (for an
+// onset; mirrored for a re-stabilization); otherwise d doubles, up to 10 scan steps.
+std::optional<double> CriticalSearch::crossing_error(const ExponentTracker& from, const Trial& b,
+                                                     const Trial& c, double slope0,
+                                                     double zeta_tolerance) {
+  if (!b.error && !c.error) return std::nullopt;
+  const double slope = c.mu != b.mu && c.f != b.f ? (c.f - b.f) / (c.mu - b.mu) : slope0;
+  double e = std::max(b.error.value_or(0.0), c.error.value_or(0.0));
+  const double sign = slope0 > 0.0 ? 1.0 : -1.0;  // +1: onset (f rises through 0)
+  double d = std::max(0.5 * std::abs(c.mu - b.mu), e / std::abs(slope));
+  bool verified = false;
+  while (!verified) {
+    const double lo = std::max(0.0, b.mu - 2.0 * d), hi = b.mu + 2.0 * d;
+    Trial tl = evaluate(from, lo, zeta_tolerance);
+    Trial th = evaluate(from, hi, zeta_tolerance);
+    if (tl.report.status == Status::Failed || th.report.status == Status::Failed) break;
+    e = std::max({e, tl.error.value_or(0.0), th.error.value_or(0.0)});
+    // A Richardson estimate is not a bound: ask for a margin of twice the estimate.
+    verified = (lo == 0.0 || sign * tl.f < -2.0 * e) && sign * th.f > 2.0 * e;
+    if (verified || 2.0 * d > 10.0 * opt_.scan_step) break;
+    d *= 2.0;
+  }
+  const double err = 2.0 * d;
+  if ((err > 10.0 * opt_.tolerance || !verified) && unresolved_.empty()) {
+    unresolved_ = "the crossing at mu = " + fmt(b.mu) +
+                  " is not resolved to `tolerance`: estimated error " + fmt(err) +
+                  (verified ? "" : " or more") + " (zeta error " + fmt(e) +
+                  " per rev at a zeta slope of " + fmt(slope) + " per unit mu); increase `steps`";
+  }
+  return err;
+}
+
+// Keeps the first problem of a point for the result's message.
+void CriticalSearch::note(double mu, Status status, const std::string& m) {
+  if (status != Status::Ok && warnings_.empty()) warnings_ = "at mu = " + fmt(mu) + ": " + m;
+}
+
+// mu_c, its mode, omega and kind from the first interval's onset, and the message's start.
+void CriticalSearch::set_mu_c() {
+  const InstabilityInterval& first = out_.intervals.front();
+  out_.mu_c = first.onset;
+  out_.mu_c_error = first.onset_error;
+  out_.mode = first.mode;
+  out_.omega = first.omega;
+  out_.kind = first.kind;
+  out_.message = "unstable above mu_c = " + fmt(first.onset) + " (" + out_.mode + ", " +
+                 kind_name(out_.kind) + ", omega = " + fmt(out_.omega) + ")";
+}
+
+// Whether t failed; then the search ends with that failure (fail()).
+bool CriticalSearch::failed(const Trial& t) {
+  if (t.report.status != Status::Failed) return false;
+  fail(t);
+  return true;
+}
+
+void CriticalSearch::fail(const Trial& t) {
+  if (!out_.intervals.empty()) {
+    // all_intervals, past mu_c: the onsets found stand (mu_c is known); only the scan for
+    // further intervals ends here, and the last interval's end is then unknown.
+    set_mu_c();
+    out_.status = Status::Warning;
+    out_.message += "; the scan for further instability intervals stopped at mu = " + fmt(t.mu) +
+                    " (the intervals are known only below it): " + t.report.message;
+    return;
+  }
+  out_.status = Status::Failed;
+  out_.message = "at mu = " + fmt(t.mu) + ": " + t.report.message;
+  out_.exponents = t.tracker.exponents();
+}
+
 CriticalResult critical_search(const HoverModes& hover, const FloquetFunction& floquet,
                                const CriticalOptions& opt) {
   opt.Check();
   if (!floquet) throw InvalidInput("floquet", "empty", "a FloquetFunction is required");
-
-  CriticalResult out;
-  out.mu_max = opt.mu_max;
-  if (hover.status == Status::Failed) {
-    out.status = Status::Failed;
-    out.message = "hover modes unavailable: " + hover.message;
-    return out;
-  }
-  std::string warnings;
-  auto note = [&](double mu, Status status, const std::string& m) {
-    if (status != Status::Ok && warnings.empty()) warnings = "at mu = " + fmt(mu) + ": " + m;
-  };
-
-  ExponentTracker tracker(hover);
-  if (hover.zeta_rounding > 0.0 &&
-      std::abs(tracker.max_zeta() - opt.zeta_threshold) <= hover.zeta_rounding) {
-    // Within rounding of the threshold: neither stable nor unstable is known in hover, and the
-    // scan has no sign to start from.
-    const LabelledExponent& e = tracker.exponents()[tracker.most_unstable()];
-    out.exponents = tracker.exponents();
-    out.status = Status::Warning;
-    out.message = "the stability of hover is unknown: the least stable mode (" + e.label +
-                  ", zeta = " + fmt(e.zeta) + ") is within the rounding level " +
-                  fmt(hover.zeta_rounding) +
-                  " of the threshold (a neutral blade); no critical advance ratio is sought";
-    return out;
-  }
-  if (tracker.max_zeta() > opt.zeta_threshold) {
-    const LabelledExponent& e = tracker.exponents()[tracker.most_unstable()];
-    out.hover_unstable = true;
-    out.exponents = tracker.exponents();
-    out.status = Status::Warning;
-    out.message = "unstable in hover (" + e.label + ", zeta = " + fmt(e.zeta) +
-                  "): there is no critical advance ratio";
-    return out;
-  }
-
-  auto evaluate = [&](const ExponentTracker& from, double mu, double zeta_tolerance) {
-    const FloquetSample sample = floquet(mu, zeta_tolerance);
-    ++out.evaluations;
-    Trial t{mu, 0.0, from, {}, largest_zeta_error(sample), sample.floquet.liouville_residual};
-    if (sample.status == Status::Failed) {
-      t.report.status = Status::Failed;
-      t.report.message = sample.message;
-      return t;
-    }
-    t.report = t.tracker.advance(sample.floquet, mu);
-    if (t.report.status == Status::Ok && sample.status != Status::Ok) {
-      t.report.status = sample.status;
-      t.report.message = sample.message;
-    }
-    t.f = t.tracker.max_zeta() - opt.zeta_threshold;
-    t.sign_certain = sample.status == Status::Ok && sign_certain(sample, opt.zeta_threshold);
-    return t;
-  };
-  // mu_c, its mode, omega and kind from the first interval's onset, and the message's start.
-  auto set_mu_c = [&] {
-    const InstabilityInterval& first = out.intervals.front();
-    out.mu_c = first.onset;
-    out.mu_c_error = first.onset_error;
-    out.mode = first.mode;
-    out.omega = first.omega;
-    out.kind = first.kind;
-    out.message = "unstable above mu_c = " + fmt(first.onset) + " (" + out.mode + ", " +
-                  kind_name(out.kind) + ", omega = " + fmt(out.omega) + ")";
-  };
-  auto failed = [&](const Trial& t) {
-    if (!out.intervals.empty()) {
-      // all_intervals, past mu_c: the onsets found stand (mu_c is known); only the scan for
-      // further intervals ends here, and the last interval's end is then unknown.
-      set_mu_c();
-      out.status = Status::Warning;
-      out.message += "; the scan for further instability intervals stopped at mu = " + fmt(t.mu) +
-                     " (the intervals are known only below it): " + t.report.message;
-      return out;
-    }
-    out.status = Status::Failed;
-    out.message = "at mu = " + fmt(t.mu) + ": " + t.report.message;
-    out.exponents = t.tracker.exponents();
-    return out;
-  };
-  std::optional<Trial> failure;  // a Brent trial that failed
-
-  // Brent's method (brent.h) on f(mu) = max zeta - zeta_threshold over [a.mu, b.mu] (signs of
-  // a.f and b.f differ), every trial continued from `from` (the tracker at the grid point below
-  // the bracket, so that labels and omega integers stay those of the continuation).  Returns
-  // the trials (b, c): b the estimate, [b, c] the final bracket.
-  auto brent = [&](const ExponentTracker& from, const Trial& a, const Trial& b,
-                   double zeta_tolerance) {
-    std::vector<Trial> trials{a, b};  // by BrentPoint::index
-    auto f = [&](double mu) {
-      trials.push_back(evaluate(from, mu, zeta_tolerance));
-      const Trial& t = trials.back();
-      if (t.report.status == Status::Failed) {
-        failure = t;
-        return std::numeric_limits<double>::quiet_NaN();  // stops the iteration
-      }
-      return t.f;
-    };
-    BrentOptions bo;
-    bo.tolerance = opt.tolerance;
-    bo.max_evaluations = 200;
-    const BrentResult r = brent_zero(f, a.mu, a.f, b.mu, b.f, bo);
-    const BrentPoint& other = r.root.index == r.lo.index ? r.hi : r.lo;
-    return std::make_pair(trials[static_cast<std::size_t>(r.root.index)],
-                          trials[static_cast<std::size_t>(other.index)]);
-  };
-
-  // Error of a crossing.  With a zeta error e the true crossing lies where |f| <= e, not only
-  // within e / |slope| of mu_c: zeta(mu) can be curved (shallow crossings) or kinked (at mu = 1
-  // the reversed region changes form).  So the linear estimate d = e / |slope| is verified by
-  // evaluating f at mu_c -+ 2d: the bound holds when f < -2e below and f > +2e above (for an
-  // onset; mirrored for a re-stabilization); otherwise d doubles, up to 10 scan steps.
-  std::string unresolved;
-  auto crossing_error = [&](const ExponentTracker& from, const Trial& b, const Trial& c,
-                            double slope0, double zeta_tolerance) -> std::optional<double> {
-    if (!b.error && !c.error) return std::nullopt;
-    const double slope = c.mu != b.mu && c.f != b.f ? (c.f - b.f) / (c.mu - b.mu) : slope0;
-    double e = std::max(b.error.value_or(0.0), c.error.value_or(0.0));
-    const double sign = slope0 > 0.0 ? 1.0 : -1.0;  // +1: onset (f rises through 0)
-    double d = std::max(0.5 * std::abs(c.mu - b.mu), e / std::abs(slope));
-    bool verified = false;
-    while (!verified) {
-      const double lo = std::max(0.0, b.mu - 2.0 * d), hi = b.mu + 2.0 * d;
-      Trial tl = evaluate(from, lo, zeta_tolerance);
-      Trial th = evaluate(from, hi, zeta_tolerance);
-      if (tl.report.status == Status::Failed || th.report.status == Status::Failed) break;
-      e = std::max({e, tl.error.value_or(0.0), th.error.value_or(0.0)});
-      // A Richardson estimate is not a bound: ask for a margin of twice the estimate.
-      verified = (lo == 0.0 || sign * tl.f < -2.0 * e) && sign * th.f > 2.0 * e;
-      if (verified || 2.0 * d > 10.0 * opt.scan_step) break;
-      d *= 2.0;
-    }
-    const double err = 2.0 * d;
-    if ((err > 10.0 * opt.tolerance || !verified) && unresolved.empty()) {
-      unresolved = "the crossing at mu = " + fmt(b.mu) +
-                   " is not resolved to `tolerance`: estimated error " + fmt(err) +
-                   (verified ? "" : " or more") + " (zeta error " + fmt(e) +
-                   " per rev at a zeta slope of " + fmt(slope) + " per unit mu); increase `steps`";
-    }
-    return err;
-  };
-
-  // A scan point only has to tell the sign of f; far from the threshold that needs much less
-  // than scan_zeta_tolerance.  sign_only() evaluates at a tolerance scaled to the margin of the
-  // previous point and keeps the result when its own error estimates leave the sign beyond
-  // doubt (sign_certain(), sample resolved); otherwise, and for every
-  // point whose value is used (both ends of a bracket, the last point reported), the point is
-  // evaluated at scan_zeta_tolerance exactly as without the shortcut, so mu_c, its error and
-  // the reported exponents do not change.  `loose` marks a trial evaluated this way.
-  bool estimates = false;  // the FloquetFunction has given an error estimate
-  auto sign_only = [&](const ExponentTracker& from, double mu, double margin, bool& loose) {
-    const double tol = std::max(opt.scan_zeta_tolerance,
-                                std::min(kIdentificationTolerance, kSignFraction * margin));
-    loose = false;
-    // Only a FloquetFunction that estimates its errors can be asked for the sign alone.
-    if (tol > opt.scan_zeta_tolerance && estimates) {
-      Trial t = evaluate(from, mu, tol);
-      if (t.report.status == Status::Ok && t.sign_certain) {
-        loose = true;
-        return t;
-      }
-    }
-    return evaluate(from, mu, opt.scan_zeta_tolerance);
-  };
-
-  // Bounded by Check(): at most kMaxContinuationSteps (+1 for rounding).
-  const long steps = static_cast<long>(std::ceil(opt.mu_max / opt.scan_step - 1e-9));
-  // Hover, the scan's start: exact exponents, no error estimate.
-  const Trial hover_trial{0.0, tracker.max_zeta() - opt.zeta_threshold, tracker, {}, std::nullopt,
-                          0.0};
-  Trial prev = hover_trial;
-  bool prev_loose = false;
-  ExponentTracker before_prev = tracker;  // the tracker one grid point below prev
-  for (long i = 1; i <= steps; ++i) {
-    const double mu = std::min(static_cast<double>(i) * opt.scan_step, opt.mu_max);
-    bool hi_loose = false;
-    Trial hi = sign_only(prev.tracker, mu, std::abs(prev.f), hi_loose);
-    if (hi.report.status == Status::Failed) return failed(hi);
-    estimates = estimates || hi.error.has_value();
-    if ((hi.f > 0.0) == (prev.f > 0.0)) {
-      note(mu, hi.report.status, hi.report.message);
-      before_prev = prev.tracker;
-      prev = std::move(hi);
-      prev_loose = hi_loose;
-      continue;
-    }
-    // A sign change: both ends at the scan resolution, as the plain scan has them.
-    if (prev_loose) {
-      prev = evaluate(before_prev, prev.mu, opt.scan_zeta_tolerance);
-      if (prev.report.status == Status::Failed) return failed(prev);
-      note(prev.mu, prev.report.status, prev.report.message);
-      prev_loose = false;
-    }
-    if (hi_loose) {
-      hi = evaluate(prev.tracker, mu, opt.scan_zeta_tolerance);
-      if (hi.report.status == Status::Failed) return failed(hi);
-    }
-    note(mu, hi.report.status, hi.report.message);
-    if ((hi.f > 0.0) == (prev.f > 0.0)) {  // the sign change was within the loose estimates
-      before_prev = prev.tracker;
-      prev = std::move(hi);
-      continue;
-    }
-
-    // A stability change in [prev.mu, mu].  It is only as good as zeta near it: the refinement
-    // asks for a zeta error well below |d zeta/d mu| * tolerance.
-    const double slope0 = (hi.f - prev.f) / (mu - prev.mu);
-    const double refine_tolerance =
-        std::max(1e-13, std::min(opt.scan_zeta_tolerance, 0.1 * std::abs(slope0) * opt.tolerance));
-    Trial b = evaluate(prev.tracker, mu, refine_tolerance);
-    if (b.report.status == Status::Failed) return failed(b);
-    // The brackets to refine, in order: (lower, upper, the tracker the trials continue from,
-    // the zeta slope).  Normally the grid interval [prev.mu, mu] (or the one below it).
-    struct Bracket {
-      Trial lower, upper;
-      ExponentTracker from;
-      double slope;
-    };
-    std::vector<Bracket> brackets;
-    // Set when the search below covered the next grid interval too: the trial at its end.
-    std::optional<Trial> searched_to;
-    ExponentTracker before_searched_to = prev.tracker;
-    if ((b.f > 0.0) == (prev.f > 0.0)) {
-      // Seen at the scan resolution but not at mu resolved.  Before calling it vanished, the
-      // neighbourhood -- this grid interval and the next -- is searched at a finer step
-      // (scan_step / 10, then / 100), every point resolved as the ends of a bracket are: what
-      // the scan saw can be a narrow interval of instability next to mu (its resolved zeta
-      // within a few error estimates of the threshold, where the scan resolution can miss it).
-      const double end_mu = i < steps ? std::min(mu + (mu - prev.mu), opt.mu_max) : mu;
-      const double width = end_mu - prev.mu;
-      Trial start = evaluate(before_prev, prev.mu, refine_tolerance);
-      if (start.report.status == Status::Failed) return failed(start);
-      for (int parts : {10, 100}) {
-        const int count = static_cast<int>(std::lround(parts * width / (mu - prev.mu)));
-        Trial at = start;  // the last sub-point, continued along the interval
-        ExponentTracker before_at = before_prev;
-        for (int j = 1; j <= count && brackets.size() < 8; ++j) {
-          const double m = j == count ? end_mu : prev.mu + width * static_cast<double>(j) / count;
-          Trial next = evaluate(at.tracker, m, refine_tolerance);
-          if (next.report.status == Status::Failed) return failed(next);
-          if ((next.f > 0.0) != (at.f > 0.0)) {
-            const double slope = (next.f - at.f) / (next.mu - at.mu);
-            brackets.push_back({at, next, at.tracker, slope});
-          }
-          before_at = at.tracker;
-          at = std::move(next);
-        }
-        if (!brackets.empty()) {
-          if (end_mu > mu) {
-            searched_to = std::move(at);
-            before_searched_to = std::move(before_at);
-          }
-          break;
-        }
-      }
-      if (brackets.empty()) {
-        note(mu, Status::Warning,
-             "a stability change seen at the scan resolution vanished when resolved (zeta = " +
-                 fmt(hi.f + opt.zeta_threshold) +
-                 " at the scan resolution), and no change was found at steps of scan_step / 100 "
-                 "from mu = " +
-                 fmt(prev.mu) + " to " + fmt(end_mu));
-        before_prev = prev.tracker;
-        prev = std::move(b);
-        continue;
-      }
-    } else {
-      // The lower end too, when its scan value is within twice its error estimate of the
-      // threshold: its sign may be wrong, and then the crossing lies below it and Brent would
-      // stop at the grid point (the exact-mode typical blade at gamma = 8.5: zeta = -2.8e-7 at
-      // the scan point 1.16 with an error of 1.5e-6; mu_c was reported as 1.16 with a warning
-      // instead of 1.15993).  If the resolved sign is that of the upper end, the bracket is the
-      // grid interval below, continued from the tracker at its lower end.
-      Trial lower = prev;
-      std::optional<Trial> stepped_back;  // the upper end of the grid interval below
-      const ExponentTracker* from = &prev.tracker;
-      if (prev.mu > 0.0 && prev.error && std::abs(prev.f) <= 2.0 * *prev.error) {
-        Trial a = evaluate(before_prev, prev.mu, refine_tolerance);
-        if (a.report.status == Status::Failed) return failed(a);
-        if ((a.f > 0.0) != (b.f > 0.0)) {
-          lower = std::move(a);
-        } else {
-          const double mu_lo = static_cast<double>(i - 2) * opt.scan_step;
-          Trial c = mu_lo > 0.0 ? evaluate(before_prev, mu_lo, refine_tolerance) : hover_trial;
-          if (c.report.status == Status::Failed) return failed(c);
-          if ((c.f > 0.0) != (b.f > 0.0)) {
-            lower = std::move(c);
-            stepped_back = std::move(a);
-            from = &before_prev;
-          }
-        }
-      }
-      const double slope =
-          stepped_back ? (stepped_back->f - lower.f) / (stepped_back->mu - lower.mu) : slope0;
-      Trial upper = stepped_back ? std::move(*stepped_back) : b;
-      const ExponentTracker from_copy = *from;
-      brackets.push_back({std::move(lower), std::move(upper), from_copy, slope});
-    }
-    bool done = false;
-    for (const Bracket& k : brackets) {
-      const bool onset = k.lower.f <= 0.0;
-      auto [bb, cc] = brent(k.from, k.lower, k.upper, refine_tolerance);
-      if (failure) return failed(*failure);
-      const Trial& unstable = bb.f > 0.0 ? bb : cc;
-      const LabelledExponent& x = unstable.tracker.exponents()[unstable.tracker.most_unstable()];
-      const std::optional<double> err = crossing_error(k.from, bb, cc, k.slope, refine_tolerance);
-      if (onset) {
-        InstabilityInterval iv;
-        iv.onset = bb.mu;
-        iv.onset_error = err;
-        iv.mode = x.label;
-        // A conjugate pair crosses together; report the member with omega >= 0.
-        iv.omega = std::abs(x.omega);
-        iv.kind = classify_crossing(x.omega, opt.periodic_omega_tolerance);
-        out.intervals.push_back(iv);
-        if (out.intervals.size() == 1) out.exponents = unstable.tracker.exponents();
-        if (!opt.all_intervals) {
-          done = true;
-          break;
-        }
-      } else if (!out.intervals.empty()) {
-        out.intervals.back().end = bb.mu;
-        out.intervals.back().end_error = err;
-      }
-    }
-    if (done) break;
-    if (searched_to) {  // the next grid interval is searched already
-      before_prev = std::move(before_searched_to);
-      prev = std::move(*searched_to);
-      prev_loose = false;
-      ++i;
-      continue;
-    }
-    before_prev = prev.tracker;
-    prev = std::move(b);
-    prev_loose = false;
-  }
-  if (prev_loose && out.intervals.empty()) {  // its exponents are reported: scan resolution
-    prev = evaluate(before_prev, prev.mu, opt.scan_zeta_tolerance);
-    if (prev.report.status == Status::Failed) return failed(prev);
-    note(prev.mu, prev.report.status, prev.report.message);
-  }
-
-  if (out.intervals.empty()) {
-    out.exponents = prev.tracker.exponents();
-    out.status = warnings.empty() ? Status::Ok : Status::Warning;
-    out.message = "stable up to mu_max = " + fmt(opt.mu_max);
-  } else {
-    set_mu_c();
-    out.status = warnings.empty() && unresolved.empty() ? Status::Ok : Status::Warning;
-    if (opt.all_intervals) {
-      out.Worsen(out.status, std::to_string(out.intervals.size()) +
-                                 " instability interval(s) up to mu_max = " + fmt(opt.mu_max));
-    }
-  }
-  out.Worsen(out.status, unresolved);
-  out.Worsen(out.status, warnings);
-  return out;
+  return CriticalSearch(hover, floquet, opt).run();
 }
 
 void check_track(const std::vector<double>& mus, double max_step, double zeta_tolerance) {
@@ -984,6 +1162,143 @@ SweepResult hover_failed(const HoverModes& hover) {
   return out;
 }
 
+// The first evaluation of every stretch of `plan` (`length` reported points and the steps
+// that lead to each), then plan.size(): stretch s is the evaluations first[s] .. first[s + 1]
+// - 1.
+std::vector<std::size_t> stretch_starts(const std::vector<Evaluation>& plan, std::size_t length) {
+  std::vector<std::size_t> first{0};
+  for (std::size_t i = 0, reported = 0; i < plan.size(); ++i)
+    if (plan[i].reported && ++reported % length == 0 && i + 1 < plan.size()) first.push_back(i + 1);
+  first.push_back(plan.size());
+  return first;
+}
+
+// The end of the window of stretches from w0 whose samples are held at once.
+std::size_t window_end(const std::vector<std::size_t>& first, std::size_t w0) {
+  const std::size_t stretches = first.size() - 1;
+  std::size_t w1 = w0 + 1;
+  while (w1 < stretches && w1 - w0 < kStretchesInMemory &&
+         first[w1 + 1] - first[w0] <= kSamplesInMemory)
+    ++w1;
+  return w1;
+}
+
+// The stretches w0 .. w1 - 1 of a continuation's plan, evaluated in parallel (one
+// FloquetFunction each); the calling thread identifies the finished stretches in order between
+// its own (the other threads go on evaluating), so that the identification overlaps the
+// evaluations.
+class ParallelWindow {
+ public:
+  ParallelWindow(const std::vector<Evaluation>& plan, const std::vector<std::size_t>& first,
+                 std::size_t w0, std::size_t w1, TrackPass& pass)
+      : plan_(plan),
+        first_(first),
+        w0_(w0),
+        w1_(w1),
+        begin_(first[w0]),
+        pass_(pass),
+        samples_(first[w1] - first[w0]),
+        thrown_(w1 - w0),
+        thrown_at_(w1 - w0, kNone),
+        done_(new std::atomic<bool>[w1 - w0]),
+        next_k_(w0),
+        next_i_(first[w0]) {
+    for (std::size_t k = 0; k < w1 - w0; ++k) done_[k] = false;
+  }
+
+  // false: the pass stopped (its result is final).  Rethrows what an evaluation or the
+  // identification threw.
+  bool run(const std::vector<FloquetFunction>& functions, int threads) {
+    const std::thread::id caller = std::this_thread::get_id();
+    parallel_for(w1_ - w0_, threads, nullptr, {}, [&](std::size_t k) {
+      evaluate_stretch(functions[k], k);
+      done_[k].store(true, std::memory_order_release);
+      if (std::this_thread::get_id() == caller) identify_finished();
+    });
+    identify_finished();
+    if (rethrow_) std::rethrow_exception(rethrow_);
+    return !ended_;
+  }
+
+ private:
+  static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+
+  // Stretch w0 + k in order, until it ends, fails or passes where the pass is known to stop.
+  void evaluate_stretch(const FloquetFunction& f, std::size_t k) {
+    const std::size_t a = first_[w0_ + k], b = first_[w0_ + k + 1];
+    bool close_before = false;
+    for (std::size_t i = a; i < b && i <= stop_.load(); ++i) {
+      FloquetSample& sample = samples_[i - begin_];
+      try {
+        sample = f(plan_[i].mu, pass_.tolerance(plan_[i]));
+      } catch (...) {
+        thrown_[k] = std::current_exception();
+        thrown_at_[k] = i;
+        lower_stop(i);
+        break;
+      }
+      if (sample.status == Status::Failed) {
+        lower_stop(i);
+        break;
+      }
+      // The identification of sample i may need its vectors and those of sample i - 1, and
+      // that of sample i + 1 those of sample i.
+      const bool close = !sample.floquet.has_eigenvectors() && has_close_candidates(sample.floquet);
+      try {
+        if (close || close_before) add_eigensystem(sample);
+        if (close && i > a) add_eigensystem(samples_[i - 1 - begin_]);
+      } catch (...) {  // out of memory: the identification computes them itself if needed
+      }
+      close_before = close;
+    }
+  }
+
+  // The finished stretches not yet identified, in order, up to the first unfinished one.
+  void identify_finished() {
+    while (!ended_ && next_k_ < w1_ && done_[next_k_ - w0_].load(std::memory_order_acquire)) {
+      for (; next_i_ < first_[next_k_ + 1]; ++next_i_) {
+        bool more = false;
+        if (thrown_at_[next_k_ - w0_] == next_i_) {
+          rethrow_ = thrown_[next_k_ - w0_];
+        } else {
+          try {
+            more = pass_.take(plan_[next_i_], samples_[next_i_ - begin_]);
+          } catch (...) {
+            rethrow_ = std::current_exception();
+          }
+        }
+        if (!more) {
+          ended_ = true;
+          lower_stop(next_i_);
+          return;
+        }
+      }
+      ++next_k_;
+    }
+  }
+
+  void lower_stop(std::size_t i) {
+    std::size_t s = stop_.load();
+    while (i < s && !stop_.compare_exchange_weak(s, i)) {
+    }
+  }
+
+  const std::vector<Evaluation>& plan_;
+  const std::vector<std::size_t>& first_;
+  const std::size_t w0_, w1_, begin_;
+  TrackPass& pass_;
+  std::vector<FloquetSample> samples_;
+  std::vector<std::exception_ptr> thrown_;
+  std::vector<std::size_t> thrown_at_;
+  // The first evaluation at which the pass is known to stop (a Failed sample or a throw):
+  // later ones are not needed.
+  std::atomic<std::size_t> stop_{kNone};
+  std::unique_ptr<std::atomic<bool>[]> done_;
+  std::size_t next_k_, next_i_;  // the next evaluation to identify, and its stretch
+  bool ended_ = false;           // the pass stopped (Failed, a throw to pass on, or its own stop)
+  std::exception_ptr rethrow_;
+};
+
 }  // namespace
 
 SweepResult track_exponents(const HoverModes& hover, const FloquetFunction& floquet,
@@ -1011,15 +1326,9 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactor
   if (!make) throw InvalidInput("floquet", "empty", "a FloquetFunctionFactory is required");
   if (hover.status == Status::Failed) return hover_failed(hover);
   const std::vector<Evaluation> plan = evaluations(mus, max_step);
-  // Stretch s: the reported points s L .. (s + 1) L - 1 and the steps that lead to each, i.e.
-  // the evaluations first[s] .. first[s + 1] - 1 of the plan.
-  const std::size_t length = continuation_stretch(mus.size());
-  std::vector<std::size_t> first{0};
-  for (std::size_t i = 0, reported = 0; i < plan.size(); ++i)
-    if (plan[i].reported && ++reported % length == 0 && i + 1 < plan.size()) first.push_back(i + 1);
-  first.push_back(plan.size());
+  // Stretch s: the reported points s L .. (s + 1) L - 1 and the steps that lead to each.
+  const std::vector<std::size_t> first = stretch_starts(plan, continuation_stretch(mus.size()));
   const std::size_t stretches = first.size() - 1;
-  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
   TrackPass pass(hover, zeta_tolerance);
   auto new_function = [&] {
     FloquetFunction f = make();
@@ -1027,11 +1336,7 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactor
     return f;
   };
   for (std::size_t w0 = 0; w0 < stretches;) {
-    // A window of stretches whose samples are held at once.
-    std::size_t w1 = w0 + 1;
-    while (w1 < stretches && w1 - w0 < kStretchesInMemory &&
-           first[w1 + 1] - first[w0] <= kSamplesInMemory)
-      ++w1;
+    const std::size_t w1 = window_end(first, w0);
     const std::size_t begin = first[w0], end = first[w1];
     if (end - begin > kSamplesInMemory) {
       // One stretch too long to hold (many steps between reported points): evaluated and
@@ -1045,81 +1350,8 @@ SweepResult track_exponents(const HoverModes& hover, const FloquetFunctionFactor
     }
     std::vector<FloquetFunction> functions;
     for (std::size_t k = w0; k < w1; ++k) functions.push_back(new_function());
-    std::vector<FloquetSample> samples(end - begin);
-    std::vector<std::exception_ptr> thrown(w1 - w0);
-    std::vector<std::size_t> thrown_at(w1 - w0, kNone);
-    // The first evaluation at which the pass is known to stop (a Failed sample or a throw):
-    // later ones are not needed.
-    std::atomic<std::size_t> stop{kNone};
-    auto lower_stop = [&](std::size_t i) {
-      std::size_t s = stop.load();
-      while (i < s && !stop.compare_exchange_weak(s, i)) {
-      }
-    };
-    // The calling thread identifies the finished stretches in order between its own (the
-    // other threads go on evaluating), so that the identification overlaps the evaluations.
-    std::unique_ptr<std::atomic<bool>[]> done(new std::atomic<bool>[w1 - w0]);
-    for (std::size_t k = 0; k < w1 - w0; ++k) done[k] = false;
-    const std::thread::id caller = std::this_thread::get_id();
-    std::size_t next_k = w0, next_i = begin;
-    bool ended = false;  // the pass stopped (Failed, a throw to pass on, or its own stop)
-    std::exception_ptr rethrow;
-    auto drain = [&] {
-      while (!ended && next_k < w1 && done[next_k - w0].load(std::memory_order_acquire)) {
-        for (; next_i < first[next_k + 1]; ++next_i) {
-          bool more = false;
-          if (thrown_at[next_k - w0] == next_i) {
-            rethrow = thrown[next_k - w0];
-          } else {
-            try {
-              more = pass.take(plan[next_i], samples[next_i - begin]);
-            } catch (...) {
-              rethrow = std::current_exception();
-            }
-          }
-          if (!more) {
-            ended = true;
-            lower_stop(next_i);
-            return;
-          }
-        }
-        ++next_k;
-      }
-    };
-    parallel_for(w1 - w0, threads, nullptr, {}, [&](std::size_t k) {
-      const std::size_t a = first[w0 + k], b = first[w0 + k + 1];
-      bool close_before = false;
-      for (std::size_t i = a; i < b && i <= stop.load(); ++i) {
-        FloquetSample& sample = samples[i - begin];
-        try {
-          sample = functions[k](plan[i].mu, pass.tolerance(plan[i]));
-        } catch (...) {
-          thrown[k] = std::current_exception();
-          thrown_at[k] = i;
-          lower_stop(i);
-          break;
-        }
-        if (sample.status == Status::Failed) {
-          lower_stop(i);
-          break;
-        }
-        // The identification of sample i may need its vectors and those of sample i - 1, and
-        // that of sample i + 1 those of sample i.
-        const bool close =
-            !sample.floquet.has_eigenvectors() && has_close_candidates(sample.floquet);
-        try {
-          if (close || close_before) add_eigensystem(sample);
-          if (close && i > a) add_eigensystem(samples[i - 1 - begin]);
-        } catch (...) {  // out of memory: the identification computes them itself if needed
-        }
-        close_before = close;
-      }
-      done[k].store(true, std::memory_order_release);
-      if (std::this_thread::get_id() == caller) drain();
-    });
-    drain();
-    if (rethrow) std::rethrow_exception(rethrow);
-    if (ended) return std::move(pass.out());
+    if (!ParallelWindow(plan, first, w0, w1, pass).run(functions, threads))
+      return std::move(pass.out());
     w0 = w1;
   }
   return std::move(pass.out());

@@ -137,6 +137,123 @@ void monodromy(const PeriodicSystem& sys, int steps, Eigen::MatrixXd& phi, Eigen
   g = Y.col(n);
 }
 
+// The start y0 = (I - Phi)^-1 g of the periodic solution by RK4 with `steps`; dist the distance
+// of the nearest multiplier to 1 and rho the largest |multiplier| (0: the eigen-solve failed).
+// false when Phi or g overflowed (dist and rho then unchanged) or y0 is not finite.
+bool periodic_start(const PeriodicSystem& sys, int steps, Eigen::VectorXd& y0, double& dist,
+                    double& rho) {
+  const int n = sys.n;
+  Eigen::MatrixXd phi;
+  Eigen::VectorXd g;
+  monodromy(sys, steps, phi, g);
+  if (!phi.allFinite() || !g.allFinite()) return false;
+  const RealEigenSystem es = real_eigen_system(phi, false, EigenStorage::Dynamic);
+  dist = HUGE_VAL;
+  rho = 0.0;
+  if (es.ok) {
+    for (Eigen::Index i = 0; i < n; ++i)
+      dist = std::min(dist, std::abs(es.values(i) - std::complex<double>(1.0, 0.0)));
+    rho = es.values.cwiseAbs().maxCoeff();
+  }
+  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
+  y0 = (I - phi).fullPivLu().solve(g);
+  return y0.allFinite();
+}
+
+// y0 at the steps of the integration and what its solve tells.
+struct ResolvedStart {
+  bool ok = false;
+  Eigen::VectorXd y0;
+  int steps = 0;
+  double dist = 0.0;            // of the nearest multiplier to 1
+  double rho = 0.0;             // the largest |multiplier|
+  std::optional<double> error;  // Richardson estimate of y0's error (relative)
+};
+
+// y0 with `steps`, and at half the steps for its error; with automatic steps doubled until the
+// error meets `tolerance` (or the steps their cap).
+ResolvedStart resolve_start(const PeriodicSystem& sys, int steps, bool automatic,
+                            double tolerance) {
+  ResolvedStart r;
+  double rho = 0.0;  // largest |multiplier| of the last solve (0: the eigen-solve failed)
+  Eigen::VectorXd coarse;
+  double dist_coarse = 0.0;
+  r.ok = periodic_start(sys, steps, r.y0, r.dist, rho);
+  r.rho = rho;
+  if (r.ok && steps >= 2) {
+    const bool ok_coarse = periodic_start(sys, steps / 2, coarse, dist_coarse, rho);
+    while (r.ok && ok_coarse) {
+      const double scale = std::max(1e-300, r.y0.cwiseAbs().maxCoeff());
+      // RK4: error(N) ~ (error(N/2) - error(N)) / 15
+      r.error = (r.y0 - coarse).cwiseAbs().maxCoeff() / scale / 15.0;
+      if (!automatic || *r.error <= tolerance || 2 * steps > kMaxSteps) break;
+      coarse = r.y0;
+      steps *= 2;
+      r.ok = periodic_start(sys, steps, r.y0, r.dist, rho);
+      r.rho = rho;
+    }
+  }
+  r.steps = steps;
+  return r;
+}
+
+// The response over one period, sampled at psi_k = 2 pi k / samples, integrated from y0 on
+// the same grid (refined so that every sample is a grid point); returns the state at 2 pi.
+Eigen::VectorXd sample_period(const PeriodicSystem& sys, const Eigen::VectorXd& y0, int steps,
+                              int samples, PeriodicResponse& out) {
+  const int per = std::max(1, (steps + samples - 1) / samples);
+  Stepper st{&sys, sys.n};
+  Eigen::MatrixXd Y = y0;
+  const Eigen::RowVectorXd c = Eigen::RowVectorXd::Ones(1);
+  std::vector<double> cuts;
+  for (int k = 0; k <= samples; ++k) cuts.push_back(kTwoPi * k / samples);
+  for (int k = 0; k < samples; ++k) {
+    out.psi.push_back(cuts[k]);
+    out.y.push_back(Y.col(0));
+    std::vector<double> pts;
+    for (int i = 0; i <= per; ++i) pts.push_back(cuts[k] + (cuts[k + 1] - cuts[k]) * i / per);
+    for (double e : sys.breakpoints())
+      if (e > cuts[k] && e < cuts[k + 1]) pts.push_back(e);
+    std::sort(pts.begin(), pts.end());
+    for (std::size_t i = 1; i < pts.size(); ++i) {
+      if (pts[i] - pts[i - 1] <= 1e-14) continue;
+      const Segment s{pts[i - 1], pts[i], piece_set(sys, 0.5 * (pts[i] + pts[i - 1]))};
+      st.step(s, Y, c);
+    }
+  }
+  return Y.col(0);
+}
+
+// Whether the samples close onto y0 (out.closure) as well as the integration's error allows;
+// false: they cannot be the periodic solution (out is final).  rho: the largest |multiplier|.
+bool check_closure(PeriodicResponse& out, double rho) {
+  // The samples are integrated forward from y0, so a strongly unstable system amplifies the
+  // rounding of y0 by up to its largest multiplier over the period, and the samples no longer
+  // close: the typical rotor at mu = 20 (|Lambda| = 2.7e14) missed y0 by 79 times |y0| and at
+  // mu = 50 by 1e27, reported with a warning only.  Beyond the integration's own error such
+  // samples are not the periodic solution.
+  const double expected = std::max(1e-8, 100.0 * out.error.value_or(0.0));
+  if (!(out.closure <= std::max(1e-3, expected))) {
+    out.status = Status::Failed;
+    out.message =
+        "the periodic solution cannot be sampled in double precision: integrated from "
+        "y0 over one revolution the state misses y0 by " +
+        short_text(out.closure) + " (relative; the largest |multiplier|, " + short_text(rho) +
+        ", amplifies the rounding of y0)";
+    out.psi.clear();
+    out.y.clear();
+    return false;
+  }
+  if (out.closure > expected) {
+    out.status = Status::Warning;
+    out.message = "periodicity error " + short_text(out.closure) +
+                  " (relative) above what the integration's error implies: the largest "
+                  "|multiplier|, " +
+                  short_text(rho) + ", amplifies the rounding of y0";
+  }
+  return true;
+}
+
 }  // namespace
 
 std::optional<InvalidInput> ResponseOptions::Validate() const {
@@ -159,113 +276,36 @@ std::optional<InvalidInput> SimulationOptions::Validate() const {
 PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOptions& options) {
   sys.validate();
   options.Check();
-  const int n = sys.n;
   PeriodicResponse out;
   const bool automatic = options.steps == 0;
-  int steps = automatic ? automatic_steps(sys) : options.steps;
-  double rho = 0.0;  // largest |multiplier| of the last solve (0: the eigen-solve failed)
-  auto solve = [&](int k, Eigen::VectorXd& y0, double& dist) {
-    Eigen::MatrixXd phi;
-    Eigen::VectorXd g;
-    monodromy(sys, k, phi, g);
-    if (!phi.allFinite() || !g.allFinite()) return false;
-    const RealEigenSystem es = real_eigen_system(phi, false, EigenStorage::Dynamic);
-    dist = HUGE_VAL;
-    rho = 0.0;
-    if (es.ok) {
-      for (Eigen::Index i = 0; i < n; ++i)
-        dist = std::min(dist, std::abs(es.values(i) - std::complex<double>(1.0, 0.0)));
-      rho = es.values.cwiseAbs().maxCoeff();
-    }
-    const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
-    y0 = (I - phi).fullPivLu().solve(g);
-    return y0.allFinite();
-  };
-  Eigen::VectorXd fine, coarse;
-  double dist = 0.0, dist_coarse = 0.0;
-  bool ok = solve(steps, fine, dist);
-  double rho_fine = rho;
-  if (ok && steps >= 2) {
-    bool ok_coarse = solve(steps / 2, coarse, dist_coarse);
-    while (ok && ok_coarse) {
-      const double scale = std::max(1e-300, fine.cwiseAbs().maxCoeff());
-      // RK4: error(N) ~ (error(N/2) - error(N)) / 15
-      out.error = (fine - coarse).cwiseAbs().maxCoeff() / scale / 15.0;
-      if (!automatic || *out.error <= options.tolerance || 2 * steps > kMaxSteps) break;
-      coarse = fine;
-      steps *= 2;
-      ok = solve(steps, fine, dist);
-      rho_fine = rho;
-    }
-  }
-  out.steps = steps;
-  out.min_distance_to_one = dist;
-  if (!ok) {
+  const ResolvedStart start = resolve_start(sys, automatic ? automatic_steps(sys) : options.steps,
+                                            automatic, options.tolerance);
+  out.error = start.error;
+  out.steps = start.steps;
+  out.min_distance_to_one = start.dist;
+  if (!start.ok) {
     out.status = Status::Failed;
     out.message = "the transition matrix overflowed or I - Phi is singular: no periodic response";
     return out;
   }
   // A multiplier at 1 makes I - Phi singular: the forced problem has no unique periodic
   // solution (resonance with the forcing's period).
-  if (dist < 1e-8) {
+  if (start.dist < 1e-8) {
     out.status = Status::Failed;
-    out.message = "a characteristic multiplier is at 1 (distance " + short_text(dist) +
+    out.message = "a characteristic multiplier is at 1 (distance " + short_text(start.dist) +
                   "): no unique periodic response";
     return out;
   }
-  out.y0 = fine;
-  // The response over one period, sampled at psi_k = 2 pi k / samples, integrated from y0 on
-  // the same grid (refined so that every sample is a grid point).
-  const int per = std::max(1, (steps + options.samples - 1) / options.samples);
-  Stepper st{&sys, n};
-  Eigen::MatrixXd Y = fine;
-  const Eigen::RowVectorXd c = Eigen::RowVectorXd::Ones(1);
-  std::vector<double> cuts;
-  for (int k = 0; k <= options.samples; ++k) cuts.push_back(kTwoPi * k / options.samples);
-  for (int k = 0; k < options.samples; ++k) {
-    out.psi.push_back(cuts[k]);
-    out.y.push_back(Y.col(0));
-    std::vector<double> pts;
-    for (int i = 0; i <= per; ++i) pts.push_back(cuts[k] + (cuts[k + 1] - cuts[k]) * i / per);
-    for (double e : sys.breakpoints())
-      if (e > cuts[k] && e < cuts[k + 1]) pts.push_back(e);
-    std::sort(pts.begin(), pts.end());
-    for (std::size_t i = 1; i < pts.size(); ++i) {
-      if (pts[i] - pts[i - 1] <= 1e-14) continue;
-      const Segment s{pts[i - 1], pts[i], piece_set(sys, 0.5 * (pts[i] + pts[i - 1]))};
-      st.step(s, Y, c);
-    }
-  }
-  out.closure = (Y.col(0) - fine).cwiseAbs().maxCoeff() / std::max(1.0, fine.cwiseAbs().maxCoeff());
-  // The samples are integrated forward from y0, so a strongly unstable system amplifies the
-  // rounding of y0 by up to its largest multiplier over the period, and the samples no longer
-  // close: the typical rotor at mu = 20 (|Lambda| = 2.7e14) missed y0 by 79 times |y0| and at
-  // mu = 50 by 1e27, reported with a warning only.  Beyond the integration's own error such
-  // samples are not the periodic solution.
-  const double expected = std::max(1e-8, 100.0 * out.error.value_or(0.0));
-  if (!(out.closure <= std::max(1e-3, expected))) {
-    out.status = Status::Failed;
-    out.message =
-        "the periodic solution cannot be sampled in double precision: integrated from "
-        "y0 over one revolution the state misses y0 by " +
-        short_text(out.closure) + " (relative; the largest |multiplier|, " + short_text(rho_fine) +
-        ", amplifies the rounding of y0)";
-    out.psi.clear();
-    out.y.clear();
-    return out;
-  }
-  if (out.closure > expected) {
-    out.status = Status::Warning;
-    out.message = "periodicity error " + short_text(out.closure) +
-                  " (relative) above what the integration's error implies: the largest "
-                  "|multiplier|, " +
-                  short_text(rho_fine) + ", amplifies the rounding of y0";
-  }
+  out.y0 = start.y0;
+  const Eigen::VectorXd end = sample_period(sys, start.y0, start.steps, options.samples, out);
+  out.closure =
+      (end - start.y0).cwiseAbs().maxCoeff() / std::max(1.0, start.y0.cwiseAbs().maxCoeff());
+  if (!check_closure(out, start.rho)) return out;
   // Some |Lambda| > 1 means the blade does not settle onto this solution.
-  if (rho_fine > 1.0) {
+  if (start.rho > 1.0) {
     out.Worsen(Status::Warning,
-               "the system is unstable (largest |multiplier| " + short_text(rho_fine) +
-                   ", zeta = " + short_text(std::log(rho_fine) / kTwoPi) +
+               "the system is unstable (largest |multiplier| " + short_text(start.rho) +
+                   ", zeta = " + short_text(std::log(start.rho) / kTwoPi) +
                    " per rev): the periodic solution exists but the blade does not settle onto "
                    "it");
   }

@@ -109,33 +109,59 @@ struct Newton {
   double step = 0.0, residual = 0.0;
 };
 
-// Harmonic balance of q'' = mass^-1 G(q, q', psi) for the coefficients X (n x (2K+1)).
-Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEquilibriumOptions& opt,
-             Eigen::MatrixXd& X) {
-  const int n = M + N, nb = 2 * K + 1, unknowns = n * nb;
-  // Integrand degree: residual (model order 2 plus 2K for a quadratic term) times phi_c.
-  const auto points = quadrature(sys.sector(), 3.0 * K + 4.0);
-  Newton out;
-  const int P = static_cast<int>(points.size());
+// The harmonic balance of q'' = mass^-1 G(q, q', psi) for the coefficients X (n x (2K+1)) of
+// q in the basis phi_c: the residual R, the projections onto phi_c of q'' - mass^-1 G at the
+// quadrature points (fixed for the whole solve), and its Jacobian by X.
+class HarmonicBalance {
+ public:
+  HarmonicBalance(const NonlinearSystem& sys, int M, int N, int K)
+      : sys_(sys),
+        M_(M),
+        N_(N),
+        K_(K),
+        n_(M + N),
+        nb_(2 * K + 1),
+        // Integrand degree: residual (model order 2 plus 2K for a quadratic term) times phi_c.
+        points_(quadrature(sys.sector(), 3.0 * K + 4.0)),
+        P_(static_cast<int>(points_.size())) {
+    tabulate_basis();
+    tabulate_mass_block();
+  }
+
+  // R (n (2K+1)) and Jac (n (2K+1) square) at X, sized by the caller.
+  void evaluate(const Eigen::MatrixXd& X, Eigen::VectorXd& R, Eigen::MatrixXd& Jac) {
+    sample_residual(X);
+    project(R, Jac);
+  }
+
+ private:
+  static int harmonic_of(int c) { return (c + 1) / 2; }
+  static bool is_sine(int c) { return c > 0 && c % 2 == 0; }
+
   // Fixed for the whole solve (the points do not move between iterations): the basis and its
   // derivatives at the points, W (nb x P) the weighted basis (the projection onto phi_c is a
   // Fourier coefficient), and H (P x (4K+1)) the weighted harmonics cos h psi (columns 0..2K)
   // and sin h psi (columns 2K+1..4K, h = 1..2K), for the Jacobian below.
-  Eigen::MatrixXd Pb(nb, P), D1(nb, P), D2(nb, P), W(nb, P), H(P, 4 * K + 1);
-  {
+  void tabulate_basis() {
+    const int K = K_, P = P_;
+    Pb_.resize(nb_, P);
+    D1_.resize(nb_, P);
+    D2_.resize(nb_, P);
+    W_.resize(nb_, P);
+    H_.resize(P, 4 * K + 1);
     Eigen::VectorXd p, d1, d2;
     for (int k = 0; k < P; ++k) {
-      const QuadPoint& qp = points[k];
+      const QuadPoint& qp = points_[k];
       basis(K, qp.psi, p, d1, d2);
-      Pb.col(k) = p;
-      D1.col(k) = d1;
-      D2.col(k) = d2;
+      Pb_.col(k) = p;
+      D1_.col(k) = d1;
+      D2_.col(k) = d2;
       const double w = qp.weight / kPi;
-      W.col(k) = p * w;
-      W(0, k) *= 0.5;
+      W_.col(k) = p * w;
+      W_(0, k) *= 0.5;
       // cos, sin of (K + h) psi from those of K psi and h psi (angle addition)
       const double cK = K > 0 ? p(2 * K - 1) : 1.0, sK = K > 0 ? p(2 * K) : 0.0;
-      H(k, 0) = w;
+      H_(k, 0) = w;
       for (int h = 1; h <= 2 * K; ++h) {
         double c, sn;
         if (h <= K) {
@@ -146,21 +172,77 @@ Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEqui
           c = cK * ch - sK * sh;
           sn = sK * ch + cK * sh;
         }
-        H(k, h) = w * c;
-        H(k, 2 * K + h) = w * sn;
+        H_(k, h) = w * c;
+        H_(k, 2 * K + h) = w * sn;
       }
     }
   }
-  // The Jacobian's block (i, j) is sum_k W_c(psi_k) [-a_ij phi_d - b_ij phi_d' + delta_ij
-  // phi_d''](psi_k), a_ij, b_ij the derivatives of equation i's load by displacement and rate
-  // j.  The product phi_c phi_d is a sum of two harmonics of order <= 2K (cos m cos n =
+
+  // sum W_c phi_d'' (the delta_ij term of the Jacobian).
+  void tabulate_mass_block() {
+    const Eigen::VectorXd unit_sums = H_.colwise().sum().transpose();
+    mass_block_.resize(nb_, nb_);
+    for (int c = 0; c < nb_; ++c)
+      for (int d = 0; d < nb_; ++d) {
+        const int l = harmonic_of(d);
+        mass_block_(c, d) = -static_cast<double>(l * l) * product_sum(unit_sums, c, d);
+      }
+  }
+
+  // The residual E (n x P) of q'' = mass^-1 G at each point, and S (P x 2 n^2) the
+  // derivatives a_ij, b_ij of equation i's load by displacement and rate j there.
+  void sample_residual(const Eigen::MatrixXd& X) {
+    const int n = n_, M = M_, N = N_, P = P_;
+    y_.resize(2 * n);
+    E_.resize(n, P);
+    S_.resize(P, 2 * n * n);
+    Q_.noalias() = X * Pb_;
+    Qd_.noalias() = X * D1_;
+    Qdd_.noalias() = X * D2_;
+    for (int k = 0; k < P; ++k) {
+      const QuadPoint& qp = points_[k];
+      for (int j = 0; j < n; ++j) {
+        y_(model::rate_index(j, M, N)) = Qd_(j, k);
+        y_(model::displacement_index(j, M, N)) = Q_(j, k);
+      }
+      sys_.evaluate(qp.psi, qp.reversed, y_, &F_, &J_);
+      for (int i = 0; i < n; ++i) {
+        const int row = model::rate_index(i, M, N);
+        E_(i, k) = Qdd_(i, k) - F_(row);
+        for (int j = 0; j < n; ++j) {
+          S_(k, 2 * (i * n + j)) = J_(row, model::displacement_index(j, M, N));
+          S_(k, 2 * (i * n + j) + 1) = J_(row, model::rate_index(j, M, N));
+        }
+      }
+    }
+  }
+
+  // The projections onto phi_c: R from E, and the Jacobian's blocks from the harmonic sums of
+  // S.  Block (i, j) is sum_k W_c(psi_k) [-a_ij phi_d - b_ij phi_d' + delta_ij phi_d''](psi_k).
+  void project(Eigen::VectorXd& R, Eigen::MatrixXd& Jac) const {
+    const int n = n_, nb = nb_;
+    const Eigen::MatrixXd sums = H_.transpose() * S_;  // (4K+1) x 2 n^2
+    for (int i = 0; i < n; ++i) {
+      R.segment(i * nb, nb).noalias() = W_ * E_.row(i).transpose();
+      for (int j = 0; j < n; ++j) {
+        const auto sa = sums.col(2 * (i * n + j)), sb = sums.col(2 * (i * n + j) + 1);
+        auto block = Jac.block(i * nb, j * nb, nb, nb);
+        for (int c = 0; c < nb; ++c)
+          for (int d = 0; d < nb; ++d)
+            block(c, d) = -product_sum(sa, c, d) - derivative_sum(sb, c, d);
+        if (i == j) block += mass_block_;
+      }
+    }
+  }
+
+  // The product phi_c phi_d is a sum of two harmonics of order <= 2K (cos m cos n =
   // (cos (m-n) + cos (m+n)) / 2, ...), so every block entry is a combination of the weighted
   // harmonic sums of a_ij and b_ij: O(P K) work per pair instead of O(P K^2).
-  const auto harmonic_of = [](int c) { return (c + 1) / 2; };
-  const auto is_sine = [](int c) { return c > 0 && c % 2 == 0; };
   // sum_k w_k f(psi_k) phi_c(psi_k) phi_d(psi_k) / pi from f's weighted sums `s` (a column of
   // H^T f), with the factor 1/2 of the constant's projection.
-  const auto product_sum = [&](const auto& s, int c, int d) {
+  template <typename Sums>
+  double product_sum(const Sums& s, int c, int d) const {
+    const int K = K_;
     const auto A = [&](int h) { return s(std::abs(h)); };
     const auto B = [&](int h) { return h == 0 ? 0.0 : h > 0 ? s(2 * K + h) : -s(2 * K - h); };
     const int m = harmonic_of(c), l = harmonic_of(d);
@@ -180,60 +262,41 @@ Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEqui
     else
       v = 0.5 * (B(m + l) + B(m - l));  // sin m cos l
     return c == 0 ? 0.5 * v : v;
-  };
+  }
+
   // phi_d' = -l phi_{d+1} (cos l psi) or l phi_{d-1} (sin l psi); phi_d'' = -l^2 phi_d.
-  const auto derivative_sum = [&](const auto& s, int c, int d) {
+  template <typename Sums>
+  double derivative_sum(const Sums& s, int c, int d) const {
     if (d == 0) return 0.0;
     const int l = harmonic_of(d);
     return is_sine(d) ? l * product_sum(s, c, d - 1) : -l * product_sum(s, c, d + 1);
-  };
-  const Eigen::VectorXd unit_sums = H.colwise().sum().transpose();
-  Eigen::MatrixXd mass_block(nb, nb);  // sum W_c phi_d'' (the delta_ij term)
-  for (int c = 0; c < nb; ++c)
-    for (int d = 0; d < nb; ++d) {
-      const int l = harmonic_of(d);
-      mass_block(c, d) = -static_cast<double>(l * l) * product_sum(unit_sums, c, d);
-    }
-  Eigen::VectorXd y(2 * n), F;
-  Eigen::MatrixXd J;
+  }
+
+  const NonlinearSystem& sys_;
+  const int M_, N_, K_, n_, nb_;
+  const std::vector<QuadPoint> points_;
+  const int P_;
+  Eigen::MatrixXd Pb_, D1_, D2_, W_, H_, mass_block_;
+  // Scratch of an evaluation.
+  Eigen::VectorXd y_, F_;
+  Eigen::MatrixXd J_;
+  Eigen::MatrixXd E_;             // residual at each point
+  Eigen::MatrixXd S_;             // a_ij, b_ij at each point
+  Eigen::MatrixXd Q_, Qd_, Qdd_;  // q, q', q'' at the points
+};
+
+// Newton on the harmonic balance (HarmonicBalance) for the coefficients X (n x (2K+1)), from
+// the X given.
+Newton solve(const NonlinearSystem& sys, int M, int N, int K, const PeriodicEquilibriumOptions& opt,
+             Eigen::MatrixXd& X) {
+  const int n = M + N, nb = 2 * K + 1, unknowns = n * nb;
+  HarmonicBalance balance(sys, M, N, K);
+  Newton out;
   Eigen::VectorXd R(unknowns);
   Eigen::MatrixXd Jac(unknowns, unknowns);
-  Eigen::MatrixXd E(n, P);          // residual at each point
-  Eigen::MatrixXd S(P, 2 * n * n);  // a_ij, b_ij at each point
   double previous_step = std::numeric_limits<double>::infinity();
-  Eigen::MatrixXd Q(n, P), Qd(n, P), Qdd(n, P);  // q, q', q'' at the points
   for (int it = 1; it <= opt.max_iterations; ++it) {
-    Q.noalias() = X * Pb;
-    Qd.noalias() = X * D1;
-    Qdd.noalias() = X * D2;
-    for (int k = 0; k < P; ++k) {
-      const QuadPoint& qp = points[k];
-      for (int j = 0; j < n; ++j) {
-        y(model::rate_index(j, M, N)) = Qd(j, k);
-        y(model::displacement_index(j, M, N)) = Q(j, k);
-      }
-      sys.evaluate(qp.psi, qp.reversed, y, &F, &J);
-      for (int i = 0; i < n; ++i) {
-        const int row = model::rate_index(i, M, N);
-        E(i, k) = Qdd(i, k) - F(row);
-        for (int j = 0; j < n; ++j) {
-          S(k, 2 * (i * n + j)) = J(row, model::displacement_index(j, M, N));
-          S(k, 2 * (i * n + j) + 1) = J(row, model::rate_index(j, M, N));
-        }
-      }
-    }
-    const Eigen::MatrixXd sums = H.transpose() * S;  // (4K+1) x 2 n^2
-    for (int i = 0; i < n; ++i) {
-      R.segment(i * nb, nb).noalias() = W * E.row(i).transpose();
-      for (int j = 0; j < n; ++j) {
-        const auto sa = sums.col(2 * (i * n + j)), sb = sums.col(2 * (i * n + j) + 1);
-        auto block = Jac.block(i * nb, j * nb, nb, nb);
-        for (int c = 0; c < nb; ++c)
-          for (int d = 0; d < nb; ++d)
-            block(c, d) = -product_sum(sa, c, d) - derivative_sum(sb, c, d);
-        if (i == j) block += mass_block;
-      }
-    }
+    balance.evaluate(X, R, Jac);
     out.residual = R.cwiseAbs().maxCoeff();
     if (!R.allFinite() || !Jac.allFinite()) {
       out.finite = false;
@@ -428,154 +491,234 @@ Eigen::VectorXd PeriodicEquilibrium::state(double psi) const {
   return y;
 }
 
+namespace {
+
+// A solution of the harmonic balance on the branch through the hover equilibrium.
+struct Branch {
+  int K = 0;             // harmonics
+  Eigen::MatrixXd X;     // coefficients (n x (2K+1))
+  double reached = 0.0;  // the mu it is the solution at
+  Newton newton;         // the last solve
+};
+
+// K of the continuation: fixed, or (automatic) one below the start's accepted K.
+int continuation_harmonics(const PeriodicEquilibriumOptions& opt,
+                           const PeriodicEquilibrium* start) {
+  if (opt.harmonics != PeriodicEquilibriumOptions::kAutomaticHarmonics) return opt.harmonics;
+  if (start != nullptr && std::isfinite(start->harmonics_error))
+    return std::clamp(start->harmonics / 2, PeriodicEquilibriumOptions::kFirstHarmonics,
+                      PeriodicEquilibriumOptions::kMaxHarmonics / 2);
+  return PeriodicEquilibriumOptions::kFirstHarmonics;
+}
+
+// The branch through the hover equilibrium: continuation in mu from hover (at mu = 0 the
+// hover state solves the equations exactly), steps of at most kMaxStep, each Newton solve
+// from the previous solution; a failed step, or one that moves any coefficient by more than
+// kMaxChange, is halved, so that the steps shrink where the branch steepens towards a fold.
+// Newton straight from the hover state at a large mu could land on another branch.
+constexpr double kMaxStep = 0.1, kMaxChange = 0.01;
+
+// The point of the branch the continuation to mu starts from, with K harmonics: `start` when
+// it is corrected at its own mu (a point of the same branch, perhaps of slightly different
+// parameters: a neighbouring trim iterate; one Newton iteration when nothing changed), else
+// hover.
+Branch start_of_branch(const detail::SystemBuilder& builder, const NonlinearSystem& sys, double mu,
+                       int K, const PeriodicEquilibriumOptions& opt,
+                       const PeriodicEquilibrium* start) {
+  const auto& m = builder.model();
+  const int M = m.flap_modes, N = m.lag_modes, n = M + N;
+  Branch b;
+  b.K = K;
+  b.X = Eigen::MatrixXd::Zero(n, 2 * K + 1);
+  b.X.col(0) = builder.hover().q0;
+  if (start != nullptr && start->status != Status::Failed && start->coefficients.rows() == n &&
+      start->coefficients.allFinite() && start->mu - mu <= kMaxStep) {
+    const Eigen::MatrixXd given = resized(start->coefficients, K);
+    Eigen::MatrixXd trial = given;
+    const Newton t =
+        solve(start->mu == mu ? sys : NonlinearSystem(builder, start->mu), M, N, K, opt, trial);
+    if (t.finite && t.converged && (trial - given).cwiseAbs().maxCoeff() <= kMaxChange) {
+      b.X = trial;
+      b.reached = start->mu;
+      b.newton = t;
+      return b;
+    }
+  }
+  b.newton = solve(NonlinearSystem(builder, 0.0), M, N, K, opt, b.X);
+  return b;
+}
+
+// Continues b towards mu (downwards only from a start above mu) until it is reached or the
+// step falls below min_continuation_step.
+void continue_branch(const detail::SystemBuilder& builder, const NonlinearSystem& sys, double mu,
+                     const PeriodicEquilibriumOptions& opt, Branch& b) {
+  const auto& m = builder.model();
+  const int M = m.flap_modes, N = m.lag_modes;
+  const double dir = mu >= b.reached ? 1.0 : -1.0;
+  double step = std::min(std::abs(mu - b.reached), kMaxStep);
+  // (a start closer than that is a step of its own)
+  const double min_step = std::min(opt.min_continuation_step, step);
+  for (int tries = 0; b.newton.converged && tries < 1000 && b.reached != mu && step >= min_step;
+       ++tries) {
+    const double next = dir > 0.0 ? std::min(mu, b.reached + step) : std::max(mu, b.reached - step);
+    Eigen::MatrixXd trial = b.X;
+    const Newton t =
+        solve(next == mu ? sys : NonlinearSystem(builder, next), M, N, b.K, opt, trial);
+    if (!t.finite) {
+      b.newton = t;
+      break;
+    }
+    // A step that moves the solution by more than kMaxChange may have jumped to another
+    // branch (beyond a fold there is no solution nearby): retry with half the step.
+    if (t.converged && (trial - b.X).cwiseAbs().maxCoeff() <= kMaxChange) {
+      b.X = trial;
+      b.reached = next;
+      b.newton = t;
+      step = std::min(kMaxStep, 1.5 * step);
+    } else {
+      step *= 0.5;
+    }
+  }
+}
+
+// Automatic K: doubled at mu (Newton from the padded solution) until two successive K agree
+// (out.harmonics_error), or K reaches its cap (then `k_note` says so).  false: no solution of
+// the finer truncation (out is final).
+bool converge_in_harmonics(const NonlinearSystem& sys, double mu,
+                           const PeriodicEquilibriumOptions& opt, int M, int N, Branch& b,
+                           PeriodicEquilibrium& out, std::string& k_note) {
+  while (true) {
+    const int K2 = 2 * b.K;
+    Eigen::MatrixXd X2 = resized(b.X, K2);
+    const Newton t = solve(sys, M, N, K2, opt, X2);
+    if (!t.finite || !t.converged) {
+      // No solution of the finer truncation near this one: the K solution is an artefact of
+      // the truncation (between the folds of K and 2K the coarse branch still exists, the
+      // converged one no longer), so there is no converged periodic equilibrium here.
+      out.harmonics = b.K;
+      out.coefficients = b.X;
+      out.continued_to = b.reached;
+      out.status = Status::Failed;
+      out.message = "no periodic equilibrium converged in the number of harmonics at mu = " +
+                    round_trip_text(mu) + ": the harmonic balance with K = " + std::to_string(b.K) +
+                    " has one, but none near it with K = " + std::to_string(K2) +
+                    " (typically just past the fold of the branch, which the coarser "
+                    "truncation places too far out)";
+      return false;
+    }
+    out.harmonics_error = coefficient_difference(b.X, X2, K2);
+    b.X = X2;
+    b.K = K2;
+    b.newton = t;
+    if (out.harmonics_error <= opt.harmonics_tolerance) return true;
+    if (b.K >= PeriodicEquilibriumOptions::kMaxHarmonics) {
+      k_note = "harmonics_error = " + short_text(out.harmonics_error) +
+               " at the cap K = " + std::to_string(b.K) +
+               " exceeds harmonics_tolerance = " + short_text(opt.harmonics_tolerance);
+      return true;
+    }
+  }
+}
+
+// Why there is no periodic equilibrium at mu on the branch b, if so (then out is final).
+bool branch_failed(const Branch& b, double mu, PeriodicEquilibrium& out) {
+  if (!b.newton.finite) {
+    out.status = Status::Failed;
+    out.message = "the harmonic balance overflowed at mu = " + round_trip_text(mu);
+    return true;
+  }
+  if (b.newton.singular && b.reached == mu) {
+    out.status = Status::Failed;
+    out.message = "the harmonic-balance Newton matrix is singular at mu = " + round_trip_text(mu) +
+                  ": a Floquet multiplier at 1, no unique periodic equilibrium";
+    return true;
+  }
+  if (!b.newton.converged) {
+    out.status = Status::Failed;
+    out.message =
+        "no periodic equilibrium on the branch from hover at mu = " + round_trip_text(mu) +
+        ": the continuation from hover (harmonic balance, K = " + std::to_string(b.K) +
+        ") stops at mu = " + short_text(b.reached) +
+        " (the branch ends there: typically a fold, where a real Floquet multiplier reaches 1)";
+    return true;
+  }
+  return false;
+}
+
+// The last harmonic's size relative to the largest coefficient.
+double truncation(const Eigen::MatrixXd& X, int K) {
+  const double big = X.cwiseAbs().maxCoeff();
+  double last = 0.0;
+  for (int j = 0; j < X.rows(); ++j)
+    last = std::max(last, std::hypot(X(j, 2 * K - 1), X(j, 2 * K)));
+  return big > 0.0 ? last / big : 0.0;
+}
+
+// The mean thrust along q° (a polynomial of degree <= 2 in y°: trigonometric degree model
+// order + 2K, integrated exactly by the quadrature of the harmonic balance).
+double mean_thrust(const NonlinearSystem& sys, const PeriodicEquilibrium& eq) {
+  double sum = 0.0;
+  for (const QuadPoint& qp : quadrature(sys.sector(), 3.0 * eq.harmonics + 4.0))
+    sum += qp.weight * sys.thrust(qp.psi, qp.reversed, eq.state(qp.psi));
+  return sum / kTwoPi;
+}
+
+// The Floquet multipliers of the linearization: whether the equilibrium is isolated and
+// stable (problems noted in `note`).
+void check_multipliers(PeriodicEquilibrium& out, Outcome& note) {
+  const Eigen::MatrixXd phi = transition_matrix_rk4(out.linearization, 4096);
+  const FloquetResult fl = floquet_exponents(phi, out.linearization.trace_integral());
+  out.min_distance_to_one = std::numeric_limits<double>::infinity();
+  for (const FloquetExponent& e : fl.exponents) {
+    out.multiplier_moduli.push_back(std::abs(e.multiplier));
+    out.min_distance_to_one =
+        std::min(out.min_distance_to_one, std::abs(e.multiplier - std::complex<double>(1.0)));
+  }
+  std::sort(out.multiplier_moduli.rbegin(), out.multiplier_moduli.rend());
+  if (fl.status != Status::Ok) {
+    note.Worsen(Status::Warning, fl.message);
+  } else if (out.min_distance_to_one < 1e-8) {
+    note.Worsen(Status::Warning, "a Floquet multiplier is at 1 (distance " +
+                                     short_text(out.min_distance_to_one) +
+                                     "): the periodic equilibrium is not isolated");
+  } else if (!out.multiplier_moduli.empty() && out.multiplier_moduli[0] > 1.0) {
+    note.Worsen(Status::Warning,
+                "the periodic equilibrium is unstable (largest multiplier modulus " +
+                    short_text(out.multiplier_moduli[0]) + "): the blade does not settle onto it");
+  }
+}
+
+}  // namespace
+
 PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, double mu,
                                          const PeriodicEquilibriumOptions& opt,
                                          const PeriodicEquilibrium* start) {
   opt.Check();
   const NonlinearSystem sys(builder, mu);
   const auto& m = builder.model();
-  const int M = m.flap_modes, N = m.lag_modes, n = M + N;
+  const int M = m.flap_modes, N = m.lag_modes;
   const bool automatic = opt.harmonics == PeriodicEquilibriumOptions::kAutomaticHarmonics;
-  // K of the continuation: fixed, or (automatic) one below the start's accepted K.
-  int K = opt.harmonics;
-  if (automatic) {
-    K = PeriodicEquilibriumOptions::kFirstHarmonics;
-    if (start != nullptr && std::isfinite(start->harmonics_error))
-      K = std::clamp(start->harmonics / 2, PeriodicEquilibriumOptions::kFirstHarmonics,
-                     PeriodicEquilibriumOptions::kMaxHarmonics / 2);
-  }
   PeriodicEquilibrium out;
   out.mu = mu;
   out.flap_modes = M;
-  // The branch through the hover equilibrium: continuation in mu from hover (at mu = 0 the
-  // hover state solves the equations exactly), steps of at most kMaxStep, each Newton solve
-  // from the previous solution; a failed step, or one that moves any coefficient by more than
-  // kMaxChange, is halved, so that the steps shrink where the branch steepens towards a fold.
-  // Newton straight from the hover state at a large mu could land on another branch.
-  constexpr double kMaxStep = 0.1, kMaxChange = 0.01;
-  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(n, 2 * K + 1);
-  X.col(0) = builder.hover().q0;
-  double reached = 0.0;
-  Newton r;
-  bool from_start = false;
-  if (start != nullptr && start->status != Status::Failed && start->coefficients.rows() == n &&
-      start->coefficients.allFinite() && start->mu - mu <= kMaxStep) {
-    // A point of the same branch, perhaps of slightly different parameters (a neighbouring
-    // trim iterate): corrected at its own mu first (one Newton iteration when nothing changed).
-    const Eigen::MatrixXd given = resized(start->coefficients, K);
-    Eigen::MatrixXd trial = given;
-    const Newton t =
-        solve(start->mu == mu ? sys : NonlinearSystem(builder, start->mu), M, N, K, opt, trial);
-    if (t.finite && t.converged && (trial - given).cwiseAbs().maxCoeff() <= kMaxChange) {
-      X = trial;
-      reached = start->mu;
-      r = t;
-      from_start = true;
-    }
-  }
-  if (!from_start) r = solve(NonlinearSystem(builder, 0.0), M, N, K, opt, X);
-  // Continued towards mu from `reached` (downwards only from a start above mu).
-  const double dir = mu >= reached ? 1.0 : -1.0;
-  double step = std::min(std::abs(mu - reached), kMaxStep);
-  // (a start closer than that is a step of its own)
-  const double min_step = std::min(opt.min_continuation_step, step);
-  for (int tries = 0; r.converged && tries < 1000 && reached != mu && step >= min_step; ++tries) {
-    const double next = dir > 0.0 ? std::min(mu, reached + step) : std::max(mu, reached - step);
-    Eigen::MatrixXd trial = X;
-    const Newton t = solve(next == mu ? sys : NonlinearSystem(builder, next), M, N, K, opt, trial);
-    if (!t.finite) {
-      r = t;
-      break;
-    }
-    // A step that moves the solution by more than kMaxChange may have jumped to another
-    // branch (beyond a fold there is no solution nearby): retry with half the step.
-    if (t.converged && (trial - X).cwiseAbs().maxCoeff() <= kMaxChange) {
-      X = trial;
-      reached = next;
-      r = t;
-      step = std::min(kMaxStep, 1.5 * step);
-    } else {
-      step *= 0.5;
-    }
-  }
-  out.continued_to = reached;
-  if (reached != mu) r.converged = false;
-  // Automatic K: doubled at mu (Newton from the padded solution) until two successive K agree.
+  Branch b = start_of_branch(builder, sys, mu, continuation_harmonics(opt, start), opt, start);
+  continue_branch(builder, sys, mu, opt, b);
+  out.continued_to = b.reached;
+  if (b.reached != mu) b.newton.converged = false;
   std::string k_note;
-  if (automatic && r.converged) {
-    while (true) {
-      const int K2 = 2 * K;
-      Eigen::MatrixXd X2 = resized(X, K2);
-      const Newton t = solve(sys, M, N, K2, opt, X2);
-      if (!t.finite || !t.converged) {
-        // No solution of the finer truncation near this one: the K solution is an artefact of
-        // the truncation (between the folds of K and 2K the coarse branch still exists, the
-        // converged one no longer), so there is no converged periodic equilibrium here.
-        out.harmonics = K;
-        out.coefficients = X;
-        out.continued_to = reached;
-        out.status = Status::Failed;
-        out.message = "no periodic equilibrium converged in the number of harmonics at mu = " +
-                      round_trip_text(mu) + ": the harmonic balance with K = " + std::to_string(K) +
-                      " has one, but none near it with K = " + std::to_string(K2) +
-                      " (typically just past the fold of the branch, which the coarser "
-                      "truncation places too far out)";
-        return out;
-      }
-      out.harmonics_error = coefficient_difference(X, X2, K2);
-      X = X2;
-      K = K2;
-      r = t;
-      if (out.harmonics_error <= opt.harmonics_tolerance) break;
-      if (K >= PeriodicEquilibriumOptions::kMaxHarmonics) {
-        k_note = "harmonics_error = " + short_text(out.harmonics_error) +
-                 " at the cap K = " + std::to_string(K) +
-                 " exceeds harmonics_tolerance = " + short_text(opt.harmonics_tolerance);
-        break;
-      }
-    }
-  }
-  out.harmonics = K;
-  out.coefficients = X;
-  out.iterations = r.iterations;
-  out.step = r.step;
-  out.residual = r.residual;
-  if (!r.finite) {
-    out.status = Status::Failed;
-    out.message = "the harmonic balance overflowed at mu = " + round_trip_text(mu);
+  if (automatic && b.newton.converged && !converge_in_harmonics(sys, mu, opt, M, N, b, out, k_note))
     return out;
-  }
-  if (r.singular && reached == mu) {
-    out.status = Status::Failed;
-    out.message = "the harmonic-balance Newton matrix is singular at mu = " + round_trip_text(mu) +
-                  ": a Floquet multiplier at 1, no unique periodic equilibrium";
-    return out;
-  }
-  if (!r.converged) {
-    out.status = Status::Failed;
-    out.message =
-        "no periodic equilibrium on the branch from hover at mu = " + round_trip_text(mu) +
-        ": the continuation from hover (harmonic balance, K = " + std::to_string(K) +
-        ") stops at mu = " + short_text(reached) +
-        " (the branch ends there: typically a fold, where a real Floquet multiplier reaches 1)";
-    return out;
-  }
-  const double big = X.cwiseAbs().maxCoeff();
-  double last = 0.0;
-  for (int j = 0; j < n; ++j) last = std::max(last, std::hypot(X(j, 2 * K - 1), X(j, 2 * K)));
-  out.truncation = big > 0.0 ? last / big : 0.0;
-
-  // The mean thrust along q° (a polynomial of degree <= 2 in y°: trigonometric degree model
-  // order + 2K, integrated exactly by the quadrature of the harmonic balance).
-  {
-    double sum = 0.0;
-    for (const QuadPoint& qp : quadrature(sys.sector(), 3.0 * K + 4.0))
-      sum += qp.weight * sys.thrust(qp.psi, qp.reversed, out.state(qp.psi));
-    out.mean_thrust = sum / kTwoPi;
-  }
+  out.harmonics = b.K;
+  out.coefficients = b.X;
+  out.iterations = b.newton.iterations;
+  out.step = b.newton.step;
+  out.residual = b.newton.residual;
+  if (branch_failed(b, mu, out)) return out;
+  out.truncation = truncation(b.X, b.K);
+  out.mean_thrust = mean_thrust(sys, out);
 
   // The linearization: model order (H_nl - 1) / 2 plus 2K.
-  const int L = (m.n_nonlinear_harmonics - 1) / 2 + 2 * K;
+  const int L = (m.n_nonlinear_harmonics - 1) / 2 + 2 * b.K;
   out.linearization = sys.sector();
   out.linearization.normal = linear_set(sys, out, false, L);
   if (out.linearization.has_sector) out.linearization.reversed = linear_set(sys, out, true, L);
@@ -583,34 +726,12 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
   Outcome note;  // the problems, in this order
   note.Worsen(Status::Warning, k_note);
   if (out.truncation > 1e-3) {
-    note.Worsen(Status::Warning, "harmonic " + std::to_string(K) +
+    note.Worsen(Status::Warning, "harmonic " + std::to_string(b.K) +
                                      " of the periodic equilibrium is " +
                                      short_text(out.truncation) +
                                      " of its largest coefficient; increase `harmonics`");
   }
-  if (opt.check_stability) {
-    const Eigen::MatrixXd phi = transition_matrix_rk4(out.linearization, 4096);
-    const FloquetResult fl = floquet_exponents(phi, out.linearization.trace_integral());
-    out.min_distance_to_one = std::numeric_limits<double>::infinity();
-    for (const FloquetExponent& e : fl.exponents) {
-      out.multiplier_moduli.push_back(std::abs(e.multiplier));
-      out.min_distance_to_one =
-          std::min(out.min_distance_to_one, std::abs(e.multiplier - std::complex<double>(1.0)));
-    }
-    std::sort(out.multiplier_moduli.rbegin(), out.multiplier_moduli.rend());
-    if (fl.status != Status::Ok) {
-      note.Worsen(Status::Warning, fl.message);
-    } else if (out.min_distance_to_one < 1e-8) {
-      note.Worsen(Status::Warning, "a Floquet multiplier is at 1 (distance " +
-                                       short_text(out.min_distance_to_one) +
-                                       "): the periodic equilibrium is not isolated");
-    } else if (!out.multiplier_moduli.empty() && out.multiplier_moduli[0] > 1.0) {
-      note.Worsen(Status::Warning,
-                  "the periodic equilibrium is unstable (largest multiplier modulus " +
-                      short_text(out.multiplier_moduli[0]) +
-                      "): the blade does not settle onto it");
-    }
-  }
+  if (opt.check_stability) check_multipliers(out, note);
   if (!note.message.empty()) {
     out.status = Status::Warning;
     out.message = note.message;

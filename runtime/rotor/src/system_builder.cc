@@ -37,13 +37,14 @@ ExactReversedRegion exact_reversed_region(double mu, const RotorParameters& p) {
   return r;
 }
 
-SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescriptor& m,
-                             std::optional<double> inflow)
-    : p_(p), model_(&m), M_(m.flap_modes), N_(m.lag_modes), n_(M_ + N_), H_(m.n_harmonics) {
+namespace {
+
+// The parameters and inflow the builder accepts (InvalidInput otherwise).
+void check_inputs(const RotorParameters& p, std::optional<double> inflow) {
   if (inflow) {
-    validate_except_inflow(p_);  // eq 2.24 is not used
+    validate_except_inflow(p);  // eq 2.24 is not used
   } else {
-    validate(p_);
+    validate(p);
   }
   if (inflow && !std::isfinite(*inflow)) {
     throw InvalidInput("inflow", round_trip_text(*inflow), "must be a finite number");
@@ -51,45 +52,116 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   // The harmonic balance integrates the nonlinear loads region by region with the normal and
   // the sector integrals; the exact circle has no such form there (it would silently be left
   // out).
-  if (p_.periodic_linearization && p_.exact_reversed_flow) {
+  if (p.periodic_linearization && p.exact_reversed_flow) {
     throw InvalidInput("exact_reversed_flow", "true",
                        "the periodic equilibrium (`periodic_linearization`) is built with the "
                        "Appendix D sector: use the sector (`exact_reversed_flow` = false)");
   }
-  if (p_.modes == ModeKind::Assumed) {
-    if (M_ != 1 || N_ != 1) {
+}
+
+// The rotating modes of the blade: the assumed mode (eq 4.1) or the exact modes (Galerkin).
+ModeSet blade_modes(const RotorParameters& p, const model::ModelDescriptor& m) {
+  const int M = m.flap_modes, N = m.lag_modes;
+  if (p.modes == ModeKind::Assumed) {
+    if (M != 1 || N != 1) {
       throw InvalidInput("modes", "assumed",
-                         std::string("model '") + m.name + "' has " + std::to_string(M_) +
-                             " flap x " + std::to_string(N_) +
+                         std::string("model '") + m.name + "' has " + std::to_string(M) +
+                             " flap x " + std::to_string(N) +
                              " lag modes; the assumed mode (eq 4.1) gives one of each: use "
                              "`modes` = exact");
     }
-    modes_ = assumed_modes(p_.omega_flap, p_.omega_lag);
-  } else {
-    // Galerkin's method gives at most as many rotating modes per direction as basis functions.
-    if (M_ > p_.basis || N_ > p_.basis) {
-      throw InvalidInput(
-          "basis", std::to_string(p_.basis),
-          std::string("model '") + m.name + "' has " + std::to_string(M_) + " flap x " +
-              std::to_string(N_) + " lag modes; the exact modes need at least " +
-              std::to_string(std::max(M_, N_)) + " cantilever functions per direction");
-    }
-    ExactModeOptions opt;
-    opt.n_basis = p_.basis;
-    opt.flap_modes = M_;
-    opt.lag_modes = N_;
-    opt.e1_over_l = p_.root_offset / p_.length_ratio;
-    opt.paper_1974_shapes = p_.paper_1974_shapes;
-    try {
-      modes_ = exact_modes(p_.omega_flap, p_.omega_lag, opt);
-    } catch (const InvalidInput& e) {
-      // The blade layer calls the basis size `n_basis` (ExactModeOptions); here it is `basis`.
-      std::string reason = e.reason();
-      for (std::size_t at; (at = reason.find("`n_basis`")) != std::string::npos;)
-        reason.replace(at, 9, "`basis`");
-      throw InvalidInput(e.name() == "n_basis" ? "basis" : e.name(), e.value(), reason);
-    }
+    return assumed_modes(p.omega_flap, p.omega_lag);
   }
+  // Galerkin's method gives at most as many rotating modes per direction as basis functions.
+  if (M > p.basis || N > p.basis) {
+    throw InvalidInput("basis", std::to_string(p.basis),
+                       std::string("model '") + m.name + "' has " + std::to_string(M) + " flap x " +
+                           std::to_string(N) + " lag modes; the exact modes need at least " +
+                           std::to_string(std::max(M, N)) + " cantilever functions per direction");
+  }
+  ExactModeOptions opt;
+  opt.n_basis = p.basis;
+  opt.flap_modes = M;
+  opt.lag_modes = N;
+  opt.e1_over_l = p.root_offset / p.length_ratio;
+  opt.paper_1974_shapes = p.paper_1974_shapes;
+  try {
+    return exact_modes(p.omega_flap, p.omega_lag, opt);
+  } catch (const InvalidInput& e) {
+    // The blade layer calls the basis size `n_basis` (ExactModeOptions); here it is `basis`.
+    std::string reason = e.reason();
+    for (std::size_t at; (at = reason.find("`n_basis`")) != std::string::npos;)
+      reason.replace(at, 9, "`basis`");
+    throw InvalidInput(e.name() == "n_basis" ? "basis" : e.name(), e.value(), reason);
+  }
+}
+
+std::vector<double> row_major(const Eigen::MatrixXd& a) {
+  std::vector<double> v(static_cast<size_t>(a.size()));
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    for (Eigen::Index j = 0; j < a.cols(); ++j) v[i * a.cols() + j] = a(i, j);
+  return v;
+}
+
+Eigen::MatrixXd square_matrix(const std::vector<double>& values, int n) {
+  Eigen::MatrixXd a(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) a(i, j) = values[i * n + j];
+  return a;
+}
+
+// hover.q0 from S q0 = c (S row-major, n x n), Failed when S is singular.
+void solve_hover_equilibrium(const std::vector<double>& S, const std::vector<double>& c, int n,
+                             HoverResult& hover) {
+  const Eigen::MatrixXd Sm = square_matrix(S, n);
+  Eigen::VectorXd cv(n);
+  for (int i = 0; i < n; ++i) cv(i) = c[i];
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(Sm);
+  if (!lu.isInvertible()) {
+    hover.status = Status::Failed;
+    hover.message = "hover equilibrium matrix S (eq 2.32) is singular";
+    hover.q0 = Eigen::VectorXd::Zero(n);
+  } else {
+    hover.q0 = lu.solve(cv);
+  }
+}
+
+// The eigenvalues of hover.A0, and whether hover is stable, unstable or (within rounding)
+// neutral.
+void classify_hover(HoverResult& hover) {
+  const RealEigenSystem es = real_eigen_system(hover.A0, true, EigenStorage::Dynamic);
+  hover.stable = true;
+  double largest = -std::numeric_limits<double>::infinity();
+  for (Eigen::Index k = 0; k < es.values.size(); ++k) {
+    const auto lam = es.values(k);
+    hover.eigenvalues.push_back(lam);
+    if (lam.real() > 0.0) hover.stable = false;
+    largest = std::max(largest, lam.real());
+  }
+  const double rounding = hover_zeta_rounding(hover.A0);
+  hover.neutral = std::abs(largest) <= rounding;
+  if (hover.neutral && hover.status == Status::Ok) {
+    hover.status = Status::Warning;
+    hover.message =
+        "the stability of hover is unknown: the largest real part of an eigenvalue "
+        "of A0, " +
+        short_text(largest) + ", is within the rounding level " + short_text(rounding) +
+        " of zero (a neutral blade)";
+  } else if (!hover.stable && hover.status == Status::Ok) {
+    hover.status = Status::Warning;
+    hover.message =
+        "the hover equilibrium itself is unstable (an eigenvalue of A0 has a "
+        "positive real part); forward-flight results start from an unstable state";
+  }
+}
+
+}  // namespace
+
+SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescriptor& m,
+                             std::optional<double> inflow)
+    : p_(p), model_(&m), M_(m.flap_modes), N_(m.lag_modes), n_(M_ + N_), H_(m.n_harmonics) {
+  check_inputs(p_, inflow);
+  modes_ = blade_modes(p_, m);
   geometry_.e1 = p_.root_offset;
   geometry_.lr = p_.length_ratio;
   geometry_.tip_loss_a = p_.tip_loss_a;
@@ -104,16 +176,10 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   coupling_ = (p_.modes == ModeKind::Exact && p_.elastic_coupling)
                   ? elastic_coupling(modes_, p_.theta)
                   : no_elastic_coupling(modes_);
-  auto flat = [](const Eigen::MatrixXd& a) {
-    std::vector<double> v(static_cast<size_t>(a.size()));
-    for (Eigen::Index i = 0; i < a.rows(); ++i)
-      for (Eigen::Index j = 0; j < a.cols(); ++j) v[i * a.cols() + j] = a(i, j);
-    return v;
-  };
-  es_flap_ = flat(coupling_.es_flap);
-  es_lag_ = flat(coupling_.es_lag);
-  ecs_flap_lag_ = flat(coupling_.ecs_flap_lag);
-  ecs_lag_flap_ = flat(coupling_.ecs_lag_flap);
+  es_flap_ = row_major(coupling_.es_flap);
+  es_lag_ = row_major(coupling_.es_lag);
+  ecs_flap_lag_ = row_major(coupling_.ecs_flap_lag);
+  ecs_lag_flap_ = row_major(coupling_.ecs_lag_flap);
 
   structural_ = structural_integrals(m, modes_, p_.root_offset / p_.length_ratio);
   aero_ = AeroIntegrals(m, modes_, geometry_);
@@ -123,33 +189,16 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   h0_.assign(N_, 0.0);
   std::vector<double> S(n_ * n_), c(n_);
   m.equilibrium(inputs(0.0, aero_.normal().data()), {S.data(), c.data()});
-  Eigen::MatrixXd Sm(n_, n_);
-  Eigen::VectorXd cv(n_);
-  for (int i = 0; i < n_; ++i) {
-    cv(i) = c[i];
-    for (int j = 0; j < n_; ++j) Sm(i, j) = S[i * n_ + j];
-  }
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(Sm);
   hover_.inflow = inflow_;
-  if (!lu.isInvertible()) {
-    hover_.status = Status::Failed;
-    hover_.message = "hover equilibrium matrix S (eq 2.32) is singular";
-    hover_.q0 = Eigen::VectorXd::Zero(n_);
-  } else {
-    hover_.q0 = lu.solve(cv);
-  }
+  solve_hover_equilibrium(S, c, n_, hover_);
   for (int k = 0; k < M_; ++k) g0_[k] = hover_.q0(k);
   for (int r = 0; r < N_; ++r) h0_[r] = hover_.q0(M_ + r);
 
   // The generalized mass depends on the structural integrals only (model_api.h): factor it once.
-  {
-    std::vector<double> mass(n_ * n_);
-    m.mass(inputs(0.0, aero_.normal().data()), mass.data());
-    Eigen::MatrixXd Mm(n_, n_);
-    for (int i = 0; i < n_; ++i)
-      for (int j = 0; j < n_; ++j) Mm(i, j) = mass[i * n_ + j];
-    mass_inverse_ = Mm.inverse();
-  }
+  std::vector<double> mass(n_ * n_);
+  m.mass(inputs(0.0, aero_.normal().data()), mass.data());
+  const Eigen::MatrixXd Mm = square_matrix(mass, n_);
+  mass_inverse_ = Mm.inverse();
 
   // Forcing at the hover equilibrium (balances to ~0 when S q0 = c) and the constant A0.
   HarmonicSet h0set;
@@ -157,30 +206,7 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   assemble(0.0, aero_.normal(), h0set);
   hover_forcing_ = h0set.f[0];
   hover_.A0 = h0set.A[0];
-  const RealEigenSystem es = real_eigen_system(hover_.A0, true, EigenStorage::Dynamic);
-  hover_.stable = true;
-  double largest = -std::numeric_limits<double>::infinity();
-  for (Eigen::Index k = 0; k < es.values.size(); ++k) {
-    const auto lam = es.values(k);
-    hover_.eigenvalues.push_back(lam);
-    if (lam.real() > 0.0) hover_.stable = false;
-    largest = std::max(largest, lam.real());
-  }
-  const double rounding = hover_zeta_rounding(hover_.A0);
-  hover_.neutral = std::abs(largest) <= rounding;
-  if (hover_.neutral && hover_.status == Status::Ok) {
-    hover_.status = Status::Warning;
-    hover_.message =
-        "the stability of hover is unknown: the largest real part of an eigenvalue "
-        "of A0, " +
-        short_text(largest) + ", is within the rounding level " + short_text(rounding) +
-        " of zero (a neutral blade)";
-  } else if (!hover_.stable && hover_.status == Status::Ok) {
-    hover_.status = Status::Warning;
-    hover_.message =
-        "the hover equilibrium itself is unstable (an eigenvalue of A0 has a "
-        "positive real part); forward-flight results start from an unstable state";
-  }
+  classify_hover(hover_);
 }
 
 model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) const {
