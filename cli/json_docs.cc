@@ -10,6 +10,7 @@
 
 #include "commands_internal.h"
 #include "flaplag/rotor/parameter_table.h"
+#include "flaplag/trim.h"
 #include "json_fields.h"
 #include "options.h"
 
@@ -39,6 +40,14 @@ const char* struct_name<InstabilityInterval>() {
 template <>
 const char* struct_name<CriticalResult>() {
   return "CriticalResult";
+}
+template <>
+const char* struct_name<TrimResult>() {
+  return "TrimResult";
+}
+template <>
+const char* struct_name<TrimEquilibrium>() {
+  return "TrimEquilibrium";
 }
 
 std::string anchor(const std::string& name) {
@@ -139,9 +148,13 @@ std::string documents_section() {
   return "## Documents\n\n"
          "- `flaplag point --json`: the header, the keys of " +
          section_link("PointResult") +
-         ", `hover` (the hover equilibrium and its exponents) and, with `--trim`, `trim`.\n"
+         ", `hover` (the hover equilibrium and its exponents) and, with `--trim`, `trim` (a " +
+         section_link("TrimResult") +
+         ").\n"
          "- `flaplag sweep --json`: the header, `mu` (start, stop, step), `labels` (the modes), "
-         "`rows`, `max_liouville_residual`, with `--trim` `trim` (one per row), `status` and "
+         "`rows`, `max_liouville_residual`, with `--trim` `trim` (a " +
+         section_link("TrimResult") +
+         " per row), `status` and "
          "`message` (of the sweep, as " +
          section_link("SweepResult") +
          ").  A row is the point's `mu`, then under each label the dominant exponent of that "
@@ -150,8 +163,12 @@ std::string documents_section() {
          section_link("PointResult") +
          ".\n"
          "- `flaplag critical --json`: the header, the keys of " +
-         section_link("CriticalResult") +
-         " and, with `--trim`, `trim` (the trim at mu_c, or null).\n"
+         section_link("CriticalResult") + " and, with `--trim`, `trim` (the " +
+         section_link("TrimResult") +
+         " at mu_c, or null).\n"
+         "- `flaplag trim --json`: the header (without `method`) and the keys of " +
+         section_link("TrimResult") +
+         ".\n"
          "- `flaplag` (the typical case) `--json`: the header, `hover`, `critical` (a " +
          section_link("CriticalResult") +
          ") and `table` (labels, rows as in a sweep, max_liouville_residual, status, message).\n\n"
@@ -182,9 +199,14 @@ std::string json_reference() {
       "`SweepResult`; the command line writes its points as `rows`, see above).");
   out += struct_section<CriticalResult>(
       "The critical advance ratio mu_c: the first mu in (0, mu_max] where an exponent has "
-      "zeta > 0.");
+      "zeta > zeta_threshold.");
   out += struct_section<InstabilityInterval>(
-      "One interval of instability in mu: max zeta > 0 for onset < mu < end.");
+      "One interval of instability in mu: max zeta > zeta_threshold for onset < mu < end.");
+  out += struct_section<TrimResult>(
+      "A trim at one mu: the controls at which the model's own C_T equals the target (and, "
+      "kind moment, the first flap harmonic vanishes).  The Python module's TrimResult also "
+      "has `parameters` (the rotor parameters with the trimmed pitch).");
+  out += struct_section<TrimEquilibrium>("The periodic equilibrium a trim about it rests on.");
   return out;
 }
 

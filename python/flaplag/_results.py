@@ -7,6 +7,7 @@ speed Omega), advance ratios mu and angles psi nondimensional / in radians.
 """
 
 import dataclasses
+import functools
 import math
 import typing
 from dataclasses import dataclass, field
@@ -72,18 +73,36 @@ def _convert(hint, value):
 class _Described:
     """A result built from the dict of a C++ struct with a field table (core/fields.h): the
     table's keys (``_flaplag.result_fields(name)``) are the attributes, under the names of the
-    command line's JSON; a key the class computes itself is a property of the same name."""
+    command line's JSON.  A key the class declares is converted to its annotated type; a key
+    the class computes itself is a property of the same name; any other key (a row added to
+    the C++ table) is an attribute as the module gives it, until the class declares it."""
 
     @classmethod
     def _from(cls, d, **given):
-        hints = typing.get_type_hints(cls)
+        fields = _init_fields(cls)
         values = {
-            f.name: _convert(hints[f.name], d[f.name])
-            for f in dataclasses.fields(cls)
-            if f.init and f.name in d and f.name not in given
+            name: _convert(hint, d[name]) for name, hint in fields if name in d and name not in given
         }
         values.update(given)
-        return cls(**values)
+        result = cls(**values)
+        declared = {name for name, _ in fields}
+        extra = {k: v for k, v in d.items() if k not in declared and not hasattr(cls, k)}
+        if extra:
+            object.__setattr__(result, "_extra", extra)
+        return result
+
+    def __getattr__(self, name):  # only when the attribute is not found otherwise
+        extra = self.__dict__.get("_extra", {})
+        if name in extra:
+            return extra[name]
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+
+@functools.lru_cache(maxsize=None)
+def _init_fields(cls):
+    """(name, type hint) of the attributes a result class is constructed with."""
+    hints = typing.get_type_hints(cls)
+    return tuple((f.name, hints[f.name]) for f in dataclasses.fields(cls) if f.init)
 
 
 @dataclass(frozen=True, repr=False)

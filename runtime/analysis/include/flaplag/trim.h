@@ -174,8 +174,8 @@ constexpr auto describe(Tag<TrimResult>) {
       std::make_tuple(
           Field{"mu", &TrimResult::mu, "-", "the advance ratio"},
           Field{"kind", &TrimResult::kind, "",
-                "thrust (collective and cyclic for C_T, no flap tilt control) or moment (C_T "
-                "and a vanishing first flap harmonic)"},
+                "thrust (theta0 for C_T; theta1c, theta1s as given) or moment (theta0, theta1c, "
+                "theta1s for C_T and no first flap harmonic)"},
           Field{"theta0", &TrimResult::theta0, "rad", "the trimmed collective pitch"},
           Field{"theta1c", &TrimResult::theta1c, "rad", "the trimmed cyclic pitch, cos psi part"},
           Field{"theta1s", &TrimResult::theta1s, "rad", "the trimmed cyclic pitch, sin psi part"},
