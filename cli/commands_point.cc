@@ -9,6 +9,7 @@
 #include "commands_internal.h"
 #include "flaplag/core/format.h"
 #include "flaplag/trim.h"
+#include "json_fields.h"
 #include "output.h"
 #include "plot.h"
 
@@ -78,29 +79,7 @@ const LabelledExponent* dominant(const PointResult& r, const std::string& label)
   }
   return best;
 }
-Json exponent_json(const LabelledExponent& e) {
-  return Json{{"label", e.label},
-              {"zeta", zeta_json(e.zeta)},
-              {"omega", jnum(e.omega)},
-              {"damping_ratio", ratio_json(e.zeta, e.omega)},
-              {"multiplier", complex_json(e.multiplier)}};
-}
-
-Json point_json(const Request& r, const PointResult& p) {
-  Json j;
-  j["mu"] = jnum(p.mu);
-  Json ex = Json::array(), mult = Json::array();
-  for (const LabelledExponent& e : p.exponents) {
-    ex.push_back(exponent_json(e));
-    mult.push_back(complex_json(e.multiplier));
-  }
-  j["exponents"] = ex;
-  j["multipliers"] = mult;
-  j["liouville_residual"] = optional_json(p.liouville_residual);
-  j["error_estimate"] = optional_json(p.error);
-  j["stable"] = stable_json(p.stable);
-  return status_json(j, p.status, vocab(r, p.message));
-}
+Json point_json(const Request& r, const PointResult& p) { return to_json(p, in_vocabulary(r)); }
 
 std::string point_text(const Request& r, const PointResult& p) {
   std::string out = "Characteristic exponents at mu = " + cell(p.mu) + " (per rev)\n";
@@ -123,16 +102,7 @@ std::string point_text(const Request& r, const PointResult& p) {
 }
 
 Json critical_json(const Request& r, const CriticalResult& c) {
-  Json j;
-  const bool found = c.mu_c.has_value();
-  j["hover_unstable"] = c.hover_unstable;
-  j["mu_c"] = optional_json(c.mu_c);
-  j["mu_c_error"] = optional_json(c.mu_c_error);
-  j["omega"] = found ? jnum(c.omega) : Json(nullptr);
-  j["mode"] = found ? Json(c.mode) : Json(nullptr);
-  j["kind"] = found ? Json(kind_name(c.kind)) : Json(nullptr);
-  j["mu_max"] = jnum(c.mu_max);
-  return status_json(j, c.status, vocab(r, c.message));
+  return to_json(c, in_vocabulary(r));
 }
 
 std::string critical_text(const Request& r, const CriticalResult& c) {
@@ -170,6 +140,8 @@ std::optional<double> max_liouville(const SweepResult& s) {
   return m;
 }
 
+// A row: the point's mu, the dominant exponent of each mode ({zeta, omega} or null), then the
+// rest of the point (its table).
 Json sweep_rows_json(const Request& r, const SweepResult& s,
                      const std::vector<std::string>& labels) {
   Json rows = Json::array();
@@ -180,14 +152,10 @@ Json sweep_rows_json(const Request& r, const SweepResult& s,
       const LabelledExponent* e = dominant(p, l);
       row[l] = e ? Json{{"zeta", zeta_json(e->zeta)}, {"omega", jnum(e->omega)}} : Json(nullptr);
     }
-    row["liouville_residual"] = optional_json(p.liouville_residual);
-    row["error_estimate"] = optional_json(p.error);
-    row["stable"] = stable_json(p.stable);
-    row["status"] = status_name(p.status);
-    row["message"] = vocab(r, p.message);
-    Json ex = Json::array();
-    for (const LabelledExponent& e : p.exponents) ex.push_back(exponent_json(e));
-    row["exponents"] = ex;
+    const Json point = point_json(r, p);
+    for (const auto& item : point.items()) {
+      if (item.key() != "mu") row[item.key()] = item.value();
+    }
     rows.push_back(row);
   }
   return rows;

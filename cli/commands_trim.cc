@@ -5,6 +5,7 @@
 #include "commands_internal.h"
 #include "flaplag/core/format.h"
 #include "flaplag/trim.h"
+#include "json_fields.h"
 #include "output.h"
 
 namespace flaplag::cli::cmd {
@@ -13,30 +14,10 @@ namespace flaplag::cli::cmd {
 
 bool trimmed(const Request& r) { return r.trim.kind != TrimKind::None; }
 
-Json trim_json(const Request& r, const TrimResult& t) {
-  // The keys of the Python module's TrimResult (python/src/module.cc trim_dict): one
-  // vocabulary for `flaplag trim`, the trim of point/sweep/critical --trim and of study rows.
-  // (The trimmed rotor's parameters are the header's for `flaplag trim`; alpha_R is the case's
-  // shaft_angle.)
-  Json j;
-  j["mu"] = jnum(t.mu);
-  j["kind"] = trim_kind_name(t.kind);
-  j["theta0"] = jnum(t.theta0);
-  j["theta1c"] = jnum(t.theta1c);
-  j["theta1s"] = jnum(t.theta1s);
-  j["inflow"] = jnum(t.inflow);
-  j["thrust_coefficient"] = jnum(t.thrust_coefficient);
-  j["target"] = jnum(t.target);
-  j["flap_1c"] = jnum(t.flap_1c);
-  j["flap_1s"] = jnum(t.flap_1s);
-  j["iterations"] = t.iterations;
-  j["converged"] = t.converged;
-  if (t.parameters.periodic_linearization) {
-    j["equilibrium"] = Json{{"harmonics", t.equilibrium.harmonics},
-                            {"truncation", jnum(t.equilibrium.truncation)}};
-  }
-  return status_json(j, t.status, vocab(r, t.message));
-}
+// One vocabulary for `flaplag trim`, the trim of point/sweep/critical --trim and of study rows,
+// and the Python module's TrimResult: TrimResult's table (trim.h).  (The trimmed rotor's
+// parameters are the header's for `flaplag trim`; alpha_R is the case's shaft_angle.)
+Json trim_json(const Request& r, const TrimResult& t) { return to_json(t, in_vocabulary(r)); }
 
 std::string trim_text(const Request& r, const TrimResult& t) {
   std::string out = std::string("Trim (") + trim_kind_name(t.kind) + ") at mu = " + cell(t.mu) +

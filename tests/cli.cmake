@@ -11,6 +11,11 @@ function(flaplag_cli_test name)
 endfunction()
 
 flaplag_cli_test(cli_test flaplag_cli nlohmann_json::nlohmann_json)
+
+# docs/json.md is fresh (refresh-docs), and the JSON writer of the field tables.
+flaplag_test(json_docs_test flaplag_cli nlohmann_json::nlohmann_json)
+target_compile_definitions(json_docs_test PRIVATE
+  FLAPLAG_JSON_DOCS="${PROJECT_SOURCE_DIR}/docs/json.md")
 target_compile_definitions(cli_test PRIVATE FLAPLAG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 # Generated command lines against the output contract (FLAPLAG_FUZZ_VECTORS, default 1000).

@@ -670,7 +670,8 @@ void check_json(const Json& j, const std::string& key, bool lenient,
                 std::vector<std::string>& problems) {
   // docs/cli.md: what a null means under each of these keys.
   // "trim": a trimmed critical search without a mu_c (e.g. unstable in hover) has no trim at
-  // mu_c (commands_point.cc); the same for a study row.
+  // mu_c (commands_point.cc); the same for a study row.  An interval's end and error estimates
+  // (docs/json.md, Interval) are null while unknown.
   static const std::set<std::string> kNullable = {"trim",
                                                   "stable",
                                                   "error_estimate",
@@ -683,7 +684,10 @@ void check_json(const Json& j, const std::string& key, bool lenient,
                                                   "max_liouville_residual",
                                                   "flap_growth_rate",
                                                   "lag_growth_rate",
-                                                  "intervals"};
+                                                  "intervals",
+                                                  "end",
+                                                  "onset_error",
+                                                  "end_error"};
   if (problems.size() > 5) return;
   if (j.is_object()) {
     const bool not_ok = j.contains("status") && j["status"] != "ok";

@@ -395,9 +395,10 @@ std::vector<std::string> fast(std::vector<std::string> args) {
 // allowed only under the documented nullable keys or inside an object whose status is not ok;
 // "-inf" is the documented zeta of a zero multiplier.
 void expect_clean_json(const Json& j, const std::string& key = "", bool lenient = false) {
+  // An interval's end and error estimates (docs/json.md, Interval) are null while unknown.
   static const std::set<std::string> kNullable = {
-      "stable", "error_estimate", "liouville_residual",    "mu_c", "mu_c_error", "omega",
-      "mode",   "kind",           "max_liouville_residual"};
+      "stable", "error_estimate", "liouville_residual",     "mu_c", "mu_c_error",  "omega",
+      "mode",   "kind",           "max_liouville_residual", "end",  "onset_error", "end_error"};
   if (j.is_object()) {
     const bool not_ok = j.contains("status") && j["status"] != "ok";
     for (auto it = j.begin(); it != j.end(); ++it) {

@@ -6,7 +6,10 @@ transition matrix) are results, never exceptions.  Units: zeta and omega per rev
 speed Omega), advance ratios mu and angles psi nondimensional / in radians.
 """
 
+import dataclasses
+import functools
 import math
+import typing
 from dataclasses import dataclass, field
 from typing import Dict, Optional, Tuple
 
@@ -50,8 +53,60 @@ def _status(status, message):
     return f"status={status!r}, message={message!r}"
 
 
+def _convert(hint, value):
+    """A value of the module's dict as the annotated type of a result's attribute."""
+    if value is None:
+        return None
+    origin = typing.get_origin(hint)
+    if origin is typing.Union:  # Optional[X]
+        args = [a for a in typing.get_args(hint) if a is not type(None)]
+        return _convert(args[0], value) if len(args) == 1 else value
+    if origin is tuple:
+        return tuple(_convert(typing.get_args(hint)[0], v) for v in value)
+    if isinstance(hint, type) and hasattr(hint, "_from"):
+        return hint._from(value)
+    if hint is complex:
+        return complex(value)
+    return value
+
+
+class _Described:
+    """A result built from the dict of a C++ struct with a field table (core/fields.h): the
+    table's keys (``_flaplag.result_fields(name)``) are the attributes, under the names of the
+    command line's JSON.  A key the class declares is converted to its annotated type; a key
+    the class computes itself is a property of the same name; any other key (a row added to
+    the C++ table) is an attribute as the module gives it, until the class declares it."""
+
+    @classmethod
+    def _from(cls, d, **given):
+        fields = _init_fields(cls)
+        values = {
+            name: _convert(hint, d[name]) for name, hint in fields if name in d and name not in given
+        }
+        values.update(given)
+        result = cls(**values)
+        declared = {name for name, _ in fields}
+        extra = {k: v for k, v in d.items() if k not in declared and not hasattr(cls, k)}
+        if extra:
+            object.__setattr__(result, "_extra", extra)
+        return result
+
+    def __getattr__(self, name):  # only when the attribute is not found otherwise
+        extra = self.__dict__.get("_extra", {})
+        if name in extra:
+            return extra[name]
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+
+@functools.lru_cache(maxsize=None)
+def _init_fields(cls):
+    """(name, type hint) of the attributes a result class is constructed with."""
+    hints = typing.get_type_hints(cls)
+    return tuple((f.name, hints[f.name]) for f in dataclasses.fields(cls) if f.init)
+
+
 @dataclass(frozen=True, repr=False)
-class Exponent:
+class Exponent(_Described):
     """One characteristic exponent lambda = zeta + i omega [per rev] with its mode label.
 
     ``multiplier`` is the characteristic multiplier exp(2 pi lambda) of Phi(2 pi) (None for the
@@ -72,10 +127,6 @@ class Exponent:
 
     def __repr__(self):
         return f"Exponent({self.label!r}, zeta={_g(self.zeta)}, omega={_g(self.omega)})"
-
-
-def _exponents(raw) -> Tuple[Exponent, ...]:
-    return tuple(Exponent(label, zeta, omega, complex(mult)) for label, zeta, omega, mult in raw)
 
 
 def _exponent_list(exponents):
@@ -129,24 +180,26 @@ class HoverResult:
 
 
 @dataclass(frozen=True, repr=False)
-class PointResult:
+class PointResult(_Described):
     """The labelled exponents at one advance ratio mu.
 
     exponents: sorted by label, then by omega (descending); liouville_residual: the relative
-    |det Phi - exp int tr A| (None when not representable); error: the estimated largest zeta
-    error [per rev] (None when not estimated); steps: the steps per period used; stable: all
-    zeta <= 0 (None when unknown: status 'failed', or status 'warning' when the largest zeta
-    is within its own error estimate of zero).
+    |det Phi - exp int tr A| (None when not representable); error_estimate: the estimated
+    largest zeta error [per rev] (None when not estimated); steps: the steps per period used;
+    stable: all zeta <= 0 (None when unknown: status 'failed', or status 'warning' when the
+    largest zeta is within its own error estimate of zero); notes: remarks that do not lower
+    the status.
     """
 
     mu: float
     exponents: Tuple[Exponent, ...]
     liouville_residual: Optional[float]
-    error: Optional[float]
+    error_estimate: Optional[float]
     steps: int
     stable: Optional[bool]
     status: str
     message: str
+    notes: Tuple[str, ...] = ()
 
     @property
     def zeta(self) -> np.ndarray:
@@ -192,22 +245,9 @@ class PointResult:
             f"exponents={_exponent_list(self.exponents)}, {_status(self.status, self.message)})"
         )
 
-    @classmethod
-    def _from(cls, d):
-        return cls(
-            d["mu"],
-            _exponents(d["exponents"]),
-            d["liouville_residual"],
-            d["error"],
-            d["steps"],
-            d["stable"],
-            d["status"],
-            d["message"],
-        )
-
 
 @dataclass(frozen=True, repr=False)
-class SweepResult:
+class SweepResult(_Described):
     """Exponents along advance ratios mu, continued from hover.
 
     mu: the advance ratios (1-D array); points: one PointResult each; labels: the mode labels
@@ -221,6 +261,7 @@ class SweepResult:
     labels: Tuple[str, ...]
     status: str
     message: str
+    notes: Tuple[str, ...] = ()
     zeta: Dict[str, np.ndarray] = field(init=False)
     omega: Dict[str, np.ndarray] = field(init=False)
 
@@ -258,13 +299,13 @@ class SweepResult:
     @classmethod
     def _from(cls, d, labels):
         points = tuple(PointResult._from(p) for p in d["points"])
-        return cls(
-            np.array([p.mu for p in points]), points, tuple(labels), d["status"], d["message"]
+        return super()._from(
+            d, points=points, mu=np.array([p.mu for p in points]), labels=tuple(labels)
         )
 
 
 @dataclass(frozen=True, repr=False)
-class Interval:
+class Interval(_Described):
     """One interval of instability in mu: max zeta > zeta_threshold for onset < mu < end
     (end None: still unstable at mu_max), with the mode that crosses at the onset, its omega
     [per rev] and kind ('flutter' or 'periodic'); *_error: estimated |error| of onset / end."""
@@ -283,15 +324,9 @@ class Interval:
             f"kind={self.kind!r}, omega={_g(self.omega)})"
         )
 
-    @classmethod
-    def _from(cls, d):
-        return cls(
-            d["onset"], d["end"], d["onset_error"], d["end_error"], d["mode"], d["omega"], d["kind"]
-        )
-
 
 @dataclass(frozen=True, repr=False)
-class CriticalResult:
+class CriticalResult(_Described):
     """The critical advance ratio mu_c: the first mu in (0, mu_max] where an exponent has
     zeta > zeta_threshold.
 
@@ -318,6 +353,7 @@ class CriticalResult:
     evaluations: int
     status: str
     message: str
+    notes: Tuple[str, ...] = ()
     trim: Optional["TrimResult"] = None
 
     def __repr__(self):
@@ -335,25 +371,6 @@ class CriticalResult:
         else:
             what = f"mu_c=None (stable up to mu = {_g(self.mu_max)})"
         return f"CriticalResult({what}, {_status(self.status, self.message)})"
-
-    @classmethod
-    def _from(cls, d):
-        found = d["mu_c"] is not None
-        return cls(
-            d["mu_c"],
-            d["mu_c_error"],
-            d["mode"] if found else None,
-            d["omega"] if found else None,
-            d["kind"] if found else None,
-            d["hover_unstable"],
-            d["mu_max"],
-            _exponents(d["exponents"]),
-            tuple(Interval._from(i) for i in d["intervals"]),
-            d["evaluations"],
-            d["status"],
-            d["message"],
-            TrimResult._from(d["trim"]) if d.get("trim") is not None else None,
-        )
 
 
 @dataclass(frozen=True, repr=False)
@@ -705,15 +722,16 @@ class PeriodicEquilibriumResult:
 
 
 @dataclass(frozen=True, repr=False)
-class TrimResult:
+class TrimResult(_Described):
     """A trim at one mu (C++ flaplag::trim, the command line's ``flaplag trim``): the controls
     theta0, theta1c, theta1s [rad] and the inflow lambda (eq 2.25) at which the model's own
     thrust coefficient C_T (not C_T / sigma) equals ``target``, and (kind 'moment') the first
     flap tip harmonic flap_1c, flap_1s vanishes.  parameters: the rotor parameters with the
     trimmed pitch (Analysis(**parameters) analyses the trimmed rotor at the eq 2.24 inflow; the
-    command line's trimmed studies use ``inflow``).  status 'warning' when not converged in
-    max_iterations or the trimmed rotor is unstable; 'failed' without a periodic response or
-    when the residual cannot be reduced.
+    command line's trimmed studies use ``inflow``).  equilibrium: with the periodic
+    linearization, the periodic equilibrium trimmed about ({'harmonics': K, 'truncation': ...});
+    None otherwise.  status 'warning' when not converged in max_iterations or the trimmed rotor
+    is unstable; 'failed' without a periodic response or when the residual cannot be reduced.
     """
 
     mu: float
@@ -731,6 +749,8 @@ class TrimResult:
     parameters: Dict[str, object]
     status: str
     message: str
+    equilibrium: Optional[Dict[str, object]] = None
+    notes: Tuple[str, ...] = ()
 
     def __repr__(self):
         return (
@@ -738,26 +758,6 @@ class TrimResult:
             f"theta1c={_g(self.theta1c)}, theta1s={_g(self.theta1s)}, "
             f"inflow={_g(self.inflow)}, C_T={_g(self.thrust_coefficient)}, "
             f"{_status(self.status, self.message)})"
-        )
-
-    @classmethod
-    def _from(cls, d):
-        return cls(
-            d["mu"],
-            d["kind"],
-            d["theta0"],
-            d["theta1c"],
-            d["theta1s"],
-            d["inflow"],
-            d["thrust_coefficient"],
-            d["target"],
-            d["flap_1c"],
-            d["flap_1s"],
-            d["iterations"],
-            d["converged"],
-            dict(d["parameters"]),
-            d["status"],
-            d["message"],
         )
 
 

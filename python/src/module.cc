@@ -29,12 +29,14 @@
 #include <string>
 #include <thread>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "flaplag/analysis.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/core/fields.h"
 #include "flaplag/core/format.h"
 #include "flaplag/limits.h"
 #include "flaplag/rotor/parameter_table.h"
@@ -122,10 +124,6 @@ py::array_t<std::complex<double>> to_numpy(const std::vector<std::complex<double
 
 py::object optional(const std::optional<double>& v) {
   return v ? py::object(py::float_(*v)) : py::object(py::none());
-}
-
-py::object optional(const std::optional<bool>& v) {
-  return v ? py::object(py::bool_(*v)) : py::object(py::none());
 }
 
 // A name the user gave, quoted for a message (bounded: it may be any text).
@@ -281,68 +279,64 @@ RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_
   return p;
 }
 
-py::tuple exponent_tuple(const LabelledExponent& e) {
-  return py::make_tuple(e.label, e.zeta, e.omega, e.multiplier);
+// ---- results: one converter for every described struct (core/fields.h) ----------------------
+//
+// A struct becomes a dict with one entry per row of its table, under the row's name (the key the
+// command line's JSON uses): numbers and flags as they are (a zeta of -inf included), optionals
+// None when empty, described enums by name, described structs as dicts, vectors as lists.
+
+template <class T>
+py::dict to_dict(const T& object);
+
+template <class T>
+struct is_optional : std::false_type {};
+template <class T>
+struct is_optional<std::optional<T>> : std::true_type {};
+template <class T>
+struct is_vector : std::false_type {};
+template <class T>
+struct is_vector<std::vector<T>> : std::true_type {};
+
+template <class V>
+py::object to_python(const V& v) {
+  if constexpr (std::is_same_v<V, double>) {
+    return py::float_(v);
+  } else if constexpr (std::is_same_v<V, bool>) {
+    return py::bool_(v);
+  } else if constexpr (std::is_same_v<V, int>) {
+    return py::int_(v);
+  } else if constexpr (std::is_same_v<V, std::string>) {
+    return py::str(v);
+  } else if constexpr (std::is_same_v<V, std::complex<double>>) {
+    return py::cast(v);
+  } else if constexpr (is_described_enum_v<V>) {
+    return py::str(enum_name(v));
+  } else if constexpr (is_optional<V>::value) {
+    return v ? to_python(*v) : py::object(py::none());
+  } else if constexpr (is_vector<V>::value) {
+    py::list l;
+    for (const auto& x : v) l.append(to_python(x));
+    return std::move(l);
+  } else {
+    static_assert(is_described_struct_v<V>, "a field of a type Python cannot hold");
+    return to_dict(v);
+  }
 }
 
-py::list exponents_list(const std::vector<LabelledExponent>& v) {
+template <class T>
+py::dict to_dict(const T& object) {
+  py::dict d;
+  for_each_field(object,
+                 [&](const auto& row, const auto& value) { d[row.name] = to_python(value); });
+  return d;
+}
+
+// The keys of T's table with their units and docs, for the Python classes and their tests.
+template <class T>
+py::list field_rows() {
   py::list l;
-  for (const LabelledExponent& e : v) l.append(exponent_tuple(e));
+  for_each_row<T>([&](const auto& row) { l.append(py::make_tuple(row.name, row.units, row.doc)); });
   return l;
-}
-
-py::dict point_dict(const PointResult& r) {
-  py::dict d;
-  d["mu"] = r.mu;
-  d["exponents"] = exponents_list(r.exponents);
-  d["liouville_residual"] = optional(r.liouville_residual);
-  d["error"] = optional(r.error);
-  d["steps"] = r.steps;
-  d["stable"] = optional(r.stable);
-  d["status"] = status_name(r.status);
-  d["message"] = r.message;
-  return d;
-}
-
-py::dict sweep_dict(const SweepResult& s) {
-  py::list points;
-  for (const PointResult& p : s.points) points.append(point_dict(p));
-  py::dict d;
-  d["points"] = points;
-  d["status"] = status_name(s.status);
-  d["message"] = s.message;
-  return d;
-}
-
-py::dict interval_dict(const InstabilityInterval& i) {
-  py::dict d;
-  d["onset"] = i.onset;
-  d["end"] = optional(i.end);
-  d["onset_error"] = optional(i.onset_error);
-  d["end_error"] = optional(i.end_error);
-  d["mode"] = i.mode;
-  d["omega"] = i.omega;
-  d["kind"] = kind_name(i.kind);
-  return d;
-}
-
-py::dict critical_dict(const CriticalResult& c) {
-  py::dict d;
-  d["hover_unstable"] = c.hover_unstable;
-  d["mu_c"] = optional(c.mu_c);
-  d["mu_c_error"] = optional(c.mu_c_error);
-  d["mode"] = c.mode;
-  d["omega"] = c.omega;
-  d["kind"] = kind_name(c.kind);
-  d["mu_max"] = c.mu_max;
-  d["exponents"] = exponents_list(c.exponents);
-  py::list intervals;
-  for (const InstabilityInterval& i : c.intervals) intervals.append(interval_dict(i));
-  d["intervals"] = intervals;
-  d["evaluations"] = c.evaluations;
-  d["status"] = status_name(c.status);
-  d["message"] = c.message;
-  return d;
 }
 
 CriticalOptions critical_options(const py::dict& d) {
@@ -666,7 +660,7 @@ py::dict study(const py::dict& params, const py::dict& transition, int flap_mode
       progress);
   py::list rows;
   for (std::size_t i = 0; i < r.rows.size(); ++i) {
-    py::dict row = critical_dict(r.rows[i].critical);
+    py::dict row = to_dict(r.rows[i].critical);
     row["trim"] =
         trimmed && r.rows[i].trim ? py::object(trim_dict(*r.rows[i].trim)) : py::object(py::none());
     rows.append(row);
@@ -895,23 +889,10 @@ py::dict trim_defaults() {
   return d;
 }
 
+// TrimResult's table, and the trimmed rotor's parameters (Analysis(**parameters)).
 py::dict trim_dict(const TrimResult& t) {
-  py::dict d;
-  d["mu"] = t.mu;
-  d["kind"] = trim_kind_name(t.kind);
-  d["theta0"] = t.theta0;
-  d["theta1c"] = t.theta1c;
-  d["theta1s"] = t.theta1s;
-  d["inflow"] = t.inflow;
-  d["thrust_coefficient"] = t.thrust_coefficient;
-  d["target"] = t.target;
-  d["flap_1c"] = t.flap_1c;
-  d["flap_1s"] = t.flap_1s;
-  d["iterations"] = t.iterations;
-  d["converged"] = t.converged;
+  py::dict d = to_dict(t);
   d["parameters"] = parameters_dict(t.parameters);
-  d["status"] = status_name(t.status);
-  d["message"] = t.message;
   return d;
 }
 
@@ -1071,6 +1052,16 @@ PYBIND11_MODULE(_flaplag, m) {
   m.def("response_defaults", &response_defaults);
   m.def("damping_ratio",
         [](double zeta, double omega) { return optional(damping_ratio(zeta, omega)); });
+  // The rows (key, units, doc) of a result's table, by the Python class's name.
+  m.def("result_fields", [](const std::string& name) {
+    if (name == "Exponent") return field_rows<LabelledExponent>();
+    if (name == "PointResult") return field_rows<PointResult>();
+    if (name == "SweepResult") return field_rows<SweepResult>();
+    if (name == "Interval") return field_rows<InstabilityInterval>();
+    if (name == "CriticalResult") return field_rows<CriticalResult>();
+    if (name == "TrimResult") return field_rows<TrimResult>();
+    throw InvalidInput("name", quoted(name), "not a described result");
+  });
   m.def("simulation_defaults", &simulation_defaults);
   m.def("equilibrium_defaults", &equilibrium_defaults);
   m.def("trim_defaults", &trim_defaults);
@@ -1117,7 +1108,7 @@ PYBIND11_MODULE(_flaplag, m) {
                py::gil_scoped_release release;
                r = a.point(mu, scan_step);
              }
-             return point_dict(r);
+             return to_dict(r);
            })
       // sweep and track: progress(evaluations done, in all) and Ctrl-C as study and map.
       .def("sweep",
@@ -1136,7 +1127,7 @@ PYBIND11_MODULE(_flaplag, m) {
                    }
                  },
                  progress);
-             return sweep_dict(r);
+             return to_dict(r);
            })
       .def("track",
            [](const Analysis& a, const std::vector<double>& mus, double scan_step, int threads,
@@ -1153,7 +1144,7 @@ PYBIND11_MODULE(_flaplag, m) {
                    }
                  },
                  progress);
-             return sweep_dict(r);
+             return to_dict(r);
            })
       .def("critical",
            [](const Analysis& a, const py::dict& options) {
@@ -1163,7 +1154,7 @@ PYBIND11_MODULE(_flaplag, m) {
                py::gil_scoped_release release;
                r = a.critical(o);
              }
-             return critical_dict(r);
+             return to_dict(r);
            })
       .def("snapshot",
            [](const Analysis& a, double mu, double psi) {
@@ -1291,7 +1282,7 @@ PYBIND11_MODULE(_flaplag, m) {
                py::gil_scoped_release release;
                r = trimmed_point(a.parameters(), a.options(), o, mu, scan_step);
              }
-             return point_dict(r);
+             return to_dict(r);
            })
       .def("trimmed_sweep",
            [](const Analysis& a, double mu0, double mu1, double step, const std::string& kind,
@@ -1313,7 +1304,7 @@ PYBIND11_MODULE(_flaplag, m) {
                    }
                  },
                  progress);
-             return sweep_dict(r);
+             return to_dict(r);
            })
       .def("trimmed_track",
            [](const Analysis& a, const std::vector<double>& mus, double scan_step,
@@ -1335,7 +1326,7 @@ PYBIND11_MODULE(_flaplag, m) {
                    }
                  },
                  progress);
-             return sweep_dict(r);
+             return to_dict(r);
            })
       .def("trimmed_critical",
            [](const Analysis& a, const py::dict& options, const std::string& kind,
@@ -1352,7 +1343,7 @@ PYBIND11_MODULE(_flaplag, m) {
                // The trim at mu_c (as `flaplag critical --trim` reports it).
                if (r.mu_c) at_mu_c = trim(a.parameters(), *r.mu_c, o);
              }
-             py::dict d = critical_dict(r);
+             py::dict d = to_dict(r);
              d["trim"] = at_mu_c ? py::object(trim_dict(*at_mu_c)) : py::object(py::none());
              return d;
            })

@@ -127,7 +127,7 @@ def test_sweep(params):
                 assert same(zeta_value(row[label]["zeta"]), e.zeta)
                 assert same(row[label]["omega"], e.omega)
         for key, value in (("liouville_residual", point.liouville_residual),
-                           ("error_estimate", point.error)):
+                           ("error_estimate", point.error_estimate)):
             if key in row:
                 assert same(row[key], value), key
         if "stable" in row:

@@ -4,19 +4,10 @@
 namespace flaplag {
 
 const char* status_name(Status s) {
-  switch (s) {
-    case Status::Ok:
-      return "ok";
-    case Status::Warning:
-      return "warning";
-    case Status::Failed:
-      return "failed";
-  }
-  return "unknown";
+  const char* name = enum_name(s);
+  return *name ? name : "unknown";
 }
 
-const char* kind_name(InstabilityKind k) {
-  return k == InstabilityKind::Periodic ? "periodic" : "flutter";
-}
+const char* kind_name(InstabilityKind k) { return enum_name(k); }
 
 }  // namespace flaplag

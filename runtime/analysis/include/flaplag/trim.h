@@ -1,7 +1,8 @@
 // flaplag — rotor thrust and trim: the collective and cyclic pitch and the
 // inflow that give a prescribed thrust coefficient, and (moment trim) no first-harmonic flap.
 //
-// Thrust.  Every model emits the thrust of one blade from the flap load of the derivation itself (ModelDescriptor::thrust):
+// Thrust.  Every model emits the thrust of one blade from the flap load of the derivation itself
+// (ModelDescriptor::thrust):
 //   T(psi) = (l/R) int_A^B L_z dx0,   L_z = theta(psi) u_T^2 - u_T u_P   (eq 2.20 by rho a c
 //   (Omega R)^2 / 2), with theta(psi) = theta + theta1c cos psi + theta1s sin psi,
 // u_T, u_P of eqs 2.22-2.23 with the blade at the hover equilibrium q0 plus the perturbation y:
@@ -38,17 +39,19 @@
 // about which stability is then analysed is the paper's (hover equilibrium at the trimmed theta0
 // and lambda; A(psi) carries the cyclic pitch).
 //
-// About the periodic equilibrium (RotorParameters::periodic_linearization): the thrust is the azimuth mean of the
-// nonlinear thrust (ModelDescriptor::nonlinear_thrust) along the periodic equilibrium q°(psi) of
-// the nonlinear equations (periodic_equilibrium.h, harmonic balance with the options of the
-// analysis, K = 16), and the first flap harmonic is q°'s; stability is then analysed about that
-// q° (TrimResult::equilibrium).  q° of each evaluation is continued from the previous one's, and
-// a trim at mu > 0.1 without a start is continued in mu from hover (steps of 0.1), so that it
-// stays on the trimmed branch through the hover equilibrium.
+// About the periodic equilibrium (RotorParameters::periodic_linearization): the thrust is the
+// azimuth mean of the nonlinear thrust (ModelDescriptor::nonlinear_thrust) along the periodic
+// equilibrium q°(psi) of the nonlinear equations (periodic_equilibrium.h, harmonic balance with the
+// options of the analysis, K = 16), and the first flap harmonic is q°'s; stability is then analysed
+// about that q° (TrimResult::equilibrium).  q° of each evaluation is continued from the previous
+// one's, and a trim at mu > 0.1 without a start is continued in mu from hover (steps of 0.1), so
+// that it stays on the trimmed branch through the hover equilibrium.
 #pragma once
 
 #include <Eigen/Dense>
+#include <array>
 #include <atomic>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -66,6 +69,10 @@ namespace flaplag {
 
 enum class TrimKind { None, Thrust, Moment };
 const char* trim_kind_name(TrimKind k);  // "none", "thrust", "moment"
+constexpr auto describe(Tag<TrimKind>) {
+  return std::array<EnumName<TrimKind>, 3>{
+      {{TrimKind::None, "none"}, {TrimKind::Thrust, "thrust"}, {TrimKind::Moment, "moment"}}};
+}
 // false when `name` is none of them.
 bool trim_kind_from_name(std::string_view name, TrimKind* kind);
 
@@ -146,6 +153,55 @@ struct TrimResult : Outcome {
   // response, a Jacobian that does not reduce the residual (singular or unreachable target), a
   // pitch outside (-pi/2, pi/2).
 };
+
+// The periodic equilibrium a trim rests on, in a TrimResult's table (`equilibrium`).
+struct TrimEquilibrium {
+  int harmonics = 0;        // K
+  double truncation = 0.0;  // PeriodicEquilibrium::truncation
+};
+
+constexpr auto describe(Tag<TrimEquilibrium>) {
+  return std::make_tuple(
+      Field{"harmonics", &TrimEquilibrium::harmonics, "", "K, the harmonics of q°"},
+      Field{"truncation", &TrimEquilibrium::truncation, "-",
+            "amplitude of harmonic K of q° relative to its largest coefficient"});
+}
+
+// The table of a trim: the controls and what they achieve (not the Jacobian, the parameters or
+// the equilibrium itself, which are for the library's callers).
+constexpr auto describe(Tag<TrimResult>) {
+  return std::tuple_cat(
+      std::make_tuple(
+          Field{"mu", &TrimResult::mu, "-", "the advance ratio"},
+          Field{"kind", &TrimResult::kind, "",
+                "thrust (theta0 for C_T; theta1c, theta1s as given) or moment (theta0, theta1c, "
+                "theta1s for C_T and no first flap harmonic)"},
+          Field{"theta0", &TrimResult::theta0, "rad", "the trimmed collective pitch"},
+          Field{"theta1c", &TrimResult::theta1c, "rad", "the trimmed cyclic pitch, cos psi part"},
+          Field{"theta1s", &TrimResult::theta1s, "rad", "the trimmed cyclic pitch, sin psi part"},
+          Field{"inflow", &TrimResult::inflow, "-", "the inflow ratio lambda (eq 2.25)"},
+          Field{"thrust_coefficient", &TrimResult::thrust_coefficient, "-",
+                "C_T achieved (the model's own lift, azimuth mean; not C_T/sigma)"},
+          Field{"target", &TrimResult::target, "-", "C_T asked for"},
+          Field{"flap_1c", &TrimResult::flap_1c, "-",
+                "first flap tip harmonic at the trim, cos psi part (w/l)"},
+          Field{"flap_1s", &TrimResult::flap_1s, "-",
+                "first flap tip harmonic at the trim, sin psi part (w/l)"},
+          Field{"iterations", &TrimResult::iterations, "", "Newton iterations"},
+          Field{"converged", &TrimResult::converged, "", "the residual met the tolerance"},
+          Computed{"equilibrium",
+                   +[](const TrimResult& t) {
+                     return t.parameters.periodic_linearization
+                                ? std::optional<TrimEquilibrium>(TrimEquilibrium{
+                                      t.equilibrium.harmonics, t.equilibrium.truncation})
+                                : std::nullopt;
+                   },
+                   "",
+                   "the periodic equilibrium trimmed about (periodic linearization only; JSON: "
+                   "absent otherwise)",
+                   kFieldOmitWhenEmpty}),
+      describe(Tag<Outcome>{}));
+}
 
 // What is wrong with a trim that a result at its mu rests on: "" for a converged trim inside
 // the validity envelope; else its message (not converged, failed) or what lies outside the

@@ -10,8 +10,10 @@
 #pragma once
 
 #include <string>
+#include <tuple>
 #include <vector>
 
+#include "flaplag/core/fields.h"
 #include "flaplag/core/status.h"
 
 namespace flaplag {
@@ -40,5 +42,18 @@ struct Outcome {
   // Appends a note (nothing when empty).
   void Note(const std::string& note);
 };
+
+// The rows every result's table ends with (core/fields.h).
+constexpr auto describe(Tag<Outcome>) {
+  return std::make_tuple(
+      Field{"status", &Outcome::status, "",
+            "how it went: warning: usable numbers with a caveat (message); failed: no usable "
+            "numbers"},
+      Field{"message", &Outcome::message, "",
+            "what went wrong or what was found; empty when there is nothing to say", kFieldMessage},
+      Field{"notes", &Outcome::notes, "",
+            "remarks that do not lower the status (JSON: absent when there are none)",
+            kFieldMessage | kFieldOmitWhenEmpty});
+}
 
 }  // namespace flaplag

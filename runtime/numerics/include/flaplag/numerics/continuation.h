@@ -45,6 +45,24 @@ struct LabelledExponent {
   std::complex<double> multiplier;
 };
 
+constexpr auto describe(Tag<LabelledExponent>) {
+  return std::make_tuple(
+      Field{"label", &LabelledExponent::label, "",
+            "the mode: flap, lag (flap2, lag2, ... when M or N > 1)"},
+      Field{"zeta", &LabelledExponent::zeta, "1/rev",
+            "real part of the exponent lambda = zeta + i omega (> 0: unstable; -inf: the "
+            "multiplier underflowed to 0)",
+            kFieldNegativeInfinity},
+      Field{"omega", &LabelledExponent::omega, "per rev",
+            "imaginary part of lambda, its integer part fixed by continuation from hover"},
+      Computed{
+          "damping_ratio",
+          +[](const LabelledExponent& e) { return damping_ratio(e.zeta, e.omega); }, "-",
+          "-zeta/|lambda|; for omega = 0 +1 when decaying, -1 when growing; null for lambda = 0"},
+      Field{"multiplier", &LabelledExponent::multiplier, "-",
+            "the characteristic multiplier exp(2 pi lambda), an eigenvalue of Phi(2 pi)"});
+}
+
 // Eigen-decomposition of the hover matrix A0 with a label per eigenvalue (the rotor layer
 // labels them: rotor/hover.h).
 struct HoverModes : Outcome {
@@ -165,10 +183,44 @@ struct PointResult : Outcome {
   std::optional<bool> stable;
 };
 
+constexpr auto describe(Tag<PointResult>) {
+  return std::tuple_cat(
+      std::make_tuple(
+          Field{"mu", &PointResult::mu, "-", "the advance ratio"},
+          Field{"exponents", &PointResult::exponents, "",
+                "the labelled exponents, sorted by label, then by omega (descending)"},
+          Computed{"multipliers",
+                   +[](const PointResult& p) {
+                     std::vector<std::complex<double>> m;
+                     for (const LabelledExponent& e : p.exponents) m.push_back(e.multiplier);
+                     return m;
+                   },
+                   "-", "the multipliers of `exponents`, in their order"},
+          Field{"liouville_residual", &PointResult::liouville_residual, "-",
+                "|det Phi - exp int tr A| / exp int tr A; null when not representable or not "
+                "checked"},
+          Field{"error_estimate", &PointResult::error, "1/rev",
+                "estimated largest zeta error (the method's own estimate, e.g. Richardson from K "
+                "and K/2); null when not estimated"},
+          Field{"steps", &PointResult::steps, "", "steps per period of the transition matrix used"},
+          Field{"stable", &PointResult::stable, "",
+                "all zeta <= 0; null when unknown (failed, or the largest zeta is within its error "
+                "of 0)"}),
+      describe(Tag<Outcome>{}));
+}
+
 struct SweepResult : Outcome {
   std::vector<PointResult> points;
   // Outcome: the worst point's status, and the first problem met (Outcome::Include)
 };
+
+constexpr auto describe(Tag<SweepResult>) {
+  return std::tuple_cat(
+      std::make_tuple(Field{
+          "points", &SweepResult::points, "",
+          "one result per advance ratio; a failed step ends the sweep (the failed point last)"}),
+      describe(Tag<Outcome>{}));
+}
 
 // Search for the critical advance ratio.  Validated as every options struct (core/validation.h).
 struct CriticalOptions {
@@ -204,6 +256,20 @@ struct InstabilityInterval {
   InstabilityKind kind = InstabilityKind::Flutter;
 };
 
+constexpr auto describe(Tag<InstabilityInterval>) {
+  return std::make_tuple(
+      Field{"onset", &InstabilityInterval::onset, "-",
+            "the advance ratio where the interval starts"},
+      Field{"end", &InstabilityInterval::end, "-",
+            "the advance ratio of re-stabilization; null: still unstable at mu_max"},
+      Field{"onset_error", &InstabilityInterval::onset_error, "-", "estimated |onset error|"},
+      Field{"end_error", &InstabilityInterval::end_error, "-", "estimated |end error|"},
+      Field{"mode", &InstabilityInterval::mode, "", "the mode that crosses at the onset"},
+      Field{"omega", &InstabilityInterval::omega, "per rev", "its omega at the onset, >= 0"},
+      Field{"kind", &InstabilityInterval::kind, "",
+            "flutter (omega not locked) or periodic (omega locked to 0, 1/2 or 1 per rev)"});
+}
+
 struct CriticalResult : Outcome {
   bool hover_unstable = false;       // true: unstable already at mu = 0 (no mu_c; see exponents)
   std::optional<double> mu_c;        // first mu in (0, mu_max] with zeta > zeta_threshold; nullopt:
@@ -219,6 +285,44 @@ struct CriticalResult : Outcome {
   std::vector<InstabilityInterval> intervals;
   int evaluations = 0;  // calls of the FloquetFunction
 };
+
+// mode, omega and kind are null without mu_c.
+constexpr auto describe(Tag<CriticalResult>) {
+  return std::tuple_cat(
+      std::make_tuple(
+          Field{"hover_unstable", &CriticalResult::hover_unstable, "",
+                "unstable already in hover (then no mu_c; see exponents)"},
+          Field{"mu_c", &CriticalResult::mu_c, "-",
+                "the first mu in (0, mu_max] with zeta > zeta_threshold (0 unless asked); null: "
+                "stable up to mu_max, unstable in hover, or the search failed"},
+          Field{"mu_c_error", &CriticalResult::mu_c_error, "-",
+                "estimated |mu_c error|: the bracket plus the exponent error over |d zeta/d mu|"},
+          Computed{"omega",
+                   +[](const CriticalResult& c) {
+                     return c.mu_c ? std::optional<double>(c.omega) : std::nullopt;
+                   },
+                   "per rev", "omega of the mode that crosses at mu_c, >= 0; null without mu_c"},
+          Computed{"mode",
+                   +[](const CriticalResult& c) {
+                     return c.mu_c ? std::optional<std::string>(c.mode) : std::nullopt;
+                   },
+                   "", "the mode that crosses at mu_c; null without mu_c"},
+          Computed{"kind",
+                   +[](const CriticalResult& c) {
+                     return c.mu_c ? std::optional<InstabilityKind>(c.kind) : std::nullopt;
+                   },
+                   "",
+                   "flutter (omega not locked) or periodic (omega locked to 0, 1/2 or 1 per "
+                   "rev); null without mu_c"},
+          Field{"mu_max", &CriticalResult::mu_max, "-", "the scan limit"},
+          Field{"exponents", &CriticalResult::exponents, "",
+                "the exponents at mu_c, at hover, or at the last mu scanned"},
+          Field{"intervals", &CriticalResult::intervals, "",
+                "the intervals of instability: the first starts at mu_c; every one up to mu_max "
+                "when all intervals were asked for"},
+          Field{"evaluations", &CriticalResult::evaluations, "", "Floquet analyses made"}),
+      describe(Tag<Outcome>{}));
+}
 
 // Every number of a result is finite (the zeta of a zero multiplier excepted: -inf), and an
 // optional diagnostic is absent rather than NaN.  The continuation and the search check it on

@@ -1,0 +1,213 @@
+// flaplag CLI — docs/json.md, the reference of the JSON documents, written from the field tables
+// (core/fields.h) that the JSON writer (json_fields.h) and the Python module walk.
+#include "json_docs.h"
+
+#include <complex>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "commands_internal.h"
+#include "flaplag/rotor/parameter_table.h"
+#include "flaplag/trim.h"
+#include "json_fields.h"
+#include "options.h"
+
+namespace flaplag::cli {
+
+namespace {
+
+// The described structs of the reference, by the name of their section.
+template <class T>
+const char* struct_name();
+template <>
+const char* struct_name<LabelledExponent>() {
+  return "Exponent";
+}
+template <>
+const char* struct_name<PointResult>() {
+  return "PointResult";
+}
+template <>
+const char* struct_name<SweepResult>() {
+  return "SweepResult";
+}
+template <>
+const char* struct_name<InstabilityInterval>() {
+  return "Interval";
+}
+template <>
+const char* struct_name<CriticalResult>() {
+  return "CriticalResult";
+}
+template <>
+const char* struct_name<TrimResult>() {
+  return "TrimResult";
+}
+template <>
+const char* struct_name<TrimEquilibrium>() {
+  return "TrimEquilibrium";
+}
+
+std::string anchor(const std::string& name) {
+  std::string a;
+  for (char c : name) a += static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+  return a;
+}
+
+std::string section_link(const char* name) {
+  return "[" + std::string(name) + "](#" + anchor(name) + ")";
+}
+
+template <class V>
+std::string type_text(unsigned flags) {
+  using cmd::json_detail::is_optional;
+  using cmd::json_detail::is_vector;
+  if constexpr (std::is_same_v<V, double>) {
+    return (flags & kFieldNegativeInfinity) ? "number or \"-inf\"" : "number";
+  } else if constexpr (std::is_same_v<V, int>) {
+    return "integer";
+  } else if constexpr (std::is_same_v<V, bool>) {
+    return "boolean";
+  } else if constexpr (std::is_same_v<V, std::string>) {
+    return "string";
+  } else if constexpr (std::is_same_v<V, std::complex<double>>) {
+    return "{re, im}";
+  } else if constexpr (is_described_enum_v<V>) {
+    std::string names;
+    const auto table = describe(Tag<V>{});
+    for (std::size_t i = 0; i < table.size(); ++i) {
+      names += (i == 0                  ? ""
+                : i + 1 == table.size() ? " or "
+                                        : ", ") +
+               ("\"" + std::string(table[i].name) + "\"");
+    }
+    return names;
+  } else if constexpr (is_optional<V>::value) {
+    return type_text<typename V::value_type>(flags) + " or null";
+  } else if constexpr (is_vector<V>::value) {
+    return "array of " + type_text<typename V::value_type>(flags);
+  } else {
+    return section_link(struct_name<V>());
+  }
+}
+
+// One row of a markdown table; '|' in the text would end a cell.
+std::string table_row(const std::string& key, const std::string& type, const std::string& units,
+                      const std::string& doc) {
+  auto cell = [](std::string s) {
+    std::string out;
+    for (char c : s) out += c == '|' ? std::string("\\|") : std::string(1, c);
+    return out;
+  };
+  return "| `" + key + "` | " + cell(type) + " | " + cell(units) + " | " + cell(doc) + " |\n";
+}
+
+const char* const kTableHead = "| key | type | units | description |\n|---|---|---|---|\n";
+
+template <class T>
+std::string struct_section(const std::string& intro) {
+  std::string out = "### " + std::string(struct_name<T>()) + "\n\n" + intro + "\n\n" + kTableHead;
+  for_each_row<T>([&](const auto& row) {
+    using V = typename std::decay_t<decltype(row)>::value_type;
+    out += table_row(row.name, type_text<V>(row.flags), row.units, row.doc);
+  });
+  return out + "\n";
+}
+
+std::string header_section() {
+  std::string out =
+      "## The header\n\n"
+      "Every document of an analysis command starts with these keys (`flaplag trim` without "
+      "`method`), and every document is completed with `version`, `commit` and `case` (the "
+      "command line or case file behind it).\n\n";
+  out += kTableHead;
+  out += table_row("command", "string", "", "the command that wrote the document");
+  out += table_row("model", "object", "",
+                   "the compiled model: name, spec_file, summary, flap_modes, lag_modes, "
+                   "harmonics");
+  out += table_row("mode_shapes", "string", "", "assumed or exact");
+  out += table_row("elastic_coupling", "boolean", "", "the elastic coupling is on");
+  out += table_row("method", "object", "",
+                   "the Floquet method: name, steps (or \"automatic\"), terms (hsu), "
+                   "zeta-tolerance");
+  out += table_row("parameters", "object", "", "the rotor parameters, by the keys below");
+  out += "\n### parameters\n\n" + std::string(kTableHead);
+  for (const ParameterSpec& s : parameter_table()) {
+    const char* type = s.type == ParameterType::Real      ? "number"
+                       : s.type == ParameterType::Integer ? "integer"
+                       : s.type == ParameterType::Flag    ? "boolean"
+                                                          : "string";
+    out += table_row(json_key(s), type, s.units, s.description);
+  }
+  return out + "\n";
+}
+
+std::string documents_section() {
+  return "## Documents\n\n"
+         "- `flaplag point --json`: the header, the keys of " +
+         section_link("PointResult") +
+         ", `hover` (the hover equilibrium and its exponents) and, with `--trim`, `trim` (a " +
+         section_link("TrimResult") +
+         ").\n"
+         "- `flaplag sweep --json`: the header, `mu` (start, stop, step), `labels` (the modes), "
+         "`rows`, `max_liouville_residual`, with `--trim` `trim` (a " +
+         section_link("TrimResult") +
+         " per row), `status` and "
+         "`message` (of the sweep, as " +
+         section_link("SweepResult") +
+         ").  A row is the point's `mu`, then under each label the dominant exponent of that "
+         "mode (`{zeta, omega}`, the largest zeta; null when the point has none), then the "
+         "other keys of " +
+         section_link("PointResult") +
+         ".\n"
+         "- `flaplag critical --json`: the header, the keys of " +
+         section_link("CriticalResult") + " and, with `--trim`, `trim` (the " +
+         section_link("TrimResult") +
+         " at mu_c, or null).\n"
+         "- `flaplag trim --json`: the header (without `method`) and the keys of " +
+         section_link("TrimResult") +
+         ".\n"
+         "- `flaplag` (the typical case) `--json`: the header, `hover`, `critical` (a " +
+         section_link("CriticalResult") +
+         ") and `table` (labels, rows as in a sweep, max_liouville_residual, status, message).\n\n"
+         "A number that is not finite is written as null (the library marks the result that "
+         "holds one with a non-ok status); the one exception is a zeta of -inf, written as the "
+         "string \"-inf\".\n\n";
+}
+
+}  // namespace
+
+std::string json_reference() {
+  std::string out =
+      "# JSON reference\n\n"
+      "<!-- Generated by `cmake --build build --target refresh-docs` from the field tables "
+      "(`describe(Tag<T>)` next to each result struct); do not edit. -->\n\n"
+      "The keys of the documents that `flaplag ... --json` writes.  The objects below are the "
+      "library's result structs, written from one table each; the Python module's results have "
+      "the same keys as attributes.  Units: zeta and omega per rev (1/rev), advance ratios and "
+      "angles nondimensional or in radians; \"-\" is dimensionless.\n\n";
+  out += documents_section();
+  out += header_section();
+  out += "## Results\n\n";
+  out += struct_section<PointResult>("The labelled exponents at one advance ratio mu.");
+  out += struct_section<LabelledExponent>(
+      "One characteristic exponent lambda = zeta + i omega with its mode label.");
+  out += struct_section<SweepResult>(
+      "Exponents along advance ratios, continued from hover (the Python module's "
+      "`SweepResult`; the command line writes its points as `rows`, see above).");
+  out += struct_section<CriticalResult>(
+      "The critical advance ratio mu_c: the first mu in (0, mu_max] where an exponent has "
+      "zeta > zeta_threshold.");
+  out += struct_section<InstabilityInterval>(
+      "One interval of instability in mu: max zeta > zeta_threshold for onset < mu < end.");
+  out += struct_section<TrimResult>(
+      "A trim at one mu: the controls at which the model's own C_T equals the target (and, "
+      "kind moment, the first flap harmonic vanishes).  The Python module's TrimResult also "
+      "has `parameters` (the rotor parameters with the trimmed pitch).");
+  out += struct_section<TrimEquilibrium>("The periodic equilibrium a trim about it rests on.");
+  return out;
+}
+
+}  // namespace flaplag::cli

@@ -1,0 +1,85 @@
+// flaplag CLI — a described struct (core/fields.h) as a JSON object: one writer for every result.
+//
+// Each row becomes the key of its name, in table order, its value written by type: numbers by
+// jnum (a non-finite number is null), except a row that allows -inf (zeta_json: "-inf");
+// optionals null when empty; complex numbers {"re", "im"}; described enums by name; described
+// structs as objects and vectors as arrays of these; message text (kFieldMessage) in the
+// command line's vocabulary.  A kFieldOmitWhenEmpty list or optional is left out when empty.
+#pragma once
+
+#include <complex>
+#include <functional>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "commands_internal.h"
+#include "flaplag/core/fields.h"
+
+namespace flaplag::cli::cmd {
+
+// How text with field names in backticks is shown (vocab() of the request).
+using MessageText = std::function<std::string(const std::string&)>;
+
+template <class T>
+Json to_json(const T& object, const MessageText& message);
+
+namespace json_detail {
+
+template <class T>
+struct is_optional : std::false_type {};
+template <class T>
+struct is_optional<std::optional<T>> : std::true_type {};
+template <class T>
+struct is_vector : std::false_type {};
+template <class T>
+struct is_vector<std::vector<T>> : std::true_type {};
+
+template <class V>
+Json value(const V& v, unsigned flags, const MessageText& message) {
+  if constexpr (std::is_same_v<V, double>) {
+    return (flags & kFieldNegativeInfinity) ? zeta_json(v) : jnum(v);
+  } else if constexpr (std::is_same_v<V, bool> || std::is_same_v<V, int>) {
+    return Json(v);
+  } else if constexpr (std::is_same_v<V, std::string>) {
+    return (flags & kFieldMessage) ? Json(message(v)) : Json(v);
+  } else if constexpr (std::is_same_v<V, std::complex<double>>) {
+    return complex_json(v);
+  } else if constexpr (is_described_enum_v<V>) {
+    return Json(enum_name(v));
+  } else if constexpr (is_optional<V>::value) {
+    return v ? value(*v, flags, message) : Json(nullptr);
+  } else if constexpr (is_vector<V>::value) {
+    Json a = Json::array();
+    for (const auto& x : v) a.push_back(value(x, flags, message));
+    return a;
+  } else {
+    static_assert(is_described_struct_v<V>, "a field of a type JSON cannot write");
+    return to_json(v, message);
+  }
+}
+
+}  // namespace json_detail
+
+template <class T>
+Json to_json(const T& object, const MessageText& message) {
+  Json j = Json::object();
+  for_each_field(object, [&](const auto& row, const auto& v) {
+    using V = std::decay_t<decltype(v)>;
+    if constexpr (json_detail::is_vector<V>::value) {
+      if ((row.flags & kFieldOmitWhenEmpty) && v.empty()) return;
+    } else if constexpr (json_detail::is_optional<V>::value) {
+      if ((row.flags & kFieldOmitWhenEmpty) && !v) return;
+    }
+    j[row.name] = json_detail::value(v, row.flags, message);
+  });
+  return j;
+}
+
+// Messages in the request's vocabulary (vocab()); r must outlive the function.
+inline MessageText in_vocabulary(const Request& r) {
+  return [&r](const std::string& m) { return vocab(r, m); };
+}
+
+}  // namespace flaplag::cli::cmd

@@ -1,0 +1,98 @@
+"""The results' attributes are the keys of their C++ field tables (core/fields.h), the same keys
+the command line's JSON uses: one name per field in every front end."""
+
+import dataclasses
+
+import pytest
+
+import flaplag
+from flaplag import _flaplag
+from conftest import run_cli
+
+# Attributes a class adds of its own (not fields of the C++ struct), by class.
+PYTHON_ONLY = {
+    "SweepResult": {"mu", "labels", "zeta", "omega"},
+    "CriticalResult": {"trim"},
+    "TrimResult": {"parameters"},
+}
+
+CLASSES = ["Exponent", "PointResult", "SweepResult", "Interval", "CriticalResult", "TrimResult"]
+
+
+def keys(name):
+    return [key for key, _, _ in _flaplag.result_fields(name)]
+
+
+def results():
+    """One result of each class, from the library."""
+    an = flaplag.Analysis()
+    point = an.point(0.3)
+    crit = an.critical(mu_max=1.0)
+    return {
+        "Exponent": point.exponents[0],
+        "PointResult": point,
+        "SweepResult": an.sweep(0.0, 0.2, 0.1),
+        "Interval": crit.intervals[0],
+        "CriticalResult": crit,
+        "TrimResult": an.trim(0.3, thrust_coefficient=0.005),
+    }
+
+
+def test_every_key_is_an_attribute():
+    for name, result in results().items():
+        assert type(result).__name__ == name
+        for key in keys(name):
+            assert hasattr(result, key), (name, key)
+
+
+def test_a_key_the_class_does_not_declare_is_an_attribute():
+    """A row added to a C++ table reaches Python before the class declares it."""
+    raw = {"onset": 0.5, "end": None, "onset_error": None, "end_error": None, "mode": "lag",
+           "omega": 0.3, "kind": "flutter", "new_key": 2.5}
+    interval = flaplag.Interval._from(raw)
+    assert interval.new_key == 2.5
+    with pytest.raises(AttributeError):
+        interval.no_such_key
+
+
+@pytest.mark.parametrize("name", CLASSES)
+def test_every_field_is_a_key(name):
+    cls = getattr(flaplag, name)
+    own = PYTHON_ONLY.get(name, set())
+    for f in dataclasses.fields(cls):
+        assert f.name in keys(name) or f.name in own, f.name
+
+
+def test_every_row_is_documented():
+    for name in CLASSES:
+        for key, units, doc in _flaplag.result_fields(name):
+            assert key and doc, (name, key, units)
+
+
+def test_point_json_has_the_keys_of_the_table():
+    doc = run_cli("point", "--mu", "0.3")
+    point = flaplag.Analysis().point(0.3)
+    for key in keys("PointResult"):
+        if key == "notes" and not point.notes:
+            assert key not in doc  # absent when empty
+        else:
+            assert key in doc, key
+    for key in keys("Exponent"):
+        assert key in doc["exponents"][0], key
+    assert doc["steps"] == point.steps
+    assert doc["error_estimate"] == point.error_estimate
+
+
+def test_critical_json_has_the_keys_of_the_table():
+    doc = run_cli("critical", "--mu-max", "0.5")
+    crit = flaplag.Analysis().critical(mu_max=0.5)
+    for key in keys("CriticalResult"):
+        if key != "notes":
+            assert key in doc, key
+    assert doc["evaluations"] == crit.evaluations
+    assert len(doc["intervals"]) == len(crit.intervals)
+
+
+def test_unknown_struct_is_refused():
+    with pytest.raises(ValueError):
+        _flaplag.result_fields("NoSuchResult")
