@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "commands_internal.h"
+#include "flaplag/core/field_traits.h"
 #include "flaplag/core/fields.h"
 
 namespace flaplag::cli::cmd {
@@ -28,13 +29,9 @@ Json to_json(const T& object, const MessageText& message);
 namespace json_detail {
 
 template <class T>
-struct is_optional : std::false_type {};
+using is_optional = is_optional_field<T>;
 template <class T>
-struct is_optional<std::optional<T>> : std::true_type {};
-template <class T>
-struct is_vector : std::false_type {};
-template <class T>
-struct is_vector<std::vector<T>> : std::true_type {};
+using is_vector = is_vector_field<T>;
 
 template <class V>
 Json value(const V& v, unsigned flags, const MessageText& message) {

@@ -36,6 +36,7 @@
 #include "flaplag/analysis.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/core/field_traits.h"
 #include "flaplag/core/fields.h"
 #include "flaplag/core/format.h"
 #include "flaplag/limits.h"
@@ -289,13 +290,9 @@ template <class T>
 py::dict to_dict(const T& object);
 
 template <class T>
-struct is_optional : std::false_type {};
+using is_optional = is_optional_field<T>;
 template <class T>
-struct is_optional<std::optional<T>> : std::true_type {};
-template <class T>
-struct is_vector : std::false_type {};
-template <class T>
-struct is_vector<std::vector<T>> : std::true_type {};
+using is_vector = is_vector_field<T>;
 
 template <class V>
 py::object to_python(const V& v) {
