@@ -209,6 +209,12 @@ std::string status_text(Status status, const std::string& message) {
          "\n";
 }
 
+std::string notes_text(const Request& r, const std::vector<std::string>& notes) {
+  std::string out;
+  for (const std::string& n : notes) out += "  note: " + vocab(r, n) + "\n";
+  return out;
+}
+
 std::string warnings_text(const Analysis& an) {
   std::string out;
   if (an.hover().neutral)

@@ -66,6 +66,8 @@ Json header_json(const char* command, const Analysis& an, bool with_method = tru
 std::string header_text(const Analysis& an, bool with_method = true);
 Json status_json(Json j, Status status, const std::string& message);
 std::string status_text(Status status, const std::string& message);
+// One "  note: ..." line per note of a result (Outcome::notes), in the request's vocabulary.
+std::string notes_text(const Request& r, const std::vector<std::string>& notes);
 std::string warnings_text(const Analysis& an);
 // A plot, if asked for: "" or a warning line for stderr (the data is written in any case).
 std::string plot_if_asked(const Request& r, const std::string& script);

@@ -126,7 +126,7 @@ std::string critical_text(const Request& r, const CriticalResult& c) {
     kv.add("mu_c", "none: stable up to mu = " + cell(c.mu_max));
   }
   out += kv.render();
-  return out + status_text(c.status, vocab(r, c.message));
+  return out + status_text(c.status, vocab(r, c.message)) + notes_text(r, c.notes);
 }
 
 // Largest Liouville residual over the points that have one; nullopt when none has.

@@ -576,7 +576,8 @@ class CriticalSearch {
                              double zeta_tolerance, Crossings& found);
   Next refine_by_brent(const std::vector<Bracket>& brackets, double zeta_tolerance);
   void record_onset(const Trial& unstable, double mu, std::optional<double> error);
-  void conclude(const Trial& last);
+  void conclude(const Trial& last, const Trial& before_last);
+  void note_rising_at_mu_max(const Trial& last, const Trial& before_last);
 
   Trial evaluate(const ExponentTracker& from, double mu, double zeta_tolerance);
   Trial sign_only(const ExponentTracker& from, double mu, double margin, bool& loose);
@@ -617,10 +618,13 @@ CriticalResult CriticalSearch::run() {
   hover_trial_ =
       Trial{0.0, tracker.max_zeta() - opt_.zeta_threshold, tracker, {}, std::nullopt, 0.0};
   GridPoint prev{*hover_trial_, false, tracker};
+  Trial before_last = *hover_trial_;  // the grid point before the scan's last one
   for (long i = 1; i <= steps_; ++i) {
+    Trial before = prev.at;
     const Next next = scan_interval(prev, i);
     if (next == Next::Failed) return std::move(out_);
     if (next == Next::Stop) break;
+    before_last = std::move(before);
     if (next == Next::SkipInterval) ++i;  // the next grid interval is searched already
   }
   if (prev.loose && out_.intervals.empty()) {  // its exponents are reported: scan resolution
@@ -628,7 +632,7 @@ CriticalResult CriticalSearch::run() {
     if (failed(prev.at)) return std::move(out_);
     note(prev.at.mu, prev.at.report.status, prev.at.report.message);
   }
-  conclude(prev.at);
+  conclude(prev.at, before_last);
   return std::move(out_);
 }
 
@@ -839,11 +843,12 @@ void CriticalSearch::record_onset(const Trial& unstable, double mu, std::optiona
 }
 
 // The result of a scan that ran to its end (`last` its last grid point) or stopped at mu_c.
-void CriticalSearch::conclude(const Trial& last) {
+void CriticalSearch::conclude(const Trial& last, const Trial& before_last) {
   if (out_.intervals.empty()) {
     out_.exponents = last.tracker.exponents();
     out_.status = warnings_.empty() ? Status::Ok : Status::Warning;
     out_.message = "stable up to mu_max = " + fmt(opt_.mu_max);
+    note_rising_at_mu_max(last, before_last);
   } else {
     set_mu_c();
     out_.status = warnings_.empty() && unresolved_.empty() ? Status::Ok : Status::Warning;
@@ -854,6 +859,27 @@ void CriticalSearch::conclude(const Trial& last) {
   }
   out_.Worsen(out_.status, unresolved_);
   out_.Worsen(out_.status, warnings_);
+}
+
+// "Stable up to mu_max" says nothing about what lies beyond: when the least stable zeta still
+// rises over the scan's last grid interval (by more than the two error estimates), the result
+// says so, so that a convergence study ending at mu_max is not read as "stable".
+void CriticalSearch::note_rising_at_mu_max(const Trial& last, const Trial& before_last) {
+  if (before_last.mu >= last.mu) return;
+  // A grid point evaluated for its sign only has too loose an error for a slope: it is
+  // evaluated again at the scan's tolerance, as the last point is (one evaluation).
+  Trial before = before_last;
+  if (before.mu > 0.0 && before.error.value_or(0.0) > opt_.scan_zeta_tolerance) {
+    before = evaluate(before_last.tracker, before_last.mu, opt_.scan_zeta_tolerance);
+    if (before.report.status == Status::Failed) return;
+  }
+  const double margin = last.error.value_or(0.0) + before.error.value_or(0.0);
+  if (!(last.f - before.f > margin)) return;
+  const double rate = (last.f - before.f) / (last.mu - before.mu);
+  out_.Note("the least stable zeta is still rising at mu_max: " +
+            fmt(before.f + opt_.zeta_threshold) + " at mu = " + fmt(before.mu) + ", " +
+            fmt(last.f + opt_.zeta_threshold) + " at mu = " + fmt(last.mu) + " (" + fmt(rate) +
+            " per unit mu); an instability beyond mu_max is not excluded (raise `mu_max`)");
 }
 
 // f at mu, the exponents continued from `from`.
