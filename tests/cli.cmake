@@ -3,9 +3,12 @@
 # validation that the command line relies on.
 flaplag_test(parameters_test flaplag_rotor)
 
-# A test that runs the built flaplag binary (FLAPLAG_EXE), built before it.
+# A test that runs the built flaplag binary (FLAPLAG_EXE), built before it.  Its tests carry the
+# label runs_flaplag, and the target cli_tests builds them all: the sanitizer pass of .ci/run
+# builds and runs these.
 function(flaplag_cli_test name)
-  flaplag_test(${name} ${ARGN})
+  flaplag_test(${name} LABEL runs_flaplag ${ARGN})
+  set_property(GLOBAL APPEND PROPERTY FLAPLAG_CLI_TESTS ${name})
   target_compile_definitions(${name} PRIVATE FLAPLAG_EXE="$<TARGET_FILE:flaplag>")
   add_dependencies(${name} flaplag)
 endfunction()
@@ -49,3 +52,7 @@ if(TARGET flaplag_derive)
   target_compile_definitions(cli_spec_test PRIVATE
     FLAPLAG_SPEC_DIR="${PROJECT_SOURCE_DIR}/generator/orderings")
 endif()
+
+# `cmake --build . --target cli_tests`: the flaplag binary and every test that runs it.
+get_property(flaplag_cli_tests GLOBAL PROPERTY FLAPLAG_CLI_TESTS)
+add_custom_target(cli_tests DEPENDS ${flaplag_cli_tests})
