@@ -253,7 +253,8 @@ std::vector<std::string> examples(Command c) {
       return {"flaplag point --mu 0.5", "flaplag point --mu 0.8 --method hsu --steps 50 --json"};
     case Command::Sweep:
       return {"flaplag sweep --mu 0:1:0.05",
-              "flaplag sweep --mu 0:1.5:0.01 --format csv -o sweep.csv"};
+              "flaplag sweep --mu 0:1.5:0.01 --format csv -o sweep.csv",
+              "flaplag sweep --mu 0:1.5:0.01 --damping-criterion 0.01 --plot damping.svg"};
     case Command::Critical:
       return {"flaplag critical", "flaplag critical --mu-max 1.5 --modes exact --flap-modes 2",
               "flaplag critical --modes exact --flap-modes 4 --lag-modes 2",
@@ -893,6 +894,20 @@ Request CommandLine::interpret() const {
     if (!is_plot_path(g->text))
       throw InvalidInput(g->spelling, shown(g->text), "must end in .svg or .png");
     r.plot = g->text;
+  }
+  if (const Given* g = given("--damping-criterion")) {
+    const double v = parse_real(g->spelling, g->text);
+    if (!kDampingCriterionRange.interval.Contains(v))
+      throw InvalidInput(g->spelling, shown(g->text),
+                         std::string("must be ") + kDampingCriterionRange.words);
+    r.damping_criterion = v;
+  }
+  if (const Given* g = given("--plot-quantity")) {
+    if (g->text != "damping-ratio" && g->text != "zeta")
+      throw InvalidInput(g->spelling, shown(g->text), "must be damping-ratio or zeta");
+    if (r.max_zeta)
+      throw InvalidInput(g->spelling, shown(g->text), "does not go with --max-zeta (zeta)");
+    r.plot_zeta = g->text == "zeta";
   }
   if (const Given* g = given("--memory-limit"))
     r.memory_limit = parse_memory_size(g->spelling, g->text);

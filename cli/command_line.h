@@ -58,6 +58,12 @@ struct Request {
   std::vector<double> x_values, y_values;
   int threads = 0;
   std::string plot;  // --plot FILE (.svg or .png)
+  // sweep, study: --damping-criterion C (a fraction of critical, kDampingCriterionRange): the
+  // first mu where each mode's damping ratio falls below C; nullopt: not asked
+  std::optional<double> damping_criterion;
+  // sweep, plot: --plot-quantity, the y quantity of a sweep picture: the damping ratio in % of
+  // critical (default) or zeta
+  bool plot_zeta = false;
   // study, map: --shard I/N (1 <= I <= N; N = 0: the whole job) and --quiet (no progress bar)
   int shard_index = 0, shard_count = 0;
   bool quiet = false;

@@ -85,7 +85,8 @@ std::optional<Output> run_standalone(const Request& r, std::string& w, RunContro
       return Output(merge_parts(r));
     case Command::Plot:
       return Output(
-          plot_data_files(r.inputs, r.labels, r.max_zeta, r.mode, r.plot, r.memory_limit));
+          plot_data_files(r.inputs, r.labels, r.max_zeta, r.mode, r.plot, r.memory_limit,
+                          r.plot_zeta ? SweepQuantity::Zeta : SweepQuantity::DampingRatio));
     case Command::Trim:
       return cmd::trim_command(r);
     default:

@@ -104,7 +104,7 @@ std::string locked_text(double omega) {
 
 std::string ratio_cell(double zeta, double omega) {
   const std::optional<double> r = damping_ratio(zeta, omega);
-  return r ? num(*r) : "-";
+  return r ? num(100.0 * *r) : "-";
 }
 Json ratio_json(double zeta, double omega) { return optional_json(damping_ratio(zeta, omega)); }
 

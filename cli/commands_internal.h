@@ -49,6 +49,7 @@ std::string complex_text(std::complex<double> z);
 Json optional_json(const std::optional<double>& v);
 std::string optional_text(const std::optional<double>& v);
 std::string locked_text(double omega);  // "0", "1/2", "1", ... or "" when not locked
+// The damping ratio -zeta/|lambda| as text: in percent of critical (JSON and CSV: a fraction).
 std::string ratio_cell(double zeta, double omega);
 Json ratio_json(double zeta, double omega);
 Json stable_json(const std::optional<bool>& v);

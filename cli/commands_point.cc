@@ -29,13 +29,14 @@ constexpr int kTableEvery = 10;
 const char* const kExponentLegend =
     "  zeta: real part of the characteristic exponent lambda = zeta + i omega, 1/rev (> 0: "
     "unstable)\n"
-    "  damping ratio: -zeta/|lambda|; for omega = 0 (a real exponent) +1 if decaying, -1 if "
-    "growing\n"
+    "  damping ratio: -zeta/|lambda| in % of critical (omega continued from hover, not modulo "
+    "1/rev); for omega = 0 (a real exponent) +100 if decaying, -100 if growing\n"
     "  locked: omega locked to 0, 1/2 or 1 per rev (mod 1; a real multiplier: the periodic kind)\n";
 // The same, short, above the zeta(mu) tables.
 const char* const kSweepLegend =
     "  zeta in 1/rev (real part of the exponent lambda = zeta + i omega); ratio: damping ratio\n"
-    "  -zeta/|lambda|; p after omega: locked to 0, 1/2 or 1 per rev (mod 1: the periodic kind)\n";
+    "  -zeta/|lambda| in % of critical; p after omega: locked to 0, 1/2 or 1 per rev (mod 1: the\n"
+    "  periodic kind)\n";
 
 // The hover result with its stability as shown: unknown when the hover analysis failed or is
 // neutral.
@@ -67,24 +68,17 @@ std::vector<std::string> mode_labels(const Analysis& an) {
 }
 
 // The exponent that decides a mode's stability: largest zeta; of a conjugate pair the one with
-// omega >= 0.
+// omega >= 0 (numerics/continuation.h).
 const LabelledExponent* dominant(const PointResult& r, const std::string& label) {
-  const LabelledExponent* best = nullptr;
-  for (const LabelledExponent& e : r.exponents) {
-    if (e.label != label) continue;
-    if (best == nullptr || e.zeta > best->zeta ||
-        (e.zeta == best->zeta && e.omega >= 0.0 && best->omega < 0.0)) {
-      best = &e;
-    }
-  }
-  return best;
+  return dominant_exponent(r, label);
 }
 Json point_json(const Request& r, const PointResult& p) { return to_json(p, in_vocabulary(r)); }
 
 std::string point_text(const Request& r, const PointResult& p) {
   std::string out = "Characteristic exponents at mu = " + cell(p.mu) + " (per rev)\n";
   out += kExponentLegend;
-  TextTable t({"mode", "zeta [1/rev]", "omega [per rev]", "damping ratio", "locked", "multiplier"});
+  TextTable t(
+      {"mode", "zeta [1/rev]", "omega [per rev]", "damping ratio [%]", "locked", "multiplier"});
   for (const LabelledExponent& e : p.exponents) {
     const std::string locked = locked_text(e.omega);
     t.add_row({e.label, zeta_cell(e.zeta), cell(e.omega), ratio_cell(e.zeta, e.omega),
@@ -140,8 +134,8 @@ std::optional<double> max_liouville(const SweepResult& s) {
   return m;
 }
 
-// A row: the point's mu, the dominant exponent of each mode ({zeta, omega} or null), then the
-// rest of the point (its table).
+// A row: the point's mu, the dominant exponent of each mode ({zeta, omega, damping_ratio} or
+// null), then the rest of the point (its table).
 Json sweep_rows_json(const Request& r, const SweepResult& s,
                      const std::vector<std::string>& labels) {
   Json rows = Json::array();
@@ -150,7 +144,10 @@ Json sweep_rows_json(const Request& r, const SweepResult& s,
     row["mu"] = jnum(p.mu);
     for (const std::string& l : labels) {
       const LabelledExponent* e = dominant(p, l);
-      row[l] = e ? Json{{"zeta", zeta_json(e->zeta)}, {"omega", jnum(e->omega)}} : Json(nullptr);
+      row[l] = e ? Json{{"zeta", zeta_json(e->zeta)},
+                        {"omega", jnum(e->omega)},
+                        {"damping_ratio", ratio_json(e->zeta, e->omega)}}
+                 : Json(nullptr);
     }
     const Json point = point_json(r, p);
     for (const auto& item : point.items()) {
@@ -167,7 +164,7 @@ std::string sweep_table_text(const Request& r, const SweepResult& s,
   for (const std::string& l : labels) {
     header.push_back(l + " zeta");
     header.push_back(l + " omega");
-    header.push_back(l + " ratio");
+    header.push_back(l + " ratio [%]");
   }
   header.push_back("stable");
   header.push_back("Liouville");
@@ -206,7 +203,10 @@ std::string sweep_csv(const Request& r, const SweepResult& s,
   auto field = [](double v) { return finite(v) ? exact_num(v) : std::string(); };
   std::string out = "mu";
   for (const std::string& l : labels) out += "," + l + "_zeta," + l + "_omega";
-  out += ",liouville_residual,error_estimate,stable,status,message\n";
+  out += ",liouville_residual,error_estimate,stable,status,message";
+  // The damping ratios (fractions of critical) last: the columns before keep their places.
+  for (const std::string& l : labels) out += "," + l + "_damping_ratio";
+  out += "\n";
   for (const PointResult& p : s.points) {
     out += field(p.mu);
     for (const std::string& l : labels) {
@@ -217,9 +217,37 @@ std::string sweep_csv(const Request& r, const SweepResult& s,
     out += "," + (p.liouville_residual ? field(*p.liouville_residual) : std::string());
     out += "," + (p.error ? field(*p.error) : std::string());
     out += "," + std::string(!p.stable ? "" : *p.stable ? "true" : "false");
-    out += "," + csv_field(status_name(p.status)) + "," + csv_field(vocab(r, p.message)) + "\n";
+    out += "," + csv_field(status_name(p.status)) + "," + csv_field(vocab(r, p.message));
+    for (const std::string& l : labels) {
+      const LabelledExponent* e = dominant(p, l);
+      const std::optional<double> ratio = e ? damping_ratio(e->zeta, e->omega) : std::nullopt;
+      out += "," + (ratio ? field(*ratio) : std::string());
+    }
+    out += "\n";
   }
   return out;
+}
+
+// The crossings of --damping-criterion: one line per mode.
+std::string crossings_text(const SweepResult& s) {
+  if (!s.damping_criterion) return "";
+  std::string out = "\nDamping criterion " + num(100.0 * *s.damping_criterion) +
+                    " % of critical: the first mu where each mode's damping ratio falls below "
+                    "it\n  (interpolated linearly between the sweep points around it)\n";
+  TextTable t({"mode", "mu", "status", "between mu"});
+  for (const DampingCrossing& c : s.damping_crossings) {
+    std::string between = "-";
+    if (c.mu_above && c.mu_below) between = cell(*c.mu_above) + " and " + cell(*c.mu_below);
+    t.add_row({c.mode, c.mu ? cell(*c.mu) : "-", enum_name(c.status), between});
+  }
+  return out + t.render();
+}
+
+// The crossings as JSON, from their table (numerics/continuation.h).
+Json crossings_json(const Request& r, const SweepResult& s) {
+  Json a = Json::array();
+  for (const DampingCrossing& c : s.damping_crossings) a.push_back(to_json(c, in_vocabulary(r)));
+  return a;
 }
 
 }  // namespace
@@ -263,7 +291,7 @@ std::string hover_text(const Request& r, const Analysis& an) {
   out += kv.render();
   out += "\nHover exponents (eigenvalues of A at mu = 0, per rev)\n";
   out += kExponentLegend;
-  TextTable t({"mode", "zeta [1/rev]", "omega [per rev]", "damping ratio", "locked"});
+  TextTable t({"mode", "zeta [1/rev]", "omega [per rev]", "damping ratio [%]", "locked"});
   for (std::size_t i = 0; i < h.eigenvalues.size(); ++i) {
     const double zeta = h.eigenvalues[i].real(), omega = h.eigenvalues[i].imag();
     const std::string locked = locked_text(omega);
@@ -346,6 +374,7 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
                                              r.sweep_stop, r.sweep_step, &trims)
                              : an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step, r.threads);
   const std::vector<std::string> labels = mode_labels(an);
+  if (r.damping_criterion) apply_damping_criterion(s, labels, *r.damping_criterion);
   if (!r.plot.empty()) {
     std::vector<double> mu;
     for (const PointResult& p : s.points) mu.push_back(p.mu);
@@ -359,7 +388,10 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
       }
       modes.push_back(m);
     }
-    warning = plot_if_asked(r, sweep_plot_script(an.model().name, mu, modes));
+    SweepPicture picture;
+    picture.quantity = r.plot_zeta ? SweepQuantity::Zeta : SweepQuantity::DampingRatio;
+    picture.add_criterion(s.damping_criterion);
+    warning = plot_if_asked(r, sweep_plot_script(an.model().name, mu, modes, picture));
   }
   if (r.csv) return sweep_csv(r, s, labels);
   if (r.json) {
@@ -368,6 +400,10 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
     j["labels"] = labels;
     j["rows"] = sweep_rows_json(r, s, labels);
     j["max_liouville_residual"] = optional_json(max_liouville(s));
+    if (s.damping_criterion) {
+      j["damping_criterion"] = jnum(*s.damping_criterion);
+      j["damping_crossings"] = crossings_json(r, s);
+    }
     if (trimmed(r)) {
       Json tj = Json::array();
       for (const TrimResult& t : trims) tj.push_back(trim_json(r, t));
@@ -388,7 +424,7 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
   }
   return header_text(an) + "\n" + warnings_text(an) +
          "Exponents per rev (dominant exponent of each mode)\n" + sweep_table_text(r, s, labels) +
-         trim_table;
+         crossings_text(s) + trim_table;
 }
 
 Output critical(const Request& r, const Analysis& an) {

@@ -7,6 +7,7 @@
 
 #include "commands_internal.h"
 #include "flaplag/core/format.h"
+#include "json_fields.h"
 #include "output.h"
 #include "plot.h"
 #include "shard.h"
@@ -41,6 +42,7 @@ StudyResult run_study_part(const Request& r, RunControl* control) {
   so.critical.scan_step = r.scan_step;
   so.threads = r.threads;
   so.trim = r.trim;
+  so.damping_criterion = r.damping_criterion;
   StudyResult s;
   if (!so.values.empty()) {
     s = run_study(r.params, r.transition, so, control ? control->cancel : nullptr,
@@ -57,13 +59,15 @@ std::string study_plot(const Request& r, const StudyResult& s) {
   std::vector<StudyMark> marks;
   for (const StudyRow& row : s.rows) {
     const CriticalResult& c = row.critical;
-    StudyMark m{row.value, c.mu_c, c.kind == InstabilityKind::Periodic, {}};
+    StudyMark m{row.value, c.mu_c, c.kind == InstabilityKind::Periodic, {}, {}};
+    for (const DampingCrossing& x : row.damping_crossings)
+      if (x.mu) m.crossings.emplace_back(x.mode, *x.mu);
     // An open interval is drawn to the scan limit (r.mu_max: what the JSON output holds).
     for (const InstabilityInterval& iv : c.intervals)
       m.intervals.emplace_back(iv.onset, iv.end.value_or(r.mu_max));
     marks.push_back(m);
   }
-  return plot_if_asked(r, study_plot_script(word(r.vary), marks));
+  return plot_if_asked(r, study_plot_script(word(r.vary), marks, r.damping_criterion));
 }
 
 // A trimmed study reports each row's trim at its mu_c (theta0, theta1c, theta1s, lambda there),
@@ -83,6 +87,12 @@ Json study_row_json(const Request& r, const StudyRow& row) {
   for (const InstabilityInterval& i : c.intervals) iv.push_back(interval_json(i));
   x["intervals"] = iv;
   if (trimmed(r)) x["trim"] = row.trim ? trim_json(r, *row.trim) : Json(nullptr);
+  if (r.damping_criterion) {
+    Json dc = Json::array();
+    for (const DampingCrossing& d : row.damping_crossings)
+      dc.push_back(to_json(d, in_vocabulary(r)));
+    x["damping_crossings"] = dc;
+  }
   return status_json(x, c.status, vocab(r, c.message));
 }
 
@@ -91,6 +101,7 @@ Json study_json(const Request& r, const Analysis& base, const StudyResult& s) {
   j["vary"] = word(r.vary);
   j["mu_max"] = r.mu_max;
   j["scan_step"] = r.scan_step;
+  if (r.damping_criterion) j["damping_criterion"] = jnum(*r.damping_criterion);
   Json rows = Json::array();
   for (const StudyRow& row : s.rows) rows.push_back(study_row_json(r, row));
   j["rows"] = rows;
@@ -118,6 +129,17 @@ std::vector<std::string> study_row_cells(const Request& r, const StudyRow& row) 
          {x ? x->theta0 : 0.0, x ? x->theta1c : 0.0, x ? x->theta1s : 0.0, x ? x->inflow : 0.0})
       cells.push_back(x ? short_text(v) : "-");
   }
+  if (r.damping_criterion) {
+    // "lag 0.603" per mode that crosses, its status when not crossed cleanly.
+    std::string below;
+    for (const DampingCrossing& d : row.damping_crossings) {
+      if (d.status == CrossingStatus::NotCrossed) continue;
+      below += (below.empty() ? "" : ", ") + d.mode + " " + (d.mu ? short_text(*d.mu) : "-");
+      if (d.status != CrossingStatus::Crossed)
+        below += std::string(" (") + enum_name(d.status) + ")";
+    }
+    cells.push_back(below.empty() ? "-" : below);
+  }
   cells.push_back(status_name(c.status));
   return cells;
 }
@@ -129,6 +151,8 @@ std::string study_text(const Request& r, const Analysis& base, const StudyResult
   std::vector<std::string> head = {word(r.vary), "mu_c", "mode",
                                    "omega",      "kind", "unstable for mu in"};
   if (trimmed(r)) head.insert(head.end(), {"theta0", "theta1c", "theta1s", "lambda"});
+  if (r.damping_criterion)
+    head.push_back("damping < " + num(100.0 * *r.damping_criterion) + " % from mu");
   head.push_back("status");
   TextTable t(head);
   t.left_align(head.size() - 1);

@@ -38,6 +38,10 @@ const char* struct_name<InstabilityInterval>() {
   return "Interval";
 }
 template <>
+const char* struct_name<DampingCrossing>() {
+  return "DampingCrossing";
+}
+template <>
 const char* struct_name<CriticalResult>() {
   return "CriticalResult";
 }
@@ -152,13 +156,16 @@ std::string documents_section() {
          section_link("TrimResult") +
          ").\n"
          "- `flaplag sweep --json`: the header, `mu` (start, stop, step), `labels` (the modes), "
-         "`rows`, `max_liouville_residual`, with `--trim` `trim` (a " +
-         section_link("TrimResult") +
+         "`rows`, `max_liouville_residual`, with `--damping-criterion` `damping_criterion` and "
+         "`damping_crossings` (as in " +
+         section_link("SweepResult") + "), with `--trim` `trim` (a " + section_link("TrimResult") +
          " per row), `status` and "
          "`message` (of the sweep, as " +
          section_link("SweepResult") +
          ").  A row is the point's `mu`, then under each label the dominant exponent of that "
-         "mode (`{zeta, omega}`, the largest zeta; null when the point has none), then the "
+         "mode (`{zeta, omega, damping_ratio}`, the largest zeta; `damping_ratio` as in " +
+         section_link("Exponent") +
+         "; null when the point has none), then the "
          "other keys of " +
          section_link("PointResult") +
          ".\n"
@@ -197,6 +204,9 @@ std::string json_reference() {
   out += struct_section<SweepResult>(
       "Exponents along advance ratios, continued from hover (the Python module's "
       "`SweepResult`; the command line writes its points as `rows`, see above).");
+  out += struct_section<DampingCrossing>(
+      "Where one mode's damping ratio -zeta/|lambda| (a fraction of critical, omega continued "
+      "from hover) first falls below the damping criterion along a sweep.");
   out += struct_section<CriticalResult>(
       "The critical advance ratio mu_c: the first mu in (0, mu_max] where an exponent has "
       "zeta > zeta_threshold.");

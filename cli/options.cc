@@ -216,7 +216,11 @@ std::vector<OptionSpec> file_tool_options(Command c) {
       flag_option("--max-zeta", "sweeps: only the largest zeta over the modes at each mu"),
       value_option("--mode", "NAME",
                    "sweeps: only the curves of this mode (a label of the sweep: flap, lag, ...)",
-                   "", {"mode"})};
+                   "", {"mode"}),
+      value_option("--plot-quantity", "damping-ratio|zeta",
+                   "sweeps: the damping ratio in % of critical (with the file's damping "
+                   "criterion) or the exponent zeta [1/rev]",
+                   "damping-ratio", {"plot_quantity"})};
 }
 
 std::vector<OptionSpec> build(Command c) {
@@ -228,6 +232,16 @@ std::vector<OptionSpec> build(Command c) {
   const OptionSpec threads = value_option(
       "--threads", "N", "worker threads (0: all cores; the answer does not depend on it)", "0",
       {"threads"});
+  const OptionSpec damping_criterion = value_option(
+      "--damping-criterion", "C",
+      "damping ratio asked of every mode, a fraction of critical (0.01: 1 %), >= 0 and < 1: "
+      "report the first mu where each mode's damping ratio -zeta/|lambda| falls below it",
+      "", {"damping_criterion"});
+  const OptionSpec plot_quantity = value_option(
+      "--plot-quantity", "damping-ratio|zeta",
+      "y quantity of a sweep picture: the damping ratio -zeta/|lambda| in % of critical (with "
+      "the --damping-criterion line) or the exponent zeta [1/rev]",
+      "damping-ratio", {"plot_quantity"});
   switch (c) {
     case Command::Point:
       v.push_back(mu);
@@ -242,8 +256,11 @@ std::vector<OptionSpec> build(Command c) {
                                {"format"}));
       v.push_back(threads);
       v.push_back(value_option("--plot", "FILE.svg|FILE.png",
-                               "also draw zeta(mu) and omega(mu) of each mode (gnuplot)", "",
-                               {"plot"}));
+                               "also draw the damping ratio (or zeta) and omega of each mode "
+                               "against mu (gnuplot)",
+                               "", {"plot"}));
+      v.push_back(plot_quantity);
+      v.push_back(damping_criterion);
       break;
     case Command::Critical: {
       const CriticalOptions defaults;
@@ -291,6 +308,7 @@ std::vector<OptionSpec> build(Command c) {
       v.push_back(value_option("--plot", "FILE.svg|FILE.png",
                                "also draw mu_c and the instability intervals (gnuplot)", "",
                                {"plot"}));
+      v.push_back(damping_criterion);
       break;
     }
     case Command::Map:

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +14,7 @@
 
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/numerics/continuation.h"
 #include "options.h"
 #include "output.h"
 
@@ -85,6 +87,11 @@ std::string line_plot_script(const std::string& title, const std::vector<Panel>&
     }
     if (pn.zero_line)
       s += std::string(pn.curves.empty() ? "" : ", ") + "0 with lines lc rgb 'black' dt 2 notitle";
+    for (std::size_t k = 0; k < pn.levels.size(); ++k) {
+      s += std::string(pn.curves.empty() && !pn.zero_line && k == 0 ? "" : ", ") +
+           value(pn.levels[k].first) + " with lines lc rgb 'red' dt 3 lw 1.5 title " +
+           quoted(pn.levels[k].second);
+    }
     s += "\n";
   }
   s += "unset multiplot\n";
@@ -125,29 +132,62 @@ std::string map_plot_script(const std::string& title, const std::string& xlabel,
   return s;
 }
 
+void SweepPicture::add_criterion(std::optional<double> c) {
+  if (c && std::isfinite(*c) && std::find(criteria.begin(), criteria.end(), *c) == criteria.end())
+    criteria.push_back(*c);
+}
+
+namespace {
+
+// The y quantity of a mode in the picture: zeta itself, or -zeta/|lambda| in % (NaN: a gap).
+std::vector<double> sweep_quantity(const ModeCurve& m, SweepQuantity q) {
+  if (q == SweepQuantity::Zeta) return m.zeta;
+  std::vector<double> y;
+  for (std::size_t i = 0; i < m.zeta.size(); ++i) {
+    const std::optional<double> r = damping_ratio(m.zeta[i], i < m.omega.size() ? m.omega[i] : NAN);
+    y.push_back(r ? 100.0 * *r : NAN);
+  }
+  return y;
+}
+
+// The first panel of a sweep picture: zeta, or the damping ratio with its criterion lines.
+Panel sweep_panel(const SweepPicture& picture, bool max_zeta) {
+  if (max_zeta || picture.quantity == SweepQuantity::Zeta)
+    return Panel{max_zeta ? "largest damping exponent zeta over the modes"
+                          : "damping exponent zeta (real part of the characteristic exponent)",
+                 "mu",
+                 "zeta [1/rev]",
+                 {},
+                 true,
+                 {}};
+  Panel p{"damping ratio -zeta/|lambda| (omega continued from hover)",
+          "mu",
+          "damping ratio -zeta/|lambda| [% of critical]",
+          {},
+          true,
+          {}};
+  for (double c : picture.criteria)
+    p.levels.emplace_back(100.0 * c, "criterion " + num(100.0 * c) + " %");
+  return p;
+}
+
+}  // namespace
+
 std::string sweep_plot_script(const std::string& model, const std::vector<double>& mu,
-                              const std::vector<ModeCurve>& modes) {
-  Panel pz{"damping exponent zeta (real part of the characteristic exponent)",
-           "mu",
-           "zeta [1/rev]",
-           {},
-           true};
-  Panel pw{"frequency omega", "mu", "omega [per rev]", {}, false};
+                              const std::vector<ModeCurve>& modes, const SweepPicture& picture) {
+  Panel pz = sweep_panel(picture, false);
+  Panel pw{"frequency omega", "mu", "omega [per rev]", {}, false, {}};
   for (const ModeCurve& m : modes) {
-    pz.curves.push_back({m.label, mu, m.zeta, false, 7});
+    pz.curves.push_back({m.label, mu, sweep_quantity(m, picture.quantity), false, 7});
     pw.curves.push_back({m.label, mu, m.omega, false, 7});
   }
   return line_plot_script("flaplag sweep: " + model, {pz, pw});
 }
 
-std::string sweep_overlay_script(const std::vector<SweepOverlay>& sweeps, bool max_zeta) {
-  Panel pz{max_zeta ? "largest damping exponent zeta over the modes"
-                    : "damping exponent zeta (real part of the characteristic exponent)",
-           "mu",
-           "zeta [1/rev]",
-           {},
-           true};
-  Panel pw{"frequency omega", "mu", "omega [per rev]", {}, false};
+std::string sweep_overlay_script(const std::vector<SweepOverlay>& sweeps, bool max_zeta,
+                                 const SweepPicture& picture) {
+  Panel pz = sweep_panel(picture, max_zeta);
+  Panel pw{"frequency omega", "mu", "omega [per rev]", {}, false, {}};
   for (const SweepOverlay& s : sweeps) {
     if (max_zeta) {
       // NaN (a gap) where no mode has a zeta.
@@ -159,7 +199,8 @@ std::string sweep_overlay_script(const std::vector<SweepOverlay>& sweeps, bool m
       continue;
     }
     for (const ModeCurve& m : s.modes) {
-      pz.curves.push_back({s.label + ": " + m.label, s.mu, m.zeta, false, 7});
+      pz.curves.push_back(
+          {s.label + ": " + m.label, s.mu, sweep_quantity(m, picture.quantity), false, 7});
       pw.curves.push_back({s.label + ": " + m.label, s.mu, m.omega, false, 7});
     }
   }
@@ -167,7 +208,8 @@ std::string sweep_overlay_script(const std::vector<SweepOverlay>& sweeps, bool m
   return line_plot_script("flaplag sweeps", {pz, pw});
 }
 
-std::string study_plot_script(const std::string& parameter, const std::vector<StudyMark>& rows) {
+std::string study_plot_script(const std::string& parameter, const std::vector<StudyMark>& rows,
+                              std::optional<double> damping_criterion) {
   Curve flutter{"mu_c, flutter", {}, {}, true, 7},
       periodic{"mu_c, periodic (omega = 0, 1/2, 1)", {}, {}, true, 5};
   Curve intervals{"unstable intervals", {}, {}, false, 7};
@@ -182,7 +224,27 @@ std::string study_plot_script(const std::string& parameter, const std::vector<St
       intervals.y.insert(intervals.y.end(), {on, off, NAN});
     }
   }
-  Panel p{"critical advance ratio", parameter, "mu", {intervals, flutter, periodic}, false};
+  Panel p{"critical advance ratio", parameter, "mu", {intervals, flutter, periodic}, false, {}};
+  // Per mode, where its damping ratio first falls below the criterion.
+  std::vector<Curve> below;
+  for (const StudyMark& row : rows) {
+    for (const auto& [mode, mu] : row.crossings) {
+      auto it = std::find_if(below.begin(), below.end(),
+                             [&, m = mode](const Curve& c) { return c.title == m; });
+      if (it == below.end()) {
+        below.push_back({mode, {}, {}, true, 4 + 2 * static_cast<int>(below.size())});
+        it = below.end() - 1;
+      }
+      it->x.push_back(row.value);
+      it->y.push_back(mu);
+    }
+  }
+  if (damping_criterion) {
+    for (Curve& c : below) {
+      c.title = c.title + ": damping ratio < " + num(100.0 * *damping_criterion) + " %";
+      p.curves.push_back(c);
+    }
+  }
   return line_plot_script("flaplag study: " + parameter, {p});
 }
 
@@ -194,13 +256,10 @@ std::string max_zeta_plot_script(const std::string& xname, const std::vector<dou
 
 std::string response_plot_script(double mu, const std::vector<double>& psi_deg,
                                  const std::vector<double>& flap, const std::vector<double>& lag) {
-  Panel pf{
-      "flap tip deflection w/l", "psi [deg]", "w/l", {{"flap", psi_deg, flap, false, 7}}, false};
-  Panel pl{"lag tip deflection v/l (positive lag)",
-           "psi [deg]",
-           "v/l",
-           {{"lag", psi_deg, lag, false, 7}},
-           false};
+  Panel pf{"flap tip deflection w/l",           "psi [deg]", "w/l",
+           {{"flap", psi_deg, flap, false, 7}}, false,       {}};
+  Panel pl{"lag tip deflection v/l (positive lag)", "psi [deg]", "v/l",
+           {{"lag", psi_deg, lag, false, 7}},       false,       {}};
   return line_plot_script("flaplag response at mu = " + num(mu), {pf, pl});
 }
 
@@ -210,9 +269,14 @@ std::string simulate_plot_script(double mu, const std::vector<double>& revolutio
            "revolutions",
            "dw/l",
            {{"flap", revolutions, flap, false, 7}},
-           false};
-  Panel pl{
-      "lag tip perturbation", "revolutions", "dv/l", {{"lag", revolutions, lag, false, 7}}, false};
+           false,
+           {}};
+  Panel pl{"lag tip perturbation",
+           "revolutions",
+           "dv/l",
+           {{"lag", revolutions, lag, false, 7}},
+           false,
+           {}};
   return line_plot_script("flaplag simulate at mu = " + num(mu), {pf, pl});
 }
 

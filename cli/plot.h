@@ -32,6 +32,8 @@ struct Panel {
   std::string title, xlabel, ylabel;
   std::vector<Curve> curves;
   bool zero_line = false;  // draw y = 0 (the stability boundary of zeta)
+  // Horizontal lines y = value, each with its title (a damping criterion).
+  std::vector<std::pair<double, std::string>> levels;
 };
 
 // Panels stacked vertically in one picture.
@@ -48,13 +50,22 @@ std::string map_plot_script(const std::string& title, const std::string& xlabel,
 // Each is drawn from numbers that the command's JSON output holds too, so that `flaplag plot
 // DATA.json` draws exactly what --plot drew (NaN: unknown, a gap).
 
-// sweep: zeta(mu) and omega(mu) of each mode's dominant exponent, as the paper's Figs 3-8.
+// sweep: the damping ratio -zeta/|lambda| in % of critical (or zeta, as the paper's Figs 3-8)
+// and omega(mu) of each mode's dominant exponent.
 struct ModeCurve {
   std::string label;
   std::vector<double> zeta, omega;  // at the sweep's mu values
 };
+enum class SweepQuantity { DampingRatio, Zeta };
+struct SweepPicture {
+  SweepQuantity quantity = SweepQuantity::DampingRatio;
+  // Damping ratio: the criterion lines (fractions of critical; drawn in %), each once.
+  std::vector<double> criteria;
+  void add_criterion(std::optional<double> c);
+};
 std::string sweep_plot_script(const std::string& model, const std::vector<double>& mu,
-                              const std::vector<ModeCurve>& modes);
+                              const std::vector<ModeCurve>& modes,
+                              const SweepPicture& picture = {});
 
 // Several sweeps in one picture (`flaplag plot A.json B.json ...`): each curve titled
 // "LABEL: MODE" (max_zeta: one curve per sweep, the largest zeta over its modes at each mu,
@@ -64,7 +75,8 @@ struct SweepOverlay {
   std::vector<double> mu;
   std::vector<ModeCurve> modes;
 };
-std::string sweep_overlay_script(const std::vector<SweepOverlay>& sweeps, bool max_zeta);
+std::string sweep_overlay_script(const std::vector<SweepOverlay>& sweeps, bool max_zeta,
+                                 const SweepPicture& picture = {});
 
 // study: mu_c per value, flutter and periodic marked differently (Fig 15), and the unstable
 // intervals (an open end drawn to mu-max).
@@ -73,8 +85,11 @@ struct StudyMark {
   std::optional<double> mu_c;
   bool periodic = false;
   std::vector<std::pair<double, double>> intervals;
+  // The first mu below the damping criterion, per mode that crosses it.
+  std::vector<std::pair<std::string, double>> crossings;
 };
-std::string study_plot_script(const std::string& parameter, const std::vector<StudyMark>& rows);
+std::string study_plot_script(const std::string& parameter, const std::vector<StudyMark>& rows,
+                              std::optional<double> damping_criterion = std::nullopt);
 
 // map: the max-zeta heat map with its zeta = 0 boundary.
 std::string max_zeta_plot_script(const std::string& xname, const std::vector<double>& x,
@@ -92,8 +107,11 @@ std::string simulate_plot_script(double mu, const std::vector<double>& revolutio
 // for a file that cannot be read, is not JSON or not such a result; RendererUnavailable when
 // gnuplot is missing or fails.  Returns "" (nothing for stdout).  A file is read up to
 // json_read_limit(memory_limit) bytes (read_file.h).
+// A sweep is drawn with `quantity` on its first panel and the damping criterion its file holds
+// (damping_criterion; none in a file written before it).
 std::string plot_data_file(const std::string& data, const std::string& plot,
-                           std::uint64_t memory_limit);
+                           std::uint64_t memory_limit,
+                           SweepQuantity quantity = SweepQuantity::DampingRatio);
 // `flaplag plot A.json B.json ... [--label L]... [--max-zeta | --mode M] --plot FILE`: one file
 // without labels, max_zeta or mode is plot_data_file (the same bytes); otherwise every file must be
 // a sweep result (InvalidInput("argument", the first other file as typed, reason) if not).  labels:
@@ -102,7 +120,8 @@ std::string plot_data_file(const std::string& data, const std::string& plot,
 std::string plot_data_files(const std::vector<std::string>& data,
                             const std::vector<std::string>& labels, bool max_zeta,
                             const std::string& mode, const std::string& plot,
-                            std::uint64_t memory_limit);
+                            std::uint64_t memory_limit,
+                            SweepQuantity quantity = SweepQuantity::DampingRatio);
 
 // gnuplot is not installed or failed (the message is one line).
 struct RendererUnavailable : std::runtime_error {

@@ -9,6 +9,7 @@
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/trim.h"
 #include "options.h"
@@ -131,9 +132,24 @@ SweepOverlay sweep_data(const std::string& file, const Json& j) {
   return s;
 }
 
-std::string sweep_script(const std::string& file, const Json& j) {
+// The damping criterion a sweep result holds (only a number in [0, 1) is drawn: anything else
+// is refused).
+std::optional<double> sweep_criterion(const std::string& file, const Json& j) {
+  if (!j.contains("damping_criterion")) return std::nullopt;
+  const Json& c = j["damping_criterion"];
+  if (!c.is_number() || !kDampingCriterionRange.interval.Contains(c.get<double>()))
+    refuse_key(
+        file, "damping_criterion", c,
+        std::string("not a damping criterion (a number ") + kDampingCriterionRange.words + ")");
+  return c.get<double>();
+}
+
+std::string sweep_script(const std::string& file, const Json& j, SweepQuantity quantity) {
   const SweepOverlay s = sweep_data(file, j);
-  return sweep_plot_script(model_name(file, j), s.mu, s.modes);
+  SweepPicture picture;
+  picture.quantity = quantity;
+  picture.add_criterion(sweep_criterion(file, j));
+  return sweep_plot_script(model_name(file, j), s.mu, s.modes, picture);
 }
 
 // A short label of a result from its case (the command line behind it): the model, the trim
@@ -166,9 +182,19 @@ std::string study_script(const std::string& file, const Json& j) {
       const Json& off = iv.at(1);
       m.intervals.emplace_back(number(iv.at(0)), off.is_null() ? mu_max : number(off));
     }
+    if (row.contains("damping_crossings")) {
+      for (const Json& d : row["damping_crossings"]) {
+        const std::string& mode = text_at(file, "damping_crossings.mode", d.at("mode"));
+        if (!is_mode_label(mode))
+          refuse_key(file, "damping_crossings.mode", d["mode"],
+                     "not a mode label (flap, lag, lag2, ...)");
+        if (d.at("mu").is_number()) m.crossings.emplace_back(mode, d["mu"].get<double>());
+      }
+    }
     marks.push_back(m);
   }
-  return study_plot_script(axis_name(file, "vary", j.at("vary"), false), marks);
+  return study_plot_script(axis_name(file, "vary", j.at("vary"), false), marks,
+                           sweep_criterion(file, j));
 }
 
 std::string map_script(const std::string& file, const Json& j) {
@@ -210,13 +236,13 @@ Json read_result(const std::string& data, std::uint64_t memory_limit) {
 }  // namespace
 
 std::string plot_data_file(const std::string& data, const std::string& plot,
-                           std::uint64_t memory_limit) {
+                           std::uint64_t memory_limit, SweepQuantity quantity) {
   const Json j = read_result(data, memory_limit);
   const std::string command = j["command"].get<std::string>();
   std::string script;
   try {
     if (command == "sweep")
-      script = sweep_script(data, j);
+      script = sweep_script(data, j, quantity);
     else if (command == "study")
       script = study_script(data, j);
     else if (command == "map")
@@ -239,9 +265,11 @@ std::string plot_data_file(const std::string& data, const std::string& plot,
 std::string plot_data_files(const std::vector<std::string>& data,
                             const std::vector<std::string>& labels, bool max_zeta,
                             const std::string& mode, const std::string& plot,
-                            std::uint64_t memory_limit) {
+                            std::uint64_t memory_limit, SweepQuantity quantity) {
   if (data.size() == 1 && labels.empty() && !max_zeta && mode.empty())
-    return plot_data_file(data[0], plot, memory_limit);
+    return plot_data_file(data[0], plot, memory_limit, quantity);
+  SweepPicture picture;
+  picture.quantity = quantity;
   for (const std::string& l : labels) check_label(l);
   std::vector<SweepOverlay> sweeps;
   std::string first;  // the kind of the first file
@@ -259,6 +287,7 @@ std::string plot_data_files(const std::vector<std::string>& data,
                           " are for sweep results only");
     try {
       SweepOverlay s = sweep_data(data[i], j);
+      picture.add_criterion(sweep_criterion(data[i], j));
       s.label = labels.empty() ? case_label(data[i], j) : labels[i];
       if (!mode.empty()) {
         std::vector<ModeCurve> kept;
@@ -283,7 +312,7 @@ std::string plot_data_files(const std::vector<std::string>& data,
       if (std::count(base.begin(), base.end(), base[i]) > 1)
         sweeps[i].label += " (" + std::to_string(i + 1) + ")";
   }
-  const std::string warning = render_plot(sweep_overlay_script(sweeps, max_zeta), plot);
+  const std::string warning = render_plot(sweep_overlay_script(sweeps, max_zeta, picture), plot);
   if (!warning.empty()) throw RendererUnavailable(warning);
   return "";
 }

@@ -167,6 +167,8 @@ class Generator {
                                                 "--label",
                                                 "--max-zeta",
                                                 "--mode",
+                                                "--damping-criterion",
+                                                "--plot-quantity",
                                                 "--samples",
                                                 "--revs",
                                                 "--perturbation",
@@ -280,6 +282,9 @@ class Generator {
     if (option == "--audit") return "audit.md";
     if (option == "--label") return pick(std::vector<std::string>{"(a) paper", "", "x\"y"});
     if (option == "--mode") return pick(std::vector<std::string>{"lag", "flap", "lag2"});
+    // A fraction of critical, 0 <= C < 1.
+    if (option == "--damping-criterion") return chance(0.3) ? in(1e-5, 0.5, true) : in(0.0, 0.1);
+    if (option == "--plot-quantity") return pick(std::vector<std::string>{"damping-ratio", "zeta"});
     if (option == "--shard") {  // part I of N; now and then I > N (refused)
       const int n = integer(1, 4);
       return std::to_string(chance(0.9) ? integer(1, n) : n + 1) + "/" + std::to_string(n);

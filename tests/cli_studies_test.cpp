@@ -63,6 +63,46 @@ TEST(CliStudy, RowsWithIntervalsIdenticalForOneAndTwoThreads) {
   EXPECT_EQ("omega-lag", ja["vary"]);
 }
 
+// study --damping-criterion: each row's crossings are those of the sweep of that row's rotor
+// over 0..mu-max in steps of --scan-step (the same continuation), and the text and picture show
+// them; rows without the option keep their keys.
+TEST(CliStudy, DampingCriterionCrossingsAreThoseOfTheRowsSweep) {
+  const std::vector<std::string> fast = {"--method", "hsu"};
+  std::vector<std::string> study = {
+      "study",       "--vary", "theta=0.1,0.15",      "--mu-max", "1",
+      "--scan-step", "0.05",   "--damping-criterion", "0.0005",   "--json"};
+  study.insert(study.end(), fast.begin(), fast.end());
+  const Outcome a = run(study);
+  ASSERT_EQ(0, a.exit_code) << a.err;
+  const Json j = Json::parse(a.out);
+  EXPECT_EQ(j["damping_criterion"].get<double>(), 0.0005);
+  ASSERT_EQ(j["rows"].size(), 2u);
+  for (const Json& row : j["rows"]) {
+    std::vector<std::string> sweep = {
+        "sweep",  "--mu",  "0:1:0.05", "--theta", row["value"].dump(), "--damping-criterion",
+        "0.0005", "--json"};
+    sweep.insert(sweep.end(), fast.begin(), fast.end());
+    const Outcome s = run(sweep);
+    ASSERT_EQ(0, s.exit_code) << s.err;
+    const Json sj = Json::parse(s.out);
+    EXPECT_EQ(row["damping_crossings"], sj["damping_crossings"]) << row;
+    ASSERT_EQ(row["damping_crossings"].size(), 2u) << row;
+  }
+  // The text table has the column; without the option no row has the key.
+  std::vector<std::string> text = study;
+  text.erase(std::find(text.begin(), text.end(), "--json"));
+  const Outcome t = run(text);
+  ASSERT_EQ(0, t.exit_code) << t.err;
+  EXPECT_NE(t.out.find("damping < 0.05 % from mu"), std::string::npos) << t.out;
+  std::vector<std::string> plain = {"study", "--vary", "theta=0.1", "--mu-max", "0.5", "--json"};
+  plain.insert(plain.end(), fast.begin(), fast.end());
+  const Outcome n = run(plain);
+  ASSERT_EQ(0, n.exit_code) << n.err;
+  const Json nj = Json::parse(n.out);
+  EXPECT_FALSE(nj.contains("damping_criterion"));
+  EXPECT_FALSE(nj["rows"][0].contains("damping_crossings"));
+}
+
 TEST(CliMap, IdenticalBytesForOneAndTwoThreads) {
   const std::vector<std::string> base = {
       "map", "--x", "mu=0:1:0.1", "--y", "omega-lag=0.8,1.2,1.6", "--json"};

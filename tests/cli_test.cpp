@@ -261,6 +261,35 @@ const std::vector<BadInput> kBadInputs = {
     {"UnknownSweepFormat", {"sweep", "--mu", "0:1:0.5", "--format", "xml"}, "--format", "xml"},
     {"CsvWithJson", {"sweep", "--mu", "0:1:0.5", "--format", "csv", "--json"}, "--format", "csv"},
     {"NonPositiveMuMax", {"critical", "--mu-max", "0"}, "--mu-max", "0"},
+    // --damping-criterion: a fraction of critical, 0 <= C < 1 (sweep, study)
+    {"NegativeDampingCriterion",
+     {"sweep", "--mu", "0:1:0.5", "--damping-criterion", "-1"},
+     "--damping-criterion",
+     "-1"},
+    {"NaNDampingCriterion",
+     {"sweep", "--mu", "0:1:0.5", "--damping-criterion", "nan"},
+     "--damping-criterion",
+     "nan"},
+    {"DampingCriterionInPercent",
+     {"sweep", "--mu", "0:1:0.5", "--damping-criterion=2"},
+     "--damping-criterion",
+     "2"},
+    {"DampingCriterionOne",
+     {"study", "--vary", "theta=0.1,0.2", "--damping-criterion", "1"},
+     "--damping-criterion",
+     "1"},
+    {"StudyNaNDampingCriterion",
+     {"study", "--vary", "theta=0.1,0.2", "--damping-criterion", "nan"},
+     "--damping-criterion",
+     "nan"},
+    {"DampingCriterionOfPoint",
+     {"point", "--mu", "0.1", "--damping-criterion", "0.01"},
+     "--damping-criterion",
+     "0.01"},
+    {"UnknownPlotQuantity",
+     {"sweep", "--mu", "0:1:0.5", "--plot-quantity", "omega"},
+     "--plot-quantity",
+     "omega"},
     {"InfinitePsi", {"system", "--mu", "0.2", "--psi", "inf"}, "--psi", "inf"},
     {"UnknownSpec", {"models", "--spec", "no-such-model"}, "--spec", "no-such-model"},
     {"TipLossesReversed", {"--tip-loss-a", "0.8", "--tip-loss-b", "0.7"}, "--tip-loss-a", "0.8"},
@@ -642,6 +671,91 @@ TEST(CliGood, OptionsReachTheAnalysis) {
   EXPECT_EQ(n["parameters"]["precone"].get<double>(), -0.02);
 }
 
+// --damping-criterion C: the damping ratio of each mode's dominant exponent in every row, and
+// per mode the first mu where it falls below C, which must be the linear interpolation between
+// the two rows around it (computed here from the rows' zeta and omega).
+TEST(CliGood, SweepDampingCriterionCrossings) {
+  const double kC = 0.0005;  // 0.05 %: the typical lag mode has 0.086 % in hover
+  // The default accuracy: at --steps 20 the crossing lies within the rows' error (unresolved).
+  const std::vector<std::string> base = {"sweep", "--mu", "0:1.2:0.05"};
+  std::vector<std::string> with = base;
+  with.insert(with.end(), {"--damping-criterion", "0.0005", "--json"});
+  const Json j = parse_json(run(with));
+  ASSERT_TRUE(j.contains("damping_criterion")) << j.dump().substr(0, 400);
+  EXPECT_EQ(j["damping_criterion"].get<double>(), kC);
+  ASSERT_EQ(j["damping_crossings"].size(), j["labels"].size());
+  int crossed = 0;
+  for (std::size_t m = 0; m < j["labels"].size(); ++m) {
+    const std::string label = j["labels"][m].get<std::string>();
+    const Json& x = j["damping_crossings"][m];
+    EXPECT_EQ(x["mode"], label);
+    std::vector<double> mu, ratio;
+    for (const Json& row : j["rows"]) {
+      const double zeta = row[label]["zeta"].get<double>();
+      const double omega = row[label]["omega"].get<double>();
+      ASSERT_TRUE(row[label]["damping_ratio"].is_number()) << row[label];
+      EXPECT_DOUBLE_EQ(row[label]["damping_ratio"].get<double>(),
+                       -zeta / std::sqrt(zeta * zeta + omega * omega));
+      mu.push_back(row["mu"].get<double>());
+      ratio.push_back(-zeta / std::sqrt(zeta * zeta + omega * omega));
+    }
+    std::size_t k = 0;
+    while (k < ratio.size() && ratio[k] >= kC) ++k;
+    if (k == ratio.size()) {
+      EXPECT_EQ(x["status"], "not_crossed") << x;
+      EXPECT_TRUE(x["mu"].is_null()) << x;
+      continue;
+    }
+    ASSERT_GT(k, 0u) << label << " is below the criterion in hover";
+    ++crossed;
+    EXPECT_EQ(x["status"], "crossed") << x;
+    EXPECT_EQ(x["mu_above"].get<double>(), mu[k - 1]);
+    EXPECT_EQ(x["mu_below"].get<double>(), mu[k]);
+    const double expected =
+        mu[k - 1] + (mu[k] - mu[k - 1]) * (ratio[k - 1] - kC) / (ratio[k - 1] - ratio[k]);
+    EXPECT_NEAR(x["mu"].get<double>(), expected, 1e-12) << x;
+    EXPECT_GT(x["mu"].get<double>(), mu[k - 1]);
+    EXPECT_LT(x["mu"].get<double>(), mu[k]);
+  }
+  // The typical case's lag mode loses its damping before mu_c = 0.754.
+  EXPECT_GE(crossed, 1) << j["damping_crossings"];
+
+  // Without the option the document has no criterion keys (and rows the same numbers).
+  std::vector<std::string> without = base;
+  without.push_back("--json");
+  const Json n = parse_json(run(without));
+  EXPECT_FALSE(n.contains("damping_criterion"));
+  EXPECT_FALSE(n.contains("damping_crossings"));
+  EXPECT_EQ(n["rows"], j["rows"]);
+
+  // Text: the ratio in % and the crossing table; CSV: the ratios as fractions, last.
+  std::vector<std::string> text = base;
+  text.insert(text.end(), {"--damping-criterion", "0.0005"});
+  const Outcome t = run(text);
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  for (const char* s :
+       {"lag ratio [%]", "Damping criterion 0.05 % of critical", "not_crossed", "crossed"})
+    EXPECT_NE(t.out.find(s), std::string::npos) << s << "\n" << t.out;
+  expect_clean_text(t.out);
+  std::vector<std::string> csv = base;
+  csv.insert(csv.end(), {"--format", "csv"});
+  const Outcome c = run(csv);
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const std::string header = c.out.substr(0, c.out.find('\n'));
+  EXPECT_EQ(header,
+            "mu,flap_zeta,flap_omega,lag_zeta,lag_omega,liouville_residual,error_estimate,stable,"
+            "status,message,flap_damping_ratio,lag_damping_ratio");
+  std::istringstream lines(c.out);
+  std::string line;
+  std::getline(lines, line);
+  std::getline(lines, line);  // mu = 0
+  std::vector<std::string> fields;
+  std::stringstream fs(line);
+  for (std::string f; std::getline(fs, f, ',');) fields.push_back(f);
+  ASSERT_EQ(fields.size(), 12u) << line;
+  EXPECT_EQ(std::stod(fields[11]), j["rows"][0]["lag"]["damping_ratio"].get<double>()) << line;
+}
+
 TEST(CliGood, SystemJson) {
   // psi = 4.7 is inside the reversed-flow sector centred at 3 pi / 2 (Appendix D).
   const Json j = parse_json(run({"system", "--mu", "0.5", "--psi", "4.7", "--json"}));
@@ -682,8 +796,10 @@ TEST(CliGood, SweepJsonAndCsv) {
   }
   const Outcome c = run(fast({"sweep", "--mu", "0:0.2:0.1", "--format", "csv"}));
   ASSERT_EQ(c.exit_code, 0) << c.err;
+  // The damping ratios come last, so that every earlier column keeps its place.
   EXPECT_EQ(c.out.rfind("mu,flap_zeta,flap_omega,lag_zeta,lag_omega,liouville_residual,"
-                        "error_estimate,stable,status,message\n",
+                        "error_estimate,stable,status,message,flap_damping_ratio,"
+                        "lag_damping_ratio\n",
                         0),
             0u)
       << c.out;

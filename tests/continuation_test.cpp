@@ -9,8 +9,10 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -492,6 +494,108 @@ TEST(Continuation, DampingRatio) {
   EXPECT_FALSE(damping_ratio(-0.1, std::numeric_limits<double>::infinity()).has_value());
   // A lightly damped oscillator: ratio ~ -zeta / omega.
   EXPECT_TRUE(RelClose(1e-3 / 1.28, damping_ratio(-1e-3, 1.28).value(), 1e-6));
+}
+
+// The damping ratio of a viscously damped oscillator h'' + c h' + k h = 0, whose exponents are
+// lambda = -c/2 +- i sqrt(k - c^2/4): the textbook c / (2 sqrt(k)), here 0.04 / 2.56.
+TEST(DampingCriterion, RatioOfAnOscillatorIsItsViscousDampingRatio) {
+  const double c = 0.04, k = 1.28 * 1.28;
+  const double zeta = -c / 2.0, omega = std::sqrt(k - c * c / 4.0);
+  EXPECT_TRUE(RelClose(0.015625, damping_ratio(zeta, omega).value(), 1e-14));
+  EXPECT_TRUE(RelClose(0.015625, damping_ratio(zeta, -omega).value(), 1e-14));
+}
+
+// A sweep of made-up points whose exponents are Pythagorean, so that every ratio is exact:
+// -0.6 + 0.8i (0.6), -0.28 + 0.96i (0.28), -0.8 + 0.6i (0.8), 0.28 + 0.96i (-0.28).
+PointResult made_point(double mu, std::vector<LabelledExponent> exponents,
+                       std::optional<double> error = 1e-9, Status status = Status::Ok) {
+  PointResult p;
+  p.mu = mu;
+  p.exponents = std::move(exponents);
+  p.error = error;
+  p.status = status;
+  return p;
+}
+
+LabelledExponent made_exponent(const char* label, double zeta, double omega) {
+  return LabelledExponent{label, zeta, omega, {}};
+}
+
+TEST(DampingCriterion, CrossingIsTheLinearInterpolationBetweenTheBracketingPoints) {
+  SweepResult s;
+  // lag: 0.8 at mu = 0, 0.6 at 0.1, 0.28 at 0.2, -0.28 at 0.3; flap stays at 0.8.
+  s.points = {
+      made_point(0.0, {made_exponent("flap", -0.8, 0.6), made_exponent("lag", -0.8, 0.6)}),
+      made_point(0.1, {made_exponent("flap", -0.8, 0.6), made_exponent("lag", -0.6, 0.8),
+                       made_exponent("lag", -0.6, -0.8)}),
+      made_point(0.2, {made_exponent("flap", -0.8, 0.6), made_exponent("lag", -0.28, 0.96)}),
+      made_point(0.3, {made_exponent("flap", -0.8, 0.6), made_exponent("lag", 0.28, 0.96)})};
+  apply_damping_criterion(s, {"flap", "lag"}, 0.5);
+  ASSERT_EQ(s.damping_criterion, 0.5);
+  ASSERT_EQ(s.damping_crossings.size(), 2u);
+  const DampingCrossing& flap = s.damping_crossings[0];
+  EXPECT_EQ(flap.mode, "flap");
+  EXPECT_EQ(flap.status, CrossingStatus::NotCrossed);
+  EXPECT_FALSE(flap.mu.has_value());
+  const DampingCrossing& lag = s.damping_crossings[1];
+  EXPECT_EQ(lag.mode, "lag");
+  EXPECT_EQ(lag.status, CrossingStatus::Crossed);
+  // By hand: 0.1 + (0.5 - 0.6) / (0.28 - 0.6) * (0.2 - 0.1) = 0.1 + 0.03125.
+  EXPECT_TRUE(AbsClose(0.13125, lag.mu.value(), 1e-15));
+  EXPECT_EQ(lag.mu_above, 0.1);
+  EXPECT_EQ(lag.mu_below, 0.2);
+  // C = 0: the stability boundary, between 0.2 (0.28) and 0.3 (-0.28): the midpoint.
+  const std::vector<DampingCrossing> zero = damping_crossings(s, {"lag"}, 0.0);
+  EXPECT_EQ(zero[0].status, CrossingStatus::Crossed);
+  EXPECT_TRUE(AbsClose(0.25, zero[0].mu.value(), 1e-15));
+  // Above every ratio of the lag mode: below at the start.
+  const std::vector<DampingCrossing> high = damping_crossings(s, {"lag"}, 0.9);
+  EXPECT_EQ(high[0].status, CrossingStatus::BelowAtStart);
+  EXPECT_EQ(high[0].mu, 0.0);
+  EXPECT_FALSE(high[0].mu_above.has_value());
+}
+
+TEST(DampingCriterion, CrossingBetweenUnresolvedPointsSaysSo) {
+  auto sweep = [](std::optional<double> error, Status status, bool gap) {
+    SweepResult s;
+    s.points.push_back(made_point(0.1, {made_exponent("lag", -0.6, 0.8)}, error, status));
+    if (gap) s.points.push_back(made_point(0.15, {}, std::nullopt, Status::Warning));
+    s.points.push_back(made_point(0.2, {made_exponent("lag", -0.28, 0.96)}));
+    return damping_crossings(s, {"lag"}, 0.5)[0];
+  };
+  EXPECT_EQ(sweep(1e-9, Status::Ok, false).status, CrossingStatus::Crossed);
+  // An error estimate of 0.2 per rev spreads the ratio 0.6 by 0.2 / |lambda| = 0.2 > 0.1.
+  const DampingCrossing wide = sweep(0.2, Status::Ok, false);
+  EXPECT_EQ(wide.status, CrossingStatus::Unresolved);
+  EXPECT_TRUE(AbsClose(0.13125, wide.mu.value(), 1e-15));
+  EXPECT_EQ(sweep(0.05, Status::Ok, false).status, CrossingStatus::Crossed);
+  EXPECT_EQ(sweep(std::nullopt, Status::Ok, false).status, CrossingStatus::Unresolved);
+  EXPECT_EQ(sweep(1e-9, Status::Failed, false).status, CrossingStatus::Unresolved);
+  // A point without a ratio between the two: unresolved, still interpolated across it.
+  const DampingCrossing gap = sweep(1e-9, Status::Ok, true);
+  EXPECT_EQ(gap.status, CrossingStatus::Unresolved);
+  EXPECT_TRUE(AbsClose(0.13125, gap.mu.value(), 1e-15));
+  // A sweep that stopped at a failed point does not know the rest.
+  SweepResult stopped;
+  stopped.points = {made_point(0.1, {made_exponent("lag", -0.6, 0.8)}),
+                    made_point(0.2, {}, std::nullopt, Status::Failed)};
+  EXPECT_EQ(damping_crossings(stopped, {"lag"}, 0.5)[0].status, CrossingStatus::Unresolved);
+  EXPECT_FALSE(damping_crossings(stopped, {"lag"}, 0.5)[0].mu.has_value());
+}
+
+TEST(DampingCriterion, CriterionOutsideZeroToOneIsRefused) {
+  for (double bad : {-1.0, -1e-300, 1.0, 2.0, std::nan(""), HUGE_VAL}) {
+    EXPECT_THROW(check_damping_criterion(bad), InvalidInput) << bad;
+    EXPECT_THROW(damping_crossings(SweepResult{}, {"lag"}, bad), InvalidInput) << bad;
+  }
+  try {
+    check_damping_criterion(2.0);
+    ADD_FAILURE();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.name(), "damping_criterion");
+  }
+  EXPECT_NO_THROW(check_damping_criterion(0.0));
+  EXPECT_NO_THROW(check_damping_criterion(0.01));
 }
 
 TEST(Continuation, SweepStartsAboveHoverAndIncludesEnd) {

@@ -385,6 +385,7 @@ class Analysis:
         threads=0,
         progress=None,
         memory_limit=None,
+        damping_criterion=None,
     ) -> SweepResult:
         """Exponents along advance ratios, continued from hover.
 
@@ -399,8 +400,13 @@ class Analysis:
         thread (the steps from hover included); Ctrl-C stops the sweep (KeyboardInterrupt).
         memory_limit: the memory the result may take (bytes, or a size such as '8G'; default
         2 GiB): a sweep estimated to need more is refused before it starts.
+        damping_criterion: a damping ratio asked of every mode, a fraction of critical (0.01 is
+        1 %), 0 <= C < 1 (the command line's --damping-criterion): the result's
+        ``damping_crossings`` give, per mode, the first mu where its damping ratio falls below
+        it (interpolated between the sweep points) and a status.
         """
         t = _trim_request(trim, thrust_coefficient, shaft_angle)
+        dc = None if damping_criterion is None else _real("damping_criterion", damping_criterion)
         threads = _int("threads", threads)
         progress = _progress(progress)
         limit = _memory_limit(memory_limit)
@@ -412,9 +418,9 @@ class Analysis:
         if stop is None and step is None:
             mus = _real_array("mu", mu)
             if t is None:
-                raw = self._native.track(mus, ss, threads, progress, limit)
+                raw = self._native.track(mus, ss, threads, progress, limit, dc)
             else:
-                raw = self._native.trimmed_track(mus, ss, *t, progress, limit)
+                raw = self._native.trimmed_track(mus, ss, *t, progress, limit, dc)
         elif stop is None or step is None:
             raise TypeError("sweep(start, stop, step) needs all three, or sweep(mus) an array")
         else:
@@ -427,9 +433,9 @@ class Analysis:
             # START:STOP): the user typed mu and stop.
             with _keywords(mu0="mu", mu1="stop"):
                 if t is None:
-                    raw = self._native.sweep(*grid, threads, progress, limit)
+                    raw = self._native.sweep(*grid, threads, progress, limit, dc)
                 else:
-                    raw = self._native.trimmed_sweep(*grid, *t, progress, limit)
+                    raw = self._native.trimmed_sweep(*grid, *t, progress, limit, dc)
         return SweepResult._from(raw, self._labels())
 
     def critical(

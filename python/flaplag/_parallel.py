@@ -147,6 +147,7 @@ def study(
     client=None,
     chunk_lines=None,
     memory_limit=None,
+    damping_criterion=None,
     **parameters,
 ) -> StudyResult:
     """mu_c and every instability interval versus one rotor parameter.
@@ -172,6 +173,11 @@ def study(
     result.  Ctrl-C cancels a local run (KeyboardInterrupt).
     memory_limit: the memory the result may take (bytes, or a size such as '8G'; default
     2 GiB): a study estimated to need more is refused before it starts.
+    damping_criterion: a damping ratio asked of every mode, a fraction of critical (0.01 is
+    1 %), 0 <= C < 1 (the command line's study --damping-criterion): each row also sweeps mu =
+    0, scan_step, ..., mu_max (about twice the cost) and ``damping_crossings`` gives, per row,
+    the first mu where each mode's damping ratio falls below it (Analysis.sweep's
+    DampingCrossing).
     """
     _distribution(client, chunk_lines)
     progress = _progress(progress)
@@ -189,6 +195,8 @@ def study(
         "scan_zeta_tolerance": _real("scan_zeta_tolerance", scan_zeta_tolerance),
         "all_intervals": True,
     }
+    if damping_criterion is not None:
+        critical["damping_criterion"] = _real("damping_criterion", damping_criterion)
     threads = _int("threads", threads)
     t = _trim_request(trim, thrust_coefficient, shaft_angle)
     metadata = _metadata(parameters, rotor, transition, critical=critical, trim=_trim_metadata(t))

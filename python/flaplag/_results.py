@@ -22,6 +22,7 @@ __all__ = [
     "HoverResult",
     "PointResult",
     "SweepResult",
+    "DampingCrossing",
     "Interval",
     "CriticalResult",
     "SystemResult",
@@ -121,8 +122,10 @@ class Exponent(_Described):
 
     @property
     def damping_ratio(self) -> Optional[float]:
-        """-zeta / |lambda| (the command line's damping ratio): for omega = 0 +1 when the mode
-        decays, -1 when it grows; None for lambda = 0."""
+        """-zeta / |lambda|, a fraction of critical (the command line's damping ratio; its text
+        and pictures show it in %), with omega as here: continued from hover, not reduced
+        modulo 1/rev.  For omega = 0 +1 when the mode decays, -1 when it grows; None for
+        lambda = 0 (undefined)."""
         return _flaplag.damping_ratio(self.zeta, self.omega)
 
     def __repr__(self):
@@ -247,13 +250,37 @@ class PointResult(_Described):
 
 
 @dataclass(frozen=True, repr=False)
+class DampingCrossing(_Described):
+    """Where mode ``mode``'s damping ratio -zeta/|lambda| (a fraction of critical) first falls
+    below the sweep's damping criterion C.
+
+    mu: interpolated linearly between the sweep points mu_above (the last at or above C) and
+    mu_below (the first below C); status: 'crossed'; 'unresolved' (a bracketing point failed,
+    has no error estimate or lies within its error of C, or a point between has no ratio; mu
+    may be None); 'below_at_start' (mu: the first point); 'not_crossed' (mu None).
+    """
+
+    mode: str
+    mu: Optional[float]
+    status: str
+    mu_above: Optional[float]
+    mu_below: Optional[float]
+
+    def __repr__(self):
+        return f"DampingCrossing({self.mode!r}, mu={_g(self.mu)}, status={self.status!r})"
+
+
+@dataclass(frozen=True, repr=False)
 class SweepResult(_Described):
     """Exponents along advance ratios mu, continued from hover.
 
     mu: the advance ratios (1-D array); points: one PointResult each; labels: the mode labels
-    in hover order.  ``zeta[label]`` and ``omega[label]`` are 1-D arrays of the mode's dominant
-    exponent (PointResult.dominant; nan where a point has none).  A failed step ends the sweep:
-    then there are fewer points than advance ratios asked for, the failed one last.
+    in hover order.  ``zeta[label]``, ``omega[label]`` and ``damping_ratio[label]`` are 1-D
+    arrays of the mode's dominant exponent (PointResult.dominant; nan where a point has none or
+    the ratio is undefined); the damping ratio -zeta/|lambda| is a fraction of critical, with
+    omega continued from hover.  damping_criterion: C when asked for (else None), and
+    damping_crossings: one DampingCrossing per label.  A failed step ends the sweep: then there
+    are fewer points than advance ratios asked for, the failed one last.
     """
 
     mu: np.ndarray
@@ -262,6 +289,8 @@ class SweepResult(_Described):
     status: str
     message: str
     notes: Tuple[str, ...] = ()
+    damping_criterion: Optional[float] = None
+    damping_crossings: Tuple[DampingCrossing, ...] = ()
     zeta: Dict[str, np.ndarray] = field(init=False)
     omega: Dict[str, np.ndarray] = field(init=False)
 
@@ -273,6 +302,22 @@ class SweepResult(_Described):
             omega[label] = np.array([math.nan if e is None else e.omega for e in dom])
         object.__setattr__(self, "zeta", zeta)
         object.__setattr__(self, "omega", omega)
+
+    @property
+    def damping_ratio(self) -> Dict[str, np.ndarray]:
+        """Per label, the damping ratio -zeta/|lambda| of the dominant exponent at each point,
+        a fraction of critical (nan where a point has no exponent of the mode or lambda = 0)."""
+        ratio = {}
+        for label in self.labels:
+            dom = [p.dominant(label) for p in self.points]
+            ratio[label] = np.array(
+                [math.nan if e is None or e.damping_ratio is None else e.damping_ratio for e in dom]
+            )
+        return ratio
+
+    def crossing(self, label) -> Optional[DampingCrossing]:
+        """The DampingCrossing of mode ``label`` (None without a damping criterion)."""
+        return next((c for c in self.damping_crossings if c.mode == label), None)
 
     @property
     def max_zeta(self) -> np.ndarray:
@@ -902,6 +947,25 @@ class StudyResult:
     @property
     def row_status(self) -> np.ndarray:
         return np.array([r.status for r in self.rows], dtype=object)
+
+    @property
+    def damping_crossings(self) -> Tuple[Tuple[DampingCrossing, ...], ...]:
+        """Per row, one DampingCrossing per mode (study(damping_criterion=...); () without)."""
+        return tuple(
+            tuple(DampingCrossing._from(x) for x in r.__dict__.get("_extra", {}).get(
+                "damping_crossings", ()))
+            for r in self.rows
+        )
+
+    def first_below(self, label) -> np.ndarray:
+        """Per row, the first mu where mode ``label``'s damping ratio falls below the damping
+        criterion (nan where there is none: not crossed, unresolved without a point above, or
+        no criterion)."""
+        out = []
+        for row in self.damping_crossings:
+            c = next((c for c in row if c.mode == label), None)
+            out.append(math.nan if c is None or c.mu is None else c.mu)
+        return np.array(out)
 
     def __len__(self):
         return len(self.rows)

@@ -614,7 +614,16 @@ StudyOptions study_options(const std::string& parameter, const py::handle& value
   StudyOptions o;
   o.parameter = parameter;
   o.values = values_of(values);
-  o.critical = critical_options(critical);
+  // The damping criterion travels with the search options (Python's study(damping_criterion=)).
+  py::dict search;
+  for (const auto& [key, value] : critical) {
+    if (key.cast<std::string>() == "damping_criterion") {
+      if (!value.is_none()) o.damping_criterion = value.cast<double>();
+    } else {
+      search[key] = value;
+    }
+  }
+  o.critical = critical_options(search);
   o.trim = trim_of(trim);
   o.threads = threads;
   o.Check();
@@ -660,6 +669,7 @@ py::dict study(const py::dict& params, const py::dict& transition, int flap_mode
     py::dict row = to_dict(r.rows[i].critical);
     row["trim"] =
         trimmed && r.rows[i].trim ? py::object(trim_dict(*r.rows[i].trim)) : py::object(py::none());
+    if (o.damping_criterion) row["damping_crossings"] = to_python(r.rows[i].damping_crossings);
     rows.append(row);
   }
   py::dict d;
@@ -1017,6 +1027,17 @@ py::list model_rows() {
   return l;
 }
 
+// A sweep's dict, with the crossings of the damping criterion when one was asked for (modes in
+// hover order, as the command line's --damping-criterion).
+py::dict sweep_dict(const Analysis& a, SweepResult r, const std::optional<double>& criterion) {
+  if (criterion) apply_damping_criterion(r, distinct_labels(a.hover().labels), *criterion);
+  return to_dict(r);
+}
+
+void check_criterion(const std::optional<double>& criterion) {
+  if (criterion) check_damping_criterion(*criterion);
+}
+
 }  // namespace
 }  // namespace flaplag::python
 
@@ -1055,6 +1076,7 @@ PYBIND11_MODULE(_flaplag, m) {
     if (name == "PointResult") return field_rows<PointResult>();
     if (name == "SweepResult") return field_rows<SweepResult>();
     if (name == "Interval") return field_rows<InstabilityInterval>();
+    if (name == "DampingCrossing") return field_rows<DampingCrossing>();
     if (name == "CriticalResult") return field_rows<CriticalResult>();
     if (name == "TrimResult") return field_rows<TrimResult>();
     throw InvalidInput("name", quoted(name), "not a described result");
@@ -1110,7 +1132,9 @@ PYBIND11_MODULE(_flaplag, m) {
       // sweep and track: progress(evaluations done, in all) and Ctrl-C as study and map.
       .def("sweep",
            [](const Analysis& a, double mu0, double mu1, double step, int threads,
-              const py::object& progress, std::uint64_t memory_limit) {
+              const py::object& progress, std::uint64_t memory_limit,
+              const std::optional<double>& damping_criterion) {
+             check_criterion(damping_criterion);
              // The grid's own checks first (they name mu0, mu1, step), then its size.
              const std::size_t points = sweep_grid(mu0, mu1, step).size();
              check_memory(sweep_memory(points, a.state_size()), memory_limit, "step",
@@ -1124,11 +1148,13 @@ PYBIND11_MODULE(_flaplag, m) {
                    }
                  },
                  progress);
-             return to_dict(r);
+             return sweep_dict(a, r, damping_criterion);
            })
       .def("track",
            [](const Analysis& a, const std::vector<double>& mus, double scan_step, int threads,
-              const py::object& progress, std::uint64_t memory_limit) {
+              const py::object& progress, std::uint64_t memory_limit,
+              const std::optional<double>& damping_criterion) {
+             check_criterion(damping_criterion);
              if (mus.size() <= static_cast<std::size_t>(kMaxContinuationSteps))
                check_memory(sweep_memory(mus.size(), a.state_size()), memory_limit, "mu",
                             std::to_string(mus.size()) + " advance ratios");
@@ -1141,7 +1167,7 @@ PYBIND11_MODULE(_flaplag, m) {
                    }
                  },
                  progress);
-             return to_dict(r);
+             return sweep_dict(a, r, damping_criterion);
            })
       .def("critical",
            [](const Analysis& a, const py::dict& options) {
@@ -1284,7 +1310,8 @@ PYBIND11_MODULE(_flaplag, m) {
       .def("trimmed_sweep",
            [](const Analysis& a, double mu0, double mu1, double step, const std::string& kind,
               double thrust_coefficient, double shaft_angle, const py::object& progress,
-              std::uint64_t memory_limit) {
+              std::uint64_t memory_limit, const std::optional<double>& damping_criterion) {
+             check_criterion(damping_criterion);
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
@@ -1301,12 +1328,14 @@ PYBIND11_MODULE(_flaplag, m) {
                    }
                  },
                  progress);
-             return to_dict(r);
+             return sweep_dict(a, r, damping_criterion);
            })
       .def("trimmed_track",
            [](const Analysis& a, const std::vector<double>& mus, double scan_step,
               const std::string& kind, double thrust_coefficient, double shaft_angle,
-              const py::object& progress, std::uint64_t memory_limit) {
+              const py::object& progress, std::uint64_t memory_limit,
+              const std::optional<double>& damping_criterion) {
+             check_criterion(damping_criterion);
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
@@ -1323,7 +1352,7 @@ PYBIND11_MODULE(_flaplag, m) {
                    }
                  },
                  progress);
-             return to_dict(r);
+             return sweep_dict(a, r, damping_criterion);
            })
       .def("trimmed_critical",
            [](const Analysis& a, const py::dict& options, const std::string& kind,

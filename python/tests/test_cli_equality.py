@@ -371,3 +371,60 @@ def test_simulate(params, mu, options):
         assert find(doc, "reference") == s.reference
         for key, values in (("flap_total", s.flap_total), ("lag_total", s.lag_total)):
             assert np.array(find(doc, key), dtype=float).tobytes() == values.tobytes(), key
+
+
+def test_damping_criterion_sweep_and_study():
+    """damping_criterion: the per-mode damping ratios and the first mu below the criterion, as
+    the command line's --damping-criterion gives them, bit for bit; the crossing is the linear
+    interpolation of the damping ratio between the two points around it."""
+    c = 0.0005  # 0.05 % of critical: the typical lag mode has 0.086 % in hover
+    an = flaplag.Analysis()
+    sweep = an.sweep(0.0, 1.2, 0.05, damping_criterion=c)
+    doc = run_cli("sweep", "--mu", "0:1.2:0.05", "--damping-criterion", repr(c))
+    assert sweep.damping_criterion == doc["damping_criterion"] == c
+    assert [x.mode for x in sweep.damping_crossings] == list(sweep.labels) == doc["labels"]
+    for x, d in zip(sweep.damping_crossings, doc["damping_crossings"]):
+        assert x.mode == d["mode"] and x.status == d["status"], (x, d)
+        for key in ("mu", "mu_above", "mu_below"):
+            assert same(getattr(x, key), d[key]), (key, x, d)
+    for label in sweep.labels:
+        ratio = sweep.damping_ratio[label]
+        for i, row in enumerate(doc["rows"]):
+            assert same(ratio[i], row[label]["damping_ratio"])
+            z, w = zeta_value(row[label]["zeta"]), row[label]["omega"]
+            assert abs(ratio[i] - (-z / math.hypot(z, w))) <= 1e-15
+        below = [i for i, r in enumerate(ratio) if r < c]
+        x = sweep.crossing(label)
+        if not below:
+            assert x.status == "not_crossed" and x.mu is None
+            continue
+        k = below[0]
+        assert k > 0 and x.status == "crossed", x
+        mu = sweep.mu
+        expected = mu[k - 1] + (c - ratio[k - 1]) / (ratio[k] - ratio[k - 1]) * (mu[k] - mu[k - 1])
+        assert abs(x.mu - expected) <= 1e-12, (x, expected)
+    assert sweep.crossing("lag").status == "crossed"
+    # Without it: no criterion, no crossings.
+    plain = an.sweep(0.0, 0.2, 0.1)
+    assert plain.damping_criterion is None and plain.damping_crossings == ()
+    # The study's rows: the crossings of each row's sweep over 0..mu_max, as the command line.
+    study = flaplag.study("theta", [0.1, 0.15], mu_max=1.0, scan_step=0.05, damping_criterion=c)
+    sdoc = run_cli("study", "--vary", "theta=0.1,0.15", "--mu-max", "1", "--scan-step", "0.05",
+                   "--damping-criterion", repr(c))
+    assert sdoc["damping_criterion"] == c
+    for row, drow in zip(study.damping_crossings, sdoc["rows"]):
+        assert [(x.mode, x.status) for x in row] == [
+            (d["mode"], d["status"]) for d in drow["damping_crossings"]]
+        for x, d in zip(row, drow["damping_crossings"]):
+            assert same(x.mu, d["mu"])
+    assert np.array_equal(
+        study.first_below("lag"),
+        [d["mu"] if d["mu"] is not None else math.nan
+         for drow in sdoc["rows"] for d in drow["damping_crossings"] if d["mode"] == "lag"],
+        equal_nan=True)
+    # Bad criteria: InvalidInput naming the keyword, as the command line's exit 2.
+    for bad in (-1.0, math.nan, 2.0, 1.0):
+        with pytest.raises(flaplag.InvalidInput, match="damping_criterion"):
+            an.sweep(0.0, 0.2, 0.1, damping_criterion=bad)
+        with pytest.raises(flaplag.InvalidInput, match="damping_criterion"):
+            flaplag.study("theta", [0.1], damping_criterion=bad)

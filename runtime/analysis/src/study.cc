@@ -33,6 +33,9 @@ std::optional<InvalidInput> study_problem(const StudyOptions& o) {
     return bad("parameter", o.parameter.empty() ? "\"\"" : o.parameter,
                "must name a numeric rotor parameter (not mu: mu_c is what a study finds)");
   if (auto p = check_values("values", o.values, kMaxStudyValues)) return p;
+  if (o.damping_criterion && !kDampingCriterionRange.interval.Contains(*o.damping_criterion))
+    return bad("damping_criterion", round_trip_text(*o.damping_criterion),
+               std::string("must be ") + kDampingCriterionRange.words);
   return Requirements()
       .Include(o.critical.Validate())
       .Include(o.trim.Validate())
@@ -83,6 +86,15 @@ MapCell cell_of(const PointResult& p) {
   return c;
 }
 
+// The crossings of the damping criterion along a row's sweep, per mode (the labels of its first
+// point, sorted as a point's exponents are).
+std::vector<DampingCrossing> crossings_along(const SweepResult& s, double criterion) {
+  std::vector<std::string> labels;
+  if (!s.points.empty())
+    for (const LabelledExponent& e : s.points.front().exponents) labels.push_back(e.label);
+  return damping_crossings(s, distinct_labels(labels), criterion);
+}
+
 MapCell failed_cell(const std::string& why) {
   MapCell c;
   c.computed = true;
@@ -129,8 +141,16 @@ StudyResult run_study(const RotorParameters& base, const TransitionOptions& tran
             std::vector<TrimResult> at_mu_c;
             row.critical = trimmed_critical(p, transition, options.trim, crit, &at_mu_c);
             if (!at_mu_c.empty()) row.trim = std::move(at_mu_c.front());
+            if (options.damping_criterion)
+              row.damping_crossings = crossings_along(
+                  trimmed_sweep(p, transition, options.trim, 0.0, crit.mu_max, crit.scan_step),
+                  *options.damping_criterion);
           } else {
-            row.critical = Analysis(p, transition).critical(crit);
+            const Analysis an(p, transition);
+            row.critical = an.critical(crit);
+            if (options.damping_criterion)
+              row.damping_crossings = crossings_along(an.sweep(0.0, crit.mu_max, crit.scan_step, 1),
+                                                      *options.damping_criterion);
           }
         } catch (const InvalidInput& e) {
           row.critical = CriticalResult{};

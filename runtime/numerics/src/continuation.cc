@@ -1406,4 +1406,109 @@ SweepResult sweep_exponents(const HoverModes& hover, const FloquetFunction& floq
   return track_exponents(hover, floquet, sweep_grid(mu0, mu1, step), step, zeta_tolerance);
 }
 
+// ---- the damping criterion --------------------------------------------------------------------
+
+const LabelledExponent* dominant_exponent(const PointResult& p, const std::string& label) {
+  const LabelledExponent* best = nullptr;
+  for (const LabelledExponent& e : p.exponents) {
+    if (e.label != label) continue;
+    if (best == nullptr || e.zeta > best->zeta ||
+        (e.zeta == best->zeta && e.omega >= 0.0 && best->omega < 0.0)) {
+      best = &e;
+    }
+  }
+  return best;
+}
+
+std::vector<std::string> distinct_labels(const std::vector<std::string>& labels) {
+  std::vector<std::string> out;
+  for (const std::string& l : labels) {
+    if (std::find(out.begin(), out.end(), l) == out.end()) out.push_back(l);
+  }
+  return out;
+}
+
+void check_damping_criterion(double criterion) {
+  ThrowIfInvalid(
+      Requirements().InRange("damping_criterion", criterion, kDampingCriterionRange).Result());
+}
+
+namespace {
+
+// One mode's damping ratio at a sweep point, with what decides whether it resolves a crossing.
+struct RatioAt {
+  double mu = 0.0;
+  double ratio = 0.0;
+  bool resolved = false;  // not failed, with an error estimate, farther than it from C
+};
+
+std::optional<RatioAt> ratio_at(const PointResult& p, const std::string& label, double criterion) {
+  const LabelledExponent* e = dominant_exponent(p, label);
+  if (e == nullptr) return std::nullopt;
+  const std::optional<double> r = damping_ratio(e->zeta, e->omega);
+  if (!r) return std::nullopt;
+  RatioAt a{p.mu, *r, false};
+  if (p.status != Status::Failed && p.error && std::isfinite(*p.error)) {
+    const double modulus = std::hypot(e->zeta, e->omega);
+    // zeta = -inf (a zero multiplier): ratio 1, as far from any C < 1 as a ratio can be.
+    const double spread = std::isfinite(modulus) ? *p.error / modulus : 0.0;
+    a.resolved = std::abs(*r - criterion) > spread;
+  }
+  return a;
+}
+
+DampingCrossing crossing_of(const SweepResult& s, const std::string& label, double criterion) {
+  DampingCrossing c;
+  c.mode = label;
+  std::optional<RatioAt> above;  // the last point with a ratio, at or above C
+  bool gap = false;              // a point without a ratio since then (or before the first)
+  for (const PointResult& p : s.points) {
+    const std::optional<RatioAt> at = ratio_at(p, label, criterion);
+    if (!at) {
+      gap = true;
+      continue;
+    }
+    if (at->ratio >= criterion) {
+      above = at;
+      gap = false;
+      continue;
+    }
+    c.mu_below = at->mu;
+    if (!above) {
+      // Below at the first point with a ratio: at the sweep's start, or after points without one.
+      c.status = gap ? CrossingStatus::Unresolved : CrossingStatus::BelowAtStart;
+      if (!gap) c.mu = at->mu;
+      return c;
+    }
+    c.mu_above = above->mu;
+    // r_above >= C > r_below: the fraction lies in [0, 1).
+    const double t = (criterion - above->ratio) / (at->ratio - above->ratio);
+    c.mu = above->mu + t * (at->mu - above->mu);
+    c.status = (gap || !above->resolved || !at->resolved) ? CrossingStatus::Unresolved
+                                                          : CrossingStatus::Crossed;
+    return c;
+  }
+  // A sweep that stopped at a failed point does not know the rest of the range.
+  const bool stopped = !s.points.empty() && s.points.back().status == Status::Failed;
+  c.status = stopped ? CrossingStatus::Unresolved : CrossingStatus::NotCrossed;
+  return c;
+}
+
+}  // namespace
+
+std::vector<DampingCrossing> damping_crossings(const SweepResult& s,
+                                               const std::vector<std::string>& labels,
+                                               double criterion) {
+  check_damping_criterion(criterion);
+  std::vector<DampingCrossing> out;
+  for (const std::string& l : labels) out.push_back(crossing_of(s, l, criterion));
+  return out;
+}
+
+void apply_damping_criterion(SweepResult& s, const std::vector<std::string>& labels,
+                             double criterion) {
+  s.damping_crossings = damping_crossings(s, labels, criterion);
+  s.damping_criterion = criterion;
+}
+
 }  // namespace flaplag

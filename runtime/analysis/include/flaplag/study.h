@@ -37,6 +37,11 @@ struct StudyOptions {
   // mu_c at fixed C_T.  The trim replaces theta (and, moment trim, theta1c, theta1s).
   TrimOptions trim;
   int threads = 0;  // 0: as many as the hardware has; else 1..kMaxThreads (core/parallel.h)
+  // Given (kDampingCriterionRange, numerics/continuation.h): each row also sweeps mu = 0,
+  // scan_step, ..., mu_max (trimmed when the row is) and reports, per mode, the first mu where
+  // its damping ratio falls below it (StudyRow::damping_crossings).  The sweep is a second
+  // continuation at the exponents' full accuracy: it about doubles a row's cost.
+  std::optional<double> damping_criterion;
 
   std::optional<InvalidInput> Validate() const;
   bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
@@ -54,6 +59,9 @@ struct StudyRow {
   // Trimmed studies: the trim at mu_c that the row's result rests on (trimmed_critical; its
   // problems are in critical's status and message); nullopt without mu_c or without a trim.
   std::optional<TrimResult> trim;
+  // With StudyOptions::damping_criterion: one crossing per mode (labels in the order of the
+  // sweep's exponents: sorted); empty otherwise or when the row failed before its sweep.
+  std::vector<DampingCrossing> damping_crossings;
 };
 
 struct StudyResult : Outcome {

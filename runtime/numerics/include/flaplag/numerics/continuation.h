@@ -14,6 +14,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <array>
 #include <complex>
 #include <functional>
 #include <limits>
@@ -23,6 +24,7 @@
 #include <vector>
 
 #include "flaplag/core/outcome.h"
+#include "flaplag/core/validation.h"
 #include "flaplag/numerics/floquet.h"
 
 namespace flaplag {
@@ -57,8 +59,11 @@ constexpr auto describe(Tag<LabelledExponent>) {
             "imaginary part of lambda, its integer part fixed by continuation from hover"},
       Computed{
           "damping_ratio",
-          +[](const LabelledExponent& e) { return damping_ratio(e.zeta, e.omega); }, "-",
-          "-zeta/|lambda|; for omega = 0 +1 when decaying, -1 when growing; null for lambda = 0"},
+          +[](const LabelledExponent& e) { return damping_ratio(e.zeta, e.omega); },
+          "- (fraction of critical)",
+          "-zeta/|lambda| with omega as above (continued from hover, not reduced modulo 1/rev); "
+          "text and pictures show it in % of critical; for omega = 0 +1 when decaying, -1 when "
+          "growing; null for lambda = 0 (undefined)"},
       Field{"multiplier", &LabelledExponent::multiplier, "-",
             "the characteristic multiplier exp(2 pi lambda), an eigenvalue of Phi(2 pi)"});
 }
@@ -209,18 +214,109 @@ constexpr auto describe(Tag<PointResult>) {
       describe(Tag<Outcome>{}));
 }
 
+// ---- the damping criterion of a design review ---------------------------------------------
+//
+// A mode's damping ratio at a point is the damping_ratio() of its dominant exponent (below),
+// -zeta/|lambda| with the omega continued from hover (its integer part fixed by continuation,
+// not reduced modulo 1/rev): a fraction of critical.  A review asks for every mode to keep it
+// above a criterion C (say 0.01, 1 % of critical) and for the first mu where it does not.
+
+// The exponent that decides mode `label`'s stability at p: the largest zeta among the exponents
+// so labelled; of a conjugate pair (equal zeta) the one with omega >= 0.  nullptr when p has
+// none (a failed point).
+const LabelledExponent* dominant_exponent(const PointResult& p, const std::string& label);
+
+// The labels in the order given, each once (hover's labels: one per exponent).
+std::vector<std::string> distinct_labels(const std::vector<std::string>& labels);
+
+// Admissible criteria: a fraction of critical damping, 0 <= C < 1 (a damping ratio is at most
+// 1, so C = 1 would be crossed by every oscillating mode at once).
+inline constexpr Range kDampingCriterionRange{{0.0, 1.0, false, true},
+                                              ">= 0 and < 1 (a fraction of critical: 0.01 is 1 %)"};
+// InvalidInput("damping_criterion", value, ...) when criterion is outside the range (or NaN).
+void check_damping_criterion(double criterion);
+
+enum class CrossingStatus {
+  Crossed,       // interpolated between two resolved points, the first below C
+  Unresolved,    // below C, but a bracketing point is failed, has no error estimate or lies
+                 // within its estimated error of C, or points between have no ratio
+  BelowAtStart,  // already below C at the first point of the sweep
+  NotCrossed,    // at or above C at every point with a ratio (Unresolved, mu nullopt, when
+                 // the sweep stopped at a failed point)
+};
+constexpr auto describe(Tag<CrossingStatus>) {
+  return std::array<EnumName<CrossingStatus>, 4>{{{CrossingStatus::Crossed, "crossed"},
+                                                  {CrossingStatus::Unresolved, "unresolved"},
+                                                  {CrossingStatus::BelowAtStart, "below_at_start"},
+                                                  {CrossingStatus::NotCrossed, "not_crossed"}}};
+}
+
+// The first advance ratio where one mode's damping ratio falls below the criterion C.
+struct DampingCrossing {
+  std::string mode;
+  // Linear interpolation of the damping ratio between mu_above and mu_below:
+  // mu_above + (C - r_above) (mu_below - mu_above) / (r_below - r_above).  The first point
+  // (below_at_start); nullopt when not crossed, or unresolved without a point above C before it.
+  std::optional<double> mu;
+  CrossingStatus status = CrossingStatus::NotCrossed;
+  std::optional<double> mu_above;  // the last sweep point at or above C before the crossing
+  std::optional<double> mu_below;  // the first sweep point below C
+};
+
+constexpr auto describe(Tag<DampingCrossing>) {
+  return std::make_tuple(
+      Field{"mode", &DampingCrossing::mode, "", "the mode label"},
+      Field{"mu", &DampingCrossing::mu, "-",
+            "first advance ratio where the mode's damping ratio falls below the criterion, "
+            "interpolated linearly between mu_above and mu_below (the first point when "
+            "below_at_start); null when not crossed, or unresolved without a point above"},
+      Field{"status", &DampingCrossing::status, "",
+            "crossed; unresolved (a bracketing point failed, has no error estimate or lies within "
+            "its error of the criterion, a point between has no ratio, or the sweep stopped at "
+            "a failed point); below_at_start; not_crossed (at or above the criterion at every "
+            "point)"},
+      Field{"mu_above", &DampingCrossing::mu_above, "-",
+            "the last sweep point at or above the criterion before the crossing; null if none"},
+      Field{"mu_below", &DampingCrossing::mu_below, "-",
+            "the first sweep point below the criterion; null when not crossed"});
+}
+
 struct SweepResult : Outcome {
   std::vector<PointResult> points;
   // Outcome: the worst point's status, and the first problem met (Outcome::Include)
+  // Set by apply_damping_criterion (empty otherwise): C, and one crossing per mode.
+  std::optional<double> damping_criterion;
+  std::vector<DampingCrossing> damping_crossings;
 };
 
 constexpr auto describe(Tag<SweepResult>) {
   return std::tuple_cat(
-      std::make_tuple(Field{
-          "points", &SweepResult::points, "",
-          "one result per advance ratio; a failed step ends the sweep (the failed point last)"}),
+      std::make_tuple(
+          Field{"points", &SweepResult::points, "",
+                "one result per advance ratio; a failed step ends the sweep (the failed point "
+                "last)"},
+          Field{"damping_criterion", &SweepResult::damping_criterion, "- (fraction of critical)",
+                "the damping ratio asked of every mode (0.01: 1 % of critical); only when given",
+                kFieldOmitWhenEmpty},
+          Field{"damping_crossings", &SweepResult::damping_crossings, "",
+                "per mode (in hover order), the first mu where its damping ratio -zeta/|lambda| "
+                "(omega continued from hover) falls below damping_criterion; only with it",
+                kFieldOmitWhenEmpty}),
       describe(Tag<Outcome>{}));
 }
+
+// The crossing of the criterion by each mode of `labels` (in that order) along s.points (in
+// their order).  A point's ratio is unknown where the mode has no exponent or damping_ratio()
+// is undefined (lambda = 0); such points are skipped, and a crossing across them is Unresolved.
+// A bracketing point lies within its error of C when |r - C| <= error_estimate / |lambda|.
+// check_damping_criterion(criterion) first.
+std::vector<DampingCrossing> damping_crossings(const SweepResult& s,
+                                               const std::vector<std::string>& labels,
+                                               double criterion);
+// Sets s.damping_criterion and s.damping_crossings (the status of s is not changed: a crossing
+// is a finding, not a problem of the computation).
+void apply_damping_criterion(SweepResult& s, const std::vector<std::string>& labels,
+                             double criterion);
 
 // Search for the critical advance ratio.  Validated as every options struct (core/validation.h).
 struct CriticalOptions {
