@@ -203,6 +203,14 @@ OptionSpec memory_limit_option() {
                       memory_text(kDefaultMemoryLimit), {"memory_limit"});
 }
 
+// The y quantity of a sweep picture: sweep --plot and flaplag plot of a sweep's file.
+OptionSpec plot_quantity_option() {
+  return value_option("--plot-quantity", "damping-ratio|zeta",
+                      "y quantity of a sweep picture: the damping ratio -zeta/|lambda| in % of "
+                      "critical (with the damping criterion's line) or the exponent zeta [1/rev]",
+                      "damping-ratio", {"plot_quantity"});
+}
+
 // flaplag merge and flaplag plot read files given as arguments.
 std::vector<OptionSpec> file_tool_options(Command c) {
   if (c == Command::Merge) return {output_options()[1], memory_limit_option()};  // -o: JSON
@@ -217,10 +225,7 @@ std::vector<OptionSpec> file_tool_options(Command c) {
       value_option("--mode", "NAME",
                    "sweeps: only the curves of this mode (a label of the sweep: flap, lag, ...)",
                    "", {"mode"}),
-      value_option("--plot-quantity", "damping-ratio|zeta",
-                   "sweeps: the damping ratio in % of critical (with the file's damping "
-                   "criterion) or the exponent zeta [1/rev]",
-                   "damping-ratio", {"plot_quantity"})};
+      plot_quantity_option()};
 }
 
 std::vector<OptionSpec> build(Command c) {
@@ -237,11 +242,7 @@ std::vector<OptionSpec> build(Command c) {
       "damping ratio asked of every mode, a fraction of critical (0.01: 1 %), >= 0 and < 1: "
       "report the first mu where each mode's damping ratio -zeta/|lambda| falls below it",
       "", {"damping_criterion"});
-  const OptionSpec plot_quantity = value_option(
-      "--plot-quantity", "damping-ratio|zeta",
-      "y quantity of a sweep picture: the damping ratio -zeta/|lambda| in % of critical (with "
-      "the --damping-criterion line) or the exponent zeta [1/rev]",
-      "damping-ratio", {"plot_quantity"});
+  const OptionSpec plot_quantity = plot_quantity_option();
   switch (c) {
     case Command::Point:
       v.push_back(mu);
