@@ -234,7 +234,8 @@ const char* description(Command c) {
     case Command::Merge:
       return "join the --shard parts of a map or study into the file one run writes";
     case Command::Plot:
-      return "draw an existing sweep, study, map, response or simulate result (--json output), "
+      return "draw an existing sweep, study, map, response, simulate or modes result (--json "
+             "output), "
              "or several sweeps in one picture";
     case Command::Trim:
       return "trim: theta0, theta1c, theta1s and lambda (eq 2.25) for a thrust coefficient";
@@ -264,7 +265,8 @@ std::vector<std::string> examples(Command c) {
     case Command::Models:
       return {"flaplag models", "flaplag models --spec paper", "flaplag models --json"};
     case Command::Modes:
-      return {"flaplag modes", "flaplag modes --omega-lag 1.4 --flap-modes 2 --json"};
+      return {"flaplag modes", "flaplag modes --omega-lag 1.4 --flap-modes 2 --json",
+              "flaplag modes --flap-modes 3 --lag-modes 2 --points 21 --plot shapes.svg"};
     case Command::Study:
       return {"flaplag study --vary omega-lag=0.2:2.5:0.05 --plot fig15.svg",
               "flaplag --modes exact study --vary damping-lag=0,0.01,0.02,0.03,0.05 --json",
@@ -758,7 +760,8 @@ Request CommandLine::interpret() const {
       }
       break;
     case Command::Modes: {
-      // Only the blade parameters modes uses; the others keep their (valid) defaults.
+      // Every rotor option is accepted (one option string serves every subcommand) and checked;
+      // the modes use the blade's.
       validate(r.params);
       const int basis = r.params.basis;
       if (flap_modes > basis) {

@@ -76,7 +76,7 @@ std::optional<Output> run_standalone(const Request& r, std::string& w, RunContro
     case Command::Models:
       return cmd::models(r);
     case Command::Modes:
-      return Output(run_modes(r));
+      return Output(run_modes(r, &w));
     case Command::Study:
       return cmd::study(r, w, control);
     case Command::Map:

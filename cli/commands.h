@@ -32,7 +32,7 @@ struct RunControl {
 std::string run_command(const Request& request, std::string* warning = nullptr,
                         RunControl* control = nullptr);
 
-// `flaplag modes` (modes_command.cc).
-std::string run_modes(const Request& request);
+// `flaplag modes` (modes_command.cc); *warning as in run_command (the --plot picture).
+std::string run_modes(const Request& request, std::string* warning);
 
 }  // namespace flaplag::cli

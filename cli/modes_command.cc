@@ -11,6 +11,7 @@
 #include "flaplag/rotor/parameter_table.h"
 #include "options.h"
 #include "output.h"
+#include "plot.h"
 
 namespace flaplag::cli {
 
@@ -32,7 +33,7 @@ Json jnums(const std::vector<double>& v) {
 
 }  // namespace
 
-std::string run_modes(const Request& r) {
+std::string run_modes(const Request& r, std::string* warning) {
   const RotorParameters& p = r.params;
   ExactModeOptions opt;
   opt.n_basis = r.params.basis;
@@ -88,6 +89,25 @@ std::string run_modes(const Request& r) {
   const std::string status = all_finite ? "ok" : "failed";
   const std::string message =
       all_finite ? "" : "non-finite frequencies, stiffnesses or shape values (not shown)";
+
+  if (!r.plot.empty()) {
+    auto curves = [&](const std::vector<std::shared_ptr<const ModeShape>>& shapes) {
+      std::vector<ShapeCurves> c;
+      for (const auto& shape : shapes) {
+        ShapeCurves m;
+        for (double x : x0) {
+          m.value.push_back(shape->value(0, x));
+          m.slope.push_back(shape->value(1, x));
+        }
+        c.push_back(m);
+      }
+      return c;
+    };
+    const std::string w = render_plot(
+        mode_shapes_plot_script(p.omega_flap, p.omega_lag, x0, curves(ms.flap), curves(ms.lag)),
+        r.plot);
+    if (warning != nullptr) *warning = w;
+  }
 
   if (r.json) {
     Json j;

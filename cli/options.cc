@@ -91,16 +91,6 @@ std::vector<OptionSpec> rotor_options() {
   return v;
 }
 
-// The blade parameters `flaplag modes` uses.
-std::vector<OptionSpec> modes_rotor_options() {
-  std::vector<OptionSpec> v;
-  for (const char* field :
-       {"omega_flap", "omega_lag", "length_ratio", "root_offset", "basis", "paper_1974_shapes"}) {
-    v.push_back(rotor_option(*find_parameter(field)));
-  }
-  return v;
-}
-
 std::vector<OptionSpec> transition_options() {
   const TransitionOptions defaults;
   return {
@@ -282,7 +272,9 @@ std::vector<OptionSpec> build(Command c) {
       append(v, output_options());
       return v;
     case Command::Modes:
-      append(v, modes_rotor_options());
+      // Every rotor option, so that one option string serves every subcommand; the modes use
+      // omega-flap, omega-lag, length-ratio, root-offset, basis and paper-1974-shapes.
+      append(v, rotor_options());
       v.push_back(value_option("--flap-modes", "M", "rotating flap modes shown (1..--basis)", "1",
                                {"flap_modes"}));
       v.push_back(value_option("--lag-modes", "N", "rotating lag modes shown (1..--basis)", "1",
@@ -292,6 +284,10 @@ std::vector<OptionSpec> build(Command c) {
                                "0:2.5:0.1", {"omega_nonrotating_lo", "omega_nonrotating_hi"}));
       v.push_back(value_option("--points", "K", "spanwise stations of the mode-shape table (>= 2)",
                                "11", {"n_points"}));
+      v.push_back(value_option("--plot", "FILE.svg|FILE.png",
+                               "also draw the flap and lag mode shapes and their slopes at the "
+                               "--points stations (gnuplot)",
+                               "", {"plot"}));
       append(v, output_options());
       return v;
     case Command::Study: {

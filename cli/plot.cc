@@ -56,7 +56,8 @@ bool is_plot_path(const std::string& path) {
   return ends_with(path, ".svg") || ends_with(path, ".png");
 }
 
-std::string line_plot_script(const std::string& title, const std::vector<Panel>& panels) {
+std::string line_plot_script(const std::string& title, const std::vector<Panel>& panels,
+                             int columns) {
   std::string s;
   int block = 0;
   std::vector<std::vector<std::string>> names(panels.size());
@@ -71,7 +72,9 @@ std::string line_plot_script(const std::string& title, const std::vector<Panel>&
     }
   }
   s += "set grid\nset key outside right top\n";
-  s += "set multiplot layout " + std::to_string(panels.size()) + ",1 title " + quoted(title) + "\n";
+  const std::size_t cols = static_cast<std::size_t>(std::max(columns, 1));
+  s += "set multiplot layout " + std::to_string((panels.size() + cols - 1) / cols) + "," +
+       std::to_string(cols) + " title " + quoted(title) + "\n";
   for (std::size_t p = 0; p < panels.size(); ++p) {
     const Panel& pn = panels[p];
     s += "set title " + quoted(pn.title) + "\nset xlabel " + quoted(pn.xlabel) + "\nset ylabel " +
@@ -81,8 +84,9 @@ std::string line_plot_script(const std::string& title, const std::vector<Panel>&
       const Curve& cv = pn.curves[c];
       if (c > 0) s += ", ";
       s += names[p][c] + " using 1:2 " +
-           (cv.points ? "with points pt " + std::to_string(cv.point_type) + " ps 0.8"
-                      : std::string("with lines lw 1.5")) +
+           (cv.points   ? "with points pt " + std::to_string(cv.point_type) + " ps 0.8"
+            : cv.smooth ? std::string("smooth csplines with lines lw 1.5")
+                        : std::string("with lines lw 1.5")) +
            " title " + quoted(cv.title);
     }
     if (pn.zero_line)
@@ -278,6 +282,30 @@ std::string simulate_plot_script(double mu, const std::vector<double>& revolutio
            false,
            {}};
   return line_plot_script("flaplag simulate at mu = " + num(mu), {pf, pl});
+}
+
+std::string mode_shapes_plot_script(double omega_flap, double omega_lag,
+                                    const std::vector<double>& x0,
+                                    const std::vector<ShapeCurves>& flap,
+                                    const std::vector<ShapeCurves>& lag) {
+  const std::string x = "x0 = r/l, from the root of the elastic blade";
+  Panel flap_shapes{"flap mode shapes eta_k(x0)", x, "shape [tip value 1]", {}, true, {}};
+  Panel lag_shapes{"lag mode shapes gamma_k(x0)", x, "shape [tip value 1]", {}, true, {}};
+  Panel flap_slopes{"flap slopes eta_k'(x0)", x, "slope [1/l]", {}, true, {}};
+  Panel lag_slopes{"lag slopes gamma_k'(x0)", x, "slope [1/l]", {}, true, {}};
+  for (std::size_t k = 0; k < flap.size(); ++k) {
+    const std::string name = "eta" + std::to_string(k + 1);
+    flap_shapes.curves.push_back({name, x0, flap[k].value, false, 7, true});
+    flap_slopes.curves.push_back({name, x0, flap[k].slope, false, 7, true});
+  }
+  for (std::size_t k = 0; k < lag.size(); ++k) {
+    const std::string name = "gamma" + std::to_string(k + 1);
+    lag_shapes.curves.push_back({name, x0, lag[k].value, false, 7, true});
+    lag_slopes.curves.push_back({name, x0, lag[k].slope, false, 7, true});
+  }
+  return line_plot_script("flaplag modes: exact rotating modes, omega_{F1} = " + num(omega_flap) +
+                              ", omega_{L1} = " + num(omega_lag) + " per rev",
+                          {flap_shapes, lag_shapes, flap_slopes, lag_slopes}, 2);
 }
 
 namespace {

@@ -26,6 +26,7 @@ struct Curve {
   std::vector<double> x, y;  // NaN: a gap
   bool points = false;       // markers instead of a line
   int point_type = 7;        // gnuplot point type for markers
+  bool smooth = false;       // a cubic spline through the points (smooth data at few stations)
 };
 
 struct Panel {
@@ -36,8 +37,9 @@ struct Panel {
   std::vector<std::pair<double, std::string>> levels;
 };
 
-// Panels stacked vertically in one picture.
-std::string line_plot_script(const std::string& title, const std::vector<Panel>& panels);
+// Panels in one picture, row by row in `columns` columns (1: stacked vertically).
+std::string line_plot_script(const std::string& title, const std::vector<Panel>& panels,
+                             int columns = 1);
 
 // A heat map of z over (x, y) (z[i][j] at y[i], x[j]; NaN where unknown) with the z = 0
 // contour drawn: the stability boundary of a max-zeta map.
@@ -102,7 +104,18 @@ std::string response_plot_script(double mu, const std::vector<double>& psi_deg,
 std::string simulate_plot_script(double mu, const std::vector<double>& revolutions,
                                  const std::vector<double>& flap, const std::vector<double>& lag);
 
-// `flaplag plot DATA.json --plot FILE`: the picture of a sweep, study, map, response or
+// modes: the shapes (tip value 1) and slopes of the flap and lag modes at the stations x0 of
+// the elastic blade of first rotating frequencies omega_flap, omega_lag [per rev]; a flap mode is
+// named eta<k>, a lag mode gamma<k> (k from 1, in order).
+struct ShapeCurves {
+  std::vector<double> value, slope;  // at x0
+};
+std::string mode_shapes_plot_script(double omega_flap, double omega_lag,
+                                    const std::vector<double>& x0,
+                                    const std::vector<ShapeCurves>& flap,
+                                    const std::vector<ShapeCurves>& lag);
+
+// `flaplag plot DATA.json --plot FILE`: the picture of a sweep, study, map, response, modes or
 // simulate result written by --json.  Throws InvalidInput("argument", data as typed, reason)
 // for a file that cannot be read, is not JSON or not such a result; RendererUnavailable when
 // gnuplot is missing or fails.  Returns "" (nothing for stdout).  A file is read up to

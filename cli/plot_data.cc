@@ -219,6 +219,22 @@ std::string tip_script(const std::string& file, const std::string& command, cons
                                : simulate_plot_script(mu, x, flap, lag);
 }
 
+// The mode names are not read from the file: a mode is named by its direction and position.
+std::string modes_script(const Json& j) {
+  auto curves = [](const Json& direction) {
+    std::vector<ShapeCurves> c;
+    for (const Json& m : direction.at("modes"))
+      c.push_back({numbers(m.at("value")), numbers(m.at("d1"))});
+    return c;
+  };
+  const Json& p = j.at("parameters");
+  auto parameter = [&](const char* field) {
+    return number(p.at(json_key(*find_parameter(field))));
+  };
+  return mode_shapes_plot_script(parameter("omega_flap"), parameter("omega_lag"),
+                                 numbers(j.at("x0")), curves(j.at("flap")), curves(j.at("lag")));
+}
+
 Json read_result(const std::string& data, std::uint64_t memory_limit) {
   Json j;
   std::string error;
@@ -249,10 +265,12 @@ std::string plot_data_file(const std::string& data, const std::string& plot,
       script = map_script(data, j);
     else if (command == "response" || command == "simulate")
       script = tip_script(data, command, j);
+    else if (command == "modes")
+      script = modes_script(j);
     else
       refuse(data, "a flaplag " + command +
-                       " result has no picture (flaplag plot draws sweep, study, map, response "
-                       "and simulate results)");
+                       " result has no picture (flaplag plot draws sweep, study, map, response, "
+                       "simulate and modes results)");
   } catch (const Json::exception&) {
     refuse(data,
            "a damaged flaplag " + command + " result (a key is missing or has the wrong type)");

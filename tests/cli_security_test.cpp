@@ -106,7 +106,8 @@ class Results : public ::testing::Test {
         {"study", {"study", "--vary", "omega-lag=1.0,1.3", "--mu-max", "0.6"}},
         {"map", {"map", "--x", "mu=0:0.4:0.2", "--y", "omega-lag=1,1.3"}},
         {"response", {"response", "--mu", "0.3"}},
-        {"simulate", {"simulate", "--mu", "0.3", "--revs", "2"}}};
+        {"simulate", {"simulate", "--mu", "0.3", "--revs", "2"}},
+        {"modes", {"modes", "--flap-modes", "2", "--points", "5"}}};
     for (const auto& [name, args] : commands) {
       std::vector<std::string> a = args;
       const std::string file = dir_->file(name + ".json");
@@ -122,7 +123,7 @@ class Results : public ::testing::Test {
     files_.clear();
   }
   static TempDir* dir_;
-  static std::vector<std::string> files_;  // sweep, study, map, response, simulate
+  static std::vector<std::string> files_;  // sweep, study, map, response, simulate, modes
 };
 TempDir* Results::dir_ = nullptr;
 std::vector<std::string> Results::files_;

@@ -607,6 +607,35 @@ TEST(CliPlot, PlotOfTheDataIsThePictureOfPlotOption) {
   EXPECT_EQ(2, run({"plot", "--plot", d.file("x.svg")}).exit_code);
 }
 
+// modes --plot: the flap and lag shapes and slopes of every mode, the same picture again from
+// the --json output; a damaged modes file is refused naming it.
+TEST(CliPlot, ModeShapes) {
+  TempDir d;
+  const std::string data = d.file("modes.json"), first = d.file("first.svg"),
+                    again = d.file("again.svg");
+  const Outcome m = run({"modes", "--flap-modes", "2", "--lag-modes", "3", "--points", "21",
+                         "--json", "-o", data, "--plot", first});
+  ASSERT_EQ(0, m.exit_code) << m.err;
+  if (gnuplot_available()) {
+    const std::string svg = slurp(first);
+    for (const char* name : {"eta1", "eta2", "gamma1", "gamma3", "slopes", "1.28303"})
+      EXPECT_NE(std::string::npos, svg.find(name)) << name;
+    EXPECT_EQ(std::string::npos, svg.find("eta3"));
+    ASSERT_EQ(0, run({"plot", data, "--plot", again}).exit_code);
+    EXPECT_EQ(svg, slurp(again));
+  }
+  Json broken = Json::parse(slurp(data));
+  broken["flap"]["modes"][0].erase("d1");
+  const std::string damaged = d.file("damaged.json");
+  std::ofstream(damaged) << broken.dump();
+  const Outcome b = run({"plot", damaged, "--plot", d.file("x.svg")});
+  EXPECT_EQ(2, b.exit_code);
+  EXPECT_TRUE(std::regex_match(b.err, std::regex("flaplag: error: argument = " + damaged +
+                                                 ": a damaged flaplag modes result.*\n")))
+      << b.err;
+  EXPECT_FALSE(std::filesystem::exists(d.file("x.svg")));
+}
+
 // flaplag plot A.json B.json: several sweeps in one picture, each curve labelled by its file's
 // case or by --label; --mode and --max-zeta select curves; one file is the single-file picture;
 // mixing kinds is refused naming the file.

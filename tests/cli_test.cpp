@@ -1051,6 +1051,21 @@ TEST(CliGood, ModesJson) {
   EXPECT_EQ(j["status"], "ok");
 }
 
+// One option string serves every subcommand: modes accepts the rotor options it does not use
+// (and checks them), and its output does not depend on them.
+TEST(CliGood, ModesTakesEveryRotorOption) {
+  const Outcome plain = run({"modes", "--omega-lag", "0.7", "--points", "5"});
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const Outcome all =
+      run({"modes", "--omega-lag", "0.7", "--points", "5", "--gamma", "6", "--theta", "0.2",
+           "--sigma", "0.07", "--damping-lag", "0.01", "--modes", "exact", "--no-reversed-flow"});
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  EXPECT_EQ(plain.out, all.out);
+  const Outcome bad = run({"modes", "--gamma", "-1"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(std::string::npos, bad.err.find("--gamma = -1")) << bad.err;
+}
+
 TEST(CliGood, SeveralModesSelectTheirModel) {
   const Json j = parse_json(run(fast({"point", "--mu", "0.1", "--modes", "exact", "--flap-modes",
                                       "2", "--lag-modes", "2", "--json"})));
