@@ -1,0 +1,161 @@
+#include "flaplag/campbell.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <string>
+
+#include "flaplag/blade/blade.h"
+#include "flaplag/blade/rotating_modes.h"
+#include "flaplag/core/format.h"
+#include "flaplag/core/parallel.h"
+#include "flaplag/numerics/continuation.h"
+
+namespace flaplag {
+
+namespace {
+
+inline constexpr Range kCampbellMuRange{{0.0, kMaxAdvanceRatio, false, false}, "in [0, 1000]"};
+
+// The blade's bending stiffness by Omega_0^2 (fixed as the speed changes) and the modes the
+// analysis labels.
+struct Blade {
+  ExactModeOptions shape;
+  double stiffness_flap = 0.0, stiffness_lag = 0.0;
+};
+
+Blade blade_of(const RotorParameters& p) {
+  Blade b;
+  b.shape.n_basis = p.basis;
+  b.shape.e1_over_l = p.root_offset / p.length_ratio;
+  b.stiffness_flap = stiffness_for_frequency(BendingDirection::Flap, p.omega_flap, b.shape);
+  b.stiffness_lag = stiffness_for_frequency(BendingDirection::Lag, p.omega_lag, b.shape);
+  return b;
+}
+
+// Mode k of a label ("flap" and "lag" are mode 1; "flap2" mode 2) and its direction.
+BendingDirection direction_of(const std::string& label) {
+  return label.rfind("lag", 0) == 0 ? BendingDirection::Lag : BendingDirection::Flap;
+}
+int mode_number(const std::string& label) {
+  const std::size_t digits = label.find_first_of("0123456789");
+  return digits == std::string::npos ? 1 : std::stoi(label.substr(digits));
+}
+
+// Omega = 0: the nonrotating cantilever, omega_k / Omega_0 = sqrt(k / mbar) beta_k^2.
+CampbellPoint at_rest(const Blade& b, const std::vector<std::string>& labels) {
+  auto nonrotating = [&](BendingDirection d, int k) {
+    const double stiffness = d == BendingDirection::Flap ? b.stiffness_flap : b.stiffness_lag;
+    const double beta = cantilever_root(k);
+    return std::sqrt(stiffness / b.shape.mbar) * beta * beta;
+  };
+  CampbellPoint pt;
+  pt.omega_flap = nonrotating(BendingDirection::Flap, 1);
+  pt.omega_lag = nonrotating(BendingDirection::Lag, 1);
+  for (const std::string& l : labels) {
+    const double f = nonrotating(direction_of(l), mode_number(l));
+    pt.modes.push_back({l, f, f, std::nullopt});
+  }
+  pt.Note(
+      "Omega = 0: the nonrotating structural frequencies (no centrifugal or aerodynamic "
+      "loads)");
+  return pt;
+}
+
+// Speed s > 0: the blade's first rotating frequencies by Omega with stiffness k / s^2, and the
+// exponents of the rotor with them at mu.
+CampbellPoint at_speed(double s, const RotorParameters& params, const TransitionOptions& transition,
+                       const CampbellOptions& options, const Blade& b,
+                       const std::vector<std::string>& labels) {
+  CampbellPoint pt;
+  pt.speed = s;
+  pt.omega_flap =
+      rotating_frequencies(BendingDirection::Flap, b.stiffness_flap / (s * s), b.shape).front();
+  pt.omega_lag =
+      rotating_frequencies(BendingDirection::Lag, b.stiffness_lag / (s * s), b.shape).front();
+  RotorParameters p = params;
+  p.omega_flap = pt.omega_flap;
+  p.omega_lag = pt.omega_lag;
+  const PointResult r = Analysis(p, transition).point(options.mu, options.scan_step);
+  pt.Merge(r);
+  if (!r.IsUsable()) return pt;
+  for (const std::string& l : labels) {
+    const LabelledExponent* e = dominant_exponent(r, l);
+    if (e == nullptr) {
+      pt.Worsen(Status::Failed, "no exponent of mode " + l);
+      pt.modes.clear();
+      return pt;
+    }
+    pt.modes.push_back({l, s * e->omega, e->omega, damping_ratio(e->zeta, e->omega)});
+  }
+  return pt;
+}
+
+// Every crossing of frequency - n speed through zero between neighbouring usable points.
+std::vector<CampbellCrossing> crossings_of(const CampbellResult& c) {
+  std::vector<CampbellCrossing> out;
+  for (std::size_t m = 0; m < c.labels.size(); ++m) {
+    for (int n = 1; n <= c.harmonics; ++n) {
+      for (std::size_t i = 0; i + 1 < c.points.size(); ++i) {
+        const CampbellPoint &a = c.points[i], &b = c.points[i + 1];
+        if (a.modes.size() != c.labels.size() || b.modes.size() != c.labels.size()) continue;
+        const double ga = a.modes[m].frequency - n * a.speed;
+        const double gb = b.modes[m].frequency - n * b.speed;
+        if ((ga > 0.0) == (gb > 0.0)) continue;
+        const double s = a.speed + (b.speed - a.speed) * ga / (ga - gb);
+        out.push_back({c.labels[m], n, s, n * s});
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<InvalidInput> CampbellOptions::Validate() const {
+  return Requirements()
+      .InRange("speed_max", speed_max, kCampbellSpeedRange)
+      .InRange("points", points, kCampbellPointsRange)
+      .InRange("mu", mu, kCampbellMuRange)
+      .InRange("scan_step", scan_step, kPositive)
+      .InRange("harmonics", harmonics, kCampbellHarmonicsRange)
+      .Include(threads_problem(threads))
+      .Result();
+}
+
+CampbellResult campbell_diagram(const RotorParameters& params, const TransitionOptions& transition,
+                                const CampbellOptions& options) {
+  options.Check();
+  const Analysis nominal(params, transition);  // checks the rotor at Omega_0
+  const Blade blade = blade_of(params);
+  CampbellResult c;
+  c.mu = options.mu;
+  c.harmonics = options.harmonics;
+  c.labels = distinct_labels(nominal.hover().labels);
+  // Flap modes, then lag modes, each in order of their number.
+  std::sort(c.labels.begin(), c.labels.end(), [](const std::string& a, const std::string& b) {
+    const bool a_lag = direction_of(a) == BendingDirection::Lag;
+    const bool b_lag = direction_of(b) == BendingDirection::Lag;
+    return a_lag != b_lag ? b_lag : mode_number(a) < mode_number(b);
+  });
+  c.points.resize(static_cast<std::size_t>(options.points));
+  parallel_for(c.points.size(), options.threads, nullptr, {}, [&](std::size_t i) {
+    const double s =
+        options.speed_max * static_cast<double>(i) / static_cast<double>(c.points.size() - 1);
+    CampbellPoint& pt = c.points[i];
+    try {
+      pt = i == 0 ? at_rest(blade, c.labels)
+                  : at_speed(s, params, transition, options, blade, c.labels);
+    } catch (const std::exception& e) {  // InvalidInput: e.g. a frequency the basis cannot reach
+      pt = CampbellPoint{};
+      pt.Worsen(Status::Failed, e.what());
+    }
+    pt.speed = s;
+  });
+  for (const CampbellPoint& pt : c.points)
+    c.Include(pt, "at Omega/Omega_0 = " + round_trip_text(pt.speed) + ": ");
+  c.crossings = crossings_of(c);
+  return c;
+}
+
+}  // namespace flaplag
