@@ -16,8 +16,8 @@ namespace flaplag::cli {
 namespace {
 
 // The tables a case file may use to group its keys.
-const char* const kGroups[] = {"parameters", "blade", "method", "analysis", "critical",
-                               "sweep",      "study", "map",    "output",   "plot"};
+const char* const kGroups[] = {"parameters", "blade", "method",   "analysis", "critical", "sweep",
+                               "study",      "map",   "campbell", "output",   "plot"};
 
 bool is_group(const std::string& name) {
   for (const char* g : kGroups)

@@ -234,11 +234,13 @@ const char* description(Command c) {
     case Command::Merge:
       return "join the --shard parts of a map or study into the file one run writes";
     case Command::Plot:
-      return "draw an existing sweep, study, map, response, simulate or modes result (--json "
-             "output), "
-             "or several sweeps in one picture";
+      return "draw an existing sweep, study, map, response, simulate, modes or campbell result "
+             "(--json output), or several sweeps in one picture";
     case Command::Trim:
       return "trim: theta0, theta1c, theta1s and lambda (eq 2.25) for a thrust coefficient";
+    case Command::Campbell:
+      return "Campbell diagram: every mode's frequency against the rotor speed, with the per-rev "
+             "lines it crosses";
   }
   return "";
 }
@@ -264,6 +266,10 @@ std::vector<std::string> examples(Command c) {
       return {"flaplag system --mu 0.8 --psi 4.7", "flaplag system --mu 0.3 --json"};
     case Command::Models:
       return {"flaplag models", "flaplag models --spec paper", "flaplag models --json"};
+    case Command::Campbell:
+      return {"flaplag campbell --plot campbell.svg",
+              "flaplag campbell --omega-lag 0.7 --speed-max 1.2 --speeds 61 --json",
+              "flaplag --modes exact --flap-modes 3 --lag-modes 2 campbell --mu 0.3"};
     case Command::Modes:
       return {"flaplag modes", "flaplag modes --omega-lag 1.4 --flap-modes 2 --json",
               "flaplag modes --flap-modes 3 --lag-modes 2 --points 21 --plot shapes.svg"};
@@ -865,6 +871,20 @@ Request CommandLine::interpret() const {
       const Given& mu = required("--mu");
       r.mu = parse_real(mu.spelling, mu.text);
       r.trim.kind = TrimKind::Thrust;
+      break;
+    }
+    case Command::Campbell: {
+      CampbellOptions& o = r.campbell;
+      if (const Given* g = given("--speed-max")) o.speed_max = parse_real(g->spelling, g->text);
+      if (const Given* g = given("--speeds"))
+        o.points =
+            parse_int(g->spelling, g->text, 2, static_cast<int>(kCampbellPointsRange.interval.hi));
+      if (const Given* g = given("--mu")) o.mu = parse_real(g->spelling, g->text);
+      if (const Given* g = given("--harmonics"))
+        o.harmonics = parse_int(g->spelling, g->text, 1,
+                                static_cast<int>(kCampbellHarmonicsRange.interval.hi));
+      if (const Given* g = given("--scan-step")) o.scan_step = parse_real(g->spelling, g->text);
+      o.Check();  // errors name the option's field
       break;
     }
     case Command::Typical:

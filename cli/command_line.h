@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "flaplag/campbell.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/limits.h"
 #include "flaplag/numerics/continuation.h"
@@ -56,6 +57,8 @@ struct Request {
   std::vector<double> vary_values;
   std::string x_name, y_name;
   std::vector<double> x_values, y_values;
+  // campbell: --speed-max, --speeds, --mu, --harmonics, --scan-step (its threads: threads)
+  CampbellOptions campbell;
   int threads = 0;
   std::string plot;  // --plot FILE (.svg or .png)
   // sweep, study: --damping-criterion C (a fraction of critical, kDampingCriterionRange): the

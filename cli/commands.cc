@@ -137,6 +137,8 @@ Output run(const Request& r, std::string* warning, RunControl* control) {
       return cmd::response(r, an, w);
     case Command::Simulate:
       return cmd::simulate_command(r, an, w);
+    case Command::Campbell:
+      return cmd::campbell(r, an, w);
     default:
       return cmd::typical(r, an);
   }

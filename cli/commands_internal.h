@@ -104,4 +104,8 @@ Output map(const Request& request, std::string& warning, RunControl* control);
 Output response(const Request& r, const Analysis& an, std::string& warning);
 Output simulate_command(const Request& r, const Analysis& an, std::string& warning);
 
+// ---- the Campbell diagram (commands_campbell.cc) ----------------------------------------------
+
+Output campbell(const Request& r, const Analysis& an, std::string& warning);
+
 }  // namespace flaplag::cli::cmd

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands_internal.h"
+#include "flaplag/campbell.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/trim.h"
 #include "json_fields.h"
@@ -52,6 +53,22 @@ const char* struct_name<TrimResult>() {
 template <>
 const char* struct_name<TrimEquilibrium>() {
   return "TrimEquilibrium";
+}
+template <>
+const char* struct_name<CampbellResult>() {
+  return "CampbellResult";
+}
+template <>
+const char* struct_name<CampbellPoint>() {
+  return "CampbellPoint";
+}
+template <>
+const char* struct_name<CampbellFrequency>() {
+  return "CampbellFrequency";
+}
+template <>
+const char* struct_name<CampbellCrossing>() {
+  return "CampbellCrossing";
 }
 
 std::string anchor(const std::string& name) {
@@ -176,6 +193,9 @@ std::string documents_section() {
          "- `flaplag trim --json`: the header (without `method`) and the keys of " +
          section_link("TrimResult") +
          ".\n"
+         "- `flaplag campbell --json`: the header and the keys of " +
+         section_link("CampbellResult") +
+         ".\n"
          "- `flaplag` (the typical case) `--json`: the header, `hover`, `critical` (a " +
          section_link("CriticalResult") +
          ") and `table` (labels, rows as in a sweep, max_liouville_residual, status, message).\n\n"
@@ -217,6 +237,12 @@ std::string json_reference() {
       "kind moment, the first flap harmonic vanishes).  The Python module's TrimResult also "
       "has `parameters` (the rotor parameters with the trimmed pitch).");
   out += struct_section<TrimEquilibrium>("The periodic equilibrium a trim about it rests on.");
+  out += struct_section<CampbellResult>(
+      "The Campbell diagram: every mode's frequency against the rotor speed Omega/Omega_0, the "
+      "blade's bending stiffness fixed at its value for the nominal speed Omega_0.");
+  out += struct_section<CampbellPoint>("The modes at one rotor speed.");
+  out += struct_section<CampbellFrequency>("One mode at one rotor speed.");
+  out += struct_section<CampbellCrossing>("Where a mode's frequency meets a per-rev line n Omega.");
   return out;
 }
 

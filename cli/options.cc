@@ -9,6 +9,7 @@
 #include <map>
 #include <system_error>
 
+#include "flaplag/campbell.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/limits.h"
@@ -360,6 +361,32 @@ std::vector<OptionSpec> build(Command c) {
       v.push_back(mu);
       append(v, trim_options(true));
       break;
+    case Command::Campbell: {
+      const CampbellOptions defaults;
+      v.push_back(value_option("--speed-max", "S",
+                               "the largest rotor speed Omega/Omega_0 (" +
+                                   std::string(kCampbellSpeedRange.words) +
+                                   "); the speeds run from 0",
+                               round_trip_text(defaults.speed_max), {"speed_max"}));
+      v.push_back(value_option("--speeds", "N",
+                               "rotor speeds, evenly spaced from 0 to --speed-max (" +
+                                   std::string(kCampbellPointsRange.words) + ")",
+                               std::to_string(defaults.points), {"points"}));
+      v.push_back(value_option(
+          "--mu", "REAL",
+          "advance ratio at every speed (0..." + round_trip_text(kMaxAdvanceRatio) + "; 0: hover)",
+          "0", {"mu"}));
+      v.push_back(value_option("--harmonics", "N",
+                               "the per-rev lines n Omega drawn and crossed, n = 1..N (" +
+                                   std::string(kCampbellHarmonicsRange.words) + ")",
+                               std::to_string(defaults.harmonics), {"harmonics"}));
+      v.push_back(scan_step);
+      v.push_back(threads);
+      v.push_back(value_option("--plot", "FILE.svg|FILE.png",
+                               "also draw the Campbell diagram with the per-rev lines (gnuplot)",
+                               "", {"plot"}));
+      break;
+    }
     case Command::Typical:
       break;
   }
@@ -412,6 +439,8 @@ const char* command_name(Command c) {
       return "plot";
     case Command::Trim:
       return "trim";
+    case Command::Campbell:
+      return "campbell";
   }
   return "";
 }
@@ -419,8 +448,8 @@ const char* command_name(Command c) {
 const std::vector<Command>& subcommands() {
   static const std::vector<Command> all = {
       Command::Point,  Command::Sweep,    Command::Critical, Command::Study, Command::Map,
-      Command::System, Command::Response, Command::Simulate, Command::Trim,  Command::Models,
-      Command::Modes,  Command::Merge,    Command::Plot};
+      Command::System, Command::Response, Command::Simulate, Command::Trim,  Command::Campbell,
+      Command::Models, Command::Modes,    Command::Merge,    Command::Plot};
   return all;
 }
 

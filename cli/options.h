@@ -29,9 +29,10 @@ enum class Command {
   Map,
   Response,
   Simulate,
-  Merge,  // flaplag merge PART...: the --shard parts of a map or study as one file
-  Plot,   // flaplag plot DATA.json --plot FILE: the picture of an existing result
-  Trim    // flaplag trim --mu X: the trimmed controls and inflow
+  Merge,    // flaplag merge PART...: the --shard parts of a map or study as one file
+  Plot,     // flaplag plot DATA.json --plot FILE: the picture of an existing result
+  Trim,     // flaplag trim --mu X: the trimmed controls and inflow
+  Campbell  // flaplag campbell: mode frequencies against the rotor speed
 };
 
 const char* command_name(Command c);  // "" for Typical, else "point", ...

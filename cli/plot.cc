@@ -308,6 +308,55 @@ std::string mode_shapes_plot_script(double omega_flap, double omega_lag,
                           {flap_shapes, lag_shapes, flap_slopes, lag_slopes}, 2);
 }
 
+std::string campbell_plot_script(const CampbellPicture& c) {
+  std::string s;
+  double top = 0.0, right = 0.0;
+  for (double v : c.speed)
+    if (std::isfinite(v)) right = std::max(right, v);
+  for (std::size_t m = 0; m < c.modes.size(); ++m) {
+    s += "$m" + std::to_string(m) + " << EOD\n";
+    for (std::size_t i = 0; i < c.speed.size() && i < c.modes[m].omega.size(); ++i) {
+      s += value(c.speed[i]) + " " + value(c.modes[m].omega[i]) + "\n";
+      if (std::isfinite(c.modes[m].omega[i])) top = std::max(top, c.modes[m].omega[i]);
+    }
+    s += "EOD\n";
+  }
+  s += "$crossings << EOD\n";
+  for (const auto& [x, y] : c.crossings) s += value(x) + " " + value(y) + "\n";
+  s += "EOD\n";
+  // The per-rev lines are clipped above the modes: they are references, not data.
+  s += "set grid\nset key outside right top\nset title " +
+       quoted("flaplag campbell: mode frequencies against the rotor speed, mu = " + num(c.mu)) +
+       "\nset xlabel " + quoted("rotor speed Omega/Omega_0") + "\nset ylabel " +
+       quoted("frequency omega/Omega_0 [per rev at Omega_0]") + "\n";
+  const double xmax = right > 0.0 ? right : 1.0, ymax = top > 0.0 ? 1.15 * top : 1.0;
+  s += "set xrange [0:" + value(xmax) + "]\nset yrange [0:" + value(ymax) + "]\n";
+  s += "set arrow from 1, graph 0 to 1, graph 1 nohead lc rgb 'gray40' dt 3\n";
+  s += "set label " + quoted("Omega_0") + " at 1, graph 0.03 left offset 0.5, 0\n";
+  // Each per-rev line named where it leaves the frame.
+  for (int n = 1; n <= c.harmonics; ++n) {
+    const double x = std::min(xmax, ymax / n);
+    s += "set label " + quoted(std::to_string(n) + "/rev") + " at " + value(x) + ", " +
+         value(n * x) + " right offset -0.3, -0.8 tc rgb 'gray40'\n";
+  }
+  s += "plot ";
+  for (std::size_t m = 0; m < c.modes.size(); ++m)
+    s += "$m" + std::to_string(m) + " using 1:2 with lines lw 2 title " + quoted(c.modes[m].label) +
+         ", ";
+  for (int n = 1; n <= c.harmonics; ++n)
+    s += std::to_string(n) + " * x with lines lc rgb 'gray60' dt 2 " +
+         (n == 1 ? "title " + quoted("per-rev lines n Omega") : std::string("notitle")) + ", ";
+  // (gnuplot warns about a data block without points: the crossings only when there are any.)
+  if (c.crossings.empty()) {
+    s.resize(s.size() - 2);
+    s += "\n";
+  } else {
+    s += "$crossings using 1:2 with points pt 6 ps 1.2 lc rgb 'black' title " +
+         quoted("crossings") + "\n";
+  }
+  return s;
+}
+
 namespace {
 
 // An unlinked temporary file holding `text`, positioned at its start (-1 on failure): gnuplot

@@ -115,6 +115,17 @@ std::string mode_shapes_plot_script(double omega_flap, double omega_lag,
                                     const std::vector<ShapeCurves>& flap,
                                     const std::vector<ShapeCurves>& lag);
 
+// campbell: each mode's frequency by the nominal speed against Omega/Omega_0 (NaN: a gap), the
+// per-rev lines n Omega (n = 1..harmonics), the crossings marked, the nominal speed marked.
+struct CampbellPicture {
+  double mu = 0.0;
+  int harmonics = 0;
+  std::vector<double> speed;
+  std::vector<ModeCurve> modes;                      // the frequencies in ModeCurve::omega
+  std::vector<std::pair<double, double>> crossings;  // (speed, frequency)
+};
+std::string campbell_plot_script(const CampbellPicture& picture);
+
 // `flaplag plot DATA.json --plot FILE`: the picture of a sweep, study, map, response, modes or
 // simulate result written by --json.  Throws InvalidInput("argument", data as typed, reason)
 // for a file that cannot be read, is not JSON or not such a result; RendererUnavailable when

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "flaplag/campbell.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/numerics/continuation.h"
@@ -235,6 +236,36 @@ std::string modes_script(const Json& j) {
                                  numbers(j.at("x0")), curves(j.at("flap")), curves(j.at("lag")));
 }
 
+// The labels are checked as a sweep's; the number of per-rev lines is bounded as the command
+// bounds it (each is a line of the script).
+std::string campbell_script(const std::string& file, const Json& j) {
+  CampbellPicture c;
+  const Json& labels = j.at("labels");
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    const std::string key = "labels[" + std::to_string(i) + "]";
+    const std::string& l = text_at(file, key, labels.at(i));
+    if (!is_mode_label(l))
+      refuse_key(file, key, labels[i], "not a mode label (flap, lag, lag2, ...)");
+    c.modes.push_back({l, {}, {}});
+  }
+  const Json& harmonics = j.at("harmonics");
+  if (!harmonics.is_number_integer() ||
+      !kCampbellHarmonicsRange.interval.Contains(harmonics.get<double>()))
+    refuse_key(file, "harmonics", harmonics,
+               std::string("must be an integer ") + kCampbellHarmonicsRange.words);
+  c.harmonics = harmonics.get<int>();
+  c.mu = number(j.at("mu"));
+  for (const Json& pt : j.at("points")) {
+    c.speed.push_back(number(pt.at("speed")));
+    const Json& modes = pt.at("modes");
+    for (std::size_t m = 0; m < c.modes.size(); ++m)
+      c.modes[m].omega.push_back(m < modes.size() ? number(modes.at(m).at("frequency")) : NAN);
+  }
+  for (const Json& x : j.at("crossings"))
+    c.crossings.emplace_back(number(x.at("speed")), number(x.at("frequency")));
+  return campbell_plot_script(c);
+}
+
 Json read_result(const std::string& data, std::uint64_t memory_limit) {
   Json j;
   std::string error;
@@ -267,10 +298,12 @@ std::string plot_data_file(const std::string& data, const std::string& plot,
       script = tip_script(data, command, j);
     else if (command == "modes")
       script = modes_script(j);
+    else if (command == "campbell")
+      script = campbell_script(data, j);
     else
       refuse(data, "a flaplag " + command +
                        " result has no picture (flaplag plot draws sweep, study, map, response, "
-                       "simulate and modes results)");
+                       "simulate, modes and campbell results)");
   } catch (const Json::exception&) {
     refuse(data,
            "a damaged flaplag " + command + " result (a key is missing or has the wrong type)");

@@ -181,7 +181,10 @@ class Generator {
                                                 "--trim",
                                                 "--thrust-coefficient",
                                                 "--shaft-angle",
-                                                "--memory-limit"};
+                                                "--memory-limit",
+                                                "--speed-max",
+                                                "--speeds",
+                                                "--harmonics"};
     return known.count(option) == 1;
   }
 
@@ -295,6 +298,8 @@ class Generator {
     if (option == "--mu") return text(uniform(0, 2));
     if (option == "--scan-step") return text(log_uniform(0.005, 0.5));
     if (option == "--mu-max") return text(uniform(0.01, 3));
+    if (option == "--speed-max") return in(1e-2, 10.0, true);
+    if (option == "--harmonics") return std::to_string(integer(1, 100));
     return "1";
   }
 
@@ -347,6 +352,11 @@ class Generator {
         // (at the cost of a periodic equilibrium)
         if (chance(0.1)) a.push_back("--nonlinear");
         break;
+      case cli::Command::Campbell:
+        // A point at each of a few speeds: hover mostly, else a continuation to mu.
+        a.insert(a.end(), {"--speeds", std::to_string(integer(2, 6))});
+        if (chance(0.4)) a.insert(a.end(), {"--mu", text(uniform(0, 1)), "--scan-step", "0.1"});
+        break;
       case cli::Command::Critical: {
         const double m = std::max(mu, 0.01);
         a.insert(a.end(), {"--mu-max", text(m)});
@@ -371,7 +381,8 @@ class Generator {
     if (r < 0.87) return cli::Command::Study;
     if (r < 0.92) return cli::Command::Map;
     if (r < 0.96) return cli::Command::Response;
-    if (r < 0.98) return cli::Command::Simulate;
+    if (r < 0.975) return cli::Command::Simulate;
+    if (r < 0.985) return cli::Command::Campbell;
     return r < 0.99 ? cli::Command::Merge : cli::Command::Plot;
   }
 
@@ -408,8 +419,8 @@ class Generator {
     // The cost of a run is (Floquet evaluations) x (steps per evaluation).  Automatic steps
     // reach 65536 for a stiff blade, so those runs get fewer evaluations (and no first-order
     // Hsu); the bare command (a critical search and a 101-point sweep) has explicit steps.
-    const bool heavy =
-        c == cli::Command::Typical || c == cli::Command::Study || c == cli::Command::Map;
+    const bool heavy = c == cli::Command::Typical || c == cli::Command::Study ||
+                       c == cli::Command::Map || c == cli::Command::Campbell;
     const bool explicit_steps = heavy ? chance(0.95) : chance(0.45);
     add_advance_ratio(a, c, explicit_steps ? 40 : 15);
     const double p = heavy ? 0.15 : 0.3;
@@ -418,8 +429,8 @@ class Generator {
           o.name == "--mu-max" || o.name == "--format" || o.name == "--steps" ||
           o.name == "--vary" || o.name == "--x" || o.name == "--y" || o.name == "--samples" ||
           o.name == "--revs" || o.name == "--perturbation" || o.name == "--forced" ||
-          o.name == "--nonlinear" || (o.name == "--spec" && c != cli::Command::Models) ||
-          o.name == "--audit") {
+          o.name == "--speeds" || o.name == "--nonlinear" ||
+          (o.name == "--spec" && c != cli::Command::Models) || o.name == "--audit") {
         continue;  // (--spec FILE.toml derives a model: tests/cli_spec_test.cpp)
       }
       // gnuplot is slow to start: few pictures.  A periodic equilibrium (harmonic balance
@@ -692,7 +703,8 @@ void check_json(const Json& j, const std::string& key, bool lenient,
                                                   "intervals",
                                                   "end",
                                                   "onset_error",
-                                                  "end_error"};
+                                                  "end_error",
+                                                  "damping_ratio"};
   if (problems.size() > 5) return;
   if (j.is_object()) {
     const bool not_ok = j.contains("status") && j["status"] != "ok";

@@ -107,7 +107,8 @@ class Results : public ::testing::Test {
         {"map", {"map", "--x", "mu=0:0.4:0.2", "--y", "omega-lag=1,1.3"}},
         {"response", {"response", "--mu", "0.3"}},
         {"simulate", {"simulate", "--mu", "0.3", "--revs", "2"}},
-        {"modes", {"modes", "--flap-modes", "2", "--points", "5"}}};
+        {"modes", {"modes", "--flap-modes", "2", "--points", "5"}},
+        {"campbell", {"campbell", "--speeds", "3", "--harmonics", "2"}}};
     for (const auto& [name, args] : commands) {
       std::vector<std::string> a = args;
       const std::string file = dir_->file(name + ".json");
@@ -123,7 +124,7 @@ class Results : public ::testing::Test {
     files_.clear();
   }
   static TempDir* dir_;
-  static std::vector<std::string> files_;  // sweep, study, map, response, simulate, modes
+  static std::vector<std::string> files_;  // sweep ... simulate, modes, campbell
 };
 TempDir* Results::dir_ = nullptr;
 std::vector<std::string> Results::files_;
@@ -297,7 +298,8 @@ TEST_F(Results, DrawnNamesMustBeWhatFlaplagWrites) {
                 {0, "/labels/0", "labels[0]"},
                 {1, "/vary", "vary"},
                 {2, "/x/name", "x.name"},
-                {2, "/y/name", "y.name"}};
+                {2, "/y/name", "y.name"},
+                {6, "/labels/1", "labels[1]"}};
   for (const auto& f : fields) {
     Json j = Json::parse(slurp(files_[f.file]));
     const Json::json_pointer p(f.pointer);

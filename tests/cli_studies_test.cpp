@@ -15,6 +15,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -634,6 +635,75 @@ TEST(CliPlot, ModeShapes) {
                                                  ": a damaged flaplag modes result.*\n")))
       << b.err;
   EXPECT_FALSE(std::filesystem::exists(d.file("x.svg")));
+}
+
+// ---- campbell --------------------------------------------------------------------------------
+
+// The Campbell diagram from the command line, a case file and a received result: the speeds
+// asked for, a crossing of the soft-in-plane lag mode with 1/rev below the nominal speed, the
+// same picture again from the JSON, and bad input named as typed.
+TEST(CliCampbell, TableJsonCaseFileAndPicture) {
+  TempDir d;
+  const std::string data = d.file("campbell.json"), first = d.file("first.svg"),
+                    again = d.file("again.svg");
+  const Outcome m = run({"campbell", "--omega-lag", "0.7", "--speed-max", "1.2", "--speeds", "13",
+                         "--harmonics", "3", "--json", "-o", data, "--plot", first});
+  ASSERT_EQ(0, m.exit_code) << m.err;
+  const Json j = Json::parse(slurp(data));
+  EXPECT_EQ(j["command"], "campbell");
+  EXPECT_EQ(j["status"], "ok") << j["message"];
+  ASSERT_EQ(j["points"].size(), 13u);
+  EXPECT_EQ(j["points"][12]["speed"].get<double>(), 1.2);
+  EXPECT_EQ(j["labels"], (Json{"flap", "lag"}));
+  EXPECT_TRUE(j["points"][0]["modes"][0]["damping_ratio"].is_null());  // at rest
+  bool lag_one_per_rev = false;
+  for (const Json& x : j["crossings"]) {
+    EXPECT_LE(x["harmonic"].get<int>(), 3);
+    if (x["label"] == "lag" && x["harmonic"] == 1) {
+      lag_one_per_rev = true;
+      EXPECT_LT(x["speed"].get<double>(), 1.0);
+    }
+  }
+  EXPECT_TRUE(lag_one_per_rev);
+  // The table says the same, and a case file runs it.
+  const Outcome text = run({"campbell", "--omega-lag", "0.7", "--speeds", "4"});
+  ASSERT_EQ(0, text.exit_code) << text.err;
+  EXPECT_NE(std::string::npos, text.out.find("Campbell diagram at mu = 0")) << text.out;
+  EXPECT_NE(std::string::npos, text.out.find("note: Omega = 0")) << text.out;
+  const std::string toml = d.file("campbell.toml");
+  std::ofstream(toml) << "command = \"campbell\"\n[parameters]\nomega-lag = 0.7\n"
+                         "[campbell]\nspeeds = 4\n";
+  const Outcome c = run({"run", toml});
+  ASSERT_EQ(0, c.exit_code) << c.err;
+  EXPECT_EQ(text.out, c.out);
+  if (gnuplot_available()) {
+    ASSERT_EQ(0, run({"plot", data, "--plot", again}).exit_code);
+    EXPECT_EQ(slurp(first), slurp(again));
+  }
+  // A received file cannot ask for a billion per-rev lines.
+  Json big = j;
+  big["harmonics"] = 1000000000;
+  const std::string damaged = d.file("damaged.json");
+  std::ofstream(damaged) << big.dump();
+  const Outcome b = run({"plot", damaged, "--plot", d.file("x.svg")});
+  EXPECT_EQ(2, b.exit_code);
+  EXPECT_NE(std::string::npos, b.err.find("key harmonics = 1000000000: must be an integer 1..100"))
+      << b.err;
+  EXPECT_FALSE(std::filesystem::exists(d.file("x.svg")));
+  for (const auto& [option, value, reason] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"--speeds", "1", "must be"},
+           {"--speed-max", "0", "must be in (0, 10]"},
+           {"--speed-max", "11", "must be in (0, 10]"},
+           {"--harmonics", "101", "must be"},
+           {"--mu", "-0.5", "must be"}}) {
+    const Outcome e = run({"campbell", option, value, "-o", d.file("never.txt")});
+    EXPECT_EQ(2, e.exit_code) << option << " " << value;
+    const std::string line = "flaplag: error: " + option + " = " + value + ": " + reason;
+    EXPECT_EQ(e.err.rfind(line, 0), 0u) << e.err;
+    EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << e.err;
+    EXPECT_FALSE(std::filesystem::exists(d.file("never.txt")));
+  }
 }
 
 // flaplag plot A.json B.json: several sweeps in one picture, each curve labelled by its file's

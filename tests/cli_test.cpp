@@ -1370,6 +1370,7 @@ TEST(CliVocabulary, LibraryNamesMapToOptions) {
       {Command::Critical, {"mu_max", "scan_step", "steps", "omega_flap"}},
       {Command::System, {"mu", "psi", "root_offset"}},
       {Command::Modes, {"n_basis", "flap_modes", "lag_modes", "n_points", "omega_flap"}},
+      {Command::Campbell, {"speed_max", "points", "mu", "harmonics", "scan_step", "threads"}},
       {Command::Typical, {"steps", "terms", "gamma"}},
   };
   for (const auto& [c, list] : names) {

@@ -1,0 +1,81 @@
+// flaplag CLI — `flaplag campbell` (campbell.h): the modes' frequencies against the rotor speed,
+// as a table, JSON (CampbellResult's table) and a picture.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "commands_internal.h"
+#include "flaplag/campbell.h"
+#include "flaplag/core/format.h"
+#include "json_fields.h"
+#include "output.h"
+#include "plot.h"
+
+namespace flaplag::cli::cmd {
+
+namespace {
+
+CampbellPicture picture_of(const CampbellResult& c) {
+  CampbellPicture p;
+  p.mu = c.mu;
+  p.harmonics = c.harmonics;
+  for (const CampbellPoint& pt : c.points) p.speed.push_back(pt.speed);
+  for (std::size_t m = 0; m < c.labels.size(); ++m) {
+    ModeCurve curve{c.labels[m], {}, {}};
+    for (const CampbellPoint& pt : c.points)
+      curve.omega.push_back(m < pt.modes.size() ? pt.modes[m].frequency : NAN);
+    p.modes.push_back(curve);
+  }
+  for (const CampbellCrossing& x : c.crossings) p.crossings.emplace_back(x.speed, x.frequency);
+  return p;
+}
+
+std::string campbell_text(const Request& r, const Analysis& an, const CampbellResult& c) {
+  std::string out = header_text(an) + "\n";
+  out += "Campbell diagram at mu = " + num(c.mu) +
+         ": each mode's frequency omega/Omega_0 [per rev at Omega_0] against the rotor speed "
+         "Omega/Omega_0\n(the blade's first rotating frequencies by Omega: centrifugal stiffening "
+         "of its bending stiffness at Omega_0)\n";
+  std::vector<std::string> head = {"Omega/Omega_0", "omega_F1", "omega_L1"};
+  for (const std::string& l : c.labels) head.push_back(l);
+  head.push_back("status");
+  TextTable t(head);
+  t.left_align(head.size() - 1);
+  for (const CampbellPoint& pt : c.points) {
+    std::vector<std::string> row = {num(pt.speed), cell(pt.omega_flap), cell(pt.omega_lag)};
+    for (std::size_t m = 0; m < c.labels.size(); ++m)
+      row.push_back(m < pt.modes.size() ? cell(pt.modes[m].frequency) : "-");
+    row.push_back(status_name(pt.status));
+    t.add_row(row);
+  }
+  out += t.render();
+  if (!c.points.empty()) out += notes_text(r, c.points.front().notes);
+  out += "\nCrossings with the per-rev lines n Omega (n = 1.." + std::to_string(c.harmonics) +
+         "; linear between the speeds around them)\n";
+  if (c.crossings.empty()) {
+    out += "  none\n";
+  } else {
+    TextTable x({"mode", "n", "Omega/Omega_0", "omega/Omega_0"});
+    for (const CampbellCrossing& k : c.crossings)
+      x.add_row({k.label, std::to_string(k.harmonic), cell(k.speed), cell(k.frequency)});
+    out += x.render();
+  }
+  return out + status_text(c.status, vocab(r, c.message));
+}
+
+}  // namespace
+
+Output campbell(const Request& r, const Analysis& an, std::string& warning) {
+  CampbellOptions options = r.campbell;
+  options.threads = r.threads;
+  const CampbellResult c = campbell_diagram(r.params, r.transition, options);
+  warning = plot_if_asked(r, campbell_plot_script(picture_of(c)));
+  if (r.json) {
+    Json j = header_json("campbell", an);
+    j.update(to_json(c, in_vocabulary(r)));
+    return j;
+  }
+  return campbell_text(r, an, c);
+}
+
+}  // namespace flaplag::cli::cmd
