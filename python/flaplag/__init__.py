@@ -19,6 +19,10 @@ from . import _flaplag
 from ._analysis import PARAMETERS, TRANSITION, Analysis, InvalidInput, UnknownParameter
 from ._parallel import map, study, study_parameters
 from ._results import (
+    CampbellCrossing,
+    CampbellFrequency,
+    CampbellPoint,
+    CampbellResult,
     CriticalResult,
     Exponent,
     FloquetSample,
@@ -66,6 +70,10 @@ __all__ = [
     "study_parameters",
     "models",
     "parameter_table",
+    "CampbellCrossing",
+    "CampbellFrequency",
+    "CampbellPoint",
+    "CampbellResult",
     "CriticalResult",
     "Exponent",
     "FloquetSample",

@@ -20,6 +20,7 @@ import numpy as np
 
 from . import _flaplag
 from ._results import (
+    CampbellResult,
     CriticalResult,
     FloquetSample,
     HoverResult,
@@ -79,6 +80,7 @@ RESPONSE_DEFAULTS = dict(_flaplag.response_defaults())  # C++ ResponseOptions
 SIMULATION_DEFAULTS = dict(_flaplag.simulation_defaults())  # C++ SimulationOptions
 EQUILIBRIUM_DEFAULTS = dict(_flaplag.equilibrium_defaults())  # C++ PeriodicEquilibriumOptions
 TRIM_DEFAULTS = dict(_flaplag.trim_defaults())  # C++ TrimOptions
+CAMPBELL_DEFAULTS = dict(_flaplag.campbell_defaults())  # C++ CampbellOptions
 
 _INT_MAX = 2**31 - 1
 
@@ -591,6 +593,33 @@ class Analysis:
                 _real("tolerance", tolerance),
                 _flag("check_stability", check_stability),
                 _int("samples", samples),
+            )
+        )
+
+    def campbell(
+        self,
+        *,
+        speed_max=CAMPBELL_DEFAULTS["speed_max"],
+        points=CAMPBELL_DEFAULTS["points"],
+        mu=CAMPBELL_DEFAULTS["mu"],
+        scan_step=CAMPBELL_DEFAULTS["scan_step"],
+        harmonics=CAMPBELL_DEFAULTS["harmonics"],
+        threads=0,
+    ) -> CampbellResult:
+        """The Campbell diagram of this blade (C++ flaplag::campbell_diagram, the command line's
+        ``flaplag campbell``): every mode's frequency by the nominal speed Omega_0 against the
+        rotor speed Omega/Omega_0 = 0 .. speed_max (``points`` speeds, evenly spaced), at the
+        advance ratio mu, the bending stiffness fixed at its value for Omega_0 (centrifugal
+        stiffening at each speed); with the crossings of the per-rev lines n Omega,
+        n = 1 .. harmonics.  threads: 0 = all cores (the result does not depend on it)."""
+        return CampbellResult._from(
+            self._native.campbell(
+                _real("speed_max", speed_max),
+                _int("points", points),
+                _real("mu", mu),
+                _real("scan_step", scan_step),
+                _int("harmonics", harmonics),
+                _int("threads", threads),
             )
         )
 

@@ -350,6 +350,91 @@ class SweepResult(_Described):
 
 
 @dataclass(frozen=True, repr=False)
+class CampbellFrequency(_Described):
+    """One mode at one rotor speed: ``frequency`` by the nominal speed Omega_0 (omega Omega /
+    Omega_0), ``omega`` per rev at this speed, the damping ratio -zeta/|lambda| (None at
+    Omega = 0, where nothing rotates)."""
+
+    label: str
+    frequency: float
+    omega: float
+    damping_ratio: Optional[float]
+
+    def __repr__(self):
+        return f"CampbellFrequency({self.label!r}, frequency={_g(self.frequency)})"
+
+
+@dataclass(frozen=True, repr=False)
+class CampbellPoint(_Described):
+    """The modes at one rotor speed Omega/Omega_0, with the blade's first rotating frequencies
+    by Omega there (omega_flap, omega_lag)."""
+
+    speed: float
+    omega_flap: float
+    omega_lag: float
+    modes: Tuple[CampbellFrequency, ...]
+    status: str
+    message: str
+    notes: Tuple[str, ...] = ()
+
+    def __repr__(self):
+        return f"CampbellPoint(speed={_g(self.speed)}, {_status(self.status, self.message)})"
+
+
+@dataclass(frozen=True, repr=False)
+class CampbellCrossing(_Described):
+    """Where mode ``label``'s frequency meets the per-rev line n Omega (n = ``harmonic``), at
+    the rotor speed ``speed`` = Omega/Omega_0 (linear between the speeds around it)."""
+
+    label: str
+    harmonic: int
+    speed: float
+    frequency: float
+
+    def __repr__(self):
+        return f"CampbellCrossing({self.label!r}, {self.harmonic}/rev at speed {_g(self.speed)})"
+
+
+@dataclass(frozen=True, repr=False)
+class CampbellResult(_Described):
+    """The Campbell diagram (Analysis.campbell): every mode's frequency by the nominal speed
+    against the rotor speed Omega/Omega_0, at the advance ratio mu.
+
+    ``speed`` is the 1-D array of the speeds, ``frequency[label]`` the mode's frequencies there
+    (nan where a point failed); points: one CampbellPoint each; crossings: every crossing of a
+    mode with a per-rev line n Omega, n = 1 .. harmonics.
+    """
+
+    mu: float
+    harmonics: int
+    labels: Tuple[str, ...]
+    points: Tuple[CampbellPoint, ...]
+    crossings: Tuple[CampbellCrossing, ...]
+    status: str
+    message: str
+    notes: Tuple[str, ...] = ()
+
+    @property
+    def speed(self) -> np.ndarray:
+        return np.array([p.speed for p in self.points])
+
+    @property
+    def frequency(self) -> Dict[str, np.ndarray]:
+        out = {}
+        for m, label in enumerate(self.labels):
+            out[label] = np.array(
+                [p.modes[m].frequency if m < len(p.modes) else math.nan for p in self.points]
+            )
+        return out
+
+    def __repr__(self):
+        return (
+            f"CampbellResult({len(self.points)} speeds, modes {list(self.labels)}, "
+            f"{len(self.crossings)} crossings, {_status(self.status, self.message)})"
+        )
+
+
+@dataclass(frozen=True, repr=False)
 class Interval(_Described):
     """One interval of instability in mu: max zeta > zeta_threshold for onset < mu < end
     (end None: still unstable at mu_max), with the mode that crosses at the onset, its omega

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "flaplag/analysis.h"
+#include "flaplag/campbell.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/field_traits.h"
@@ -359,6 +360,17 @@ CriticalOptions critical_options(const py::dict& d) {
   }
   o.Check();
   return o;
+}
+
+py::dict campbell_defaults() {
+  const CampbellOptions o;
+  py::dict d;
+  d["speed_max"] = o.speed_max;
+  d["points"] = o.points;
+  d["mu"] = o.mu;
+  d["scan_step"] = o.scan_step;
+  d["harmonics"] = o.harmonics;
+  return d;
 }
 
 py::dict critical_defaults() {
@@ -1067,6 +1079,7 @@ PYBIND11_MODULE(_flaplag, m) {
   m.def("parameter_table", &parameter_rows);
   m.def("transition_table", &transition_rows);
   m.def("critical_defaults", &critical_defaults);
+  m.def("campbell_defaults", &campbell_defaults);
   m.def("response_defaults", &response_defaults);
   m.def("damping_ratio",
         [](double zeta, double omega) { return optional(damping_ratio(zeta, omega)); });
@@ -1079,6 +1092,10 @@ PYBIND11_MODULE(_flaplag, m) {
     if (name == "DampingCrossing") return field_rows<DampingCrossing>();
     if (name == "CriticalResult") return field_rows<CriticalResult>();
     if (name == "TrimResult") return field_rows<TrimResult>();
+    if (name == "CampbellResult") return field_rows<CampbellResult>();
+    if (name == "CampbellPoint") return field_rows<CampbellPoint>();
+    if (name == "CampbellFrequency") return field_rows<CampbellFrequency>();
+    if (name == "CampbellCrossing") return field_rows<CampbellCrossing>();
     throw InvalidInput("name", quoted(name), "not a described result");
   });
   m.def("simulation_defaults", &simulation_defaults);
@@ -1252,6 +1269,24 @@ PYBIND11_MODULE(_flaplag, m) {
                e = a.periodic_equilibrium(mu, o);
              }
              return equilibrium_dict(a, e, samples);
+           })
+      .def("campbell",
+           [](const Analysis& a, double speed_max, int points, double mu, double scan_step,
+              int harmonics, int threads) {
+             CampbellOptions o;
+             o.speed_max = speed_max;
+             o.points = points;
+             o.mu = mu;
+             o.scan_step = scan_step;
+             o.harmonics = harmonics;
+             o.threads = threads;
+             o.Check();
+             CampbellResult c;
+             {
+               py::gil_scoped_release release;
+               c = campbell_diagram(a.parameters(), a.options(), o);
+             }
+             return to_dict(c);
            })
       .def("trim",
            [](const Analysis& a, double mu, const std::string& kind, double thrust_coefficient,

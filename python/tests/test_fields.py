@@ -16,7 +16,18 @@ PYTHON_ONLY = {
     "TrimResult": {"parameters"},
 }
 
-CLASSES = ["Exponent", "PointResult", "SweepResult", "Interval", "CriticalResult", "TrimResult"]
+CLASSES = [
+    "Exponent",
+    "PointResult",
+    "SweepResult",
+    "Interval",
+    "CriticalResult",
+    "TrimResult",
+    "CampbellResult",
+    "CampbellPoint",
+    "CampbellFrequency",
+    "CampbellCrossing",
+]
 
 
 def keys(name):
@@ -28,6 +39,7 @@ def results():
     an = flaplag.Analysis()
     point = an.point(0.3)
     crit = an.critical(mu_max=1.0)
+    campbell = flaplag.Analysis(omega_lag=0.7).campbell(points=4)
     return {
         "Exponent": point.exponents[0],
         "PointResult": point,
@@ -35,6 +47,10 @@ def results():
         "Interval": crit.intervals[0],
         "CriticalResult": crit,
         "TrimResult": an.trim(0.3, thrust_coefficient=0.005),
+        "CampbellResult": campbell,
+        "CampbellPoint": campbell.points[1],
+        "CampbellFrequency": campbell.points[1].modes[0],
+        "CampbellCrossing": campbell.crossings[0],
     }
 
 
@@ -96,3 +112,19 @@ def test_critical_json_has_the_keys_of_the_table():
 def test_unknown_struct_is_refused():
     with pytest.raises(ValueError):
         _flaplag.result_fields("NoSuchResult")
+
+
+def test_campbell_is_the_command_lines():
+    """Analysis.campbell and ``flaplag campbell --json`` give the same numbers (one library)."""
+    doc = run_cli("campbell", "--omega-lag", "0.7", "--speeds", "5", "--harmonics", "2")
+    c = flaplag.Analysis(omega_lag=0.7).campbell(points=5, harmonics=2)
+    assert list(c.labels) == doc["labels"]
+    assert list(c.speed) == [p["speed"] for p in doc["points"]]
+    for m, label in enumerate(c.labels):
+        assert list(c.frequency[label]) == [p["modes"][m]["frequency"] for p in doc["points"]]
+    assert [(x.label, x.harmonic, x.speed) for x in c.crossings] == [
+        (x["label"], x["harmonic"], x["speed"]) for x in doc["crossings"]
+    ]
+    assert c.points[0].modes[0].damping_ratio is None
+    with pytest.raises(ValueError, match="speed_max"):
+        flaplag.Analysis().campbell(speed_max=0.0)
