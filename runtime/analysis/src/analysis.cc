@@ -130,7 +130,7 @@ double snap12(double v) {
 
 struct Analysis::Impl {
   Impl(const RotorParameters& p, const TransitionOptions& o,
-       std::optional<double> inflow = std::nullopt)
+       std::optional<double> inflow = std::nullopt, bool with_reference = true)
       : options(o),
         builder(p, find_model(p.model), inflow),
         evaluator(FloquetEvaluator::Create(o, builder.state_size())) {
@@ -146,6 +146,30 @@ struct Analysis::Impl {
     }
     check_finite(hover);
     validity = internal::validity_of(builder);
+    if (with_reference) make_reference(p, o, inflow);
+  }
+
+  // The same blade with the neighbouring basis of the exact modes (internal::BasisCheck).
+  void make_reference(const RotorParameters& p, const TransitionOptions& o,
+                      std::optional<double> inflow) {
+    const auto& m = builder.model();
+    basis = internal::basis_check(p, m.flap_modes, m.lag_modes);
+    if (basis.reference == 0) return;
+    try {
+      reference = std::unique_ptr<Analysis>(new Analysis(
+          std::make_unique<Impl>(basis.reference_parameters(p), o, inflow, false)));
+    } catch (const InvalidInput& e) {
+      basis.problem = "with " + std::to_string(basis.reference) +
+                      " cantilever functions: " + e.what();
+      basis.reference = 0;
+    }
+  }
+
+  // The basis check with its tolerance.
+  internal::BasisCheck check(double tolerance) const {
+    internal::BasisCheck c = basis;
+    c.tolerance_ = tolerance;
+    return c;
   }
 
   // What one continuation's evaluations carry from one mu to the next (function()).
@@ -231,6 +255,8 @@ struct Analysis::Impl {
   HoverResult hover;
   HoverModes hover_modes;
   std::string validity;  // rotor/validity.h: "" inside the envelope
+  internal::BasisCheck basis;           // exact modes: the basis and the one compared with
+  std::unique_ptr<Analysis> reference;  // the blade with that basis; null without
 
   // Outside the validity envelope every result is a Warning that says so.
   void outside_envelope(CriticalResult& r) const {
@@ -252,6 +278,7 @@ Analysis::Analysis(const RotorParameters& params, const TransitionOptions& optio
     : impl_(std::make_unique<Impl>(params, options)) {}
 Analysis::Analysis(const RotorParameters& params, const TransitionOptions& options, double inflow)
     : impl_(std::make_unique<Impl>(params, options, inflow)) {}
+Analysis::Analysis(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Analysis::~Analysis() = default;
 Analysis::Analysis(Analysis&&) noexcept = default;
 Analysis& Analysis::operator=(Analysis&&) noexcept = default;
@@ -479,6 +506,11 @@ PointResult Analysis::point(double mu, double scan_step) const {
   if (r.status != Status::Failed)
     r.Worsen(impl_->validity.empty() ? Status::Ok : Status::Warning, impl_->validity);
   sort_for_output(r.exponents);
+  if (impl_->basis.basis != 0) {
+    const std::optional<PointResult> ref =
+        impl_->reference ? std::optional(impl_->reference->point(mu, scan_step)) : std::nullopt;
+    impl_->check(impl_->options.zeta_tolerance).fold(r, ref ? &*ref : nullptr);
+  }
   return r;
 }
 
@@ -510,6 +542,13 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads,
     sort_for_output(p.exponents);
   }
   impl_->outside_envelope(r);
+  if (impl_->basis.basis != 0) {
+    const std::optional<SweepResult> ref =
+        impl_->reference
+            ? std::optional(impl_->reference->sweep(mu0, mu1, step, threads, cancel, {}))
+            : std::nullopt;
+    impl_->check(impl_->options.zeta_tolerance).fold(r, ref ? &*ref : nullptr);
+  }
   return r;
 }
 
@@ -540,10 +579,27 @@ SweepResult Analysis::track(const std::vector<double>& mus, double scan_step, in
   SweepResult r = impl_->track(mus, scan_step, threads, cancel, progress);
   for (PointResult& p : r.points) sort_for_output(p.exponents);
   impl_->outside_envelope(r);
+  if (impl_->basis.basis != 0) {
+    const std::optional<SweepResult> ref =
+        impl_->reference
+            ? std::optional(impl_->reference->track(mus, scan_step, threads, cancel, {}))
+            : std::nullopt;
+    impl_->check(impl_->options.zeta_tolerance).fold(r, ref ? &*ref : nullptr);
+  }
   return r;
 }
 
 CriticalResult Analysis::critical(const CriticalOptions& opt) const {
+  CriticalResult r = critical_with_this_basis(opt);
+  if (impl_->basis.basis != 0) {
+    const std::optional<CriticalResult> ref =
+        impl_->reference ? std::optional(impl_->reference->critical(opt)) : std::nullopt;
+    impl_->check(opt.tolerance).fold(r, ref ? &*ref : nullptr);
+  }
+  return r;
+}
+
+CriticalResult Analysis::critical_with_this_basis(const CriticalOptions& opt) const {
   opt.Check();
   CriticalOptions o = opt;
   o.scan_zeta_tolerance = std::min(opt.scan_zeta_tolerance, impl_->options.zeta_tolerance);

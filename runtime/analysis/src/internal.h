@@ -25,6 +25,28 @@
 
 namespace flaplag::internal {
 
+// The error of the exact modes' Galerkin basis (basis.cc): a result is computed again with the
+// neighbouring basis (rotor/parameters.h, reference_basis) and fold() adds the change to its
+// error estimates (mu_c_error and the interval errors; a point's error_estimate), sets `basis`
+// and `basis_error`, and makes it a Warning when the change exceeds 10 times the tolerance, or
+// when it cannot be estimated.  Nothing for the assumed mode (basis == 0).
+struct BasisCheck {
+  int basis = 0;      // the functions used; 0: assumed mode
+  int reference = 0;  // the basis compared with; 0: none (problem says why)
+  std::string problem;
+  double tolerance_ = 0.0;  // mu_c `tolerance` (critical) or `zeta_tolerance` (points)
+
+  bool active() const { return basis != 0 && reference != 0; }
+  RotorParameters reference_parameters(const RotorParameters& p) const;
+  void fold(CriticalResult& r, const CriticalResult* ref) const;
+  void fold(PointResult& r, const PointResult* ref) const;
+  void fold(SweepResult& r, const SweepResult* ref) const;
+
+ private:
+  void unknown(Outcome& r, const std::string& why) const;
+};
+BasisCheck basis_check(const RotorParameters& p, int flap_modes, int lag_modes);
+
 // mu in [0, kMaxAdvanceRatio], else InvalidInput(name, ...).
 inline void check_mu(double mu, const char* name) {
   if (!std::isfinite(mu) || mu < 0.0 || mu > kMaxAdvanceRatio) {
