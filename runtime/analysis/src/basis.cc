@@ -100,7 +100,7 @@ void BasisCheck::fold(PointResult& r, const PointResult* ref) const {
   const std::string with = "with " + functions(reference);
   if (ref->status == Status::Failed) return unknown(r, with + ": " + ref->message);
   // Each exponent against the nearest of the same label (the basis moves them little).
-  double change = 0.0;
+  double change = 0.0, top = -std::numeric_limits<double>::infinity(), top_change = 0.0;
   bool resolved = true;
   for (const LabelledExponent& e : r.exponents) {
     double best = std::numeric_limits<double>::infinity(), dz = 0.0;
@@ -114,6 +114,10 @@ void BasisCheck::fold(PointResult& r, const PointResult* ref) const {
     }
     if (!std::isfinite(best)) continue;  // -inf zeta: no finite change to report
     change = std::max(change, dz);
+    if (e.zeta > top) {
+      top = e.zeta;
+      top_change = dz;
+    }
     if (dz > kUnresolvedFactor * tolerance_ * std::max(1.0, 100.0 * std::abs(e.zeta)))
       resolved = false;
   }
@@ -125,15 +129,15 @@ void BasisCheck::fold(PointResult& r, const PointResult* ref) const {
                                   " change a zeta by " + short_text(change) +
                                   " per rev, more than 10 `zeta_tolerance`; use a larger `basis`");
   }
-  // The sign of the largest zeta is known only outside the error now estimated.
-  if (r.stable) {
-    double top = -std::numeric_limits<double>::infinity();
-    for (const LabelledExponent& e : r.exponents) top = std::max(top, e.zeta);
-    if (std::isfinite(top) && std::abs(top) <= *r.error) {
+  // The sign of the largest zeta is known only outside its change with the basis (the method's
+  // own error was judged by the continuation).
+  if (r.stable && std::isfinite(top)) {
+    const double e = top_change;
+    if (std::abs(top) <= e) {
       r.stable.reset();
       r.Worsen(Status::Warning, "stability unknown: the largest zeta (" + short_text(top) +
-                                    ") is within its error estimate " + short_text(*r.error) +
-                                    " (with the basis error) of 0");
+                                    ") is within its error estimate " + short_text(e) +
+                                    " of 0: its change with the basis");
     }
   }
 }
