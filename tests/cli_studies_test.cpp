@@ -223,9 +223,10 @@ INSTANTIATE_TEST_SUITE_P(
                 "FILE:4: basis = 1: model 'paper-2x1' has 2 flap x 1 lag modes; .*"}),
     [](const auto& tp) { return std::string(tp.param.name); });
 
-// Issue 9 item 3: --basis reaches the analysis from a case file, appears in the JSON
-// parameters and round-trips; with it Fig 15's left end (exact modes, omega_L1 = 0.2), refused
-// with the default five functions, has a resolved answer.
+// --basis reaches the analysis from a case file, appears in the JSON parameters and
+// round-trips; with it Fig 15's left end (exact modes, omega_L1 = 0.2), refused with the paper's
+// five functions, has an answer resolved in the Floquet analysis, whose basis error (12 against
+// 11 functions, above 10 tolerances here) is in mu_c_error and makes it a warning that says so.
 TEST(CliRun, BasisFromACaseFileReachesTheExactModes) {
   TempDir d;
   const std::string toml = d.file("fig15-left.toml");
@@ -236,9 +237,15 @@ TEST(CliRun, BasisFromACaseFileReachesTheExactModes) {
   ASSERT_EQ(0, first.exit_code) << first.err;
   const Json j = Json::parse(first.out);
   EXPECT_EQ(12, j["parameters"]["basis"].get<int>());
-  EXPECT_EQ("ok", j["status"]) << j["message"];
+  EXPECT_EQ(12, j["basis"].get<int>());
+  EXPECT_EQ("warning", j["status"]) << j["message"];
+  const std::string message = j["message"].get<std::string>();
+  EXPECT_NE(std::string::npos, message.find("not resolved in their basis")) << message;
+  EXPECT_EQ(std::string::npos, message.find("not resolved to")) << message;
   EXPECT_TRUE(j["mu_c"].is_number());
-  EXPECT_TRUE(j["mu_c_error"].is_number());
+  ASSERT_TRUE(j["mu_c_error"].is_number());
+  ASSERT_TRUE(j["basis_error"].is_number());
+  EXPECT_GE(j["mu_c_error"].get<double>(), j["basis_error"].get<double>());
   const std::string json = d.file("first.json");
   std::ofstream(json) << first.out;
   const Outcome again = run({"run", json});
