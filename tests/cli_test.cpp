@@ -285,10 +285,10 @@ const std::vector<BadInput> kBadInputs = {
      {"study", "--vary", "theta=0.1,0.2", "--modes", "exact", "--flap-modes", "2", "--basis", "1"},
      "--basis",
      "1"},
-    // With five functions the lag frequency cannot go below 0.2074 (the k -> 0 limit): the
-    // message points at --basis.
+    // With the paper's five functions the lag frequency cannot go below 0.2074 (the k -> 0
+    // limit): the message points at --basis.
     {"ExactLagFrequencyBelowBasisLimit",
-     {"critical", "--modes", "exact", "--omega-lag", "0.2"},
+     {"critical", "--modes", "exact", "--basis", "paper", "--omega-lag", "0.2"},
      "--omega-lag",
      "0.2"},
     // the harmonic balance has the sector form only: the exact circle would be left out
