@@ -10,11 +10,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "flaplag/analysis.h"
 #include "flaplag/blade/rotating_modes.h"
 #include "flaplag/rotor/parameter_table.h"
+#include "flaplag/trim.h"
 
 using flaplag::Analysis;
 using flaplag::CriticalOptions;
@@ -140,8 +142,7 @@ TEST(Basis, PointsIncludeTheBasisError) {
   EXPECT_EQ(*p.basis, 12);
   EXPECT_GE(*p.error, *p.basis_error);
   // against the same point with 11 functions, computed here
-  const flaplag::PointResult q =
-      Analysis(typical_exact(11), TransitionOptions{}).point(0.5);
+  const flaplag::PointResult q = Analysis(typical_exact(11), TransitionOptions{}).point(0.5);
   double largest = 0.0;
   for (const auto& e : p.exponents)
     for (const auto& f : q.exponents)
@@ -160,6 +161,76 @@ TEST(Basis, PointsIncludeTheBasisError) {
   const flaplag::PointResult five =
       Analysis(typical_exact(flaplag::kPaperBasis), TransitionOptions{}).point(0.5);
   EXPECT_GT(*five.basis_error, *p.basis_error);
+}
+
+// The largest |zeta change| between two results, exponent by exponent (the same label, the
+// nearest omega), computed here.
+double largest_zeta_change(const flaplag::PointResult& a, const flaplag::PointResult& b) {
+  double largest = 0.0;
+  for (const auto& e : a.exponents) {
+    double best = std::numeric_limits<double>::infinity(), dz = 0.0;
+    for (const auto& f : b.exponents)
+      if (e.label == f.label && std::abs(e.omega - f.omega) < best) {
+        best = std::abs(e.omega - f.omega);
+        dz = std::abs(e.zeta - f.zeta);
+      }
+    if (std::isfinite(best)) largest = std::max(largest, dz);
+  }
+  return largest;
+}
+
+flaplag::TrimOptions thrust_trim() {
+  flaplag::TrimOptions o;
+  o.kind = flaplag::TrimKind::Thrust;
+  o.thrust_coefficient = 0.004;
+  return o;
+}
+
+// A trimmed point (the controls solved at mu, trim.h) with exact modes carries the basis error
+// as an untrimmed one does: the whole trimmed computation with the neighbouring basis, whose
+// trim moves with the basis too.  The reference here is trimmed_point with 11 functions.
+TEST(Basis, TrimmedPointsIncludeTheBasisError) {
+  const TransitionOptions t;
+  const flaplag::PointResult p =
+      flaplag::trimmed_point(typical_exact(flaplag::kConvergedBasis), t, thrust_trim(), 0.3);
+  ASSERT_NE(p.status, Status::Failed) << p.message;
+  ASSERT_TRUE(p.basis && p.basis_error && p.error) << p.message;
+  EXPECT_EQ(*p.basis, 12);
+  EXPECT_GE(*p.error, *p.basis_error);
+  const flaplag::PointResult q = flaplag::trimmed_point(typical_exact(11), t, thrust_trim(), 0.3);
+  ASSERT_NE(q.status, Status::Failed) << q.message;
+  const double change = largest_zeta_change(p, q);
+  EXPECT_GT(change, 0.0);
+  EXPECT_GE(*p.basis_error, change * (1 - 1e-12));
+  EXPECT_LE(*p.basis_error, change * (1 + 1e-12));
+
+  // The assumed mode: no basis, as untrimmed.
+  const flaplag::PointResult a = flaplag::trimmed_point(RotorParameters{}, t, thrust_trim(), 0.3);
+  EXPECT_FALSE(a.basis.has_value());
+  EXPECT_FALSE(a.basis_error.has_value());
+}
+
+// A trimmed sweep carries it at every point, and about the periodic equilibrium too.
+TEST(Basis, TrimmedSweepsAndThePeriodicEquilibriumIncludeTheBasisError) {
+  RotorParameters p = typical_exact(flaplag::kPaperBasis);
+  const flaplag::SweepResult s =
+      flaplag::trimmed_sweep(p, TransitionOptions{}, thrust_trim(), 0.1, 0.2, 0.1);
+  ASSERT_EQ(s.points.size(), 2u) << s.message;
+  for (const auto& pt : s.points) {
+    ASSERT_TRUE(pt.basis && pt.basis_error) << pt.mu << ": " << pt.message;
+    EXPECT_EQ(*pt.basis, 5);
+    EXPECT_GE(pt.error.value_or(0.0), *pt.basis_error);
+  }
+  p.periodic_linearization = true;
+  const flaplag::PointResult e = Analysis(p, TransitionOptions{}).point(0.3);
+  ASSERT_NE(e.status, Status::Failed) << e.message;
+  ASSERT_TRUE(e.basis && e.basis_error) << e.message;
+  const flaplag::PointResult f = [&] {
+    RotorParameters q = p;
+    q.basis = 6;
+    return Analysis(q, TransitionOptions{}).point(0.3);
+  }();
+  EXPECT_GE(*e.basis_error, largest_zeta_change(e, f) * (1 - 1e-12));
 }
 
 // The assumed mode has no basis: no basis fields, and its numbers are untouched.

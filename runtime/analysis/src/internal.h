@@ -76,6 +76,17 @@ struct Ticker {
   std::size_t done = 0, total = 0;
 };
 
+// The progress of pass `pass` (0-based) of `passes` over the same work (a result and the same
+// result with the reference basis, BasisCheck): each pass counts its share of one total, so
+// that a progress bar moves on through the reference pass instead of waiting at 100 %.
+inline ProgressFunction pass_progress(const ProgressFunction& progress, int pass, int passes) {
+  if (!progress || passes <= 1) return progress;
+  return [progress, pass, passes](std::size_t done, std::size_t total) {
+    progress(static_cast<std::size_t>(pass) * total + done,
+             static_cast<std::size_t>(passes) * total);
+  };
+}
+
 inline FloquetFunction ticking(FloquetFunction f, std::shared_ptr<Ticker> ticker) {
   return [f = std::move(f), ticker = std::move(ticker)](double mu, double tol) {
     if (ticker->cancel != nullptr && ticker->cancel->load()) throw Cancelled();

@@ -111,6 +111,8 @@ class Analysis {
   // With exact modes, point, sweep, track and critical are computed again with the neighbouring
   // Galerkin basis (rotor/parameters.h, reference_basis): the change is their basis_error,
   // included in their error estimates and, above 10 times the tolerance, in their status.
+  // That blade is built at the first such call (floquet() and the other results do not use it);
+  // a sweep's or track's progress counts both passes.
   Analysis(const RotorParameters& params, const TransitionOptions& options);
   // The same with the inflow ratio lambda given (e.g. a trim's eq 2.25 value, trim.h) instead
   // of eq 2.24; lambda finite (else InvalidInput("inflow", ...)).
