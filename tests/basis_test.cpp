@@ -12,6 +12,8 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "flaplag/analysis.h"
 #include "flaplag/blade/rotating_modes.h"
@@ -231,6 +233,40 @@ TEST(Basis, TrimmedSweepsAndThePeriodicEquilibriumIncludeTheBasisError) {
     return Analysis(q, TransitionOptions{}).point(0.3);
   }();
   EXPECT_GE(*e.basis_error, largest_zeta_change(e, f) * (1 - 1e-12));
+}
+
+// A sweep with exact modes runs twice (the reference basis): its progress counts both passes
+// in one total, so that it neither stops at 100 % for the second nor runs backwards.
+TEST(Basis, SweepProgressCountsTheReferencePass) {
+  std::vector<std::pair<std::size_t, std::size_t>> calls;
+  const flaplag::ProgressFunction progress = [&](std::size_t done, std::size_t all) {
+    calls.emplace_back(done, all);
+  };
+  const Analysis exact(typical_exact(flaplag::kPaperBasis), TransitionOptions{});
+  const flaplag::SweepResult s = exact.sweep(0.0, 0.3, 0.1, 1, nullptr, progress);
+  ASSERT_EQ(s.points.size(), 4u) << s.message;
+  ASSERT_FALSE(calls.empty());
+  const std::size_t total = calls.front().second;
+  std::size_t last = 0;
+  for (const auto& [done, all] : calls) {
+    EXPECT_EQ(all, total);
+    EXPECT_GE(done, last);
+    last = done;
+  }
+  EXPECT_EQ(calls.back().first, total);
+  // the half-way mark is passed while the reference pass still has to report
+  std::size_t half = 0;
+  for (const auto& c : calls) half += c.first <= total / 2 ? 1 : 0;
+  EXPECT_GE(half, 1u);
+  EXPECT_LT(half, calls.size());
+  // and the assumed mode counts one pass, to the same number of evaluations per pass
+  std::vector<std::pair<std::size_t, std::size_t>> one;
+  const flaplag::ProgressFunction single = [&](std::size_t done, std::size_t all) {
+    one.emplace_back(done, all);
+  };
+  Analysis(RotorParameters{}, TransitionOptions{}).sweep(0.0, 0.3, 0.1, 1, nullptr, single);
+  ASSERT_FALSE(one.empty());
+  EXPECT_EQ(total, 2 * one.front().second);
 }
 
 // The assumed mode has no basis: no basis fields, and its numbers are untouched.
