@@ -264,6 +264,33 @@ TEST(CliRun, BasisFromACaseFileReachesTheExactModes) {
   EXPECT_NE(j["mu_c"].get<double>(), k["mu_c"].get<double>());
 }
 
+// A study's rows with exact modes carry the basis's part of their mu_c_error, equal to the
+// change of mu_c with the neighbouring basis (a critical run of each basis here); the assumed
+// mode's rows have no such key.
+TEST(CliRun, StudyRowsCarryTheBasisError) {
+  const Json s = Json::parse(
+      run({"study", "--vary", "theta=0.15", "--modes", "exact", "--basis", "paper", "--json"}).out);
+  ASSERT_EQ(1u, s["rows"].size()) << s;
+  const Json& row = s["rows"][0];
+  ASSERT_TRUE(row["mu_c"].is_number()) << row;
+  ASSERT_TRUE(row["basis_error"].is_number()) << row;
+  EXPECT_GE(row["mu_c_error"].get<double>(), row["basis_error"].get<double>()) << row;
+  double mu_c[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const Json c = Json::parse(run({"critical", "--modes", "exact", "--basis", k == 0 ? "5" : "6",
+                                    "--theta", "0.15", "--json"})
+                                   .out);
+    ASSERT_TRUE(c["mu_c"].is_number()) << c;
+    mu_c[k] = c["mu_c"].get<double>();
+  }
+  EXPECT_EQ(row["mu_c"].get<double>(), mu_c[0]);
+  EXPECT_NEAR(row["basis_error"].get<double>(), std::abs(mu_c[1] - mu_c[0]), 1e-12);
+  EXPECT_GT(row["basis_error"].get<double>(), 10 * 1e-5);  // the paper's 5 against 6
+  EXPECT_EQ(row["status"], "warning") << row;
+  const Json a = Json::parse(run({"study", "--vary", "theta=0.15", "--json"}).out);
+  EXPECT_FALSE(a["rows"][0].contains("basis_error")) << a;
+}
+
 TEST(CliRun, MissingOrUnreadableCaseFile) {
   const Outcome a = run({"run"});
   EXPECT_EQ(2, a.exit_code);

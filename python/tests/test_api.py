@@ -302,6 +302,17 @@ def test_study_rows_are_the_single_analyses():
     assert one.mu_c.tobytes() == st.mu_c.tobytes()
 
 
+def test_study_rows_carry_the_basis_error():
+    """Exact modes: each row's basis_error is the change of its mu_c with the neighbouring
+    basis, part of mu_c_error; nan for the assumed mode."""
+    st = flaplag.study("theta", [0.15], modes="exact", basis="paper")
+    six = flaplag.Analysis(modes="exact", basis=6, theta=0.15).critical()
+    assert st.rows[0].basis == 5
+    assert abs(st.basis_error[0] - abs(six.mu_c - st.mu_c[0])) < 1e-12
+    assert st.mu_c_error[0] >= st.basis_error[0] > 0
+    assert math.isnan(flaplag.study("theta", [0.15]).basis_error[0])
+
+
 def _map(threads, **kw):
     return flaplag.map(x=("mu", np.linspace(0.0, 1.2, 13)), y=("omega_lag", [0.6, 1.0, 1.4, 1.8]),
                        threads=threads, **kw)
