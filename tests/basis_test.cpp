@@ -269,6 +269,28 @@ TEST(Basis, SweepProgressCountsTheReferencePass) {
   EXPECT_EQ(total, 2 * one.front().second);
 }
 
+// The 1974 mode shapes converge monotonically in the basis size: the change to the neighbouring
+// basis is no bound on the error there (the paper basis' change is less than its distance to
+// 12 functions), and every such result says so in a note; the correct shapes do not.
+TEST(Basis, The1974ShapesSayTheirBasisErrorIsNoBound) {
+  auto run = [](int basis, bool shapes_1974) {
+    RotorParameters p = typical_exact(basis);
+    p.paper_1974_shapes = shapes_1974;
+    return Analysis(p, TransitionOptions{}).critical({});
+  };
+  auto noted = [](const CriticalResult& r) {
+    for (const std::string& n : r.notes)
+      if (n.find("converge monotonically") != std::string::npos) return true;
+    return false;
+  };
+  const CriticalResult five = run(flaplag::kPaperBasis, true), twelve = run(12, true);
+  ASSERT_TRUE(five.mu_c && twelve.mu_c && five.basis_error) << five.message;
+  EXPECT_LT(*five.basis_error, std::abs(*five.mu_c - *twelve.mu_c));
+  EXPECT_TRUE(noted(five));
+  EXPECT_TRUE(noted(twelve));
+  EXPECT_FALSE(noted(run(flaplag::kPaperBasis, false)));
+}
+
 // The assumed mode has no basis: no basis fields, and its numbers are untouched.
 TEST(Basis, AssumedModeHasNoBasis) {
   const CriticalResult r = Analysis(RotorParameters{}, TransitionOptions{}).critical({});

@@ -34,6 +34,10 @@ struct BasisCheck {
   int basis = 0;      // the functions used; 0: assumed mode
   int reference = 0;  // the basis compared with; 0: none (problem says why)
   std::string problem;
+  // The 1974 mode shapes (RotorParameters::paper_1974_shapes) converge monotonically, not
+  // alternately, in the basis size: the change to the neighbouring basis is then no bound, and
+  // fold() notes so.
+  bool monotone = false;
   double tolerance_ = 0.0;  // mu_c `tolerance` (critical) or `zeta_tolerance` (points)
 
   bool active() const { return basis != 0 && reference != 0; }
