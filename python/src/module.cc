@@ -270,7 +270,6 @@ void select_mode_counts(RotorParameters& p, int flap_modes, int lag_modes) {
   p.model = find_model(p.model, flap_modes, lag_modes).name;
 }
 
-
 RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_modes) {
   RotorParameters p = rotor_parameters(params);
   validate(p);

@@ -41,8 +41,8 @@ struct RotorParameters {
   bool reversed_flow = true;              // reversed flow: the Appendix D sector model, or
   bool exact_reversed_flow = false;       // the exact circle x < -mu sin psi (needs reversed_flow)
   ModeKind modes = ModeKind::Assumed;
-  int basis = kConvergedBasis;  // exact modes: cantilever functions per direction, 1..12, or
-                                // kConvergedBasis (the largest, its error estimated)
+  int basis = kConvergedBasis;   // exact modes: cantilever functions per direction, 1..12, or
+                                 // kConvergedBasis (the largest, its error estimated)
   bool elastic_coupling = true;  // Appendix E; applies to exact modes only (paper 4.1(a))
   bool paper_1974_shapes =
       false;  // exact modes rebuilt with the 1974 sign slip (docs/validation.md)
