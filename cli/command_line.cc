@@ -708,12 +708,9 @@ Request CommandLine::interpret() const {
         throw InvalidInput(g != nullptr ? g->spelling : "--model", shown(r.params.model), why);
       }
       r.params.model = find_model(named->base, flap_modes, lag_modes).name;
-      // Galerkin's method gives at most --basis rotating modes per direction: without --basis
-      // the basis grows to the mode counts asked for (the paper's 5 otherwise, so that every
-      // size up to 5 x 5 keeps its numbers); with --basis the library refuses a basis below
-      // them, naming --basis.
-      if (r.params.modes == ModeKind::Exact && given("--basis") == nullptr)
-        r.params.basis = std::max({r.params.basis, flap_modes, lag_modes});
+      // Galerkin's method gives at most --basis rotating modes per direction: the converged
+      // basis (the default, 12) holds every mode count; with --basis N the library refuses a
+      // basis below them, naming --basis.
     } else if (std::string why; compiled_model(r.params.model, &why) == nullptr) {
       const Given* g = given("--model");
       throw InvalidInput(g != nullptr ? g->spelling : "--model", shown(r.params.model), why);
@@ -769,7 +766,7 @@ Request CommandLine::interpret() const {
       // Every rotor option is accepted (one option string serves every subcommand) and checked;
       // the modes use the blade's.
       validate(r.params);
-      const int basis = r.params.basis;
+      const int basis = galerkin_basis(r.params);
       if (flap_modes > basis) {
         throw InvalidInput(flap_given->spelling, shown(flap_given->text),
                            "must not exceed --basis = " + std::to_string(basis));

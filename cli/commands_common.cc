@@ -26,7 +26,11 @@ Json parameters_json(const RotorParameters& p) {
         j[json_key(s)] = p.*s.real;
         break;
       case ParameterType::Integer:
-        j[json_key(s)] = p.*s.integer;
+        // A named value outside the range by its name ("basis": "converged").
+        if (const std::string name = integer_name(s, p.*s.integer); !name.empty())
+          j[json_key(s)] = name;
+        else
+          j[json_key(s)] = p.*s.integer;
         break;
       case ParameterType::Flag:
         j[json_key(s)] = p.*s.flag;
@@ -172,10 +176,11 @@ std::string header_text(const Analysis& an, bool with_method) {
   const model::ModelDescriptor& m = an.model();
   KeyValues kv;
   kv.add("model", std::string(m.name) + " (" + m.spec_file + "): " + m.summary);
-  std::string blade =
-      an.modes().kind == "exact"
-          ? "exact rotating mode shapes (" + std::to_string(p.basis) + " cantilever functions)"
-          : "assumed mode shape (eq 4.1)";
+  std::string blade = an.modes().kind == "exact"
+                          ? "exact rotating mode shapes (" + std::to_string(galerkin_basis(p)) +
+                                " cantilever functions" +
+                                (p.basis == kConvergedBasis ? ", converged" : "") + ")"
+                          : "assumed mode shape (eq 4.1)";
   if (p.paper_1974_shapes && an.modes().kind == "exact") blade += " (1974 shapes)";
   blade += ", " + std::to_string(m.flap_modes) + " flap x " + std::to_string(m.lag_modes) +
            " lag; elastic coupling " + (coupling_on(an) ? "on" : "off") + "; reversed flow " +

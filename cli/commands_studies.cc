@@ -80,6 +80,9 @@ Json study_row_json(const Request& r, const StudyRow& row) {
   x["hover_unstable"] = c.hover_unstable;
   x["mu_c"] = optional_json(c.mu_c);
   x["mu_c_error"] = optional_json(c.mu_c_error);
+  // Exact modes: the part of mu_c_error that is the basis's (CriticalResult::basis_error; null
+  // when not estimated, the row's message then says why).  Absent for the assumed mode.
+  if (c.basis) x["basis_error"] = optional_json(c.basis_error);
   x["mode"] = c.mu_c ? Json(c.mode) : Json(nullptr);
   x["omega"] = c.mu_c ? jnum(c.omega) : Json(nullptr);
   x["kind"] = c.mu_c ? Json(kind_name(c.kind)) : Json(nullptr);

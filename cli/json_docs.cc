@@ -156,10 +156,11 @@ std::string header_section() {
   out += table_row("parameters", "object", "", "the rotor parameters, by the keys below");
   out += "\n### parameters\n\n" + std::string(kTableHead);
   for (const ParameterSpec& s : parameter_table()) {
-    const char* type = s.type == ParameterType::Real      ? "number"
-                       : s.type == ParameterType::Integer ? "integer"
-                       : s.type == ParameterType::Flag    ? "boolean"
-                                                          : "string";
+    const char* type = s.type == ParameterType::Real ? "number"
+                       : s.type == ParameterType::Integer
+                           ? (s.names != nullptr ? "integer or string" : "integer")
+                       : s.type == ParameterType::Flag ? "boolean"
+                                                       : "string";
     out += table_row(json_key(s), type, s.units, s.description);
   }
   return out + "\n";

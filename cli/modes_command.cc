@@ -36,7 +36,7 @@ Json jnums(const std::vector<double>& v) {
 std::string run_modes(const Request& r, std::string* warning) {
   const RotorParameters& p = r.params;
   ExactModeOptions opt;
-  opt.n_basis = r.params.basis;
+  opt.n_basis = galerkin_basis(r.params);
   opt.flap_modes = r.flap_modes;
   opt.lag_modes = r.lag_modes;
   opt.e1_over_l = p.root_offset / p.length_ratio;
@@ -112,7 +112,7 @@ std::string run_modes(const Request& r, std::string* warning) {
   if (r.json) {
     Json j;
     j["command"] = "modes";
-    j["basis"] = r.params.basis;
+    j["basis"] = galerkin_basis(r.params);
     Json params = Json::object();
     for (const char* field :
          {"omega_flap", "omega_lag", "length_ratio", "root_offset", "paper_1974_shapes"}) {
@@ -168,7 +168,7 @@ std::string run_modes(const Request& r, std::string* warning) {
   }
 
   std::string out = "Fig 9: first rotating vs first nonrotating frequency, by Omega\n(" +
-                    std::to_string(r.params.basis) +
+                    std::to_string(galerkin_basis(r.params)) +
                     " cantilever functions per direction, e1/l = " + cell(opt.e1_over_l) + ")\n";
   TextTable t9({"nonrotating", "flap rotating", "lag rotating"});
   for (std::size_t i = 0; i < flap9.size(); ++i) {

@@ -66,7 +66,7 @@ OptionSpec rotor_option(const ParameterSpec& s) {
       o.name = kebab_option(s.field);
       o.takes_value = true;
       o.metavar = s.type == ParameterType::Real      ? "REAL"
-                  : s.type == ParameterType::Integer ? "N"
+                  : s.type == ParameterType::Integer ? (s.names != nullptr ? "N|NAME" : "N")
                   : s.type == ParameterType::Text    ? "NAME"
                                                      : s.choices;
       o.help = s.description;
@@ -598,6 +598,7 @@ void set_parameter(RotorParameters& p, const OptionSpec& option, const std::stri
       p.*spec.real = parse_real(option.name, text);
       return;
     case ParameterType::Integer:
+      if (integer_from_name(spec, text, &(p.*spec.integer))) return;  // --basis paper
       // The range is validate()'s, as for reals; a whole number beyond int is out of it too.
       try {
         p.*spec.integer = parse_int(option.name, text, std::numeric_limits<int>::min(),
@@ -609,6 +610,9 @@ void set_parameter(RotorParameters& p, const OptionSpec& option, const std::stri
           throw;  // not a whole number
         throw InvalidInput(option.name, shown(text), std::string("must be ") + spec.requirement);
       }
+      // A number must be in the range (the named values only by name: --basis 0 is refused).
+      if (!in_range(spec, p.*spec.integer))
+        throw InvalidInput(option.name, shown(text), std::string("must be ") + spec.requirement);
       return;
     case ParameterType::Flag:
       p.*spec.flag = option.flag_value;

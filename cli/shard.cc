@@ -219,6 +219,7 @@ void check_data(const Part& p, const Json& model) {
       const bool found = !row.at("mode").is_null();
       bool ok = row.at("hover_unstable").is_boolean() && number_or_null(row.at("mu_c")) &&
                 number_or_null(row.at("mu_c_error")) && number_or_null(row.at("omega")) &&
+                (!row.contains("basis_error") || number_or_null(row["basis_error"])) &&
                 (found ? one_of(row["mode"], labels) : row.at("mu_c").is_null()) &&
                 (found ? one_of(row.at("kind"), kind_names()) : row.at("kind").is_null()) &&
                 one_of(row.at("status"), status_names()) && row.at("message").is_string() &&

@@ -221,7 +221,6 @@ INSTANTIATE_TEST_SUITE_P(
         BadParam{"MultiModeNeedsExactModes", [](RotorParameters& p) { p.model = "paper-2x2"; },
                  "modes"},
         // The exact-mode basis (issue 9 item 3): 1..12, and at least the model's mode counts.
-        BadParam{"ZeroBasis", [](RotorParameters& p) { p.basis = 0; }, "basis"},
         BadParam{"BasisAboveTwelve", [](RotorParameters& p) { p.basis = 13; }, "basis"},
         BadParam{"BasisSmallerThanModes",
                  [](RotorParameters& p) {
@@ -235,6 +234,7 @@ INSTANTIATE_TEST_SUITE_P(
                  [](RotorParameters& p) {
                    p.modes = flaplag::ModeKind::Exact;
                    p.omega_lag = 0.2;
+                   p.basis = flaplag::kPaperBasis;
                  },
                  "omega_lag"}),
     [](const auto& tp) { return std::string(tp.param.name); });
@@ -258,12 +258,18 @@ TEST_P(ExactReversedFlow, ResolvedAndHsuAgreesWithRk4) {
   p.modes = GetParam().exact_modes ? flaplag::ModeKind::Exact : flaplag::ModeKind::Assumed;
   const double mu = GetParam().mu;
   const auto pt = Analysis(p, {}).point(mu, 0.05);
-  EXPECT_EQ(flaplag::Status::Ok, pt.status) << pt.message;
+  // exact modes: Ok, or a warning about their basis error alone
+  auto ok = [](const flaplag::PointResult& r) {
+    return r.status == flaplag::Status::Ok ||
+           (r.status == flaplag::Status::Warning && r.basis_error &&
+            r.message.rfind("the exact modes are not resolved in their basis", 0) == 0);
+  };
+  EXPECT_TRUE(ok(pt)) << pt.message;
   ASSERT_TRUE(pt.error.has_value());
   TransitionOptions fine = method(TransitionMethod::RK4, TransitionOptions::kAutomatic);
   fine.zeta_tolerance = 1e-9;
   const auto ref = Analysis(p, fine).point(mu, 0.05);
-  EXPECT_EQ(flaplag::Status::Ok, ref.status) << ref.message;
+  EXPECT_TRUE(ok(ref)) << ref.message;
   ASSERT_EQ(ref.exponents.size(), pt.exponents.size());
   const double tol = TransitionOptions{}.zeta_tolerance;
   for (std::size_t k = 0; k < pt.exponents.size(); ++k) {
@@ -541,17 +547,22 @@ TEST(ForcedResponse, HoverIsTheStaticEquilibriumAndForwardFlightHasHarmonics) {
 TEST(Regression, ShallowCrossingIsResolvedByDefaultAndFlaggedAtK50) {
   RotorParameters p;
   p.modes = flaplag::ModeKind::Exact;
+  p.basis = flaplag::kPaperBasis;  // the basis of the issue's numbers
   p.droop = -0.02;
   const auto def = Analysis(p, {}).critical({});
   ASSERT_TRUE(def.mu_c.has_value()) << def.message;
-  EXPECT_EQ(flaplag::Status::Ok, def.status) << def.message;
+  // Resolved in the Floquet analysis; the five functions' own error is a warning of its own.
+  EXPECT_EQ(def.message.find("not resolved to"), std::string::npos) << def.message;
+  ASSERT_TRUE(def.basis_error.has_value());
+  EXPECT_NE(def.message.find("not resolved in their basis"), std::string::npos) << def.message;
+  const double floquet_error = def.mu_c_error.value_or(0.0) - *def.basis_error;
   for (TransitionMethod m : {TransitionMethod::RK4, TransitionMethod::Magnus4}) {
     TransitionOptions o = method(m, TransitionOptions::kAutomatic);
     o.zeta_tolerance = 1e-8;
     const auto ref = Analysis(p, o).critical({});
     ASSERT_TRUE(ref.mu_c.has_value()) << ref.message;
     ASSERT_TRUE(def.mu_c_error.has_value());
-    EXPECT_TRUE(AbsClose(*ref.mu_c, *def.mu_c, std::max(1e-4, 3.0 * *def.mu_c_error)))
+    EXPECT_TRUE(AbsClose(*ref.mu_c, *def.mu_c, std::max(1e-4, 3.0 * floquet_error)))
         << flaplag::method_name(m);
   }
   const auto k50 = Analysis(p, TransitionOptions::Paper()).critical({});
@@ -631,7 +642,10 @@ TEST(ExactModeBasis, Fig15LeftEndIsReachableWithALargerBasis) {
     flaplag::CriticalOptions o;
     o.mu_max = 1.5;
     const flaplag::CriticalResult c = Analysis(p, {}).critical(o);
-    EXPECT_EQ(c.status, flaplag::Status::Ok) << c.message;
+    // Resolved in the Floquet analysis; the basis error (against 11 functions) is in mu_c_error
+    // and, being above 10 tolerances here, makes the result a warning that says so.
+    EXPECT_EQ(c.message.find("not resolved to"), std::string::npos) << c.message;
+    EXPECT_NE(c.status, flaplag::Status::Failed) << c.message;
     EXPECT_TRUE(c.mu_c.has_value());
     return c.mu_c.value_or(0.0);
   };
@@ -838,6 +852,7 @@ RotorParameters narrow_interval_blade() {
   p.precone = 0.04798;
   p.droop = 0.05;
   p.modes = flaplag::ModeKind::Exact;
+  p.basis = flaplag::kPaperBasis;  // the blade of these numbers
   p.elastic_coupling = false;
   return p;
 }

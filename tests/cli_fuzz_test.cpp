@@ -704,7 +704,9 @@ void check_json(const Json& j, const std::string& key, bool lenient,
                                                   "end",
                                                   "onset_error",
                                                   "end_error",
-                                                  "damping_ratio"};
+                                                  "damping_ratio",
+                                                  "basis",
+                                                  "basis_error"};
   if (problems.size() > 5) return;
   if (j.is_object()) {
     const bool not_ok = j.contains("status") && j["status"] != "ok";
@@ -713,6 +715,13 @@ void check_json(const Json& j, const std::string& key, bool lenient,
     if (j.contains("stable") && j["stable"].is_null() &&
         !(j.contains("status") && j["status"] != "ok")) {
       problems.push_back("\"stable\": null with status ok");
+    }
+    // A result's "basis" is null for the assumed mode; with exact modes an ok point, or an ok
+    // critical search with a mu_c, carries its basis error (one not estimated is a warning).
+    if (!not_ok && j.contains("status") && j.contains("exponents") && j.contains("basis") &&
+        j["basis"].is_number() && !(j.contains("mu_c") && j["mu_c"].is_null()) &&
+        !(j.contains("basis_error") && j["basis_error"].is_number())) {
+      problems.push_back("\"basis_error\": missing or null with exact modes and status ok");
     }
     for (auto it = j.begin(); it != j.end(); ++it) {
       check_json(it.value(), it.key(), lenient || not_ok, problems);

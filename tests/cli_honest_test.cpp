@@ -155,12 +155,19 @@ TEST(CliHonest, StabilityFromRoundingNoiseIsUnknown) {
 // The scan at step 0.01 saw an instability at 1.18 only at the scan resolution, called it
 // "vanished when resolved" and put mu_c at 1.50535, while a narrow interval starts at 1.18087
 // (a scan at step 0.001 finds it): the neighbourhood is searched before anything vanishes.
+// The numbers are the paper's five-function basis.
 TEST(CliHonest, NarrowIntervalNextToTheGridIsFound) {
-  const Json j =
-      run_json({"critical", "--gamma",       "9.95",         "--sigma",   "0.03",
-                "--theta",  "0.25",          "--omega-flap", "1.5",       "--omega-lag",
-                "1.531",    "--damping-lag", "0.01435",      "--precone", "0.04798",
-                "--droop",  "0.05",          "--modes",      "exact",     "--no-elastic-coupling"});
+  const Json j = run_json({"critical", "--gamma",
+                           "9.95",     "--sigma",
+                           "0.03",     "--theta",
+                           "0.25",     "--omega-flap",
+                           "1.5",      "--omega-lag",
+                           "1.531",    "--damping-lag",
+                           "0.01435",  "--precone",
+                           "0.04798",  "--droop",
+                           "0.05",     "--modes",
+                           "exact",    "--basis",
+                           "paper",    "--no-elastic-coupling"});
   ASSERT_TRUE(j["mu_c"].is_number()) << j;
   EXPECT_NEAR(j["mu_c"].get<double>(), 1.180865, 1e-4) << j["message"];
   EXPECT_EQ(j["message"].get<std::string>().find("vanished"), std::string::npos) << j["message"];
@@ -210,7 +217,9 @@ TEST(CliHonest, SingularTransitionMatrixIsSaidInWords) {
                          "--steps",
                          "393",
                          "--modes",
-                         "exact"});
+                         "exact",
+                         "--basis",
+                         "paper"});  // the blade of the singular matrix: five functions
   ASSERT_EQ(o.exit_code, 0) << o.err;
   EXPECT_EQ(o.out.find("inf"), std::string::npos) << o.out;
   EXPECT_NE(o.out.find("singular to working precision"), std::string::npos) << o.out;

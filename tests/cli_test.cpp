@@ -228,7 +228,7 @@ const std::vector<BadInput> kBadInputs = {
     {"ZeroLagModes", {"--lag-modes", "0"}, "--lag-modes", "0"},
     {"TwoModesNeedExactModes", {"--flap-modes", "2"}, "--flap-modes", "2"},
     // Any 1..12 modes per direction have a model; a --basis typed below them is refused
-    // (without --basis the basis grows to them).
+    // (the default, converged basis of 12 holds them all).
     {"ModeCountAboveBasis",
      {"--modes", "exact", "--flap-modes", "3", "--lag-modes", "7", "--basis", "6"},
      "--basis",
@@ -314,10 +314,10 @@ const std::vector<BadInput> kBadInputs = {
      {"study", "--vary", "theta=0.1,0.2", "--modes", "exact", "--flap-modes", "2", "--basis", "1"},
      "--basis",
      "1"},
-    // With five functions the lag frequency cannot go below 0.2074 (the k -> 0 limit): the
-    // message points at --basis.
+    // With the paper's five functions the lag frequency cannot go below 0.2074 (the k -> 0
+    // limit): the message points at --basis.
     {"ExactLagFrequencyBelowBasisLimit",
-     {"critical", "--modes", "exact", "--omega-lag", "0.2"},
+     {"critical", "--modes", "exact", "--basis", "paper", "--omega-lag", "0.2"},
      "--omega-lag",
      "0.2"},
     // the harmonic balance has the sector form only: the exact circle would be left out
@@ -427,9 +427,16 @@ void expect_clean_json(const Json& j, const std::string& key = "", bool lenient 
   // An interval's end and error estimates (docs/json.md, Interval) are null while unknown.
   static const std::set<std::string> kNullable = {
       "stable", "error_estimate", "liouville_residual",     "mu_c", "mu_c_error",  "omega",
-      "mode",   "kind",           "max_liouville_residual", "end",  "onset_error", "end_error"};
+      "mode",   "kind",           "max_liouville_residual", "end",  "onset_error", "end_error",
+      "basis",  "basis_error"};
   if (j.is_object()) {
     const bool not_ok = j.contains("status") && j["status"] != "ok";
+    // A result's "basis" is null for the assumed mode; with exact modes an ok point, or an ok
+    // critical search with a mu_c, carries its basis error (one not estimated is a warning).
+    if (!not_ok && j.contains("status") && j.contains("exponents") && j.contains("basis") &&
+        j["basis"].is_number() && !(j.contains("mu_c") && j["mu_c"].is_null())) {
+      EXPECT_TRUE(j.contains("basis_error") && j["basis_error"].is_number()) << j.dump();
+    }
     for (auto it = j.begin(); it != j.end(); ++it) {
       expect_clean_json(it.value(), it.key(), lenient || not_ok);
     }
@@ -970,24 +977,37 @@ TEST(CliGood, TrimmedCriticalWithTheDefaultModel) {
 }
 
 // Any M x N with exact modes (model <family>-<M>x<N>): 4 x 1, which no build had compiled,
-// resolved to its error estimate, near 3 x 1 (mu_c settles from three flap modes on: 1.26493
-// for 3 x 1, docs/paper.md).
+// resolved in the Floquet analysis to its error estimate, near 3 x 1 (mu_c settles from three
+// flap modes on: 1.26493 for 3 x 1, docs/paper.md).  Its basis error (12 functions against 11)
+// is reported beside it: in mu_c_error, and in the status when above 10 tolerances.
 TEST(CliGood, AnyModeCountsRun) {
   const Json j = parse_json(
       run({"--flap-modes", "4", "--lag-modes", "1", "--modes", "exact", "critical", "--json"}));
   EXPECT_EQ(j["model"]["name"], "paper-4x1");
   EXPECT_EQ(j["model"]["flap_modes"], 4);
   EXPECT_EQ(j["model"]["lag_modes"], 1);
-  EXPECT_EQ(j["status"], "ok") << j;
   ASSERT_TRUE(j["mu_c"].is_number()) << j;
-  EXPECT_LE(j["mu_c_error"].get<double>(), 1e-5) << j;
+  EXPECT_EQ(j["basis"], 12) << j;
+  ASSERT_TRUE(j["basis_error"].is_number()) << j;
+  const double basis_error = j["basis_error"].get<double>();
+  if (basis_error > 10 * 1e-5) {
+    EXPECT_EQ(j["status"], "warning") << j;
+    EXPECT_NE(j["message"].get<std::string>().find("not resolved in their basis"),
+              std::string::npos)
+        << j;
+  } else {
+    EXPECT_EQ(j["status"], "ok") << j;
+  }
+  EXPECT_EQ(j["message"].get<std::string>().find("not resolved to"), std::string::npos) << j;
+  EXPECT_GE(j["mu_c_error"].get<double>(), basis_error) << j;
+  EXPECT_LE(j["mu_c_error"].get<double>() - basis_error, 1e-5) << j;
   EXPECT_NEAR(j["mu_c"].get<double>(), 1.26493, 0.05) << j;
   // by name, and in another family
   const Json s = parse_json(run(
       fast({"--model", "lag-order-2-3x2", "--modes", "exact", "point", "--mu", "0.2", "--json"})));
   EXPECT_EQ(s["model"]["name"], "lag-order-2-3x2");
   EXPECT_EQ(s["exponents"].size(), 10u);
-  // beyond the default basis of five functions: the basis grows to the mode count
+  // beyond the paper's five functions: the converged basis (12) holds six modes
   const Json b = parse_json(
       run(fast({"--modes", "exact", "--flap-modes", "6", "point", "--mu", "0.1", "--json"})));
   EXPECT_EQ(b["model"]["name"], "paper-6x1");

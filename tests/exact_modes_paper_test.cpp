@@ -60,6 +60,7 @@ RotorParameters exact_case(double theta, double lock, bool coupling, bool shapes
   p.gamma = lock;
   p.elastic_coupling = coupling;
   p.paper_1974_shapes = shapes_1974;
+  p.basis = flaplag::kPaperBasis;  // the paper's five cantilever functions (4.1(b))
   return p;
 }
 

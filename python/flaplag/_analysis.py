@@ -197,6 +197,8 @@ def _coerce(field, value):
     if t == "int":
         if field == "steps" and isinstance(value, str) and value == "auto":
             return 0
+        if isinstance(value, str) and value in row.get("names", ()):
+            return value  # basis="paper": the library turns the name into its value
         return _int(field, value)
     if t == "flag":
         return _flag(field, value)
@@ -237,7 +239,8 @@ def _describe(row):
     t = row["type"]
     kind = {
         "real": "float",
-        "int": "int",
+        "int": "int or {" + ", ".join(repr(c) for c in row.get("names", ())) + "}"
+        if row.get("names") else "int",
         "flag": "bool",
         "text": "str",
         "choice": "{" + ", ".join(repr(c) for c in row.get("choices", ())) + "}",

@@ -962,7 +962,8 @@ class StudyResult:
 
     parameter: the field varied; values: its values (1-D array); rows: a CriticalResult per
     value (searched with all_intervals=True).  Columns as arrays, one entry per value: mu_c
-    (nan where there is none), mu_c_error, omega [per rev] (nan without mu_c), mode and kind
+    (nan where there is none), mu_c_error, basis_error (exact modes: the basis's part of
+    mu_c_error), omega [per rev] (nan without mu_c), mode and kind
     ('' without mu_c), hover_unstable, row_status; for a trimmed study (trim='thrust' or
     'moment') also the controls at mu_c: theta0, theta1c, theta1s [rad] and inflow (lambda,
     eq 2.25), nan without mu_c (rows[i].trim: the whole TrimResult).  A value the analysis
@@ -989,6 +990,12 @@ class StudyResult:
     @property
     def mu_c_error(self) -> np.ndarray:
         return self._column("mu_c_error")
+
+    @property
+    def basis_error(self) -> np.ndarray:
+        """Exact modes: the part of mu_c_error that is the Galerkin basis's (nan where not
+        estimated, and for the assumed mode)."""
+        return self._column("basis_error")
 
     @property
     def omega(self) -> np.ndarray:

@@ -164,7 +164,15 @@ RotorParameters rotor_parameters(const py::dict& d) {
         p.*s->real = value.cast<double>();
         break;
       case ParameterType::Integer:
+        // basis="paper": a named value; a number must be in the range (basis=0 is refused).
+        if (s->names != nullptr && py::isinstance<py::str>(value)) {
+          if (!integer_from_name(*s, value.cast<std::string>(), &(p.*s->integer)))
+            throw InvalidInput(field, shown(value), std::string("must be ") + s->requirement);
+          break;
+        }
         p.*s->integer = value.cast<int>();
+        if (s->names != nullptr && !in_range(*s, p.*s->integer))
+          throw InvalidInput(field, shown(value), std::string("must be ") + s->requirement);
         break;
       case ParameterType::Flag:
         p.*s->flag = value.cast<bool>();
@@ -195,7 +203,10 @@ py::dict parameters_dict(const RotorParameters& p) {
         d[s.field] = p.*s.real;
         break;
       case ParameterType::Integer:
-        d[s.field] = p.*s.integer;
+        if (const std::string name = integer_name(s, p.*s.integer); !name.empty())
+          d[s.field] = name;  // "basis": "converged"
+        else
+          d[s.field] = p.*s.integer;
         break;
       case ParameterType::Flag:
         d[s.field] = p.*s.flag;
@@ -260,14 +271,6 @@ void select_mode_counts(RotorParameters& p, int flap_modes, int lag_modes) {
   p.model = find_model(p.model, flap_modes, lag_modes).name;
 }
 
-// Galerkin's method gives at most `basis` rotating modes per direction: without basis=, the
-// basis grows to the mode count asked for (the paper's 5 otherwise, so that every size up to
-// 5 x 5 keeps its numbers); with basis=, the library refuses a basis below the mode counts.
-void fit_basis_to_the_modes(RotorParameters& p, bool basis_given, int flap_modes, int lag_modes) {
-  const int most = std::max(flap_modes, lag_modes);
-  if (p.modes == ModeKind::Exact && !basis_given && most > p.basis) p.basis = most;
-}
-
 RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_modes) {
   RotorParameters p = rotor_parameters(params);
   validate(p);
@@ -277,7 +280,9 @@ RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_
     throw InvalidInput("model", p.model, e.name() == "model" ? e.reason() : e.what());
   }
   select_mode_counts(p, flap_modes, lag_modes);
-  fit_basis_to_the_modes(p, params.contains("basis"), flap_modes, lag_modes);
+  // Galerkin's method gives at most `basis` rotating modes per direction: the converged basis
+  // (the default, 12) holds every mode count; with basis=N the library refuses a basis below
+  // them.
   return p;
 }
 
@@ -978,6 +983,18 @@ py::list parameter_rows() {
     r["default"] = values[s.field];
     if (s.type == ParameterType::Real || s.type == ParameterType::Integer) {
       r["range"] = py::make_tuple(s.range.lo, s.range.hi, s.range.lo_open, s.range.hi_open);
+    }
+    if (s.type == ParameterType::Integer && s.names != nullptr) {
+      py::list names;  // "converged=0|paper=5": the names
+      std::string c = s.names;
+      for (std::size_t start = 0; start < c.size();) {
+        std::size_t bar = c.find('|', start);
+        if (bar == std::string::npos) bar = c.size();
+        const std::string item = c.substr(start, bar - start);
+        names.append(item.substr(0, item.find('=')));
+        start = bar + 1;
+      }
+      r["names"] = names;
     }
     if (s.type == ParameterType::Choice) {
       py::list choices;

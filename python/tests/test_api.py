@@ -66,7 +66,7 @@ def test_any_mode_counts_up_to_twelve():
     assert (m.name, m.base, m.flap_modes, m.lag_modes) == ("paper-4x1", "paper", 4, 1)
     m = flaplag.Analysis(model="lag-order-2", modes="exact", flap_modes=3, lag_modes=2).model
     assert (m.name, m.base, m.flap_modes, m.lag_modes) == ("lag-order-2-3x2", "lag-order-2", 3, 2)
-    m = flaplag.Analysis(modes="exact", flap_modes=6, lag_modes=6).model  # the basis grows to 6
+    m = flaplag.Analysis(modes="exact", flap_modes=6, lag_modes=6).model  # 12 functions hold 6
     assert m.name == "paper-6x6"
     assert flaplag.Analysis(model="paper-3x2", modes="exact").model.name == "paper-3x2"
     # the models are one per spec, at the spec's mode counts
@@ -127,7 +127,8 @@ def test_invalid_value_has_the_cli_reason(field, value):
     ({"basis": 2.5}, "basis"),
     ({"basis": "5"}, "basis"),
     ({"modes": "exact", "flap_modes": 3, "lag_modes": 3, "basis": 2}, "basis"),
-    ({"modes": "exact", "omega_lag": 0.2}, "omega_lag"),  # below the 5-function limit 0.2074
+    ({"modes": "exact", "omega_lag": 0.2, "basis": "paper"}, "omega_lag"),  # below 5's 0.2074
+    ({"basis": "fine"}, "basis"),  # not one of the names
 ])
 def test_bad_arguments_raise_value_error(kwargs, field):
     with pytest.raises(ValueError) as err:
@@ -301,6 +302,17 @@ def test_study_rows_are_the_single_analyses():
     assert one.mu_c.tobytes() == st.mu_c.tobytes()
 
 
+def test_study_rows_carry_the_basis_error():
+    """Exact modes: each row's basis_error is the change of its mu_c with the neighbouring
+    basis, part of mu_c_error; nan for the assumed mode."""
+    st = flaplag.study("theta", [0.15], modes="exact", basis="paper")
+    six = flaplag.Analysis(modes="exact", basis=6, theta=0.15).critical()
+    assert st.rows[0].basis == 5
+    assert abs(st.basis_error[0] - abs(six.mu_c - st.mu_c[0])) < 1e-12
+    assert st.mu_c_error[0] >= st.basis_error[0] > 0
+    assert math.isnan(flaplag.study("theta", [0.15]).basis_error[0])
+
+
 def _map(threads, **kw):
     return flaplag.map(x=("mu", np.linspace(0.0, 1.2, 13)), y=("omega_lag", [0.6, 1.0, 1.4, 1.8]),
                        threads=threads, **kw)
@@ -365,15 +377,22 @@ def test_ctrl_c_cancels_a_map():
 # ---- the exact-mode basis, the forced response and the simulation ----------------------------
 
 def test_basis_keyword_reaches_the_exact_modes():
-    """basis (the command line's --basis): the Galerkin basis of the exact modes; the left end
-    of Fig 15 (omega_lag = 0.2) needs more than the default five functions."""
-    assert flaplag.Analysis().parameters["basis"] == 5
+    """basis (the command line's --basis): the Galerkin basis of the exact modes, by default
+    the converged one (12 functions, its error estimated against 11); "paper" is the paper's
+    five functions, whose lag limit 0.2074 refuses the left end of Fig 15 (omega_lag = 0.2)."""
+    assert flaplag.Analysis().parameters["basis"] == "converged"
+    assert flaplag.Analysis(basis="paper").parameters["basis"] == 5
     an = flaplag.Analysis(modes="exact", omega_lag=0.2, basis=12)
     assert an.parameters["basis"] == 12
     crit = an.critical(mu_max=1.5)
-    assert crit.status == "ok" and crit.mu_c is not None
+    assert crit.mu_c is not None and crit.basis == 12
+    # resolved in the Floquet analysis; the basis error is in mu_c_error (and, above 10
+    # tolerances, in the status)
+    assert "not resolved to" not in crit.message
+    assert crit.basis_error is not None and crit.mu_c_error >= crit.basis_error
+    assert crit.status == ("warning" if crit.basis_error > 10 * 1e-5 else "ok"), crit.message
     x = np.linspace(0, 1, 11)
-    five = flaplag.Analysis(modes="exact").modes(x).lag
+    five = flaplag.Analysis(modes="exact", basis="paper").modes(x).lag
     twelve = flaplag.Analysis(modes="exact", basis=12).modes(x).lag
     assert not np.array_equal(five, twelve)
     assert abs(five[0, -1] - 1.0) < 1e-12 and abs(twelve[0, -1] - 1.0) < 1e-12  # tip-normalised

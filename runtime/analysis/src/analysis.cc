@@ -130,8 +130,10 @@ double snap12(double v) {
 
 struct Analysis::Impl {
   Impl(const RotorParameters& p, const TransitionOptions& o,
-       std::optional<double> inflow = std::nullopt)
+       std::optional<double> inflow = std::nullopt, bool with_reference = true)
       : options(o),
+        given_options(o),
+        given_inflow(inflow),
         builder(p, find_model(p.model), inflow),
         evaluator(FloquetEvaluator::Create(o, builder.state_size())) {
     options = evaluator->options();  // an automatic method resolved for this model's size
@@ -146,7 +148,42 @@ struct Analysis::Impl {
     }
     check_finite(hover);
     validity = internal::validity_of(builder);
+    if (with_reference) basis = internal::basis_check(p, m.flap_modes, m.lag_modes);
   }
+
+  // The same blade with the neighbouring basis of the exact modes (internal::BasisCheck),
+  // built at its first use: an Analysis that only evaluates Floquet samples (a trim's, at every
+  // evaluation) never builds it.  Null without one (basis.problem then says why).
+  const Analysis* reference() const {
+    std::call_once(reference_once, [this] {
+      if (basis.reference == 0) return;
+      try {
+        reference_analysis = std::unique_ptr<Analysis>(new Analysis(std::make_unique<Impl>(
+            basis.reference_parameters(builder.params()), given_options, given_inflow, false)));
+      } catch (const InvalidInput& e) {
+        basis.problem =
+            "with " + std::to_string(basis.reference) + " cantilever functions: " + e.what();
+        basis.reference = 0;
+      }
+    });
+    return reference_analysis.get();
+  }
+
+  // With exact modes: r's basis error, from the same result with the reference basis
+  // (compute(reference)), folded into r (internal::BasisCheck::fold) at `tolerance`.
+  template <class Result, class Compute>
+  void fold_basis(Result& r, double tolerance, const Compute& compute) const {
+    if (basis.basis == 0) return;
+    const Analysis* ref = reference();
+    const std::optional<Result> other = ref ? std::optional<Result>(compute(*ref)) : std::nullopt;
+    internal::BasisCheck c = basis;
+    c.tolerance_ = tolerance;
+    c.fold(r, other ? &*other : nullptr);
+  }
+
+  // The passes over a sweep or track: 2 when the reference basis is computed too (their
+  // progress counts both, internal::pass_progress).
+  int passes() const { return basis.basis != 0 && reference() != nullptr ? 2 : 1; }
 
   // What one continuation's evaluations carry from one mu to the next (function()).
   struct Continuation {
@@ -221,6 +258,8 @@ struct Analysis::Impl {
   }
 
   TransitionOptions options;
+  TransitionOptions given_options;     // as given (options: the automatic method resolved)
+  std::optional<double> given_inflow;  // as given (nullopt: eq 2.24)
   detail::SystemBuilder builder;
   // The method and its step control (Create checks the options, after the parameters).
   std::unique_ptr<const FloquetEvaluator> evaluator;
@@ -231,6 +270,10 @@ struct Analysis::Impl {
   HoverResult hover;
   HoverModes hover_modes;
   std::string validity;  // rotor/validity.h: "" inside the envelope
+  // Exact modes: the basis and the one compared with (reference() may find it cannot be built).
+  mutable internal::BasisCheck basis;
+  mutable std::once_flag reference_once;
+  mutable std::unique_ptr<Analysis> reference_analysis;  // the blade with that basis, or null
 
   // Outside the validity envelope every result is a Warning that says so.
   void outside_envelope(CriticalResult& r) const {
@@ -252,6 +295,7 @@ Analysis::Analysis(const RotorParameters& params, const TransitionOptions& optio
     : impl_(std::make_unique<Impl>(params, options)) {}
 Analysis::Analysis(const RotorParameters& params, const TransitionOptions& options, double inflow)
     : impl_(std::make_unique<Impl>(params, options, inflow)) {}
+Analysis::Analysis(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Analysis::~Analysis() = default;
 Analysis::Analysis(Analysis&&) noexcept = default;
 Analysis& Analysis::operator=(Analysis&&) noexcept = default;
@@ -479,6 +523,8 @@ PointResult Analysis::point(double mu, double scan_step) const {
   if (r.status != Status::Failed)
     r.Worsen(impl_->validity.empty() ? Status::Ok : Status::Warning, impl_->validity);
   sort_for_output(r.exponents);
+  impl_->fold_basis(r, impl_->options.zeta_tolerance,
+                    [&](const Analysis& ref) { return ref.point(mu, scan_step); });
   return r;
 }
 
@@ -503,13 +549,18 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads,
         "step", round_trip_text(step),
         "too small: at most " + std::to_string(kMaxContinuationSteps) + " continuation steps");
   }
-  SweepResult r = impl_->track(sweep_grid(mu0, mu1, step), step, threads, cancel, progress);
+  const int passes = impl_->passes();
+  SweepResult r = impl_->track(sweep_grid(mu0, mu1, step), step, threads, cancel,
+                               internal::pass_progress(progress, 0, passes));
   for (PointResult& p : r.points) {
     // mu0 + k step accumulates rounding (0.7999999999999999); report the decimal grid value.
     p.mu = snap12(p.mu);
     sort_for_output(p.exponents);
   }
   impl_->outside_envelope(r);
+  impl_->fold_basis(r, impl_->options.zeta_tolerance, [&](const Analysis& ref) {
+    return ref.sweep(mu0, mu1, step, threads, cancel, internal::pass_progress(progress, 1, passes));
+  });
   return r;
 }
 
@@ -537,13 +588,25 @@ SweepResult Analysis::track(const std::vector<double>& mus, double scan_step, in
                            ": at most " + std::to_string(kMaxContinuationSteps) +
                            " continuation steps in all");
   }
-  SweepResult r = impl_->track(mus, scan_step, threads, cancel, progress);
+  const int passes = impl_->passes();
+  SweepResult r =
+      impl_->track(mus, scan_step, threads, cancel, internal::pass_progress(progress, 0, passes));
   for (PointResult& p : r.points) sort_for_output(p.exponents);
   impl_->outside_envelope(r);
+  impl_->fold_basis(r, impl_->options.zeta_tolerance, [&](const Analysis& ref) {
+    return ref.track(mus, scan_step, threads, cancel, internal::pass_progress(progress, 1, passes));
+  });
   return r;
 }
 
 CriticalResult Analysis::critical(const CriticalOptions& opt) const {
+  CriticalResult r = critical_with_this_basis(opt);
+  impl_->fold_basis(r, opt.tolerance,
+                    [&](const Analysis& ref) { return ref.critical_with_this_basis(opt); });
+  return r;
+}
+
+CriticalResult Analysis::critical_with_this_basis(const CriticalOptions& opt) const {
   opt.Check();
   CriticalOptions o = opt;
   o.scan_zeta_tolerance = std::min(opt.scan_zeta_tolerance, impl_->options.zeta_tolerance);

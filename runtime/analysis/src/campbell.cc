@@ -26,7 +26,7 @@ struct Blade {
 
 Blade blade_of(const RotorParameters& p) {
   Blade b;
-  b.shape.n_basis = p.basis;
+  b.shape.n_basis = galerkin_basis(p);
   b.shape.e1_over_l = p.root_offset / p.length_ratio;
   b.stiffness_flap = stiffness_for_frequency(BendingDirection::Flap, p.omega_flap, b.shape);
   b.stiffness_lag = stiffness_for_frequency(BendingDirection::Lag, p.omega_lag, b.shape);

@@ -25,6 +25,32 @@
 
 namespace flaplag::internal {
 
+// The error of the exact modes' Galerkin basis (basis.cc): a result is computed again with the
+// neighbouring basis (rotor/parameters.h, reference_basis) and fold() adds the change to its
+// error estimates (mu_c_error and the interval errors; a point's error_estimate), sets `basis`
+// and `basis_error`, and makes it a Warning when the change exceeds 10 times the tolerance, or
+// when it cannot be estimated.  Nothing for the assumed mode (basis == 0).
+struct BasisCheck {
+  int basis = 0;      // the functions used; 0: assumed mode
+  int reference = 0;  // the basis compared with; 0: none (problem says why)
+  std::string problem;
+  // The 1974 mode shapes (RotorParameters::paper_1974_shapes) converge monotonically, not
+  // alternately, in the basis size: the change to the neighbouring basis is then no bound, and
+  // fold() notes so.
+  bool monotone = false;
+  double tolerance_ = 0.0;  // mu_c `tolerance` (critical) or `zeta_tolerance` (points)
+
+  bool active() const { return basis != 0 && reference != 0; }
+  RotorParameters reference_parameters(const RotorParameters& p) const;
+  void fold(CriticalResult& r, const CriticalResult* ref) const;
+  void fold(PointResult& r, const PointResult* ref) const;
+  void fold(SweepResult& r, const SweepResult* ref) const;
+
+ private:
+  void unknown(Outcome& r, const std::string& why) const;
+};
+BasisCheck basis_check(const RotorParameters& p, int flap_modes, int lag_modes);
+
 // mu in [0, kMaxAdvanceRatio], else InvalidInput(name, ...).
 inline void check_mu(double mu, const char* name) {
   if (!std::isfinite(mu) || mu < 0.0 || mu > kMaxAdvanceRatio) {
@@ -53,6 +79,17 @@ struct Ticker {
   std::mutex mutex;
   std::size_t done = 0, total = 0;
 };
+
+// The progress of pass `pass` (0-based) of `passes` over the same work (a result and the same
+// result with the reference basis, BasisCheck): each pass counts its share of one total, so
+// that a progress bar moves on through the reference pass instead of waiting at 100 %.
+inline ProgressFunction pass_progress(const ProgressFunction& progress, int pass, int passes) {
+  if (!progress || passes <= 1) return progress;
+  return [progress, pass, passes](std::size_t done, std::size_t total) {
+    progress(static_cast<std::size_t>(pass) * total + done,
+             static_cast<std::size_t>(passes) * total);
+  };
+}
 
 inline FloquetFunction ticking(FloquetFunction f, std::shared_ptr<Ticker> ticker) {
   return [f = std::move(f), ticker = std::move(ticker)](double mu, double tol) {

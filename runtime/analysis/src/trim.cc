@@ -745,9 +745,11 @@ struct Trimmed {
 
 }  // namespace
 
-PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, double mu, double scan_step,
-                          std::vector<TrimResult>* trims) {
+namespace {
+
+PointResult point_with_this_basis(const RotorParameters& p, const TransitionOptions& t,
+                                  const TrimOptions& o, double mu, double scan_step,
+                                  std::vector<TrimResult>* trims) {
   check_mu(mu);
   if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
     throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
@@ -773,16 +775,10 @@ PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
   return r;
 }
 
-SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, double mu0, double mu1, double step,
-                          std::vector<TrimResult>* trims) {
-  return trimmed_sweep(p, t, o, mu0, mu1, step, nullptr, {}, trims);
-}
-
-SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, double mu0, double mu1, double step,
-                          const std::atomic<bool>* cancel, const ProgressFunction& progress,
-                          std::vector<TrimResult>* trims) {
+SweepResult sweep_with_this_basis(const RotorParameters& p, const TransitionOptions& t,
+                                  const TrimOptions& o, double mu0, double mu1, double step,
+                                  const std::atomic<bool>* cancel, const ProgressFunction& progress,
+                                  std::vector<TrimResult>* trims) {
   const Trimmed tr(p, t, o);
   FloquetFunction f = tr.function();
   if (cancel != nullptr || progress)
@@ -794,16 +790,11 @@ SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
   return r;
 }
 
-SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, const std::vector<double>& mus, double scan_step,
-                          std::vector<TrimResult>* trims) {
-  return trimmed_track(p, t, o, mus, scan_step, nullptr, {}, trims);
-}
-
-SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, const std::vector<double>& mus, double scan_step,
-                          const std::atomic<bool>* cancel, const ProgressFunction& progress,
-                          std::vector<TrimResult>* trims) {
+SweepResult track_with_this_basis(const RotorParameters& p, const TransitionOptions& t,
+                                  const TrimOptions& o, const std::vector<double>& mus,
+                                  double scan_step, const std::atomic<bool>* cancel,
+                                  const ProgressFunction& progress,
+                                  std::vector<TrimResult>* trims) {
   for (double mu : mus) check_mu(mu);
   if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
     throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
@@ -819,9 +810,9 @@ SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
   return r;
 }
 
-CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOptions& t,
-                                const TrimOptions& o, const CriticalOptions& c,
-                                std::vector<TrimResult>* trims) {
+CriticalResult critical_with_this_basis(const RotorParameters& p, const TransitionOptions& t,
+                                        const TrimOptions& o, const CriticalOptions& c,
+                                        std::vector<TrimResult>* trims) {
   c.Check();
   const Trimmed tr(p, t, o);
   CriticalOptions co = c;
@@ -849,6 +840,99 @@ CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOption
   // A fold's mu_c is the probe's trim, not one of the search's.
   if (last && r.mu_c && *r.mu_c == last->mu) (*tr.used)[last->mu] = *last;
   tr.rests_on_trims(r, trims);
+  return r;
+}
+
+// The basis check of p's exact modes (basis.cc): nothing for the assumed mode.
+internal::BasisCheck trimmed_basis_check(const RotorParameters& p) {
+  if (p.modes != ModeKind::Exact) return {};
+  const model::ModelDescriptor& m = find_model(p.model);
+  return internal::basis_check(p, m.flap_modes, m.lag_modes);
+}
+
+// With exact modes, r's basis error: the whole trimmed computation again with the reference
+// basis (compute(reference parameters, progress of the second pass)), the trims included --
+// the thrust and the first flap harmonic move with the basis too -- folded into r at
+// `tolerance` (internal::BasisCheck::fold).  A reference that cannot be built (InvalidInput) is
+// a basis error not estimated.
+template <class Result, class Compute>
+void fold_trimmed_basis(Result& r, const RotorParameters& p, double tolerance,
+                        internal::BasisCheck c, const Compute& compute) {
+  if (c.basis == 0) return;
+  c.tolerance_ = tolerance;
+  std::optional<Result> other;
+  if (c.reference != 0) {
+    try {
+      other = compute(c.reference_parameters(p));
+    } catch (const InvalidInput& e) {
+      c.problem = "with " + std::to_string(c.reference) + " cantilever functions: " + e.what();
+      c.reference = 0;
+    }
+  }
+  c.fold(r, other ? &*other : nullptr);
+}
+
+}  // namespace
+
+PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, double mu, double scan_step,
+                          std::vector<TrimResult>* trims) {
+  PointResult r = point_with_this_basis(p, t, o, mu, scan_step, trims);
+  fold_trimmed_basis(r, p, t.zeta_tolerance, trimmed_basis_check(p), [&](const RotorParameters& q) {
+    return point_with_this_basis(q, t, o, mu, scan_step, nullptr);
+  });
+  return r;
+}
+
+SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, double mu0, double mu1, double step,
+                          std::vector<TrimResult>* trims) {
+  return trimmed_sweep(p, t, o, mu0, mu1, step, nullptr, {}, trims);
+}
+
+SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, double mu0, double mu1, double step,
+                          const std::atomic<bool>* cancel, const ProgressFunction& progress,
+                          std::vector<TrimResult>* trims) {
+  const internal::BasisCheck c = trimmed_basis_check(p);
+  const int passes = c.active() ? 2 : 1;
+  SweepResult r = sweep_with_this_basis(p, t, o, mu0, mu1, step, cancel,
+                                        internal::pass_progress(progress, 0, passes), trims);
+  fold_trimmed_basis(r, p, t.zeta_tolerance, c, [&](const RotorParameters& q) {
+    return sweep_with_this_basis(q, t, o, mu0, mu1, step, cancel,
+                                 internal::pass_progress(progress, 1, passes), nullptr);
+  });
+  return r;
+}
+
+SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, const std::vector<double>& mus, double scan_step,
+                          std::vector<TrimResult>* trims) {
+  return trimmed_track(p, t, o, mus, scan_step, nullptr, {}, trims);
+}
+
+SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
+                          const TrimOptions& o, const std::vector<double>& mus, double scan_step,
+                          const std::atomic<bool>* cancel, const ProgressFunction& progress,
+                          std::vector<TrimResult>* trims) {
+  const internal::BasisCheck c = trimmed_basis_check(p);
+  const int passes = c.active() ? 2 : 1;
+  SweepResult r = track_with_this_basis(p, t, o, mus, scan_step, cancel,
+                                        internal::pass_progress(progress, 0, passes), trims);
+  fold_trimmed_basis(r, p, t.zeta_tolerance, c, [&](const RotorParameters& q) {
+    return track_with_this_basis(q, t, o, mus, scan_step, cancel,
+                                 internal::pass_progress(progress, 1, passes), nullptr);
+  });
+  return r;
+}
+
+CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOptions& t,
+                                const TrimOptions& o, const CriticalOptions& c,
+                                std::vector<TrimResult>* trims) {
+  CriticalResult r = critical_with_this_basis(p, t, o, c, trims);
+  fold_trimmed_basis(r, p, c.tolerance, trimmed_basis_check(p), [&](const RotorParameters& q) {
+    return critical_with_this_basis(q, t, o, c, nullptr);
+  });
   return r;
 }
 

@@ -1,6 +1,7 @@
 // Rotor parameters: the name table, validation and the hover inflow (eq 2.24).
 #include "flaplag/rotor/parameters.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -119,13 +120,19 @@ std::vector<ParameterSpec> build_table() {
                             "blade mode shapes: assumed (eq 4.1) or exact rotating modes",
                             ParameterType::Choice, "assumed or exact", nullptr,
                             Interval{0, 0, false, false}, nullptr, "assumed|exact", nullptr});
-  // Paper 4.1(b): five functions.  A lag frequency near the k -> 0 limit of the basis (0.207
-  // with five, Fig 15's left end omega_L1 = 0.2) needs more (rotating_modes.h).
+  // Paper 4.1(b): five functions (`paper`).  A lag frequency near the k -> 0 limit of the basis
+  // (0.207 with five, Fig 15's left end omega_L1 = 0.2) needs more (rotating_modes.h).
   static_assert(kMaxBasisFunctions == 12, "update the requirement text");
-  t.push_back(integer_row("basis", "",
-                          "exact modes: nonrotating cantilever functions per direction (Galerkin "
-                          "basis of the rotating modes; at least the model's mode counts)",
-                          &RotorParameters::basis, 1, kMaxBasisFunctions, "in 1..12"));
+  static_assert(kPaperBasis == 5 && kConvergedBasis == 0, "update the names");
+  ParameterSpec basis = integer_row(
+      "basis", "",
+      "exact modes: nonrotating cantilever functions per direction (Galerkin basis of the "
+      "rotating modes; at least the model's mode counts); converged: the largest, 12, with its "
+      "error estimated against 11 and included in the results' error estimates; paper: the "
+      "paper's 5",
+      &RotorParameters::basis, 1, kMaxBasisFunctions, "converged, paper or 1..12");
+  basis.names = "converged=0|paper=5";
+  t.push_back(basis);
   t.push_back(flag_row("elastic_coupling", "the elastic coupling of Appendix E (exact modes only)",
                        &RotorParameters::elastic_coupling));
   t.push_back(flag_row("paper_1974_shapes",
@@ -161,6 +168,59 @@ const ParameterSpec* find_parameter(std::string_view field) {
 
 bool in_range(const ParameterSpec& spec, double v) { return spec.range.Contains(v); }
 
+namespace {
+
+// Calls f(name, value) for each named value of an Integer row until it returns true.
+template <class F>
+bool for_each_name(const ParameterSpec& spec, F f) {
+  if (spec.type != ParameterType::Integer || spec.names == nullptr) return false;
+  const std::string_view all = spec.names;
+  for (std::size_t start = 0; start < all.size();) {
+    std::size_t bar = all.find('|', start);
+    if (bar == std::string_view::npos) bar = all.size();
+    const std::string_view item = all.substr(start, bar - start);
+    const std::size_t eq = item.find('=');
+    if (f(item.substr(0, eq), std::stoi(std::string(item.substr(eq + 1))))) return true;
+    start = bar + 1;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool integer_from_name(const ParameterSpec& spec, std::string_view name, int* value) {
+  return for_each_name(spec, [&](std::string_view n, int v) {
+    if (n != name) return false;
+    *value = v;
+    return true;
+  });
+}
+
+std::string integer_name(const ParameterSpec& spec, int value) {
+  if (spec.type != ParameterType::Integer || in_range(spec, value)) return "";
+  std::string out;
+  for_each_name(spec, [&](std::string_view n, int v) {
+    if (v != value) return false;
+    out = std::string(n);
+    return true;
+  });
+  return out;
+}
+
+bool integer_admissible(const ParameterSpec& spec, int value) {
+  return in_range(spec, value) || !integer_name(spec, value).empty();
+}
+
+int galerkin_basis(const RotorParameters& p) {
+  return p.basis == kConvergedBasis ? kMaxBasisFunctions : p.basis;
+}
+
+int reference_basis(const RotorParameters& p, int flap_modes, int lag_modes) {
+  const int b = galerkin_basis(p);
+  const int r = b < kMaxBasisFunctions ? b + 1 : b - 1;
+  return r >= std::max(flap_modes, lag_modes) && r >= 1 ? r : 0;
+}
+
 const char* mode_kind_name(ModeKind k) { return k == ModeKind::Exact ? "exact" : "assumed"; }
 
 bool mode_kind_from_name(std::string_view name, ModeKind* kind) {
@@ -177,8 +237,10 @@ std::string parameter_text(const RotorParameters& p, const ParameterSpec& spec) 
   switch (spec.type) {
     case ParameterType::Real:
       return round_trip_text(p.*spec.real);
-    case ParameterType::Integer:
-      return std::to_string(p.*spec.integer);
+    case ParameterType::Integer: {
+      const std::string name = integer_name(spec, p.*spec.integer);
+      return name.empty() ? std::to_string(p.*spec.integer) : name;
+    }
     case ParameterType::Flag:
       return p.*spec.flag ? "true" : "false";
     case ParameterType::Choice:
@@ -199,7 +261,7 @@ void validate_except_inflow(const RotorParameters& p) {
   for (const ParameterSpec& s : parameter_table()) {
     if (s.type == ParameterType::Integer) {
       const int v = p.*s.integer;
-      if (!in_range(s, v))
+      if (!integer_admissible(s, v))
         throw InvalidInput(s.field, std::to_string(v), std::string("must be ") + s.requirement);
       continue;
     }

@@ -12,6 +12,7 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/dense.h"
+#include "flaplag/rotor/parameter_table.h"
 
 namespace flaplag::detail {
 
@@ -73,14 +74,15 @@ ModeSet blade_modes(const RotorParameters& p, const model::ModelDescriptor& m) {
     return assumed_modes(p.omega_flap, p.omega_lag);
   }
   // Galerkin's method gives at most as many rotating modes per direction as basis functions.
-  if (M > p.basis || N > p.basis) {
-    throw InvalidInput("basis", std::to_string(p.basis),
+  const int basis = galerkin_basis(p);
+  if (M > basis || N > basis) {
+    throw InvalidInput("basis", parameter_text(p, *find_parameter("basis")),
                        std::string("model '") + m.name + "' has " + std::to_string(M) + " flap x " +
                            std::to_string(N) + " lag modes; the exact modes need at least " +
                            std::to_string(std::max(M, N)) + " cantilever functions per direction");
   }
   ExactModeOptions opt;
-  opt.n_basis = p.basis;
+  opt.n_basis = basis;
   opt.flap_modes = M;
   opt.lag_modes = N;
   opt.e1_over_l = p.root_offset / p.length_ratio;

@@ -108,6 +108,11 @@ struct TipSimulation : Outcome {
 class Analysis {
  public:
   // Checks params (validate()) and options (TransitionOptions::Check()); throws InvalidInput.
+  // With exact modes, point, sweep, track and critical are computed again with the neighbouring
+  // Galerkin basis (rotor/parameters.h, reference_basis): the change is their basis_error,
+  // included in their error estimates and, above 10 times the tolerance, in their status.
+  // That blade is built at the first such call (floquet() and the other results do not use it);
+  // a sweep's or track's progress counts both passes.
   Analysis(const RotorParameters& params, const TransitionOptions& options);
   // The same with the inflow ratio lambda given (e.g. a trim's eq 2.25 value, trim.h) instead
   // of eq 2.24; lambda finite (else InvalidInput("inflow", ...)).
@@ -201,9 +206,13 @@ class Analysis {
   FloquetSample floquet(const PeriodicEquilibrium& equilibrium, double zeta_tolerance) const;
 
  private:
+  struct Impl;
+  // An Analysis made from its Impl: the same blade with the neighbouring basis of the exact
+  // modes, which point, sweep, track and critical compute again to estimate the basis error.
+  explicit Analysis(std::unique_ptr<Impl> impl);
+  CriticalResult critical_with_this_basis(const CriticalOptions& options) const;
   TipSimulation simulate_nonlinear(double mu, const Eigen::VectorXd& y0, bool forced,
                                    const SimulationOptions& options) const;
-  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -224,6 +224,10 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
 // at least Warning, with the trim's message.  The options are checked as by Analysis and
 // trim() (InvalidInput).  Each evaluation costs a trim (a few periodic responses) on top of
 // the Floquet analysis.
+// With exact modes the whole trimmed computation is made again with the neighbouring Galerkin
+// basis, its trims included (the thrust moves with the basis too), and the change is the
+// result's basis_error, folded in as by Analysis (twice the cost; the progress of a sweep or
+// track counts both passes).
 // `trims` (optional): the trims the result rests on -- the one at mu (point), one per reported
 // point (sweep, track, in order), the one at mu_c (critical; empty without mu_c).
 PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,

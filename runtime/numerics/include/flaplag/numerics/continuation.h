@@ -186,6 +186,10 @@ struct PointResult : Outcome {
   // within its own error estimate (or the rounding level of Phi) of 0, so that its sign is not
   // known
   std::optional<bool> stable;
+  // Set by the analysis of a blade with exact modes: the cantilever functions of their Galerkin
+  // basis, and the largest change of a zeta to a neighbouring basis (included in `error`).
+  std::optional<int> basis;
+  std::optional<double> basis_error;
 };
 
 constexpr auto describe(Tag<PointResult>) {
@@ -206,11 +210,17 @@ constexpr auto describe(Tag<PointResult>) {
                 "checked"},
           Field{"error_estimate", &PointResult::error, "1/rev",
                 "estimated largest zeta error (the method's own estimate, e.g. Richardson from K "
-                "and K/2); null when not estimated"},
+                "and K/2, plus basis_error with exact modes); null when not estimated"},
           Field{"steps", &PointResult::steps, "", "steps per period of the transition matrix used"},
           Field{"stable", &PointResult::stable, "",
                 "all zeta <= 0; null when unknown (failed, or the largest zeta is within its error "
-                "of 0)"}),
+                "of 0)"},
+          Field{"basis", &PointResult::basis, "",
+                "exact modes: the cantilever functions of the Galerkin basis used; null for the "
+                "assumed mode"},
+          Field{"basis_error", &PointResult::basis_error, "1/rev",
+                "exact modes: the largest change of a zeta to the neighbouring basis (included "
+                "in error_estimate); null when not estimated"}),
       describe(Tag<Outcome>{}));
 }
 
@@ -371,7 +381,8 @@ struct CriticalResult : Outcome {
   std::optional<double> mu_c;        // first mu in (0, mu_max] with zeta > zeta_threshold; nullopt:
                                      // stable up to mu_max, hover unstable, or the search failed
   std::optional<double> mu_c_error;  // estimated |mu_c error|: the Brent bracket plus the
-                                     // exponent error over |d zeta/d mu| at the crossing
+                                     // exponent error over |d zeta/d mu| at the crossing (plus
+                                     // basis_error with exact modes)
   std::string mode;                  // label of the mode that crossed ("" without mu_c)
   double omega = 0.0;  // its omega at mu_c, per rev, >= 0 (either member of a crossing pair)
   InstabilityKind kind = InstabilityKind::Flutter;
@@ -380,6 +391,10 @@ struct CriticalResult : Outcome {
   // The first interval starts at mu_c; with all_intervals, every interval up to mu_max.
   std::vector<InstabilityInterval> intervals;
   int evaluations = 0;  // calls of the FloquetFunction
+  // Set by the analysis of a blade with exact modes: the cantilever functions of their Galerkin
+  // basis, and the change of mu_c to a neighbouring basis (included in mu_c_error).
+  std::optional<int> basis;
+  std::optional<double> basis_error;
 };
 
 // mode, omega and kind are null without mu_c.
@@ -392,7 +407,8 @@ constexpr auto describe(Tag<CriticalResult>) {
                 "the first mu in (0, mu_max] with zeta > zeta_threshold (0 unless asked); null: "
                 "stable up to mu_max, unstable in hover, or the search failed"},
           Field{"mu_c_error", &CriticalResult::mu_c_error, "-",
-                "estimated |mu_c error|: the bracket plus the exponent error over |d zeta/d mu|"},
+                "estimated |mu_c error|: the bracket plus the exponent error over |d zeta/d mu|, "
+                "plus basis_error with exact modes"},
           Computed{"omega",
                    +[](const CriticalResult& c) {
                      return c.mu_c ? std::optional<double>(c.omega) : std::nullopt;
@@ -416,7 +432,13 @@ constexpr auto describe(Tag<CriticalResult>) {
           Field{"intervals", &CriticalResult::intervals, "",
                 "the intervals of instability: the first starts at mu_c; every one up to mu_max "
                 "when all intervals were asked for"},
-          Field{"evaluations", &CriticalResult::evaluations, "", "Floquet analyses made"}),
+          Field{"evaluations", &CriticalResult::evaluations, "", "Floquet analyses made"},
+          Field{"basis", &CriticalResult::basis, "",
+                "exact modes: the cantilever functions of the Galerkin basis used; null for the "
+                "assumed mode"},
+          Field{"basis_error", &CriticalResult::basis_error, "-",
+                "exact modes: |mu_c with the neighbouring basis - mu_c| (included in mu_c_error "
+                "and in the intervals' errors); null when not estimated"}),
       describe(Tag<Outcome>{}));
 }
 

@@ -45,6 +45,10 @@ struct ParameterSpec {
   const char* choices;
   // Integer only
   int RotorParameters::*integer;
+  // Integer only: named values outside the range, "name=value|name=value" (the basis:
+  // "converged=0|paper=5"); nullptr when there are none.  A value outside the range is shown by
+  // its name.
+  const char* names = nullptr;
 };
 
 // All rows, in the order of RotorParameters.
@@ -60,6 +64,13 @@ bool in_range(const ParameterSpec& spec, double v);
 // flags "true"/"false",
 // choices by name, the model as is.
 std::string parameter_text(const RotorParameters& p, const ParameterSpec& spec);
+
+// The value of an Integer row called `name` (one of its `names`); false when there is none.
+bool integer_from_name(const ParameterSpec& spec, std::string_view name, int* value);
+// The name of an Integer row's value outside its range ("converged"); "" when it has none.
+std::string integer_name(const ParameterSpec& spec, int value);
+// Integer rows: the admissible value (in range, or named).
+bool integer_admissible(const ParameterSpec& spec, int value);
 
 const char* mode_kind_name(ModeKind k);  // "assumed", "exact"
 // The ModeKind called `name` ("assumed", "exact"); false when there is none.

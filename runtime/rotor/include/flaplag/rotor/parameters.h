@@ -11,6 +11,14 @@ namespace flaplag {
 
 enum class ModeKind { Assumed, Exact };
 
+// The Galerkin basis of the exact rotating modes (RotorParameters::basis): kConvergedBasis (the
+// default) is the largest basis, kMaxBasisFunctions, whose error is estimated against the next
+// smaller one and included in every error estimate; kPaperBasis is the paper's five functions
+// (4.1(b)), for reproducing it; 1..12 is that many functions (an error estimate against the next
+// larger basis, or 11 for 12).
+inline constexpr int kConvergedBasis = 0;
+inline constexpr int kPaperBasis = 5;
+
 struct RotorParameters {
   std::string model = "paper";            // compiled ordering model (see `flaplag models`)
   double gamma = 10.0;                    // Lock number based on normal flow, (0, 1e4]
@@ -33,7 +41,8 @@ struct RotorParameters {
   bool reversed_flow = true;              // reversed flow: the Appendix D sector model, or
   bool exact_reversed_flow = false;       // the exact circle x < -mu sin psi (needs reversed_flow)
   ModeKind modes = ModeKind::Assumed;
-  int basis = 5;  // exact modes: nonrotating cantilever functions per direction, 1..12 (paper 5)
+  int basis = kConvergedBasis;   // exact modes: cantilever functions per direction, 1..12, or
+                                 // kConvergedBasis (the largest, its error estimated)
   bool elastic_coupling = true;  // Appendix E; applies to exact modes only (paper 4.1(a))
   bool paper_1974_shapes =
       false;  // exact modes rebuilt with the 1974 sign slip (docs/validation.md)
@@ -52,6 +61,16 @@ void validate(const RotorParameters& p);
 // validate() without its last check (that eq 2.24 has a real inflow at theta): for an operating
 // point whose inflow is given instead (a trim, eq 2.25).
 void validate_except_inflow(const RotorParameters& p);
+
+// The number of cantilever functions the exact modes of p use: p.basis, or kMaxBasisFunctions
+// for kConvergedBasis.
+int galerkin_basis(const RotorParameters& p);
+// The basis the error of galerkin_basis(p) is estimated against, for a model of M flap and N lag
+// modes: the next larger basis (the next smaller for the largest); 0 when there is none that
+// holds max(M, N) modes.  The exact modes converge alternately in the basis size (the tip value
+// of the cantilever functions alternates in sign), so that the limit lies between two
+// neighbouring bases and their difference bounds the error of either.
+int reference_basis(const RotorParameters& p, int flap_modes, int lag_modes);
 
 // Inflow ratio for hover, eq 2.24: lambda = sigma a / 16 [sqrt(1 + 24 theta/(sigma a)) - 1].
 double hover_inflow(const RotorParameters& p);
