@@ -110,18 +110,25 @@ void check_label(const std::string& label) {
   }
 }
 
-SweepOverlay sweep_data(const std::string& file, const Json& j) {
-  SweepOverlay s;
+// A result's `labels`, each a mode label and each once: one empty curve per label.
+std::vector<ModeCurve> mode_curves(const std::string& file, const Json& j) {
+  std::vector<ModeCurve> curves;
   const Json& labels = j.at("labels");
   for (std::size_t i = 0; i < labels.size(); ++i) {
     const std::string key = "labels[" + std::to_string(i) + "]";
     const std::string& l = text_at(file, key, labels.at(i));
     if (!is_mode_label(l))
       refuse_key(file, key, labels[i], "not a mode label (flap, lag, lag2, ...)");
-    for (const ModeCurve& m : s.modes)
+    for (const ModeCurve& m : curves)
       if (m.label == l) refuse_key(file, key, labels[i], "the same label twice");
-    s.modes.push_back({l, {}, {}});
+    curves.push_back({l, {}, {}});
   }
+  return curves;
+}
+
+SweepOverlay sweep_data(const std::string& file, const Json& j) {
+  SweepOverlay s;
+  s.modes = mode_curves(file, j);
   for (const Json& row : j.at("rows")) {
     s.mu.push_back(number(row.at("mu")));
     for (ModeCurve& m : s.modes) {
@@ -240,14 +247,7 @@ std::string modes_script(const Json& j) {
 // bounds it (each is a line of the script).
 std::string campbell_script(const std::string& file, const Json& j) {
   CampbellPicture c;
-  const Json& labels = j.at("labels");
-  for (std::size_t i = 0; i < labels.size(); ++i) {
-    const std::string key = "labels[" + std::to_string(i) + "]";
-    const std::string& l = text_at(file, key, labels.at(i));
-    if (!is_mode_label(l))
-      refuse_key(file, key, labels[i], "not a mode label (flap, lag, lag2, ...)");
-    c.modes.push_back({l, {}, {}});
-  }
+  c.modes = mode_curves(file, j);
   const Json& harmonics = j.at("harmonics");
   if (!harmonics.is_number_integer() ||
       !kCampbellHarmonicsRange.interval.Contains(harmonics.get<double>()))

@@ -405,6 +405,8 @@ class Workspace {
         {"simulate", {"simulate", "--mu", "0.3", "--revs", "1", "--samples", "12", "--json"}},
         {"point", {"point", "--mu", "0.3", "--json"}},
         {"critical", {"critical", "--mu-max", "0.3", "--scan-step", "0.1", "--json"}},
+        {"modes", {"modes", "--flap-modes", "2", "--points", "5", "--json"}},
+        {"campbell", {"campbell", "--speeds", "3", "--harmonics", "2", "--json"}},
     };
     const auto it = kSeeds.find(name);
     if (it == kSeeds.end()) throw std::runtime_error("no seed " + name);
@@ -866,9 +868,9 @@ Json seed_json(const std::string& name) {
 
 // `flaplag plot` of a mutated result (sometimes two sweeps, with --label, --mode, --max-zeta).
 Vector plot_vector(Random& rnd, Coverage& cov) {
-  static const std::vector<std::string> kSeeds = {"sweep", "sweep-plot", "sweep-trimmed",
-                                                  "study", "map",        "map-mu",
-                                                  "map-1", "response",   "simulate"};
+  static const std::vector<std::string> kSeeds = {
+      "sweep", "sweep-plot", "sweep-trimmed", "study", "map",     "map-mu",
+      "map-1", "response",   "simulate",      "modes", "campbell"};
   Vector v;
   v.plot_command = true;
   const std::string seed = rnd.pick(kSeeds);
@@ -1054,8 +1056,9 @@ Vector merge_vector(Random& rnd, Coverage& cov) {
 // asks for).  An enumeration, the same in every run.
 std::vector<Vector> every_string_field_vectors() {
   // (sweep-plot and map-1 have the fields of sweep and map.)
-  static const std::vector<std::string> kSeeds = {"sweep",  "sweep-trimmed", "study",   "map",
-                                                  "map-mu", "response",      "simulate"};
+  static const std::vector<std::string> kSeeds = {"sweep",    "sweep-trimmed", "study",
+                                                  "map",      "map-mu",        "response",
+                                                  "simulate", "modes",         "campbell"};
   // FLAPLAG_FILE_FUZZ_FIELD_PAYLOADS: 1 (one payload per field, in turn), 2 (and the backquote),
   // 3 (and the quote with system(); the default).
   const long payloads_per_field = std::min(env_long("FLAPLAG_FILE_FUZZ_FIELD_PAYLOADS", 3), 3L);
