@@ -440,14 +440,18 @@ void DeferredPictures::commit() {
   pictures_.clear();
 }
 
+namespace {
+
+const char* const kSvgTerminal = "set terminal svg size 900,700 dynamic enhanced font 'Sans,12'\n";
+const char* const kPngTerminal = "set terminal pngcairo size 1200,900 enhanced font 'Sans,11'\n";
+
+}  // namespace
+
 std::string render_plot(const std::string& script, const std::string& path) {
   if (!is_plot_path(path)) throw InvalidInput("plot", shown(path), "must end in .svg or .png");
   OutputTarget target(path, "plot");  // checked before anything runs
   const bool svg = ends_with(path, ".svg");
-  const std::string full =
-      std::string(svg ? "set terminal svg size 900,700 dynamic enhanced font 'Sans,12'\n"
-                      : "set terminal pngcairo size 1200,900 enhanced font 'Sans,11'\n") +
-      "set output\n" + script;
+  const std::string full = std::string(svg ? kSvgTerminal : kPngTerminal) + "set output\n" + script;
   std::string image;
   switch (run_gnuplot(full, &image)) {
     case Gnuplot::Missing:
@@ -462,6 +466,19 @@ std::string render_plot(const std::string& script, const std::string& path) {
   else
     target.write(image);
   return "";
+}
+
+std::string render_svg(const std::string& script) {
+  std::string image;
+  switch (run_gnuplot(std::string(kSvgTerminal) + "set output\n" + script, &image)) {
+    case Gnuplot::Missing:
+      throw RendererUnavailable("gnuplot is not installed (Debian: gnuplot-nox)");
+    case Gnuplot::Failed:
+      throw RendererUnavailable("gnuplot failed to draw a picture");
+    case Gnuplot::Ok:
+      break;
+  }
+  return image;
 }
 
 }  // namespace flaplag::cli

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -136,6 +137,11 @@ std::string campbell_plot_script(const CampbellPicture& picture);
 std::string plot_data_file(const std::string& data, const std::string& plot,
                            std::uint64_t memory_limit,
                            SweepQuantity quantity = SweepQuantity::DampingRatio);
+// The picture of a parsed --json result as plot_data_file draws it: its gnuplot script, or
+// nullopt for a result without a picture (point, critical, trim, ...).  `file` names the result
+// in refusals, which are plot_data_file's.
+std::optional<std::string> result_plot_script(const nlohmann::json& result, const std::string& file,
+                                              SweepQuantity quantity = SweepQuantity::DampingRatio);
 // `flaplag plot A.json B.json ... [--label L]... [--max-zeta | --mode M] --plot FILE`: one file
 // without labels, max_zeta or mode is plot_data_file (the same bytes); otherwise every file must be
 // a sweep result (InvalidInput("argument", the first other file as typed, reason) if not).  labels:
@@ -158,6 +164,10 @@ struct RendererUnavailable : std::runtime_error {
 // then).  Throws InvalidInput("plot", path, reason) for an output path that cannot be written
 // (OutputTarget).  While a DeferredPictures exists, the image is kept there instead of written.
 std::string render_plot(const std::string& script, const std::string& path);
+
+// Renders `script` (as render_plot) into SVG text in memory, for a page that inlines it.  Throws
+// RendererUnavailable (one line) when gnuplot is missing or fails.
+std::string render_svg(const std::string& script);
 
 // The pictures of one command, written after its output (flaplag's main): a command whose
 // output cannot be written, or that fails after drawing, leaves no picture behind.  While one

@@ -282,33 +282,32 @@ Json read_result(const std::string& data, std::uint64_t memory_limit) {
 
 }  // namespace
 
+std::optional<std::string> result_plot_script(const nlohmann::json& j, const std::string& file,
+                                              SweepQuantity quantity) {
+  const std::string command = j.at("command").get<std::string>();
+  try {
+    if (command == "sweep") return sweep_script(file, j, quantity);
+    if (command == "study") return study_script(file, j);
+    if (command == "map") return map_script(file, j);
+    if (command == "response" || command == "simulate") return tip_script(file, command, j);
+    if (command == "modes") return modes_script(j);
+    if (command == "campbell") return campbell_script(file, j);
+  } catch (const Json::exception&) {
+    refuse(file,
+           "a damaged flaplag " + command + " result (a key is missing or has the wrong type)");
+  }
+  return std::nullopt;
+}
+
 std::string plot_data_file(const std::string& data, const std::string& plot,
                            std::uint64_t memory_limit, SweepQuantity quantity) {
   const Json j = read_result(data, memory_limit);
-  const std::string command = j["command"].get<std::string>();
-  std::string script;
-  try {
-    if (command == "sweep")
-      script = sweep_script(data, j, quantity);
-    else if (command == "study")
-      script = study_script(data, j);
-    else if (command == "map")
-      script = map_script(data, j);
-    else if (command == "response" || command == "simulate")
-      script = tip_script(data, command, j);
-    else if (command == "modes")
-      script = modes_script(j);
-    else if (command == "campbell")
-      script = campbell_script(data, j);
-    else
-      refuse(data, "a flaplag " + command +
-                       " result has no picture (flaplag plot draws sweep, study, map, response, "
-                       "simulate, modes and campbell results)");
-  } catch (const Json::exception&) {
-    refuse(data,
-           "a damaged flaplag " + command + " result (a key is missing or has the wrong type)");
-  }
-  const std::string warning = render_plot(script, plot);
+  const std::optional<std::string> script = result_plot_script(j, data, quantity);
+  if (!script)
+    refuse(data, "a flaplag " + j["command"].get<std::string>() +
+                     " result has no picture (flaplag plot draws sweep, study, map, response, "
+                     "simulate, modes and campbell results)");
+  const std::string warning = render_plot(*script, plot);
   if (!warning.empty()) throw RendererUnavailable(warning);
   return "";
 }
