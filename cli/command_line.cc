@@ -18,6 +18,7 @@
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag_spec/runtime_spec.h"
 #include "plot.h"
+#include "report.h"
 #include "shard.h"
 
 namespace flaplag::cli {
@@ -306,6 +307,8 @@ std::vector<std::string> examples(Command c) {
 }
 
 const char* const kRunDescription = "run a case file (TOML) or a --json output again";
+const char* const kReportDescription =
+    "a one-page HTML report of a case file (run now) or of a --json output (as computed)";
 
 // What a subcommand's help says beyond its options.
 std::string usage_notes(Command c) {
@@ -529,13 +532,13 @@ CommandLine::CommandLine(const std::vector<std::string>& args) {
     if (options_done || !is_option_word(a)) {
       if (!have_command) {
         have_command = true;
-        if (a == "run") {  // main.cc expands `flaplag run CASE` before this parser runs
-          problem(i, InvalidInput("subcommand", "run",
-                                  "must be the first word: flaplag run CASE [OPTIONS]"));
+        if (a == "run" || a == "report") {  // main.cc expands them before this parser runs
+          problem(i, InvalidInput("subcommand", a,
+                                  "must be the first word: flaplag " + a + " CASE [OPTIONS]"));
         } else if (!command_from_name(a, &command_)) {
-          problem(i, InvalidInput(
-                         "subcommand", shown(a),
-                         "unknown (one of " + subcommand_list() + ", run; see flaplag --help)"));
+          problem(i, InvalidInput("subcommand", shown(a),
+                                  "unknown (one of " + subcommand_list() +
+                                      ", run, report; see flaplag --help)"));
         }
       } else if (command_ == Command::Merge || command_ == Command::Plot) {
         inputs_.push_back(a);
@@ -915,6 +918,15 @@ Request CommandLine::interpret() const {
       throw InvalidInput(g->spelling, shown(g->text), "must end in .svg or .png");
     r.plot = g->text;
   }
+  if (const Given* g = given("--report")) {
+    if (!is_report_path(g->text))
+      throw InvalidInput(g->spelling, shown(g->text), "must end in .html or .htm");
+    if (r.shard_count > 0)
+      throw InvalidInput(g->spelling, shown(g->text),
+                         "a report covers the whole job, not one --shard part: flaplag merge the "
+                         "parts, then flaplag report MERGED.json");
+    r.report = g->text;
+  }
   if (const Given* g = given("--damping-criterion")) {
     const double v = parse_real(g->spelling, g->text);
     if (!kDampingCriterionRange.interval.Contains(v))
@@ -968,6 +980,7 @@ std::string CommandLine::help_text() const {
       out += "  " + n + std::string(12 - n.size(), ' ') + description(s) + "\n";
     }
     out += "  run         " + std::string(kRunDescription) + "\n";
+    out += "  report      " + std::string(kReportDescription) + "\n";
   } else {
     std::string usage = full_name(c);
     if (c == Command::Point || c == Command::System || c == Command::Trim) usage += " --mu REAL";
@@ -1009,6 +1022,29 @@ std::string CommandLine::run_help_text() {
          "  flaplag run fig12.json                    the same bytes again\n"
          "\nExit codes: those of the case's subcommand; 2 also for a case file that cannot be read "
          "or\nhas an unknown key, a wrong type or a bad value (named by file, line and key).\n";
+}
+
+std::string CommandLine::report_help_text() {
+  return "Usage: flaplag report CASE [OPTIONS] [-o FILE.html]\n\n" +
+         std::string(kReportDescription) +
+         ".\n\nA self-contained page (inline SVG pictures, no script, no network) with the "
+         "outcome and\nevery warning in plain words, the model and its assumptions, the inputs "
+         "with their\nsymbols and units, the results with their status and error estimates, the "
+         "convergence\nevidence, the pictures, and the flaplag version, commit and command that "
+         "reproduce it.\n\nCASE is a TOML case file (flaplag run --help): it is run now, with "
+         "the options typed\nafter it overriding the file's.  Or CASE is a --json output of "
+         "flaplag: its result is\nreported as it was computed (nothing is recomputed; its "
+         "strings are shown as text,\nnever run); only -o and --memory-limit apply then.  Any "
+         "analysis command also takes\n--report FILE.html to write the report beside its usual "
+         "output.\n"
+         "\nOptions:\n  -o, --output FILE.html      the page (default: standard output)\n"
+         "  -h, --help                  this help\n"
+         "\nExamples:\n"
+         "  flaplag report examples/fig03.toml -o fig03.html\n"
+         "  flaplag report study.json -o study.html   a result computed elsewhere\n"
+         "  flaplag critical --theta 0.1 --report critical.html\n"
+         "\nExit codes: those of the case's subcommand; 2 also for a file that is neither a case "
+         "nor\na flaplag result, and for -o that does not end in .html or .htm.\n";
 }
 
 void CommandLine::interpret_batch(Request& r) const {

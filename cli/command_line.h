@@ -61,6 +61,9 @@ struct Request {
   CampbellOptions campbell;
   int threads = 0;
   std::string plot;  // --plot FILE (.svg or .png)
+  // --report FILE.html: also the HTML report of the result (report.h); "-": standard output
+  // (flaplag report, which writes nothing else); "": none
+  std::string report;
   // sweep, study: --damping-criterion C (a fraction of critical, kDampingCriterionRange): the
   // first mu where each mode's damping ratio falls below C; nullopt: not asked
   std::optional<double> damping_criterion;
@@ -131,6 +134,8 @@ class CommandLine {
 
   // The help of `flaplag run CASE [OPTIONS]` (run is expanded before the command line is read).
   static std::string run_help_text();
+  // The help of `flaplag report CASE [OPTIONS]` (expanded as run is).
+  static std::string report_help_text();
 
  private:
   struct Given {

@@ -144,22 +144,10 @@ Output run(const Request& r, std::string* warning, RunControl* control) {
   }
 }
 
-}  // namespace
-
-std::string run_command(const Request& r, std::string* warning, RunControl* control) {
-  Output out = run(r, warning, control);
+// Provenance in every JSON output: the flaplag version and commit, and the case that
+// reproduces it (`flaplag run FILE.json`).
+void complete(const Request& r, Json& j, const RunControl* control) {
   const bool cancelled = control != nullptr && control->cancelled;
-  if (!out.json) {
-    std::string& text = out.text;
-    if (!r.json || text.empty() || text[0] != '{') {
-      if (cancelled) text += "  status: cancelled: " + control->message + "\n";
-      return text;
-    }
-    out.json = Json::parse(text);  // modes and merge (modes_command.cc, shard.cc) give JSON text
-  }
-  // Provenance in every JSON output: the flaplag version and commit, and the case that
-  // reproduces it (`flaplag run FILE.json`).
-  Json& j = *out.json;
   if (cancelled) {
     const std::string before = j.value("message", "");
     j["status"] = "cancelled";
@@ -169,7 +157,31 @@ std::string run_command(const Request& r, std::string* warning, RunControl* cont
   j["flaplag"] = Json{{"version", FLAPLAG_VERSION}, {"commit", FLAPLAG_GIT_COMMIT}};
   j["case"] = case_json(r);
   if (r.shard_count > 0) seal_part(j);  // last: the digest covers everything above
-  return j.dump(2) + "\n";
+}
+
+}  // namespace
+
+std::string run_command(const Request& r, std::string* warning, RunControl* control,
+                        Json* document) {
+  Output out = run(r, warning, control);
+  const bool cancelled = control != nullptr && control->cancelled;
+  if (!out.json && r.json && !out.text.empty() && out.text[0] == '{')
+    out.json = Json::parse(out.text);  // modes and merge (modes_command.cc, shard.cc) give JSON
+  if (!out.json && !r.json && !r.report.empty() && r.command == Command::Modes) {
+    // The modes command makes one form; its JSON for the report is made again (milliseconds).
+    Request rj = r;
+    rj.json = true;
+    rj.plot.clear();
+    out.json = Json::parse(run_modes(rj, nullptr));
+  }
+  if (out.json) complete(r, *out.json, control);
+  if (document != nullptr && out.json) *document = *out.json;
+  if (!r.json) {
+    std::string& text = out.text;
+    if (cancelled) text += "  status: cancelled: " + control->message + "\n";
+    return text;
+  }
+  return out.json->dump(2) + "\n";
 }
 
 }  // namespace flaplag::cli

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "command_line.h"
@@ -29,8 +30,11 @@ struct RunControl {
 // reproduces them.  *warning (when given) receives a one-line warning for stderr, e.g. a plot
 // that could not be drawn because gnuplot is missing (the data is still returned).
 // `control` (optional) carries the cancel flag and progress function of a study or map.
+// With request.report set, *document (when given) receives the completed JSON document of the
+// result (as --json would write it) for the report, whatever the output's form.
 std::string run_command(const Request& request, std::string* warning = nullptr,
-                        RunControl* control = nullptr);
+                        RunControl* control = nullptr,
+                        nlohmann::ordered_json* document = nullptr);
 
 // `flaplag modes` (modes_command.cc); *warning as in run_command (the --plot picture).
 std::string run_modes(const Request& request, std::string* warning);

@@ -70,12 +70,12 @@ Output campbell(const Request& r, const Analysis& an, std::string& warning) {
   options.threads = r.threads;
   const CampbellResult c = campbell_diagram(r.params, r.transition, options);
   warning = plot_if_asked(r, campbell_plot_script(picture_of(c)));
-  if (r.json) {
+  const auto json = [&] {
     Json j = header_json("campbell", an);
     j.update(to_json(c, in_vocabulary(r)));
     return j;
-  }
-  return campbell_text(r, an, c);
+  };
+  return json_or_text(r, json, r.json ? std::string() : campbell_text(r, an, c));
 }
 
 }  // namespace flaplag::cli::cmd

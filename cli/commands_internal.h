@@ -21,13 +21,24 @@ namespace flaplag::cli::cmd {
 using Json = nlohmann::ordered_json;
 
 // What a command produced: a JSON document (json set; the command's `return j;`) or text (the
-// command's `return out;`), taken as they are.
+// command's `return out;`), taken as they are.  A text output carries the JSON document along
+// when a --report needs it (with_report_json).
 struct Output {
   Output(std::string t) : text(std::move(t)) {}
   Output(Json j) : json(std::move(j)) {}
+  Output(std::string t, std::optional<Json> j) : json(std::move(j)), text(std::move(t)) {}
   std::optional<Json> json;
   std::string text;
 };
+
+// The output of a command with both forms: its JSON document (--json), or its text with the
+// document made too when the request asks for a report (--report) and only then.
+template <class MakeJson>
+Output json_or_text(const Request& r, MakeJson&& make_json, std::string text) {
+  if (r.json) return Output(make_json());
+  if (r.report.empty()) return Output(std::move(text));
+  return Output(std::move(text), Json(make_json()));
+}
 
 // ---- numbers that may not be finite (commands_common.cc) ---------------------------------------
 //

@@ -127,8 +127,8 @@ std::string system_text(const Request& r, const Analysis& an, const SystemSnapsh
 
 Output system_snapshot(const Request& r, const Analysis& an) {
   const SystemSnapshot s = an.snapshot(r.mu, r.psi);
-  if (r.json) return system_json(r, an, s, s.status, s.message);
-  return system_text(r, an, s, s.status, s.message);
+  const auto json = [&] { return system_json(r, an, s, s.status, s.message); };
+  return json_or_text(r, json, r.json ? std::string() : system_text(r, an, s, s.status, s.message));
 }
 
 Output models(const Request& r) {

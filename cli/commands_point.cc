@@ -322,7 +322,7 @@ Output typical(const Request& r, const Analysis& an) {
   }
   const std::vector<std::string> labels = mode_labels(an);
   const std::optional<double> max_res = max_liouville(table);
-  if (r.json) {
+  const auto json = [&] {
     Json j = header_json("typical", an);
     j["hover"] = hover_json(r, an);
     j["critical"] = critical_json(r, crit);
@@ -332,7 +332,8 @@ Output typical(const Request& r, const Analysis& an) {
     t["max_liouville_residual"] = optional_json(max_res);
     j["table"] = status_json(t, table.status, vocab(r, table.message));
     return j;
-  }
+  };
+  if (r.json) return json();
   std::string out =
       "flaplag: coupled flap-lag stability of a hingeless blade in forward flight "
       "(NASA CR-132431)\n";
@@ -344,7 +345,7 @@ Output typical(const Request& r, const Analysis& an) {
   out += sweep_table_text(r, table, labels);
   out += "  Liouville residual |det Phi - exp int tr A| (relative), max over the table: " +
          optional_text(max_res) + "\n";
-  return out;
+  return json_or_text(r, json, out);
 }
 
 Output point(const Request& r, const Analysis& an) {
@@ -355,15 +356,17 @@ Output point(const Request& r, const Analysis& an) {
                       : an.point(r.mu, r.scan_step);
   std::optional<TrimResult> t;
   if (!trims.empty()) t = trims.front();
-  if (r.json) {
+  const auto json = [&] {
     Json j = header_json("point", an);
     j.update(point_json(r, p));
     j["hover"] = hover_json(r, an);
     if (t) j["trim"] = trim_json(r, *t);
     return j;
-  }
-  return header_text(an) + "\n" + warnings_text(an) + (t ? trim_text(r, *t) + "\n" : "") +
-         point_text(r, p);
+  };
+  if (r.json) return json();
+  return json_or_text(r, json,
+                      header_text(an) + "\n" + warnings_text(an) +
+                          (t ? trim_text(r, *t) + "\n" : "") + point_text(r, p));
 }
 
 Output sweep(const Request& r, const Analysis& an, std::string& warning) {
@@ -393,8 +396,7 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
     picture.add_criterion(s.damping_criterion);
     warning = plot_if_asked(r, sweep_plot_script(an.model().name, mu, modes, picture));
   }
-  if (r.csv) return sweep_csv(r, s, labels);
-  if (r.json) {
+  const auto json = [&] {
     Json j = header_json("sweep", an);
     j["mu"] = Json{{"start", r.sweep_start}, {"stop", r.sweep_stop}, {"step", r.sweep_step}};
     j["labels"] = labels;
@@ -410,7 +412,9 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
       j["trim"] = tj;
     }
     return status_json(j, s.status, vocab(r, s.message));
-  }
+  };
+  if (r.json) return json();
+  if (r.csv) return json_or_text(r, json, sweep_csv(r, s, labels));
   std::string trim_table;
   if (trimmed(r)) {
     trim_table = std::string("\nTrim (") + trim_kind_name(r.trim.kind) +
@@ -422,9 +426,10 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
     }
     trim_table += t.render();
   }
-  return header_text(an) + "\n" + warnings_text(an) +
-         "Exponents per rev (dominant exponent of each mode)\n" + sweep_table_text(r, s, labels) +
-         crossings_text(s) + trim_table;
+  return json_or_text(r, json,
+                      header_text(an) + "\n" + warnings_text(an) +
+                          "Exponents per rev (dominant exponent of each mode)\n" +
+                          sweep_table_text(r, s, labels) + crossings_text(s) + trim_table);
 }
 
 Output critical(const Request& r, const Analysis& an) {
@@ -436,14 +441,16 @@ Output critical(const Request& r, const Analysis& an) {
       trimmed(r) ? trimmed_critical(r.params, r.transition, r.trim, opt, &trims) : an.critical(opt);
   std::optional<TrimResult> t;
   if (!trims.empty()) t = trims.front();
-  if (r.json) {
+  const auto json = [&] {
     Json j = header_json("critical", an);
     j.update(critical_json(r, c));
     if (trimmed(r)) j["trim"] = t ? trim_json(r, *t) : Json(nullptr);
     return j;
-  }
-  return header_text(an) + "\n" + warnings_text(an) + critical_text(r, c) +
-         (t ? "\n" + trim_text(r, *t) : "");
+  };
+  if (r.json) return json();
+  return json_or_text(r, json,
+                      header_text(an) + "\n" + warnings_text(an) + critical_text(r, c) +
+                          (t ? "\n" + trim_text(r, *t) : ""));
 }
 
 }  // namespace flaplag::cli::cmd

@@ -257,8 +257,8 @@ Output study(const Request& request, std::string& warning, RunControl* control) 
   const Analysis base(r.params, r.transition);  // the header, and the base parameters checked
   const StudyResult s = run_study_part(r, control);
   if (!r.plot.empty()) warning = study_plot(r, s);
-  if (r.json) return study_json(r, base, s);
-  return study_text(r, base, s);
+  return json_or_text(
+      r, [&] { return study_json(r, base, s); }, r.json ? std::string() : study_text(r, base, s));
 }
 
 Output map(const Request& request, std::string& warning, RunControl* control) {
@@ -266,8 +266,8 @@ Output map(const Request& request, std::string& warning, RunControl* control) {
   const Analysis base(r.params, r.transition);
   const MapResult m = run_map_part(r, control);
   warning = map_plot(r, m);
-  if (r.json) return map_json(r, base, m);
-  return map_text(r, base, m);
+  return json_or_text(
+      r, [&] { return map_json(r, base, m); }, r.json ? std::string() : map_text(r, base, m));
 }
 
 }  // namespace flaplag::cli::cmd

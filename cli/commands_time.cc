@@ -22,7 +22,7 @@ Output response(const Request& r, const Analysis& an, std::string& warning) {
     for (double p : f.periodic.psi) deg.push_back(p * 180.0 / kPi);
     warning = plot_if_asked(r, response_plot_script(r.mu, deg, f.flap_tip, f.lag_tip));
   }
-  if (r.json) {
+  const auto json = [&] {
     Json j = header_json("response", an, false);
     j["mu"] = r.mu;
     if (f.status != Status::Failed) {
@@ -41,11 +41,13 @@ Output response(const Request& r, const Analysis& an, std::string& warning) {
       j["steps"] = f.periodic.steps;
     }
     return status_json(j, f.status, vocab(r, f.message));
-  }
+  };
+  if (r.json) return json();
   std::string out = header_text(an, false) + "\n";
   out += "Periodic forced response at mu = " + num(r.mu) +
          " (tip deflections by l, hover equilibrium included)\n";
-  if (f.status == Status::Failed) return out + status_text(f.status, vocab(r, f.message));
+  if (f.status == Status::Failed)
+    return json_or_text(r, json, out + status_text(f.status, vocab(r, f.message)));
   TextTable h({"harmonic", "flap w/l", "lag v/l"});
   for (std::size_t k = 0; k < f.flap_harmonics.size(); ++k)
     h.add_row({harmonic_name(static_cast<int>(k)), short_text(f.flap_harmonics[k]),
@@ -58,7 +60,7 @@ Output response(const Request& r, const Analysis& an, std::string& warning) {
                short_text(f.lag_tip[k])});
   out += "\n" + t.render();
   out += "  periodicity |y(2 pi) - y(0)| / |y0| = " + short_text(f.periodic.closure) + "\n";
-  return out + status_text(f.status, vocab(r, f.message));
+  return json_or_text(r, json, out + status_text(f.status, vocab(r, f.message)));
 }
 
 Output simulate_command(const Request& r, const Analysis& an, std::string& warning) {
@@ -76,7 +78,7 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
   const std::optional<double>& flap_rate = ts.flap_growth_rate;
   const std::optional<double>& lag_rate = ts.lag_growth_rate;
   warning = plot_if_asked(r, simulate_plot_script(r.mu, revs, flap, lag));
-  if (r.json) {
+  const auto json = [&] {
     Json j = header_json("simulate", an, false);
     j["mu"] = r.mu;
     j["forced"] = r.forced;
@@ -94,7 +96,8 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
     j["flap_growth_rate"] = optional_json(flap_rate);
     j["lag_growth_rate"] = optional_json(lag_rate);
     return status_json(j, ts.status, vocab(r, ts.message));
-  }
+  };
+  if (r.json) return json();
   std::string out = header_text(an, false) + "\n";
   if (ts.nonlinear) {
     out += "Nonlinear response at mu = " + num(r.mu) + " from the " + ts.reference + " + " +
@@ -123,10 +126,7 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
       "  envelope growth rate (last 3/4 of the run; compare with the largest Floquet zeta): flap " +
       (flap_rate ? short_text(*flap_rate) : std::string("-")) + ", lag " +
       (lag_rate ? short_text(*lag_rate) : std::string("-")) + " per rev\n";
-  return out + status_text(ts.status, vocab(r, ts.message));
+  return json_or_text(r, json, out + status_text(ts.status, vocab(r, ts.message)));
 }
-
-// The command line behind a result, as the "case" object of JSON outputs: `flaplag run` takes
-// it back (case_file.h).
 
 }  // namespace flaplag::cli::cmd

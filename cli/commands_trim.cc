@@ -44,12 +44,12 @@ std::string trim_text(const Request& r, const TrimResult& t) {
 
 Output trim_command(const Request& r) {
   const TrimResult t = trim(r.params, r.mu, r.trim);
-  if (r.json) {
+  const auto json = [&] {
     Json j = header_json("trim", Analysis(t.parameters, r.transition, t.inflow), false);
     j.update(trim_json(r, t));
     return j;
-  }
-  return trim_text(r, t);
+  };
+  return json_or_text(r, json, r.json ? std::string() : trim_text(r, t));
 }
 
 }  // namespace flaplag::cli::cmd

@@ -27,6 +27,8 @@
 #include "output.h"
 #include "plot.h"
 #include "progress.h"
+#include "read_file.h"
+#include "report.h"
 
 namespace {
 
@@ -89,11 +91,19 @@ int report(const std::string& message, int code) {
 
 // `flaplag run CASE [options]`: the case file's arguments, then the options typed after it
 // (the last of a repeated option wins, so the command line overrides the file).
+// `flaplag report CASE [options] [-o PAGE.html]` is the same run with the result's page as its
+// only output; `flaplag report RESULT.json [-o PAGE.html]` is the page of a result as it is.
 struct Expanded {
   std::vector<std::string> args;
   flaplag::cli::CaseArguments from_file;
   std::vector<std::string> typed;  // the options given after the file
   bool run_help = false;           // flaplag run --help
+  bool report = false;             // flaplag report
+  bool report_help = false;        // flaplag report --help
+  std::string file;                // the case or result file, as typed
+  std::string page;                // flaplag report: -o ("": standard output)
+  bool of_result = false;          // flaplag report RESULT.json: report `result` as it is
+  std::string result;              // its text
 };
 
 // The --memory-limit typed after `flaplag run FILE` (the last one; the default without one): it
@@ -112,20 +122,85 @@ std::uint64_t typed_memory_limit(const std::vector<std::string>& args) {
   return limit;
 }
 
+// flaplag report: takes -o PAGE out of the options typed after the file (the page is the only
+// output; a case file's own -o is not written).
+std::string take_page(std::vector<std::string>& typed) {
+  std::string page;
+  for (std::size_t i = 0; i < typed.size();) {
+    const std::string& a = typed[i];
+    std::string value;
+    std::size_t used = 0;
+    if (a == "-o" || a == "--output") {
+      if (i + 1 >= typed.size() || typed[i + 1].rfind("--", 0) == 0)
+        throw flaplag::InvalidInput(a, "(missing)", "expected a file name");
+      value = typed[i + 1];
+      used = 2;
+    } else if (a.rfind("--output=", 0) == 0) {
+      value = a.substr(9);
+      used = 1;
+    } else if (a.rfind("-o", 0) == 0 && a.size() > 2 && a.rfind("--", 0) != 0) {
+      value = a.substr(2);
+      used = 1;
+    } else {
+      ++i;
+      continue;
+    }
+    if (value != "-" && !flaplag::cli::is_report_path(value))
+      throw flaplag::InvalidInput(a.rfind("--", 0) == 0 ? "--output" : "-o",
+                                  flaplag::cli::shown(value),
+                                  "must end in .html or .htm (flaplag report writes a page)");
+    page = value == "-" ? "" : value;
+    typed.erase(typed.begin() + static_cast<std::ptrdiff_t>(i),
+                typed.begin() + static_cast<std::ptrdiff_t>(i + used));
+  }
+  return page;
+}
+
 Expanded expand(const std::vector<std::string>& args) {
   Expanded e;
-  if (args.empty() || args[0] != "run") {
+  if (args.empty() || (args[0] != "run" && args[0] != "report")) {
     e.args = args;
     return e;
   }
+  const std::string word = args[0];
+  e.report = word == "report";
   if (args.size() >= 2 && (args[1] == "--help" || args[1] == "-h")) {
-    e.run_help = true;
+    (e.report ? e.report_help : e.run_help) = true;
     return e;
   }
   if (args.size() < 2 || args[1].empty() || args[1][0] == '-')
     throw flaplag::InvalidInput("argument", args.size() < 2 ? "(missing)" : args[1],
-                                "flaplag run needs a case file: flaplag run CASE.toml (or a "
-                                "--json output of flaplag)");
+                                "flaplag " + word + " needs a case file: flaplag " + word +
+                                    " CASE.toml (or a --json output of flaplag)");
+  e.file = args[1];
+  if (e.report) {
+    e.typed.assign(args.begin() + 2, args.end());
+    e.page = take_page(e.typed);
+    const std::string text = flaplag::cli::read_json_file(e.file, typed_memory_limit(args),
+                                                          "case file", "case file cannot be read");
+    if (flaplag::cli::is_json_text(text)) {
+      // A result is shown as computed: nothing here would change it but the memory to read it.
+      for (std::size_t i = 0; i < e.typed.size(); ++i) {
+        const std::string& a = e.typed[i];
+        if (a == "--memory-limit") {
+          ++i;
+        } else if (a.rfind("--memory-limit=", 0) != 0) {
+          throw flaplag::InvalidInput(
+              "argument", flaplag::cli::shown(a),
+              "flaplag report of a --json output shows its result as computed (only -o and "
+              "--memory-limit apply); to compute it again: flaplag run " +
+                  e.file + " --report PAGE.html");
+        }
+      }
+      e.of_result = true;
+      e.result = text;
+      return e;
+    }
+    e.from_file = flaplag::cli::parse_case_text(e.file, text);
+    e.args = e.from_file.args;
+    e.args.insert(e.args.end(), e.typed.begin(), e.typed.end());
+    return e;
+  }
   e.from_file = flaplag::cli::read_case_file(args[1], typed_memory_limit(args));
   e.args = e.from_file.args;
   e.typed.assign(args.begin() + 2, args.end());
@@ -152,8 +227,27 @@ int run(const std::vector<std::string>& raw) {
   } catch (const flaplag::InvalidInput& error) {
     return report(error.what(), kBadInput);
   }
-  if (e.run_help) {
-    return write_stdout(flaplag::cli::CommandLine::run_help_text());
+  if (e.run_help || e.report_help) {
+    return write_stdout(e.run_help ? flaplag::cli::CommandLine::run_help_text()
+                                   : flaplag::cli::CommandLine::report_help_text());
+  }
+  if (e.of_result) {
+    try {
+      const flaplag::cli::OutputTarget page(e.page, "output");
+      std::string warning;
+      const std::string html = flaplag::cli::html_report_of_text(e.file, e.result, &warning);
+      if (e.page.empty()) {
+        if (const int code = write_stdout(html); code != 0) return code;
+      } else {
+        page.write(html);
+      }
+      if (!warning.empty()) std::cerr << "flaplag: warning: " << one_line(warning) << std::endl;
+      return 0;
+    } catch (const flaplag::InvalidInput& error) {
+      return report(error.name() == "output" ? "-o = " + error.value() + ": " + error.reason()
+                                             : std::string(error.what()),
+                    kBadInput);
+    }
   }
   const flaplag::cli::CommandLine cl(e.args);
   if (cl.wants_help() || cl.wants_version()) {
@@ -162,10 +256,30 @@ int run(const std::vector<std::string>& raw) {
   try {
     flaplag::cli::Request request = cl.interpret();
     request.arguments = e.args;
+    if (e.report) {
+      // The page is the only output: the result is made as JSON for it, and nothing else is
+      // written but what the case asks to draw (--plot).
+      using flaplag::cli::Command;
+      if (request.command == Command::Models || request.command == Command::Merge ||
+          request.command == Command::Plot)
+        throw flaplag::InvalidInput("argument", flaplag::cli::shown(e.file),
+                                    std::string("a flaplag ") +
+                                        flaplag::cli::command_name(request.command) +
+                                        " case makes no result to report on");
+      if (request.shard_count > 0)
+        throw flaplag::InvalidInput("argument", flaplag::cli::shown(e.file),
+                                    "a report covers the whole job, not one --shard part: "
+                                    "flaplag merge the parts, then flaplag report MERGED.json");
+      request.json = true;
+      request.output.clear();
+      request.report = e.page.empty() ? "-" : e.page;
+    }
     // Check every output path before a possibly long analysis; nothing is left behind.
-    const flaplag::cli::OutputTarget target(request.output, "output");
+    const flaplag::cli::OutputTarget target(e.report ? "" : request.output, "output");
     const flaplag::cli::OutputTarget picture(request.plot, "plot");
     const flaplag::cli::OutputTarget audit(request.audit, "audit");
+    const flaplag::cli::OutputTarget page(request.report == "-" ? "" : request.report,
+                                          e.report ? "output" : "report");
     // The picture is written after the output, so that a run that fails leaves none.
     flaplag::cli::DeferredPictures pictures;
     std::string warning;
@@ -181,12 +295,33 @@ int run(const std::vector<std::string>& raw) {
     flaplag::cli::RunControl control;
     control.cancel = &interrupted;
     control.progress = bar.function();
-    const std::string text = flaplag::cli::run_command(request, &warning, &control);
+    nlohmann::ordered_json document;
+    const std::string text = flaplag::cli::run_command(request, &warning, &control, &document);
     bar.finish();
-    if (request.output.empty()) {
-      if (const int code = write_stdout(text); code != 0) return code;
+    // The page of the result (made before anything is written: a failure leaves nothing).
+    std::string html;
+    if (!request.report.empty()) {
+      flaplag::cli::ReportSource source;
+      source.title = e.file.empty() ? "command line" : "case file " + e.file;
+      source.warnings = e.from_file.warnings;
+      if (!warning.empty()) source.warnings.push_back(warning);
+      std::string page_warning;
+      html = flaplag::cli::html_report(document, source, &page_warning);
+      if (!page_warning.empty()) warning += (warning.empty() ? "" : "; ") + page_warning;
+    }
+    if (e.report) {
+      if (request.report == "-") {
+        if (const int code = write_stdout(html); code != 0) return code;
+      } else {
+        page.write(html);
+      }
     } else {
-      target.write(text);
+      if (request.output.empty()) {
+        if (const int code = write_stdout(text); code != 0) return code;
+      } else {
+        target.write(text);
+      }
+      if (!request.report.empty()) page.write(html);
     }
     pictures.commit();
     // The audit report of a --spec model, after the result (a failed run writes none).

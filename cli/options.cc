@@ -404,6 +404,12 @@ std::vector<OptionSpec> build(Command c) {
   append(v, mode_count_options());
   append(v, spec_options());
   append(v, output_options());
+  if (c != Command::Models)
+    v.push_back(value_option("--report", "FILE.html",
+                             "also write a one-page HTML report of the result: outcome, model, "
+                             "inputs, results with status and error estimates, convergence, "
+                             "pictures, warnings, provenance",
+                             "", {"report"}));
   return v;
 }
 

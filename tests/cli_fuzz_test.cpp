@@ -164,6 +164,7 @@ class Generator {
                                                 "--y",
                                                 "--threads",
                                                 "--plot",
+                                                "--report",
                                                 "--label",
                                                 "--max-zeta",
                                                 "--mode",
@@ -283,6 +284,7 @@ class Generator {
           std::vector<std::string>{"2G", "512M", "1M", "64G", "0.5G", "8GiB", "3000000000"});
     if (option == "--plot") return chance(0.5) ? "plot.svg" : "plot.png";
     if (option == "--audit") return "audit.md";
+    if (option == "--report") return "report.html";
     if (option == "--label") return pick(std::vector<std::string>{"(a) paper", "", "x\"y"});
     if (option == "--mode") return pick(std::vector<std::string>{"lag", "flap", "lag2"});
     // A fraction of critical, 0 <= C < 1.
@@ -436,10 +438,10 @@ class Generator {
       // gnuplot is slow to start: few pictures.  A periodic equilibrium (harmonic balance
       // continued from hover) at every mu is the costliest switch: rarely, and in the heavy
       // commands very rarely (about as often as when only two models in six had it).
-      const double q = o.name == "--json"                     ? 0.5
-                       : o.name == "--plot"                   ? 0.05
-                       : o.name == "--periodic-linearization" ? (heavy ? 0.01 : 0.03)
-                                                              : p;
+      const double q = o.name == "--json"                           ? 0.5
+                       : o.name == "--plot" || o.name == "--report" ? 0.05
+                       : o.name == "--periodic-linearization"       ? (heavy ? 0.01 : 0.03)
+                                                                    : p;
       if (!chance(q)) continue;
       if (o.takes_value) {
         std::string v = legal_value(o.name, c);

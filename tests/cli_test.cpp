@@ -385,7 +385,10 @@ TEST(CliErrors, RunMustBeTheFirstWord) {
   ASSERT_TRUE(WellFormedError(r));
   EXPECT_NE(r.err.find("must be the first word: flaplag run CASE"), std::string::npos) << r.err;
   const Outcome u = run({"bogus"});
-  EXPECT_NE(u.err.find(", run; see flaplag --help"), std::string::npos) << u.err;
+  EXPECT_NE(u.err.find(", run, report; see flaplag --help"), std::string::npos) << u.err;
+  const Outcome p = run({"--json", "report", "case.toml"});
+  ASSERT_TRUE(WellFormedError(p));
+  EXPECT_NE(p.err.find("must be the first word: flaplag report CASE"), std::string::npos) << p.err;
 }
 
 // A value with a line break or a control character still gives one line.
