@@ -170,6 +170,15 @@ std::vector<OptionSpec> output_options() {
   return {flag_option("--json", "write JSON instead of text"), o};
 }
 
+// Every command with a result (not models, merge, plot): the page of the result (report.h).
+OptionSpec report_option() {
+  return value_option("--report", "FILE.html",
+                      "also write a one-page HTML report of the result: outcome, model, inputs, "
+                      "results with status and error estimates, convergence, pictures, warnings, "
+                      "provenance",
+                      "", {"report"});
+}
+
 void append(std::vector<OptionSpec>& to, const std::vector<OptionSpec>& from) {
   to.insert(to.end(), from.begin(), from.end());
 }
@@ -290,6 +299,7 @@ std::vector<OptionSpec> build(Command c) {
                                "--points stations (gnuplot)",
                                "", {"plot"}));
       append(v, output_options());
+      v.push_back(report_option());
       return v;
     case Command::Study: {
       const CriticalOptions defaults;
@@ -404,12 +414,7 @@ std::vector<OptionSpec> build(Command c) {
   append(v, mode_count_options());
   append(v, spec_options());
   append(v, output_options());
-  if (c != Command::Models)
-    v.push_back(value_option("--report", "FILE.html",
-                             "also write a one-page HTML report of the result: outcome, model, "
-                             "inputs, results with status and error estimates, convergence, "
-                             "pictures, warnings, provenance",
-                             "", {"report"}));
+  if (c != Command::Models) v.push_back(report_option());
   return v;
 }
 

@@ -17,7 +17,8 @@ apt-get update
 # Eigen, CLI11 and nlohmann-json are the runtime and the command line; GoogleTest and Google
 # Benchmark are the tests and bench/.  The Python module (python/) is built with pybind11 for
 # Debian's /usr/bin/python3 and uses numpy; its tests use pytest, dask.distributed (maps on a
-# cluster) and matplotlib (examples/python/).
+# cluster) and matplotlib (examples/python/).  gnuplot draws the pictures; headless Chromium opens
+# the HTML reports in the tests (tests/report_test.cpp), with DejaVu for their text.
 apt-get install -y --no-install-recommends \
   build-essential \
   cmake \
@@ -37,4 +38,6 @@ apt-get install -y --no-install-recommends \
   python3-pytest \
   python3-distributed \
   python3-matplotlib \
-  gnuplot-nox
+  gnuplot-nox \
+  chromium \
+  fonts-dejavu-core

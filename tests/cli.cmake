@@ -53,6 +53,10 @@ if(TARGET flaplag_derive)
     FLAPLAG_SPEC_DIR="${PROJECT_SOURCE_DIR}/generator/orderings")
 endif()
 
+# The HTML report: flaplag report and --report, and each example's page in headless Chromium.
+flaplag_cli_test(report_test nlohmann_json::nlohmann_json)
+target_compile_definitions(report_test PRIVATE FLAPLAG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+
 # `cmake --build . --target cli_tests`: the flaplag binary and every test that runs it.
 get_property(flaplag_cli_tests GLOBAL PROPERTY FLAPLAG_CLI_TESTS)
 add_custom_target(cli_tests DEPENDS ${flaplag_cli_tests})
