@@ -128,6 +128,14 @@ bool is_bulky(const Json& v) {
   return v.is_array() && (v.size() > 6 || (!v.empty() && v[0].is_structured()));
 }
 
+// A rotor parameter named by its JSON key ("omega-lag") as the paper's symbol and the key.
+std::string parameter_html(const std::string& key) {
+  for (const ParameterSpec& spec : parameter_table())
+    if (json_key(spec) == key && spec.symbol[0] != '\0')
+      return symbol_html(spec.symbol) + " (<code>" + esc(key) + "</code>)";
+  return esc(key);
+}
+
 // ---- the document ---------------------------------------------------------------------------
 
 [[noreturn]] void refuse(const std::string& source, const std::string& reason) {
@@ -162,6 +170,20 @@ void collect_outcomes(const Json& j, const std::string& where, std::vector<Outco
     if (j.contains("status") && j["status"].is_string())
       out.push_back({where, j["status"].get<std::string>(), string_of(j, "message")});
     for (auto it = j.begin(); it != j.end(); ++it) {
+      // A damping crossing's status says where a mode crossed (crossing_words), not how a
+      // computation went; an unresolved one is a warning about the result.
+      const std::string here = where.empty() ? it.key() : where + "." + it.key();
+      if (it.key() == "damping_crossings" && it.value().is_array()) {
+        for (std::size_t i = 0; i < it.value().size(); ++i)
+          if (string_of(it.value()[i], "status") == "unresolved")
+            out.push_back({here + "[" + std::to_string(i) + "]", "warning",
+                           "the first mu below the damping criterion is unresolved for " +
+                               string_of(it.value()[i], "mode", "a mode") +
+                               " (a point's error estimate is wider than its margin to the "
+                               "criterion, or a point failed: refine the step or the zeta "
+                               "tolerance)"});
+        continue;
+      }
       if (it.key() == "case" || it.key() == "flaplag") continue;
       if (it.value().is_structured())
         collect_outcomes(it.value(), where.empty() ? it.key() : where + "." + it.key(), out);
@@ -259,9 +281,9 @@ std::string outcome_section(const Json& result, const std::vector<Outcome>& outc
   std::size_t nonok = 0;
   for (const Outcome& o : outcomes) nonok += o.status != "ok" ? 1 : 0;
   if (nonok > 0)
-    s += "<p>" + std::to_string(nonok) + " of the " + std::to_string(outcomes.size()) +
-         " results in this document are not ok: see <a href=\"#warnings\">Warnings</a>. A result "
-         "is never better than what it rests on.</p>\n";
+    s += "<p>Not ok: " + std::to_string(nonok) + " of the " + std::to_string(outcomes.size()) +
+         " results in this document (see <a href=\"#warnings\">Warnings</a>). A result is never "
+         "better than what it rests on.</p>\n";
   return section("outcome", "Outcome", s);
 }
 
@@ -270,12 +292,12 @@ std::string outcome_section(const Json& result, const std::vector<Outcome>& outc
 double number_or_nan(const Json& v) { return v.is_number() ? v.get<double>() : NAN; }
 
 // mu_c of a critical result (or a study row) in words, with its error estimate.
-std::string critical_words(const Json& c) {
+std::string critical_words(const Json& c, const Json& mu_max_of_study = Json()) {
   if (member(c, "hover_unstable") == true)
     return "unstable in hover: there is no critical advance ratio";
   const Json& mu_c = member(c, "mu_c");
   if (!mu_c.is_number()) {
-    const Json& mu_max = member(c, "mu_max");
+    const Json& mu_max = c.contains("mu_max") ? c["mu_max"] : mu_max_of_study;
     return "no instability found up to &mu; = " +
            (mu_max.is_number() ? cell(mu_max) : std::string("&mu;<sub>max</sub>"));
   }
@@ -321,6 +343,33 @@ std::string sweep_words(const Json& labels, const Json& rows) {
   return s + "</table>\n";
 }
 
+// The damping crossings of a sweep (or a study row): where each mode's damping ratio first falls
+// below the criterion.
+std::string crossing_words(const Json& d) {
+  const std::string status = string_of(d, "status");
+  const std::string mode = "<b>" + cell(member(d, "mode")) + "</b>";
+  if (status == "crossed")
+    return mode + " falls below it at &mu; = " + cell(member(d, "mu")) + " (between " +
+           cell(member(d, "mu_above")) + " and " + cell(member(d, "mu_below")) + ")";
+  if (status == "below_at_start")
+    return mode + " is below it from the first &mu; = " + cell(member(d, "mu"));
+  if (status == "not_crossed") return mode + " stays above it over the sweep";
+  if (status == "unresolved")
+    return mode + ": <b>unresolved</b> between &mu; = " + cell(member(d, "mu_above")) + " and " +
+           cell(member(d, "mu_below")) + " (see Warnings)";
+  return mode + ": " + esc(status);
+}
+
+std::string crossings_words(const Json& result) {
+  const Json& crossings = member(result, "damping_crossings");
+  const Json& criterion = member(result, "damping_criterion");
+  if (!crossings.is_array() || !criterion.is_number()) return "";
+  std::string s = "<p>Damping criterion " + esc(num(100.0 * criterion.get<double>())) +
+                  " % of critical:</p>\n<ul>\n";
+  for (const Json& d : crossings) s += "<li>" + crossing_words(d) + "</li>\n";
+  return s + "</ul>\n";
+}
+
 std::string key_results_section(const Json& result) {
   const std::string command = string_of(result, "command");
   std::string s;
@@ -333,15 +382,18 @@ std::string key_results_section(const Json& result) {
   if (command == "point" && member(result, "stable").is_boolean())
     s = "<p>At &mu; = " + cell(member(result, "mu")) + " the blade is " +
         (result["stable"] == true ? "stable" : "<b>unstable</b>") + ".</p>\n";
-  if (command == "sweep") s = sweep_words(member(result, "labels"), member(result, "rows"));
+  if (command == "sweep")
+    s = sweep_words(member(result, "labels"), member(result, "rows")) + crossings_words(result);
   if (command == "study" && member(result, "rows").is_array()) {
-    s = "<table>\n<tr><th>" + cell(member(result, "vary")) + "</th><th>outcome</th></tr>\n";
+    s = "<table>\n<tr><th>" + parameter_html(string_of(result, "vary")) +
+        "</th><th>outcome</th></tr>\n";
     std::size_t k = 0;
     for (const Json& row : result["rows"]) {
       if (k++ == kMaxRows) break;
       const std::string status = string_of(row, "status", "ok");
       s += (status == "ok" ? "<tr>" : "<tr class=\"s" + std::to_string(severity(status)) + "\">") +
-           "<td>" + cell(member(row, "value")) + "</td><td>" + critical_words(row) + "</td></tr>\n";
+           "<td>" + cell(member(row, "value")) + "</td><td>" +
+           critical_words(row, member(result, "mu_max")) + "</td></tr>\n";
     }
     s += "</table>\n";
   }
@@ -499,6 +551,7 @@ std::string warnings_section(const std::vector<Outcome>& outcomes, const Json& r
          "</b>: " + esc(key.second) + " <span class=\"where\">(" + at + ")</span></li>\n";
   }
   for (const std::string& n : notes) s += "<li>note: " + esc(n) + "</li>\n";
+
   for (const std::string& w : run_warnings) s += "<li>run: " + esc(w) + "</li>\n";
   return section("warnings", "Warnings", s + "</ul>\n");
 }

@@ -188,6 +188,25 @@ TEST(Report, AResultNoBetterThanItsStatus) {
   EXPECT_NE(std::string::npos, html.find("unstable in hover"));
 }
 
+// Regression: a damping crossing's status (crossed, unresolved, ...) was read as the outcome of a
+// computation, so that a crossed criterion made the page "failed".  A crossing is a finding; an
+// unresolved one is a warning.
+TEST(Report, DampingCrossingsAreFindingsAndAnUnresolvedOneAWarning) {
+  TempDir d;
+  const std::string example = std::string(FLAPLAG_SOURCE_DIR) + "/examples/damping-criterion.toml";
+  // As the example: the lag mode crosses 1 % (zeta tolerance 1e-6).
+  ASSERT_EQ(0, run({"report", example, "-o", d.file("a.html")}).exit_code);
+  const std::string a = slurp(d.file("a.html"));
+  EXPECT_NE(std::string::npos, a.find("<p class=\"status s0\"><b>ok</b>")) << a;
+  EXPECT_NE(std::string::npos, a.find("<b>lag</b> falls below it at &mu; = 0.7335"));
+  // At the default zeta tolerance the same crossing is unresolved: a warning, not a failure.
+  ASSERT_EQ(0,
+            run({"report", example, "--zeta-tolerance", "1e-5", "-o", d.file("b.html")}).exit_code);
+  const std::string b = slurp(d.file("b.html"));
+  EXPECT_NE(std::string::npos, b.find("<p class=\"status s1\"><b>warning</b>")) << b;
+  EXPECT_NE(std::string::npos, b.find("unresolved for lag"));
+}
+
 // ---- in a real browser ------------------------------------------------------------------------
 
 std::string chromium() {
