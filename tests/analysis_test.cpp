@@ -337,6 +337,23 @@ TEST(ExactReversedFlow, SnapshotShowsTheSplitIntegrals) {
   EXPECT_TRUE(changed);
 }
 
+// Each exponent of a point carries its own error estimate, the largest of which is the point's
+// (assumed modes: no basis error is added).
+TEST(Floquet, EachExponentCarriesItsOwnErrorEstimate) {
+  const flaplag::SweepResult s = Analysis(RotorParameters{}, {}).sweep(0.0, 1.0, 0.25);
+  ASSERT_EQ(5u, s.points.size());
+  for (const flaplag::PointResult& p : s.points) {
+    ASSERT_TRUE(p.error.has_value()) << p.mu;
+    double largest = 0.0;
+    for (const flaplag::LabelledExponent& e : p.exponents) {
+      ASSERT_TRUE(e.zeta_error.has_value()) << p.mu << " " << e.label;
+      EXPECT_GE(*e.zeta_error, 0.0);
+      largest = std::max(largest, *e.zeta_error);
+    }
+    EXPECT_EQ(*p.error, largest) << p.mu;
+  }
+}
+
 TEST(InvalidArguments, NegativeMuAndBadRanges) {
   Analysis an(RotorParameters{}, {});
   EXPECT_THROW(an.system(-0.1), flaplag::InvalidInput);

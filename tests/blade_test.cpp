@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "flaplag/blade/rotating_modes.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
-#include "flaplag/blade/rotating_modes.h"
 #include "model_fixtures.h"
 #include "test_util.h"
 
@@ -29,7 +29,6 @@ using model::StructuralIntegral;
 using testing::AbsClose;
 using testing::RelClose;
 using namespace testing::fixtures;
-
 
 StructuralIntegral structural(const char* name, int outer_mass, std::vector<FactorRef> outer,
                               Inner inner, int inner_mass, std::vector<FactorRef> inner_f) {
@@ -207,7 +206,6 @@ TEST(AeroIntegral, AssumedModeExactValues) {
                              m, g, 0.1, 0.97),
                1e-14));
 }
-
 
 TEST(AeroIntegral, BadModeIndexNamesTheIntegral) {
   const ModeSet m = assumed_modes(1.175, 1.28303);

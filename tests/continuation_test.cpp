@@ -518,7 +518,7 @@ PointResult made_point(double mu, std::vector<LabelledExponent> exponents,
 }
 
 LabelledExponent made_exponent(const char* label, double zeta, double omega) {
-  return LabelledExponent{label, zeta, omega, {}};
+  return LabelledExponent{label, zeta, omega, {}, {}};
 }
 
 TEST(DampingCriterion, CrossingIsTheLinearInterpolationBetweenTheBracketingPoints) {
@@ -581,6 +581,23 @@ TEST(DampingCriterion, CrossingBetweenUnresolvedPointsSaysSo) {
                     made_point(0.2, {}, std::nullopt, Status::Failed)};
   EXPECT_EQ(damping_crossings(stopped, {"lag"}, 0.5)[0].status, CrossingStatus::Unresolved);
   EXPECT_FALSE(damping_crossings(stopped, {"lag"}, 0.5)[0].mu.has_value());
+}
+
+// Regression: the point's largest error estimate (a heavily damped flap mode's) decided whether a
+// lag crossing was resolved; the mode's own estimate does when the point has it.
+TEST(DampingCriterion, EachModeIsJudgedByItsOwnErrorEstimate) {
+  auto sweep = [](std::optional<double> lag_error) {
+    LabelledExponent lag = made_exponent("lag", -0.6, 0.8);
+    lag.zeta_error = lag_error;
+    SweepResult s;
+    // The point's largest estimate, 0.2 per rev, would spread the ratio 0.6 by 0.2 > 0.1.
+    s.points.push_back(made_point(0.1, {made_exponent("flap", -2.0, 0.5), lag}, 0.2));
+    s.points.push_back(made_point(0.2, {made_exponent("lag", -0.28, 0.96)}));
+    return damping_crossings(s, {"lag"}, 0.5)[0].status;
+  };
+  EXPECT_EQ(sweep(1e-6), CrossingStatus::Crossed);
+  EXPECT_EQ(sweep(0.2), CrossingStatus::Unresolved);
+  EXPECT_EQ(sweep(std::nullopt), CrossingStatus::Unresolved);  // the point's estimate
 }
 
 TEST(DampingCriterion, CriterionOutsideZeroToOneIsRefused) {
@@ -907,9 +924,9 @@ TEST(CheckFinite, ANonFiniteExponentFailsThePointAndItsStability) {
   PointResult p;
   p.mu = 0.3;
   p.stable = true;
-  LabelledExponent ok{"flap", -0.1, 0.2, {0.5, 0.1}};
-  LabelledExponent zero{"flap", -std::numeric_limits<double>::infinity(), 0.0, {0.0, 0.0}};
-  LabelledExponent bad{"lag", -0.01, std::numeric_limits<double>::quiet_NaN(), {0.9, 0.0}};
+  LabelledExponent ok{"flap", -0.1, 0.2, {0.5, 0.1}, {}};
+  LabelledExponent zero{"flap", -std::numeric_limits<double>::infinity(), 0.0, {0.0, 0.0}, {}};
+  LabelledExponent bad{"lag", -0.01, std::numeric_limits<double>::quiet_NaN(), {0.9, 0.0}, {}};
   p.exponents = {ok, zero};  // the -inf zeta of a zero multiplier is allowed
   check_finite(p);
   EXPECT_EQ(Status::Ok, p.status);

@@ -7,7 +7,8 @@
 //      docs/validation.md).  Those numbers are regression pins: computed once by flaplag, stated
 //      here with the paper's value alongside, tolerance 2e-3 on mu_c and omega.  They are not
 //      tuned to anything.
-//  (b) With the 1974 shapes (RotorParameters::paper_1974_shapes, docs/validation.md) flaplag is compared
+//  (b) With the 1974 shapes (RotorParameters::paper_1974_shapes, docs/validation.md) flaplag is
+//  compared
 //      with the paper's printed numbers: +-0.01 on mu_c, +-0.005 on omega.  Three numbers miss
 //      those tolerances; each case says by how much and why, the test asserts the documented
 //      size of the miss, and docs/validation.md discusses them.  No tolerance was widened to

@@ -93,7 +93,7 @@ TEST(Fields, ResultTablesAreWellFormed) {
 
 TEST(Fields, DerivedValuesOfTheResults) {
   PointResult p;
-  p.exponents = {{"flap", -0.1, 0.25, {0.5, 0.25}}, {"lag", -0.2, 0.75, {0.0, -0.5}}};
+  p.exponents = {{"flap", -0.1, 0.25, {0.5, 0.25}, {}}, {"lag", -0.2, 0.75, {0.0, -0.5}, {}}};
   std::vector<std::complex<double>> multipliers;
   for_each_field(p, [&](const auto& row, const auto& value) {
     using V = std::decay_t<decltype(value)>;

@@ -53,7 +53,7 @@ TEST(JsonDocs, ReferenceListsEveryKeyOfTheTables) {
 TEST(JsonFields, EveryRowUnderItsKeyInTableOrder) {
   PointResult p;
   p.mu = 0.25;
-  p.exponents = {{"flap", -std::numeric_limits<double>::infinity(), 0.5, {0.0, 0.0}}};
+  p.exponents = {{"flap", -std::numeric_limits<double>::infinity(), 0.5, {0.0, 0.0}, {}}};
   p.error = 1e-7;
   p.status = Status::Warning;
   p.message = "`steps` too small";

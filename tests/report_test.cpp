@@ -194,14 +194,19 @@ TEST(Report, AResultNoBetterThanItsStatus) {
 TEST(Report, DampingCrossingsAreFindingsAndAnUnresolvedOneAWarning) {
   TempDir d;
   const std::string example = std::string(FLAPLAG_SOURCE_DIR) + "/examples/damping-criterion.toml";
-  // As the example: the lag mode crosses 1 % (zeta tolerance 1e-6).
+  // As the example: the lag mode crosses 1 %.
   ASSERT_EQ(0, run({"report", example, "-o", d.file("a.html")}).exit_code);
   const std::string a = slurp(d.file("a.html"));
   EXPECT_NE(std::string::npos, a.find("<p class=\"status s0\"><b>ok</b>")) << a;
-  EXPECT_NE(std::string::npos, a.find("<b>lag</b> falls below it at &mu; = 0.7335"));
-  // At the default zeta tolerance the same crossing is unresolved: a warning, not a failure.
-  ASSERT_EQ(0,
-            run({"report", example, "--zeta-tolerance", "1e-5", "-o", d.file("b.html")}).exit_code);
+  EXPECT_NE(std::string::npos, a.find("<b>lag</b> falls below it at &mu; = 0.733"));
+  // The same result with the lag crossing unresolved: a warning, not a failure.
+  const Outcome j = run({"run", example, "--json"});
+  ASSERT_EQ(0, j.exit_code) << j.err;
+  Json result = Json::parse(j.out);
+  ASSERT_EQ("lag", result["damping_crossings"][1]["mode"]);
+  result["damping_crossings"][1]["status"] = "unresolved";
+  write(d.file("unresolved.json"), result.dump());
+  ASSERT_EQ(0, run({"report", d.file("unresolved.json"), "-o", d.file("b.html")}).exit_code);
   const std::string b = slurp(d.file("b.html"));
   EXPECT_NE(std::string::npos, b.find("<p class=\"status s1\"><b>warning</b>")) << b;
   EXPECT_NE(std::string::npos, b.find("unresolved for lag"));

@@ -206,7 +206,8 @@ TEST(RotatingModes, SouthwellCoefficient) {
   const ExactModes r = exact_rotating_modes(kOmegaF, kOmegaL);
   std::cout << "Southwell K_1 (phi_1 Rayleigh) = " << round_trip_text(k1)
             << "; typical blade wF1^2 - wF1N^2 = "
-            << round_trip_text(kOmegaF * kOmegaF - r.omega_flap_nonrotating * r.omega_flap_nonrotating)
+            << round_trip_text(kOmegaF * kOmegaF -
+                               r.omega_flap_nonrotating * r.omega_flap_nonrotating)
             << "\n";
   // Lag: the in-plane term lowers wbar^2 by exactly 1 at equal stiffness (eq A.4).
   const double wf = rotating_frequency(BendingDirection::Flap, 1.2);
@@ -256,8 +257,8 @@ TEST(RotatingModes, Paper1974ShapesOption) {
       rayleigh_frequency(BendingDirection::Flap, *p.modes.flap[0], p.modes.stiffness_flap);
   const double l74 =
       rayleigh_frequency(BendingDirection::Lag, *p.modes.lag[0], p.modes.stiffness_lag);
-  std::cout << "1974 shapes: Rayleigh flap frequency " << round_trip_text(w74) << " (true 1.175), lag "
-            << round_trip_text(l74) << " (true 1.28303)\n";
+  std::cout << "1974 shapes: Rayleigh flap frequency " << round_trip_text(w74)
+            << " (true 1.175), lag " << round_trip_text(l74) << " (true 1.28303)\n";
   ::testing::Test::RecordProperty("rayleigh_flap_1974", round_trip_text(w74));
   // Rayleigh's principle: a shape that is not the first mode has a larger quotient.
   EXPECT_GT(w74, kOmegaF + 0.01);
@@ -278,14 +279,16 @@ TEST(RotatingModes, UnreachableFrequenciesThrow) {
   } catch (const InvalidInput& e) {
     EXPECT_EQ("omega_flap", e.name());
     EXPECT_EQ("1", e.value());
-    EXPECT_NE(std::string(e.what()).find(round_trip_text(flap_limit)), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(round_trip_text(flap_limit)), std::string::npos)
+        << e.what();
   }
   try {
     exact_modes(kOmegaF, 0.2);  // below the 5-function lag limit 0.207...
     FAIL() << "no exception";
   } catch (const InvalidInput& e) {
     EXPECT_EQ("omega_lag", e.name());
-    EXPECT_NE(std::string(e.what()).find(round_trip_text(lag_limit)), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(round_trip_text(lag_limit)), std::string::npos)
+        << e.what();
   }
   ExactModeOptions six;
   six.n_basis = 6;

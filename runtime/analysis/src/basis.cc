@@ -114,7 +114,7 @@ void BasisCheck::fold(PointResult& r, const PointResult* ref) const {
   // Each exponent against the nearest of the same label (the basis moves them little).
   double change = 0.0, top = -std::numeric_limits<double>::infinity(), top_change = 0.0;
   bool resolved = true;
-  for (const LabelledExponent& e : r.exponents) {
+  for (LabelledExponent& e : r.exponents) {
     double best = std::numeric_limits<double>::infinity(), dz = 0.0;
     for (const LabelledExponent& o : ref->exponents) {
       if (o.label != e.label) continue;
@@ -125,6 +125,7 @@ void BasisCheck::fold(PointResult& r, const PointResult* ref) const {
       }
     }
     if (!std::isfinite(best)) continue;  // -inf zeta: no finite change to report
+    if (e.zeta_error) *e.zeta_error += dz;
     change = std::max(change, dz);
     if (e.zeta > top) {
       top = e.zeta;

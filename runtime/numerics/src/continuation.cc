@@ -145,6 +145,19 @@ bool sign_certain(const FloquetSample& s, double threshold) {
   return hi <= threshold || lo > threshold;
 }
 
+// Each tracked exponent's own error estimate: the sample's estimate of the exponent with the same
+// multiplier (the tracker copies it bit for bit), the largest when several share it.
+void attach_zeta_errors(std::vector<LabelledExponent>& tracked, const FloquetSample& s) {
+  if (s.zeta_errors.size() != s.floquet.exponents.size()) return;
+  for (LabelledExponent& x : tracked) {
+    for (std::size_t k = 0; k < s.zeta_errors.size(); ++k) {
+      if (s.floquet.exponents[k].multiplier != x.multiplier || !std::isfinite(s.zeta_errors[k]))
+        continue;
+      x.zeta_error = std::max(x.zeta_error.value_or(0.0), s.zeta_errors[k]);
+    }
+  }
+}
+
 // Error estimate of the largest zeta of a sample (the one that decides stability).
 std::optional<double> largest_zeta_error(const FloquetSample& s) {
   if (s.zeta_errors.size() != s.floquet.exponents.size() || s.zeta_errors.empty()) return s.error;
@@ -1117,6 +1130,7 @@ class TrackPass {
     // A Warning's message, or a note that comes with an Ok sample (what it could not check).
     p.Worsen(sample.status, sample.message);
     p.exponents = tracker_.exponents();
+    attach_zeta_errors(p.exponents, sample);
     p.stable = tracker_.max_zeta() <= 0.0;
     // The sign of the largest zeta is known only beyond its own error: the estimate, or the
     // rounding of Phi (a multiplier rho of Phi moves by ~ n eps ||Phi|| in the eigen-solve, its
@@ -1448,10 +1462,13 @@ std::optional<RatioAt> ratio_at(const PointResult& p, const std::string& label, 
   const std::optional<double> r = damping_ratio(e->zeta, e->omega);
   if (!r) return std::nullopt;
   RatioAt a{p.mu, *r, false};
-  if (p.status != Status::Failed && p.error && std::isfinite(*p.error)) {
+  // The mode's own error estimate where the point has one (a heavily damped flap mode's wider
+  // estimate does not blur a lightly damped lag mode's crossing), else the point's largest.
+  const std::optional<double> error = e->zeta_error ? e->zeta_error : p.error;
+  if (p.status != Status::Failed && error && std::isfinite(*error)) {
     const double modulus = std::hypot(e->zeta, e->omega);
     // zeta = -inf (a zero multiplier): ratio 1, as far from any C < 1 as a ratio can be.
-    const double spread = std::isfinite(modulus) ? *p.error / modulus : 0.0;
+    const double spread = std::isfinite(modulus) ? *error / modulus : 0.0;
     a.resolved = std::abs(*r - criterion) > spread;
   }
   return a;

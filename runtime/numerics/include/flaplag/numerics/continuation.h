@@ -45,6 +45,10 @@ struct LabelledExponent {
   double zeta = 0.0;   // per rev
   double omega = 0.0;  // per rev, integer part fixed by continuation from hover
   std::complex<double> multiplier;
+  // The estimated error of this zeta, per rev (the Floquet method's estimate for this exponent,
+  // plus its change to the neighbouring basis with exact modes); nullopt when not estimated
+  // (and in the exponents of a critical result).
+  std::optional<double> zeta_error;
 };
 
 constexpr auto describe(Tag<LabelledExponent>) {
@@ -65,7 +69,12 @@ constexpr auto describe(Tag<LabelledExponent>) {
           "text and pictures show it in % of critical; for omega = 0 +1 when decaying, -1 when "
           "growing; null for lambda = 0 (undefined)"},
       Field{"multiplier", &LabelledExponent::multiplier, "-",
-            "the characteristic multiplier exp(2 pi lambda), an eigenvalue of Phi(2 pi)"});
+            "the characteristic multiplier exp(2 pi lambda), an eigenvalue of Phi(2 pi)"},
+      Field{"zeta_error", &LabelledExponent::zeta_error, "1/rev",
+            "estimated error of this zeta (the method's estimate for this exponent, plus its "
+            "change to the neighbouring basis with exact modes); left out when not estimated, "
+            "and in the exponents of a critical result",
+            kFieldOmitWhenEmpty});
 }
 
 // Eigen-decomposition of the hover matrix A0 with a label per eigenvalue (the rotor layer
