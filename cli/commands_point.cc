@@ -375,26 +375,7 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
                              : an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step, r.threads);
   const std::vector<std::string> labels = mode_labels(an);
   if (r.damping_criterion) apply_damping_criterion(s, labels, *r.damping_criterion);
-  if (!r.plot.empty()) {
-    std::vector<double> mu;
-    for (const PointResult& p : s.points) mu.push_back(p.mu);
-    std::vector<ModeCurve> modes;
-    for (const std::string& l : labels) {
-      ModeCurve m{l, {}, {}};
-      for (const PointResult& p : s.points) {
-        const LabelledExponent* e = dominant(p, l);
-        m.zeta.push_back(e != nullptr && finite(e->zeta) ? e->zeta : NAN);
-        m.omega.push_back(e != nullptr ? e->omega : NAN);
-      }
-      modes.push_back(m);
-    }
-    SweepPicture picture;
-    picture.quantity = r.plot_zeta ? SweepQuantity::Zeta : SweepQuantity::DampingRatio;
-    picture.add_criterion(s.damping_criterion);
-    warning = plot_if_asked(r, sweep_plot_script(an.model().name, mu, modes, picture));
-  }
-  if (r.csv) return sweep_csv(r, s, labels);
-  if (r.json) {
+  auto json = [&] {
     Json j = header_json("sweep", an);
     j["mu"] = Json{{"start", r.sweep_start}, {"stop", r.sweep_stop}, {"step", r.sweep_step}};
     j["labels"] = labels;
@@ -410,7 +391,12 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
       j["trim"] = tj;
     }
     return status_json(j, s.status, vocab(r, s.message));
-  }
+  };
+  std::optional<Json> j;
+  if (!r.plot.empty() || (r.json && !r.csv)) j = json();
+  if (!r.plot.empty()) warning = plot_if_asked(r, *j);
+  if (r.csv) return sweep_csv(r, s, labels);
+  if (r.json) return std::move(*j);
   std::string trim_table;
   if (trimmed(r)) {
     trim_table = std::string("\nTrim (") + trim_kind_name(r.trim.kind) +

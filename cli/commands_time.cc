@@ -17,12 +17,7 @@ Output response(const Request& r, const Analysis& an, std::string& warning) {
   ResponseOptions ro;
   ro.samples = r.samples;
   const ForcedResponse f = an.response(r.mu, ro);
-  if (f.status != Status::Failed) {
-    std::vector<double> deg;
-    for (double p : f.periodic.psi) deg.push_back(p * 180.0 / kPi);
-    warning = plot_if_asked(r, response_plot_script(r.mu, deg, f.flap_tip, f.lag_tip));
-  }
-  if (r.json) {
+  if (r.json || (!r.plot.empty() && f.status != Status::Failed)) {
     Json j = header_json("response", an, false);
     j["mu"] = r.mu;
     if (f.status != Status::Failed) {
@@ -40,7 +35,9 @@ Output response(const Request& r, const Analysis& an, std::string& warning) {
       j["error_estimate"] = optional_json(f.periodic.error);
       j["steps"] = f.periodic.steps;
     }
-    return status_json(j, f.status, vocab(r, f.message));
+    j = status_json(j, f.status, vocab(r, f.message));
+    if (f.status != Status::Failed) warning = plot_if_asked(r, j);
+    if (r.json) return j;
   }
   std::string out = header_text(an, false) + "\n";
   out += "Periodic forced response at mu = " + num(r.mu) +
@@ -75,8 +72,7 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
   for (double psi : s.psi) revs.push_back(psi / kTwoPi);
   const std::optional<double>& flap_rate = ts.flap_growth_rate;
   const std::optional<double>& lag_rate = ts.lag_growth_rate;
-  warning = plot_if_asked(r, simulate_plot_script(r.mu, revs, flap, lag));
-  if (r.json) {
+  if (r.json || !r.plot.empty()) {
     Json j = header_json("simulate", an, false);
     j["mu"] = r.mu;
     j["forced"] = r.forced;
@@ -93,7 +89,9 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
     }
     j["flap_growth_rate"] = optional_json(flap_rate);
     j["lag_growth_rate"] = optional_json(lag_rate);
-    return status_json(j, ts.status, vocab(r, ts.message));
+    j = status_json(j, ts.status, vocab(r, ts.message));
+    warning = plot_if_asked(r, j);
+    if (r.json) return j;
   }
   std::string out = header_text(an, false) + "\n";
   if (ts.nonlinear) {
