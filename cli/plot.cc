@@ -231,7 +231,7 @@ std::optional<double> locked_frequency(double omega) {
 namespace {
 
 const char* const kMu = "advance ratio μ";
-const char* const kWarningTitle = "warning at this μ (the row's message says why)";
+const char* const kWarningTitle = "warning at this μ (see the row message in the result)";
 const char* const kFailedTitle = "failed at this μ (no exponents; drawn at 0)";
 const char* const kLockedTitle = "locked to 0, 1/2 or 1 per rev (drawn as ω mod 1)";
 
@@ -380,7 +380,7 @@ std::string study_plot_script(const std::string& title, const std::string& axis_
   Curve stable{"stable up to μ_{max} = " + num(mu_max), {}, {}, true, 8, false, 2, 1.3};
   Curve hover{"unstable in hover (drawn at 0)", {}, {}, true, 11, false, 1, 1.3};
   Curve failed{"failed: μ_c unknown (drawn at 0)", {}, {}, true, 2, false, -1, 1.4};
-  Curve warning{"warning (the row's message says why)", {}, {}, true, 6, false, -1, 2.0};
+  Curve warning{"warning (see the row message in the result)", {}, {}, true, 6, false, -1, 2.0};
   for (const StudyMark& row : rows) {
     double at = NAN;  // where the row's marker is
     if (row.mu_c) {
