@@ -118,8 +118,8 @@ std::string line_plot_script(const std::string& title, const std::vector<Panel>&
     s += "set title " + quoted(pn.title) + "\nset xlabel " + quoted(pn.xlabel) + "\nset ylabel " +
          quoted(pn.ylabel) + "\n";
     s += "set xrange " + range(pn.xmin, pn.xmax) + "\nset yrange " + range(pn.ymin, pn.ymax) + "\n";
-    s += "set offsets graph " + value(pn.x_margin) + ", graph " + value(pn.x_margin) +
-         ", graph 0.04, graph 0.04\n";
+    s += "set autoscale xfix\nset offsets graph " + value(pn.x_margin) + ", graph " +
+         value(pn.x_margin) + ", graph 0.04, graph 0.04\n";
     std::vector<std::string> items;
     for (std::size_t c = 0; c < pn.curves.size(); ++c) {
       const Curve& cv = pn.curves[c];
@@ -375,8 +375,12 @@ std::string study_plot_script(const std::string& title, const std::string& axis_
                               double mu_max, const std::vector<StudyMark>& rows,
                               std::optional<double> damping_criterion) {
   Curve intervals{"unstable intervals (an open end drawn to μ_{max})", {}, {}, false, 7, false, 6};
+  // Periodic rows by their locked frequency, as the paper writes 0, 1/2 or 1 into Fig 15's marks.
   Curve flutter{"μ_c, flutter", {}, {}, true, 7, false, 0, 1.0},
-      periodic{"μ_c, periodic (ω locked to 0, 1/2 or 1 per rev)", {}, {}, true, 5, false, 1, 1.0};
+      periodic{"μ_c, periodic (ω locked to 0, 1/2 or 1 per rev)", {}, {}, true, 5, false, 1, 1.0},
+      one{"μ_c, periodic, ω = 1 per rev", {}, {}, true, 5, false, 1, 1.0},
+      half{"μ_c, periodic, ω = 1/2 per rev", {}, {}, true, 13, false, 3, 1.3},
+      zero{"μ_c, periodic, ω = 0 (a real exponent)", {}, {}, true, 15, false, 4, 1.2};
   Curve stable{"stable up to μ_{max} = " + num(mu_max), {}, {}, true, 8, false, 2, 1.3};
   Curve hover{"unstable in hover (drawn at 0)", {}, {}, true, 11, false, 1, 1.3};
   Curve failed{"failed: μ_c unknown (drawn at 0)", {}, {}, true, 2, false, -1, 1.4};
@@ -384,7 +388,13 @@ std::string study_plot_script(const std::string& title, const std::string& axis_
   for (const StudyMark& row : rows) {
     double at = NAN;  // where the row's marker is
     if (row.mu_c) {
-      Curve& c = row.periodic ? periodic : flutter;
+      const std::optional<double> locked = locked_frequency(row.omega);
+      const long halves = locked ? std::lround(2.0 * *locked) : -1;
+      Curve& c = !row.periodic ? flutter
+                 : halves == 2 ? one
+                 : halves == 1 ? half
+                 : halves == 0 ? zero
+                               : periodic;
       at = *row.mu_c;
       c.x.push_back(row.value);
       c.y.push_back(at);
@@ -416,7 +426,8 @@ std::string study_plot_script(const std::string& title, const std::string& axis_
   p.ymin = 0.0;
   p.ymax = 1.05 * mu_max;
   p.x_margin = 0.03;
-  for (Curve* c : {&intervals, &flutter, &periodic, &stable, &hover, &failed, &warning})
+  for (Curve* c :
+       {&intervals, &flutter, &one, &half, &zero, &periodic, &stable, &hover, &failed, &warning})
     if (!c->x.empty()) p.curves.push_back(*c);
   // Per mode, where its damping ratio first falls below the criterion.
   if (damping_criterion) {

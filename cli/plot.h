@@ -124,6 +124,7 @@ struct StudyMark {
   double value = 0.0;
   std::optional<double> mu_c;
   bool periodic = false;
+  double omega = NAN;  // at mu_c: a periodic row is drawn by its locked value (0, 1/2 or 1)
   std::vector<std::pair<double, double>> intervals;
   // The first mu below the damping criterion, per mode that crosses it.
   std::vector<std::pair<std::string, double>> crossings;

@@ -283,6 +283,7 @@ std::string study_script(const std::string& file, const Json& j) {
     m.value = row.at("value").get<double>();
     if (row.at("mu_c").is_number()) m.mu_c = row["mu_c"].get<double>();
     m.periodic = row.at("kind") == "periodic";
+    if (row.contains("omega")) m.omega = number(row["omega"]);
     m.status = row_status(row);
     m.hover_unstable = row.value("hover_unstable", false) == true;
     for (const Json& iv : row.at("intervals")) {
