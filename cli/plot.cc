@@ -295,19 +295,36 @@ void mark_rows(const std::vector<double>& mu, const std::vector<RowStatus>& stat
   }
 }
 
+// The modes in the order of their labels: flap before lag, then by number ("flap" is "flap1"),
+// whatever the order of the result (an M x N model's hover order is by frequency).
+std::vector<const ModeCurve*> in_order(const std::vector<ModeCurve>& modes) {
+  auto key = [](const std::string& label) {
+    const bool lag = label.rfind("lag", 0) == 0;
+    const std::string n = label.substr(lag ? 3 : 4);
+    return std::make_pair(lag, n.empty() ? 1 : std::atoi(n.c_str()));
+  };
+  std::vector<const ModeCurve*> order;
+  for (const ModeCurve& m : modes) order.push_back(&m);
+  std::stable_sort(order.begin(), order.end(), [&](const ModeCurve* a, const ModeCurve* b) {
+    return key(a->label) < key(b->label);
+  });
+  return order;
+}
+
 // The curves of one sweep: the first-panel quantity and the frequency of each mode (the locked
 // stretches as open markers, ω mod 1), its rows not ok marked; `prefix` before each mode's
 // label (an overlay); colours from *next.
 void add_sweep(const SweepOverlay& s, const std::string& prefix, const SweepPicture& picture,
                int* next, Panel* pz, Panel* pw, Curve* warning, Curve* failed, bool* locked) {
   std::vector<std::vector<double>> shown;
-  for (const ModeCurve& m : s.modes) {
+  for (const ModeCurve* mode : in_order(s.modes)) {
+    const ModeCurve& m = *mode;
     const int colour = (*next)++;
     const std::vector<double> y = sweep_quantity(m, picture.quantity);
     pz->curves.push_back({prefix + m.label, s.mu, y, false, 7, false, colour, 0.8, true});
     shown.push_back(y);
-    // A single sweep's frequency panel has its own key (an overlay's labels are long: once).
-    Curve free{prefix.empty() ? m.label : "", s.mu, {}, false, 7, false, colour, 0.8, true};
+    // (The modes' key is the first panel's, the colours the same.)
+    Curve free{"", s.mu, {}, false, 7, false, colour};
     Curve lock{"", {}, {}, true, 6, false, colour, 0.9};
     for (std::size_t i = 0; i < s.mu.size(); ++i) {
       const double w = i < m.omega.size() ? m.omega[i] : NAN;

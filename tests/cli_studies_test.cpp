@@ -936,8 +936,25 @@ TEST(CliPlot, SymbolsTitlesAndMarksOfThePictures) {
       << s;
   for (const char* raw : {"-1.0002", "1.5004"})
     EXPECT_EQ(std::string::npos, s.find(std::string(" ") + raw + "\n")) << raw << "\n" << s;
-  // The frequency panel's lines (the second curves titled flap and lag) have gaps there.
-  const auto flap = curve_points(s, "flap", 1), lag = curve_points(s, "lag", 1);
+  // The frequency panel's lines (drawn in the colours of the flap and lag curves of the first
+  // panel) have gaps there.
+  auto colour_of = [&](const std::string& title) {
+    const std::size_t at = s.find("title '" + title + "'");
+    const std::size_t c = s.rfind("lc rgb '", at);
+    return s.substr(c, s.find('\'', c + 8) - c + 1);
+  };
+  auto frequency_line = [&](const std::string& colour) {
+    const std::size_t panel = s.find("set title 'frequency");
+    const std::size_t at = s.find("with lines lw 1.5 " + colour, panel);
+    const std::size_t name = s.rfind("$d", at);
+    const std::string block = s.substr(name, s.find(' ', name) - name);
+    std::vector<std::pair<double, double>> points;
+    std::istringstream in(s.substr(s.find(block + " << EOD\n") + block.size() + 8));
+    std::string a, b;
+    while (in >> a && a != "EOD" && in >> b) points.emplace_back(std::stod(a), std::stod(b));
+    return points;
+  };
+  const auto flap = frequency_line(colour_of("flap")), lag = frequency_line(colour_of("lag"));
   ASSERT_EQ(5u, flap.size()) << s;
   ASSERT_EQ(5u, lag.size()) << s;
   for (std::size_t i = 0; i < 5; ++i) {
