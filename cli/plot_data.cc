@@ -262,8 +262,7 @@ std::string case_title(const std::string& file, const Json& j,
   }
   if (!extra.empty()) values = extra + (values.empty() ? "" : ", " + values);
   const std::string how = linearization(file, j);
-  return literal_text(model_name(file, j)) + " model, " +
-         (nonlinear ? std::string("the nonlinear equations") : how) +
+  return literal_text(model_name(file, j)) + " model" + (nonlinear ? std::string("") : ", " + how) +
          (values.empty() ? "" : ": " + values);
 }
 
