@@ -33,8 +33,7 @@ struct RunControl {
 // With request.report set, *document (when given) receives the completed JSON document of the
 // result (as --json would write it) for the report, whatever the output's form.
 std::string run_command(const Request& request, std::string* warning = nullptr,
-                        RunControl* control = nullptr,
-                        nlohmann::ordered_json* document = nullptr);
+                        RunControl* control = nullptr, nlohmann::ordered_json* document = nullptr);
 
 // `flaplag modes` (modes_command.cc); *warning as in run_command (the --plot picture).
 std::string run_modes(const Request& request, std::string* warning);

@@ -15,21 +15,6 @@ namespace flaplag::cli::cmd {
 
 namespace {
 
-CampbellPicture picture_of(const CampbellResult& c) {
-  CampbellPicture p;
-  p.mu = c.mu;
-  p.harmonics = c.harmonics;
-  for (const CampbellPoint& pt : c.points) p.speed.push_back(pt.speed);
-  for (std::size_t m = 0; m < c.labels.size(); ++m) {
-    ModeCurve curve{c.labels[m], {}, {}};
-    for (const CampbellPoint& pt : c.points)
-      curve.omega.push_back(m < pt.modes.size() ? pt.modes[m].frequency : NAN);
-    p.modes.push_back(curve);
-  }
-  for (const CampbellCrossing& x : c.crossings) p.crossings.emplace_back(x.speed, x.frequency);
-  return p;
-}
-
 std::string campbell_text(const Request& r, const Analysis& an, const CampbellResult& c) {
   std::string out = header_text(an) + "\n";
   out += "Campbell diagram at mu = " + num(c.mu) +
@@ -69,13 +54,12 @@ Output campbell(const Request& r, const Analysis& an, std::string& warning) {
   CampbellOptions options = r.campbell;
   options.threads = r.threads;
   const CampbellResult c = campbell_diagram(r.params, r.transition, options);
-  warning = plot_if_asked(r, campbell_plot_script(picture_of(c)));
-  const auto json = [&] {
-    Json j = header_json("campbell", an);
-    j.update(to_json(c, in_vocabulary(r)));
-    return j;
-  };
-  return json_or_text(r, json, r.json ? std::string() : campbell_text(r, an, c));
+  Json j = header_json("campbell", an);
+  j.update(to_json(c, in_vocabulary(r)));
+  warning = plot_if_asked(r, j);
+  if (r.json) return j;
+  return json_or_text(
+      r, [&] { return j; }, campbell_text(r, an, c));
 }
 
 }  // namespace flaplag::cli::cmd

@@ -10,6 +10,7 @@
 #include "commands_internal.h"
 #include "flaplag/core/format.h"
 #include "flaplag/rotor/parameter_table.h"
+#include "flaplag/trim.h"
 #include "options.h"
 #include "output.h"
 #include "plot.h"
@@ -241,9 +242,13 @@ std::string word(const std::string& field) {
 }
 
 // A plot, if asked for: "" or a warning line for stderr (the data is written in any case).
-std::string plot_if_asked(const Request& r, const std::string& script) {
+std::string plot_if_asked(const Request& r, Json result) {
   if (r.plot.empty()) return "";
-  return render_plot(script, r.plot);
+  // What the picture reads of the "case" object run_command adds (commands.cc): the trim.
+  if (trimmed(r)) result["case"] = Json{{"trim", trim_kind_name(r.trim.kind)}};
+  const std::optional<std::string> script = result_plot_script(
+      result, r.plot, r.plot_zeta ? SweepQuantity::Zeta : SweepQuantity::DampingRatio);
+  return script ? render_plot(*script, r.plot) : "";
 }
 
 }  // namespace flaplag::cli::cmd

@@ -81,8 +81,10 @@ std::string status_text(Status status, const std::string& message);
 // One "  note: ..." line per note of a result (Outcome::notes), in the request's vocabulary.
 std::string notes_text(const Request& r, const std::vector<std::string>& notes);
 std::string warnings_text(const Analysis& an);
-// A plot, if asked for: "" or a warning line for stderr (the data is written in any case).
-std::string plot_if_asked(const Request& r, const std::string& script);
+// A plot, if asked for: "" or a warning line for stderr (the data is written in any case).  The
+// picture is `flaplag plot`'s of `result` (the command's --json output: result_plot_script in
+// plot.h), with the case's trim, so that --plot and `flaplag plot DATA.json` draw the same.
+std::string plot_if_asked(const Request& r, Json result);
 
 // ---- hover and the stability of one rotor (commands_point.cc) ----------------------------------
 

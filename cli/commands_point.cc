@@ -378,24 +378,6 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
                              : an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step, r.threads);
   const std::vector<std::string> labels = mode_labels(an);
   if (r.damping_criterion) apply_damping_criterion(s, labels, *r.damping_criterion);
-  if (!r.plot.empty()) {
-    std::vector<double> mu;
-    for (const PointResult& p : s.points) mu.push_back(p.mu);
-    std::vector<ModeCurve> modes;
-    for (const std::string& l : labels) {
-      ModeCurve m{l, {}, {}};
-      for (const PointResult& p : s.points) {
-        const LabelledExponent* e = dominant(p, l);
-        m.zeta.push_back(e != nullptr && finite(e->zeta) ? e->zeta : NAN);
-        m.omega.push_back(e != nullptr ? e->omega : NAN);
-      }
-      modes.push_back(m);
-    }
-    SweepPicture picture;
-    picture.quantity = r.plot_zeta ? SweepQuantity::Zeta : SweepQuantity::DampingRatio;
-    picture.add_criterion(s.damping_criterion);
-    warning = plot_if_asked(r, sweep_plot_script(an.model().name, mu, modes, picture));
-  }
   const auto json = [&] {
     Json j = header_json("sweep", an);
     j["mu"] = Json{{"start", r.sweep_start}, {"stop", r.sweep_stop}, {"step", r.sweep_step}};
@@ -413,8 +395,13 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
     }
     return status_json(j, s.status, vocab(r, s.message));
   };
-  if (r.json) return json();
-  if (r.csv) return json_or_text(r, json, sweep_csv(r, s, labels));
+  std::optional<Json> j;
+  if (!r.plot.empty() || r.json || !r.report.empty()) j = json();
+  if (!r.plot.empty()) warning = plot_if_asked(r, *j);
+  if (r.json && !r.csv) return std::move(*j);
+  if (r.csv)
+    return json_or_text(
+        r, [&] { return *j; }, sweep_csv(r, s, labels));
   std::string trim_table;
   if (trimmed(r)) {
     trim_table = std::string("\nTrim (") + trim_kind_name(r.trim.kind) +
@@ -426,10 +413,11 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
     }
     trim_table += t.render();
   }
-  return json_or_text(r, json,
-                      header_text(an) + "\n" + warnings_text(an) +
-                          "Exponents per rev (dominant exponent of each mode)\n" +
-                          sweep_table_text(r, s, labels) + crossings_text(s) + trim_table);
+  return json_or_text(
+      r, [&] { return *j; },
+      header_text(an) + "\n" + warnings_text(an) +
+          "Exponents per rev (dominant exponent of each mode)\n" + sweep_table_text(r, s, labels) +
+          crossings_text(s) + trim_table);
 }
 
 Output critical(const Request& r, const Analysis& an) {

@@ -53,23 +53,6 @@ StudyResult run_study_part(const Request& r, RunControl* control) {
   return s;
 }
 
-// --plot: mu_c and the instability intervals versus the parameter; "" or a warning line.
-std::string study_plot(const Request& r, const StudyResult& s) {
-  if (r.plot.empty()) return "";
-  std::vector<StudyMark> marks;
-  for (const StudyRow& row : s.rows) {
-    const CriticalResult& c = row.critical;
-    StudyMark m{row.value, c.mu_c, c.kind == InstabilityKind::Periodic, {}, {}};
-    for (const DampingCrossing& x : row.damping_crossings)
-      if (x.mu) m.crossings.emplace_back(x.mode, *x.mu);
-    // An open interval is drawn to the scan limit (r.mu_max: what the JSON output holds).
-    for (const InstabilityInterval& iv : c.intervals)
-      m.intervals.emplace_back(iv.onset, iv.end.value_or(r.mu_max));
-    marks.push_back(m);
-  }
-  return plot_if_asked(r, study_plot_script(word(r.vary), marks, r.damping_criterion));
-}
-
 // A trimmed study reports each row's trim at its mu_c (theta0, theta1c, theta1s, lambda there),
 // as `critical --trim` and the Python module's study rows do: the trim the row's search made
 // there, whose problems are in the row's status.
@@ -201,16 +184,6 @@ MapResult run_map_part(Request& r, RunControl* control) {
   return m;
 }
 
-// --plot: the largest zeta over the two parameters; "" or a warning line.
-std::string map_plot(const Request& r, const MapResult& m) {
-  std::vector<std::vector<double>> z(r.y_values.size());
-  for (std::size_t i = 0; i < m.cells.size(); ++i)
-    for (const MapCell& c : m.cells[i])
-      z[i].push_back(c.max_zeta && finite(*c.max_zeta) ? *c.max_zeta : NAN);
-  return plot_if_asked(
-      r, max_zeta_plot_script(word(r.x_name), r.x_values, word(r.y_name), r.y_values, z));
-}
-
 Json map_json(const Request& r, const Analysis& base, const MapResult& m) {
   Json j = header_json("map", base);
   j["x"] = Json{{"name", word(r.x_name)}, {"values", r.x_values}};
@@ -256,18 +229,25 @@ Output study(const Request& request, std::string& warning, RunControl* control) 
   const Request r = shard_request(request);     // --shard: this part's values only
   const Analysis base(r.params, r.transition);  // the header, and the base parameters checked
   const StudyResult s = run_study_part(r, control);
-  if (!r.plot.empty()) warning = study_plot(r, s);
+  // The document is made once: for --json, the picture and the report.
+  std::optional<Json> j;
+  if (r.json || !r.plot.empty() || !r.report.empty()) j = study_json(r, base, s);
+  if (!r.plot.empty()) warning = plot_if_asked(r, *j);
+  if (r.json) return std::move(*j);
   return json_or_text(
-      r, [&] { return study_json(r, base, s); }, r.json ? std::string() : study_text(r, base, s));
+      r, [&] { return *j; }, study_text(r, base, s));
 }
 
 Output map(const Request& request, std::string& warning, RunControl* control) {
   Request r = shard_request(request);  // --shard: this part's lines only
   const Analysis base(r.params, r.transition);
   const MapResult m = run_map_part(r, control);
-  warning = map_plot(r, m);
+  std::optional<Json> j;
+  if (r.json || !r.plot.empty() || !r.report.empty()) j = map_json(r, base, m);
+  if (!r.plot.empty()) warning = plot_if_asked(r, *j);
+  if (r.json) return std::move(*j);
   return json_or_text(
-      r, [&] { return map_json(r, base, m); }, r.json ? std::string() : map_text(r, base, m));
+      r, [&] { return *j; }, map_text(r, base, m));
 }
 
 }  // namespace flaplag::cli::cmd

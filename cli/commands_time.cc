@@ -17,11 +17,6 @@ Output response(const Request& r, const Analysis& an, std::string& warning) {
   ResponseOptions ro;
   ro.samples = r.samples;
   const ForcedResponse f = an.response(r.mu, ro);
-  if (f.status != Status::Failed) {
-    std::vector<double> deg;
-    for (double p : f.periodic.psi) deg.push_back(p * 180.0 / kPi);
-    warning = plot_if_asked(r, response_plot_script(r.mu, deg, f.flap_tip, f.lag_tip));
-  }
   const auto json = [&] {
     Json j = header_json("response", an, false);
     j["mu"] = r.mu;
@@ -42,6 +37,7 @@ Output response(const Request& r, const Analysis& an, std::string& warning) {
     }
     return status_json(j, f.status, vocab(r, f.message));
   };
+  if (f.status != Status::Failed && !r.plot.empty()) warning = plot_if_asked(r, json());
   if (r.json) return json();
   std::string out = header_text(an, false) + "\n";
   out += "Periodic forced response at mu = " + num(r.mu) +
@@ -77,7 +73,6 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
   for (double psi : s.psi) revs.push_back(psi / kTwoPi);
   const std::optional<double>& flap_rate = ts.flap_growth_rate;
   const std::optional<double>& lag_rate = ts.lag_growth_rate;
-  warning = plot_if_asked(r, simulate_plot_script(r.mu, revs, flap, lag));
   const auto json = [&] {
     Json j = header_json("simulate", an, false);
     j["mu"] = r.mu;
@@ -97,6 +92,7 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
     j["lag_growth_rate"] = optional_json(lag_rate);
     return status_json(j, ts.status, vocab(r, ts.message));
   };
+  if (!r.plot.empty()) warning = plot_if_asked(r, json());
   if (r.json) return json();
   std::string out = header_text(an, false) + "\n";
   if (ts.nonlinear) {

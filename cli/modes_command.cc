@@ -90,26 +90,7 @@ std::string run_modes(const Request& r, std::string* warning) {
   const std::string message =
       all_finite ? "" : "non-finite frequencies, stiffnesses or shape values (not shown)";
 
-  if (!r.plot.empty()) {
-    auto curves = [&](const std::vector<std::shared_ptr<const ModeShape>>& shapes) {
-      std::vector<ShapeCurves> c;
-      for (const auto& shape : shapes) {
-        ShapeCurves m;
-        for (double x : x0) {
-          m.value.push_back(shape->value(0, x));
-          m.slope.push_back(shape->value(1, x));
-        }
-        c.push_back(m);
-      }
-      return c;
-    };
-    const std::string w = render_plot(
-        mode_shapes_plot_script(p.omega_flap, p.omega_lag, x0, curves(ms.flap), curves(ms.lag)),
-        r.plot);
-    if (warning != nullptr) *warning = w;
-  }
-
-  if (r.json) {
+  if (r.json || !r.plot.empty()) {
     Json j;
     j["command"] = "modes";
     j["basis"] = galerkin_basis(r.params);
@@ -164,7 +145,12 @@ std::string run_modes(const Request& r, std::string* warning) {
                          ex.omega_lag_all, ms.omega_lag, rayleigh_lag, ms.lag);
     j["status"] = status;
     j["message"] = message;
-    return j.dump(2) + "\n";
+    // The picture of the result, as `flaplag plot` draws it (plot.h).
+    if (!r.plot.empty()) {
+      const std::string w = render_plot(*result_plot_script(j, r.plot), r.plot);
+      if (warning != nullptr) *warning = w;
+    }
+    if (r.json) return j.dump(2) + "\n";
   }
 
   std::string out = "Fig 9: first rotating vs first nonrotating frequency, by Omega\n(" +

@@ -65,6 +65,12 @@ bool is_mode_label(const std::string& s) {
   return false;
 }
 
+// One mode by two labels: "lag" (a 1 x 1 model's) is "lag1" (an M x N model's first lag mode).
+bool same_mode(const std::string& a, const std::string& b) {
+  auto numbered = [](const std::string& s) { return s == "flap" || s == "lag" ? s + "1" : s; };
+  return numbered(a) == numbered(b);
+}
+
 // A model name: a compiled model's or one of the same form (a result of another build).
 bool is_model_name(const std::string& s) {
   if (s.empty() || s.size() > 64 || !std::isalnum(static_cast<unsigned char>(s[0]))) return false;
@@ -126,11 +132,21 @@ std::vector<ModeCurve> mode_curves(const std::string& file, const Json& j) {
   return curves;
 }
 
+// A row's status (a result written before rows had one: ok); only compared, never drawn.
+RowStatus row_status(const Json& row) {
+  const Json* status = row.contains("status") ? &row["status"] : nullptr;
+  if (status == nullptr || !status->is_string()) return RowStatus::Ok;
+  if (*status == "warning") return RowStatus::Warning;
+  if (*status == "failed") return RowStatus::Failed;
+  return RowStatus::Ok;
+}
+
 SweepOverlay sweep_data(const std::string& file, const Json& j) {
   SweepOverlay s;
   s.modes = mode_curves(file, j);
   for (const Json& row : j.at("rows")) {
     s.mu.push_back(number(row.at("mu")));
+    s.status.push_back(row_status(row));
     for (ModeCurve& m : s.modes) {
       const Json& e = row.at(m.label);
       m.zeta.push_back(e.is_object() ? number(e.at("zeta")) : NAN);
@@ -152,14 +168,6 @@ std::optional<double> sweep_criterion(const std::string& file, const Json& j) {
   return c.get<double>();
 }
 
-std::string sweep_script(const std::string& file, const Json& j, SweepQuantity quantity) {
-  const SweepOverlay s = sweep_data(file, j);
-  SweepPicture picture;
-  picture.quantity = quantity;
-  picture.add_criterion(sweep_criterion(file, j));
-  return sweep_plot_script(model_name(file, j), s.mu, s.modes, picture);
-}
-
 // A short label of a result from its case (the command line behind it): the model, the trim
 // and the periodic linearization, e.g. "paper-2x2, moment trim, periodic".
 std::string case_label(const std::string& file, const Json& j) {
@@ -178,6 +186,94 @@ std::string case_label(const std::string& file, const Json& j) {
   return label;
 }
 
+// The linearization of a result in words: "about hover", "moment trim, about hover", "about the
+// periodic equilibrium" (from case.trim and parameters.periodic-linearization, as case_label).
+std::string linearization(const std::string& file, const Json& j) {
+  const Json& c = j.contains("case") && j["case"].is_object() ? j["case"] : Json::object();
+  std::string words;
+  if (c.contains("trim") && c["trim"].is_string() && c["trim"] != "none") {
+    TrimKind kind = TrimKind::None;
+    if (!trim_kind_from_name(c["trim"].get<std::string>(), &kind))
+      refuse_key(file, "case.trim", c["trim"], "not a trim (none, thrust or moment)");
+    words = std::string(trim_kind_name(kind)) + " trim, ";
+  }
+  const Json& p =
+      j.contains("parameters") && j["parameters"].is_object() ? j["parameters"] : Json::object();
+  const bool periodic = p.value("periodic-linearization", false) == true;
+  return words +
+         (periodic ? "linearized about the periodic equilibrium" : "linearized about hover");
+}
+
+// The operating values of a result's rotor in its title, from its parameters: the Lock number,
+// the collective (not of a trimmed rotor: trimmed at each mu), the two first frequencies, and
+// every other real parameter that differs from the typical case; not the ones the result varies
+// (`varied`, option spelling).  A value that is not a number is left out.
+std::string operating_values(const Json& j, const std::vector<std::string>& varied, bool trimmed) {
+  const Json& p =
+      j.contains("parameters") && j["parameters"].is_object() ? j["parameters"] : Json::object();
+  const RotorParameters typical;
+  std::string out;
+  for (const ParameterSpec& spec : parameter_table()) {
+    if (spec.type != ParameterType::Real || spec.symbol[0] == '\0') continue;
+    const std::string key = json_key(spec), field = spec.field;
+    if (std::find(varied.begin(), varied.end(), key) != varied.end()) continue;
+    if (!p.contains(key) || !p[key].is_number()) continue;
+    const double v = p[key].get<double>();
+    const bool always = field == "gamma" || field == "omega_flap" || field == "omega_lag" ||
+                        (field == "theta" && !trimmed);
+    if (!always && (v == typical.*spec.real || (field == "theta" && trimmed))) continue;
+    out += (out.empty() ? "" : ", ") + symbol_text(spec.symbol) + " = " + num(v);
+  }
+  if (p.value("modes", std::string()) == "exact")
+    out += (out.empty() ? "" : ", ") + std::string("exact modes");
+  return out;
+}
+
+// The thrust coefficient a trimmed result was trimmed to: the target of the first trim it holds
+// (a sweep's trim at each mu, a study row's trim at its mu_c); nullopt when none has one.
+std::optional<double> trim_target(const Json& j) {
+  auto target = [](const Json& t) -> std::optional<double> {
+    if (t.is_object() && t.contains("target") && t["target"].is_number())
+      return t["target"].get<double>();
+    return std::nullopt;
+  };
+  if (j.contains("trim") && j["trim"].is_array())
+    for (const Json& t : j["trim"])
+      if (const auto v = target(t)) return v;
+  if (j.contains("rows") && j["rows"].is_array())
+    for (const Json& row : j["rows"])
+      if (row.is_object() && row.contains("trim"))
+        if (const auto v = target(row["trim"])) return v;
+  return std::nullopt;
+}
+
+// A picture's title: the model, the linearization and the operating values, one line, e.g.
+// "paper, linearized about hover: γ = 10, θ = 0.15, ω̄_{F1} = 1.175, ω̄_{L1} = 1.28303"
+// (enhanced text; the model name escaped).  `extra`: more values after them ("μ = 0.3").
+std::string case_title(const std::string& file, const Json& j,
+                       const std::vector<std::string>& varied = {}, const std::string& extra = "",
+                       bool nonlinear = false) {
+  const Json& c = j.contains("case") && j["case"].is_object() ? j["case"] : Json::object();
+  const bool trimmed = c.contains("trim") && c["trim"].is_string() && c["trim"] != "none";
+  std::string values = operating_values(j, varied, trimmed);
+  if (trimmed) {
+    if (const std::optional<double> ct = trim_target(j))
+      values = "C_T = " + num(*ct) + (values.empty() ? "" : ", " + values);
+  }
+  if (!extra.empty()) values = extra + (values.empty() ? "" : ", " + values);
+  const std::string how = linearization(file, j);
+  return literal_text(model_name(file, j)) + " model" + (nonlinear ? std::string("") : ", " + how) +
+         (values.empty() ? "" : ": " + values);
+}
+
+std::string sweep_script(const std::string& file, const Json& j, SweepQuantity quantity) {
+  const SweepOverlay s = sweep_data(file, j);
+  SweepPicture picture;
+  picture.quantity = quantity;
+  picture.add_criterion(sweep_criterion(file, j));
+  return sweep_plot_script(case_title(file, j), s, picture);
+}
+
 std::string study_script(const std::string& file, const Json& j) {
   const double mu_max = j.at("mu_max").get<double>();
   std::vector<StudyMark> marks;
@@ -186,6 +282,9 @@ std::string study_script(const std::string& file, const Json& j) {
     m.value = row.at("value").get<double>();
     if (row.at("mu_c").is_number()) m.mu_c = row["mu_c"].get<double>();
     m.periodic = row.at("kind") == "periodic";
+    if (row.contains("omega")) m.omega = number(row["omega"]);
+    m.status = row_status(row);
+    m.hover_unstable = row.value("hover_unstable", false) == true;
     for (const Json& iv : row.at("intervals")) {
       const Json& off = iv.at(1);
       m.intervals.emplace_back(number(iv.at(0)), off.is_null() ? mu_max : number(off));
@@ -201,16 +300,22 @@ std::string study_script(const std::string& file, const Json& j) {
     }
     marks.push_back(m);
   }
-  return study_plot_script(axis_name(file, "vary", j.at("vary"), false), marks,
+  const std::string vary = axis_name(file, "vary", j.at("vary"), false);
+  return study_plot_script(case_title(file, j, {vary}), *parameter_axis_label(vary), mu_max, marks,
                            sweep_criterion(file, j));
 }
 
 std::string map_script(const std::string& file, const Json& j) {
   std::vector<std::vector<double>> z;
   for (const Json& row : j.at("max_zeta")) z.push_back(numbers(row));
-  return max_zeta_plot_script(
-      axis_name(file, "x.name", j.at("x").at("name"), true), numbers(j.at("x").at("values")),
-      axis_name(file, "y.name", j.at("y").at("name"), true), numbers(j.at("y").at("values")), z);
+  const std::string x = axis_name(file, "x.name", j.at("x").at("name"), true),
+                    y = axis_name(file, "y.name", j.at("y").at("name"), true);
+  // The advance ratio of a map over two rotor parameters.
+  const std::string mu =
+      j.contains("mu") && j["mu"].is_number() ? "μ = " + num(j["mu"].get<double>()) : "";
+  return max_zeta_plot_script("largest ζ over the modes: " + case_title(file, j, {x, y}, mu),
+                              *parameter_axis_label(x), numbers(j.at("x").at("values")),
+                              *parameter_axis_label(y), numbers(j.at("y").at("values")), z);
 }
 
 std::string tip_script(const std::string& file, const std::string& command, const Json& j) {
@@ -223,8 +328,17 @@ std::string tip_script(const std::string& file, const std::string& command, cons
   std::vector<double> x;
   // As the commands compute them: degrees (response), revolutions (simulate).
   for (double p : psi) x.push_back(command == "response" ? p * 180.0 / kPi : p / kTwoPi);
-  return command == "response" ? response_plot_script(mu, x, flap, lag)
-                               : simulate_plot_script(mu, x, flap, lag);
+  std::string title = case_title(file, j, {}, "μ = " + num(mu));
+  if (command == "response")
+    return response_plot_script("periodic response, " + title, x, flap, lag);
+  const bool nonlinear = j.value("nonlinear", false) == true,
+             forced = j.value("forced", false) == true;
+  if (nonlinear) title = case_title(file, j, {}, "μ = " + num(mu), true);
+  return simulate_plot_script(std::string(nonlinear ? "nonlinear"
+                                          : forced  ? "forced"
+                                                    : "free") +
+                                  " response, " + title,
+                              x, flap, lag);
 }
 
 // The mode names are not read from the file: a mode is named by its direction and position.
@@ -239,8 +353,17 @@ std::string modes_script(const Json& j) {
   auto parameter = [&](const char* field) {
     return number(p.at(json_key(*find_parameter(field))));
   };
-  return mode_shapes_plot_script(parameter("omega_flap"), parameter("omega_lag"),
-                                 numbers(j.at("x0")), curves(j.at("flap")), curves(j.at("lag")));
+  std::string title =
+      "exact rotating modes of the uniform blade: ω̄_{F1} = " + num(parameter("omega_flap")) +
+      ", ω̄_{L1} = " + num(parameter("omega_lag")) + " per rev";
+  for (const char* field : {"length_ratio", "root_offset"}) {
+    const ParameterSpec& spec = *find_parameter(field);
+    const double v = parameter(field);
+    if (v != RotorParameters{}.*spec.real)
+      title += ", " + symbol_text(spec.symbol) + " = " + num(v);
+  }
+  return mode_shapes_plot_script(title, numbers(j.at("x0")), curves(j.at("flap")),
+                                 curves(j.at("lag")));
 }
 
 // The labels are checked as a sweep's; the number of per-rev lines is bounded as the command
@@ -263,7 +386,8 @@ std::string campbell_script(const std::string& file, const Json& j) {
   }
   for (const Json& x : j.at("crossings"))
     c.crossings.emplace_back(number(x.at("speed")), number(x.at("frequency")));
-  return campbell_plot_script(c);
+  return campbell_plot_script("Campbell diagram, " + case_title(file, j, {}, "μ = " + num(c.mu)),
+                              c);
 }
 
 Json read_result(const std::string& data, std::uint64_t memory_limit) {
@@ -342,7 +466,7 @@ std::string plot_data_files(const std::vector<std::string>& data,
       if (!mode.empty()) {
         std::vector<ModeCurve> kept;
         for (ModeCurve& m : s.modes)
-          if (m.label == mode) kept.push_back(std::move(m));
+          if (same_mode(m.label, mode)) kept.push_back(std::move(m));
         if (kept.empty())
           throw InvalidInput(
               "mode", shown(mode),
@@ -362,7 +486,12 @@ std::string plot_data_files(const std::vector<std::string>& data,
       if (std::count(base.begin(), base.end(), base[i]) > 1)
         sweeps[i].label += " (" + std::to_string(i + 1) + ")";
   }
-  const std::string warning = render_plot(sweep_overlay_script(sweeps, max_zeta, picture), plot);
+  const std::string n = std::to_string(sweeps.size()) + (sweeps.size() == 1 ? " sweep" : " sweeps");
+  const std::string title = max_zeta        ? "the least stable mode of " + n
+                            : !mode.empty() ? "mode " + literal_text(mode) + " of " + n
+                                            : n + " compared";
+  const std::string warning =
+      render_plot(sweep_overlay_script(title, sweeps, max_zeta, picture), plot);
   if (!warning.empty()) throw RendererUnavailable(warning);
   return "";
 }

@@ -658,7 +658,10 @@ std::string pictures_section(const Json& result, const std::string& source,
   const nlohmann::json plain = nlohmann::json::parse(picture_document(result).dump());
   std::optional<std::string> script;
   try {
-    script = result_plot_script(plain, source);
+    // The quantity the case drew (--plot-quantity), so that the page shows what --plot drew.
+    const bool zeta = string_of(member(result, "case"), "plot-quantity") == "zeta";
+    script =
+        result_plot_script(plain, source, zeta ? SweepQuantity::Zeta : SweepQuantity::DampingRatio);
   } catch (const nlohmann::json::exception&) {
     refuse(source, "a damaged flaplag result (a key is missing or has the wrong type)");
   }

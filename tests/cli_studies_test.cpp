@@ -44,6 +44,60 @@ std::pair<Outcome, Outcome> run_on_one_and_two_threads(const std::vector<std::st
 
 bool gnuplot_available() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
 
+// The texts of an SVG picture of gnuplot, each <text> element's content without its tags (an
+// enhanced-text subscript is a <tspan> of its own: "η<tspan ...>1</tspan>" reads "η1"), one a
+// line.
+std::string svg_texts(const std::string& svg) {
+  std::string out;
+  for (std::size_t at = svg.find("<text"); at != std::string::npos;
+       at = svg.find("<text", at + 1)) {
+    const std::size_t open = svg.find('>', at), close = svg.find("</text>", at);
+    if (open == std::string::npos || close == std::string::npos) break;
+    out += std::regex_replace(svg.substr(open + 1, close - open - 1), std::regex("<[^>]*>"), "") +
+           "\n";
+  }
+  return out;
+}
+
+// A fake gnuplot first on PATH that keeps the script it is given and answers with an image:
+// the script of a picture, whether or not gnuplot is installed.
+class ScriptKeeper {
+ public:
+  ScriptKeeper() {
+    const std::string exe = dir_.file("gnuplot");
+    std::ofstream(exe) << "#!/bin/sh\ncat > '" << dir_.file("script.gp")
+                       << "'\nprintf '<svg></svg>'\n";
+    std::filesystem::permissions(exe, std::filesystem::perms::owner_all);
+  }
+  std::string path() const {
+    const char* p = std::getenv("PATH");
+    return dir_.path() + ":" + (p != nullptr ? p : "/usr/bin:/bin");
+  }
+  std::string script() const { return slurp(dir_.file("script.gp")); }
+
+ private:
+  TempDir dir_;
+};
+
+// The points of the curve (or markers) titled `title` in a gnuplot script: the rows of the data
+// block it draws ("NaN": a gap).  Empty when no curve has that title or it draws no block.
+// `occurrence`: the curve of that title in the order of the script (0: the first).
+std::vector<std::pair<double, double>> curve_points(const std::string& script,
+                                                    const std::string& title, int occurrence = 0) {
+  std::vector<std::pair<double, double>> points;
+  std::size_t at = script.find("title '" + title + "'");
+  for (int k = 0; k < occurrence && at != std::string::npos; ++k)
+    at = script.find("title '" + title + "'", at + 1);
+  if (at == std::string::npos) return points;
+  const std::size_t name = script.rfind("$d", at);
+  if (name == std::string::npos || script.find(',', name) < at) return points;
+  const std::string block = script.substr(name, script.find(' ', name) - name);
+  std::istringstream in(script.substr(script.find(block + " << EOD\n") + block.size() + 8));
+  std::string x, y;
+  while (in >> x && x != "EOD" && in >> y) points.emplace_back(std::stod(x), std::stod(y));
+  return points;
+}
+
 TEST(CliStudy, RowsWithIntervalsIdenticalForOneAndTwoThreads) {
   const std::vector<std::string> base = {
       "--modes", "exact", "study", "--vary", "omega-lag=1.3,1.45", "--mu-max", "1.5", "--json"};
@@ -653,10 +707,10 @@ TEST(CliPlot, ModeShapes) {
                          "--json", "-o", data, "--plot", first});
   ASSERT_EQ(0, m.exit_code) << m.err;
   if (gnuplot_available()) {
-    const std::string svg = slurp(first);
-    for (const char* name : {"eta1", "eta2", "gamma1", "gamma3", "slopes", "1.28303"})
-      EXPECT_NE(std::string::npos, svg.find(name)) << name;
-    EXPECT_EQ(std::string::npos, svg.find("eta3"));
+    const std::string svg = slurp(first), texts = svg_texts(svg);
+    for (const char* name : {"\nη1\n", "\nη2\n", "\nγ1\n", "\nγ3\n", "slopes", "1.28303"})
+      EXPECT_NE(std::string::npos, texts.find(name)) << name << " in\n" << texts;
+    EXPECT_EQ(std::string::npos, texts.find("\nη3\n"));
     ASSERT_EQ(0, run({"plot", data, "--plot", again}).exit_code);
     EXPECT_EQ(svg, slurp(again));
   }
@@ -801,6 +855,167 @@ TEST(CliPlot, SweepsOverlaidInOnePicture) {
     EXPECT_EQ(2, r.exit_code) << reason;
     EXPECT_TRUE(std::regex_match(r.err, std::regex("flaplag: error: " + reason + "\n"))) << r.err;
     EXPECT_FALSE(std::filesystem::exists(x));
+  }
+}
+
+// The pictures a reviewer reads: axis labels with the symbols and units of the parameter table,
+// a title naming the model and the linearization, rows not ok marked in the key, a study row
+// stable to mu_max drawn at mu_max, a locked frequency drawn modulo 1 with its own marker.  The
+// scripts are read through a fake gnuplot (the picture of `flaplag plot` is the one of --plot).
+TEST(CliPlot, SymbolsTitlesAndMarksOfThePictures) {
+  TempDir d;
+  ScriptKeeper keeper;
+  const std::string sweep = d.file("sweep.json"), x = d.file("x.svg");
+  // (The typical flap locks to 1 per rev at mu = 0.32: below it, no frequency is locked.)
+  ASSERT_EQ(0, run({"sweep", "--mu", "0:0.28:0.07", "--json", "-o", sweep}).exit_code);
+  ASSERT_EQ(0, run({"plot", sweep, "--plot", x}, keeper.path()).exit_code);
+  std::string s = keeper.script();
+  EXPECT_NE(std::string::npos,
+            s.find("title 'paper model, linearized about hover: γ = 10, θ = 0.15"))
+      << s;
+  EXPECT_NE(std::string::npos, s.find("set xlabel 'advance ratio μ'")) << s;
+  EXPECT_NE(std::string::npos, s.find("set ylabel 'damping ratio −ζ/|λ| [% of critical]'")) << s;
+  EXPECT_EQ(std::string::npos, s.find("warning at")) << s;  // all rows ok: no such entry
+  EXPECT_EQ(std::string::npos, s.find("locked")) << s;
+
+  // Rows not ok, a locked frequency (the flap's -1 per rev of the exact modes, 3/2, ~0), a
+  // trimmed case about the periodic equilibrium: edited into the result.
+  Json j = Json::parse(slurp(sweep));
+  j["rows"][1]["status"] = "warning";
+  j["rows"][3]["status"] = "failed";
+  j["rows"][3]["flap"] = nullptr;
+  j["rows"][3]["lag"] = nullptr;
+  j["rows"][2]["flap"]["omega"] = -1.0002;
+  j["rows"][4]["flap"]["omega"] = 1.5004;
+  j["rows"][0]["lag"]["omega"] = 0.0003;
+  j["case"]["trim"] = "moment";
+  j["parameters"]["periodic-linearization"] = true;
+  j["trim"] = Json::array({Json{{"target", 0.005}}});
+  const std::string edited = d.file("edited.json");
+  std::ofstream(edited) << j.dump();
+  ASSERT_EQ(0, run({"plot", edited, "--plot", x}, keeper.path()).exit_code);
+  s = keeper.script();
+  EXPECT_NE(std::string::npos,
+            s.find("title 'paper model, moment trim, linearized about the periodic equilibrium: "
+                   "C_T = 0.005, γ = 10, ω̄_{F1} = 1.175"))
+      << s;
+  EXPECT_EQ(std::string::npos, s.find("θ = ")) << s;  // trimmed: the collective is not fixed
+  const auto warning = curve_points(s, "warning at this μ (see the row message in the result)");
+  ASSERT_EQ(2u, warning.size()) << s;  // on the flap and the lag curve
+  for (const auto& [mu, y] : warning) {
+    EXPECT_EQ(j["rows"][1]["mu"].get<double>(), mu);
+    const double ratio =
+        100.0 *
+        (y > 10.0 ? j["rows"][1]["flap"] : j["rows"][1]["lag"])["damping_ratio"].get<double>();
+    EXPECT_NEAR(ratio, y, 1e-9 * std::abs(ratio));
+  }
+  const auto failed = curve_points(s, "failed at this μ (no exponents; drawn at 0)");
+  ASSERT_EQ(1u, failed.size()) << s;
+  EXPECT_EQ(std::make_pair(j["rows"][3]["mu"].get<double>(), 0.0), failed[0]);
+  // The locked frequencies: markers in [0, 1] (their key entry once), gaps in the lines.
+  EXPECT_NE(std::string::npos,
+            s.find("NaN with points pt 6 ps 0.8 lc rgb '#000000' title 'locked to 0, 1/2 or 1 "
+                   "per rev (drawn as ω mod 1)'"))
+      << s;
+  std::vector<std::pair<double, double>> locked;
+  std::istringstream lines(s);
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch m;
+    if (std::regex_match(line, m, std::regex("([0-9.e-]+) ([0-9.e-]+)"))) {
+      const double w = std::stod(m[2]);
+      if (std::abs(w - 1.0002) < 1e-12 || std::abs(w - 0.5004) < 1e-12 ||
+          std::abs(w - 0.0003) < 1e-12)
+        locked.emplace_back(std::stod(m[1]), w);
+    }
+  }
+  auto mu = [&](int row) { return j["rows"][row]["mu"].get<double>(); };
+  // (the flap's markers first, then the lag's)
+  EXPECT_EQ(
+      (std::vector<std::pair<double, double>>{{mu(2), 1.0002}, {mu(4), 0.5004}, {mu(0), 0.0003}}),
+      locked)
+      << s;
+  for (const char* raw : {"-1.0002", "1.5004"})
+    EXPECT_EQ(std::string::npos, s.find(std::string(" ") + raw + "\n")) << raw << "\n" << s;
+  // The frequency panel's lines (drawn in the colours of the flap and lag curves of the first
+  // panel) have gaps there.
+  auto colour_of = [&](const std::string& title) {
+    const std::size_t at = s.find("title '" + title + "'");
+    const std::size_t c = s.rfind("lc rgb '", at);
+    return s.substr(c, s.find('\'', c + 8) - c + 1);
+  };
+  auto frequency_line = [&](const std::string& colour) {
+    const std::size_t panel = s.find("set title 'frequency");
+    const std::size_t at = s.find("with lines lw 1.5 " + colour, panel);
+    const std::size_t name = s.rfind("$d", at);
+    const std::string block = s.substr(name, s.find(' ', name) - name);
+    std::vector<std::pair<double, double>> points;
+    std::istringstream in(s.substr(s.find(block + " << EOD\n") + block.size() + 8));
+    std::string a, b;
+    while (in >> a && a != "EOD" && in >> b) points.emplace_back(std::stod(a), std::stod(b));
+    return points;
+  };
+  const auto flap = frequency_line(colour_of("flap")), lag = frequency_line(colour_of("lag"));
+  ASSERT_EQ(5u, flap.size()) << s;
+  ASSERT_EQ(5u, lag.size()) << s;
+  for (std::size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(i == 2 || i == 3 || i == 4, std::isnan(flap[i].second)) << i;
+    EXPECT_EQ(i == 0 || i == 3, std::isnan(lag[i].second)) << i;
+  }
+
+  // A study: the axis of --vary omega-lag from the parameter table's symbol and units, a row
+  // stable up to mu_max drawn there, a row with a warning ringed.
+  const std::string study = d.file("study.json");
+  ASSERT_EQ(0, run({"study", "--vary", "omega-lag=1,1.2", "--mu-max", "0.2", "--json", "-o", study,
+                    "--plot", x},
+                   keeper.path())
+                   .exit_code);
+  s = keeper.script();
+  EXPECT_NE(std::string::npos, s.find("set xlabel 'first rotating lag frequency ω̄_{L1} [per rev]'"))
+      << s;
+  const std::string title =
+      "title 'paper model, linearized about hover: γ = 10, θ = 0.15, ω̄_{F1} = 1.175'";
+  EXPECT_NE(std::string::npos, s.find(title)) << s;  // the varied value is not in the title
+  EXPECT_EQ((std::vector<std::pair<double, double>>{{1.0, 0.2}, {1.2, 0.2}}),
+            curve_points(s, "stable up to μ_{max} = 0.2"))
+      << s;
+  Json st = Json::parse(slurp(study));
+  st["rows"][1]["status"] = "warning";
+  std::ofstream(edited) << st.dump();
+  ASSERT_EQ(0, run({"plot", edited, "--plot", x}, keeper.path()).exit_code);
+  EXPECT_EQ((std::vector<std::pair<double, double>>{{1.2, 0.2}}),
+            curve_points(keeper.script(), "warning (see the row message in the result)"))
+      << keeper.script();
+}
+
+// One mode name selects the same mode in a 1 x 1 and an M x N result: "lag" of the 1 x 1 model
+// is "lag1" of the 3 x 3 one, and either name draws both curves.
+TEST(CliPlot, OverlayOfAOneByOneAndAThreeByThreeSweepWithOneModeName) {
+  TempDir d;
+  const std::string one = d.file("one.json"), three = d.file("three.json");
+  ASSERT_EQ(0, run({"sweep", "--mu", "0:0.2:0.1", "--json", "-o", one}).exit_code);
+  ASSERT_EQ(0, run({"sweep", "--modes", "exact", "--flap-modes", "3", "--lag-modes", "3", "--mu",
+                    "0:0.2:0.1", "--json", "-o", three})
+                   .exit_code);
+  ASSERT_EQ(Json::parse(slurp(one))["labels"], (Json{"flap", "lag"}));
+  const Json labels = Json::parse(slurp(three))["labels"];
+  ASSERT_NE(labels.end(), std::find(labels.begin(), labels.end(), "lag1")) << labels;
+  for (const char* mode : {"lag", "lag1"}) {
+    ScriptKeeper keeper;
+    const Outcome o =
+        run({"plot", one, three, "--mode", mode, "--plot", d.file("x.svg")}, keeper.path());
+    ASSERT_EQ(0, o.exit_code) << mode << ": " << o.err;
+    const std::string s = keeper.script();
+    EXPECT_EQ(3u, curve_points(s, "paper: lag").size()) << s;  // mu = 0, 0.1, 0.2
+    EXPECT_EQ(3u, curve_points(s, "paper-3x3: lag1").size()) << s;
+    for (const char* other : {"paper: flap", "paper-3x3: lag2", "paper-3x3: flap1"})
+      EXPECT_EQ(std::string::npos, s.find(std::string("'") + other + "'")) << other;
+  }
+  if (gnuplot_available()) {
+    const std::string svg = d.file("both.svg");
+    ASSERT_EQ(0, run({"plot", one, three, "--mode", "lag1", "--plot", svg}).exit_code);
+    const std::string texts = svg_texts(slurp(svg));
+    EXPECT_NE(std::string::npos, texts.find("paper: lag\n")) << texts;
+    EXPECT_NE(std::string::npos, texts.find("paper-3x3: lag1\n")) << texts;
   }
 }
 
