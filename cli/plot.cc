@@ -344,6 +344,43 @@ void add_sweep(const SweepOverlay& s, const std::string& prefix, const SweepPict
   mark_rows(s.mu, s.status, shown, warning, failed);
 }
 
+// A damping-ratio panel zoomed to the lightly damped modes when a heavily damped one would
+// flatten them (a flap mode at 57 % over a lag mode at 1 %): the y axis ends at four times the
+// least damped mode's largest ratio (at least the criterion and 2 %), and the title names the
+// curves that leave the panel and how high they reach.  Nothing changes when the curves share a
+// scale.
+void focus_on_light_modes(Panel* p, const std::vector<double>& criteria) {
+  double light = INFINITY, top = -INFINITY, bottom = INFINITY;
+  for (const Curve& c : p->curves) {
+    if (c.points) continue;
+    double m = -INFINITY;
+    for (double y : c.y)
+      if (std::isfinite(y)) {
+        m = std::max(m, y);
+        bottom = std::min(bottom, y);
+      }
+    if (!std::isfinite(m)) continue;
+    light = std::min(light, m);
+    top = std::max(top, m);
+  }
+  if (!std::isfinite(light)) return;
+  double floor = 2.0;
+  for (double c : criteria) floor = std::max(floor, 100.0 * c);
+  const double focus = 4.0 * std::max(light, floor);
+  if (!(top > 2.0 * focus)) return;
+  p->ymax = focus;
+  if (bottom > -focus) p->ymin = std::min(0.0, bottom) - 0.05 * focus;
+  std::string above;
+  for (const Curve& c : p->curves) {
+    if (c.points) continue;
+    double m = -INFINITY;
+    for (double y : c.y)
+      if (std::isfinite(y)) m = std::max(m, y);
+    if (m > focus) above += (above.empty() ? "" : ", ") + c.title + " up to " + num(m) + " %";
+  }
+  p->title += "; zoomed to the lightly damped modes (" + above + ")";
+}
+
 std::string sweeps_script(const std::string& title, const std::vector<SweepOverlay>& sweeps,
                           bool overlay, const SweepPicture& picture) {
   Panel pz = sweep_panel(picture, false), pw = frequency_panel();
@@ -354,6 +391,7 @@ std::string sweeps_script(const std::string& title, const std::vector<SweepOverl
   for (const SweepOverlay& s : sweeps)
     add_sweep(s, overlay ? s.label + ": " : "", picture, &next, &pz, &pw, &warning, &failed,
               &locked);
+  if (picture.quantity == SweepQuantity::DampingRatio) focus_on_light_modes(&pz, picture.criteria);
   for (Curve* c : {&warning, &failed})
     if (!c->x.empty()) pz.curves.push_back(*c);
   if (locked) pw.curves.push_back({kLockedTitle, {}, {}, true, 6, false, -1, 0.8, false, true});

@@ -26,6 +26,7 @@ flaplag_cli_test(cli_fuzz_test flaplag_cli nlohmann_json::nlohmann_json)
 
 # study, map, run (case files), --plot, response, simulate (maintained with cli/).
 flaplag_cli_test(cli_studies_test nlohmann_json::nlohmann_json)
+target_compile_definitions(cli_studies_test PRIVATE FLAPLAG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 # What received files and typed texts can make flaplag do (gnuplot, symbolic links, output
 # paths, descriptors, signals).

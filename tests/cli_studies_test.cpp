@@ -861,6 +861,40 @@ TEST(CliPlot, SweepsOverlaidInOnePicture) {
 // The pictures a reviewer reads: axis labels with the symbols and units of the parameter table,
 // a title naming the model and the linearization, rows not ok marked in the key, a study row
 // stable to mu_max drawn at mu_max, a locked frequency drawn modulo 1 with its own marker.  The
+// A heavily damped flap mode (57 %) no longer flattens a lag mode near a 1 % criterion: the damping
+// ratio's axis ends at four times the least damped mode's largest ratio (at least 2 % and the
+// criterion), and the title says how high the mode that leaves the panel goes.
+TEST(CliPlot, DampingRatioPanelZoomsToTheLightlyDampedModes) {
+  TempDir d;
+  ScriptKeeper keeper;
+  const std::string example = std::string(FLAPLAG_SOURCE_DIR) + "/examples/damping-criterion.toml";
+  const Outcome r = run({"run", example, "--json", "--plot", d.file("x.svg")}, keeper.path());
+  ASSERT_EQ(0, r.exit_code) << r.err;
+  const Json j = Json::parse(r.out);
+  double lag = -INFINITY, flap = -INFINITY;
+  for (const Json& row : j["rows"]) {
+    lag = std::max(lag, 100.0 * row["lag"]["damping_ratio"].get<double>());
+    flap = std::max(flap, 100.0 * row["flap"]["damping_ratio"].get<double>());
+  }
+  const double top = 4.0 * std::max({lag, 2.0, 100.0 * j["damping_criterion"].get<double>()});
+  ASSERT_GT(flap, 2.0 * top);
+  const std::string s = keeper.script();
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(s, m, std::regex("set yrange \\[([^:]+):([^\\]]+)\\]"))) << s;
+  EXPECT_NEAR(top, std::stod(m[2]), 1e-9 * top);
+  EXPECT_LT(std::stod(m[1]), 0.0);
+  char reach[64];
+  std::snprintf(reach, sizeof reach, "flap up to %.6g %%", flap);
+  EXPECT_NE(std::string::npos, s.find("zoomed to the lightly damped modes (" + std::string(reach)))
+      << s;
+  // The exponent zeta keeps its autoscaled axis.
+  ASSERT_EQ(0, run({"run", example, "--plot-quantity", "zeta", "-o", "/dev/null", "--plot",
+                    d.file("z.svg")},
+                   keeper.path())
+                   .exit_code);
+  EXPECT_EQ(std::string::npos, keeper.script().find("zoomed")) << keeper.script();
+}
+
 // scripts are read through a fake gnuplot (the picture of `flaplag plot` is the one of --plot).
 TEST(CliPlot, SymbolsTitlesAndMarksOfThePictures) {
   TempDir d;
