@@ -446,6 +446,7 @@ struct Vector {
   std::string expected_output;       // non-empty: an exit 0 writes exactly this (merge)
   std::string error_must_name;       // non-empty: an exit-2 line holds this (a file, an option)
   bool plot_command = false;         // `flaplag plot`: exit 3 is allowed (gnuplot failed)
+  std::string page;                  // `flaplag report`: the page written, checked for markup
 };
 
 struct Verdict {
@@ -552,6 +553,16 @@ Verdict run_vector(const Vector& v, std::size_t index, std::chrono::seconds limi
       if (after.count(name)) written = after.at(name);
     if (written != v.expected_output)
       p.push_back("exit 0 with an output other than the run's own (a tampered part accepted)");
+  }
+  // A report's page: the result's texts are text, nothing in it runs or loads.
+  if (code == 0 && !v.page.empty() && after.count(v.page)) {
+    const std::string& html = after.at(v.page);
+    for (const char* tag : {"<script", "<img", "<iframe", "<object", "<embed", "<link", "<base",
+                            "javascript:", "<a href=\"http"})
+      if (html.find(tag) != std::string::npos)
+        p.push_back(std::string("the page holds ") + tag + " (a text of the result as markup)");
+    if (html.find("Content-Security-Policy\" content=\"default-src 'none'") == std::string::npos)
+      p.push_back("the page lacks its Content-Security-Policy");
   }
   // JSON on stdout parses.
   if (code == 0 && !o.out.empty() && o.out[0] == '{' && !nlohmann::json::accept(o.out))
@@ -924,6 +935,33 @@ Vector plot_vector(Random& rnd, Coverage& cov) {
   v.kind =
       "plot: " + kind + (options.find("payload") != std::string::npos ? " + hostile option" : "");
   v.what = seed + ".json: " + what + options;
+  return v;
+}
+
+// `flaplag report RESULT.json -o o.html` of a mutated result: refused in one line, or a page on
+// which every text of the result is text.
+Vector report_vector(Random& rnd, Coverage& cov) {
+  static const std::vector<std::string> kSeeds = {"sweep",    "sweep-trimmed", "study", "map",
+                                                  "response", "simulate",      "modes", "campbell",
+                                                  "point",    "critical"};
+  Vector v;
+  const std::string seed = rnd.pick(kSeeds);
+  std::string what, kind;
+  Input in{"result.json", "", false};
+  if (rnd.chance(0.1)) {
+    in.content = seed_text(seed);
+    kind = "honest file";
+    what = "unmutated";
+    v.must_succeed = true;
+  } else {
+    in.content = mutate_json(rnd, cov, seed, seed_json(seed), "", {}, what, kind);
+  }
+  v.inputs.push_back(in);
+  v.args = {"report", "result.json", "-o", "o.html"};
+  v.outputs = {"o.html"};
+  v.page = "o.html";
+  v.kind = "report: " + kind;
+  v.what = seed + ".json: " + what;
   return v;
 }
 
@@ -1549,6 +1587,8 @@ TEST(FileFuzz, EveryStringFieldToPlot) {
       "every string field", static_cast<long>(all.size()),
       [&](Random&, Coverage&) { return all[next++]; }, true);
 }
+
+TEST(FileFuzz, ResultFilesToReport) { fuzz("results to report", 150, report_vector); }
 
 TEST(FileFuzz, ResultFilesToRun) { fuzz("results to run", 200, run_result_vector); }
 
