@@ -175,13 +175,15 @@ std::string run_command(const Request& r, std::string* warning, RunControl* cont
     out.json = Json::parse(run_modes(rj, nullptr));
   }
   if (out.json) complete(r, *out.json, control);
-  if (document != nullptr && out.json) *document = *out.json;
-  if (!r.json) {
-    std::string& text = out.text;
-    if (cancelled) text += "  status: cancelled: " + control->message + "\n";
-    return text;
+  std::string text = std::move(out.text);
+  if (r.json && out.json) {
+    text = out.json->dump(2) + "\n";
+  } else if (cancelled) {
+    text += "  status: cancelled: " + control->message + "\n";
   }
-  return out.json->dump(2) + "\n";
+  // The document for the report (a command keeps it only when a report asks for it).
+  if (document != nullptr && out.json) *document = std::move(*out.json);
+  return text;
 }
 
 }  // namespace flaplag::cli

@@ -54,12 +54,14 @@ Output campbell(const Request& r, const Analysis& an, std::string& warning) {
   CampbellOptions options = r.campbell;
   options.threads = r.threads;
   const CampbellResult c = campbell_diagram(r.params, r.transition, options);
-  Json j = header_json("campbell", an);
-  j.update(to_json(c, in_vocabulary(r)));
-  warning = plot_if_asked(r, j);
-  if (r.json) return j;
-  return json_or_text(
-      r, [&] { return j; }, campbell_text(r, an, c));
+  const auto json = [&] {
+    Json j = header_json("campbell", an);
+    j.update(to_json(c, in_vocabulary(r)));
+    return j;
+  };
+  std::optional<Json> j = result_document(r, json, &warning);
+  if (r.json) return std::move(*j);
+  return text_output(r, campbell_text(r, an, c), std::move(j));
 }
 
 }  // namespace flaplag::cli::cmd

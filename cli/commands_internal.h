@@ -22,7 +22,7 @@ using Json = nlohmann::ordered_json;
 
 // What a command produced: a JSON document (json set; the command's `return j;`) or text (the
 // command's `return out;`), taken as they are.  A text output carries the JSON document along
-// when a --report needs it (with_report_json).
+// when a --report needs it (text_output).
 struct Output {
   Output(std::string t) : text(std::move(t)) {}
   Output(Json j) : json(std::move(j)) {}
@@ -30,15 +30,6 @@ struct Output {
   std::optional<Json> json;
   std::string text;
 };
-
-// The output of a command with both forms: its JSON document (--json), or its text with the
-// document made too when the request asks for a report (--report) and only then.
-template <class MakeJson>
-Output json_or_text(const Request& r, MakeJson&& make_json, std::string text) {
-  if (r.json) return Output(make_json());
-  if (r.report.empty()) return Output(std::move(text));
-  return Output(std::move(text), Json(make_json()));
-}
 
 // ---- numbers that may not be finite (commands_common.cc) ---------------------------------------
 //
@@ -85,6 +76,25 @@ std::string warnings_text(const Analysis& an);
 // picture is `flaplag plot`'s of `result` (the command's --json output: result_plot_script in
 // plot.h), with the case's trim, so that --plot and `flaplag plot DATA.json` draw the same.
 std::string plot_if_asked(const Request& r, Json result);
+
+// The JSON document of a result, made once and only when something needs it: the output
+// (--json), the picture (--plot: drawn here from the document, as `flaplag plot` draws it, when
+// `warning` is given; nullptr for a command without a picture, or a result that has none) or
+// the report (--report).
+template <class MakeJson>
+std::optional<Json> result_document(const Request& r, MakeJson&& make_json, std::string* warning) {
+  const bool picture = warning != nullptr && !r.plot.empty();
+  if (!r.json && !picture && r.report.empty()) return std::nullopt;
+  Json j = make_json();
+  if (picture) *warning = plot_if_asked(r, j);
+  return j;
+}
+
+// A text output, with the document along only when a report needs it.
+inline Output text_output(const Request& r, std::string text, std::optional<Json> document) {
+  if (r.report.empty()) document.reset();
+  return Output(std::move(text), std::move(document));
+}
 
 // ---- hover and the stability of one rotor (commands_point.cc) ----------------------------------
 

@@ -127,8 +127,10 @@ std::string system_text(const Request& r, const Analysis& an, const SystemSnapsh
 
 Output system_snapshot(const Request& r, const Analysis& an) {
   const SystemSnapshot s = an.snapshot(r.mu, r.psi);
-  const auto json = [&] { return system_json(r, an, s, s.status, s.message); };
-  return json_or_text(r, json, r.json ? std::string() : system_text(r, an, s, s.status, s.message));
+  std::optional<Json> j = result_document(
+      r, [&] { return system_json(r, an, s, s.status, s.message); }, nullptr);
+  if (r.json) return std::move(*j);
+  return text_output(r, system_text(r, an, s, s.status, s.message), std::move(j));
 }
 
 Output models(const Request& r) {

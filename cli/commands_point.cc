@@ -333,7 +333,8 @@ Output typical(const Request& r, const Analysis& an) {
     j["table"] = status_json(t, table.status, vocab(r, table.message));
     return j;
   };
-  if (r.json) return json();
+  std::optional<Json> j = result_document(r, json, nullptr);
+  if (r.json) return std::move(*j);
   std::string out =
       "flaplag: coupled flap-lag stability of a hingeless blade in forward flight "
       "(NASA CR-132431)\n";
@@ -345,7 +346,7 @@ Output typical(const Request& r, const Analysis& an) {
   out += sweep_table_text(r, table, labels);
   out += "  Liouville residual |det Phi - exp int tr A| (relative), max over the table: " +
          optional_text(max_res) + "\n";
-  return json_or_text(r, json, out);
+  return text_output(r, std::move(out), std::move(j));
 }
 
 Output point(const Request& r, const Analysis& an) {
@@ -363,10 +364,12 @@ Output point(const Request& r, const Analysis& an) {
     if (t) j["trim"] = trim_json(r, *t);
     return j;
   };
-  if (r.json) return json();
-  return json_or_text(r, json,
-                      header_text(an) + "\n" + warnings_text(an) +
-                          (t ? trim_text(r, *t) + "\n" : "") + point_text(r, p));
+  std::optional<Json> j = result_document(r, json, nullptr);
+  if (r.json) return std::move(*j);
+  return text_output(r,
+                     header_text(an) + "\n" + warnings_text(an) +
+                         (t ? trim_text(r, *t) + "\n" : "") + point_text(r, p),
+                     std::move(j));
 }
 
 Output sweep(const Request& r, const Analysis& an, std::string& warning) {
@@ -395,13 +398,9 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
     }
     return status_json(j, s.status, vocab(r, s.message));
   };
-  std::optional<Json> j;
-  if (!r.plot.empty() || r.json || !r.report.empty()) j = json();
-  if (!r.plot.empty()) warning = plot_if_asked(r, *j);
-  if (r.json && !r.csv) return std::move(*j);
-  if (r.csv)
-    return json_or_text(
-        r, [&] { return *j; }, sweep_csv(r, s, labels));
+  std::optional<Json> j = result_document(r, json, &warning);
+  if (r.json) return std::move(*j);
+  if (r.csv) return text_output(r, sweep_csv(r, s, labels), std::move(j));
   std::string trim_table;
   if (trimmed(r)) {
     trim_table = std::string("\nTrim (") + trim_kind_name(r.trim.kind) +
@@ -413,11 +412,11 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
     }
     trim_table += t.render();
   }
-  return json_or_text(
-      r, [&] { return *j; },
-      header_text(an) + "\n" + warnings_text(an) +
-          "Exponents per rev (dominant exponent of each mode)\n" + sweep_table_text(r, s, labels) +
-          crossings_text(s) + trim_table);
+  return text_output(r,
+                     header_text(an) + "\n" + warnings_text(an) +
+                         "Exponents per rev (dominant exponent of each mode)\n" +
+                         sweep_table_text(r, s, labels) + crossings_text(s) + trim_table,
+                     std::move(j));
 }
 
 Output critical(const Request& r, const Analysis& an) {
@@ -435,10 +434,12 @@ Output critical(const Request& r, const Analysis& an) {
     if (trimmed(r)) j["trim"] = t ? trim_json(r, *t) : Json(nullptr);
     return j;
   };
-  if (r.json) return json();
-  return json_or_text(r, json,
-                      header_text(an) + "\n" + warnings_text(an) + critical_text(r, c) +
-                          (t ? "\n" + trim_text(r, *t) : ""));
+  std::optional<Json> j = result_document(r, json, nullptr);
+  if (r.json) return std::move(*j);
+  return text_output(r,
+                     header_text(an) + "\n" + warnings_text(an) + critical_text(r, c) +
+                         (t ? "\n" + trim_text(r, *t) : ""),
+                     std::move(j));
 }
 
 }  // namespace flaplag::cli::cmd

@@ -229,25 +229,20 @@ Output study(const Request& request, std::string& warning, RunControl* control) 
   const Request r = shard_request(request);     // --shard: this part's values only
   const Analysis base(r.params, r.transition);  // the header, and the base parameters checked
   const StudyResult s = run_study_part(r, control);
-  // The document is made once: for --json, the picture and the report.
-  std::optional<Json> j;
-  if (r.json || !r.plot.empty() || !r.report.empty()) j = study_json(r, base, s);
-  if (!r.plot.empty()) warning = plot_if_asked(r, *j);
+  std::optional<Json> j = result_document(
+      r, [&] { return study_json(r, base, s); }, &warning);
   if (r.json) return std::move(*j);
-  return json_or_text(
-      r, [&] { return *j; }, study_text(r, base, s));
+  return text_output(r, study_text(r, base, s), std::move(j));
 }
 
 Output map(const Request& request, std::string& warning, RunControl* control) {
   Request r = shard_request(request);  // --shard: this part's lines only
   const Analysis base(r.params, r.transition);
   const MapResult m = run_map_part(r, control);
-  std::optional<Json> j;
-  if (r.json || !r.plot.empty() || !r.report.empty()) j = map_json(r, base, m);
-  if (!r.plot.empty()) warning = plot_if_asked(r, *j);
+  std::optional<Json> j = result_document(
+      r, [&] { return map_json(r, base, m); }, &warning);
   if (r.json) return std::move(*j);
-  return json_or_text(
-      r, [&] { return *j; }, map_text(r, base, m));
+  return text_output(r, map_text(r, base, m), std::move(j));
 }
 
 }  // namespace flaplag::cli::cmd

@@ -37,13 +37,14 @@ Output response(const Request& r, const Analysis& an, std::string& warning) {
     }
     return status_json(j, f.status, vocab(r, f.message));
   };
-  if (f.status != Status::Failed && !r.plot.empty()) warning = plot_if_asked(r, json());
-  if (r.json) return json();
+  // A failed response has no curves to draw.
+  std::optional<Json> j = result_document(r, json, f.status != Status::Failed ? &warning : nullptr);
+  if (r.json) return std::move(*j);
   std::string out = header_text(an, false) + "\n";
   out += "Periodic forced response at mu = " + num(r.mu) +
          " (tip deflections by l, hover equilibrium included)\n";
   if (f.status == Status::Failed)
-    return json_or_text(r, json, out + status_text(f.status, vocab(r, f.message)));
+    return text_output(r, out + status_text(f.status, vocab(r, f.message)), std::move(j));
   TextTable h({"harmonic", "flap w/l", "lag v/l"});
   for (std::size_t k = 0; k < f.flap_harmonics.size(); ++k)
     h.add_row({harmonic_name(static_cast<int>(k)), short_text(f.flap_harmonics[k]),
@@ -56,7 +57,7 @@ Output response(const Request& r, const Analysis& an, std::string& warning) {
                short_text(f.lag_tip[k])});
   out += "\n" + t.render();
   out += "  periodicity |y(2 pi) - y(0)| / |y0| = " + short_text(f.periodic.closure) + "\n";
-  return json_or_text(r, json, out + status_text(f.status, vocab(r, f.message)));
+  return text_output(r, out + status_text(f.status, vocab(r, f.message)), std::move(j));
 }
 
 Output simulate_command(const Request& r, const Analysis& an, std::string& warning) {
@@ -92,8 +93,8 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
     j["lag_growth_rate"] = optional_json(lag_rate);
     return status_json(j, ts.status, vocab(r, ts.message));
   };
-  if (!r.plot.empty()) warning = plot_if_asked(r, json());
-  if (r.json) return json();
+  std::optional<Json> j = result_document(r, json, &warning);
+  if (r.json) return std::move(*j);
   std::string out = header_text(an, false) + "\n";
   if (ts.nonlinear) {
     out += "Nonlinear response at mu = " + num(r.mu) + " from the " + ts.reference + " + " +
@@ -122,7 +123,7 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
       "  envelope growth rate (last 3/4 of the run; compare with the largest Floquet zeta): flap " +
       (flap_rate ? short_text(*flap_rate) : std::string("-")) + ", lag " +
       (lag_rate ? short_text(*lag_rate) : std::string("-")) + " per rev\n";
-  return json_or_text(r, json, out + status_text(ts.status, vocab(r, ts.message)));
+  return text_output(r, out + status_text(ts.status, vocab(r, ts.message)), std::move(j));
 }
 
 }  // namespace flaplag::cli::cmd

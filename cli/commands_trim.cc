@@ -49,7 +49,9 @@ Output trim_command(const Request& r) {
     j.update(trim_json(r, t));
     return j;
   };
-  return json_or_text(r, json, r.json ? std::string() : trim_text(r, t));
+  std::optional<Json> j = result_document(r, json, nullptr);
+  if (r.json) return std::move(*j);
+  return text_output(r, trim_text(r, t), std::move(j));
 }
 
 }  // namespace flaplag::cli::cmd
