@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "flaplag/blade/blade_properties.h"
 #include "flaplag/model_api.h"
 
 namespace flaplag {
@@ -44,10 +45,14 @@ struct ModeSet {
   std::vector<std::shared_ptr<const ModeShape>> lag;   // gamma_m, m = 0..N-1
   std::vector<double> omega_flap;                      // rotating frequencies by Omega [M]
   std::vector<double> omega_lag;                       // [N]
-  // Nondimensional bending stiffnesses k = EI / (Omega^2 l I_b); 0 when not known (assumed modes)
+  // Nondimensional bending stiffnesses k = EI / (Omega^2 l I_b); 0 when not known (assumed modes).
+  // With a blade table, k(x0) = stiffness_* times the table's column at x0.
   double stiffness_flap = 0.0;  // (EI)_y
   double stiffness_lag = 0.0;   // (EI)_z
   std::string kind;             // "assumed" or "exact"
+  // The blade's spanwise distributions; null for the paper's uniform blade (mbar = 3, chord 1,
+  // no twist, no tip mass).  Every integral of blade.h and aero_integrals.h weights by them.
+  std::shared_ptr<const BladeProperties> blade;
 };
 
 // The paper's assumed-mode blade: one flap and one lag mode (eq 4.1) with the given rotating
