@@ -18,22 +18,54 @@ AeroIntegrals::AeroIntegrals(const model::ModelDescriptor& m, const ModeSet& mod
     throw InvalidInput("tip_loss_a", round_trip_text(a_),
                        "the aerodynamic span needs A < B = " + round_trip_text(b_));
   }
-  const int n = kDegree;
-  // Chebyshev-Gauss-Lobatto nodes on [a, b].
+  count_ = m.n_aero;
+  // One piece for a smooth blade; a blade table's corners inside [A, B] end pieces, each with a
+  // degree in proportion to its length (the integrands are smooth within a piece).
+  std::vector<double> edges = {a_};
+  if (modes.blade) {
+    for (double c : modes.blade->corners())
+      if (c > a_ + 1e-9 && c < b_ - 1e-9) edges.push_back(c);
+  }
+  edges.push_back(b_);
+  const std::size_t m_count = static_cast<std::size_t>(count_);
+  std::vector<double> start(m_count, 0.0);
+  for (std::size_t p = 0; p + 1 < edges.size(); ++p) {
+    const double lo = edges[p], hi = edges[p + 1];
+    int n = kDegree;
+    if (edges.size() > 2) {
+      n = std::clamp(static_cast<int>(std::ceil(kDegree * (hi - lo) / (b_ - a_))) + 16, 16,
+                     kDegree);
+    }
+    Piece piece{lo, hi, n + 2, coef_.size(), start};
+    add_piece(m, modes, g, piece, n);
+    pieces_.push_back(piece);
+    // int_A^{hi} = start + the piece's antiderivative at its right end (t = 1: sum of C_i).
+    for (std::size_t j = 0; j < m_count; ++j) {
+      double at_plus1 = 0.0;
+      for (int i = 0; i < piece.terms; ++i) at_plus1 += coef_[piece.offset + i * m_count + j];
+      start[j] += at_plus1;
+    }
+  }
+  partial(b_, normal_);
+}
+
+void AeroIntegrals::add_piece(const model::ModelDescriptor& m, const ModeSet& modes,
+                              const SpanGeometry& g, const Piece& piece, int n) {
+  const double lo = piece.lo, hi = piece.hi;
+  // Chebyshev-Gauss-Lobatto nodes on [lo, hi].
   std::vector<double> t(n + 1), x0(n + 1);
   for (int k = 0; k <= n; ++k) {
     t[k] = std::cos(kPi * k / n);
-    x0[k] = 0.5 * (a_ + b_) + 0.5 * (b_ - a_) * t[k];
+    x0[k] = 0.5 * (lo + hi) + 0.5 * (hi - lo) * t[k];
   }
-  const double half = 0.5 * (b_ - a_);
+  const double half = 0.5 * (hi - lo);
   // cos(pi i k / n) for the discrete cosine transform, shared by every integrand.
   std::vector<double> cos_table((n + 1) * (n + 1));
   for (int i = 0; i <= n; ++i)
     for (int k = 0; k <= n; ++k) cos_table[i * (n + 1) + k] = std::cos(kPi * i * k / n);
   const std::vector<std::vector<double>> values = aero_integrands(m, modes, g, x0);
-  count_ = m.n_aero;
-  terms_ = n + 2;
-  coef_.assign(static_cast<std::size_t>(terms_) * count_, 0.0);
+  const int terms = n + 2;
+  coef_.resize(coef_.size() + static_cast<std::size_t>(terms) * count_, 0.0);
   std::vector<double> c(n + 1);
   for (int j = 0; j < m.n_aero; ++j) {
     const std::vector<double>& f = values[j];
@@ -56,14 +88,18 @@ AeroIntegrals::AeroIntegrals(const model::ModelDescriptor& m, const ModeSet& mod
     double at_minus1 = 0.0;
     for (int i = 1; i <= n + 1; ++i) at_minus1 += (i % 2 == 0 ? 1.0 : -1.0) * C[i];
     C[0] = -at_minus1;
-    for (int i = 0; i < terms_; ++i) coef_[static_cast<std::size_t>(i) * count_ + j] = C[i];
+    for (int i = 0; i < terms; ++i)
+      coef_[piece.offset + static_cast<std::size_t>(i) * count_ + j] = C[i];
   }
-  partial(b_, normal_);
 }
 
 void AeroIntegrals::partial(double s, std::vector<double>& out) const {
   s = std::clamp(s, a_, b_);
-  const double t = (2.0 * s - a_ - b_) / (b_ - a_);
+  // The piece that holds s (the last whose left end is <= s).
+  std::size_t p = 0;
+  while (p + 1 < pieces_.size() && pieces_[p + 1].lo <= s) ++p;
+  const Piece& piece = pieces_[p];
+  const double t = (2.0 * s - piece.lo - piece.hi) / (piece.hi - piece.lo);
   const std::size_t m = static_cast<std::size_t>(count_);
   out.resize(m);
   // Clenshaw recurrence for sum_i C_i T_i(t), every integral at once (b1 in `out`, b2 in
@@ -73,15 +109,18 @@ void AeroIntegrals::partial(double s, std::vector<double>& out) const {
   std::fill(out.begin(), out.end(), 0.0);
   double* b1 = out.data();
   double* b2 = b2_.data();
-  for (int i = terms_ - 1; i >= 1; --i) {
-    const double* C = coef_.data() + static_cast<std::size_t>(i) * m;
+  const double* coef = coef_.data() + piece.offset;
+  for (int i = piece.terms - 1; i >= 1; --i) {
+    const double* C = coef + static_cast<std::size_t>(i) * m;
     for (std::size_t j = 0; j < m; ++j) {
       const double b0 = 2.0 * t * b1[j] - b2[j] + C[j];
       b2[j] = b1[j];
       b1[j] = b0;
     }
   }
-  for (std::size_t j = 0; j < m; ++j) b1[j] = t * b1[j] - b2[j] + coef_[j];
+  for (std::size_t j = 0; j < m; ++j) b1[j] = t * b1[j] - b2[j] + coef[j];
+  if (p > 0)
+    for (std::size_t j = 0; j < m; ++j) b1[j] += piece.start[j];
 }
 
 void AeroIntegrals::reversed(double mu, std::vector<double>& out) const {

@@ -1,10 +1,10 @@
 // flaplag — assumed mode (eq 4.1), nonrotating cantilever modes and the assumed-mode ModeSet.
-#include "flaplag/core/constants.h"
 #include "flaplag/blade/blade.h"
 
 #include <cmath>
 #include <string>
 
+#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 

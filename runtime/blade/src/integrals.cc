@@ -8,8 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "flaplag/core/constants.h"
 #include "flaplag/blade/blade.h"
+#include "flaplag/blade/blade_properties.h"
+#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 
@@ -175,6 +176,9 @@ std::vector<std::vector<double>> aero_integrands(const model::ModelDescriptor& m
     const model::AeroIntegral& spec = m.aero[j];
     std::vector<double> v = table.product(spec.factors, spec.n_factors, 1.0, spec.name);
     for (std::size_t q = 0; q < x0.size(); ++q) v[q] *= std::pow(g.e1 + g.lr * x0[q], spec.x_power);
+    // Every aerodynamic load is proportional to the local chord (eqs 2.18-2.19 per unit span).
+    if (modes.blade)
+      for (std::size_t q = 0; q < x0.size(); ++q) v[q] *= modes.blade->chord_at(x0[q]);
     out[j] = std::move(v);
   }
   return out;
@@ -186,9 +190,12 @@ namespace {
 class AeroRegion {
  public:
   AeroRegion(const ModeSet& modes, const SpanGeometry& g, double lo, double hi)
-      : rule_(span_rule(lo, hi)), table_(modes, rule_.x0, g.e1 / g.lr) {
+      : rule_(span_rule(lo, hi, blade_corners(modes))), table_(modes, rule_.x0, g.e1 / g.lr) {
     x_.resize(rule_.x0.size());
     for (std::size_t q = 0; q < x_.size(); ++q) x_[q] = g.e1 + g.lr * rule_.x0[q];
+    chord_.assign(rule_.x0.size(), 1.0);
+    if (modes.blade)
+      for (std::size_t q = 0; q < x_.size(); ++q) chord_[q] = modes.blade->chord_at(rule_.x0[q]);
   }
 
   double integral(const model::AeroIntegral& spec) {
@@ -201,7 +208,7 @@ class AeroRegion {
     for (std::size_t q = 0; q < p.size(); ++q) {
       double xp = 1.0;
       for (int k = 0; k < spec.x_power; ++k) xp *= x_[q];
-      sum += rule_.weight[q] * xp * p[q];
+      sum += rule_.weight[q] * xp * p[q] * chord_[q];
     }
     return sum;
   }
@@ -209,34 +216,51 @@ class AeroRegion {
  private:
   SpanRule rule_;
   FactorTable table_;
-  std::vector<double> x_;
+  std::vector<double> x_, chord_;
 };
 
 // Stations for int_0^1 F(x) J(x) dx with J a tail (int_x^1) or head (int_0^x) integral.
-// Outer: the composite rule on [0, 1].  For each outer station x in panel [a, b], J is the Gauss
-// integral over the partial panel [x, b] (tail) or [a, x] (head) plus the whole-panel Gauss sums
-// of the other panels, so J is as accurate as a single integral and exact for polynomials.
+// Outer: the composite rule on [0, 1] (panels ending at the blade's corners).  For each outer
+// station x in panel [a, b], J is the Gauss integral over the partial panel [x, b] (tail) or
+// [a, x] (head) plus the whole-panel Gauss sums of the other panels, so J is as accurate as a
+// single integral and exact for polynomials.  A blade's mass mbar(x) weights the integrands
+// station by station, and its tip mass adds the point terms at x0 = 1 (blade_properties.h).
 class NestedGrid {
  public:
   NestedGrid(const ModeSet& modes, double e1_over_l)
-      : outer_rule_(span_rule(0.0, 1.0)),
+      : blade_(modes.blade.get()),
+        edges_(panel_edges(0.0, 1.0, blade_corners(modes))),
+        outer_rule_(span_rule(0.0, 1.0, blade_corners(modes))),
         outer_(modes, outer_rule_.x0, e1_over_l),
-        tail_(modes, partial_points(true, tail_w_), e1_over_l),
-        head_(modes, partial_points(false, head_w_), e1_over_l) {}
+        tail_(modes, partial_points(true, tail_w_, tail_x_), e1_over_l),
+        head_(modes, partial_points(false, head_w_, head_x_), e1_over_l),
+        tip_(modes, std::vector<double>{1.0}, e1_over_l) {}
 
   double integral(const model::StructuralIntegral& spec, double mbar) {
-    const std::vector<double> f =
-        outer_.product(spec.outer, spec.n_outer, std::pow(mbar, spec.outer_mass), spec.name);
+    const int panels = static_cast<int>(edges_.size()) - 1;
+    const bool has_tip = blade_ != nullptr && blade_->tip_mass > 0.0;
+    if (has_tip &&
+        (spec.outer_mass > 1 || spec.inner_mass > 1 ||
+         (spec.inner != model::Inner::None && spec.outer_mass > 0 && spec.inner_mass > 0))) {
+      throw InvalidInput(std::string("structural integral \"") + spec.name + "\"", "tip mass",
+                         "a point mass has no value for this power of the mass");
+    }
+    std::vector<double> f =
+        outer_.product(spec.outer, spec.n_outer, mass_scale(spec.outer_mass, mbar), spec.name);
+    weigh(f, outer_rule_.x0, spec.outer_mass);
     const std::size_t n = f.size();
     std::vector<double> j(n, 1.0);
+    // The tip mass's share of the inner integral: all of it for a tail (x < 1), none for a head.
+    double inner_tip = 0.0;
     if (spec.inner != model::Inner::None) {
       const bool tail = spec.inner == model::Inner::Tail;
-      const double inner_scale = std::pow(mbar, spec.inner_mass);
+      const double inner_scale = mass_scale(spec.inner_mass, mbar);
       // Whole-panel integrals of the inner integrand, on the outer stations.
-      const std::vector<double> g_outer =
+      std::vector<double> g_outer =
           outer_.product(spec.inner_factors, spec.n_inner, inner_scale, spec.name);
-      std::array<double, kPanels> panel{};
-      for (int p = 0; p < kPanels; ++p) {
+      weigh(g_outer, outer_rule_.x0, spec.inner_mass);
+      std::vector<double> panel(static_cast<std::size_t>(panels), 0.0);
+      for (int p = 0; p < panels; ++p) {
         for (int i = 0; i < kGaussPoints; ++i) {
           const std::size_t q = static_cast<std::size_t>(p * kGaussPoints + i);
           panel[p] += outer_rule_.weight[q] * g_outer[q];
@@ -244,12 +268,16 @@ class NestedGrid {
       }
       FactorTable& partial = tail ? tail_ : head_;
       const std::vector<double>& pw = tail ? tail_w_ : head_w_;
-      const std::vector<double> g_part =
+      std::vector<double> g_part =
           partial.product(spec.inner_factors, spec.n_inner, inner_scale, spec.name);
-      for (int p = 0; p < kPanels; ++p) {
+      weigh(g_part, tail ? tail_x_ : head_x_, spec.inner_mass);
+      if (has_tip && tail && spec.inner_mass == 1)
+        inner_tip =
+            blade_->tip_mass * tip_.product(spec.inner_factors, spec.n_inner, 1.0, spec.name)[0];
+      for (int p = 0; p < panels; ++p) {
         double others = 0.0;
         if (tail) {
-          for (int r = p + 1; r < kPanels; ++r) others += panel[r];
+          for (int r = p + 1; r < panels; ++r) others += panel[r];
         } else {
           for (int r = 0; r < p; ++r) others += panel[r];
         }
@@ -260,22 +288,46 @@ class NestedGrid {
             const std::size_t s = q * kGaussPoints + static_cast<std::size_t>(k);
             part += pw[s] * g_part[s];
           }
-          j[q] = others + part;
+          j[q] = others + part + inner_tip;
         }
       }
     }
     double sum = 0.0;
     for (std::size_t q = 0; q < n; ++q) sum += outer_rule_.weight[q] * f[q] * j[q];
+    if (has_tip && spec.outer_mass == 1) {
+      // The point mass's own term: the outer integrand at the tip times the inner integral
+      // there (a head integral over the whole span; a tail one has no mass outboard).
+      double j_tip = 1.0;
+      if (spec.inner == model::Inner::Tail) {
+        j_tip = 0.0;
+      } else if (spec.inner == model::Inner::Head) {
+        j_tip = 0.0;
+        std::vector<double> g = outer_.product(spec.inner_factors, spec.n_inner, 1.0, spec.name);
+        weigh(g, outer_rule_.x0, spec.inner_mass);
+        for (std::size_t q = 0; q < n; ++q) j_tip += outer_rule_.weight[q] * g[q];
+      }
+      sum += blade_->tip_mass * tip_.product(spec.outer, spec.n_outer, 1.0, spec.name)[0] * j_tip;
+    }
     return sum;
   }
 
  private:
-  std::vector<double> partial_points(bool tail, std::vector<double>& w) const {
-    std::vector<double> x;
-    const double h = 1.0 / kPanels;
-    for (int p = 0; p < kPanels; ++p) {
-      const double a = p * h;
-      const double b = (p == kPanels - 1) ? 1.0 : (p + 1) * h;
+  // The constant factor of a mass power: mbar^power for the uniform blade; 1 for a blade table,
+  // whose mass is weighed station by station.
+  double mass_scale(int power, double mbar) const {
+    return blade_ != nullptr ? 1.0 : std::pow(mbar, power);
+  }
+  void weigh(std::vector<double>& v, const std::vector<double>& x0, int power) const {
+    if (blade_ == nullptr || power == 0) return;
+    for (std::size_t q = 0; q < v.size(); ++q) v[q] *= std::pow(blade_->mass_at(x0[q]), power);
+  }
+
+  std::vector<double> partial_points(bool tail, std::vector<double>& w,
+                                     std::vector<double>& x) const {
+    const int panels = static_cast<int>(edges_.size()) - 1;
+    for (int p = 0; p < panels; ++p) {
+      const double a = edges_[p];
+      const double b = edges_[p + 1];
       for (int i = 0; i < kGaussPoints; ++i) {
         const double xq = outer_rule_.x0[static_cast<std::size_t>(p * kGaussPoints + i)];
         if (tail) {
@@ -288,12 +340,15 @@ class NestedGrid {
     return x;
   }
 
+  const BladeProperties* blade_;
+  std::vector<double> edges_;
   SpanRule outer_rule_;
   FactorTable outer_;
-  std::vector<double> tail_w_;
-  std::vector<double> head_w_;
+  std::vector<double> tail_w_, tail_x_;
+  std::vector<double> head_w_, head_x_;
   FactorTable tail_;
   FactorTable head_;
+  FactorTable tip_;
 };
 
 void check_structural(double e1_over_l, double mbar) {
@@ -305,10 +360,12 @@ void check_structural(double e1_over_l, double mbar) {
   }
 }
 
-// int_0^1 f_i'' g_k'' dx0 for all pairs.
+// int_0^1 weight(x0) f_i'' g_k'' dx0 for all pairs (weight 1 when it is null).
+template <typename Weight>
 Eigen::MatrixXd curvature_products(const std::vector<std::shared_ptr<const ModeShape>>& f,
-                                   const std::vector<std::shared_ptr<const ModeShape>>& g) {
-  const SpanRule rule = span_rule(0.0, 1.0);
+                                   const std::vector<std::shared_ptr<const ModeShape>>& g,
+                                   const std::vector<double>& corners, Weight weight) {
+  const SpanRule rule = span_rule(0.0, 1.0, corners);
   const Eigen::Index nq = static_cast<Eigen::Index>(rule.x0.size());
   auto curvatures = [&](const std::vector<std::shared_ptr<const ModeShape>>& s) {
     Eigen::MatrixXd c(nq, static_cast<Eigen::Index>(s.size()));
@@ -319,23 +376,49 @@ Eigen::MatrixXd curvature_products(const std::vector<std::shared_ptr<const ModeS
   };
   const Eigen::MatrixXd cf = curvatures(f);
   const Eigen::MatrixXd cg = curvatures(g);
-  const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(rule.weight.data(), nq);
+  Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(rule.weight.data(), nq);
+  for (Eigen::Index q = 0; q < nq; ++q) w[q] *= weight(rule.x0[q]);
   return cf.transpose() * w.asDiagonal() * cg;
+}
+Eigen::MatrixXd curvature_products(const std::vector<std::shared_ptr<const ModeShape>>& f,
+                                   const std::vector<std::shared_ptr<const ModeShape>>& g) {
+  return curvature_products(f, g, {}, [](double) { return 1.0; });
 }
 
 }  // namespace
 
-SpanRule span_rule(double a, double b) {
+SpanRule span_rule(double a, double b) { return span_rule(a, b, {}); }
+
+SpanRule span_rule(double a, double b, const std::vector<double>& corners) {
   SpanRule r;
-  r.x0.reserve(kPanels * kGaussPoints);
-  r.weight.reserve(kPanels * kGaussPoints);
-  const double h = (b - a) / kPanels;
-  for (int p = 0; p < kPanels; ++p) {
-    const double lo = a + p * h;
-    const double hi = (p == kPanels - 1) ? b : a + (p + 1) * h;
-    append_interval(lo, hi, r.x0, r.weight);
-  }
+  const std::vector<double> edges = panel_edges(a, b, corners);
+  r.x0.reserve((edges.size() - 1) * kGaussPoints);
+  r.weight.reserve((edges.size() - 1) * kGaussPoints);
+  for (std::size_t p = 0; p + 1 < edges.size(); ++p)
+    append_interval(edges[p], edges[p + 1], r.x0, r.weight);
   return r;
+}
+
+std::vector<double> panel_edges(double a, double b, const std::vector<double>& corners) {
+  const double h = (b - a) / kPanels;
+  std::vector<double> edges;
+  for (int p = 0; p < kPanels; ++p) edges.push_back(a + p * h);
+  edges.push_back(b);
+  // A corner splits its panel, unless it (nearly) is an edge already: a sliver panel would
+  // add nothing but rounding.
+  const double tiny = 1e-9 * std::max(b - a, 0.0);
+  for (double c : corners) {
+    if (!(c > a + tiny && c < b - tiny)) continue;
+    bool near = false;
+    for (double e : edges) near = near || std::abs(e - c) <= tiny;
+    if (!near) edges.push_back(c);
+  }
+  std::sort(edges.begin(), edges.end());
+  return edges;
+}
+
+std::vector<double> blade_corners(const ModeSet& modes) {
+  return modes.blade ? modes.blade->corners() : std::vector<double>{};
 }
 
 double aero_integral(const model::AeroIntegral& spec, const ModeSet& modes, const SpanGeometry& g,
@@ -378,6 +461,28 @@ ElasticCoupling elastic_coupling(const ModeSet& modes, double theta) {
   }
   ElasticCoupling e = no_elastic_coupling(modes);
   if (modes.stiffness_flap == 0.0 && modes.stiffness_lag == 0.0) return e;
+  if (modes.blade) {
+    // Eqs E.3-E.8 with the stiffnesses and the pitch theta + theta_tw(x0) of each station.
+    const BladeProperties& b = *modes.blade;
+    auto dk = [&](double x) {
+      return modes.stiffness_lag * b.at(b.stiffness_lag, x) -
+             modes.stiffness_flap * b.at(b.stiffness_flap, x);
+    };
+    auto s2 = [&](double x) {
+      const double s = std::sin(theta + b.twist_at(x));
+      return dk(x) * s * s;
+    };
+    auto sc = [&](double x) {
+      const double t = theta + b.twist_at(x);
+      return dk(x) * std::sin(t) * std::cos(t);
+    };
+    const std::vector<double> corners = b.corners();
+    e.es_flap = curvature_products(modes.flap, modes.flap, corners, s2);
+    e.es_lag = curvature_products(modes.lag, modes.lag, corners, s2);
+    e.ecs_flap_lag = curvature_products(modes.flap, modes.lag, corners, sc);
+    e.ecs_lag_flap = e.ecs_flap_lag.transpose();
+    return e;
+  }
   // Eqs E.3-E.8 divided by Omega^2 I_b / l: (EI_z - EI_y)/(Omega^2 l I_b) = k_z - k_y.
   const double dk = modes.stiffness_lag - modes.stiffness_flap;
   const double s = std::sin(theta);

@@ -96,6 +96,98 @@ struct Galerkin {
   }
 };
 
+// The Galerkin matrices of a nonuniform blade (blade_properties.h) on the same basis:
+//   M_ij = int mbar phi_i phi_j + tip phi_i(1) phi_j(1),   B_ij = int kshape phi_i'' phi_j'',
+//   G_ij = int T phi_i' phi_j',   T(x) = int_x^1 mbar (x1 + e) dx1 + tip (1 + e),
+//   flap: [s B + G] c = w^2 M c,   lag: [s B + G - M] c = w^2 M c   (the -m Omega^2 v term),
+// with s the scale of the table's stiffness column (1 when the column is absolute).  The
+// quadrature panels end at the table's stations, where the distributions have corners.
+struct BladeGalerkin {
+  int n = 0;
+  std::vector<std::shared_ptr<const ModeShape>> basis;
+  Eigen::MatrixXd m, b_flap, b_lag, g;
+  Eigen::VectorXd tip_values;
+
+  BladeGalerkin(int n_basis, double e, const BladeProperties& blade)
+      : n(n_basis),
+        m(Eigen::MatrixXd::Zero(n_basis, n_basis)),
+        b_flap(m),
+        b_lag(m),
+        g(m),
+        tip_values(n_basis) {
+    for (int j = 1; j <= n; ++j) basis.push_back(cantilever_mode(j));
+    const SpanRule rule = span_rule(0.0, 1.0, blade.corners());
+    const Eigen::Index nq = static_cast<Eigen::Index>(rule.x0.size());
+    Eigen::MatrixXd value(nq, n), slope(nq, n), curvature(nq, n);
+    Eigen::VectorXd wm(nq), wt(nq), wf(nq), wl(nq);
+    for (Eigen::Index q = 0; q < nq; ++q) {
+      const double x = rule.x0[q], w = rule.weight[q];
+      wm[q] = w * blade.mass_at(x);
+      wt[q] = w * tension(blade, e, x);
+      wf[q] = w * blade.at(blade.stiffness_flap, x);
+      wl[q] = w * blade.at(blade.stiffness_lag, x);
+      for (int j = 0; j < n; ++j) {
+        value(q, j) = basis[j]->value(0, x);
+        slope(q, j) = basis[j]->value(1, x);
+        curvature(q, j) = basis[j]->value(2, x);
+      }
+    }
+    for (int j = 0; j < n; ++j) tip_values[j] = basis[j]->value(0, 1.0);
+    m = value.transpose() * wm.asDiagonal() * value +
+        blade.tip_mass * tip_values * tip_values.transpose();
+    g = slope.transpose() * wt.asDiagonal() * slope;
+    b_flap = curvature.transpose() * wf.asDiagonal() * curvature;
+    b_lag = curvature.transpose() * wl.asDiagonal() * curvature;
+    for (Eigen::MatrixXd* a : {&m, &g, &b_flap, &b_lag}) *a = 0.5 * (*a + a->transpose()).eval();
+  }
+
+  // T(x): the exact integral of the piecewise-quadratic mbar (x1 + e) from x to the tip, plus
+  // the tip mass's pull.
+  static double tension(const BladeProperties& b, double e, double x) {
+    double t = b.tip_mass * (1.0 + e);
+    for (std::size_t i = 0; i + 1 < b.x0.size(); ++i) {
+      const double lo = std::max(b.x0[i], x), hi = b.x0[i + 1];
+      if (!(hi > lo)) continue;
+      const double mid = 0.5 * (lo + hi);
+      auto f = [&](double s) { return b.mass_at(s) * (s + e); };
+      t += (hi - lo) / 6.0 * (f(lo) + 4.0 * f(mid) + f(hi));  // Simpson: exact for a quadratic
+    }
+    return t;
+  }
+
+  const Eigen::MatrixXd& stiffness(BendingDirection dir) const {
+    return dir == BendingDirection::Flap ? b_flap : b_lag;
+  }
+  Eigen::MatrixXd centrifugal(BendingDirection dir) const {
+    return dir == BendingDirection::Lag ? Eigen::MatrixXd(g - m) : g;
+  }
+
+  // Eigenpairs for stiffness scale s, ascending, the eigenvalues as Rayleigh quotients of the
+  // eigenvectors (as Galerkin::solve).
+  std::pair<Eigen::VectorXd, Eigen::MatrixXd> solve(BendingDirection dir, double s) const {
+    const Eigen::MatrixXd c = centrifugal(dir);
+    const Eigen::MatrixXd& b = stiffness(dir);
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(s * b + c, m);
+    Eigen::MatrixXd v = es.eigenvectors();
+    Eigen::VectorXd lambda(n);
+    for (int i = 0; i < n; ++i) {
+      const Eigen::VectorXd vi = v.col(i);
+      lambda[i] = (s * vi.dot(b * vi) + vi.dot(c * vi)) / vi.dot(m * vi);
+    }
+    return {lambda, v};
+  }
+  // d lambda_1 / d s at s (Hellmann-Feynman): c'Bc / c'Mc.
+  double slope(BendingDirection dir, const Eigen::VectorXd& c) const {
+    return c.dot(stiffness(dir) * c) / c.dot(m * c);
+  }
+  // The nonrotating first frequency squared at scale s: the first eigenvalue of (s B, M).
+  double nonrotating(BendingDirection dir, double s) const {
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(s * stiffness(dir), m,
+                                                                 Eigen::EigenvaluesOnly);
+    return es.eigenvalues()[0];
+  }
+};
+
 const char* option_name(BendingDirection dir) {
   return dir == BendingDirection::Flap ? "omega_flap" : "omega_lag";
 }
@@ -171,6 +263,55 @@ double solve_kappa(const Galerkin& gal, BendingDirection dir, double omega) {
   return kappa;
 }
 
+// The functions of the uniform blade's Galerkin matrices refuse a blade table rather than
+// ignore it.
+void uniform_only(const ExactModeOptions& o, const char* function) {
+  if (o.blade) {
+    throw InvalidInput("blade", o.blade->source.empty() ? "table" : o.blade->source,
+                       std::string(function) + " is for the uniform blade only");
+  }
+}
+
+// The stiffness scale s of a blade table with lambda_1(s) = omega^2: as solve_kappa (lambda_1
+// is increasing and concave in s).
+double solve_scale(const BladeGalerkin& gal, BendingDirection dir, double omega) {
+  if (!std::isfinite(omega) || omega <= 0.0) {
+    throw InvalidInput(option_name(dir), round_trip_text(omega),
+                       std::string("first rotating ") + direction_name(dir) +
+                           " frequency by Omega must be finite and positive");
+  }
+  const double target = omega * omega;
+  const double lambda0 = gal.solve(dir, 0.0).first[0];
+  if (!(target > lambda0)) {
+    throw InvalidInput(option_name(dir), round_trip_text(omega),
+                       std::string("first rotating ") + direction_name(dir) +
+                           " frequency must exceed the k -> 0 (centrifugal stiffening only) "
+                           "limit " +
+                           round_trip_text(std::sqrt(std::max(lambda0, 0.0))) + " of this blade");
+  }
+  double lo = 0.0;
+  double hi = std::numeric_limits<double>::infinity();
+  double scale = (target - lambda0) / gal.nonrotating(dir, 1.0);
+  for (int it = 0; it < 200; ++it) {
+    auto [lambda, v] = gal.solve(dir, scale);
+    const double f = lambda[0] - target;
+    if (f == 0.0) return scale;
+    if (f < 0.0) {
+      lo = scale;
+    } else {
+      hi = scale;
+    }
+    double next = scale - f / gal.slope(dir, v.col(0));
+    if (!(next > lo && next < hi)) next = std::isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * scale + 1.0;
+    if (std::abs(f) <= 4.0 * std::numeric_limits<double>::epsilon() * target) return scale;
+    if (std::abs(next - scale) <= 4.0 * std::numeric_limits<double>::epsilon() * scale) {
+      return next;
+    }
+    scale = next;
+  }
+  return scale;
+}
+
 // Shape coefficients scaled to tip value +1: eta(1) = sum c_j phi_j(1), phi_j(1) = 2(-1)^(j+1).
 Eigen::VectorXd tip_normalised(Eigen::VectorXd c, bool paper_1974) {
   const Eigen::Index n = c.size();
@@ -188,6 +329,7 @@ Eigen::VectorXd tip_normalised(Eigen::VectorXd c, bool paper_1974) {
 std::vector<double> rotating_frequencies(BendingDirection direction, double stiffness,
                                          const ExactModeOptions& options) {
   check_options(options);
+  uniform_only(options, "rotating_frequencies");
   if (!std::isfinite(stiffness) || stiffness < 0.0) {
     throw InvalidInput(direction == BendingDirection::Flap ? "stiffness_flap" : "stiffness_lag",
                        round_trip_text(stiffness), "must be finite and >= 0");
@@ -201,6 +343,7 @@ std::vector<double> rotating_frequencies(BendingDirection direction, double stif
 
 double centrifugal_limit(BendingDirection direction, const ExactModeOptions& options) {
   check_options(options);
+  uniform_only(options, "centrifugal_limit");
   const Galerkin gal(options.n_basis, options.e1_over_l);
   return std::sqrt(std::max(gal.first_eigenvalue(direction, 0.0), 0.0));
 }
@@ -208,13 +351,73 @@ double centrifugal_limit(BendingDirection direction, const ExactModeOptions& opt
 double stiffness_for_frequency(BendingDirection direction, double omega_rotating,
                                const ExactModeOptions& options) {
   check_options(options);
+  uniform_only(options, "stiffness_for_frequency");
   const Galerkin gal(options.n_basis, options.e1_over_l);
   return options.mbar * solve_kappa(gal, direction, omega_rotating);
+}
+
+namespace {
+
+// The modes of a blade table: stiffness scales solved for the first frequencies, or 1 for
+// absolute stiffness columns (omega_* NaN).
+ExactModes blade_table_modes(double omega_flap, double omega_lag, const ExactModeOptions& options) {
+  validate(*options.blade);
+  const BladeGalerkin gal(options.n_basis, options.e1_over_l, *options.blade);
+  ExactModes r;
+  r.modes.kind = "exact";
+  r.modes.blade = options.blade;
+  auto build = [&](BendingDirection dir, double omega, int count,
+                   std::vector<std::shared_ptr<const ModeShape>>& shapes,
+                   std::vector<double>& omega_out, std::vector<double>& omega_all,
+                   Eigen::MatrixXd& coeffs, double& nonrotating) {
+    const double scale = std::isnan(omega) ? 1.0 : solve_scale(gal, dir, omega);
+    auto [lambda, v] = gal.solve(dir, scale);
+    omega_all.resize(static_cast<std::size_t>(gal.n));
+    for (int i = 0; i < gal.n; ++i) omega_all[i] = std::sqrt(std::max(lambda[i], 0.0));
+    omega_out.assign(omega_all.begin(), omega_all.begin() + count);
+    coeffs.resize(gal.n, count);
+    for (int i = 0; i < count; ++i) {
+      coeffs.col(i) = tip_normalised(v.col(i), options.paper_1974_shapes);
+      shapes.push_back(std::make_shared<ModalCombination>(gal.basis, coeffs.col(i)));
+    }
+    nonrotating = std::sqrt(std::max(gal.nonrotating(dir, scale), 0.0));
+    return scale;
+  };
+  r.modes.stiffness_flap =
+      build(BendingDirection::Flap, omega_flap, options.flap_modes, r.modes.flap,
+            r.modes.omega_flap, r.omega_flap_all, r.flap_coefficients, r.omega_flap_nonrotating);
+  r.modes.stiffness_lag =
+      build(BendingDirection::Lag, omega_lag, options.lag_modes, r.modes.lag, r.modes.omega_lag,
+            r.omega_lag_all, r.lag_coefficients, r.omega_lag_nonrotating);
+  return r;
+}
+
+}  // namespace
+
+ExactModes blade_stiffness_modes(const ExactModeOptions& options) {
+  check_options(options);
+  if (!options.blade) {
+    throw InvalidInput("blade", "none", "modes from the stiffness need a blade table");
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return blade_table_modes(nan, nan, options);
 }
 
 ExactModes exact_rotating_modes(double omega_flap, double omega_lag,
                                 const ExactModeOptions& options) {
   check_options(options);
+  if (options.blade) {
+    // NaN would mean "absolute stiffness" inside; here a frequency is required.
+    for (const auto& [dir, w] : {std::pair{BendingDirection::Flap, omega_flap},
+                                 std::pair{BendingDirection::Lag, omega_lag}}) {
+      if (!std::isfinite(w) || w <= 0.0) {
+        throw InvalidInput(option_name(dir), round_trip_text(w),
+                           std::string("first rotating ") + direction_name(dir) +
+                               " frequency by Omega must be finite and positive");
+      }
+    }
+    return blade_table_modes(omega_flap, omega_lag, options);
+  }
   const Galerkin gal(options.n_basis, options.e1_over_l);
   ExactModes r;
   r.modes.kind = "exact";
@@ -260,6 +463,7 @@ double nonrotating_frequency(BendingDirection direction, double omega_rotating,
 double rotating_frequency(BendingDirection direction, double omega_nonrotating,
                           const ExactModeOptions& options) {
   check_options(options);
+  uniform_only(options, "rotating_frequency");
   if (!std::isfinite(omega_nonrotating) || omega_nonrotating < 0.0) {
     throw InvalidInput(
         direction == BendingDirection::Flap ? "omega_flap_nonrotating" : "omega_lag_nonrotating",
@@ -274,6 +478,7 @@ std::vector<FrequencyPair> fig9_table(BendingDirection direction, double omega_n
                                       double omega_nonrotating_hi, int n_points,
                                       const ExactModeOptions& options) {
   check_options(options);
+  uniform_only(options, "fig9_table");
   if (n_points < 2) {
     throw InvalidInput("n_points", std::to_string(n_points), "must be >= 2");
   }

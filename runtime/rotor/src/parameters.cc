@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "flaplag/blade/blade.h"
 #include "flaplag/blade/rotating_modes.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -79,11 +80,9 @@ std::vector<ParameterSpec> build_table() {
                        Interval{0.0, 1.0, false, false}, "in [0, 1]"));
   t.push_back(real_row("theta", "theta", "rad", "collective pitch", &RotorParameters::theta, angle,
                        "in (-pi/2, pi/2)"));
-  t.push_back(real_row("theta1c", "theta_1c", "rad",
-                       "cyclic pitch, cos psi part",
+  t.push_back(real_row("theta1c", "theta_1c", "rad", "cyclic pitch, cos psi part",
                        &RotorParameters::theta1c, angle, "in (-pi/2, pi/2)"));
-  t.push_back(real_row("theta1s", "theta_1s", "rad",
-                       "cyclic pitch, sin psi part",
+  t.push_back(real_row("theta1s", "theta_1s", "rad", "cyclic pitch, sin psi part",
                        &RotorParameters::theta1s, angle, "in (-pi/2, pi/2)"));
   t.push_back(real_row("precone", "beta_P", "rad", "precone angle", &RotorParameters::precone,
                        angle, "in (-pi/2, pi/2)"));
@@ -287,6 +286,17 @@ void validate_except_inflow(const RotorParameters& p) {
                        "too small for `cdo` = " + round_trip_text(p.cdo) +
                            ": C_Do / a must be at most 1e300 (the aerodynamic loads overflow)");
   }
+  if (p.blade) {
+    validate(*p.blade);
+    if (p.modes != ModeKind::Exact) {
+      throw InvalidInput(row("modes").field, mode_kind_name(p.modes),
+                         "a blade table needs the exact modes of that blade (`modes` = exact)");
+    }
+    if (p.paper_1974_shapes) {
+      throw InvalidInput(row("paper_1974_shapes").field, "true",
+                         "the 1974 shapes are the uniform blade's (no blade table)");
+    }
+  }
   // The exact region is a way of modelling the reversed flow, not a second switch for it.
   if (p.exact_reversed_flow && !p.reversed_flow) {
     throw InvalidInput(row("exact_reversed_flow").field, "true",
@@ -295,18 +305,53 @@ void validate_except_inflow(const RotorParameters& p) {
   }
 }
 
+namespace {
+
+// A blade table's thrust-weighted chord and twist over the disc, x = r/R in [0, 1] (stations
+// x = e1 + (l/R) x0, the root values held inboard of e1 as eq 2.24 integrates from the
+// centre): chord = 3 int c/c_ref x^2 dx, twist = 3 int (c/c_ref) theta_tw x^2 dx / chord.
+struct ThrustWeights {
+  double chord = 1.0, twist = 0.0;
+};
+ThrustWeights thrust_weights(const RotorParameters& p) {
+  ThrustWeights w;
+  if (!p.blade) return w;
+  const BladeProperties& b = *p.blade;
+  std::vector<double> corners;
+  for (double c : b.x0) corners.push_back(p.root_offset + p.length_ratio * c);
+  const SpanRule rule = span_rule(0.0, 1.0, corners);
+  double chord = 0.0, twist = 0.0;
+  for (std::size_t q = 0; q < rule.x0.size(); ++q) {
+    const double x = rule.x0[q];
+    const double x0 = (x - p.root_offset) / p.length_ratio;
+    const double c = b.chord_at(x0);
+    chord += rule.weight[q] * 3.0 * c * x * x;
+    twist += rule.weight[q] * 3.0 * c * b.twist_at(x0) * x * x;
+  }
+  w.chord = chord;
+  w.twist = twist / chord;
+  return w;
+}
+
+}  // namespace
+
 double hover_inflow(const RotorParameters& p) {
-  const double sa = p.sigma * p.lift_slope;
+  // A blade table: eq 2.24 with its thrust-weighted solidity and the collective plus its
+  // thrust-weighted twist (for a linear twist and uniform chord, theta at x = 0.75).
+  const ThrustWeights tw = thrust_weights(p);
+  const double sa = p.sigma * p.lift_slope * tw.chord;
+  const double theta = p.theta + tw.twist;
   // Written as 24 theta / (16 (sqrt(1 + 24 theta/(sigma a)) + 1)), which equals eq 2.24 exactly
   // but does not lose digits to cancellation when 24 theta << sigma a.  Negative theta below
   // -sigma a / 24 makes the square root imaginary: eq 2.24 has no hover inflow there.
-  const double r = 1.0 + 24.0 * p.theta / sa;
+  const double r = 1.0 + 24.0 * theta / sa;
   if (r < 0.0) {
-    throw InvalidInput(
-        row("theta").field, round_trip_text(p.theta),
-        "eq 2.24 has no real inflow for theta < -sigma a / 24 = " + round_trip_text(-sa / 24.0));
+    throw InvalidInput(row("theta").field, round_trip_text(p.theta),
+                       "eq 2.24 has no real inflow for theta < -sigma a / 24 = " +
+                           round_trip_text(-sa / 24.0 - tw.twist) +
+                           (p.blade ? " (with the blade's thrust-weighted twist and chord)" : ""));
   }
-  return 24.0 * p.theta / (16.0 * (std::sqrt(r) + 1.0));
+  return 24.0 * theta / (16.0 * (std::sqrt(r) + 1.0));
 }
 
 }  // namespace flaplag

@@ -87,6 +87,7 @@ ModeSet blade_modes(const RotorParameters& p, const model::ModelDescriptor& m) {
   opt.lag_modes = N;
   opt.e1_over_l = p.root_offset / p.length_ratio;
   opt.paper_1974_shapes = p.paper_1974_shapes;
+  opt.blade = p.blade;
   try {
     return exact_modes(p.omega_flap, p.omega_lag, opt);
   } catch (const InvalidInput& e) {

@@ -5,9 +5,10 @@
 // x = mu where the flow reverses (Appendix D, eqs D.3-D.6).  The split point moves with mu, so
 // the integrands are interpolated once at Chebyshev-Gauss-Lobatto points (degree kDegree) and
 // integrated exactly: a reversed-sector evaluation is one Clenshaw sum per integral instead of a
-// quadrature.  Exact (to rounding) for the assumed-mode polynomials; for exact modes the
-// interpolation error is far below 1e-13 (tests/aero_integrals_test.cpp checks both against the
-// Gauss quadrature of aero_integral() in blade.h).
+// quadrature.  A blade table's stations inside the span cut it into pieces interpolated apart
+// (its distributions have corners there).  Exact (to rounding) for the assumed-mode polynomials;
+// for exact modes the interpolation error is far below 1e-13 (tests/aero_integrals_test.cpp checks
+// both against the Gauss quadrature of aero_integral() in blade.h).
 #pragma once
 
 #include <vector>
@@ -38,12 +39,25 @@ class AeroIntegrals {
   void partial(double s, std::vector<double>& out) const;
 
  private:
+  // A stretch [lo, hi] of the aerodynamic span between corners of the blade's distributions
+  // (one piece, [A, B], for a smooth blade).
+  struct Piece {
+    double lo, hi;
+    int terms;                  // Chebyshev terms of the antiderivatives
+    std::size_t offset;         // of its coefficients in coef_
+    std::vector<double> start;  // int_A^lo of every integrand
+  };
+  void add_piece(const model::ModelDescriptor& m, const ModeSet& modes, const SpanGeometry& g,
+                 const Piece& piece, int degree);
+
   double a_ = 0.0, b_ = 1.0, e1_ = 0.0, lr_ = 1.0;
-  // Chebyshev coefficients of the antiderivatives, term-major: coefficient i of integral j at
-  // coef_[i * count_ + j], so that partial() runs the Clenshaw recurrences of all integrals side
-  // by side (independent chains instead of one latency-bound chain per integral).
+  // Chebyshev coefficients of the antiderivatives per piece, term-major: coefficient i of
+  // integral j at coef_[offset + i * count_ + j], so that partial() runs the Clenshaw
+  // recurrences of all integrals side by side (independent chains instead of one latency-bound
+  // chain per integral).
   std::vector<double> coef_;
-  int count_ = 0, terms_ = 0;
+  std::vector<Piece> pieces_;
+  int count_ = 0;
   std::vector<double> normal_;
 };
 

@@ -79,6 +79,13 @@ struct SpanRule {
   std::vector<double> weight;  // weights, sum = b - a
 };
 SpanRule span_rule(double a, double b);
+// The same with the panels that hold a corner (a station of a blade table, where the
+// distributions are not smooth) split there, so that every panel integrand is smooth.
+SpanRule span_rule(double a, double b, const std::vector<double>& corners);
+// The panel edges of that rule: a, the 8 equal panels' edges, the corners inside (a, b), b.
+std::vector<double> panel_edges(double a, double b, const std::vector<double>& corners);
+// The corners of the blade's distributions (none for the uniform blade).
+std::vector<double> blade_corners(const ModeSet& modes);
 
 // int_{x0_lo}^{x0_hi} x^p prod(factors) dx0  (Gauss quadrature, exact for the polynomial modes).
 // The reference for the production integrals of aero_integrals.h.

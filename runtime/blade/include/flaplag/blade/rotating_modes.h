@@ -40,6 +40,10 @@ struct ExactModeOptions {
   // functions sign-flipped, eta = sum (-1)^(j+1) c_j phi_j.  Frequencies and stiffnesses are
   // unchanged; the shapes are NOT modes of the blade.  Off by default.
   bool paper_1974_shapes = false;
+  // A nonuniform blade (blade_properties.h); null: the uniform blade of mass mbar.  With a
+  // blade, the Galerkin matrices are integrals of its distributions (its tip mass included) and
+  // `mbar` is not used.
+  std::shared_ptr<const BladeProperties> blade;
 };
 
 // A linear combination sum_j c_j phi_j of basis shapes (derivatives 0..3 by linearity).
@@ -76,6 +80,12 @@ struct ExactModes {
 // the option for out-of-range options.
 ExactModes exact_rotating_modes(double omega_flap, double omega_lag,
                                 const ExactModeOptions& options = {});
+// With options.blade: the table's stiffness columns scaled so that the first rotating
+// frequencies are omega_flap and omega_lag (the returned stiffness_* are the scales).
+//
+// The modes of options.blade with its stiffness columns taken as absolute k = EI/(Omega^2 l
+// I_b) (dimensional input): the frequencies are results.  Throws InvalidInput without a blade.
+ExactModes blade_stiffness_modes(const ExactModeOptions& options);
 // The ModeSet part of exact_rotating_modes.
 ModeSet exact_modes(double omega_flap, double omega_lag, const ExactModeOptions& options = {});
 

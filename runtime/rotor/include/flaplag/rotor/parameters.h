@@ -5,7 +5,10 @@
 // omega_L1 = 1.28303, gamma = 10, theta = 0.15 (the collective pitch appears only on the plots).
 #pragma once
 
+#include <memory>
 #include <string>
+
+#include "flaplag/blade/blade_properties.h"
 
 namespace flaplag {
 
@@ -49,6 +52,11 @@ struct RotorParameters {
   // Linearize about the periodic equilibrium q°(psi) of the nonlinear equations instead of the
   // hover equilibrium (the paper).
   bool periodic_linearization = false;
+  // A nonuniform blade (mass, stiffness shape, chord, twist, tip mass along the elastic span;
+  // blade/blade_properties.h); null: the paper's uniform blade.  Needs `modes` = exact: its
+  // stiffness columns are scaled so that the first rotating frequencies are omega_flap and
+  // omega_lag.  Not a row of parameter_table.h (a table, not a number).
+  std::shared_ptr<const BladeProperties> blade;
 };
 
 // (*) theta(psi) = theta + theta1c cos psi + theta1s sin psi (every model has cyclic pitch).
@@ -72,7 +80,9 @@ int galerkin_basis(const RotorParameters& p);
 // neighbouring bases and their difference bounds the error of either.
 int reference_basis(const RotorParameters& p, int flap_modes, int lag_modes);
 
-// Inflow ratio for hover, eq 2.24: lambda = sigma a / 16 [sqrt(1 + 24 theta/(sigma a)) - 1].
+// Inflow ratio for hover, eq 2.24: lambda = sigma a / 16 [sqrt(1 + 24 theta/(sigma a)) - 1];
+// with a blade table, sigma times its thrust-weighted chord 3 int (c/c_ref) x^2 dx and theta
+// plus its thrust-weighted twist (x = r/R from the centre, the root values held inboard).
 double hover_inflow(const RotorParameters& p);
 
 }  // namespace flaplag
