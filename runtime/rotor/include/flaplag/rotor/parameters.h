@@ -5,11 +5,14 @@
 // omega_L1 = 1.28303, gamma = 10, theta = 0.15 (the collective pitch appears only on the plots).
 #pragma once
 
+#include <memory>
 #include <string>
 
 namespace flaplag {
 
 enum class ModeKind { Assumed, Exact };
+
+struct ImportedModes;  // flaplag/blade/imported_modes.h
 
 // The Galerkin basis of the exact rotating modes (RotorParameters::basis): kConvergedBasis (the
 // default) is the largest basis, kMaxBasisFunctions, whose error is estimated against the next
@@ -49,6 +52,14 @@ struct RotorParameters {
   // Linearize about the periodic equilibrium q°(psi) of the nonlinear equations instead of the
   // hover equilibrium (the paper).
   bool periodic_linearization = false;
+  // Mode shapes and rotating frequencies imported from a table (e.g. a finite-element model;
+  // blade/imported_modes.h, parse_mode_table); null: the modes are computed (assumed or exact).
+  // When set, `modes` must be exact, the model's M flap and N lag modes are the columns
+  // flap1..flapM and lag1..lagN, their frequencies the table's (omega_flap and omega_lag are
+  // then not used), and the stiffnesses of the elastic coupling are those of the uniform blade
+  // with the first imported frequencies (with `basis` and root_offset / length_ratio as for
+  // the exact modes).  Not a parameter_table row (no command-line option or case key).
+  std::shared_ptr<const ImportedModes> mode_shapes;
 };
 
 // (*) theta(psi) = theta + theta1c cos psi + theta1s sin psi (every model has cyclic pitch).
