@@ -156,6 +156,7 @@ class Generator {
                                                 "--psi",
                                                 "--spec",
                                                 "--audit",
+                                                "--export-shapes",
                                                 "--basis",
                                                 "--nonrotating",
                                                 "--points",
@@ -284,6 +285,7 @@ class Generator {
           std::vector<std::string>{"2G", "512M", "1M", "64G", "0.5G", "8GiB", "3000000000"});
     if (option == "--plot") return chance(0.5) ? "plot.svg" : "plot.png";
     if (option == "--audit") return "audit.md";
+    if (option == "--export-shapes") return "shapes.csv";
     if (option == "--report") return "report.html";
     if (option == "--label") return pick(std::vector<std::string>{"(a) paper", "", "x\"y"});
     if (option == "--mode") return pick(std::vector<std::string>{"lag", "flap", "lag2"});
