@@ -434,8 +434,11 @@ class Generator {
           o.name == "--vary" || o.name == "--x" || o.name == "--y" || o.name == "--samples" ||
           o.name == "--revs" || o.name == "--perturbation" || o.name == "--forced" ||
           o.name == "--speeds" || o.name == "--nonlinear" ||
-          (o.name == "--spec" && c != cli::Command::Models) || o.name == "--audit") {
-        continue;  // (--spec FILE.toml derives a model: tests/cli_spec_test.cpp)
+          (o.name == "--spec" && c != cli::Command::Models) || o.name == "--audit" ||
+          o.name == "--export-shapes") {
+        // (--spec FILE.toml derives a model: tests/cli_spec_test.cpp; --export-shapes writes a
+        // side file: tests/cli_test.cpp, CliGood.ModesExportShapes)
+        continue;
       }
       // gnuplot is slow to start: few pictures.  A periodic equilibrium (harmonic balance
       // continued from hover) at every mu is the costliest switch: rarely, and in the heavy

@@ -93,7 +93,8 @@ TEST(ModeTable, ReadsAGoodTable) {
   // Blanks around cells, a '+' sign, a Windows line end, a comment between rows.
   l[4] = " " + with_cell(l[4], 1, " +" + text_of(assumed(0.2)) + "\t") + " \r";
   l.insert(l.begin() + 8, "   # a comment inside the table");
-  const ImportedModes m = parse_mode_table(joined(l), "t.csv");
+  // A spreadsheet's byte order mark.
+  const ImportedModes m = parse_mode_table("\xEF\xBB\xBF" + joined(l), "t.csv");
   EXPECT_EQ(m.source, "t.csv");
   ASSERT_EQ(m.x0.size(), 11u);
   EXPECT_EQ(m.x0.front(), 0.0);
@@ -150,6 +151,12 @@ TEST(ModeTable, EachErrorIsOneLineNamingRowAndColumn) {
   expect_refused(changed(3, 0, "0.001"), 3, "x0", "first station must be 0");
   expect_refused(changed(13, 0, "0.95"), 13, "x0", "last station must be 1");
   expect_refused(changed(13, 0, "1.5"), 13, "x0", "from 0 to 1");
+  {  // the tip within 1e-9 of 1 is 1: then the station before it must be below 1
+    std::vector<std::string> l = changed(13, 0, "1.0000000005");
+    EXPECT_EQ(parse_mode_table(joined(l), "t.csv").x0.back(), 1.0);
+    l[11] = with_cell(l[11], 0, "1");
+    expect_refused(l, 13, "x0", "strictly increasing to the tip");
+  }
   // The omega row.
   expect_refused(changed(15, 2, "0"), 15, "lag1", "> 0");
   expect_refused(changed(15, 3, "-3.4"), 15, "flap2", "> 0");

@@ -275,6 +275,7 @@ std::vector<std::string_view> cells(std::string_view line, std::size_t limit) {
 
 ImportedModes parse_mode_table(std::string_view text, std::string source) {
   const Reader r{source};
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.remove_prefix(3);  // a UTF-8 byte order mark
   ImportedModes out;
   out.source = source;
   std::vector<std::size_t> lines;  // the file line of each station
@@ -389,6 +390,11 @@ ImportedModes parse_mode_table(std::string_view text, std::string source) {
   if (std::abs(columns[0].back() - 1.0) > kEndTolerance) {
     r.fail(lines.back(), "x0", round_trip_text(columns[0].back()),
            "the last station must be 1 (the tip of the elastic blade)");
+  }
+  if (!(columns[0][n - 2] < 1.0)) {
+    r.fail(lines.back(), "x0", round_trip_text(columns[0].back()),
+           "stations must be strictly increasing to the tip, 1 (the previous is " +
+               round_trip_text(columns[0][n - 2]) + ")");
   }
   columns[0].back() = 1.0;
   if (omega_line == 0) {

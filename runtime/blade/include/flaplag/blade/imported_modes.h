@@ -1,7 +1,7 @@
 // flaplag — mode shapes and rotating frequencies imported from a table (e.g. exported from a
 // finite-element model of the blade), and the spline that turns station values into shapes.
 //
-// The mode file (CSV, UTF-8 or ASCII):
+// The mode file (CSV, ASCII or UTF-8 with or without a byte order mark):
 //
 //   # comment lines start with '#'; blank lines are skipped too
 //   x0,flap1,flap2,lag1
