@@ -792,6 +792,13 @@ Request CommandLine::interpret() const {
       if (const Given* g = given("--points")) {
         r.shape_points = parse_int(g->spelling, g->text, 2, kMaxPoints);
       }
+      if (const Given* g = given("--export-shapes")) {
+        if (g->text.empty()) throw InvalidInput(g->spelling, shown(g->text), "empty file name");
+        if (g->text == "-")
+          throw InvalidInput(g->spelling, shown(g->text),
+                             "needs a file (standard output carries the modes' table)");
+        r.export_shapes = g->text;
+      }
       r.flap_modes = flap_modes;
       r.lag_modes = lag_modes;
       break;

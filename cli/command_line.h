@@ -52,6 +52,9 @@ struct Request {
   int fig9_points = 0;
   int flap_modes = 1, lag_modes = 1;  // the basis size: params.basis
   int shape_points = 11;
+  // modes: --export-shapes FILE.csv, the mode file of the shapes (kExportedModeStations
+  // stations; "": none)
+  std::string export_shapes;
   // study: --vary NAME=...; map: --x, --y (field names, "mu" for the advance ratio)
   std::string vary;
   std::vector<double> vary_values;

@@ -51,7 +51,7 @@ Json case_json(const Request& r) {
     if (o == nullptr) continue;
     // Where the result goes is not part of it: the same run to stdout and to -o FILE writes
     // the same bytes.
-    if (o->name == "-o" || o->name == "--audit") {
+    if (o->name == "-o" || o->name == "--audit" || o->name == "--export-shapes") {
       if (!attached) ++i;
       continue;
     }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "flaplag/blade/imported_modes.h"
 #include "flaplag/blade/rotating_modes.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "options.h"
@@ -35,6 +36,8 @@ Json jnums(const std::vector<double>& v) {
 
 std::string run_modes(const Request& r, std::string* warning) {
   const RotorParameters& p = r.params;
+  // --export-shapes: the path checked before anything is computed, written after.
+  const OutputTarget shapes_file(r.export_shapes, "export_shapes");
   ExactModeOptions opt;
   opt.n_basis = galerkin_basis(r.params);
   opt.flap_modes = r.flap_modes;
@@ -89,6 +92,14 @@ std::string run_modes(const Request& r, std::string* warning) {
   const std::string status = all_finite ? "ok" : "failed";
   const std::string message =
       all_finite ? "" : "non-finite frequencies, stiffnesses or shape values (not shown)";
+  // The mode file (imported_modes.h) of the shapes shown; none of a failed solution.
+  if (!r.export_shapes.empty()) {
+    if (all_finite) {
+      shapes_file.write(mode_table_text(ms, kExportedModeStations));
+    } else if (warning != nullptr) {
+      *warning = "--export-shapes = " + r.export_shapes + " not written: " + message;
+    }
+  }
 
   if (r.json || !r.plot.empty()) {
     Json j;
@@ -148,7 +159,7 @@ std::string run_modes(const Request& r, std::string* warning) {
     // The picture of the result, as `flaplag plot` draws it (plot.h).
     if (!r.plot.empty()) {
       const std::string w = render_plot(*result_plot_script(j, r.plot), r.plot);
-      if (warning != nullptr) *warning = w;
+      if (warning != nullptr && !w.empty()) *warning = warning->empty() ? w : *warning + "; " + w;
     }
     if (r.json) return j.dump(2) + "\n";
   }

@@ -299,6 +299,13 @@ std::vector<OptionSpec> build(Command c) {
                                "also draw the flap and lag mode shapes and their slopes at the "
                                "--points stations (gnuplot)",
                                "", {"plot"}));
+      v.push_back(value_option(
+          "--export-shapes", "FILE.csv",
+          "also write the --flap-modes x --lag-modes rotating mode shapes and frequencies as a "
+          "mode file (CSV at " +
+              std::to_string(kExportedModeStations) +
+              " stations), the format a finite-element model's modes are imported in",
+          "", {"export_shapes"}));
       append(v, output_options());
       v.push_back(report_option());
       return v;

@@ -41,6 +41,10 @@ const std::vector<Command>& subcommands();
 // false when `name` is not a subcommand.
 bool command_from_name(std::string_view name, Command* c);
 
+// modes --export-shapes: the stations of the mode file, enough for its shapes to give the
+// exact modes' critical advance ratio to ~1e-11 when imported (tests/imported_modes_test.cpp).
+inline constexpr int kExportedModeStations = 1001;
+
 struct OptionSpec {
   std::string name;          // "--omega-lag", "-o"
   std::string alias;         // another spelling ("--output" for -o), or ""

@@ -92,6 +92,26 @@ TEST(CliRunJson, OutputInTheCaseIsNeverAPath) {
   EXPECT_EQ(honest.dump(2) + "\n", slurp(mine));
 }
 
+// The mode file of `modes --export-shapes` is a file the user names, never a received result.
+TEST(CliRunJson, ExportedShapesInTheCaseAreNotWritten) {
+  TempDir d;
+  const std::string victim = d.file("victim.csv"), file = d.file("modes.json");
+  const Outcome honest = run({"modes", "--json", "--points", "5"});
+  ASSERT_EQ(0, honest.exit_code) << honest.err;
+  Ordered evil = Ordered::parse(honest.out);
+  ASSERT_FALSE(evil["case"].contains("export-shapes"));
+  evil["case"]["export-shapes"] = victim;
+  write(file, evil.dump(2));
+  const Outcome r = run({"run", file});
+  ASSERT_EQ(0, r.exit_code) << r.err;
+  EXPECT_FALSE(flaplag::testing::exists(victim));
+  EXPECT_EQ(honest.out, r.out);
+  EXPECT_TRUE(std::regex_match(
+      r.err, std::regex("flaplag: warning: " + quote(file) +
+                        ": case\\.export-shapes = " + quote(victim) + " ignored: .*\n")))
+      << r.err;
+}
+
 // A value in a case is a value, whatever it looks like: never another option.
 TEST(CliRunJson, ValueThatLooksLikeAnOptionIsAValue) {
   TempDir d;

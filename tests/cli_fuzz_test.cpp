@@ -156,6 +156,7 @@ class Generator {
                                                 "--psi",
                                                 "--spec",
                                                 "--audit",
+                                                "--export-shapes",
                                                 "--basis",
                                                 "--nonrotating",
                                                 "--points",
@@ -284,6 +285,7 @@ class Generator {
           std::vector<std::string>{"2G", "512M", "1M", "64G", "0.5G", "8GiB", "3000000000"});
     if (option == "--plot") return chance(0.5) ? "plot.svg" : "plot.png";
     if (option == "--audit") return "audit.md";
+    if (option == "--export-shapes") return "shapes.csv";
     if (option == "--report") return "report.html";
     if (option == "--label") return pick(std::vector<std::string>{"(a) paper", "", "x\"y"});
     if (option == "--mode") return pick(std::vector<std::string>{"lag", "flap", "lag2"});
@@ -432,8 +434,11 @@ class Generator {
           o.name == "--vary" || o.name == "--x" || o.name == "--y" || o.name == "--samples" ||
           o.name == "--revs" || o.name == "--perturbation" || o.name == "--forced" ||
           o.name == "--speeds" || o.name == "--nonlinear" ||
-          (o.name == "--spec" && c != cli::Command::Models) || o.name == "--audit") {
-        continue;  // (--spec FILE.toml derives a model: tests/cli_spec_test.cpp)
+          (o.name == "--spec" && c != cli::Command::Models) || o.name == "--audit" ||
+          o.name == "--export-shapes") {
+        // (--spec FILE.toml derives a model: tests/cli_spec_test.cpp; --export-shapes writes a
+        // side file: tests/cli_test.cpp, CliGood.ModesExportShapes)
+        continue;
       }
       // gnuplot is slow to start: few pictures.  A periodic equilibrium (harmonic balance
       // continued from hover) at every mu is the costliest switch: rarely, and in the heavy

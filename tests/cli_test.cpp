@@ -29,6 +29,7 @@
 #include <thread>
 #include <vector>
 
+#include "flaplag/blade/imported_modes.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "options.h"
@@ -296,6 +297,14 @@ const std::vector<BadInput> kBadInputs = {
     {"LengthRatioAboveOne", {"--length-ratio", "1.5"}, "--length-ratio", "1.5"},
     {"ModesBasisTooSmall", {"modes", "--flap-modes", "3", "--basis", "2"}, "--flap-modes", "3"},
     {"ModesOneFig9Point", {"modes", "--nonrotating", "0:1:2"}, "--nonrotating", "0:1:2"},
+    // --export-shapes names a file to write (not standard output, not a directory)
+    {"ModesExportShapesEmpty", {"modes", "--export-shapes="}, "--export-shapes", "\"\""},
+    {"ModesExportShapesStdout", {"modes", "--export-shapes", "-"}, "--export-shapes", "-"},
+    {"ModesExportShapesDirectory", {"modes", "--export-shapes", "/"}, "--export-shapes", "/"},
+    {"ModesExportShapesNoDirectory",
+     {"modes", "--export-shapes", "/no-such-directory/m.csv"},
+     "--export-shapes",
+     "/no-such-directory/m.csv"},
     // --basis, the exact-mode Galerkin basis (issue 9 item 3), in every analysis command
     {"ZeroBasis", {"critical", "--basis", "0"}, "--basis", "0"},
     {"BasisAboveTwelve",
@@ -1072,6 +1081,45 @@ TEST(CliGood, ModesJson) {
   EXPECT_EQ(j["parameters"]["omega-flap"].get<double>(), 1.175);
   EXPECT_EQ(j["parameters"]["paper-1974-shapes"], false);
   EXPECT_EQ(j["status"], "ok");
+}
+
+// --export-shapes writes the mode file of the shapes shown, which the importer reads back with
+// the same frequencies and station values; the output itself is as without it.
+TEST(CliGood, ModesExportShapes) {
+  TempDir dir;
+  const std::string file = dir.file("shapes.csv");
+  const std::vector<std::string> args = {"modes", "--flap-modes", "2", "--lag-modes",
+                                         "3",     "--json"};
+  std::vector<std::string> exporting = args;
+  exporting.insert(exporting.end(), {"--export-shapes", file});
+  const Outcome with = run(exporting);
+  ASSERT_EQ(with.exit_code, 0) << with.err;
+  EXPECT_TRUE(with.err.empty()) << with.err;
+  EXPECT_EQ(with.out, run(args).out);  // the case does not record where the file went
+  const Json j = parse_json(with);
+  const flaplag::ImportedModes m = flaplag::parse_mode_table(slurp(file), "shapes.csv");
+  ASSERT_EQ(m.x0.size(), static_cast<std::size_t>(flaplag::cli::kExportedModeStations));
+  ASSERT_EQ(m.modes.size(), 5u);
+  EXPECT_TRUE(m.notes.empty());  // tip value 1 already
+  // The JSON's stations (--points 11) are every 100th of the file's (i/10 = 100 i/1000 exactly).
+  const Json& x = j["x0"];
+  ASSERT_EQ(x.size(), 11u);
+  int column = 0;
+  for (const char* direction : {"flap", "lag"}) {
+    const Json& modes = j[direction]["modes"];
+    for (std::size_t k = 0; k < modes.size(); ++k, ++column) {
+      const flaplag::ImportedMode& mode = m.modes[column];
+      EXPECT_EQ(mode.name, std::string(direction) + std::to_string(k + 1));
+      EXPECT_EQ(mode.omega, modes[k]["omega"].get<double>()) << mode.name;
+      for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+        EXPECT_EQ(m.x0[100 * i], x[i].get<double>());
+        // the same numbers, divided on import by a tip value within rounding of 1
+        const double shown = modes[k]["value"][i].get<double>();
+        EXPECT_NEAR(mode.values[100 * i], shown, 1e-14 * std::abs(shown)) << mode.name;
+      }
+    }
+  }
+  EXPECT_EQ(column, 5);
 }
 
 // One option string serves every subcommand: modes accepts the rotor options it does not use

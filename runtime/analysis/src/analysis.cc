@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "flaplag/blade/imported_modes.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/core/parallel.h"
@@ -149,6 +150,17 @@ struct Analysis::Impl {
     check_finite(hover);
     validity = internal::validity_of(builder);
     if (with_reference) basis = internal::basis_check(p, m.flap_modes, m.lag_modes);
+    if (p.mode_shapes) {
+      const double defect = mass_orthogonality_defect(builder.modes());
+      if (defect > kMassOrthogonalityWarning) {
+        modes_note =
+            "the imported mode shapes (" + p.mode_shapes->source +
+            ") are not mass-orthogonal: the largest normalised generalized mass "
+            "between two shapes of one direction is " +
+            short_text(defect) + " (above " + short_text(kMassOrthogonalityWarning) +
+            "), so they are not modes of one blade with the mass distribution of the model";
+      }
+    }
   }
 
   // The same blade with the neighbouring basis of the exact modes (internal::BasisCheck),
@@ -274,6 +286,12 @@ struct Analysis::Impl {
   mutable internal::BasisCheck basis;
   mutable std::once_flag reference_once;
   mutable std::unique_ptr<Analysis> reference_analysis;  // the blade with that basis, or null
+
+  // Imported mode shapes that are not mass-orthogonal: a note on every result ("": none).
+  std::string modes_note;
+  void note_modes(Outcome& r) const {
+    if (!modes_note.empty()) r.Note(modes_note);
+  }
 
   // Outside the validity envelope every result is a Warning that says so.
   void outside_envelope(CriticalResult& r) const {
@@ -525,6 +543,7 @@ PointResult Analysis::point(double mu, double scan_step) const {
   sort_for_output(r.exponents);
   impl_->fold_basis(r, impl_->options.zeta_tolerance,
                     [&](const Analysis& ref) { return ref.point(mu, scan_step); });
+  impl_->note_modes(r);
   return r;
 }
 
@@ -561,6 +580,7 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads,
   impl_->fold_basis(r, impl_->options.zeta_tolerance, [&](const Analysis& ref) {
     return ref.sweep(mu0, mu1, step, threads, cancel, internal::pass_progress(progress, 1, passes));
   });
+  impl_->note_modes(r);
   return r;
 }
 
@@ -596,6 +616,7 @@ SweepResult Analysis::track(const std::vector<double>& mus, double scan_step, in
   impl_->fold_basis(r, impl_->options.zeta_tolerance, [&](const Analysis& ref) {
     return ref.track(mus, scan_step, threads, cancel, internal::pass_progress(progress, 1, passes));
   });
+  impl_->note_modes(r);
   return r;
 }
 
@@ -603,6 +624,7 @@ CriticalResult Analysis::critical(const CriticalOptions& opt) const {
   CriticalResult r = critical_with_this_basis(opt);
   impl_->fold_basis(r, opt.tolerance,
                     [&](const Analysis& ref) { return ref.critical_with_this_basis(opt); });
+  impl_->note_modes(r);
   return r;
 }
 

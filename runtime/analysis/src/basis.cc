@@ -36,7 +36,8 @@ void add(std::optional<double>& error, double change) { error = error.value_or(0
 
 BasisCheck basis_check(const RotorParameters& p, int flap_modes, int lag_modes) {
   BasisCheck c;
-  if (p.modes != ModeKind::Exact) return c;
+  // Imported shapes (RotorParameters::mode_shapes) come from no Galerkin basis.
+  if (p.modes != ModeKind::Exact || p.mode_shapes) return c;
   c.basis = galerkin_basis(p);
   c.reference = reference_basis(p, flap_modes, lag_modes);
   c.monotone = p.paper_1974_shapes;

@@ -286,6 +286,10 @@ void validate_except_inflow(const RotorParameters& p) {
                        "too small for `cdo` = " + round_trip_text(p.cdo) +
                            ": C_Do / a must be at most 1e300 (the aerodynamic loads overflow)");
   }
+  if (p.mode_shapes && p.paper_1974_shapes) {
+    throw InvalidInput(row("paper_1974_shapes").field, "true",
+                       "the 1974 shapes are computed ones; imported mode shapes are used as given");
+  }
   if (p.blade) {
     validate(*p.blade);
     if (p.modes != ModeKind::Exact) {

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "flaplag/blade/imported_modes.h"
 #include "flaplag/blade/rotating_modes.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -60,8 +61,55 @@ void check_inputs(const RotorParameters& p, std::optional<double> inflow) {
   }
 }
 
+// The modes of p.mode_shapes (imported from a table) for model m.  The table gives shapes and
+// frequencies, not the bending stiffnesses the elastic coupling (Appendix E) needs: they are
+// filled as the exact modes of the uniform blade would have them, stiffness_for_frequency of
+// the first imported frequency of each direction with the exact modes' basis and e1 / l.
+ModeSet imported_blade_modes(const RotorParameters& p, const model::ModelDescriptor& m) {
+  const ImportedModes& table = *p.mode_shapes;
+  if (p.modes != ModeKind::Exact) {
+    throw InvalidInput("mode_shapes", table.source,
+                       "imported mode shapes need `modes` = exact (assumed is the eq 4.1 shape)");
+  }
+  ModeSet s;
+  try {
+    s = imported_mode_set(table, m.flap_modes, m.lag_modes);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput("mode_shapes", table.source, e.reason());
+  }
+  ExactModeOptions opt;
+  opt.n_basis = galerkin_basis(p);
+  opt.e1_over_l = p.root_offset / p.length_ratio;
+  s.blade = p.blade;
+  if (p.blade) {
+    // The blade table's stiffness columns, scaled as its own first modes would need to have
+    // the imported first frequencies.
+    opt.blade = p.blade;
+    const ModeSet own = exact_modes(s.omega_flap[0], s.omega_lag[0], opt);
+    s.stiffness_flap = own.stiffness_flap;
+    s.stiffness_lag = own.stiffness_lag;
+    return s;
+  }
+  for (const BendingDirection dir : {BendingDirection::Flap, BendingDirection::Lag}) {
+    const bool flap = dir == BendingDirection::Flap;
+    const double omega = flap ? s.omega_flap[0] : s.omega_lag[0];
+    try {
+      (flap ? s.stiffness_flap : s.stiffness_lag) = stiffness_for_frequency(dir, omega, opt);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput("mode_shapes", table.source,
+                         std::string(flap ? "flap1" : "lag1") +
+                             " omega = " + round_trip_text(omega) +
+                             " gives no stiffness of the uniform blade for the elastic "
+                             "coupling: " +
+                             e.reason());
+    }
+  }
+  return s;
+}
+
 // The rotating modes of the blade: the assumed mode (eq 4.1) or the exact modes (Galerkin).
 ModeSet blade_modes(const RotorParameters& p, const model::ModelDescriptor& m) {
+  if (p.mode_shapes) return imported_blade_modes(p, m);
   const int M = m.flap_modes, N = m.lag_modes;
   if (p.modes == ModeKind::Assumed) {
     if (M != 1 || N != 1) {

@@ -112,7 +112,10 @@ class Analysis {
   // Galerkin basis (rotor/parameters.h, reference_basis): the change is their basis_error,
   // included in their error estimates and, above 10 times the tolerance, in their status.
   // That blade is built at the first such call (floquet() and the other results do not use it);
-  // a sweep's or track's progress counts both passes.
+  // a sweep's or track's progress counts both passes.  Imported mode shapes
+  // (RotorParameters::mode_shapes) have no basis to compare with; when they are not
+  // mass-orthogonal (mass_orthogonality_defect above kMassOrthogonalityWarning,
+  // blade/imported_modes.h) point, sweep, track and critical carry a note saying so.
   Analysis(const RotorParameters& params, const TransitionOptions& options);
   // The same with the inflow ratio lambda given (e.g. a trim's eq 2.25 value, trim.h) instead
   // of eq 2.24; lambda finite (else InvalidInput("inflow", ...)).

@@ -14,6 +14,8 @@ namespace flaplag {
 
 enum class ModeKind { Assumed, Exact };
 
+struct ImportedModes;  // flaplag/blade/imported_modes.h
+
 // The Galerkin basis of the exact rotating modes (RotorParameters::basis): kConvergedBasis (the
 // default) is the largest basis, kMaxBasisFunctions, whose error is estimated against the next
 // smaller one and included in every error estimate; kPaperBasis is the paper's five functions
@@ -57,6 +59,14 @@ struct RotorParameters {
   // stiffness columns are scaled so that the first rotating frequencies are omega_flap and
   // omega_lag.  Not a row of parameter_table.h (a table, not a number).
   std::shared_ptr<const BladeProperties> blade;
+  // Mode shapes and rotating frequencies imported from a table (e.g. a finite-element model;
+  // blade/imported_modes.h, parse_mode_table); null: the modes are computed (assumed or exact).
+  // When set, `modes` must be exact, the model's M flap and N lag modes are the columns
+  // flap1..flapM and lag1..lagN, their frequencies the table's (omega_flap and omega_lag are
+  // then not used), and the stiffnesses of the elastic coupling are those of the uniform blade
+  // with the first imported frequencies (with `basis` and root_offset / length_ratio as for
+  // the exact modes).  Not a parameter_table row (no command-line option or case key).
+  std::shared_ptr<const ImportedModes> mode_shapes;
 };
 
 // (*) theta(psi) = theta + theta1c cos psi + theta1s sin psi (every model has cyclic pitch).
