@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "flaplag/core/errors.h"
@@ -43,6 +44,7 @@ struct Reader {
   CaseArguments& out;
   bool from_json;                            // a result's case: never a path to write
   std::map<std::string, std::string> given;  // option (or "command") -> where
+  std::string directory;                     // of a TOML case file ("": the working directory)
 };
 
 // A key given twice (in two tables, or as two spellings of one option) is refused, as a key
@@ -96,6 +98,20 @@ void add(Reader& in, const std::string& key, const std::string& where, bool is_b
                            "output goes (give " +
                            spec->name + " on the command line)");
     return;
+  }
+  if (spec->name == "--blade-table") {
+    if (in.from_json) {
+      throw InvalidInput(where, value,
+                         "a result file names no file to read (its case holds the table itself, "
+                         "as blade-csv)");
+    }
+    // A table named in a TOML case is found beside the case file.
+    const std::filesystem::path path(text);
+    if (path.is_relative() && !in.directory.empty()) {
+      out.origin[spec->name] = where;
+      out.args.push_back(spec->name + "=" + (std::filesystem::path(in.directory) / path).string());
+      return;
+    }
   }
   out.origin[spec->name] = where;
   if (!spec->takes_value) {
@@ -219,7 +235,7 @@ CaseArguments parse_case_text(const std::string& name, const std::string& text) 
     throw InvalidInput(name + ":" + std::to_string(e.source().begin.line), "(TOML)",
                        std::string(e.description()));
   }
-  Reader in{out, false, {}};
+  Reader in{out, false, {}, std::filesystem::path(name).parent_path().string()};
   from_toml_table(in, name, t);
   return out;
 }
@@ -227,7 +243,7 @@ CaseArguments parse_case_text(const std::string& name, const std::string& text) 
 CaseArguments case_object_arguments(const std::string& name,
                                     const nlohmann::ordered_json& case_object) {
   CaseArguments out;
-  Reader in{out, true, {}};
+  Reader in{out, true, {}, ""};
   from_json_object(in, name, case_object, "case", true);
   return out;
 }

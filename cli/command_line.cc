@@ -15,9 +15,11 @@
 #include "flaplag/core/format.h"
 #include "flaplag/core/parallel.h"
 #include "flaplag/limits.h"
+#include "flaplag/rotor/blade_table.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag_spec/runtime_spec.h"
 #include "plot.h"
+#include "read_file.h"
 #include "report.h"
 #include "shard.h"
 
@@ -633,6 +635,47 @@ const CommandLine::Given* CommandLine::given(const std::string& name) const {
   return nullptr;
 }
 
+// --blade-table FILE / --blade-csv TEXT: the blade table into r.params.  The fields the table
+// sets may not be given as well.
+void CommandLine::apply_blade(Request& r) const {
+  const Given* file = given("--blade-table");
+  const Given* text = given("--blade-csv");
+  if (file == nullptr && text == nullptr) return;
+  if (file != nullptr && text != nullptr)
+    throw InvalidInput(text->spelling, "...", "not with --blade-table (one blade table)");
+  const Given* g = file != nullptr ? file : text;
+  std::string source = "--blade-csv";
+  if (file != nullptr) {
+    if (file->text.empty()) throw InvalidInput(file->spelling, "\"\"", "empty file name");
+    r.blade_csv =
+        read_text_file(file->text, kMaxCaseBytes, "blade table", "blade table cannot be read");
+    source = file->text;
+  } else {
+    r.blade_csv = text->text;
+  }
+  BladeTable table;
+  try {
+    table = parse_blade_table(r.blade_csv, source);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(g->spelling + " " + e.name(), e.value(), e.reason());
+  }
+  for (const std::string& field : blade_table_fields(table.dimensional)) {
+    const OptionSpec* o = option_for_library_name(r.command, field);
+    if (o == nullptr) continue;
+    if (const Given* also = given(o->name)) {
+      throw InvalidInput(also->spelling, shown(also->text),
+                         std::string("not with ") + (table.dimensional ? "a dimensional " : "a ") +
+                             "blade table (" + g->spelling + " " + shown(g->text.substr(0, 60)) +
+                             " sets it)");
+    }
+  }
+  try {
+    apply_blade_table(table, r.params);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(g->spelling + " " + e.name(), e.value(), e.reason());
+  }
+}
+
 Request CommandLine::interpret() const {
   check();
   Request r;
@@ -646,6 +689,7 @@ Request CommandLine::interpret() const {
     if (o.rotor == nullptr) continue;
     if (const Given* g = given(o.name)) set_parameter(r.params, o, g->text);
   }
+  apply_blade(r);
   if (c != Command::Models && c != Command::Modes) validate(r.params);
 
   int flap_modes = 1, lag_modes = 1;

@@ -55,6 +55,9 @@ struct Request {
   // modes: --export-shapes FILE.csv, the mode file of the shapes (kExportedModeStations
   // stations; "": none)
   std::string export_shapes;
+  // --blade-table / --blade-csv: the text of the blade table ("": the uniform blade); the case
+  // of a JSON output records the text, not the file.
+  std::string blade_csv;
   // study: --vary NAME=...; map: --x, --y (field names, "mu" for the advance ratio)
   std::string vary;
   std::vector<double> vary_values;
@@ -154,6 +157,7 @@ class CommandLine {
   const Given* given(const std::string& name) const;
   void problem(std::size_t position, InvalidInput e);
   void interpret_batch(Request& r) const;  // --shard, --quiet
+  void apply_blade(Request& r) const;      // --blade-table, --blade-csv
 
   Command command_ = Command::Typical;
   std::vector<Given> given_;         // in argument order; the last of a name wins

@@ -56,6 +56,12 @@ Json case_json(const Request& r) {
       continue;
     }
     if (o->name == "--quiet") continue;  // how the run looked, not what it computed
+    // A blade table is recorded by its text: a result names no file to read.
+    if (o->name == "--blade-table" || o->name == "--blade-csv") {
+      if (!attached) ++i;
+      options["blade-csv"] = r.blade_csv;
+      continue;
+    }
     const std::string key = o->name.substr(2);
     if (!o->takes_value) {
       options[key] = true;

@@ -1,5 +1,6 @@
 // flaplag CLI — what every subcommand's output shares: numbers that may not be finite and their
 // printers, the header (model, method, parameters), status lines, warnings.
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "commands_internal.h"
+#include "flaplag/core/constants.h"
 #include "flaplag/core/format.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/trim.h"
@@ -159,6 +161,55 @@ bool coupling_on(const Analysis& an) {
   return an.parameters().elastic_coupling && an.modes().kind == "exact";
 }
 
+// What a blade table gave: its stations and nondimensional groups, and for a dimensional table
+// the data behind them (the groups printed with every result, frequencies also in Hz).
+Json blade_table_json(const BladeProperties& b) {
+  const BladeOrigin& o = b.origin;
+  Json j;
+  j["source"] = b.source;
+  j["stations"] = b.x0.size();
+  j["root_offset"] = o.root_offset;
+  j["length_ratio"] = o.length_ratio;
+  j["tip_mass"] = b.tip_mass;
+  double lo = b.twist.front(), hi = b.twist.front();
+  for (double t : b.twist) lo = std::min(lo, t), hi = std::max(hi, t);
+  j["twist_min"] = lo;
+  j["twist_max"] = hi;
+  if (o.dimensional) {
+    j["radius"] = o.radius;
+    j["rotor_speed"] = o.rotor_speed;
+    j["air_density"] = o.air_density;
+    j["blades"] = o.blades;
+    j["reference_chord"] = o.reference_chord;
+    j["inertia"] = o.inertia;
+    j["gamma"] = o.gamma;
+    j["sigma"] = o.sigma;
+    j["omega_flap_hz"] = o.omega_flap * o.rotor_speed / kTwoPi;
+    j["omega_lag_hz"] = o.omega_lag * o.rotor_speed / kTwoPi;
+  }
+  return j;
+}
+
+std::string blade_table_text(const BladeProperties& b, const RotorParameters& p) {
+  const BladeOrigin& o = b.origin;
+  double lo = b.twist.front(), hi = b.twist.front();
+  for (double t : b.twist) lo = std::min(lo, t), hi = std::max(hi, t);
+  std::string t = b.source + ": " + std::to_string(b.x0.size()) +
+                  " stations, e1 = " + num(o.root_offset) + ", l/R = " + num(o.length_ratio) +
+                  ", tip mass M_tip l^2/I_b = " + num(b.tip_mass) + ", twist " +
+                  num(lo * 180.0 / kPi) + ".." + num(hi * 180.0 / kPi) + " deg";
+  if (o.dimensional) {
+    const double hz = o.rotor_speed / kTwoPi;
+    t += "\nR = " + num(o.radius) + " m, Omega = " + num(o.rotor_speed * 60.0 / kTwoPi) + " rpm (" +
+         num(hz) + " Hz), rho = " + num(o.air_density) + " kg/m^3, " + std::to_string(o.blades) +
+         " blades, c_ref = " + num(o.reference_chord) + " m (at 0.75 R), I_b = " + num(o.inertia) +
+         " kg m^2\n-> gamma = " + num(o.gamma) + ", sigma = " + num(o.sigma) +
+         ", omega_F1 = " + num(p.omega_flap) + " per rev (" + num(p.omega_flap * hz) +
+         " Hz), omega_L1 = " + num(p.omega_lag) + " per rev (" + num(p.omega_lag * hz) + " Hz)";
+  }
+  return t;
+}
+
 // The part every analysis output starts with: what was computed, and how.
 Json header_json(const char* command, const Analysis& an, bool with_method) {
   const model::ModelDescriptor& m = an.model();
@@ -169,6 +220,7 @@ Json header_json(const char* command, const Analysis& an, bool with_method) {
   j["elastic_coupling"] = coupling_on(an);
   if (with_method) j["method"] = method_json(an.options());
   j["parameters"] = parameters_json(an.parameters());
+  if (an.parameters().blade) j["blade_table"] = blade_table_json(*an.parameters().blade);
   return j;
 }
 
@@ -189,6 +241,7 @@ std::string header_text(const Analysis& an, bool with_method) {
             : p.exact_reversed_flow ? "on (exact circle)"
                                     : "on");
   kv.add("blade", blade);
+  if (p.blade) kv.add("blade table", blade_table_text(*p.blade, p));
   if (p.periodic_linearization) {
     kv.add("linearized",
            "about the periodic equilibrium of the nonlinear equations (harmonic "

@@ -89,6 +89,18 @@ OptionSpec rotor_option(const ParameterSpec& s) {
 std::vector<OptionSpec> rotor_options() {
   std::vector<OptionSpec> v;
   for (const ParameterSpec& s : parameter_table()) v.push_back(rotor_option(s));
+  // A nonuniform blade: the table's file, or its text (what a JSON result's case records).
+  v.push_back(value_option(
+      "--blade-table", "TABLE.csv",
+      "a blade property table (columns x or r, m, EI_flap, EI_lag, chord, twist_deg; "
+      "docs/your-blade.md): the blade's mass, stiffness, chord and twist along the span; sets "
+      "--modes exact, --root-offset and --length-ratio (and, for a dimensional table, --gamma, "
+      "--sigma, --omega-flap, --omega-lag); relative to the case file in a case",
+      "", {"blade"}));
+  v.push_back(value_option("--blade-csv", "TEXT",
+                           "the text of a blade table (as --blade-table; what a JSON result "
+                           "records of it)",
+                           "", {}));
   return v;
 }
 

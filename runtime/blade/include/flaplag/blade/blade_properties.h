@@ -21,6 +21,18 @@
 
 namespace flaplag {
 
+// Where a blade came from: the nondimensional groups its table gave and, for a dimensional
+// table, the dimensional data behind them (what outputs print; not used by the analysis).
+struct BladeOrigin {
+  double root_offset = 0.0, length_ratio = 1.0;  // e1, l/R
+  double tip_mass = 0.0;                         // M_tip l^2 / I_b
+  bool dimensional = false;
+  double radius = 0.0, rotor_speed = 0.0, air_density = 0.0;  // R [m], Omega [rad/s], rho
+  int blades = 0;
+  double inertia = 0.0, reference_chord = 0.0;  // I_b [kg m^2], c_ref [m]
+  double gamma = 0.0, sigma = 0.0, omega_flap = 0.0, omega_lag = 0.0;
+};
+
 struct BladeProperties {
   std::vector<double> x0;              // >= 2 stations, strictly increasing, first 0, last 1
   std::vector<double> mass;            // mbar > 0 per station
@@ -31,6 +43,7 @@ struct BladeProperties {
   double tip_mass = 0.0;               // M_tip l^2 / I_b >= 0
   // Where the numbers came from ("blade.csv", "Python"), for messages; not part of the blade.
   std::string source;
+  BladeOrigin origin;
 
   // Linear interpolation of a per-station column at s (clamped to [0, 1]).
   double at(const std::vector<double>& column, double x0) const;
