@@ -205,6 +205,9 @@ def _coerce(field, value):
     return _text(field, value)  # text and choice: the library checks the name
 
 
+_MAX_BLADE_BYTES = 4 << 20
+
+
 def split_parameters(kwargs):
     """(rotor dict, transition dict, flap_modes, lag_modes) from Analysis keyword arguments,
     names checked and values converted to the field types; the values themselves are checked
@@ -219,6 +222,22 @@ def split_parameters(kwargs):
         if not isinstance(spec, (str, os.PathLike)):
             raise _invalid(InvalidInput, "spec", spec, "must be the path of a spec file (str)")
         kwargs["model"] = _flaplag.load_spec(os.fspath(spec))
+    blade = None
+    if "blade" in kwargs:
+        # blade="table.csv": a blade property table (docs/your-blade.md), read here, parsed and
+        # applied by the library.
+        kwargs = dict(kwargs)
+        path = kwargs.pop("blade")
+        if not isinstance(path, (str, os.PathLike)):
+            raise _invalid(InvalidInput, "blade", path, "must be the path of a blade table (str)")
+        try:
+            with open(os.fspath(path), "rb") as f:
+                data = f.read(_MAX_BLADE_BYTES + 1)
+        except OSError as e:
+            raise _invalid(InvalidInput, "blade", os.fspath(path), f"cannot be read ({e.strerror})") from None
+        if len(data) > _MAX_BLADE_BYTES:
+            raise _invalid(InvalidInput, "blade", os.fspath(path), "larger than 4 MiB (the limit on a blade table)")
+        blade = {"blade_csv": data.decode("utf-8", errors="replace"), "blade_source": os.fspath(path)}
     for field, value in kwargs.items():
         if field not in _ALL_FIELDS:
             close = difflib.get_close_matches(field, list(_ALL_FIELDS), n=1)
@@ -231,6 +250,8 @@ def split_parameters(kwargs):
             transition[field] = v
         else:
             counts[field] = v
+    if blade is not None:
+        rotor.update(blade)
     return rotor, transition, counts["flap_modes"], counts["lag_modes"]
 
 

@@ -45,6 +45,7 @@
 #include "flaplag/study.h"
 #include "flaplag/trim.h"
 #include "flaplag/version.h"
+#include "flaplag/rotor/blade_table.h"
 #include "flaplag_spec/runtime_spec.h"
 
 namespace py = pybind11;
@@ -157,6 +158,7 @@ RotorParameters rotor_parameters(const py::dict& d) {
   RotorParameters p;
   for (const auto& [key, value] : d) {
     const std::string field = key.cast<std::string>();
+    if (field == "blade_csv" || field == "blade_source") continue;  // the blade table: below
     const ParameterSpec* s = find_parameter(field);
     if (s == nullptr) throw InvalidInput(field, shown(value), "unknown parameter");
     switch (s->type) {
@@ -191,6 +193,20 @@ RotorParameters rotor_parameters(const py::dict& d) {
         break;
       }
     }
+  }
+  // blade="table.csv" (read by the Python layer): the table sets the fields it determines.
+  if (d.contains("blade_csv")) {
+    const std::string source =
+        d.contains("blade_source") ? d["blade_source"].cast<std::string>() : "blade";
+    const BladeTable table = parse_blade_table(d["blade_csv"].cast<std::string>(), source);
+    for (const std::string& field : blade_table_fields(table.dimensional)) {
+      if (d.contains(field.c_str()))
+        throw InvalidInput(field, shown(d[field.c_str()]),
+                           std::string("not with blade (the ") +
+                               (table.dimensional ? "dimensional " : "") + "blade table " + source +
+                               " sets it)");
+    }
+    apply_blade_table(table, p);
   }
   return p;
 }
