@@ -99,11 +99,12 @@ void add(Reader& in, const std::string& key, const std::string& where, bool is_b
                            spec->name + " on the command line)");
     return;
   }
-  if (spec->name == "--blade-table") {
+  if (spec->name == "--blade-table" || spec->name == "--mode-shapes") {
     if (in.from_json) {
       throw InvalidInput(where, value,
                          "a result file names no file to read (its case holds the table itself, "
-                         "as blade-csv)");
+                         "as " +
+                             spec->name.substr(2) + "-csv)");
     }
     // A table named in a TOML case is found beside the case file.
     const std::filesystem::path path(text);

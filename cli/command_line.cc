@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "flaplag/analysis.h"
+#include "flaplag/blade/imported_modes.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/core/parallel.h"
@@ -676,6 +677,31 @@ void CommandLine::apply_blade(Request& r) const {
   }
 }
 
+// --mode-shapes FILE / --mode-shapes-csv TEXT: imported mode shapes into r.params.
+void CommandLine::apply_mode_shapes(Request& r) const {
+  const Given* file = given("--mode-shapes");
+  const Given* text = given("--mode-shapes-csv");
+  if (file == nullptr && text == nullptr) return;
+  if (file != nullptr && text != nullptr)
+    throw InvalidInput(text->spelling, "...", "not with --mode-shapes (one mode file)");
+  const Given* g = file != nullptr ? file : text;
+  std::string source = "--mode-shapes-csv";
+  if (file != nullptr) {
+    if (file->text.empty()) throw InvalidInput(file->spelling, "\"\"", "empty file name");
+    r.mode_shapes_csv =
+        read_text_file(file->text, kMaxCaseBytes, "mode file", "mode file cannot be read");
+    source = file->text;
+  } else {
+    r.mode_shapes_csv = text->text;
+  }
+  try {
+    r.params.mode_shapes =
+        std::make_shared<const ImportedModes>(parse_mode_table(r.mode_shapes_csv, source));
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(g->spelling + " " + e.name(), e.value(), e.reason());
+  }
+}
+
 Request CommandLine::interpret() const {
   check();
   Request r;
@@ -690,6 +716,7 @@ Request CommandLine::interpret() const {
     if (const Given* g = given(o.name)) set_parameter(r.params, o, g->text);
   }
   apply_blade(r);
+  apply_mode_shapes(r);
   if (c != Command::Models && c != Command::Modes) validate(r.params);
 
   int flap_modes = 1, lag_modes = 1;

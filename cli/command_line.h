@@ -58,6 +58,8 @@ struct Request {
   // --blade-table / --blade-csv: the text of the blade table ("": the uniform blade); the case
   // of a JSON output records the text, not the file.
   std::string blade_csv;
+  // --mode-shapes / --mode-shapes-csv: the text of the mode file ("": computed modes).
+  std::string mode_shapes_csv;
   // study: --vary NAME=...; map: --x, --y (field names, "mu" for the advance ratio)
   std::string vary;
   std::vector<double> vary_values;
@@ -156,8 +158,9 @@ class CommandLine {
   };
   const Given* given(const std::string& name) const;
   void problem(std::size_t position, InvalidInput e);
-  void interpret_batch(Request& r) const;  // --shard, --quiet
-  void apply_blade(Request& r) const;      // --blade-table, --blade-csv
+  void interpret_batch(Request& r) const;    // --shard, --quiet
+  void apply_blade(Request& r) const;        // --blade-table, --blade-csv
+  void apply_mode_shapes(Request& r) const;  // --mode-shapes, --mode-shapes-csv
 
   Command command_ = Command::Typical;
   std::vector<Given> given_;         // in argument order; the last of a name wins

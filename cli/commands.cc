@@ -62,6 +62,11 @@ Json case_json(const Request& r) {
       options["blade-csv"] = r.blade_csv;
       continue;
     }
+    if (o->name == "--mode-shapes" || o->name == "--mode-shapes-csv") {
+      if (!attached) ++i;
+      options["mode-shapes-csv"] = r.mode_shapes_csv;
+      continue;
+    }
     const std::string key = o->name.substr(2);
     if (!o->takes_value) {
       options[key] = true;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands_internal.h"
+#include "flaplag/blade/imported_modes.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/format.h"
 #include "flaplag/rotor/parameter_table.h"
@@ -158,7 +159,7 @@ std::string method_text(const TransitionOptions& o) {
 }
 
 bool coupling_on(const Analysis& an) {
-  return an.parameters().elastic_coupling && an.modes().kind == "exact";
+  return an.parameters().elastic_coupling && an.modes().kind != "assumed";
 }
 
 // What a blade table gave: its stations and nondimensional groups, and for a dimensional table
@@ -229,11 +230,12 @@ std::string header_text(const Analysis& an, bool with_method) {
   const model::ModelDescriptor& m = an.model();
   KeyValues kv;
   kv.add("model", std::string(m.name) + " (" + m.spec_file + "): " + m.summary);
-  std::string blade = an.modes().kind == "exact"
-                          ? "exact rotating mode shapes (" + std::to_string(galerkin_basis(p)) +
-                                " cantilever functions" +
-                                (p.basis == kConvergedBasis ? ", converged" : "") + ")"
-                          : "assumed mode shape (eq 4.1)";
+  std::string blade =
+      an.modes().kind == "imported" ? "imported mode shapes (" + p.mode_shapes->source + ")"
+      : an.modes().kind == "exact"
+          ? "exact rotating mode shapes (" + std::to_string(galerkin_basis(p)) +
+                " cantilever functions" + (p.basis == kConvergedBasis ? ", converged" : "") + ")"
+          : "assumed mode shape (eq 4.1)";
   if (p.paper_1974_shapes && an.modes().kind == "exact") blade += " (1974 shapes)";
   blade += ", " + std::to_string(m.flap_modes) + " flap x " + std::to_string(m.lag_modes) +
            " lag; elastic coupling " + (coupling_on(an) ? "on" : "off") + "; reversed flow " +

@@ -148,12 +148,18 @@ std::string header_section() {
   out += table_row("model", "object", "",
                    "the compiled model: name, spec_file, summary, flap_modes, lag_modes, "
                    "harmonics");
-  out += table_row("mode_shapes", "string", "", "assumed or exact");
+  out += table_row("mode_shapes", "string", "", "assumed, exact or imported");
   out += table_row("elastic_coupling", "boolean", "", "the elastic coupling is on");
   out += table_row("method", "object", "",
                    "the Floquet method: name, steps (or \"automatic\"), terms (hsu), "
                    "zeta-tolerance");
   out += table_row("parameters", "object", "", "the rotor parameters, by the keys below");
+  out += table_row("blade_table", "object", "",
+                   "only with --blade-table: source, stations, root_offset, length_ratio, "
+                   "tip_mass (M_tip l^2/I_b), twist_min, twist_max [rad]; for a dimensional "
+                   "table also radius [m], rotor_speed [rad/s], air_density [kg/m^3], blades, "
+                   "reference_chord [m], inertia I_b [kg m^2], gamma, sigma, omega_flap_hz, "
+                   "omega_lag_hz");
   out += "\n### parameters\n\n" + std::string(kTableHead);
   for (const ParameterSpec& s : parameter_table()) {
     const char* type = s.type == ParameterType::Real ? "number"

@@ -97,6 +97,16 @@ std::vector<OptionSpec> rotor_options() {
       "--modes exact, --root-offset and --length-ratio (and, for a dimensional table, --gamma, "
       "--sigma, --omega-flap, --omega-lag); relative to the case file in a case",
       "", {"blade"}));
+  v.push_back(value_option(
+      "--mode-shapes", "MODES.csv",
+      "flap and lag mode shapes and rotating frequencies from a mode file (e.g. an FE model; "
+      "columns x0, flap1.., lag1.., an omega row; docs/your-blade.md) instead of computed ones; "
+      "needs --modes exact; relative to the case file in a case",
+      "", {"mode_shapes"}));
+  v.push_back(value_option("--mode-shapes-csv", "TEXT",
+                           "the text of a mode file (as --mode-shapes; what a JSON result records "
+                           "of it)",
+                           "", {}));
   v.push_back(value_option("--blade-csv", "TEXT",
                            "the text of a blade table (as --blade-table; what a JSON result "
                            "records of it)",

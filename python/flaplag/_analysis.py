@@ -222,22 +222,25 @@ def split_parameters(kwargs):
         if not isinstance(spec, (str, os.PathLike)):
             raise _invalid(InvalidInput, "spec", spec, "must be the path of a spec file (str)")
         kwargs["model"] = _flaplag.load_spec(os.fspath(spec))
-    blade = None
-    if "blade" in kwargs:
-        # blade="table.csv": a blade property table (docs/your-blade.md), read here, parsed and
-        # applied by the library.
+    tables = {}
+    # blade="table.csv": a blade property table; mode_shapes="modes.csv": imported mode shapes
+    # (docs/your-blade.md).  Read here, parsed and applied by the library.
+    for key, what in (("blade", "blade table"), ("mode_shapes", "mode file")):
+        if key not in kwargs:
+            continue
         kwargs = dict(kwargs)
-        path = kwargs.pop("blade")
+        path = kwargs.pop(key)
         if not isinstance(path, (str, os.PathLike)):
-            raise _invalid(InvalidInput, "blade", path, "must be the path of a blade table (str)")
+            raise _invalid(InvalidInput, key, path, f"must be the path of a {what} (str)")
         try:
             with open(os.fspath(path), "rb") as f:
                 data = f.read(_MAX_BLADE_BYTES + 1)
         except OSError as e:
-            raise _invalid(InvalidInput, "blade", os.fspath(path), f"cannot be read ({e.strerror})") from None
+            raise _invalid(InvalidInput, key, os.fspath(path), f"cannot be read ({e.strerror})") from None
         if len(data) > _MAX_BLADE_BYTES:
-            raise _invalid(InvalidInput, "blade", os.fspath(path), "larger than 4 MiB (the limit on a blade table)")
-        blade = {"blade_csv": data.decode("utf-8", errors="replace"), "blade_source": os.fspath(path)}
+            raise _invalid(InvalidInput, key, os.fspath(path), f"larger than 4 MiB (the limit on a {what})")
+        tables[key + "_csv"] = data.decode("utf-8", errors="replace")
+        tables[key + "_source"] = os.fspath(path)
     for field, value in kwargs.items():
         if field not in _ALL_FIELDS:
             close = difflib.get_close_matches(field, list(_ALL_FIELDS), n=1)
@@ -250,8 +253,7 @@ def split_parameters(kwargs):
             transition[field] = v
         else:
             counts[field] = v
-    if blade is not None:
-        rotor.update(blade)
+    rotor.update(tables)
     return rotor, transition, counts["flap_modes"], counts["lag_modes"]
 
 

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "flaplag/analysis.h"
+#include "flaplag/blade/imported_modes.h"
 #include "flaplag/campbell.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -41,11 +42,11 @@
 #include "flaplag/core/fields.h"
 #include "flaplag/core/format.h"
 #include "flaplag/limits.h"
+#include "flaplag/rotor/blade_table.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/study.h"
 #include "flaplag/trim.h"
 #include "flaplag/version.h"
-#include "flaplag/rotor/blade_table.h"
 #include "flaplag_spec/runtime_spec.h"
 
 namespace py = pybind11;
@@ -158,7 +159,10 @@ RotorParameters rotor_parameters(const py::dict& d) {
   RotorParameters p;
   for (const auto& [key, value] : d) {
     const std::string field = key.cast<std::string>();
-    if (field == "blade_csv" || field == "blade_source") continue;  // the blade table: below
+    // The blade table and the mode file: below.
+    if (field == "blade_csv" || field == "blade_source" || field == "mode_shapes_csv" ||
+        field == "mode_shapes_source")
+      continue;
     const ParameterSpec* s = find_parameter(field);
     if (s == nullptr) throw InvalidInput(field, shown(value), "unknown parameter");
     switch (s->type) {
@@ -207,6 +211,11 @@ RotorParameters rotor_parameters(const py::dict& d) {
                                " sets it)");
     }
     apply_blade_table(table, p);
+  }
+  if (d.contains("mode_shapes_csv")) {
+    const std::string source = d["mode_shapes_source"].cast<std::string>();
+    p.mode_shapes = std::make_shared<const ImportedModes>(
+        parse_mode_table(d["mode_shapes_csv"].cast<std::string>(), source));
   }
   return p;
 }
