@@ -36,6 +36,9 @@ flaplag_cli_test(cli_security_test nlohmann_json::nlohmann_json)
 # per case, merge's checks of a part against its case (maintained with cli/).
 flaplag_cli_test(cli_files_test flaplag_cli nlohmann_json::nlohmann_json)
 
+# Blade tables and imported mode shapes given to the command line and case files.
+flaplag_cli_test(cli_blade_test nlohmann_json::nlohmann_json)
+
 # Generated and mutated files against the output contract: case files (TOML, JSON) to `run`,
 # real results mutated to `run`, `plot` and `merge` (FLAPLAG_FILE_FUZZ_VECTORS per kind).
 flaplag_cli_test(file_fuzz_test nlohmann_json::nlohmann_json)
