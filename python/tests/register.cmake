@@ -48,8 +48,12 @@ add_test(NAME python.example_forward_flight
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tests/run_example.py
                  ${example_dir}/forward_flight.py ${example_out}/forward_flight.png
                  -- -o ${example_out}/forward_flight.png)
+add_test(NAME python.example_your_blade
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tests/run_example.py
+                 ${example_dir}/your_blade.py ${example_out}/your_blade.png
+                 -- -o ${example_out}/your_blade.png)
 set_tests_properties(python.example_fig15 python.example_stability_map
-                     python.example_forward_flight
+                     python.example_forward_flight python.example_your_blade
                      PROPERTIES ENVIRONMENT "${py_env}" TIMEOUT 120)
 
 # `cmake --install` puts the package under <prefix>/${FLAPLAG_PYTHON_INSTALL_DIR}; import it
