@@ -181,6 +181,16 @@ TEST(CliBlade, CaseFileTableIsFoundBesideTheCaseAndTheResultReruns) {
                  "a result naming a table");
 }
 
+// The Campbell diagram's speed-frequency relation is the uniform blade's: refused, not wrong.
+TEST(CliBlade, CampbellOfABladeTableIsRefused) {
+  TempDir d;
+  write(d.file("uniform.csv"), kUniform);
+  expect_refused(run({"--blade-table", d.file("uniform.csv"), "campbell"}),
+                 "--blade-table = .*uniform\\.csv: the Campbell diagram is for the uniform blade "
+                 "only .*",
+                 "campbell with a table");
+}
+
 TEST(CliBlade, ExportedModeShapesImportToTheSameCriticalAdvanceRatio) {
   TempDir d;
   const Outcome e = run({"--modes", "exact", "modes", "--export-shapes", d.file("m.csv")});

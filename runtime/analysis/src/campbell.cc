@@ -7,6 +7,7 @@
 
 #include "flaplag/blade/blade.h"
 #include "flaplag/blade/rotating_modes.h"
+#include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/core/parallel.h"
 #include "flaplag/numerics/continuation.h"
@@ -126,6 +127,14 @@ std::optional<InvalidInput> CampbellOptions::Validate() const {
 CampbellResult campbell_diagram(const RotorParameters& params, const TransitionOptions& transition,
                                 const CampbellOptions& options) {
   options.Check();
+  // The speed-frequency relation below is the uniform blade's (its stiffness k / Omega^2):
+  // a blade table or imported shapes would get the wrong frequencies away from Omega_0.
+  if (params.blade || params.mode_shapes) {
+    throw InvalidInput(params.blade ? "blade" : "mode_shapes",
+                       params.blade ? params.blade->source : "(imported)",
+                       "the Campbell diagram is for the uniform blade only (a blade table's or "
+                       "imported modes' frequencies at other rotor speeds are not computed yet)");
+  }
   const Analysis nominal(params, transition);  // checks the rotor at Omega_0
   const Blade blade = blade_of(params);
   CampbellResult c;
