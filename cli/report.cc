@@ -481,8 +481,37 @@ std::string inputs_section(const Json& result) {
       s += "<tr><td></td><td><code>" + esc(it.key()) + "</code></td><td>" + cell(it.value()) +
            "</td><td></td><td>(not a parameter of this flaplag)</td></tr>\n";
   s += "</table>\n<p class=\"note\">Nondimensional as in the paper: frequencies by &Omega;, "
-       "lengths by R (l/R, e1) or l (A, B), angles in radians. Dimensional inputs: none given "
-       "(flaplag takes the paper's nondimensional groups).</p>\n";
+       "lengths by R (l/R, e1) or l (A, B), angles in radians.";
+  const Json& b = member(result, "blade_table");
+  if (!b.is_object()) {
+    s += " Dimensional inputs: none given (the paper's uniform blade, by its nondimensional "
+         "groups).</p>\n";
+    return section("inputs", "Inputs", s);
+  }
+  s += "</p>\n<h3>Blade table</h3>\n";
+  // Every key of the result's blade_table, with the meaning and units of docs/json.md.
+  static const std::pair<const char*, const char*> kBladeRows[] = {
+      {"source", "the table"},
+      {"stations", "stations along the span"},
+      {"root_offset", "e1, root of the elastic blade by R"},
+      {"length_ratio", "l/R"},
+      {"tip_mass", "M_tip l^2 / I_b"},
+      {"twist_min", "least built-in twist [rad]"},
+      {"twist_max", "largest built-in twist [rad]"},
+      {"radius", "R [m]"},
+      {"rotor_speed", "Omega [rad/s]"},
+      {"air_density", "rho [kg/m^3]"},
+      {"blades", "number of blades"},
+      {"reference_chord", "c_ref, chord at 0.75 R [m]"},
+      {"inertia", "I_b = int m r0^2 dr0 + M_tip l^2 [kg m^2]"},
+      {"gamma", "Lock number rho a c_ref R^4 / I_b"},
+      {"sigma", "solidity b c_ref / (pi R)"},
+      {"omega_flap_hz", "first rotating flap frequency [Hz]"},
+      {"omega_lag_hz", "first rotating lag frequency [Hz]"}};
+  std::vector<std::pair<std::string, std::string>> rows;
+  for (const auto& [key, meaning] : kBladeRows)
+    if (b.contains(key)) rows.push_back({esc(meaning), cell(b[key])});
+  s += key_value_table(rows);
   return section("inputs", "Inputs", s);
 }
 

@@ -181,6 +181,21 @@ TEST(CliBlade, CaseFileTableIsFoundBesideTheCaseAndTheResultReruns) {
                  "a result naming a table");
 }
 
+// A report's inputs show what the table gave (not "none given").
+TEST(CliBlade, ReportShowsTheBladeTablesGroups) {
+  TempDir d;
+  write(d.file("rotor.csv"),
+        "r, m, EI_flap, EI_lag, chord\n0.3, 4, 30000, 400000, 0.2\n3, 4, 30000, 400000, 0.2\n"
+        "rotor_speed_rpm, 400\nair_density, 1.2\nblades, 3\n");
+  const Outcome r = run({"--blade-table", d.file("rotor.csv"), "point", "--mu", "0.2", "--report",
+                         d.file("page.html")});
+  ASSERT_EQ(0, r.exit_code) << r.err;
+  const std::string page = flaplag::testing::slurp(d.file("page.html"));
+  EXPECT_NE(std::string::npos, page.find("Blade table")) << page;
+  EXPECT_NE(std::string::npos, page.find("Lock number rho a c_ref R^4 / I_b")) << page;
+  EXPECT_EQ(std::string::npos, page.find("Dimensional inputs: none given")) << page;
+}
+
 // The Campbell diagram's speed-frequency relation is the uniform blade's: refused, not wrong.
 TEST(CliBlade, CampbellOfABladeTableIsRefused) {
   TempDir d;
