@@ -78,14 +78,22 @@ std::vector<double> gauss_reversed(const model::ModelDescriptor& d, const ModeSe
 }
 
 // Every integral of the compiled 2 x 2 model with exact rotating modes, at several split points:
-// the interpolated antiderivatives agree with Gauss quadrature to near rounding.
-TEST(AeroIntegrals, ExactModesMatchGaussQuadrature) {
+// the interpolated antiderivatives agree with Gauss quadrature to near rounding.  Untwisted (the
+// twist integrals vanish identically and are skipped) and on a linearly twisted blade.
+class ExactModesGauss : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ExactModesGauss, ProductionIntegralsMatchGaussQuadrature) {
   const model::ModelDescriptor* d =
       &model::instantiate(*model::registered_families().front(), 2, 2);
   ExactModeOptions opt;
   opt.flap_modes = 2;
   opt.lag_modes = 2;
-  const ModeSet modes = exact_modes(1.175, 1.28303, opt);
+  ModeSet modes = exact_modes(1.175, 1.28303, opt);
+  if (GetParam()) {
+    auto blade = std::make_shared<BladeProperties>(uniform_blade());
+    blade->twist = {0.05, -0.15};
+    modes.blade = blade;
+  }
   SpanGeometry g;
   g.e1 = 0.02;
   g.lr = 0.98;
@@ -108,6 +116,9 @@ TEST(AeroIntegrals, ExactModesMatchGaussQuadrature) {
       EXPECT_NEAR(ref[j], got[j], 1e-13 * scale) << d->aero[j].name << " at mu = " << mu;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Blades, ExactModesGauss, ::testing::Values(false, true),
+                         [](const auto& tp) { return tp.param ? "Twisted" : "Untwisted"; });
 
 // A uniform blade with the linear built-in twist theta_tw(x0) = theta_tw x0 in hover (e1 = 0,
 // l/R = 1, A = 0, B = 1, mu = 0, uniform inflow lambda): blade-element theory gives

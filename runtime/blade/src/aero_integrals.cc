@@ -58,20 +58,41 @@ AeroIntegrals::AeroIntegrals(const model::ModelDescriptor& m, const ModeSet& mod
     C[0] = -at_minus1;
     for (int i = 0; i < terms_; ++i) coef_[static_cast<std::size_t>(i) * count_ + j] = C[i];
   }
+  // Integrands that vanish identically (the twist integrals of an untwisted blade) are 0 at
+  // every split point: the recurrences run over the others only.
+  for (int j = 0; j < count_; ++j) {
+    for (int i = 0; i < terms_; ++i) {
+      if (coef_[static_cast<std::size_t>(i) * count_ + j] != 0.0) {
+        live_.push_back(j);
+        break;
+      }
+    }
+  }
+  if (static_cast<int>(live_.size()) < count_) {
+    const std::size_t live = live_.size();
+    std::vector<double> compact(static_cast<std::size_t>(terms_) * live);
+    for (int i = 0; i < terms_; ++i)
+      for (std::size_t k = 0; k < live; ++k)
+        compact[i * live + k] = coef_[static_cast<std::size_t>(i) * count_ + live_[k]];
+    coef_ = std::move(compact);
+  }
   partial(b_, normal_);
 }
 
 void AeroIntegrals::partial(double s, std::vector<double>& out) const {
   s = std::clamp(s, a_, b_);
   const double t = (2.0 * s - a_ - b_) / (b_ - a_);
-  const std::size_t m = static_cast<std::size_t>(count_);
-  out.resize(m);
-  // Clenshaw recurrence for sum_i C_i T_i(t), every integral at once (b1 in `out`, b2 in
-  // `b2_`); the same operations per integral as one recurrence at a time.
-  thread_local std::vector<double> b2_;
+  const std::size_t m = live_.size();
+  const bool all = static_cast<int>(m) == count_;
+  out.resize(static_cast<std::size_t>(count_));
+  // Clenshaw recurrence for sum_i C_i T_i(t), every live integral at once (b1 in `out`, or in
+  // `b1_` when some integrands vanish, b2 in `b2_`); the same operations per integral as one
+  // recurrence at a time.
+  thread_local std::vector<double> b1_, b2_;
   b2_.assign(m, 0.0);
+  if (!all) b1_.assign(m, 0.0);
   std::fill(out.begin(), out.end(), 0.0);
-  double* b1 = out.data();
+  double* b1 = all ? out.data() : b1_.data();
   double* b2 = b2_.data();
   for (int i = terms_ - 1; i >= 1; --i) {
     const double* C = coef_.data() + static_cast<std::size_t>(i) * m;
@@ -82,6 +103,8 @@ void AeroIntegrals::partial(double s, std::vector<double>& out) const {
     }
   }
   for (std::size_t j = 0; j < m; ++j) b1[j] = t * b1[j] - b2[j] + coef_[j];
+  if (!all)
+    for (std::size_t k = 0; k < m; ++k) out[static_cast<std::size_t>(live_[k])] = b1[k];
 }
 
 void AeroIntegrals::reversed(double mu, std::vector<double>& out) const {

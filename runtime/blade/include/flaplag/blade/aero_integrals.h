@@ -39,10 +39,12 @@ class AeroIntegrals {
 
  private:
   double a_ = 0.0, b_ = 1.0, e1_ = 0.0, lr_ = 1.0;
-  // Chebyshev coefficients of the antiderivatives, term-major: coefficient i of integral j at
-  // coef_[i * count_ + j], so that partial() runs the Clenshaw recurrences of all integrals side
-  // by side (independent chains instead of one latency-bound chain per integral).
+  // Chebyshev coefficients of the antiderivatives of the integrals that do not vanish
+  // identically (live_, ascending), term-major: coefficient i of live_[k] at
+  // coef_[i * live_.size() + k], so that partial() runs the Clenshaw recurrences of all integrals
+  // side by side (independent chains instead of one latency-bound chain per integral).
   std::vector<double> coef_;
+  std::vector<int> live_;
   int count_ = 0, terms_ = 0;
   std::vector<double> normal_;
 };
