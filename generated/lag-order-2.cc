@@ -30,29 +30,45 @@ const model::IntegralTemplate kAero[] = {
     /* 3 */ {"x eta_a gamma_b'", "x1_etaa_dgamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::GammaPrime, 1}}, Inner::None, 0, 0, {}, "F21_ab"},
     /* 4 */ {"eta_a gamma_b", "etaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "F11_ab/L8_ba"},
     /* 5 */ {"x eta_a gamma_b", "x1_etaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "F10_ab/L7_ba"},
-    /* 6 */ {"eta_a' eta_b' gamma_c", "detaa_detab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::EtaPrime, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "L24_cab"},
-    /* 7 */ {"eta_a' gamma_b", "detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 2, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L11_ba"},
-    /* 8 */ {"x eta_a' gamma_b", "x1_detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 2, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L10_ba"},
-    /* 9 */ {"x eta_a eta_b'", "x1_etaa_detab", 2, {Direction::Flap, Direction::Flap}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}}, Inner::None, 0, 0, {}, "F6_ab"},
-    /* 10 */ {"eta_a eta_b gamma_c'", "etaa_etab_dgamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Eta, 1}, {Factor::GammaPrime, 2}}, Inner::None, 0, 0, {}, "F24_abc"},
-    /* 11 */ {"eta_a eta_b' gamma_c", "etaa_detab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "F14_abc/L17_cba"},
-    /* 12 */ {"eta_a eta_b", "etaa_etab", 2, {Direction::Flap, Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::Eta, 1}}, Inner::None, 0, 0, {}, "F9_ab"},
-    /* 13 */ {"eta_a eta_b'", "etaa_detab", 2, {Direction::Flap, Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}}, Inner::None, 0, 0, {}, "F7_ab"},
-    /* 14 */ {"x eta_a", "x1_etaa", 1, {Direction::Flap}, 1, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F2_a"},
-    /* 15 */ {"eta_a", "etaa", 1, {Direction::Flap}, 0, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F3_a"},
-    /* 16 */ {"x^2 eta_a", "x2_etaa", 1, {Direction::Flap}, 2, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F1_a"},
-    /* 17 */ {"gamma_a", "gama", 1, {Direction::Lag}, 0, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L2_a"},
-    /* 18 */ {"x^2 gamma_a", "x2_gama", 1, {Direction::Lag}, 2, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L4_a"},
-    /* 19 */ {"x gamma_a", "x1_gama", 1, {Direction::Lag}, 1, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L1_a"},
-    /* 20 */ {"eta_a' gamma_b'", "detaa_dgamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 2, {{Factor::EtaPrime, 0}, {Factor::GammaPrime, 1}}, Inner::None, 0, 0, {}, ""},
-    /* 21 */ {"gamma_a'", "dgama", 1, {Direction::Lag}, 0, 0, 1, {{Factor::GammaPrime, 0}}, Inner::None, 0, 0, {}, ""},
-    /* 22 */ {"x gamma_a'", "x1_dgama", 1, {Direction::Lag}, 1, 0, 1, {{Factor::GammaPrime, 0}}, Inner::None, 0, 0, {}, ""},
-    /* 23 */ {"x eta_a'", "x1_detaa", 1, {Direction::Flap}, 1, 0, 1, {{Factor::EtaPrime, 0}}, Inner::None, 0, 0, {}, ""},
-    /* 24 */ {"eta_a'", "detaa", 1, {Direction::Flap}, 0, 0, 1, {{Factor::EtaPrime, 0}}, Inner::None, 0, 0, {}, ""},
-    /* 25 */ {"x", "x1", 0, {}, 1, 0, 0, {}, Inner::None, 0, 0, {}, ""},
-    /* 26 */ {"1", "one", 0, {}, 0, 0, 0, {}, Inner::None, 0, 0, {}, ""},
-    /* 27 */ {"x^2", "x2", 0, {}, 2, 0, 0, {}, Inner::None, 0, 0, {}, ""},
-    /* 28 */ {"eta_a eta_b gamma_c", "etaa_etab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Eta, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "F15_abc/L18_cab"},
+    /* 6 */ {"x tw eta_a gamma_b", "x1_tw_etaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 3, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 7 */ {"eta_a' eta_b' gamma_c", "detaa_detab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::EtaPrime, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "L24_cab"},
+    /* 8 */ {"eta_a' gamma_b", "detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 2, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L11_ba"},
+    /* 9 */ {"x eta_a' gamma_b", "x1_detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 2, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L10_ba"},
+    /* 10 */ {"x eta_a eta_b'", "x1_etaa_detab", 2, {Direction::Flap, Direction::Flap}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}}, Inner::None, 0, 0, {}, "F6_ab"},
+    /* 11 */ {"eta_a eta_b gamma_c'", "etaa_etab_dgamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Eta, 1}, {Factor::GammaPrime, 2}}, Inner::None, 0, 0, {}, "F24_abc"},
+    /* 12 */ {"x tw eta_a gamma_b'", "x1_tw_etaa_dgamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 3, {{Factor::Eta, 0}, {Factor::GammaPrime, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 13 */ {"eta_a eta_b' gamma_c", "etaa_detab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "F14_abc/L17_cba"},
+    /* 14 */ {"x tw eta_a' gamma_b", "x1_tw_detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 3, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 15 */ {"eta_a eta_b", "etaa_etab", 2, {Direction::Flap, Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::Eta, 1}}, Inner::None, 0, 0, {}, "F9_ab"},
+    /* 16 */ {"tw eta_a gamma_b", "tw_etaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 17 */ {"eta_a eta_b'", "etaa_detab", 2, {Direction::Flap, Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}}, Inner::None, 0, 0, {}, "F7_ab"},
+    /* 18 */ {"tw eta_a gamma_b'", "tw_etaa_dgamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::GammaPrime, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 19 */ {"tw eta_a' gamma_b", "tw_detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 20 */ {"x eta_a", "x1_etaa", 1, {Direction::Flap}, 1, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F2_a"},
+    /* 21 */ {"eta_a", "etaa", 1, {Direction::Flap}, 0, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F3_a"},
+    /* 22 */ {"tw eta_a", "tw_etaa", 1, {Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 23 */ {"x^2 eta_a", "x2_etaa", 1, {Direction::Flap}, 2, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F1_a"},
+    /* 24 */ {"x^2 tw eta_a", "x2_tw_etaa", 1, {Direction::Flap}, 2, 0, 2, {{Factor::Eta, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 25 */ {"gamma_a", "gama", 1, {Direction::Lag}, 0, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L2_a"},
+    /* 26 */ {"x^2 gamma_a", "x2_gama", 1, {Direction::Lag}, 2, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L4_a"},
+    /* 27 */ {"x gamma_a", "x1_gama", 1, {Direction::Lag}, 1, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L1_a"},
+    /* 28 */ {"x tw gamma_a", "x1_tw_gama", 1, {Direction::Lag}, 1, 0, 2, {{Factor::Gamma, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 29 */ {"x tw eta_a", "x1_tw_etaa", 1, {Direction::Flap}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 30 */ {"tw gamma_a", "tw_gama", 1, {Direction::Lag}, 0, 0, 2, {{Factor::Gamma, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 31 */ {"eta_a' gamma_b'", "detaa_dgamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 2, {{Factor::EtaPrime, 0}, {Factor::GammaPrime, 1}}, Inner::None, 0, 0, {}, ""},
+    /* 32 */ {"gamma_a'", "dgama", 1, {Direction::Lag}, 0, 0, 1, {{Factor::GammaPrime, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 33 */ {"x gamma_a'", "x1_dgama", 1, {Direction::Lag}, 1, 0, 1, {{Factor::GammaPrime, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 34 */ {"x eta_a'", "x1_detaa", 1, {Direction::Flap}, 1, 0, 1, {{Factor::EtaPrime, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 35 */ {"x tw gamma_a'", "x1_tw_dgama", 1, {Direction::Lag}, 1, 0, 2, {{Factor::GammaPrime, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 36 */ {"eta_a'", "detaa", 1, {Direction::Flap}, 0, 0, 1, {{Factor::EtaPrime, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 37 */ {"tw gamma_a'", "tw_dgama", 1, {Direction::Lag}, 0, 0, 2, {{Factor::GammaPrime, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 38 */ {"x", "x1", 0, {}, 1, 0, 0, {}, Inner::None, 0, 0, {}, ""},
+    /* 39 */ {"1", "one", 0, {}, 0, 0, 0, {}, Inner::None, 0, 0, {}, ""},
+    /* 40 */ {"tw", "tw", 0, {}, 0, 0, 1, {{Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 41 */ {"x^2", "x2", 0, {}, 2, 0, 0, {}, Inner::None, 0, 0, {}, ""},
+    /* 42 */ {"x^2 tw", "x2_tw", 0, {}, 2, 0, 1, {{Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 43 */ {"x tw", "x1_tw", 0, {}, 1, 0, 1, {{Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 44 */ {"eta_a eta_b gamma_c", "etaa_etab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Eta, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "F15_abc/L18_cab"},
 };
 
 // Structural integral templates (letters a, b, c: the template's mode variables).
@@ -226,6 +242,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(4, i, j);
       // eps^2, L_z: theta U_T^2, F10_ij
       v += -s.lock * s.lr * s.lr * s.lr * s.theta * A(5, i, j);
+      // eps^2, L_z: theta_tw U_T^2
+      v += -s.lock * s.lr * s.lr * s.lr * A(6, i, j);
       // eps^2, tension, Coriolis 2v' (2.4), B3_ij
       v += (2.0) * s.precone * S(4, i, j);
       out.force[(0 * n + i) * 2 * n + 2 * M + j] += v;
@@ -237,13 +255,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L24_ijk
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(6, j, k, i);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(7, j, k, i);
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(7, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(8, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(8, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(9, j, i);
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(7, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(8, j, i);
       // eps^2, elastic coupling E^cs (E.8)
       v += in.ecs_lag_flap[i * M + j];
       out.force[(0 * n + M + i) * 2 * n + M + j] += v;
@@ -264,6 +282,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(4, j, i);
       // eps^2, L_y: theta U_P U_T, L7_ij
       v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * A(5, j, i);
+      // eps^2, L_y: theta_tw U_P U_T
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * A(6, j, i);
       // eps^2, Coriolis 2u' (2.5), B7_ij
       v += -(2.0) * s.precone * S(6, j, i);
       out.force[(0 * n + M + i) * 2 * n + j] += v;
@@ -312,7 +332,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^1, L_z: -U_T U_P, F6_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(9, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(10, i, j);
       out.force[(1 * n + i) * 2 * n + M + j] += v;
     }
   }
@@ -322,7 +342,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, radial, F24_ijk
       for (int k = 0; k < N; ++k)
-        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.h0[k] * A(10, i, j, k);
+        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.h0[k] * A(11, i, j, k);
       out.force[(1 * n + i) * 2 * n + j] += v;
     }
   }
@@ -334,6 +354,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(2, i, j);
       // eps^2, L_z: theta U_T^2, radial, F21_ij
       v += -s.lock * s.lr * s.lr * s.mu * s.theta * A(3, i, j);
+      // eps^2, L_z: theta_tw U_T^2, radial
+      v += -s.lock * s.lr * s.lr * s.mu * A(12, i, j);
       // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
       v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(2, i, j);
       out.force[(1 * n + i) * 2 * n + 2 * M + N + j] += v;
@@ -345,7 +367,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, F14_ikj
       for (int k = 0; k < M; ++k)
-        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(11, i, k, j);
+        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(13, i, k, j);
       // eps^2, L_z: -U_T U_P, F11_ij
       v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(4, i, j);
       // eps^2, L_z: -U_T U_P, F11_ij
@@ -360,11 +382,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * A(7, j, i);
+      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * A(8, j, i);
       // eps^2, L_y: theta U_P U_T, L10_ij
-      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * A(8, j, i);
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * A(9, j, i);
+      // eps^2, L_y: theta_tw U_P U_T
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(14, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(7, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(8, j, i);
       out.force[(1 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -374,7 +398,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L17_ikj
       for (int k = 0; k < M; ++k)
-        v += -s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(11, j, k, i);
+        v += -s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(13, j, k, i);
       // eps^2, L_y: -U_P^2, L8_ij
       v += -s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(4, j, i);
       // eps^2, L_y: -U_P^2, L8_ij
@@ -389,7 +413,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^1, L_z: -U_T U_P, F9_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(12, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(15, i, j);
       out.force[(2 * n + i) * 2 * n + j] += v;
     }
   }
@@ -408,6 +432,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: theta U_T^2, F11_ij
       v += -s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(4, i, j);
+      // eps^2, L_z: theta_tw U_T^2
+      v += -s.lock * s.lr * s.lr * s.lr * s.mu * A(16, i, j);
       // eps^2, L_z: theta_cyclic U_T^2, F10_ij
       v += -s.lock * s.lr * s.lr * s.lr * s.theta1s * A(5, i, j);
       out.force[(2 * n + i) * 2 * n + 2 * M + j] += v;
@@ -418,7 +444,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(7, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(8, j, i);
       out.force[(2 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -428,6 +454,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: theta U_P U_T, L8_ij
       v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(4, j, i);
+      // eps^2, L_y: theta_tw U_P U_T
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(16, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L7_ij
       v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta1s * A(5, j, i);
       out.force[(2 * n + M + i) * 2 * n + j] += v;
@@ -474,13 +502,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L24_ijk
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(6, j, k, i);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(7, j, k, i);
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(7, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(8, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(8, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(9, j, i);
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(7, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(8, j, i);
       out.force[(3 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -498,7 +526,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^1, L_z: -U_T U_P, F7_ij
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(13, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(17, i, j);
       out.force[(4 * n + i) * 2 * n + M + j] += v;
     }
   }
@@ -510,6 +538,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(3, i, j);
       // eps^2, L_z: theta U_T^2, radial, F22_ij
       v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(2, i, j);
+      // eps^2, L_z: theta_tw U_T^2, radial
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(18, i, j);
       out.force[(4 * n + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -527,9 +557,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(8, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(9, j, i);
       // eps^2, L_y: theta U_P U_T, L11_ij
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(7, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(8, j, i);
+      // eps^2, L_y: theta_tw U_P U_T
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(19, j, i);
       out.force[(4 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -556,7 +588,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(7, j, i);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(8, j, i);
       out.force[(5 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -574,7 +606,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(7, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(8, j, i);
       out.force[(6 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -603,13 +635,17 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.droop * S(11, i);
     // eps^1, L_z: -U_T U_P, F2_i
-    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(14, i);
+    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(20, i);
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(14, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(20, i);
     // eps^1, L_z: theta U_T^2, F3_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(15, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(21, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(22, i);
     // eps^1, L_z: theta U_T^2, F1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(16, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(23, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * A(24, i);
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.precone * S(11, i);
     // eps^1, modal stiffness (A.2), M_Fii
@@ -622,16 +658,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_y: -U_P^2, L24_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(6, j, k, i);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(7, j, k, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(7, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(8, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(8, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(9, j, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(7, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(8, j, i);
     // eps^2, elastic coupling E^cs (E.8)
     for (int j = 0; j < M; ++j)
       v += in.ecs_lag_flap[i * M + j] * in.g0[j];
@@ -639,29 +675,31 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j)
       v += in.es_lag[i * N + j] * in.h0[j];
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
-    v += (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(17, i);
+    v += (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(25, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L4_i
-    v += (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(18, i);
+    v += (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(26, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(19, i);
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(27, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(17, i);
+    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(25, i);
     // eps^2, tension, centrifugal (2.4), B10_i
     v += -s.droop * s.theta * S(12, i);
     // eps^2, in-plane centrifugal -v (2.5), B11_i
     v += s.droop * s.theta * S(13, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(17, i);
+    v += -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(25, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(17, i);
+    v += (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(25, i);
     // eps^2, L_y: theta U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(19, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(27, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(28, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(17, i);
+    v += -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(25, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(19, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(27, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(17, i);
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(25, i);
     // eps^1, modal stiffness (A.4), M_Lii
     v += -in.h0[i] * in.omega_lag[i] * in.omega_lag[i] * S(7, i);
     out.forcing[0 * n + M + i] += v;
@@ -677,18 +715,21 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += -s.lock * s.lr * s.lr * s.mu * s.theta * in.h0[j] * A(3, i, j);
     // eps^1, L_z: -U_T U_P, F6_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(9, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(10, i, j);
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int j = 0; j < N; ++j)
+      v += -s.lock * s.lr * s.lr * s.mu * in.h0[j] * A(12, i, j);
     // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
       v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(2, i, j);
     // eps^1, L_z: -U_T U_P, F2_i
-    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(14, i);
+    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(20, i);
     // eps^1, L_z: -U_T U_P, F2_i
-    v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(14, i);
+    v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(20, i);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
-    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(15, i);
+    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(21, i);
     // eps^1, L_z: theta_cyclic U_T^2, F1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1c * A(16, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1c * A(23, i);
     out.forcing[1 * n + i] += v;
   }
   // cos psi: lag equation i, state-independent
@@ -696,27 +737,34 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(7, j, i);
+      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(8, j, i);
     // eps^2, L_y: theta U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * in.g0[j] * A(8, j, i);
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * in.g0[j] * A(9, j, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(14, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(7, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(8, j, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(17, i);
+    v += -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(25, i);
     // eps^2, L_y: theta U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta * A(19, i);
+    v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta * A(27, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(28, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(17, i);
+    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(25, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -s.inflow * s.lock * s.lr * s.lr * s.mu * s.precone * A(17, i);
+    v += -s.inflow * s.lock * s.lr * s.lr * s.mu * s.precone * A(25, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1c * A(19, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1c * A(27, i);
     // eps^2, L_y: theta U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta * A(19, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta * A(27, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(28, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(17, i);
+    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(25, i);
     out.forcing[1 * n + M + i] += v;
   }
   // sin psi: flap equation i, state-independent
@@ -726,13 +774,15 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j)
       v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(2, i, j);
     // eps^1, L_z: -U_T U_P, F3_i
-    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(15, i);
+    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(21, i);
     // eps^1, L_z: theta U_T^2, F2_i
-    v += s.lock * s.lr * s.lr * s.mu * s.theta * A(14, i);
+    v += s.lock * s.lr * s.lr * s.mu * s.theta * A(20, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += s.lock * s.lr * s.lr * s.mu * A(29, i);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
-    v += (3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(15, i);
+    v += (3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(21, i);
     // eps^1, L_z: theta_cyclic U_T^2, F1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1s * A(16, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1s * A(23, i);
     out.forcing[2 * n + i] += v;
   }
   // sin psi: lag equation i, state-independent
@@ -740,17 +790,19 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(7, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(8, j, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L1_i
-    v += s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(19, i);
+    v += s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(27, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(17, i);
+    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(25, i);
     // eps^2, L_y: theta U_P U_T, L2_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(17, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(25, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(30, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1s * A(19, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1s * A(27, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(17, i);
+    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(25, i);
     out.forcing[2 * n + M + i] += v;
   }
   // cos 2psi: flap equation i, state-independent
@@ -770,9 +822,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j)
       v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.h0[j] * A(2, i, j);
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
-    v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(14, i);
+    v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(20, i);
     // eps^1, L_z: theta U_T^2, F3_i
-    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(15, i);
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(21, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(22, i);
     out.forcing[3 * n + i] += v;
   }
   // cos 2psi: lag equation i, state-independent
@@ -781,30 +835,30 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_y: -U_P^2, L24_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(6, j, k, i);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(7, j, k, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(7, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(8, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(8, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(9, j, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(7, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(8, j, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
-    v += -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(17, i);
+    v += -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(25, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(19, i);
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(27, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(17, i);
+    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(25, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(17, i);
+    v += -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(25, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(17, i);
+    v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(25, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(19, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(27, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(17, i);
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(25, i);
     out.forcing[3 * n + M + i] += v;
   }
   // sin 2psi: flap equation i, state-independent
@@ -818,13 +872,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[j] * A(2, i, j);
     // eps^1, L_z: -U_T U_P, F7_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(13, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(17, i, j);
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int j = 0; j < N; ++j)
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(18, i, j);
     // eps^1, L_z: -U_T U_P, F3_i
-    v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(15, i);
+    v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(21, i);
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(14, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(20, i);
     // eps^1, L_z: -U_T U_P, F3_i
-    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(15, i);
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(21, i);
     out.forcing[4 * n + i] += v;
   }
   // sin 2psi: lag equation i, state-independent
@@ -832,20 +889,27 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.g0[j] * A(8, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.g0[j] * A(9, j, i);
     // eps^2, L_y: theta U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * A(7, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * A(8, j, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(19, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(19, i);
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(27, i);
     // eps^2, L_y: theta U_P U_T, L2_i
-    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(17, i);
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(25, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(30, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(17, i);
+    v += (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(25, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(19, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(27, i);
     // eps^2, L_y: theta U_P U_T, L2_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(17, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(25, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(30, i);
     out.forcing[4 * n + M + i] += v;
   }
   // cos 3psi: flap equation i, state-independent
@@ -855,7 +919,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j)
       v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(2, i, j);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
-    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(15, i);
+    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(21, i);
     out.forcing[5 * n + i] += v;
   }
   // cos 3psi: lag equation i, state-independent
@@ -863,11 +927,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(7, j, i);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(8, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(17, i);
+    v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(25, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(17, i);
+    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(25, i);
     out.forcing[5 * n + M + i] += v;
   }
   // sin 3psi: flap equation i, state-independent
@@ -877,7 +941,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j)
       v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(2, i, j);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
-    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(15, i);
+    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(21, i);
     out.forcing[6 * n + i] += v;
   }
   // sin 3psi: lag equation i, state-independent
@@ -885,11 +949,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(7, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(8, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(17, i);
+    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(25, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(17, i);
+    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(25, i);
     out.forcing[6 * n + M + i] += v;
   }
 }
@@ -964,9 +1028,11 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.droop * S(11, i);
     // eps^1, L_z: -U_T U_P, F2_i
-    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(14, i);
+    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(20, i);
     // eps^1, L_z: theta U_T^2, F1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(16, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(23, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * A(24, i);
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.precone * S(11, i);
     out.c[i] += v;
@@ -975,15 +1041,17 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_y: (C_Do/a) U_T^2, L4_i
-    v += (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(18, i);
+    v += (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(26, i);
     // eps^2, tension, centrifugal (2.4), B10_i
     v += -s.droop * s.theta * S(12, i);
     // eps^2, in-plane centrifugal -v (2.5), B11_i
     v += s.droop * s.theta * S(13, i);
     // eps^2, L_y: theta U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(19, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(27, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(28, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(17, i);
+    v += -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(25, i);
     out.c[M + i] += v;
   }
 }
@@ -1007,14 +1075,14 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.h0[j] * A(20, i, j);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.h0[j] * A(31, i, j);
     out.force[0 * 2 * n + M + i] += v;
   }
   // thrust, const: coefficient of g_i'
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -s.lr * s.lr * A(14, i);
+    v += -s.lr * s.lr * A(20, i);
     out.force[0 * 2 * n + i] += v;
   }
   // thrust, const: coefficient of h_i
@@ -1022,31 +1090,33 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[j] * A(20, j, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[j] * A(31, j, i);
     // eps^2, L_z: -U_T U_P, radial
-    v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(21, i);
+    v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(32, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += -s.lr * s.mu * s.theta1c * A(22, i);
+    v += -s.lr * s.mu * s.theta1c * A(33, i);
     // eps^2, L_z: -U_T U_P, radial
-    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(21, i);
+    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(32, i);
     out.force[0 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, const: coefficient of h_i'
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: -U_T U_P
-    v += s.inflow * s.lr * s.lr * A(17, i);
+    v += s.inflow * s.lr * s.lr * A(25, i);
     // eps^2, L_z: theta_cyclic U_T^2
-    v += -s.lr * s.lr * s.mu * s.theta1s * A(17, i);
+    v += -s.lr * s.lr * s.mu * s.theta1s * A(25, i);
     // eps^2, L_z: theta U_T^2
-    v += -(2.0) * s.lr * s.lr * s.theta * A(19, i);
+    v += -(2.0) * s.lr * s.lr * s.theta * A(27, i);
+    // eps^2, L_z: theta_tw U_T^2
+    v += -(2.0) * s.lr * s.lr * A(28, i);
     out.force[0 * 2 * n + 2 * M + i] += v;
   }
   // thrust, cos psi: coefficient of g_i
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -s.lr * s.mu * A(23, i);
+    v += -s.lr * s.mu * A(34, i);
     out.force[1 * 2 * n + M + i] += v;
   }
   // thrust, cos psi: coefficient of g_i'
@@ -1061,11 +1131,13 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
-    v += s.inflow * s.lr * s.mu * A(21, i);
+    v += s.inflow * s.lr * s.mu * A(32, i);
     // eps^2, L_z: theta U_T^2, radial
-    v += -(2.0) * s.lr * s.mu * s.theta * A(22, i);
+    v += -(2.0) * s.lr * s.mu * s.theta * A(33, i);
+    // eps^2, L_z: theta_tw U_T^2, radial
+    v += -(2.0) * s.lr * s.mu * A(35, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(21, i);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(32, i);
     out.force[1 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, cos psi: coefficient of h_i'
@@ -1073,36 +1145,38 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P
     for (int j = 0; j < M; ++j)
-      v += s.lr * s.lr * s.mu * in.g0[j] * A(7, j, i);
+      v += s.lr * s.lr * s.mu * in.g0[j] * A(8, j, i);
     // eps^2, L_z: -U_T U_P
-    v += s.droop * s.lr * s.lr * s.mu * A(17, i);
+    v += s.droop * s.lr * s.lr * s.mu * A(25, i);
     // eps^2, L_z: -U_T U_P
-    v += s.lr * s.lr * s.mu * s.precone * A(17, i);
+    v += s.lr * s.lr * s.mu * s.precone * A(25, i);
     // eps^2, L_z: theta_cyclic U_T^2
-    v += -(2.0) * s.lr * s.lr * s.theta1c * A(19, i);
+    v += -(2.0) * s.lr * s.lr * s.theta1c * A(27, i);
     out.force[1 * 2 * n + 2 * M + i] += v;
   }
   // thrust, sin psi: coefficient of g_i'
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -s.lr * s.lr * s.mu * A(15, i);
+    v += -s.lr * s.lr * s.mu * A(21, i);
     out.force[2 * 2 * n + i] += v;
   }
   // thrust, sin psi: coefficient of h_i
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(21, i);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(32, i);
     out.force[2 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, sin psi: coefficient of h_i'
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta U_T^2
-    v += -(2.0) * s.lr * s.lr * s.mu * s.theta * A(17, i);
+    v += -(2.0) * s.lr * s.lr * s.mu * s.theta * A(25, i);
+    // eps^2, L_z: theta_tw U_T^2
+    v += -(2.0) * s.lr * s.lr * s.mu * A(30, i);
     // eps^2, L_z: theta_cyclic U_T^2
-    v += -(2.0) * s.lr * s.lr * s.theta1s * A(19, i);
+    v += -(2.0) * s.lr * s.lr * s.theta1s * A(27, i);
     out.force[2 * 2 * n + 2 * M + i] += v;
   }
   // thrust, cos 2psi: coefficient of g_i
@@ -1110,7 +1184,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.h0[j] * A(20, i, j);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.h0[j] * A(31, i, j);
     out.force[3 * 2 * n + M + i] += v;
   }
   // thrust, cos 2psi: coefficient of h_i
@@ -1118,57 +1192,59 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[j] * A(20, j, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[j] * A(31, j, i);
     // eps^2, L_z: -U_T U_P, radial
-    v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(21, i);
+    v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(32, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += -s.lr * s.mu * s.theta1c * A(22, i);
+    v += -s.lr * s.mu * s.theta1c * A(33, i);
     // eps^2, L_z: -U_T U_P, radial
-    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(21, i);
+    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(32, i);
     out.force[3 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, cos 2psi: coefficient of h_i'
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2
-    v += s.lr * s.lr * s.mu * s.theta1s * A(17, i);
+    v += s.lr * s.lr * s.mu * s.theta1s * A(25, i);
     out.force[3 * 2 * n + 2 * M + i] += v;
   }
   // thrust, sin 2psi: coefficient of g_i
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(24, i);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(36, i);
     out.force[4 * 2 * n + M + i] += v;
   }
   // thrust, sin 2psi: coefficient of h_i
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += -s.lr * s.mu * s.theta1s * A(22, i);
+    v += -s.lr * s.mu * s.theta1s * A(33, i);
     // eps^2, L_z: theta U_T^2, radial
-    v += -s.lr * s.mu * s.mu * s.theta * A(21, i);
+    v += -s.lr * s.mu * s.mu * s.theta * A(32, i);
+    // eps^2, L_z: theta_tw U_T^2, radial
+    v += -s.lr * s.mu * s.mu * A(37, i);
     out.force[4 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, sin 2psi: coefficient of h_i'
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2
-    v += -s.lr * s.lr * s.mu * s.theta1c * A(17, i);
+    v += -s.lr * s.lr * s.mu * s.theta1c * A(25, i);
     out.force[4 * 2 * n + 2 * M + i] += v;
   }
   // thrust, cos 3psi: coefficient of h_i
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(21, i);
+    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(32, i);
     out.force[5 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, sin 3psi: coefficient of h_i
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(21, i);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(32, i);
     out.force[6 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, const: state-independent
@@ -1177,24 +1253,28 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
-        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * in.h0[j] * A(20, i, j);
+        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * in.h0[j] * A(31, i, j);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.h0[i] * A(21, i);
+      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.h0[i] * A(32, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.theta1c * in.h0[i] * A(22, i);
+      v += -s.lr * s.mu * s.theta1c * in.h0[i] * A(33, i);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.h0[i] * A(21, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.h0[i] * A(32, i);
     // eps^1, L_z: -U_T U_P
-    v += -s.inflow * s.lr * A(25);
+    v += -s.inflow * s.lr * A(38);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += s.lr * s.mu * s.theta1s * A(25);
+    v += s.lr * s.mu * s.theta1s * A(38);
     // eps^1, L_z: theta U_T^2
-    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(26);
+    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(39);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * A(40);
     // eps^1, L_z: theta U_T^2
-    v += s.lr * s.theta * A(27);
+    v += s.lr * s.theta * A(41);
+    // eps^1, L_z: theta_tw U_T^2
+    v += s.lr * A(42);
     out.forcing[0] += v;
   }
   // thrust, cos psi: state-independent
@@ -1202,24 +1282,27 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += s.inflow * s.lr * s.mu * in.h0[i] * A(21, i);
+      v += s.inflow * s.lr * s.mu * in.h0[i] * A(32, i);
     // eps^2, L_z: theta U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(2.0) * s.lr * s.mu * s.theta * in.h0[i] * A(22, i);
+      v += -(2.0) * s.lr * s.mu * s.theta * in.h0[i] * A(33, i);
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
-      v += -s.lr * s.mu * in.g0[i] * A(23, i);
+      v += -s.lr * s.mu * in.g0[i] * A(34, i);
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int i = 0; i < N; ++i)
+      v += -(2.0) * s.lr * s.mu * in.h0[i] * A(35, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.h0[i] * A(21, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.h0[i] * A(32, i);
     // eps^1, L_z: -U_T U_P
-    v += -s.droop * s.lr * s.mu * A(25);
+    v += -s.droop * s.lr * s.mu * A(38);
     // eps^1, L_z: -U_T U_P
-    v += -s.lr * s.mu * s.precone * A(25);
+    v += -s.lr * s.mu * s.precone * A(38);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += (1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(26);
+    v += (1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(39);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += s.lr * s.theta1c * A(27);
+    v += s.lr * s.theta1c * A(41);
     out.forcing[1] += v;
   }
   // thrust, sin psi: state-independent
@@ -1227,15 +1310,17 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.h0[i] * A(21, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.h0[i] * A(32, i);
     // eps^1, L_z: -U_T U_P
-    v += -s.inflow * s.lr * s.mu * A(26);
+    v += -s.inflow * s.lr * s.mu * A(39);
     // eps^1, L_z: theta U_T^2
-    v += (2.0) * s.lr * s.mu * s.theta * A(25);
+    v += (2.0) * s.lr * s.mu * s.theta * A(38);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (2.0) * s.lr * s.mu * A(43);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += (3.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(26);
+    v += (3.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(39);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += s.lr * s.theta1s * A(27);
+    v += s.lr * s.theta1s * A(41);
     out.forcing[2] += v;
   }
   // thrust, cos 2psi: state-independent
@@ -1244,20 +1329,22 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
-        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * in.h0[j] * A(20, i, j);
+        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * in.h0[j] * A(31, i, j);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.h0[i] * A(21, i);
+      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.h0[i] * A(32, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.theta1c * in.h0[i] * A(22, i);
+      v += -s.lr * s.mu * s.theta1c * in.h0[i] * A(33, i);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.h0[i] * A(21, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.h0[i] * A(32, i);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += -s.lr * s.mu * s.theta1s * A(25);
+    v += -s.lr * s.mu * s.theta1s * A(38);
     // eps^1, L_z: theta U_T^2
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(26);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(39);
+    // eps^1, L_z: theta_tw U_T^2
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(40);
     out.forcing[3] += v;
   }
   // thrust, sin 2psi: state-independent
@@ -1265,19 +1352,22 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.theta1s * in.h0[i] * A(22, i);
+      v += -s.lr * s.mu * s.theta1s * in.h0[i] * A(33, i);
     // eps^2, L_z: theta U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.mu * s.theta * in.h0[i] * A(21, i);
+      v += -s.lr * s.mu * s.mu * s.theta * in.h0[i] * A(32, i);
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * A(24, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * A(36, i);
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int i = 0; i < N; ++i)
+      v += -s.lr * s.mu * s.mu * in.h0[i] * A(37, i);
     // eps^1, L_z: -U_T U_P
-    v += -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(26);
+    v += -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(39);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += s.lr * s.mu * s.theta1c * A(25);
+    v += s.lr * s.mu * s.theta1c * A(38);
     // eps^1, L_z: -U_T U_P
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(26);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(39);
     out.forcing[4] += v;
   }
   // thrust, cos 3psi: state-independent
@@ -1285,9 +1375,9 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.h0[i] * A(21, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.h0[i] * A(32, i);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(26);
+    v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(39);
     out.forcing[5] += v;
   }
   // thrust, sin 3psi: state-independent
@@ -1295,9 +1385,9 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.h0[i] * A(21, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.h0[i] * A(32, i);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(26);
+    v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(39);
     out.forcing[6] += v;
   }
 }
@@ -1339,7 +1429,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(28, i, j, k);
+          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(44, i, j, k);
           *f += c * y[j] * y[2 * M + k];
           jac[j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[j];
@@ -1409,6 +1499,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
         *f += c * y[j];
         jac[j] += c;
       }
+    // eps^2, L_z: theta_tw U_T^2
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -s.lock * s.lr * s.lr * s.lr * A(6, i, j);
+        *f += c * y[2 * M + j];
+        jac[2 * M + j] += c;
+      }
     // eps^2, tension, Coriolis 2v' (2.4), B3_ij
     for (int j = 0; j < N; ++j)
       {
@@ -1437,22 +1534,32 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     }
     // eps^1, L_z: -U_T U_P, F2_i
     {
-      const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(14, i);
+      const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(20, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(14, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(20, i);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2, F3_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(15, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(21, i);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(22, i);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2, F1_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(16, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(23, i);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * A(24, i);
       *f += c;
     }
     // eps^1, tension, centrifugal (2.4), B1_i
@@ -1483,7 +1590,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(6, j, k, i);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(7, j, k, i);
           *f += c * y[M + j] * y[M + k];
           jac[M + j] += c * y[M + k];
           jac[M + k] += c * y[M + j];
@@ -1492,7 +1599,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
         {
-          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(28, j, k, i);
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(44, j, k, i);
           *f += c * y[j] * y[k];
           jac[j] += c * y[k];
           jac[k] += c * y[j];
@@ -1527,7 +1634,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(7, j, i);
+        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(8, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
@@ -1555,14 +1662,14 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(8, j, i);
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(9, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(7, j, i);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(8, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
@@ -1577,6 +1684,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       {
         const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * A(5, j, i);
+        *f += c * y[j];
+        jac[j] += c;
+      }
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      {
+        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * A(6, j, i);
         *f += c * y[j];
         jac[j] += c;
       }
@@ -1603,22 +1717,22 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
     {
-      const double c = (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(17, i);
+      const double c = (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(25, i);
       *f += c;
     }
     // eps^2, L_y: (C_Do/a) U_T^2, L4_i
     {
-      const double c = (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(18, i);
+      const double c = (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(26, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(19, i);
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(27, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(17, i);
+      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(25, i);
       *f += c;
     }
     // eps^2, tension, centrifugal (2.4), B10_i
@@ -1633,32 +1747,37 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(17, i);
+      const double c = -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(25, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(17, i);
+      const double c = (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(25, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(19, i);
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(27, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(28, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(17, i);
+      const double c = -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(25, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(19, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(27, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(17, i);
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(25, i);
       *f += c;
     }
     // eps^1, structural damping (2.17), M_Lii
@@ -1684,7 +1803,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(10, i, j, k);
+          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(11, i, j, k);
           *f += c * y[j] * y[2 * M + N + k];
           jac[j] += c * y[2 * M + N + k];
           jac[2 * M + N + k] += c * y[j];
@@ -1693,7 +1812,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(11, i, j, k);
+          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(13, i, j, k);
           *f += c * y[M + j] * y[2 * M + k];
           jac[M + j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[M + j];
@@ -1722,9 +1841,16 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^1, L_z: -U_T U_P, F6_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(9, i, j);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(10, i, j);
         *f += c * y[M + j];
         jac[M + j] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -s.lock * s.lr * s.lr * s.mu * A(12, i, j);
+        *f += c * y[2 * M + N + j];
+        jac[2 * M + N + j] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
@@ -1749,22 +1875,22 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: -U_T U_P, F2_i
     {
-      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(14, i);
+      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(20, i);
       *f += c;
     }
     // eps^1, L_z: -U_T U_P, F2_i
     {
-      const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(14, i);
+      const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(20, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     {
-      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(15, i);
+      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(21, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F1_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1c * A(16, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1c * A(23, i);
       *f += c;
     }
   }
@@ -1778,7 +1904,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
         {
-          const double c = -s.lock * s.lr * s.lr * s.lr * s.mu * A(11, j, k, i);
+          const double c = -s.lock * s.lr * s.lr * s.lr * s.mu * A(13, j, k, i);
           *f += c * y[M + k] * y[j];
           jac[M + k] += c * y[j];
           jac[j] += c * y[M + k];
@@ -1793,21 +1919,28 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -s.inflow * s.lock * s.lr * s.lr * s.mu * A(7, j, i);
+        const double c = -s.inflow * s.lock * s.lr * s.lr * s.mu * A(8, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: theta U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * A(8, j, i);
+        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * A(9, j, i);
+        *f += c * y[M + j];
+        jac[M + j] += c;
+      }
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      {
+        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(14, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(7, j, i);
+        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(8, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
@@ -1827,37 +1960,47 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(17, i);
+      const double c = -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(25, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta * A(19, i);
+      const double c = (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta * A(27, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(28, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(17, i);
+      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(25, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -s.inflow * s.lock * s.lr * s.lr * s.mu * s.precone * A(17, i);
+      const double c = -s.inflow * s.lock * s.lr * s.lr * s.mu * s.precone * A(25, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1c * A(19, i);
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1c * A(27, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta * A(19, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta * A(27, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(28, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(17, i);
+      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(25, i);
       *f += c;
     }
   }
@@ -1884,9 +2027,16 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^1, L_z: -U_T U_P, F9_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(12, i, j);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(15, i, j);
         *f += c * y[j];
         jac[j] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -s.lock * s.lr * s.lr * s.lr * s.mu * A(16, i, j);
+        *f += c * y[2 * M + j];
+        jac[2 * M + j] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2, F10_ij
     for (int j = 0; j < N; ++j)
@@ -1897,22 +2047,27 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: -U_T U_P, F3_i
     {
-      const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(15, i);
+      const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(21, i);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2, F2_i
     {
-      const double c = s.lock * s.lr * s.lr * s.mu * s.theta * A(14, i);
+      const double c = s.lock * s.lr * s.lr * s.mu * s.theta * A(20, i);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = s.lock * s.lr * s.lr * s.mu * A(29, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     {
-      const double c = (3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(15, i);
+      const double c = (3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(21, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F1_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1s * A(16, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1s * A(23, i);
       *f += c;
     }
   }
@@ -1925,7 +2080,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(7, j, i);
+        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(8, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
@@ -1933,6 +2088,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       {
         const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(4, j, i);
+        *f += c * y[j];
+        jac[j] += c;
+      }
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      {
+        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(16, j, i);
         *f += c * y[j];
         jac[j] += c;
       }
@@ -1945,27 +2107,32 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: (C_Do/a) U_T^2, L1_i
     {
-      const double c = s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(19, i);
+      const double c = s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(27, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(17, i);
+      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(25, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L2_i
     {
-      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(17, i);
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(25, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(30, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1s * A(19, i);
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1s * A(27, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(17, i);
+      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(25, i);
       *f += c;
     }
   }
@@ -2014,12 +2181,17 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
     {
-      const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(14, i);
+      const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(20, i);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2, F3_i
     {
-      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(15, i);
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(21, i);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(22, i);
       *f += c;
     }
   }
@@ -2033,7 +2205,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(6, j, k, i);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(7, j, k, i);
           *f += c * y[M + j] * y[M + k];
           jac[M + j] += c * y[M + k];
           jac[M + k] += c * y[M + j];
@@ -2041,21 +2213,21 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(7, j, i);
+        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(8, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(8, j, i);
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(9, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(7, j, i);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(8, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
@@ -2068,37 +2240,37 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(17, i);
+      const double c = -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(25, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(19, i);
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(27, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(17, i);
+      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(25, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(17, i);
+      const double c = -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(25, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(17, i);
+      const double c = -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(25, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(19, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(27, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(17, i);
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(25, i);
       *f += c;
     }
   }
@@ -2125,9 +2297,16 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^1, L_z: -U_T U_P, F7_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(13, i, j);
+        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(17, i, j);
         *f += c * y[M + j];
         jac[M + j] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(18, i, j);
+        *f += c * y[2 * M + N + j];
+        jac[2 * M + N + j] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2, F11_ij
     for (int j = 0; j < N; ++j)
@@ -2138,17 +2317,17 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: -U_T U_P, F3_i
     {
-      const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(15, i);
+      const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(21, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(14, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(20, i);
       *f += c;
     }
     // eps^1, L_z: -U_T U_P, F3_i
     {
-      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(15, i);
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(21, i);
       *f += c;
     }
   }
@@ -2161,14 +2340,21 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(8, j, i);
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(9, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: theta U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(7, j, i);
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(8, j, i);
+        *f += c * y[M + j];
+        jac[M + j] += c;
+      }
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      {
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(19, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
@@ -2181,27 +2367,37 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(19, i);
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(27, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L2_i
     {
-      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(17, i);
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(25, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(30, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(17, i);
+      const double c = (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(25, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(19, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(27, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L2_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(17, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(25, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(30, i);
       *f += c;
     }
   }
@@ -2220,7 +2416,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     {
-      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(15, i);
+      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(21, i);
       *f += c;
     }
   }
@@ -2233,18 +2429,18 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(7, j, i);
+        const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(8, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(17, i);
+      const double c = -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(25, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(17, i);
+      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(25, i);
       *f += c;
     }
   }
@@ -2263,7 +2459,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     {
-      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(15, i);
+      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(21, i);
       *f += c;
     }
   }
@@ -2276,18 +2472,18 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(7, j, i);
+        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(8, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(17, i);
+      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(25, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(17, i);
+      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(25, i);
       *f += c;
     }
   }
@@ -2320,7 +2516,7 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
         {
-          const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * A(20, i, j);
+          const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * A(31, i, j);
           *f += c * y[M + i] * y[2 * M + N + j];
           jac[M + i] += c * y[2 * M + N + j];
           jac[2 * M + N + j] += c * y[M + i];
@@ -2337,70 +2533,87 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(21, i);
+        const double c = (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(32, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: -U_T U_P
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.inflow * s.lr * s.lr * A(17, i);
+        const double c = s.inflow * s.lr * s.lr * A(25, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.mu * s.theta1c * A(22, i);
+        const double c = -s.lr * s.mu * s.theta1c * A(33, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(21, i);
+        const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(32, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.lr * s.mu * s.theta1s * A(17, i);
+        const double c = -s.lr * s.lr * s.mu * s.theta1s * A(25, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^2, L_z: theta U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.lr * s.theta * A(19, i);
+        const double c = -(2.0) * s.lr * s.lr * s.theta * A(27, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
       {
-        const double c = -s.lr * s.lr * A(14, i);
+        const double c = -s.lr * s.lr * A(20, i);
         *f += c * y[i];
         jac[i] += c;
       }
+    // eps^2, L_z: theta_tw U_T^2
+    for (int i = 0; i < N; ++i)
+      {
+        const double c = -(2.0) * s.lr * s.lr * A(28, i);
+        *f += c * y[2 * M + i];
+        jac[2 * M + i] += c;
+      }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -s.inflow * s.lr * A(25);
+      const double c = -s.inflow * s.lr * A(38);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = s.lr * s.mu * s.theta1s * A(25);
+      const double c = s.lr * s.mu * s.theta1s * A(38);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2
     {
-      const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(26);
+      const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(39);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * A(40);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2
     {
-      const double c = s.lr * s.theta * A(27);
+      const double c = s.lr * s.theta * A(41);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = s.lr * A(42);
       *f += c;
     }
   }
@@ -2423,7 +2636,7 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
         {
-          const double c = s.lr * s.lr * s.mu * A(7, i, j);
+          const double c = s.lr * s.lr * s.mu * A(8, i, j);
           *f += c * y[M + i] * y[2 * M + j];
           jac[M + i] += c * y[2 * M + j];
           jac[2 * M + j] += c * y[M + i];
@@ -2431,70 +2644,77 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: -U_T U_P
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.droop * s.lr * s.lr * s.mu * A(17, i);
+        const double c = s.droop * s.lr * s.lr * s.mu * A(25, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.inflow * s.lr * s.mu * A(21, i);
+        const double c = s.inflow * s.lr * s.mu * A(32, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.mu * s.theta * A(22, i);
+        const double c = -(2.0) * s.lr * s.mu * s.theta * A(33, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
       {
-        const double c = -s.lr * s.mu * A(23, i);
+        const double c = -s.lr * s.mu * A(34, i);
         *f += c * y[M + i];
         jac[M + i] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int i = 0; i < N; ++i)
+      {
+        const double c = -(2.0) * s.lr * s.mu * A(35, i);
+        *f += c * y[2 * M + N + i];
+        jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(21, i);
+        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(32, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: -U_T U_P
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.lr * s.lr * s.mu * s.precone * A(17, i);
+        const double c = s.lr * s.lr * s.mu * s.precone * A(25, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.lr * s.theta1c * A(19, i);
+        const double c = -(2.0) * s.lr * s.lr * s.theta1c * A(27, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -s.droop * s.lr * s.mu * A(25);
+      const double c = -s.droop * s.lr * s.mu * A(38);
       *f += c;
     }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -s.lr * s.mu * s.precone * A(25);
+      const double c = -s.lr * s.mu * s.precone * A(38);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = (1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(26);
+      const double c = (1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(39);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = s.lr * s.theta1c * A(27);
+      const double c = s.lr * s.theta1c * A(41);
       *f += c;
     }
   }
@@ -2507,49 +2727,61 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(21, i);
+        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(32, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.lr * s.mu * s.theta * A(17, i);
+        const double c = -(2.0) * s.lr * s.lr * s.mu * s.theta * A(25, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
       {
-        const double c = -s.lr * s.lr * s.mu * A(15, i);
+        const double c = -s.lr * s.lr * s.mu * A(21, i);
         *f += c * y[i];
         jac[i] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2
+    for (int i = 0; i < N; ++i)
+      {
+        const double c = -(2.0) * s.lr * s.lr * s.mu * A(30, i);
+        *f += c * y[2 * M + i];
+        jac[2 * M + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.lr * s.theta1s * A(19, i);
+        const double c = -(2.0) * s.lr * s.lr * s.theta1s * A(27, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -s.inflow * s.lr * s.mu * A(26);
+      const double c = -s.inflow * s.lr * s.mu * A(39);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2
     {
-      const double c = (2.0) * s.lr * s.mu * s.theta * A(25);
+      const double c = (2.0) * s.lr * s.mu * s.theta * A(38);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = (2.0) * s.lr * s.mu * A(43);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = (3.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(26);
+      const double c = (3.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(39);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = s.lr * s.theta1s * A(27);
+      const double c = s.lr * s.theta1s * A(41);
       *f += c;
     }
   }
@@ -2563,7 +2795,7 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
         {
-          const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * A(20, i, j);
+          const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * A(31, i, j);
           *f += c * y[M + i] * y[2 * M + N + j];
           jac[M + i] += c * y[2 * M + N + j];
           jac[2 * M + N + j] += c * y[M + i];
@@ -2571,39 +2803,44 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(21, i);
+        const double c = (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(32, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.mu * s.theta1c * A(22, i);
+        const double c = -s.lr * s.mu * s.theta1c * A(33, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(21, i);
+        const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(32, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.lr * s.lr * s.mu * s.theta1s * A(17, i);
+        const double c = s.lr * s.lr * s.mu * s.theta1s * A(25, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = -s.lr * s.mu * s.theta1s * A(25);
+      const double c = -s.lr * s.mu * s.theta1s * A(38);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2
     {
-      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(26);
+      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(39);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(40);
       *f += c;
     }
   }
@@ -2616,44 +2853,51 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.mu * s.theta1s * A(22, i);
+        const double c = -s.lr * s.mu * s.theta1s * A(33, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.mu * s.mu * s.theta * A(21, i);
+        const double c = -s.lr * s.mu * s.mu * s.theta * A(32, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
       {
-        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(24, i);
+        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(36, i);
         *f += c * y[M + i];
         jac[M + i] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int i = 0; i < N; ++i)
+      {
+        const double c = -s.lr * s.mu * s.mu * A(37, i);
+        *f += c * y[2 * M + N + i];
+        jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.lr * s.mu * s.theta1c * A(17, i);
+        const double c = -s.lr * s.lr * s.mu * s.theta1c * A(25, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(26);
+      const double c = -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(39);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = s.lr * s.mu * s.theta1c * A(25);
+      const double c = s.lr * s.mu * s.theta1c * A(38);
       *f += c;
     }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(26);
+      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(39);
       *f += c;
     }
   }
@@ -2666,13 +2910,13 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(21, i);
+        const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(32, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(26);
+      const double c = -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(39);
       *f += c;
     }
   }
@@ -2685,13 +2929,13 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(21, i);
+        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(32, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(26);
+      const double c = -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(39);
       *f += c;
     }
   }

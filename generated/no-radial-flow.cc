@@ -27,29 +27,44 @@ const model::IntegralTemplate kAero[] = {
     /* 0 */ {"x eta_a eta_b", "x1_etaa_etab", 2, {Direction::Flap, Direction::Flap}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::Eta, 1}}, Inner::None, 0, 0, {}, "F8_ab"},
     /* 1 */ {"eta_a gamma_b", "etaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "F11_ab/L8_ba"},
     /* 2 */ {"x eta_a gamma_b", "x1_etaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "F10_ab/L7_ba"},
-    /* 3 */ {"eta_a' eta_b' gamma_c", "detaa_detab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::EtaPrime, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "L24_cab"},
-    /* 4 */ {"eta_a' gamma_b", "detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 2, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L11_ba"},
-    /* 5 */ {"x eta_a' gamma_b", "x1_detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 2, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L10_ba"},
-    /* 6 */ {"eta_a' gamma_b gamma_c", "detaa_gamb_gamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "L16_bac"},
-    /* 7 */ {"x gamma_a gamma_b", "x1_gama_gamb", 2, {Direction::Lag, Direction::Lag}, 1, 0, 2, {{Factor::Gamma, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L14_ab"},
-    /* 8 */ {"gamma_a gamma_b", "gama_gamb", 2, {Direction::Lag, Direction::Lag}, 0, 0, 2, {{Factor::Gamma, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L13_ab"},
-    /* 9 */ {"x eta_a eta_b'", "x1_etaa_detab", 2, {Direction::Flap, Direction::Flap}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}}, Inner::None, 0, 0, {}, "F6_ab"},
-    /* 10 */ {"eta_a eta_b' gamma_c", "etaa_detab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "F14_abc/L17_cba"},
-    /* 11 */ {"eta_a eta_b", "etaa_etab", 2, {Direction::Flap, Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::Eta, 1}}, Inner::None, 0, 0, {}, "F9_ab"},
-    /* 12 */ {"eta_a eta_b'", "etaa_detab", 2, {Direction::Flap, Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}}, Inner::None, 0, 0, {}, "F7_ab"},
-    /* 13 */ {"x eta_a", "x1_etaa", 1, {Direction::Flap}, 1, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F2_a"},
-    /* 14 */ {"eta_a", "etaa", 1, {Direction::Flap}, 0, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F3_a"},
-    /* 15 */ {"x^2 eta_a", "x2_etaa", 1, {Direction::Flap}, 2, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F1_a"},
-    /* 16 */ {"gamma_a", "gama", 1, {Direction::Lag}, 0, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L2_a"},
-    /* 17 */ {"x^2 gamma_a", "x2_gama", 1, {Direction::Lag}, 2, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L4_a"},
-    /* 18 */ {"x gamma_a", "x1_gama", 1, {Direction::Lag}, 1, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L1_a"},
-    /* 19 */ {"x eta_a'", "x1_detaa", 1, {Direction::Flap}, 1, 0, 1, {{Factor::EtaPrime, 0}}, Inner::None, 0, 0, {}, ""},
-    /* 20 */ {"eta_a'", "detaa", 1, {Direction::Flap}, 0, 0, 1, {{Factor::EtaPrime, 0}}, Inner::None, 0, 0, {}, ""},
-    /* 21 */ {"x", "x1", 0, {}, 1, 0, 0, {}, Inner::None, 0, 0, {}, ""},
-    /* 22 */ {"1", "one", 0, {}, 0, 0, 0, {}, Inner::None, 0, 0, {}, ""},
-    /* 23 */ {"x^2", "x2", 0, {}, 2, 0, 0, {}, Inner::None, 0, 0, {}, ""},
-    /* 24 */ {"eta_a eta_b gamma_c", "etaa_etab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Eta, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "F15_abc/L18_cab"},
-    /* 25 */ {"eta_a gamma_b gamma_c", "etaa_gamb_gamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, ""},
+    /* 3 */ {"x tw eta_a gamma_b", "x1_tw_etaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 3, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 4 */ {"eta_a' eta_b' gamma_c", "detaa_detab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::EtaPrime, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "L24_cab"},
+    /* 5 */ {"eta_a' gamma_b", "detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 2, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L11_ba"},
+    /* 6 */ {"x eta_a' gamma_b", "x1_detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 2, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L10_ba"},
+    /* 7 */ {"eta_a' gamma_b gamma_c", "detaa_gamb_gamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "L16_bac"},
+    /* 8 */ {"x gamma_a gamma_b", "x1_gama_gamb", 2, {Direction::Lag, Direction::Lag}, 1, 0, 2, {{Factor::Gamma, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L14_ab"},
+    /* 9 */ {"gamma_a gamma_b", "gama_gamb", 2, {Direction::Lag, Direction::Lag}, 0, 0, 2, {{Factor::Gamma, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L13_ab"},
+    /* 10 */ {"tw gamma_a gamma_b", "tw_gama_gamb", 2, {Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::Gamma, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 11 */ {"x eta_a eta_b'", "x1_etaa_detab", 2, {Direction::Flap, Direction::Flap}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}}, Inner::None, 0, 0, {}, "F6_ab"},
+    /* 12 */ {"eta_a eta_b' gamma_c", "etaa_detab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "F14_abc/L17_cba"},
+    /* 13 */ {"x tw eta_a' gamma_b", "x1_tw_detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 3, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 14 */ {"tw eta_a' gamma_b gamma_c", "tw_detaa_gamb_gamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 4, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::Gamma, 2}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 15 */ {"eta_a eta_b", "etaa_etab", 2, {Direction::Flap, Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::Eta, 1}}, Inner::None, 0, 0, {}, "F9_ab"},
+    /* 16 */ {"tw eta_a gamma_b", "tw_etaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 17 */ {"eta_a eta_b'", "etaa_detab", 2, {Direction::Flap, Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}}, Inner::None, 0, 0, {}, "F7_ab"},
+    /* 18 */ {"tw eta_a' gamma_b", "tw_detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 19 */ {"x eta_a", "x1_etaa", 1, {Direction::Flap}, 1, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F2_a"},
+    /* 20 */ {"eta_a", "etaa", 1, {Direction::Flap}, 0, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F3_a"},
+    /* 21 */ {"tw eta_a", "tw_etaa", 1, {Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 22 */ {"x^2 eta_a", "x2_etaa", 1, {Direction::Flap}, 2, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F1_a"},
+    /* 23 */ {"x^2 tw eta_a", "x2_tw_etaa", 1, {Direction::Flap}, 2, 0, 2, {{Factor::Eta, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 24 */ {"gamma_a", "gama", 1, {Direction::Lag}, 0, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L2_a"},
+    /* 25 */ {"x^2 gamma_a", "x2_gama", 1, {Direction::Lag}, 2, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L4_a"},
+    /* 26 */ {"x gamma_a", "x1_gama", 1, {Direction::Lag}, 1, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L1_a"},
+    /* 27 */ {"x tw gamma_a", "x1_tw_gama", 1, {Direction::Lag}, 1, 0, 2, {{Factor::Gamma, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 28 */ {"x tw eta_a", "x1_tw_etaa", 1, {Direction::Flap}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 29 */ {"tw gamma_a", "tw_gama", 1, {Direction::Lag}, 0, 0, 2, {{Factor::Gamma, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 30 */ {"x eta_a'", "x1_detaa", 1, {Direction::Flap}, 1, 0, 1, {{Factor::EtaPrime, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 31 */ {"eta_a'", "detaa", 1, {Direction::Flap}, 0, 0, 1, {{Factor::EtaPrime, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 32 */ {"x", "x1", 0, {}, 1, 0, 0, {}, Inner::None, 0, 0, {}, ""},
+    /* 33 */ {"1", "one", 0, {}, 0, 0, 0, {}, Inner::None, 0, 0, {}, ""},
+    /* 34 */ {"tw", "tw", 0, {}, 0, 0, 1, {{Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 35 */ {"x^2", "x2", 0, {}, 2, 0, 0, {}, Inner::None, 0, 0, {}, ""},
+    /* 36 */ {"x^2 tw", "x2_tw", 0, {}, 2, 0, 1, {{Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 37 */ {"x tw", "x1_tw", 0, {}, 1, 0, 1, {{Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 38 */ {"eta_a eta_b gamma_c", "etaa_etab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Eta, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "F15_abc/L18_cab"},
+    /* 39 */ {"eta_a gamma_b gamma_c", "etaa_gamb_gamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, ""},
+    /* 40 */ {"tw eta_a gamma_b gamma_c", "tw_etaa_gamb_gamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 4, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::Gamma, 2}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
 };
 
 // Structural integral templates (letters a, b, c: the template's mode variables).
@@ -211,6 +226,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(1, i, j);
       // eps^2, L_z: theta U_T^2, F10_ij
       v += -s.lock * s.lr * s.lr * s.lr * s.theta * A(2, i, j);
+      // eps^2, L_z: theta_tw U_T^2
+      v += -s.lock * s.lr * s.lr * s.lr * A(3, i, j);
       // eps^2, tension, Coriolis 2v' (2.4), B3_ij
       v += (2.0) * s.precone * S(4, i, j);
       out.force[(0 * n + i) * 2 * n + 2 * M + j] += v;
@@ -222,13 +239,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L24_ijk
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(3, j, k, i);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(4, j, k, i);
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(4, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(5, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(5, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(6, j, i);
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(4, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(5, j, i);
       // eps^2, elastic coupling E^cs (E.8)
       v += in.ecs_lag_flap[i * M + j];
       out.force[(0 * n + M + i) * 2 * n + M + j] += v;
@@ -249,6 +266,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(1, j, i);
       // eps^2, L_y: theta U_P U_T, L7_ij
       v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * A(2, j, i);
+      // eps^2, L_y: theta_tw U_P U_T
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * A(3, j, i);
       // eps^2, Coriolis 2u' (2.5), B7_ij
       v += -(2.0) * s.precone * S(6, j, i);
       out.force[(0 * n + M + i) * 2 * n + j] += v;
@@ -276,7 +295,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.g0[k] * A(6, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.g0[k] * A(7, k, i, j);
       // eps^2, tension, Coriolis 2v' (2.4), S_ikj
       for (int k = 0; k < N; ++k)
         v += (2.0) * in.h0[k] * S(8, i, k, j);
@@ -284,15 +303,17 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       for (int k = 0; k < N; ++k)
         v += -(2.0) * in.h0[k] * S(9, i, j, k);
       // eps^3, L_y: (C_Do/a) U_T^2, L14_ij
-      v += -s.cdo_a * s.lock * s.lr * s.lr * s.lr * A(7, i, j);
+      v += -s.cdo_a * s.lock * s.lr * s.lr * s.lr * A(8, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(8, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(9, i, j);
       // eps^3, tension, Coriolis 2v' (2.4), B8_ij
       v += (2.0) * s.droop * s.theta * S(10, i, j);
       // eps^3, L_y: theta U_P U_T, L13_ij
-      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta * A(8, i, j);
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta * A(9, i, j);
+      // eps^3, L_y: theta_tw U_P U_T
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * A(10, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(8, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(9, i, j);
       out.force[(0 * n + M + i) * 2 * n + 2 * M + j] += v;
     }
   }
@@ -308,7 +329,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^1, L_z: -U_T U_P, F6_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(9, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(11, i, j);
       out.force[(1 * n + i) * 2 * n + M + j] += v;
     }
   }
@@ -318,7 +339,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, F14_ikj
       for (int k = 0; k < M; ++k)
-        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(10, i, k, j);
+        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(12, i, k, j);
       // eps^2, L_z: -U_T U_P, F11_ij
       v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(1, i, j);
       // eps^2, L_z: -U_T U_P, F11_ij
@@ -333,11 +354,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * A(4, j, i);
+      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * A(5, j, i);
       // eps^2, L_y: theta U_P U_T, L10_ij
-      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * A(5, j, i);
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * A(6, j, i);
+      // eps^2, L_y: theta_tw U_P U_T
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(13, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(4, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(5, j, i);
       out.force[(1 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -347,7 +370,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L17_ikj
       for (int k = 0; k < M; ++k)
-        v += -s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(10, j, k, i);
+        v += -s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(12, j, k, i);
       // eps^2, L_y: -U_P^2, L8_ij
       v += -s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(1, j, i);
       // eps^2, L_y: -U_P^2, L8_ij
@@ -363,13 +386,20 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * in.g0[k] * A(6, k, i, j);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * in.g0[k] * A(7, k, i, j);
+      // eps^3, L_y: theta_tw U_P U_T
+      for (int k = 0; k < M; ++k)
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(14, k, i, j);
       // eps^3, L_y: theta U_P U_T, L13_ij
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(8, i, j);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(9, i, j);
+      // eps^3, L_y: theta_tw U_P U_T
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(10, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1c * A(8, i, j);
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1c * A(9, i, j);
       // eps^3, L_y: theta U_P U_T, L13_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta * A(8, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta * A(9, i, j);
+      // eps^3, L_y: theta_tw U_P U_T
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * A(10, i, j);
       out.force[(1 * n + M + i) * 2 * n + 2 * M + j] += v;
     }
   }
@@ -378,7 +408,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^1, L_z: -U_T U_P, F9_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(11, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(15, i, j);
       out.force[(2 * n + i) * 2 * n + j] += v;
     }
   }
@@ -388,6 +418,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: theta U_T^2, F11_ij
       v += -s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(1, i, j);
+      // eps^2, L_z: theta_tw U_T^2
+      v += -s.lock * s.lr * s.lr * s.lr * s.mu * A(16, i, j);
       // eps^2, L_z: theta_cyclic U_T^2, F10_ij
       v += -s.lock * s.lr * s.lr * s.lr * s.theta1s * A(2, i, j);
       out.force[(2 * n + i) * 2 * n + 2 * M + j] += v;
@@ -398,7 +430,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(4, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(5, j, i);
       out.force[(2 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -408,6 +440,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: theta U_P U_T, L8_ij
       v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(1, j, i);
+      // eps^2, L_y: theta_tw U_P U_T
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(16, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L7_ij
       v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta1s * A(2, j, i);
       out.force[(2 * n + M + i) * 2 * n + j] += v;
@@ -418,9 +452,9 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j) {
       double v = 0.0;
       // eps^3, L_y: (C_Do/a) U_T^2, L13_ij
-      v += -s.cdo_a * s.lock * s.lr * s.lr * s.lr * s.mu * A(8, i, j);
+      v += -s.cdo_a * s.lock * s.lr * s.lr * s.lr * s.mu * A(9, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1s * A(8, i, j);
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1s * A(9, i, j);
       out.force[(2 * n + M + i) * 2 * n + 2 * M + j] += v;
     }
   }
@@ -439,13 +473,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L24_ijk
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(3, j, k, i);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(4, j, k, i);
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(4, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(5, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(5, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(6, j, i);
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(4, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(5, j, i);
       out.force[(3 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -464,11 +498,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.g0[k] * A(6, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.g0[k] * A(7, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(8, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(9, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(8, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(9, i, j);
       out.force[(3 * n + M + i) * 2 * n + 2 * M + j] += v;
     }
   }
@@ -477,7 +511,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^1, L_z: -U_T U_P, F7_ij
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(12, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(17, i, j);
       out.force[(4 * n + i) * 2 * n + M + j] += v;
     }
   }
@@ -495,9 +529,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(5, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(6, j, i);
       // eps^2, L_y: theta U_P U_T, L11_ij
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(4, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(5, j, i);
+      // eps^2, L_y: theta_tw U_P U_T
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(18, j, i);
       out.force[(4 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -516,11 +552,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * in.g0[k] * A(6, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * in.g0[k] * A(7, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(8, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(9, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(8, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(9, i, j);
       out.force[(4 * n + M + i) * 2 * n + 2 * M + j] += v;
     }
   }
@@ -529,7 +565,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(4, j, i);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(5, j, i);
       out.force[(5 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -538,7 +574,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(4, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(5, j, i);
       out.force[(6 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -554,13 +590,17 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.droop * S(11, i);
     // eps^1, L_z: -U_T U_P, F2_i
-    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(13, i);
+    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(19, i);
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(13, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(19, i);
     // eps^1, L_z: theta U_T^2, F3_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(14, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(20, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(21, i);
     // eps^1, L_z: theta U_T^2, F1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(15, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(22, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * A(23, i);
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.precone * S(11, i);
     // eps^1, modal stiffness (A.2), M_Fii
@@ -573,16 +613,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_y: -U_P^2, L24_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(3, j, k, i);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(4, j, k, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(4, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(5, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(5, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(6, j, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(4, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(5, j, i);
     // eps^2, elastic coupling E^cs (E.8)
     for (int j = 0; j < M; ++j)
       v += in.ecs_lag_flap[i * M + j] * in.g0[j];
@@ -590,29 +630,31 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j)
       v += in.es_lag[i * N + j] * in.h0[j];
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
-    v += (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(16, i);
+    v += (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L4_i
-    v += (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(17, i);
+    v += (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(25, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(18, i);
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(26, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(16, i);
+    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(24, i);
     // eps^2, tension, centrifugal (2.4), B10_i
     v += -s.droop * s.theta * S(12, i);
     // eps^2, in-plane centrifugal -v (2.5), B11_i
     v += s.droop * s.theta * S(13, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(16, i);
+    v += -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(16, i);
+    v += (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(24, i);
     // eps^2, L_y: theta U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(18, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(26, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(27, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(16, i);
+    v += -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(24, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(18, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(26, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(16, i);
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(24, i);
     // eps^1, modal stiffness (A.4), M_Lii
     v += -in.h0[i] * in.omega_lag[i] * in.omega_lag[i] * S(7, i);
     out.forcing[0 * n + M + i] += v;
@@ -622,15 +664,15 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^1, L_z: -U_T U_P, F6_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(9, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(11, i, j);
     // eps^1, L_z: -U_T U_P, F2_i
-    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(13, i);
+    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(19, i);
     // eps^1, L_z: -U_T U_P, F2_i
-    v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(13, i);
+    v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(19, i);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
-    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(14, i);
+    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(20, i);
     // eps^1, L_z: theta_cyclic U_T^2, F1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1c * A(15, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1c * A(22, i);
     out.forcing[1 * n + i] += v;
   }
   // cos psi: lag equation i, state-independent
@@ -638,40 +680,49 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(4, j, i);
+      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(5, j, i);
     // eps^2, L_y: theta U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * in.g0[j] * A(5, j, i);
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * in.g0[j] * A(6, j, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(13, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(4, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(5, j, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(16, i);
+    v += -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(24, i);
     // eps^2, L_y: theta U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta * A(18, i);
+    v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta * A(26, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(27, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(16, i);
+    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(24, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -s.inflow * s.lock * s.lr * s.lr * s.mu * s.precone * A(16, i);
+    v += -s.inflow * s.lock * s.lr * s.lr * s.mu * s.precone * A(24, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1c * A(18, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1c * A(26, i);
     // eps^2, L_y: theta U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta * A(18, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta * A(26, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(27, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(16, i);
+    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(24, i);
     out.forcing[1 * n + M + i] += v;
   }
   // sin psi: flap equation i, state-independent
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P, F3_i
-    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(14, i);
+    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(20, i);
     // eps^1, L_z: theta U_T^2, F2_i
-    v += s.lock * s.lr * s.lr * s.mu * s.theta * A(13, i);
+    v += s.lock * s.lr * s.lr * s.mu * s.theta * A(19, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += s.lock * s.lr * s.lr * s.mu * A(28, i);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
-    v += (3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(14, i);
+    v += (3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(20, i);
     // eps^1, L_z: theta_cyclic U_T^2, F1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1s * A(15, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1s * A(22, i);
     out.forcing[2 * n + i] += v;
   }
   // sin psi: lag equation i, state-independent
@@ -679,26 +730,30 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(4, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(5, j, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L1_i
-    v += s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(18, i);
+    v += s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(26, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(16, i);
+    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(24, i);
     // eps^2, L_y: theta U_P U_T, L2_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(16, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(24, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(29, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1s * A(18, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1s * A(26, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(16, i);
+    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(24, i);
     out.forcing[2 * n + M + i] += v;
   }
   // cos 2psi: flap equation i, state-independent
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
-    v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(13, i);
+    v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(19, i);
     // eps^1, L_z: theta U_T^2, F3_i
-    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(14, i);
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(20, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(21, i);
     out.forcing[3 * n + i] += v;
   }
   // cos 2psi: lag equation i, state-independent
@@ -707,30 +762,30 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_y: -U_P^2, L24_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(3, j, k, i);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(4, j, k, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(4, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(5, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(5, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(6, j, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(4, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(5, j, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
-    v += -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(16, i);
+    v += -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(18, i);
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(26, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(16, i);
+    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(24, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(16, i);
+    v += -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(16, i);
+    v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(24, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(18, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(26, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(16, i);
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(24, i);
     out.forcing[3 * n + M + i] += v;
   }
   // sin 2psi: flap equation i, state-independent
@@ -738,13 +793,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^1, L_z: -U_T U_P, F7_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(12, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(17, i, j);
     // eps^1, L_z: -U_T U_P, F3_i
-    v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(14, i);
+    v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(20, i);
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(13, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(19, i);
     // eps^1, L_z: -U_T U_P, F3_i
-    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(14, i);
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(20, i);
     out.forcing[4 * n + i] += v;
   }
   // sin 2psi: lag equation i, state-independent
@@ -752,27 +807,34 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.g0[j] * A(5, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.g0[j] * A(6, j, i);
     // eps^2, L_y: theta U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * A(4, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * A(5, j, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(18, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(18, i);
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(26, i);
     // eps^2, L_y: theta U_P U_T, L2_i
-    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(16, i);
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(24, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(29, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(16, i);
+    v += (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(24, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(18, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(26, i);
     // eps^2, L_y: theta U_P U_T, L2_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(16, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(24, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(29, i);
     out.forcing[4 * n + M + i] += v;
   }
   // cos 3psi: flap equation i, state-independent
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
-    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(14, i);
+    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(20, i);
     out.forcing[5 * n + i] += v;
   }
   // cos 3psi: lag equation i, state-independent
@@ -780,18 +842,18 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(4, j, i);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(5, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(16, i);
+    v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(24, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(16, i);
+    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(24, i);
     out.forcing[5 * n + M + i] += v;
   }
   // sin 3psi: flap equation i, state-independent
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
-    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(14, i);
+    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(20, i);
     out.forcing[6 * n + i] += v;
   }
   // sin 3psi: lag equation i, state-independent
@@ -799,11 +861,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(4, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(5, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(16, i);
+    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(24, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(16, i);
+    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(24, i);
     out.forcing[6 * n + M + i] += v;
   }
 }
@@ -878,9 +940,11 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.droop * S(11, i);
     // eps^1, L_z: -U_T U_P, F2_i
-    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(13, i);
+    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(19, i);
     // eps^1, L_z: theta U_T^2, F1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(15, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(22, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * A(23, i);
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.precone * S(11, i);
     out.c[i] += v;
@@ -889,15 +953,17 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_y: (C_Do/a) U_T^2, L4_i
-    v += (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(17, i);
+    v += (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(25, i);
     // eps^2, tension, centrifugal (2.4), B10_i
     v += -s.droop * s.theta * S(12, i);
     // eps^2, in-plane centrifugal -v (2.5), B11_i
     v += s.droop * s.theta * S(13, i);
     // eps^2, L_y: theta U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(18, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(26, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(27, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(16, i);
+    v += -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(24, i);
     out.c[M + i] += v;
   }
 }
@@ -920,25 +986,27 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -s.lr * s.lr * A(13, i);
+    v += -s.lr * s.lr * A(19, i);
     out.force[0 * 2 * n + i] += v;
   }
   // thrust, const: coefficient of h_i'
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: -U_T U_P
-    v += s.inflow * s.lr * s.lr * A(16, i);
+    v += s.inflow * s.lr * s.lr * A(24, i);
     // eps^2, L_z: theta_cyclic U_T^2
-    v += -s.lr * s.lr * s.mu * s.theta1s * A(16, i);
+    v += -s.lr * s.lr * s.mu * s.theta1s * A(24, i);
     // eps^2, L_z: theta U_T^2
-    v += -(2.0) * s.lr * s.lr * s.theta * A(18, i);
+    v += -(2.0) * s.lr * s.lr * s.theta * A(26, i);
+    // eps^2, L_z: theta_tw U_T^2
+    v += -(2.0) * s.lr * s.lr * A(27, i);
     out.force[0 * 2 * n + 2 * M + i] += v;
   }
   // thrust, cos psi: coefficient of g_i
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -s.lr * s.mu * A(19, i);
+    v += -s.lr * s.mu * A(30, i);
     out.force[1 * 2 * n + M + i] += v;
   }
   // thrust, cos psi: coefficient of h_i'
@@ -946,63 +1014,69 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P
     for (int j = 0; j < M; ++j)
-      v += s.lr * s.lr * s.mu * in.g0[j] * A(4, j, i);
+      v += s.lr * s.lr * s.mu * in.g0[j] * A(5, j, i);
     // eps^2, L_z: -U_T U_P
-    v += s.droop * s.lr * s.lr * s.mu * A(16, i);
+    v += s.droop * s.lr * s.lr * s.mu * A(24, i);
     // eps^2, L_z: -U_T U_P
-    v += s.lr * s.lr * s.mu * s.precone * A(16, i);
+    v += s.lr * s.lr * s.mu * s.precone * A(24, i);
     // eps^2, L_z: theta_cyclic U_T^2
-    v += -(2.0) * s.lr * s.lr * s.theta1c * A(18, i);
+    v += -(2.0) * s.lr * s.lr * s.theta1c * A(26, i);
     out.force[1 * 2 * n + 2 * M + i] += v;
   }
   // thrust, sin psi: coefficient of g_i'
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -s.lr * s.lr * s.mu * A(14, i);
+    v += -s.lr * s.lr * s.mu * A(20, i);
     out.force[2 * 2 * n + i] += v;
   }
   // thrust, sin psi: coefficient of h_i'
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta U_T^2
-    v += -(2.0) * s.lr * s.lr * s.mu * s.theta * A(16, i);
+    v += -(2.0) * s.lr * s.lr * s.mu * s.theta * A(24, i);
+    // eps^2, L_z: theta_tw U_T^2
+    v += -(2.0) * s.lr * s.lr * s.mu * A(29, i);
     // eps^2, L_z: theta_cyclic U_T^2
-    v += -(2.0) * s.lr * s.lr * s.theta1s * A(18, i);
+    v += -(2.0) * s.lr * s.lr * s.theta1s * A(26, i);
     out.force[2 * 2 * n + 2 * M + i] += v;
   }
   // thrust, cos 2psi: coefficient of h_i'
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2
-    v += s.lr * s.lr * s.mu * s.theta1s * A(16, i);
+    v += s.lr * s.lr * s.mu * s.theta1s * A(24, i);
     out.force[3 * 2 * n + 2 * M + i] += v;
   }
   // thrust, sin 2psi: coefficient of g_i
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(20, i);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(31, i);
     out.force[4 * 2 * n + M + i] += v;
   }
   // thrust, sin 2psi: coefficient of h_i'
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2
-    v += -s.lr * s.lr * s.mu * s.theta1c * A(16, i);
+    v += -s.lr * s.lr * s.mu * s.theta1c * A(24, i);
     out.force[4 * 2 * n + 2 * M + i] += v;
   }
   // thrust, const: state-independent
   {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -s.inflow * s.lr * A(21);
+    v += -s.inflow * s.lr * A(32);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += s.lr * s.mu * s.theta1s * A(21);
+    v += s.lr * s.mu * s.theta1s * A(32);
     // eps^1, L_z: theta U_T^2
-    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(22);
+    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(33);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * A(34);
     // eps^1, L_z: theta U_T^2
-    v += s.lr * s.theta * A(23);
+    v += s.lr * s.theta * A(35);
+    // eps^1, L_z: theta_tw U_T^2
+    v += s.lr * A(36);
     out.forcing[0] += v;
   }
   // thrust, cos psi: state-independent
@@ -1010,37 +1084,41 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
-      v += -s.lr * s.mu * in.g0[i] * A(19, i);
+      v += -s.lr * s.mu * in.g0[i] * A(30, i);
     // eps^1, L_z: -U_T U_P
-    v += -s.droop * s.lr * s.mu * A(21);
+    v += -s.droop * s.lr * s.mu * A(32);
     // eps^1, L_z: -U_T U_P
-    v += -s.lr * s.mu * s.precone * A(21);
+    v += -s.lr * s.mu * s.precone * A(32);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += (1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(22);
+    v += (1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(33);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += s.lr * s.theta1c * A(23);
+    v += s.lr * s.theta1c * A(35);
     out.forcing[1] += v;
   }
   // thrust, sin psi: state-independent
   {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -s.inflow * s.lr * s.mu * A(22);
+    v += -s.inflow * s.lr * s.mu * A(33);
     // eps^1, L_z: theta U_T^2
-    v += (2.0) * s.lr * s.mu * s.theta * A(21);
+    v += (2.0) * s.lr * s.mu * s.theta * A(32);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (2.0) * s.lr * s.mu * A(37);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += (3.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(22);
+    v += (3.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(33);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += s.lr * s.theta1s * A(23);
+    v += s.lr * s.theta1s * A(35);
     out.forcing[2] += v;
   }
   // thrust, cos 2psi: state-independent
   {
     double v = 0.0;
     // eps^1, L_z: theta_cyclic U_T^2
-    v += -s.lr * s.mu * s.theta1s * A(21);
+    v += -s.lr * s.mu * s.theta1s * A(32);
     // eps^1, L_z: theta U_T^2
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(22);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(33);
+    // eps^1, L_z: theta_tw U_T^2
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(34);
     out.forcing[3] += v;
   }
   // thrust, sin 2psi: state-independent
@@ -1048,27 +1126,27 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * A(20, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * A(31, i);
     // eps^1, L_z: -U_T U_P
-    v += -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(22);
+    v += -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(33);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += s.lr * s.mu * s.theta1c * A(21);
+    v += s.lr * s.mu * s.theta1c * A(32);
     // eps^1, L_z: -U_T U_P
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(22);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(33);
     out.forcing[4] += v;
   }
   // thrust, cos 3psi: state-independent
   {
     double v = 0.0;
     // eps^1, L_z: theta_cyclic U_T^2
-    v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(22);
+    v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(33);
     out.forcing[5] += v;
   }
   // thrust, sin 3psi: state-independent
   {
     double v = 0.0;
     // eps^1, L_z: theta_cyclic U_T^2
-    v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(22);
+    v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(33);
     out.forcing[6] += v;
   }
 }
@@ -1101,7 +1179,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(24, i, j, k);
+          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(38, i, j, k);
           *f += c * y[j] * y[2 * M + k];
           jac[j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[j];
@@ -1150,6 +1228,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
         *f += c * y[j];
         jac[j] += c;
       }
+    // eps^2, L_z: theta_tw U_T^2
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -s.lock * s.lr * s.lr * s.lr * A(3, i, j);
+        *f += c * y[2 * M + j];
+        jac[2 * M + j] += c;
+      }
     // eps^2, tension, Coriolis 2v' (2.4), B3_ij
     for (int j = 0; j < N; ++j)
       {
@@ -1178,22 +1263,32 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     }
     // eps^1, L_z: -U_T U_P, F2_i
     {
-      const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(13, i);
+      const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(19, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(13, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(19, i);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2, F3_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(14, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(20, i);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(21, i);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2, F1_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(15, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(22, i);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * A(23, i);
       *f += c;
     }
     // eps^1, tension, centrifugal (2.4), B1_i
@@ -1224,7 +1319,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(3, j, k, i);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(4, j, k, i);
           *f += c * y[M + j] * y[M + k];
           jac[M + j] += c * y[M + k];
           jac[M + k] += c * y[M + j];
@@ -1233,7 +1328,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(6, j, i, k);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(7, j, i, k);
           *f += c * y[M + j] * y[2 * M + k];
           jac[M + j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[M + j];
@@ -1242,7 +1337,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * s.theta * A(25, j, i, k);
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * s.theta * A(39, j, i, k);
           *f += c * y[j] * y[2 * M + k];
           jac[j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[j];
@@ -1251,10 +1346,19 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
         {
-          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(24, j, k, i);
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(38, j, k, i);
           *f += c * y[j] * y[k];
           jac[j] += c * y[k];
           jac[k] += c * y[j];
+        }
+    // eps^3, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      for (int k = 0; k < N; ++k)
+        {
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(40, j, i, k);
+          *f += c * y[j] * y[2 * M + k];
+          jac[j] += c * y[2 * M + k];
+          jac[2 * M + k] += c * y[j];
         }
     // eps^2, tension, Coriolis 2v' (2.4), S_ijk
     for (int j = 0; j < N; ++j)
@@ -1286,21 +1390,21 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^3, L_y: (C_Do/a) U_T^2, L14_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -s.cdo_a * s.lock * s.lr * s.lr * s.lr * A(7, i, j);
+        const double c = -s.cdo_a * s.lock * s.lr * s.lr * s.lr * A(8, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(4, j, i);
+        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(5, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(8, i, j);
+        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(9, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -1321,7 +1425,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^3, L_y: theta U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta * A(8, i, j);
+        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta * A(9, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -1332,24 +1436,31 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
         *f += c * y[j];
         jac[j] += c;
       }
+    // eps^3, L_y: theta_tw U_P U_T
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * A(10, i, j);
+        *f += c * y[2 * M + j];
+        jac[2 * M + j] += c;
+      }
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(5, j, i);
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(6, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(4, j, i);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(5, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(8, i, j);
+        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(9, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -1364,6 +1475,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       {
         const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * A(2, j, i);
+        *f += c * y[j];
+        jac[j] += c;
+      }
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      {
+        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * A(3, j, i);
         *f += c * y[j];
         jac[j] += c;
       }
@@ -1390,22 +1508,22 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
     {
-      const double c = (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(16, i);
+      const double c = (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
       *f += c;
     }
     // eps^2, L_y: (C_Do/a) U_T^2, L4_i
     {
-      const double c = (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(17, i);
+      const double c = (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(25, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(18, i);
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(26, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(16, i);
+      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(24, i);
       *f += c;
     }
     // eps^2, tension, centrifugal (2.4), B10_i
@@ -1420,32 +1538,37 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(16, i);
+      const double c = -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(16, i);
+      const double c = (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(24, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(18, i);
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(26, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(27, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(16, i);
+      const double c = -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(24, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(18, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(26, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(16, i);
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(24, i);
       *f += c;
     }
     // eps^1, structural damping (2.17), M_Lii
@@ -1471,7 +1594,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(10, i, j, k);
+          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(12, i, j, k);
           *f += c * y[M + j] * y[2 * M + k];
           jac[M + j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[M + j];
@@ -1486,7 +1609,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^1, L_z: -U_T U_P, F6_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(9, i, j);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(11, i, j);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
@@ -1506,22 +1629,22 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: -U_T U_P, F2_i
     {
-      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(13, i);
+      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(19, i);
       *f += c;
     }
     // eps^1, L_z: -U_T U_P, F2_i
     {
-      const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(13, i);
+      const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(19, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     {
-      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(14, i);
+      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(20, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F1_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1c * A(15, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1c * A(22, i);
       *f += c;
     }
   }
@@ -1535,7 +1658,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(6, j, i, k);
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(7, j, i, k);
           *f += c * y[M + j] * y[2 * M + k];
           jac[M + j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[M + j];
@@ -1544,16 +1667,25 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
         {
-          const double c = -s.lock * s.lr * s.lr * s.lr * s.mu * A(10, j, k, i);
+          const double c = -s.lock * s.lr * s.lr * s.lr * s.mu * A(12, j, k, i);
           *f += c * y[M + k] * y[j];
           jac[M + k] += c * y[j];
           jac[j] += c * y[M + k];
+        }
+    // eps^3, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      for (int k = 0; k < N; ++k)
+        {
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(14, j, i, k);
+          *f += c * y[M + j] * y[2 * M + k];
+          jac[M + j] += c * y[2 * M + k];
+          jac[2 * M + k] += c * y[M + j];
         }
     // eps^3, L_y: theta_cyclic U_P U_T
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * s.theta1c * A(25, j, i, k);
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * s.theta1c * A(39, j, i, k);
           *f += c * y[j] * y[2 * M + k];
           jac[j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[j];
@@ -1561,7 +1693,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^3, L_y: theta U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(8, i, j);
+        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(9, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -1572,38 +1704,52 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
         *f += c * y[j];
         jac[j] += c;
       }
+    // eps^3, L_y: theta_tw U_P U_T
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(10, i, j);
+        *f += c * y[2 * M + j];
+        jac[2 * M + j] += c;
+      }
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -s.inflow * s.lock * s.lr * s.lr * s.mu * A(4, j, i);
+        const double c = -s.inflow * s.lock * s.lr * s.lr * s.mu * A(5, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1c * A(8, i, j);
+        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1c * A(9, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
     // eps^2, L_y: theta U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * A(5, j, i);
+        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * A(6, j, i);
+        *f += c * y[M + j];
+        jac[M + j] += c;
+      }
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      {
+        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(13, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(4, j, i);
+        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(5, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, L_y: theta U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta * A(8, i, j);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta * A(9, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -1614,6 +1760,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
         *f += c * y[j];
         jac[j] += c;
       }
+    // eps^3, L_y: theta_tw U_P U_T
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * A(10, i, j);
+        *f += c * y[2 * M + j];
+        jac[2 * M + j] += c;
+      }
     // eps^2, L_y: theta_cyclic U_P U_T, L7_ij
     for (int j = 0; j < M; ++j)
       {
@@ -1623,37 +1776,47 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(16, i);
+      const double c = -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(24, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta * A(18, i);
+      const double c = (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta * A(26, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(27, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(16, i);
+      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(24, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -s.inflow * s.lock * s.lr * s.lr * s.mu * s.precone * A(16, i);
+      const double c = -s.inflow * s.lock * s.lr * s.lr * s.mu * s.precone * A(24, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1c * A(18, i);
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1c * A(26, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta * A(18, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta * A(26, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(27, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(16, i);
+      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(24, i);
       *f += c;
     }
   }
@@ -1673,9 +1836,16 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^1, L_z: -U_T U_P, F9_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(11, i, j);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(15, i, j);
         *f += c * y[j];
         jac[j] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -s.lock * s.lr * s.lr * s.lr * s.mu * A(16, i, j);
+        *f += c * y[2 * M + j];
+        jac[2 * M + j] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2, F10_ij
     for (int j = 0; j < N; ++j)
@@ -1686,22 +1856,27 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: -U_T U_P, F3_i
     {
-      const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(14, i);
+      const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(20, i);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2, F2_i
     {
-      const double c = s.lock * s.lr * s.lr * s.mu * s.theta * A(13, i);
+      const double c = s.lock * s.lr * s.lr * s.mu * s.theta * A(19, i);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = s.lock * s.lr * s.lr * s.mu * A(28, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     {
-      const double c = (3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(14, i);
+      const double c = (3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(20, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F1_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1s * A(15, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1s * A(22, i);
       *f += c;
     }
   }
@@ -1715,7 +1890,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * s.theta1s * A(25, j, i, k);
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * s.theta1s * A(39, j, i, k);
           *f += c * y[j] * y[2 * M + k];
           jac[j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[j];
@@ -1723,21 +1898,21 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^3, L_y: (C_Do/a) U_T^2, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -s.cdo_a * s.lock * s.lr * s.lr * s.lr * s.mu * A(8, i, j);
+        const double c = -s.cdo_a * s.lock * s.lr * s.lr * s.lr * s.mu * A(9, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1s * A(8, i, j);
+        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1s * A(9, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(4, j, i);
+        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(5, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
@@ -1745,6 +1920,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       {
         const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(1, j, i);
+        *f += c * y[j];
+        jac[j] += c;
+      }
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      {
+        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(16, j, i);
         *f += c * y[j];
         jac[j] += c;
       }
@@ -1757,27 +1939,32 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: (C_Do/a) U_T^2, L1_i
     {
-      const double c = s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(18, i);
+      const double c = s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(26, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(16, i);
+      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(24, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L2_i
     {
-      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(16, i);
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(24, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(29, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1s * A(18, i);
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1s * A(26, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(16, i);
+      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(24, i);
       *f += c;
     }
   }
@@ -1796,12 +1983,17 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
     {
-      const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(13, i);
+      const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(19, i);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2, F3_i
     {
-      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(14, i);
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(20, i);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(21, i);
       *f += c;
     }
   }
@@ -1815,7 +2007,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(3, j, k, i);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(4, j, k, i);
           *f += c * y[M + j] * y[M + k];
           jac[M + j] += c * y[M + k];
           jac[M + k] += c * y[M + j];
@@ -1824,7 +2016,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(6, j, i, k);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(7, j, i, k);
           *f += c * y[M + j] * y[2 * M + k];
           jac[M + j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[M + j];
@@ -1832,35 +2024,35 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(4, j, i);
+        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(5, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(8, i, j);
+        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(9, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(5, j, i);
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(6, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(4, j, i);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(5, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(8, i, j);
+        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(9, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -1873,37 +2065,37 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(16, i);
+      const double c = -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(18, i);
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(26, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(16, i);
+      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(24, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(16, i);
+      const double c = -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(16, i);
+      const double c = -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(24, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(18, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(26, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(16, i);
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(24, i);
       *f += c;
     }
   }
@@ -1916,7 +2108,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^1, L_z: -U_T U_P, F7_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(12, i, j);
+        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(17, i, j);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
@@ -1929,17 +2121,17 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: -U_T U_P, F3_i
     {
-      const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(14, i);
+      const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(20, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(13, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(19, i);
       *f += c;
     }
     // eps^1, L_z: -U_T U_P, F3_i
     {
-      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(14, i);
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(20, i);
       *f += c;
     }
   }
@@ -1953,7 +2145,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(6, j, i, k);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(7, j, i, k);
           *f += c * y[M + j] * y[2 * M + k];
           jac[M + j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[M + j];
@@ -1961,28 +2153,35 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(8, i, j);
+        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(9, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(5, j, i);
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(6, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: theta U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(4, j, i);
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(5, j, i);
+        *f += c * y[M + j];
+        jac[M + j] += c;
+      }
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      {
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(18, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(8, i, j);
+        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(9, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -1995,27 +2194,37 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(18, i);
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(26, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L2_i
     {
-      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(16, i);
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(24, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(29, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(16, i);
+      const double c = (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(24, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(18, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(26, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L2_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(16, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(24, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(29, i);
       *f += c;
     }
   }
@@ -2027,7 +2236,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     (void)jac;
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     {
-      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(14, i);
+      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(20, i);
       *f += c;
     }
   }
@@ -2040,18 +2249,18 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(4, j, i);
+        const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(5, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(16, i);
+      const double c = -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(24, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(16, i);
+      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(24, i);
       *f += c;
     }
   }
@@ -2063,7 +2272,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     (void)jac;
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     {
-      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(14, i);
+      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(20, i);
       *f += c;
     }
   }
@@ -2076,18 +2285,18 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(4, j, i);
+        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(5, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(16, i);
+      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(24, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(16, i);
+      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(24, i);
       *f += c;
     }
   }
@@ -2128,49 +2337,66 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: -U_T U_P
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.inflow * s.lr * s.lr * A(16, i);
+        const double c = s.inflow * s.lr * s.lr * A(24, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.lr * s.mu * s.theta1s * A(16, i);
+        const double c = -s.lr * s.lr * s.mu * s.theta1s * A(24, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^2, L_z: theta U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.lr * s.theta * A(18, i);
+        const double c = -(2.0) * s.lr * s.lr * s.theta * A(26, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
       {
-        const double c = -s.lr * s.lr * A(13, i);
+        const double c = -s.lr * s.lr * A(19, i);
         *f += c * y[i];
         jac[i] += c;
       }
+    // eps^2, L_z: theta_tw U_T^2
+    for (int i = 0; i < N; ++i)
+      {
+        const double c = -(2.0) * s.lr * s.lr * A(27, i);
+        *f += c * y[2 * M + i];
+        jac[2 * M + i] += c;
+      }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -s.inflow * s.lr * A(21);
+      const double c = -s.inflow * s.lr * A(32);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = s.lr * s.mu * s.theta1s * A(21);
+      const double c = s.lr * s.mu * s.theta1s * A(32);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2
     {
-      const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(22);
+      const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(33);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * A(34);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2
     {
-      const double c = s.lr * s.theta * A(23);
+      const double c = s.lr * s.theta * A(35);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = s.lr * A(36);
       *f += c;
     }
   }
@@ -2184,7 +2410,7 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
         {
-          const double c = s.lr * s.lr * s.mu * A(4, i, j);
+          const double c = s.lr * s.lr * s.mu * A(5, i, j);
           *f += c * y[M + i] * y[2 * M + j];
           jac[M + i] += c * y[2 * M + j];
           jac[2 * M + j] += c * y[M + i];
@@ -2192,49 +2418,49 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: -U_T U_P
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.droop * s.lr * s.lr * s.mu * A(16, i);
+        const double c = s.droop * s.lr * s.lr * s.mu * A(24, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
       {
-        const double c = -s.lr * s.mu * A(19, i);
+        const double c = -s.lr * s.mu * A(30, i);
         *f += c * y[M + i];
         jac[M + i] += c;
       }
     // eps^2, L_z: -U_T U_P
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.lr * s.lr * s.mu * s.precone * A(16, i);
+        const double c = s.lr * s.lr * s.mu * s.precone * A(24, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.lr * s.theta1c * A(18, i);
+        const double c = -(2.0) * s.lr * s.lr * s.theta1c * A(26, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -s.droop * s.lr * s.mu * A(21);
+      const double c = -s.droop * s.lr * s.mu * A(32);
       *f += c;
     }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -s.lr * s.mu * s.precone * A(21);
+      const double c = -s.lr * s.mu * s.precone * A(32);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = (1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(22);
+      const double c = (1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(33);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = s.lr * s.theta1c * A(23);
+      const double c = s.lr * s.theta1c * A(35);
       *f += c;
     }
   }
@@ -2247,42 +2473,54 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: theta U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.lr * s.mu * s.theta * A(16, i);
+        const double c = -(2.0) * s.lr * s.lr * s.mu * s.theta * A(24, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
       {
-        const double c = -s.lr * s.lr * s.mu * A(14, i);
+        const double c = -s.lr * s.lr * s.mu * A(20, i);
         *f += c * y[i];
         jac[i] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2
+    for (int i = 0; i < N; ++i)
+      {
+        const double c = -(2.0) * s.lr * s.lr * s.mu * A(29, i);
+        *f += c * y[2 * M + i];
+        jac[2 * M + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.lr * s.theta1s * A(18, i);
+        const double c = -(2.0) * s.lr * s.lr * s.theta1s * A(26, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -s.inflow * s.lr * s.mu * A(22);
+      const double c = -s.inflow * s.lr * s.mu * A(33);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2
     {
-      const double c = (2.0) * s.lr * s.mu * s.theta * A(21);
+      const double c = (2.0) * s.lr * s.mu * s.theta * A(32);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = (2.0) * s.lr * s.mu * A(37);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = (3.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(22);
+      const double c = (3.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(33);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = s.lr * s.theta1s * A(23);
+      const double c = s.lr * s.theta1s * A(35);
       *f += c;
     }
   }
@@ -2295,18 +2533,23 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.lr * s.lr * s.mu * s.theta1s * A(16, i);
+        const double c = s.lr * s.lr * s.mu * s.theta1s * A(24, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = -s.lr * s.mu * s.theta1s * A(21);
+      const double c = -s.lr * s.mu * s.theta1s * A(32);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2
     {
-      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(22);
+      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(33);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(34);
       *f += c;
     }
   }
@@ -2319,30 +2562,30 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
       {
-        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(20, i);
+        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(31, i);
         *f += c * y[M + i];
         jac[M + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.lr * s.mu * s.theta1c * A(16, i);
+        const double c = -s.lr * s.lr * s.mu * s.theta1c * A(24, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(22);
+      const double c = -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(33);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = s.lr * s.mu * s.theta1c * A(21);
+      const double c = s.lr * s.mu * s.theta1c * A(32);
       *f += c;
     }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(22);
+      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(33);
       *f += c;
     }
   }
@@ -2354,7 +2597,7 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     (void)jac;
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(22);
+      const double c = -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(33);
       *f += c;
     }
   }
@@ -2366,7 +2609,7 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     (void)jac;
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(22);
+      const double c = -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(33);
       *f += c;
     }
   }

@@ -30,37 +30,59 @@ const model::IntegralTemplate kAero[] = {
     /* 3 */ {"x eta_a gamma_b'", "x1_etaa_dgamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::GammaPrime, 1}}, Inner::None, 0, 0, {}, "F21_ab"},
     /* 4 */ {"eta_a gamma_b", "etaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "F11_ab/L8_ba"},
     /* 5 */ {"x eta_a gamma_b", "x1_etaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "F10_ab/L7_ba"},
-    /* 6 */ {"eta_a' gamma_b gamma_c'", "detaa_gamb_dgamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::GammaPrime, 2}}, Inner::None, 0, 0, {}, "L21_bac"},
-    /* 7 */ {"eta_a' eta_b' gamma_c", "detaa_detab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::EtaPrime, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "L24_cab"},
-    /* 8 */ {"eta_a' gamma_b", "detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 2, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L11_ba"},
-    /* 9 */ {"x eta_a' gamma_b", "x1_detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 2, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L10_ba"},
-    /* 10 */ {"eta_a gamma_b gamma_c'", "etaa_gamb_dgamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::GammaPrime, 2}}, Inner::None, 0, 0, {}, "L22_bac"},
-    /* 11 */ {"gamma_a gamma_b'", "gama_dgamb", 2, {Direction::Lag, Direction::Lag}, 0, 0, 2, {{Factor::Gamma, 0}, {Factor::GammaPrime, 1}}, Inner::None, 0, 0, {}, "L20_ab"},
-    /* 12 */ {"eta_a' gamma_b gamma_c", "detaa_gamb_gamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "L16_bac"},
-    /* 13 */ {"x gamma_a gamma_b", "x1_gama_gamb", 2, {Direction::Lag, Direction::Lag}, 1, 0, 2, {{Factor::Gamma, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L14_ab"},
-    /* 14 */ {"gamma_a gamma_b", "gama_gamb", 2, {Direction::Lag, Direction::Lag}, 0, 0, 2, {{Factor::Gamma, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L13_ab"},
-    /* 15 */ {"x eta_a eta_b'", "x1_etaa_detab", 2, {Direction::Flap, Direction::Flap}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}}, Inner::None, 0, 0, {}, "F6_ab"},
-    /* 16 */ {"eta_a eta_b gamma_c'", "etaa_etab_dgamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Eta, 1}, {Factor::GammaPrime, 2}}, Inner::None, 0, 0, {}, "F24_abc"},
-    /* 17 */ {"eta_a eta_b' gamma_c", "etaa_detab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "F14_abc/L17_cba"},
-    /* 18 */ {"x gamma_a gamma_b'", "x1_gama_dgamb", 2, {Direction::Lag, Direction::Lag}, 1, 0, 2, {{Factor::Gamma, 0}, {Factor::GammaPrime, 1}}, Inner::None, 0, 0, {}, "L23_ab"},
-    /* 19 */ {"eta_a eta_b", "etaa_etab", 2, {Direction::Flap, Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::Eta, 1}}, Inner::None, 0, 0, {}, "F9_ab"},
-    /* 20 */ {"eta_a eta_b'", "etaa_detab", 2, {Direction::Flap, Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}}, Inner::None, 0, 0, {}, "F7_ab"},
-    /* 21 */ {"x eta_a", "x1_etaa", 1, {Direction::Flap}, 1, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F2_a"},
-    /* 22 */ {"eta_a", "etaa", 1, {Direction::Flap}, 0, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F3_a"},
-    /* 23 */ {"x^2 eta_a", "x2_etaa", 1, {Direction::Flap}, 2, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F1_a"},
-    /* 24 */ {"gamma_a", "gama", 1, {Direction::Lag}, 0, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L2_a"},
-    /* 25 */ {"x^2 gamma_a", "x2_gama", 1, {Direction::Lag}, 2, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L4_a"},
-    /* 26 */ {"x gamma_a", "x1_gama", 1, {Direction::Lag}, 1, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L1_a"},
-    /* 27 */ {"eta_a' gamma_b'", "detaa_dgamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 2, {{Factor::EtaPrime, 0}, {Factor::GammaPrime, 1}}, Inner::None, 0, 0, {}, ""},
-    /* 28 */ {"gamma_a'", "dgama", 1, {Direction::Lag}, 0, 0, 1, {{Factor::GammaPrime, 0}}, Inner::None, 0, 0, {}, ""},
-    /* 29 */ {"x gamma_a'", "x1_dgama", 1, {Direction::Lag}, 1, 0, 1, {{Factor::GammaPrime, 0}}, Inner::None, 0, 0, {}, ""},
-    /* 30 */ {"x eta_a'", "x1_detaa", 1, {Direction::Flap}, 1, 0, 1, {{Factor::EtaPrime, 0}}, Inner::None, 0, 0, {}, ""},
-    /* 31 */ {"eta_a'", "detaa", 1, {Direction::Flap}, 0, 0, 1, {{Factor::EtaPrime, 0}}, Inner::None, 0, 0, {}, ""},
-    /* 32 */ {"x", "x1", 0, {}, 1, 0, 0, {}, Inner::None, 0, 0, {}, ""},
-    /* 33 */ {"1", "one", 0, {}, 0, 0, 0, {}, Inner::None, 0, 0, {}, ""},
-    /* 34 */ {"x^2", "x2", 0, {}, 2, 0, 0, {}, Inner::None, 0, 0, {}, ""},
-    /* 35 */ {"eta_a eta_b gamma_c", "etaa_etab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Eta, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "F15_abc/L18_cab"},
-    /* 36 */ {"eta_a gamma_b gamma_c", "etaa_gamb_gamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, ""},
+    /* 6 */ {"x tw eta_a gamma_b", "x1_tw_etaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 3, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 7 */ {"eta_a' gamma_b gamma_c'", "detaa_gamb_dgamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::GammaPrime, 2}}, Inner::None, 0, 0, {}, "L21_bac"},
+    /* 8 */ {"eta_a' eta_b' gamma_c", "detaa_detab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::EtaPrime, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "L24_cab"},
+    /* 9 */ {"tw eta_a' gamma_b gamma_c'", "tw_detaa_gamb_dgamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 4, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::GammaPrime, 2}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 10 */ {"eta_a' gamma_b", "detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 2, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L11_ba"},
+    /* 11 */ {"x eta_a' gamma_b", "x1_detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 2, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L10_ba"},
+    /* 12 */ {"eta_a gamma_b gamma_c'", "etaa_gamb_dgamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::GammaPrime, 2}}, Inner::None, 0, 0, {}, "L22_bac"},
+    /* 13 */ {"gamma_a gamma_b'", "gama_dgamb", 2, {Direction::Lag, Direction::Lag}, 0, 0, 2, {{Factor::Gamma, 0}, {Factor::GammaPrime, 1}}, Inner::None, 0, 0, {}, "L20_ab"},
+    /* 14 */ {"tw gamma_a gamma_b'", "tw_gama_dgamb", 2, {Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::Gamma, 0}, {Factor::GammaPrime, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 15 */ {"eta_a' gamma_b gamma_c", "detaa_gamb_gamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "L16_bac"},
+    /* 16 */ {"x gamma_a gamma_b", "x1_gama_gamb", 2, {Direction::Lag, Direction::Lag}, 1, 0, 2, {{Factor::Gamma, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L14_ab"},
+    /* 17 */ {"gamma_a gamma_b", "gama_gamb", 2, {Direction::Lag, Direction::Lag}, 0, 0, 2, {{Factor::Gamma, 0}, {Factor::Gamma, 1}}, Inner::None, 0, 0, {}, "L13_ab"},
+    /* 18 */ {"tw gamma_a gamma_b", "tw_gama_gamb", 2, {Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::Gamma, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 19 */ {"x eta_a eta_b'", "x1_etaa_detab", 2, {Direction::Flap, Direction::Flap}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}}, Inner::None, 0, 0, {}, "F6_ab"},
+    /* 20 */ {"eta_a eta_b gamma_c'", "etaa_etab_dgamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Eta, 1}, {Factor::GammaPrime, 2}}, Inner::None, 0, 0, {}, "F24_abc"},
+    /* 21 */ {"x tw eta_a gamma_b'", "x1_tw_etaa_dgamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 3, {{Factor::Eta, 0}, {Factor::GammaPrime, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 22 */ {"eta_a eta_b' gamma_c", "etaa_detab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "F14_abc/L17_cba"},
+    /* 23 */ {"x tw eta_a' gamma_b", "x1_tw_detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 1, 0, 3, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 24 */ {"tw eta_a gamma_b gamma_c'", "tw_etaa_gamb_dgamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 4, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::GammaPrime, 2}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 25 */ {"x gamma_a gamma_b'", "x1_gama_dgamb", 2, {Direction::Lag, Direction::Lag}, 1, 0, 2, {{Factor::Gamma, 0}, {Factor::GammaPrime, 1}}, Inner::None, 0, 0, {}, "L23_ab"},
+    /* 26 */ {"tw eta_a' gamma_b gamma_c", "tw_detaa_gamb_gamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 4, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::Gamma, 2}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 27 */ {"eta_a eta_b", "etaa_etab", 2, {Direction::Flap, Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::Eta, 1}}, Inner::None, 0, 0, {}, "F9_ab"},
+    /* 28 */ {"tw eta_a gamma_b", "tw_etaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 29 */ {"eta_a eta_b'", "etaa_detab", 2, {Direction::Flap, Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}}, Inner::None, 0, 0, {}, "F7_ab"},
+    /* 30 */ {"tw eta_a gamma_b'", "tw_etaa_dgamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::GammaPrime, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 31 */ {"tw eta_a' gamma_b", "tw_detaa_gamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::EtaPrime, 0}, {Factor::Gamma, 1}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 32 */ {"x eta_a", "x1_etaa", 1, {Direction::Flap}, 1, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F2_a"},
+    /* 33 */ {"eta_a", "etaa", 1, {Direction::Flap}, 0, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F3_a"},
+    /* 34 */ {"tw eta_a", "tw_etaa", 1, {Direction::Flap}, 0, 0, 2, {{Factor::Eta, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 35 */ {"x^2 eta_a", "x2_etaa", 1, {Direction::Flap}, 2, 0, 1, {{Factor::Eta, 0}}, Inner::None, 0, 0, {}, "F1_a"},
+    /* 36 */ {"x^2 tw eta_a", "x2_tw_etaa", 1, {Direction::Flap}, 2, 0, 2, {{Factor::Eta, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 37 */ {"gamma_a", "gama", 1, {Direction::Lag}, 0, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L2_a"},
+    /* 38 */ {"x^2 gamma_a", "x2_gama", 1, {Direction::Lag}, 2, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L4_a"},
+    /* 39 */ {"x gamma_a", "x1_gama", 1, {Direction::Lag}, 1, 0, 1, {{Factor::Gamma, 0}}, Inner::None, 0, 0, {}, "L1_a"},
+    /* 40 */ {"x tw gamma_a", "x1_tw_gama", 1, {Direction::Lag}, 1, 0, 2, {{Factor::Gamma, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 41 */ {"x tw eta_a", "x1_tw_etaa", 1, {Direction::Flap}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 42 */ {"tw gamma_a", "tw_gama", 1, {Direction::Lag}, 0, 0, 2, {{Factor::Gamma, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 43 */ {"eta_a' gamma_b'", "detaa_dgamb", 2, {Direction::Flap, Direction::Lag}, 0, 0, 2, {{Factor::EtaPrime, 0}, {Factor::GammaPrime, 1}}, Inner::None, 0, 0, {}, ""},
+    /* 44 */ {"gamma_a'", "dgama", 1, {Direction::Lag}, 0, 0, 1, {{Factor::GammaPrime, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 45 */ {"x gamma_a'", "x1_dgama", 1, {Direction::Lag}, 1, 0, 1, {{Factor::GammaPrime, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 46 */ {"x eta_a'", "x1_detaa", 1, {Direction::Flap}, 1, 0, 1, {{Factor::EtaPrime, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 47 */ {"x tw gamma_a'", "x1_tw_dgama", 1, {Direction::Lag}, 1, 0, 2, {{Factor::GammaPrime, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 48 */ {"eta_a'", "detaa", 1, {Direction::Flap}, 0, 0, 1, {{Factor::EtaPrime, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 49 */ {"tw gamma_a'", "tw_dgama", 1, {Direction::Lag}, 0, 0, 2, {{Factor::GammaPrime, 0}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 50 */ {"x", "x1", 0, {}, 1, 0, 0, {}, Inner::None, 0, 0, {}, ""},
+    /* 51 */ {"1", "one", 0, {}, 0, 0, 0, {}, Inner::None, 0, 0, {}, ""},
+    /* 52 */ {"tw", "tw", 0, {}, 0, 0, 1, {{Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 53 */ {"x^2", "x2", 0, {}, 2, 0, 0, {}, Inner::None, 0, 0, {}, ""},
+    /* 54 */ {"x^2 tw", "x2_tw", 0, {}, 2, 0, 1, {{Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 55 */ {"x tw", "x1_tw", 0, {}, 1, 0, 1, {{Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
+    /* 56 */ {"eta_a eta_b gamma_c", "etaa_etab_gamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Eta, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, "F15_abc/L18_cab"},
+    /* 57 */ {"eta_a gamma_b gamma_c", "etaa_gamb_gamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::Gamma, 2}}, Inner::None, 0, 0, {}, ""},
+    /* 58 */ {"tw eta_a gamma_b gamma_c", "tw_etaa_gamb_gamc", 3, {Direction::Flap, Direction::Lag, Direction::Lag}, 0, 0, 4, {{Factor::Eta, 0}, {Factor::Gamma, 1}, {Factor::Gamma, 2}, {Factor::Twist, 0}}, Inner::None, 0, 0, {}, ""},
 };
 
 // Structural integral templates (letters a, b, c: the template's mode variables).
@@ -234,6 +256,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(4, i, j);
       // eps^2, L_z: theta U_T^2, F10_ij
       v += -s.lock * s.lr * s.lr * s.lr * s.theta * A(5, i, j);
+      // eps^2, L_z: theta_tw U_T^2
+      v += -s.lock * s.lr * s.lr * s.lr * A(6, i, j);
       // eps^2, tension, Coriolis 2v' (2.4), B3_ij
       v += (2.0) * s.precone * S(4, i, j);
       out.force[(0 * n + i) * 2 * n + 2 * M + j] += v;
@@ -245,16 +269,19 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, radial, L21_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[k] * A(6, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[k] * A(7, j, i, k);
       // eps^2, L_y: -U_P^2, L24_ijk
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(7, j, k, i);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(8, j, k, i);
+      // eps^3, L_y: theta_tw U_P U_T, radial
+      for (int k = 0; k < N; ++k)
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[k] * A(9, j, i, k);
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(8, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(10, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(9, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(11, j, i);
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(8, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(10, j, i);
       // eps^2, elastic coupling E^cs (E.8)
       v += in.ecs_lag_flap[i * M + j];
       out.force[(0 * n + M + i) * 2 * n + M + j] += v;
@@ -266,7 +293,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L22_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.h0[k] * A(10, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.h0[k] * A(12, j, i, k);
       // eps^2, Coriolis 2u' (2.5), Meta_ijk
       for (int k = 0; k < M; ++k)
         v += -(2.0) * in.g0[k] * S(5, j, k, i);
@@ -278,6 +305,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(4, j, i);
       // eps^2, L_y: theta U_P U_T, L7_ij
       v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * A(5, j, i);
+      // eps^2, L_y: theta_tw U_P U_T
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * A(6, j, i);
       // eps^2, Coriolis 2u' (2.5), B7_ij
       v += -(2.0) * s.precone * S(6, j, i);
       out.force[(0 * n + M + i) * 2 * n + j] += v;
@@ -289,13 +318,20 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, radial, L21_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[k] * A(6, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[k] * A(7, k, i, j);
+      // eps^3, L_y: theta_tw U_P U_T, radial
+      for (int k = 0; k < M; ++k)
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(9, k, i, j);
       // eps^3, L_y: theta U_P U_T, radial, L20_ij
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(11, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(13, i, j);
+      // eps^3, L_y: theta_tw U_P U_T, radial
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(14, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
-      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(11, i, j);
+      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(13, i, j);
       // eps^3, L_y: theta U_P U_T, radial, L20_ij
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(11, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(13, i, j);
+      // eps^3, L_y: theta_tw U_P U_T, radial
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(14, i, j);
       // eps^3, elastic coupling E^s (E.7)
       v += in.es_lag[i * N + j];
       out.force[(0 * n + M + i) * 2 * n + 2 * M + N + j] += v;
@@ -314,7 +350,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.g0[k] * A(12, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.g0[k] * A(15, k, i, j);
       // eps^2, tension, Coriolis 2v' (2.4), S_ikj
       for (int k = 0; k < N; ++k)
         v += (2.0) * in.h0[k] * S(8, i, k, j);
@@ -322,15 +358,17 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       for (int k = 0; k < N; ++k)
         v += -(2.0) * in.h0[k] * S(9, i, j, k);
       // eps^3, L_y: (C_Do/a) U_T^2, L14_ij
-      v += -s.cdo_a * s.lock * s.lr * s.lr * s.lr * A(13, i, j);
+      v += -s.cdo_a * s.lock * s.lr * s.lr * s.lr * A(16, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(14, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(17, i, j);
       // eps^3, tension, Coriolis 2v' (2.4), B8_ij
       v += (2.0) * s.droop * s.theta * S(10, i, j);
       // eps^3, L_y: theta U_P U_T, L13_ij
-      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta * A(14, i, j);
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta * A(17, i, j);
+      // eps^3, L_y: theta_tw U_P U_T
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * A(18, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(14, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(17, i, j);
       out.force[(0 * n + M + i) * 2 * n + 2 * M + j] += v;
     }
   }
@@ -346,7 +384,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^1, L_z: -U_T U_P, F6_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(15, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(19, i, j);
       out.force[(1 * n + i) * 2 * n + M + j] += v;
     }
   }
@@ -356,7 +394,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, radial, F24_ijk
       for (int k = 0; k < N; ++k)
-        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.h0[k] * A(16, i, j, k);
+        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.h0[k] * A(20, i, j, k);
       out.force[(1 * n + i) * 2 * n + j] += v;
     }
   }
@@ -368,6 +406,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(2, i, j);
       // eps^2, L_z: theta U_T^2, radial, F21_ij
       v += -s.lock * s.lr * s.lr * s.mu * s.theta * A(3, i, j);
+      // eps^2, L_z: theta_tw U_T^2, radial
+      v += -s.lock * s.lr * s.lr * s.mu * A(21, i, j);
       // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
       v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(2, i, j);
       out.force[(1 * n + i) * 2 * n + 2 * M + N + j] += v;
@@ -379,7 +419,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, F14_ikj
       for (int k = 0; k < M; ++k)
-        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(17, i, k, j);
+        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(22, i, k, j);
       // eps^2, L_z: -U_T U_P, F11_ij
       v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(4, i, j);
       // eps^2, L_z: -U_T U_P, F11_ij
@@ -395,13 +435,15 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
       for (int k = 0; k < N; ++k)
-        v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[k] * A(6, j, i, k);
+        v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[k] * A(7, j, i, k);
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * A(8, j, i);
+      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * A(10, j, i);
       // eps^2, L_y: theta U_P U_T, L10_ij
-      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * A(9, j, i);
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * A(11, j, i);
+      // eps^2, L_y: theta_tw U_P U_T
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(23, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(8, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(10, j, i);
       out.force[(1 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -411,10 +453,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, radial, L22_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * in.h0[k] * A(10, j, i, k);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * in.h0[k] * A(12, j, i, k);
       // eps^2, L_y: -U_P^2, L17_ikj
       for (int k = 0; k < M; ++k)
-        v += -s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(17, j, k, i);
+        v += -s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(22, j, k, i);
+      // eps^3, L_y: theta_tw U_P U_T, radial
+      for (int k = 0; k < N; ++k)
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.h0[k] * A(24, j, i, k);
       // eps^2, L_y: -U_P^2, L8_ij
       v += -s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(4, j, i);
       // eps^2, L_y: -U_P^2, L8_ij
@@ -430,15 +475,17 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ikj
       for (int k = 0; k < M; ++k)
-        v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[k] * A(6, k, i, j);
+        v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[k] * A(7, k, i, j);
       // eps^3, L_y: (C_Do/a) U_T^2, radial, L23_ij
-      v += -s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(18, i, j);
+      v += -s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(25, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
-      v += -(3.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(11, i, j);
+      v += -(3.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(13, i, j);
       // eps^3, L_y: theta U_P U_T, radial, L20_ij
-      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(11, i, j);
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(13, i, j);
+      // eps^3, L_y: theta_tw U_P U_T, radial
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(14, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
-      v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(11, i, j);
+      v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(13, i, j);
       out.force[(1 * n + M + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -448,13 +495,20 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * in.g0[k] * A(12, k, i, j);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * in.g0[k] * A(15, k, i, j);
+      // eps^3, L_y: theta_tw U_P U_T
+      for (int k = 0; k < M; ++k)
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(26, k, i, j);
       // eps^3, L_y: theta U_P U_T, L13_ij
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(14, i, j);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(17, i, j);
+      // eps^3, L_y: theta_tw U_P U_T
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(18, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1c * A(14, i, j);
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1c * A(17, i, j);
       // eps^3, L_y: theta U_P U_T, L13_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta * A(14, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta * A(17, i, j);
+      // eps^3, L_y: theta_tw U_P U_T
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * A(18, i, j);
       out.force[(1 * n + M + i) * 2 * n + 2 * M + j] += v;
     }
   }
@@ -463,7 +517,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^1, L_z: -U_T U_P, F9_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(19, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(27, i, j);
       out.force[(2 * n + i) * 2 * n + j] += v;
     }
   }
@@ -482,6 +536,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: theta U_T^2, F11_ij
       v += -s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(4, i, j);
+      // eps^2, L_z: theta_tw U_T^2
+      v += -s.lock * s.lr * s.lr * s.lr * s.mu * A(28, i, j);
       // eps^2, L_z: theta_cyclic U_T^2, F10_ij
       v += -s.lock * s.lr * s.lr * s.lr * s.theta1s * A(5, i, j);
       out.force[(2 * n + i) * 2 * n + 2 * M + j] += v;
@@ -493,9 +549,9 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[k] * A(6, j, i, k);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[k] * A(7, j, i, k);
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(8, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(10, j, i);
       out.force[(2 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -505,6 +561,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: theta U_P U_T, L8_ij
       v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(4, j, i);
+      // eps^2, L_y: theta_tw U_P U_T
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(28, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L7_ij
       v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta1s * A(5, j, i);
       out.force[(2 * n + M + i) * 2 * n + j] += v;
@@ -516,11 +574,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[k] * A(6, k, i, j);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[k] * A(7, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
-      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(11, i, j);
+      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(13, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(11, i, j);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(13, i, j);
       out.force[(2 * n + M + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -529,9 +587,9 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j) {
       double v = 0.0;
       // eps^3, L_y: (C_Do/a) U_T^2, L13_ij
-      v += -s.cdo_a * s.lock * s.lr * s.lr * s.lr * s.mu * A(14, i, j);
+      v += -s.cdo_a * s.lock * s.lr * s.lr * s.lr * s.mu * A(17, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1s * A(14, i, j);
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1s * A(17, i, j);
       out.force[(2 * n + M + i) * 2 * n + 2 * M + j] += v;
     }
   }
@@ -576,16 +634,19 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, radial, L21_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[k] * A(6, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[k] * A(7, j, i, k);
       // eps^2, L_y: -U_P^2, L24_ijk
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(7, j, k, i);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(8, j, k, i);
+      // eps^3, L_y: theta_tw U_P U_T, radial
+      for (int k = 0; k < N; ++k)
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[k] * A(9, j, i, k);
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(8, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(10, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(9, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(11, j, i);
       // eps^2, L_y: -U_P^2, L11_ij
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(8, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(10, j, i);
       out.force[(3 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -595,7 +656,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L22_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.h0[k] * A(10, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.h0[k] * A(12, j, i, k);
       // eps^2, L_y: theta_cyclic U_P U_T, L8_ij
       v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(4, j, i);
       out.force[(3 * n + M + i) * 2 * n + j] += v;
@@ -607,13 +668,20 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, radial, L21_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[k] * A(6, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[k] * A(7, k, i, j);
+      // eps^3, L_y: theta_tw U_P U_T, radial
+      for (int k = 0; k < M; ++k)
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(9, k, i, j);
       // eps^3, L_y: theta U_P U_T, radial, L20_ij
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(11, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(13, i, j);
+      // eps^3, L_y: theta_tw U_P U_T, radial
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(14, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
-      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(11, i, j);
+      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(13, i, j);
       // eps^3, L_y: theta U_P U_T, radial, L20_ij
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(11, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(13, i, j);
+      // eps^3, L_y: theta_tw U_P U_T, radial
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(14, i, j);
       out.force[(3 * n + M + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -623,11 +691,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.g0[k] * A(12, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.g0[k] * A(15, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(14, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(17, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(14, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(17, i, j);
       out.force[(3 * n + M + i) * 2 * n + 2 * M + j] += v;
     }
   }
@@ -636,7 +704,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^1, L_z: -U_T U_P, F7_ij
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(20, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(29, i, j);
       out.force[(4 * n + i) * 2 * n + M + j] += v;
     }
   }
@@ -648,6 +716,8 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(3, i, j);
       // eps^2, L_z: theta U_T^2, radial, F22_ij
       v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(2, i, j);
+      // eps^2, L_z: theta_tw U_T^2, radial
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(30, i, j);
       out.force[(4 * n + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -665,9 +735,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(9, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(11, j, i);
       // eps^2, L_y: theta U_P U_T, L11_ij
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(8, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(10, j, i);
+      // eps^2, L_y: theta_tw U_P U_T
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(31, j, i);
       out.force[(4 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -677,7 +749,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L22_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * in.h0[k] * A(10, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * in.h0[k] * A(12, j, i, k);
       // eps^2, L_y: theta_cyclic U_P U_T, L8_ij
       v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(4, j, i);
       out.force[(4 * n + M + i) * 2 * n + j] += v;
@@ -688,9 +760,9 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j) {
       double v = 0.0;
       // eps^3, L_y: (C_Do/a) U_T^2, radial, L20_ij
-      v += -(1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(11, i, j);
+      v += -(1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(13, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
-      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(11, i, j);
+      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(13, i, j);
       out.force[(4 * n + M + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -700,11 +772,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * in.g0[k] * A(12, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * in.g0[k] * A(15, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(14, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(17, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(14, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(17, i, j);
       out.force[(4 * n + M + i) * 2 * n + 2 * M + j] += v;
     }
   }
@@ -723,9 +795,9 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[k] * A(6, j, i, k);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[k] * A(7, j, i, k);
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(8, j, i);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(10, j, i);
       out.force[(5 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -735,11 +807,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[k] * A(6, k, i, j);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[k] * A(7, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
-      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(11, i, j);
+      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(13, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(11, i, j);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(13, i, j);
       out.force[(5 * n + M + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -758,9 +830,9 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[k] * A(6, j, i, k);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[k] * A(7, j, i, k);
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(8, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(10, j, i);
       out.force[(6 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -770,11 +842,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[k] * A(6, k, i, j);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[k] * A(7, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
-      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(11, i, j);
+      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(13, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(11, i, j);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(13, i, j);
       out.force[(6 * n + M + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -803,13 +875,17 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.droop * S(11, i);
     // eps^1, L_z: -U_T U_P, F2_i
-    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(21, i);
+    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(32, i);
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(21, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(32, i);
     // eps^1, L_z: theta U_T^2, F3_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(22, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(33, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(34, i);
     // eps^1, L_z: theta U_T^2, F1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(23, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(35, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * A(36, i);
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.precone * S(11, i);
     // eps^1, modal stiffness (A.2), M_Fii
@@ -822,29 +898,39 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^3, L_y: theta U_P U_T, radial, L21_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * in.h0[k] * A(6, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * in.h0[k] * A(7, j, i, k);
     // eps^2, L_y: -U_P^2, L24_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(7, j, k, i);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(8, j, k, i);
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < M; ++j)
+      for (int k = 0; k < N; ++k)
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.h0[k] * A(9, j, i, k);
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[j] * A(13, i, j);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(8, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(10, j, i);
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < N; ++j)
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(14, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.h0[j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(9, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(11, j, i);
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * in.h0[j] * A(13, i, j);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(8, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(10, j, i);
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < N; ++j)
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.h0[j] * A(14, i, j);
     // eps^2, elastic coupling E^cs (E.8)
     for (int j = 0; j < M; ++j)
       v += in.ecs_lag_flap[i * M + j] * in.g0[j];
@@ -852,29 +938,31 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j)
       v += in.es_lag[i * N + j] * in.h0[j];
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
-    v += (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
+    v += (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(37, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L4_i
-    v += (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(25, i);
+    v += (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(38, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(26, i);
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(39, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(24, i);
+    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(37, i);
     // eps^2, tension, centrifugal (2.4), B10_i
     v += -s.droop * s.theta * S(12, i);
     // eps^2, in-plane centrifugal -v (2.5), B11_i
     v += s.droop * s.theta * S(13, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
+    v += -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(37, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(24, i);
+    v += (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(37, i);
     // eps^2, L_y: theta U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(26, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(39, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(40, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(24, i);
+    v += -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(37, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(26, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(39, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(24, i);
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(37, i);
     // eps^1, modal stiffness (A.4), M_Lii
     v += -in.h0[i] * in.omega_lag[i] * in.omega_lag[i] * S(7, i);
     out.forcing[0 * n + M + i] += v;
@@ -890,18 +978,21 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += -s.lock * s.lr * s.lr * s.mu * s.theta * in.h0[j] * A(3, i, j);
     // eps^1, L_z: -U_T U_P, F6_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(15, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(19, i, j);
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int j = 0; j < N; ++j)
+      v += -s.lock * s.lr * s.lr * s.mu * in.h0[j] * A(21, i, j);
     // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
       v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(2, i, j);
     // eps^1, L_z: -U_T U_P, F2_i
-    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(21, i);
+    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(32, i);
     // eps^1, L_z: -U_T U_P, F2_i
-    v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(21, i);
+    v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(32, i);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
-    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(22, i);
+    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(33, i);
     // eps^1, L_z: theta_cyclic U_T^2, F1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1c * A(23, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1c * A(35, i);
     out.forcing[1 * n + i] += v;
   }
   // cos psi: lag equation i, state-independent
@@ -910,42 +1001,52 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * in.h0[k] * A(6, j, i, k);
+        v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * in.h0[k] * A(7, j, i, k);
     // eps^3, L_y: (C_Do/a) U_T^2, radial, L23_ij
     for (int j = 0; j < N; ++j)
-      v += -s.cdo_a * s.lock * s.lr * s.lr * s.mu * in.h0[j] * A(18, i, j);
+      v += -s.cdo_a * s.lock * s.lr * s.lr * s.mu * in.h0[j] * A(25, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(3.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(11, i, j);
+      v += -(3.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(13, i, j);
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * in.h0[j] * A(13, i, j);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(8, j, i);
+      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(10, j, i);
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < N; ++j)
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * in.h0[j] * A(14, i, j);
     // eps^2, L_y: theta U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * in.g0[j] * A(9, j, i);
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * in.g0[j] * A(11, j, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(23, j, i);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * in.h0[j] * A(11, i, j);
+      v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * in.h0[j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(8, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(10, j, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(24, i);
+    v += -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(37, i);
     // eps^2, L_y: theta U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta * A(26, i);
+    v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta * A(39, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(40, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(24, i);
+    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(37, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -s.inflow * s.lock * s.lr * s.lr * s.mu * s.precone * A(24, i);
+    v += -s.inflow * s.lock * s.lr * s.lr * s.mu * s.precone * A(37, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1c * A(26, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1c * A(39, i);
     // eps^2, L_y: theta U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta * A(26, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta * A(39, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(40, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(24, i);
+    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(37, i);
     out.forcing[1 * n + M + i] += v;
   }
   // sin psi: flap equation i, state-independent
@@ -955,13 +1056,15 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j)
       v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(2, i, j);
     // eps^1, L_z: -U_T U_P, F3_i
-    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(22, i);
+    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(33, i);
     // eps^1, L_z: theta U_T^2, F2_i
-    v += s.lock * s.lr * s.lr * s.mu * s.theta * A(21, i);
+    v += s.lock * s.lr * s.lr * s.mu * s.theta * A(32, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += s.lock * s.lr * s.lr * s.mu * A(41, i);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
-    v += (3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(22, i);
+    v += (3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(33, i);
     // eps^1, L_z: theta_cyclic U_T^2, F1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1s * A(23, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1s * A(35, i);
     out.forcing[2 * n + i] += v;
   }
   // sin psi: lag equation i, state-independent
@@ -970,26 +1073,28 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * in.h0[k] * A(6, j, i, k);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * in.h0[k] * A(7, j, i, k);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(13, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * in.h0[j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(8, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(10, j, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L1_i
-    v += s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(26, i);
+    v += s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(39, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(24, i);
+    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(37, i);
     // eps^2, L_y: theta U_P U_T, L2_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(24, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(37, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(42, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1s * A(26, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1s * A(39, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(24, i);
+    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(37, i);
     out.forcing[2 * n + M + i] += v;
   }
   // cos 2psi: flap equation i, state-independent
@@ -1009,9 +1114,11 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j)
       v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.h0[j] * A(2, i, j);
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
-    v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(21, i);
+    v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(32, i);
     // eps^1, L_z: theta U_T^2, F3_i
-    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(22, i);
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(33, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(34, i);
     out.forcing[3 * n + i] += v;
   }
   // cos 2psi: lag equation i, state-independent
@@ -1020,43 +1127,53 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^3, L_y: theta U_P U_T, radial, L21_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * in.h0[k] * A(6, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * in.h0[k] * A(7, j, i, k);
     // eps^2, L_y: -U_P^2, L24_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(7, j, k, i);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(8, j, k, i);
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < M; ++j)
+      for (int k = 0; k < N; ++k)
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.h0[k] * A(9, j, i, k);
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[j] * A(13, i, j);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(8, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(10, j, i);
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < N; ++j)
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(14, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.h0[j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(9, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(11, j, i);
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * in.h0[j] * A(13, i, j);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(8, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(10, j, i);
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < N; ++j)
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.h0[j] * A(14, i, j);
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
-    v += -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
+    v += -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(37, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(26, i);
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(39, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(24, i);
+    v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(37, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
+    v += -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(37, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(24, i);
+    v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(37, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(26, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(39, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(24, i);
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(37, i);
     out.forcing[3 * n + M + i] += v;
   }
   // sin 2psi: flap equation i, state-independent
@@ -1070,13 +1187,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[j] * A(2, i, j);
     // eps^1, L_z: -U_T U_P, F7_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(20, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(29, i, j);
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int j = 0; j < N; ++j)
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(30, i, j);
     // eps^1, L_z: -U_T U_P, F3_i
-    v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(22, i);
+    v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(33, i);
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(21, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(32, i);
     // eps^1, L_z: -U_T U_P, F3_i
-    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(22, i);
+    v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(33, i);
     out.forcing[4 * n + i] += v;
   }
   // sin 2psi: lag equation i, state-independent
@@ -1084,26 +1204,33 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^3, L_y: (C_Do/a) U_T^2, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(13, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.h0[j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.g0[j] * A(9, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.g0[j] * A(11, j, i);
     // eps^2, L_y: theta U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * A(8, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * A(10, j, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(31, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(26, i);
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(39, i);
     // eps^2, L_y: theta U_P U_T, L2_i
-    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(24, i);
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(37, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(42, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(24, i);
+    v += (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(37, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(26, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(39, i);
     // eps^2, L_y: theta U_P U_T, L2_i
-    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(24, i);
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(37, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(42, i);
     out.forcing[4 * n + M + i] += v;
   }
   // cos 3psi: flap equation i, state-independent
@@ -1113,7 +1240,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j)
       v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(2, i, j);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
-    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(22, i);
+    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(33, i);
     out.forcing[5 * n + i] += v;
   }
   // cos 3psi: lag equation i, state-independent
@@ -1122,20 +1249,20 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * in.h0[k] * A(6, j, i, k);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * in.h0[k] * A(7, j, i, k);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(13, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * in.h0[j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(8, j, i);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(10, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(24, i);
+    v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(37, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(24, i);
+    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(37, i);
     out.forcing[5 * n + M + i] += v;
   }
   // sin 3psi: flap equation i, state-independent
@@ -1145,7 +1272,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j)
       v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(2, i, j);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
-    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(22, i);
+    v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(33, i);
     out.forcing[6 * n + i] += v;
   }
   // sin 3psi: lag equation i, state-independent
@@ -1154,20 +1281,20 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * in.h0[k] * A(6, j, i, k);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * in.h0[k] * A(7, j, i, k);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(13, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * in.h0[j] * A(11, i, j);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * in.h0[j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(8, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(10, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(24, i);
+    v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(37, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
-    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(24, i);
+    v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(37, i);
     out.forcing[6 * n + M + i] += v;
   }
 }
@@ -1242,9 +1369,11 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.droop * S(11, i);
     // eps^1, L_z: -U_T U_P, F2_i
-    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(21, i);
+    v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(32, i);
     // eps^1, L_z: theta U_T^2, F1_i
-    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(23, i);
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(35, i);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (1.0 / 2.0) * s.lock * s.lr * s.lr * A(36, i);
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.precone * S(11, i);
     out.c[i] += v;
@@ -1253,15 +1382,17 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_y: (C_Do/a) U_T^2, L4_i
-    v += (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(25, i);
+    v += (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(38, i);
     // eps^2, tension, centrifugal (2.4), B10_i
     v += -s.droop * s.theta * S(12, i);
     // eps^2, in-plane centrifugal -v (2.5), B11_i
     v += s.droop * s.theta * S(13, i);
     // eps^2, L_y: theta U_P U_T, L1_i
-    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(26, i);
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(39, i);
+    // eps^2, L_y: theta_tw U_P U_T
+    v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(40, i);
     // eps^2, L_y: -U_P^2, L2_i
-    v += -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(24, i);
+    v += -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(37, i);
     out.c[M + i] += v;
   }
 }
@@ -1285,14 +1416,14 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.h0[j] * A(27, i, j);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.h0[j] * A(43, i, j);
     out.force[0 * 2 * n + M + i] += v;
   }
   // thrust, const: coefficient of g_i'
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -s.lr * s.lr * A(21, i);
+    v += -s.lr * s.lr * A(32, i);
     out.force[0 * 2 * n + i] += v;
   }
   // thrust, const: coefficient of h_i
@@ -1300,31 +1431,33 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[j] * A(27, j, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[j] * A(43, j, i);
     // eps^2, L_z: -U_T U_P, radial
-    v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(28, i);
+    v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(44, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += -s.lr * s.mu * s.theta1c * A(29, i);
+    v += -s.lr * s.mu * s.theta1c * A(45, i);
     // eps^2, L_z: -U_T U_P, radial
-    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(28, i);
+    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(44, i);
     out.force[0 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, const: coefficient of h_i'
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: -U_T U_P
-    v += s.inflow * s.lr * s.lr * A(24, i);
+    v += s.inflow * s.lr * s.lr * A(37, i);
     // eps^2, L_z: theta_cyclic U_T^2
-    v += -s.lr * s.lr * s.mu * s.theta1s * A(24, i);
+    v += -s.lr * s.lr * s.mu * s.theta1s * A(37, i);
     // eps^2, L_z: theta U_T^2
-    v += -(2.0) * s.lr * s.lr * s.theta * A(26, i);
+    v += -(2.0) * s.lr * s.lr * s.theta * A(39, i);
+    // eps^2, L_z: theta_tw U_T^2
+    v += -(2.0) * s.lr * s.lr * A(40, i);
     out.force[0 * 2 * n + 2 * M + i] += v;
   }
   // thrust, cos psi: coefficient of g_i
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -s.lr * s.mu * A(30, i);
+    v += -s.lr * s.mu * A(46, i);
     out.force[1 * 2 * n + M + i] += v;
   }
   // thrust, cos psi: coefficient of g_i'
@@ -1339,11 +1472,13 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
-    v += s.inflow * s.lr * s.mu * A(28, i);
+    v += s.inflow * s.lr * s.mu * A(44, i);
     // eps^2, L_z: theta U_T^2, radial
-    v += -(2.0) * s.lr * s.mu * s.theta * A(29, i);
+    v += -(2.0) * s.lr * s.mu * s.theta * A(45, i);
+    // eps^2, L_z: theta_tw U_T^2, radial
+    v += -(2.0) * s.lr * s.mu * A(47, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(28, i);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(44, i);
     out.force[1 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, cos psi: coefficient of h_i'
@@ -1351,36 +1486,38 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P
     for (int j = 0; j < M; ++j)
-      v += s.lr * s.lr * s.mu * in.g0[j] * A(8, j, i);
+      v += s.lr * s.lr * s.mu * in.g0[j] * A(10, j, i);
     // eps^2, L_z: -U_T U_P
-    v += s.droop * s.lr * s.lr * s.mu * A(24, i);
+    v += s.droop * s.lr * s.lr * s.mu * A(37, i);
     // eps^2, L_z: -U_T U_P
-    v += s.lr * s.lr * s.mu * s.precone * A(24, i);
+    v += s.lr * s.lr * s.mu * s.precone * A(37, i);
     // eps^2, L_z: theta_cyclic U_T^2
-    v += -(2.0) * s.lr * s.lr * s.theta1c * A(26, i);
+    v += -(2.0) * s.lr * s.lr * s.theta1c * A(39, i);
     out.force[1 * 2 * n + 2 * M + i] += v;
   }
   // thrust, sin psi: coefficient of g_i'
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -s.lr * s.lr * s.mu * A(22, i);
+    v += -s.lr * s.lr * s.mu * A(33, i);
     out.force[2 * 2 * n + i] += v;
   }
   // thrust, sin psi: coefficient of h_i
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(28, i);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(44, i);
     out.force[2 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, sin psi: coefficient of h_i'
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta U_T^2
-    v += -(2.0) * s.lr * s.lr * s.mu * s.theta * A(24, i);
+    v += -(2.0) * s.lr * s.lr * s.mu * s.theta * A(37, i);
+    // eps^2, L_z: theta_tw U_T^2
+    v += -(2.0) * s.lr * s.lr * s.mu * A(42, i);
     // eps^2, L_z: theta_cyclic U_T^2
-    v += -(2.0) * s.lr * s.lr * s.theta1s * A(26, i);
+    v += -(2.0) * s.lr * s.lr * s.theta1s * A(39, i);
     out.force[2 * 2 * n + 2 * M + i] += v;
   }
   // thrust, cos 2psi: coefficient of g_i
@@ -1388,7 +1525,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.h0[j] * A(27, i, j);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.h0[j] * A(43, i, j);
     out.force[3 * 2 * n + M + i] += v;
   }
   // thrust, cos 2psi: coefficient of h_i
@@ -1396,57 +1533,59 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[j] * A(27, j, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[j] * A(43, j, i);
     // eps^2, L_z: -U_T U_P, radial
-    v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(28, i);
+    v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(44, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += -s.lr * s.mu * s.theta1c * A(29, i);
+    v += -s.lr * s.mu * s.theta1c * A(45, i);
     // eps^2, L_z: -U_T U_P, radial
-    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(28, i);
+    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(44, i);
     out.force[3 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, cos 2psi: coefficient of h_i'
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2
-    v += s.lr * s.lr * s.mu * s.theta1s * A(24, i);
+    v += s.lr * s.lr * s.mu * s.theta1s * A(37, i);
     out.force[3 * 2 * n + 2 * M + i] += v;
   }
   // thrust, sin 2psi: coefficient of g_i
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(31, i);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(48, i);
     out.force[4 * 2 * n + M + i] += v;
   }
   // thrust, sin 2psi: coefficient of h_i
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += -s.lr * s.mu * s.theta1s * A(29, i);
+    v += -s.lr * s.mu * s.theta1s * A(45, i);
     // eps^2, L_z: theta U_T^2, radial
-    v += -s.lr * s.mu * s.mu * s.theta * A(28, i);
+    v += -s.lr * s.mu * s.mu * s.theta * A(44, i);
+    // eps^2, L_z: theta_tw U_T^2, radial
+    v += -s.lr * s.mu * s.mu * A(49, i);
     out.force[4 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, sin 2psi: coefficient of h_i'
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2
-    v += -s.lr * s.lr * s.mu * s.theta1c * A(24, i);
+    v += -s.lr * s.lr * s.mu * s.theta1c * A(37, i);
     out.force[4 * 2 * n + 2 * M + i] += v;
   }
   // thrust, cos 3psi: coefficient of h_i
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(28, i);
+    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(44, i);
     out.force[5 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, sin 3psi: coefficient of h_i
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(28, i);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(44, i);
     out.force[6 * 2 * n + 2 * M + N + i] += v;
   }
   // thrust, const: state-independent
@@ -1455,24 +1594,28 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
-        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * in.h0[j] * A(27, i, j);
+        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * in.h0[j] * A(43, i, j);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.h0[i] * A(28, i);
+      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.h0[i] * A(44, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.theta1c * in.h0[i] * A(29, i);
+      v += -s.lr * s.mu * s.theta1c * in.h0[i] * A(45, i);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.h0[i] * A(28, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.h0[i] * A(44, i);
     // eps^1, L_z: -U_T U_P
-    v += -s.inflow * s.lr * A(32);
+    v += -s.inflow * s.lr * A(50);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += s.lr * s.mu * s.theta1s * A(32);
+    v += s.lr * s.mu * s.theta1s * A(50);
     // eps^1, L_z: theta U_T^2
-    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(33);
+    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(51);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (1.0 / 2.0) * s.lr * s.mu * s.mu * A(52);
     // eps^1, L_z: theta U_T^2
-    v += s.lr * s.theta * A(34);
+    v += s.lr * s.theta * A(53);
+    // eps^1, L_z: theta_tw U_T^2
+    v += s.lr * A(54);
     out.forcing[0] += v;
   }
   // thrust, cos psi: state-independent
@@ -1480,24 +1623,27 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += s.inflow * s.lr * s.mu * in.h0[i] * A(28, i);
+      v += s.inflow * s.lr * s.mu * in.h0[i] * A(44, i);
     // eps^2, L_z: theta U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(2.0) * s.lr * s.mu * s.theta * in.h0[i] * A(29, i);
+      v += -(2.0) * s.lr * s.mu * s.theta * in.h0[i] * A(45, i);
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
-      v += -s.lr * s.mu * in.g0[i] * A(30, i);
+      v += -s.lr * s.mu * in.g0[i] * A(46, i);
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int i = 0; i < N; ++i)
+      v += -(2.0) * s.lr * s.mu * in.h0[i] * A(47, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.h0[i] * A(28, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.h0[i] * A(44, i);
     // eps^1, L_z: -U_T U_P
-    v += -s.droop * s.lr * s.mu * A(32);
+    v += -s.droop * s.lr * s.mu * A(50);
     // eps^1, L_z: -U_T U_P
-    v += -s.lr * s.mu * s.precone * A(32);
+    v += -s.lr * s.mu * s.precone * A(50);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += (1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(33);
+    v += (1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(51);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += s.lr * s.theta1c * A(34);
+    v += s.lr * s.theta1c * A(53);
     out.forcing[1] += v;
   }
   // thrust, sin psi: state-independent
@@ -1505,15 +1651,17 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.h0[i] * A(28, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.h0[i] * A(44, i);
     // eps^1, L_z: -U_T U_P
-    v += -s.inflow * s.lr * s.mu * A(33);
+    v += -s.inflow * s.lr * s.mu * A(51);
     // eps^1, L_z: theta U_T^2
-    v += (2.0) * s.lr * s.mu * s.theta * A(32);
+    v += (2.0) * s.lr * s.mu * s.theta * A(50);
+    // eps^1, L_z: theta_tw U_T^2
+    v += (2.0) * s.lr * s.mu * A(55);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += (3.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(33);
+    v += (3.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(51);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += s.lr * s.theta1s * A(34);
+    v += s.lr * s.theta1s * A(53);
     out.forcing[2] += v;
   }
   // thrust, cos 2psi: state-independent
@@ -1522,20 +1670,22 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
-        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * in.h0[j] * A(27, i, j);
+        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * in.h0[j] * A(43, i, j);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.h0[i] * A(28, i);
+      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.h0[i] * A(44, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.theta1c * in.h0[i] * A(29, i);
+      v += -s.lr * s.mu * s.theta1c * in.h0[i] * A(45, i);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.h0[i] * A(28, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.h0[i] * A(44, i);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += -s.lr * s.mu * s.theta1s * A(32);
+    v += -s.lr * s.mu * s.theta1s * A(50);
     // eps^1, L_z: theta U_T^2
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(33);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(51);
+    // eps^1, L_z: theta_tw U_T^2
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(52);
     out.forcing[3] += v;
   }
   // thrust, sin 2psi: state-independent
@@ -1543,19 +1693,22 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.theta1s * in.h0[i] * A(29, i);
+      v += -s.lr * s.mu * s.theta1s * in.h0[i] * A(45, i);
     // eps^2, L_z: theta U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.mu * s.theta * in.h0[i] * A(28, i);
+      v += -s.lr * s.mu * s.mu * s.theta * in.h0[i] * A(44, i);
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * A(31, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * A(48, i);
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int i = 0; i < N; ++i)
+      v += -s.lr * s.mu * s.mu * in.h0[i] * A(49, i);
     // eps^1, L_z: -U_T U_P
-    v += -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(33);
+    v += -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(51);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += s.lr * s.mu * s.theta1c * A(32);
+    v += s.lr * s.mu * s.theta1c * A(50);
     // eps^1, L_z: -U_T U_P
-    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(33);
+    v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(51);
     out.forcing[4] += v;
   }
   // thrust, cos 3psi: state-independent
@@ -1563,9 +1716,9 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.h0[i] * A(28, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.h0[i] * A(44, i);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(33);
+    v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(51);
     out.forcing[5] += v;
   }
   // thrust, sin 3psi: state-independent
@@ -1573,9 +1726,9 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.h0[i] * A(28, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.h0[i] * A(44, i);
     // eps^1, L_z: theta_cyclic U_T^2
-    v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(33);
+    v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(51);
     out.forcing[6] += v;
   }
 }
@@ -1617,7 +1770,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(35, i, j, k);
+          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(56, i, j, k);
           *f += c * y[j] * y[2 * M + k];
           jac[j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[j];
@@ -1687,6 +1840,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
         *f += c * y[j];
         jac[j] += c;
       }
+    // eps^2, L_z: theta_tw U_T^2
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -s.lock * s.lr * s.lr * s.lr * A(6, i, j);
+        *f += c * y[2 * M + j];
+        jac[2 * M + j] += c;
+      }
     // eps^2, tension, Coriolis 2v' (2.4), B3_ij
     for (int j = 0; j < N; ++j)
       {
@@ -1715,22 +1875,32 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     }
     // eps^1, L_z: -U_T U_P, F2_i
     {
-      const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(21, i);
+      const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(32, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(21, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(32, i);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2, F3_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(22, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(33, i);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(34, i);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2, F1_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(23, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta * A(35, i);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * A(36, i);
       *f += c;
     }
     // eps^1, tension, centrifugal (2.4), B1_i
@@ -1761,7 +1931,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(6, j, i, k);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(7, j, i, k);
           *f += c * y[M + j] * y[2 * M + N + k];
           jac[M + j] += c * y[2 * M + N + k];
           jac[2 * M + N + k] += c * y[M + j];
@@ -1770,16 +1940,25 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(7, j, k, i);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(8, j, k, i);
           *f += c * y[M + j] * y[M + k];
           jac[M + j] += c * y[M + k];
           jac[M + k] += c * y[M + j];
+        }
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < M; ++j)
+      for (int k = 0; k < N; ++k)
+        {
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(9, j, i, k);
+          *f += c * y[M + j] * y[2 * M + N + k];
+          jac[M + j] += c * y[2 * M + N + k];
+          jac[2 * M + N + k] += c * y[M + j];
         }
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L22_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(10, j, i, k);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(12, j, i, k);
           *f += c * y[j] * y[2 * M + N + k];
           jac[j] += c * y[2 * M + N + k];
           jac[2 * M + N + k] += c * y[j];
@@ -1788,7 +1967,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(12, j, i, k);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(15, j, i, k);
           *f += c * y[M + j] * y[2 * M + k];
           jac[M + j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[M + j];
@@ -1797,7 +1976,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * s.theta * A(36, j, i, k);
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * s.theta * A(57, j, i, k);
           *f += c * y[j] * y[2 * M + k];
           jac[j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[j];
@@ -1806,10 +1985,19 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
         {
-          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(35, j, k, i);
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(56, j, k, i);
           *f += c * y[j] * y[k];
           jac[j] += c * y[k];
           jac[k] += c * y[j];
+        }
+    // eps^3, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      for (int k = 0; k < N; ++k)
+        {
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * A(58, j, i, k);
+          *f += c * y[j] * y[2 * M + k];
+          jac[j] += c * y[2 * M + k];
+          jac[2 * M + k] += c * y[j];
         }
     // eps^2, tension, Coriolis 2v' (2.4), S_ijk
     for (int j = 0; j < N; ++j)
@@ -1841,28 +2029,35 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^3, L_y: (C_Do/a) U_T^2, L14_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -s.cdo_a * s.lock * s.lr * s.lr * s.lr * A(13, i, j);
+        const double c = -s.cdo_a * s.lock * s.lr * s.lr * s.lr * A(16, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(11, i, j);
+        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(8, j, i);
+        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(10, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
+      }
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(14, i, j);
+        *f += c * y[2 * M + N + j];
+        jac[2 * M + N + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(14, i, j);
+        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(17, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -1883,14 +2078,14 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(11, i, j);
+        const double c = -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^3, L_y: theta U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta * A(14, i, j);
+        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta * A(17, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -1901,31 +2096,45 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
         *f += c * y[j];
         jac[j] += c;
       }
+    // eps^3, L_y: theta_tw U_P U_T
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * A(18, i, j);
+        *f += c * y[2 * M + j];
+        jac[2 * M + j] += c;
+      }
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(9, j, i);
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(11, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(11, i, j);
+        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(8, j, i);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(10, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
+      }
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(14, i, j);
+        *f += c * y[2 * M + N + j];
+        jac[2 * M + N + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(14, i, j);
+        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(17, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -1940,6 +2149,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       {
         const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.theta * A(5, j, i);
+        *f += c * y[j];
+        jac[j] += c;
+      }
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      {
+        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * A(6, j, i);
         *f += c * y[j];
         jac[j] += c;
       }
@@ -1966,22 +2182,22 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
     {
-      const double c = (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
+      const double c = (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(37, i);
       *f += c;
     }
     // eps^2, L_y: (C_Do/a) U_T^2, L4_i
     {
-      const double c = (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(25, i);
+      const double c = (1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * A(38, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(26, i);
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(39, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(24, i);
+      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(37, i);
       *f += c;
     }
     // eps^2, tension, centrifugal (2.4), B10_i
@@ -1996,32 +2212,37 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
+      const double c = -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(37, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(24, i);
+      const double c = (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(37, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(26, i);
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta * A(39, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * A(40, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(24, i);
+      const double c = -(1.0 / 2.0) * s.inflow * s.inflow * s.lock * s.lr * s.lr * A(37, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(26, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(39, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(24, i);
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(37, i);
       *f += c;
     }
     // eps^1, structural damping (2.17), M_Lii
@@ -2047,7 +2268,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(16, i, j, k);
+          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(20, i, j, k);
           *f += c * y[j] * y[2 * M + N + k];
           jac[j] += c * y[2 * M + N + k];
           jac[2 * M + N + k] += c * y[j];
@@ -2056,7 +2277,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(17, i, j, k);
+          const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(22, i, j, k);
           *f += c * y[M + j] * y[2 * M + k];
           jac[M + j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[M + j];
@@ -2085,9 +2306,16 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^1, L_z: -U_T U_P, F6_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(15, i, j);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(19, i, j);
         *f += c * y[M + j];
         jac[M + j] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -s.lock * s.lr * s.lr * s.mu * A(21, i, j);
+        *f += c * y[2 * M + N + j];
+        jac[2 * M + N + j] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
@@ -2112,22 +2340,22 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: -U_T U_P, F2_i
     {
-      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(21, i);
+      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(32, i);
       *f += c;
     }
     // eps^1, L_z: -U_T U_P, F2_i
     {
-      const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(21, i);
+      const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(32, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     {
-      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(22, i);
+      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(33, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F1_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1c * A(23, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1c * A(35, i);
       *f += c;
     }
   }
@@ -2141,7 +2369,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(6, j, i, k);
+          const double c = -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(7, j, i, k);
           *f += c * y[M + j] * y[2 * M + N + k];
           jac[M + j] += c * y[2 * M + N + k];
           jac[2 * M + N + k] += c * y[M + j];
@@ -2150,7 +2378,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(10, j, i, k);
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(12, j, i, k);
           *f += c * y[j] * y[2 * M + N + k];
           jac[j] += c * y[2 * M + N + k];
           jac[2 * M + N + k] += c * y[j];
@@ -2159,7 +2387,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(12, j, i, k);
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(15, j, i, k);
           *f += c * y[M + j] * y[2 * M + k];
           jac[M + j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[M + j];
@@ -2168,16 +2396,34 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
         {
-          const double c = -s.lock * s.lr * s.lr * s.lr * s.mu * A(17, j, k, i);
+          const double c = -s.lock * s.lr * s.lr * s.lr * s.mu * A(22, j, k, i);
           *f += c * y[M + k] * y[j];
           jac[M + k] += c * y[j];
           jac[j] += c * y[M + k];
+        }
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < M; ++j)
+      for (int k = 0; k < N; ++k)
+        {
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(24, j, i, k);
+          *f += c * y[j] * y[2 * M + N + k];
+          jac[j] += c * y[2 * M + N + k];
+          jac[2 * M + N + k] += c * y[j];
+        }
+    // eps^3, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      for (int k = 0; k < N; ++k)
+        {
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(26, j, i, k);
+          *f += c * y[M + j] * y[2 * M + k];
+          jac[M + j] += c * y[2 * M + k];
+          jac[2 * M + k] += c * y[M + j];
         }
     // eps^3, L_y: theta_cyclic U_P U_T
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * s.theta1c * A(36, j, i, k);
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * s.theta1c * A(57, j, i, k);
           *f += c * y[j] * y[2 * M + k];
           jac[j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[j];
@@ -2185,21 +2431,21 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^3, L_y: (C_Do/a) U_T^2, radial, L23_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(18, i, j);
+        const double c = -s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(25, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(3.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(11, i, j);
+        const double c = -(3.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^3, L_y: theta U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(14, i, j);
+        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(17, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -2210,52 +2456,73 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
         *f += c * y[j];
         jac[j] += c;
       }
+    // eps^3, L_y: theta_tw U_P U_T
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(18, i, j);
+        *f += c * y[2 * M + j];
+        jac[2 * M + j] += c;
+      }
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(11, i, j);
+        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -s.inflow * s.lock * s.lr * s.lr * s.mu * A(8, j, i);
+        const double c = -s.inflow * s.lock * s.lr * s.lr * s.mu * A(10, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
+      }
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(14, i, j);
+        *f += c * y[2 * M + N + j];
+        jac[2 * M + N + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1c * A(14, i, j);
+        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1c * A(17, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
     // eps^2, L_y: theta U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * A(9, j, i);
+        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * A(11, j, i);
+        *f += c * y[M + j];
+        jac[M + j] += c;
+      }
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      {
+        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * A(23, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(11, i, j);
+        const double c = -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(8, j, i);
+        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(10, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, L_y: theta U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta * A(14, i, j);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta * A(17, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -2266,6 +2533,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
         *f += c * y[j];
         jac[j] += c;
       }
+    // eps^3, L_y: theta_tw U_P U_T
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * A(18, i, j);
+        *f += c * y[2 * M + j];
+        jac[2 * M + j] += c;
+      }
     // eps^2, L_y: theta_cyclic U_P U_T, L7_ij
     for (int j = 0; j < M; ++j)
       {
@@ -2275,37 +2549,47 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(24, i);
+      const double c = -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(37, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta * A(26, i);
+      const double c = (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta * A(39, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(40, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(24, i);
+      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(37, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -s.inflow * s.lock * s.lr * s.lr * s.mu * s.precone * A(24, i);
+      const double c = -s.inflow * s.lock * s.lr * s.lr * s.mu * s.precone * A(37, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1c * A(26, i);
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1c * A(39, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta * A(26, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta * A(39, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.precone * A(40, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(24, i);
+      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(37, i);
       *f += c;
     }
   }
@@ -2332,9 +2616,16 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^1, L_z: -U_T U_P, F9_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(19, i, j);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(27, i, j);
         *f += c * y[j];
         jac[j] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -s.lock * s.lr * s.lr * s.lr * s.mu * A(28, i, j);
+        *f += c * y[2 * M + j];
+        jac[2 * M + j] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2, F10_ij
     for (int j = 0; j < N; ++j)
@@ -2345,22 +2636,27 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: -U_T U_P, F3_i
     {
-      const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(22, i);
+      const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(33, i);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2, F2_i
     {
-      const double c = s.lock * s.lr * s.lr * s.mu * s.theta * A(21, i);
+      const double c = s.lock * s.lr * s.lr * s.mu * s.theta * A(32, i);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = s.lock * s.lr * s.lr * s.mu * A(41, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     {
-      const double c = (3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(22, i);
+      const double c = (3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(33, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F1_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1s * A(23, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.theta1s * A(35, i);
       *f += c;
     }
   }
@@ -2374,7 +2670,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(6, j, i, k);
+          const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(7, j, i, k);
           *f += c * y[M + j] * y[2 * M + N + k];
           jac[M + j] += c * y[2 * M + N + k];
           jac[2 * M + N + k] += c * y[M + j];
@@ -2383,7 +2679,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * s.theta1s * A(36, j, i, k);
+          const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.lr * s.theta1s * A(57, j, i, k);
           *f += c * y[j] * y[2 * M + k];
           jac[j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[j];
@@ -2391,35 +2687,35 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^3, L_y: (C_Do/a) U_T^2, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -s.cdo_a * s.lock * s.lr * s.lr * s.lr * s.mu * A(14, i, j);
+        const double c = -s.cdo_a * s.lock * s.lr * s.lr * s.lr * s.mu * A(17, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(11, i, j);
+        const double c = -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1s * A(14, i, j);
+        const double c = -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.lr * s.theta1s * A(17, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(11, i, j);
+        const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(8, j, i);
+        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(10, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
@@ -2427,6 +2723,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       {
         const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(4, j, i);
+        *f += c * y[j];
+        jac[j] += c;
+      }
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      {
+        const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * A(28, j, i);
         *f += c * y[j];
         jac[j] += c;
       }
@@ -2439,27 +2742,32 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: (C_Do/a) U_T^2, L1_i
     {
-      const double c = s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(26, i);
+      const double c = s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(39, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(24, i);
+      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(37, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L2_i
     {
-      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(24, i);
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * A(37, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(42, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1s * A(26, i);
+      const double c = (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.theta1s * A(39, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(24, i);
+      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(37, i);
       *f += c;
     }
   }
@@ -2508,12 +2816,17 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
     {
-      const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(21, i);
+      const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(32, i);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2, F3_i
     {
-      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(22, i);
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(33, i);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(34, i);
       *f += c;
     }
   }
@@ -2527,7 +2840,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(6, j, i, k);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(7, j, i, k);
           *f += c * y[M + j] * y[2 * M + N + k];
           jac[M + j] += c * y[2 * M + N + k];
           jac[2 * M + N + k] += c * y[M + j];
@@ -2536,16 +2849,25 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(7, j, k, i);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(8, j, k, i);
           *f += c * y[M + j] * y[M + k];
           jac[M + j] += c * y[M + k];
           jac[M + k] += c * y[M + j];
+        }
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < M; ++j)
+      for (int k = 0; k < N; ++k)
+        {
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(9, j, i, k);
+          *f += c * y[M + j] * y[2 * M + N + k];
+          jac[M + j] += c * y[2 * M + N + k];
+          jac[2 * M + N + k] += c * y[M + j];
         }
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L22_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(10, j, i, k);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(12, j, i, k);
           *f += c * y[j] * y[2 * M + N + k];
           jac[j] += c * y[2 * M + N + k];
           jac[2 * M + N + k] += c * y[j];
@@ -2554,7 +2876,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(12, j, i, k);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(15, j, i, k);
           *f += c * y[M + j] * y[2 * M + k];
           jac[M + j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[M + j];
@@ -2562,56 +2884,70 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(11, i, j);
+        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(8, j, i);
+        const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(10, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
+      }
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(14, i, j);
+        *f += c * y[2 * M + N + j];
+        jac[2 * M + N + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(14, i, j);
+        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(17, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(11, i, j);
+        const double c = -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(9, j, i);
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(11, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(11, i, j);
+        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(8, j, i);
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(10, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
+      }
+    // eps^3, L_y: theta_tw U_P U_T, radial
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(14, i, j);
+        *f += c * y[2 * M + N + j];
+        jac[2 * M + N + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(14, i, j);
+        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(17, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -2624,37 +2960,37 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
+      const double c = -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(37, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(26, i);
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(39, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(24, i);
+      const double c = -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(37, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
+      const double c = -(1.0 / 4.0) * s.droop * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(37, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(24, i);
+      const double c = -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(37, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(26, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1c * A(39, i);
       *f += c;
     }
     // eps^2, L_y: -U_P^2, L2_i
     {
-      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(24, i);
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(37, i);
       *f += c;
     }
   }
@@ -2681,9 +3017,16 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^1, L_z: -U_T U_P, F7_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(20, i, j);
+        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(29, i, j);
         *f += c * y[M + j];
         jac[M + j] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int j = 0; j < N; ++j)
+      {
+        const double c = -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(30, i, j);
+        *f += c * y[2 * M + N + j];
+        jac[2 * M + N + j] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2, F11_ij
     for (int j = 0; j < N; ++j)
@@ -2694,17 +3037,17 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: -U_T U_P, F3_i
     {
-      const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(22, i);
+      const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(33, i);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
     {
-      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(21, i);
+      const double c = (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(32, i);
       *f += c;
     }
     // eps^1, L_z: -U_T U_P, F3_i
     {
-      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(22, i);
+      const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(33, i);
       *f += c;
     }
   }
@@ -2718,7 +3061,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(10, j, i, k);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(12, j, i, k);
           *f += c * y[j] * y[2 * M + N + k];
           jac[j] += c * y[2 * M + N + k];
           jac[2 * M + N + k] += c * y[j];
@@ -2727,7 +3070,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(12, j, i, k);
+          const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(15, j, i, k);
           *f += c * y[M + j] * y[2 * M + k];
           jac[M + j] += c * y[2 * M + k];
           jac[2 * M + k] += c * y[M + j];
@@ -2735,42 +3078,49 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^3, L_y: (C_Do/a) U_T^2, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(11, i, j);
+        const double c = -(1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(14, i, j);
+        const double c = -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(17, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(11, i, j);
+        const double c = -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(9, j, i);
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(11, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: theta U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(8, j, i);
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(10, j, i);
+        *f += c * y[M + j];
+        jac[M + j] += c;
+      }
+    // eps^2, L_y: theta_tw U_P U_T
+    for (int j = 0; j < M; ++j)
+      {
+        const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * A(31, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(14, i, j);
+        const double c = -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(17, i, j);
         *f += c * y[2 * M + j];
         jac[2 * M + j] += c;
       }
@@ -2783,27 +3133,37 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(26, i);
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(39, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L2_i
     {
-      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(24, i);
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(37, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(42, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(24, i);
+      const double c = (1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * A(37, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(26, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.precone * s.theta1s * A(39, i);
       *f += c;
     }
     // eps^2, L_y: theta U_P U_T, L2_i
     {
-      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(24, i);
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * A(37, i);
+      *f += c;
+    }
+    // eps^2, L_y: theta_tw U_P U_T
+    {
+      const double c = (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(42, i);
       *f += c;
     }
   }
@@ -2822,7 +3182,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     {
-      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(22, i);
+      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(33, i);
       *f += c;
     }
   }
@@ -2836,7 +3196,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(6, j, i, k);
+          const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(7, j, i, k);
           *f += c * y[M + j] * y[2 * M + N + k];
           jac[M + j] += c * y[2 * M + N + k];
           jac[2 * M + N + k] += c * y[M + j];
@@ -2844,32 +3204,32 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(11, i, j);
+        const double c = -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(11, i, j);
+        const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(8, j, i);
+        const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(10, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(24, i);
+      const double c = -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(37, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(24, i);
+      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(37, i);
       *f += c;
     }
   }
@@ -2888,7 +3248,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
       }
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     {
-      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(22, i);
+      const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(33, i);
       *f += c;
     }
   }
@@ -2902,7 +3262,7 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
         {
-          const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(6, j, i, k);
+          const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(7, j, i, k);
           *f += c * y[M + j] * y[2 * M + N + k];
           jac[M + j] += c * y[2 * M + N + k];
           jac[2 * M + N + k] += c * y[M + j];
@@ -2910,32 +3270,32 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(11, i, j);
+        const double c = -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
       {
-        const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(11, i, j);
+        const double c = -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * A(13, i, j);
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
       {
-        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(8, j, i);
+        const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(10, j, i);
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(24, i);
+      const double c = (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(37, i);
       *f += c;
     }
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     {
-      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(24, i);
+      const double c = (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(37, i);
       *f += c;
     }
   }
@@ -2968,7 +3328,7 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
         {
-          const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * A(27, i, j);
+          const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * A(43, i, j);
           *f += c * y[M + i] * y[2 * M + N + j];
           jac[M + i] += c * y[2 * M + N + j];
           jac[2 * M + N + j] += c * y[M + i];
@@ -2985,70 +3345,87 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(28, i);
+        const double c = (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(44, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: -U_T U_P
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.inflow * s.lr * s.lr * A(24, i);
+        const double c = s.inflow * s.lr * s.lr * A(37, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.mu * s.theta1c * A(29, i);
+        const double c = -s.lr * s.mu * s.theta1c * A(45, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(28, i);
+        const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(44, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.lr * s.mu * s.theta1s * A(24, i);
+        const double c = -s.lr * s.lr * s.mu * s.theta1s * A(37, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^2, L_z: theta U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.lr * s.theta * A(26, i);
+        const double c = -(2.0) * s.lr * s.lr * s.theta * A(39, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
       {
-        const double c = -s.lr * s.lr * A(21, i);
+        const double c = -s.lr * s.lr * A(32, i);
         *f += c * y[i];
         jac[i] += c;
       }
+    // eps^2, L_z: theta_tw U_T^2
+    for (int i = 0; i < N; ++i)
+      {
+        const double c = -(2.0) * s.lr * s.lr * A(40, i);
+        *f += c * y[2 * M + i];
+        jac[2 * M + i] += c;
+      }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -s.inflow * s.lr * A(32);
+      const double c = -s.inflow * s.lr * A(50);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = s.lr * s.mu * s.theta1s * A(32);
+      const double c = s.lr * s.mu * s.theta1s * A(50);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2
     {
-      const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(33);
+      const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(51);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * A(52);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2
     {
-      const double c = s.lr * s.theta * A(34);
+      const double c = s.lr * s.theta * A(53);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = s.lr * A(54);
       *f += c;
     }
   }
@@ -3071,7 +3448,7 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
         {
-          const double c = s.lr * s.lr * s.mu * A(8, i, j);
+          const double c = s.lr * s.lr * s.mu * A(10, i, j);
           *f += c * y[M + i] * y[2 * M + j];
           jac[M + i] += c * y[2 * M + j];
           jac[2 * M + j] += c * y[M + i];
@@ -3079,70 +3456,77 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: -U_T U_P
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.droop * s.lr * s.lr * s.mu * A(24, i);
+        const double c = s.droop * s.lr * s.lr * s.mu * A(37, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.inflow * s.lr * s.mu * A(28, i);
+        const double c = s.inflow * s.lr * s.mu * A(44, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.mu * s.theta * A(29, i);
+        const double c = -(2.0) * s.lr * s.mu * s.theta * A(45, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
       {
-        const double c = -s.lr * s.mu * A(30, i);
+        const double c = -s.lr * s.mu * A(46, i);
         *f += c * y[M + i];
         jac[M + i] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int i = 0; i < N; ++i)
+      {
+        const double c = -(2.0) * s.lr * s.mu * A(47, i);
+        *f += c * y[2 * M + N + i];
+        jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(28, i);
+        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(44, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: -U_T U_P
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.lr * s.lr * s.mu * s.precone * A(24, i);
+        const double c = s.lr * s.lr * s.mu * s.precone * A(37, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.lr * s.theta1c * A(26, i);
+        const double c = -(2.0) * s.lr * s.lr * s.theta1c * A(39, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -s.droop * s.lr * s.mu * A(32);
+      const double c = -s.droop * s.lr * s.mu * A(50);
       *f += c;
     }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -s.lr * s.mu * s.precone * A(32);
+      const double c = -s.lr * s.mu * s.precone * A(50);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = (1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(33);
+      const double c = (1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(51);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = s.lr * s.theta1c * A(34);
+      const double c = s.lr * s.theta1c * A(53);
       *f += c;
     }
   }
@@ -3155,49 +3539,61 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(28, i);
+        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(44, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.lr * s.mu * s.theta * A(24, i);
+        const double c = -(2.0) * s.lr * s.lr * s.mu * s.theta * A(37, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
       {
-        const double c = -s.lr * s.lr * s.mu * A(22, i);
+        const double c = -s.lr * s.lr * s.mu * A(33, i);
         *f += c * y[i];
         jac[i] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2
+    for (int i = 0; i < N; ++i)
+      {
+        const double c = -(2.0) * s.lr * s.lr * s.mu * A(42, i);
+        *f += c * y[2 * M + i];
+        jac[2 * M + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(2.0) * s.lr * s.lr * s.theta1s * A(26, i);
+        const double c = -(2.0) * s.lr * s.lr * s.theta1s * A(39, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -s.inflow * s.lr * s.mu * A(33);
+      const double c = -s.inflow * s.lr * s.mu * A(51);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2
     {
-      const double c = (2.0) * s.lr * s.mu * s.theta * A(32);
+      const double c = (2.0) * s.lr * s.mu * s.theta * A(50);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = (2.0) * s.lr * s.mu * A(55);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = (3.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(33);
+      const double c = (3.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(51);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = s.lr * s.theta1s * A(34);
+      const double c = s.lr * s.theta1s * A(53);
       *f += c;
     }
   }
@@ -3211,7 +3607,7 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
         {
-          const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * A(27, i, j);
+          const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * A(43, i, j);
           *f += c * y[M + i] * y[2 * M + N + j];
           jac[M + i] += c * y[2 * M + N + j];
           jac[2 * M + N + j] += c * y[M + i];
@@ -3219,39 +3615,44 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(28, i);
+        const double c = (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(44, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.mu * s.theta1c * A(29, i);
+        const double c = -s.lr * s.mu * s.theta1c * A(45, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(28, i);
+        const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(44, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = s.lr * s.lr * s.mu * s.theta1s * A(24, i);
+        const double c = s.lr * s.lr * s.mu * s.theta1s * A(37, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = -s.lr * s.mu * s.theta1s * A(32);
+      const double c = -s.lr * s.mu * s.theta1s * A(50);
       *f += c;
     }
     // eps^1, L_z: theta U_T^2
     {
-      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(33);
+      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta * A(51);
+      *f += c;
+    }
+    // eps^1, L_z: theta_tw U_T^2
+    {
+      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(52);
       *f += c;
     }
   }
@@ -3264,44 +3665,51 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.mu * s.theta1s * A(29, i);
+        const double c = -s.lr * s.mu * s.theta1s * A(45, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.mu * s.mu * s.theta * A(28, i);
+        const double c = -s.lr * s.mu * s.mu * s.theta * A(44, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
       {
-        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(31, i);
+        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * A(48, i);
         *f += c * y[M + i];
         jac[M + i] += c;
+      }
+    // eps^2, L_z: theta_tw U_T^2, radial
+    for (int i = 0; i < N; ++i)
+      {
+        const double c = -s.lr * s.mu * s.mu * A(49, i);
+        *f += c * y[2 * M + N + i];
+        jac[2 * M + N + i] += c;
       }
     // eps^2, L_z: theta_cyclic U_T^2
     for (int i = 0; i < N; ++i)
       {
-        const double c = -s.lr * s.lr * s.mu * s.theta1c * A(24, i);
+        const double c = -s.lr * s.lr * s.mu * s.theta1c * A(37, i);
         *f += c * y[2 * M + i];
         jac[2 * M + i] += c;
       }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(33);
+      const double c = -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(51);
       *f += c;
     }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = s.lr * s.mu * s.theta1c * A(32);
+      const double c = s.lr * s.mu * s.theta1c * A(50);
       *f += c;
     }
     // eps^1, L_z: -U_T U_P
     {
-      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(33);
+      const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * A(51);
       *f += c;
     }
   }
@@ -3314,13 +3722,13 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(28, i);
+        const double c = (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * A(44, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(33);
+      const double c = -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(51);
       *f += c;
     }
   }
@@ -3333,13 +3741,13 @@ void nonlinear_thrust(const model::CoefficientInputs& in, const double* y,
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
       {
-        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(28, i);
+        const double c = -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * A(44, i);
         *f += c * y[2 * M + N + i];
         jac[2 * M + N + i] += c;
       }
     // eps^1, L_z: theta_cyclic U_T^2
     {
-      const double c = -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(33);
+      const double c = -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(51);
       *f += c;
     }
   }

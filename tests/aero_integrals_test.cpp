@@ -6,9 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "flaplag/blade/rotating_modes.h"
+#include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "model_fixtures.h"
 #include "test_util.h"
@@ -75,14 +78,22 @@ std::vector<double> gauss_reversed(const model::ModelDescriptor& d, const ModeSe
 }
 
 // Every integral of the compiled 2 x 2 model with exact rotating modes, at several split points:
-// the interpolated antiderivatives agree with Gauss quadrature to near rounding.
-TEST(AeroIntegrals, ExactModesMatchGaussQuadrature) {
+// the interpolated antiderivatives agree with Gauss quadrature to near rounding.  Untwisted (the
+// twist integrals vanish identically and are skipped) and on a linearly twisted blade.
+class ExactModesGauss : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ExactModesGauss, ProductionIntegralsMatchGaussQuadrature) {
   const model::ModelDescriptor* d =
       &model::instantiate(*model::registered_families().front(), 2, 2);
   ExactModeOptions opt;
   opt.flap_modes = 2;
   opt.lag_modes = 2;
-  const ModeSet modes = exact_modes(1.175, 1.28303, opt);
+  ModeSet modes = exact_modes(1.175, 1.28303, opt);
+  if (GetParam()) {
+    auto blade = std::make_shared<BladeProperties>(uniform_blade());
+    blade->twist = {0.05, -0.15};
+    modes.blade = blade;
+  }
   SpanGeometry g;
   g.e1 = 0.02;
   g.lr = 0.98;
@@ -103,6 +114,78 @@ TEST(AeroIntegrals, ExactModesMatchGaussQuadrature) {
     ASSERT_EQ(ref.size(), got.size());
     for (std::size_t j = 0; j < ref.size(); ++j)
       EXPECT_NEAR(ref[j], got[j], 1e-13 * scale) << d->aero[j].name << " at mu = " << mu;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Blades, ExactModesGauss, ::testing::Values(false, true),
+                         [](const auto& tp) { return tp.param ? "Twisted" : "Untwisted"; });
+
+// A uniform blade with the linear built-in twist theta_tw(x0) = theta_tw x0 in hover (e1 = 0,
+// l/R = 1, A = 0, B = 1, mu = 0, uniform inflow lambda): blade-element theory gives
+//   C_T / (sigma a) = (1/2) int_0^1 [(theta + theta_tw x) x^2 - lambda x] dx
+//                   = theta/6 + theta_tw/8 - lambda/4.
+// The model's thrust (ModelDescriptor::thrust, the flap load L_z of the derivation) with the
+// integrals of the twisted blade, at the hover equilibrium of the same integrals, state y = 0:
+// C_T / (sigma a) = T / 2 with T the azimuth mean of the thrust forcing.
+TEST(AeroIntegrals, TwistedBladeHoverThrustIsBladeElementTheory) {
+  const model::ModelDescriptor& d = *model::registered_models().front();  // paper, 1 x 1
+  ASSERT_EQ(1, d.flap_modes);
+  ASSERT_EQ(1, d.lag_modes);
+  const int n = 2, H = d.n_harmonics;
+  const SpanGeometry g;  // e1 = 0, l/R = 1, A = 0, B = 1
+  struct Case {
+    double theta, theta_tw, lambda;
+  };
+  const Case cases[] = {{0.15, 0.0, 0.05},  {0.15, -0.14, 0.05}, {0.08, 0.2, 0.03},
+                        {0.25, -0.3, 0.07}, {0.0, 0.1, 0.0},     {-0.05, -0.09, 0.01}};
+  for (const bool exact : {false, true}) {
+    for (const Case& c : cases) {
+      auto blade = std::make_shared<BladeProperties>();
+      blade->x0 = {0.0, 1.0};
+      blade->mass = {3.0, 3.0};
+      blade->stiffness_flap = {1.0, 1.0};
+      blade->stiffness_lag = {1.0, 1.0};
+      blade->chord = {1.0, 1.0};
+      blade->twist = {0.0, c.theta_tw};
+      validate(*blade);
+      ModeSet modes = exact ? exact_modes(1.175, 1.28303) : assumed_modes(1.175, 1.28303);
+      modes.blade = blade;
+      const AeroIntegrals ai(d, modes, g);
+      const std::vector<double> structural = structural_integrals(d, modes, 0.0);
+      // As SystemBuilder::inputs(): no structural damping, no elastic coupling.
+      const std::vector<double> zeros(4, 0.0);
+      std::vector<double> q0(n, 0.0);
+      model::CoefficientInputs in{};
+      in.lock = 10.0;
+      in.lr = 1.0;
+      in.theta = c.theta;
+      in.inflow = c.lambda;
+      in.cdo_a = 0.01 / (2.0 * kPi);
+      in.mu = 0.0;
+      in.g0 = q0.data();
+      in.h0 = q0.data() + 1;
+      in.omega_flap = modes.omega_flap.data();
+      in.omega_lag = modes.omega_lag.data();
+      in.damping_flap = in.damping_lag = zeros.data();
+      in.es_flap = in.es_lag = in.ecs_flap_lag = in.ecs_lag_flap = zeros.data();
+      in.aero = ai.normal().data();
+      in.structural = structural.data();
+      in.flap_modes = in.lag_modes = 1;
+      // The hover equilibrium S q0 = c of the twisted blade.
+      std::vector<double> S(n * n), rhs(n);
+      d.equilibrium(in, {S.data(), rhs.data()});
+      const Eigen::Vector2d sol = Eigen::Matrix2d{{S[0], S[1]}, {S[2], S[3]}}.fullPivLu().solve(
+          Eigen::Vector2d(rhs[0], rhs[1]));
+      q0 = {sol(0), sol(1)};
+      std::vector<double> force(H * 2 * n), forcing(H);
+      d.thrust(in, {force.data(), forcing.data()});
+      const double expected = c.theta / 6.0 + c.theta_tw / 8.0 - c.lambda / 4.0;
+      const std::string what =
+          std::string(exact ? "exact" : "assumed") + " modes, theta = " + std::to_string(c.theta) +
+          ", theta_tw = " + std::to_string(c.theta_tw) + ", lambda = " + std::to_string(c.lambda);
+      EXPECT_NEAR(expected, forcing[0] / 2.0, 1e-12) << what;
+      for (int h = 1; h < H; ++h) EXPECT_NEAR(0.0, forcing[h], 1e-15) << what << ", harmonic " << h;
+    }
   }
 }
 

@@ -5,13 +5,15 @@
 //   - the paper's spec: the difference shrinks like s^kept (coefficients of A) and s^(kept+1)
 //     (forcing) when every small quantity is scaled by s.
 // The same for cyclic pitch (theta(psi) = theta + theta1c cos psi + theta1s sin psi in the
-// section pitch of eqs 2.20-2.21; the droop slope keeps the collective theta) and for the rotor
+// section pitch of eqs 2.20-2.21; the droop slope keeps the collective theta), for the built-in
+// twist (section pitch theta + theta_tw(x0), a linearly twisted blade table) and for the rotor
 // thrust T = lr int L_z dx0 that the cyclic-pitch models emit for the trim.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <string>
 
 #include "flaplag/blade/blade.h"
@@ -33,13 +35,18 @@ struct Operating {
   double lock = 10.0, lr = 0.9, e1 = 0.05, theta = 0.15, inflow = 0.05, precone = 0.02,
          droop = 0.03, cdo_a = 0.0016, mu = 0.8;
   double g0 = 0.09, h0 = 0.006;
-  double theta1c = 0.0, theta1s = 0.0;  // cyclic pitch
+  double theta1c = 0.0, theta1s = 0.0;       // cyclic pitch
+  double twist_root = 0.0, twist_tip = 0.0;  // built-in twist, linear in x0 (a blade table)
+
+  double twist(double x0) const { return twist_root + (twist_tip - twist_root) * x0; }
 
   Operating scaled(double s) const {
     Operating o = *this;
     o.theta *= s;
     o.theta1c *= s;
     o.theta1s *= s;
+    o.twist_root *= s;
+    o.twist_tip *= s;
     o.inflow *= s;
     o.precone *= s;
     o.droop *= s;
@@ -58,12 +65,13 @@ using Q4 = std::array<double, 4>;
 std::array<double, 3> full_loads(const Operating& o, double psi, const Q4& q) {
   const double g = q[0], h = q[1], gd = q[2], hd = q[3];
   const double c = std::cos(psi), s = std::sin(psi);
-  const double pitch = o.theta + o.theta1c * c + o.theta1s * s;  // section pitch theta(psi)
+  const double cyclic = o.theta + o.theta1c * c + o.theta1s * s;  // theta(psi)
   const auto rule = flaplag::span_rule(0.0, 1.0);
   double af = 0.0, al = 0.0, thrust = 0.0;
   for (size_t k = 0; k < rule.x0.size(); ++k) {
     const double x0 = rule.x0[k], w = rule.weight[k];
     const double x = o.e1 + o.lr * x0;
+    const double pitch = cyclic + o.twist(x0);  // section pitch theta(psi) + theta_tw(x0)
     const double v_slope = -(eta_p(x0) * h + o.droop * o.theta);                // dv/dx0, eq 2.14
     const double w_slope = (o.precone + o.droop) + eta_p(x0) * g;               // dw/dx0, eq 2.15
     const double uT = x + o.mu * s + o.mu * c * v_slope - o.lr * eta(x0) * hd;  // eq 2.23
@@ -98,9 +106,14 @@ double basis(int h, double psi) {
 }
 
 // Aerodynamic integrals of a model for the assumed mode over [0, 1], via the runtime (whose
-// quadrature is tested on its own).
+// quadrature is tested on its own); with the operating point's twist as a blade table.
 std::vector<double> integrals(const std::vector<fm::AeroIntegral>& list, const Operating& o) {
-  const auto modes = flaplag::assumed_modes(1.0, 1.0);
+  auto modes = flaplag::assumed_modes(1.0, 1.0);
+  if (o.twist_root != 0.0 || o.twist_tip != 0.0) {
+    auto blade = std::make_shared<flaplag::BladeProperties>(flaplag::uniform_blade());
+    blade->twist = {o.twist_root, o.twist_tip};
+    modes.blade = blade;
+  }
   flaplag::SpanGeometry g;
   g.e1 = o.e1;
   g.lr = o.lr;
@@ -278,6 +291,39 @@ TEST(DerivationVsQuadrature, UntruncatedCyclicPitchMatchesFullNonlinearLoadsAndT
   EXPECT_GT(std::abs(derived_aero(m, o, 0.3).F[2] - F0[2]), 1e-3);
 }
 
+// The untruncated spec on a twisted blade (with cyclic pitch, for the thrust): the tw terms
+// make the loads, their linearization and the thrust those of the section pitch
+// theta + theta_tw(x0) + theta1c cos psi + theta1s sin psi.
+TEST(DerivationVsQuadrature, UntruncatedTwistMatchesFullNonlinearLoadsAndThrust) {
+  auto spec = fd::load_spec(std::string(FLAPLAG_TEST_SPEC_DIR) + "/untruncated.toml");
+  spec.cyclic_pitch = true;
+  const auto m = fd::derive_model(spec);
+  Operating o;
+  o.theta1c = 0.04;
+  o.theta1s = -0.07;
+  o.twist_root = 0.05;
+  o.twist_tip = -0.13;
+  for (double psi : {0.3, 1.7, 2.9, 4.4, 5.8}) {
+    const auto J = fd_jacobian(o, psi);
+    const auto d = derived_aero(m, o, psi);
+    const auto F = full_loads(o, psi, {o.g0, o.h0, 0.0, 0.0});
+    for (int i = 0; i < 3; ++i) {
+      for (int col = 0; col < 4; ++col) {
+        EXPECT_NEAR(d.J[i][col], J[i][col], 1e-8 * std::max(1.0, std::abs(J[i][col])))
+            << "psi " << psi << " row " << i << " col " << col;
+      }
+      EXPECT_NEAR(d.F[i], F[i], 1e-12 * std::max(1.0, std::abs(F[i])))
+          << "psi " << psi << " row " << i;
+    }
+  }
+  // The twist terms are really there: the untwisted blade's loads differ at O(theta_tw).
+  Operating o0 = o;
+  o0.twist_root = o0.twist_tip = 0.0;
+  const auto F = full_loads(o, 0.3, {o.g0, o.h0, 0.0, 0.0});
+  const auto F0 = full_loads(o0, 0.3, {o.g0, o.h0, 0.0, 0.0});
+  for (int i = 0; i < 3; ++i) EXPECT_GT(std::abs(F[i] - F0[i]), 1e-3) << "row " << i;
+}
+
 // Max |difference| over psi samples for one equation (row; 2 = thrust): Jacobian and forcing
 // separately.
 std::array<double, 2> truncation_error(const fm::ModelDescriptor& m, const Operating& o, int row) {
@@ -297,7 +343,14 @@ struct OrderCase {
   int row;  // 0 flap, 1 lag, 2 thrust
   int kept;
   bool cyclic = false;  // with cyclic pitch
+  bool twist = false;   // on a twisted blade
 };
+
+// The twist of the order cases: small like theta (scaled with it), root and tip apart.
+void twist_blade(Operating& o) {
+  o.twist_root = 0.04;
+  o.twist_tip = -0.1;
+}
 
 class TruncationOrder : public ::testing::TestWithParam<OrderCase> {};
 
@@ -311,6 +364,7 @@ TEST_P(TruncationOrder, DifferenceShrinksLikeTheFirstDroppedOrder) {
     base.theta1c = 0.04;
     base.theta1s = -0.07;
   }
+  if (c.twist) twist_blade(base);
   const auto e1 = truncation_error(m, base.scaled(0.2), c.row);
   const auto e2 = truncation_error(m, base.scaled(0.1), c.row);
   const double order_j = std::log2(e1[0] / e2[0]);
@@ -323,10 +377,12 @@ INSTANTIATE_TEST_SUITE_P(
     Models, TruncationOrder,
     ::testing::Values(OrderCase{"paper", 0, 2}, OrderCase{"paper", 1, 3},
                       OrderCase{"lag-order-2", 1, 2}, OrderCase{"paper", 0, 2, true},
-                      OrderCase{"paper", 1, 3, true}, OrderCase{"paper", 2, 2, true}),
+                      OrderCase{"paper", 1, 3, true}, OrderCase{"paper", 2, 2, true},
+                      OrderCase{"paper", 0, 2, true, true}, OrderCase{"paper", 1, 3, true, true},
+                      OrderCase{"paper", 2, 2, true, true}),
     [](const auto& tp) {
-      std::string s =
-          std::string(tp.param.model) + (tp.param.cyclic ? "_cyclic" : "") + row_name(tp.param.row);
+      std::string s = std::string(tp.param.model) + (tp.param.cyclic ? "_cyclic" : "") +
+                      (tp.param.twist ? "_twist" : "") + row_name(tp.param.row);
       for (char& ch : s) {
         if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
       }
@@ -424,14 +480,18 @@ TEST(NonlinearLoadsVsQuadrature, UntruncatedSpecEqualsFullNonlinearLoadsAtAnySta
   auto spec = fd::load_spec(std::string(FLAPLAG_TEST_SPEC_DIR) + "/untruncated.toml");
   spec.nonlinear = true;
   const auto m = fd::derive_model(spec);
-  const Operating o;
-  for (double psi : {0.3, 2.9, 4.4}) {
-    for (const auto& q : kStates) {
-      const auto d = derived_nonlinear_aero(m, o, psi, q);
-      const auto F = full_loads(o, psi, q);
-      for (int i = 0; i < 2; ++i) {
-        EXPECT_NEAR(d[i], F[i], 1e-12 * std::max(1.0, std::abs(F[i])))
-            << "psi " << psi << " row " << i << " q " << q[0] << " " << q[1];
+  Operating twisted;
+  twist_blade(twisted);
+  for (const Operating& o : {Operating{}, twisted}) {
+    for (double psi : {0.3, 2.9, 4.4}) {
+      for (const auto& q : kStates) {
+        const auto d = derived_nonlinear_aero(m, o, psi, q);
+        const auto F = full_loads(o, psi, q);
+        for (int i = 0; i < 2; ++i) {
+          EXPECT_NEAR(d[i], F[i], 1e-12 * std::max(1.0, std::abs(F[i])))
+              << "psi " << psi << " row " << i << " q " << q[0] << " " << q[1] << " twist "
+              << o.twist_tip;
+        }
       }
     }
   }
@@ -445,8 +505,10 @@ class NonlinearTruncationOrder : public ::testing::TestWithParam<OrderCase> {};
 TEST_P(NonlinearTruncationOrder, DifferenceShrinksLikeTheFirstDroppedOrder) {
   const auto& c = GetParam();
   const auto& m = compiled(c.model);
+  Operating base;
+  if (c.twist) twist_blade(base);
   auto error = [&](double s) {
-    const Operating o = Operating{}.scaled(s);
+    const Operating o = base.scaled(s);
     double ef = 0.0, ej = 0.0;
     for (double psi = 0.1; psi < flaplag::kTwoPi; psi += 0.71) {
       for (const auto& q0 : kStates) {
@@ -475,7 +537,10 @@ TEST_P(NonlinearTruncationOrder, DifferenceShrinksLikeTheFirstDroppedOrder) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, NonlinearTruncationOrder,
-                         ::testing::Values(OrderCase{"paper", 0, 2}, OrderCase{"paper", 1, 3}),
+                         ::testing::Values(OrderCase{"paper", 0, 2}, OrderCase{"paper", 1, 3},
+                                           OrderCase{"paper", 0, 2, false, true},
+                                           OrderCase{"paper", 1, 3, false, true}),
                          [](const auto& tp) {
-                           return std::string(tp.param.row == 0 ? "flap" : "lag");
+                           return std::string(tp.param.row == 0 ? "flap" : "lag") +
+                                  (tp.param.twist ? "_twist" : "");
                          });

@@ -81,6 +81,7 @@ void Deriver::make_symbols() {
   x0_ = sym("x0", {Role::Shape, 0, FactorKind::X0});
   arm_ = sym("arm", {Role::Shape, 0, FactorKind::Arm});
   iarm_ = sym("iarm", {Role::InnerShape, 0, FactorKind::Arm});
+  tw_ = sym("tw", {Role::Shape, 0, FactorKind::Twist});
   mo_ = sym("m", {Role::MassOuter});
   mi_ = sym("mi", {Role::MassInner});
   tail_ = sym("TAIL", {Role::Tail});

@@ -21,9 +21,10 @@
 //   z          Z           z = exp(i psi): cos psi = (z + 1/z)/2, sin psi = (z - 1/z)/(2i); the
 //                          z power of a monomial is its harmonic
 //   x          X           station radius by R in the aerodynamic integrals, x = e1/R + (l/R) x0
-//   eta1, etap1, gam1, gamp1, x0, arm
-//              Shape       outer spanwise factors eta_k, eta_k', gamma_m, gamma_m', x0 and the
-//                          centrifugal arm x0 + e1/l: together they name the integral
+//   eta1, etap1, gam1, gamp1, x0, arm, tw
+//              Shape       outer spanwise factors eta_k, eta_k', gamma_m, gamma_m', x0, the
+//                          centrifugal arm x0 + e1/l and the built-in twist theta_tw(x0) (in the
+//                          aerodynamic pitch only): together they name the integral
 //   ieta1, ietap1, igam1, igamp1, iarm
 //              InnerShape  the same factors at the inner station x1 of a nested integral
 //   m          MassOuter   mass marker: mbar (= m l^3/I_b) in the outer integrand
@@ -174,7 +175,7 @@ class Deriver {
   GiNaC::symbol x_;                                         // aerodynamic station radius by R
   std::vector<GiNaC::symbol> eta_, etap_, gam_, gamp_;      // outer shapes
   std::vector<GiNaC::symbol> ieta_, ietap_, igam_, igamp_;  // inner shapes (at x1)
-  GiNaC::symbol x0_, arm_, iarm_, mo_, mi_, tail_, head_;
+  GiNaC::symbol x0_, arm_, iarm_, tw_, mo_, mi_, tail_, head_;
   std::vector<GiNaC::symbol> dg_, dgd_, dgdd_, dh_, dhd_, dhdd_;
   // scalar indices
   int lock_ = -1, lr_ = -1, theta_ = -1, inflow_ = -1, precone_ = -1, droop_ = -1, cdo_ = -1,

@@ -25,6 +25,8 @@ inline const char* factor_enum(FactorKind k) {
       return "Factor::X0";
     case FactorKind::Arm:
       return "Factor::Arm";
+    case FactorKind::Twist:
+      return "Factor::Twist";
   }
   return "";
 }

@@ -26,7 +26,7 @@ using GiNaC::numeric;
 ModeDir dir_of(FactorKind k) {
   return k == FactorKind::Gamma || k == FactorKind::GammaPrime ? ModeDir::Lag : ModeDir::Flap;
 }
-bool has_mode(FactorKind k) { return k != FactorKind::X0 && k != FactorKind::Arm; }
+bool has_mode(FactorKind k) { return model::has_mode(static_cast<model::Factor>(k)); }
 
 // Families of indexed scalars and the directions of their indices (derive.cc's names).
 struct Family {
@@ -54,7 +54,7 @@ const Family* family_of(const std::string& name) {
   return nullptr;
 }
 
-// A labelled term.  Modes: concrete values or pattern variables; -1 = no mode (X0, Arm).
+// A labelled term.  Modes: concrete values or pattern variables; -1 = no mode (X0, Arm, Twist).
 struct Lab {
   numeric coef = 1;
   std::vector<std::pair<std::string, int>> scalars;
@@ -575,6 +575,8 @@ std::string factor_text(const TemplateFactor& f, const char* letters) {
       return "x0";
     case FactorKind::Arm:
       return "(x0+e1/l)";
+    case FactorKind::Twist:
+      return "tw";
   }
   return "";
 }
@@ -592,6 +594,8 @@ std::string factor_id(const TemplateFactor& f) {
       return "x0";
     case FactorKind::Arm:
       return "arm";
+    case FactorKind::Twist:
+      return "tw";
   }
   return "";
 }
@@ -603,9 +607,13 @@ void name_template(IntegralTemplate& t) {
       name << (t.x_power == 1 ? "x" : "x^" + std::to_string(t.x_power));
       id << "x" << t.x_power;
     }
-    for (const auto& f : t.factors) {
-      name << (name.tellp() > 0 ? " " : "") << factor_text(f, kTemplateLetters);
-      id << (id.tellp() > 0 ? "_" : "") << factor_id(f);
+    // the twist, a weight on the span like x^p, is written next to it: "x^2 tw eta_a"
+    for (const bool twist : {true, false}) {
+      for (const auto& f : t.factors) {
+        if ((f.kind == FactorKind::Twist) != twist) continue;
+        name << (name.tellp() > 0 ? " " : "") << factor_text(f, kTemplateLetters);
+        id << (id.tellp() > 0 ? "_" : "") << factor_id(f);
+      }
     }
     t.name = name.str().empty() ? "1" : name.str();
     t.ident = id.str().empty() ? "one" : id.str();

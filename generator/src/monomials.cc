@@ -34,6 +34,8 @@ std::string factor_name(const ShapeFactor& f) {
       return "x0";
     case FactorKind::Arm:
       return "(x0+e1/l)";
+    case FactorKind::Twist:
+      return "tw";
   }
   return "?";
 }
@@ -53,6 +55,8 @@ std::string factor_ident(const ShapeFactor& f) {
       return "x0";
     case FactorKind::Arm:
       return "arm";
+    case FactorKind::Twist:
+      return "tw";
   }
   return "q";
 }
@@ -145,7 +149,8 @@ Mono Deriver::analyse(const ex& t) const {
 
 namespace {
 
-// Name ("x eta1 gamma1'") and C identifier ("x1_eta1_dgam1") of an aerodynamic integral.
+// Name ("x eta1 gamma1'", "x^2 tw eta1") and C identifier ("x1_eta1_dgam1", "x2_tw_eta1") of
+// an aerodynamic integral: the twist, a weight on the span like x^p, is written next to it.
 IntegralInfo aero_info(const AeroIntegralKey& k) {
   IntegralInfo info;
   std::ostringstream name, id;
@@ -153,11 +158,14 @@ IntegralInfo aero_info(const AeroIntegralKey& k) {
     name << (k.x_power == 1 ? "x" : "x^" + std::to_string(k.x_power));
     id << "x" << k.x_power;
   }
-  for (const auto& f : k.factors) {
-    if (name.tellp() > 0) name << " ";
-    if (id.tellp() > 0) id << "_";
-    name << factor_name(f);
-    id << factor_ident(f);
+  for (const bool twist : {true, false}) {
+    for (const auto& f : k.factors) {
+      if ((f.kind == FactorKind::Twist) != twist) continue;
+      if (name.tellp() > 0) name << " ";
+      if (id.tellp() > 0) id << "_";
+      name << factor_name(f);
+      id << factor_ident(f);
+    }
   }
   info.name = name.str().empty() ? "1" : name.str();
   info.ident = id.str().empty() ? "one" : id.str();

@@ -13,7 +13,8 @@ using GiNaC::symbol;
 
 constexpr int kUniformMass = 3;  // mbar = m l^3 / I_b for a uniform blade with e1 = 0
 
-// Eq 4.1 and its slope; x0 itself for the X0 factor and the centrifugal arm x0 + e1/l (e1 = 0).
+// Eq 4.1 and its slope; x0 itself for the X0 factor and the centrifugal arm x0 + e1/l (e1 = 0);
+// no built-in twist.
 ex shape(FactorKind k, const symbol& x) {
   const ex eta = -numeric(1, 3) * (1 - 4 * x - GiNaC::pow(1 - x, 4));
   switch (k) {
@@ -26,6 +27,8 @@ ex shape(FactorKind k, const symbol& x) {
     case FactorKind::X0:
     case FactorKind::Arm:
       return x;
+    case FactorKind::Twist:
+      return 0;  // the paper's blade is untwisted
   }
   return 0;
 }

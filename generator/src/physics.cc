@@ -30,7 +30,8 @@ ex Deriver::trunc(const ex& e, int max_eps) const {
 // Generalized aerodynamic loads, eqs 2.18-2.23, nondimensionalised so that
 //   A_Fi = (gamma/2)(l/R)^2 int u_T (u_T theta - u_P) eta_i dx0
 //   A_Li = (gamma/2)(l/R)^2 int [u_P (u_T theta - u_P) + (C_Do/a) u_T^2] gamma_i dx0
-// with u_T = U_T/(Omega R), u_P = U_P/(Omega R).  A_Li carries the sign of eq 2.19 (v_e = -l
+// with u_T = U_T/(Omega R), u_P = U_P/(Omega R) and the section pitch theta (below: collective,
+// built-in twist theta_tw(x0) and cyclic pitch).  A_Li carries the sign of eq 2.19 (v_e = -l
 // gamma h, so the lag coordinate is positive against the rotation).
 void Deriver::aerodynamic_loads() {
   const ex c = (z_ + 1 / z_) / 2;               // cos psi
@@ -45,6 +46,12 @@ void Deriver::aerodynamic_loads() {
   // tags so that the audit report lists them apart.
   const ex cyclic =
       spec_.cyclic_pitch ? eps_pow("theta") * (scalar(theta1c_) * c + scalar(theta1s_) * s) : ex(0);
+  // Built-in twist theta_tw(x0): the section pitch is theta + theta_tw(x0) (+ cyclic), the
+  // twist of the same eps order as theta and, like the cyclic pitch, in the aerodynamic pitch
+  // only (the droop slope and the elastic coupling keep the collective theta).  The spanwise
+  // symbol tw becomes a factor of the integral (model::Factor::Twist); its terms carry their own
+  // origin tags.
+  const ex twist = eps_pow("theta") * tw_;
   const ex lambda = eps_pow("inflow") * scalar(inflow_);
   const ex beta = eps_pow("precone") * scalar(precone_) + eps_pow("droop") * scalar(droop_);
   const ex beta_d = eps_pow("droop") * scalar(droop_);
@@ -76,10 +83,11 @@ void Deriver::aerodynamic_loads() {
   const ex uP2 = mul(uP, uP, kmax);
 
   // Eq 2.20 as u_T (u_T theta - u_P), by load product.
-  ex lz = tag("L_z: theta U_T^2") * theta * uT2 - tag("L_z: -U_T U_P") * uTuP;
+  ex lz = tag("L_z: theta U_T^2") * theta * uT2 + tag("L_z: theta_tw U_T^2") * twist * uT2 -
+          tag("L_z: -U_T U_P") * uTuP;
   // Eq 2.21 as -(L_y) = u_P (u_T theta - u_P) + (C_Do/a) u_T^2.
-  ex ly = tag("L_y: theta U_P U_T") * theta * uTuP - tag("L_y: -U_P^2") * uP2 +
-          tag("L_y: (C_Do/a) U_T^2") * cdo * uT2;
+  ex ly = tag("L_y: theta U_P U_T") * theta * uTuP + tag("L_y: theta_tw U_P U_T") * twist * uTuP -
+          tag("L_y: -U_P^2") * uP2 + tag("L_y: (C_Do/a) U_T^2") * cdo * uT2;
   if (spec_.cyclic_pitch) {
     lz += tag("L_z: theta_cyclic U_T^2") * cyclic * uT2;
     ly += tag("L_y: theta_cyclic U_P U_T") * cyclic * uTuP;

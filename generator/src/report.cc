@@ -240,6 +240,7 @@ class Report {
   void dropped(std::ostringstream& os) const;
   void equilibrium(std::ostringstream& os) const;
   void cyclic(std::ostringstream& os) const;
+  void twist(std::ostringstream& os) const;
   void thrust(std::ostringstream& os) const;
 
   const DerivedModel& m_;
@@ -273,6 +274,7 @@ std::string Report::text() {
   equilibrium(os);
   if (m_.spec.cyclic_pitch) {
     cyclic(os);
+    twist(os);
     thrust(os);
   }
   os << nonlinear_report_section(m_);
@@ -305,8 +307,9 @@ void Report::conventions(std::ostringstream& os) const {
         "Ebar^s, Ebar^cs (Appendix E). `(precone + droop)` is printed where the derivation "
         "produces the beta_P and beta_D terms with equal factors (the paper's "
         "(beta_P + beta_D)).\n"
-     << "- Spanwise aerodynamic integrals run over x0 from A to B with x = e1 + (l/R) x0; "
-        "structural integrals over 0..1 with m = m l^3/I_b.\n"
+     << "- Spanwise aerodynamic integrals run over x0 from A to B with x = e1 + (l/R) x0, `tw` "
+        "in an integral is the built-in twist theta_tw(x0) (rad; 0 for the paper's untwisted "
+        "blade); structural integrals over 0..1 with m = m l^3/I_b.\n"
      << "- eps = the eps_D order of the term (Appendix C.1); `radial` marks terms produced by "
         "the radial-flow term mu cos(psi) dv/dx0 of U_T (eq 2.23).\n"
      << "- value = the term's contribution to the entry (full term, including (gamma/2)(l/R)^2, "
@@ -517,6 +520,51 @@ void Report::cyclic(std::ostringstream& os) const {
       }
     }
     for (int h = 0; h < m_.H; ++h) list(f_entry_name(eq, m_.M, m_.N), h, m_.forcing[h * n_ + eq]);
+  }
+}
+
+// Every term of the built-in twist theta_tw(x0) (an integral with the factor tw), gathered from
+// the entry blocks, the hover equilibrium and the thrust, where they also appear.
+void Report::twist(std::ostringstream& os) const {
+  auto twisted = [&](const Term& t) {
+    if (t.ref != IntegralRef::Aero) return false;
+    for (const auto& f : m_.aero_keys[t.integral].factors)
+      if (f.kind == FactorKind::Twist) return true;
+    return false;
+  };
+  os << "\n## Terms of the built-in twist\n\n"
+     << "The section pitch of eqs 2.20-2.21 is theta + theta_tw(x0) (+ the cyclic pitch), the "
+        "built-in twist theta_tw of the same eps order as theta: each theta term of L_z and L_y "
+        "has a twin with theta replaced by the factor tw in its integral. The droop slope "
+        "-beta_D theta and the elastic coupling keep the collective theta. The terms below are "
+        "part of the entries above (and of S q0 = c and the thrust); for the paper's untwisted "
+        "blade every tw integral is 0. Factors with (gamma/2)(l/R)^2 removed (thrust: as "
+        "derived).\n\n"
+     << "| entry | harmonic | factor | integral | eps | origin | radial |\n"
+     << "|---|---|---|---|---|---|---|\n";
+  auto list = [&](const std::string& entry, int h, const Slot& slot, bool strip) {
+    for (const auto& t : slot.terms) {
+      if (!twisted(t)) continue;
+      os << "| " << entry << " | " << DerivedModel::harmonic_name(h) << " | "
+         << factor_text(m_, t, strip) << " | " << integral_text(m_, t) << " | " << t.eps_order
+         << " | " << t.origin << " | " << (t.radial_flow ? "radial" : "") << " |\n";
+    }
+  };
+  for (int eq = 0; eq < n_; ++eq) {
+    for (int col = 0; col < 2 * n_; ++col) {
+      for (int h = 0; h < m_.H; ++h) {
+        list(a_entry_name(eq, col, m_.M, m_.N), h, m_.force[(h * n_ + eq) * 2 * n_ + col], true);
+      }
+    }
+    for (int h = 0; h < m_.H; ++h)
+      list(f_entry_name(eq, m_.M, m_.N), h, m_.forcing[h * n_ + eq], true);
+  }
+  for (int i = 0; i < n_; ++i) list("c[" + std::to_string(i + 1) + "]", 0, m_.c[i], true);
+  for (int h = 0; h < m_.H; ++h) list("thrust", h, m_.thrust_forcing[h], false);
+  for (int col = 0; col < 2 * n_; ++col) {
+    for (int h = 0; h < m_.H; ++h) {
+      list("thrust " + m_.state_name(col), h, m_.thrust_force[h * 2 * n_ + col], false);
+    }
   }
 }
 

@@ -26,7 +26,17 @@
 
 namespace flaplag::derive {
 
-enum class FactorKind { Eta = 0, EtaPrime = 1, Gamma = 2, GammaPrime = 3, X0 = 4, Arm = 5 };
+// The values of model::Factor (the run-time interpreter converts by value).
+enum class FactorKind {
+  Eta = 0,
+  EtaPrime = 1,
+  Gamma = 2,
+  GammaPrime = 3,
+  X0 = 4,
+  Arm = 5,
+  Twist = 6
+};
+static_assert(static_cast<int>(FactorKind::Twist) == static_cast<int>(model::Factor::Twist));
 
 struct ShapeFactor {
   FactorKind kind;

@@ -27,7 +27,8 @@ namespace flaplag::derive {
 
 enum class ModeDir { Flap = 0, Lag = 1 };
 
-// A spanwise factor of an integral template: kind and the template's variable (-1 for X0, Arm).
+// A spanwise factor of an integral template: kind and the template's variable (-1 for X0, Arm,
+// Twist).
 struct TemplateFactor {
   FactorKind kind;
   int var;

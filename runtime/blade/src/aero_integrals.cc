@@ -46,6 +46,30 @@ AeroIntegrals::AeroIntegrals(const model::ModelDescriptor& m, const ModeSet& mod
       start[j] += at_plus1;
     }
   }
+  // Integrands that vanish identically (the twist integrals of an untwisted blade) are 0 at
+  // every split point: the recurrences run over the others only.
+  for (int j = 0; j < count_; ++j) {
+    bool live = false;
+    for (const Piece& p : pieces_)
+      for (int i = 0; i < p.terms && !live; ++i)
+        live = coef_[p.offset + static_cast<std::size_t>(i) * m_count + j] != 0.0;
+    if (live) live_.push_back(j);
+  }
+  if (live_.size() < m_count) {
+    const std::size_t live = live_.size();
+    std::vector<double> compact;
+    for (Piece& p : pieces_) {
+      const std::size_t offset = compact.size();
+      for (int i = 0; i < p.terms; ++i)
+        for (std::size_t k = 0; k < live; ++k)
+          compact.push_back(coef_[p.offset + static_cast<std::size_t>(i) * m_count + live_[k]]);
+      p.offset = offset;
+      std::vector<double> start_live(live);
+      for (std::size_t k = 0; k < live; ++k) start_live[k] = p.start[live_[k]];
+      p.start = std::move(start_live);
+    }
+    coef_ = std::move(compact);
+  }
   partial(b_, normal_);
 }
 
@@ -100,14 +124,17 @@ void AeroIntegrals::partial(double s, std::vector<double>& out) const {
   while (p + 1 < pieces_.size() && pieces_[p + 1].lo <= s) ++p;
   const Piece& piece = pieces_[p];
   const double t = (2.0 * s - piece.lo - piece.hi) / (piece.hi - piece.lo);
-  const std::size_t m = static_cast<std::size_t>(count_);
-  out.resize(m);
-  // Clenshaw recurrence for sum_i C_i T_i(t), every integral at once (b1 in `out`, b2 in
-  // `b2_`); the same operations per integral as one recurrence at a time.
-  thread_local std::vector<double> b2_;
+  const std::size_t m = live_.size();
+  const bool all = static_cast<int>(m) == count_;
+  out.resize(static_cast<std::size_t>(count_));
+  // Clenshaw recurrence for sum_i C_i T_i(t), every live integral at once (b1 in `out`, or in
+  // `b1_` when some integrands vanish, b2 in `b2_`); the same operations per integral as one
+  // recurrence at a time.
+  thread_local std::vector<double> b1_, b2_;
   b2_.assign(m, 0.0);
+  if (!all) b1_.assign(m, 0.0);
   std::fill(out.begin(), out.end(), 0.0);
-  double* b1 = out.data();
+  double* b1 = all ? out.data() : b1_.data();
   double* b2 = b2_.data();
   const double* coef = coef_.data() + piece.offset;
   for (int i = piece.terms - 1; i >= 1; --i) {
@@ -121,6 +148,8 @@ void AeroIntegrals::partial(double s, std::vector<double>& out) const {
   for (std::size_t j = 0; j < m; ++j) b1[j] = t * b1[j] - b2[j] + coef[j];
   if (p > 0)
     for (std::size_t j = 0; j < m; ++j) b1[j] += piece.start[j];
+  if (!all)
+    for (std::size_t k = 0; k < m; ++k) out[static_cast<std::size_t>(live_[k])] = b1[k];
 }
 
 void AeroIntegrals::reversed(double mu, std::vector<double>& out) const {

@@ -85,6 +85,8 @@ const char* factor_name(Factor f) {
       return "x0";
     case Factor::Arm:
       return "arm";
+    case Factor::Twist:
+      return "tw";
   }
   return "?";
 }
@@ -101,14 +103,17 @@ class FactorTable {
 
   const std::vector<double>& values(const FactorRef& f, const char* integral) {
     const int kind = static_cast<int>(f.kind);
-    const bool modal = f.kind != Factor::X0 && f.kind != Factor::Arm;
-    const int mode = modal ? f.mode : 0;
+    const int mode = model::has_mode(f.kind) ? f.mode : 0;
     const auto key = std::make_pair(kind, mode);
     auto it = cache_.find(key);
     if (it != cache_.end()) return it->second;
 
     std::vector<double> v(x0_.size());
-    if (f.kind == Factor::X0 || f.kind == Factor::Arm) {
+    if (f.kind == Factor::Twist) {
+      // Built-in twist theta_tw(x0); the paper's uniform blade (no table) is untwisted.
+      for (std::size_t q = 0; q < x0_.size(); ++q)
+        v[q] = modes_.blade ? modes_.blade->twist_at(x0_[q]) : 0.0;
+    } else if (f.kind == Factor::X0 || f.kind == Factor::Arm) {
       const double off = f.kind == Factor::Arm ? arm_offset_ : 0.0;
       for (std::size_t q = 0; q < x0_.size(); ++q) v[q] = x0_[q] + off;
     } else {

@@ -95,8 +95,7 @@ std::string concrete_ident(const char* ident, const std::vector<int>& modes) {
 }
 
 FactorRef concrete_factor(const FactorRef& f, const std::vector<int>& modes) {
-  const bool has_mode = f.kind != Factor::X0 && f.kind != Factor::Arm;
-  return {f.kind, has_mode ? modes[static_cast<size_t>(f.mode)] : 0};
+  return {f.kind, has_mode(f.kind) ? modes[static_cast<size_t>(f.mode)] : 0};
 }
 
 // Calls f(modes) for every assignment of the template's variables, row-major (variable 0

@@ -76,7 +76,16 @@ enum class Factor : int {
   GammaPrime = 3,  // gamma_m'(x0)
   X0 = 4,          // x0bar              (structural integrals only; mode ignored)
   Arm = 5,         // x0bar + e1/l       centrifugal arm (structural integrals only; mode ignored)
+  Twist = 6,       // theta_tw(x0) [rad] built-in twist (aerodynamic integrals only; mode ignored):
+                   // the section pitch of eqs 2.20-2.21 is theta + theta_tw(x0) (+ cyclic), so
+                   // every theta term has a twin with theta replaced by this factor; 0 for the
+                   // paper's untwisted blade (ModeSet::blade null)
 };
+
+// Whether a factor is a mode shape (its FactorRef::mode counts) or a function of x0 alone.
+constexpr bool has_mode(Factor k) {
+  return k != Factor::X0 && k != Factor::Arm && k != Factor::Twist;
+}
 
 // Largest number of spanwise factors in one integrand (outer or inner): the generator stops
 // with an error if a derivation needs more.
@@ -84,7 +93,7 @@ constexpr int kMaxFactors = 4;
 
 struct FactorRef {
   Factor kind;
-  int mode;  // 0-based mode index (flap mode for Eta*, lag mode for Gamma*), 0 for X0/Arm
+  int mode;  // 0-based mode index (flap mode for Eta*, lag mode for Gamma*), 0 for X0/Arm/Twist
 };
 
 // Aerodynamic spanwise integral  I = int x^p * prod(factors) dx0bar  over the aerodynamic span
@@ -233,7 +242,7 @@ struct ModelDescriptor {
 // its variables, variable 0 slowest, a flap variable ranging over M modes and a lag one over N).
 
 // A spanwise integral whose factors carry template variables (FactorRef::mode = variable,
-// 0 for X0/Arm).  Aerodynamic: x^x_power prod(factors).  Structural: as StructuralIntegral,
+// 0 for X0/Arm/Twist).  Aerodynamic: x^x_power prod(factors).  Structural: as StructuralIntegral,
 // with factors the outer factors.
 struct IntegralTemplate {
   const char* name;   // e.g. "x eta_a eta_b'" (letters a, b, c, d name the variables)

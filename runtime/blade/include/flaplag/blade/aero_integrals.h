@@ -51,12 +51,14 @@ class AeroIntegrals {
                  const Piece& piece, int degree);
 
   double a_ = 0.0, b_ = 1.0, e1_ = 0.0, lr_ = 1.0;
-  // Chebyshev coefficients of the antiderivatives per piece, term-major: coefficient i of
-  // integral j at coef_[offset + i * count_ + j], so that partial() runs the Clenshaw
-  // recurrences of all integrals side by side (independent chains instead of one latency-bound
-  // chain per integral).
+  // Chebyshev coefficients of the antiderivatives per piece, of the integrals that do not
+  // vanish identically (live_, ascending), term-major: coefficient i of live_[k] at
+  // coef_[offset + i * live_.size() + k], so that partial() runs the Clenshaw recurrences of all
+  // integrals side by side (independent chains instead of one latency-bound chain per
+  // integral).  Piece::start holds the live integrals too.
   std::vector<double> coef_;
   std::vector<Piece> pieces_;
+  std::vector<int> live_;
   int count_ = 0;
   std::vector<double> normal_;
 };

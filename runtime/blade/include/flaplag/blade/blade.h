@@ -89,7 +89,8 @@ std::vector<double> blade_corners(const ModeSet& modes);
 
 // int_{x0_lo}^{x0_hi} x^p prod(factors) dx0  (Gauss quadrature, exact for the polynomial modes).
 // The reference for the production integrals of aero_integrals.h.
-// X0 factors are x0bar; Arm factors are x0bar + e1/l with e1/l = g.e1 / g.lr.
+// X0 factors are x0bar; Arm factors are x0bar + e1/l with e1/l = g.e1 / g.lr; Twist factors are
+// modes.blade->twist_at(x0bar) (0 without a blade table).
 double aero_integral(const model::AeroIntegral& spec, const ModeSet& modes, const SpanGeometry& g,
                      double x0_lo, double x0_hi);
 
