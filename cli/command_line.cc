@@ -636,6 +636,14 @@ const CommandLine::Given* CommandLine::given(const std::string& name) const {
   return nullptr;
 }
 
+namespace {
+// "<option> <where>" for an error inside a table given by an option ("--blade-table t.csv:4:
+// m"); the text options' tables are named by the option already ("--blade-csv:4: m").
+std::string option_named(const std::string& spelling, const std::string& name) {
+  return name.rfind(spelling, 0) == 0 ? name : spelling + " " + name;
+}
+}  // namespace
+
 // --blade-table FILE / --blade-csv TEXT: the blade table into r.params.  The fields the table
 // sets may not be given as well.
 void CommandLine::apply_blade(Request& r) const {
@@ -658,7 +666,7 @@ void CommandLine::apply_blade(Request& r) const {
   try {
     table = parse_blade_table(r.blade_csv, source);
   } catch (const InvalidInput& e) {
-    throw InvalidInput(g->spelling + " " + e.name(), e.value(), e.reason());
+    throw InvalidInput(option_named(g->spelling, e.name()), e.value(), e.reason());
   }
   for (const std::string& field : blade_table_fields(table.dimensional)) {
     const OptionSpec* o = option_for_library_name(r.command, field);
@@ -673,7 +681,7 @@ void CommandLine::apply_blade(Request& r) const {
   try {
     apply_blade_table(table, r.params);
   } catch (const InvalidInput& e) {
-    throw InvalidInput(g->spelling + " " + e.name(), e.value(), e.reason());
+    throw InvalidInput(option_named(g->spelling, e.name()), e.value(), e.reason());
   }
 }
 
@@ -698,7 +706,7 @@ void CommandLine::apply_mode_shapes(Request& r) const {
     r.params.mode_shapes =
         std::make_shared<const ImportedModes>(parse_mode_table(r.mode_shapes_csv, source));
   } catch (const InvalidInput& e) {
-    throw InvalidInput(g->spelling + " " + e.name(), e.value(), e.reason());
+    throw InvalidInput(option_named(g->spelling, e.name()), e.value(), e.reason());
   }
 }
 

@@ -138,6 +138,13 @@ TEST(CliBlade, BadTablesAreOneLineNamingTheRow) {
         run({"--blade-table", file, "critical"}),
         "--blade-table " + std::regex_replace(file, std::regex("[.]"), "\\.") + b.pattern, b.text);
   }
+  // A table given as text (what a result records) is named by its option, once.
+  expect_refused(run({"--blade-csv=", "critical"}),
+                 "--blade-csv = \\(empty\\): has no header line .*", "empty --blade-csv");
+  expect_refused(run({"--blade-csv=x,m\n", "critical"}),
+                 "--blade-csv:1: header = x,m: has no column EI_flap", "short --blade-csv");
+  expect_refused(run({"--mode-shapes-csv=", "--modes", "exact", "critical"}),
+                 "--mode-shapes-csv:1: .*", "empty --mode-shapes-csv");
   expect_refused(run({"--blade-table", d.file("missing.csv"), "critical"}),
                  "argument = .*missing\\.csv: blade table cannot be read.*", "missing file");
 }

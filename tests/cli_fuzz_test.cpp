@@ -157,6 +157,10 @@ class Generator {
                                                 "--spec",
                                                 "--audit",
                                                 "--export-shapes",
+                                                "--blade-table",
+                                                "--blade-csv",
+                                                "--mode-shapes",
+                                                "--mode-shapes-csv",
                                                 "--basis",
                                                 "--nonrotating",
                                                 "--points",
@@ -435,9 +439,11 @@ class Generator {
           o.name == "--revs" || o.name == "--perturbation" || o.name == "--forced" ||
           o.name == "--speeds" || o.name == "--nonlinear" ||
           (o.name == "--spec" && c != cli::Command::Models) || o.name == "--audit" ||
-          o.name == "--export-shapes") {
+          o.name == "--export-shapes" || o.name == "--blade-table" || o.name == "--blade-csv" ||
+          o.name == "--mode-shapes" || o.name == "--mode-shapes-csv") {
         // (--spec FILE.toml derives a model: tests/cli_spec_test.cpp; --export-shapes writes a
-        // side file: tests/cli_test.cpp, CliGood.ModesExportShapes)
+        // side file: tests/cli_test.cpp, CliGood.ModesExportShapes; blade tables and mode files
+        // are files of their own: tests/cli_blade_test.cpp)
         continue;
       }
       // gnuplot is slow to start: few pictures.  A periodic equilibrium (harmonic balance
@@ -534,7 +540,12 @@ class Generator {
     // Any option of any command (so some of another subcommand).
     std::vector<cli::Command> all = cli::subcommands();
     all.push_back(cli::Command::Typical);
-    const std::vector<cli::OptionSpec>& opts = cli::options_of(pick(all));
+    // (Blade tables and mode files are left to tests/cli_blade_test.cpp, malformed ones too.)
+    std::vector<cli::OptionSpec> opts;
+    for (const cli::OptionSpec& o : cli::options_of(pick(all)))
+      if (o.name != "--blade-table" && o.name != "--blade-csv" && o.name != "--mode-shapes" &&
+          o.name != "--mode-shapes-csv")
+        opts.push_back(o);
     const cli::OptionSpec& o = pick(opts);
     return o.alias.empty() || chance(0.5) ? o.name : o.alias;
   }
