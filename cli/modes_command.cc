@@ -36,6 +36,13 @@ Json jnums(const std::vector<double>& v) {
 
 std::string run_modes(const Request& r, std::string* warning) {
   const RotorParameters& p = r.params;
+  // The tables below (Fig 9, the Rayleigh check) are the uniform blade's.
+  if (p.blade || p.mode_shapes) {
+    throw InvalidInput(p.blade ? "blade" : "mode_shapes", p.blade ? p.blade->source : "(imported)",
+                       "`flaplag modes` shows the uniform blade's modes; a blade table's "
+                       "frequencies are printed with every analysis result (and in its hover "
+                       "exponents)");
+  }
   // --export-shapes: the path checked before anything is computed, written after.
   const OutputTarget shapes_file(r.export_shapes, "export_shapes");
   ExactModeOptions opt;

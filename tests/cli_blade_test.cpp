@@ -213,6 +213,16 @@ TEST(CliBlade, CampbellOfABladeTableIsRefused) {
                  "campbell with a table");
 }
 
+// `modes` shows the uniform blade's tables: refused with a blade table rather than shown wrong.
+TEST(CliBlade, ModesOfABladeTableIsRefused) {
+  TempDir d;
+  write(d.file("uniform.csv"), kUniform);
+  expect_refused(run({"--blade-table", d.file("uniform.csv"), "modes"}),
+                 "--blade-table = .*uniform\\.csv: `flaplag modes` shows the uniform blade's "
+                 "modes.*",
+                 "modes with a table");
+}
+
 TEST(CliBlade, ExportedModeShapesImportToTheSameCriticalAdvanceRatio) {
   TempDir d;
   const Outcome e = run({"--modes", "exact", "modes", "--export-shapes", d.file("m.csv")});
