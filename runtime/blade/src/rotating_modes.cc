@@ -216,10 +216,35 @@ void check_options(const ExactModeOptions& o) {
   }
 }
 
-// kappa = k/mbar with lambda_1(kappa) = target.  lambda_1 is increasing (B > 0) and concave (a
-// minimum of Rayleigh quotients linear in kappa), with derivative c'Bc (Hellmann-Feynman).
-// Newton on a concave increasing function lands left of the root after at most one step and
-// then climbs monotonically; the bracket [lo, hi] with bisection fallback guards rounding.
+// The x >= 0 with lambda_1(x) = target, for lambda_1 increasing and concave in x (a minimum of
+// Rayleigh quotients linear in x); eval(x) gives lambda_1(x) and its slope.  Newton on a
+// concave increasing function lands left of the root after at most one step and then climbs
+// monotonically; the bracket [lo, hi] with bisection fallback guards rounding.  Stops when
+// |lambda_1 - target| <= tolerance eps target or the step is below 4 eps x.
+template <typename Eval>
+double solve_concave(Eval eval, double target, double x, double tolerance) {
+  double lo = 0.0;
+  double hi = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < 200; ++it) {
+    const auto [lambda1, slope] = eval(x);
+    const double f = lambda1 - target;
+    if (f == 0.0) return x;
+    if (f < 0.0) {
+      lo = x;
+    } else {
+      hi = x;
+    }
+    double next = x - f / slope;
+    if (!(next > lo && next < hi)) next = std::isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * x + 1.0;
+    if (std::abs(f) <= tolerance * std::numeric_limits<double>::epsilon() * target) return x;
+    if (std::abs(next - x) <= 4.0 * std::numeric_limits<double>::epsilon() * x) return next;
+    x = next;
+  }
+  return x;
+}
+
+// kappa = k/mbar with lambda_1(kappa) = target: solve_concave with the derivative c'Bc
+// (Hellmann-Feynman; B > 0).
 double solve_kappa(const Galerkin& gal, BendingDirection dir, double omega) {
   if (!std::isfinite(omega) || omega <= 0.0) {
     throw InvalidInput(option_name(dir), round_trip_text(omega),
@@ -237,30 +262,15 @@ double solve_kappa(const Galerkin& gal, BendingDirection dir, double omega) {
             std::to_string(gal.n) +
             "-function cantilever basis (a larger `n_basis` lowers the limit)");
   }
-  double lo = 0.0;
-  double hi = std::numeric_limits<double>::infinity();
   // Southwell-type start: lambda_1 ~ kappa beta_1^4 + lambda_1(0).
-  double kappa = (target - lambda0) / gal.beta4[0];
-  for (int it = 0; it < 200; ++it) {
-    auto [lambda, v] = gal.solve(dir, kappa);
-    const double f = lambda[0] - target;
-    if (f == 0.0) return kappa;
-    if (f < 0.0) {
-      lo = kappa;
-    } else {
-      hi = kappa;
-    }
-    const Eigen::VectorXd c = v.col(0);
-    const double slope = (gal.beta4.array() * c.array().square()).sum() / c.squaredNorm();
-    double next = kappa - f / slope;
-    if (!(next > lo && next < hi)) next = std::isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * kappa + 1.0;
-    if (std::abs(f) <= 2.0 * std::numeric_limits<double>::epsilon() * target) return kappa;
-    if (std::abs(next - kappa) <= 4.0 * std::numeric_limits<double>::epsilon() * kappa) {
-      return next;
-    }
-    kappa = next;
-  }
-  return kappa;
+  return solve_concave(
+      [&](double kappa) {
+        auto [lambda, v] = gal.solve(dir, kappa);
+        const Eigen::VectorXd c = v.col(0);
+        return std::pair{lambda[0],
+                         (gal.beta4.array() * c.array().square()).sum() / c.squaredNorm()};
+      },
+      target, (target - lambda0) / gal.beta4[0], 2.0);
 }
 
 // The functions of the uniform blade's Galerkin matrices refuse a blade table rather than
@@ -289,27 +299,12 @@ double solve_scale(const BladeGalerkin& gal, BendingDirection dir, double omega)
                            "limit " +
                            round_trip_text(std::sqrt(std::max(lambda0, 0.0))) + " of this blade");
   }
-  double lo = 0.0;
-  double hi = std::numeric_limits<double>::infinity();
-  double scale = (target - lambda0) / gal.nonrotating(dir, 1.0);
-  for (int it = 0; it < 200; ++it) {
-    auto [lambda, v] = gal.solve(dir, scale);
-    const double f = lambda[0] - target;
-    if (f == 0.0) return scale;
-    if (f < 0.0) {
-      lo = scale;
-    } else {
-      hi = scale;
-    }
-    double next = scale - f / gal.slope(dir, v.col(0));
-    if (!(next > lo && next < hi)) next = std::isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * scale + 1.0;
-    if (std::abs(f) <= 4.0 * std::numeric_limits<double>::epsilon() * target) return scale;
-    if (std::abs(next - scale) <= 4.0 * std::numeric_limits<double>::epsilon() * scale) {
-      return next;
-    }
-    scale = next;
-  }
-  return scale;
+  return solve_concave(
+      [&](double scale) {
+        auto [lambda, v] = gal.solve(dir, scale);
+        return std::pair{lambda[0], gal.slope(dir, v.col(0))};
+      },
+      target, (target - lambda0) / gal.nonrotating(dir, 1.0), 4.0);
 }
 
 // Shape coefficients scaled to tip value +1: eta(1) = sum c_j phi_j(1), phi_j(1) = 2(-1)^(j+1).
