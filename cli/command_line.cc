@@ -848,6 +848,13 @@ Request CommandLine::interpret() const {
       // Every rotor option is accepted (one option string serves every subcommand) and checked;
       // the modes use the blade's.
       validate(r.params);
+      if (r.params.basis == kElementBasis) {
+        const Given* b = given("--basis");
+        throw InvalidInput(b ? b->spelling : "--basis", b ? shown(b->text) : "elements",
+                           "flaplag modes shows the Galerkin modes and their Fig 9 relation "
+                           "(--basis 1..12, converged or paper); the finite elements' "
+                           "frequencies are in every analysis result's hover exponents");
+      }
       const int basis = galerkin_basis(r.params);
       if (flap_modes > basis) {
         throw InvalidInput(flap_given->spelling, shown(flap_given->text),

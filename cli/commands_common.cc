@@ -232,10 +232,9 @@ std::string header_text(const Analysis& an, bool with_method) {
   kv.add("model", std::string(m.name) + " (" + m.spec_file + "): " + m.summary);
   std::string blade =
       an.modes().kind == "imported" ? "imported mode shapes (" + p.mode_shapes->source + ")"
-      : an.modes().kind == "exact"
-          ? "exact rotating mode shapes (" + std::to_string(galerkin_basis(p)) +
-                " cantilever functions" + (p.basis == kConvergedBasis ? ", converged" : "") + ")"
-          : "assumed mode shape (eq 4.1)";
+      : an.modes().kind == "exact"  ? "exact rotating mode shapes (" + basis_description(p.basis) +
+                                         (p.basis == kConvergedBasis ? ", converged" : "") + ")"
+                                   : "assumed mode shape (eq 4.1)";
   if (p.paper_1974_shapes && an.modes().kind == "exact") blade += " (1974 shapes)";
   blade += ", " + std::to_string(m.flap_modes) + " flap x " + std::to_string(m.lag_modes) +
            " lag; elastic coupling " + (coupling_on(an) ? "on" : "off") + "; reversed flow " +

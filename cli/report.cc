@@ -440,7 +440,7 @@ std::string model_section(const Json& result) {
                                                            ? ", elastic coupling (Appendix E)"
                                                            : "")});
   if (p.contains("basis") && member(result, "mode_shapes") == "exact")
-    rows.push_back({"Galerkin basis", cell(p["basis"])});
+    rows.push_back({"mode discretization", cell(p["basis"])});
   if (p.is_object()) {
     std::string rf = member(p, "reversed-flow") == false ? "left out"
                      : member(p, "exact-reversed-flow") == true
@@ -529,8 +529,9 @@ std::string evidence_section(const Json& result) {
     s += "</table>\n";
   }
   s += "<p class=\"note\">Error estimates are per rev for exponents and absolute in &mu; for "
-       "advance ratios; <code>basis_error</code> is the change from the 11- to the 12-function "
-       "Galerkin basis of exact modes, already included in the error estimates. The keys are "
+       "advance ratios; <code>basis_error</code> is the change of exact modes to their reference "
+       "discretization (from 12 to 11 Galerkin functions; for a blade table, to finite "
+       "elements), already included in the error estimates. The keys are "
        "described in docs/json.md.</p>\n";
   return section("convergence", "Convergence evidence", s);
 }

@@ -10,15 +10,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "flaplag/analysis.h"
+#include "flaplag/blade/blade_elements.h"
 #include "flaplag/blade/rotating_modes.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/trim.h"
+#include "test_util.h"
 
 using flaplag::Analysis;
 using flaplag::CriticalOptions;
@@ -67,7 +71,9 @@ TEST(Basis, TheDefaultIsConvergedAndNamed) {
   EXPECT_EQ(v, flaplag::kConvergedBasis);
   EXPECT_FALSE(flaplag::integer_from_name(row, "5", &v));
   EXPECT_NO_THROW(flaplag::validate(d));
-  for (int bad : {-1, 13, 1000}) {
+  ASSERT_TRUE(flaplag::integer_from_name(row, "elements", &v));
+  EXPECT_EQ(v, flaplag::kElementBasis);
+  for (int bad : {-2, 13, 1000}) {
     RotorParameters p;
     p.basis = bad;
     EXPECT_THROW(flaplag::validate(p), flaplag::InvalidInput) << bad;
@@ -83,6 +89,81 @@ TEST(Basis, ReferenceIsTheNeighbourHoldingTheModes) {
   EXPECT_EQ(flaplag::reference_basis(p, 1, 1), 6);
   p.basis = 1;
   EXPECT_EQ(flaplag::reference_basis(p, 1, 1), 2);
+  // Finite elements against the largest basis, a blade table's Galerkin modes against elements.
+  p.basis = flaplag::kElementBasis;
+  EXPECT_EQ(flaplag::reference_basis(p, 3, 2), flaplag::kMaxBasisFunctions);
+  p.basis = flaplag::kConvergedBasis;
+  p.blade = std::make_shared<const flaplag::BladeProperties>(flaplag::uniform_blade());
+  EXPECT_EQ(flaplag::reference_basis(p, 1, 1), flaplag::kElementBasis);
+}
+
+// The finite-element modes: a second discretization whose mu_c lands in the interval of the two
+// largest Galerkin bases (which holds the converged value), with the change to 12 functions as
+// its error.
+TEST(Basis, FiniteElementMuCLiesInTheGalerkinBracket) {
+  const CriticalResult r = critical(flaplag::kElementBasis);
+  ASSERT_TRUE(r.mu_c && r.mu_c_error && r.basis_error) << r.message;
+  EXPECT_EQ(*r.basis, flaplag::kElementBasis);
+  const Reference& ref = reference();
+  std::printf("elements: mu_c %.10f, basis_error %.2e; 11 and 12 functions: %.10f, %.10f\n",
+              *r.mu_c, *r.basis_error, ref.lo, ref.hi);
+  const double tol = CriticalOptions{}.tolerance;
+  EXPECT_GE(*r.mu_c, ref.lo - tol);
+  EXPECT_LE(*r.mu_c, ref.hi + tol);
+  EXPECT_GE(*r.basis_error, std::min(std::abs(*r.mu_c - ref.lo), std::abs(*r.mu_c - ref.hi)));
+}
+
+// The finite elements' own error in mu_c: the same uniform blade as a table with a station every
+// 1/192 (so twice as many elements, the table's values all equal) moves it by less than 1e-7,
+// far below the Galerkin modes' error the elements measure (~1e-5).
+TEST(Basis, FiniteElementMuCIsConvergedInTheMesh) {
+  const CriticalResult coarse = critical(flaplag::kElementBasis);
+  flaplag::BladeProperties fine = flaplag::uniform_blade();
+  const int n = 2 * flaplag::kElementsPerSpan;
+  fine.x0.clear();
+  for (int i = 0; i <= n; ++i) fine.x0.push_back(static_cast<double>(i) / n);
+  for (auto* column :
+       {&fine.mass, &fine.stiffness_flap, &fine.stiffness_lag, &fine.chord, &fine.twist})
+    column->assign(fine.x0.size(), column->front());
+  RotorParameters p = typical_exact(flaplag::kElementBasis);
+  p.blade = std::make_shared<const flaplag::BladeProperties>(fine);
+  const CriticalResult r = Analysis(p, TransitionOptions{}).critical({});
+  ASSERT_TRUE(coarse.mu_c && r.mu_c) << coarse.message << r.message;
+  std::printf("elements: mu_c %.12f (96 per span), %.12f (192)\n", *coarse.mu_c, *r.mu_c);
+  EXPECT_LT(std::abs(*coarse.mu_c - *r.mu_c), 1e-7);
+}
+
+// A tapered blade with a corner and a tip weight (relative mass 1.5 -> 0.7, stiffness shape 2 ->
+// 0.5): its Galerkin modes converge slowly, and the change to the next basis understated their
+// error; the error is now the change to finite elements, computed here explicitly.
+RotorParameters tapered_exact(int basis) {
+  flaplag::BladeProperties b = flaplag::uniform_blade();
+  b.x0 = {0.0, 0.25, 1.0};
+  b.mass = {1.5, 1.2, 0.7};
+  b.stiffness_flap = {2.0, 1.4, 0.5};
+  b.stiffness_lag = b.stiffness_flap;
+  b.chord = {1.0, 1.0, 1.0};
+  b.twist = {0.0, 0.0, 0.0};
+  b.tip_mass = 0.05;
+  b.source = "tapered";
+  RotorParameters p = typical_exact(basis);
+  p.blade = std::make_shared<const flaplag::BladeProperties>(flaplag::normalised_mass(b));
+  return p;
+}
+
+TEST(Basis, ATablesGalerkinModesAreCheckedAgainstFiniteElements) {
+  const CriticalResult g = Analysis(tapered_exact(flaplag::kConvergedBasis), {}).critical({});
+  ASSERT_TRUE(g.mu_c && g.basis_error) << g.message;
+  EXPECT_EQ(*g.basis, flaplag::kMaxBasisFunctions);
+  const CriticalResult e = Analysis(tapered_exact(flaplag::kElementBasis), {}).critical({});
+  const CriticalResult g11 = Analysis(tapered_exact(11), {}).critical({});
+  ASSERT_TRUE(e.mu_c && g11.mu_c) << e.message << g11.message;
+  std::printf(
+      "tapered: 12 functions %.10f (basis_error %.2e), 11 functions %.10f, elements "
+      "%.10f\n",
+      *g.mu_c, *g.basis_error, *g11.mu_c, *e.mu_c);
+  EXPECT_TRUE(flaplag::testing::AbsClose(std::abs(*g.mu_c - *e.mu_c), *g.basis_error, 1e-15));
+  EXPECT_GE(*g.mu_c_error, *g.basis_error);
 }
 
 // The default exact-mode mu_c of the typical case agrees with the converged reference within

@@ -312,7 +312,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"UnknownCommand", "command = \"fly\"\n", "FILE:1: command = fly: not a subcommand"},
         BadCase{"Malformed", "theta = = 1\n", "FILE:1 = \\(TOML\\): .*"},
         BadCase{"BasisOutOfRange", "basis = 13\n",
-                "FILE:1: basis = 13: must be converged, paper or 1\\.\\.12"},
+                "FILE:1: basis = 13: must be converged, paper, elements or 1\\.\\.12"},
         BadCase{"BasisNotWhole", "basis = 2.5\n", "FILE:1: basis = 2.5: not a whole number"},
         BadCase{"BasisBelowModes",
                 "command = \"critical\"\nmodes = \"exact\"\nflap-modes = 2\nbasis = 1\n",

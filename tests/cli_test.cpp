@@ -315,6 +315,8 @@ const std::vector<BadInput> kBadInputs = {
     {"NonNumericBasis", {"sweep", "--mu", "0:1:0.5", "--basis", "five"}, "--basis", "five"},
     {"BasisBeyondInt", {"--basis", "99999999999"}, "--basis", "99999999999"},
     {"ModesBasisZero", {"modes", "--basis", "0"}, "--basis", "0"},
+    // Regression: the finite elements have no Galerkin basis; `modes` crashed on them.
+    {"ModesOfFiniteElements", {"modes", "--basis", "elements"}, "--basis", "elements"},
     {"BasisSmallerThanModes",
      {"critical", "--modes", "exact", "--flap-modes", "3", "--lag-modes", "3", "--basis", "2"},
      "--basis",

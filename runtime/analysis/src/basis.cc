@@ -1,12 +1,15 @@
-// flaplag analysis — the error of the exact modes' Galerkin basis in a result: the same result
-// computed with the neighbouring basis (rotor/parameters.h, reference_basis), and the change
-// included in the result's error estimates and status.
+// flaplag analysis — the error of the exact modes' discretization in a result: the same result
+// computed with the reference discretization (rotor/parameters.h, reference_basis: the
+// neighbouring Galerkin basis, or finite elements against Galerkin for a blade table and the
+// other way round), and the change included in the result's error estimates and status.
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
+#include <tuple>
 
 #include "flaplag/core/format.h"
+#include "flaplag/rotor/blade_table.h"
 #include "internal.h"
 
 namespace flaplag::internal {
@@ -17,7 +20,7 @@ namespace {
 // CriticalSearch::crossing_error).
 constexpr double kUnresolvedFactor = 10.0;
 
-std::string functions(int basis) { return std::to_string(basis) + " cantilever functions"; }
+std::string functions(int basis) { return basis_description(basis); }
 
 // With the 1974 shapes the neighbouring basis gives no bound (BasisCheck::monotone).  Measured
 // on the typical case (mu_c 0.58540, 0.58494, 0.58471, 0.58460, 0.58454 ... 0.58446 with 5, 6,
@@ -38,7 +41,7 @@ BasisCheck basis_check(const RotorParameters& p, int flap_modes, int lag_modes) 
   BasisCheck c;
   // Imported shapes (RotorParameters::mode_shapes) come from no Galerkin basis.
   if (p.modes != ModeKind::Exact || p.mode_shapes) return c;
-  c.basis = galerkin_basis(p);
+  c.basis = p.basis == kElementBasis ? kElementBasis : galerkin_basis(p);
   c.reference = reference_basis(p, flap_modes, lag_modes);
   c.monotone = p.paper_1974_shapes;
   if (c.reference == 0) {
@@ -51,6 +54,10 @@ BasisCheck basis_check(const RotorParameters& p, int flap_modes, int lag_modes) 
 RotorParameters BasisCheck::reference_parameters(const RotorParameters& p) const {
   RotorParameters r = p;
   r.basis = reference;
+  // A dimensional table's first frequencies are results of its stiffness: the reference
+  // computes them with its own discretization, so that the change includes their error.
+  if (p.blade && p.blade->origin.dimensional)
+    std::tie(r.omega_flap, r.omega_lag) = stiffness_frequencies(r, p.blade);
   return r;
 }
 

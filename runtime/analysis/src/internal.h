@@ -25,14 +25,14 @@
 
 namespace flaplag::internal {
 
-// The error of the exact modes' Galerkin basis (basis.cc): a result is computed again with the
-// neighbouring basis (rotor/parameters.h, reference_basis) and fold() adds the change to its
+// The error of the exact modes' discretization (basis.cc): a result is computed again with the
+// reference discretization (rotor/parameters.h, reference_basis) and fold() adds the change to its
 // error estimates (mu_c_error and the interval errors; a point's error_estimate), sets `basis`
 // and `basis_error`, and makes it a Warning when the change exceeds 10 times the tolerance, or
 // when it cannot be estimated.  Nothing for the assumed mode (basis == 0).
 struct BasisCheck {
-  int basis = 0;      // the functions used; 0: assumed mode
-  int reference = 0;  // the basis compared with; 0: none (problem says why)
+  int basis = 0;      // the functions used, or kElementBasis; 0: assumed mode
+  int reference = 0;  // the basis compared with (or kElementBasis); 0: none (problem says why)
   std::string problem;
   // The 1974 mode shapes (RotorParameters::paper_1974_shapes) converge monotonically, not
   // alternately, in the basis size: the change to the neighbouring basis is then no bound, and

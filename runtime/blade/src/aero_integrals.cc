@@ -19,13 +19,12 @@ AeroIntegrals::AeroIntegrals(const model::ModelDescriptor& m, const ModeSet& mod
                        "the aerodynamic span needs A < B = " + round_trip_text(b_));
   }
   count_ = m.n_aero;
-  // One piece for a smooth blade; a blade table's corners inside [A, B] end pieces, each with a
+  // One piece for a smooth blade; a blade table's corners (and the mesh of finite-element modes)
+  // inside [A, B] end pieces, each with a
   // degree in proportion to its length (the integrands are smooth within a piece).
   std::vector<double> edges = {a_};
-  if (modes.blade) {
-    for (double c : modes.blade->corners())
-      if (c > a_ + 1e-9 && c < b_ - 1e-9) edges.push_back(c);
-  }
+  for (double c : blade_corners(modes))
+    if (c > a_ + 1e-9 && c < b_ - 1e-9) edges.push_back(c);
   edges.push_back(b_);
   const std::size_t m_count = static_cast<std::size_t>(count_);
   std::vector<double> start(m_count, 0.0);

@@ -386,8 +386,9 @@ Eigen::MatrixXd curvature_products(const std::vector<std::shared_ptr<const ModeS
   return cf.transpose() * w.asDiagonal() * cg;
 }
 Eigen::MatrixXd curvature_products(const std::vector<std::shared_ptr<const ModeShape>>& f,
-                                   const std::vector<std::shared_ptr<const ModeShape>>& g) {
-  return curvature_products(f, g, {}, [](double) { return 1.0; });
+                                   const std::vector<std::shared_ptr<const ModeShape>>& g,
+                                   const std::vector<double>& corners) {
+  return curvature_products(f, g, corners, [](double) { return 1.0; });
 }
 
 }  // namespace
@@ -423,7 +424,12 @@ std::vector<double> panel_edges(double a, double b, const std::vector<double>& c
 }
 
 std::vector<double> blade_corners(const ModeSet& modes) {
-  return modes.blade ? modes.blade->corners() : std::vector<double>{};
+  std::vector<double> c = modes.blade ? modes.blade->corners() : std::vector<double>{};
+  if (modes.mesh.empty()) return c;
+  c.insert(c.end(), modes.mesh.begin(), modes.mesh.end());
+  std::sort(c.begin(), c.end());
+  c.erase(std::unique(c.begin(), c.end()), c.end());
+  return c;
 }
 
 double aero_integral(const model::AeroIntegral& spec, const ModeSet& modes, const SpanGeometry& g,
@@ -481,7 +487,7 @@ ElasticCoupling elastic_coupling(const ModeSet& modes, double theta) {
       const double t = theta + b.twist_at(x);
       return dk(x) * std::sin(t) * std::cos(t);
     };
-    const std::vector<double> corners = b.corners();
+    const std::vector<double> corners = blade_corners(modes);
     e.es_flap = curvature_products(modes.flap, modes.flap, corners, s2);
     e.es_lag = curvature_products(modes.lag, modes.lag, corners, s2);
     e.ecs_flap_lag = curvature_products(modes.flap, modes.lag, corners, sc);
@@ -492,9 +498,10 @@ ElasticCoupling elastic_coupling(const ModeSet& modes, double theta) {
   const double dk = modes.stiffness_lag - modes.stiffness_flap;
   const double s = std::sin(theta);
   const double c = std::cos(theta);
-  e.es_flap = dk * s * s * curvature_products(modes.flap, modes.flap);
-  e.es_lag = dk * s * s * curvature_products(modes.lag, modes.lag);
-  e.ecs_flap_lag = dk * s * c * curvature_products(modes.flap, modes.lag);
+  const std::vector<double> corners = blade_corners(modes);
+  e.es_flap = dk * s * s * curvature_products(modes.flap, modes.flap, corners);
+  e.es_lag = dk * s * s * curvature_products(modes.lag, modes.lag, corners);
+  e.ecs_flap_lag = dk * s * c * curvature_products(modes.flap, modes.lag, corners);
   e.ecs_lag_flap = e.ecs_flap_lag.transpose();
   return e;
 }

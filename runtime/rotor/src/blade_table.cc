@@ -7,7 +7,9 @@
 #include <map>
 #include <memory>
 #include <system_error>
+#include <tuple>
 
+#include "flaplag/blade/blade_elements.h"
 #include "flaplag/blade/rotating_modes.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -363,18 +365,23 @@ BladeOrigin apply_blade_table(const BladeTable& t, RotorParameters& p) {
   if (t.dimensional) {
     // The rotating frequencies of the given stiffness; the analysis then scales the columns to
     // these frequencies, i.e. by 1 (to rounding).
-    ExactModeOptions opt;
-    opt.n_basis = galerkin_basis(p);
-    opt.e1_over_l = p.root_offset / p.length_ratio;
-    opt.blade = blade;
-    const ExactModes modes = blade_stiffness_modes(opt);
-    o.omega_flap = modes.modes.omega_flap[0];
-    o.omega_lag = modes.modes.omega_lag[0];
+    std::tie(o.omega_flap, o.omega_lag) = stiffness_frequencies(p, blade);
     p.omega_flap = o.omega_flap;
     p.omega_lag = o.omega_lag;
   }
   p.blade = blade;
   return o;
+}
+
+std::pair<double, double> stiffness_frequencies(const RotorParameters& p,
+                                                std::shared_ptr<const BladeProperties> blade) {
+  ExactModeOptions opt;
+  opt.n_basis = p.basis == kElementBasis ? kMaxBasisFunctions : galerkin_basis(p);
+  opt.e1_over_l = p.root_offset / p.length_ratio;
+  opt.blade = std::move(blade);
+  const ExactModes modes =
+      p.basis == kElementBasis ? element_stiffness_modes(opt) : blade_stiffness_modes(opt);
+  return {modes.modes.omega_flap[0], modes.modes.omega_lag[0]};
 }
 
 }  // namespace flaplag

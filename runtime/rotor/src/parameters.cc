@@ -122,15 +122,17 @@ std::vector<ParameterSpec> build_table() {
   // Paper 4.1(b): five functions (`paper`).  A lag frequency near the k -> 0 limit of the basis
   // (0.207 with five, Fig 15's left end omega_L1 = 0.2) needs more (rotating_modes.h).
   static_assert(kMaxBasisFunctions == 12, "update the requirement text");
-  static_assert(kPaperBasis == 5 && kConvergedBasis == 0, "update the names");
+  static_assert(kPaperBasis == 5 && kConvergedBasis == 0 && kElementBasis == -1,
+                "update the names");
   ParameterSpec basis = integer_row(
       "basis", "",
       "exact modes: nonrotating cantilever functions per direction (Galerkin basis of the "
       "rotating modes; at least the model's mode counts); converged: the largest, 12, with its "
-      "error estimated against 11 and included in the results' error estimates; paper: the "
-      "paper's 5",
-      &RotorParameters::basis, 1, kMaxBasisFunctions, "converged, paper or 1..12");
-  basis.names = "converged=0|paper=5";
+      "error estimated against 11 (a blade table's against finite elements) and included in the "
+      "results' error estimates; paper: the paper's 5; elements: cubic finite elements on the "
+      "blade's stations instead, checked against 12 functions",
+      &RotorParameters::basis, 1, kMaxBasisFunctions, "converged, paper, elements or 1..12");
+  basis.names = "converged=0|paper=5|elements=-1";
   t.push_back(basis);
   t.push_back(flag_row("elastic_coupling", "the elastic coupling of Appendix E (exact modes only)",
                        &RotorParameters::elastic_coupling));
@@ -211,13 +213,22 @@ bool integer_admissible(const ParameterSpec& spec, int value) {
 }
 
 int galerkin_basis(const RotorParameters& p) {
+  if (p.basis == kElementBasis) return 0;
   return p.basis == kConvergedBasis ? kMaxBasisFunctions : p.basis;
 }
 
 int reference_basis(const RotorParameters& p, int flap_modes, int lag_modes) {
+  if (p.basis == kElementBasis) return kMaxBasisFunctions;
+  if (p.blade) return kElementBasis;
   const int b = galerkin_basis(p);
   const int r = b < kMaxBasisFunctions ? b + 1 : b - 1;
   return r >= std::max(flap_modes, lag_modes) && r >= 1 ? r : 0;
+}
+
+std::string basis_description(int basis) {
+  if (basis == kElementBasis) return "cubic finite elements";
+  const int n = basis == kConvergedBasis ? kMaxBasisFunctions : basis;
+  return std::to_string(n) + " cantilever functions";
 }
 
 const char* mode_kind_name(ModeKind k) { return k == ModeKind::Exact ? "exact" : "assumed"; }

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "flaplag/blade/blade_elements.h"
 #include "flaplag/blade/imported_modes.h"
 #include "flaplag/blade/rotating_modes.h"
 #include "flaplag/core/constants.h"
@@ -78,14 +79,16 @@ ModeSet imported_blade_modes(const RotorParameters& p, const model::ModelDescrip
     throw InvalidInput("mode_shapes", table.source, e.reason());
   }
   ExactModeOptions opt;
-  opt.n_basis = galerkin_basis(p);
+  opt.n_basis = p.basis == kElementBasis ? kMaxBasisFunctions : galerkin_basis(p);
   opt.e1_over_l = p.root_offset / p.length_ratio;
   s.blade = p.blade;
   if (p.blade) {
     // The blade table's stiffness columns, scaled as its own first modes would need to have
     // the imported first frequencies.
     opt.blade = p.blade;
-    const ModeSet own = exact_modes(s.omega_flap[0], s.omega_lag[0], opt);
+    const ModeSet own = p.basis == kElementBasis
+                            ? element_rotating_modes(s.omega_flap[0], s.omega_lag[0], opt).modes
+                            : exact_modes(s.omega_flap[0], s.omega_lag[0], opt);
     s.stiffness_flap = own.stiffness_flap;
     s.stiffness_lag = own.stiffness_lag;
     return s;
@@ -121,8 +124,9 @@ ModeSet blade_modes(const RotorParameters& p, const model::ModelDescriptor& m) {
     }
     return assumed_modes(p.omega_flap, p.omega_lag);
   }
-  // Galerkin's method gives at most as many rotating modes per direction as basis functions.
-  const int basis = galerkin_basis(p);
+  // Galerkin's method gives at most as many rotating modes per direction as basis functions
+  // (the finite elements as many as the largest basis, the most a model has).
+  const int basis = p.basis == kElementBasis ? kMaxBasisFunctions : galerkin_basis(p);
   if (M > basis || N > basis) {
     throw InvalidInput("basis", parameter_text(p, *find_parameter("basis")),
                        std::string("model '") + m.name + "' has " + std::to_string(M) + " flap x " +
@@ -137,6 +141,8 @@ ModeSet blade_modes(const RotorParameters& p, const model::ModelDescriptor& m) {
   opt.paper_1974_shapes = p.paper_1974_shapes;
   opt.blade = p.blade;
   try {
+    if (p.basis == kElementBasis)
+      return element_rotating_modes(p.omega_flap, p.omega_lag, opt).modes;
     return exact_modes(p.omega_flap, p.omega_lag, opt);
   } catch (const InvalidInput& e) {
     // The blade layer calls the basis size `n_basis` (ExactModeOptions); here it is `basis`.

@@ -53,6 +53,9 @@ struct ModeSet {
   // The blade's spanwise distributions; null for the paper's uniform blade (mbar = 3, chord 1,
   // no twist, no tip mass).  Every integral of blade.h and aero_integrals.h weights by them.
   std::shared_ptr<const BladeProperties> blade;
+  // Interior nodes where the shapes themselves are only piecewise smooth (finite-element modes,
+  // blade_elements.h); empty for shapes smooth on [0, 1].  Quadrature panels end there too.
+  std::vector<double> mesh;
 };
 
 // The paper's assumed-mode blade: one flap and one lag mode (eq 4.1) with the given rotating
@@ -84,7 +87,8 @@ SpanRule span_rule(double a, double b);
 SpanRule span_rule(double a, double b, const std::vector<double>& corners);
 // The panel edges of that rule: a, the 8 equal panels' edges, the corners inside (a, b), b.
 std::vector<double> panel_edges(double a, double b, const std::vector<double>& corners);
-// The corners of the blade's distributions (none for the uniform blade).
+// The corners of the blade's distributions and the mesh of its shapes, ascending (none for the
+// uniform blade's smooth modes).
 std::vector<double> blade_corners(const ModeSet& modes);
 
 // int_{x0_lo}^{x0_hi} x^p prod(factors) dx0  (Gauss quadrature, exact for the polynomial modes).

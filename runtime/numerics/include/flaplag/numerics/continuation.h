@@ -225,11 +225,12 @@ constexpr auto describe(Tag<PointResult>) {
                 "all zeta <= 0; null when unknown (failed, or the largest zeta is within its error "
                 "of 0)"},
           Field{"basis", &PointResult::basis, "",
-                "exact modes: the cantilever functions of the Galerkin basis used; null for the "
-                "assumed mode"},
+                "exact modes: the cantilever functions of the Galerkin basis used, -1 for finite "
+                "elements; null for the assumed mode"},
           Field{"basis_error", &PointResult::basis_error, "1/rev",
-                "exact modes: the largest change of a zeta to the neighbouring basis (included "
-                "in error_estimate); null when not estimated"}),
+                "exact modes: the largest change of a zeta to the reference discretization (the "
+                "neighbouring basis; finite elements for a blade table; included in "
+                "error_estimate); null when not estimated"}),
       describe(Tag<Outcome>{}));
 }
 
@@ -443,11 +444,12 @@ constexpr auto describe(Tag<CriticalResult>) {
                 "when all intervals were asked for"},
           Field{"evaluations", &CriticalResult::evaluations, "", "Floquet analyses made"},
           Field{"basis", &CriticalResult::basis, "",
-                "exact modes: the cantilever functions of the Galerkin basis used; null for the "
-                "assumed mode"},
+                "exact modes: the cantilever functions of the Galerkin basis used, -1 for finite "
+                "elements; null for the assumed mode"},
           Field{"basis_error", &CriticalResult::basis_error, "-",
-                "exact modes: |mu_c with the neighbouring basis - mu_c| (included in mu_c_error "
-                "and in the intervals' errors); null when not estimated"}),
+                "exact modes: |mu_c with the reference discretization - mu_c| (the neighbouring "
+                "basis; finite elements for a blade table; included in mu_c_error and in the "
+                "intervals' errors); null when not estimated"}),
       describe(Tag<Outcome>{}));
 }
 

@@ -24,8 +24,10 @@
 // l/R, mbar = m l^3 / I_b, k = EI / (Omega^2 l I_b), with I_b = int_0^l m r0^2 dr0 + M_tip l^2.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "flaplag/rotor/parameters.h"
@@ -54,6 +56,13 @@ BladeTable parse_blade_table(std::string_view text, std::string source);
 // naming the table for a blade the model cannot take (a root at or beyond the tip, c_ref outside
 // the blade, no rotating frequency).
 BladeOrigin apply_blade_table(const BladeTable& table, RotorParameters& p);
+
+// The first rotating frequencies (flap, lag) of `blade` with its stiffness columns taken as
+// absolute k (a dimensional table), with p's exact-mode discretization (p.basis: the Galerkin
+// basis or finite elements) and root offset.  What apply_blade_table sets omega_flap and
+// omega_lag to; the reference of an error estimate recomputes them with its own discretization.
+std::pair<double, double> stiffness_frequencies(const RotorParameters& p,
+                                                std::shared_ptr<const BladeProperties> blade);
 
 // The fields apply_blade_table sets, by table kind (to refuse the same field given twice).
 std::vector<std::string> blade_table_fields(bool dimensional);

@@ -20,9 +20,13 @@ struct ImportedModes;  // flaplag/blade/imported_modes.h
 // default) is the largest basis, kMaxBasisFunctions, whose error is estimated against the next
 // smaller one and included in every error estimate; kPaperBasis is the paper's five functions
 // (4.1(b)), for reproducing it; 1..12 is that many functions (an error estimate against the next
-// larger basis, or 11 for 12).
+// larger basis, or 11 for 12).  kElementBasis: cubic finite elements instead of the Galerkin basis
+// (blade/blade_elements.h), their error estimated against the largest Galerkin basis.  The
+// Galerkin modes of a blade table are checked against the finite elements (not the next basis:
+// a table's corners and tip mass make the basis converge slowly and not alternately).
 inline constexpr int kConvergedBasis = 0;
 inline constexpr int kPaperBasis = 5;
+inline constexpr int kElementBasis = -1;
 
 struct RotorParameters {
   std::string model = "paper";            // compiled ordering model (see `flaplag models`)
@@ -46,8 +50,9 @@ struct RotorParameters {
   bool reversed_flow = true;              // reversed flow: the Appendix D sector model, or
   bool exact_reversed_flow = false;       // the exact circle x < -mu sin psi (needs reversed_flow)
   ModeKind modes = ModeKind::Assumed;
-  int basis = kConvergedBasis;   // exact modes: cantilever functions per direction, 1..12, or
-                                 // kConvergedBasis (the largest, its error estimated)
+  int basis = kConvergedBasis;   // exact modes: cantilever functions per direction, 1..12,
+                                 // kConvergedBasis (the largest, its error estimated) or
+                                 // kElementBasis (finite elements)
   bool elastic_coupling = true;  // Appendix E; applies to exact modes only (paper 4.1(a))
   bool paper_1974_shapes =
       false;  // exact modes rebuilt with the 1974 sign slip (docs/validation.md)
@@ -81,14 +86,18 @@ void validate(const RotorParameters& p);
 void validate_except_inflow(const RotorParameters& p);
 
 // The number of cantilever functions the exact modes of p use: p.basis, or kMaxBasisFunctions
-// for kConvergedBasis.
+// for kConvergedBasis; 0 for kElementBasis (no Galerkin basis).
 int galerkin_basis(const RotorParameters& p);
-// The basis the error of galerkin_basis(p) is estimated against, for a model of M flap and N lag
-// modes: the next larger basis (the next smaller for the largest); 0 when there is none that
-// holds max(M, N) modes.  The exact modes converge alternately in the basis size (the tip value
-// of the cantilever functions alternates in sign), so that the limit lies between two
-// neighbouring bases and their difference bounds the error of either.
+// The basis the error of p's exact modes is estimated against, for a model of M flap and N lag
+// modes: for the uniform blade's Galerkin modes the next larger basis (the next smaller for the
+// largest), 0 when there is none that holds max(M, N) modes: they converge alternately in the
+// basis size (the tip value of the cantilever functions alternates in sign), so that the limit
+// lies between two neighbouring bases and their difference bounds the error of either.  For a
+// blade table's Galerkin modes kElementBasis; for kElementBasis the largest Galerkin basis.
 int reference_basis(const RotorParameters& p, int flap_modes, int lag_modes);
+// "12 cantilever functions" or "cubic finite elements": the exact modes' discretization `basis`
+// (a value of RotorParameters::basis), as results describe it.
+std::string basis_description(int basis);
 
 // Inflow ratio for hover, eq 2.24: lambda = sigma a / 16 [sqrt(1 + 24 theta/(sigma a)) - 1];
 // with a blade table, sigma times its thrust-weighted chord 3 int (c/c_ref) x^2 dx and theta
