@@ -65,6 +65,10 @@ std::string vocab(const Request& r, const std::string& message);
 std::string word(const std::string& field);
 Json model_json(const model::ModelDescriptor& m);
 // The part every analysis output starts with: what was computed, and how.
+// What a blade table gave (its stations and groups; a dimensional table's SI data), as the
+// header's `blade_table` and as text.
+Json blade_table_json(const BladeProperties& b);
+std::string blade_table_text(const BladeProperties& b, const RotorParameters& p);
 Json header_json(const char* command, const Analysis& an, bool with_method = true);
 std::string header_text(const Analysis& an, bool with_method = true);
 Json status_json(Json j, Status status, const std::string& message);

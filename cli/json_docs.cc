@@ -203,6 +203,14 @@ std::string documents_section() {
          "- `flaplag campbell --json`: the header and the keys of " +
          section_link("CampbellResult") +
          ".\n"
+         "- `flaplag modes --json` (no header): `command`, `basis`, `parameters` (the blade's "
+         "frequencies and geometry), with --blade-table `blade_table` (as in the header), "
+         "`e1_over_l`, `fig9` (rows of `nonrotating`, `flap_rotating`, `lag_rotating`), `x0`, "
+         "`flap` and `lag` (each `rotating_first`, `nonrotating_first`, `stiffness` = "
+         "EI/(Omega^2 l I_b) or, with a blade table, `stiffness_scale` s instead (EI/(Omega^2 l "
+         "I_b) = s times the table's EI column), `rotating_all`, and `modes`: `name`, `omega`, "
+         "`rayleigh_omega`, the shape `value` and its derivatives `d1`, `d2`, `d3` at `x0`), "
+         "`status`, `message`.\n"
          "- `flaplag` (the typical case) `--json`: the header, `hover`, `critical` (a " +
          section_link("CriticalResult") +
          ") and `table` (labels, rows as in a sweep, max_liouville_residual, status, message).\n\n"

@@ -1,5 +1,6 @@
 // `flaplag modes`: the Fig 9 relation between first rotating and nonrotating frequencies, and
-// the exact rotating modes of one blade (frequencies, stiffnesses, shapes, Rayleigh checks).
+// the exact rotating modes of one blade (frequencies, stiffnesses, shapes, Rayleigh checks): the
+// uniform blade, or a blade table's (its stiffness columns scaled, rotating_modes.h).
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -7,6 +8,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "commands_internal.h"
 #include "flaplag/blade/imported_modes.h"
 #include "flaplag/blade/rotating_modes.h"
 #include "flaplag/rotor/parameter_table.h"
@@ -36,13 +38,16 @@ Json jnums(const std::vector<double>& v) {
 
 std::string run_modes(const Request& r, std::string* warning) {
   const RotorParameters& p = r.params;
-  // The tables below (Fig 9, the Rayleigh check) are the uniform blade's.
-  if (p.blade || p.mode_shapes) {
-    throw InvalidInput(p.blade ? "blade" : "mode_shapes", p.blade ? p.blade->source : "(imported)",
-                       "`flaplag modes` shows the uniform blade's modes; a blade table's "
-                       "frequencies are printed with every analysis result (and in its hover "
-                       "exponents)");
+  // The tables below are computed from the blade (uniform or a table), not read from a mode
+  // file: imported shapes would be shown as modes they are not.
+  if (p.mode_shapes) {
+    throw InvalidInput("mode_shapes", p.mode_shapes->source,
+                       "`flaplag modes` computes the exact modes of the blade (uniform or "
+                       "--blade-table); imported shapes are checked with every analysis result "
+                       "(its notes say when they are not mass-orthogonal)");
   }
+  // With a blade table the stiffnesses are the scales of its stiffness columns.
+  const bool table = p.blade != nullptr;
   // --export-shapes: the path checked before anything is computed, written after.
   const OutputTarget shapes_file(r.export_shapes, "export_shapes");
   ExactModeOptions opt;
@@ -51,6 +56,7 @@ std::string run_modes(const Request& r, std::string* warning) {
   opt.lag_modes = r.lag_modes;
   opt.e1_over_l = p.root_offset / p.length_ratio;
   opt.paper_1974_shapes = p.paper_1974_shapes;
+  opt.blade = p.blade;
 
   // fig9_table spaces n points evenly on [lo, hi]: hi is the last multiple of STEP in the range
   // (the command line guarantees at least two points).
@@ -60,14 +66,17 @@ std::string run_modes(const Request& r, std::string* warning) {
 
   const ExactModes ex = exact_rotating_modes(p.omega_flap, p.omega_lag, opt);
   const ModeSet& ms = ex.modes;
+  // The Rayleigh quotients with the blade's own distributions (the table's, with its tip mass).
+  auto rayleigh_of = [&](BendingDirection dir, const ModeShape& shape, double k) {
+    return table ? rayleigh_frequency(dir, shape, k, opt.e1_over_l, *p.blade)
+                 : rayleigh_frequency(dir, shape, k, opt.e1_over_l, opt.mbar);
+  };
   std::vector<double> rayleigh_flap, rayleigh_lag;
   for (const auto& s : ms.flap) {
-    rayleigh_flap.push_back(
-        rayleigh_frequency(BendingDirection::Flap, *s, ms.stiffness_flap, opt.e1_over_l, opt.mbar));
+    rayleigh_flap.push_back(rayleigh_of(BendingDirection::Flap, *s, ms.stiffness_flap));
   }
   for (const auto& s : ms.lag) {
-    rayleigh_lag.push_back(
-        rayleigh_frequency(BendingDirection::Lag, *s, ms.stiffness_lag, opt.e1_over_l, opt.mbar));
+    rayleigh_lag.push_back(rayleigh_of(BendingDirection::Lag, *s, ms.stiffness_lag));
   }
   std::vector<double> x0(static_cast<std::size_t>(r.shape_points));
   for (std::size_t i = 0; i < x0.size(); ++i) {
@@ -123,6 +132,7 @@ std::string run_modes(const Request& r, std::string* warning) {
       }
     }
     j["parameters"] = params;
+    if (table) j["blade_table"] = cmd::blade_table_json(*p.blade);
     j["e1_over_l"] = jnum(opt.e1_over_l);
     Json fig9 = Json::array();
     for (std::size_t i = 0; i < flap9.size(); ++i) {
@@ -138,7 +148,7 @@ std::string run_modes(const Request& r, std::string* warning) {
       Json d;
       d["rotating_first"] = given;
       d["nonrotating_first"] = jnum(nonrot);
-      d["stiffness"] = jnum(k);
+      d[table ? "stiffness_scale" : "stiffness"] = jnum(k);
       d["rotating_all"] = jnums(all);
       Json modes = Json::array();
       for (std::size_t m = 0; m < shapes.size(); ++m) {
@@ -174,6 +184,7 @@ std::string run_modes(const Request& r, std::string* warning) {
   std::string out = "Fig 9: first rotating vs first nonrotating frequency, by Omega\n(" +
                     std::to_string(galerkin_basis(r.params)) +
                     " cantilever functions per direction, e1/l = " + cell(opt.e1_over_l) + ")\n";
+  if (table) out += "blade table " + cmd::blade_table_text(*p.blade, p) + "\n";
   TextTable t9({"nonrotating", "flap rotating", "lag rotating"});
   for (std::size_t i = 0; i < flap9.size(); ++i) {
     t9.add_row({cell(flap9[i].nonrotating), cell(flap9[i].rotating),
@@ -189,7 +200,8 @@ std::string run_modes(const Request& r, std::string* warning) {
   tb.add_row({"first rotating frequency", cell(p.omega_flap), cell(p.omega_lag)});
   tb.add_row({"first nonrotating frequency", cell(ex.omega_flap_nonrotating),
               cell(ex.omega_lag_nonrotating)});
-  tb.add_row({"stiffness EI/(Omega^2 l I_b)", cell(ms.stiffness_flap), cell(ms.stiffness_lag)});
+  tb.add_row({table ? "stiffness scale s of the table's EI" : "stiffness EI/(Omega^2 l I_b)",
+              cell(ms.stiffness_flap), cell(ms.stiffness_lag)});
   const std::size_t n_all = std::max(ex.omega_flap_all.size(), ex.omega_lag_all.size());
   for (std::size_t m = 0; m < n_all; ++m) {
     tb.add_row({"rotating frequency " + std::to_string(m + 1),
@@ -203,7 +215,15 @@ std::string run_modes(const Request& r, std::string* warning) {
                 m < rayleigh_flap.size() ? cell(rayleigh_flap[m]) : "-",
                 m < rayleigh_lag.size() ? cell(rayleigh_lag[m]) : "-"});
   }
-  out += tb.render() + "\nMode shapes (tip value 1)\n";
+  out += tb.render();
+  if (table) {
+    out += p.blade->origin.dimensional
+               ? "(EI/(Omega^2 l I_b) = s x the table's EI column; a dimensional table's columns "
+                 "are absolute: s = 1)\n"
+               : "(EI/(Omega^2 l I_b) = s x the table's EI column, which is relative to its root "
+                 "value: s is EI/(Omega^2 l I_b) at the root)\n";
+  }
+  out += "\nMode shapes (tip value 1)\n";
   std::vector<std::string> header{"x0"};
   for (std::size_t m = 0; m < ms.flap.size(); ++m) header.push_back(index_name("eta", m));
   for (std::size_t m = 0; m < ms.lag.size(); ++m) header.push_back(index_name("gamma", m));

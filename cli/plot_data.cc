@@ -353,9 +353,10 @@ std::string modes_script(const Json& j) {
   auto parameter = [&](const char* field) {
     return number(p.at(json_key(*find_parameter(field))));
   };
-  std::string title =
-      "exact rotating modes of the uniform blade: ω̄_{F1} = " + num(parameter("omega_flap")) +
-      ", ω̄_{L1} = " + num(parameter("omega_lag")) + " per rev";
+  const std::string blade = j.contains("blade_table") ? "the blade table" : "the uniform blade";
+  std::string title = "exact rotating modes of " + blade +
+                      ": ω̄_{F1} = " + num(parameter("omega_flap")) +
+                      ", ω̄_{L1} = " + num(parameter("omega_lag")) + " per rev";
   for (const char* field : {"length_ratio", "root_offset"}) {
     const ParameterSpec& spec = *find_parameter(field);
     const double v = parameter(field);

@@ -199,6 +199,26 @@ TEST(Basis, PaperBasisErrorCoversTheConvergedValue) {
   EXPECT_NE(r.message.find("basis"), std::string::npos) << r.message;
 }
 
+// A basis whose change misses the tolerance says what to do about it: use a larger basis, or,
+// at the largest (12 functions, compared with 11), that its error estimate carries the change.
+TEST(Basis, TheUnresolvedMessageOffersALargerBasisOnlyWhenThereIsOne) {
+  CriticalOptions tight;
+  tight.tolerance = 1e-9;
+  for (int b : {11, flaplag::kMaxBasisFunctions}) {
+    const CriticalResult r = Analysis(typical_exact(b), TransitionOptions{}).critical(tight);
+    ASSERT_TRUE(r.mu_c && r.basis_error) << b << ": " << r.message;
+    ASSERT_GT(*r.basis_error, 10.0 * tight.tolerance) << b;  // not resolved at this tolerance
+    EXPECT_EQ(r.status, Status::Warning) << b;
+    EXPECT_NE(r.message.find("not resolved in their basis"), std::string::npos) << r.message;
+    const bool largest = b == flaplag::kMaxBasisFunctions;
+    EXPECT_EQ(!largest, r.message.find("use a larger `basis`") != std::string::npos) << r.message;
+    EXPECT_EQ(largest, r.message.find("the basis is already the largest (12 cantilever "
+                                      "functions): the change is included in the error "
+                                      "estimate of mu_c") != std::string::npos)
+        << r.message;
+  }
+}
+
 // Regression: the 5-function mu_c was reported with the Floquet error alone (5e-6) while it is
 // 9e-4 from the converged value.  No basis may claim an error smaller than its distance to the
 // converged interval, and one that misses the tolerance by 10 is never Ok.

@@ -335,6 +335,55 @@ TEST_P(UniformTable, RotatingFrequenciesAndStiffnessesAreTheUniformModels) {
   EXPECT_EQ(absolute.modes.stiffness_lag, 1.0);
 }
 
+// The frequency functions of rotating_modes.h with the uniform table (column 1, mass 3: the scale
+// is k) against the uniform blade's own code path.
+TEST_P(UniformTable, FrequencyFunctionsAreTheUniformBlades) {
+  const UniformCase c = GetParam();
+  ExactModeOptions u;
+  u.n_basis = c.n_basis;
+  u.e1_over_l = c.e1_over_l;
+  ExactModeOptions t = u;
+  t.blade = shared(uniform_blade());
+  // A shape that is no mode (for the Rayleigh quotient): two cantilever functions.
+  const ModalCombination shape({cantilever_mode(1), cantilever_mode(2)},
+                               (Eigen::VectorXd(2) << 1.0, 0.3).finished());
+  for (const BendingDirection dir : {BendingDirection::Flap, BendingDirection::Lag}) {
+    const bool flap = dir == BendingDirection::Flap;
+    SCOPED_TRACE(flap ? "flap" : "lag");
+    const double omega = flap ? c.omega_flap : c.omega_lag;
+    EXPECT_TRUE(RelClose(centrifugal_limit(dir, u), centrifugal_limit(dir, t), 1e-10));
+    const double k = stiffness_for_frequency(dir, omega, u);
+    EXPECT_TRUE(RelClose(k, stiffness_for_frequency(dir, omega, t), 1e-10));
+    const std::vector<double> ru = rotating_frequencies(dir, k, u);
+    const std::vector<double> rt = rotating_frequencies(dir, k, t);
+    const std::vector<double> nu = nonrotating_frequencies(dir, k, u);
+    const std::vector<double> nt = nonrotating_frequencies(dir, k, t);
+    ASSERT_EQ(rt.size(), static_cast<std::size_t>(c.n_basis));
+    ASSERT_EQ(nt.size(), static_cast<std::size_t>(c.n_basis));
+    ASSERT_EQ(nu.size(), nt.size());
+    for (int i = 0; i < c.n_basis; ++i) {
+      EXPECT_TRUE(RelClose(ru[i], rt[i], 1e-10)) << "rotating " << i + 1;
+      EXPECT_TRUE(RelClose(nu[i], nt[i], 1e-10)) << "nonrotating " << i + 1;
+      // The cantilever's own frequencies, written here: k beta^4 = mbar w^2.
+      const double beta = cantilever_root(i + 1);
+      EXPECT_TRUE(RelClose(std::sqrt(k / 3.0) * beta * beta, nt[i], 1e-10)) << i + 1;
+    }
+    EXPECT_TRUE(RelClose(omega, rt[0], 1e-12));
+    EXPECT_TRUE(RelClose(nonrotating_frequency(dir, omega, u), nonrotating_frequency(dir, omega, t),
+                         1e-10));
+    EXPECT_TRUE(RelClose(rotating_frequency(dir, 3.0, u), rotating_frequency(dir, 3.0, t), 1e-10));
+    const std::vector<FrequencyPair> fu = fig9_table(dir, 0.0, 6.0, 13, u);
+    const std::vector<FrequencyPair> ft = fig9_table(dir, 0.0, 6.0, 13, t);
+    ASSERT_EQ(fu.size(), ft.size());
+    for (std::size_t i = 0; i < fu.size(); ++i) {
+      EXPECT_EQ(fu[i].nonrotating, ft[i].nonrotating);
+      EXPECT_TRUE(RelClose(fu[i].rotating, ft[i].rotating, 1e-10)) << "fig 9 row " << i;
+    }
+    EXPECT_TRUE(RelClose(rayleigh_frequency(dir, shape, k, c.e1_over_l, 3.0),
+                         rayleigh_frequency(dir, shape, k, c.e1_over_l, *t.blade), 1e-12));
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Cases, UniformTable,
                          ::testing::Values(UniformCase{1.175, 1.28303, 0.0, kMaxBasisFunctions},
                                            UniformCase{1.175, 1.28303, 0.1, kMaxBasisFunctions},
@@ -450,8 +499,11 @@ double tension(const BladeProperties& b, double e, double x) {
 // - tip v(1)^2 to the stiffness (the -m Omega^2 v term).  The distributions are linear per
 // element (the stations are nodes), so the 5-point rule integrates every element exactly.  Solved
 // in long double: in double, rounding at 160 elements is of the size of the h^4 error there and
-// spoils the extrapolation.
-Eigen::VectorXd fe_eigenvalues(const BladeProperties& b, double e, BendingDirection dir, int n) {
+// spoils the extrapolation.  spin = (Omega / Omega_0)^2 multiplies the centrifugal terms (the
+// tension and the lag's -m Omega^2 v; 0: the blade at rest), the eigenvalues staying by
+// Omega_0^2 with the stiffness k by Omega_0^2.
+Eigen::VectorXd fe_eigenvalues(const BladeProperties& b, double e, BendingDirection dir, int n,
+                               double spin = 1.0) {
   for (double s : b.x0) {
     const double i = s * n;
     if (std::abs(i - std::round(i)) > 1e-12) throw std::logic_error("station between nodes");
@@ -471,15 +523,15 @@ Eigen::VectorXd fe_eigenvalues(const BladeProperties& b, double e, BendingDirect
                                (6 * t - 6 * t * t) / h, -2 * t + 3 * t * t);
       const Eigen::Vector4d N2((-6 + 12 * t) / (h * h), (-4 + 6 * t) / h, (6 - 12 * t) / (h * h),
                                (-2 + 6 * t) / h);
-      const Eigen::Matrix4d ke =
-          w * (linear(b.x0, k, x) * N2 * N2.transpose() + tension(b, e, x) * N1 * N1.transpose());
+      const Eigen::Matrix4d ke = w * (linear(b.x0, k, x) * N2 * N2.transpose() +
+                                      spin * tension(b, e, x) * N1 * N1.transpose());
       const Eigen::Matrix4d me = w * linear(b.x0, b.mass, x) * N * N.transpose();
       K.block<4, 4>(2 * el, 2 * el) += ke.cast<long double>();
       M.block<4, 4>(2 * el, 2 * el) += me.cast<long double>();
     }
   }
   M(2 * n, 2 * n) += b.tip_mass;
-  if (dir == BendingDirection::Lag) K -= M;
+  if (dir == BendingDirection::Lag) K -= static_cast<long double>(spin) * M;
   const Mat Kf = K.bottomRightCorner(dofs - 2, dofs - 2);
   const Mat Mf = M.bottomRightCorner(dofs - 2, dofs - 2);
   Eigen::GeneralizedSelfAdjointEigenSolver<Mat> es(Kf, Mf, Eigen::EigenvaluesOnly);
@@ -493,10 +545,11 @@ struct Extrapolated {
 };
 
 // Eigenvalues on 40, 80 and 160 elements, extrapolated for the h^4 error of cubic elements.
-Extrapolated fe_frequencies(const BladeProperties& b, double e, BendingDirection dir, int count) {
-  const Eigen::VectorXd l1 = fe_eigenvalues(b, e, dir, 40);
-  const Eigen::VectorXd l2 = fe_eigenvalues(b, e, dir, 80);
-  const Eigen::VectorXd l3 = fe_eigenvalues(b, e, dir, 160);
+Extrapolated fe_frequencies(const BladeProperties& b, double e, BendingDirection dir, int count,
+                            double spin = 1.0) {
+  const Eigen::VectorXd l1 = fe_eigenvalues(b, e, dir, 40, spin);
+  const Eigen::VectorXd l2 = fe_eigenvalues(b, e, dir, 80, spin);
+  const Eigen::VectorXd l3 = fe_eigenvalues(b, e, dir, 160, spin);
   Extrapolated r;
   for (int i = 0; i < count; ++i) {
     const double step = (l3[i] - l2[i]) / 15.0;
@@ -683,6 +736,174 @@ TEST(TaperedBlade, ScaledColumnsGiveTheAbsoluteBlade) {
     EXPECT_TRUE(RelClose(absolute.omega_flap_all[i], scaled.omega_flap_all[i], 1e-10));
   for (int i = 0; i < 2; ++i)
     EXPECT_TRUE(RelClose(absolute.omega_lag_all[i], scaled.omega_lag_all[i], 1e-10));
+}
+
+// The frequency functions of a table (rotating_modes.h) at rest and at other rotor speeds: the
+// absolute blade at speed r Omega_0 has the scale 1 / r^2 (k = EI / (Omega^2 l I_b)); its
+// frequencies by Omega_0, r omega(r), against the finite-element model with the centrifugal terms
+// times r^2 (none at rest).
+TEST(TaperedBlade, FrequenciesAtRestAndAtOtherSpeedsAgreeWithAFiniteElementModel) {
+  const BladeProperties b = tapered_blade();
+  ExactModeOptions o;
+  o.n_basis = kMaxBasisFunctions;
+  o.e1_over_l = kTaperE;
+  o.blade = shared(b);
+  for (const BendingDirection dir : {BendingDirection::Flap, BendingDirection::Lag}) {
+    const bool flap = dir == BendingDirection::Flap;
+    SCOPED_TRACE(flap ? "flap" : "lag");
+    const Extrapolated rest = fe_frequencies(b, kTaperE, dir, 3, 0.0);
+    const std::vector<double> nr = nonrotating_frequencies(dir, 1.0, o);
+    ASSERT_EQ(nr.size(), static_cast<std::size_t>(kMaxBasisFunctions));
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_LT(rest.error[i], 1e-8 * rest.omega[i]);
+      EXPECT_GT(nr[i], rest.omega[i] - rest.error[i]) << "nonrotating " << i + 1;  // Ritz bound
+      EXPECT_TRUE(RelClose(rest.omega[i], nr[i], kGalerkinFrequencyTolerance))
+          << "nonrotating " << i + 1;
+    }
+    for (double r : {0.5, 1.6}) {
+      const Extrapolated fe = fe_frequencies(b, kTaperE, dir, 2, r * r);
+      const std::vector<double> w = rotating_frequencies(dir, 1.0 / (r * r), o);
+      for (int i = 0; i < 2; ++i) {
+        EXPECT_TRUE(RelClose(fe.omega[i], r * w[i], kGalerkinFrequencyTolerance))
+            << "speed " << r << ", mode " << i + 1;
+      }
+    }
+    // Fig 9 of the table: the first rotating frequency at scale 1 and the first nonrotating one
+    // are each other's; doubling the nonrotating frequency is four times the scale.
+    const double w1 = rotating_frequencies(dir, 1.0, o)[0];
+    EXPECT_TRUE(RelClose(1.0, stiffness_for_frequency(dir, w1, o), 1e-10));
+    EXPECT_TRUE(RelClose(nr[0], nonrotating_frequency(dir, w1, o), 1e-10));
+    EXPECT_TRUE(RelClose(w1, rotating_frequency(dir, nr[0], o), 1e-10));
+    const std::vector<FrequencyPair> fig9 = fig9_table(dir, 0.0, 2.0 * nr[0], 3, o);
+    EXPECT_TRUE(RelClose(w1, fig9[1].rotating, 1e-10));
+    EXPECT_TRUE(RelClose(rotating_frequencies(dir, 4.0, o)[0], fig9[2].rotating, 1e-10));
+    // No stiffness: the centrifugal limit, the first frequency of the k -> 0 blade.
+    EXPECT_EQ(rotating_frequencies(dir, 0.0, o)[0], centrifugal_limit(dir, o));
+    EXPECT_TRUE(RelClose(centrifugal_limit(dir, o), fig9[0].rotating, 1e-12));
+  }
+}
+
+// A column given in other units is the same blade with another scale.
+TEST(TaperedBlade, AStifferColumnIsTheSameBladeAtASmallerScale) {
+  ExactModeOptions o;
+  o.n_basis = 8;
+  o.e1_over_l = kTaperE;
+  o.blade = shared(tapered_blade());
+  ExactModeOptions stiff = o;
+  BladeProperties b = tapered_blade();
+  for (double& k : b.stiffness_flap) k *= 40.0;
+  for (double& k : b.stiffness_lag) k *= 0.25;
+  stiff.blade = shared(b);
+  for (const BendingDirection dir : {BendingDirection::Flap, BendingDirection::Lag}) {
+    const bool flap = dir == BendingDirection::Flap;
+    const double factor = flap ? 40.0 : 0.25;
+    const double omega = flap ? 1.3 : 0.9;
+    const double s = stiffness_for_frequency(dir, omega, o);
+    EXPECT_TRUE(RelClose(s / factor, stiffness_for_frequency(dir, omega, stiff), 1e-10));
+    const std::vector<double> a = nonrotating_frequencies(dir, s, o);
+    const std::vector<double> c = nonrotating_frequencies(dir, s / factor, stiff);
+    const std::vector<double> ra = rotating_frequencies(dir, s, o);
+    const std::vector<double> rc = rotating_frequencies(dir, s / factor, stiff);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      EXPECT_TRUE(RelClose(a[i], c[i], 1e-10)) << i;
+      EXPECT_TRUE(RelClose(ra[i], rc[i], 1e-10)) << i;
+    }
+    EXPECT_TRUE(RelClose(nonrotating_frequency(dir, omega, o),
+                         nonrotating_frequency(dir, omega, stiff), 1e-10));
+    EXPECT_EQ(centrifugal_limit(dir, o), centrifugal_limit(dir, stiff));
+  }
+}
+
+// The Rayleigh quotient with the table's distributions: the exact modes' frequencies, and for a
+// shape that is no mode the quotient written here (5-point Gauss panels, tension and tip mass as
+// above).
+TEST(TaperedBlade, RayleighFrequencyWeighsTheTablesDistributions) {
+  const BladeProperties b = tapered_blade();
+  const ExactModes g = tapered_modes(kMaxBasisFunctions);
+  for (std::size_t i = 0; i < g.modes.flap.size(); ++i)
+    EXPECT_TRUE(RelClose(
+        g.modes.omega_flap[i],
+        rayleigh_frequency(BendingDirection::Flap, *g.modes.flap[i], 1.0, kTaperE, b), 1e-10));
+  for (std::size_t i = 0; i < g.modes.lag.size(); ++i)
+    EXPECT_TRUE(RelClose(
+        g.modes.omega_lag[i],
+        rayleigh_frequency(BendingDirection::Lag, *g.modes.lag[i], 1.0, kTaperE, b), 1e-10));
+  const ModalCombination shape({cantilever_mode(1), cantilever_mode(3)},
+                               (Eigen::VectorXd(2) << 1.0, -0.2).finished());
+  const double scale = 2.5;
+  for (const BendingDirection dir : {BendingDirection::Flap, BendingDirection::Lag}) {
+    const bool flap = dir == BendingDirection::Flap;
+    const std::vector<double>& k = flap ? b.stiffness_flap : b.stiffness_lag;
+    const double strain = gauss_span([&](double x) {
+      const double c = shape.value(2, x);
+      return linear(b.x0, k, x) * c * c;
+    });
+    const double pull = gauss_span([&](double x) {
+      const double sl = shape.value(1, x);
+      return tension(b, kTaperE, x) * sl * sl;
+    });
+    const double tip = shape.value(0, 1.0);
+    const double mass = gauss_span([&](double x) {
+                          const double v = shape.value(0, x);
+                          return linear(b.x0, b.mass, x) * v * v;
+                        }) +
+                        b.tip_mass * tip * tip;
+    const double expected = std::sqrt((scale * strain + pull) / mass - (flap ? 0.0 : 1.0));
+    EXPECT_TRUE(RelClose(expected, rayleigh_frequency(dir, shape, scale, kTaperE, b), 1e-10))
+        << (flap ? "flap" : "lag");
+  }
+}
+
+// The nonrotating frequencies of a uniform table with a tip mass against the classical frequency
+// equation of a uniform cantilever with a tip mass ratio q = M_tip / (m l):
+//   1 + cos b cosh b + q b (cos b sinh b - sin b cosh b) = 0,   w^2 = (k / mbar) b^4,
+// its roots found here by bisection.  The cantilever functions do not satisfy the tip mass's
+// shear condition (a natural one): the Galerkin frequencies are upper bounds converging with
+// the basis.
+TEST(TipMass, NonrotatingFrequenciesAreTheClassicalTipMassCantilevers) {
+  BladeProperties b = uniform_blade();
+  b.tip_mass = 0.2;
+  b.mass = {2.4, 2.4};  // int mbar x^2 + tip = 0.8 + 0.2
+  ASSERT_NO_THROW(validate(b));
+  const double q = b.tip_mass / b.mass[0];
+  auto f = [&](double x) {
+    return 1.0 + std::cos(x) * std::cosh(x) +
+           q * x * (std::cos(x) * std::sinh(x) - std::sin(x) * std::cosh(x));
+  };
+  std::vector<double> roots;
+  for (double lo = 0.5; roots.size() < 3; lo += 0.5) {
+    double a = lo, c = lo + 0.5;
+    if ((f(a) > 0.0) == (f(c) > 0.0)) continue;
+    for (int it = 0; it < 200; ++it) {
+      const double m = 0.5 * (a + c);
+      ((f(m) > 0.0) == (f(a) > 0.0) ? a : c) = m;
+    }
+    roots.push_back(0.5 * (a + c));
+  }
+  const double k = 0.7;
+  std::vector<std::vector<double>> errors;  // per basis, per mode: relative, above the exact
+  for (int n : {6, 12}) {
+    ExactModeOptions o;
+    o.n_basis = n;
+    o.blade = shared(b);
+    const std::vector<double> w = nonrotating_frequencies(BendingDirection::Flap, k, o);
+    const std::vector<double> lag = nonrotating_frequencies(BendingDirection::Lag, k, o);
+    errors.emplace_back();
+    for (int i = 0; i < 3; ++i) {
+      const double exact = std::sqrt(k / b.mass[0]) * roots[i] * roots[i];
+      EXPECT_GT(w[i], exact * (1.0 - 1e-12)) << n << " functions, mode " << i + 1;
+      EXPECT_EQ(w[i], lag[i]);  // the same column, no rotation
+      errors.back().push_back(w[i] / exact - 1.0);
+    }
+    std::printf(
+        "tip-mass cantilever, %d functions: nonrotating frequencies %.2g, %.2g, %.2g above\n", n,
+        errors.back()[0], errors.back()[1], errors.back()[2]);
+  }
+  // Measured: 6.1e-6, 1.6e-4, 8.8e-4 with 6 functions; 7.7e-7, 2.0e-5, 1.1e-4 with 12, i.e.
+  // third order in the basis size (the shear condition is met only in the limit).
+  for (int i = 0; i < 3; ++i) EXPECT_GT(errors[0][i] / errors[1][i], 6.0) << "mode " << i + 1;
+  EXPECT_LT(errors[1][0], 1e-6);
+  EXPECT_LT(errors[1][2], 2e-4);
 }
 
 // ---- 4. structural integrals with a tip mass ----------------------------------------------------

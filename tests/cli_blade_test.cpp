@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -203,24 +204,147 @@ TEST(CliBlade, ReportShowsTheBladeTablesGroups) {
   EXPECT_EQ(std::string::npos, page.find("Dimensional inputs: none given")) << page;
 }
 
-// The Campbell diagram's speed-frequency relation is the uniform blade's: refused, not wrong.
-TEST(CliBlade, CampbellOfABladeTableIsRefused) {
-  TempDir d;
-  write(d.file("uniform.csv"), kUniform);
-  expect_refused(run({"--blade-table", d.file("uniform.csv"), "campbell"}),
-                 "--blade-table = .*uniform\\.csv: the Campbell diagram is for the uniform blade "
-                 "only .*",
-                 "campbell with a table");
+Json json_of(const std::vector<std::string>& args) {
+  std::vector<std::string> a = args;
+  a.push_back("--json");
+  const Outcome r = run(a);
+  EXPECT_EQ(0, r.exit_code) << r.err;
+  return r.exit_code == 0 ? Json::parse(r.out) : Json::object();
 }
 
-// `modes` shows the uniform blade's tables: refused with a blade table rather than shown wrong.
-TEST(CliBlade, ModesOfABladeTableIsRefused) {
+// The Campbell diagram of the uniform table is the uniform exact-mode blade's, speed by speed.
+TEST(CliBlade, CampbellOfABladeTableIsTheUniformBladesForTheUniformTable) {
   TempDir d;
   write(d.file("uniform.csv"), kUniform);
-  expect_refused(run({"--blade-table", d.file("uniform.csv"), "modes"}),
-                 "--blade-table = .*uniform\\.csv: `flaplag modes` shows the uniform blade's "
-                 "modes.*",
-                 "modes with a table");
+  const std::vector<std::string> diagram = {"campbell", "--speed-max", "1.2", "--speeds", "4"};
+  std::vector<std::string> a = {"--modes", "exact"}, b = {"--blade-table", d.file("uniform.csv")};
+  a.insert(a.end(), diagram.begin(), diagram.end());
+  b.insert(b.end(), diagram.begin(), diagram.end());
+  const Json uniform = json_of(a), table = json_of(b);
+  ASSERT_TRUE(table.contains("blade_table"));
+  ASSERT_EQ(uniform["labels"], table["labels"]);
+  ASSERT_EQ(4u, table["points"].size());
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Json &u = uniform["points"][i], &t = table["points"][i];
+    EXPECT_EQ(u["speed"], t["speed"]);
+    EXPECT_EQ(u["status"], t["status"]) << t["message"];
+    ASSERT_EQ(u["modes"].size(), t["modes"].size());
+    for (std::size_t m = 0; m < t["modes"].size(); ++m) {
+      const double fu = u["modes"][m]["frequency"].get<double>();
+      EXPECT_NEAR(fu, t["modes"][m]["frequency"].get<double>(), 1e-8 * fu) << i << " " << m;
+    }
+  }
+}
+
+// Imported shapes are given at one rotor speed: the diagram is refused in one line.
+TEST(CliBlade, CampbellOfImportedShapesIsRefused) {
+  TempDir d;
+  ASSERT_EQ(0, run({"--modes", "exact", "modes", "--export-shapes", d.file("m.csv")}).exit_code);
+  expect_refused(run({"--modes", "exact", "--mode-shapes", d.file("m.csv"), "campbell"}),
+                 "--mode-shapes = .*m\\.csv: the Campbell diagram needs the blade's frequencies "
+                 "at every rotor speed; imported mode shapes give them at one speed only.*",
+                 "campbell with imported shapes");
+  expect_refused(run({"--modes", "exact", "--mode-shapes", d.file("m.csv"), "modes"}),
+                 "--mode-shapes = .*m\\.csv: `flaplag modes` computes the exact modes of the "
+                 "blade.*",
+                 "modes with imported shapes");
+}
+
+// `modes` of the uniform table: the uniform blade's tables (the stiffness as the scale of the
+// table's column, 1 here, so the same number), the table in the document, and the exported
+// shapes the same numbers.
+TEST(CliBlade, ModesOfTheUniformTableAreTheUniformBlades) {
+  TempDir d;
+  write(d.file("uniform.csv"), kUniform);
+  const Json uniform = json_of(
+      {"modes", "--flap-modes", "2", "--lag-modes", "2", "--export-shapes", d.file("u.csv")});
+  const Json table = json_of({"--blade-table", d.file("uniform.csv"), "modes", "--flap-modes", "2",
+                              "--lag-modes", "2", "--export-shapes", d.file("t.csv")});
+  ASSERT_TRUE(table.contains("blade_table"));
+  EXPECT_EQ(3, table["blade_table"]["stations"]);
+  EXPECT_FALSE(uniform.contains("blade_table"));
+  EXPECT_EQ("ok", table["status"]);
+  ASSERT_EQ(uniform["fig9"].size(), table["fig9"].size());
+  for (std::size_t i = 0; i < table["fig9"].size(); ++i) {
+    for (const char* key : {"nonrotating", "flap_rotating", "lag_rotating"}) {
+      const double u = uniform["fig9"][i][key].get<double>();
+      EXPECT_NEAR(u, table["fig9"][i][key].get<double>(), 1e-10 * std::max(1.0, u))
+          << "fig9 row " << i << " " << key;
+    }
+  }
+  for (const char* dir : {"flap", "lag"}) {
+    SCOPED_TRACE(dir);
+    const Json &u = uniform[dir], &t = table[dir];
+    EXPECT_FALSE(t.contains("stiffness"));  // a scale, named as such
+    ASSERT_TRUE(t.contains("stiffness_scale"));
+    EXPECT_NEAR(u["stiffness"].get<double>(), t["stiffness_scale"].get<double>(),
+                1e-10 * u["stiffness"].get<double>());
+    EXPECT_NEAR(u["nonrotating_first"].get<double>(), t["nonrotating_first"].get<double>(), 1e-10);
+    ASSERT_EQ(u["rotating_all"].size(), t["rotating_all"].size());
+    for (std::size_t i = 0; i < t["rotating_all"].size(); ++i) {
+      const double w = u["rotating_all"][i].get<double>();
+      EXPECT_NEAR(w, t["rotating_all"][i].get<double>(), 1e-10 * w) << i;
+    }
+    ASSERT_EQ(2u, t["modes"].size());
+    for (std::size_t m = 0; m < 2; ++m) {
+      const double w = t["modes"][m]["omega"].get<double>();
+      // The Rayleigh quotient of an exact mode with the table's distributions is its frequency.
+      EXPECT_NEAR(w, t["modes"][m]["rayleigh_omega"].get<double>(), 1e-9 * w) << m;
+      EXPECT_NEAR(u["modes"][m]["rayleigh_omega"].get<double>(),
+                  t["modes"][m]["rayleigh_omega"].get<double>(), 1e-9 * w);
+      for (std::size_t q = 0; q < t["x0"].size(); q += 10) {
+        EXPECT_NEAR(u["modes"][m]["value"][q].get<double>(),
+                    t["modes"][m]["value"][q].get<double>(), 1e-9);
+      }
+    }
+  }
+  // The exported files: the same numbers, the table's stiffness comment naming the scale.
+  const std::string ut = flaplag::testing::slurp(d.file("u.csv"));
+  const std::string tt = flaplag::testing::slurp(d.file("t.csv"));
+  EXPECT_NE(std::string::npos, tt.find("# stiffness scale s of the blade table's EI columns"));
+  EXPECT_EQ(std::string::npos, ut.find("stiffness scale"));
+  auto numbers = [](const std::string& text) {
+    std::vector<double> v;
+    const std::regex number("-?[0-9][0-9.e+-]*");
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+      if (line.empty() || line[0] == '#') continue;
+      for (std::sregex_iterator it(line.begin(), line.end(), number), end; it != end; ++it)
+        v.push_back(std::stod(it->str()));
+    }
+    return v;
+  };
+  const std::vector<double> un = numbers(ut), tn = numbers(tt);
+  ASSERT_EQ(un.size(), tn.size());
+  ASSERT_GT(tn.size(), 4000u);  // 1001 stations of x0 and 4 shapes
+  for (std::size_t i = 0; i < tn.size(); ++i) EXPECT_NEAR(un[i], tn[i], 1e-9) << i;
+  // The text labels the stiffness as the scale and names the table.
+  const Outcome text = run({"--blade-table", d.file("uniform.csv"), "modes"});
+  ASSERT_EQ(0, text.exit_code) << text.err;
+  EXPECT_NE(std::string::npos, text.out.find("stiffness scale s of the table's EI")) << text.out;
+  EXPECT_NE(std::string::npos, text.out.find("blade table " + d.file("uniform.csv"))) << text.out;
+}
+
+// A dimensional table's columns are absolute: the scale of its stiffness is 1 (to rounding), and
+// its first frequencies are the ones every analysis of it reports.
+TEST(CliBlade, ModesOfADimensionalTableHaveScaleOne) {
+  TempDir d;
+  write(d.file("rotor.csv"),
+        "r, m, EI_flap, EI_lag, chord\n0.3, 4, 30000, 400000, 0.2\n1.5, 3, 20000, 300000, 0.2\n"
+        "3, 2, 9000, 200000, 0.2\ntip_mass, 0.5\nrotor_speed_rpm, 400\nair_density, 1.2\n"
+        "blades, 3\n");
+  const Json j = json_of({"--blade-table", d.file("rotor.csv"), "modes"});
+  EXPECT_EQ("ok", j["status"]);
+  for (const char* dir : {"flap", "lag"}) {
+    EXPECT_NEAR(1.0, j[dir]["stiffness_scale"].get<double>(), 1e-10) << dir;
+    const double w = j[dir]["rotating_first"].get<double>();
+    EXPECT_NEAR(w, j[dir]["rotating_all"][0].get<double>(), 1e-12 * w) << dir;
+    EXPECT_NEAR(w, j[dir]["modes"][0]["rayleigh_omega"].get<double>(), 1e-9 * w) << dir;
+    EXPECT_LT(j[dir]["nonrotating_first"].get<double>(), w) << dir;  // centrifugal stiffening
+  }
+  const Json c = json_of({"--blade-table", d.file("rotor.csv"), "point", "--mu", "0"});
+  EXPECT_EQ(c["parameters"]["omega-flap"], j["flap"]["rotating_first"]);
+  EXPECT_EQ(c["parameters"]["omega-lag"], j["lag"]["rotating_first"]);
 }
 
 TEST(CliBlade, ExportedModeShapesImportToTheSameCriticalAdvanceRatio) {

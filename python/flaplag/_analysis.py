@@ -525,6 +525,20 @@ class Analysis:
             self._native.modes(stations, _int("derivative", derivative), limit)
         )
 
+    def export_mode_shapes(self, path=None, *, stations=1001) -> str:
+        """The mode file of this analysis' mode shapes, as the command line's ``flaplag modes
+        --export-shapes FILE.csv`` writes it (the same text for the same blade and mode counts):
+        columns x0, flap1..flapM, lag1..lagN at ``stations`` equally spaced stations (8..100000;
+        1001 as the command line) and the row ``omega`` of their rotating frequencies, every
+        number in round-trip form; ``mode_shapes=`` reads it back (docs/your-blade.md).  Needs
+        modes='exact' (or imported shapes); with a blade table the shapes are the table's.
+        Written to ``path`` (a file name) when given; the text is returned either way."""
+        text = self._native.mode_table(_int("stations", stations))
+        if path is not None:
+            with open(os.fspath(path), "w", encoding="utf-8", newline="") as f:
+                f.write(text)
+        return text
+
     def response(
         self,
         mu,
@@ -636,8 +650,9 @@ class Analysis:
         ``flaplag campbell``): every mode's frequency by the nominal speed Omega_0 against the
         rotor speed Omega/Omega_0 = 0 .. speed_max (``points`` speeds, evenly spaced), at the
         advance ratio mu, the bending stiffness fixed at its value for Omega_0 (centrifugal
-        stiffening at each speed); with the crossings of the per-rev lines n Omega,
-        n = 1 .. harmonics.  threads: 0 = all cores (the result does not depend on it)."""
+        stiffening at each speed; a blade table keeps its EI columns); with the crossings of the
+        per-rev lines n Omega, n = 1 .. harmonics.  threads: 0 = all cores (the result does not
+        depend on it).  Imported mode_shapes are refused (they hold at one rotor speed)."""
         return CampbellResult._from(
             self._native.campbell(
                 _real("speed_max", speed_max),

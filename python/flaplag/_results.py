@@ -561,7 +561,9 @@ class ModeShapes:
 
     flap[k] (eta_k) and lag[m] (gamma_m) are the shapes or their ``derivative``-th derivative
     d/dx0 at x; omega_flap / omega_lag: the rotating frequencies [per rev];
-    stiffness_flap / stiffness_lag: EI / (Omega^2 l I_b) (0 for the assumed mode of eq 4.1).
+    stiffness_flap / stiffness_lag: EI / (Omega^2 l I_b) (0 for the assumed mode of eq 4.1; with a
+    blade table the scale s of its EI columns, EI / (Omega^2 l I_b) = s times the column).
+    Analysis.export_mode_shapes writes the shapes as a mode file.
     """
 
     kind: str

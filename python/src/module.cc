@@ -1253,6 +1253,17 @@ PYBIND11_MODULE(_flaplag, m) {
            [](const Analysis& a, const py::object& x, int derivative, std::uint64_t memory_limit) {
              return modes_dict(a.modes(), x, derivative, memory_limit);
            })
+      .def("mode_table",
+           [](const Analysis& a, int stations) {
+             // The file `flaplag modes --export-shapes` writes (imported_modes.h); the assumed
+             // shape of eq 4.1 is no mode of the blade to hand on.
+             if (a.modes().kind == "assumed") {
+               throw InvalidInput("modes", "assumed",
+                                  "exported mode shapes are the exact (or imported) modes: use "
+                                  "modes='exact'");
+             }
+             return mode_table_text(a.modes(), stations);
+           })
       .def("response",
            [](const Analysis& a, double mu, int samples, int steps, double tolerance,
               std::uint64_t memory_limit) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <tuple>
 
+#include "flaplag/blade/rotating_modes.h"
 #include "flaplag/core/format.h"
 #include "flaplag/rotor/blade_table.h"
 #include "internal.h"
@@ -30,6 +31,14 @@ void note_monotone(Outcome& r) {
       "with the 1974 mode shapes the results converge monotonically in the basis size, so "
       "basis_error (the change to the neighbouring basis) is no bound: it was about half the "
       "error for the typical case's mu_c");
+}
+
+// What to do about a basis that does not resolve the modes: a larger one, unless it is the
+// largest already (then its error estimate carries the change, `what`).
+std::string remedy(int basis, const std::string& what) {
+  if (basis < kMaxBasisFunctions) return "use a larger `basis`";
+  return "the basis is already the largest (" + functions(basis) + "): the change is included in " +
+         what;
 }
 
 // |a - b| added to an error estimate that may be absent.
@@ -108,7 +117,8 @@ void BasisCheck::fold(CriticalResult& r, const CriticalResult* ref) const {
     r.Worsen(Status::Warning,
              "the exact modes are not resolved in their basis: " + functions(basis) + " against " +
                  std::to_string(reference) + " change mu_c (or an interval end) by " +
-                 short_text(largest) + ", more than 10 `tolerance`; use a larger `basis`");
+                 short_text(largest) + ", more than 10 `tolerance`; " +
+                 remedy(basis, "the error estimate of mu_c"));
   }
 }
 
@@ -149,7 +159,7 @@ void BasisCheck::fold(PointResult& r, const PointResult* ref) const {
     r.Worsen(Status::Warning,
              "the exact modes are not resolved in their basis: " + functions(basis) + " against " +
                  std::to_string(reference) + " change a zeta by " + short_text(change) +
-                 " per rev, more than 10 `zeta_tolerance`; use a larger `basis`");
+                 " per rev, more than 10 `zeta_tolerance`; " + remedy(basis, "the error estimate"));
   }
   // The sign of the largest zeta is known only outside its change with the basis (the method's
   // own error was judged by the continuation).

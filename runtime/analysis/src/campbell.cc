@@ -6,6 +6,7 @@
 #include <string>
 
 #include "flaplag/blade/blade.h"
+#include "flaplag/blade/imported_modes.h"
 #include "flaplag/blade/rotating_modes.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
@@ -18,8 +19,8 @@ namespace {
 
 inline constexpr Range kCampbellMuRange{{0.0, kMaxAdvanceRatio, false, false}, "in [0, 1000]"};
 
-// The blade's bending stiffness by Omega_0^2 (fixed as the speed changes) and the modes the
-// analysis labels.
+// The blade's bending stiffness by Omega_0^2 (fixed as the speed changes; with a blade table the
+// scale of its stiffness columns, rotating_modes.h) and the modes the analysis labels.
 struct Blade {
   ExactModeOptions shape;
   double stiffness_flap = 0.0, stiffness_lag = 0.0;
@@ -29,6 +30,7 @@ Blade blade_of(const RotorParameters& p) {
   Blade b;
   b.shape.n_basis = galerkin_basis(p);
   b.shape.e1_over_l = p.root_offset / p.length_ratio;
+  b.shape.blade = p.blade;
   b.stiffness_flap = stiffness_for_frequency(BendingDirection::Flap, p.omega_flap, b.shape);
   b.stiffness_lag = stiffness_for_frequency(BendingDirection::Lag, p.omega_lag, b.shape);
   return b;
@@ -43,12 +45,15 @@ int mode_number(const std::string& label) {
   return digits == std::string::npos ? 1 : std::stoi(label.substr(digits));
 }
 
-// Omega = 0: the nonrotating cantilever, omega_k / Omega_0 = sqrt(k / mbar) beta_k^2.
+// Omega = 0: the nonrotating cantilever, omega_k / Omega_0 = sqrt(k / mbar) beta_k^2 (a blade
+// table: its k-th nonrotating frequency at the nominal scale).
 CampbellPoint at_rest(const Blade& b, const std::vector<std::string>& labels) {
+  const std::vector<double> flap =
+      nonrotating_frequencies(BendingDirection::Flap, b.stiffness_flap, b.shape);
+  const std::vector<double> lag =
+      nonrotating_frequencies(BendingDirection::Lag, b.stiffness_lag, b.shape);
   auto nonrotating = [&](BendingDirection d, int k) {
-    const double stiffness = d == BendingDirection::Flap ? b.stiffness_flap : b.stiffness_lag;
-    const double beta = cantilever_root(k);
-    return std::sqrt(stiffness / b.shape.mbar) * beta * beta;
+    return (d == BendingDirection::Flap ? flap : lag).at(static_cast<std::size_t>(k - 1));
   };
   CampbellPoint pt;
   pt.omega_flap = nonrotating(BendingDirection::Flap, 1);
@@ -127,13 +132,13 @@ std::optional<InvalidInput> CampbellOptions::Validate() const {
 CampbellResult campbell_diagram(const RotorParameters& params, const TransitionOptions& transition,
                                 const CampbellOptions& options) {
   options.Check();
-  // The speed-frequency relation below is the uniform blade's (its stiffness k / Omega^2):
-  // a blade table or imported shapes would get the wrong frequencies away from Omega_0.
-  if (params.blade || params.mode_shapes) {
-    throw InvalidInput(params.blade ? "blade" : "mode_shapes",
-                       params.blade ? params.blade->source : "(imported)",
-                       "the Campbell diagram is for the uniform blade only (a blade table's or "
-                       "imported modes' frequencies at other rotor speeds are not computed yet)");
+  // Imported shapes and frequencies hold at one rotor speed: the blade behind them (its
+  // stiffness) is not known, so neither are its frequencies at another speed.
+  if (params.mode_shapes) {
+    throw InvalidInput("mode_shapes", params.mode_shapes->source,
+                       "the Campbell diagram needs the blade's frequencies at every rotor speed; "
+                       "imported mode shapes give them at one speed only (a blade table, or the "
+                       "uniform blade, without `mode_shapes` gives them)");
   }
   const Analysis nominal(params, transition);  // checks the rotor at Omega_0
   const Blade blade = blade_of(params);

@@ -488,8 +488,12 @@ std::string mode_table_text(const ModeSet& modes, int stations) {
   out += "# x0: elastic span station by l (0 root, 1 tip); flapK, lagK: the shapes there;\n";
   out += "# the row omega: each mode's rotating frequency by Omega\n";
   if (modes.stiffness_flap > 0.0 || modes.stiffness_lag > 0.0) {
-    out += "# stiffness EI/(Omega^2 l I_b): flap " + round_trip_text(modes.stiffness_flap) +
-           ", lag " + round_trip_text(modes.stiffness_lag) + "\n";
+    // With a blade table the stiffnesses are the scales of its columns (rotating_modes.h).
+    out += std::string(modes.blade ? "# stiffness scale s of the blade table's EI columns "
+                                     "(EI/(Omega^2 l I_b) = s x column)"
+                                   : "# stiffness EI/(Omega^2 l I_b)") +
+           ": flap " + round_trip_text(modes.stiffness_flap) + ", lag " +
+           round_trip_text(modes.stiffness_lag) + "\n";
   }
   out += "x0";
   for (std::size_t k = 0; k < modes.flap.size(); ++k) out += ",flap" + std::to_string(k + 1);

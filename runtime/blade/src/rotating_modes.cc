@@ -182,12 +182,20 @@ struct BladeGalerkin {
     return c.dot(stiffness(dir) * c) / c.dot(m * c);
   }
   // The nonrotating first frequency squared at scale s: the first eigenvalue of (s B, M).
-  double nonrotating(BendingDirection dir, double s) const {
+  double nonrotating(BendingDirection dir, double s) const { return nonrotating_all(dir, s)[0]; }
+  // All n nonrotating eigenvalues (frequencies squared) at scale s, ascending.
+  Eigen::VectorXd nonrotating_all(BendingDirection dir, double s) const {
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(s * stiffness(dir), m,
                                                                  Eigen::EigenvaluesOnly);
-    return es.eigenvalues()[0];
+    return es.eigenvalues();
   }
 };
+
+// The Galerkin matrices of options.blade, after checking the blade (validate).
+BladeGalerkin blade_galerkin(const ExactModeOptions& o) {
+  validate(*o.blade);
+  return BladeGalerkin(o.n_basis, o.e1_over_l, *o.blade);
+}
 
 const char* option_name(BendingDirection dir) {
   return dir == BendingDirection::Flap ? "omega_flap" : "omega_lag";
@@ -249,15 +257,6 @@ double solve_kappa(const Galerkin& gal, BendingDirection dir, double omega) {
       target, (target - lambda0) / gal.beta4[0], 2.0);
 }
 
-// The functions of the uniform blade's Galerkin matrices refuse a blade table rather than
-// ignore it.
-void uniform_only(const ExactModeOptions& o, const char* function) {
-  if (o.blade) {
-    throw InvalidInput("blade", o.blade->source.empty() ? "table" : o.blade->source,
-                       std::string(function) + " is for the uniform blade only");
-  }
-}
-
 // The stiffness scale s of a blade table with lambda_1(s) = omega^2: as solve_kappa (lambda_1
 // is increasing and concave in s).
 double solve_scale(const BladeGalerkin& gal, BendingDirection dir, double omega) {
@@ -283,6 +282,39 @@ double solve_scale(const BladeGalerkin& gal, BendingDirection dir, double omega)
       target, (target - lambda0) / gal.nonrotating(dir, 1.0), 4.0);
 }
 
+// A stiffness (or, with a blade table, a scale) argument: finite and >= 0.
+void check_stiffness(BendingDirection dir, double stiffness) {
+  if (!std::isfinite(stiffness) || stiffness < 0.0) {
+    throw InvalidInput(dir == BendingDirection::Flap ? "stiffness_flap" : "stiffness_lag",
+                       round_trip_text(stiffness), "must be finite and >= 0");
+  }
+}
+
+// Frequencies from eigenvalues (a rounding-negative one as 0).
+std::vector<double> frequencies(const Eigen::VectorXd& lambda) {
+  std::vector<double> w(static_cast<std::size_t>(lambda.size()));
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) w[i] = std::sqrt(std::max(lambda[i], 0.0));
+  return w;
+}
+
+// A nonrotating first frequency argument: finite and >= 0.
+void check_nonrotating(BendingDirection dir, double omega_nonrotating) {
+  if (!std::isfinite(omega_nonrotating) || omega_nonrotating < 0.0) {
+    throw InvalidInput(
+        dir == BendingDirection::Flap ? "omega_flap_nonrotating" : "omega_lag_nonrotating",
+        round_trip_text(omega_nonrotating), "must be finite and >= 0");
+  }
+}
+
+// The first rotating frequency of a blade table whose first nonrotating frequency is wn: the
+// nonrotating eigenvalues are linear in the scale, wn^2 = s lambda_N1(1), so s = wn^2 /
+// lambda_N1(1).
+double table_rotating_first(const BladeGalerkin& gal, BendingDirection dir, double unit_nr,
+                            double wn) {
+  const double s = wn * wn / unit_nr;
+  return std::sqrt(std::max(gal.solve(dir, s).first[0], 0.0));
+}
+
 // Shape coefficients scaled to tip value +1: eta(1) = sum c_j phi_j(1), phi_j(1) = 2(-1)^(j+1).
 Eigen::VectorXd tip_normalised(Eigen::VectorXd c, bool paper_1974) {
   const Eigen::Index n = c.size();
@@ -300,11 +332,8 @@ Eigen::VectorXd tip_normalised(Eigen::VectorXd c, bool paper_1974) {
 std::vector<double> rotating_frequencies(BendingDirection direction, double stiffness,
                                          const ExactModeOptions& options) {
   check_options(options);
-  uniform_only(options, "rotating_frequencies");
-  if (!std::isfinite(stiffness) || stiffness < 0.0) {
-    throw InvalidInput(direction == BendingDirection::Flap ? "stiffness_flap" : "stiffness_lag",
-                       round_trip_text(stiffness), "must be finite and >= 0");
-  }
+  check_stiffness(direction, stiffness);
+  if (options.blade) return frequencies(blade_galerkin(options).solve(direction, stiffness).first);
   const Galerkin gal(options.n_basis, options.e1_over_l);
   const Eigen::VectorXd lambda = gal.solve(direction, stiffness / options.mbar).first;
   std::vector<double> w(static_cast<std::size_t>(gal.n));
@@ -314,7 +343,9 @@ std::vector<double> rotating_frequencies(BendingDirection direction, double stif
 
 double centrifugal_limit(BendingDirection direction, const ExactModeOptions& options) {
   check_options(options);
-  uniform_only(options, "centrifugal_limit");
+  if (options.blade) {
+    return std::sqrt(std::max(blade_galerkin(options).solve(direction, 0.0).first[0], 0.0));
+  }
   const Galerkin gal(options.n_basis, options.e1_over_l);
   return std::sqrt(std::max(gal.first_eigenvalue(direction, 0.0), 0.0));
 }
@@ -322,7 +353,7 @@ double centrifugal_limit(BendingDirection direction, const ExactModeOptions& opt
 double stiffness_for_frequency(BendingDirection direction, double omega_rotating,
                                const ExactModeOptions& options) {
   check_options(options);
-  uniform_only(options, "stiffness_for_frequency");
+  if (options.blade) return solve_scale(blade_galerkin(options), direction, omega_rotating);
   const Galerkin gal(options.n_basis, options.e1_over_l);
   return options.mbar * solve_kappa(gal, direction, omega_rotating);
 }
@@ -424,8 +455,29 @@ ModeSet exact_modes(double omega_flap, double omega_lag, const ExactModeOptions&
   return exact_rotating_modes(omega_flap, omega_lag, options).modes;
 }
 
+std::vector<double> nonrotating_frequencies(BendingDirection direction, double stiffness,
+                                            const ExactModeOptions& options) {
+  check_options(options);
+  check_stiffness(direction, stiffness);
+  if (options.blade) {
+    return frequencies(blade_galerkin(options).nonrotating_all(direction, stiffness));
+  }
+  std::vector<double> w;
+  for (int j = 1; j <= options.n_basis; ++j) {
+    const double beta = cantilever_root(j);
+    w.push_back(std::sqrt(stiffness / options.mbar) * beta * beta);
+  }
+  return w;
+}
+
 double nonrotating_frequency(BendingDirection direction, double omega_rotating,
                              const ExactModeOptions& options) {
+  if (options.blade) {
+    check_options(options);
+    const BladeGalerkin gal = blade_galerkin(options);
+    const double s = solve_scale(gal, direction, omega_rotating);
+    return std::sqrt(std::max(gal.nonrotating(direction, s), 0.0));
+  }
   const double k = stiffness_for_frequency(direction, omega_rotating, options);
   const double b1 = cantilever_root(1);
   return std::sqrt(k / options.mbar) * b1 * b1;
@@ -434,11 +486,10 @@ double nonrotating_frequency(BendingDirection direction, double omega_rotating,
 double rotating_frequency(BendingDirection direction, double omega_nonrotating,
                           const ExactModeOptions& options) {
   check_options(options);
-  uniform_only(options, "rotating_frequency");
-  if (!std::isfinite(omega_nonrotating) || omega_nonrotating < 0.0) {
-    throw InvalidInput(
-        direction == BendingDirection::Flap ? "omega_flap_nonrotating" : "omega_lag_nonrotating",
-        round_trip_text(omega_nonrotating), "must be finite and >= 0");
+  check_nonrotating(direction, omega_nonrotating);
+  if (options.blade) {
+    const BladeGalerkin gal = blade_galerkin(options);
+    return table_rotating_first(gal, direction, gal.nonrotating(direction, 1.0), omega_nonrotating);
   }
   const Galerkin gal(options.n_basis, options.e1_over_l);
   const double r = omega_nonrotating / (gal.beta1 * gal.beta1);
@@ -449,7 +500,6 @@ std::vector<FrequencyPair> fig9_table(BendingDirection direction, double omega_n
                                       double omega_nonrotating_hi, int n_points,
                                       const ExactModeOptions& options) {
   check_options(options);
-  uniform_only(options, "fig9_table");
   if (n_points < 2) {
     throw InvalidInput("n_points", std::to_string(n_points), "must be >= 2");
   }
@@ -462,10 +512,20 @@ std::vector<FrequencyPair> fig9_table(BendingDirection direction, double omega_n
         "omega_nonrotating_hi", round_trip_text(omega_nonrotating_hi),
         "must be finite and >= omega_nonrotating_lo = " + round_trip_text(omega_nonrotating_lo));
   }
-  const Galerkin gal(options.n_basis, options.e1_over_l);
-  const double b12 = gal.beta1 * gal.beta1;
   std::vector<FrequencyPair> table;
   table.reserve(static_cast<std::size_t>(n_points));
+  if (options.blade) {
+    const BladeGalerkin gal = blade_galerkin(options);
+    const double unit = gal.nonrotating(direction, 1.0);
+    for (int i = 0; i < n_points; ++i) {
+      const double t = static_cast<double>(i) / (n_points - 1);
+      const double wn = omega_nonrotating_lo + t * (omega_nonrotating_hi - omega_nonrotating_lo);
+      table.push_back({wn, table_rotating_first(gal, direction, unit, wn)});
+    }
+    return table;
+  }
+  const Galerkin gal(options.n_basis, options.e1_over_l);
+  const double b12 = gal.beta1 * gal.beta1;
   for (int i = 0; i < n_points; ++i) {
     const double t = static_cast<double>(i) / (n_points - 1);
     const double wn = omega_nonrotating_lo + t * (omega_nonrotating_hi - omega_nonrotating_lo);
@@ -504,6 +564,39 @@ double rayleigh_frequency(BendingDirection direction, const ModeShape& shape, do
   }
   double r = (stiffness * strain + tension) / mass;
   if (direction == BendingDirection::Lag) r -= 1.0;  // eq A.4: in-plane centrifugal term
+  return std::sqrt(std::max(r, 0.0));
+}
+
+double rayleigh_frequency(BendingDirection direction, const ModeShape& shape, double scale,
+                          double e1_over_l, const BladeProperties& blade) {
+  if (!std::isfinite(scale) || scale < 0.0) {
+    throw InvalidInput("stiffness", round_trip_text(scale), "must be finite and >= 0");
+  }
+  if (!std::isfinite(e1_over_l) || e1_over_l < 0.0) {
+    throw InvalidInput("e1_over_l", round_trip_text(e1_over_l), "must be finite and >= 0");
+  }
+  validate(blade);
+  const std::vector<double>& column =
+      direction == BendingDirection::Flap ? blade.stiffness_flap : blade.stiffness_lag;
+  const SpanRule rule = span_rule(0.0, 1.0, blade.corners());
+  double strain = 0.0;
+  double tension = 0.0;
+  double mass = 0.0;
+  for (std::size_t q = 0; q < rule.x0.size(); ++q) {
+    const double x = rule.x0[q];
+    const double w = rule.weight[q];
+    const double d0 = shape.value(0, x);
+    const double d1 = shape.value(1, x);
+    const double d2 = shape.value(2, x);
+    strain += w * blade.at(column, x) * d2 * d2;
+    tension += w * BladeGalerkin::tension(blade, e1_over_l, x) * d1 * d1;
+    mass += w * blade.mass_at(x) * d0 * d0;
+  }
+  const double tip = shape.value(0, 1.0);
+  mass += blade.tip_mass * tip * tip;
+  // The lag equation's -m Omega^2 v term is -1 times the whole mass (the tip mass's included).
+  double r = (scale * strain + tension) / mass;
+  if (direction == BendingDirection::Lag) r -= 1.0;
   return std::sqrt(std::max(r, 0.0));
 }
 

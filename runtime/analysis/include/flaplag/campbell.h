@@ -12,6 +12,14 @@
 // is s omega, with omega its exponent's imaginary part per rev at speed s, continued from
 // hover (analysis.h, point).  At s = 0 nothing rotates and no air flows: the frequencies are the
 // nonrotating structural ones, sqrt(k / mbar) beta_k^2 for mode k.
+//
+// A blade table (RotorParameters::blade) is handled the same way with the scale of its stiffness
+// columns in place of k (rotating_modes.h): s0 = stiffness_for_frequency of omega_F1, omega_L1
+// with the table, the table's rotating frequencies at scale s0 / s^2 at speed s (the analysis
+// there solves the scale back from its first frequencies), and its k-th nonrotating Galerkin
+// frequency at scale s0 at rest.  A dimensional table's columns are absolute (s0 = 1 to
+// rounding).  Imported mode shapes (RotorParameters::mode_shapes) hold at one rotor speed only
+// and are refused (InvalidInput "mode_shapes").
 #pragma once
 
 #include <optional>

@@ -1,4 +1,5 @@
-// flaplag — exact rotating mode shapes of a uniform cantilevered blade (paper 4.1(b), App. A).
+// flaplag — exact rotating mode shapes of a cantilevered blade (paper 4.1(b), App. A): the
+// uniform blade below, or a blade table (ExactModeOptions::blade).
 //
 // Galerkin's method on n_basis nonrotating clamped-free cantilever functions phi_j per bending
 // direction (blade.h, classical normalisation int phi_i phi_j = delta_ij).  Nondimensional as in
@@ -89,19 +90,39 @@ ExactModes blade_stiffness_modes(const ExactModeOptions& options);
 // The ModeSet part of exact_rotating_modes.
 ModeSet exact_modes(double omega_flap, double omega_lag, const ExactModeOptions& options = {});
 
-// All n_basis rotating frequencies (ascending) for stiffness k = EI / (Omega^2 l I_b) >= 0.
+// With a blade table (options.blade) every function below takes and returns the scale s of the
+// table's stiffness column in place of k: the blade's stiffness is k(x0) = s column(x0) (a
+// dimensional table's columns are absolute, s = 1 at the table's rotor speed; at speed
+// Omega = r Omega_0 the same blade has s = 1 / r^2).  The frequencies are those of the
+// table's Galerkin matrices (its mass, stiffness, tip mass and centrifugal tension, as
+// exact_rotating_modes), and `mbar` is not used.  The blade is checked (validate(), InvalidInput
+// naming its column and station).
+
+// All n_basis rotating frequencies (ascending) for stiffness k = EI / (Omega^2 l I_b) >= 0
+// (a table: the scale s >= 0).  Throws InvalidInput "stiffness_flap" / "stiffness_lag" for a
+// negative or non-finite stiffness.
 std::vector<double> rotating_frequencies(BendingDirection direction, double stiffness,
                                          const ExactModeOptions& options = {});
+// All n_basis nonrotating frequencies (ascending, by the Omega of the stiffness) for stiffness k
+// >= 0: the cantilever's sqrt(k / mbar) beta_j^2, j = 1..n_basis (exact for the uniform blade);
+// a table: the square roots of the eigenvalues of (s B, M) (Galerkin, no tension, no -M term).
+std::vector<double> nonrotating_frequencies(BendingDirection direction, double stiffness,
+                                            const ExactModeOptions& options = {});
 // The first rotating frequency as k -> 0 (pure centrifugal stiffening in the basis): flap just
 // above 1 for e1 = 0 (1 exactly only for the rigid hinged blade), lag = sqrt(flap^2 - 1).
-// Requested first frequencies must exceed it.
+// Requested first frequencies must exceed it.  A table: its s -> 0 limit (its mass and tip
+// mass decide it).
 double centrifugal_limit(BendingDirection direction, const ExactModeOptions& options = {});
 // k whose first rotating frequency is omega_rotating (bracketed, safeguarded Newton on the
-// concave, increasing lambda_1(k)).  Throws as exact_rotating_modes.
+// concave, increasing lambda_1(k)).  Throws as exact_rotating_modes.  A table: the scale s,
+// the same number as exact_rotating_modes' stiffness_flap / stiffness_lag.
 double stiffness_for_frequency(BendingDirection direction, double omega_rotating,
                                const ExactModeOptions& options = {});
 
-// Fig. 9: first rotating <-> first nonrotating frequency (both by Omega).
+// Fig. 9: first rotating <-> first nonrotating frequency (both by Omega).  A table: the
+// nonrotating first frequency is linear in the scale, wn^2 = s lambda_N1(1) (lambda_N1(1) the
+// first eigenvalue of (B, M)), so s = wn^2 / lambda_N1(1) and the rotating frequency is the
+// first at that scale.
 double nonrotating_frequency(BendingDirection direction, double omega_rotating,
                              const ExactModeOptions& options = {});
 double rotating_frequency(BendingDirection direction, double omega_nonrotating,
@@ -111,7 +132,7 @@ struct FrequencyPair {
   double rotating;
 };
 // n_points >= 2 equally spaced nonrotating frequencies on [lo, hi] (0 <= lo <= hi) with their
-// rotating first frequencies: the curves of Fig. 9.
+// rotating first frequencies: the curves of Fig. 9 (of the table's blade with options.blade).
 std::vector<FrequencyPair> fig9_table(BendingDirection direction, double omega_nonrotating_lo,
                                       double omega_nonrotating_hi, int n_points,
                                       const ExactModeOptions& options = {});
@@ -121,5 +142,12 @@ std::vector<FrequencyPair> fig9_table(BendingDirection direction, double omega_n
 // For an exact mode it returns its frequency; for a wrong shape it shows how wrong.
 double rayleigh_frequency(BendingDirection direction, const ModeShape& shape, double stiffness,
                           double e1_over_l = 0.0, double mbar = 3.0);
+// The same for a blade table with its stiffness column scaled by `scale` (quadrature panels
+// ending at its stations):
+//   flap: R = [s int column eta''^2 + int T eta'^2] / [int mbar eta^2 + tip eta(1)^2],
+//   lag:  R_flap - 1,   T(x) = int_x^1 mbar (x1 + e1/l) dx1 + tip (1 + e1/l).
+// For the table's exact modes (exact_rotating_modes) it returns their frequencies.
+double rayleigh_frequency(BendingDirection direction, const ModeShape& shape, double scale,
+                          double e1_over_l, const BladeProperties& blade);
 
 }  // namespace flaplag
