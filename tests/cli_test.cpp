@@ -317,6 +317,7 @@ const std::vector<BadInput> kBadInputs = {
     {"ModesBasisZero", {"modes", "--basis", "0"}, "--basis", "0"},
     // Regression: the finite elements have no Galerkin basis; `modes` crashed on them.
     {"ModesOfFiniteElements", {"modes", "--basis", "elements"}, "--basis", "elements"},
+    {"CampbellOfFiniteElements", {"campbell", "--basis", "elements"}, "--basis", "elements"},
     {"BasisSmallerThanModes",
      {"critical", "--modes", "exact", "--flap-modes", "3", "--lag-modes", "3", "--basis", "2"},
      "--basis",

@@ -36,7 +36,11 @@ void note_monotone(Outcome& r) {
 // What to do about a basis that does not resolve the modes: a larger one, unless it is the
 // largest already (then its error estimate carries the change, `what`).
 std::string remedy(int basis, const std::string& what) {
-  if (basis < kMaxBasisFunctions) return "use a larger `basis`";
+  if (basis == kElementBasis)
+    return "the finite elements are the finer discretization (the change is mostly the Galerkin "
+           "modes' error) and it is included in " +
+           what;
+  if (basis > 0 && basis < kMaxBasisFunctions) return "use a larger `basis`";
   return "the basis is already the largest (" + functions(basis) + "): the change is included in " +
          what;
 }

@@ -27,6 +27,12 @@ struct Blade {
 };
 
 Blade blade_of(const RotorParameters& p) {
+  // The speeds' frequencies come from the Galerkin basis (rotating_modes.h).
+  if (p.basis == kElementBasis) {
+    throw InvalidInput("basis", "elements",
+                       "the Campbell diagram uses the Galerkin basis (1..12, converged or "
+                       "paper); finite elements are not implemented for it");
+  }
   Blade b;
   b.shape.n_basis = galerkin_basis(p);
   b.shape.e1_over_l = p.root_offset / p.length_ratio;
