@@ -164,6 +164,12 @@ TEST(Basis, ATablesGalerkinModesAreCheckedAgainstFiniteElements) {
       *g.mu_c, *g.basis_error, *g11.mu_c, *e.mu_c);
   EXPECT_TRUE(flaplag::testing::AbsClose(std::abs(*g.mu_c - *e.mu_c), *g.basis_error, 1e-15));
   EXPECT_GE(*g.mu_c_error, *g.basis_error);
+  // Regression: the warning of an unresolved basis named the reference by its number (-1).
+  const CriticalResult g5 = Analysis(tapered_exact(flaplag::kPaperBasis), {}).critical({});
+  EXPECT_EQ(g5.status, Status::Warning) << g5.message;
+  EXPECT_NE(g5.message.find("5 cantilever functions against cubic finite elements change mu_c"),
+            std::string::npos)
+      << g5.message;
 }
 
 // The default exact-mode mu_c of the typical case agrees with the converged reference within

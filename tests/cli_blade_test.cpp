@@ -292,7 +292,11 @@ TEST(CliBlade, ModesOfTheUniformTableAreTheUniformBlades) {
       EXPECT_NEAR(w, t["modes"][m]["rayleigh_omega"].get<double>(), 1e-9 * w) << m;
       EXPECT_NEAR(u["modes"][m]["rayleigh_omega"].get<double>(),
                   t["modes"][m]["rayleigh_omega"].get<double>(), 1e-9 * w);
-      for (std::size_t q = 0; q < t["x0"].size(); q += 10) {
+      // (x0 is the document's, not the direction's: a missing key read through a const
+      // reference was undefined, and the loop ran over nothing.)
+      ASSERT_TRUE(table.contains("x0"));
+      ASSERT_GT(table["x0"].size(), 10u);
+      for (std::size_t q = 0; q < table["x0"].size(); q += 10) {
         EXPECT_NEAR(u["modes"][m]["value"][q].get<double>(),
                     t["modes"][m]["value"][q].get<double>(), 1e-9);
       }

@@ -120,7 +120,7 @@ void BasisCheck::fold(CriticalResult& r, const CriticalResult* ref) const {
   if (largest > kUnresolvedFactor * tolerance) {
     r.Worsen(Status::Warning,
              "the exact modes are not resolved in their basis: " + functions(basis) + " against " +
-                 std::to_string(reference) + " change mu_c (or an interval end) by " +
+                 functions(reference) + " change mu_c (or an interval end) by " +
                  short_text(largest) + ", more than 10 `tolerance`; " +
                  remedy(basis, "the error estimate of mu_c"));
   }
@@ -162,7 +162,7 @@ void BasisCheck::fold(PointResult& r, const PointResult* ref) const {
   if (!resolved) {
     r.Worsen(Status::Warning,
              "the exact modes are not resolved in their basis: " + functions(basis) + " against " +
-                 std::to_string(reference) + " change a zeta by " + short_text(change) +
+                 functions(reference) + " change a zeta by " + short_text(change) +
                  " per rev, more than 10 `zeta_tolerance`; " + remedy(basis, "the error estimate"));
   }
   // The sign of the largest zeta is known only outside its change with the basis (the method's

@@ -10,7 +10,7 @@
 #include <string>
 #include <utility>
 
-#include "concave_root.h"
+#include "first_frequency.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 
@@ -221,31 +221,14 @@ struct Elements {
   }
 };
 
-const char* option_name(BendingDirection dir) {
-  return dir == BendingDirection::Flap ? "omega_flap" : "omega_lag";
-}
-const char* direction_name(BendingDirection dir) {
-  return dir == BendingDirection::Flap ? "flap" : "lag";
-}
-
 // The scale s with first eigenvalue omega^2, as rotating_modes.cc solves it for the Galerkin
 // basis (lambda_1 increasing and concave in s; slope q'Bq / q'Mq).
 double solve_scale(const Elements& el, BendingDirection dir, double omega) {
-  if (!std::isfinite(omega) || omega <= 0.0) {
-    throw InvalidInput(option_name(dir), round_trip_text(omega),
-                       std::string("first rotating ") + direction_name(dir) +
-                           " frequency by Omega must be finite and positive");
-  }
+  internal::check_first_frequency(dir, omega);
   const double target = omega * omega;
   Eigen::VectorXd v = Eigen::VectorXd::Ones(el.size());
   const double lambda0 = el.first(dir, 0.0, v).lambda;
-  if (!(target > lambda0)) {
-    throw InvalidInput(option_name(dir), round_trip_text(omega),
-                       std::string("first rotating ") + direction_name(dir) +
-                           " frequency must exceed the k -> 0 (centrifugal stiffening only) "
-                           "limit " +
-                           round_trip_text(std::sqrt(std::max(lambda0, 0.0))) + " of this blade");
-  }
+  internal::check_above_limit(dir, omega, lambda0, "this blade");
   // Newton starts from lambda_1 ~ s lambda_N + lambda_0, lambda_N the nonrotating first
   // eigenvalue at s = 1.
   const double nonrotating = el.first(dir, 1.0, v, false).lambda;
@@ -343,14 +326,7 @@ std::vector<double> element_nodes(const BladeProperties* blade) {
 
 ExactModes element_rotating_modes(double omega_flap, double omega_lag,
                                   const ExactModeOptions& options) {
-  for (const auto& [dir, w] : {std::pair{BendingDirection::Flap, omega_flap},
-                               std::pair{BendingDirection::Lag, omega_lag}}) {
-    if (!std::isfinite(w) || w <= 0.0) {
-      throw InvalidInput(option_name(dir), round_trip_text(w),
-                         std::string("first rotating ") + direction_name(dir) +
-                             " frequency by Omega must be finite and positive");
-    }
-  }
+  internal::check_first_frequencies(omega_flap, omega_lag);
   return element_modes(omega_flap, omega_lag, options);
 }
 

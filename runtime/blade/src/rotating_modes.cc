@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-#include "concave_root.h"
+#include "first_frequency.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 
@@ -197,13 +197,6 @@ BladeGalerkin blade_galerkin(const ExactModeOptions& o) {
   return BladeGalerkin(o.n_basis, o.e1_over_l, *o.blade);
 }
 
-const char* option_name(BendingDirection dir) {
-  return dir == BendingDirection::Flap ? "omega_flap" : "omega_lag";
-}
-const char* direction_name(BendingDirection dir) {
-  return dir == BendingDirection::Flap ? "flap" : "lag";
-}
-
 void check_options(const ExactModeOptions& o) {
   if (o.n_basis < 1 || o.n_basis > kMaxBasis) {
     throw InvalidInput("n_basis", std::to_string(o.n_basis),
@@ -230,22 +223,13 @@ using internal::solve_concave;
 // kappa = k/mbar with lambda_1(kappa) = target: solve_concave with the derivative c'Bc
 // (Hellmann-Feynman; B > 0).
 double solve_kappa(const Galerkin& gal, BendingDirection dir, double omega) {
-  if (!std::isfinite(omega) || omega <= 0.0) {
-    throw InvalidInput(option_name(dir), round_trip_text(omega),
-                       std::string("first rotating ") + direction_name(dir) +
-                           " frequency by Omega must be finite and positive");
-  }
+  internal::check_first_frequency(dir, omega);
   const double target = omega * omega;
   const double lambda0 = gal.first_eigenvalue(dir, 0.0);
-  if (!(target > lambda0)) {
-    throw InvalidInput(
-        option_name(dir), round_trip_text(omega),
-        std::string("first rotating ") + direction_name(dir) +
-            " frequency must exceed the k -> 0 (centrifugal stiffening only) limit " +
-            round_trip_text(std::sqrt(std::max(lambda0, 0.0))) + " of the " +
-            std::to_string(gal.n) +
-            "-function cantilever basis (a larger `n_basis` lowers the limit)");
-  }
+  internal::check_above_limit(dir, omega, lambda0,
+                              "the " + std::to_string(gal.n) +
+                                  "-function cantilever basis (a larger `n_basis` lowers the "
+                                  "limit)");
   // Southwell-type start: lambda_1 ~ kappa beta_1^4 + lambda_1(0).
   return solve_concave(
       [&](double kappa) {
@@ -260,20 +244,10 @@ double solve_kappa(const Galerkin& gal, BendingDirection dir, double omega) {
 // The stiffness scale s of a blade table with lambda_1(s) = omega^2: as solve_kappa (lambda_1
 // is increasing and concave in s).
 double solve_scale(const BladeGalerkin& gal, BendingDirection dir, double omega) {
-  if (!std::isfinite(omega) || omega <= 0.0) {
-    throw InvalidInput(option_name(dir), round_trip_text(omega),
-                       std::string("first rotating ") + direction_name(dir) +
-                           " frequency by Omega must be finite and positive");
-  }
+  internal::check_first_frequency(dir, omega);
   const double target = omega * omega;
   const double lambda0 = gal.solve(dir, 0.0).first[0];
-  if (!(target > lambda0)) {
-    throw InvalidInput(option_name(dir), round_trip_text(omega),
-                       std::string("first rotating ") + direction_name(dir) +
-                           " frequency must exceed the k -> 0 (centrifugal stiffening only) "
-                           "limit " +
-                           round_trip_text(std::sqrt(std::max(lambda0, 0.0))) + " of this blade");
-  }
+  internal::check_above_limit(dir, omega, lambda0, "this blade");
   return solve_concave(
       [&](double scale) {
         auto [lambda, v] = gal.solve(dir, scale);
@@ -410,14 +384,7 @@ ExactModes exact_rotating_modes(double omega_flap, double omega_lag,
   check_options(options);
   if (options.blade) {
     // NaN would mean "absolute stiffness" inside; here a frequency is required.
-    for (const auto& [dir, w] : {std::pair{BendingDirection::Flap, omega_flap},
-                                 std::pair{BendingDirection::Lag, omega_lag}}) {
-      if (!std::isfinite(w) || w <= 0.0) {
-        throw InvalidInput(option_name(dir), round_trip_text(w),
-                           std::string("first rotating ") + direction_name(dir) +
-                               " frequency by Omega must be finite and positive");
-      }
-    }
+    internal::check_first_frequencies(omega_flap, omega_lag);
     return blade_table_modes(omega_flap, omega_lag, options);
   }
   const Galerkin gal(options.n_basis, options.e1_over_l);
