@@ -36,6 +36,10 @@ std::array<double, 4> hermite(int d, double t, double h) {
   }
 }
 
+// An iterated eigenvalue has settled when it changes by less than this, relative: its rounding
+// (a few eps) would otherwise keep the iterations going to their limit.
+constexpr double kSettled = 16.0 * std::numeric_limits<double>::epsilon();
+
 // 5-point Gauss-Legendre on [0, 1]: exact for degree 9 (the element integrands reach 7).
 constexpr std::array<double, 5> kGaussT = {0.04691007703066800, 0.23076534494715845, 0.5,
                                            0.76923465505284155, 0.95308992296933200};
@@ -74,52 +78,55 @@ struct Distributions {
   }
 };
 
-// The assembled matrices on the clamped mesh: unknowns (w_i, w_i') of nodes 1..n.  The matrices
-// are D' W D with D the deflection, slope and curvature of each unknown's shape at the Gauss
-// points and W their weights times the distributions.
+// The assembled matrices on the clamped mesh: unknowns (w_i, w_i') of nodes 1..n.  Each Gauss
+// point keeps the deflection, slope and curvature of its element's four shape functions (the
+// matrices are sums of their weighted products), so that a Rayleigh quotient costs one pass
+// over the points.
 struct Elements {
+  struct Point {
+    Eigen::Index first;                // the unknown of the element's first shape; < 0: clamped
+    std::array<double, 4> n0, n1, n2;  // deflection, slope, curvature of the four shapes
+    double wm, wt, wk_f, wk_l;         // weight times mbar, T, k shape (flap, lag)
+  };
   std::vector<double> nodes;
-  Eigen::MatrixXd d0, d1, d2;          // Gauss points x unknowns
-  Eigen::VectorXd wm, wt, wk_f, wk_l;  // weights times mbar, T, k shape (flap, lag)
+  std::vector<Point> points;
   double tip = 0.0;
   Eigen::MatrixXd m, b_flap, b_lag, g;
 
   Elements(const Distributions& dist, std::vector<double> mesh) : nodes(std::move(mesh)) {
     const Eigen::Index n = 2 * static_cast<Eigen::Index>(nodes.size() - 1);
-    const Eigen::Index nq = 5 * static_cast<Eigen::Index>(nodes.size() - 1);
-    d0 = Eigen::MatrixXd::Zero(nq, n);
-    d1 = d0;
-    d2 = d0;
-    wm.resize(nq);
-    wt.resize(nq);
-    wk_f.resize(nq);
-    wk_l.resize(nq);
+    m = Eigen::MatrixXd::Zero(n, n);
+    b_flap = m;
+    b_lag = m;
+    g = m;
     for (std::size_t el = 0; el + 1 < nodes.size(); ++el) {
       const double x0 = nodes[el], h = nodes[el + 1] - x0;
-      // Global indices of the element's four unknowns; negative for the clamped root.
-      const Eigen::Index first = 2 * static_cast<Eigen::Index>(el) - 2;
       for (int q = 0; q < 5; ++q) {
-        const Eigen::Index row = 5 * static_cast<Eigen::Index>(el) + q;
         const double t = kGaussT[q], w = kGaussW[q] * h, x = x0 + t * h;
-        const auto n0 = hermite(0, t, h), n1 = hermite(1, t, h), n2 = hermite(2, t, h);
-        wm[row] = w * dist.mass(x);
-        wt[row] = w * dist.tension(x);
-        wk_f[row] = w * dist.stiffness(BendingDirection::Flap, x);
-        wk_l[row] = w * dist.stiffness(BendingDirection::Lag, x);
+        Point p{2 * static_cast<Eigen::Index>(el) - 2,
+                hermite(0, t, h),
+                hermite(1, t, h),
+                hermite(2, t, h),
+                w * dist.mass(x),
+                w * dist.tension(x),
+                w * dist.stiffness(BendingDirection::Flap, x),
+                w * dist.stiffness(BendingDirection::Lag, x)};
         for (int i = 0; i < 4; ++i) {
-          if (first + i < 0) continue;
-          d0(row, first + i) = n0[i];
-          d1(row, first + i) = n1[i];
-          d2(row, first + i) = n2[i];
+          if (p.first + i < 0) continue;
+          for (int j = 0; j < 4; ++j) {
+            if (p.first + j < 0) continue;
+            const Eigen::Index r = p.first + i, c = p.first + j;
+            m(r, c) += p.wm * p.n0[i] * p.n0[j];
+            g(r, c) += p.wt * p.n1[i] * p.n1[j];
+            b_flap(r, c) += p.wk_f * p.n2[i] * p.n2[j];
+            b_lag(r, c) += p.wk_l * p.n2[i] * p.n2[j];
+          }
         }
+        points.push_back(p);
       }
     }
     tip = dist.tip();
-    m = d0.transpose() * wm.asDiagonal() * d0;
     m(n - 2, n - 2) += tip;
-    g = d1.transpose() * wt.asDiagonal() * d1;
-    b_flap = d2.transpose() * wk_f.asDiagonal() * d2;
-    b_lag = d2.transpose() * wk_l.asDiagonal() * d2;
   }
 
   Eigen::Index size() const { return m.rows(); }
@@ -140,14 +147,24 @@ struct Elements {
   // in s, v'Bv / v'Mv, likewise.
   std::pair<double, double> quotient(BendingDirection dir, double s, const Eigen::VectorXd& v,
                                      bool rotating = true) const {
-    const Eigen::VectorXd w = d0 * v, slope = d1 * v, curvature = d2 * v;
-    const Eigen::VectorXd& wk = dir == BendingDirection::Flap ? wk_f : wk_l;
-    const double bend = (wk.array() * curvature.array().square()).sum();
-    const double mass =
-        (wm.array() * w.array().square()).sum() + tip * v[size() - 2] * v[size() - 2];
+    const bool flap = dir == BendingDirection::Flap;
+    double bend = 0.0, tension = 0.0, mass = tip * v[size() - 2] * v[size() - 2];
+    for (const Point& p : points) {
+      double w = 0.0, slope = 0.0, curvature = 0.0;
+      for (int i = 0; i < 4; ++i) {
+        if (p.first + i < 0) continue;
+        const double vi = v[p.first + i];
+        w += p.n0[i] * vi;
+        slope += p.n1[i] * vi;
+        curvature += p.n2[i] * vi;
+      }
+      bend += (flap ? p.wk_f : p.wk_l) * curvature * curvature;
+      tension += p.wt * slope * slope;
+      mass += p.wm * w * w;
+    }
     double num = s * bend;
     if (rotating) {
-      num += (wt.array() * slope.array().square()).sum();
+      num += tension;
       if (dir == BendingDirection::Lag) num -= mass;
     }
     return {num / mass, bend / mass};
@@ -166,8 +183,7 @@ struct Elements {
       v = llt.solve(m * v);
       v /= v.cwiseAbs().maxCoeff();
       const double next = quotient(dir, s, v, rotating).first;
-      const bool done = std::abs(next - lambda) <= 4.0 * std::numeric_limits<double>::epsilon() *
-                                                       std::max(std::abs(next), 1.0);
+      const bool done = std::abs(next - lambda) <= kSettled * std::max(std::abs(next), 1.0);
       lambda = next;
       if (done) break;
     }
@@ -197,9 +213,7 @@ struct Elements {
       for (Eigen::Index i = 0; i < p; ++i) {
         x.col(i) /= x.col(i).cwiseAbs().maxCoeff();
         const double next = quotient(dir, s, x.col(i)).first;
-        if (i < count &&
-            !(std::abs(next - lambda[i]) <=
-              4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(next), 1.0)))
+        if (i < count && !(std::abs(next - lambda[i]) <= kSettled * std::max(std::abs(next), 1.0)))
           done = false;
         lambda[i] = next;
       }
