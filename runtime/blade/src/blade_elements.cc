@@ -301,8 +301,7 @@ ExactModes element_modes(double omega_flap, double omega_lag, const ExactModeOpt
             r.modes.omega_flap, r.omega_flap_all, r.omega_flap_nonrotating);
   r.modes.stiffness_lag = build(BendingDirection::Lag, omega_lag, options.lag_modes, r.modes.lag,
                                 r.modes.omega_lag, r.omega_lag_all, r.omega_lag_nonrotating);
-  // The uniform blade's stiffness is k itself, by mbar as the Galerkin solution has it: the
-  // element matrices carry mbar in M and G, so the scale already is k.
+  // The uniform blade's stiffness column is 1 (mbar is in M and T): its scale is k itself.
   return r;
 }
 
