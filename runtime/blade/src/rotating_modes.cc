@@ -503,68 +503,68 @@ std::vector<FrequencyPair> fig9_table(BendingDirection direction, double omega_n
   return table;
 }
 
-double rayleigh_frequency(BendingDirection direction, const ModeShape& shape, double stiffness,
-                          double e1_over_l, double mbar) {
+namespace {
+
+// sqrt of the Rayleigh quotient [scale int k w''^2 + int T w'^2] / [int mbar w^2 + tip w(1)^2]
+// (lag: minus 1, eq A.4, the -m Omega^2 v term on the whole mass) by quadrature on `rule`, with
+// k, T and mbar given at each node.
+template <typename Stiffness, typename Tension, typename Mass>
+double rayleigh_root(BendingDirection direction, const ModeShape& shape, double scale,
+                     const SpanRule& rule, Stiffness k, Tension t, Mass mbar, double tip_mass) {
+  double strain = 0.0;
+  double tension = 0.0;
+  double mass = 0.0;
+  for (std::size_t q = 0; q < rule.x0.size(); ++q) {
+    const double x = rule.x0[q];
+    const double w = rule.weight[q];
+    const double d0 = shape.value(0, x);
+    const double d1 = shape.value(1, x);
+    const double d2 = shape.value(2, x);
+    strain += w * k(x) * d2 * d2;
+    tension += w * d1 * d1 * t(x);
+    mass += w * mbar(x) * d0 * d0;
+  }
+  const double tip = shape.value(0, 1.0);
+  mass += tip_mass * tip * tip;
+  double r = (scale * strain + tension) / mass;
+  if (direction == BendingDirection::Lag) r -= 1.0;
+  return std::sqrt(std::max(r, 0.0));
+}
+
+void check_rayleigh(double stiffness, double e1_over_l) {
   if (!std::isfinite(stiffness) || stiffness < 0.0) {
     throw InvalidInput("stiffness", round_trip_text(stiffness), "must be finite and >= 0");
   }
   if (!std::isfinite(e1_over_l) || e1_over_l < 0.0) {
     throw InvalidInput("e1_over_l", round_trip_text(e1_over_l), "must be finite and >= 0");
   }
+}
+
+}  // namespace
+
+double rayleigh_frequency(BendingDirection direction, const ModeShape& shape, double stiffness,
+                          double e1_over_l, double mbar) {
+  check_rayleigh(stiffness, e1_over_l);
   if (!std::isfinite(mbar) || mbar <= 0.0) {
     throw InvalidInput("mbar", round_trip_text(mbar), "must be finite and positive");
   }
-  const SpanRule rule = span_rule(0.0, 1.0);
-  double strain = 0.0;
-  double tension = 0.0;
-  double mass = 0.0;
-  for (std::size_t q = 0; q < rule.x0.size(); ++q) {
-    const double x = rule.x0[q];
-    const double w = rule.weight[q];
-    const double t = mbar * (0.5 * (1.0 - x * x) + e1_over_l * (1.0 - x));
-    const double d1 = shape.value(1, x);
-    const double d2 = shape.value(2, x);
-    const double d0 = shape.value(0, x);
-    strain += w * d2 * d2;
-    tension += w * d1 * d1 * t;
-    mass += w * mbar * d0 * d0;
-  }
-  double r = (stiffness * strain + tension) / mass;
-  if (direction == BendingDirection::Lag) r -= 1.0;  // eq A.4: in-plane centrifugal term
-  return std::sqrt(std::max(r, 0.0));
+  return rayleigh_root(
+      direction, shape, stiffness, span_rule(0.0, 1.0), [](double) { return 1.0; },
+      [&](double x) { return mbar * (0.5 * (1.0 - x * x) + e1_over_l * (1.0 - x)); },
+      [&](double) { return mbar; }, 0.0);
 }
 
 double rayleigh_frequency(BendingDirection direction, const ModeShape& shape, double scale,
                           double e1_over_l, const BladeProperties& blade) {
-  if (!std::isfinite(scale) || scale < 0.0) {
-    throw InvalidInput("stiffness", round_trip_text(scale), "must be finite and >= 0");
-  }
-  if (!std::isfinite(e1_over_l) || e1_over_l < 0.0) {
-    throw InvalidInput("e1_over_l", round_trip_text(e1_over_l), "must be finite and >= 0");
-  }
+  check_rayleigh(scale, e1_over_l);
   validate(blade);
   const std::vector<double>& column =
       direction == BendingDirection::Flap ? blade.stiffness_flap : blade.stiffness_lag;
-  const SpanRule rule = span_rule(0.0, 1.0, blade.corners());
-  double strain = 0.0;
-  double tension = 0.0;
-  double mass = 0.0;
-  for (std::size_t q = 0; q < rule.x0.size(); ++q) {
-    const double x = rule.x0[q];
-    const double w = rule.weight[q];
-    const double d0 = shape.value(0, x);
-    const double d1 = shape.value(1, x);
-    const double d2 = shape.value(2, x);
-    strain += w * blade.at(column, x) * d2 * d2;
-    tension += w * BladeGalerkin::tension(blade, e1_over_l, x) * d1 * d1;
-    mass += w * blade.mass_at(x) * d0 * d0;
-  }
-  const double tip = shape.value(0, 1.0);
-  mass += blade.tip_mass * tip * tip;
-  // The lag equation's -m Omega^2 v term is -1 times the whole mass (the tip mass's included).
-  double r = (scale * strain + tension) / mass;
-  if (direction == BendingDirection::Lag) r -= 1.0;
-  return std::sqrt(std::max(r, 0.0));
+  return rayleigh_root(
+      direction, shape, scale, span_rule(0.0, 1.0, blade.corners()),
+      [&](double x) { return blade.at(column, x); },
+      [&](double x) { return BladeGalerkin::tension(blade, e1_over_l, x); },
+      [&](double x) { return blade.mass_at(x); }, blade.tip_mass);
 }
 
 }  // namespace flaplag
