@@ -671,6 +671,29 @@ TEST(TaperedBlade, FiniteElementModesAreTheReferenceToTheirOwnError) {
   EXPECT_EQ(1.0, el.modes.stiffness_lag);
 }
 
+// The parts of a shape's Rayleigh quotient with the blade's distributions, by quadrature here:
+// int k w''^2 (k the column given), int T w'^2, int mbar w^2 + tip w(1)^2.
+struct Energies {
+  double strain, pull, mass;
+};
+Energies energies_here(const BladeProperties& b, const std::vector<double>& k, const ModeShape& w) {
+  const double strain = gauss_span([&](double x) {
+    const double c = w.value(2, x);
+    return linear(b.x0, k, x) * c * c;
+  });
+  const double pull = gauss_span([&](double x) {
+    const double sl = w.value(1, x);
+    return tension(b, kTaperE, x) * sl * sl;
+  });
+  const double tip = w.value(0, 1.0);
+  const double mass = gauss_span([&](double x) {
+                        const double v = w.value(0, x);
+                        return linear(b.x0, b.mass, x) * v * v;
+                      }) +
+                      b.tip_mass * tip * tip;
+  return {strain, pull, mass};
+}
+
 // The Galerkin matrices themselves, without the basis's truncation: the Rayleigh quotient of
 // each computed shape (stiffness, tension and mass by quadrature here, the tip mass in the mass
 // and the tension) is its frequency, and the shapes are orthogonal in the mass with the tip mass.
@@ -690,16 +713,9 @@ TEST(TaperedBlade, ShapesHaveTheirFrequenciesAsRayleighQuotients) {
     };
     for (std::size_t i = 0; i < shapes.size(); ++i) {
       const ModeShape& w = *shapes[i];
-      const double strain = gauss_span([&](double x) {
-        const double c = w.value(2, x);
-        return linear(b.x0, k, x) * c * c;
-      });
-      const double pull = gauss_span([&](double x) {
-        const double s = w.value(1, x);
-        return tension(b, kTaperE, x) * s * s;
-      });
-      const double m = mass(w, w);
-      const double rayleigh = (strain + pull) / m - (flap ? 0.0 : 1.0);
+      const Energies e = energies_here(b, k, w);
+      const double m = e.mass;
+      const double rayleigh = (e.strain + e.pull) / m - (flap ? 0.0 : 1.0);
       const double omega = (flap ? g.modes.omega_flap : g.modes.omega_lag)[i];
       EXPECT_TRUE(RelClose(omega, std::sqrt(rayleigh), 1e-10)) << (flap ? "flap " : "lag ") << i;
       worst = std::max(worst, std::abs(std::sqrt(rayleigh) / omega - 1.0));
@@ -833,22 +849,8 @@ TEST(TaperedBlade, RayleighFrequencyWeighsTheTablesDistributions) {
   const double scale = 2.5;
   for (const BendingDirection dir : {BendingDirection::Flap, BendingDirection::Lag}) {
     const bool flap = dir == BendingDirection::Flap;
-    const std::vector<double>& k = flap ? b.stiffness_flap : b.stiffness_lag;
-    const double strain = gauss_span([&](double x) {
-      const double c = shape.value(2, x);
-      return linear(b.x0, k, x) * c * c;
-    });
-    const double pull = gauss_span([&](double x) {
-      const double sl = shape.value(1, x);
-      return tension(b, kTaperE, x) * sl * sl;
-    });
-    const double tip = shape.value(0, 1.0);
-    const double mass = gauss_span([&](double x) {
-                          const double v = shape.value(0, x);
-                          return linear(b.x0, b.mass, x) * v * v;
-                        }) +
-                        b.tip_mass * tip * tip;
-    const double expected = std::sqrt((scale * strain + pull) / mass - (flap ? 0.0 : 1.0));
+    const Energies e = energies_here(b, flap ? b.stiffness_flap : b.stiffness_lag, shape);
+    const double expected = std::sqrt((scale * e.strain + e.pull) / e.mass - (flap ? 0.0 : 1.0));
     EXPECT_TRUE(RelClose(expected, rayleigh_frequency(dir, shape, scale, kTaperE, b), 1e-10))
         << (flap ? "flap" : "lag");
   }
