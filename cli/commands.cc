@@ -109,12 +109,7 @@ std::optional<Output> run_standalone(const Request& r, std::string& w, RunContro
 // theta0 and eq 2.25 lambda); each mu of the analysis is trimmed on its own.
 // (Any other command of a trimmed rotor: nullopt, after the same check of the hover trim.)
 std::optional<Output> run_trimmed(const Request& r, std::string& w) {
-  const TrimResult h = trim(r.params, 0.0, r.trim);
-  if (h.status == Status::Failed) {
-    throw InvalidInput("thrust_coefficient", round_trip_text(r.trim.thrust_coefficient),
-                       "the rotor cannot be trimmed in hover: " + h.message);
-  }
-  const Analysis an(h.parameters, r.transition, h.inflow);
+  const Analysis an(r.params, r.transition, OperatingCondition::Trimmed(r.trim));
   switch (r.command) {
     case Command::Point:
       return cmd::point(r, an);

@@ -350,13 +350,9 @@ Output typical(const Request& r, const Analysis& an) {
 }
 
 Output point(const Request& r, const Analysis& an) {
-  // Trimmed: the trim the point rests on (its problems are in the point's status).
-  std::vector<TrimResult> trims;
-  PointResult p = trimmed(r)
-                      ? trimmed_point(r.params, r.transition, r.trim, r.mu, r.scan_step, &trims)
-                      : an.point(r.mu, r.scan_step);
-  std::optional<TrimResult> t;
-  if (!trims.empty()) t = trims.front();
+  // Trimmed: p.trim, the trim the point rests on (its problems are in the point's status).
+  const RotorPoint p = an.point(r.mu, r.scan_step);
+  const std::optional<TrimResult>& t = p.trim;
   const auto json = [&] {
     Json j = header_json("point", an);
     j.update(point_json(r, p));
@@ -373,12 +369,10 @@ Output point(const Request& r, const Analysis& an) {
 }
 
 Output sweep(const Request& r, const Analysis& an, std::string& warning) {
-  // The trimmed controls at each point of the sweep: the trims its points rest on (their
-  // problems are in the points' status).
-  std::vector<TrimResult> trims;
-  SweepResult s = trimmed(r) ? trimmed_sweep(r.params, r.transition, r.trim, r.sweep_start,
-                                             r.sweep_stop, r.sweep_step, &trims)
-                             : an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step, r.threads);
+  // Trimmed: s.trims, the trimmed controls at each point of the sweep (their problems are in
+  // the points' status).
+  RotorSweep s = an.sweep(r.sweep_start, r.sweep_stop, r.sweep_step, r.threads);
+  const std::vector<TrimResult>& trims = s.trims;
   const std::vector<std::string> labels = mode_labels(an);
   if (r.damping_criterion) apply_damping_criterion(s, labels, *r.damping_criterion);
   const auto json = [&] {
@@ -423,11 +417,8 @@ Output critical(const Request& r, const Analysis& an) {
   CriticalOptions opt;
   opt.mu_max = r.mu_max;
   opt.scan_step = r.scan_step;
-  std::vector<TrimResult> trims;  // the trim at mu_c the result rests on
-  CriticalResult c =
-      trimmed(r) ? trimmed_critical(r.params, r.transition, r.trim, opt, &trims) : an.critical(opt);
-  std::optional<TrimResult> t;
-  if (!trims.empty()) t = trims.front();
+  const RotorCritical c = an.critical(opt);
+  const std::optional<TrimResult>& t = c.trim;  // trimmed: the trim at mu_c the result rests on
   const auto json = [&] {
     Json j = header_json("critical", an);
     j.update(critical_json(r, c));

@@ -45,7 +45,8 @@ std::string trim_text(const Request& r, const TrimResult& t) {
 Output trim_command(const Request& r) {
   const TrimResult t = trim(r.params, r.mu, r.trim);
   const auto json = [&] {
-    Json j = header_json("trim", Analysis(t.parameters, r.transition, t.inflow), false);
+    Json j =
+        header_json("trim", Analysis(t.parameters, r.transition, OperatingCondition::At(t)), false);
     j.update(trim_json(r, t));
     return j;
   };

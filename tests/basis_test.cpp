@@ -295,18 +295,22 @@ flaplag::TrimOptions thrust_trim() {
   return o;
 }
 
+// The point of p trimmed at mu with thrust_trim().
+flaplag::RotorPoint trimmed_point(const RotorParameters& p, const TransitionOptions& t, double mu) {
+  return Analysis(p, t, flaplag::OperatingCondition::Trimmed(thrust_trim())).point(mu);
+}
+
 // A trimmed point (the controls solved at mu, trim.h) with exact modes carries the basis error
 // as an untrimmed one does: the whole trimmed computation with the neighbouring basis, whose
-// trim moves with the basis too.  The reference here is trimmed_point with 11 functions.
+// trim moves with the basis too.  The reference here is the trimmed point with 11 functions.
 TEST(Basis, TrimmedPointsIncludeTheBasisError) {
   const TransitionOptions t;
-  const flaplag::PointResult p =
-      flaplag::trimmed_point(typical_exact(flaplag::kConvergedBasis), t, thrust_trim(), 0.3);
+  const flaplag::PointResult p = trimmed_point(typical_exact(flaplag::kConvergedBasis), t, 0.3);
   ASSERT_NE(p.status, Status::Failed) << p.message;
   ASSERT_TRUE(p.basis && p.basis_error && p.error) << p.message;
   EXPECT_EQ(*p.basis, 12);
   EXPECT_GE(*p.error, *p.basis_error);
-  const flaplag::PointResult q = flaplag::trimmed_point(typical_exact(11), t, thrust_trim(), 0.3);
+  const flaplag::PointResult q = trimmed_point(typical_exact(11), t, 0.3);
   ASSERT_NE(q.status, Status::Failed) << q.message;
   const double change = largest_zeta_change(p, q);
   EXPECT_GT(change, 0.0);
@@ -314,7 +318,7 @@ TEST(Basis, TrimmedPointsIncludeTheBasisError) {
   EXPECT_LE(*p.basis_error, change * (1 + 1e-12));
 
   // The assumed mode: no basis, as untrimmed.
-  const flaplag::PointResult a = flaplag::trimmed_point(RotorParameters{}, t, thrust_trim(), 0.3);
+  const flaplag::PointResult a = trimmed_point(RotorParameters{}, t, 0.3);
   EXPECT_FALSE(a.basis.has_value());
   EXPECT_FALSE(a.basis_error.has_value());
 }
@@ -323,7 +327,8 @@ TEST(Basis, TrimmedPointsIncludeTheBasisError) {
 TEST(Basis, TrimmedSweepsAndThePeriodicEquilibriumIncludeTheBasisError) {
   RotorParameters p = typical_exact(flaplag::kPaperBasis);
   const flaplag::SweepResult s =
-      flaplag::trimmed_sweep(p, TransitionOptions{}, thrust_trim(), 0.1, 0.2, 0.1);
+      Analysis(p, TransitionOptions{}, flaplag::OperatingCondition::Trimmed(thrust_trim()))
+          .sweep(0.1, 0.2, 0.1);
   ASSERT_EQ(s.points.size(), 2u) << s.message;
   for (const auto& pt : s.points) {
     ASSERT_TRUE(pt.basis && pt.basis_error) << pt.mu << ": " << pt.message;

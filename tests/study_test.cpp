@@ -226,7 +226,8 @@ TEST(Study, TrimmedRowsAreTrimmedCriticalSearches) {
   ASSERT_EQ(s.rows.size(), 1u);
   CriticalOptions c = o.critical;
   c.all_intervals = true;
-  const CriticalResult direct = trimmed_critical(p, {}, o.trim, c);
+  const flaplag::RotorCritical direct =
+      Analysis(p, {}, flaplag::OperatingCondition::Trimmed(o.trim)).critical(c);
   EXPECT_TRUE(same(s.rows[0].critical, direct));
   EXPECT_EQ(s.rows[0].critical.status, Status::Ok) << s.rows[0].critical.message;
   // A trimmed map cell is the trimmed point at its mu.
@@ -236,7 +237,8 @@ TEST(Study, TrimmedRowsAreTrimmedCriticalSearches) {
   m.scan_step = 0.1;
   m.trim = o.trim;
   const MapResult map = run_map(p, {}, m);
-  const PointResult pt = trimmed_point(p, {}, o.trim, 0.2, 0.1);
+  const PointResult pt =
+      Analysis(p, {}, flaplag::OperatingCondition::Trimmed(o.trim)).point(0.2, 0.1);
   ASSERT_TRUE(map.cells[0][0].max_zeta.has_value());
   double max_zeta = -1e300;
   for (const auto& e : pt.exponents) max_zeta = std::max(max_zeta, e.zeta);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -155,7 +156,7 @@ TEST(Trim, MomentTrimRemovesTheFirstFlapHarmonic) {
   EXPECT_NEAR(r.thrust_coefficient, 0.005, 1e-10);
   EXPECT_GT(std::hypot(r.theta1c, r.theta1s), 1e-3);
   // the harmonic of the Analysis response agrees (independent harmonic extraction)
-  flaplag::Analysis an(r.parameters, {}, r.inflow);
+  flaplag::Analysis an(r.parameters, {}, flaplag::OperatingCondition::At(r));
   const auto resp = an.response(mu);
   ASSERT_NE(resp.status, Status::Failed) << resp.message;
   EXPECT_LT(std::abs(resp.flap_harmonics[1]), 1e-10);
@@ -391,7 +392,7 @@ TEST(PeriodicTrim, ThrustAndFirstFlapHarmonicOfTheEquilibriumAreTrimmed) {
   EXPECT_LT(std::abs(r.flap_1s), 1e-10);
   ASSERT_EQ(r.equilibrium.coefficients.rows(), 2);
   EXPECT_EQ(r.equilibrium.mu, mu);
-  const flaplag::Analysis an(r.parameters, {}, r.inflow);
+  const flaplag::Analysis an(r.parameters, {}, flaplag::OperatingCondition::At(r));
   const auto eq = an.periodic_equilibrium(mu);
   ASSERT_NE(eq.status, Status::Failed) << eq.message;
   const double tip = an.modes().flap[0]->value(0, 1.0);
@@ -419,11 +420,12 @@ TEST(PeriodicTrim, TrimmedPointIsTheFloquetAnalysisAboutTheTrimmedEquilibrium) {
   o.kind = TrimKind::Moment;
   o.thrust_coefficient = 0.0042;
   const flaplag::TransitionOptions t;
-  const auto pt = flaplag::trimmed_point(periodic_typical(), t, o, mu, 0.1);
+  const auto pt = flaplag::Analysis(periodic_typical(), t, flaplag::OperatingCondition::Trimmed(o))
+                      .point(mu, 0.1);
   ASSERT_NE(pt.status, Status::Failed) << pt.message;
   const auto r = flaplag::trim(periodic_typical(), mu, o);
   ASSERT_EQ(r.status, Status::Ok) << r.message;
-  const flaplag::Analysis an(r.parameters, t, r.inflow);
+  const flaplag::Analysis an(r.parameters, t, flaplag::OperatingCondition::At(r));
   const auto direct = an.floquet(mu, t.zeta_tolerance);
   ASSERT_NE(direct.status, Status::Failed) << direct.message;
   double zmax_pt = -1e9, zmax_direct = -1e9;
@@ -433,7 +435,8 @@ TEST(PeriodicTrim, TrimmedPointIsTheFloquetAnalysisAboutTheTrimmedEquilibrium) {
   // and about hover the same trimmed rotor has other exponents (the equilibrium matters)
   RotorParameters hover_linear = r.parameters;
   hover_linear.periodic_linearization = false;
-  const auto about_hover = flaplag::Analysis(hover_linear, t, r.inflow).floquet(mu, 1e-5);
+  const auto about_hover =
+      flaplag::Analysis(hover_linear, t, flaplag::OperatingCondition::At(r)).floquet(mu, 1e-5);
   double zmax_hover = -1e9;
   for (const auto& e : about_hover.floquet.exponents) zmax_hover = std::max(zmax_hover, e.zeta);
   EXPECT_GT(std::abs(zmax_hover - zmax_pt), 1e-4);
@@ -473,13 +476,13 @@ TEST(TrimHonest, TrimmedResultsCarryTheirTrimsProblems) {
   TrimOptions o;
   o.kind = TrimKind::Thrust;
   o.thrust_coefficient = 0.015;
-  std::vector<flaplag::TrimResult> trims;
-  const flaplag::PointResult p =
-      flaplag::trimmed_point(cyclic_typical(), {}, o, 0.05, 0.05, &trims);
-  ASSERT_EQ(trims.size(), 1u);
-  EXPECT_EQ(trims[0].mu, 0.05);
-  ASSERT_GT(trims[0].theta0, 0.35) << "the example no longer leaves the envelope";
-  EXPECT_FALSE(flaplag::trim_problem(trims[0]).empty());
+  const flaplag::RotorPoint p =
+      flaplag::Analysis(cyclic_typical(), {}, flaplag::OperatingCondition::Trimmed(o))
+          .point(0.05, 0.05);
+  ASSERT_TRUE(p.trim.has_value());
+  EXPECT_EQ(p.trim->mu, 0.05);
+  ASSERT_GT(p.trim->theta0, 0.35) << "the example no longer leaves the envelope";
+  EXPECT_FALSE(flaplag::trim_problem(*p.trim).empty());
   ASSERT_NE(p.status, Status::Failed) << p.message;
   EXPECT_EQ(p.status, Status::Warning) << p.message;
   EXPECT_NE(p.message.find("trim at mu = 0.05: outside the model's validity envelope"),
@@ -487,12 +490,98 @@ TEST(TrimHonest, TrimmedResultsCarryTheirTrimsProblems) {
       << p.message;
   // A sweep inside the envelope: every point ok, each with the converged trim at its mu.
   o.thrust_coefficient = 0.005;
-  const flaplag::SweepResult s =
-      flaplag::trimmed_sweep(cyclic_typical(), {}, o, 0.0, 0.2, 0.1, &trims);
+  const flaplag::RotorSweep s =
+      flaplag::Analysis(cyclic_typical(), {}, flaplag::OperatingCondition::Trimmed(o))
+          .sweep(0.0, 0.2, 0.1);
+  const std::vector<flaplag::TrimResult>& trims = s.trims;
   ASSERT_EQ(trims.size(), s.points.size());
   for (std::size_t k = 0; k < trims.size(); ++k) {
     EXPECT_EQ(trims[k].mu, s.points[k].mu);
     EXPECT_TRUE(trims[k].converged);
     EXPECT_EQ(s.points[k].status, Status::Ok) << s.points[k].message;
+  }
+}
+
+// ---- One Analysis at an operating condition ------------------------------------------------
+
+// A trimmed critical result carries the trim at mu_c that it rests on: for the thrust trim
+// (each mu trimmed from the blade-element start, so independent of the order of evaluation) it
+// is the trim a user gets at mu_c directly, to the bit, and its thrust is the target.
+TEST(OperatingCondition, TrimmedCriticalCarriesTheTrimAtMuC) {
+  TrimOptions o;
+  o.kind = TrimKind::Thrust;
+  o.thrust_coefficient = 0.0042384;  // the typical case's C_T in hover
+  flaplag::CriticalOptions c;
+  c.mu_max = 1.1;
+  c.scan_step = 0.1;
+  RotorParameters p = cyclic_typical();
+  p.omega_lag = 0.5;  // unstable below mu = 1.1 when trimmed
+  const flaplag::RotorCritical r =
+      flaplag::Analysis(p, {}, flaplag::OperatingCondition::Trimmed(o)).critical(c);
+  ASSERT_TRUE(r.mu_c.has_value()) << r.message;
+  ASSERT_TRUE(r.trim.has_value());
+  EXPECT_EQ(r.trim->mu, *r.mu_c);
+  const flaplag::TrimResult direct = flaplag::trim(p, *r.mu_c, o);
+  EXPECT_EQ(r.trim->theta0, direct.theta0);
+  EXPECT_EQ(r.trim->inflow, direct.inflow);
+  EXPECT_TRUE(r.trim->converged);
+  EXPECT_TRUE(flaplag::testing::RelClose(0.0042384, r.trim->thrust_coefficient, 1e-12));
+  // Without mu_c there is no trim to carry.
+  c.mu_max = 0.2;
+  const flaplag::RotorCritical none =
+      flaplag::Analysis(p, {}, flaplag::OperatingCondition::Trimmed(o)).critical(c);
+  EXPECT_FALSE(none.mu_c.has_value());
+  EXPECT_FALSE(none.trim.has_value());
+  // With fixed controls no result carries a trim.
+  const flaplag::Analysis fixed(cyclic_typical(), {});
+  EXPECT_FALSE(fixed.point(0.3).trim.has_value());
+  EXPECT_TRUE(fixed.sweep(0.0, 0.2, 0.1).trims.empty());
+}
+
+// The header of a trimmed analysis is the rotor trimmed in hover: its parameters carry the
+// trimmed collective, its hover is the one at that pitch and the eq 2.25 inflow (the Analysis
+// At() the hover trim), and what answers for fixed controls only is refused by name.
+TEST(OperatingCondition, ATrimmedAnalysisIsTheRotorTrimmedInHover) {
+  const TrimOptions o = moment_trim_005();
+  const flaplag::Analysis an(cyclic_typical(), {}, flaplag::OperatingCondition::Trimmed(o));
+  const flaplag::TrimResult h = flaplag::trim(cyclic_typical(), 0.0, o);
+  EXPECT_EQ(an.parameters().theta, h.theta0);
+  const flaplag::Analysis at(h.parameters, {}, flaplag::OperatingCondition::At(h));
+  ASSERT_EQ(an.hover().eigenvalues.size(), at.hover().eigenvalues.size());
+  for (std::size_t k = 0; k < at.hover().eigenvalues.size(); ++k)
+    EXPECT_EQ(an.hover().eigenvalues[k], at.hover().eigenvalues[k]) << k;
+  for (const auto& refused : std::vector<std::function<void()>>{
+           [&] { an.system(0.3); }, [&] { an.snapshot(0.3, 0.0); }, [&] { an.response(0.3); },
+           [&] { an.floquet(0.3, 1e-6); },
+           [&] { an.simulate(0.3, Eigen::VectorXd::Zero(an.state_size()), false); }}) {
+    try {
+      refused();
+      ADD_FAILURE() << "a fixed-control query of a trimmed analysis was answered";
+    } catch (const InvalidInput& e) {
+      EXPECT_EQ(e.name(), "trim") << e.what();
+      EXPECT_NE(std::string(e.what()).find("fixed controls"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// An inflow given together with a trim is refused (each trim has its own eq 2.25 inflow), and a
+// trim that cannot be made in hover fails the constructor, naming the thrust coefficient.
+TEST(OperatingCondition, BadConditionsNameTheField) {
+  flaplag::OperatingCondition c = flaplag::OperatingCondition::Trimmed(moment_trim_005());
+  c.inflow = 0.05;
+  try {
+    flaplag::Analysis(cyclic_typical(), {}, c);
+    ADD_FAILURE() << "inflow with a trim accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.name(), "inflow") << e.what();
+  }
+  TrimOptions o;
+  o.kind = TrimKind::Thrust;
+  o.thrust_coefficient = 0.1;
+  try {
+    flaplag::Analysis(cyclic_typical(), {}, flaplag::OperatingCondition::Trimmed(o));
+    ADD_FAILURE() << "an untrimmable rotor accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.name(), "thrust_coefficient") << e.what();
   }
 }

@@ -390,7 +390,7 @@ class Analysis:
 
         trim='thrust' or 'moment' (the command line's --trim; every model has the thrust and
         the cyclic pitch): the rotor is trimmed to C_T = thrust_coefficient (shaft angle
-        alpha_R [rad]) at every mu the continuation evaluates (C++ trimmed_point); see trim()."""
+        alpha_R [rad]) at every mu the continuation evaluates (C++ OperatingCondition::Trimmed); see trim()."""
         t = _trim_request(trim, thrust_coefficient, shaft_angle)
         if t is not None:
             return PointResult._from(
@@ -486,8 +486,8 @@ class Analysis:
         all_intervals=True scans on to mu_max and reports every instability interval.
         periodic_omega_tolerance: |omega - k/2| [per rev] below which a crossing is 'periodic';
         scan_zeta_tolerance: the exponent accuracy asked of the scan [per rev].
-        trim, thrust_coefficient, shaft_angle: mu_c at fixed C_T, as point() (C++
-        trimmed_critical)."""
+        trim, thrust_coefficient, shaft_angle: mu_c at fixed C_T, as point(); the
+        result's trim is the TrimResult at mu_c."""
         t = _trim_request(trim, thrust_coefficient, shaft_angle)
         opts = {
             "mu_max": _real("mu_max", mu_max),

@@ -191,7 +191,8 @@ class PointResult(_Described):
     largest zeta error [per rev] (None when not estimated); steps: the steps per period used;
     stable: all zeta <= 0 (None when unknown: status 'failed', or status 'warning' when the
     largest zeta is within its own error estimate of zero); notes: remarks that do not lower
-    the status.
+    the status.  trim: at fixed C_T (trim='thrust' or 'moment'), the TrimResult at mu the
+    point rests on; otherwise None.
     """
 
     mu: float
@@ -203,6 +204,7 @@ class PointResult(_Described):
     status: str
     message: str
     notes: Tuple[str, ...] = ()
+    trim: Optional["TrimResult"] = None
 
     @property
     def zeta(self) -> np.ndarray:
@@ -280,7 +282,8 @@ class SweepResult(_Described):
     the ratio is undefined); the damping ratio -zeta/|lambda| is a fraction of critical, with
     omega continued from hover.  damping_criterion: C when asked for (else None), and
     damping_crossings: one DampingCrossing per label.  A failed step ends the sweep: then there
-    are fewer points than advance ratios asked for, the failed one last.
+    are fewer points than advance ratios asked for, the failed one last.  trims: at fixed C_T
+    (trim='thrust' or 'moment'), the TrimResult each point rests on, in order; otherwise ().
     """
 
     mu: np.ndarray
@@ -291,6 +294,7 @@ class SweepResult(_Described):
     notes: Tuple[str, ...] = ()
     damping_criterion: Optional[float] = None
     damping_crossings: Tuple[DampingCrossing, ...] = ()
+    trims: Tuple["TrimResult", ...] = ()
     zeta: Dict[str, np.ndarray] = field(init=False)
     omega: Dict[str, np.ndarray] = field(init=False)
 

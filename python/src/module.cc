@@ -1088,6 +1088,19 @@ py::dict sweep_dict(const Analysis& a, SweepResult r, const std::optional<double
   return to_dict(r);
 }
 
+// The analysis of a's rotor trimmed at every mu with o (a's options as resolved).
+Analysis trimmed(const Analysis& a, const TrimOptions& o) {
+  return Analysis(a.parameters(), a.options(), OperatingCondition::Trimmed(o));
+}
+
+// A trimmed sweep's dict with the trims of its points (`trims`, one per row).
+py::dict with_trims(py::dict d, const RotorSweep& r) {
+  py::list trims;
+  for (const TrimResult& t : r.trims) trims.append(trim_dict(t));
+  d["trims"] = trims;
+  return d;
+}
+
 void check_criterion(const std::optional<double>& criterion) {
   if (criterion) check_damping_criterion(*criterion);
 }
@@ -1199,7 +1212,7 @@ PYBIND11_MODULE(_flaplag, m) {
              check_memory(sweep_memory(points, a.state_size()), memory_limit, "step",
                           round_trip_text(step));
              const SweepResult r = run_cancellable<SweepResult>(
-                 [&](const std::atomic<bool>* cancel, ProgressFunction report) {
+                 [&](const std::atomic<bool>* cancel, ProgressFunction report) -> SweepResult {
                    try {
                      return a.sweep(mu0, mu1, step, threads, cancel, report);
                    } catch (const Cancelled&) {
@@ -1218,7 +1231,7 @@ PYBIND11_MODULE(_flaplag, m) {
                check_memory(sweep_memory(mus.size(), a.state_size()), memory_limit, "mu",
                             std::to_string(mus.size()) + " advance ratios");
              const SweepResult r = run_cancellable<SweepResult>(
-                 [&](const std::atomic<bool>* cancel, ProgressFunction report) {
+                 [&](const std::atomic<bool>* cancel, ProgressFunction report) -> SweepResult {
                    try {
                      return a.track(mus, scan_step, threads, cancel, report);
                    } catch (const Cancelled&) {
@@ -1381,19 +1394,22 @@ PYBIND11_MODULE(_flaplag, m) {
              }
              return thrust_dict(t);
            })
-      // Stability at fixed C_T (trim.h trimmed_*): the rotor trimmed at every mu evaluated.
+      // Stability at fixed C_T: the rotor trimmed at every mu evaluated (OperatingCondition::
+      // Trimmed), with the trims the results rest on.
       .def("trimmed_point",
            [](const Analysis& a, double mu, double scan_step, const std::string& kind,
               double thrust_coefficient, double shaft_angle) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
-             PointResult r;
+             RotorPoint r;
              {
                py::gil_scoped_release release;
-               r = trimmed_point(a.parameters(), a.options(), o, mu, scan_step);
+               r = trimmed(a, o).point(mu, scan_step);
              }
-             return to_dict(r);
+             py::dict d = to_dict(static_cast<const PointResult&>(r));
+             d["trim"] = r.trim ? py::object(trim_dict(*r.trim)) : py::object(py::none());
+             return d;
            })
       .def("trimmed_sweep",
            [](const Analysis& a, double mu0, double mu1, double step, const std::string& kind,
@@ -1406,17 +1422,16 @@ PYBIND11_MODULE(_flaplag, m) {
              const std::size_t points = sweep_grid(mu0, mu1, step).size();
              check_memory(sweep_memory(points, a.state_size()), memory_limit, "step",
                           round_trip_text(step));
-             const SweepResult r = run_cancellable<SweepResult>(
+             const RotorSweep r = run_cancellable<RotorSweep>(
                  [&](const std::atomic<bool>* cancel, ProgressFunction report) {
                    try {
-                     return trimmed_sweep(a.parameters(), a.options(), o, mu0, mu1, step, cancel,
-                                          report);
+                     return trimmed(a, o).sweep(mu0, mu1, step, 1, cancel, report);
                    } catch (const Cancelled&) {
-                     return SweepResult{};
+                     return RotorSweep{};
                    }
                  },
                  progress);
-             return sweep_dict(a, r, damping_criterion);
+             return with_trims(sweep_dict(a, r, damping_criterion), r);
            })
       .def("trimmed_track",
            [](const Analysis& a, const std::vector<double>& mus, double scan_step,
@@ -1430,17 +1445,16 @@ PYBIND11_MODULE(_flaplag, m) {
              if (mus.size() <= static_cast<std::size_t>(kMaxContinuationSteps))
                check_memory(sweep_memory(mus.size(), a.state_size()), memory_limit, "mu",
                             std::to_string(mus.size()) + " advance ratios");
-             const SweepResult r = run_cancellable<SweepResult>(
+             const RotorSweep r = run_cancellable<RotorSweep>(
                  [&](const std::atomic<bool>* cancel, ProgressFunction report) {
                    try {
-                     return trimmed_track(a.parameters(), a.options(), o, mus, scan_step, cancel,
-                                          report);
+                     return trimmed(a, o).track(mus, scan_step, 1, cancel, report);
                    } catch (const Cancelled&) {
-                     return SweepResult{};
+                     return RotorSweep{};
                    }
                  },
                  progress);
-             return sweep_dict(a, r, damping_criterion);
+             return with_trims(sweep_dict(a, r, damping_criterion), r);
            })
       .def("trimmed_critical",
            [](const Analysis& a, const py::dict& options, const std::string& kind,
@@ -1449,16 +1463,14 @@ PYBIND11_MODULE(_flaplag, m) {
              const TrimOptions o =
                  trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
                               TrimOptions{}.tolerance);
-             CriticalResult r;
-             std::optional<TrimResult> at_mu_c;
+             RotorCritical r;
              {
                py::gil_scoped_release release;
-               r = trimmed_critical(a.parameters(), a.options(), o, c);
-               // The trim at mu_c (as `flaplag critical --trim` reports it).
-               if (r.mu_c) at_mu_c = trim(a.parameters(), *r.mu_c, o);
+               r = trimmed(a, o).critical(c);
              }
-             py::dict d = to_dict(r);
-             d["trim"] = at_mu_c ? py::object(trim_dict(*at_mu_c)) : py::object(py::none());
+             py::dict d = to_dict(static_cast<const CriticalResult&>(r));
+             // The trim at mu_c the search rests on (as `flaplag critical --trim` reports it).
+             d["trim"] = r.trim ? py::object(trim_dict(*r.trim)) : py::object(py::none());
              return d;
            })
       .def("floquet", [](const Analysis& a, double mu, double zeta_tolerance) {

@@ -158,8 +158,13 @@ def test_trimmed_point_and_sweep():
     doc = run_cli("point", "--mu", "0.3", "--scan-step", "0.1",
                   "--trim", "moment", "--thrust-coefficient", "0.005")
     check_exponents(find(doc, "exponents", "point.exponents"), point.exponents)
+    # the trim the point rests on, that of the CLI's point, bit for bit
+    check_trim(doc["trim"], point.trim)
+    assert point.trim.mu == 0.3
     # not the untrimmed rotor's exponents
-    assert abs(point.max_zeta - an.point(0.3, scan_step=0.1).max_zeta) > 1e-4
+    untrimmed = an.point(0.3, scan_step=0.1)
+    assert abs(point.max_zeta - untrimmed.max_zeta) > 1e-4
+    assert untrimmed.trim is None
     sweep = an.sweep(0.0, 0.2, 0.1, trim="thrust", thrust_coefficient=0.004, shaft_angle=0.05)
     doc = run_cli("sweep", "--mu", "0:0.2:0.1", "--trim", "thrust",
                   "--thrust-coefficient", "0.004", "--shaft-angle", "0.05")
@@ -174,6 +179,10 @@ def test_trimmed_point_and_sweep():
                 assert same(row[label]["omega"], p.dominant(label).omega)
         if "status" in row:
             assert row["status"] == p.status
+    # one trim per point, those of the CLI's sweep
+    assert len(sweep.trims) == len(doc["trim"]) == 3
+    for t_doc, t in zip(doc["trim"], sweep.trims):
+        check_trim(t_doc, t)
 
 
 TRIM_CT = "0.0042384"  # the typical case's C_T in hover (theta = 0.15, eq 2.25 inflow)

@@ -9,9 +9,11 @@ import flaplag
 from flaplag import _flaplag
 from conftest import run_cli
 
-# Attributes a class adds of its own (not fields of the C++ struct), by class.
+# Attributes a class adds of its own (not rows of the C++ struct's field table), by class: the
+# trims are the analysis' (RotorPoint::trim, RotorSweep::trims, RotorCritical::trim).
 PYTHON_ONLY = {
-    "SweepResult": {"mu", "labels", "zeta", "omega"},
+    "PointResult": {"trim"},
+    "SweepResult": {"mu", "labels", "zeta", "omega", "trims"},
     "CriticalResult": {"trim"},
     "TrimResult": {"parameters"},
 }

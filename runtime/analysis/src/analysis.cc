@@ -20,6 +20,7 @@
 #include "flaplag/rotor/validity.h"
 #include "fold.h"
 #include "internal.h"
+#include "trimmed.h"
 
 namespace flaplag {
 
@@ -130,12 +131,16 @@ double snap12(double v) {
 }  // namespace
 
 struct Analysis::Impl {
-  Impl(const RotorParameters& p, const TransitionOptions& o,
-       std::optional<double> inflow = std::nullopt, bool with_reference = true)
+  Impl(const RotorParameters& p, const TransitionOptions& o, const OperatingCondition& c,
+       bool with_reference = true)
       : options(o),
         given_options(o),
-        given_inflow(inflow),
-        builder(p, find_model(p.model), inflow),
+        given_params(p),
+        condition(checked(c)),
+        trim_in_hover(c.trimmed() ? std::optional<TrimResult>(internal::hover_trim(p, o, c.trim))
+                                  : std::nullopt),
+        builder(trim_in_hover ? trim_in_hover->parameters : p, find_model(p.model),
+                trim_in_hover ? std::optional<double>(trim_in_hover->inflow) : c.inflow),
         evaluator(FloquetEvaluator::Create(o, builder.state_size())) {
     options = evaluator->options();  // an automatic method resolved for this model's size
     hover = builder.hover();
@@ -149,6 +154,9 @@ struct Analysis::Impl {
     }
     check_finite(hover);
     validity = internal::validity_of(builder);
+    if (trim_in_hover)
+      trimmed = std::make_shared<const internal::TrimmedContinuation>(p, o, c.trim, *trim_in_hover,
+                                                                      hover_modes);
     if (with_reference) basis = internal::basis_check(p, m.flap_modes, m.lag_modes);
     if (p.mode_shapes) {
       const double defect = mass_orthogonality_defect(builder.modes());
@@ -171,7 +179,7 @@ struct Analysis::Impl {
       if (basis.reference == 0) return;
       try {
         reference_analysis = std::unique_ptr<Analysis>(new Analysis(std::make_unique<Impl>(
-            basis.reference_parameters(builder.params()), given_options, given_inflow, false)));
+            basis.reference_parameters(given_params), given_options, condition, false)));
       } catch (const InvalidInput& e) {
         basis.problem =
             "with " + std::to_string(basis.reference) + " cantilever functions: " + e.what();
@@ -247,6 +255,31 @@ struct Analysis::Impl {
     return track_exponents(hover_modes, make, mus, step, options.zeta_tolerance, used);
   }
 
+  // A point with fixed controls: continued from hover, no better than the validity envelope.
+  RotorPoint point(double mu, double scan_step) const {
+    SweepResult sw =
+        sweep_exponents(hover_modes, function(), mu, mu, scan_step, options.zeta_tolerance);
+    RotorPoint r;
+    r.mu = mu;
+    if (sw.points.empty()) {
+      r.status = Status::Failed;
+      r.message = sw.message.empty() ? "continuation from hover failed" : sw.message;
+      return r;
+    }
+    static_cast<PointResult&>(r) = std::move(sw.points.back());
+    r.mu = mu;
+    if (r.status != Status::Failed) {
+      // A problem on the way (identification) matters for the point too.
+      if (sw.status > r.status) r.Worsen(sw.status, sw.message);
+    } else if (r.message.empty()) {
+      r.message = sw.message;
+    }
+    if (r.status != Status::Failed)
+      r.Worsen(validity.empty() ? Status::Ok : Status::Warning, validity);
+    sort_for_output(r.exponents);
+    return r;
+  }
+
   // The periodic equilibrium at mu, continued from the nearest cached one below mu (the
   // continuation from hover is the expensive part of a scan).  Converged equilibria are
   // cached; the cache only shortens the continuation along the same branch.
@@ -269,9 +302,17 @@ struct Analysis::Impl {
     return eq;
   }
 
+  static const OperatingCondition& checked(const OperatingCondition& c) {
+    ThrowIfInvalid(c.Validate());
+    return c;
+  }
+
   TransitionOptions options;
-  TransitionOptions given_options;     // as given (options: the automatic method resolved)
-  std::optional<double> given_inflow;  // as given (nullopt: eq 2.24)
+  TransitionOptions given_options;  // as given (options: the automatic method resolved)
+  RotorParameters given_params;     // as given (trimmed: the builder's are the hover trim's)
+  OperatingCondition condition;
+  std::optional<TrimResult> trim_in_hover;  // trimmed: the trim at mu = 0
+  // The rotor at the trim in hover when trimmed (its modes label the exponents), else as given.
   detail::SystemBuilder builder;
   // The method and its step control (Create checks the options, after the parameters).
   std::unique_ptr<const FloquetEvaluator> evaluator;
@@ -286,6 +327,9 @@ struct Analysis::Impl {
   mutable internal::BasisCheck basis;
   mutable std::once_flag reference_once;
   mutable std::unique_ptr<Analysis> reference_analysis;  // the blade with that basis, or null
+
+  // Trimmed: the continuation that trims at every mu; null with fixed controls.
+  std::shared_ptr<const internal::TrimmedContinuation> trimmed;
 
   // Imported mode shapes that are not mass-orthogonal: a note on every result ("": none).
   std::string modes_note;
@@ -309,10 +353,18 @@ struct Analysis::Impl {
   }
 };
 
-Analysis::Analysis(const RotorParameters& params, const TransitionOptions& options)
-    : impl_(std::make_unique<Impl>(params, options)) {}
-Analysis::Analysis(const RotorParameters& params, const TransitionOptions& options, double inflow)
-    : impl_(std::make_unique<Impl>(params, options, inflow)) {}
+std::optional<InvalidInput> OperatingCondition::Validate() const {
+  if (trimmed() && inflow) {
+    return InvalidInput("inflow", round_trip_text(*inflow),
+                        "given with a trim: each trim has its own eq 2.25 inflow");
+  }
+  if (trimmed()) return trim.Validate();
+  return std::nullopt;
+}
+
+Analysis::Analysis(const RotorParameters& params, const TransitionOptions& options,
+                   const OperatingCondition& condition)
+    : impl_(std::make_unique<Impl>(params, options, condition)) {}
 Analysis::Analysis(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Analysis::~Analysis() = default;
 Analysis::Analysis(Analysis&&) noexcept = default;
@@ -320,18 +372,29 @@ Analysis& Analysis::operator=(Analysis&&) noexcept = default;
 
 const RotorParameters& Analysis::parameters() const { return impl_->builder.params(); }
 const TransitionOptions& Analysis::options() const { return impl_->options; }
+const OperatingCondition& Analysis::condition() const { return impl_->condition; }
+
+void Analysis::require_fixed_controls(const char* what) const {
+  if (!impl_->trimmed) return;
+  throw InvalidInput("trim", trim_kind_name(impl_->condition.trim.kind),
+                     std::string(what) +
+                         " is of fixed controls: use an Analysis at the trim's controls "
+                         "(OperatingCondition::At)");
+}
 const model::ModelDescriptor& Analysis::model() const { return impl_->builder.model(); }
 const ModeSet& Analysis::modes() const { return impl_->builder.modes(); }
 const HoverResult& Analysis::hover() const { return impl_->hover; }
 const std::string& Analysis::validity() const { return impl_->validity; }
 
 PeriodicSystem Analysis::system(double mu) const {
+  require_fixed_controls("the periodic system");
   check_mu(mu, "mu");
   return impl_->builder.system(mu);
 }
 
 PeriodicEquilibrium Analysis::periodic_equilibrium(
     double mu, const PeriodicEquilibriumOptions& options) const {
+  require_fixed_controls("the periodic equilibrium");
   check_mu(mu, "mu");
   options.Check();
   return flaplag::periodic_equilibrium(impl_->builder, mu, options);
@@ -351,6 +414,7 @@ FloquetSample Analysis::floquet(const PeriodicEquilibrium& equilibrium,
 }
 
 FloquetSample Analysis::floquet(double mu, double zeta_tolerance) const {
+  require_fixed_controls("a single Floquet evaluation");
   check_mu(mu, "mu");
   if (!(std::isfinite(zeta_tolerance) && zeta_tolerance > 0.0))
     throw InvalidInput("zeta_tolerance", round_trip_text(zeta_tolerance), "must be > 0");
@@ -358,6 +422,7 @@ FloquetSample Analysis::floquet(double mu, double zeta_tolerance) const {
 }
 
 ForcedResponse Analysis::response(double mu, const ResponseOptions& options) const {
+  require_fixed_controls("the periodic forced response");
   check_mu(mu, "mu");
   require_hover_linearization(parameters(), "the periodic forced response");
   options.Check();
@@ -395,6 +460,7 @@ ForcedResponse Analysis::response(double mu, const ResponseOptions& options) con
 
 TipSimulation Analysis::simulate(double mu, const Eigen::VectorXd& y0, bool forced,
                                  const SimulationOptions& options) const {
+  require_fixed_controls("the simulation");
   check_mu(mu, "mu");
   if (options.nonlinear) return simulate_nonlinear(mu, y0, forced, options);
   require_hover_linearization(parameters(), "the time-domain simulation");
@@ -477,6 +543,7 @@ TipSimulation Analysis::simulate_nonlinear(double mu, const Eigen::VectorXd& y0,
 int Analysis::state_size() const { return impl_->builder.state_size(); }
 
 SystemSnapshot Analysis::snapshot(double mu, double psi) const {
+  require_fixed_controls("the system snapshot");
   check_mu(mu, "mu");
   require_hover_linearization(parameters(), "the system snapshot");
   if (!std::isfinite(psi)) throw InvalidInput("psi", round_trip_text(psi), "must be finite");
@@ -511,7 +578,7 @@ SystemSnapshot Analysis::snapshot(double mu, double psi) const {
   return s;
 }
 
-PointResult Analysis::point(double mu, double scan_step) const {
+RotorPoint Analysis::point(double mu, double scan_step) const {
   check_mu(mu, "mu");
   if (!(scan_step > 0.0) || !std::isfinite(scan_step)) {
     throw InvalidInput("scan_step", round_trip_text(scan_step), "must be finite and > 0");
@@ -521,39 +588,21 @@ PointResult Analysis::point(double mu, double scan_step) const {
                        "too small: at most " + std::to_string(kMaxContinuationSteps) +
                            " continuation steps from hover");
   }
-  SweepResult sw = sweep_exponents(impl_->hover_modes, impl_->function(), mu, mu, scan_step,
-                                   impl_->options.zeta_tolerance);
-  PointResult r;
-  r.mu = mu;
-  if (sw.points.empty()) {
-    r.status = Status::Failed;
-    r.message = sw.message.empty() ? "continuation from hover failed" : sw.message;
-    return r;
-  }
-  r = std::move(sw.points.back());
-  r.mu = mu;
-  if (r.status != Status::Failed) {
-    // A problem on the way (identification) matters for the point too.
-    if (sw.status > r.status) r.Worsen(sw.status, sw.message);
-  } else if (r.message.empty()) {
-    r.message = sw.message;
-  }
-  if (r.status != Status::Failed)
-    r.Worsen(impl_->validity.empty() ? Status::Ok : Status::Warning, impl_->validity);
-  sort_for_output(r.exponents);
+  RotorPoint r =
+      impl_->trimmed ? impl_->trimmed->point(mu, scan_step) : impl_->point(mu, scan_step);
   impl_->fold_basis(r, impl_->options.zeta_tolerance,
                     [&](const Analysis& ref) { return ref.point(mu, scan_step); });
   impl_->note_modes(r);
   return r;
 }
 
-SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads) const {
+RotorSweep Analysis::sweep(double mu0, double mu1, double step, int threads) const {
   return sweep(mu0, mu1, step, threads, nullptr, {});
 }
 
-SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads,
-                            const std::atomic<bool>* cancel,
-                            const ProgressFunction& progress) const {
+RotorSweep Analysis::sweep(double mu0, double mu1, double step, int threads,
+                           const std::atomic<bool>* cancel,
+                           const ProgressFunction& progress) const {
   check_mu(mu0, "mu0");
   check_mu(mu1, "mu1");
   if (!(step > 0.0) || !std::isfinite(step)) {
@@ -569,14 +618,20 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads,
         "too small: at most " + std::to_string(kMaxContinuationSteps) + " continuation steps");
   }
   const int passes = impl_->passes();
-  SweepResult r = impl_->track(sweep_grid(mu0, mu1, step), step, threads, cancel,
-                               internal::pass_progress(progress, 0, passes));
-  for (PointResult& p : r.points) {
-    // mu0 + k step accumulates rounding (0.7999999999999999); report the decimal grid value.
-    p.mu = snap12(p.mu);
-    sort_for_output(p.exponents);
+  const ProgressFunction first = internal::pass_progress(progress, 0, passes);
+  RotorSweep r;
+  if (impl_->trimmed) {
+    r = impl_->trimmed->sweep(mu0, mu1, step, cancel, first);
+  } else {
+    static_cast<SweepResult&>(r) =
+        impl_->track(sweep_grid(mu0, mu1, step), step, threads, cancel, first);
+    for (PointResult& p : r.points) {
+      // mu0 + k step accumulates rounding (0.7999999999999999); report the decimal grid value.
+      p.mu = snap12(p.mu);
+      sort_for_output(p.exponents);
+    }
+    impl_->outside_envelope(r);
   }
-  impl_->outside_envelope(r);
   impl_->fold_basis(r, impl_->options.zeta_tolerance, [&](const Analysis& ref) {
     return ref.sweep(mu0, mu1, step, threads, cancel, internal::pass_progress(progress, 1, passes));
   });
@@ -584,13 +639,13 @@ SweepResult Analysis::sweep(double mu0, double mu1, double step, int threads,
   return r;
 }
 
-SweepResult Analysis::track(const std::vector<double>& mus, double scan_step, int threads) const {
+RotorSweep Analysis::track(const std::vector<double>& mus, double scan_step, int threads) const {
   return track(mus, scan_step, threads, nullptr, {});
 }
 
-SweepResult Analysis::track(const std::vector<double>& mus, double scan_step, int threads,
-                            const std::atomic<bool>* cancel,
-                            const ProgressFunction& progress) const {
+RotorSweep Analysis::track(const std::vector<double>& mus, double scan_step, int threads,
+                           const std::atomic<bool>* cancel,
+                           const ProgressFunction& progress) const {
   // The advance ratios themselves first: too many of them is their fault, not the step's.
   if (mus.size() > static_cast<std::size_t>(kMaxContinuationSteps)) {
     throw InvalidInput("mu", std::to_string(mus.size()) + " advance ratios",
@@ -609,10 +664,15 @@ SweepResult Analysis::track(const std::vector<double>& mus, double scan_step, in
                            " continuation steps in all");
   }
   const int passes = impl_->passes();
-  SweepResult r =
-      impl_->track(mus, scan_step, threads, cancel, internal::pass_progress(progress, 0, passes));
-  for (PointResult& p : r.points) sort_for_output(p.exponents);
-  impl_->outside_envelope(r);
+  const ProgressFunction first = internal::pass_progress(progress, 0, passes);
+  RotorSweep r;
+  if (impl_->trimmed) {
+    r = impl_->trimmed->track(mus, scan_step, cancel, first);
+  } else {
+    static_cast<SweepResult&>(r) = impl_->track(mus, scan_step, threads, cancel, first);
+    for (PointResult& p : r.points) sort_for_output(p.exponents);
+    impl_->outside_envelope(r);
+  }
   impl_->fold_basis(r, impl_->options.zeta_tolerance, [&](const Analysis& ref) {
     return ref.track(mus, scan_step, threads, cancel, internal::pass_progress(progress, 1, passes));
   });
@@ -620,20 +680,22 @@ SweepResult Analysis::track(const std::vector<double>& mus, double scan_step, in
   return r;
 }
 
-CriticalResult Analysis::critical(const CriticalOptions& opt) const {
-  CriticalResult r = critical_with_this_basis(opt);
+RotorCritical Analysis::critical(const CriticalOptions& opt) const {
+  RotorCritical r = critical_with_this_basis(opt);
   impl_->fold_basis(r, opt.tolerance,
                     [&](const Analysis& ref) { return ref.critical_with_this_basis(opt); });
   impl_->note_modes(r);
   return r;
 }
 
-CriticalResult Analysis::critical_with_this_basis(const CriticalOptions& opt) const {
+RotorCritical Analysis::critical_with_this_basis(const CriticalOptions& opt) const {
+  if (impl_->trimmed) return impl_->trimmed->critical(opt);
   opt.Check();
   CriticalOptions o = opt;
   o.scan_zeta_tolerance = std::min(opt.scan_zeta_tolerance, impl_->options.zeta_tolerance);
+  RotorCritical r;
   if (!parameters().periodic_linearization) {
-    CriticalResult r = find_critical(impl_->hover_modes, impl_->function(), o);
+    static_cast<CriticalResult&>(r) = find_critical(impl_->hover_modes, impl_->function(), o);
     sort_for_output(r.exponents);
     impl_->outside_envelope(r);
     return r;
@@ -641,7 +703,7 @@ CriticalResult Analysis::critical_with_this_basis(const CriticalOptions& opt) co
   // About the periodic equilibrium the search can end at a fold of its branch (fold.h).
   const internal::FoldWatch watch;
   const auto continuation = std::make_shared<Impl::Continuation>();
-  CriticalResult r =
+  static_cast<CriticalResult&>(r) =
       find_critical(impl_->hover_modes, watch.wrap(impl_->function(continuation)), o);
   std::optional<PeriodicEquilibrium> last;
   const internal::EquilibriumProbe probe = [&](double mu, PeriodicSystem* lin, double* reached) {

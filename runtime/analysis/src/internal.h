@@ -59,8 +59,8 @@ inline void check_mu(double mu, const char* name) {
   }
 }
 
-// The cancel flag and progress of a continuation (Analysis::sweep, track, trimmed_sweep,
-// trimmed_track): every FloquetFunction made by ticking() looks at the flag first (set: throws
+// The cancel flag and progress of a continuation (Analysis::sweep and track, fixed or
+// trimmed): every FloquetFunction made by ticking() looks at the flag first (set: throws
 // Cancelled) and counts its evaluation.  The evaluations planned are those of the plan of
 // track_exponents: for each advance ratio, the equal steps from the one before that reach it.
 struct Ticker {

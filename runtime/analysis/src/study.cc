@@ -12,6 +12,11 @@
 namespace flaplag {
 namespace {
 
+// A study's or map's operating condition: trimmed with its trim options, else fixed controls.
+OperatingCondition condition_of(const TrimOptions& trim) {
+  return trim.kind != TrimKind::None ? OperatingCondition::Trimmed(trim) : OperatingCondition{};
+}
+
 std::optional<InvalidInput> bad(const char* name, const std::string& value,
                                 const std::string& reason) {
   return InvalidInput(name, value, reason);
@@ -137,21 +142,13 @@ StudyResult run_study(const RotorParameters& base, const TransitionOptions& tran
         row.value = options.values[i];
         try {
           const RotorParameters p = with_parameter(base, options.parameter, row.value);
-          if (options.trim.kind != TrimKind::None) {
-            std::vector<TrimResult> at_mu_c;
-            row.critical = trimmed_critical(p, transition, options.trim, crit, &at_mu_c);
-            if (!at_mu_c.empty()) row.trim = std::move(at_mu_c.front());
-            if (options.damping_criterion)
-              row.damping_crossings = crossings_along(
-                  trimmed_sweep(p, transition, options.trim, 0.0, crit.mu_max, crit.scan_step),
-                  *options.damping_criterion);
-          } else {
-            const Analysis an(p, transition);
-            row.critical = an.critical(crit);
-            if (options.damping_criterion)
-              row.damping_crossings = crossings_along(an.sweep(0.0, crit.mu_max, crit.scan_step, 1),
-                                                      *options.damping_criterion);
-          }
+          const Analysis an(p, transition, condition_of(options.trim));
+          RotorCritical c = an.critical(crit);
+          row.trim = std::move(c.trim);
+          row.critical = std::move(c);
+          if (options.damping_criterion)
+            row.damping_crossings = crossings_along(an.sweep(0.0, crit.mu_max, crit.scan_step, 1),
+                                                    *options.damping_criterion);
         } catch (const InvalidInput& e) {
           row.critical = CriticalResult{};
           row.critical.mu_max = crit.mu_max;
@@ -187,9 +184,7 @@ MapResult run_map(const RotorParameters& base, const TransitionOptions& transiti
       try {
         const RotorParameters p = with_parameter(base, other.parameter, other.values[l]);
         const SweepResult s =
-            options.trim.kind != TrimKind::None
-                ? trimmed_track(p, transition, options.trim, mus, options.scan_step)
-                : Analysis(p, transition).track(mus, options.scan_step, 1);
+            Analysis(p, transition, condition_of(options.trim)).track(mus, options.scan_step, 1);
         for (std::size_t k = 0; k < mus.size(); ++k)
           put(k, k < s.points.size() ? cell_of(s.points[k])
                                      : failed_cell("continuation stopped: " + s.message));
@@ -203,10 +198,8 @@ MapResult run_map(const RotorParameters& base, const TransitionOptions& transiti
         const RotorParameters p =
             with_parameter(with_parameter(base, options.y.parameter, options.y.values[l]),
                            options.x.parameter, options.x.values[j]);
-        out.cells[l][j] =
-            cell_of(options.trim.kind != TrimKind::None
-                        ? trimmed_point(p, transition, options.trim, options.mu, options.scan_step)
-                        : Analysis(p, transition).point(options.mu, options.scan_step));
+        out.cells[l][j] = cell_of(Analysis(p, transition, condition_of(options.trim))
+                                      .point(options.mu, options.scan_step));
       } catch (const InvalidInput& e) {
         out.cells[l][j] = failed_cell(e.what());
       }

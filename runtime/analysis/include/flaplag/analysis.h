@@ -2,8 +2,10 @@
 //
 // Typical use (no I/O inside; safe to call in a loop):
 //   flaplag::RotorParameters p;                 // the paper's typical case
-//   flaplag::Analysis an(p, {});                // Hsu K = 50, J = 4
+//   flaplag::Analysis an(p, {});                // automatic method, fixed controls
 //   auto crit = an.critical({});                // mu_c, mode, omega, kind
+//   flaplag::Analysis at_ct(p, {}, flaplag::OperatingCondition::Trimmed(trim_options));
+//   auto trimmed = at_ct.critical({});          // mu_c at fixed C_T; trimmed.trim: at mu_c
 //
 // Invalid parameters or options throw InvalidInput from the constructor, naming the field
 // (RotorParameters, TransitionOptions, CriticalOptions) or the argument ("mu", "psi", ...) and
@@ -39,11 +41,50 @@
 #include "flaplag/rotor/hover.h"
 #include "flaplag/rotor/parameters.h"
 #include "flaplag/rotor/periodic_equilibrium.h"
+#include "flaplag/trim.h"
 
 namespace flaplag {
 
-// Results are the numerics' types (numerics/continuation.h): PointResult, SweepResult,
-// CriticalResult, with exponents sorted by label, then by omega (descending).
+// What holds at every advance ratio an Analysis evaluates: the controls and the inflow.
+//   - Fixed controls (the default, the paper): RotorParameters' theta, theta1c, theta1s and the
+//     inflow of eq 2.24, or a given inflow ratio (e.g. a trim's eq 2.25 value: At()).
+//   - Trimmed (trim.kind thrust or moment, Trimmed()): at every mu the rotor is trimmed first
+//     (trim.h), each trim with its own eq 2.25 inflow, so mu_c is that of the rotor at fixed
+//     C_T; the results carry the trims they rest on.
+// About which solution the system is linearized (hover or the periodic equilibrium) is
+// RotorParameters::periodic_linearization, in either condition.
+struct OperatingCondition {
+  TrimOptions trim;              // kind None: fixed controls
+  std::optional<double> inflow;  // fixed controls only; nullopt: eq 2.24
+  // The rotor trimmed at every mu with `o` (o.kind thrust or moment).
+  static OperatingCondition Trimmed(const TrimOptions& o) {
+    OperatingCondition c;
+    c.trim = o;
+    return c;
+  }
+  // Fixed at a trim's controls and inflow: Analysis(t.parameters, options, At(t)).
+  static OperatingCondition At(const TrimResult& t) {
+    OperatingCondition c;
+    c.inflow = t.inflow;
+    return c;
+  }
+  bool trimmed() const { return trim.kind != TrimKind::None; }
+  // InvalidInput("inflow") for an inflow not finite or given with a trim; the trim's options.
+  std::optional<InvalidInput> Validate() const;
+};
+
+// The results of Analysis::point, sweep, track and critical: the numerics' results
+// (numerics/continuation.h, exponents sorted by label, then by omega descending) and, for a
+// trimmed rotor, the trims they rest on (a trim's problems are in the result's status).
+struct RotorPoint : PointResult {
+  std::optional<TrimResult> trim;  // trimmed: the trim at mu
+};
+struct RotorSweep : SweepResult {
+  std::vector<TrimResult> trims;  // trimmed: one per point, in order; else empty
+};
+struct RotorCritical : CriticalResult {
+  std::optional<TrimResult> trim;  // trimmed: the trim at mu_c (none without mu_c)
+};
 
 // The numbers an auditor needs at one (mu, psi).  Outcome: Failed when an entry of A or f or an
 // integral is not finite.
@@ -107,7 +148,12 @@ struct TipSimulation : Outcome {
 
 class Analysis {
  public:
-  // Checks params (validate()) and options (TransitionOptions::Check()); throws InvalidInput.
+  // Checks params (validate()), options (TransitionOptions::Check()) and the condition; throws
+  // InvalidInput.  Trimmed: the rotor is trimmed in hover here (InvalidInput
+  // "thrust_coefficient" when it cannot be), and parameters(), hover(), modes() and validity()
+  // are those of that trim; system, snapshot, periodic_equilibrium, response, simulate and
+  // floquet are of fixed controls and throw InvalidInput("trim") (make an Analysis At() the
+  // trim at that mu instead).
   // With exact modes, point, sweep, track and critical are computed again with the neighbouring
   // Galerkin basis (rotor/parameters.h, reference_basis): the change is their basis_error,
   // included in their error estimates and, above 10 times the tolerance, in their status.
@@ -116,10 +162,8 @@ class Analysis {
   // (RotorParameters::mode_shapes) have no basis to compare with; when they are not
   // mass-orthogonal (mass_orthogonality_defect above kMassOrthogonalityWarning,
   // blade/imported_modes.h) point, sweep, track and critical carry a note saying so.
-  Analysis(const RotorParameters& params, const TransitionOptions& options);
-  // The same with the inflow ratio lambda given (e.g. a trim's eq 2.25 value, trim.h) instead
-  // of eq 2.24; lambda finite (else InvalidInput("inflow", ...)).
-  Analysis(const RotorParameters& params, const TransitionOptions& options, double inflow);
+  Analysis(const RotorParameters& params, const TransitionOptions& options,
+           const OperatingCondition& condition = {});
   ~Analysis();
   Analysis(Analysis&&) noexcept;
   Analysis& operator=(Analysis&&) noexcept;
@@ -128,6 +172,7 @@ class Analysis {
   // The options as given, an Automatic method replaced by the one it stands for on this model
   // (automatic_method() of its state size).
   const TransitionOptions& options() const;
+  const OperatingCondition& condition() const;
   const model::ModelDescriptor& model() const;
   const ModeSet& modes() const;
 
@@ -154,27 +199,32 @@ class Analysis {
 
   // Exponents at mu with labels from continuation (steps of at most scan_step from hover;
   // mu / scan_step <= kMaxContinuationSteps).
-  PointResult point(double mu, double scan_step = 0.01) const;
+  // Trimmed: every mu of the continuation is trimmed (a trim warm-started from the previous
+  // one for the moment trim and about the periodic equilibrium), and each evaluation costs a
+  // trim on top of the Floquet analysis; a trim that fails makes its evaluation Failed, one
+  // not converged or outside the validity envelope (trim_problem) at least Warning.
+  RotorPoint point(double mu, double scan_step = 0.01) const;
   // Sweep mu0..mu1 inclusive with the given step (0 <= mu0 < mu1 <= kMaxAdvanceRatio, step > 0,
   // at most kMaxContinuationSteps points).  Points carry the decimal grid value of mu.
   // threads: 0 = all cores, else 1..kMaxThreads (core/parallel.h).  The evaluations run in
   // stretches (track_exponents with a FloquetFunctionFactory, numerics/continuation.h), each
   // with its own warm start, so the result is the same for any number of threads; about the
-  // periodic equilibrium (whose continuation cache is shared) the stretches run one after the
-  // other whatever `threads` says.
-  SweepResult sweep(double mu0, double mu1, double step, int threads = 0) const;
+  // periodic equilibrium (whose continuation cache is shared) and for a trimmed rotor (whose
+  // trims continue from one another) the points are evaluated one after the other whatever
+  // `threads` says.
+  RotorSweep sweep(double mu0, double mu1, double step, int threads = 0) const;
   // Exponents at the given advance ratios (nondecreasing, each in [0, kMaxAdvanceRatio]),
   // continued from hover in steps of at most scan_step.  mu is reported as given.  Stretches
   // and threads as sweep: a track over the points of a sweep (the same step) is that sweep.
-  SweepResult track(const std::vector<double>& mus, double scan_step = 0.01, int threads = 0) const;
+  RotorSweep track(const std::vector<double>& mus, double scan_step = 0.01, int threads = 0) const;
   // The same two with a cancel flag, polled before every evaluation (once set, the run stops
   // after the evaluations under way and throws Cancelled), and progress (evaluations done,
   // evaluations in all, the steps from hover included; from the evaluating threads, one call at
   // a time).  The result does not depend on them.
-  SweepResult sweep(double mu0, double mu1, double step, int threads,
-                    const std::atomic<bool>* cancel, const ProgressFunction& progress) const;
-  SweepResult track(const std::vector<double>& mus, double scan_step, int threads,
-                    const std::atomic<bool>* cancel, const ProgressFunction& progress) const;
+  RotorSweep sweep(double mu0, double mu1, double step, int threads,
+                   const std::atomic<bool>* cancel, const ProgressFunction& progress) const;
+  RotorSweep track(const std::vector<double>& mus, double scan_step, int threads,
+                   const std::atomic<bool>* cancel, const ProgressFunction& progress) const;
   // opt.Check() first.  With periodic_linearization the search can end at a fold of the branch
   // of periodic equilibria through hover (a real multiplier reaches +1 and the equilibrium
   // ceases to exist: the blade loses it, a divergence-type loss of stability): mu_c is then the
@@ -182,7 +232,8 @@ class Analysis {
   // 1 (mu_c_error the larger of the bracket and the two estimates' difference; status Warning
   // when above opt.tolerance), kind Periodic at omega = 0, and the message says that the branch
   // ends there.  A failure where no multiplier approaches 1 stays Failed.
-  CriticalResult critical(const CriticalOptions& opt) const;
+  // Trimmed, about the periodic equilibrium: the fold is that of the trimmed branch.
+  RotorCritical critical(const CriticalOptions& opt) const;
 
   // The periodic forced response at mu; status Failed when there is none (a multiplier at 1),
   // Warning when the system is unstable (the blade does not settle onto it).
@@ -213,7 +264,9 @@ class Analysis {
   // An Analysis made from its Impl: the same blade with the neighbouring basis of the exact
   // modes, which point, sweep, track and critical compute again to estimate the basis error.
   explicit Analysis(std::unique_ptr<Impl> impl);
-  CriticalResult critical_with_this_basis(const CriticalOptions& options) const;
+  RotorCritical critical_with_this_basis(const CriticalOptions& options) const;
+  // Throws InvalidInput("trim") for a trimmed rotor: `what` is of fixed controls.
+  void require_fixed_controls(const char* what) const;
   TipSimulation simulate_nonlinear(double mu, const Eigen::VectorXd& y0, bool forced,
                                    const SimulationOptions& options) const;
   std::unique_ptr<Impl> impl_;

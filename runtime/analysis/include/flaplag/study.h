@@ -33,8 +33,9 @@ struct StudyOptions {
   std::string parameter;       // the varied field (not "mu")
   std::vector<double> values;  // 1..kMaxStudyValues values
   CriticalOptions critical;    // the search at each value (all_intervals is always on)
-  // kind != None: each row is trimmed at every mu of its search (trim.h, trimmed_critical):
-  // mu_c at fixed C_T.  The trim replaces theta (and, moment trim, theta1c, theta1s).
+  // kind != None: each row is trimmed at every mu of its search (trim.h, Analysis with
+  // OperatingCondition::Trimmed): mu_c at fixed C_T.  The trim replaces theta (and, moment trim,
+  // theta1c, theta1s).
   TrimOptions trim;
   int threads = 0;  // 0: as many as the hardware has; else 1..kMaxThreads (core/parallel.h)
   // Given (kDampingCriterionRange, numerics/continuation.h): each row also sweeps mu = 0,
@@ -56,7 +57,7 @@ struct StudyRow {
   // An InvalidInput at this value (e.g. an exact-mode frequency the basis cannot reach) gives
   // status Failed with the reason as message.
   CriticalResult critical;
-  // Trimmed studies: the trim at mu_c that the row's result rests on (trimmed_critical; its
+  // Trimmed studies: the trim at mu_c that the row's result rests on (RotorCritical::trim; its
   // problems are in critical's status and message); nullopt without mu_c or without a trim.
   std::optional<TrimResult> trim;
   // With StudyOptions::damping_criterion: one crossing per mode (labels in the order of the

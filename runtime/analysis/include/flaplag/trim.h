@@ -215,45 +215,7 @@ std::string trim_problem(const TrimResult& t);
 TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
                 const TrimResult* start = nullptr);
 
-// Stability at fixed C_T: every mu at which the continuation evaluates the Floquet exponents is
-// trimmed first (trim() above; the hover labels come from the trim at mu = 0), so mu_c is the
-// critical advance ratio of the trimmed rotor, not of the rotor at fixed theta.  A result is
-// never better than the trim it rests on: a trim that fails at some mu makes that evaluation
-// Failed (message from the trim), and one that did not converge or lies outside the validity
-// envelope (trim_problem) makes the point, the sweep point or mu_c (and each interval end)
-// at least Warning, with the trim's message.  The options are checked as by Analysis and
-// trim() (InvalidInput).  Each evaluation costs a trim (a few periodic responses) on top of
-// the Floquet analysis.
-// With exact modes the whole trimmed computation is made again with the neighbouring Galerkin
-// basis, its trims included (the thrust moves with the basis too), and the change is the
-// result's basis_error, folded in as by Analysis (twice the cost; the progress of a sweep or
-// track counts both passes).
-// `trims` (optional): the trims the result rests on -- the one at mu (point), one per reported
-// point (sweep, track, in order), the one at mu_c (critical; empty without mu_c).
-PointResult trimmed_point(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, double mu, double scan_step = 0.01,
-                          std::vector<TrimResult>* trims = nullptr);
-SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, double mu0, double mu1, double step,
-                          std::vector<TrimResult>* trims = nullptr);
-// At the given advance ratios (nondecreasing), continued from hover in steps of at most
-// scan_step (as Analysis::track).
-SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, const std::vector<double>& mus,
-                          double scan_step = 0.01, std::vector<TrimResult>* trims = nullptr);
-// The same two with a cancel flag and progress, as Analysis::sweep and track (Cancelled).
-SweepResult trimmed_sweep(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, double mu0, double mu1, double step,
-                          const std::atomic<bool>* cancel, const ProgressFunction& progress,
-                          std::vector<TrimResult>* trims = nullptr);
-SweepResult trimmed_track(const RotorParameters& p, const TransitionOptions& t,
-                          const TrimOptions& o, const std::vector<double>& mus, double scan_step,
-                          const std::atomic<bool>* cancel, const ProgressFunction& progress,
-                          std::vector<TrimResult>* trims = nullptr);
-// With p.periodic_linearization a fold of the trimmed equilibrium branch ends the search as in
-// Analysis::critical (mu_c at the fold, kind Periodic at omega = 0).
-CriticalResult trimmed_critical(const RotorParameters& p, const TransitionOptions& t,
-                                const TrimOptions& o, const CriticalOptions& c,
-                                std::vector<TrimResult>* trims = nullptr);
+// Stability at fixed C_T (every mu trimmed first): Analysis with OperatingCondition::Trimmed
+// (analysis.h); its results carry the trims they rest on.
 
 }  // namespace flaplag
