@@ -1,51 +1,9 @@
-// flaplag — rotor thrust and trim: the collective and cyclic pitch and the
-// inflow that give a prescribed thrust coefficient, and (moment trim) no first-harmonic flap.
-//
-// Thrust.  Every model emits the thrust of one blade from the flap load of the derivation itself
-// (ModelDescriptor::thrust):
-//   T(psi) = (l/R) int_A^B L_z dx0,   L_z = theta(psi) u_T^2 - u_T u_P   (eq 2.20 by rho a c
-//   (Omega R)^2 / 2), with theta(psi) = theta + theta1c cos psi + theta1s sin psi,
-// u_T, u_P of eqs 2.22-2.23 with the blade at the hover equilibrium q0 plus the perturbation y:
-// exactly the terms of the flap equation's load, truncated at the same order (O(eps^2) for the
-// paper ordering) and linear in y, but integrated over the span instead of Galerkin-weighted
-// (the audit report of the model lists every term).  The thrust coefficient is
-//   C_T = (sigma a / 2) (1/2 pi) int_0^2pi T(psi) dpsi     (b blades, sigma = b c / (pi R)),
-// the coefficients of the reversed-flow sector used inside it (Appendix D, as for A(psi)), and
-// y(psi) the periodic forced response of y' = A y + f about the hover equilibrium (numerics/
-// response.h), so that the steady flapping enters.  C_T is the thrust coefficient itself, not
-// C_T / sigma.  Uniform blade, no tip loss, hover: C_T = (sigma a / 2) (theta/3 - lambda/2).
-//
-// Inflow.  The trim uses the momentum relation of eq 2.25,
-//   lambda = mu tan(alpha_R) + C_T / (2 sqrt(mu^2 + lambda^2)),
-// with the target C_T, instead of the paper's eq 2.24 (which stays the untrimmed default).
-// Eq 2.24 is *not* eq 2.25 at mu = 0: it equates blade-element and momentum thrust at 3/4
-// radius, sigma a/16 [sqrt(1 + 24 theta/(sigma a)) - 1], whereas the model's own thrust with
-// eq 2.25 at mu = 0 (lambda = sqrt(C_T/2)) gives, for the uniform blade, sigma a/16 [sqrt(1 +
-// 64 theta/(3 sigma a)) - 1]: for the typical case (theta = 0.15, sigma = 0.05, a = 2 pi)
-// lambda = 0.04967 (eq 2.24) versus 0.04604 (eq 2.25), and the same C_T needs a different
-// theta (docs/validation.md, "Trim").
-//
-// Trim at advance ratio mu (RotorParameters::theta, theta1c, theta1s are replaced):
-//   - thrust: lambda from eq 2.25 with the target C_T, then theta0 (theta1c, theta1s as given)
-//     such that the model's C_T equals the target;
-//   - moment (wind-tunnel trim): theta0, theta1c, theta1s such that C_T equals the target and
-//     the first harmonic of the flap tip deflection (hover equilibrium plus periodic response,
-//     cos psi and sin psi parts) vanishes.
-// Newton's method: a forward finite-difference Jacobian at the start (or a previous trim's, see
-// trim()), updated by Broyden's rule after each step and re-evaluated when a step fails; each
-// step is halved until the residual decreases.  The periodic response uses fixed RK4 steps
-// (chosen at the first evaluation) so that the residual is a smooth function of the controls.
-// Starting point: blade-element theory for the uniform rigid blade.  Linearization: the system
-// about which stability is then analysed is the paper's (hover equilibrium at the trimmed theta0
-// and lambda; A(psi) carries the cyclic pitch).
-//
-// About the periodic equilibrium (RotorParameters::periodic_linearization): the thrust is the
-// azimuth mean of the nonlinear thrust (ModelDescriptor::nonlinear_thrust) along the periodic
-// equilibrium q°(psi) of the nonlinear equations (periodic_equilibrium.h, harmonic balance with the
-// options of the analysis, K = 16), and the first flap harmonic is q°'s; stability is then analysed
-// about that q° (TrimResult::equilibrium).  q° of each evaluation is continued from the previous
-// one's, and a trim at mu > 0.1 without a start is continued in mu from hover (steps of 0.1), so
-// that it stays on the trimmed branch through the hover equilibrium.
+// flaplag — rotor thrust and trim: the collective and cyclic pitch and the inflow that give a
+// prescribed thrust coefficient C_T (not C_T/sigma), and (moment trim) no first-harmonic flap.
+// The thrust is the model's own (the flap load of its derivation, integrated over the span, at
+// the hover equilibrium plus the periodic response; about the periodic equilibrium, along q°);
+// a trim's inflow is eq 2.25 with the target C_T, not the paper's eq 2.24; the controls come
+// from Newton's method with Broyden updates.  Derivation, formulas and choices: docs/trim.md.
 #pragma once
 
 #include <Eigen/Dense>
@@ -107,7 +65,7 @@ struct TrimOptions {
 struct ThrustResult : Outcome {
   double mu = 0.0;
   double inflow = 0.0;                  // lambda used
-  double thrust_coefficient = 0.0;      // C_T of the model's own lift distribution (see above)
+  double thrust_coefficient = 0.0;      // C_T of the model's own lift distribution (docs/trim.md)
   double flap_1c = 0.0, flap_1s = 0.0;  // first harmonic of the flap tip deflection, by l
   // Outcome: Failed: no periodic response (a multiplier at 1)
 };
