@@ -13,6 +13,26 @@
 
 namespace flaplag::cli::cmd {
 
+namespace {
+
+// The model's directions (model_api.h), in the order of a result's tips.
+std::vector<model::DirectionBlock> directions(const Analysis& an) {
+  return model::direction_blocks(an.model().flap_modes, an.model().lag_modes);
+}
+
+// "<direction><suffix>" of every direction: the keys of per-direction values in JSON.
+std::string key(const TipMotion& t, const char* suffix) { return t.direction + suffix; }
+
+// Column heads "<direction> <prefix><deflection>/l" (e.g. "flap w/l", "lag dv/l").
+std::vector<std::string> deflection_heads(const Analysis& an, const std::string& prefix) {
+  std::vector<std::string> heads;
+  for (const model::DirectionBlock& b : directions(an))
+    heads.push_back(std::string(b.name) + " " + prefix + b.deflection + "/l");
+  return heads;
+}
+
+}  // namespace
+
 Output response(const Request& r, const Analysis& an, std::string& warning) {
   ResponseOptions ro;
   ro.samples = r.samples;
@@ -22,15 +42,13 @@ Output response(const Request& r, const Analysis& an, std::string& warning) {
     j["mu"] = r.mu;
     if (f.status != Status::Failed) {
       j["psi"] = f.periodic.psi;
-      j["flap_tip"] = f.flap_tip;
-      j["lag_tip"] = f.lag_tip;
-      Json h = Json::object(), g = Json::object();
-      for (std::size_t k = 0; k < f.flap_harmonics.size(); ++k) {
-        h[harmonic_name(static_cast<int>(k))] = f.flap_harmonics[k];
-        g[harmonic_name(static_cast<int>(k))] = f.lag_harmonics[k];
+      for (const TipMotion& t : f.tips) j[key(t, "_tip")] = t.deflection;
+      for (const TipMotion& t : f.tips) {
+        Json h = Json::object();
+        for (std::size_t k = 0; k < t.harmonics.size(); ++k)
+          h[harmonic_name(static_cast<int>(k))] = t.harmonics[k];
+        j[key(t, "_harmonics")] = h;
       }
-      j["flap_harmonics"] = h;
-      j["lag_harmonics"] = g;
       j["closure"] = f.periodic.closure;
       j["error_estimate"] = optional_json(f.periodic.error);
       j["steps"] = f.periodic.steps;
@@ -45,16 +63,24 @@ Output response(const Request& r, const Analysis& an, std::string& warning) {
          " (tip deflections by l, hover equilibrium included)\n";
   if (f.status == Status::Failed)
     return text_output(r, out + status_text(f.status, vocab(r, f.message)), std::move(j));
-  TextTable h({"harmonic", "flap w/l", "lag v/l"});
-  for (std::size_t k = 0; k < f.flap_harmonics.size(); ++k)
-    h.add_row({harmonic_name(static_cast<int>(k)), short_text(f.flap_harmonics[k]),
-               short_text(f.lag_harmonics[k])});
+  std::vector<std::string> heads = deflection_heads(an, "");
+  heads.insert(heads.begin(), "harmonic");
+  TextTable h(heads);
+  for (std::size_t k = 0; k < f.tips.front().harmonics.size(); ++k) {
+    std::vector<std::string> row{harmonic_name(static_cast<int>(k))};
+    for (const TipMotion& t : f.tips) row.push_back(short_text(t.harmonics[k]));
+    h.add_row(row);
+  }
   out += h.render();
-  TextTable t({"psi [deg]", "flap w/l", "lag v/l"});
-  const std::size_t every = std::max<std::size_t>(1, f.flap_tip.size() / 24);
-  for (std::size_t k = 0; k < f.flap_tip.size(); k += every)
-    t.add_row({short_text(f.periodic.psi[k] * 180.0 / kPi), short_text(f.flap_tip[k]),
-               short_text(f.lag_tip[k])});
+  heads.front() = "psi [deg]";
+  TextTable t(heads);
+  const std::size_t samples = f.periodic.psi.size();
+  const std::size_t every = std::max<std::size_t>(1, samples / 24);
+  for (std::size_t k = 0; k < samples; k += every) {
+    std::vector<std::string> row{short_text(f.periodic.psi[k] * 180.0 / kPi)};
+    for (const TipMotion& m : f.tips) row.push_back(short_text(m.deflection[k]));
+    t.add_row(row);
+  }
   out += "\n" + t.render();
   out += "  periodicity |y(2 pi) - y(0)| / |y0| = " + short_text(f.periodic.closure) + "\n";
   return text_output(r, out + status_text(f.status, vocab(r, f.message)), std::move(j));
@@ -68,12 +94,8 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
   const Eigen::VectorXd y0 = Eigen::VectorXd::Constant(an.state_size(), r.perturbation);
   const TipSimulation ts = an.simulate(r.mu, y0, r.forced, so);
   const Simulation& s = ts.simulation;
-  const std::vector<double>& flap = ts.flap_tip;
-  const std::vector<double>& lag = ts.lag_tip;
   std::vector<double> revs;
   for (double psi : s.psi) revs.push_back(psi / kTwoPi);
-  const std::optional<double>& flap_rate = ts.flap_growth_rate;
-  const std::optional<double>& lag_rate = ts.lag_growth_rate;
   const auto json = [&] {
     Json j = header_json("simulate", an, false);
     j["mu"] = r.mu;
@@ -83,14 +105,10 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
     j["revolutions"] = r.revolutions;
     j["steps_per_rev"] = s.steps_per_rev;
     j["psi"] = s.psi;
-    j["flap_tip"] = flap;
-    j["lag_tip"] = lag;
-    if (ts.nonlinear) {
-      j["flap_total"] = ts.flap_total;
-      j["lag_total"] = ts.lag_total;
-    }
-    j["flap_growth_rate"] = optional_json(flap_rate);
-    j["lag_growth_rate"] = optional_json(lag_rate);
+    for (const TipMotion& t : ts.tips) j[key(t, "_tip")] = t.deflection;
+    if (ts.nonlinear)
+      for (const TipMotion& t : ts.tips) j[key(t, "_total")] = t.total;
+    for (const TipMotion& t : ts.tips) j[key(t, "_growth_rate")] = optional_json(t.growth_rate);
     return status_json(j, ts.status, vocab(r, ts.message));
   };
   std::optional<Json> j = result_document(r, json, &warning);
@@ -106,23 +124,28 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
            " from y0 = " + num(r.perturbation) + " in every state, " + num(r.revolutions) +
            " revolutions (" + std::to_string(s.steps_per_rev) + " RK4 steps per rev)\n";
   }
-  TextTable t(ts.nonlinear
-                  ? std::vector<std::string>{"rev", "flap dw/l", "lag dv/l", "flap w/l", "lag v/l"}
-                  : std::vector<std::string>{"rev", "flap dw/l", "lag dv/l"});
+  std::vector<std::string> heads = deflection_heads(an, "d");
+  if (ts.nonlinear) {
+    const std::vector<std::string> totals = deflection_heads(an, "");
+    heads.insert(heads.end(), totals.begin(), totals.end());
+  }
+  heads.insert(heads.begin(), "rev");
+  TextTable t(heads);
   const std::size_t every = std::max<std::size_t>(1, s.y.size() / 20);
   for (std::size_t k = 0; k < s.y.size(); k += every) {
-    std::vector<std::string> row{short_text(revs[k]), short_text(flap[k]), short_text(lag[k])};
-    if (ts.nonlinear) {
-      row.push_back(short_text(ts.flap_total[k]));
-      row.push_back(short_text(ts.lag_total[k]));
-    }
+    std::vector<std::string> row{short_text(revs[k])};
+    for (const TipMotion& m : ts.tips) row.push_back(short_text(m.deflection[k]));
+    if (ts.nonlinear)
+      for (const TipMotion& m : ts.tips) row.push_back(short_text(m.total[k]));
     t.add_row(row);
   }
   out += t.render();
-  out +=
-      "  envelope growth rate (last 3/4 of the run; compare with the largest Floquet zeta): flap " +
-      (flap_rate ? short_text(*flap_rate) : std::string("-")) + ", lag " +
-      (lag_rate ? short_text(*lag_rate) : std::string("-")) + " per rev\n";
+  std::string rates;
+  for (const TipMotion& m : ts.tips)
+    rates += (rates.empty() ? " " : ", ") + m.direction + " " +
+             (m.growth_rate ? short_text(*m.growth_rate) : std::string("-"));
+  out += "  envelope growth rate (last 3/4 of the run; compare with the largest Floquet zeta):" +
+         rates + " per rev\n";
   return text_output(r, out + status_text(ts.status, vocab(r, ts.message)), std::move(j));
 }
 

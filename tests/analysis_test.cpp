@@ -534,25 +534,27 @@ TEST(ForcedResponse, HoverIsTheStaticEquilibriumAndForwardFlightHasHarmonics) {
   const flaplag::ForcedResponse h = an.response(0.0);
   ASSERT_EQ(flaplag::Status::Ok, h.status) << h.message;
   const double g0 = an.hover().q0(0), h0 = an.hover().q0(1);
-  for (std::size_t k = 0; k < h.flap_tip.size(); ++k) {
-    EXPECT_TRUE(AbsClose(g0, h.flap_tip[k], 1e-14));
-    EXPECT_TRUE(AbsClose(h0, h.lag_tip[k], 1e-14));
+  for (std::size_t k = 0; k < flaplag::tip_motion(h.tips, "flap").deflection.size(); ++k) {
+    EXPECT_TRUE(AbsClose(g0, flaplag::tip_motion(h.tips, "flap").deflection[k], 1e-14));
+    EXPECT_TRUE(AbsClose(h0, flaplag::tip_motion(h.tips, "lag").deflection[k], 1e-14));
   }
-  EXPECT_TRUE(AbsClose(g0, h.flap_harmonics[0], 1e-14));
-  for (std::size_t c = 1; c < h.flap_harmonics.size(); ++c)
-    EXPECT_TRUE(AbsClose(0.0, h.flap_harmonics[c], 1e-14)) << c;
+  EXPECT_TRUE(AbsClose(g0, flaplag::tip_motion(h.tips, "flap").harmonics[0], 1e-14));
+  for (std::size_t c = 1; c < flaplag::tip_motion(h.tips, "flap").harmonics.size(); ++c)
+    EXPECT_TRUE(AbsClose(0.0, flaplag::tip_motion(h.tips, "flap").harmonics[c], 1e-14)) << c;
   const flaplag::ForcedResponse f = an.response(0.3);
   ASSERT_EQ(flaplag::Status::Ok, f.status) << f.message;
-  const double first = std::hypot(f.flap_harmonics[1], f.flap_harmonics[2]);
+  const double first = std::hypot(flaplag::tip_motion(f.tips, "flap").harmonics[1],
+                                  flaplag::tip_motion(f.tips, "flap").harmonics[2]);
   EXPECT_GT(first, 1e-3);  // 1/rev flapping from the mu sin(psi) terms of U_T
   // The harmonics reproduce the samples to the truncation of the 5-harmonic series.
   double worst = 0.0;
-  for (std::size_t k = 0; k < f.flap_tip.size(); ++k) {
-    double v = f.flap_harmonics[0];
+  for (std::size_t k = 0; k < flaplag::tip_motion(f.tips, "flap").deflection.size(); ++k) {
+    double v = flaplag::tip_motion(f.tips, "flap").harmonics[0];
     for (int n = 1; n <= 5; ++n)
-      v += f.flap_harmonics[2 * n - 1] * std::cos(n * f.periodic.psi[k]) +
-           f.flap_harmonics[2 * n] * std::sin(n * f.periodic.psi[k]);
-    worst = std::max(worst, std::abs(v - f.flap_tip[k]));
+      v += flaplag::tip_motion(f.tips, "flap").harmonics[2 * n - 1] *
+               std::cos(n * f.periodic.psi[k]) +
+           flaplag::tip_motion(f.tips, "flap").harmonics[2 * n] * std::sin(n * f.periodic.psi[k]);
+    worst = std::max(worst, std::abs(v - flaplag::tip_motion(f.tips, "flap").deflection[k]));
   }
   EXPECT_LT(worst, 1e-2 * first);
 }
@@ -683,10 +685,11 @@ TEST(Simulation, TipDeflectionsFromTheDisplacementStates) {
   o.samples_per_rev = 8;
   const flaplag::TipSimulation s = an.simulate(0.5, y0, false, o);
   EXPECT_EQ(s.simulation.status, flaplag::Status::Ok) << s.simulation.message;
-  ASSERT_EQ(s.flap_tip.size(), 9u);
-  EXPECT_EQ(s.flap_tip[0], 0.01);
-  EXPECT_EQ(s.lag_tip[0], 0.02);
-  EXPECT_FALSE(s.flap_growth_rate.has_value());  // one revolution: too short for a rate
+  ASSERT_EQ(flaplag::tip_motion(s.tips, "flap").deflection.size(), 9u);
+  EXPECT_EQ(flaplag::tip_motion(s.tips, "flap").deflection[0], 0.01);
+  EXPECT_EQ(flaplag::tip_motion(s.tips, "lag").deflection[0], 0.02);
+  EXPECT_FALSE(flaplag::tip_motion(s.tips, "flap")
+                   .growth_rate.has_value());  // one revolution: too short for a rate
   try {
     an.simulate(0.5, Eigen::VectorXd::Zero(3), false, o);
     FAIL() << "accepted";
@@ -744,9 +747,9 @@ TEST(NonlinearSimulation, AtHoverItSettlesAtTheHoverEquilibrium) {
   EXPECT_TRUE(AbsClose(q0(1), y(3), 1e-9 * std::abs(q0(1))));  // h -> h0
   // The start: the equilibrium plus the perturbation, and the tips measured from it.
   EXPECT_TRUE(AbsClose(q0(0) + 0.02, s.simulation.y[0](1), 1e-15));
-  EXPECT_TRUE(AbsClose(0.02, s.flap_tip[0], 1e-15));
-  EXPECT_TRUE(AbsClose(q0(0) + 0.02, s.flap_total[0], 1e-15));
-  EXPECT_LT(std::abs(s.lag_tip.back()), 1e-9);
+  EXPECT_TRUE(AbsClose(0.02, flaplag::tip_motion(s.tips, "flap").deflection[0], 1e-15));
+  EXPECT_TRUE(AbsClose(q0(0) + 0.02, flaplag::tip_motion(s.tips, "flap").total[0], 1e-15));
+  EXPECT_LT(std::abs(flaplag::tip_motion(s.tips, "lag").deflection.back()), 1e-9);
 }
 
 // At mu = 0.5 (reversed-flow sector) the nonlinear simulation from the perturbed periodic
@@ -777,9 +780,11 @@ TEST(NonlinearSimulation, ConvergesToThePeriodicEquilibrium) {
     last = std::max(last, (y[k] - eq.state(psi[k])).cwiseAbs().maxCoeff());
   EXPECT_LT(last, 1e-4 * scale) << "start " << start;
   // the tip deviation is that distance in blade terms (assumed modes: tip values 1)
-  EXPECT_LT(std::abs(s.flap_tip.back()), 1e-4 * scale);
-  EXPECT_LT(std::abs(s.lag_tip.back()), 1e-4 * scale);
-  EXPECT_TRUE(AbsClose(eq.state(psi.back())(1) + s.flap_tip.back(), s.flap_total.back(), 1e-15));
+  EXPECT_LT(std::abs(flaplag::tip_motion(s.tips, "flap").deflection.back()), 1e-4 * scale);
+  EXPECT_LT(std::abs(flaplag::tip_motion(s.tips, "lag").deflection.back()), 1e-4 * scale);
+  EXPECT_TRUE(
+      AbsClose(eq.state(psi.back())(1) + flaplag::tip_motion(s.tips, "flap").deflection.back(),
+               flaplag::tip_motion(s.tips, "flap").total.back(), 1e-15));
 }
 
 // A small perturbation of the periodic equilibrium decays like the largest Floquet exponent
@@ -800,8 +805,9 @@ TEST_P(NonlinearEnvelope, GrowthRateIsTheLargestZetaOfThePeriodicLinearization) 
   const flaplag::TipSimulation s =
       an.simulate(mu, Eigen::VectorXd::Constant(4, 1e-3), false, nonlinear_options(40, 180));
   ASSERT_EQ(s.status, flaplag::Status::Ok) << s.message;
-  ASSERT_TRUE(s.lag_growth_rate.has_value());
-  EXPECT_TRUE(RelClose(zeta, *s.lag_growth_rate, 0.01)) << "mu = " << mu;
+  ASSERT_TRUE(flaplag::tip_motion(s.tips, "lag").growth_rate.has_value());
+  EXPECT_TRUE(RelClose(zeta, *flaplag::tip_motion(s.tips, "lag").growth_rate, 0.01))
+      << "mu = " << mu;
 }
 
 INSTANTIATE_TEST_SUITE_P(TypicalCase, NonlinearEnvelope, ::testing::Values(0.3, 0.5));
@@ -820,7 +826,7 @@ TEST(NonlinearSimulation, PastTheFoldItStartsFromHoverWithAWarning) {
   EXPECT_NE(s.message.find("hover equilibrium"), std::string::npos) << s.message;
   EXPECT_NE(s.message.find("fold"), std::string::npos) << s.message;
   EXPECT_TRUE(AbsClose(an.hover().q0(0) + 0.01, s.simulation.y[0](1), 1e-15));
-  EXPECT_TRUE(AbsClose(0.01, s.flap_tip[0], 1e-15));
+  EXPECT_TRUE(AbsClose(0.01, flaplag::tip_motion(s.tips, "flap").deflection[0], 1e-15));
   for (const auto& y : s.simulation.y) EXPECT_TRUE(y.allFinite());
 }
 

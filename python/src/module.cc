@@ -820,11 +820,11 @@ py::dict response_dict(const Analysis& a, const ForcedResponse& f) {
   d["psi"] = to_numpy(p.psi);
   d["y"] = states_numpy(p.y, a.state_size());
   d["y0"] = to_numpy(p.y0);
-  d["flap_tip"] = to_numpy(f.flap_tip);
-  d["lag_tip"] = to_numpy(f.lag_tip);
-  d["flap_harmonics"] = to_numpy(f.flap_harmonics);
-  d["lag_harmonics"] = to_numpy(f.lag_harmonics);
-  d["harmonic_names"] = harmonic_names(f.flap_harmonics.size());
+  for (const TipMotion& t : f.tips) {
+    d[(t.direction + "_tip").c_str()] = to_numpy(t.deflection);
+    d[(t.direction + "_harmonics").c_str()] = to_numpy(t.harmonics);
+  }
+  d["harmonic_names"] = harmonic_names(f.tips.empty() ? 0 : f.tips.front().harmonics.size());
   d["closure"] = p.closure;
   d["error"] = optional(p.error);
   d["min_distance_to_one"] = p.min_distance_to_one;
@@ -840,15 +840,14 @@ py::dict simulation_dict(const Analysis& a, const TipSimulation& t) {
   d["mu"] = t.mu;
   d["psi"] = to_numpy(s.psi);
   d["y"] = states_numpy(s.y, a.state_size());
-  d["flap_tip"] = to_numpy(t.flap_tip);
-  d["lag_tip"] = to_numpy(t.lag_tip);
-  d["flap_growth_rate"] = optional(t.flap_growth_rate);
-  d["lag_growth_rate"] = optional(t.lag_growth_rate);
+  for (const TipMotion& m : t.tips) {
+    d[(m.direction + "_tip").c_str()] = to_numpy(m.deflection);
+    d[(m.direction + "_growth_rate").c_str()] = optional(m.growth_rate);
+    d[(m.direction + "_total").c_str()] = to_numpy(m.total);
+  }
   d["steps_per_rev"] = s.steps_per_rev;
   d["nonlinear"] = t.nonlinear;
   d["reference"] = t.reference;
-  d["flap_total"] = to_numpy(t.flap_total);
-  d["lag_total"] = to_numpy(t.lag_total);
   d["status"] = status_name(t.status);
   d["message"] = t.message;
   return d;

@@ -353,6 +353,12 @@ struct Analysis::Impl {
   }
 };
 
+const TipMotion& tip_motion(const std::vector<TipMotion>& tips, const std::string& direction) {
+  for (const TipMotion& t : tips)
+    if (t.direction == direction) return t;
+  throw InvalidInput("direction", direction, "is not a direction of this result");
+}
+
 std::optional<InvalidInput> OperatingCondition::Validate() const {
   if (trimmed() && inflow) {
     return InvalidInput("inflow", round_trip_text(*inflow),
@@ -431,14 +437,12 @@ ForcedResponse Analysis::response(double mu, const ResponseOptions& options) con
   out.periodic = periodic_response(impl_->builder.system(mu), options);
   out.status = out.periodic.status;
   out.message = out.periodic.message;
-  if (out.status == Status::Failed) return out;
   const int M = model().flap_modes, N = model().lag_modes;
-  for (const Eigen::VectorXd& y : out.periodic.y) {
-    const internal::TipDeflection t =
-        internal::tip_deflection(impl_->builder.modes(), M, N, y, &impl_->hover.q0);
-    out.flap_tip.push_back(t.flap);
-    out.lag_tip.push_back(t.lag);
-  }
+  out.tips = internal::tip_motions(M, N);  // empty motions when failed
+  if (out.status == Status::Failed) return out;
+  for (const Eigen::VectorXd& y : out.periodic.y)
+    internal::append_deflections(
+        out.tips, internal::tip_deflections(impl_->builder.modes(), M, N, y, &impl_->hover.q0));
   // Discrete Fourier coefficients over the equally spaced samples.
   auto harmonics = [&](const std::vector<double>& s) {
     const double n = static_cast<double>(s.size());
@@ -453,8 +457,7 @@ ForcedResponse Analysis::response(double mu, const ResponseOptions& options) con
     }
     return c;
   };
-  out.flap_harmonics = harmonics(out.flap_tip);
-  out.lag_harmonics = harmonics(out.lag_tip);
+  for (TipMotion& t : out.tips) t.harmonics = harmonics(t.deflection);
   return out;
 }
 
@@ -469,14 +472,13 @@ TipSimulation Analysis::simulate(double mu, const Eigen::VectorXd& y0, bool forc
   out.simulation = flaplag::simulate(impl_->builder.system(mu), y0, forced, options);
   const Simulation& s = out.simulation;
   const int M = model().flap_modes, N = model().lag_modes;
-  for (const Eigen::VectorXd& y : s.y) {
-    const internal::TipDeflection t = internal::tip_deflection(impl_->builder.modes(), M, N, y);
-    out.flap_tip.push_back(t.flap);
-    out.lag_tip.push_back(t.lag);
-  }
+  out.tips = internal::tip_motions(M, N);
+  for (const Eigen::VectorXd& y : s.y)
+    internal::append_deflections(out.tips,
+                                 internal::tip_deflections(impl_->builder.modes(), M, N, y));
   // The first quarter holds the transient of the other modes.
-  out.flap_growth_rate = envelope_growth_rate(s.psi, out.flap_tip, 0.25 * options.revolutions);
-  out.lag_growth_rate = envelope_growth_rate(s.psi, out.lag_tip, 0.25 * options.revolutions);
+  for (TipMotion& t : out.tips)
+    t.growth_rate = envelope_growth_rate(s.psi, t.deflection, 0.25 * options.revolutions);
   out.status = s.status;
   out.message = s.message;
   return out;
@@ -517,19 +519,17 @@ TipSimulation Analysis::simulate_nonlinear(double mu, const Eigen::VectorXd& y0,
   };
   out.simulation = flaplag::simulate_nonlinear(grid, rhs, reference(0.0) + y0, options);
   const Simulation& s = out.simulation;
+  out.tips = internal::tip_motions(M, N);
   for (std::size_t k = 0; k < s.y.size(); ++k) {
     const Eigen::VectorXd ref = reference(s.psi[k]);
-    const internal::TipDeflection d =
-        internal::tip_deflection(impl_->builder.modes(), M, N, s.y[k] - ref);
-    const internal::TipDeflection t =
-        internal::tip_deflection(impl_->builder.modes(), M, N, s.y[k]);
-    out.flap_tip.push_back(d.flap);
-    out.lag_tip.push_back(d.lag);
-    out.flap_total.push_back(t.flap);
-    out.lag_total.push_back(t.lag);
+    internal::append_deflections(
+        out.tips, internal::tip_deflections(impl_->builder.modes(), M, N, s.y[k] - ref));
+    const std::vector<double> total =
+        internal::tip_deflections(impl_->builder.modes(), M, N, s.y[k]);
+    for (std::size_t i = 0; i < out.tips.size(); ++i) out.tips[i].total.push_back(total[i]);
   }
-  out.flap_growth_rate = envelope_growth_rate(s.psi, out.flap_tip, 0.25 * options.revolutions);
-  out.lag_growth_rate = envelope_growth_rate(s.psi, out.lag_tip, 0.25 * options.revolutions);
+  for (TipMotion& t : out.tips)
+    t.growth_rate = envelope_growth_rate(s.psi, t.deflection, 0.25 * options.revolutions);
   out.Merge(s);
   if (out.IsUsable() && eq.status != Status::Ok) {
     out.Worsen(Status::Warning, periodic ? "the reference periodic equilibrium: " + eq.message

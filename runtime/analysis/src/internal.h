@@ -122,23 +122,36 @@ inline PeriodicEquilibriumOptions equilibrium_options() {
   return o;
 }
 
-// Tip deflections w/l (flap) and v/l (lag) of the modal displacements q0 + y, y a state in the
-// order of model_api.h and q0 (M + N values: flap then lag) the hover equilibrium, or none.
-struct TipDeflection {
-  double flap = 0.0, lag = 0.0;
-};
-inline TipDeflection tip_deflection(const ModeSet& modes, int M, int N, const Eigen::VectorXd& y,
-                                    const Eigen::VectorXd* q0 = nullptr) {
-  TipDeflection t;
-  for (int k = 0; k < M; ++k) {
-    const double g = y(model::flap_displacement_index(k, M, N));
-    t.flap += modes.flap[k]->value(0, 1.0) * (q0 != nullptr ? (*q0)(k) + g : g);
+// The tip deflection by l of each direction (model_api.h DirectionBlock, in state order: flap
+// w/l, lag v/l) of the modal displacements q0 + y, y a state in the order of model_api.h and q0
+// (M + N values, coordinate order) the hover equilibrium, or none.
+inline std::vector<double> tip_deflections(const ModeSet& modes, int M, int N,
+                                           const Eigen::VectorXd& y,
+                                           const Eigen::VectorXd* q0 = nullptr) {
+  std::vector<double> out;
+  for (const model::DirectionBlock& b : model::direction_blocks(M, N)) {
+    const auto& shapes = modes.shapes(b.direction);
+    double tip = 0.0;
+    for (int k = 0; k < b.modes; ++k) {
+      const double q = y(b.displacement_index(k));
+      tip += shapes[k]->value(0, 1.0) * (q0 != nullptr ? (*q0)(b.first_coordinate + k) + q : q);
+    }
+    out.push_back(tip);
   }
-  for (int r = 0; r < N; ++r) {
-    const double h = y(model::lag_displacement_index(r, M, N));
-    t.lag += modes.lag[r]->value(0, 1.0) * (q0 != nullptr ? (*q0)(M + r) + h : h);
-  }
-  return t;
+  return out;
+}
+
+// One TipMotion per direction, named, empty.
+inline std::vector<TipMotion> tip_motions(int M, int N) {
+  std::vector<TipMotion> out;
+  for (const model::DirectionBlock& b : model::direction_blocks(M, N))
+    out.push_back(TipMotion{b.name, {}, {}, {}, std::nullopt});
+  return out;
+}
+
+// Appends the deflections of one state (tip_deflections) to the motions' `deflection`.
+inline void append_deflections(std::vector<TipMotion>& tips, const std::vector<double>& d) {
+  for (std::size_t i = 0; i < tips.size(); ++i) tips[i].deflection.push_back(d[i]);
 }
 
 // The validity envelope (rotor/validity.h) of the operating point a builder describes: its

@@ -123,7 +123,7 @@ ThrustResult evaluate(const RotorParameters& p, const model::ModelDescriptor& m,
   const int M = m.flap_modes, N = m.lag_modes;
   const double n = static_cast<double>(r.y.size());
   for (std::size_t i = 0; i < r.y.size(); ++i) {
-    const double w = internal::tip_deflection(builder.modes(), M, N, r.y[i]).flap;
+    const double w = internal::tip_deflections(builder.modes(), M, N, r.y[i])[0];  // flap
     out.flap_1c += 2.0 / n * w * std::cos(r.psi[i]);
     out.flap_1s += 2.0 / n * w * std::sin(r.psi[i]);
   }

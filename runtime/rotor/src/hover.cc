@@ -38,11 +38,19 @@ HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_
   for (int k = 0; k < n; ++k) {
     Eigen::VectorXcd v = es.vectors.col(k);
     v /= v.norm();
-    const Eigen::VectorXcd g = v.segment(model::flap_displacement_index(0, M, N), M);
-    const Eigen::VectorXcd h = v.segment(model::lag_displacement_index(0, M, N), N);
-    const bool flap = N == 0 || (M > 0 && g.squaredNorm() >= h.squaredNorm());
-    std::string label = flap ? "flap" : "lag";
-    const Eigen::VectorXcd& part = flap ? g : h;
+    // The direction whose displacements dominate the eigenvector (the first on a tie).
+    const std::vector<model::DirectionBlock> blocks = model::direction_blocks(M, N);
+    const model::DirectionBlock* dominant = nullptr;
+    Eigen::VectorXcd part;
+    for (const model::DirectionBlock& b : blocks) {
+      if (b.modes == 0) continue;
+      Eigen::VectorXcd d = v.segment(b.displacement_index(0), b.modes);
+      if (dominant == nullptr || d.squaredNorm() > part.squaredNorm()) {
+        dominant = &b;
+        part = std::move(d);
+      }
+    }
+    std::string label = dominant->name;
     if (part.size() > 1) {
       Eigen::Index idx = 0;
       part.cwiseAbs().maxCoeff(&idx);

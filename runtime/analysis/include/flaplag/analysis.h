@@ -104,16 +104,31 @@ class Cancelled : public std::runtime_error {
   Cancelled() : std::runtime_error("cancelled") {}
 };
 
+// The tip motion of one blade direction (model_api.h DirectionBlock, in state order), by l:
+// flap w/l = sum_k eta_k(1) g_k (up), lag v/l = sum_m gamma_m(1) h_m (positive lag, eq 2.12).
+struct TipMotion {
+  std::string direction;           // "flap", "lag"
+  std::vector<double> deflection;  // at each psi of the result
+  // ForcedResponse: the harmonics of deflection, value = c[0] + sum_n (c[2n-1] cos n psi +
+  // c[2n] sin n psi), n = 1..5 (the harmonic index of periodic_system.h).  Else empty.
+  std::vector<double> harmonics;
+  // TipSimulation, nonlinear: the total deflection (reference included).  Else empty.
+  std::vector<double> total;
+  // TipSimulation: the envelope growth rate per rev (envelope_growth_rate) of deflection over the
+  // last 3/4 of the run, to compare with the largest Floquet zeta; nullopt with fewer than 3
+  // revolutions there.
+  std::optional<double> growth_rate;
+};
+// The motion of `direction` in `tips` (InvalidInput("direction") when there is none).
+const TipMotion& tip_motion(const std::vector<TipMotion>& tips, const std::string& direction);
+
 // The periodic forced response at one mu (numerics/response.h) in blade terms.
 struct ForcedResponse : Outcome {
   double mu = 0.0;
   PeriodicResponse periodic;  // of the perturbation state y about the hover equilibrium
-  // Tip deflections over one revolution at periodic.psi, hover equilibrium included, by l:
-  // flap w/l = sum_k eta_k(1) g_k (up), lag = sum_m gamma_m(1) h_m (positive lag, eq 2.12).
-  std::vector<double> flap_tip, lag_tip;
-  // Their harmonics: value = c[0] + sum_n (c[2n-1] cos n psi + c[2n] sin n psi), n = 1..5
-  // (the harmonic index of periodic_system.h).
-  std::vector<double> flap_harmonics, lag_harmonics;
+  // Per direction: the tip deflections over one revolution at periodic.psi, hover equilibrium
+  // included, and their harmonics (empty when Failed).
+  std::vector<TipMotion> tips;
 };
 
 // A time-domain simulation (numerics/response.h) in blade terms.  Linear: the perturbation y
@@ -131,17 +146,11 @@ struct TipSimulation : Outcome {
   // equilibrium) or, where there is none at this mu (beyond the fold of the hover branch),
   // "hover equilibrium" (then status Warning).  Linear: "hover equilibrium".
   std::string reference = "hover equilibrium";
-  // Tip perturbation deflections by l at simulation.psi: flap dw/l = sum_k eta_k(1) dg_k (up),
-  // lag dv/l = sum_m gamma_m(1) dh_m (positive lag), of the state minus the reference.
-  // Nonlinear: q° is a K = 16 Fourier series, so a deviation below its truncation (~1e-5 of
-  // the state at mu = 0.5) is not resolved; a decay below that floor flattens the growth rate.
-  std::vector<double> flap_tip, lag_tip;
-  // Nonlinear only: the total tip deflections w/l, v/l (reference included); empty otherwise.
-  std::vector<double> flap_total, lag_total;
-  // Envelope growth rates per rev (envelope_growth_rate) of flap_tip, lag_tip over the last 3/4
-  // of the run, to compare with the largest Floquet zeta (about the reference); nullopt with
-  // fewer than 3 revolutions there.
-  std::optional<double> flap_growth_rate, lag_growth_rate;
+  // Per direction: the tip perturbation deflections at simulation.psi (the state minus the
+  // reference), their growth rates and (nonlinear) the total deflections.  Nonlinear: q° is a
+  // K = 16 Fourier series, so a deviation below its truncation (~1e-5 of the state at mu = 0.5)
+  // is not resolved; a decay below that floor flattens the growth rate.
+  std::vector<TipMotion> tips;
   // The simulation's status, or Warning when the nonlinear reference is hover for want of a
   // periodic equilibrium.
 };

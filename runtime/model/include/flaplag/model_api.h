@@ -61,6 +61,25 @@ constexpr int coordinate_of_state(int col, int M, int N) {
                                                            : M + state_ref(col, M, N).mode;
 }
 
+// The blade directions of the state, in state order, as data: the state is, direction after
+// direction, its mode rates and then its mode displacements (eq 2.36 for one mode each).  Code
+// that handles every direction alike loops over these instead of naming flap and lag.
+struct DirectionBlock {
+  Direction direction;
+  const char* name;        // "flap", "lag": mode labels and result keys
+  const char* coordinate;  // "g", "h": the generalized coordinates (eqs 2.13-2.15)
+  const char* deflection;  // "w", "v": the displacement it bends the blade by (eq 2.12)
+  int modes;               // M, N
+  int first_state;         // the state column of its first rate
+  int first_coordinate;    // its first coordinate j of q (and equation row)
+  int rate_index(int k) const { return first_state + k; }
+  int displacement_index(int k) const { return first_state + modes + k; }
+};
+inline std::vector<DirectionBlock> direction_blocks(int M, int N) {
+  return {{Direction::Flap, "flap", "g", "w", M, flap_rate_index(0, M, N), 0},
+          {Direction::Lag, "lag", "h", "v", N, lag_rate_index(0, M, N), M}};
+}
+
 // Name of state column col: "dg1'", "dg1", "dh1'", "dh1" (1-based mode numbers).
 inline std::string state_name(int col, int M, int N) {
   const StateRef s = state_ref(col, M, N);

@@ -43,8 +43,12 @@ double cantilever_root(int j);
 struct ModeSet {
   std::vector<std::shared_ptr<const ModeShape>> flap;  // eta_k, k = 0..M-1
   std::vector<std::shared_ptr<const ModeShape>> lag;   // gamma_m, m = 0..N-1
-  std::vector<double> omega_flap;                      // rotating frequencies by Omega [M]
-  std::vector<double> omega_lag;                       // [N]
+  // The shapes of direction d (model_api.h DirectionBlock): flap or lag.
+  const std::vector<std::shared_ptr<const ModeShape>>& shapes(model::Direction d) const {
+    return d == model::Direction::Flap ? flap : lag;
+  }
+  std::vector<double> omega_flap;  // rotating frequencies by Omega [M]
+  std::vector<double> omega_lag;   // [N]
   // Nondimensional bending stiffnesses k = EI / (Omega^2 l I_b); 0 when not known (assumed modes).
   // With a blade table, k(x0) = stiffness_* times the table's column at x0.
   double stiffness_flap = 0.0;  // (EI)_y
