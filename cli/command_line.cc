@@ -533,84 +533,99 @@ CommandLine::CommandLine(const std::vector<std::string>& args) {
       continue;
     }
     if (options_done || !is_option_word(a)) {
-      if (!have_command) {
-        have_command = true;
-        if (a == "run" || a == "report") {  // main.cc expands them before this parser runs
-          problem(i, InvalidInput("subcommand", a,
-                                  "must be the first word: flaplag " + a + " CASE [OPTIONS]"));
-        } else if (!command_from_name(a, &command_)) {
-          problem(i, InvalidInput("subcommand", shown(a),
-                                  "unknown (one of " + subcommand_list() +
-                                      ", run, report; see flaplag --help)"));
-        }
-      } else if (command_ == Command::Merge || command_ == Command::Plot) {
-        inputs_.push_back(a);
-      } else {
-        const std::string cmd = full_name(command_);
-        problem(
-            i, InvalidInput("argument", shown(a),
-                            "unexpected: " + cmd + " takes options only (see " + cmd + " --help)"));
-      }
+      read_word(i, a, !have_command);
+      have_command = true;
       continue;
     }
-    // --name[=value], -o[VALUE]
-    std::string name = a;
-    std::optional<std::string> attached;
-    if (starts_with(a, "--")) {
-      const auto eq = a.find('=');
-      if (eq != std::string::npos) {
-        name = a.substr(0, eq);
-        attached = a.substr(eq + 1);
-      }
-    } else if (a.size() > 2 && starts_with(a, "-o")) {
-      name = "-o";  // -oFILE, as getopt
-      attached = a.substr(2);
-    }
-    if (name == "--help" || name == "-h") {
-      help_ = true;
-      continue;
-    }
-    if (name == "--version") {
-      version_ = true;
-      continue;
-    }
-    const OptionSpec* spec = find_any_option(name);
-    if (spec == nullptr && !well_formed_long_option(name)) {
-      // "-q", "--Gamma", "---x": not an option name at all, so the word itself is the value.
-      problem(i, InvalidInput("argument", shown(a), "unknown option (see flaplag --help)"));
-      continue;
-    }
-    if (spec == nullptr) {
-      // Show what the user meant as its value, if anything: "--bogus 1" -> "--bogus = 1".
-      std::string value = kNoValue;
-      Command c;
-      if (attached) {
-        value = shown(*attached);
-      } else if (i + 1 < args.size() && !is_option_word(args[i + 1]) &&
-                 !command_from_name(args[i + 1], &c)) {
-        value = shown(args[i + 1]);
-      }
-      problem(i, InvalidInput(name, value, "unknown option (see flaplag --help)"));
-      continue;
-    }
-    Given g{spec->name, name, "", i};
-    if (spec->takes_value) {
-      if (attached) {
-        g.text = *attached;
-      } else if (i + 1 < args.size() && !starts_with(args[i + 1], "--")) {
-        g.text = args[++i];
-      } else {
-        problem(i, InvalidInput(name, kMissing, "needs a value (" + spec->metavar + ")"));
-        continue;
-      }
-    } else if (attached) {
-      problem(i, InvalidInput(name, shown(*attached), "takes no value"));
-      continue;
-    }
-    given_.push_back(g);
+    i = read_option(args, i);
   }
-  // Options are shared by several subcommands and may come before the subcommand, so whether
-  // this one takes an option is known only now.
+  refuse_options_of_other_commands();
+}
+
+// A word that is no option: the subcommand (the first), a file of merge or plot, or a stray.
+void CommandLine::read_word(std::size_t i, const std::string& word, bool first) {
+  if (first) {
+    if (word == "run" || word == "report") {  // main.cc expands them before this parser runs
+      problem(i, InvalidInput("subcommand", word,
+                              "must be the first word: flaplag " + word + " CASE [OPTIONS]"));
+    } else if (!command_from_name(word, &command_)) {
+      problem(i, InvalidInput("subcommand", shown(word),
+                              "unknown (one of " + subcommand_list() +
+                                  ", run, report; see flaplag --help)"));
+    }
+  } else if (command_ == Command::Merge || command_ == Command::Plot) {
+    inputs_.push_back(word);
+  } else {
+    const std::string cmd = full_name(command_);
+    problem(i, InvalidInput("argument", shown(word),
+                            "unexpected: " + cmd + " takes options only (see " + cmd + " --help)"));
+  }
+}
+
+// The option args[i] with its value, attached or the next word; the index of the last word used.
+std::size_t CommandLine::read_option(const std::vector<std::string>& args, std::size_t i) {
+  const std::string& a = args[i];
+  // --name[=value], -o[VALUE]
+  std::string name = a;
+  std::optional<std::string> attached;
+  if (starts_with(a, "--")) {
+    const auto eq = a.find('=');
+    if (eq != std::string::npos) {
+      name = a.substr(0, eq);
+      attached = a.substr(eq + 1);
+    }
+  } else if (a.size() > 2 && starts_with(a, "-o")) {
+    name = "-o";  // -oFILE, as getopt
+    attached = a.substr(2);
+  }
+  if (name == "--help" || name == "-h") {
+    help_ = true;
+    return i;
+  }
+  if (name == "--version") {
+    version_ = true;
+    return i;
+  }
+  const OptionSpec* spec = find_any_option(name);
+  if (spec == nullptr && !well_formed_long_option(name)) {
+    // "-q", "--Gamma", "---x": not an option name at all, so the word itself is the value.
+    problem(i, InvalidInput("argument", shown(a), "unknown option (see flaplag --help)"));
+    return i;
+  }
+  if (spec == nullptr) {
+    // Show what the user meant as its value, if anything: "--bogus 1" -> "--bogus = 1".
+    std::string value = kNoValue;
+    Command c;
+    if (attached) {
+      value = shown(*attached);
+    } else if (i + 1 < args.size() && !is_option_word(args[i + 1]) &&
+               !command_from_name(args[i + 1], &c)) {
+      value = shown(args[i + 1]);
+    }
+    problem(i, InvalidInput(name, value, "unknown option (see flaplag --help)"));
+    return i;
+  }
+  Given g{spec->name, name, "", i};
+  if (spec->takes_value) {
+    if (attached) {
+      g.text = *attached;
+    } else if (i + 1 < args.size() && !starts_with(args[i + 1], "--")) {
+      g.text = args[++i];
+    } else {
+      problem(i, InvalidInput(name, kMissing, "needs a value (" + spec->metavar + ")"));
+      return i;
+    }
+  } else if (attached) {
+    problem(i, InvalidInput(name, shown(*attached), "takes no value"));
+    return i;
+  }
+  given_.push_back(g);
+  return i;
+}
+
+// Options are shared by several subcommands and may come before the subcommand, so whether
+// this one takes an option is known only after the whole command line.
+void CommandLine::refuse_options_of_other_commands() {
   for (const Given& g : given_) {
     if (find_option(command_, g.name) == nullptr) {
       const std::string cmd = full_name(command_);

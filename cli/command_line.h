@@ -165,7 +165,11 @@ class CommandLine {
   // The option, or InvalidInput(name, "(missing)", "required by <subcommand>").
   const Given& required(const char* name) const;
   void problem(std::size_t position, InvalidInput e);
-  // The steps of interpret(), in its order.
+  // The steps of the constructor.
+  void read_word(std::size_t i, const std::string& word, bool first);
+  std::size_t read_option(const std::vector<std::string>& args, std::size_t i);
+  void refuse_options_of_other_commands();
+  // The steps of interpret(); interpret_sweep .. interpret_campbell are those of one subcommand.
   void interpret_rotor(Request& r) const;
   ModeCounts interpret_mode_counts() const;
   void interpret_transition(Request& r) const;
