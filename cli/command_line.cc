@@ -533,84 +533,99 @@ CommandLine::CommandLine(const std::vector<std::string>& args) {
       continue;
     }
     if (options_done || !is_option_word(a)) {
-      if (!have_command) {
-        have_command = true;
-        if (a == "run" || a == "report") {  // main.cc expands them before this parser runs
-          problem(i, InvalidInput("subcommand", a,
-                                  "must be the first word: flaplag " + a + " CASE [OPTIONS]"));
-        } else if (!command_from_name(a, &command_)) {
-          problem(i, InvalidInput("subcommand", shown(a),
-                                  "unknown (one of " + subcommand_list() +
-                                      ", run, report; see flaplag --help)"));
-        }
-      } else if (command_ == Command::Merge || command_ == Command::Plot) {
-        inputs_.push_back(a);
-      } else {
-        const std::string cmd = full_name(command_);
-        problem(
-            i, InvalidInput("argument", shown(a),
-                            "unexpected: " + cmd + " takes options only (see " + cmd + " --help)"));
-      }
+      read_word(i, a, !have_command);
+      have_command = true;
       continue;
     }
-    // --name[=value], -o[VALUE]
-    std::string name = a;
-    std::optional<std::string> attached;
-    if (starts_with(a, "--")) {
-      const auto eq = a.find('=');
-      if (eq != std::string::npos) {
-        name = a.substr(0, eq);
-        attached = a.substr(eq + 1);
-      }
-    } else if (a.size() > 2 && starts_with(a, "-o")) {
-      name = "-o";  // -oFILE, as getopt
-      attached = a.substr(2);
-    }
-    if (name == "--help" || name == "-h") {
-      help_ = true;
-      continue;
-    }
-    if (name == "--version") {
-      version_ = true;
-      continue;
-    }
-    const OptionSpec* spec = find_any_option(name);
-    if (spec == nullptr && !well_formed_long_option(name)) {
-      // "-q", "--Gamma", "---x": not an option name at all, so the word itself is the value.
-      problem(i, InvalidInput("argument", shown(a), "unknown option (see flaplag --help)"));
-      continue;
-    }
-    if (spec == nullptr) {
-      // Show what the user meant as its value, if anything: "--bogus 1" -> "--bogus = 1".
-      std::string value = kNoValue;
-      Command c;
-      if (attached) {
-        value = shown(*attached);
-      } else if (i + 1 < args.size() && !is_option_word(args[i + 1]) &&
-                 !command_from_name(args[i + 1], &c)) {
-        value = shown(args[i + 1]);
-      }
-      problem(i, InvalidInput(name, value, "unknown option (see flaplag --help)"));
-      continue;
-    }
-    Given g{spec->name, name, "", i};
-    if (spec->takes_value) {
-      if (attached) {
-        g.text = *attached;
-      } else if (i + 1 < args.size() && !starts_with(args[i + 1], "--")) {
-        g.text = args[++i];
-      } else {
-        problem(i, InvalidInput(name, kMissing, "needs a value (" + spec->metavar + ")"));
-        continue;
-      }
-    } else if (attached) {
-      problem(i, InvalidInput(name, shown(*attached), "takes no value"));
-      continue;
-    }
-    given_.push_back(g);
+    i = read_option(args, i);
   }
-  // Options are shared by several subcommands and may come before the subcommand, so whether
-  // this one takes an option is known only now.
+  refuse_options_of_other_commands();
+}
+
+// A word that is no option: the subcommand (the first), a file of merge or plot, or a stray.
+void CommandLine::read_word(std::size_t i, const std::string& word, bool first) {
+  if (first) {
+    if (word == "run" || word == "report") {  // main.cc expands them before this parser runs
+      problem(i, InvalidInput("subcommand", word,
+                              "must be the first word: flaplag " + word + " CASE [OPTIONS]"));
+    } else if (!command_from_name(word, &command_)) {
+      problem(i, InvalidInput("subcommand", shown(word),
+                              "unknown (one of " + subcommand_list() +
+                                  ", run, report; see flaplag --help)"));
+    }
+  } else if (command_ == Command::Merge || command_ == Command::Plot) {
+    inputs_.push_back(word);
+  } else {
+    const std::string cmd = full_name(command_);
+    problem(i, InvalidInput("argument", shown(word),
+                            "unexpected: " + cmd + " takes options only (see " + cmd + " --help)"));
+  }
+}
+
+// The option args[i] with its value, attached or the next word; the index of the last word used.
+std::size_t CommandLine::read_option(const std::vector<std::string>& args, std::size_t i) {
+  const std::string& a = args[i];
+  // --name[=value], -o[VALUE]
+  std::string name = a;
+  std::optional<std::string> attached;
+  if (starts_with(a, "--")) {
+    const auto eq = a.find('=');
+    if (eq != std::string::npos) {
+      name = a.substr(0, eq);
+      attached = a.substr(eq + 1);
+    }
+  } else if (a.size() > 2 && starts_with(a, "-o")) {
+    name = "-o";  // -oFILE, as getopt
+    attached = a.substr(2);
+  }
+  if (name == "--help" || name == "-h") {
+    help_ = true;
+    return i;
+  }
+  if (name == "--version") {
+    version_ = true;
+    return i;
+  }
+  const OptionSpec* spec = find_any_option(name);
+  if (spec == nullptr && !well_formed_long_option(name)) {
+    // "-q", "--Gamma", "---x": not an option name at all, so the word itself is the value.
+    problem(i, InvalidInput("argument", shown(a), "unknown option (see flaplag --help)"));
+    return i;
+  }
+  if (spec == nullptr) {
+    // Show what the user meant as its value, if anything: "--bogus 1" -> "--bogus = 1".
+    std::string value = kNoValue;
+    Command c;
+    if (attached) {
+      value = shown(*attached);
+    } else if (i + 1 < args.size() && !is_option_word(args[i + 1]) &&
+               !command_from_name(args[i + 1], &c)) {
+      value = shown(args[i + 1]);
+    }
+    problem(i, InvalidInput(name, value, "unknown option (see flaplag --help)"));
+    return i;
+  }
+  Given g{spec->name, name, "", i};
+  if (spec->takes_value) {
+    if (attached) {
+      g.text = *attached;
+    } else if (i + 1 < args.size() && !starts_with(args[i + 1], "--")) {
+      g.text = args[++i];
+    } else {
+      problem(i, InvalidInput(name, kMissing, "needs a value (" + spec->metavar + ")"));
+      return i;
+    }
+  } else if (attached) {
+    problem(i, InvalidInput(name, shown(*attached), "takes no value"));
+    return i;
+  }
+  given_.push_back(g);
+  return i;
+}
+
+// Options are shared by several subcommands and may come before the subcommand, so whether
+// this one takes an option is known only after the whole command line.
+void CommandLine::refuse_options_of_other_commands() {
   for (const Given& g : given_) {
     if (find_option(command_, g.name) == nullptr) {
       const std::string cmd = full_name(command_);
@@ -710,15 +725,34 @@ void CommandLine::apply_mode_shapes(Request& r) const {
   }
 }
 
+// The options are read in a fixed order (rotor, transition, output, model, the subcommand's own,
+// trim, run-wide), so that of several bad options the same one is always named first.
 Request CommandLine::interpret() const {
   check();
   Request r;
   r.command = command_;
-  const Command c = command_;
-  // The option as typed, for messages ("-o" or "--output").
-  auto spelled = [&](const Given* g) { return g->spelling; };
+  interpret_rotor(r);
+  const ModeCounts modes = interpret_mode_counts();
+  interpret_transition(r);
+  interpret_output(r);
+  if (command_ != Command::Models && command_ != Command::Modes) interpret_model(r, modes);
+  interpret_subcommand(r, modes);
+  interpret_trim(r);
+  if (command_ == Command::Study || command_ == Command::Map) interpret_batch(r);
+  interpret_run_options(r);
+  check_run_memory(r);
+  return r;
+}
 
-  // Rotor parameters, in table order.
+const CommandLine::Given& CommandLine::required(const char* name) const {
+  const Given* g = given(name);
+  if (g == nullptr) throw InvalidInput(name, kMissing, "required by " + full_name(command_));
+  return *g;
+}
+
+// Rotor parameters, in table order, then the blade table and the mode file over them.
+void CommandLine::interpret_rotor(Request& r) const {
+  const Command c = command_;
   for (const OptionSpec& o : options_of(c)) {
     if (o.rotor == nullptr) continue;
     if (const Given* g = given(o.name)) set_parameter(r.params, o, g->text);
@@ -726,14 +760,20 @@ Request CommandLine::interpret() const {
   apply_blade(r);
   apply_mode_shapes(r);
   if (c != Command::Models && c != Command::Modes) validate(r.params);
+}
 
-  int flap_modes = 1, lag_modes = 1;
-  const Given* flap_given = given("--flap-modes");
-  const Given* lag_given = given("--lag-modes");
-  if (flap_given)
-    flap_modes = parse_int(spelled(flap_given), flap_given->text, 1, model::kMaxModes);
-  if (lag_given) lag_modes = parse_int(spelled(lag_given), lag_given->text, 1, model::kMaxModes);
+CommandLine::ModeCounts CommandLine::interpret_mode_counts() const {
+  ModeCounts m;
+  m.flap_given = given("--flap-modes");
+  m.lag_given = given("--lag-modes");
+  if (m.flap_given)
+    m.flap = parse_int(m.flap_given->spelling, m.flap_given->text, 1, model::kMaxModes);
+  if (m.lag_given) m.lag = parse_int(m.lag_given->spelling, m.lag_given->text, 1, model::kMaxModes);
+  return m;
+}
 
+// --method, --steps, --terms, --zeta-tolerance.
+void CommandLine::interpret_transition(Request& r) const {
   if (const Given* g = given("--method")) {
     if (!method_from_name(g->text, &r.transition.method))
       throw InvalidInput(g->spelling, shown(g->text), "must be one of " + method_names());
@@ -749,62 +789,63 @@ Request CommandLine::interpret() const {
   if (const Given* g = given("--zeta-tolerance")) {
     r.transition.zeta_tolerance = parse_real(g->spelling, g->text);
   }
+}
 
+// --json, -o.
+void CommandLine::interpret_output(Request& r) const {
   r.json = given("--json") != nullptr;
   if (const Given* g = given("-o")) {
     if (g->text.empty()) throw InvalidInput(g->spelling, shown(g->text), "empty file name");
     r.output = g->text == "-" ? "" : g->text;
   }
+}
 
-  const bool analysis = c != Command::Models && c != Command::Modes;
-  if (analysis) {
-    // --spec FILE.toml: the model is derived from the file now (runtime_spec.h).
-    if (const Given* g = given("--spec")) {
-      if (const Given* m = given("--model"))
-        throw InvalidInput(m->spelling, shown(m->text), "not with --spec (the spec is the model)");
-      try {
-        r.params.model = spec::load_spec(g->text).name;
-      } catch (const InvalidInput& e) {
-        throw InvalidInput(g->spelling, shown(g->text), e.reason());
-      }
+// The model of an analysis: --spec (and its --audit), and --flap-modes M --lag-modes N, which
+// select the model "<model>-<M>x<N>" (1x1 is <model> itself).
+void CommandLine::interpret_model(Request& r, const ModeCounts& modes) const {
+  // --spec FILE.toml: the model is derived from the file now (runtime_spec.h).
+  if (const Given* g = given("--spec")) {
+    if (const Given* m = given("--model"))
+      throw InvalidInput(m->spelling, shown(m->text), "not with --spec (the spec is the model)");
+    try {
+      r.params.model = spec::load_spec(g->text).name;
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(g->spelling, shown(g->text), e.reason());
     }
-    if (const Given* g = given("--audit")) {
-      if (given("--spec") == nullptr)
-        throw InvalidInput(g->spelling, shown(g->text),
-                           "needs --spec (the report of a compiled model is generated/<model>.md)");
-      if (g->text.empty()) throw InvalidInput(g->spelling, shown(g->text), "empty file name");
-      r.audit = g->text;
+  }
+  if (const Given* g = given("--audit")) {
+    if (given("--spec") == nullptr)
+      throw InvalidInput(g->spelling, shown(g->text),
+                         "needs --spec (the report of a compiled model is generated/<model>.md)");
+    if (g->text.empty()) throw InvalidInput(g->spelling, shown(g->text), "empty file name");
+    r.audit = g->text;
+  }
+  if (modes.flap_given || modes.lag_given) {
+    if ((modes.flap > 1 || modes.lag > 1) && r.params.modes == ModeKind::Assumed) {
+      const Given* many = modes.flap > 1 ? modes.flap_given : modes.lag_given;
+      throw InvalidInput(many->spelling, shown(many->text),
+                         "more than one mode needs --modes exact (the assumed mode of eq 4.1 "
+                         "is one flap and one lag mode)");
     }
-    // --flap-modes M --lag-modes N select the model "<model>-<M>x<N>"; 1x1 is <model> itself.
-    if (flap_given || lag_given) {
-      if ((flap_modes > 1 || lag_modes > 1) && r.params.modes == ModeKind::Assumed) {
-        const Given* many = flap_modes > 1 ? flap_given : lag_given;
-        throw InvalidInput(many->spelling, shown(many->text),
-                           "more than one mode needs --modes exact (the assumed mode of eq 4.1 "
-                           "is one flap and one lag mode)");
-      }
-      std::string why;
-      const model::ModelDescriptor* named = compiled_model(r.params.model, &why);
-      if (named == nullptr) {
-        const Given* g = given("--model");
-        throw InvalidInput(g != nullptr ? g->spelling : "--model", shown(r.params.model), why);
-      }
-      r.params.model = find_model(named->base, flap_modes, lag_modes).name;
-      // Galerkin's method gives at most --basis rotating modes per direction: the converged
-      // basis (the default, 12) holds every mode count; with --basis N the library refuses a
-      // basis below them, naming --basis.
-    } else if (std::string why; compiled_model(r.params.model, &why) == nullptr) {
+    std::string why;
+    const model::ModelDescriptor* named = compiled_model(r.params.model, &why);
+    if (named == nullptr) {
       const Given* g = given("--model");
       throw InvalidInput(g != nullptr ? g->spelling : "--model", shown(r.params.model), why);
     }
+    r.params.model = find_model(named->base, modes.flap, modes.lag).name;
+    // Galerkin's method gives at most --basis rotating modes per direction: the converged
+    // basis (the default, 12) holds every mode count; with --basis N the library refuses a
+    // basis below them, naming --basis.
+  } else if (std::string why; compiled_model(r.params.model, &why) == nullptr) {
+    const Given* g = given("--model");
+    throw InvalidInput(g != nullptr ? g->spelling : "--model", shown(r.params.model), why);
   }
+}
 
-  auto required = [&](const char* name) -> const Given& {
-    const Given* g = given(name);
-    if (g == nullptr) throw InvalidInput(name, kMissing, "required by " + full_name(c));
-    return *g;
-  };
-
+// The options of the subcommand itself.
+void CommandLine::interpret_subcommand(Request& r, const ModeCounts& modes) const {
+  const Command c = command_;
   switch (c) {
     case Command::Point:
     case Command::System: {
@@ -817,22 +858,9 @@ Request CommandLine::interpret() const {
       if (const Given* g = given("--scan-step")) r.scan_step = parse_real(g->spelling, g->text);
       break;
     }
-    case Command::Sweep: {
-      const Given& mu = required("--mu");
-      const Range range = parse_range(mu.spelling, mu.text);
-      r.sweep_start = range.start;
-      r.sweep_stop = range.stop;
-      r.sweep_step = range.step;
-      if (const Given* g = given("--format")) {
-        if (g->text == "csv")
-          r.csv = true;
-        else if (g->text != "table")
-          throw InvalidInput(g->spelling, shown(g->text), "must be table or csv");
-        if (r.csv && r.json)
-          throw InvalidInput(g->spelling, shown(g->text), "cannot be combined with --json");
-      }
+    case Command::Sweep:
+      interpret_sweep(r);
       break;
-    }
     case Command::Critical:
       if (const Given* g = given("--mu-max")) r.mu_max = parse_real(g->spelling, g->text);
       if (const Given* g = given("--scan-step")) r.scan_step = parse_real(g->spelling, g->text);
@@ -844,51 +872,9 @@ Request CommandLine::interpret() const {
         r.spec = g->text;
       }
       break;
-    case Command::Modes: {
-      // Every rotor option is accepted (one option string serves every subcommand) and checked;
-      // the modes use the blade's.
-      validate(r.params);
-      if (r.params.basis == kElementBasis) {
-        const Given* b = given("--basis");
-        throw InvalidInput(b ? b->spelling : "--basis", b ? shown(b->text) : "elements",
-                           "flaplag modes shows the Galerkin modes and their Fig 9 relation "
-                           "(--basis 1..12, converged or paper); the finite elements' "
-                           "frequencies are in every analysis result's hover exponents");
-      }
-      const int basis = galerkin_basis(r.params);
-      if (flap_modes > basis) {
-        throw InvalidInput(flap_given->spelling, shown(flap_given->text),
-                           "must not exceed --basis = " + std::to_string(basis));
-      }
-      if (lag_modes > basis) {
-        throw InvalidInput(lag_given->spelling, shown(lag_given->text),
-                           "must not exceed --basis = " + std::to_string(basis));
-      }
-      const Given* nr = given("--nonrotating");
-      const std::string spelling = nr ? nr->spelling : "--nonrotating";
-      const std::string text = nr ? nr->text : "0:2.5:0.1";
-      const Range range = parse_range(spelling, text);
-      if (range.count < 2) {
-        throw InvalidInput(spelling, shown(text), "STEP exceeds the range: need 2 points or more");
-      }
-      r.fig9_from = range.start;
-      r.fig9_to = range.stop;
-      r.fig9_step = range.step;
-      r.fig9_points = range.count;
-      if (const Given* g = given("--points")) {
-        r.shape_points = parse_int(g->spelling, g->text, 2, kMaxPoints);
-      }
-      if (const Given* g = given("--export-shapes")) {
-        if (g->text.empty()) throw InvalidInput(g->spelling, shown(g->text), "empty file name");
-        if (g->text == "-")
-          throw InvalidInput(g->spelling, shown(g->text),
-                             "needs a file (standard output carries the modes' table)");
-        r.export_shapes = g->text;
-      }
-      r.flap_modes = flap_modes;
-      r.lag_modes = lag_modes;
+    case Command::Modes:
+      interpret_modes(r, modes);
       break;
-    }
     case Command::Study: {
       const Given& v = required("--vary");
       parse_axis(v.spelling, v.text, false, r.vary, r.vary_values);
@@ -896,21 +882,9 @@ Request CommandLine::interpret() const {
       if (const Given* g = given("--scan-step")) r.scan_step = parse_real(g->spelling, g->text);
       break;
     }
-    case Command::Map: {
-      const Given& x = required("--x");
-      const Given& y = required("--y");
-      parse_axis(x.spelling, x.text, true, r.x_name, r.x_values);
-      parse_axis(y.spelling, y.text, true, r.y_name, r.y_values);
-      if (r.x_name == r.y_name)
-        throw InvalidInput(y.spelling, shown(y.text), "must vary another quantity than --x");
-      if (const Given* g = given("--mu")) {
-        if (r.x_name == "mu" || r.y_name == "mu")
-          throw InvalidInput(g->spelling, shown(g->text), "mu is already an axis");
-        r.mu = parse_real(g->spelling, g->text);
-      }
-      if (const Given* g = given("--scan-step")) r.scan_step = parse_real(g->spelling, g->text);
+    case Command::Map:
+      interpret_map(r);
       break;
-    }
     case Command::Response: {
       const Given& mu = required("--mu");
       r.mu = parse_real(mu.spelling, mu.text);
@@ -919,19 +893,9 @@ Request CommandLine::interpret() const {
         r.samples = parse_int(g->spelling, g->text, 12, 100000);
       break;
     }
-    case Command::Simulate: {
-      const Given& mu = required("--mu");
-      r.mu = parse_real(mu.spelling, mu.text);
-      if (const Given* g = given("--revs")) r.revolutions = parse_real(g->spelling, g->text);
-      if (const Given* g = given("--perturbation"))
-        r.perturbation = parse_real(g->spelling, g->text);
-      r.forced = given("--forced") != nullptr;
-      r.nonlinear = given("--nonlinear") != nullptr;
-      r.samples = 36;
-      if (const Given* g = given("--samples"))
-        r.samples = parse_int(g->spelling, g->text, 1, 10000);
+    case Command::Simulate:
+      interpret_simulate(r);
       break;
-    }
     case Command::Merge:
       if (inputs_.empty())
         throw InvalidInput("argument", kMissing,
@@ -939,26 +903,7 @@ Request CommandLine::interpret() const {
       r.inputs = inputs_;
       break;
     case Command::Plot:
-      if (inputs_.empty())
-        throw InvalidInput("argument", kMissing,
-                           "flaplag plot needs the data: flaplag plot DATA.json... --plot "
-                           "FILE.svg");
-      required("--plot");
-      r.inputs = inputs_;
-      // --label may be repeated: one per data file, in order.
-      for (const Given& g : given_)
-        if (g.name == "--label") r.labels.push_back(g.text);
-      if (!r.labels.empty() && r.labels.size() != r.inputs.size())
-        throw InvalidInput("--label", shown(r.labels.back()),
-                           std::to_string(r.labels.size()) + " given for " +
-                               std::to_string(r.inputs.size()) +
-                               " data files (one --label per file, in order)");
-      r.max_zeta = given("--max-zeta") != nullptr;
-      if (const Given* g = given("--mode")) {
-        if (r.max_zeta)
-          throw InvalidInput(g->spelling, shown(g->text), "does not go with --max-zeta");
-        r.mode = g->text;
-      }
+      interpret_plot(r);
       break;
     case Command::Trim: {
       const Given& mu = required("--mu");
@@ -966,23 +911,146 @@ Request CommandLine::interpret() const {
       r.trim.kind = TrimKind::Thrust;
       break;
     }
-    case Command::Campbell: {
-      CampbellOptions& o = r.campbell;
-      if (const Given* g = given("--speed-max")) o.speed_max = parse_real(g->spelling, g->text);
-      if (const Given* g = given("--speeds"))
-        o.points =
-            parse_int(g->spelling, g->text, 2, static_cast<int>(kCampbellPointsRange.interval.hi));
-      if (const Given* g = given("--mu")) o.mu = parse_real(g->spelling, g->text);
-      if (const Given* g = given("--harmonics"))
-        o.harmonics = parse_int(g->spelling, g->text, 1,
-                                static_cast<int>(kCampbellHarmonicsRange.interval.hi));
-      if (const Given* g = given("--scan-step")) o.scan_step = parse_real(g->spelling, g->text);
-      o.Check();  // errors name the option's field
+    case Command::Campbell:
+      interpret_campbell(r);
       break;
-    }
     case Command::Typical:
       break;
   }
+}
+
+// sweep: --mu A:B:STEP, --format.
+void CommandLine::interpret_sweep(Request& r) const {
+  const Given& mu = required("--mu");
+  const Range range = parse_range(mu.spelling, mu.text);
+  r.sweep_start = range.start;
+  r.sweep_stop = range.stop;
+  r.sweep_step = range.step;
+  if (const Given* g = given("--format")) {
+    if (g->text == "csv")
+      r.csv = true;
+    else if (g->text != "table")
+      throw InvalidInput(g->spelling, shown(g->text), "must be table or csv");
+    if (r.csv && r.json)
+      throw InvalidInput(g->spelling, shown(g->text), "cannot be combined with --json");
+  }
+}
+
+// modes: the basis and the mode counts it holds, --nonrotating, --points, --export-shapes.
+void CommandLine::interpret_modes(Request& r, const ModeCounts& modes) const {
+  // Every rotor option is accepted (one option string serves every subcommand) and checked;
+  // the modes use the blade's.
+  validate(r.params);
+  if (r.params.basis == kElementBasis) {
+    const Given* b = given("--basis");
+    throw InvalidInput(b ? b->spelling : "--basis", b ? shown(b->text) : "elements",
+                       "flaplag modes shows the Galerkin modes and their Fig 9 relation "
+                       "(--basis 1..12, converged or paper); the finite elements' "
+                       "frequencies are in every analysis result's hover exponents");
+  }
+  const int basis = galerkin_basis(r.params);
+  if (modes.flap > basis) {
+    throw InvalidInput(modes.flap_given->spelling, shown(modes.flap_given->text),
+                       "must not exceed --basis = " + std::to_string(basis));
+  }
+  if (modes.lag > basis) {
+    throw InvalidInput(modes.lag_given->spelling, shown(modes.lag_given->text),
+                       "must not exceed --basis = " + std::to_string(basis));
+  }
+  const Given* nr = given("--nonrotating");
+  const std::string spelling = nr ? nr->spelling : "--nonrotating";
+  const std::string text = nr ? nr->text : "0:2.5:0.1";
+  const Range range = parse_range(spelling, text);
+  if (range.count < 2) {
+    throw InvalidInput(spelling, shown(text), "STEP exceeds the range: need 2 points or more");
+  }
+  r.fig9_from = range.start;
+  r.fig9_to = range.stop;
+  r.fig9_step = range.step;
+  r.fig9_points = range.count;
+  if (const Given* g = given("--points")) {
+    r.shape_points = parse_int(g->spelling, g->text, 2, kMaxPoints);
+  }
+  if (const Given* g = given("--export-shapes")) {
+    if (g->text.empty()) throw InvalidInput(g->spelling, shown(g->text), "empty file name");
+    if (g->text == "-")
+      throw InvalidInput(g->spelling, shown(g->text),
+                         "needs a file (standard output carries the modes' table)");
+    r.export_shapes = g->text;
+  }
+  r.flap_modes = modes.flap;
+  r.lag_modes = modes.lag;
+}
+
+// map: --x, --y, --mu, --scan-step.
+void CommandLine::interpret_map(Request& r) const {
+  const Given& x = required("--x");
+  const Given& y = required("--y");
+  parse_axis(x.spelling, x.text, true, r.x_name, r.x_values);
+  parse_axis(y.spelling, y.text, true, r.y_name, r.y_values);
+  if (r.x_name == r.y_name)
+    throw InvalidInput(y.spelling, shown(y.text), "must vary another quantity than --x");
+  if (const Given* g = given("--mu")) {
+    if (r.x_name == "mu" || r.y_name == "mu")
+      throw InvalidInput(g->spelling, shown(g->text), "mu is already an axis");
+    r.mu = parse_real(g->spelling, g->text);
+  }
+  if (const Given* g = given("--scan-step")) r.scan_step = parse_real(g->spelling, g->text);
+}
+
+// simulate: --mu, --revs, --perturbation, --forced, --nonlinear, --samples.
+void CommandLine::interpret_simulate(Request& r) const {
+  const Given& mu = required("--mu");
+  r.mu = parse_real(mu.spelling, mu.text);
+  if (const Given* g = given("--revs")) r.revolutions = parse_real(g->spelling, g->text);
+  if (const Given* g = given("--perturbation")) r.perturbation = parse_real(g->spelling, g->text);
+  r.forced = given("--forced") != nullptr;
+  r.nonlinear = given("--nonlinear") != nullptr;
+  r.samples = 36;
+  if (const Given* g = given("--samples")) r.samples = parse_int(g->spelling, g->text, 1, 10000);
+}
+
+// plot: the data files, --plot, --label per file, --max-zeta, --mode.
+void CommandLine::interpret_plot(Request& r) const {
+  if (inputs_.empty())
+    throw InvalidInput("argument", kMissing,
+                       "flaplag plot needs the data: flaplag plot DATA.json... --plot "
+                       "FILE.svg");
+  required("--plot");
+  r.inputs = inputs_;
+  // --label may be repeated: one per data file, in order.
+  for (const Given& g : given_)
+    if (g.name == "--label") r.labels.push_back(g.text);
+  if (!r.labels.empty() && r.labels.size() != r.inputs.size())
+    throw InvalidInput("--label", shown(r.labels.back()),
+                       std::to_string(r.labels.size()) + " given for " +
+                           std::to_string(r.inputs.size()) +
+                           " data files (one --label per file, in order)");
+  r.max_zeta = given("--max-zeta") != nullptr;
+  if (const Given* g = given("--mode")) {
+    if (r.max_zeta) throw InvalidInput(g->spelling, shown(g->text), "does not go with --max-zeta");
+    r.mode = g->text;
+  }
+}
+
+// campbell: --speed-max, --speeds, --mu, --harmonics, --scan-step.
+void CommandLine::interpret_campbell(Request& r) const {
+  CampbellOptions& o = r.campbell;
+  if (const Given* g = given("--speed-max")) o.speed_max = parse_real(g->spelling, g->text);
+  if (const Given* g = given("--speeds"))
+    o.points =
+        parse_int(g->spelling, g->text, 2, static_cast<int>(kCampbellPointsRange.interval.hi));
+  if (const Given* g = given("--mu")) o.mu = parse_real(g->spelling, g->text);
+  if (const Given* g = given("--harmonics"))
+    o.harmonics =
+        parse_int(g->spelling, g->text, 1, static_cast<int>(kCampbellHarmonicsRange.interval.hi));
+  if (const Given* g = given("--scan-step")) o.scan_step = parse_real(g->spelling, g->text);
+  o.Check();  // errors name the option's field
+}
+
+// --trim, --thrust-coefficient, --shaft-angle.
+void CommandLine::interpret_trim(Request& r) const {
+  const Command c = command_;
   if (const Given* g = given("--trim")) {
     if (!trim_kind_from_name(g->text, &r.trim.kind) ||
         (c == Command::Trim && r.trim.kind == TrimKind::None)) {
@@ -1003,7 +1071,11 @@ Request CommandLine::interpret() const {
         throw InvalidInput(g->spelling, shown(g->text), "applies only with --trim thrust|moment");
     }
   }
-  if (c == Command::Study || c == Command::Map) interpret_batch(r);
+}
+
+// The options of any run: --threads, --plot, --report, --damping-criterion, --plot-quantity,
+// --memory-limit.
+void CommandLine::interpret_run_options(Request& r) const {
   if (const Given* g = given("--threads"))
     r.threads = parse_int(g->spelling, g->text, 0, kMaxThreads);
   if (const Given* g = given("--plot")) {
@@ -1036,8 +1108,6 @@ Request CommandLine::interpret() const {
   }
   if (const Given* g = given("--memory-limit"))
     r.memory_limit = parse_memory_size(g->spelling, g->text);
-  check_run_memory(r);
-  return r;
 }
 
 std::optional<std::string> CommandLine::error_line(const InvalidInput& e) const {

@@ -156,9 +156,35 @@ class CommandLine {
     std::size_t position;
     InvalidInput error;
   };
+  struct ModeCounts {  // --flap-modes, --lag-modes (1 when not given)
+    int flap = 1, lag = 1;
+    const Given* flap_given = nullptr;
+    const Given* lag_given = nullptr;
+  };
   const Given* given(const std::string& name) const;
+  // The option, or InvalidInput(name, "(missing)", "required by <subcommand>").
+  const Given& required(const char* name) const;
   void problem(std::size_t position, InvalidInput e);
-  void interpret_batch(Request& r) const;    // --shard, --quiet
+  // The steps of the constructor.
+  void read_word(std::size_t i, const std::string& word, bool first);
+  std::size_t read_option(const std::vector<std::string>& args, std::size_t i);
+  void refuse_options_of_other_commands();
+  // The steps of interpret(); interpret_sweep .. interpret_campbell are those of one subcommand.
+  void interpret_rotor(Request& r) const;
+  ModeCounts interpret_mode_counts() const;
+  void interpret_transition(Request& r) const;
+  void interpret_output(Request& r) const;
+  void interpret_model(Request& r, const ModeCounts& modes) const;
+  void interpret_subcommand(Request& r, const ModeCounts& modes) const;
+  void interpret_sweep(Request& r) const;
+  void interpret_modes(Request& r, const ModeCounts& modes) const;
+  void interpret_map(Request& r) const;
+  void interpret_simulate(Request& r) const;
+  void interpret_plot(Request& r) const;
+  void interpret_campbell(Request& r) const;
+  void interpret_trim(Request& r) const;
+  void interpret_batch(Request& r) const;  // --shard, --quiet
+  void interpret_run_options(Request& r) const;
   void apply_blade(Request& r) const;        // --blade-table, --blade-csv
   void apply_mode_shapes(Request& r) const;  // --mode-shapes, --mode-shapes-csv
 

@@ -220,6 +220,146 @@ std::string with_origin(const Expanded& e, const std::string& line) {
   return line;
 }
 
+// flaplag report RESULT.json: the page of a result as it was computed.
+int report_of_result(const Expanded& e) {
+  try {
+    const flaplag::cli::OutputTarget page(e.page, "output");
+    std::string warning;
+    const std::string html = flaplag::cli::html_report_of_text(e.file, e.result, &warning);
+    if (e.page.empty()) {
+      if (const int code = write_stdout(html); code != 0) return code;
+    } else {
+      page.write(html);
+    }
+    if (!warning.empty()) std::cerr << "flaplag: warning: " << one_line(warning) << std::endl;
+    return 0;
+  } catch (const flaplag::InvalidInput& error) {
+    return report(error.name() == "output" ? "-o = " + error.value() + ": " + error.reason()
+                                           : std::string(error.what()),
+                  kBadInput);
+  }
+}
+
+// The request of the command line; for `flaplag report CASE`, the same run with the page as its
+// only output: the result is made as JSON for it, and nothing else is written but what the case
+// asks to draw (--plot).
+flaplag::cli::Request request_of(const Expanded& e, const flaplag::cli::CommandLine& cl) {
+  flaplag::cli::Request request = cl.interpret();
+  request.arguments = e.args;
+  if (!e.report) return request;
+  using flaplag::cli::Command;
+  if (request.command == Command::Models || request.command == Command::Merge ||
+      request.command == Command::Plot)
+    throw flaplag::InvalidInput("argument", flaplag::cli::shown(e.file),
+                                std::string("a flaplag ") +
+                                    flaplag::cli::command_name(request.command) +
+                                    " case makes no result to report on");
+  if (request.shard_count > 0)
+    throw flaplag::InvalidInput("argument", flaplag::cli::shown(e.file),
+                                "a report covers the whole job, not one --shard part: "
+                                "flaplag merge the parts, then flaplag report MERGED.json");
+  request.json = true;
+  request.output.clear();
+  request.report = e.page.empty() ? "-" : e.page;
+  return request;
+}
+
+// Every output path, checked (in this order) before a possibly long analysis: nothing is left
+// behind.
+struct Outputs {
+  Outputs(const Expanded& e, const flaplag::cli::Request& r)
+      : target(e.report ? "" : r.output, "output"),
+        picture(r.plot, "plot"),
+        audit(r.audit, "audit"),
+        page(r.report == "-" ? "" : r.report, e.report ? "output" : "report") {}
+  const flaplag::cli::OutputTarget target, picture, audit, page;
+};
+
+// The command's output text (and *document, its JSON).  A study or map stops at SIGINT or
+// SIGTERM (control->cancelled) and shows its progress on a terminal.
+std::string compute(const flaplag::cli::Request& request, std::string* warning,
+                    flaplag::cli::RunControl* control, nlohmann::ordered_json* document) {
+  using flaplag::cli::Command;
+  const bool long_run = request.command == Command::Study || request.command == Command::Map;
+  if (long_run) catch_interrupt();
+  flaplag::cli::ProgressBar bar(
+      long_run && !request.quiet && flaplag::cli::stderr_is_terminal(),
+      std::string("flaplag ") + flaplag::cli::command_name(request.command),
+      request.command == Command::Study ? "values"
+      : request.y_name == "mu"          ? "columns"
+                                        : "rows");
+  control->cancel = &interrupted;
+  control->progress = bar.function();
+  const std::string text = flaplag::cli::run_command(request, warning, control, document);
+  bar.finish();
+  return text;
+}
+
+// The page of the result for --report ("" without): made before anything is written, so that a
+// failure leaves nothing.  Its warnings join *warning.
+std::string report_page(const Expanded& e, const flaplag::cli::Request& request,
+                        const nlohmann::ordered_json& document, std::string* warning) {
+  if (request.report.empty()) return "";
+  flaplag::cli::ReportSource source;
+  source.title = e.file.empty() ? "command line" : "case file " + e.file;
+  source.warnings = e.from_file.warnings;
+  if (!warning->empty()) source.warnings.push_back(*warning);
+  std::string page_warning;
+  std::string html = flaplag::cli::html_report(document, source, &page_warning);
+  if (!page_warning.empty()) *warning += (warning->empty() ? "" : "; ") + page_warning;
+  return html;
+}
+
+// The output, or for `flaplag report` the page alone; then the page of --report.  The exit code
+// of a standard output that cannot be written, else 0.
+int write_outputs(const Expanded& e, const flaplag::cli::Request& request, const Outputs& out,
+                  const std::string& text, const std::string& html) {
+  if (e.report) {
+    if (request.report == "-") return write_stdout(html);
+    out.page.write(html);
+    return 0;
+  }
+  if (request.output.empty()) {
+    if (const int code = write_stdout(text); code != 0) return code;
+  } else {
+    out.target.write(text);
+  }
+  if (!request.report.empty()) out.page.write(html);
+  return 0;
+}
+
+// At most one warning line: what the case file left out, then what the run says.
+void print_warnings(const Expanded& e, const std::string& warning) {
+  std::vector<std::string> warnings = e.from_file.warnings;
+  if (!warning.empty()) warnings.push_back(warning);
+  std::string joined;
+  for (const std::string& w : warnings) joined += (joined.empty() ? "" : "; ") + w;
+  if (!joined.empty()) std::cerr << "flaplag: warning: " << one_line(joined) << std::endl;
+}
+
+int run_request(const Expanded& e, const flaplag::cli::CommandLine& cl) {
+  const flaplag::cli::Request request = request_of(e, cl);
+  const Outputs out(e, request);
+  // The picture is written after the output, so that a run that fails leaves none.
+  flaplag::cli::DeferredPictures pictures;
+  std::string warning;
+  flaplag::cli::RunControl control;
+  nlohmann::ordered_json document;
+  const std::string text = compute(request, &warning, &control, &document);
+  const std::string html = report_page(e, request, document, &warning);
+  if (const int code = write_outputs(e, request, out, text, html); code != 0) return code;
+  pictures.commit();
+  // The audit report of a --spec model, after the result (a failed run writes none).
+  if (!request.audit.empty())
+    out.audit.write(flaplag::spec::audit_report(flaplag::find_model(request.params.model).base));
+  print_warnings(e, warning);
+  if (control.cancelled) {
+    std::cerr << "flaplag: " << one_line(control.message) << std::endl;
+    return interrupted_exit_code();
+  }
+  return 0;
+}
+
 int run(const std::vector<std::string>& raw) {
   Expanded e;
   try {
@@ -231,113 +371,13 @@ int run(const std::vector<std::string>& raw) {
     return write_stdout(e.run_help ? flaplag::cli::CommandLine::run_help_text()
                                    : flaplag::cli::CommandLine::report_help_text());
   }
-  if (e.of_result) {
-    try {
-      const flaplag::cli::OutputTarget page(e.page, "output");
-      std::string warning;
-      const std::string html = flaplag::cli::html_report_of_text(e.file, e.result, &warning);
-      if (e.page.empty()) {
-        if (const int code = write_stdout(html); code != 0) return code;
-      } else {
-        page.write(html);
-      }
-      if (!warning.empty()) std::cerr << "flaplag: warning: " << one_line(warning) << std::endl;
-      return 0;
-    } catch (const flaplag::InvalidInput& error) {
-      return report(error.name() == "output" ? "-o = " + error.value() + ": " + error.reason()
-                                             : std::string(error.what()),
-                    kBadInput);
-    }
-  }
+  if (e.of_result) return report_of_result(e);
   const flaplag::cli::CommandLine cl(e.args);
   if (cl.wants_help() || cl.wants_version()) {
     return write_stdout(cl.wants_help() ? cl.help_text() : std::string(kVersion) + "\n");
   }
   try {
-    flaplag::cli::Request request = cl.interpret();
-    request.arguments = e.args;
-    if (e.report) {
-      // The page is the only output: the result is made as JSON for it, and nothing else is
-      // written but what the case asks to draw (--plot).
-      using flaplag::cli::Command;
-      if (request.command == Command::Models || request.command == Command::Merge ||
-          request.command == Command::Plot)
-        throw flaplag::InvalidInput("argument", flaplag::cli::shown(e.file),
-                                    std::string("a flaplag ") +
-                                        flaplag::cli::command_name(request.command) +
-                                        " case makes no result to report on");
-      if (request.shard_count > 0)
-        throw flaplag::InvalidInput("argument", flaplag::cli::shown(e.file),
-                                    "a report covers the whole job, not one --shard part: "
-                                    "flaplag merge the parts, then flaplag report MERGED.json");
-      request.json = true;
-      request.output.clear();
-      request.report = e.page.empty() ? "-" : e.page;
-    }
-    // Check every output path before a possibly long analysis; nothing is left behind.
-    const flaplag::cli::OutputTarget target(e.report ? "" : request.output, "output");
-    const flaplag::cli::OutputTarget picture(request.plot, "plot");
-    const flaplag::cli::OutputTarget audit(request.audit, "audit");
-    const flaplag::cli::OutputTarget page(request.report == "-" ? "" : request.report,
-                                          e.report ? "output" : "report");
-    // The picture is written after the output, so that a run that fails leaves none.
-    flaplag::cli::DeferredPictures pictures;
-    std::string warning;
-    using flaplag::cli::Command;
-    const bool long_run = request.command == Command::Study || request.command == Command::Map;
-    if (long_run) catch_interrupt();
-    flaplag::cli::ProgressBar bar(
-        long_run && !request.quiet && flaplag::cli::stderr_is_terminal(),
-        std::string("flaplag ") + flaplag::cli::command_name(request.command),
-        request.command == Command::Study ? "values"
-        : request.y_name == "mu"          ? "columns"
-                                          : "rows");
-    flaplag::cli::RunControl control;
-    control.cancel = &interrupted;
-    control.progress = bar.function();
-    nlohmann::ordered_json document;
-    const std::string text = flaplag::cli::run_command(request, &warning, &control, &document);
-    bar.finish();
-    // The page of the result (made before anything is written: a failure leaves nothing).
-    std::string html;
-    if (!request.report.empty()) {
-      flaplag::cli::ReportSource source;
-      source.title = e.file.empty() ? "command line" : "case file " + e.file;
-      source.warnings = e.from_file.warnings;
-      if (!warning.empty()) source.warnings.push_back(warning);
-      std::string page_warning;
-      html = flaplag::cli::html_report(document, source, &page_warning);
-      if (!page_warning.empty()) warning += (warning.empty() ? "" : "; ") + page_warning;
-    }
-    if (e.report) {
-      if (request.report == "-") {
-        if (const int code = write_stdout(html); code != 0) return code;
-      } else {
-        page.write(html);
-      }
-    } else {
-      if (request.output.empty()) {
-        if (const int code = write_stdout(text); code != 0) return code;
-      } else {
-        target.write(text);
-      }
-      if (!request.report.empty()) page.write(html);
-    }
-    pictures.commit();
-    // The audit report of a --spec model, after the result (a failed run writes none).
-    if (!request.audit.empty())
-      audit.write(flaplag::spec::audit_report(flaplag::find_model(request.params.model).base));
-    // At most one warning line: what the case file left out, then what the run says.
-    std::vector<std::string> warnings = e.from_file.warnings;
-    if (!warning.empty()) warnings.push_back(warning);
-    std::string joined;
-    for (const std::string& w : warnings) joined += (joined.empty() ? "" : "; ") + w;
-    if (!joined.empty()) std::cerr << "flaplag: warning: " << one_line(joined) << std::endl;
-    if (control.cancelled) {
-      std::cerr << "flaplag: " << one_line(control.message) << std::endl;
-      return interrupted_exit_code();
-    }
-    return 0;
+    return run_request(e, cl);
   } catch (const flaplag::cli::RendererUnavailable& error) {
     std::cerr << "flaplag: error: " << one_line(error.what()) << std::endl;
     return kRendererMissing;

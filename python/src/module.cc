@@ -1104,14 +1104,8 @@ void check_criterion(const std::optional<double>& criterion) {
   if (criterion) check_damping_criterion(*criterion);
 }
 
-}  // namespace
-}  // namespace flaplag::python
-
-PYBIND11_MODULE(_flaplag, m) {
-  using namespace flaplag;
-  using namespace flaplag::python;
-  m.doc() = "flaplag's C++ library (NASA CR-132431 flap-lag stability); use the package flaplag.";
-
+// flaplag.InvalidInput, and the translation of the library's InvalidInput into it.
+void register_invalid_input(py::module_& m) {
   invalid_input_type = PyErr_NewExceptionWithDoc(
       "flaplag.InvalidInput",
       "An invalid parameter, option or argument: a ValueError whose message is the one line\n"
@@ -1126,7 +1120,11 @@ PYBIND11_MODULE(_flaplag, m) {
       translate_invalid_input(e);
     }
   });
+}
 
+// The tables the Python layer builds its classes and checks from: parameters, options and
+// their defaults, result fields, models; the version.
+void bind_tables(py::module_& m) {
   m.attr("version") = kVersion;
   m.attr("git_commit") = kGitCommit;
   m.attr("max_advance_ratio") = kMaxAdvanceRatio;
@@ -1170,14 +1168,11 @@ PYBIND11_MODULE(_flaplag, m) {
       if (is_study_parameter(s.field)) l.append(s.field);
     return l;
   });
-  // Checks a parameter set and transition options as Analysis would (for work sent elsewhere).
-  m.def("check",
-        [](const py::dict& params, const py::dict& transition, int flap_modes, int lag_modes) {
-          base_parameters(params, flap_modes, lag_modes);
-          transition_options(transition);
-        });
+}
 
-  py::class_<Analysis>(m, "Analysis")
+// Construction from the Python layer's dicts, and what an Analysis was built from.
+void bind_construction(py::class_<Analysis>& analysis) {
+  analysis
       .def(py::init([](const py::dict& params, const py::dict& transition, int flap_modes,
                        int lag_modes) {
              const RotorParameters p = base_parameters(params, flap_modes, lag_modes);
@@ -1190,7 +1185,13 @@ PYBIND11_MODULE(_flaplag, m) {
       .def("parameters", [](const Analysis& a) { return parameters_dict(a.parameters()); })
       .def("transition", [](const Analysis& a) { return transition_dict(a.options()); })
       .def("model", [](const Analysis& a) { return model_dict(a.model()); })
-      .def("hover", &hover_dict)
+      .def("hover", &hover_dict);
+}
+
+// Stability in forward flight: one mu, a grid or track of mu, the critical mu, one Floquet
+// sample.
+void bind_stability(py::class_<Analysis>& analysis) {
+  analysis
       .def("point",
            [](const Analysis& a, double mu, double scan_step) {
              PointResult r;
@@ -1250,17 +1251,19 @@ PYBIND11_MODULE(_flaplag, m) {
              }
              return to_dict(r);
            })
-      .def("snapshot",
-           [](const Analysis& a, double mu, double psi) {
-             if (!std::isfinite(psi))
-               throw InvalidInput("psi", round_trip_text(psi), "must be a finite angle [rad]");
-             SystemSnapshot s;
-             {
-               py::gil_scoped_release release;
-               s = a.snapshot(mu, psi);
-             }
-             return snapshot_dict(a, s);
-           })
+      .def("floquet", [](const Analysis& a, double mu, double zeta_tolerance) {
+        FloquetSample s;
+        {
+          py::gil_scoped_release release;
+          s = a.floquet(mu, zeta_tolerance);
+        }
+        return floquet_dict(s);
+      });
+}
+
+// The blade's modes, their exported table, and their frequencies over rotor speed.
+void bind_modes(py::class_<Analysis>& analysis) {
+  analysis
       .def("modes",
            [](const Analysis& a, const py::object& x, int derivative, std::uint64_t memory_limit) {
              return modes_dict(a.modes(), x, derivative, memory_limit);
@@ -1275,6 +1278,40 @@ PYBIND11_MODULE(_flaplag, m) {
                                   "modes='exact'");
              }
              return mode_table_text(a.modes(), stations);
+           })
+      .def("campbell", [](const Analysis& a, double speed_max, int points, double mu,
+                          double scan_step, int harmonics, int threads) {
+        CampbellOptions o;
+        o.speed_max = speed_max;
+        o.points = points;
+        o.mu = mu;
+        o.scan_step = scan_step;
+        o.harmonics = harmonics;
+        o.threads = threads;
+        o.Check();
+        CampbellResult c;
+        {
+          py::gil_scoped_release release;
+          c = campbell_diagram(a.parameters(), a.options(), o);
+        }
+        return to_dict(c);
+      });
+}
+
+// The rotor in time: the system at one azimuth, the forced response, the simulated tip, the
+// periodic equilibrium.
+void bind_time_domain(py::class_<Analysis>& analysis) {
+  analysis
+      .def("snapshot",
+           [](const Analysis& a, double mu, double psi) {
+             if (!std::isfinite(psi))
+               throw InvalidInput("psi", round_trip_text(psi), "must be a finite angle [rad]");
+             SystemSnapshot s;
+             {
+               py::gil_scoped_release release;
+               s = a.snapshot(mu, psi);
+             }
+             return snapshot_dict(a, s);
            })
       .def("response",
            [](const Analysis& a, double mu, int samples, int steps, double tolerance,
@@ -1334,25 +1371,12 @@ PYBIND11_MODULE(_flaplag, m) {
                e = a.periodic_equilibrium(mu, o);
              }
              return equilibrium_dict(a, e, samples);
-           })
-      .def("campbell",
-           [](const Analysis& a, double speed_max, int points, double mu, double scan_step,
-              int harmonics, int threads) {
-             CampbellOptions o;
-             o.speed_max = speed_max;
-             o.points = points;
-             o.mu = mu;
-             o.scan_step = scan_step;
-             o.harmonics = harmonics;
-             o.threads = threads;
-             o.Check();
-             CampbellResult c;
-             {
-               py::gil_scoped_release release;
-               c = campbell_diagram(a.parameters(), a.options(), o);
-             }
-             return to_dict(c);
-           })
+           });
+}
+
+// Trim and thrust at one mu.
+void bind_trim(py::class_<Analysis>& analysis) {
+  analysis
       .def("trim",
            [](const Analysis& a, double mu, const std::string& kind, double thrust_coefficient,
               double shaft_angle, int max_iterations, double tolerance) {
@@ -1367,34 +1391,37 @@ PYBIND11_MODULE(_flaplag, m) {
            })
       // inflow: "momentum" (eq 2.25 solved with the thrust), "paper" (eq 2.24) or "given"
       // (lambda = value).
-      .def("thrust",
-           [](const Analysis& a, double mu, const std::string& inflow, double value,
-              double shaft_angle) {
-             if (!std::isfinite(shaft_angle))
-               throw InvalidInput("shaft_angle", round_trip_text(shaft_angle), "must be finite");
-             if (inflow != "momentum" && inflow != "paper" && !std::isfinite(value))
-               throw InvalidInput("inflow", round_trip_text(value), "must be finite");
-             // A given inflow ratio is bounded as the advance ratio is: beyond it the periodic
-             // system overflows and the library could only name a coefficient the user never saw.
-             if (inflow == "given" && !(std::abs(value) <= kMaxAdvanceRatio))
-               throw InvalidInput("inflow", round_trip_text(value),
-                                  "must be in [-" + round_trip_text(kMaxAdvanceRatio) + ", " +
-                                      round_trip_text(kMaxAdvanceRatio) +
-                                      "] (an inflow ratio, bounded as mu is)");
-             ThrustResult t;
-             {
-               py::gil_scoped_release release;
-               if (inflow == "momentum")
-                 t = rotor_thrust_momentum(a.parameters(), mu, shaft_angle);
-               else if (inflow == "paper")
-                 t = rotor_thrust(a.parameters(), mu, std::numeric_limits<double>::quiet_NaN());
-               else
-                 t = rotor_thrust(a.parameters(), mu, value);
-             }
-             return thrust_dict(t);
-           })
-      // Stability at fixed C_T: the rotor trimmed at every mu evaluated (OperatingCondition::
-      // Trimmed), with the trims the results rest on.
+      .def("thrust", [](const Analysis& a, double mu, const std::string& inflow, double value,
+                        double shaft_angle) {
+        if (!std::isfinite(shaft_angle))
+          throw InvalidInput("shaft_angle", round_trip_text(shaft_angle), "must be finite");
+        if (inflow != "momentum" && inflow != "paper" && !std::isfinite(value))
+          throw InvalidInput("inflow", round_trip_text(value), "must be finite");
+        // A given inflow ratio is bounded as the advance ratio is: beyond it the periodic
+        // system overflows and the library could only name a coefficient the user never saw.
+        if (inflow == "given" && !(std::abs(value) <= kMaxAdvanceRatio))
+          throw InvalidInput("inflow", round_trip_text(value),
+                             "must be in [-" + round_trip_text(kMaxAdvanceRatio) + ", " +
+                                 round_trip_text(kMaxAdvanceRatio) +
+                                 "] (an inflow ratio, bounded as mu is)");
+        ThrustResult t;
+        {
+          py::gil_scoped_release release;
+          if (inflow == "momentum")
+            t = rotor_thrust_momentum(a.parameters(), mu, shaft_angle);
+          else if (inflow == "paper")
+            t = rotor_thrust(a.parameters(), mu, std::numeric_limits<double>::quiet_NaN());
+          else
+            t = rotor_thrust(a.parameters(), mu, value);
+        }
+        return thrust_dict(t);
+      });
+}
+
+// Stability at fixed C_T: the rotor trimmed at every mu evaluated (OperatingCondition::Trimmed),
+// with the trims the results rest on.
+void bind_trimmed_stability(py::class_<Analysis>& analysis) {
+  analysis
       .def("trimmed_point",
            [](const Analysis& a, double mu, double scan_step, const std::string& kind,
               double thrust_coefficient, double shaft_angle) {
@@ -1455,32 +1482,38 @@ PYBIND11_MODULE(_flaplag, m) {
                  progress);
              return with_trims(sweep_dict(a, r, damping_criterion), r);
            })
-      .def("trimmed_critical",
-           [](const Analysis& a, const py::dict& options, const std::string& kind,
-              double thrust_coefficient, double shaft_angle) {
-             const CriticalOptions c = critical_options(options);
-             const TrimOptions o =
-                 trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
-                              TrimOptions{}.tolerance);
-             RotorCritical r;
-             {
-               py::gil_scoped_release release;
-               r = trimmed(a, o).critical(c);
-             }
-             py::dict d = to_dict(static_cast<const CriticalResult&>(r));
-             // The trim at mu_c the search rests on (as `flaplag critical --trim` reports it).
-             d["trim"] = r.trim ? py::object(trim_dict(*r.trim)) : py::object(py::none());
-             return d;
-           })
-      .def("floquet", [](const Analysis& a, double mu, double zeta_tolerance) {
-        FloquetSample s;
+      .def("trimmed_critical", [](const Analysis& a, const py::dict& options,
+                                  const std::string& kind, double thrust_coefficient,
+                                  double shaft_angle) {
+        const CriticalOptions c = critical_options(options);
+        const TrimOptions o = trim_options(kind, thrust_coefficient, shaft_angle,
+                                           TrimOptions{}.max_iterations, TrimOptions{}.tolerance);
+        RotorCritical r;
         {
           py::gil_scoped_release release;
-          s = a.floquet(mu, zeta_tolerance);
+          r = trimmed(a, o).critical(c);
         }
-        return floquet_dict(s);
+        py::dict d = to_dict(static_cast<const CriticalResult&>(r));
+        // The trim at mu_c the search rests on (as `flaplag critical --trim` reports it).
+        d["trim"] = r.trim ? py::object(trim_dict(*r.trim)) : py::object(py::none());
+        return d;
       });
+}
 
+// flaplag._flaplag.Analysis: one rotor's parameters and transition options, and every computation
+// on them.
+void bind_analysis(py::module_& m) {
+  py::class_<Analysis> analysis(m, "Analysis");
+  bind_construction(analysis);
+  bind_stability(analysis);
+  bind_modes(analysis);
+  bind_time_domain(analysis);
+  bind_trim(analysis);
+  bind_trimmed_stability(analysis);
+}
+
+// Studies and maps over parameters, and the memory limit they run under.
+void bind_studies(py::module_& m) {
   m.def("study", &study);
   m.def("map", &stability_map);
   m.attr("default_memory_limit") = kDefaultMemoryLimit;
@@ -1493,7 +1526,16 @@ PYBIND11_MODULE(_flaplag, m) {
                          "must be a number of bytes or a size such as '8G' or '512M'");
     return checked_memory_size("memory_limit", v.cast<double>());
   });
-  // The checks of study() / map() without the work (for work sent to other processes).
+}
+
+// The checks of Analysis, study() and map() without the work (for work sent to other
+// processes).
+void bind_checks(py::module_& m) {
+  m.def("check",
+        [](const py::dict& params, const py::dict& transition, int flap_modes, int lag_modes) {
+          base_parameters(params, flap_modes, lag_modes);
+          transition_options(transition);
+        });
   m.def("check_study",
         [](const py::dict& params, const py::dict& transition, int flap_modes, int lag_modes,
            const std::string& parameter, const py::handle& values, const py::dict& critical,
@@ -1513,4 +1555,18 @@ PYBIND11_MODULE(_flaplag, m) {
           check_map_memory(map_options(x, x_values, y, y_values, mu, scan_step, threads, trim),
                            memory_limit);
         });
+}
+
+}  // namespace
+}  // namespace flaplag::python
+
+PYBIND11_MODULE(_flaplag, m) {
+  using namespace flaplag::python;
+  m.doc() = "flaplag's C++ library (NASA CR-132431 flap-lag stability); use the package flaplag.";
+
+  register_invalid_input(m);
+  bind_tables(m);
+  bind_analysis(m);
+  bind_studies(m);
+  bind_checks(m);
 }

@@ -271,18 +271,210 @@ std::vector<std::string_view> cells(std::string_view line, std::size_t limit) {
   return out;
 }
 
+// The mode file read line by line: the header, then the omega row and the stations in any
+// order; finish() checks the whole and scales every shape to tip value 1.
+class ModeTableReader {
+ public:
+  ModeTableReader(const Reader& r, std::string source) : r_(r) { out_.source = std::move(source); }
+
+  // One line (untrimmed) that is neither blank nor a comment.
+  void read(std::string_view line, std::size_t line_no) {
+    if (names_.empty()) {
+      header(line, line_no);
+      return;
+    }
+    const std::vector<std::string_view> c = cells(line, names_.size());
+    if (c.size() < names_.size()) {
+      r_.fail(line_no, names_[c.size()], "(missing)",
+              "the row has " + std::to_string(c.size()) + " cells, the header " +
+                  std::to_string(names_.size()));
+    }
+    if (c.size() > names_.size()) {
+      r_.fail(line_no, "column " + std::to_string(names_.size() + 1), shown_cell(c[names_.size()]),
+              "an extra cell: the header has " + std::to_string(names_.size()) + " columns");
+    }
+    if (c.front() == "omega") {
+      omega_row(c, line_no);
+    } else {
+      station_row(c, line_no);
+    }
+  }
+
+  // After the last line (line_no, the number of lines).
+  ImportedModes finish(std::size_t line_no) {
+    if (names_.empty()) {
+      r_.fail(line_no, "column 1", "(missing)",
+              "no header row (x0,flap1,...,lag1,...): the text has no table");
+    }
+    check_stations();
+    if (omega_line_ == 0) {
+      r_.fail(line_no, "x0", "(missing)",
+              "no omega row: a row whose first cell is `omega` gives each column's rotating "
+              "frequency by Omega");
+    }
+    out_.x0 = columns_[0];
+    for (std::size_t j = 1; j < names_.size(); ++j) finish_mode(j);
+    return std::move(out_);
+  }
+
+ private:
+  // x0, then flapK and lagK columns (at least one of each).
+  void header(std::string_view line, std::size_t line_no) {
+    header_line_ = line_no;
+    const std::vector<std::string_view> c = cells(line, kMaxModeColumns + 1);
+    if (c.front() != "x0") {
+      r_.fail(line_no, "column 1", shown_cell(c.front()),
+              "the header row must start with x0 (then the columns flap1, ..., lag1, ...)");
+    }
+    names_.emplace_back("x0");
+    bool flap = false, lag = false;
+    for (std::size_t j = 1; j < c.size(); ++j) {
+      const std::string where = "column " + std::to_string(j + 1);
+      if (j > static_cast<std::size_t>(kMaxModeColumns)) {
+        r_.fail(line_no, where, shown_cell(c[j]),
+                "more than " + std::to_string(kMaxModeColumns) + " mode columns");
+      }
+      BendingDirection dir{};
+      int k = 0;
+      if (!mode_name(c[j], &dir, &k)) {
+        r_.fail(line_no, where, shown_cell(c[j]),
+                "a mode column is named flapK or lagK (K = 1, 2, ...)");
+      }
+      const std::string name(c[j]);
+      if (std::find(names_.begin(), names_.end(), name) != names_.end())
+        r_.fail(line_no, where, name, "column given twice");
+      (dir == BendingDirection::Flap ? flap : lag) = true;
+      names_.push_back(name);
+      ImportedMode m;
+      m.name = name;
+      m.direction = dir;
+      out_.modes.push_back(std::move(m));
+    }
+    if (!flap || !lag) {
+      r_.fail(line_no, "column " + std::to_string(c.size() + 1), "(missing)",
+              std::string("the header names no ") + (flap ? "lag" : "flap") +
+                  " mode: at least one flapK and one lagK column are needed");
+    }
+    columns_.resize(names_.size());
+  }
+
+  // `omega,w1,w2,...`: each column's rotating frequency by Omega.
+  void omega_row(const std::vector<std::string_view>& c, std::size_t line_no) {
+    if (omega_line_ != 0) {
+      r_.fail(line_no, "x0", "omega",
+              "a second omega row (the first is line " + std::to_string(omega_line_) + ")");
+    }
+    omega_line_ = line_no;
+    for (std::size_t j = 1; j < c.size(); ++j) {
+      const double w = number(r_, line_no, names_[j], c[j]);
+      if (!(w > 0.0)) {
+        r_.fail(line_no, names_[j], shown_cell(c[j]), "a rotating frequency by Omega must be > 0");
+      }
+      omega_.push_back(w);
+    }
+  }
+
+  // A station x0 in [0, 1], after the previous one, and the shapes' values there.
+  void station_row(const std::vector<std::string_view>& c, std::size_t line_no) {
+    if (lines_.size() >= static_cast<std::size_t>(kMaxModeStations)) {
+      r_.fail(line_no, "x0", shown_cell(c.front()),
+              "more than " + std::to_string(kMaxModeStations) + " stations");
+    }
+    std::vector<double>& x0 = columns_[0];
+    const double x = number(r_, line_no, "x0", c.front());
+    if (!x0.empty() && !(x > x0.back())) {
+      r_.fail(line_no, "x0", shown_cell(c.front()),
+              "stations must be strictly increasing (the previous is " +
+                  round_trip_text(x0.back()) + ", line " + std::to_string(lines_.back()) + ")");
+    }
+    if (x0.empty() && std::abs(x) > kEndTolerance) {
+      r_.fail(line_no, "x0", shown_cell(c.front()),
+              "the first station must be 0 (the root of the elastic blade)");
+    }
+    if (x > 1.0 + kEndTolerance) {
+      r_.fail(line_no, "x0", shown_cell(c.front()),
+              "stations run from 0 to 1 (the tip of the elastic blade)");
+    }
+    x0.push_back(x0.empty() ? 0.0 : x);
+    for (std::size_t j = 1; j < c.size(); ++j)
+      columns_[j].push_back(number(r_, line_no, names_[j], c[j]));
+    lines_.push_back(line_no);
+  }
+
+  // Enough stations, the last at the tip (set to 1 exactly).
+  void check_stations() {
+    std::vector<double>& x0 = columns_[0];
+    const std::size_t n = lines_.size();
+    if (n < static_cast<std::size_t>(kMinModeStations)) {
+      r_.fail(n > 0 ? lines_.back() : header_line_, "x0", std::to_string(n) + " stations",
+              "a mode table needs at least " + std::to_string(kMinModeStations) + " stations");
+    }
+    if (std::abs(x0.back() - 1.0) > kEndTolerance) {
+      r_.fail(lines_.back(), "x0", round_trip_text(x0.back()),
+              "the last station must be 1 (the tip of the elastic blade)");
+    }
+    if (!(x0[n - 2] < 1.0)) {
+      r_.fail(lines_.back(), "x0", round_trip_text(x0.back()),
+              "stations must be strictly increasing to the tip, 1 (the previous is " +
+                  round_trip_text(x0[n - 2]) + ")");
+    }
+    x0.back() = 1.0;
+  }
+
+  // Column j as mode j - 1: scaled to tip value 1, a cantilever's zero value and slope at the
+  // root checked.
+  void finish_mode(std::size_t j) {
+    ImportedMode& m = out_.modes[j - 1];
+    m.omega = omega_[j - 1];
+    std::vector<double>& v = columns_[j];
+    double largest = 0.0;
+    for (double x : v) largest = std::max(largest, std::abs(x));
+    const double tip = v.back();
+    if (!(std::abs(tip) > kZeroTip * largest)) {
+      r_.fail(lines_.back(), m.name, round_trip_text(tip),
+              "the tip value is 0 (at most 1e-6 of the shape's largest value, " +
+                  round_trip_text(largest) + "): the shape cannot be scaled to tip value 1");
+    }
+    for (double& x : v) x /= tip;
+    v.back() = 1.0;
+    if (std::abs(tip - 1.0) > 1e-9) {
+      out_.notes.push_back(m.name + " scaled by 1/" + short_text(tip) + " to tip value 1");
+    }
+    if (std::abs(v.front()) > kRootValue) {
+      r_.fail(lines_.front(), m.name, round_trip_text(v.front() * tip),
+              "a cantilevered blade's shape is 0 at the root (here " + short_text(v.front()) +
+                  " of the tip value, more than 1e-6)");
+    }
+    const TabulatedModeShape shape(out_.x0, v);
+    double steepest = 0.0;
+    for (double x : out_.x0) steepest = std::max(steepest, std::abs(shape.value(1, x)));
+    const double root_slope = shape.value(1, 0.0);
+    if (std::abs(root_slope) > kRootSlope * steepest) {
+      r_.fail(lines_.front(), m.name, "slope " + short_text(root_slope),
+              "a cantilevered blade's shape has zero slope at the root: the spline through the "
+              "stations (scaled to tip value 1) has slope " +
+                  short_text(root_slope) + " there, more than 1e-2 of its largest slope, " +
+                  short_text(steepest));
+    }
+    m.values = std::move(v);
+  }
+
+  const Reader& r_;
+  ImportedModes out_;
+  std::vector<std::size_t> lines_;  // the file line of each station
+  std::vector<double> omega_;
+  std::size_t omega_line_ = 0, header_line_ = 0;
+  std::vector<std::string> names_;  // the header, x0 included
+  std::vector<std::vector<double>> columns_;
+};
+
 }  // namespace
 
 ImportedModes parse_mode_table(std::string_view text, std::string source) {
   const Reader r{source};
   if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.remove_prefix(3);  // a UTF-8 byte order mark
-  ImportedModes out;
-  out.source = source;
-  std::vector<std::size_t> lines;  // the file line of each station
-  std::vector<double> omega;
-  std::size_t omega_line = 0, header_line = 0, line_no = 0;
-  std::vector<std::string> names;  // the header, x0 included
-  std::vector<std::vector<double>> columns;
+  ModeTableReader reader(r, source);
+  std::size_t line_no = 0;
   while (!text.empty() || line_no == 0) {
     ++line_no;
     const std::size_t end = text.find('\n');
@@ -290,155 +482,9 @@ ImportedModes parse_mode_table(std::string_view text, std::string source) {
     text = end == std::string_view::npos ? std::string_view() : text.substr(end + 1);
     const std::string_view content = trim(line);
     if (content.empty() || content.front() == '#') continue;
-    if (names.empty()) {  // the header
-      header_line = line_no;
-      const std::vector<std::string_view> c = cells(line, kMaxModeColumns + 1);
-      if (c.front() != "x0") {
-        r.fail(line_no, "column 1", shown_cell(c.front()),
-               "the header row must start with x0 (then the columns flap1, ..., lag1, ...)");
-      }
-      names.emplace_back("x0");
-      bool flap = false, lag = false;
-      for (std::size_t j = 1; j < c.size(); ++j) {
-        const std::string where = "column " + std::to_string(j + 1);
-        if (j > static_cast<std::size_t>(kMaxModeColumns)) {
-          r.fail(line_no, where, shown_cell(c[j]),
-                 "more than " + std::to_string(kMaxModeColumns) + " mode columns");
-        }
-        BendingDirection dir{};
-        int k = 0;
-        if (!mode_name(c[j], &dir, &k)) {
-          r.fail(line_no, where, shown_cell(c[j]),
-                 "a mode column is named flapK or lagK (K = 1, 2, ...)");
-        }
-        const std::string name(c[j]);
-        if (std::find(names.begin(), names.end(), name) != names.end())
-          r.fail(line_no, where, name, "column given twice");
-        (dir == BendingDirection::Flap ? flap : lag) = true;
-        names.push_back(name);
-        ImportedMode m;
-        m.name = name;
-        m.direction = dir;
-        out.modes.push_back(std::move(m));
-      }
-      if (!flap || !lag) {
-        r.fail(line_no, "column " + std::to_string(c.size() + 1), "(missing)",
-               std::string("the header names no ") + (flap ? "lag" : "flap") +
-                   " mode: at least one flapK and one lagK column are needed");
-      }
-      columns.resize(names.size());
-      continue;
-    }
-    const std::vector<std::string_view> c = cells(line, names.size());
-    if (c.size() < names.size()) {
-      r.fail(line_no, names[c.size()], "(missing)",
-             "the row has " + std::to_string(c.size()) + " cells, the header " +
-                 std::to_string(names.size()));
-    }
-    if (c.size() > names.size()) {
-      r.fail(line_no, "column " + std::to_string(names.size() + 1), shown_cell(c[names.size()]),
-             "an extra cell: the header has " + std::to_string(names.size()) + " columns");
-    }
-    if (c.front() == "omega") {
-      if (omega_line != 0) {
-        r.fail(line_no, "x0", "omega",
-               "a second omega row (the first is line " + std::to_string(omega_line) + ")");
-      }
-      omega_line = line_no;
-      for (std::size_t j = 1; j < c.size(); ++j) {
-        const double w = number(r, line_no, names[j], c[j]);
-        if (!(w > 0.0)) {
-          r.fail(line_no, names[j], shown_cell(c[j]), "a rotating frequency by Omega must be > 0");
-        }
-        omega.push_back(w);
-      }
-      continue;
-    }
-    if (lines.size() >= static_cast<std::size_t>(kMaxModeStations)) {
-      r.fail(line_no, "x0", shown_cell(c.front()),
-             "more than " + std::to_string(kMaxModeStations) + " stations");
-    }
-    const double x = number(r, line_no, "x0", c.front());
-    if (!columns[0].empty() && !(x > columns[0].back())) {
-      r.fail(line_no, "x0", shown_cell(c.front()),
-             "stations must be strictly increasing (the previous is " +
-                 round_trip_text(columns[0].back()) + ", line " + std::to_string(lines.back()) +
-                 ")");
-    }
-    if (columns[0].empty() && std::abs(x) > kEndTolerance) {
-      r.fail(line_no, "x0", shown_cell(c.front()),
-             "the first station must be 0 (the root of the elastic blade)");
-    }
-    if (x > 1.0 + kEndTolerance) {
-      r.fail(line_no, "x0", shown_cell(c.front()),
-             "stations run from 0 to 1 (the tip of the elastic blade)");
-    }
-    columns[0].push_back(columns[0].empty() ? 0.0 : x);
-    for (std::size_t j = 1; j < c.size(); ++j)
-      columns[j].push_back(number(r, line_no, names[j], c[j]));
-    lines.push_back(line_no);
+    reader.read(line, line_no);
   }
-  if (names.empty()) {
-    r.fail(line_no, "column 1", "(missing)",
-           "no header row (x0,flap1,...,lag1,...): the text has no table");
-  }
-  const std::size_t n = lines.size();
-  if (n < static_cast<std::size_t>(kMinModeStations)) {
-    r.fail(n > 0 ? lines.back() : header_line, "x0", std::to_string(n) + " stations",
-           "a mode table needs at least " + std::to_string(kMinModeStations) + " stations");
-  }
-  if (std::abs(columns[0].back() - 1.0) > kEndTolerance) {
-    r.fail(lines.back(), "x0", round_trip_text(columns[0].back()),
-           "the last station must be 1 (the tip of the elastic blade)");
-  }
-  if (!(columns[0][n - 2] < 1.0)) {
-    r.fail(lines.back(), "x0", round_trip_text(columns[0].back()),
-           "stations must be strictly increasing to the tip, 1 (the previous is " +
-               round_trip_text(columns[0][n - 2]) + ")");
-  }
-  columns[0].back() = 1.0;
-  if (omega_line == 0) {
-    r.fail(line_no, "x0", "(missing)",
-           "no omega row: a row whose first cell is `omega` gives each column's rotating "
-           "frequency by Omega");
-  }
-  out.x0 = columns[0];
-  for (std::size_t j = 1; j < names.size(); ++j) {
-    ImportedMode& m = out.modes[j - 1];
-    m.omega = omega[j - 1];
-    std::vector<double>& v = columns[j];
-    double largest = 0.0;
-    for (double x : v) largest = std::max(largest, std::abs(x));
-    const double tip = v.back();
-    if (!(std::abs(tip) > kZeroTip * largest)) {
-      r.fail(lines.back(), m.name, round_trip_text(tip),
-             "the tip value is 0 (at most 1e-6 of the shape's largest value, " +
-                 round_trip_text(largest) + "): the shape cannot be scaled to tip value 1");
-    }
-    for (double& x : v) x /= tip;
-    v.back() = 1.0;
-    if (std::abs(tip - 1.0) > 1e-9) {
-      out.notes.push_back(m.name + " scaled by 1/" + short_text(tip) + " to tip value 1");
-    }
-    if (std::abs(v.front()) > kRootValue) {
-      r.fail(lines.front(), m.name, round_trip_text(v.front() * tip),
-             "a cantilevered blade's shape is 0 at the root (here " + short_text(v.front()) +
-                 " of the tip value, more than 1e-6)");
-    }
-    const TabulatedModeShape shape(out.x0, v);
-    double steepest = 0.0;
-    for (double x : out.x0) steepest = std::max(steepest, std::abs(shape.value(1, x)));
-    const double root_slope = shape.value(1, 0.0);
-    if (std::abs(root_slope) > kRootSlope * steepest) {
-      r.fail(lines.front(), m.name, "slope " + short_text(root_slope),
-             "a cantilevered blade's shape has zero slope at the root: the spline through the "
-             "stations (scaled to tip value 1) has slope " +
-                 short_text(root_slope) + " there, more than 1e-2 of its largest slope, " +
-                 short_text(steepest));
-    }
-    m.values = std::move(v);
-  }
-  return out;
+  return reader.finish(line_no);
 }
 
 ModeSet imported_mode_set(const ImportedModes& modes, int flap_modes, int lag_modes) {

@@ -84,16 +84,186 @@ bool column_of(std::string_view name, Column* c, bool* dimensional) {
   return true;
 }
 
+// A name in the first cell: a keyword line (`tip_mass,0.1`), not a row of numbers.
+bool is_keyword(std::string_view first) {
+  return !first.empty() &&
+         (std::isalpha(static_cast<unsigned char>(first.front())) || first.front() == '_') &&
+         first != "inf" && first != "nan";
+}
+
+// The table read line by line: the header, then keyword lines and rows in any order.
+class BladeTableReader {
+ public:
+  explicit BladeTableReader(std::string source) { t_.source = std::move(source); }
+
+  // One line that is neither blank nor a comment.
+  void read(std::string_view line, std::size_t line_no) {
+    const Where w{t_.source, line_no};
+    const std::vector<std::string_view> cells = split(line);
+    if (!have_header_) {
+      header(w, line, cells);
+      have_header_ = true;
+    } else if (is_keyword(cells.front())) {
+      keyword(w, line, cells);
+    } else {
+      row(w, line, cells);
+      t_.line.push_back(static_cast<int>(line_no));
+    }
+  }
+
+  // The table, after the last line: what the whole of it must have.
+  BladeTable finish() {
+    if (!have_header_)
+      throw InvalidInput(t_.source, "(empty)",
+                         "has no header line (x or r, m, EI_flap, EI_lag, ...)");
+    if (t_.station.size() < 2) {
+      throw InvalidInput(t_.source, std::to_string(t_.station.size()) + " stations",
+                         "a blade table needs at least 2 stations (root and tip)");
+    }
+    if (t_.dimensional) {
+      for (const auto& [seen, name] :
+           {std::pair{seen_speed_, "rotor_speed_rpm"}, std::pair{seen_density_, "air_density"},
+            std::pair{seen_blades_, "blades"}}) {
+        if (!seen)
+          throw InvalidInput(
+              t_.source, "(missing)",
+              std::string("a dimensional table needs the line `") + name + ",VALUE`");
+      }
+    }
+    return std::move(t_);
+  }
+
+ private:
+  void header(const Where& w, std::string_view line, const std::vector<std::string_view>& cells) {
+    bool has[6] = {};
+    for (std::string_view name : cells) {
+      Column c;
+      bool dim = false;
+      if (!column_of(name, &c, &dim)) {
+        throw InvalidInput(w.at("header"), shown_cell(name),
+                           "unknown column (x or r, m, EI_flap, EI_lag, chord, twist_deg)");
+      }
+      if (has[static_cast<int>(c)])
+        throw InvalidInput(w.at("header"), shown_cell(name), "given twice");
+      has[static_cast<int>(c)] = true;
+      if (c == Column::Station) t_.dimensional = dim;
+      columns_.push_back(c);
+      column_names_.emplace_back(name);
+    }
+    for (const auto& [c, name] :
+         {std::pair{Column::Station, "x (or r)"}, std::pair{Column::Mass, "m"},
+          std::pair{Column::EIFlap, "EI_flap"}, std::pair{Column::EILag, "EI_lag"}}) {
+      if (!has[static_cast<int>(c)])
+        throw InvalidInput(w.at("header"), shown_cell(line), std::string("has no column ") + name);
+    }
+    if (t_.dimensional && !has[static_cast<int>(Column::Chord)]) {
+      throw InvalidInput(w.at("header"), shown_cell(line),
+                         "a dimensional table (column r) needs the chord column");
+    }
+  }
+
+  // `name,value`: the tip mass; a dimensional table's rotor speed, air density and blades.
+  void keyword(const Where& w, std::string_view line, const std::vector<std::string_view>& cells) {
+    const std::string_view first = cells.front();
+    if (cells.size() != 2)
+      throw InvalidInput(w.at(first), shown_cell(line), "a keyword line is `name,value`");
+    const double v = number(w, first, cells[1]);
+    bool* seen = nullptr;
+    if (first == "tip_mass") {
+      if (!(v >= 0.0)) throw InvalidInput(w.at(first), shown_cell(cells[1]), "must be >= 0");
+      t_.tip_mass = v;
+      seen = &seen_tip_;
+    } else if (first == "rotor_speed_rpm" || first == "air_density" || first == "blades") {
+      if (!t_.dimensional) {
+        throw InvalidInput(w.at(first), shown_cell(cells[1]),
+                           "only in a dimensional table (column r, SI units)");
+      }
+      if (!(v > 0.0)) throw InvalidInput(w.at(first), shown_cell(cells[1]), "must be positive");
+      if (first == "rotor_speed_rpm") {
+        t_.rotor_speed_rpm = v;
+        seen = &seen_speed_;
+      } else if (first == "air_density") {
+        t_.air_density = v;
+        seen = &seen_density_;
+      } else {
+        if (v != std::floor(v) || v > 64) {
+          throw InvalidInput(w.at(first), shown_cell(cells[1]), "must be a whole number 1..64");
+        }
+        t_.blades = static_cast<int>(v);
+        seen = &seen_blades_;
+      }
+    } else {
+      throw InvalidInput(w.at("keyword"), shown_cell(first),
+                         "unknown (tip_mass; rotor_speed_rpm, air_density, blades)");
+    }
+    if (*seen) throw InvalidInput(w.at(first), shown_cell(cells[1]), "given twice");
+    *seen = true;
+  }
+
+  // A station: one number per column of the header.
+  void row(const Where& w, std::string_view line, const std::vector<std::string_view>& cells) {
+    if (cells.size() != columns_.size()) {
+      throw InvalidInput(w.at("row"), shown_cell(line),
+                         std::to_string(cells.size()) + " cells for " +
+                             std::to_string(columns_.size()) + " columns");
+    }
+    if (t_.station.size() >= kMaxStations) {
+      throw InvalidInput(w.at("row"), shown_cell(line),
+                         "more than " + std::to_string(kMaxStations) + " stations");
+    }
+    for (std::size_t i = 0; i < cells.size(); ++i) cell(w, i, cells[i]);
+  }
+
+  void cell(const Where& w, std::size_t i, std::string_view cell) {
+    const std::string& column = column_names_[i];
+    const double v = number(w, column, cell);
+    const Column c = columns_[i];
+    const bool positive =
+        c == Column::Mass || c == Column::EIFlap || c == Column::EILag || c == Column::Chord;
+    if (positive && !(v > 0.0))
+      throw InvalidInput(w.at(column), shown_cell(cell), "must be positive");
+    switch (c) {
+      case Column::Station:
+        if (v < 0.0) throw InvalidInput(w.at(column), shown_cell(cell), "must be >= 0");
+        if (!t_.station.empty() && !(v > t_.station.back())) {
+          throw InvalidInput(w.at(column), shown_cell(cell),
+                             "stations must increase (the previous is " +
+                                 round_trip_text(t_.station.back()) + ")");
+        }
+        t_.station.push_back(v);
+        break;
+      case Column::Mass:
+        t_.mass.push_back(v);
+        break;
+      case Column::EIFlap:
+        t_.ei_flap.push_back(v);
+        break;
+      case Column::EILag:
+        t_.ei_lag.push_back(v);
+        break;
+      case Column::Chord:
+        t_.chord.push_back(v);
+        break;
+      case Column::Twist:
+        if (!(std::abs(v) < 90.0))
+          throw InvalidInput(w.at(column), shown_cell(cell), "must be within (-90, 90) degrees");
+        t_.twist_deg.push_back(v);
+        break;
+    }
+  }
+
+  BladeTable t_;
+  std::vector<Column> columns_;
+  std::vector<std::string> column_names_;
+  bool have_header_ = false, seen_tip_ = false, seen_speed_ = false, seen_density_ = false,
+       seen_blades_ = false;
+};
+
 }  // namespace
 
 BladeTable parse_blade_table(std::string_view text, std::string source) {
-  BladeTable t;
-  t.source = std::move(source);
+  BladeTableReader reader(std::move(source));
   if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // a UTF-8 byte order mark
-  std::vector<Column> columns;
-  std::vector<std::string> column_names;
-  bool have_header = false, seen_tip = false, seen_speed = false, seen_density = false,
-       seen_blades = false;
   std::size_t line_no = 0, start = 0;
   while (start <= text.size()) {
     const std::size_t nl = text.find('\n', start);
@@ -102,143 +272,9 @@ BladeTable parse_blade_table(std::string_view text, std::string source) {
     start = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
     ++line_no;
     if (line.empty() || line.front() == '#') continue;
-    const Where w{t.source, line_no};
-    const std::vector<std::string_view> cells = split(line);
-    if (!have_header) {
-      bool has[6] = {};
-      for (std::string_view name : cells) {
-        Column c;
-        bool dim = false;
-        if (!column_of(name, &c, &dim)) {
-          throw InvalidInput(w.at("header"), shown_cell(name),
-                             "unknown column (x or r, m, EI_flap, EI_lag, chord, twist_deg)");
-        }
-        if (has[static_cast<int>(c)])
-          throw InvalidInput(w.at("header"), shown_cell(name), "given twice");
-        has[static_cast<int>(c)] = true;
-        if (c == Column::Station) t.dimensional = dim;
-        columns.push_back(c);
-        column_names.emplace_back(name);
-      }
-      for (const auto& [c, name] :
-           {std::pair{Column::Station, "x (or r)"}, std::pair{Column::Mass, "m"},
-            std::pair{Column::EIFlap, "EI_flap"}, std::pair{Column::EILag, "EI_lag"}}) {
-        if (!has[static_cast<int>(c)])
-          throw InvalidInput(w.at("header"), shown_cell(line),
-                             std::string("has no column ") + name);
-      }
-      if (t.dimensional && !has[static_cast<int>(Column::Chord)]) {
-        throw InvalidInput(w.at("header"), shown_cell(line),
-                           "a dimensional table (column r) needs the chord column");
-      }
-      have_header = true;
-      continue;
-    }
-    // Keyword lines.
-    const std::string_view first = cells.front();
-    if (!first.empty() &&
-        (std::isalpha(static_cast<unsigned char>(first.front())) || first.front() == '_') &&
-        first != "inf" && first != "nan") {
-      if (cells.size() != 2)
-        throw InvalidInput(w.at(first), shown_cell(line), "a keyword line is `name,value`");
-      const double v = number(w, first, cells[1]);
-      bool* seen = nullptr;
-      if (first == "tip_mass") {
-        if (!(v >= 0.0)) throw InvalidInput(w.at(first), shown_cell(cells[1]), "must be >= 0");
-        t.tip_mass = v;
-        seen = &seen_tip;
-      } else if (first == "rotor_speed_rpm" || first == "air_density" || first == "blades") {
-        if (!t.dimensional) {
-          throw InvalidInput(w.at(first), shown_cell(cells[1]),
-                             "only in a dimensional table (column r, SI units)");
-        }
-        if (!(v > 0.0)) throw InvalidInput(w.at(first), shown_cell(cells[1]), "must be positive");
-        if (first == "rotor_speed_rpm") {
-          t.rotor_speed_rpm = v;
-          seen = &seen_speed;
-        } else if (first == "air_density") {
-          t.air_density = v;
-          seen = &seen_density;
-        } else {
-          if (v != std::floor(v) || v > 64) {
-            throw InvalidInput(w.at(first), shown_cell(cells[1]), "must be a whole number 1..64");
-          }
-          t.blades = static_cast<int>(v);
-          seen = &seen_blades;
-        }
-      } else {
-        throw InvalidInput(w.at("keyword"), shown_cell(first),
-                           "unknown (tip_mass; rotor_speed_rpm, air_density, blades)");
-      }
-      if (*seen) throw InvalidInput(w.at(first), shown_cell(cells[1]), "given twice");
-      *seen = true;
-      continue;
-    }
-    if (cells.size() != columns.size()) {
-      throw InvalidInput(w.at("row"), shown_cell(line),
-                         std::to_string(cells.size()) + " cells for " +
-                             std::to_string(columns.size()) + " columns");
-    }
-    if (t.station.size() >= kMaxStations) {
-      throw InvalidInput(w.at("row"), shown_cell(line),
-                         "more than " + std::to_string(kMaxStations) + " stations");
-    }
-    for (std::size_t i = 0; i < cells.size(); ++i) {
-      const double v = number(w, column_names[i], cells[i]);
-      const Column c = columns[i];
-      const bool positive =
-          c == Column::Mass || c == Column::EIFlap || c == Column::EILag || c == Column::Chord;
-      if (positive && !(v > 0.0))
-        throw InvalidInput(w.at(column_names[i]), shown_cell(cells[i]), "must be positive");
-      switch (c) {
-        case Column::Station:
-          if (v < 0.0)
-            throw InvalidInput(w.at(column_names[i]), shown_cell(cells[i]), "must be >= 0");
-          if (!t.station.empty() && !(v > t.station.back())) {
-            throw InvalidInput(w.at(column_names[i]), shown_cell(cells[i]),
-                               "stations must increase (the previous is " +
-                                   round_trip_text(t.station.back()) + ")");
-          }
-          t.station.push_back(v);
-          break;
-        case Column::Mass:
-          t.mass.push_back(v);
-          break;
-        case Column::EIFlap:
-          t.ei_flap.push_back(v);
-          break;
-        case Column::EILag:
-          t.ei_lag.push_back(v);
-          break;
-        case Column::Chord:
-          t.chord.push_back(v);
-          break;
-        case Column::Twist:
-          if (!(std::abs(v) < 90.0))
-            throw InvalidInput(w.at(column_names[i]), shown_cell(cells[i]),
-                               "must be within (-90, 90) degrees");
-          t.twist_deg.push_back(v);
-          break;
-      }
-    }
-    t.line.push_back(static_cast<int>(line_no));
+    reader.read(line, line_no);
   }
-  if (!have_header)
-    throw InvalidInput(t.source, "(empty)", "has no header line (x or r, m, EI_flap, EI_lag, ...)");
-  if (t.station.size() < 2) {
-    throw InvalidInput(t.source, std::to_string(t.station.size()) + " stations",
-                       "a blade table needs at least 2 stations (root and tip)");
-  }
-  if (t.dimensional) {
-    for (const auto& [seen, name] :
-         {std::pair{seen_speed, "rotor_speed_rpm"}, std::pair{seen_density, "air_density"},
-          std::pair{seen_blades, "blades"}}) {
-      if (!seen)
-        throw InvalidInput(t.source, "(missing)",
-                           std::string("a dimensional table needs the line `") + name + ",VALUE`");
-    }
-  }
-  return t;
+  return reader.finish();
 }
 
 std::vector<std::string> blade_table_fields(bool dimensional) {
