@@ -257,23 +257,8 @@ struct Analysis::Impl {
 
   // A point with fixed controls: continued from hover, no better than the validity envelope.
   RotorPoint point(double mu, double scan_step) const {
-    SweepResult sw =
-        sweep_exponents(hover_modes, function(), mu, mu, scan_step, options.zeta_tolerance);
-    RotorPoint r;
-    r.mu = mu;
-    if (sw.points.empty()) {
-      r.status = Status::Failed;
-      r.message = sw.message.empty() ? "continuation from hover failed" : sw.message;
-      return r;
-    }
-    static_cast<PointResult&>(r) = std::move(sw.points.back());
-    r.mu = mu;
-    if (r.status != Status::Failed) {
-      // A problem on the way (identification) matters for the point too.
-      if (sw.status > r.status) r.Worsen(sw.status, sw.message);
-    } else if (r.message.empty()) {
-      r.message = sw.message;
-    }
+    RotorPoint r = internal::point_at_end(
+        sweep_exponents(hover_modes, function(), mu, mu, scan_step, options.zeta_tolerance), mu);
     if (r.status != Status::Failed)
       r.Worsen(validity.empty() ? Status::Ok : Status::Warning, validity);
     sort_for_output(r.exponents);

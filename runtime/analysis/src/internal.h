@@ -104,6 +104,26 @@ inline FloquetFunction ticking(FloquetFunction f, std::shared_ptr<Ticker> ticker
   };
 }
 
+// The point at mu of a continuation from hover to mu (sweep_exponents): its last point, no
+// better than a problem met on the way (identification); Failed when there is none.
+inline RotorPoint point_at_end(SweepResult sw, double mu) {
+  RotorPoint r;
+  r.mu = mu;
+  if (sw.points.empty()) {
+    r.status = Status::Failed;
+    r.message = sw.message.empty() ? "continuation from hover failed" : sw.message;
+    return r;
+  }
+  static_cast<PointResult&>(r) = std::move(sw.points.back());
+  r.mu = mu;
+  if (r.status != Status::Failed) {
+    if (sw.status > r.status) r.Worsen(sw.status, sw.message);
+  } else if (r.message.empty()) {
+    r.message = sw.message;
+  }
+  return r;
+}
+
 // Sorted by label, then omega descending: the order in which results are shown.  Stable (an
 // insertion sort: a handful of exponents, no temporary buffer).
 inline void sort_for_output(std::vector<LabelledExponent>& v) {

@@ -136,16 +136,9 @@ RotorPoint TrimmedContinuation::point(double mu, double scan_step) const {
   const auto e = std::make_shared<Evaluations>();
   SweepResult sw =
       sweep_exponents(modes_, function(e), mu, mu, scan_step, transition_.zeta_tolerance);
-  RotorPoint r;
-  r.mu = mu;
-  if (sw.points.empty()) {
-    r.status = Status::Failed;
-    r.message = sw.message.empty() ? "continuation from hover failed" : sw.message;
-    return r;
-  }
-  static_cast<PointResult&>(r) = std::move(sw.points.back());
-  r.mu = mu;
-  if (sw.status > r.status) r.Worsen(sw.status, sw.message);
+  const bool none = sw.points.empty();
+  RotorPoint r = point_at_end(std::move(sw), mu);
+  if (none) return r;  // no point, no trim it rests on
   sort_for_output(r.exponents);
   SweepResult one;
   one.points.push_back(r);
