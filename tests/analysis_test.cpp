@@ -697,6 +697,22 @@ TEST(Simulation, TipDeflectionsFromTheDisplacementStates) {
     EXPECT_EQ(e.name(), "y0");
   }
   EXPECT_THROW(an.simulate(-1.0, y0, false, o), flaplag::InvalidInput);
+  // The same sums for any state, direction by direction in state order, named by the model.
+  const std::vector<double> tip = an.tip_deflections(y0);
+  ASSERT_EQ(tip.size(), 2u);
+  EXPECT_EQ(tip[0], 0.01);
+  EXPECT_EQ(tip[1], 0.02);
+  const std::vector<flaplag::TipMotion> named = an.tip_motions();
+  ASSERT_EQ(named.size(), 2u);
+  EXPECT_EQ(named[0].direction, "flap");
+  EXPECT_EQ(named[1].direction, "lag");
+  EXPECT_THROW(flaplag::tip_motion(named, "torsion"), flaplag::InvalidInput);
+  try {
+    an.tip_deflections(Eigen::VectorXd::Zero(5));
+    FAIL() << "accepted";
+  } catch (const flaplag::InvalidInput& e) {
+    EXPECT_EQ(e.name(), "y");
+  }
 }
 
 // ---- Analysis::simulate of the nonlinear equations (SimulationOptions::nonlinear) -----------

@@ -855,27 +855,16 @@ py::dict simulation_dict(const Analysis& a, const TipSimulation& t) {
 
 // ---- periodic equilibrium and trim -------------------------------------------------------------
 
-// Tip deflections w/l, v/l of a full state y (model_api.h order) with the analysis' modes.
-std::pair<double, double> tip_of(const Analysis& a, const Eigen::VectorXd& y) {
-  const int M = a.model().flap_modes, N = a.model().lag_modes;
-  double flap = 0.0, lag = 0.0;
-  for (int k = 0; k < M; ++k)
-    flap += a.modes().flap[k]->value(0, 1.0) * y(model::flap_displacement_index(k, M, N));
-  for (int r = 0; r < N; ++r)
-    lag += a.modes().lag[r]->value(0, 1.0) * y(model::lag_displacement_index(r, M, N));
-  return {flap, lag};
-}
-
 py::dict equilibrium_dict(const Analysis& a, const PeriodicEquilibrium& e, int samples) {
-  std::vector<double> psi, flap, lag;
+  std::vector<double> psi;
   std::vector<Eigen::VectorXd> y;
+  std::vector<TipMotion> tips = a.tip_motions();
   if (e.status != Status::Failed) {
     for (int k = 0; k < samples; ++k) {
       psi.push_back(kTwoPi * k / samples);
       y.push_back(e.state(psi.back()));
-      const auto [f, l] = tip_of(a, y.back());
-      flap.push_back(f);
-      lag.push_back(l);
+      const std::vector<double> tip = a.tip_deflections(y.back());
+      for (std::size_t i = 0; i < tips.size(); ++i) tips[i].deflection.push_back(tip[i]);
     }
   }
   py::dict d;
@@ -885,8 +874,7 @@ py::dict equilibrium_dict(const Analysis& a, const PeriodicEquilibrium& e, int s
   d["coefficients"] = to_numpy(e.coefficients);
   d["psi"] = to_numpy(psi);
   d["y"] = states_numpy(y, a.state_size());
-  d["flap_tip"] = to_numpy(flap);
-  d["lag_tip"] = to_numpy(lag);
+  for (const TipMotion& t : tips) d[(t.direction + "_tip").c_str()] = to_numpy(t.deflection);
   d["continued_to"] = e.continued_to;
   d["iterations"] = e.iterations;
   d["step"] = e.step;

@@ -527,6 +527,17 @@ TipSimulation Analysis::simulate_nonlinear(double mu, const Eigen::VectorXd& y0,
 
 int Analysis::state_size() const { return impl_->builder.state_size(); }
 
+std::vector<double> Analysis::tip_deflections(const Eigen::VectorXd& y) const {
+  if (y.size() != state_size())
+    throw InvalidInput("y", std::to_string(y.size()) + " values",
+                       "must be " + std::to_string(state_size()) + " values");
+  return internal::tip_deflections(modes(), model().flap_modes, model().lag_modes, y);
+}
+
+std::vector<TipMotion> Analysis::tip_motions() const {
+  return internal::tip_motions(model().flap_modes, model().lag_modes);
+}
+
 SystemSnapshot Analysis::snapshot(double mu, double psi) const {
   require_fixed_controls("the system snapshot");
   check_mu(mu, "mu");

@@ -259,6 +259,11 @@ class Analysis {
                          const SimulationOptions& options = {}) const;
   // The size of the state y: 2 (M + N).
   int state_size() const;
+  // The tip deflection by l of each direction (TipMotion order) of a full state y (state_size()
+  // values, model_api.h order; InvalidInput "y" otherwise), e.g. a periodic equilibrium's.
+  std::vector<double> tip_deflections(const Eigen::VectorXd& y) const;
+  // One empty TipMotion per direction of the model, named, in state order.
+  std::vector<TipMotion> tip_motions() const;
 
   // One resolved Floquet evaluation at mu (the FloquetFunction of the numerics), for callers
   // that drive their own continuation.
