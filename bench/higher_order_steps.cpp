@@ -14,17 +14,18 @@
 //   hsu:     the library's Hsu (transition_matrix_hsu), J = 4 Taylor terms (p = 2);
 //   m4-tJ:   fourth-order Magnus from the exact moments, Omega = B0 + [B1, B0] with
 //            B1 = (1/h) int (psi - c) A (p = 4), exp(Omega) by J Taylor terms;
-//   m4-exp:  the same with an accurate exponential (Eigen's scaling and squaring).
+//   m4-exp:  the same with an accurate exponential (Eigen's scaling and squaring, the
+//            library's matrix_exponential).
 // Output: one line per candidate, K at each mu, the sum of K + K/2 and the two counts.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
 #include "flaplag/analysis.h"
 #include "flaplag/core/constants.h"
+#include "flaplag/numerics/dense.h"
 #include "flaplag/numerics/floquet.h"
 
 namespace {
@@ -78,7 +79,7 @@ Mat transition(const flaplag::PeriodicSystem& s, int K, const Candidate& c) {
       B1 += (cosine ? -sn : cs) * h * h / 12.0 * k * first_moment_factor(0.5 * k * h) * Mat(g.A[j]);
     }
     const Mat omega = B0 + B1 * B0 - B0 * B1;
-    phi = (c.terms > 0 ? taylor(omega, c.terms) : Mat(omega.exp())) * phi;
+    phi = (c.terms > 0 ? taylor(omega, c.terms) : flaplag::matrix_exponential<4>(omega)) * phi;
   };
   for (int i = 0; i < K; ++i) {
     const double a = i * d, b = i + 1 == K ? kTwoPi : (i + 1) * d;
@@ -95,10 +96,12 @@ Mat transition(const flaplag::PeriodicSystem& s, int K, const Candidate& c) {
 }
 
 std::vector<double> zetas(const Eigen::MatrixXd& phi) {
-  Eigen::EigenSolver<Eigen::MatrixXd> es(phi, false);
+  // Eigen::EigenSolver<Eigen::MatrixXd>, compiled once in the library
+  const Eigen::VectorXcd values =
+      flaplag::real_eigen_system(phi, false, flaplag::EigenStorage::Dynamic).values;
   std::vector<double> z;
-  for (Eigen::Index i = 0; i < es.eigenvalues().size(); ++i)
-    z.push_back(std::log(std::abs(es.eigenvalues()(i))) / kTwoPi);
+  for (Eigen::Index i = 0; i < values.size(); ++i)
+    z.push_back(std::log(std::abs(values(i))) / kTwoPi);
   std::sort(z.begin(), z.end());
   return z;
 }

@@ -261,7 +261,7 @@ TEST(PeriodicSystem, ExactFixturesReproduceA) {
   for (const fixtures::ExactCase& c : fixtures::exact_cases()) {
     for (double psi : {0.0123, 0.9, 2.2, 2.6, 3.1, 4.0, 5.0, 5.7, 6.25}) {
       const fixtures::Frame& f = c.sys.in_sector(psi) ? c.reversed : c.frame;
-      const Eigen::MatrixXd P = f.P(psi), Pinv = P.inverse();
+      const Eigen::MatrixXd P = f.P(psi), Pinv = fixtures::inverse(P);
       const Eigen::MatrixXd A = f.dP(psi) * Pinv + P * c.B * Pinv;
       EXPECT_LT((c.sys.A(psi) - A).cwiseAbs().maxCoeff(), 1e-13 * A.cwiseAbs().maxCoeff())
           << c.name << ", psi = " << psi;

@@ -146,10 +146,9 @@ TEST(Transition, SectorEdgesAreSplit) {
 PeriodicSystem mathieu(double delta, double eps, double xi) {
   PeriodicSystem s;
   s.n = 2;
-  Eigen::MatrixXd a0(2, 2), a1 = Eigen::MatrixXd::Zero(2, 2);
-  a0 << -2 * xi, -delta, 1, 0;
-  a1(0, 1) = -eps;
-  s.normal.A = {a0, a1};
+  s.normal.A.assign(2, Eigen::MatrixXd::Zero(2, 2));
+  s.normal.A[0] << -2 * xi, -delta, 1, 0;
+  s.normal.A[1](0, 1) = -eps;
   return s;
 }
 

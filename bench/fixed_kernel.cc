@@ -1,0 +1,56 @@
+// The comparison kernel of bench/fixed_kernel.h.
+#include "fixed_kernel.h"
+
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+
+#include "flaplag/core/constants.h"
+
+namespace flaplag::bench {
+
+FixedKernel::FixedKernel(const flaplag::PeriodicSystem& s, int K) {
+  for (int r = 0; r < 2; ++r) {
+    const flaplag::HarmonicSet& set = r == 0 ? s.normal : s.reversed;
+    for (const Eigen::MatrixXd& m : set.A) A[r].push_back(m);
+  }
+  auto add = [&](double a, double b) {
+    Interval iv{b - a, s.in_sector(0.5 * (a + b)) ? 1 : 0, {}};
+    for (std::size_t h = 0; h < A[iv.region].size(); ++h)
+      iv.weight.push_back((b - a) * flaplag::harmonic_mean(static_cast<int>(h), a, b));
+    grid.push_back(iv);
+  };
+  const double d = flaplag::kTwoPi / K;
+  for (int i = 0; i < K; ++i) {
+    double a = i * d;
+    const double b = (i + 1) * d;
+    for (double e : s.breakpoints())
+      if (e > a && e < b) {
+        add(a, e);
+        a = e;
+      }
+    add(a, b);
+  }
+}
+
+Eigen::Matrix4d FixedKernel::phi() const {
+  Eigen::Matrix4d Phi = Eigen::Matrix4d::Identity();
+  for (const Interval& iv : grid) {
+    const std::vector<Eigen::Matrix4d>& H = A[iv.region];
+    Eigen::Matrix4d X = iv.weight[0] * H[0];  // X = delta C_k
+    for (std::size_t h = 1; h < H.size(); ++h) X += iv.weight[h] * H[h];
+    const Eigen::Matrix4d X2 = X * X;
+    Eigen::Matrix4d T = (1.0 / 6.0) * X + (1.0 / 24.0) * X2;
+    T.diagonal().array() += 0.5;
+    Eigen::Matrix4d E = Eigen::Matrix4d::Identity() + X;
+    E.noalias() += X2 * T;
+    Phi = (E * Phi).eval();
+  }
+  return Phi;
+}
+
+Eigen::Vector4cd FixedKernel::eigenvalues() const {
+  Eigen::EigenSolver<Eigen::Matrix4d> es(phi(), false);
+  return es.eigenvalues();
+}
+
+}  // namespace flaplag::bench
