@@ -245,8 +245,8 @@ std::vector<OptionSpec> file_tool_options(Command c) {
                    "", {"label"}),
       flag_option("--max-zeta", "sweeps: only the largest zeta over the modes at each mu"),
       value_option("--mode", "NAME",
-                   "sweeps: only the curves of this mode, by its label (flap, lag2, ...; lag and "
-                   "lag1 are one mode: the first lag mode of a 1 x 1 and of an M x N model)",
+                   "sweeps: only the curves of this mode, by its label (flap, lag, lag2, ...; "
+                   "lag1 of older M x N files is lag)",
                    "", {"mode"}),
       plot_quantity_option()};
 }

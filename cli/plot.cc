@@ -15,6 +15,7 @@
 
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "options.h"
@@ -295,13 +296,14 @@ void mark_rows(const std::vector<double>& mu, const std::vector<RowStatus>& stat
   }
 }
 
-// The modes in the order of their labels: flap before lag, then by number ("flap" is "flap1"),
+// The modes in the order of their labels: flap before lag, then by number (model_api.h),
 // whatever the order of the result (an M x N model's hover order is by frequency).
 std::vector<const ModeCurve*> in_order(const std::vector<ModeCurve>& modes) {
   auto key = [](const std::string& label) {
-    const bool lag = label.rfind("lag", 0) == 0;
-    const std::string n = label.substr(lag ? 3 : 4);
-    return std::make_pair(lag, n.empty() ? 1 : std::atoi(n.c_str()));
+    std::string direction;
+    int k = 0;
+    model::parse_mode_label(label, &direction, &k);  // labels were checked on reading
+    return std::make_pair(direction == "lag", k);
   };
   std::vector<const ModeCurve*> order;
   for (const ModeCurve& m : modes) order.push_back(&m);

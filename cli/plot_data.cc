@@ -10,6 +10,7 @@
 #include "flaplag/campbell.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/trim.h"
@@ -52,23 +53,20 @@ const std::string& text_at(const std::string& file, const std::string& key, cons
   return v.get_ref<const std::string&>();
 }
 
-// A mode label as the hover analysis names modes: flap, lag, or either with a mode number.
+// A mode label as the hover analysis names modes (model_api.h: flap, lag, flap2, ...; lag1 of
+// older files).
 bool is_mode_label(const std::string& s) {
-  for (const char* base : {"flap", "lag"}) {
-    const std::string b(base);
-    if (s.compare(0, b.size(), b) != 0) continue;
-    const std::string n = s.substr(b.size());
-    if (n.empty()) return true;
-    if (n.size() > 3 || n[0] == '0') return false;
-    return std::all_of(n.begin(), n.end(), [](char c) { return c >= '0' && c <= '9'; });
-  }
-  return false;
+  std::string direction;
+  int k = 0;
+  return model::parse_mode_label(s, &direction, &k);
 }
 
-// One mode by two labels: "lag" (a 1 x 1 model's) is "lag1" (an M x N model's first lag mode).
+// One mode by two labels: "lag" is "lag1" (the spelling of files written before the one scheme).
 bool same_mode(const std::string& a, const std::string& b) {
-  auto numbered = [](const std::string& s) { return s == "flap" || s == "lag" ? s + "1" : s; };
-  return numbered(a) == numbered(b);
+  std::string da, db;
+  int ka = 0, kb = 0;
+  if (!model::parse_mode_label(a, &da, &ka) || !model::parse_mode_label(b, &db, &kb)) return a == b;
+  return da == db && ka == kb;
 }
 
 // A model name: a compiled model's or one of the same form (a result of another build).

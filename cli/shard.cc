@@ -11,6 +11,7 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/core/status.h"
 #include "flaplag/limits.h"
+#include "flaplag/model_api.h"
 #include "options.h"
 #include "read_file.h"
 
@@ -88,15 +89,13 @@ const char* const kDigestPrefix = "sha256:";
 // The exact text of a JSON value, for comparisons that tell 1 from 1.0 and 0.0 from -0.0.
 std::string exact(const Json& v) { return v.dump(); }
 
-// The mode labels of a model with M flap and N lag modes (hover.cc): "flap" and "lag" for one
-// mode, "flap1".."flapM" for more.
+// The mode labels of a model with M flap and N lag modes (model_api.h: flap, flap2, ..., lag, ...).
 std::vector<std::string> mode_labels(const Json& model) {
   std::vector<std::string> labels;
-  for (const char* kind : {"flap", "lag"}) {
+  for (const char* kind : model::kDirectionNames) {
     const std::size_t count = model.at(std::string(kind) + "_modes").get<std::size_t>();
-    if (count == 1) labels.emplace_back(kind);
-    for (std::size_t i = 1; count > 1 && i <= count && i <= 1000; ++i)
-      labels.push_back(kind + std::to_string(i));
+    for (std::size_t i = 1; i <= count && i <= 1000; ++i)
+      labels.push_back(model::mode_label(kind, static_cast<int>(i)));
   }
   return labels;
 }

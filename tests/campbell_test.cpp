@@ -123,7 +123,7 @@ TEST(Campbell, ExactModesAtRestAreTheCantilever) {
   p.modes = ModeKind::Exact;
   p.model = "paper-2x1";
   const CampbellResult c = campbell_diagram(p, {}, coarse(3));
-  ASSERT_EQ(c.labels, (std::vector<std::string>{"flap1", "flap2", "lag"}));
+  ASSERT_EQ(c.labels, (std::vector<std::string>{"flap", "flap2", "lag"}));
   const CampbellPoint& rest = c.points.front();
   const double b1 = cantilever_root(1), b2 = cantilever_root(2);
   EXPECT_TRUE(

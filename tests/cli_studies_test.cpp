@@ -1021,8 +1021,9 @@ TEST(CliPlot, SymbolsTitlesAndMarksOfThePictures) {
       << keeper.script();
 }
 
-// One mode name selects the same mode in a 1 x 1 and an M x N result: "lag" of the 1 x 1 model
-// is "lag1" of the 3 x 3 one, and either name draws both curves.
+// One label scheme for every model: "lag" is the first lag mode of the 1 x 1 and of the 3 x 3
+// model, and selects both.  "lag1", the label of M x N results written before the one scheme,
+// names the same mode: a 3 x 3 file with the old labels overlays the same way.
 TEST(CliPlot, OverlayOfAOneByOneAndAThreeByThreeSweepWithOneModeName) {
   TempDir d;
   const std::string one = d.file("one.json"), three = d.file("three.json");
@@ -1031,25 +1032,40 @@ TEST(CliPlot, OverlayOfAOneByOneAndAThreeByThreeSweepWithOneModeName) {
                     "0:0.2:0.1", "--json", "-o", three})
                    .exit_code);
   ASSERT_EQ(Json::parse(slurp(one))["labels"], (Json{"flap", "lag"}));
-  const Json labels = Json::parse(slurp(three))["labels"];
-  ASSERT_NE(labels.end(), std::find(labels.begin(), labels.end(), "lag1")) << labels;
-  for (const char* mode : {"lag", "lag1"}) {
-    ScriptKeeper keeper;
-    const Outcome o =
-        run({"plot", one, three, "--mode", mode, "--plot", d.file("x.svg")}, keeper.path());
-    ASSERT_EQ(0, o.exit_code) << mode << ": " << o.err;
-    const std::string s = keeper.script();
-    EXPECT_EQ(3u, curve_points(s, "paper: lag").size()) << s;  // mu = 0, 0.1, 0.2
-    EXPECT_EQ(3u, curve_points(s, "paper-3x3: lag1").size()) << s;
-    for (const char* other : {"paper: flap", "paper-3x3: lag2", "paper-3x3: flap1"})
-      EXPECT_EQ(std::string::npos, s.find(std::string("'") + other + "'")) << other;
+  std::vector<std::string> labels = Json::parse(slurp(three))["labels"];  // in hover order
+  std::sort(labels.begin(), labels.end());
+  ASSERT_EQ(labels, (std::vector<std::string>{"flap", "flap2", "flap3", "lag", "lag2", "lag3"}));
+  // The same result as an older flaplag wrote it: flap1, lag1 for the first modes.
+  const std::string old = d.file("old.json");
+  {
+    std::string text = slurp(three);
+    for (const char* dir : {"flap", "lag"}) {
+      const std::string from = std::string("\"") + dir + "\"", to = std::string("\"") + dir + "1\"";
+      for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at))
+        text.replace(at, from.size(), to);
+    }
+    std::ofstream(old) << text;
+  }
+  for (const std::string& file : {three, old}) {
+    const std::string first = file == three ? "lag" : "lag1";
+    for (const char* mode : {"lag", "lag1"}) {
+      ScriptKeeper keeper;
+      const Outcome o =
+          run({"plot", one, file, "--mode", mode, "--plot", d.file("x.svg")}, keeper.path());
+      ASSERT_EQ(0, o.exit_code) << mode << ": " << o.err;
+      const std::string s = keeper.script();
+      EXPECT_EQ(3u, curve_points(s, "paper: lag").size()) << s;  // mu = 0, 0.1, 0.2
+      EXPECT_EQ(3u, curve_points(s, "paper-3x3: " + first).size()) << s;
+      for (const char* other : {"paper: flap", "paper-3x3: lag2", "paper-3x3: flap"})
+        EXPECT_EQ(std::string::npos, s.find(std::string("'") + other + "'")) << other;
+    }
   }
   if (gnuplot_available()) {
     const std::string svg = d.file("both.svg");
-    ASSERT_EQ(0, run({"plot", one, three, "--mode", "lag1", "--plot", svg}).exit_code);
+    ASSERT_EQ(0, run({"plot", one, three, "--mode", "lag", "--plot", svg}).exit_code);
     const std::string texts = svg_texts(slurp(svg));
     EXPECT_NE(std::string::npos, texts.find("paper: lag\n")) << texts;
-    EXPECT_NE(std::string::npos, texts.find("paper-3x3: lag1\n")) << texts;
+    EXPECT_NE(std::string::npos, texts.find("paper-3x3: lag\n")) << texts;
   }
 }
 

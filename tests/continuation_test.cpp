@@ -92,7 +92,7 @@ TEST(HoverModes, MultiModeSuffixes) {
   const HoverModes h = label_hover_modes(A, 2, 1);
   for (std::size_t k = 0; k < 6; ++k) {
     const double im = std::abs(h.eigenvalues[k].imag());
-    const char* expect = std::abs(im - 1.1) < 1e-9   ? "flap1"
+    const char* expect = std::abs(im - 1.1) < 1e-9   ? "flap"
                          : std::abs(im - 3.4) < 1e-9 ? "flap2"
                                                      : "lag";
     EXPECT_EQ(expect, h.labels[k]) << "eigenvalue " << h.eigenvalues[k];

@@ -70,7 +70,7 @@ CriticalResult critical(const RotorParameters& p, const TransitionOptions& o = h
   return Analysis(p, o).critical(c);
 }
 
-// Largest real part among the lag exponents ("lag", or "lag1", "lag2" with several modes).
+// Largest real part among the lag exponents ("lag", and "lag2", ... with several modes).
 double lag_zeta(const Analysis& an, double mu) {
   const auto pt = an.point(mu);
   double z = -std::numeric_limits<double>::infinity();

@@ -48,6 +48,19 @@ def _g(v, digits=6):
     return f"{v:.{digits}g}"
 
 
+def _same_mode(a, b):
+    """Whether two labels name one mode: one scheme for every model ("flap", "flap2", "lag"),
+    and "lag1", the first lag mode's label in M x N results of older versions, is "lag"."""
+
+    def canonical(label):
+        for name in ("flap", "lag"):
+            if label == name + "1":
+                return name
+        return label
+
+    return canonical(a) == canonical(b)
+
+
 def _status(status, message):
     if status == "ok":
         return "status='ok'"
@@ -234,7 +247,7 @@ class PointResult(_Described):
         conjugate pair the one with omega >= 0 (the command line's rule for its tables)."""
         best = None
         for e in self.exponents:
-            if e.label != label:
+            if not _same_mode(e.label, label):
                 continue
             if (
                 best is None
@@ -321,7 +334,7 @@ class SweepResult(_Described):
 
     def crossing(self, label) -> Optional[DampingCrossing]:
         """The DampingCrossing of mode ``label`` (None without a damping criterion)."""
-        return next((c for c in self.damping_crossings if c.mode == label), None)
+        return next((c for c in self.damping_crossings if _same_mode(c.mode, label)), None)
 
     @property
     def max_zeta(self) -> np.ndarray:
@@ -1061,7 +1074,7 @@ class StudyResult:
         no criterion)."""
         out = []
         for row in self.damping_crossings:
-            c = next((c for c in row if c.mode == label), None)
+            c = next((c for c in row if _same_mode(c.mode, label)), None)
             out.append(math.nan if c is None or c.mu is None else c.mu)
         return np.array(out)
 

@@ -78,6 +78,19 @@ def test_any_mode_counts_up_to_twelve():
     assert flaplag.Analysis(model="paper-cyclic-2x2", modes="exact").model.name == "paper-2x2"
 
 
+def test_one_label_scheme_for_every_model():
+    """The first mode of a direction is the direction's name in every model, so "lag" of the
+    1 x 1 and of a 2 x 2 model are one mode; "lag1" (older M x N results) names it too."""
+    one = flaplag.Analysis().point(0.3)
+    two = flaplag.Analysis(modes="exact", flap_modes=2, lag_modes=2).point(0.3)
+    assert sorted(set(one.labels)) == ["flap", "lag"]
+    assert sorted(set(two.labels)) == ["flap", "flap2", "lag", "lag2"]
+    lag = two.dominant("lag")
+    assert lag is not None and abs(lag.omega - one.dominant("lag").omega) < 0.05
+    assert two.dominant("lag1") == lag
+    assert two.dominant("lag3") is None
+
+
 def test_numpy_scalars_are_numbers():
     a = flaplag.Analysis(theta=np.float64(0.15), steps=np.int64(50), reversed_flow=np.bool_(True))
     b = flaplag.Analysis(theta=0.15, steps=50)

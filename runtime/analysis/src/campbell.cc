@@ -11,6 +11,7 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/core/parallel.h"
+#include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 
 namespace flaplag {
@@ -42,13 +43,16 @@ Blade blade_of(const RotorParameters& p) {
   return b;
 }
 
-// Mode k of a label ("flap" and "lag" are mode 1; "flap2" mode 2) and its direction.
+// Mode k of a label (model_api.h: "flap" and "lag" are mode 1; "flap2" mode 2) and its
+// direction.
 BendingDirection direction_of(const std::string& label) {
   return label.rfind("lag", 0) == 0 ? BendingDirection::Lag : BendingDirection::Flap;
 }
 int mode_number(const std::string& label) {
-  const std::size_t digits = label.find_first_of("0123456789");
-  return digits == std::string::npos ? 1 : std::stoi(label.substr(digits));
+  std::string direction;
+  int k = 1;
+  model::parse_mode_label(label, &direction, &k);
+  return k;
 }
 
 // Omega = 0: the nonrotating cantilever, omega_k / Omega_0 = sqrt(k / mbar) beta_k^2 (a blade

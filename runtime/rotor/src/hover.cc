@@ -50,12 +50,12 @@ HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_
         part = std::move(d);
       }
     }
-    std::string label = dominant->name;
-    if (part.size() > 1) {
-      Eigen::Index idx = 0;
-      part.cwiseAbs().maxCoeff(&idx);
-      label += std::to_string(idx + 1);
-    }
+    // One scheme for every model: the first mode of a direction is the direction's name, so
+    // that "lag" of a 1 x 1 model and of a 3 x 3 model are the same mode; higher modes add
+    // their number ("flap2").
+    Eigen::Index idx = 0;
+    part.cwiseAbs().maxCoeff(&idx);
+    std::string label = model::mode_label(dominant->name, static_cast<int>(idx) + 1);
     out.eigenvalues.push_back(es.values(k));
     out.eigenvectors.push_back(std::move(v));
     out.labels.push_back(std::move(label));

@@ -75,9 +75,41 @@ struct DirectionBlock {
   int rate_index(int k) const { return first_state + k; }
   int displacement_index(int k) const { return first_state + modes + k; }
 };
+// The directions' names, in state order.
+inline constexpr const char* kDirectionNames[] = {"flap", "lag"};
 inline std::vector<DirectionBlock> direction_blocks(int M, int N) {
-  return {{Direction::Flap, "flap", "g", "w", M, flap_rate_index(0, M, N), 0},
-          {Direction::Lag, "lag", "h", "v", N, lag_rate_index(0, M, N), M}};
+  return {{Direction::Flap, kDirectionNames[0], "g", "w", M, flap_rate_index(0, M, N), 0},
+          {Direction::Lag, kDirectionNames[1], "h", "v", N, lag_rate_index(0, M, N), M}};
+}
+
+// The label of mode k (1-based) of a direction, one scheme for every model: the first mode is the
+// direction's name ("flap", "lag"), mode k > 1 adds its number ("flap2").  A 1 x 1 model's "lag"
+// and a 3 x 3 model's "lag" are the same mode.
+inline std::string mode_label(const std::string& direction, int k) {
+  return k == 1 ? direction : direction + std::to_string(k);
+}
+// The direction name and mode number of a label: "lag" -> ("lag", 1), "flap2" -> ("flap", 2);
+// "lag1" (the spelling of result files written before the one scheme) is mode 1 too.  False when
+// the label is none of these (a name that is no direction, a number 0, leading zeros or more
+// than three digits).
+inline bool parse_mode_label(const std::string& label, std::string* direction, int* k) {
+  for (const char* name : kDirectionNames) {
+    const std::string base = name;
+    if (label.compare(0, base.size(), base) != 0) continue;
+    const std::string digits = label.substr(base.size());
+    if (digits.empty()) {
+      *direction = base;
+      *k = 1;
+      return true;
+    }
+    if (digits.size() > 3 || digits[0] == '0') return false;
+    for (char c : digits)
+      if (c < '0' || c > '9') return false;
+    *direction = base;
+    *k = std::stoi(digits);
+    return true;
+  }
+  return false;
 }
 
 // Name of state column col: "dg1'", "dg1", "dh1'", "dh1" (1-based mode numbers).

@@ -40,9 +40,10 @@ inline double hover_zeta_rounding(const Eigen::MatrixXd& A0) {
 }
 
 // A0 is 2(M+N) x 2(M+N) in the state ordering of model_api.h (M, N >= 0, M + N >= 1).  An
-// eigenvalue is "flap" when the flap displacements g dominate its eigenvector (|g|^2 >= |h|^2) and
-// "lag" otherwise; with several modes of that kind the suffix is 1 + the index of the largest
-// displacement component ("flap1", "flap2").  Throws InvalidInput for wrong sizes or NaN.
+// eigenvalue is a flap mode when the flap displacements g dominate its eigenvector
+// (|g|^2 >= |h|^2) and a lag mode otherwise; its number is 1 + the index of the largest
+// displacement component, its label model::mode_label ("flap", "flap2", "lag").  Throws
+// InvalidInput for wrong sizes or NaN.
 HoverModes label_hover_modes(const Eigen::MatrixXd& A0, int flap_modes, int lag_modes);
 
 }  // namespace flaplag
