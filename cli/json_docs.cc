@@ -71,6 +71,15 @@ const char* struct_name<CampbellCrossing>() {
   return "CampbellCrossing";
 }
 
+template <>
+const char* struct_name<ThrustResult>() {
+  return "ThrustResult";
+}
+template <>
+const char* struct_name<FloquetSample>() {
+  return "FloquetSample";
+}
+
 std::string anchor(const std::string& name) {
   std::string a;
   for (char c : name) a += static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
@@ -258,6 +267,15 @@ std::string json_reference() {
   out += struct_section<CampbellPoint>("The modes at one rotor speed.");
   out += struct_section<CampbellFrequency>("One mode at one rotor speed.");
   out += struct_section<CampbellCrossing>("Where a mode's frequency meets a per-rev line n Omega.");
+  out +=
+      "## Python results\n\n"
+      "Results of the Python module that no command writes as JSON; its classes have these keys "
+      "as attributes (lists as numpy arrays).\n\n";
+  out += struct_section<ThrustResult>(
+      "The model's own thrust at one mu (`Analysis.thrust`), at the given pitch and inflow.");
+  out += struct_section<FloquetSample>(
+      "One Floquet analysis at mu without continuation (`Analysis.floquet`): the exponents "
+      "unlabelled, in the order of the eigen-solve.");
   return out;
 }
 

@@ -544,27 +544,6 @@ py::dict modes_dict(const ModeSet& modes, const py::object& stations, int deriva
   return d;
 }
 
-py::dict floquet_dict(const FloquetSample& s) {
-  std::vector<std::complex<double>> multipliers;
-  std::vector<double> zeta, omega;
-  for (const FloquetExponent& e : s.floquet.exponents) {
-    multipliers.push_back(e.multiplier);
-    zeta.push_back(e.zeta);
-    omega.push_back(e.omega);
-  }
-  py::dict d;
-  d["multipliers"] = to_numpy(multipliers);
-  d["zeta"] = to_numpy(zeta);
-  d["omega"] = to_numpy(omega);
-  d["zeta_errors"] = to_numpy(s.zeta_errors);
-  d["error"] = optional(s.error);
-  d["steps"] = s.steps;
-  d["liouville_residual"] = s.floquet.liouville_residual;
-  d["status"] = status_name(s.status);
-  d["message"] = s.message;
-  return d;
-}
-
 // ---- long runs: studies and maps ----------------------------------------------------------------
 
 TrimOptions trim_options(const std::string& kind, double thrust_coefficient, double shaft_angle,
@@ -826,7 +805,7 @@ py::dict response_dict(const Analysis& a, const ForcedResponse& f) {
   }
   d["harmonic_names"] = harmonic_names(f.tips.empty() ? 0 : f.tips.front().harmonics.size());
   d["closure"] = p.closure;
-  d["error"] = optional(p.error);
+  d["error_estimate"] = optional(p.error);
   d["min_distance_to_one"] = p.min_distance_to_one;
   d["steps"] = p.steps;
   d["status"] = status_name(f.status);
@@ -929,18 +908,6 @@ py::dict trim_defaults() {
 py::dict trim_dict(const TrimResult& t) {
   py::dict d = to_dict(t);
   d["parameters"] = parameters_dict(t.parameters);
-  return d;
-}
-
-py::dict thrust_dict(const ThrustResult& t) {
-  py::dict d;
-  d["mu"] = t.mu;
-  d["inflow"] = t.inflow;
-  d["thrust_coefficient"] = t.thrust_coefficient;
-  d["flap_1c"] = t.flap_1c;
-  d["flap_1s"] = t.flap_1s;
-  d["status"] = status_name(t.status);
-  d["message"] = t.message;
   return d;
 }
 
@@ -1132,6 +1099,8 @@ void bind_tables(py::module_& m) {
     if (name == "DampingCrossing") return field_rows<DampingCrossing>();
     if (name == "CriticalResult") return field_rows<CriticalResult>();
     if (name == "TrimResult") return field_rows<TrimResult>();
+    if (name == "ThrustResult") return field_rows<ThrustResult>();
+    if (name == "FloquetSample") return field_rows<FloquetSample>();
     if (name == "CampbellResult") return field_rows<CampbellResult>();
     if (name == "CampbellPoint") return field_rows<CampbellPoint>();
     if (name == "CampbellFrequency") return field_rows<CampbellFrequency>();
@@ -1245,7 +1214,7 @@ void bind_stability(py::class_<Analysis>& analysis) {
           py::gil_scoped_release release;
           s = a.floquet(mu, zeta_tolerance);
         }
-        return floquet_dict(s);
+        return to_dict(s);
       });
 }
 
@@ -1402,7 +1371,7 @@ void bind_trim(py::class_<Analysis>& analysis) {
           else
             t = rotor_thrust(a.parameters(), mu, value);
         }
-        return thrust_dict(t);
+        return to_dict(t);
       });
 }
 

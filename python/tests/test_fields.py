@@ -3,6 +3,7 @@ the command line's JSON uses: one name per field in every front end."""
 
 import dataclasses
 
+import numpy as np
 import pytest
 
 import flaplag
@@ -29,6 +30,8 @@ CLASSES = [
     "CampbellPoint",
     "CampbellFrequency",
     "CampbellCrossing",
+    "ThrustResult",
+    "FloquetSample",
 ]
 
 
@@ -53,6 +56,8 @@ def results():
         "CampbellPoint": campbell.points[1],
         "CampbellFrequency": campbell.points[1].modes[0],
         "CampbellCrossing": campbell.crossings[0],
+        "ThrustResult": an.thrust(0.3),
+        "FloquetSample": an.floquet(0.3),
     }
 
 
@@ -130,3 +135,36 @@ def test_campbell_is_the_command_lines():
     assert c.points[0].modes[0].damping_ratio is None
     with pytest.raises(ValueError, match="speed_max"):
         flaplag.Analysis().campbell(speed_max=0.0)
+
+
+def test_floquet_sample_columns_are_numpy_arrays():
+    """The exponents' columns of a sample are arrays of their element type, as the dict's lists
+    would not be: multipliers complex, the rest real, one entry per exponent."""
+    s = flaplag.Analysis().floquet(0.3)
+    assert s.multipliers.dtype == np.complex128
+    for name in ("zeta", "omega", "zeta_errors"):
+        assert getattr(s, name).dtype == np.float64, name
+    assert len(s.multipliers) == len(s.zeta) == len(s.omega) == 4
+    # zeta = ln|multiplier| / 2 pi, omega = arg(multiplier) / 2 pi: the columns are in one order
+    assert np.allclose(s.zeta, np.log(np.abs(s.multipliers)) / (2 * np.pi), rtol=0, atol=1e-12)
+    assert np.allclose(s.omega, np.angle(s.multipliers) / (2 * np.pi), rtol=0, atol=1e-12)
+
+
+def test_an_empty_array_keeps_its_element_type():
+    raw = {"multipliers": [], "zeta": [], "omega": [], "zeta_errors": [], "error_estimate": None,
+           "steps": 0, "liouville_residual": 1.0, "status": "failed", "message": "x"}
+    s = flaplag.FloquetSample._from(raw)
+    assert s.multipliers.dtype == np.complex128 and s.zeta.dtype == np.float64
+
+
+def test_error_estimate_is_one_name():
+    """The estimated error is `error_estimate` in every result, as in the command line's JSON;
+    `error` stays as its former name."""
+    an = flaplag.Analysis()
+    s = an.floquet(0.3)
+    assert "error_estimate" in keys("FloquetSample") and "error" not in keys("FloquetSample")
+    assert s.error == s.error_estimate
+    r = an.response(0.3)
+    assert r.error_estimate is not None and r.error == r.error_estimate
+    doc = run_cli("response", "--mu", "0.3")
+    assert doc["error_estimate"] == r.error_estimate
