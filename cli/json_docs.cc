@@ -10,6 +10,7 @@
 
 #include "commands_internal.h"
 #include "flaplag/campbell.h"
+#include "flaplag/model_fields.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/trim.h"
 #include "json_fields.h"
@@ -78,6 +79,14 @@ const char* struct_name<ThrustResult>() {
 template <>
 const char* struct_name<FloquetSample>() {
   return "FloquetSample";
+}
+template <>
+const char* struct_name<model::ModelDescriptor>() {
+  return "Model";
+}
+template <>
+const char* struct_name<PeriodicEquilibrium>() {
+  return "PeriodicEquilibrium";
 }
 
 std::string anchor(const std::string& name) {
@@ -154,9 +163,7 @@ std::string header_section() {
       "command line or case file behind it).\n\n";
   out += kTableHead;
   out += table_row("command", "string", "", "the command that wrote the document");
-  out += table_row("model", "object", "",
-                   "the compiled model: name, spec_file, summary, flap_modes, lag_modes, "
-                   "harmonics");
+  out += table_row("model", section_link("Model"), "", "the compiled model");
   out += table_row("mode_shapes", "string", "", "assumed, exact or imported");
   out += table_row("elastic_coupling", "boolean", "", "the elastic coupling is on");
   out += table_row("method", "object", "",
@@ -242,6 +249,9 @@ std::string json_reference() {
   out += documents_section();
   out += header_section();
   out += "## Results\n\n";
+  out += struct_section<model::ModelDescriptor>(
+      "The compiled ordering model a result was computed with (the header's `model`; "
+      "`flaplag models --json` lists them; Python: `Analysis.model`, `flaplag.models()`).");
   out += struct_section<PointResult>("The labelled exponents at one advance ratio mu.");
   out += struct_section<LabelledExponent>(
       "One characteristic exponent lambda = zeta + i omega with its mode label.");
@@ -276,6 +286,12 @@ std::string json_reference() {
   out += struct_section<FloquetSample>(
       "One Floquet analysis at mu without continuation (`Analysis.floquet`): the exponents "
       "unlabelled, in the order of the eigen-solve.");
+  out += struct_section<PeriodicEquilibrium>(
+      "The periodic equilibrium q°(psi) of the nonlinear equations at one mu "
+      "(`Analysis.periodic_equilibrium`, as `PeriodicEquilibriumResult`).  The Python class also "
+      "has the Fourier coefficients of q° (`coefficients`, modes x 2K+1), the sample azimuths "
+      "`psi`, the states `y` there and each direction's tip deflections (`flap_tip`, "
+      "`lag_tip`).");
   return out;
 }
 

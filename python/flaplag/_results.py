@@ -735,7 +735,8 @@ class PeriodicEquilibriumResult(_Described):
     harmonics_error: with the automatic K, the largest coefficient difference between K/2 and
     K relative to the largest coefficient (nan for a fixed K);
     continued_to: the largest mu the continuation from hover reached; iterations, step,
-    residual: of the last Newton solve.  status 'failed' (no samples) beyond the fold of the
+    residual: of the last Newton solve; mean_thrust: the azimuth mean of one blade's thrust
+    along q° (C_T = sigma a / 2 mean_thrust; nan for a model without nonlinear thrust).  status 'failed' (no samples) beyond the fold of the
     hover branch or without convergence; 'warning' when unstable or the truncation is not small.
     """
 
@@ -753,10 +754,12 @@ class PeriodicEquilibriumResult(_Described):
     residual: float
     truncation: float
     harmonics_error: float
-    multiplier_moduli: np.ndarray
+    multiplier_moduli: _array(float)
     min_distance_to_one: Optional[float]
     status: str
     message: str
+    mean_thrust: float = math.nan
+    notes: Tuple[str, ...] = ()
 
     @property
     def max_zeta(self) -> Optional[float]:

@@ -42,6 +42,7 @@
 #include "flaplag/core/fields.h"
 #include "flaplag/core/format.h"
 #include "flaplag/limits.h"
+#include "flaplag/model_fields.h"
 #include "flaplag/rotor/blade_table.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/study.h"
@@ -434,18 +435,6 @@ py::dict hover_dict(const Analysis& an) {
   d["stable"] = h.neutral ? py::object(py::none()) : py::object(py::bool_(h.stable));
   d["status"] = status_name(h.status);
   d["message"] = h.message;
-  return d;
-}
-
-py::dict model_dict(const model::ModelDescriptor& m) {
-  py::dict d;
-  d["name"] = m.name;
-  d["base"] = m.base;
-  d["spec_file"] = m.spec_file;
-  d["summary"] = m.summary;
-  d["flap_modes"] = m.flap_modes;
-  d["lag_modes"] = m.lag_modes;
-  d["harmonics"] = m.n_harmonics;
   return d;
 }
 
@@ -846,26 +835,12 @@ py::dict equilibrium_dict(const Analysis& a, const PeriodicEquilibrium& e, int s
       for (std::size_t i = 0; i < tips.size(); ++i) tips[i].deflection.push_back(tip[i]);
     }
   }
-  py::dict d;
-  d["mu"] = e.mu;
-  d["harmonics"] = e.harmonics;
-  d["flap_modes"] = e.flap_modes;
+  // The table's numbers, and the arrays: coefficients, samples and tips.
+  py::dict d = to_dict(e);
   d["coefficients"] = to_numpy(e.coefficients);
   d["psi"] = to_numpy(psi);
   d["y"] = states_numpy(y, a.state_size());
   for (const TipMotion& t : tips) d[(t.direction + "_tip").c_str()] = to_numpy(t.deflection);
-  d["continued_to"] = e.continued_to;
-  d["iterations"] = e.iterations;
-  d["step"] = e.step;
-  d["residual"] = e.residual;
-  d["truncation"] = e.truncation;
-  d["harmonics_error"] = e.harmonics_error;
-  d["multiplier_moduli"] = to_numpy(e.multiplier_moduli);
-  d["min_distance_to_one"] = e.multiplier_moduli.empty()
-                                 ? py::object(py::none())
-                                 : py::object(py::float_(e.min_distance_to_one));
-  d["status"] = status_name(e.status);
-  d["message"] = e.message;
   return d;
 }
 
@@ -1031,7 +1006,7 @@ py::list transition_rows() {
 
 py::list model_rows() {
   py::list l;
-  for (const model::ModelDescriptor* m : compiled_models()) l.append(model_dict(*m));
+  for (const model::ModelDescriptor* m : compiled_models()) l.append(to_dict(*m));
   return l;
 }
 
@@ -1101,6 +1076,7 @@ void bind_tables(py::module_& m) {
     if (name == "TrimResult") return field_rows<TrimResult>();
     if (name == "ThrustResult") return field_rows<ThrustResult>();
     if (name == "FloquetSample") return field_rows<FloquetSample>();
+    if (name == "PeriodicEquilibriumResult") return field_rows<PeriodicEquilibrium>();
     if (name == "CampbellResult") return field_rows<CampbellResult>();
     if (name == "CampbellPoint") return field_rows<CampbellPoint>();
     if (name == "CampbellFrequency") return field_rows<CampbellFrequency>();
@@ -1141,7 +1117,7 @@ void bind_construction(py::class_<Analysis>& analysis) {
            py::arg("lag_modes") = 1)
       .def("parameters", [](const Analysis& a) { return parameters_dict(a.parameters()); })
       .def("transition", [](const Analysis& a) { return transition_dict(a.options()); })
-      .def("model", [](const Analysis& a) { return model_dict(a.model()); })
+      .def("model", [](const Analysis& a) { return to_dict(a.model()); })
       .def("hover", &hover_dict);
 }
 

@@ -2,6 +2,7 @@
 the command line's JSON uses: one name per field in every front end."""
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
@@ -17,6 +18,7 @@ PYTHON_ONLY = {
     "SweepResult": {"mu", "labels", "zeta", "omega", "trims"},
     "CriticalResult": {"trim"},
     "TrimResult": {"parameters"},
+    "PeriodicEquilibriumResult": {"coefficients", "psi", "y", "flap_tip", "lag_tip"},
 }
 
 CLASSES = [
@@ -32,6 +34,7 @@ CLASSES = [
     "CampbellCrossing",
     "ThrustResult",
     "FloquetSample",
+    "PeriodicEquilibriumResult",
 ]
 
 
@@ -58,6 +61,7 @@ def results():
         "CampbellCrossing": campbell.crossings[0],
         "ThrustResult": an.thrust(0.3),
         "FloquetSample": an.floquet(0.3),
+        "PeriodicEquilibriumResult": an.periodic_equilibrium(0.3),
     }
 
 
@@ -168,3 +172,16 @@ def test_error_estimate_is_one_name():
     assert r.error_estimate is not None and r.error == r.error_estimate
     doc = run_cli("response", "--mu", "0.3")
     assert doc["error_estimate"] == r.error_estimate
+
+
+def test_equilibrium_without_stability_check():
+    """Without the stability check there are no multipliers and no distance to one (None, not
+    the struct's 0); the table's mean thrust is the model's, a number for the paper model."""
+    an = flaplag.Analysis()
+    e = an.periodic_equilibrium(0.3, check_stability=False)
+    assert len(e.multiplier_moduli) == 0 and e.multiplier_moduli.dtype == np.float64
+    assert e.min_distance_to_one is None and e.max_zeta is None
+    checked = an.periodic_equilibrium(0.3)
+    assert 0.0 < checked.min_distance_to_one < 1.0
+    assert checked.max_zeta < 0.0
+    assert math.isfinite(checked.mean_thrust) and checked.mean_thrust > 0.0
