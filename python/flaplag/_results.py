@@ -626,8 +626,9 @@ class ResponseResult(_Described):
     up, lag v/l positive lag); flap_harmonics, lag_harmonics: their harmonics, value =
     c[0] + sum_n (c[2n-1] cos n psi + c[2n] sin n psi), n = 1..5, named by ``harmonic_names``
     ('const', 'cos psi', 'sin psi', 'cos 2psi', ...); closure: |y(2 pi) - y(0)| / max(1, |y0|);
-    error_estimate: the estimated error of y0 (relative; ``error`` is its former name); min_distance_to_one: min |multiplier - 1|
-    (near 0: no unique periodic solution); steps: RK4 steps per period.  status 'failed'
+    error_estimate: the estimated error of y0 (relative; ``error`` is its former name);
+    min_distance_to_one: min |multiplier - 1| (near 0: no unique periodic solution); steps:
+    RK4 steps per period.  status 'failed'
     (arrays empty) when a multiplier is at 1, 'warning' when the blade is unstable (the
     solution exists but is not what the blade settles to).
     """
@@ -736,8 +737,9 @@ class PeriodicEquilibriumResult(_Described):
     K relative to the largest coefficient (nan for a fixed K);
     continued_to: the largest mu the continuation from hover reached; iterations, step,
     residual: of the last Newton solve; mean_thrust: the azimuth mean of one blade's thrust
-    along q° (C_T = sigma a / 2 mean_thrust; nan for a model without nonlinear thrust).  status 'failed' (no samples) beyond the fold of the
-    hover branch or without convergence; 'warning' when unstable or the truncation is not small.
+    along q° (C_T = sigma a / 2 mean_thrust; nan for a model without nonlinear thrust).
+    status 'failed' (no samples) beyond the fold of the hover branch or without convergence;
+    'warning' when unstable or the truncation is not small.
     """
 
     mu: float

@@ -1077,6 +1077,7 @@ void bind_tables(py::module_& m) {
     if (name == "ThrustResult") return field_rows<ThrustResult>();
     if (name == "FloquetSample") return field_rows<FloquetSample>();
     if (name == "PeriodicEquilibriumResult") return field_rows<PeriodicEquilibrium>();
+    if (name == "ModelInfo") return field_rows<model::ModelDescriptor>();
     if (name == "CampbellResult") return field_rows<CampbellResult>();
     if (name == "CampbellPoint") return field_rows<CampbellPoint>();
     if (name == "CampbellFrequency") return field_rows<CampbellFrequency>();

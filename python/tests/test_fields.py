@@ -35,6 +35,7 @@ CLASSES = [
     "ThrustResult",
     "FloquetSample",
     "PeriodicEquilibriumResult",
+    "ModelInfo",
 ]
 
 
@@ -62,6 +63,7 @@ def results():
         "ThrustResult": an.thrust(0.3),
         "FloquetSample": an.floquet(0.3),
         "PeriodicEquilibriumResult": an.periodic_equilibrium(0.3),
+        "ModelInfo": an.model,
     }
 
 
@@ -185,3 +187,13 @@ def test_equilibrium_without_stability_check():
     assert 0.0 < checked.min_distance_to_one < 1.0
     assert checked.max_zeta < 0.0
     assert math.isfinite(checked.mean_thrust) and checked.mean_thrust > 0.0
+
+
+def test_model_object_is_the_model_info():
+    """The header's `model` object and Analysis.model are one table: the same keys and values."""
+    doc = run_cli("point", "--mu", "0.3", "--model", "paper-2x1", "--modes", "exact")
+    info = flaplag.Analysis(model="paper-2x1", modes="exact").model
+    assert set(doc["model"]) == {f.name for f in dataclasses.fields(info)}
+    for key, value in doc["model"].items():
+        assert getattr(info, key) == value, key
+    assert doc["model"]["base"] == "paper" and doc["model"]["flap_modes"] == 2
