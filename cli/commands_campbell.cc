@@ -10,6 +10,7 @@
 #include "json_fields.h"
 #include "output.h"
 #include "plot.h"
+#include "table_fields.h"
 
 namespace flaplag::cli::cmd {
 
@@ -40,10 +41,13 @@ std::string campbell_text(const Request& r, const Analysis& an, const CampbellRe
   if (c.crossings.empty()) {
     out += "  none\n";
   } else {
-    TextTable x({"mode", "n", "Omega/Omega_0", "omega/Omega_0"});
-    for (const CampbellCrossing& k : c.crossings)
-      x.add_row({k.label, std::to_string(k.harmonic), cell(k.speed), cell(k.frequency)});
-    out += x.render();
+    out += described_table(c.crossings,
+                           {{"label", "mode"},
+                            {"harmonic", "n"},
+                            {"speed", "Omega/Omega_0"},
+                            {"frequency", "omega/Omega_0"}},
+                           in_vocabulary(r))
+               .render();
   }
   return out + status_text(c.status, vocab(r, c.message));
 }

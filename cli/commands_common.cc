@@ -12,8 +12,10 @@
 #include "flaplag/blade/imported_modes.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/format.h"
+#include "flaplag/model_fields.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/trim.h"
+#include "json_fields.h"
 #include "options.h"
 #include "output.h"
 #include "plot.h"
@@ -124,9 +126,7 @@ std::string vocab(const Request& r, const std::string& message) {
 }
 
 Json model_json(const model::ModelDescriptor& m) {
-  return Json{{"name", m.name},           {"spec_file", m.spec_file},
-              {"summary", m.summary},     {"flap_modes", m.flap_modes},
-              {"lag_modes", m.lag_modes}, {"harmonics", m.n_harmonics}};
+  return to_json(m, [](const std::string& text) { return text; });
 }
 
 Json method_json(const TransitionOptions& o) {

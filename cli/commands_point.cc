@@ -12,6 +12,7 @@
 #include "json_fields.h"
 #include "output.h"
 #include "plot.h"
+#include "table_fields.h"
 
 namespace flaplag::cli::cmd {
 
@@ -190,20 +191,16 @@ std::string sweep_table_text(const Request& r, const SweepResult& s,
   return kSweepLegend + t.render() + notes + status_text(s.status, vocab(r, s.message));
 }
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
 // Empty fields for what is not known (no exponent of a label, no residual, unknown stability).
 std::string sweep_csv(const Request& r, const SweepResult& s,
                       const std::vector<std::string>& labels) {
   auto field = [](double v) { return finite(v) ? exact_num(v) : std::string(); };
   std::string out = "mu";
   for (const std::string& l : labels) out += "," + l + "_zeta," + l + "_omega";
-  out += ",liouville_residual,error_estimate,stable,status,message";
+  // The point's own columns, by its table (core/fields.h).
+  const std::vector<const char*> point_keys = {"liouville_residual", "error_estimate", "stable",
+                                               "status", "message"};
+  out += "," + csv_fields(std::vector<std::string>(point_keys.begin(), point_keys.end()));
   // The damping ratios (fractions of critical) last: the columns before keep their places.
   for (const std::string& l : labels) out += "," + l + "_damping_ratio";
   out += "\n";
@@ -214,10 +211,7 @@ std::string sweep_csv(const Request& r, const SweepResult& s,
       out += "," + (e && zeta_ok(e->zeta) ? exact_zeta_text(e->zeta) : std::string()) + "," +
              (e ? field(e->omega) : std::string());
     }
-    out += "," + (p.liouville_residual ? field(*p.liouville_residual) : std::string());
-    out += "," + (p.error ? field(*p.error) : std::string());
-    out += "," + std::string(!p.stable ? "" : *p.stable ? "true" : "false");
-    out += "," + csv_field(status_name(p.status)) + "," + csv_field(vocab(r, p.message));
+    out += "," + csv_fields(described_cells(p, point_keys, CellStyle::Csv, in_vocabulary(r)));
     for (const std::string& l : labels) {
       const LabelledExponent* e = dominant(p, l);
       const std::optional<double> ratio = e ? damping_ratio(e->zeta, e->omega) : std::nullopt;

@@ -10,6 +10,7 @@
 
 #include "commands_internal.h"
 #include "flaplag/campbell.h"
+#include "flaplag/model_fields.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/trim.h"
 #include "json_fields.h"
@@ -69,6 +70,23 @@ const char* struct_name<CampbellFrequency>() {
 template <>
 const char* struct_name<CampbellCrossing>() {
   return "CampbellCrossing";
+}
+
+template <>
+const char* struct_name<ThrustResult>() {
+  return "ThrustResult";
+}
+template <>
+const char* struct_name<FloquetSample>() {
+  return "FloquetSample";
+}
+template <>
+const char* struct_name<model::ModelDescriptor>() {
+  return "Model";
+}
+template <>
+const char* struct_name<PeriodicEquilibrium>() {
+  return "PeriodicEquilibrium";
 }
 
 std::string anchor(const std::string& name) {
@@ -145,9 +163,7 @@ std::string header_section() {
       "command line or case file behind it).\n\n";
   out += kTableHead;
   out += table_row("command", "string", "", "the command that wrote the document");
-  out += table_row("model", "object", "",
-                   "the compiled model: name, spec_file, summary, flap_modes, lag_modes, "
-                   "harmonics");
+  out += table_row("model", section_link("Model"), "", "the compiled model");
   out += table_row("mode_shapes", "string", "", "assumed, exact or imported");
   out += table_row("elastic_coupling", "boolean", "", "the elastic coupling is on");
   out += table_row("method", "object", "",
@@ -233,6 +249,9 @@ std::string json_reference() {
   out += documents_section();
   out += header_section();
   out += "## Results\n\n";
+  out += struct_section<model::ModelDescriptor>(
+      "The compiled ordering model a result was computed with (the header's `model`; "
+      "`flaplag models --json` lists them; Python: `Analysis.model`, `flaplag.models()`).");
   out += struct_section<PointResult>("The labelled exponents at one advance ratio mu.");
   out += struct_section<LabelledExponent>(
       "One characteristic exponent lambda = zeta + i omega with its mode label.");
@@ -258,6 +277,21 @@ std::string json_reference() {
   out += struct_section<CampbellPoint>("The modes at one rotor speed.");
   out += struct_section<CampbellFrequency>("One mode at one rotor speed.");
   out += struct_section<CampbellCrossing>("Where a mode's frequency meets a per-rev line n Omega.");
+  out +=
+      "## Python results\n\n"
+      "Results of the Python module that no command writes as JSON; its classes have these keys "
+      "as attributes (lists as numpy arrays).\n\n";
+  out += struct_section<ThrustResult>(
+      "The model's own thrust at one mu (`Analysis.thrust`), at the given pitch and inflow.");
+  out += struct_section<FloquetSample>(
+      "One Floquet analysis at mu without continuation (`Analysis.floquet`): the exponents "
+      "unlabelled, in the order of the eigen-solve.");
+  out += struct_section<PeriodicEquilibrium>(
+      "The periodic equilibrium q°(psi) of the nonlinear equations at one mu "
+      "(`Analysis.periodic_equilibrium`, as `PeriodicEquilibriumResult`).  The Python class also "
+      "has the Fourier coefficients of q° (`coefficients`, modes x 2K+1), the sample azimuths "
+      "`psi`, the states `y` there and each direction's tip deflections (`flap_tip`, "
+      "`lag_tip`).");
   return out;
 }
 

@@ -89,6 +89,40 @@ TEST(Fields, ResultTablesAreWellFormed) {
   expect_well_formed<SweepResult>("SweepResult");
   expect_well_formed<InstabilityInterval>("InstabilityInterval");
   expect_well_formed<CriticalResult>("CriticalResult");
+  expect_well_formed<FloquetSample>("FloquetSample");
+}
+
+// A sample's exponents become columns in one order: the k-th multiplier, zeta and omega are of
+// the k-th exponent.
+TEST(Fields, FloquetSampleColumns) {
+  FloquetSample s;
+  s.floquet.exponents.resize(2);
+  s.floquet.exponents[0].multiplier = {0.5, 0.25};
+  s.floquet.exponents[0].zeta = -0.1;
+  s.floquet.exponents[0].omega = 0.125;
+  s.floquet.exponents[1].multiplier = {-0.25, 0.0};
+  s.floquet.exponents[1].zeta = -0.2;
+  s.floquet.exponents[1].omega = 0.5;
+  s.floquet.liouville_residual = 1e-9;
+  std::vector<std::complex<double>> multipliers;
+  std::vector<double> zeta, omega;
+  double residual = 0.0;
+  for_each_field(s, [&](const auto& row, const auto& value) {
+    using V = std::decay_t<decltype(value)>;
+    const std::string name = row.name;
+    if constexpr (std::is_same_v<V, std::vector<std::complex<double>>>) {
+      if (name == "multipliers") multipliers = value;
+    } else if constexpr (std::is_same_v<V, std::vector<double>>) {
+      if (name == "zeta") zeta = value;
+      if (name == "omega") omega = value;
+    } else if constexpr (std::is_same_v<V, double>) {
+      if (name == "liouville_residual") residual = value;
+    }
+  });
+  EXPECT_EQ((std::vector<std::complex<double>>{{0.5, 0.25}, {-0.25, 0.0}}), multipliers);
+  EXPECT_EQ((std::vector<double>{-0.1, -0.2}), zeta);
+  EXPECT_EQ((std::vector<double>{0.125, 0.5}), omega);
+  EXPECT_EQ(1e-9, residual);
 }
 
 TEST(Fields, DerivedValuesOfTheResults) {

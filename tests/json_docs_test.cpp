@@ -7,11 +7,14 @@
 
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "json_fields.h"
+#include "table_fields.h"
 
 namespace flaplag::cli {
 namespace {
@@ -48,6 +51,52 @@ TEST(JsonDocs, ReferenceListsEveryKeyOfTheTables) {
   for_each_row<CriticalResult>([&](const auto& row) {
     EXPECT_NE(std::string::npos, doc.find("| `" + std::string(row.name) + "` |")) << row.name;
   });
+  for (const char* section : {"### ThrustResult", "### FloquetSample"})
+    EXPECT_NE(std::string::npos, doc.find(section)) << section;
+  for_each_row<FloquetSample>([&](const auto& row) {
+    EXPECT_NE(std::string::npos, doc.find("| `" + std::string(row.name) + "` |")) << row.name;
+  });
+}
+
+TEST(TableFields, CellsOfARowByItsType) {
+  PointResult p;
+  p.mu = 0.25;
+  p.liouville_residual = std::nullopt;
+  p.error = 0.5;
+  p.stable = true;
+  p.status = Status::Warning;
+  p.message = "`steps`, too few";
+  const auto vocabulary = [](const std::string& m) { return "<" + m + ">"; };
+  const std::vector<const char*> keys = {
+      "mu", "liouville_residual", "error_estimate", "stable", "status", "message"};
+  EXPECT_EQ((std::vector<std::string>{"0.25", "", "0.5", "true", "warning", "<`steps`, too few>"}),
+            cmd::described_cells(p, keys, cmd::CellStyle::Csv, vocabulary));
+  EXPECT_EQ((std::vector<std::string>{"0.25", "-", "0.5", "yes", "warning", "<`steps`, too few>"}),
+            cmd::described_cells(p, keys, cmd::CellStyle::Text, vocabulary));
+  EXPECT_EQ("0.25,,\"a \"\"b\"\", c\"", cmd::csv_fields({"0.25", "", "a \"b\", c"}));
+  p.stable = std::nullopt;
+  p.liouville_residual = std::numeric_limits<double>::quiet_NaN();  // not representable
+  EXPECT_EQ(
+      (std::vector<std::string>{"", ""}),
+      cmd::described_cells(p, {"stable", "liouville_residual"}, cmd::CellStyle::Csv, vocabulary));
+  EXPECT_EQ(
+      (std::vector<std::string>{"-", "-"}),
+      cmd::described_cells(p, {"stable", "liouville_residual"}, cmd::CellStyle::Text, vocabulary));
+  EXPECT_THROW(cmd::described_cells(p, {"no_such_row"}, cmd::CellStyle::Csv, vocabulary),
+               std::logic_error);
+  EXPECT_THROW(cmd::described_cells(p, {"exponents"}, cmd::CellStyle::Csv, vocabulary),
+               std::logic_error);  // a list is no cell
+}
+
+TEST(TableFields, ATableOfResults) {
+  std::vector<CampbellCrossing> crossings(2);
+  crossings[0] = {"lag", 1, 0.5, 0.5};
+  crossings[1] = {"flap", 3, 0.25, 0.75};
+  const std::string text =
+      cmd::described_table(crossings, {{"label", "mode"}, {"harmonic", "n"}, {"speed", "speed"}},
+                           [](const std::string& m) { return m; })
+          .render();
+  EXPECT_EQ("  mode  n  speed\n  lag   1    0.5\n  flap  3   0.25\n", text);
 }
 
 TEST(JsonFields, EveryRowUnderItsKeyInTableOrder) {

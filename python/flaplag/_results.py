@@ -67,6 +67,11 @@ def _status(status, message):
     return f"status={status!r}, message={message!r}"
 
 
+def _array(dtype):
+    """The annotation of a numpy array attribute with elements of dtype (complex, float)."""
+    return typing.Annotated[np.ndarray, dtype]
+
+
 def _convert(hint, value):
     """A value of the module's dict as the annotated type of a result's attribute."""
     if value is None:
@@ -77,6 +82,10 @@ def _convert(hint, value):
         return _convert(args[0], value) if len(args) == 1 else value
     if origin is tuple:
         return tuple(_convert(typing.get_args(hint)[0], v) for v in value)
+    if origin is typing.Annotated:  # _Array[dtype]: a numpy array of that element type
+        return np.asarray(value, dtype=typing.get_args(hint)[1])
+    if hint is np.ndarray:
+        return np.asarray(value)
     if isinstance(hint, type) and hasattr(hint, "_from"):
         return hint._from(value)
     if hint is complex:
@@ -115,7 +124,7 @@ class _Described:
 @functools.lru_cache(maxsize=None)
 def _init_fields(cls):
     """(name, type hint) of the attributes a result class is constructed with."""
-    hints = typing.get_type_hints(cls)
+    hints = typing.get_type_hints(cls, include_extras=True)
     return tuple((f.name, hints[f.name]) for f in dataclasses.fields(cls) if f.init)
 
 
@@ -150,7 +159,7 @@ def _exponent_list(exponents):
 
 
 @dataclass(frozen=True, repr=False)
-class HoverResult:
+class HoverResult(_Described):
     """The hover equilibrium (eqs 2.24, 2.29-2.32) and the hover exponents.
 
     inflow: lambda (eq 2.24); equilibrium: {'g0_1': ..., 'h0_1': ...} (modal amplitudes);
@@ -179,19 +188,6 @@ class HoverResult:
         return (
             f"HoverResult(inflow={_g(self.inflow)}, {eq}, stable={self.stable}, "
             f"exponents={_exponent_list(self.exponents)}, {_status(self.status, self.message)})"
-        )
-
-    @classmethod
-    def _from(cls, d):
-        return cls(
-            d["inflow"],
-            dict(d["equilibrium"]),
-            np.asarray(d["A0"]),
-            np.asarray(d["eigenvalues"]),
-            tuple(d["labels"]),
-            d["stable"],
-            d["status"],
-            d["message"],
         )
 
 
@@ -573,7 +569,7 @@ class SystemResult:
 
 
 @dataclass(frozen=True, repr=False)
-class ModeShapes:
+class ModeShapes(_Described):
     """The blade's mode shapes sampled at stations x (x0 = r / l in [0, 1], the elastic span).
 
     flap[k] (eta_k) and lag[m] (gamma_m) are the shapes or their ``derivative``-th derivative
@@ -601,60 +597,38 @@ class ModeShapes:
             f"derivative {self.derivative})"
         )
 
-    @classmethod
-    def _from(cls, d):
-        return cls(
-            d["kind"],
-            np.asarray(d["x"]),
-            d["derivative"],
-            np.asarray(d["flap"]),
-            np.asarray(d["lag"]),
-            np.asarray(d["omega_flap"]),
-            np.asarray(d["omega_lag"]),
-            d["stiffness_flap"],
-            d["stiffness_lag"],
-        )
-
 
 @dataclass(frozen=True, repr=False)
-class FloquetSample:
+class FloquetSample(_Described):
     """One Floquet analysis at mu, without continuation: multipliers of Phi(2 pi), zeta and
     omega (principal value in (-1/2, 1/2]) [per rev], zeta_errors (estimated, per exponent),
-    error (the largest), steps per period, the Liouville residual."""
+    error_estimate (the largest), steps per period, the Liouville residual."""
 
-    multipliers: np.ndarray
-    zeta: np.ndarray
-    omega: np.ndarray
-    zeta_errors: np.ndarray
-    error: Optional[float]
+    multipliers: _array(complex)
+    zeta: _array(float)
+    omega: _array(float)
+    zeta_errors: _array(float)
+    error_estimate: Optional[float]
     steps: int
     liouville_residual: float
     status: str
     message: str
+    notes: Tuple[str, ...] = ()
+
+    @property
+    def error(self) -> Optional[float]:
+        """The former name of error_estimate."""
+        return self.error_estimate
 
     def __repr__(self):
         return (
             f"FloquetSample(zeta={[float(_g(z)) for z in self.zeta]}, steps={self.steps}, "
-            f"error={_g(self.error)}, {_status(self.status, self.message)})"
-        )
-
-    @classmethod
-    def _from(cls, d):
-        return cls(
-            np.asarray(d["multipliers"]),
-            np.asarray(d["zeta"]),
-            np.asarray(d["omega"]),
-            np.asarray(d["zeta_errors"]),
-            d["error"],
-            d["steps"],
-            d["liouville_residual"],
-            d["status"],
-            d["message"],
+            f"error_estimate={_g(self.error_estimate)}, {_status(self.status, self.message)})"
         )
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class ResponseResult:
+class ResponseResult(_Described):
     """The periodic forced response at one mu (the command line's ``flaplag response``): the
     2 pi-periodic solution of y' = A(psi) y + f(psi), the Floquet particular solution
     (I - Phi) y(0) = int Phi(2 pi, s) f(s) ds.
@@ -665,8 +639,9 @@ class ResponseResult:
     up, lag v/l positive lag); flap_harmonics, lag_harmonics: their harmonics, value =
     c[0] + sum_n (c[2n-1] cos n psi + c[2n] sin n psi), n = 1..5, named by ``harmonic_names``
     ('const', 'cos psi', 'sin psi', 'cos 2psi', ...); closure: |y(2 pi) - y(0)| / max(1, |y0|);
-    error: the estimated error of y0 (relative); min_distance_to_one: min |multiplier - 1|
-    (near 0: no unique periodic solution); steps: RK4 steps per period.  status 'failed'
+    error_estimate: the estimated error of y0 (relative; ``error`` is its former name);
+    min_distance_to_one: min |multiplier - 1| (near 0: no unique periodic solution); steps:
+    RK4 steps per period.  status 'failed'
     (arrays empty) when a multiplier is at 1, 'warning' when the blade is unstable (the
     solution exists but is not what the blade settles to).
     """
@@ -681,11 +656,16 @@ class ResponseResult:
     lag_harmonics: np.ndarray
     harmonic_names: Tuple[str, ...]
     closure: float
-    error: Optional[float]
+    error_estimate: Optional[float]
     min_distance_to_one: float
     steps: int
     status: str
     message: str
+
+    @property
+    def error(self) -> Optional[float]:
+        """The former name of error_estimate."""
+        return self.error_estimate
 
     def harmonics(self, which="flap") -> Dict[str, float]:
         """{'const': ..., 'cos psi': ..., ...} of the flap or the lag tip deflection."""
@@ -704,29 +684,9 @@ class ResponseResult:
             f"closure={_g(self.closure)}, {_status(self.status, self.message)})"
         )
 
-    @classmethod
-    def _from(cls, d):
-        return cls(
-            d["mu"],
-            np.asarray(d["psi"]),
-            np.asarray(d["y"]),
-            np.asarray(d["y0"]),
-            np.asarray(d["flap_tip"]),
-            np.asarray(d["lag_tip"]),
-            np.asarray(d["flap_harmonics"]),
-            np.asarray(d["lag_harmonics"]),
-            tuple(d["harmonic_names"]),
-            d["closure"],
-            d["error"],
-            d["min_distance_to_one"],
-            d["steps"],
-            d["status"],
-            d["message"],
-        )
-
 
 @dataclass(frozen=True, repr=False, eq=False)
-class SimulationResult:
+class SimulationResult(_Described):
     """A time-domain simulation at one mu (the command line's ``flaplag simulate``).
 
     Linear (nonlinear False): y' = A(psi) y (+ f(psi) when forced) from y(0) = y0, y the
@@ -773,28 +733,9 @@ class SimulationResult:
             f"lag_growth_rate={_g(self.lag_growth_rate)}, {_status(self.status, self.message)})"
         )
 
-    @classmethod
-    def _from(cls, d):
-        return cls(
-            d["mu"],
-            np.asarray(d["psi"]),
-            np.asarray(d["y"]),
-            np.asarray(d["flap_tip"]),
-            np.asarray(d["lag_tip"]),
-            d["flap_growth_rate"],
-            d["lag_growth_rate"],
-            d["steps_per_rev"],
-            d["status"],
-            d["message"],
-            d["nonlinear"],
-            d["reference"],
-            np.asarray(d["flap_total"]),
-            np.asarray(d["lag_total"]),
-        )
-
 
 @dataclass(frozen=True, repr=False, eq=False)
-class PeriodicEquilibriumResult:
+class PeriodicEquilibriumResult(_Described):
     """The periodic equilibrium q°(psi) of the nonlinear equations at one mu (C++
     Analysis::periodic_equilibrium, harmonic balance + Newton, continued from hover).
 
@@ -808,8 +749,10 @@ class PeriodicEquilibriumResult:
     harmonics_error: with the automatic K, the largest coefficient difference between K/2 and
     K relative to the largest coefficient (nan for a fixed K);
     continued_to: the largest mu the continuation from hover reached; iterations, step,
-    residual: of the last Newton solve.  status 'failed' (no samples) beyond the fold of the
-    hover branch or without convergence; 'warning' when unstable or the truncation is not small.
+    residual: of the last Newton solve; mean_thrust: the azimuth mean of one blade's thrust
+    along q° (C_T = sigma a / 2 mean_thrust; nan for a model without nonlinear thrust).
+    status 'failed' (no samples) beyond the fold of the hover branch or without convergence;
+    'warning' when unstable or the truncation is not small.
     """
 
     mu: float
@@ -826,10 +769,12 @@ class PeriodicEquilibriumResult:
     residual: float
     truncation: float
     harmonics_error: float
-    multiplier_moduli: np.ndarray
+    multiplier_moduli: _array(float)
     min_distance_to_one: Optional[float]
     status: str
     message: str
+    mean_thrust: float = math.nan
+    notes: Tuple[str, ...] = ()
 
     @property
     def max_zeta(self) -> Optional[float]:
@@ -844,29 +789,6 @@ class PeriodicEquilibriumResult:
             f"PeriodicEquilibriumResult(mu={_g(self.mu)}, K={self.harmonics}, "
             f"max_zeta={_g(self.max_zeta)}, truncation={_g(self.truncation)}, "
             f"{_status(self.status, self.message)})"
-        )
-
-    @classmethod
-    def _from(cls, d):
-        return cls(
-            d["mu"],
-            d["harmonics"],
-            d["flap_modes"],
-            np.asarray(d["coefficients"]),
-            np.asarray(d["psi"]),
-            np.asarray(d["y"]),
-            np.asarray(d["flap_tip"]),
-            np.asarray(d["lag_tip"]),
-            d["continued_to"],
-            d["iterations"],
-            d["step"],
-            d["residual"],
-            d["truncation"],
-            d["harmonics_error"],
-            np.asarray(d["multiplier_moduli"]),
-            d["min_distance_to_one"],
-            d["status"],
-            d["message"],
         )
 
 
@@ -911,7 +833,7 @@ class TrimResult(_Described):
 
 
 @dataclass(frozen=True, repr=False)
-class ThrustResult:
+class ThrustResult(_Described):
     """The model's own thrust at one mu (C++ rotor_thrust): thrust_coefficient C_T (not
     C_T / sigma) with the inflow lambda used, and the first flap tip harmonic flap_1c,
     flap_1s (by l).  status 'failed' without a periodic response."""
@@ -923,6 +845,7 @@ class ThrustResult:
     flap_1s: float
     status: str
     message: str
+    notes: Tuple[str, ...] = ()
 
     def __repr__(self):
         return (
@@ -930,21 +853,9 @@ class ThrustResult:
             f"C_T={_g(self.thrust_coefficient)}, {_status(self.status, self.message)})"
         )
 
-    @classmethod
-    def _from(cls, d):
-        return cls(
-            d["mu"],
-            d["inflow"],
-            d["thrust_coefficient"],
-            d["flap_1c"],
-            d["flap_1s"],
-            d["status"],
-            d["message"],
-        )
-
 
 @dataclass(frozen=True)
-class ModelInfo:
+class ModelInfo(_Described):
     """An ordering model: name (e.g. 'paper-2x2'), base (its family: one per ordering spec,
     'paper'), flap_modes M, lag_modes N (any 1..12 per family), harmonics, spec_file and a
     one-line summary."""
@@ -956,18 +867,6 @@ class ModelInfo:
     harmonics: int
     spec_file: str
     summary: str
-
-    @classmethod
-    def _from(cls, d):
-        return cls(
-            d["name"],
-            d["base"],
-            d["flap_modes"],
-            d["lag_modes"],
-            d["harmonics"],
-            d["spec_file"],
-            d["summary"],
-        )
 
 
 def _worst(statuses):

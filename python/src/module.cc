@@ -42,6 +42,7 @@
 #include "flaplag/core/fields.h"
 #include "flaplag/core/format.h"
 #include "flaplag/limits.h"
+#include "flaplag/model_fields.h"
 #include "flaplag/rotor/blade_table.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/study.h"
@@ -437,18 +438,6 @@ py::dict hover_dict(const Analysis& an) {
   return d;
 }
 
-py::dict model_dict(const model::ModelDescriptor& m) {
-  py::dict d;
-  d["name"] = m.name;
-  d["base"] = m.base;
-  d["spec_file"] = m.spec_file;
-  d["summary"] = m.summary;
-  d["flap_modes"] = m.flap_modes;
-  d["lag_modes"] = m.lag_modes;
-  d["harmonics"] = m.n_harmonics;
-  return d;
-}
-
 template <typename Integral>
 std::string paper_name(const Integral* list, int n, const std::string& name) {
   for (int i = 0; i < n; ++i) {
@@ -541,27 +530,6 @@ py::dict modes_dict(const ModeSet& modes, const py::object& stations, int deriva
   d["omega_lag"] = to_numpy(modes.omega_lag);
   d["stiffness_flap"] = modes.stiffness_flap;
   d["stiffness_lag"] = modes.stiffness_lag;
-  return d;
-}
-
-py::dict floquet_dict(const FloquetSample& s) {
-  std::vector<std::complex<double>> multipliers;
-  std::vector<double> zeta, omega;
-  for (const FloquetExponent& e : s.floquet.exponents) {
-    multipliers.push_back(e.multiplier);
-    zeta.push_back(e.zeta);
-    omega.push_back(e.omega);
-  }
-  py::dict d;
-  d["multipliers"] = to_numpy(multipliers);
-  d["zeta"] = to_numpy(zeta);
-  d["omega"] = to_numpy(omega);
-  d["zeta_errors"] = to_numpy(s.zeta_errors);
-  d["error"] = optional(s.error);
-  d["steps"] = s.steps;
-  d["liouville_residual"] = s.floquet.liouville_residual;
-  d["status"] = status_name(s.status);
-  d["message"] = s.message;
   return d;
 }
 
@@ -826,7 +794,7 @@ py::dict response_dict(const Analysis& a, const ForcedResponse& f) {
   }
   d["harmonic_names"] = harmonic_names(f.tips.empty() ? 0 : f.tips.front().harmonics.size());
   d["closure"] = p.closure;
-  d["error"] = optional(p.error);
+  d["error_estimate"] = optional(p.error);
   d["min_distance_to_one"] = p.min_distance_to_one;
   d["steps"] = p.steps;
   d["status"] = status_name(f.status);
@@ -867,26 +835,12 @@ py::dict equilibrium_dict(const Analysis& a, const PeriodicEquilibrium& e, int s
       for (std::size_t i = 0; i < tips.size(); ++i) tips[i].deflection.push_back(tip[i]);
     }
   }
-  py::dict d;
-  d["mu"] = e.mu;
-  d["harmonics"] = e.harmonics;
-  d["flap_modes"] = e.flap_modes;
+  // The table's numbers, and the arrays: coefficients, samples and tips.
+  py::dict d = to_dict(e);
   d["coefficients"] = to_numpy(e.coefficients);
   d["psi"] = to_numpy(psi);
   d["y"] = states_numpy(y, a.state_size());
   for (const TipMotion& t : tips) d[(t.direction + "_tip").c_str()] = to_numpy(t.deflection);
-  d["continued_to"] = e.continued_to;
-  d["iterations"] = e.iterations;
-  d["step"] = e.step;
-  d["residual"] = e.residual;
-  d["truncation"] = e.truncation;
-  d["harmonics_error"] = e.harmonics_error;
-  d["multiplier_moduli"] = to_numpy(e.multiplier_moduli);
-  d["min_distance_to_one"] = e.multiplier_moduli.empty()
-                                 ? py::object(py::none())
-                                 : py::object(py::float_(e.min_distance_to_one));
-  d["status"] = status_name(e.status);
-  d["message"] = e.message;
   return d;
 }
 
@@ -929,18 +883,6 @@ py::dict trim_defaults() {
 py::dict trim_dict(const TrimResult& t) {
   py::dict d = to_dict(t);
   d["parameters"] = parameters_dict(t.parameters);
-  return d;
-}
-
-py::dict thrust_dict(const ThrustResult& t) {
-  py::dict d;
-  d["mu"] = t.mu;
-  d["inflow"] = t.inflow;
-  d["thrust_coefficient"] = t.thrust_coefficient;
-  d["flap_1c"] = t.flap_1c;
-  d["flap_1s"] = t.flap_1s;
-  d["status"] = status_name(t.status);
-  d["message"] = t.message;
   return d;
 }
 
@@ -1064,7 +1006,7 @@ py::list transition_rows() {
 
 py::list model_rows() {
   py::list l;
-  for (const model::ModelDescriptor* m : compiled_models()) l.append(model_dict(*m));
+  for (const model::ModelDescriptor* m : compiled_models()) l.append(to_dict(*m));
   return l;
 }
 
@@ -1132,6 +1074,10 @@ void bind_tables(py::module_& m) {
     if (name == "DampingCrossing") return field_rows<DampingCrossing>();
     if (name == "CriticalResult") return field_rows<CriticalResult>();
     if (name == "TrimResult") return field_rows<TrimResult>();
+    if (name == "ThrustResult") return field_rows<ThrustResult>();
+    if (name == "FloquetSample") return field_rows<FloquetSample>();
+    if (name == "PeriodicEquilibriumResult") return field_rows<PeriodicEquilibrium>();
+    if (name == "ModelInfo") return field_rows<model::ModelDescriptor>();
     if (name == "CampbellResult") return field_rows<CampbellResult>();
     if (name == "CampbellPoint") return field_rows<CampbellPoint>();
     if (name == "CampbellFrequency") return field_rows<CampbellFrequency>();
@@ -1172,7 +1118,7 @@ void bind_construction(py::class_<Analysis>& analysis) {
            py::arg("lag_modes") = 1)
       .def("parameters", [](const Analysis& a) { return parameters_dict(a.parameters()); })
       .def("transition", [](const Analysis& a) { return transition_dict(a.options()); })
-      .def("model", [](const Analysis& a) { return model_dict(a.model()); })
+      .def("model", [](const Analysis& a) { return to_dict(a.model()); })
       .def("hover", &hover_dict);
 }
 
@@ -1245,7 +1191,7 @@ void bind_stability(py::class_<Analysis>& analysis) {
           py::gil_scoped_release release;
           s = a.floquet(mu, zeta_tolerance);
         }
-        return floquet_dict(s);
+        return to_dict(s);
       });
 }
 
@@ -1402,7 +1348,7 @@ void bind_trim(py::class_<Analysis>& analysis) {
           else
             t = rotor_thrust(a.parameters(), mu, value);
         }
-        return thrust_dict(t);
+        return to_dict(t);
       });
 }
 

@@ -347,7 +347,7 @@ def test_response(params, mu, options):
         assert list(h) == list(r.harmonic_names)
         assert np.array(list(h.values()), dtype=float).tobytes() == values.tobytes()
     assert same(find(doc, "closure"), r.closure)
-    assert same(find(doc, "error_estimate", default=r.error), r.error)
+    assert same(find(doc, "error_estimate", default=r.error_estimate), r.error_estimate)
     assert find(doc, "steps") == r.steps
 
 

@@ -2,7 +2,9 @@
 the command line's JSON uses: one name per field in every front end."""
 
 import dataclasses
+import math
 
+import numpy as np
 import pytest
 
 import flaplag
@@ -16,6 +18,7 @@ PYTHON_ONLY = {
     "SweepResult": {"mu", "labels", "zeta", "omega", "trims"},
     "CriticalResult": {"trim"},
     "TrimResult": {"parameters"},
+    "PeriodicEquilibriumResult": {"coefficients", "psi", "y", "flap_tip", "lag_tip"},
 }
 
 CLASSES = [
@@ -29,6 +32,10 @@ CLASSES = [
     "CampbellPoint",
     "CampbellFrequency",
     "CampbellCrossing",
+    "ThrustResult",
+    "FloquetSample",
+    "PeriodicEquilibriumResult",
+    "ModelInfo",
 ]
 
 
@@ -53,6 +60,10 @@ def results():
         "CampbellPoint": campbell.points[1],
         "CampbellFrequency": campbell.points[1].modes[0],
         "CampbellCrossing": campbell.crossings[0],
+        "ThrustResult": an.thrust(0.3),
+        "FloquetSample": an.floquet(0.3),
+        "PeriodicEquilibriumResult": an.periodic_equilibrium(0.3),
+        "ModelInfo": an.model,
     }
 
 
@@ -130,3 +141,59 @@ def test_campbell_is_the_command_lines():
     assert c.points[0].modes[0].damping_ratio is None
     with pytest.raises(ValueError, match="speed_max"):
         flaplag.Analysis().campbell(speed_max=0.0)
+
+
+def test_floquet_sample_columns_are_numpy_arrays():
+    """The exponents' columns of a sample are arrays of their element type, as the dict's lists
+    would not be: multipliers complex, the rest real, one entry per exponent."""
+    s = flaplag.Analysis().floquet(0.3)
+    assert s.multipliers.dtype == np.complex128
+    for name in ("zeta", "omega", "zeta_errors"):
+        assert getattr(s, name).dtype == np.float64, name
+    assert len(s.multipliers) == len(s.zeta) == len(s.omega) == 4
+    # zeta = ln|multiplier| / 2 pi, omega = arg(multiplier) / 2 pi: the columns are in one order
+    assert np.allclose(s.zeta, np.log(np.abs(s.multipliers)) / (2 * np.pi), rtol=0, atol=1e-12)
+    assert np.allclose(s.omega, np.angle(s.multipliers) / (2 * np.pi), rtol=0, atol=1e-12)
+
+
+def test_an_empty_array_keeps_its_element_type():
+    raw = {"multipliers": [], "zeta": [], "omega": [], "zeta_errors": [], "error_estimate": None,
+           "steps": 0, "liouville_residual": 1.0, "status": "failed", "message": "x"}
+    s = flaplag.FloquetSample._from(raw)
+    assert s.multipliers.dtype == np.complex128 and s.zeta.dtype == np.float64
+
+
+def test_error_estimate_is_one_name():
+    """The estimated error is `error_estimate` in every result, as in the command line's JSON;
+    `error` stays as its former name."""
+    an = flaplag.Analysis()
+    s = an.floquet(0.3)
+    assert "error_estimate" in keys("FloquetSample") and "error" not in keys("FloquetSample")
+    assert s.error == s.error_estimate
+    r = an.response(0.3)
+    assert r.error_estimate is not None and r.error == r.error_estimate
+    doc = run_cli("response", "--mu", "0.3")
+    assert doc["error_estimate"] == r.error_estimate
+
+
+def test_equilibrium_without_stability_check():
+    """Without the stability check there are no multipliers and no distance to one (None, not
+    the struct's 0); the table's mean thrust is the model's, a number for the paper model."""
+    an = flaplag.Analysis()
+    e = an.periodic_equilibrium(0.3, check_stability=False)
+    assert len(e.multiplier_moduli) == 0 and e.multiplier_moduli.dtype == np.float64
+    assert e.min_distance_to_one is None and e.max_zeta is None
+    checked = an.periodic_equilibrium(0.3)
+    assert 0.0 < checked.min_distance_to_one < 1.0
+    assert checked.max_zeta < 0.0
+    assert math.isfinite(checked.mean_thrust) and checked.mean_thrust > 0.0
+
+
+def test_model_object_is_the_model_info():
+    """The header's `model` object and Analysis.model are one table: the same keys and values."""
+    doc = run_cli("point", "--mu", "0.3", "--model", "paper-2x1", "--modes", "exact")
+    info = flaplag.Analysis(model="paper-2x1", modes="exact").model
+    assert set(doc["model"]) == {f.name for f in dataclasses.fields(info)}
+    for key, value in doc["model"].items():
+        assert getattr(info, key) == value, key
+    assert doc["model"]["base"] == "paper" and doc["model"]["flap_modes"] == 2

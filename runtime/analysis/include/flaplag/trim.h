@@ -70,6 +70,20 @@ struct ThrustResult : Outcome {
   // Outcome: Failed: no periodic response (a multiplier at 1)
 };
 
+constexpr auto describe(Tag<ThrustResult>) {
+  return std::tuple_cat(
+      std::make_tuple(
+          Field{"mu", &ThrustResult::mu, "-", "the advance ratio"},
+          Field{"inflow", &ThrustResult::inflow, "-", "the inflow ratio lambda used"},
+          Field{"thrust_coefficient", &ThrustResult::thrust_coefficient, "-",
+                "C_T of the model's own lift distribution (azimuth mean; not C_T/sigma)"},
+          Field{"flap_1c", &ThrustResult::flap_1c, "-",
+                "first flap tip harmonic, cos psi part (w/l)"},
+          Field{"flap_1s", &ThrustResult::flap_1s, "-",
+                "first flap tip harmonic, sin psi part (w/l)"}),
+      describe(Tag<Outcome>{}));
+}
+
 // C_T at mu with inflow lambda (NaN: eq 2.24) and p's pitch.  p.model must emit the thrust
 // (a cyclic-pitch model), else InvalidInput("model", ...); p is validated.
 ThrustResult rotor_thrust(const RotorParameters& p, double mu, double inflow,

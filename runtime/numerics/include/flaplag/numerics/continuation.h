@@ -171,6 +171,44 @@ struct FloquetSample : Outcome {
   // (message says why)
 };
 
+// The table of a sample: its exponents as columns (multipliers, zeta, omega, in one order).
+constexpr auto describe(Tag<FloquetSample>) {
+  return std::tuple_cat(
+      std::make_tuple(
+          Computed{"multipliers",
+                   +[](const FloquetSample& s) {
+                     std::vector<std::complex<double>> v;
+                     for (const FloquetExponent& e : s.floquet.exponents) v.push_back(e.multiplier);
+                     return v;
+                   },
+                   "-", "the characteristic multipliers, eigenvalues of Phi(2 pi)"},
+          Computed{"zeta",
+                   +[](const FloquetSample& s) {
+                     std::vector<double> v;
+                     for (const FloquetExponent& e : s.floquet.exponents) v.push_back(e.zeta);
+                     return v;
+                   },
+                   "1/rev", "the damping exponents ln|multiplier| / 2 pi", kFieldNegativeInfinity},
+          Computed{"omega",
+                   +[](const FloquetSample& s) {
+                     std::vector<double> v;
+                     for (const FloquetExponent& e : s.floquet.exponents) v.push_back(e.omega);
+                     return v;
+                   },
+                   "1/rev",
+                   "the frequencies arg(multiplier) / 2 pi, principal value in (-1/2, 1/2]"},
+          Field{"zeta_errors", &FloquetSample::zeta_errors, "1/rev",
+                "estimated error of each zeta (empty: not estimated)"},
+          Field{"error_estimate", &FloquetSample::error, "1/rev",
+                "the largest of zeta_errors; null when not estimated"},
+          Field{"steps", &FloquetSample::steps, "",
+                "steps per period behind the multipliers (0: not a stepping method)"},
+          Computed{"liouville_residual",
+                   +[](const FloquetSample& s) { return s.floquet.liouville_residual; }, "-",
+                   "|det Phi - exp int tr A| / exp int tr A"}),
+      describe(Tag<Outcome>{}));
+}
+
 // The caller builds the periodic system at mu and returns its Floquet analysis, resolved so that
 // the estimated exponent error is at most `zeta_tolerance` per rev where it can (the caller
 // decides what it can afford; a sample that misses it says so in its status).

@@ -143,6 +143,44 @@ struct PeriodicEquilibrium : Outcome {
   // automatic K reached kMaxHarmonics with harmonics_error above `harmonics_tolerance`.
 };
 
+// The table of an equilibrium: its numbers, not the coefficients or the linearization (which a
+// front end writes as arrays of its own).
+constexpr auto describe(Tag<PeriodicEquilibrium>) {
+  return std::tuple_cat(
+      std::make_tuple(
+          Field{"mu", &PeriodicEquilibrium::mu, "-", "the advance ratio"},
+          Field{"harmonics", &PeriodicEquilibrium::harmonics, "", "K, the harmonics of q°"},
+          Field{"flap_modes", &PeriodicEquilibrium::flap_modes, "",
+                "M: the coordinates are M flap, then N lag amplitudes"},
+          Field{"continued_to", &PeriodicEquilibrium::continued_to, "-",
+                "the advance ratio nearest mu that the continuation from hover reached"},
+          Field{"iterations", &PeriodicEquilibrium::iterations, "",
+                "Newton iterations of the last solve"},
+          Field{"step", &PeriodicEquilibrium::step, "-",
+                "the last Newton step, max norm, relative"},
+          Field{"residual", &PeriodicEquilibrium::residual, "-",
+                "max |projected residual| (generalized coordinates per rev^2)"},
+          Field{"truncation", &PeriodicEquilibrium::truncation, "-",
+                "amplitude of harmonic K of q° relative to its largest coefficient"},
+          Field{"harmonics_error", &PeriodicEquilibrium::harmonics_error, "-",
+                "automatic K: the largest coefficient change from K/2 to K, relative to the "
+                "largest coefficient; not a number (null) for a fixed K"},
+          Field{"mean_thrust", &PeriodicEquilibrium::mean_thrust, "-",
+                "azimuth mean of one blade's thrust along q° (C_T = sigma a / 2 times it); not a "
+                "number (null) for a model without nonlinear thrust"},
+          Field{"multiplier_moduli", &PeriodicEquilibrium::multiplier_moduli, "-",
+                "|Floquet multipliers| of the linearization about q°, descending (with the "
+                "stability check; empty otherwise)"},
+          Computed{"min_distance_to_one",
+                   +[](const PeriodicEquilibrium& e) {
+                     return e.multiplier_moduli.empty()
+                                ? std::optional<double>()
+                                : std::optional<double>(e.min_distance_to_one);
+                   },
+                   "-", "min |multiplier - 1|; null without the stability check"}),
+      describe(Tag<Outcome>{}));
+}
+
 // opt.Check() first (InvalidInput).  The equilibrium on the branch through the hover
 // equilibrium (which solves the equations at mu = 0): continuation in mu from hover in steps of
 // at most 0.1 that move no coefficient by more than 0.01, halved otherwise.  Where that branch

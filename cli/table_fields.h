@@ -1,0 +1,109 @@
+// flaplag CLI — rows of a described struct (core/fields.h) as the cells of a text table or a
+// CSV line: one writer for every table whose columns are rows of a result's table.
+//
+// A column names a row of T's table by its key; a text table gives it a heading, CSV heads it
+// with the key itself.  Cells by the row's type: numbers by cell() in text (a non-finite number
+// is "-") and exact_num() in CSV (empty when not finite; a row that allows -inf writes it as
+// "-inf"), integers in decimal, flags yes/no (CSV true/false), described enums by name, message
+// text (kFieldMessage) in the command line's vocabulary, an empty optional "-" (text) or empty
+// (CSV).  A key that T's table lacks, or a row of a type no cell can hold (a list, a struct),
+// is a bug of the caller: std::logic_error.
+#pragma once
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "commands_internal.h"
+#include "flaplag/core/field_traits.h"
+#include "flaplag/core/fields.h"
+#include "json_fields.h"
+#include "output.h"
+
+namespace flaplag::cli::cmd {
+
+struct Column {
+  const char* key;      // a row of the struct's table
+  const char* heading;  // the text table's heading
+};
+
+enum class CellStyle { Text, Csv };
+
+namespace table_detail {
+
+template <class V>
+std::string cell_text(const V& v, unsigned flags, CellStyle style, const MessageText& message) {
+  const bool csv = style == CellStyle::Csv;
+  if constexpr (std::is_same_v<V, double>) {
+    if (flags & kFieldNegativeInfinity) return csv ? exact_zeta_text(v) : zeta_cell(v);
+    if (csv) return std::isfinite(v) ? exact_num(v) : std::string();
+    return cell(v);
+  } else if constexpr (std::is_same_v<V, int>) {
+    return std::to_string(v);
+  } else if constexpr (std::is_same_v<V, bool>) {
+    return csv ? (v ? "true" : "false") : (v ? "yes" : "no");
+  } else if constexpr (std::is_same_v<V, std::string>) {
+    return (flags & kFieldMessage) ? message(v) : v;
+  } else if constexpr (is_described_enum_v<V>) {
+    return enum_name(v);
+  } else if constexpr (is_optional_field<V>::value) {
+    return v ? cell_text(*v, flags, style, message) : std::string(csv ? "" : "-");
+  } else {
+    throw std::logic_error("a table cell cannot hold this value");
+  }
+}
+
+}  // namespace table_detail
+
+// The cells of `object` under the rows `keys`, in their order.
+template <class T>
+std::vector<std::string> described_cells(const T& object, const std::vector<const char*>& keys,
+                                         CellStyle style, const MessageText& message) {
+  std::vector<std::string> out(keys.size());
+  std::vector<bool> found(keys.size(), false);
+  for_each_field(object, [&](const auto& row, const auto& v) {
+    for (std::size_t c = 0; c < keys.size(); ++c) {
+      if (std::string(keys[c]) != row.name) continue;
+      out[c] = table_detail::cell_text(v, row.flags, style, message);
+      found[c] = true;
+    }
+  });
+  for (std::size_t c = 0; c < keys.size(); ++c)
+    if (!found[c]) throw std::logic_error(std::string("no row `") + keys[c] + "`");
+  return out;
+}
+
+// One line per element of `lines` under `columns`; the first column left-aligned, the others
+// right-aligned (TextTable).
+template <class T>
+TextTable described_table(const std::vector<T>& lines, const std::vector<Column>& columns,
+                          const MessageText& message) {
+  std::vector<std::string> head;
+  std::vector<const char*> keys;
+  for (const Column& c : columns) {
+    head.push_back(c.heading);
+    keys.push_back(c.key);
+  }
+  TextTable t(head);
+  for (const T& x : lines) t.add_row(described_cells(x, keys, CellStyle::Text, message));
+  return t;
+}
+
+// A CSV field: quoted (RFC 4180) when it holds a comma, a quote or a line break.
+inline std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+// The fields joined by commas (each csv_field), without the line break.
+inline std::string csv_fields(const std::vector<std::string>& fields) {
+  std::string out;
+  for (std::size_t i = 0; i < fields.size(); ++i) out += (i ? "," : "") + csv_field(fields[i]);
+  return out;
+}
+
+}  // namespace flaplag::cli::cmd
