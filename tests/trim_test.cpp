@@ -568,7 +568,7 @@ TEST(OperatingCondition, ATrimmedAnalysisIsTheRotorTrimmedInHover) {
 // trim that cannot be made in hover fails the constructor, naming the thrust coefficient.
 TEST(OperatingCondition, BadConditionsNameTheField) {
   flaplag::OperatingCondition c = flaplag::OperatingCondition::Trimmed(moment_trim_005());
-  c.inflow = 0.05;
+  c.inflow = flaplag::InflowModel::Given(0.05);
   try {
     flaplag::Analysis(cyclic_typical(), {}, c);
     ADD_FAILURE() << "inflow with a trim accepted";

@@ -140,7 +140,7 @@ struct Analysis::Impl {
         trim_in_hover(c.trimmed() ? std::optional<TrimResult>(internal::hover_trim(p, o, c.trim))
                                   : std::nullopt),
         builder(trim_in_hover ? trim_in_hover->parameters : p, find_model(p.model),
-                trim_in_hover ? std::optional<double>(trim_in_hover->inflow) : c.inflow),
+                trim_in_hover ? InflowModel::Given(trim_in_hover->inflow) : c.inflow),
         evaluator(FloquetEvaluator::Create(o, builder.state_size())) {
     options = evaluator->options();  // an automatic method resolved for this model's size
     hover = builder.hover();
@@ -345,12 +345,12 @@ const TipMotion& tip_motion(const std::vector<TipMotion>& tips, const std::strin
 }
 
 std::optional<InvalidInput> OperatingCondition::Validate() const {
-  if (trimmed() && inflow) {
-    return InvalidInput("inflow", round_trip_text(*inflow),
+  if (trimmed() && inflow.kind != InflowKind::Uniform) {
+    return InvalidInput("inflow", enum_name(inflow.kind),
                         "given with a trim: each trim has its own eq 2.25 inflow");
   }
   if (trimmed()) return trim.Validate();
-  return std::nullopt;
+  return inflow.Validate();
 }
 
 Analysis::Analysis(const RotorParameters& params, const TransitionOptions& options,

@@ -43,15 +43,13 @@ ExactReversedRegion exact_reversed_region(double mu, const RotorParameters& p) {
 namespace {
 
 // The parameters and inflow the builder accepts (InvalidInput otherwise).
-void check_inputs(const RotorParameters& p, std::optional<double> inflow) {
-  if (inflow) {
+void check_inputs(const RotorParameters& p, const InflowModel& inflow) {
+  if (inflow.kind != InflowKind::Uniform) {
     validate_except_inflow(p);  // eq 2.24 is not used
   } else {
     validate(p);
   }
-  if (inflow && !std::isfinite(*inflow)) {
-    throw InvalidInput("inflow", round_trip_text(*inflow), "must be a finite number");
-  }
+  ThrowIfInvalid(inflow.Validate());
   // The harmonic balance integrates the nonlinear loads region by region with the normal and
   // the sector integrals; the exact circle has no such form there (it would silently be left
   // out).
@@ -215,15 +213,21 @@ void classify_hover(HoverResult& hover) {
 }  // namespace
 
 SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescriptor& m,
-                             std::optional<double> inflow)
-    : p_(p), model_(&m), M_(m.flap_modes), N_(m.lag_modes), n_(M_ + N_), H_(m.n_harmonics) {
+                             const InflowModel& inflow)
+    : p_(p),
+      model_(&m),
+      M_(m.flap_modes),
+      N_(m.lag_modes),
+      n_(M_ + N_),
+      H_(m.n_harmonics),
+      inflow_model_(inflow) {
   check_inputs(p_, inflow);
   modes_ = blade_modes(p_, m);
   geometry_.e1 = p_.root_offset;
   geometry_.lr = p_.length_ratio;
   geometry_.tip_loss_a = p_.tip_loss_a;
   geometry_.tip_loss_b = p_.tip_loss_b;
-  inflow_ = inflow ? *inflow : hover_inflow(p_);
+  inflow_ = inflow_model_.lambda(p_, 0.0);
   // Structural damping ratios apply to every mode of a direction.
   damping_flap_.assign(M_, p_.damping_flap);
   damping_lag_.assign(N_, p_.damping_lag);
@@ -271,7 +275,7 @@ model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) co
   in.lock = p_.gamma;
   in.lr = p_.length_ratio;
   in.theta = p_.theta;
-  in.inflow = inflow_;
+  in.inflow = inflow(mu);
   in.precone = p_.precone;
   in.droop = p_.droop;
   in.cdo_a = cdo_a_;

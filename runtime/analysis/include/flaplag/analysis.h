@@ -47,15 +47,16 @@ namespace flaplag {
 
 // What holds at every advance ratio an Analysis evaluates: the controls and the inflow.
 //   - Fixed controls (the default, the paper): RotorParameters' theta, theta1c, theta1s and the
-//     inflow of eq 2.24, or a given inflow ratio (e.g. a trim's eq 2.25 value: At()).
+//     inflow model (rotor/inflow.h): eq 2.24 (the default), eq 2.25 at a given C_T at every mu,
+//     or a given inflow ratio (e.g. a trim's: At()).
 //   - Trimmed (trim.kind thrust or moment, Trimmed()): at every mu the rotor is trimmed first
 //     (trim.h), each trim with its own eq 2.25 inflow, so mu_c is that of the rotor at fixed
 //     C_T; the results carry the trims they rest on.
 // About which solution the system is linearized (hover or the periodic equilibrium) is
 // RotorParameters::periodic_linearization, in either condition.
 struct OperatingCondition {
-  TrimOptions trim;              // kind None: fixed controls
-  std::optional<double> inflow;  // fixed controls only; nullopt: eq 2.24
+  TrimOptions trim;    // kind None: fixed controls
+  InflowModel inflow;  // fixed controls only (a trim has its own): the default is eq 2.24
   // The rotor trimmed at every mu with `o` (o.kind thrust or moment).
   static OperatingCondition Trimmed(const TrimOptions& o) {
     OperatingCondition c;
@@ -65,11 +66,12 @@ struct OperatingCondition {
   // Fixed at a trim's controls and inflow: Analysis(t.parameters, options, At(t)).
   static OperatingCondition At(const TrimResult& t) {
     OperatingCondition c;
-    c.inflow = t.inflow;
+    c.inflow = InflowModel::Given(t.inflow);
     return c;
   }
   bool trimmed() const { return trim.kind != TrimKind::None; }
-  // InvalidInput("inflow") for an inflow not finite or given with a trim; the trim's options.
+  // InvalidInput("inflow") for an inflow model other than eq 2.24 given with a trim; the inflow
+  // model's and the trim's problems.
   std::optional<InvalidInput> Validate() const;
 };
 

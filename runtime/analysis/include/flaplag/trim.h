@@ -20,6 +20,7 @@
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/numerics/response.h"
+#include "flaplag/rotor/inflow.h"
 #include "flaplag/rotor/parameters.h"
 #include "flaplag/rotor/periodic_equilibrium.h"
 
@@ -35,8 +36,8 @@ constexpr auto describe(Tag<TrimKind>) {
 bool trim_kind_from_name(std::string_view name, TrimKind* kind);
 
 struct TrimOptions {
-  static constexpr Range kThrustRange{{0.0, 0.1, true, false}, "in (0, 0.1] (C_T, not C_T/sigma)"};
-  static constexpr Range kShaftAngleRange{{-kHalfPi, kHalfPi, true, true}, "in (-pi/2, pi/2)"};
+  static constexpr Range kThrustRange = InflowModel::kThrustRange;
+  static constexpr Range kShaftAngleRange = InflowModel::kShaftAngleRange;
   static constexpr Range kIterationsRange{{1, 1000, false, false}, "1..1000"};
   static constexpr Range kEvaluationsRange{{1, 1000000, false, false}, "1..1000000"};
   static constexpr Range kToleranceRange{{0.0, 1e-3, true, false}, "in (0, 1e-3]"};
@@ -92,9 +93,6 @@ ThrustResult rotor_thrust(const RotorParameters& p, double mu, double inflow,
 // the thrust the rotor actually produces at this pitch.
 ThrustResult rotor_thrust_momentum(const RotorParameters& p, double mu, double shaft_angle,
                                    const ResponseOptions& response = {});
-// Solves eq 2.25 for lambda given C_T > 0 and mu >= 0 (the root in (mu tan alpha_R, mu tan
-// alpha_R + C_T/(2 mu)] for mu > 0; sqrt(C_T/2) at mu = 0).
-double momentum_inflow(double thrust_coefficient, double mu, double shaft_angle);
 
 struct TrimResult : Outcome {
   double mu = 0.0;

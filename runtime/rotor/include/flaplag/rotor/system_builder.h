@@ -19,6 +19,7 @@
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/periodic_system.h"
 #include "flaplag/rotor/hover.h"
+#include "flaplag/rotor/inflow.h"
 #include "flaplag/rotor/parameters.h"
 
 namespace flaplag::detail {
@@ -51,11 +52,12 @@ struct ThrustSystem {
 
 class SystemBuilder {
  public:
-  // inflow: lambda to use instead of eq 2.24 (a trim's eq 2.25 value); nullopt: eq 2.24.
-  // Throws InvalidInput("theta1c"/"theta1s", ...) when cyclic pitch is asked of a model
+  // inflow: the inflow model (inflow.h; the default: eq 2.24).  The hover equilibrium is at its
+  // lambda at mu = 0, the system at mu at its lambda at mu.  Throws InvalidInput for a bad
+  // model, and InvalidInput("theta1c"/"theta1s", ...) when cyclic pitch is asked of a model
   // without it.
   SystemBuilder(const RotorParameters& p, const model::ModelDescriptor& m,
-                std::optional<double> inflow = std::nullopt);
+                const InflowModel& inflow = {});
 
   const RotorParameters& params() const { return p_; }
   const model::ModelDescriptor& model() const { return *model_; }
@@ -69,7 +71,12 @@ class SystemBuilder {
   void system(double mu, PeriodicSystem* out) const;
   // Thrust harmonics at mu (models with ModelDescriptor::thrust only; else std::logic_error).
   ThrustSystem thrust(double mu) const;
+  // lambda in hover (the hover equilibrium's) and at mu.
   double inflow() const { return inflow_; }
+  double inflow(double mu) const {
+    return inflow_model_.varies_with_mu() ? inflow_model_.lambda(p_, mu) : inflow_;
+  }
+  const InflowModel& inflow_model() const { return inflow_model_; }
   // Aerodynamic integrals used inside the reversed sector at mu.
   std::vector<double> reversed_integrals(double mu) const;
   // Aerodynamic integrals of the exact region at (mu, psi): -int_A^{x0} + int_{x0}^B with
@@ -104,6 +111,7 @@ class SystemBuilder {
   RotorParameters p_;
   const model::ModelDescriptor* model_;
   int M_, N_, n_, H_;
+  InflowModel inflow_model_;
   ModeSet modes_;
   SpanGeometry geometry_;
   double inflow_ = 0.0, cdo_a_ = 0.0;
