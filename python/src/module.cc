@@ -1024,41 +1024,37 @@ py::list parameter_rows() {
   return rows;
 }
 
-py::list transition_rows() {
-  const TransitionOptions defaults;
-  auto row = [](const char* field, const char* type, py::object value, const char* units,
-                const char* requirement, const char* description) {
-    py::dict r;
-    r["field"] = field;
-    r["symbol"] = "";
-    r["type"] = type;
-    r["default"] = value;
-    r["units"] = units;
-    r["requirement"] = requirement;
-    r["description"] = description;
-    return r;
-  };
-  const std::string max_steps = std::to_string(TransitionOptions::kMaxSteps);
-  const std::string max_terms = std::to_string(TransitionOptions::kMaxTerms);
+// The rows of an options struct's table in the form of parameter_rows (field, symbol, type,
+// default, units, requirement, description; choices of an enum).
+template <class O>
+py::list table_rows() {
+  const O defaults;
   py::list rows;
-  py::dict method = row(
-      "method", "choice", py::str(method_name(defaults.method)), "-", "rk4, hsu, magnus or auto",
-      "transition matrix Phi(2 pi): rk4 (paper 3.3.2), hsu (Hsu's method, "
-      "eqs 3.21-3.28), magnus (4th-order Magnus, Richardson-extrapolated) or auto (hsu "
-      "for one flap and one lag mode, magnus above)");
-  py::list choices;
-  for (TransitionMethod m : kTransitionMethods) choices.append(method_name(m));
-  method["choices"] = choices;
-  rows.append(method);
-  rows.append(row("steps", "int", py::int_(defaults.steps), "-", ("0 or 1.." + max_steps).c_str(),
-                  "RK4 steps, Hsu intervals K or Magnus steps per period; 0: automatic "
-                  "(raised from the error estimates until the exponents meet zeta_tolerance)"));
-  rows.append(row("terms", "int", py::int_(defaults.terms), "-", ("1.." + max_terms).c_str(),
-                  "Hsu's Taylor terms J"));
-  rows.append(row("zeta_tolerance", "real", py::float_(defaults.zeta_tolerance), "per rev", "> 0",
-                  "error allowed in each damping exponent zeta: resolved when the estimated "
-                  "error is at most zeta_tolerance * max(1, 100 |zeta|) (absolute near "
-                  "zeta = 0, relative for modes with |zeta| > 0.01)"));
+  for_each_field(defaults, [&](const auto& row, const auto& value) {
+    using V = std::decay_t<decltype(value)>;
+    const Range* range = row_range(row);
+    py::dict r;
+    r["field"] = row.name;
+    r["symbol"] = "";
+    r["default"] = to_python(value);
+    r["units"] = *row.units != '\0' ? row.units : "-";
+    r["requirement"] = range != nullptr ? range->words : "";
+    r["description"] = row.doc;
+    if constexpr (std::is_same_v<V, double>) {
+      r["type"] = "real";
+    } else if constexpr (std::is_same_v<V, int>) {
+      r["type"] = "int";
+    } else if constexpr (std::is_same_v<V, bool>) {
+      r["type"] = "flag";
+    } else if constexpr (is_described_enum_v<V>) {
+      r["type"] = "choice";
+      r["requirement"] = enum_names<V>();
+      py::list choices;
+      for (const EnumName<V>& e : describe(Tag<V>{})) choices.append(e.name);
+      r["choices"] = choices;
+    }
+    rows.append(r);
+  });
   return rows;
 }
 
@@ -1117,7 +1113,7 @@ void bind_tables(py::module_& m) {
   m.attr("git_commit") = kGitCommit;
   m.attr("max_advance_ratio") = kMaxAdvanceRatio;
   m.def("parameter_table", &parameter_rows);
-  m.def("transition_table", &transition_rows);
+  m.def("transition_table", &table_rows<TransitionOptions>);
   // The defaults and the rows of an options struct, by name ("critical", "trim", ...).
   m.def("option_defaults", &option_defaults);
   m.def("option_table", &option_rows);

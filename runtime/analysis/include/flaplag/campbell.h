@@ -53,13 +53,14 @@ struct CampbellOptions {
 constexpr auto describe(Tag<CampbellOptions>) {
   using O = CampbellOptions;
   return std::make_tuple(
-      Option{"speed_max", &O::speed_max, "Omega_0",
+      Option{"speed_max", &O::speed_max, "-",
              "the largest rotor speed Omega/Omega_0; the speeds run from 0", &kCampbellSpeedRange},
-      Option{"points", &O::points, "", "rotor speeds, evenly spaced from 0 to speed_max",
+      Option{"points", &O::points, "", "rotor speeds, evenly spaced from 0 to the largest speed",
              &kCampbellPointsRange},
       Option{"mu", &O::mu, "-", "advance ratio at every speed (0: hover)", &kCampbellMuRange},
       Option{"scan_step", &O::scan_step, "-", "continuation step in mu from hover", &kPositive},
-      Option{"harmonics", &O::harmonics, "", "the per-rev lines n Omega, n = 1..harmonics",
+      Option{"harmonics", &O::harmonics, "",
+             "the per-rev lines n Omega drawn and crossed, n = 1 up to this number",
              &kCampbellHarmonicsRange},
       Option{"threads", &O::threads, "",
              "worker threads (0: all cores; the answer does not depend on it)"});

@@ -66,8 +66,8 @@ constexpr auto describe(Tag<TrimOptions>) {
   return std::make_tuple(
       Option{"kind", &O::kind, "",
              "none, thrust (theta0 and lambda) or moment (also theta1c, theta1s)"},
-      Option{"thrust_coefficient", &O::thrust_coefficient, "-",
-             "target thrust coefficient C_T (not C_T/sigma)", &O::kThrustRange},
+      Option{"thrust_coefficient", &O::thrust_coefficient, "-", "target thrust coefficient",
+             &O::kThrustRange},
       Option{"shaft_angle", &O::shaft_angle, "rad", "shaft angle alpha_R of eq 2.25",
              &O::kShaftAngleRange},
       Option{"max_iterations", &O::max_iterations, "", "Newton iterations", &O::kIterationsRange},

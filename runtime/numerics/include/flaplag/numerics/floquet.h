@@ -78,13 +78,19 @@ struct TransitionOptions {
 constexpr auto describe(Tag<TransitionOptions>) {
   using O = TransitionOptions;
   return std::make_tuple(
-      Option{"method", &O::method, "", "how the transition matrix Phi(2 pi) is computed"},
+      Option{"method", &O::method, "",
+             "transition matrix: rk4 (paper 3.3.2), hsu (eqs 3.21-3.28), magnus (4th-order "
+             "Magnus, Richardson-extrapolated) or auto (hsu for one flap and one lag mode, "
+             "magnus above)"},
       Option{"steps", &O::steps, "",
              "RK4 steps, Hsu intervals K or Magnus steps per period; 0: automatic",
              &O::kStepsRange},
       Option{"terms", &O::terms, "", "Hsu Taylor terms J", &O::kTermsRange},
       Option{"zeta_tolerance", &O::zeta_tolerance, "per rev",
-             "error allowed in each damping exponent zeta", &kPositive});
+             "error allowed in each damping exponent zeta: an exponent counts as resolved when "
+             "its estimated error is at most this times max(1, 100 |zeta|) -- absolute near "
+             "zeta = 0, where stability is decided, relative for modes with |zeta| > 0.01",
+             &kPositive});
 }
 
 struct TransitionResult {

@@ -75,7 +75,7 @@ struct SimulationOptions {
 constexpr auto describe(Tag<SimulationOptions>) {
   using O = SimulationOptions;
   return std::make_tuple(
-      Option{"revolutions", &O::revolutions, "rev", "revolutions simulated", &O::kRevolutionsRange},
+      Option{"revolutions", &O::revolutions, "-", "revolutions simulated", &O::kRevolutionsRange},
       Option{"steps_per_rev", &O::steps_per_rev, "", "RK4 steps per revolution; 0: automatic",
              &O::kStepsRange},
       Option{"samples_per_rev", &O::samples_per_rev, "", "reported points per revolution",
