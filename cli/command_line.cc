@@ -454,11 +454,13 @@ void check_run_memory(const Request& r) {
       break;
     }
     case Command::Response:
-      check_memory(response_memory(r.samples, state), limit, "samples", std::to_string(r.samples));
+      check_memory(response_memory(r.response.samples, state), limit, "samples",
+                   std::to_string(r.response.samples));
       break;
     case Command::Simulate:
-      check_memory(simulation_memory(r.revolutions, r.samples, state, r.nonlinear), limit,
-                   "revolutions", round_trip_text(r.revolutions));
+      check_memory(simulation_memory(r.simulation.revolutions, r.simulation.samples_per_rev, state,
+                                     r.simulation.nonlinear),
+                   limit, "revolutions", round_trip_text(r.simulation.revolutions));
       break;
     default:
       break;
@@ -733,6 +735,7 @@ Request CommandLine::interpret() const {
   r.command = command_;
   interpret_rotor(r);
   const ModeCounts modes = interpret_mode_counts();
+  interpret_tables(r);
   interpret_transition(r);
   interpret_output(r);
   if (command_ != Command::Models && command_ != Command::Modes) interpret_model(r, modes);
@@ -772,22 +775,20 @@ CommandLine::ModeCounts CommandLine::interpret_mode_counts() const {
   return m;
 }
 
-// --method, --steps, --terms, --zeta-tolerance.
-void CommandLine::interpret_transition(Request& r) const {
-  if (const Given* g = given("--method")) {
-    if (!method_from_name(g->text, &r.transition.method))
-      throw InvalidInput(g->spelling, shown(g->text), "must be one of " + method_names());
+// The options made from the options structs' tables (options.h), in help order.
+void CommandLine::interpret_tables(Request& r) const {
+  for (const OptionSpec& o : options_of(command_)) {
+    if (!o.set) continue;
+    if (const Given* g = given(o.name)) o.set(r, g->spelling, g->text);
   }
+}
+
+// --steps (N or auto; --method, --terms and --zeta-tolerance are table options).
+void CommandLine::interpret_transition(Request& r) const {
   if (const Given* g = given("--steps")) {
     r.transition.steps = g->text == "auto"
                              ? TransitionOptions::kAutomatic
                              : parse_int(g->spelling, g->text, 1, TransitionOptions::kMaxSteps);
-  }
-  if (const Given* g = given("--terms")) {
-    r.transition.terms = parse_int(g->spelling, g->text, 1, TransitionOptions::kMaxTerms);
-  }
-  if (const Given* g = given("--zeta-tolerance")) {
-    r.transition.zeta_tolerance = parse_real(g->spelling, g->text);
   }
 }
 
@@ -861,9 +862,7 @@ void CommandLine::interpret_subcommand(Request& r, const ModeCounts& modes) cons
     case Command::Sweep:
       interpret_sweep(r);
       break;
-    case Command::Critical:
-      if (const Given* g = given("--mu-max")) r.mu_max = parse_real(g->spelling, g->text);
-      if (const Given* g = given("--scan-step")) r.scan_step = parse_real(g->spelling, g->text);
+    case Command::Critical:  // --mu-max, --scan-step: table options
       break;
     case Command::Models:
       if (const Given* g = given("--spec")) {
@@ -878,8 +877,6 @@ void CommandLine::interpret_subcommand(Request& r, const ModeCounts& modes) cons
     case Command::Study: {
       const Given& v = required("--vary");
       parse_axis(v.spelling, v.text, false, r.vary, r.vary_values);
-      if (const Given* g = given("--mu-max")) r.mu_max = parse_real(g->spelling, g->text);
-      if (const Given* g = given("--scan-step")) r.scan_step = parse_real(g->spelling, g->text);
       break;
     }
     case Command::Map:
@@ -888,9 +885,8 @@ void CommandLine::interpret_subcommand(Request& r, const ModeCounts& modes) cons
     case Command::Response: {
       const Given& mu = required("--mu");
       r.mu = parse_real(mu.spelling, mu.text);
-      r.samples = 72;
       if (const Given* g = given("--samples"))
-        r.samples = parse_int(g->spelling, g->text, 12, 100000);
+        r.response.samples = parse_int(g->spelling, g->text, 12, 100000);
       break;
     }
     case Command::Simulate:
@@ -998,16 +994,13 @@ void CommandLine::interpret_map(Request& r) const {
   if (const Given* g = given("--scan-step")) r.scan_step = parse_real(g->spelling, g->text);
 }
 
-// simulate: --mu, --revs, --perturbation, --forced, --nonlinear, --samples.
+// simulate: --mu, --perturbation, --forced, --nonlinear (--revs, --samples: table options).
 void CommandLine::interpret_simulate(Request& r) const {
   const Given& mu = required("--mu");
   r.mu = parse_real(mu.spelling, mu.text);
-  if (const Given* g = given("--revs")) r.revolutions = parse_real(g->spelling, g->text);
   if (const Given* g = given("--perturbation")) r.perturbation = parse_real(g->spelling, g->text);
   r.forced = given("--forced") != nullptr;
-  r.nonlinear = given("--nonlinear") != nullptr;
-  r.samples = 36;
-  if (const Given* g = given("--samples")) r.samples = parse_int(g->spelling, g->text, 1, 10000);
+  r.simulation.nonlinear = given("--nonlinear") != nullptr;
 }
 
 // plot: the data files, --plot, --label per file, --max-zeta, --mode.
@@ -1033,19 +1026,9 @@ void CommandLine::interpret_plot(Request& r) const {
   }
 }
 
-// campbell: --speed-max, --speeds, --mu, --harmonics, --scan-step.
+// campbell: --speed-max, --speeds, --mu, --harmonics, --scan-step (table options) checked.
 void CommandLine::interpret_campbell(Request& r) const {
-  CampbellOptions& o = r.campbell;
-  if (const Given* g = given("--speed-max")) o.speed_max = parse_real(g->spelling, g->text);
-  if (const Given* g = given("--speeds"))
-    o.points =
-        parse_int(g->spelling, g->text, 2, static_cast<int>(kCampbellPointsRange.interval.hi));
-  if (const Given* g = given("--mu")) o.mu = parse_real(g->spelling, g->text);
-  if (const Given* g = given("--harmonics"))
-    o.harmonics =
-        parse_int(g->spelling, g->text, 1, static_cast<int>(kCampbellHarmonicsRange.interval.hi));
-  if (const Given* g = given("--scan-step")) o.scan_step = parse_real(g->spelling, g->text);
-  o.Check();  // errors name the option's field
+  r.campbell.Check();  // errors name the option's field
 }
 
 // --trim, --thrust-coefficient, --shaft-angle.
@@ -1059,10 +1042,6 @@ void CommandLine::interpret_trim(Request& r) const {
           c == Command::Trim ? "must be thrust or moment" : "must be none, thrust or moment");
     }
   }
-  if (const Given* g = given("--thrust-coefficient"))
-    r.trim.thrust_coefficient = parse_real(g->spelling, g->text);
-  if (const Given* g = given("--shaft-angle"))
-    r.trim.shaft_angle = parse_real(g->spelling, g->text);
   if (r.trim.kind != TrimKind::None) r.trim.Check();  // errors name the option's field
   // Without a trim they would be ignored: an answer for another rotor than the one described.
   if (r.trim.kind == TrimKind::None) {

@@ -20,6 +20,7 @@
 #include "flaplag/limits.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
+#include "flaplag/numerics/response.h"
 #include "flaplag/rotor/parameters.h"
 #include "flaplag/trim.h"
 #include "options.h"
@@ -32,12 +33,12 @@ struct Request {
   TransitionOptions transition;  // automatic steps unless --steps N
   bool json = false;
   std::string output;  // -o FILE; empty: stdout (also for "-o -")
-  // point, system: --mu; system: --psi; point, critical: --scan-step
+  // point, system: --mu; system: --psi; point, map: --scan-step
   double mu = 0.0;
   double psi = 0.0;
   double scan_step = 0.01;
-  // critical: --mu-max
-  double mu_max = CriticalOptions{}.mu_max;
+  // critical, study: --mu-max, --scan-step
+  CriticalOptions critical;
   // sweep: --mu A:B:STEP, --format
   double sweep_start = 0.0, sweep_stop = 0.0, sweep_step = 0.0;
   bool csv = false;
@@ -87,10 +88,12 @@ struct Request {
   std::vector<std::string> labels;
   bool max_zeta = false;
   std::string mode;  // plot --mode NAME: only that mode's curves ("": all)
-  // response: --samples; simulate: --revs, --perturbation, --forced, --nonlinear, --samples
-  int samples = 0;
-  double revolutions = 20.0, perturbation = 0.01;
-  bool forced = false, nonlinear = false;
+  // response: --samples
+  ResponseOptions response;
+  // simulate: --revs, --samples, --nonlinear; --perturbation, --forced
+  SimulationOptions simulation;
+  double perturbation = 0.01;
+  bool forced = false;
   // point, sweep, critical, trim: --trim, --thrust-coefficient, --shaft-angle
   TrimOptions trim;
   // sweep, study, map, response, simulate, merge: --memory-limit (limits.h), checked against
@@ -172,6 +175,7 @@ class CommandLine {
   // The steps of interpret(); interpret_sweep .. interpret_campbell are those of one subcommand.
   void interpret_rotor(Request& r) const;
   ModeCounts interpret_mode_counts() const;
+  void interpret_tables(Request& r) const;  // the options of the options structs' tables
   void interpret_transition(Request& r) const;
   void interpret_output(Request& r) const;
   void interpret_model(Request& r, const ModeCounts& modes) const;

@@ -408,10 +408,7 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
 }
 
 Output critical(const Request& r, const Analysis& an) {
-  CriticalOptions opt;
-  opt.mu_max = r.mu_max;
-  opt.scan_step = r.scan_step;
-  const RotorCritical c = an.critical(opt);
+  const RotorCritical c = an.critical(r.critical);
   const std::optional<TrimResult>& t = c.trim;  // trimmed: the trim at mu_c the result rests on
   const auto json = [&] {
     Json j = header_json("critical", an);

@@ -38,8 +38,7 @@ StudyResult run_study_part(const Request& r, RunControl* control) {
   StudyOptions so;
   so.parameter = r.vary;
   so.values = r.vary_values;
-  so.critical.mu_max = r.mu_max;
-  so.critical.scan_step = r.scan_step;
+  so.critical = r.critical;
   so.threads = r.threads;
   so.trim = r.trim;
   so.damping_criterion = r.damping_criterion;
@@ -85,8 +84,8 @@ Json study_row_json(const Request& r, const StudyRow& row) {
 Json study_json(const Request& r, const Analysis& base, const StudyResult& s) {
   Json j = header_json("study", base);
   j["vary"] = word(r.vary);
-  j["mu_max"] = r.mu_max;
-  j["scan_step"] = r.scan_step;
+  j["mu_max"] = r.critical.mu_max;
+  j["scan_step"] = r.critical.scan_step;
   if (r.damping_criterion) j["damping_criterion"] = jnum(*r.damping_criterion);
   Json rows = Json::array();
   for (const StudyRow& row : s.rows) rows.push_back(study_row_json(r, row));
@@ -132,8 +131,8 @@ std::vector<std::string> study_row_cells(const Request& r, const StudyRow& row) 
 
 std::string study_text(const Request& r, const Analysis& base, const StudyResult& s) {
   std::string out = header_text(base) + "\n";
-  out += "mu_c and instability intervals versus " + word(r.vary) + " (mu up to " + num(r.mu_max) +
-         ")\n";
+  out += "mu_c and instability intervals versus " + word(r.vary) + " (mu up to " +
+         num(r.critical.mu_max) + ")\n";
   std::vector<std::string> head = {word(r.vary), "mu_c", "mode",
                                    "omega",      "kind", "unstable for mu in"};
   if (trimmed(r)) head.insert(head.end(), {"theta0", "theta1c", "theta1s", "lambda"});

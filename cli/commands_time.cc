@@ -34,9 +34,7 @@ std::vector<std::string> deflection_heads(const Analysis& an, const std::string&
 }  // namespace
 
 Output response(const Request& r, const Analysis& an, std::string& warning) {
-  ResponseOptions ro;
-  ro.samples = r.samples;
-  const ForcedResponse f = an.response(r.mu, ro);
+  const ForcedResponse f = an.response(r.mu, r.response);
   const auto json = [&] {
     Json j = header_json("response", an, false);
     j["mu"] = r.mu;
@@ -87,12 +85,8 @@ Output response(const Request& r, const Analysis& an, std::string& warning) {
 }
 
 Output simulate_command(const Request& r, const Analysis& an, std::string& warning) {
-  SimulationOptions so;
-  so.revolutions = r.revolutions;
-  so.samples_per_rev = r.samples;
-  so.nonlinear = r.nonlinear;
   const Eigen::VectorXd y0 = Eigen::VectorXd::Constant(an.state_size(), r.perturbation);
-  const TipSimulation ts = an.simulate(r.mu, y0, r.forced, so);
+  const TipSimulation ts = an.simulate(r.mu, y0, r.forced, r.simulation);
   const Simulation& s = ts.simulation;
   std::vector<double> revs;
   for (double psi : s.psi) revs.push_back(psi / kTwoPi);
@@ -102,7 +96,7 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
     j["forced"] = r.forced;
     j["nonlinear"] = ts.nonlinear;
     j["reference"] = ts.reference;
-    j["revolutions"] = r.revolutions;
+    j["revolutions"] = r.simulation.revolutions;
     j["steps_per_rev"] = s.steps_per_rev;
     j["psi"] = s.psi;
     for (const TipMotion& t : ts.tips) j[key(t, "_tip")] = t.deflection;
@@ -116,13 +110,14 @@ Output simulate_command(const Request& r, const Analysis& an, std::string& warni
   std::string out = header_text(an, false) + "\n";
   if (ts.nonlinear) {
     out += "Nonlinear response at mu = " + num(r.mu) + " from the " + ts.reference + " + " +
-           num(r.perturbation) + " in every state, " + num(r.revolutions) + " revolutions (" +
-           std::to_string(s.steps_per_rev) + " RK4 steps per rev); d: deviation from the " +
-           ts.reference + "\n";
+           num(r.perturbation) + " in every state, " + num(r.simulation.revolutions) +
+           " revolutions (" + std::to_string(s.steps_per_rev) +
+           " RK4 steps per rev); d: deviation from the " + ts.reference + "\n";
   } else {
     out += std::string(r.forced ? "Forced" : "Free") + " response at mu = " + num(r.mu) +
-           " from y0 = " + num(r.perturbation) + " in every state, " + num(r.revolutions) +
-           " revolutions (" + std::to_string(s.steps_per_rev) + " RK4 steps per rev)\n";
+           " from y0 = " + num(r.perturbation) + " in every state, " +
+           num(r.simulation.revolutions) + " revolutions (" + std::to_string(s.steps_per_rev) +
+           " RK4 steps per rev)\n";
   }
   std::vector<std::string> heads = deflection_heads(an, "d");
   if (ts.nonlinear) {

@@ -7,10 +7,14 @@
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <stdexcept>
 #include <system_error>
+#include <type_traits>
 
+#include "command_line.h"
 #include "flaplag/campbell.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/core/fields.h"
 #include "flaplag/core/format.h"
 #include "flaplag/limits.h"
 #include "flaplag/model_api.h"
@@ -48,6 +52,92 @@ OptionSpec flag_option(std::string name, std::string help) {
   OptionSpec o;
   o.name = std::move(name);
   o.help = std::move(help);
+  return o;
+}
+
+// ---- options of the options structs' tables (core/fields.h) ----------------------------------
+
+// "a|b|c" (sep "|") or "a, b, c" (sep ", "): the names of a described enum.
+template <class E>
+std::string enum_names(const char* sep) {
+  std::string s;
+  for (const EnumName<E>& e : describe(Tag<E>{})) s += (s.empty() ? "" : sep) + std::string(e.name);
+  return s;
+}
+
+template <class V>
+V parse_value(const std::string& spelling, const std::string& text, const Range* range) {
+  if constexpr (std::is_same_v<V, double>) {
+    return parse_real(spelling, text);
+  } else if constexpr (std::is_same_v<V, int>) {
+    if (range == nullptr)
+      return parse_int(spelling, text, std::numeric_limits<int>::min(),
+                       std::numeric_limits<int>::max());
+    return parse_int(spelling, text, static_cast<int>(range->interval.lo),
+                     static_cast<int>(range->interval.hi));
+  } else {
+    static_assert(is_described_enum_v<V>, "an option of a type the command line cannot read");
+    V v{};
+    if (!enum_from_name(text, &v))
+      throw InvalidInput(spelling, shown(text), "must be one of " + enum_names<V>(", "));
+    return v;
+  }
+}
+
+template <class V>
+std::string value_text(const V& v) {
+  if constexpr (std::is_same_v<V, double>) {
+    return round_trip_text(v);
+  } else if constexpr (std::is_same_v<V, int>) {
+    return std::to_string(v);
+  } else {
+    return enum_name(v);
+  }
+}
+
+// The option of the row `field` of O's table, which sets (r.*owner).field: "--" + kebab of the
+// field unless `name` is given; metavar REAL, N or the enum's names unless `metavar` is given;
+// help from the row's doc, units and range; default from O{}.
+template <class O>
+OptionSpec table_option(O Request::*owner, std::string_view field, const char* name = nullptr,
+                        const char* metavar = nullptr) {
+  OptionSpec o;
+  const bool found = visit_row<O>(field, [&](const auto& row) {
+    using V = typename std::decay_t<decltype(row)>::value_type;
+    o.name = name != nullptr ? name : kebab_option(row.name);
+    o.library_names = {row.name};
+    // "doc (units; range words)", as the rotor parameters' help.
+    std::string note = row.units;
+    if (note == "-") note.clear();
+    o.help = row.doc;
+    if constexpr (std::is_same_v<V, bool>) {
+      if (!note.empty()) o.help += " (" + note + ")";
+      o.set = [owner, row](Request& r, const std::string&, const std::string&) {
+        row.get(r.*owner) = true;
+      };
+    } else if constexpr (std::is_same_v<V, double> || std::is_same_v<V, int> ||
+                         is_described_enum_v<V>) {
+      const Range* range = row_range(row);
+      o.takes_value = true;
+      if (metavar != nullptr) {
+        o.metavar = metavar;
+      } else if constexpr (std::is_same_v<V, double>) {
+        o.metavar = "REAL";
+      } else if constexpr (std::is_same_v<V, int>) {
+        o.metavar = "N";
+      } else {
+        o.metavar = enum_names<V>("|");
+      }
+      if (range != nullptr) note += (note.empty() ? "" : "; ") + std::string(range->words);
+      if (!note.empty()) o.help += " (" + note + ")";
+      o.default_text = value_text(row.get(O{}));
+      o.set = [owner, row, range](Request& r, const std::string& spelling,
+                                  const std::string& text) {
+        row.get(r.*owner) = parse_value<V>(spelling, text, range);
+      };
+    }
+  });
+  if (!found || !o.set) throw std::logic_error("no option row " + std::string(field));
   return o;
 }
 
@@ -115,28 +205,16 @@ std::vector<OptionSpec> rotor_options() {
 }
 
 std::vector<OptionSpec> transition_options() {
-  const TransitionOptions defaults;
   return {
-      value_option("--method", "rk4|hsu|magnus|auto",
-                   "transition matrix: rk4 (paper 3.3.2), hsu (eqs 3.21-3.28), magnus "
-                   "(4th-order Magnus, Richardson-extrapolated) or auto (hsu for one flap and "
-                   "one lag mode, magnus above)",
-                   method_name(defaults.method), {"method"}),
+      table_option(&Request::transition, "method"),
       value_option(
           "--steps", "N|auto",
           "RK4 steps, Hsu intervals K or Magnus steps per period, 1.." +
               std::to_string(TransitionOptions::kMaxSteps) +
               "; auto: raised from the error estimates until the exponents meet --zeta-tolerance",
           "auto", {"steps"}),
-      value_option("--terms", "J",
-                   "Hsu Taylor terms J, 1.." + std::to_string(TransitionOptions::kMaxTerms),
-                   std::to_string(defaults.terms), {"terms"}),
-      value_option("--zeta-tolerance", "REAL",
-                   "error allowed in each damping exponent zeta, per rev (> 0): an exponent "
-                   "counts as resolved when its estimated error is at most REAL * max(1, 100 "
-                   "|zeta|) -- absolute near zeta = 0, where stability is decided, relative "
-                   "(100 REAL |zeta|) for modes with |zeta| > 0.01",
-                   round_trip_text(defaults.zeta_tolerance), {"zeta_tolerance"}),
+      table_option(&Request::transition, "terms", nullptr, "J"),
+      table_option(&Request::transition, "zeta_tolerance"),
   };
 }
 
@@ -168,18 +246,14 @@ std::vector<OptionSpec> spec_options() {
 
 // Trim (runtime/analysis trim.h): a trimmed rotor at every mu (point, sweep, critical, trim).
 std::vector<OptionSpec> trim_options(bool for_trim_command) {
-  const TrimOptions defaults;
   return {
       value_option("--trim", for_trim_command ? "thrust|moment" : "none|thrust|moment",
                    "trim at each mu: thrust (theta0, lambda of eq 2.25 for --thrust-coefficient) "
                    "or moment (also theta1c, theta1s: no first flap harmonic); with "
                    "--periodic-linearization the periodic equilibrium is trimmed",
                    for_trim_command ? "thrust" : "none", {"trim"}),
-      value_option("--thrust-coefficient", "REAL",
-                   "target thrust coefficient C_T (not C_T/sigma), in (0, 0.1]",
-                   round_trip_text(defaults.thrust_coefficient), {"thrust_coefficient"}),
-      value_option("--shaft-angle", "REAL", "shaft angle alpha_R of eq 2.25 [rad]",
-                   round_trip_text(defaults.shaft_angle), {"shaft_angle"}),
+      table_option(&Request::trim, "thrust_coefficient"),
+      table_option(&Request::trim, "shaft_angle"),
   };
 }
 
@@ -286,15 +360,10 @@ std::vector<OptionSpec> build(Command c) {
       v.push_back(plot_quantity);
       v.push_back(damping_criterion);
       break;
-    case Command::Critical: {
-      const CriticalOptions defaults;
-      v.push_back(
-          value_option("--mu-max", "REAL",
-                       "scan limit (0 < mu-max <= " + round_trip_text(kMaxAdvanceRatio) + ")",
-                       round_trip_text(defaults.mu_max), {"mu_max"}));
-      v.push_back(scan_step);
+    case Command::Critical:
+      v.push_back(table_option(&Request::critical, "mu_max"));
+      v.push_back(table_option(&Request::critical, "scan_step"));
       break;
-    }
     case Command::System:
       v.push_back(mu);
       v.push_back(value_option("--psi", "REAL", "azimuth [rad], any finite value", "0", {"psi"}));
@@ -332,16 +401,12 @@ std::vector<OptionSpec> build(Command c) {
       v.push_back(report_option());
       return v;
     case Command::Study: {
-      const CriticalOptions defaults;
       v.push_back(value_option("--vary", "NAME=START:STOP:STEP|NAME=V1,V2,...",
                                "the parameter varied (any numeric rotor parameter, e.g. "
                                "omega-lag, theta, damping-lag) and its values",
                                "", {"parameter", "values"}));
-      v.push_back(
-          value_option("--mu-max", "REAL",
-                       "scan limit (0 < mu-max <= " + round_trip_text(kMaxAdvanceRatio) + ")",
-                       round_trip_text(defaults.mu_max), {"mu_max"}));
-      v.push_back(scan_step);
+      v.push_back(table_option(&Request::critical, "mu_max"));
+      v.push_back(table_option(&Request::critical, "scan_step"));
       v.push_back(threads);
       v.push_back(value_option("--plot", "FILE.svg|FILE.png",
                                "also draw mu_c and the instability intervals (gnuplot)", "",
@@ -372,8 +437,7 @@ std::vector<OptionSpec> build(Command c) {
       break;
     case Command::Simulate:
       v.push_back(mu);
-      v.push_back(value_option("--revs", "REAL", "revolutions simulated (0 < revs <= 1e5)", "20",
-                               {"revolutions"}));
+      v.push_back(table_option(&Request::simulation, "revolutions", "--revs"));
       v.push_back(value_option("--perturbation", "REAL",
                                "initial perturbation of every state (free response)", "0.01",
                                {"perturbation"}));
@@ -389,8 +453,7 @@ std::vector<OptionSpec> build(Command c) {
         nonlinear.library_names = {"nonlinear"};
         v.push_back(nonlinear);
       }
-      v.push_back(
-          value_option("--samples", "N", "reported points per revolution", "36", {"samples"}));
+      v.push_back(table_option(&Request::simulation, "samples_per_rev", "--samples"));
       v.push_back(value_option("--plot", "FILE.svg|FILE.png",
                                "also draw the tip response (gnuplot)", "", {"plot"}));
       break;
@@ -402,25 +465,11 @@ std::vector<OptionSpec> build(Command c) {
       append(v, trim_options(true));
       break;
     case Command::Campbell: {
-      const CampbellOptions defaults;
-      v.push_back(value_option("--speed-max", "S",
-                               "the largest rotor speed Omega/Omega_0 (" +
-                                   std::string(kCampbellSpeedRange.words) +
-                                   "); the speeds run from 0",
-                               round_trip_text(defaults.speed_max), {"speed_max"}));
-      v.push_back(value_option("--speeds", "N",
-                               "rotor speeds, evenly spaced from 0 to --speed-max (" +
-                                   std::string(kCampbellPointsRange.words) + ")",
-                               std::to_string(defaults.points), {"points"}));
-      v.push_back(value_option(
-          "--mu", "REAL",
-          "advance ratio at every speed (0..." + round_trip_text(kMaxAdvanceRatio) + "; 0: hover)",
-          "0", {"mu"}));
-      v.push_back(value_option("--harmonics", "N",
-                               "the per-rev lines n Omega drawn and crossed, n = 1..N (" +
-                                   std::string(kCampbellHarmonicsRange.words) + ")",
-                               std::to_string(defaults.harmonics), {"harmonics"}));
-      v.push_back(scan_step);
+      v.push_back(table_option(&Request::campbell, "speed_max", nullptr, "S"));
+      v.push_back(table_option(&Request::campbell, "points", "--speeds"));
+      v.push_back(table_option(&Request::campbell, "mu"));
+      v.push_back(table_option(&Request::campbell, "harmonics"));
+      v.push_back(table_option(&Request::campbell, "scan_step"));
       v.push_back(threads);
       v.push_back(value_option("--plot", "FILE.svg|FILE.png",
                                "also draw the Campbell diagram with the per-rev lines (gnuplot)",

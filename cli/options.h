@@ -7,8 +7,15 @@
 // ("omega_lag" -> "--omega-lag"), except the bool fields, whose option turns them off
 // (--no-reversed-flow, --no-elastic-coupling) or on (--paper-1974-shapes).  JSON parameter keys
 // are the same words without "--" ("omega-lag", "reversed-flow").
+//
+// The options of the library's options structs (CriticalOptions, CampbellOptions, TrimOptions,
+// TransitionOptions, SimulationOptions) are made from their field tables (core/fields.h) by
+// the same rule: name, metavar by type, help from the row's doc, units and range, default from
+// a default-constructed struct; each sets its member of the Request's struct.  An option whose
+// name users' scripts know under another word keeps it (an alias in the table of build()).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +23,8 @@
 #include "flaplag/rotor/parameter_table.h"
 
 namespace flaplag::cli {
+
+struct Request;  // command_line.h
 
 enum class Command {
   Typical,
@@ -58,6 +67,10 @@ struct OptionSpec {
   std::vector<std::string> library_names;
   const ParameterSpec* rotor = nullptr;  // rotor parameter rows
   bool flag_value = false;               // rotor Flag rows: the value the option sets
+  // Options of an options struct's table: sets the member from the text typed (as `spelling`),
+  // parsed by its type: a real strictly (its range is the struct's Check()'s), a whole number
+  // within the row's range, an enum by name, a flag on.  Throws InvalidInput(spelling, ...).
+  std::function<void(Request&, const std::string& spelling, const std::string& text)> set;
 };
 
 // The options of a command, in help order (never --help / --version, which every command has).

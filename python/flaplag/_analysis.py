@@ -75,12 +75,13 @@ _ROTOR_FIELDS = {r["field"]: r for r in PARAMETERS}
 _TRANSITION_FIELDS = {r["field"]: r for r in TRANSITION}
 _COUNT_FIELDS = {r["field"]: r for r in _MODE_COUNTS}
 _ALL_FIELDS = {**_ROTOR_FIELDS, **_TRANSITION_FIELDS, **_COUNT_FIELDS}
-CRITICAL_DEFAULTS = dict(_flaplag.critical_defaults())
-RESPONSE_DEFAULTS = dict(_flaplag.response_defaults())  # C++ ResponseOptions
-SIMULATION_DEFAULTS = dict(_flaplag.simulation_defaults())  # C++ SimulationOptions
-EQUILIBRIUM_DEFAULTS = dict(_flaplag.equilibrium_defaults())  # C++ PeriodicEquilibriumOptions
-TRIM_DEFAULTS = dict(_flaplag.trim_defaults())  # C++ TrimOptions
-CAMPBELL_DEFAULTS = dict(_flaplag.campbell_defaults())  # C++ CampbellOptions
+# The defaults of the C++ options structs: a default-constructed struct by its field table.
+CRITICAL_DEFAULTS = dict(_flaplag.option_defaults("critical"))  # CriticalOptions
+RESPONSE_DEFAULTS = dict(_flaplag.option_defaults("response"))  # ResponseOptions
+SIMULATION_DEFAULTS = dict(_flaplag.option_defaults("simulation"))  # SimulationOptions
+EQUILIBRIUM_DEFAULTS = dict(_flaplag.option_defaults("equilibrium"))  # PeriodicEquilibriumOptions
+TRIM_DEFAULTS = dict(_flaplag.option_defaults("trim"))  # TrimOptions (kind "none": untrimmed)
+CAMPBELL_DEFAULTS = dict(_flaplag.option_defaults("campbell"))  # CampbellOptions
 
 _INT_MAX = 2**31 - 1
 
@@ -555,9 +556,11 @@ class Analysis:
         return ResponseResult._from(
             self._native.response(
                 _real("mu", mu),
-                _int("samples", samples),
-                _int("steps", steps),
-                _real("tolerance", tolerance),
+                {
+                    "samples": _int("samples", samples),
+                    "steps": _int("steps", steps),
+                    "tolerance": _real("tolerance", tolerance),
+                },
                 _memory_limit(memory_limit),
             )
         )
@@ -591,19 +594,15 @@ class Analysis:
             start = [float(y0)] * n
         else:
             start = _real_array("y0", y0)
-        args = (
-            _real("mu", mu),
-            start,
-            _flag("forced", forced),
-            _real("revolutions", revolutions),
-            _int("samples_per_rev", samples_per_rev),
-            _int("steps_per_rev", steps_per_rev),
-            _flag("nonlinear", nonlinear),
-            _memory_limit(memory_limit),
+        options = {
+            "revolutions": _real("revolutions", revolutions),
+            "samples_per_rev": _int("samples_per_rev", samples_per_rev),
+            "steps_per_rev": _int("steps_per_rev", steps_per_rev),
+            "nonlinear": _flag("nonlinear", nonlinear),
+        }
+        raw = self._native.simulate(
+            _real("mu", mu), start, _flag("forced", forced), options, _memory_limit(memory_limit)
         )
-        # The library's SimulationOptions checks use the command line's names.
-        with _keywords(samples="samples_per_rev", steps="steps_per_rev"):
-            raw = self._native.simulate(*args)
         return SimulationResult._from(raw)
 
     def periodic_equilibrium(
@@ -627,11 +626,13 @@ class Analysis:
         return PeriodicEquilibriumResult._from(
             self._native.periodic_equilibrium(
                 _real("mu", mu),
-                _int("harmonics", harmonics),
-                _real("harmonics_tolerance", harmonics_tolerance),
-                _int("max_iterations", max_iterations),
-                _real("tolerance", tolerance),
-                _flag("check_stability", check_stability),
+                {
+                    "harmonics": _int("harmonics", harmonics),
+                    "harmonics_tolerance": _real("harmonics_tolerance", harmonics_tolerance),
+                    "max_iterations": _int("max_iterations", max_iterations),
+                    "tolerance": _real("tolerance", tolerance),
+                    "check_stability": _flag("check_stability", check_stability),
+                },
                 _int("samples", samples),
             )
         )
@@ -644,7 +645,7 @@ class Analysis:
         mu=CAMPBELL_DEFAULTS["mu"],
         scan_step=CAMPBELL_DEFAULTS["scan_step"],
         harmonics=CAMPBELL_DEFAULTS["harmonics"],
-        threads=0,
+        threads=CAMPBELL_DEFAULTS["threads"],
     ) -> CampbellResult:
         """The Campbell diagram of this blade (C++ flaplag::campbell_diagram, the command line's
         ``flaplag campbell``): every mode's frequency by the nominal speed Omega_0 against the
@@ -655,12 +656,14 @@ class Analysis:
         depend on it).  Imported mode_shapes are refused (they hold at one rotor speed)."""
         return CampbellResult._from(
             self._native.campbell(
-                _real("speed_max", speed_max),
-                _int("points", points),
-                _real("mu", mu),
-                _real("scan_step", scan_step),
-                _int("harmonics", harmonics),
-                _int("threads", threads),
+                {
+                    "speed_max": _real("speed_max", speed_max),
+                    "points": _int("points", points),
+                    "mu": _real("mu", mu),
+                    "scan_step": _real("scan_step", scan_step),
+                    "harmonics": _int("harmonics", harmonics),
+                    "threads": _int("threads", threads),
+                }
             )
         )
 
@@ -668,7 +671,7 @@ class Analysis:
         self,
         mu,
         *,
-        kind=TRIM_DEFAULTS["kind"],
+        kind="thrust",
         thrust_coefficient=TRIM_DEFAULTS["thrust_coefficient"],
         shaft_angle=TRIM_DEFAULTS["shaft_angle"],
         max_iterations=TRIM_DEFAULTS["max_iterations"],
@@ -682,11 +685,13 @@ class Analysis:
         return TrimResult._from(
             self._native.trim(
                 _real("mu", mu),
-                _text("kind", kind),
-                _real("thrust_coefficient", thrust_coefficient),
-                _real("shaft_angle", shaft_angle),
-                _int("max_iterations", max_iterations),
-                _real("tolerance", tolerance),
+                {
+                    "kind": _text("kind", kind),
+                    "thrust_coefficient": _real("thrust_coefficient", thrust_coefficient),
+                    "shaft_angle": _real("shaft_angle", shaft_angle),
+                    "max_iterations": _int("max_iterations", max_iterations),
+                    "tolerance": _real("tolerance", tolerance),
+                },
             )
         )
 

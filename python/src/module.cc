@@ -246,37 +246,6 @@ py::dict parameters_dict(const RotorParameters& p) {
   return d;
 }
 
-TransitionOptions transition_options(const py::dict& d) {
-  TransitionOptions o;
-  for (const auto& [key, value] : d) {
-    const std::string field = key.cast<std::string>();
-    if (field == "method") {
-      const std::string name = value.cast<std::string>();
-      if (!method_from_name(name, &o.method))
-        throw InvalidInput("method", quoted(name), "must be one of " + method_names());
-    } else if (field == "steps") {
-      o.steps = value.cast<int>();
-    } else if (field == "terms") {
-      o.terms = value.cast<int>();
-    } else if (field == "zeta_tolerance") {
-      o.zeta_tolerance = value.cast<double>();
-    } else {
-      throw InvalidInput(field, shown(value), "unknown transition option");
-    }
-  }
-  o.Check();
-  return o;
-}
-
-py::dict transition_dict(const TransitionOptions& o) {
-  py::dict d;
-  d["method"] = method_name(o.method);
-  d["steps"] = o.steps;
-  d["terms"] = o.terms;
-  d["zeta_tolerance"] = o.zeta_tolerance;
-  return d;
-}
-
 // The model of M flap and N lag modes in the family of p.model (the command line's
 // --flap-modes / --lag-modes; any 1..model::kMaxModes); 1 x 1 is p.model itself.
 void select_mode_counts(RotorParameters& p, int flap_modes, int lag_modes) {
@@ -368,53 +337,122 @@ py::list field_rows() {
   return l;
 }
 
-CriticalOptions critical_options(const py::dict& d) {
-  CriticalOptions o;
-  for (const auto& [key, value] : d) {
-    const std::string field = key.cast<std::string>();
-    if (field == "mu_max")
-      o.mu_max = value.cast<double>();
-    else if (field == "scan_step")
-      o.scan_step = value.cast<double>();
-    else if (field == "tolerance")
-      o.tolerance = value.cast<double>();
-    else if (field == "zeta_threshold")
-      o.zeta_threshold = value.cast<double>();
-    else if (field == "periodic_omega_tolerance")
-      o.periodic_omega_tolerance = value.cast<double>();
-    else if (field == "scan_zeta_tolerance")
-      o.scan_zeta_tolerance = value.cast<double>();
-    else if (field == "all_intervals")
-      o.all_intervals = value.cast<bool>();
-    else
-      throw InvalidInput(field, shown(value), "unknown option of the critical search");
+// ---- options: one converter for every described options struct (core/fields.h) -------------
+//
+// An options struct from {key: value} by the rows of its table: numbers and flags by their C++
+// type, described enums by name, nested options structs from dicts, optionals None or a value.
+// An unknown key is InvalidInput(key, value, `unknown`); a value of the wrong type is
+// InvalidInput(key, value, "must be ..."); the values are the struct's Check()'s.
+
+template <class O>
+O options_from(const py::dict& d, const char* unknown);
+
+template <class E>
+std::string enum_names() {
+  std::string names;
+  for (const EnumName<E>& e : describe(Tag<E>{}))
+    names += (names.empty() ? "" : ", ") + std::string(e.name);
+  return names;
+}
+
+template <class V>
+V option_value(const std::string& key, const py::handle& value) {
+  try {
+    if constexpr (std::is_same_v<V, bool>) {
+      if (!py::isinstance<py::bool_>(value) &&
+          !py::isinstance(value, py::module_::import("numpy").attr("bool_")))
+        throw InvalidInput(key, shown(value), "must be True or False");
+      return value.cast<bool>();
+    } else if constexpr (std::is_same_v<V, int>) {
+      if (py::isinstance<py::bool_>(value))
+        throw InvalidInput(key, shown(value), "must be a whole number");
+      return value.cast<int>();
+    } else if constexpr (std::is_same_v<V, double>) {
+      if (py::isinstance<py::bool_>(value))
+        throw InvalidInput(key, shown(value), "must be a real number");
+      return value.cast<double>();
+    } else if constexpr (is_described_enum_v<V>) {
+      const std::string name = value.cast<std::string>();
+      V v{};
+      if (!enum_from_name(name, &v))
+        throw InvalidInput(key, quoted(name), "must be one of " + enum_names<V>());
+      return v;
+    } else if constexpr (is_optional_field<V>::value) {
+      if (value.is_none()) return V{};
+      return V(option_value<typename V::value_type>(key, value));
+    } else {
+      static_assert(is_described_struct_v<V>, "an option Python cannot set");
+      if (!py::isinstance<py::dict>(value))
+        throw InvalidInput(key, shown(value), "must be a dict of options");
+      return options_from<V>(py::reinterpret_borrow<py::dict>(value), "unknown option");
+    }
+  } catch (const py::cast_error&) {
+    const char* what = std::is_same_v<V, int>      ? "must be a whole number"
+                       : std::is_same_v<V, double> ? "must be a real number"
+                                                   : "must be a string";
+    throw InvalidInput(key, shown(value), what);
+  }
+}
+
+template <class O>
+O options_from(const py::dict& d, const char* unknown) {
+  O o;
+  for (const auto& item : d) {
+    const std::string key = py::cast<std::string>(item.first);
+    const py::handle value = item.second;
+    const bool known = visit_row<O>(key, [&](const auto& row) {
+      using V = typename std::decay_t<decltype(row)>::value_type;
+      row.get(o) = option_value<V>(key, value);
+    });
+    if (!known) throw InvalidInput(key, shown(value), unknown);
   }
   o.Check();
   return o;
 }
 
-py::dict campbell_defaults() {
-  const CampbellOptions o;
-  py::dict d;
-  d["speed_max"] = o.speed_max;
-  d["points"] = o.points;
-  d["mu"] = o.mu;
-  d["scan_step"] = o.scan_step;
-  d["harmonics"] = o.harmonics;
-  return d;
+TransitionOptions transition_options(const py::dict& d) {
+  return options_from<TransitionOptions>(d, "unknown transition option");
 }
 
-py::dict critical_defaults() {
-  const CriticalOptions o;
-  py::dict d;
-  d["mu_max"] = o.mu_max;
-  d["scan_step"] = o.scan_step;
-  d["tolerance"] = o.tolerance;
-  d["zeta_threshold"] = o.zeta_threshold;
-  d["periodic_omega_tolerance"] = o.periodic_omega_tolerance;
-  d["scan_zeta_tolerance"] = o.scan_zeta_tolerance;
-  d["all_intervals"] = o.all_intervals;
-  return d;
+CriticalOptions critical_options(const py::dict& d) {
+  return options_from<CriticalOptions>(d, "unknown option of the critical search");
+}
+
+// Calls f(Tag<O>{}) for the options struct Python calls `name`.
+template <class F>
+auto with_options_struct(const std::string& name, F&& f) {
+  if (name == "transition") return f(Tag<TransitionOptions>{});
+  if (name == "critical") return f(Tag<CriticalOptions>{});
+  if (name == "campbell") return f(Tag<CampbellOptions>{});
+  if (name == "trim") return f(Tag<TrimOptions>{});
+  if (name == "response") return f(Tag<ResponseOptions>{});
+  if (name == "simulation") return f(Tag<SimulationOptions>{});
+  if (name == "equilibrium") return f(Tag<PeriodicEquilibriumOptions>{});
+  throw InvalidInput("name", quoted(name), "not a described options struct");
+}
+
+// The defaults of an options struct: the dict of a default-constructed one.
+py::dict option_defaults(const std::string& name) {
+  return with_options_struct(name, [](auto tag) {
+    using O = typename decltype(tag)::type;
+    return to_dict(O{});
+  });
+}
+
+// The rows of an options struct's table: (key, units, doc, range words or None, default).
+py::list option_rows(const std::string& name) {
+  return with_options_struct(name, [](auto tag) {
+    using O = typename decltype(tag)::type;
+    const O defaults;
+    py::list l;
+    for_each_field(defaults, [&](const auto& row, const auto& value) {
+      const Range* range = row_range(row);
+      l.append(py::make_tuple(row.name, row.units, row.doc,
+                              range ? py::object(py::str(range->words)) : py::object(py::none()),
+                              to_python(value)));
+    });
+    return l;
+  });
 }
 
 py::dict hover_dict(const Analysis& an) {
@@ -535,16 +573,31 @@ py::dict modes_dict(const ModeSet& modes, const py::object& stations, int deriva
 
 // ---- long runs: studies and maps ----------------------------------------------------------------
 
-TrimOptions trim_options(const std::string& kind, double thrust_coefficient, double shaft_angle,
-                         int max_iterations, double tolerance);
 py::dict trim_dict(const TrimResult& t);
+
+// The trim of a trimmed computation from {key: value}: kind 'thrust' or 'moment' (not 'none').
+TrimOptions trim_options(const py::dict& d) {
+  const std::string kind = d.contains("kind") ? d["kind"].cast<std::string>() : "none";
+  if (TrimKind k; !trim_kind_from_name(kind, &k) || k == TrimKind::None)
+    throw InvalidInput("kind", quoted(kind), "must be 'thrust' or 'moment'");
+  return options_from<TrimOptions>(d, "unknown trim option");
+}
+
+// The same with the iteration options at their defaults (as --trim).
+TrimOptions trim_options(const std::string& kind, double thrust_coefficient, double shaft_angle) {
+  py::dict d;
+  d["kind"] = kind;
+  d["thrust_coefficient"] = thrust_coefficient;
+  d["shaft_angle"] = shaft_angle;
+  return trim_options(d);
+}
 
 // The trim of a study or a map: None (untrimmed: kind None) or (kind, C_T, alpha_R), as
 // Python's _trim_request gives it; the trim's iteration options are the defaults (as --trim).
 TrimOptions trim_of(const py::object& request) {
   if (request.is_none()) return TrimOptions{};
   const auto [kind, ct, alpha] = request.cast<std::tuple<std::string, double, double>>();
-  return trim_options(kind, ct, alpha, TrimOptions{}.max_iterations, TrimOptions{}.tolerance);
+  return trim_options(kind, ct, alpha);
 }
 
 // Runs work(cancel, progress) on a thread of its own.  The calling thread (which holds the GIL on
@@ -844,41 +897,6 @@ py::dict equilibrium_dict(const Analysis& a, const PeriodicEquilibrium& e, int s
   return d;
 }
 
-py::dict equilibrium_defaults() {
-  const PeriodicEquilibriumOptions o;
-  py::dict d;
-  d["harmonics"] = o.harmonics;
-  d["harmonics_tolerance"] = o.harmonics_tolerance;
-  d["max_iterations"] = o.max_iterations;
-  d["tolerance"] = o.tolerance;
-  d["check_stability"] = o.check_stability;
-  return d;
-}
-
-TrimOptions trim_options(const std::string& kind, double thrust_coefficient, double shaft_angle,
-                         int max_iterations, double tolerance) {
-  TrimOptions o;
-  if (!trim_kind_from_name(kind, &o.kind) || o.kind == TrimKind::None)
-    throw InvalidInput("kind", quoted(kind), "must be 'thrust' or 'moment'");
-  o.thrust_coefficient = thrust_coefficient;
-  o.shaft_angle = shaft_angle;
-  o.max_iterations = max_iterations;
-  o.tolerance = tolerance;
-  o.Check();
-  return o;
-}
-
-py::dict trim_defaults() {
-  const TrimOptions o;
-  py::dict d;
-  d["kind"] = trim_kind_name(TrimKind::Thrust);
-  d["thrust_coefficient"] = o.thrust_coefficient;
-  d["shaft_angle"] = o.shaft_angle;
-  d["max_iterations"] = o.max_iterations;
-  d["tolerance"] = o.tolerance;
-  return d;
-}
-
 // TrimResult's table, and the trimmed rotor's parameters (Analysis(**parameters)).
 py::dict trim_dict(const TrimResult& t) {
   py::dict d = to_dict(t);
@@ -886,23 +904,6 @@ py::dict trim_dict(const TrimResult& t) {
   return d;
 }
 
-py::dict response_defaults() {
-  const ResponseOptions o;
-  py::dict d;
-  d["samples"] = o.samples;
-  d["steps"] = o.steps;
-  d["tolerance"] = o.tolerance;
-  return d;
-}
-
-py::dict simulation_defaults() {
-  const SimulationOptions o;
-  py::dict d;
-  d["revolutions"] = o.revolutions;
-  d["samples_per_rev"] = o.samples_per_rev;
-  d["steps_per_rev"] = o.steps_per_rev;
-  return d;
-}
 
 // ---- tables -------------------------------------------------------------------------------------
 
@@ -966,41 +967,37 @@ py::list parameter_rows() {
   return rows;
 }
 
-py::list transition_rows() {
-  const TransitionOptions defaults;
-  auto row = [](const char* field, const char* type, py::object value, const char* units,
-                const char* requirement, const char* description) {
-    py::dict r;
-    r["field"] = field;
-    r["symbol"] = "";
-    r["type"] = type;
-    r["default"] = value;
-    r["units"] = units;
-    r["requirement"] = requirement;
-    r["description"] = description;
-    return r;
-  };
-  const std::string max_steps = std::to_string(TransitionOptions::kMaxSteps);
-  const std::string max_terms = std::to_string(TransitionOptions::kMaxTerms);
+// The rows of an options struct's table in the form of parameter_rows (field, symbol, type,
+// default, units, requirement, description; choices of an enum).
+template <class O>
+py::list table_rows() {
+  const O defaults;
   py::list rows;
-  py::dict method = row(
-      "method", "choice", py::str(method_name(defaults.method)), "-", "rk4, hsu, magnus or auto",
-      "transition matrix Phi(2 pi): rk4 (paper 3.3.2), hsu (Hsu's method, "
-      "eqs 3.21-3.28), magnus (4th-order Magnus, Richardson-extrapolated) or auto (hsu "
-      "for one flap and one lag mode, magnus above)");
-  py::list choices;
-  for (TransitionMethod m : kTransitionMethods) choices.append(method_name(m));
-  method["choices"] = choices;
-  rows.append(method);
-  rows.append(row("steps", "int", py::int_(defaults.steps), "-", ("0 or 1.." + max_steps).c_str(),
-                  "RK4 steps, Hsu intervals K or Magnus steps per period; 0: automatic "
-                  "(raised from the error estimates until the exponents meet zeta_tolerance)"));
-  rows.append(row("terms", "int", py::int_(defaults.terms), "-", ("1.." + max_terms).c_str(),
-                  "Hsu's Taylor terms J"));
-  rows.append(row("zeta_tolerance", "real", py::float_(defaults.zeta_tolerance), "per rev", "> 0",
-                  "error allowed in each damping exponent zeta: resolved when the estimated "
-                  "error is at most zeta_tolerance * max(1, 100 |zeta|) (absolute near "
-                  "zeta = 0, relative for modes with |zeta| > 0.01)"));
+  for_each_field(defaults, [&](const auto& row, const auto& value) {
+    using V = std::decay_t<decltype(value)>;
+    const Range* range = row_range(row);
+    py::dict r;
+    r["field"] = row.name;
+    r["symbol"] = "";
+    r["default"] = to_python(value);
+    r["units"] = *row.units != '\0' ? row.units : "-";
+    r["requirement"] = range != nullptr ? range->words : "";
+    r["description"] = row.doc;
+    if constexpr (std::is_same_v<V, double>) {
+      r["type"] = "real";
+    } else if constexpr (std::is_same_v<V, int>) {
+      r["type"] = "int";
+    } else if constexpr (std::is_same_v<V, bool>) {
+      r["type"] = "flag";
+    } else if constexpr (is_described_enum_v<V>) {
+      r["type"] = "choice";
+      r["requirement"] = enum_names<V>();
+      py::list choices;
+      for (const EnumName<V>& e : describe(Tag<V>{})) choices.append(e.name);
+      r["choices"] = choices;
+    }
+    rows.append(r);
+  });
   return rows;
 }
 
@@ -1059,10 +1056,10 @@ void bind_tables(py::module_& m) {
   m.attr("git_commit") = kGitCommit;
   m.attr("max_advance_ratio") = kMaxAdvanceRatio;
   m.def("parameter_table", &parameter_rows);
-  m.def("transition_table", &transition_rows);
-  m.def("critical_defaults", &critical_defaults);
-  m.def("campbell_defaults", &campbell_defaults);
-  m.def("response_defaults", &response_defaults);
+  m.def("transition_table", &table_rows<TransitionOptions>);
+  // The defaults and the rows of an options struct, by name ("critical", "trim", ...).
+  m.def("option_defaults", &option_defaults);
+  m.def("option_table", &option_rows);
   m.def("damping_ratio",
         [](double zeta, double omega) { return optional(damping_ratio(zeta, omega)); });
   // The rows (key, units, doc) of a result's table, by the Python class's name.
@@ -1084,9 +1081,6 @@ void bind_tables(py::module_& m) {
     if (name == "CampbellCrossing") return field_rows<CampbellCrossing>();
     throw InvalidInput("name", quoted(name), "not a described result");
   });
-  m.def("simulation_defaults", &simulation_defaults);
-  m.def("equilibrium_defaults", &equilibrium_defaults);
-  m.def("trim_defaults", &trim_defaults);
   m.def("models", &model_rows);
   // spec="my.toml": derives the spec now and registers its model (runtime_spec.h).
   m.def("load_spec", [](const std::string& path) {
@@ -1117,7 +1111,7 @@ void bind_construction(py::class_<Analysis>& analysis) {
            py::arg("params"), py::arg("transition"), py::arg("flap_modes") = 1,
            py::arg("lag_modes") = 1)
       .def("parameters", [](const Analysis& a) { return parameters_dict(a.parameters()); })
-      .def("transition", [](const Analysis& a) { return transition_dict(a.options()); })
+      .def("transition", [](const Analysis& a) { return to_dict(a.options()); })
       .def("model", [](const Analysis& a) { return to_dict(a.model()); })
       .def("hover", &hover_dict);
 }
@@ -1213,16 +1207,9 @@ void bind_modes(py::class_<Analysis>& analysis) {
              }
              return mode_table_text(a.modes(), stations);
            })
-      .def("campbell", [](const Analysis& a, double speed_max, int points, double mu,
-                          double scan_step, int harmonics, int threads) {
-        CampbellOptions o;
-        o.speed_max = speed_max;
-        o.points = points;
-        o.mu = mu;
-        o.scan_step = scan_step;
-        o.harmonics = harmonics;
-        o.threads = threads;
-        o.Check();
+      .def("campbell", [](const Analysis& a, const py::dict& options) {
+        const CampbellOptions o =
+            options_from<CampbellOptions>(options, "unknown option of the Campbell diagram");
         CampbellResult c;
         {
           py::gil_scoped_release release;
@@ -1248,15 +1235,11 @@ void bind_time_domain(py::class_<Analysis>& analysis) {
              return snapshot_dict(a, s);
            })
       .def("response",
-           [](const Analysis& a, double mu, int samples, int steps, double tolerance,
-              std::uint64_t memory_limit) {
-             ResponseOptions o;
-             o.samples = samples;
-             o.steps = steps;
-             o.tolerance = tolerance;
-             o.Check();
-             check_memory(response_memory(samples, a.state_size()), memory_limit, "samples",
-                          std::to_string(samples));
+           [](const Analysis& a, double mu, const py::dict& options, std::uint64_t memory_limit) {
+             const ResponseOptions o =
+                 options_from<ResponseOptions>(options, "unknown option of the response");
+             check_memory(response_memory(o.samples, a.state_size()), memory_limit, "samples",
+                          std::to_string(o.samples));
              ForcedResponse f;
              {
                py::gil_scoped_release release;
@@ -1267,17 +1250,12 @@ void bind_time_domain(py::class_<Analysis>& analysis) {
       .def("state_size", &Analysis::state_size)
       .def("simulate",
            [](const Analysis& a, double mu, const std::vector<double>& y0, bool forced,
-              double revolutions, int samples_per_rev, int steps_per_rev, bool nonlinear,
-              std::uint64_t memory_limit) {
-             SimulationOptions o;
-             o.revolutions = revolutions;
-             o.samples_per_rev = samples_per_rev;
-             o.steps_per_rev = steps_per_rev;
-             o.nonlinear = nonlinear;
-             o.Check();
+              const py::dict& options, std::uint64_t memory_limit) {
+             const SimulationOptions o =
+                 options_from<SimulationOptions>(options, "unknown option of the simulation");
              check_memory(
-                 simulation_memory(revolutions, samples_per_rev, a.state_size(), nonlinear),
-                 memory_limit, "revolutions", round_trip_text(revolutions));
+                 simulation_memory(o.revolutions, o.samples_per_rev, a.state_size(), o.nonlinear),
+                 memory_limit, "revolutions", round_trip_text(o.revolutions));
              const Eigen::VectorXd y =
                  Eigen::Map<const Eigen::VectorXd>(y0.data(), static_cast<Eigen::Index>(y0.size()));
              TipSimulation t;
@@ -1288,15 +1266,9 @@ void bind_time_domain(py::class_<Analysis>& analysis) {
              return simulation_dict(a, t);
            })
       .def("periodic_equilibrium",
-           [](const Analysis& a, double mu, int harmonics, double harmonics_tolerance,
-              int max_iterations, double tolerance, bool check_stability, int samples) {
-             PeriodicEquilibriumOptions o;
-             o.harmonics = harmonics;
-             o.harmonics_tolerance = harmonics_tolerance;
-             o.max_iterations = max_iterations;
-             o.tolerance = tolerance;
-             o.check_stability = check_stability;
-             o.Check();
+           [](const Analysis& a, double mu, const py::dict& options, int samples) {
+             const PeriodicEquilibriumOptions o = options_from<PeriodicEquilibriumOptions>(
+                 options, "unknown option of the periodic equilibrium");
              if (samples < 2 || samples > 100000)
                throw InvalidInput("samples", std::to_string(samples), "must be 2..100000");
              PeriodicEquilibrium e;
@@ -1312,10 +1284,8 @@ void bind_time_domain(py::class_<Analysis>& analysis) {
 void bind_trim(py::class_<Analysis>& analysis) {
   analysis
       .def("trim",
-           [](const Analysis& a, double mu, const std::string& kind, double thrust_coefficient,
-              double shaft_angle, int max_iterations, double tolerance) {
-             const TrimOptions o =
-                 trim_options(kind, thrust_coefficient, shaft_angle, max_iterations, tolerance);
+           [](const Analysis& a, double mu, const py::dict& options) {
+             const TrimOptions o = trim_options(options);
              TrimResult t;
              {
                py::gil_scoped_release release;
@@ -1359,9 +1329,7 @@ void bind_trimmed_stability(py::class_<Analysis>& analysis) {
       .def("trimmed_point",
            [](const Analysis& a, double mu, double scan_step, const std::string& kind,
               double thrust_coefficient, double shaft_angle) {
-             const TrimOptions o =
-                 trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
-                              TrimOptions{}.tolerance);
+             const TrimOptions o = trim_options(kind, thrust_coefficient, shaft_angle);
              RotorPoint r;
              {
                py::gil_scoped_release release;
@@ -1376,9 +1344,7 @@ void bind_trimmed_stability(py::class_<Analysis>& analysis) {
               double thrust_coefficient, double shaft_angle, const py::object& progress,
               std::uint64_t memory_limit, const std::optional<double>& damping_criterion) {
              check_criterion(damping_criterion);
-             const TrimOptions o =
-                 trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
-                              TrimOptions{}.tolerance);
+             const TrimOptions o = trim_options(kind, thrust_coefficient, shaft_angle);
              const std::size_t points = sweep_grid(mu0, mu1, step).size();
              check_memory(sweep_memory(points, a.state_size()), memory_limit, "step",
                           round_trip_text(step));
@@ -1399,9 +1365,7 @@ void bind_trimmed_stability(py::class_<Analysis>& analysis) {
               const py::object& progress, std::uint64_t memory_limit,
               const std::optional<double>& damping_criterion) {
              check_criterion(damping_criterion);
-             const TrimOptions o =
-                 trim_options(kind, thrust_coefficient, shaft_angle, TrimOptions{}.max_iterations,
-                              TrimOptions{}.tolerance);
+             const TrimOptions o = trim_options(kind, thrust_coefficient, shaft_angle);
              if (mus.size() <= static_cast<std::size_t>(kMaxContinuationSteps))
                check_memory(sweep_memory(mus.size(), a.state_size()), memory_limit, "mu",
                             std::to_string(mus.size()) + " advance ratios");
@@ -1416,22 +1380,21 @@ void bind_trimmed_stability(py::class_<Analysis>& analysis) {
                  progress);
              return with_trims(sweep_dict(a, r, damping_criterion), r);
            })
-      .def("trimmed_critical", [](const Analysis& a, const py::dict& options,
-                                  const std::string& kind, double thrust_coefficient,
-                                  double shaft_angle) {
-        const CriticalOptions c = critical_options(options);
-        const TrimOptions o = trim_options(kind, thrust_coefficient, shaft_angle,
-                                           TrimOptions{}.max_iterations, TrimOptions{}.tolerance);
-        RotorCritical r;
-        {
-          py::gil_scoped_release release;
-          r = trimmed(a, o).critical(c);
-        }
-        py::dict d = to_dict(static_cast<const CriticalResult&>(r));
-        // The trim at mu_c the search rests on (as `flaplag critical --trim` reports it).
-        d["trim"] = r.trim ? py::object(trim_dict(*r.trim)) : py::object(py::none());
-        return d;
-      });
+      .def("trimmed_critical",
+           [](const Analysis& a, const py::dict& options, const std::string& kind,
+              double thrust_coefficient, double shaft_angle) {
+             const CriticalOptions c = critical_options(options);
+             const TrimOptions o = trim_options(kind, thrust_coefficient, shaft_angle);
+             RotorCritical r;
+             {
+               py::gil_scoped_release release;
+               r = trimmed(a, o).critical(c);
+             }
+             py::dict d = to_dict(static_cast<const CriticalResult&>(r));
+             // The trim at mu_c the search rests on (as `flaplag critical --trim` reports it).
+             d["trim"] = r.trim ? py::object(trim_dict(*r.trim)) : py::object(py::none());
+             return d;
+           });
 }
 
 // flaplag._flaplag.Analysis: one rotor's parameters and transition options, and every computation

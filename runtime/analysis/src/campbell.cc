@@ -18,8 +18,6 @@ namespace flaplag {
 
 namespace {
 
-inline constexpr Range kCampbellMuRange{{0.0, kMaxAdvanceRatio, false, false}, "in [0, 1000]"};
-
 // The blade's bending stiffness by Omega_0^2 (fixed as the speed changes; with a blade table the
 // scale of its stiffness columns, rotating_modes.h) and the modes the analysis labels.
 struct Blade {
@@ -129,14 +127,7 @@ std::vector<CampbellCrossing> crossings_of(const CampbellResult& c) {
 }  // namespace
 
 std::optional<InvalidInput> CampbellOptions::Validate() const {
-  return Requirements()
-      .InRange("speed_max", speed_max, kCampbellSpeedRange)
-      .InRange("points", points, kCampbellPointsRange)
-      .InRange("mu", mu, kCampbellMuRange)
-      .InRange("scan_step", scan_step, kPositive)
-      .InRange("harmonics", harmonics, kCampbellHarmonicsRange)
-      .Include(threads_problem(threads))
-      .Result();
+  return Requirements().InRanges(*this).Include(threads_problem(threads)).Result();
 }
 
 CampbellResult campbell_diagram(const RotorParameters& params, const TransitionOptions& transition,

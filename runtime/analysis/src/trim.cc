@@ -162,14 +162,7 @@ bool trim_kind_from_name(std::string_view name, TrimKind* kind) {
 }
 
 std::optional<InvalidInput> TrimOptions::Validate() const {
-  return Requirements()
-      .InRange("thrust_coefficient", thrust_coefficient, kThrustRange)
-      .InRange("shaft_angle", shaft_angle, kShaftAngleRange)
-      .InRange("max_iterations", max_iterations, kIterationsRange)
-      .InRange("max_evaluations", max_evaluations, kEvaluationsRange)
-      .InRange("tolerance", tolerance, kToleranceRange)
-      .Include(response.Validate())
-      .Result();
+  return Requirements().InRanges(*this).Include(response.Validate()).Result();
 }
 
 ThrustResult rotor_thrust(const RotorParameters& p, double mu, double inflow,

@@ -469,18 +469,13 @@ double ExponentTracker::max_zeta() const { return exponents_[most_unstable()].ze
 
 std::optional<InvalidInput> CriticalOptions::Validate() const {
   return Requirements()
-      .InRange("mu_max", mu_max, kMuMaxRange)
-      .InRange("scan_step", scan_step, kPositive)
+      .InRanges(*this)
       .Require(mu_max / scan_step <= static_cast<double>(kMaxContinuationSteps),
                [&] {
                  return InvalidInput("scan_step", round_trip_text(scan_step),
                                      "too small: mu_max / scan_step must be at most " +
                                          std::to_string(kMaxContinuationSteps) + " steps");
                })
-      .InRange("tolerance", tolerance, kPositive)
-      .InRange("zeta_threshold", zeta_threshold, kZetaThresholdRange)
-      .InRange("periodic_omega_tolerance", periodic_omega_tolerance, kOmegaToleranceRange)
-      .InRange("scan_zeta_tolerance", scan_zeta_tolerance, kPositive)
       .Result();
 }
 

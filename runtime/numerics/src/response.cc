@@ -257,20 +257,11 @@ bool check_closure(PeriodicResponse& out, double rho) {
 }  // namespace
 
 std::optional<InvalidInput> ResponseOptions::Validate() const {
-  return Requirements()
-      .InRange("steps", steps, kStepsRange)
-      .InRange("samples", samples, kSamplesRange)
-      .InRange("tolerance", tolerance, kPositive)
-      .Result();
+  return Requirements().InRanges(*this).Result();
 }
 
-// The fields are named as the front ends' options ("steps", "samples").
 std::optional<InvalidInput> SimulationOptions::Validate() const {
-  return Requirements()
-      .InRange("revolutions", revolutions, kRevolutionsRange)
-      .InRange("steps", steps_per_rev, kStepsRange)
-      .InRange("samples", samples_per_rev, kSamplesRange)
-      .Result();
+  return Requirements().InRanges(*this).Result();
 }
 
 PeriodicResponse periodic_response(const PeriodicSystem& sys, const ResponseOptions& options) {

@@ -1386,9 +1386,7 @@ std::optional<InvalidInput> TransitionOptions::Validate() const {
                  return InvalidInput("method", std::to_string(static_cast<int>(method)),
                                      "unknown method");
                })
-      .InRange("steps", steps, kStepsRange)
-      .InRange("terms", terms, kTermsRange)
-      .InRange("zeta_tolerance", zeta_tolerance, kPositive)
+      .InRanges(*this)
       .Result();
 }
 

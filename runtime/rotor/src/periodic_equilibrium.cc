@@ -470,10 +470,7 @@ std::optional<InvalidInput> PeriodicEquilibriumOptions::Validate() const {
   static_assert(kAutomaticHarmonics == -1, "the words of kHarmonicsRange name it");
   return Requirements()
       .InRange("harmonics", harmonics == kAutomaticHarmonics ? 1 : harmonics, kHarmonicsRange)
-      .InRange("harmonics_tolerance", harmonics_tolerance, kToleranceRange)
-      .InRange("max_iterations", max_iterations, kIterationsRange)
-      .InRange("tolerance", tolerance, kToleranceRange)
-      .InRange("min_continuation_step", min_continuation_step, kMinStepRange)
+      .InRanges(*this)
       .Result();
 }
 

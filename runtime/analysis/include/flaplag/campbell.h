@@ -33,6 +33,7 @@
 namespace flaplag {
 
 inline constexpr Range kCampbellSpeedRange{{0.0, 10.0, true, false}, "in (0, 10]"};
+inline constexpr Range kCampbellMuRange{{0.0, kMaxAdvanceRatio, false, false}, "in [0, 1000]"};
 inline constexpr Range kCampbellPointsRange{{2.0, 10001.0, false, false}, "2..10001"};
 inline constexpr Range kCampbellHarmonicsRange{{1.0, 100.0, false, false}, "1..100"};
 
@@ -48,6 +49,22 @@ struct CampbellOptions {
   bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
   void Check() const { ThrowIfInvalid(Validate()); }
 };
+
+constexpr auto describe(Tag<CampbellOptions>) {
+  using O = CampbellOptions;
+  return std::make_tuple(
+      Option{"speed_max", &O::speed_max, "-",
+             "the largest rotor speed Omega/Omega_0; the speeds run from 0", &kCampbellSpeedRange},
+      Option{"points", &O::points, "", "rotor speeds, evenly spaced from 0 to the largest speed",
+             &kCampbellPointsRange},
+      Option{"mu", &O::mu, "-", "advance ratio at every speed (0: hover)", &kCampbellMuRange},
+      Option{"scan_step", &O::scan_step, "-", "continuation step in mu from hover", &kPositive},
+      Option{"harmonics", &O::harmonics, "",
+             "the per-rev lines n Omega drawn and crossed, n = 1 up to this number",
+             &kCampbellHarmonicsRange},
+      Option{"threads", &O::threads, "",
+             "worker threads (0: all cores; the answer does not depend on it)"});
+}
 
 // One mode at one speed.
 struct CampbellFrequency {

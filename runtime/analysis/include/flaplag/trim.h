@@ -62,6 +62,25 @@ struct TrimOptions {
   void Check() const { ThrowIfInvalid(Validate()); }
 };
 
+constexpr auto describe(Tag<TrimOptions>) {
+  using O = TrimOptions;
+  return std::make_tuple(
+      Option{"kind", &O::kind, "",
+             "none, thrust (theta0 and lambda) or moment (also theta1c, theta1s)"},
+      Option{"thrust_coefficient", &O::thrust_coefficient, "-", "target thrust coefficient",
+             &O::kThrustRange},
+      Option{"shaft_angle", &O::shaft_angle, "rad", "shaft angle alpha_R of eq 2.25",
+             &O::kShaftAngleRange},
+      Option{"max_iterations", &O::max_iterations, "", "Newton iterations", &O::kIterationsRange},
+      Option{"max_evaluations", &O::max_evaluations, "",
+             "thrust evaluations one trim may make, its continuation in mu included",
+             &O::kEvaluationsRange},
+      Option{"tolerance", &O::tolerance, "-",
+             "on C_T relative to the target and (moment) on the first flap harmonic",
+             &O::kToleranceRange},
+      Option{"response", &O::response, "", "the periodic response inside the thrust"});
+}
+
 // The model's thrust at one operating point.
 struct ThrustResult : Outcome {
   double mu = 0.0;

@@ -14,12 +14,18 @@
 // A row of a base's member (&Derived::status is a `Status Outcome::*`) reads the base, so a
 // result's table includes the Outcome rows with std::tuple_cat(..., describe(Tag<Outcome>{})).
 //
+// An options struct is described the same way with Option rows: a data member with its units,
+// doc and the admissible Range (core/validation.h) when it has one.  The struct's Validate()
+// checks every row's range (Requirements::InRanges), front ends show the range words in their
+// help, set the member by its row and take defaults from a default-constructed struct.
+//
 // An enum E is described by `constexpr auto describe(Tag<E>)` returning a std::array of
 // EnumName<E> (value, name), every value once; enum_name(v) is its name.
 #pragma once
 
 #include <array>
 #include <cstddef>
+#include <string_view>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -76,6 +82,38 @@ struct Computed {
   unsigned flags;
 };
 
+struct Range;  // core/validation.h
+
+// A row of an options struct: a data member a front end sets, with the Range that admits its
+// values (nullptr: any value of its type, or a check by hand in Validate()).
+template <class Owner, class Value>
+struct Option {
+  using owner_type = Owner;
+  using value_type = Value;
+  constexpr Option(const char* n, Value Owner::*m, const char* u, const char* d,
+                   const Range* r = nullptr)
+      : name(n), member(m), units(u), doc(d), range(r) {}
+  const Value& get(const Owner& o) const { return o.*member; }
+  Value& get(Owner& o) const { return o.*member; }
+
+  const char* name;
+  Value Owner::*member;
+  const char* units;
+  const char* doc;
+  const Range* range;
+  unsigned flags = kFieldPlain;
+};
+
+// The range of a row: an Option's, nullptr for every other row.
+template <class Owner, class Value>
+constexpr const Range* row_range(const Option<Owner, Value>& row) {
+  return row.range;
+}
+template <class Row>
+constexpr const Range* row_range(const Row&) {
+  return nullptr;
+}
+
 template <class E>
 struct EnumName {
   E value;
@@ -115,6 +153,19 @@ constexpr std::size_t field_count() {
   return std::tuple_size_v<decltype(describe(Tag<T>{}))>;
 }
 
+// The row of T's table called `name`: visit(row) is called for it; false when T has none.
+template <class T, class Visitor>
+bool visit_row(std::string_view name, Visitor&& visit) {
+  bool found = false;
+  for_each_row<T>([&](const auto& row) {
+    if (!found && std::string_view(row.name) == name) {
+      found = true;
+      visit(row);
+    }
+  });
+  return found;
+}
+
 // The name of a described enum value; "" when the table lacks it.
 template <class E, std::enable_if_t<is_described_enum_v<E>, int> = 0>
 const char* enum_name(E value) {
@@ -122,6 +173,18 @@ const char* enum_name(E value) {
     if (e.value == value) return e.name;
   }
   return "";
+}
+
+// The value of a described enum called `name` into *value; false when the table has none.
+template <class E, std::enable_if_t<is_described_enum_v<E>, int> = 0>
+bool enum_from_name(std::string_view name, E* value) {
+  for (const EnumName<E>& e : describe(Tag<E>{})) {
+    if (std::string_view(e.name) == name) {
+      *value = e.value;
+      return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace flaplag

@@ -9,15 +9,19 @@
 // IsValid is Ceres' form: false and "<field> = <value>: <reason>" in *error.  Check throws that
 // InvalidInput.  Admissible values are data (Range: an interval and its words), public in each
 // struct, so that a front end can show them in its help; Requirements turns them into the first
-// InvalidInput.
+// InvalidInput.  An options struct described by a table of Option rows (core/fields.h) checks
+// every row that has a Range with one call, InRanges(*this), in the order of the table, and
+// states its cross-field requirements by hand.
 #pragma once
 
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "flaplag/core/errors.h"
+#include "flaplag/core/fields.h"
 
 namespace flaplag {
 
@@ -49,6 +53,17 @@ class Requirements {
   // Reals are quoted in round-trip text, integers in decimal.
   Requirements& InRange(const char* field, double value, const Range& range);
   Requirements& InRange(const char* field, int value, const Range& range);
+  // InRange for every Option row of T's table with a Range (a number: int or double), in order.
+  template <class T>
+  Requirements& InRanges(const T& object) {
+    for_each_field(object, [&](const auto& row, const auto& value) {
+      using V = std::decay_t<decltype(value)>;
+      if constexpr (std::is_same_v<V, double> || std::is_same_v<V, int>) {
+        if (const Range* range = row_range(row)) InRange(row.name, value, *range);
+      }
+    });
+    return *this;
+  }
   // A requirement in words: `problem` () -> InvalidInput is called only when ok is false.
   template <typename Problem>
   Requirements& Require(bool ok, const Problem& problem) {

@@ -400,6 +400,22 @@ struct CriticalOptions {
   void Check() const { ThrowIfInvalid(Validate()); }
 };
 
+constexpr auto describe(Tag<CriticalOptions>) {
+  using O = CriticalOptions;
+  return std::make_tuple(
+      Option{"mu_max", &O::mu_max, "-", "scan limit", &O::kMuMaxRange},
+      Option{"scan_step", &O::scan_step, "-", "continuation step in mu from hover", &kPositive},
+      Option{"tolerance", &O::tolerance, "-", "tolerance on mu_c", &kPositive},
+      Option{"zeta_threshold", &O::zeta_threshold, "per rev",
+             "unstable means zeta > zeta_threshold", &O::kZetaThresholdRange},
+      Option{"periodic_omega_tolerance", &O::periodic_omega_tolerance, "per rev",
+             "|omega - k/2| below which a crossing is periodic", &O::kOmegaToleranceRange},
+      Option{"scan_zeta_tolerance", &O::scan_zeta_tolerance, "per rev",
+             "exponent accuracy asked of the scan", &kPositive},
+      Option{"all_intervals", &O::all_intervals, "",
+             "scan to mu_max and report every interval of instability"});
+}
+
 // One interval of instability in mu: max zeta > zeta_threshold for onset < mu < end.
 struct InstabilityInterval {
   double onset = 0.0;

@@ -30,6 +30,12 @@ enum class TransitionMethod {
 inline constexpr TransitionMethod kTransitionMethods[] = {
     TransitionMethod::RK4, TransitionMethod::Hsu, TransitionMethod::Magnus4,
     TransitionMethod::Automatic};
+constexpr auto describe(Tag<TransitionMethod>) {
+  return std::array<EnumName<TransitionMethod>, 4>{{{TransitionMethod::RK4, "rk4"},
+                                                    {TransitionMethod::Hsu, "hsu"},
+                                                    {TransitionMethod::Magnus4, "magnus"},
+                                                    {TransitionMethod::Automatic, "auto"}}};
+}
 const char* method_name(TransitionMethod m);  // "rk4", "hsu", "magnus", "auto"
 // The method called `name` (exactly method_name's text) into *method; false when none is.
 bool method_from_name(const std::string& name, TransitionMethod* method);
@@ -68,6 +74,24 @@ struct TransitionOptions {
   bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
   void Check() const { ThrowIfInvalid(Validate()); }
 };
+
+constexpr auto describe(Tag<TransitionOptions>) {
+  using O = TransitionOptions;
+  return std::make_tuple(
+      Option{"method", &O::method, "",
+             "transition matrix: rk4 (paper 3.3.2), hsu (eqs 3.21-3.28), magnus (4th-order "
+             "Magnus, Richardson-extrapolated) or auto (hsu for one flap and one lag mode, "
+             "magnus above)"},
+      Option{"steps", &O::steps, "",
+             "RK4 steps, Hsu intervals K or Magnus steps per period; 0: automatic",
+             &O::kStepsRange},
+      Option{"terms", &O::terms, "", "Hsu Taylor terms J", &O::kTermsRange},
+      Option{"zeta_tolerance", &O::zeta_tolerance, "per rev",
+             "error allowed in each damping exponent zeta: an exponent counts as resolved when "
+             "its estimated error is at most this times max(1, 100 |zeta|) -- absolute near "
+             "zeta = 0, where stability is decided, relative for modes with |zeta| > 0.01",
+             &kPositive});
+}
 
 struct TransitionResult {
   Eigen::MatrixXd phi;          // Phi(2 pi, 0)

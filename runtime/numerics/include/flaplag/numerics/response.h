@@ -32,6 +32,15 @@ struct ResponseOptions {
   void Check() const { ThrowIfInvalid(Validate()); }
 };
 
+constexpr auto describe(Tag<ResponseOptions>) {
+  using O = ResponseOptions;
+  return std::make_tuple(
+      Option{"steps", &O::steps, "", "RK4 steps per period; 0: automatic", &O::kStepsRange},
+      Option{"samples", &O::samples, "", "azimuth samples over one period", &O::kSamplesRange},
+      Option{"tolerance", &O::tolerance, "-", "automatic steps: on the periodic state, relative",
+             &kPositive});
+}
+
 struct PeriodicResponse : Outcome {
   Eigen::VectorXd y0;                // the periodic state at psi = 0
   std::vector<double> psi;           // sample azimuths [rad], [0, 2 pi)
@@ -62,6 +71,18 @@ struct SimulationOptions {
   bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
   void Check() const { ThrowIfInvalid(Validate()); }
 };
+
+constexpr auto describe(Tag<SimulationOptions>) {
+  using O = SimulationOptions;
+  return std::make_tuple(
+      Option{"revolutions", &O::revolutions, "-", "revolutions simulated", &O::kRevolutionsRange},
+      Option{"steps_per_rev", &O::steps_per_rev, "", "RK4 steps per revolution; 0: automatic",
+             &O::kStepsRange},
+      Option{"samples_per_rev", &O::samples_per_rev, "", "reported points per revolution",
+             &O::kSamplesRange},
+      Option{"nonlinear", &O::nonlinear, "",
+             "integrate the nonlinear equations instead of the linear ones"});
+}
 
 struct Simulation : Outcome {
   std::vector<double> psi;         // [rad] from 0

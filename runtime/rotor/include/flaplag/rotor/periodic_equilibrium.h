@@ -106,6 +106,21 @@ struct PeriodicEquilibriumOptions {
   void Check() const { ThrowIfInvalid(Validate()); }
 };
 
+// harmonics: kHarmonicsRange or kAutomaticHarmonics, checked by hand.
+constexpr auto describe(Tag<PeriodicEquilibriumOptions>) {
+  using O = PeriodicEquilibriumOptions;
+  return std::make_tuple(
+      Option{"harmonics", &O::harmonics, "", "harmonics K of q°: 1..128, or -1 (automatic)"},
+      Option{"harmonics_tolerance", &O::harmonics_tolerance, "-",
+             "automatic K: the relative error of the coefficients accepted", &O::kToleranceRange},
+      Option{"max_iterations", &O::max_iterations, "", "Newton iterations", &O::kIterationsRange},
+      Option{"tolerance", &O::tolerance, "-", "on the Newton step, relative", &O::kToleranceRange},
+      Option{"check_stability", &O::check_stability, "",
+             "Floquet multipliers of the linearization"},
+      Option{"min_continuation_step", &O::min_continuation_step, "-",
+             "the continuation in mu gives up below this step", &O::kMinStepRange});
+}
+
 struct PeriodicEquilibrium : Outcome {
   double mu = 0.0;
   int harmonics = 0;   // K
