@@ -10,6 +10,7 @@
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/numerics/gauss_legendre.h"
 
 namespace flaplag {
 namespace {
@@ -33,13 +34,8 @@ double sinc(double x) {
 // Harmonic order k of basis index h: 0 -> 0, 2k-1 and 2k -> k.
 int order(int h) { return (h + 1) / 2; }
 
-// 8-point Gauss-Legendre on [-1, 1] (exact for polynomials of degree 15).
-constexpr double kGaussX[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
-                               -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
-                               0.7966664774136267,  0.9602898564975363};
-constexpr double kGaussW[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
-                               0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
-                               0.2223810344533745, 0.1012285362903763};
+using gauss::kW8;
+using gauss::kX8;
 
 // 0 when every entry is finite, NaN otherwise (x * 0 is NaN exactly for inf and NaN): one
 // vectorizable pass, since validate() runs on every transition-matrix call.
@@ -188,8 +184,8 @@ Eigen::MatrixXd PeriodicSystem::A_mean(double a, double b) const {
     Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n), x;
     Eigen::VectorXd f;
     for (int i = 0; i < 8; ++i) {
-      varying(0.5 * (a + b) + 0.5 * (b - a) * kGaussX[i], x, f);
-      out += (0.5 * kGaussW[i]) * x;
+      varying(0.5 * (a + b) + 0.5 * (b - a) * kX8[i], x, f);
+      out += (0.5 * kW8[i]) * x;
     }
     return out;
   }
@@ -241,8 +237,8 @@ double PeriodicSystem::trace_integral() const {
       for (int p = 0; p < panels; ++p) {
         const double c = lo + (p + 0.5) * hp;
         for (int i = 0; i < 8; ++i) {
-          varying(c + 0.5 * hp * kGaussX[i], x, f);
-          total += 0.5 * hp * kGaussW[i] * x.trace();
+          varying(c + 0.5 * hp * kX8[i], x, f);
+          total += 0.5 * hp * kW8[i] * x.trace();
         }
       }
     }

@@ -31,10 +31,14 @@
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/dense.h"
 #include "flaplag/numerics/floquet.h"
+#include "flaplag/numerics/gauss_legendre.h"
+#include "grid.h"
 #include "transition_varying.h"
 
 namespace flaplag {
 namespace {
+
+using detail::Segment;
 
 constexpr int kReseed = 32;
 
@@ -50,46 +54,6 @@ double sinc(double x) {
 void check_count(const char* name, int value, int hi = TransitionOptions::kMaxSteps) {
   if (value < 1 || value > hi)
     throw InvalidInput(name, std::to_string(value), "must be 1.." + std::to_string(hi));
-}
-
-// One substep of the grid.  `node` >= 0 marks an unsplit equal step number `node` (its ends
-// are grid points node and node + 1); split substeps have node = -1.
-struct Segment {
-  double a, b;
-  bool reversed;
-  int node;
-};
-
-// N equal steps over [0, 2 pi]; a step containing a sector edge strictly inside is split.
-std::vector<Segment> make_grid(const PeriodicSystem& sys, int steps) {
-  const double d = kTwoPi / steps;
-  double edges[2];
-  int n_edges = 0;
-  for (double e : sys.breakpoints()) edges[n_edges++] = e;
-  // Midpoints lie in (0, 2 pi): no reduction needed (cheaper than in_sector's fmod).
-  auto reversed = [&](double mid) {
-    return sys.has_sector && mid >= sys.sector_begin && mid < sys.sector_end;
-  };
-  // An edge within rounding of a grid point needs no split: the midpoint rule picks the region
-  // of each neighbouring step correctly.
-  const double slack = 1e-12 * kTwoPi;
-  std::vector<Segment> out;
-  out.reserve(static_cast<std::size_t>(steps + n_edges));
-  for (int i = 0; i < steps; ++i) {
-    const double a = i * d;
-    const double b = (i + 1 == steps) ? kTwoPi : (i + 1) * d;
-    double lo = a;
-    bool split = false;
-    for (int k = 0; k < n_edges; ++k) {
-      if (edges[k] > a + slack && edges[k] < b - slack) {
-        out.push_back({lo, edges[k], reversed(0.5 * (lo + edges[k])), -1});
-        lo = edges[k];
-        split = true;
-      }
-    }
-    out.push_back({lo, b, reversed(0.5 * (lo + b)), split ? -1 : i});
-  }
-  return out;
 }
 
 // Unit phasors e^{i psi} = (cos psi, sin psi) are kept as plain doubles rather than
@@ -173,7 +137,7 @@ class Kernel {
   // Hsu, eqs 3.21-3.28: constant C_k = exact interval mean of A, exp(Delta C_k) by J Taylor
   // terms, H(K) = prod exp(Delta_k C_k) with later intervals multiplied from the left (3.25).
   Mat hsu(int K, int J) {
-    const std::vector<Segment> grid = make_grid(sys_, K);
+    const std::vector<Segment> grid = detail::equal_grid(sys_, K);
     const double d = kTwoPi / K;
     // Means of cos k psi, sin k psi over an equal interval are the midpoint values times
     // sinc(k d / 2) (eqs 4.2-4.5): one damping table for the whole grid.
@@ -186,12 +150,12 @@ class Kernel {
       const double delta = s.b - s.a;
       // X = Delta C_k with C_k the exact mean of A over the substep.
       if (s.node >= 0) {
-        evaluate(s.reversed, mids[2 * s.node], mids[2 * s.node + 1], damp.data(), delta, X);
+        evaluate(s.set, mids[2 * s.node], mids[2 * s.node + 1], damp.data(), delta, X);
       } else {
         // A substep cut at a sector edge: the same formula with its own width.
         sinc_table(0.5 * delta, dsub);
         const Phasor z = phasor(0.5 * (s.a + s.b));
-        evaluate(s.reversed, z.c, z.s, dsub.data(), delta, X);
+        evaluate(s.set, z.c, z.s, dsub.data(), delta, X);
       }
       taylor(X, J, X2, T, E);
       P.noalias() = E * Phi;
@@ -202,50 +166,45 @@ class Kernel {
 
   // Classical RK4 on the matrix ODE Phi' = A Phi (paper 3.3.2, all columns at once).
   Mat rk4(int steps) {
-    const std::vector<Segment> grid = make_grid(sys_, steps);
+    const std::vector<Segment> grid = detail::equal_grid(sys_, steps);
     // A is needed at the start (unless it equals the previous end), the midpoint and the end of
     // every substep; on unsplit steps these are the points psi_j = j d/2.
     const double* damp = ones_.data();
     const std::vector<double> pts = phasor_grid(0.0, 0.5 * kTwoPi / steps, 2 * steps + 1);
-    auto at = [&](int j, Mat& out, bool reversed) {
-      evaluate(reversed, pts[2 * j], pts[2 * j + 1], damp, 1.0, out);
+    auto at = [&](int j, Mat& out, int set) {
+      evaluate(set, pts[2 * j], pts[2 * j + 1], damp, 1.0, out);
     };
-    auto at_psi = [&](double psi, Mat& out, bool reversed) {
+    auto at_psi = [&](double psi, Mat& out, int set) {
       const Phasor z = phasor(psi);
-      evaluate(reversed, z.c, z.s, damp, 1.0, out);
+      evaluate(set, z.c, z.s, damp, 1.0, out);
     };
     Mat Phi = identity();
-    Mat Aa(n_, n_), Am(n_, n_), Ab(n_, n_), Y(n_, n_), k1(n_, n_), k2(n_, n_), k3(n_, n_),
-        k4(n_, n_);
+    Mat Aa(n_, n_), Am(n_, n_), Ab(n_, n_);
+    detail::Rk4<Mat> rk;
     for (std::size_t i = 0; i < grid.size(); ++i) {
       const Segment& s = grid[i];
       const double h = s.b - s.a;
-      const bool reuse = i > 0 && grid[i - 1].reversed == s.reversed;
+      const bool reuse = i > 0 && !s.after_break;  // A at a is the previous end
       if (s.node >= 0) {
         if (reuse) {
           Aa = Ab;
         } else {
-          at(2 * s.node, Aa, s.reversed);
+          at(2 * s.node, Aa, s.set);
         }
-        at(2 * s.node + 1, Am, s.reversed);
-        at(2 * s.node + 2, Ab, s.reversed);
+        at(2 * s.node + 1, Am, s.set);
+        at(2 * s.node + 2, Ab, s.set);
       } else {
         if (reuse) {
           Aa = Ab;
         } else {
-          at_psi(s.a, Aa, s.reversed);
+          at_psi(s.a, Aa, s.set);
         }
-        at_psi(0.5 * (s.a + s.b), Am, s.reversed);
-        at_psi(s.b, Ab, s.reversed);
+        at_psi(0.5 * (s.a + s.b), Am, s.set);
+        at_psi(s.b, Ab, s.set);
       }
-      k1.noalias() = Aa * Phi;
-      Y = Phi + (0.5 * h) * k1;
-      k2.noalias() = Am * Y;
-      Y = Phi + (0.5 * h) * k2;
-      k3.noalias() = Am * Y;
-      Y = Phi + h * k3;
-      k4.noalias() = Ab * Y;
-      Phi += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+      rk.step(h, Phi, [&](int stage, const Mat& y, Mat& k) {
+        k.noalias() = (stage == 0 ? Aa : stage == 3 ? Ab : Am) * y;
+      });
     }
     return Phi;
   }
@@ -254,17 +213,17 @@ class Kernel {
   //   Omega = h/2 (A1 + A2) + sqrt(3) h^2 / 12 [A2, A1],  Phi <- exp(Omega) Phi.
   // The method is symmetric, so its global error expands in h^4, h^6, ...
   Mat magnus(const std::vector<Segment>& grid) {
-    const double g = std::sqrt(3.0) / 6.0;
+    const double g = gauss::kGauss2Offset;
     Mat Phi = identity();
     Mat A1(n_, n_), A2(n_, n_), Om(n_, n_), E(n_, n_), P(n_, n_);
     for (const Segment& s : grid) {
       const double h = s.b - s.a;
-      point(s.reversed, s.a + (0.5 - g) * h, A1);
-      point(s.reversed, s.a + (0.5 + g) * h, A2);
+      point(s.set, s.a + (0.5 - g) * h, A1);
+      point(s.set, s.a + (0.5 + g) * h, A2);
       Om = (0.5 * h) * (A1 + A2);
       P.noalias() = A2 * A1;
       P.noalias() -= A1 * A2;
-      Om += (std::sqrt(3.0) / 12.0 * h * h) * P;
+      Om += (0.5 * gauss::kGauss2Offset * h * h) * P;
       E = matrix_exponential(Om);  // scaling and squaring, Pade approximant (dense.h)
       P.noalias() = E * Phi;
       Phi = P;
@@ -292,8 +251,8 @@ class Kernel {
   // out = scale * A: the constant harmonic plus the entries that vary with psi, each a dot
   // product of its harmonic coefficients (h >= 1) with the basis of z = e^{i psi} scaled by
   // damp (fill_basis).
-  void evaluate(bool reversed, double zc, double zs, const double* damp, double scale, Mat& out) {
-    const Region& g = region_[reversed];
+  void evaluate(int set, double zc, double zs, const double* damp, double scale, Mat& out) {
+    const Region& g = region_[set];
     out = scale * g.A0;
     const Eigen::Index m = static_cast<Eigen::Index>(idx_.size());
     const int hb = g.H - 1;
@@ -326,9 +285,9 @@ class Kernel {
   }
 
   // A at psi with the harmonics of the given region (one-sided value at an edge).
-  void point(bool reversed, double psi, Mat& out) {
+  void point(int set, double psi, Mat& out) {
     const Phasor z = phasor(psi);
-    evaluate(reversed, z.c, z.s, ones_.data(), 1.0, out);
+    evaluate(set, z.c, z.s, ones_.data(), 1.0, out);
   }
 
   // E = sum_{j=0}^{J} X^j / j!  (eq 3.27).  J <= 4 by Paterson-Stockmeyer (at most two
@@ -556,8 +515,8 @@ template <int N>
     for (int i = 0; i < N; ++i) dst[j * N + i] = Mt.at(j, i);
 }
 
-// The grid rule of make_grid() walked without storing it: step i of K, split at a sector edge
-// strictly inside it (beyond rounding), each substep in the region of its midpoint.
+// The grid rule of detail::equal_grid() walked without storing it: step i of K, split at a sector
+// edge strictly inside it (beyond rounding), each substep in the region of its midpoint.
 //
 // kPair: Phi at K / 2 as well (K even) into out_half.  The exact interval means are additive,
 // so Delta C of an unsplit coarse step is the sum of those of its two fine steps (equal to its
@@ -573,15 +532,11 @@ template <int N, bool kEvenRows, bool kPair>
   const int K = in.K;
   const double d = kTwoPi / K;
   const double dc = kTwoPi / (K / 2);  // the coarse step (kPair)
-  const double slack = 1e-12 * kTwoPi;
   const Phasor step = phasor(d);
   double zc = 1.0, zs = 0.0;  // e^{i mid_i}, the rotation recurrence of phasor_grid()
   double w[kPlainMaxHarmonics], dsub[kPlainMaxHarmonics / 2 + 2];
   auto split_inside = [&](double a, double b) __attribute__((always_inline)) {
-    bool split = false;
-    for (int k = 0; k < in.n_edges; ++k)
-      split |= in.edges[k] > a + slack && in.edges[k] < b - slack;
-    return split;
+    return detail::edge_inside(a, b, in.edges, in.n_edges);
   };
   auto substep = [&](double a, double b, PlainMat<N>& P) __attribute__((always_inline)) {
     const double delta = b - a;
@@ -595,14 +550,10 @@ template <int N, bool kEvenRows, bool kPair>
     plain_taylor4_step_t<N>(Y, P);
   };
   auto split_step = [&](double a, double b, PlainMat<N>& P) __attribute__((always_inline)) {
-    double lo = a;
-    for (int k = 0; k < in.n_edges; ++k) {
-      if (in.edges[k] > a + slack && in.edges[k] < b - slack) {
-        substep(lo, in.edges[k], P);
-        lo = in.edges[k];
-      }
-    }
-    substep(lo, b, P);
+    detail::split_step(
+        a, b, in.edges, in.n_edges, [&](double lo, double hi) __attribute__((always_inline)) {
+          substep(lo, hi, P);
+        });
   };
   for (int i = 0; i < K; ++i) {
     if (i % kReseed == 0) {
@@ -758,19 +709,19 @@ template <int N>
 [[gnu::always_inline]] inline void plain_magnus_impl(const PlainHsuInput& in, const Segment* grid,
                                                      int count, double* out) {
   constexpr int V = N * N / 4;
-  const double g = std::sqrt(3.0) / 6.0;
+  const double g = gauss::kGauss2Offset;
   PlainMat<N> Phi, A1, A2, Om, P, Q;
   plain_identity<N>(Phi);
   double w[kPlainMaxHarmonics];
   for (int i = 0; i < count; ++i) {
     const Segment& sg = grid[i];
     const double h = sg.b - sg.a;
-    const int r = sg.reversed ? 1 : 0;
+    const int r = sg.set;
     plain_point<N>(in, r, sg.a + (0.5 - g) * h, w, A1);
     plain_point<N>(in, r, sg.a + (0.5 + g) * h, w, A2);
     plain_mul<N>(A2, A1, P);
     plain_mul<N>(A1, A2, Q);
-    const double c1 = 0.5 * h, c2 = std::sqrt(3.0) / 12.0 * h * h;
+    const double c1 = 0.5 * h, c2 = 0.5 * gauss::kGauss2Offset * h * h;
     for (int e = 0; e < V; ++e) Om.c[e] = (A1.c[e] + A2.c[e]) * c1 + (P.c[e] - Q.c[e]) * c2;
     plain_expm<N>(Om);
     plain_mul<N>(Om, Phi, P);
@@ -1102,18 +1053,18 @@ __attribute__((target_clones("avx2", "default"))) void wide_magnus_steps(const W
   const std::size_t size = s.size();
   V4 *A1 = work, *A2 = work + size, *P = work + 2 * size, *Q = work + 3 * size;
   V4* t = work + 4 * size;  // five matrices for wide_expm
-  const double g = std::sqrt(3.0) / 6.0;
+  const double g = gauss::kGauss2Offset;
   std::fill(phi, phi + size, V4{0.0, 0.0, 0.0, 0.0});
   wide_add_diagonal(s, phi, 1.0);
   for (int i = 0; i < count; ++i) {
     const Segment& sg = grid[i];
     const double h = sg.b - sg.a;
-    const int r = sg.reversed ? 1 : 0;
+    const int r = sg.set;
     wide_point(in, r, sg.a + (0.5 - g) * h, A1);
     wide_point(in, r, sg.a + (0.5 + g) * h, A2);
     wide_mul(s, A2, A1, P);
     wide_mul(s, A1, A2, Q);
-    const double c1 = 0.5 * h, c2 = std::sqrt(3.0) / 12.0 * h * h;
+    const double c1 = 0.5 * h, c2 = 0.5 * gauss::kGauss2Offset * h * h;
     for (std::size_t e = 0; e < size; ++e) A1[e] = (A1[e] + A2[e]) * c1 + (P[e] - Q[e]) * c2;
     wide_expm(s, A1, t);
     wide_mul(s, A1, phi, P);
@@ -1235,19 +1186,6 @@ Eigen::MatrixXd dispatch(const PeriodicSystem& sys, Fn&& fn) {
   }
 }
 
-// The Magnus grid doubled by bisecting every substep, so that the two grids are proportional
-// and Richardson extrapolation removes the h^4 term exactly.
-std::vector<Segment> bisect(const std::vector<Segment>& grid) {
-  std::vector<Segment> out;
-  out.reserve(2 * grid.size());
-  for (const Segment& s : grid) {
-    const double m = 0.5 * (s.a + s.b);
-    out.push_back({s.a, m, s.reversed, -1});
-    out.push_back({m, s.b, s.reversed, -1});
-  }
-  return out;
-}
-
 }  // namespace
 
 const char* method_name(TransitionMethod m) {
@@ -1342,8 +1280,8 @@ TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps)
   check_count("steps", steps);
   sys.validate();
   if (sys.has_varying) return detail::varying_magnus4(sys, steps);
-  const std::vector<Segment> coarse = make_grid(sys, steps);
-  const std::vector<Segment> fine = bisect(coarse);
+  const std::vector<Segment> coarse = detail::equal_grid(sys, steps);
+  const std::vector<Segment> fine = detail::bisect(coarse);
   Eigen::MatrixXd ph, ph2;
   if (!plain_magnus(sys, coarse, ph) && !wide_magnus(sys, coarse, ph))
     ph = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(coarse)); });
@@ -1369,8 +1307,8 @@ Eigen::MatrixXd transition_matrix_magnus4_level(const PeriodicSystem& sys, int s
     throw InvalidInput("sys", "varying region",
                        "the Magnus levels are for sector systems (transition_magnus4 handles the "
                        "varying region)");
-  std::vector<Segment> grid = make_grid(sys, steps);
-  for (int b = 0; b < bisections; ++b) grid = bisect(grid);
+  std::vector<Segment> grid = detail::equal_grid(sys, steps);
+  for (int b = 0; b < bisections; ++b) grid = detail::bisect(grid);
   Eigen::MatrixXd phi;
   if (!plain_magnus(sys, grid, phi) && !wide_magnus(sys, grid, phi))
     phi = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(grid)); });
