@@ -5,15 +5,18 @@
 
 namespace flaplag::detail {
 
-int set_at(const PeriodicSystem& sys, double psi) {
-  // psi lies in (0, 2 pi): no reduction needed (cheaper than in_sector's fmod).
-  if (sys.has_varying && psi >= sys.varying_begin && psi < sys.varying_end) return -1;
-  return sys.has_sector && psi >= sys.sector_begin && psi < sys.sector_end ? 1 : 0;
+namespace {
+
+// A segment [a, b] in the piece that contains its midpoint (in (0, 2 pi): no reduction needed).
+Segment segment(const PeriodicSystem& sys, double a, double b, int node, bool after_break) {
+  const double mid = 0.5 * (a + b);
+  const int last = static_cast<int>(sys.pieces.size()) - 1;
+  int i = 0;
+  while (i < last && !(mid < sys.pieces[static_cast<std::size_t>(i)].end)) ++i;
+  return {a, b, i, sys.pieces[static_cast<std::size_t>(i)].set, node, after_break};
 }
 
-const HarmonicSet& harmonic_set(const PeriodicSystem& sys, int set) {
-  return set == 1 ? sys.reversed : sys.normal;
-}
+}  // namespace
 
 std::vector<Segment> equal_grid(const PeriodicSystem& sys, int steps) {
   const std::vector<double> edges = sys.breakpoints();
@@ -27,7 +30,7 @@ std::vector<Segment> equal_grid(const PeriodicSystem& sys, int steps) {
     bool at_break = false;
     for (double e : edges) at_break |= e >= a - kEdgeSlack && e <= a + kEdgeSlack;
     const int count = split_step(a, b, edges.data(), n_edges, [&](double lo, double hi) {
-      out.push_back({lo, hi, set_at(sys, 0.5 * (lo + hi)), -1, at_break});
+      out.push_back(segment(sys, lo, hi, -1, at_break));
       at_break = true;
     });
     if (count == 1) out.back().node = i;
@@ -40,8 +43,8 @@ std::vector<Segment> bisect(const std::vector<Segment>& grid) {
   out.reserve(2 * grid.size());
   for (const Segment& s : grid) {
     const double m = 0.5 * (s.a + s.b);
-    out.push_back({s.a, m, s.set, -1, s.after_break});
-    out.push_back({m, s.b, s.set, -1, false});
+    out.push_back({s.a, m, s.piece, s.set, -1, s.after_break});
+    out.push_back({m, s.b, s.piece, s.set, -1, false});
   }
   return out;
 }
@@ -55,8 +58,7 @@ void sampled_grid(const PeriodicSystem& sys, double a, double b, int count,
   std::sort(pts.begin(), pts.end());
   for (std::size_t i = 1; i < pts.size(); ++i) {
     if (pts[i] - pts[i - 1] <= 1e-14) continue;
-    const double mid = 0.5 * (pts[i] + pts[i - 1]);
-    out.push_back({pts[i - 1], pts[i], set_at(sys, mid), -1, false});
+    out.push_back(segment(sys, pts[i - 1], pts[i], -1, false));
   }
 }
 

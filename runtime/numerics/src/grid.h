@@ -24,13 +24,14 @@ namespace flaplag::detail {
 // each neighbouring step correctly).
 inline constexpr double kEdgeSlack = 1e-12 * kTwoPi;
 
-// One substep.  `set` is the harmonic set of the piece that contains the midpoint (0 normal,
-// 1 the reversed-flow sector), -1 in the varying region (A from its evaluator); `node` >= 0 marks
-// an unsplit equal step number `node` (its ends are grid points node and node + 1), split substeps
-// have node = -1; `after_break`: a lies on (within kEdgeSlack of) a breakpoint, so A at a need not
-// equal A at the previous substep's end.
+// One substep.  `piece` is the system's piece that contains the midpoint (an index into
+// PeriodicSystem::pieces) and `set` that piece's harmonic set (-1: A from its evaluator); `node` >=
+// 0 marks an unsplit equal step number `node` (its ends are grid points node and node + 1), split
+// substeps have node = -1; `after_break`: a lies on (within kEdgeSlack of) a breakpoint, so A at a
+// need not equal A at the previous substep's end.
 struct Segment {
   double a, b;
+  int piece;
   int set;
   int node;
   bool after_break;
@@ -62,10 +63,14 @@ template <typename Fn>
   return count;
 }
 
-// The set of the piece that contains psi in (0, 2 pi) (Segment::set).
-int set_at(const PeriodicSystem& sys, double psi);
 // The harmonic set `set` (>= 0) of sys.
-const HarmonicSet& harmonic_set(const PeriodicSystem& sys, int set);
+inline const HarmonicSet& harmonic_set(const PeriodicSystem& sys, int set) {
+  return sys.sets[static_cast<std::size_t>(set)];
+}
+// The evaluator of segment s (s.set == -1).
+inline const PeriodicSystem::Evaluator& evaluator(const PeriodicSystem& sys, const Segment& s) {
+  return sys.pieces[static_cast<std::size_t>(s.piece)].evaluator;
+}
 
 // `steps` equal steps over [0, 2 pi], split at the breakpoints.
 std::vector<Segment> equal_grid(const PeriodicSystem& sys, int steps);

@@ -55,7 +55,7 @@ struct Stepper {
 
   void at(const Segment& s, double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) const {
     if (s.set < 0) {
-      sys->varying(psi, A, f);
+      detail::evaluator(*sys, s)(psi, A, f);
     } else {
       eval(detail::harmonic_set(*sys, s.set), psi, n, A, f);
     }

@@ -108,26 +108,28 @@ class Kernel {
   using Mat = Eigen::Matrix<double, N, N>;
 
   explicit Kernel(const PeriodicSystem& sys) : sys_(sys), n_(sys.n) {
-    const HarmonicSet* sets[2] = {&sys.normal, sys.has_sector ? &sys.reversed : nullptr};
     idx_.reserve(static_cast<std::size_t>(n_) * n_);
     for (Eigen::Index l = 0; l < static_cast<Eigen::Index>(n_) * n_; ++l) {
       bool varies = false;
-      for (const HarmonicSet* set : sets)
-        if (set)
-          for (std::size_t h = 1; h < set->A.size(); ++h) varies |= set->A[h](l) != 0.0;
+      for (const HarmonicSet& set : sys.sets)
+        for (std::size_t h = 1; h < set.A.size(); ++h) varies |= set.A[h](l) != 0.0;
       if (varies) idx_.push_back(l);
     }
     const Eigen::Index m = static_cast<Eigen::Index>(idx_.size());
-    for (int r = 0; r < 2; ++r) {
-      if (!sets[r]) continue;
+    region_.resize(sys.sets.size());
+    int max_h = 1;
+    for (std::size_t r = 0; r < sys.sets.size(); ++r) {
+      const HarmonicSet& set = sys.sets[r];
       Region& g = region_[r];
-      g.H = static_cast<int>(sets[r]->A.size());
-      g.A0 = sets[r]->A[0];
+      g.H = static_cast<int>(set.A.size());
+      g.A0 = set.A[0];
       g.V = Eigen::MatrixXd::Zero((m + 3) / 4 * 4, g.H - 1);
       for (int h = 1; h < g.H; ++h)
-        for (Eigen::Index e = 0; e < m; ++e) g.V(e, h - 1) = sets[r]->A[h](idx_[e]);
+        for (Eigen::Index e = 0; e < m; ++e) g.V(e, h - 1) = set.A[h](idx_[e]);
+      max_h = std::max(max_h, g.H);
     }
-    basis_.resize(static_cast<std::size_t>(std::max(region_[0].H, region_[1].H)));
+    max_order_ = max_h / 2;
+    basis_.resize(static_cast<std::size_t>(max_h));
     w_.resize((idx_.size() + 3) / 4 * 4);
     ones_.assign(static_cast<std::size_t>(max_order()) + 1, 1.0);
   }
@@ -238,7 +240,7 @@ class Kernel {
     Eigen::MatrixXd V;  // m (padded to 4k) x (H-1): coefficients (h >= 1) of varying entries
   };
 
-  int max_order() const { return std::max(region_[0].H, region_[1].H) / 2; }
+  int max_order() const { return max_order_; }
 
   // table[k] = sinc(k x), k = 0 .. max order (a few sin calls per grid, not per interval).
   void sinc_table(double x, std::vector<double>& table) const {
@@ -331,7 +333,8 @@ class Kernel {
   const PeriodicSystem& sys_;
   int n_;
   std::vector<Eigen::Index> idx_;  // column-major indices of the entries that vary with psi
-  Region region_[2];
+  std::vector<Region> region_;     // per harmonic set of the system
+  int max_order_ = 0;
   std::vector<double> basis_, w_;  // workspace of evaluate()
   std::vector<double> ones_;       // damping factors of point values
 };
@@ -352,13 +355,17 @@ class Kernel {
 // harmonics); beyond, the Eigen kernel is used.
 constexpr int kPlainMaxHarmonics = 64;
 
+// Most pieces (and edges) the plain and wide kernels take; beyond, the Eigen kernel is used.
+constexpr int kPlainMaxPieces = 8;
+
 struct PlainHsuInput {
   int K = 0;
   int n_edges = 0;
-  double edges[2] = {0.0, 0.0};
-  bool has_sector = false;
-  double sector_begin = 0.0, sector_end = 0.0;
-  int H[2] = {0, 0};                                  // harmonics of each region
+  double edges[kPlainMaxPieces] = {};  // the piece edges inside (0, 2 pi)
+  int n_pieces = 0;
+  double piece_end[kPlainMaxPieces] = {};
+  int piece_set[kPlainMaxPieces] = {};
+  int H[2] = {0, 0};                                  // harmonics of each set
   const double* A[2][kPlainMaxHarmonics] = {{}, {}};  // column-major n x n, in place
   double damp[kPlainMaxHarmonics / 2 + 2] = {};       // sinc(k d / 2), the equal-step means
   double ones[kPlainMaxHarmonics / 2 + 2] = {};       // 1: point values
@@ -366,8 +373,11 @@ struct PlainHsuInput {
   bool even_rows_only = false;  // Hsu: only the rows 0, 2, 4, ... of A_h, h >= 1, are nonzero
 };
 
-[[gnu::always_inline]] inline bool plain_reversed(const PlainHsuInput& in, double mid) {
-  return in.has_sector && mid >= in.sector_begin && mid < in.sector_end;
+// The harmonic set of the piece that contains mid (in (0, 2 pi)).
+[[gnu::always_inline]] inline int plain_set(const PlainHsuInput& in, double mid) {
+  int i = 0;
+  while (i + 1 < in.n_pieces && !(mid < in.piece_end[i])) ++i;
+  return in.piece_set[i];
 }
 
 // Matrices of the plain kernel: column-major, each column as N/4 vectors of four doubles (GCC
@@ -541,7 +551,7 @@ template <int N, bool kEvenRows, bool kPair>
   auto substep = [&](double a, double b, PlainMat<N>& P) __attribute__((always_inline)) {
     const double delta = b - a;
     const double mid = 0.5 * (a + b);
-    const int r = plain_reversed(in, mid) ? 1 : 0;
+    const int r = plain_set(in, mid);
     dsub[0] = 1.0;
     for (int k = 1; k <= in.max_order; ++k) dsub[k] = sinc(k * 0.5 * delta);
     const Phasor z = phasor(mid);
@@ -569,7 +579,7 @@ template <int N, bool kEvenRows, bool kPair>
     const double b = (i + 1 == K) ? kTwoPi : (i + 1) * d;
     const bool split = split_inside(a, b);
     if (!split) {
-      const int r = plain_reversed(in, 0.5 * (a + b)) ? 1 : 0;
+      const int r = plain_set(in, 0.5 * (a + b));
       plain_weights(zc, zs, in.H[r], in.damp, b - a, w);
       plain_weighted_sum_t<N, kEvenRows>(in.A[r], in.H[r], w, Y);
       plain_taylor4_step_t<N>(Y, Phi);
@@ -749,23 +759,23 @@ bool plain_size(int n) { return n == 4 || n == 8 || n == 12 || n == 16; }
 // The input of the plain kernels for grids of K equal steps; false when they do not apply
 // (n without a plain kernel, or more than kPlainMaxHarmonics harmonics).
 bool plain_input(const PeriodicSystem& sys, int K, PlainHsuInput& in) {
-  if (!plain_size(sys.n) || sys.has_varying) return false;  // varying: transition_varying.cc
+  // evaluator pieces: transition_varying.cc
+  if (!plain_size(sys.n) || sys.has_evaluator() || sys.sets.size() > 2 ||
+      sys.pieces.size() > static_cast<std::size_t>(kPlainMaxPieces))
+    return false;
   in.K = K;
-  const HarmonicSet* sets[2] = {&sys.normal, sys.has_sector ? &sys.reversed : &sys.normal};
-  for (int r = 0; r < 2; ++r) {
-    const int H = static_cast<int>(sets[r]->A.size());
+  for (std::size_t r = 0; r < sys.sets.size(); ++r) {
+    const HarmonicSet& set = sys.sets[r];
+    const int H = static_cast<int>(set.A.size());
     if (H > kPlainMaxHarmonics) return false;
     in.H[r] = H;
-    for (int h = 0; h < H; ++h) in.A[r][h] = sets[r]->A[h].data();
+    for (int h = 0; h < H; ++h) in.A[r][h] = set.A[static_cast<std::size_t>(h)].data();
     in.max_order = std::max(in.max_order, H / 2);
   }
-  in.has_sector = sys.has_sector;
-  in.sector_begin = sys.sector_begin;
-  in.sector_end = sys.sector_end;
-  if (sys.has_sector) {
-    if (sys.sector_begin > 0.0 && sys.sector_begin < kTwoPi)
-      in.edges[in.n_edges++] = sys.sector_begin;
-    if (sys.sector_end > 0.0 && sys.sector_end < kTwoPi) in.edges[in.n_edges++] = sys.sector_end;
+  for (const SystemPiece& p : sys.pieces) {
+    if (in.n_pieces > 0) in.edges[in.n_edges++] = p.begin;
+    in.piece_end[in.n_pieces] = p.end;
+    in.piece_set[in.n_pieces++] = p.set;
   }
   in.damp[0] = 1.0;
   for (int k = 1; k <= in.max_order; ++k) in.damp[k] = sinc(k * 0.5 * kTwoPi / K);
@@ -779,7 +789,7 @@ bool plain_hsu_input(const PeriodicSystem& sys, int K, std::vector<double>& work
                      PlainHsuInput& in) {
   if (!plain_input(sys, K, in)) return false;
   const int n = sys.n;
-  const bool same = !sys.has_sector;  // region 1 is region 0
+  const bool same = sys.sets.size() == 1;  // set 1 is set 0
   const std::size_t count = static_cast<std::size_t>(in.H[0] + (same ? 0 : in.H[1]));
   if (work.size() < count * n * n) work.resize(count * n * n);
   double* t = work.data();
@@ -904,9 +914,7 @@ class WideBuffer {
 struct WideInput {
   WideShape shape;
   int H[2] = {0, 0};
-  WideBuffer A[2];  // harmonic h of region r at A[r].data() + h * shape.size()
-  bool has_sector = false;
-  double sector_begin = 0.0, sector_end = 0.0;
+  WideBuffer A[2];  // harmonic h of set r at A[r].data() + h * shape.size()
 };
 
 // C = A B on wide matrices: column j of C is sum_k A(:, k) B(k, j), in blocks of B vectors of
@@ -1078,9 +1086,8 @@ __attribute__((target_clones("avx2", "default"))) void wide_magnus_steps(const W
 std::vector<int> balancing_exponents(const PeriodicSystem& sys) {
   const int n = sys.n;
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
-  for (const HarmonicSet* set : {&sys.normal, sys.has_sector ? &sys.reversed : nullptr})
-    if (set != nullptr)
-      for (const Eigen::MatrixXd& a : set->A) m += a.cwiseAbs();
+  for (const HarmonicSet& set : sys.sets)
+    for (const Eigen::MatrixXd& a : set.A) m += a.cwiseAbs();
   std::vector<int> e(static_cast<std::size_t>(n), 0);
   for (int sweep = 0; sweep < 64; ++sweep) {
     bool done = true;
@@ -1116,24 +1123,21 @@ bool wide_input(const PeriodicSystem& sys, const std::vector<int>& e, WideInput&
   s.n = sys.n;
   s.np = (sys.n + 3) / 4 * 4;
   s.q = s.np / 4;
-  const HarmonicSet* sets[2] = {&sys.normal, sys.has_sector ? &sys.reversed : &sys.normal};
-  for (int r = 0; r < 2; ++r) {
-    const int H = static_cast<int>(sets[r]->A.size());
+  if (sys.sets.size() > 2) return false;
+  for (std::size_t r = 0; r < sys.sets.size(); ++r) {
+    const int H = static_cast<int>(sys.sets[r].A.size());
     if (H > kPlainMaxHarmonics) return false;
     in.H[r] = H;
     in.A[r].resize(static_cast<std::size_t>(H) * s.size());
     for (int h = 0; h < H; ++h) {
       V4* dst = in.A[r].data() + static_cast<std::size_t>(h) * s.size();
-      const Eigen::MatrixXd& a = sets[r]->A[static_cast<std::size_t>(h)];
+      const Eigen::MatrixXd& a = sys.sets[r].A[static_cast<std::size_t>(h)];
       for (int j = 0; j < s.n; ++j)
         for (int i = 0; i < s.n; ++i)
           dst[static_cast<std::size_t>(j) * s.q + i / 4][i % 4] =
               std::ldexp(a(i, j), e[static_cast<std::size_t>(j)] - e[static_cast<std::size_t>(i)]);
     }
   }
-  in.has_sector = sys.has_sector;
-  in.sector_begin = sys.sector_begin;
-  in.sector_end = sys.sector_end;
   return true;
 }
 
@@ -1143,7 +1147,7 @@ bool wide_size(int n) { return n > 8 && !plain_size(n); }
 // Magnus on `grid` by the wide kernel when it applies; false otherwise.
 bool wide_magnus(const PeriodicSystem& sys, const std::vector<Segment>& grid,
                  Eigen::MatrixXd& phi) {
-  if (!wide_size(sys.n) || sys.has_varying) return false;
+  if (!wide_size(sys.n) || sys.has_evaluator()) return false;
   const std::vector<int> e = balancing_exponents(sys);
   WideInput in;
   if (!wide_input(sys, e, in)) return false;
@@ -1228,7 +1232,7 @@ std::string method_names() {
 Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps) {
   check_count("steps", steps);
   sys.validate();
-  if (sys.has_varying) return detail::varying_rk4(sys, steps);  // transition_varying.cc
+  if (sys.has_evaluator()) return detail::varying_rk4(sys, steps);  // transition_varying.cc
   return dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.rk4(steps)); });
 }
 
@@ -1238,7 +1242,7 @@ void transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms,
   check_count("intervals", intervals);
   check_count("terms", terms, TransitionOptions::kMaxTerms);
   sys.validate();
-  if (sys.has_varying) {
+  if (sys.has_evaluator()) {
     *phi = detail::varying_hsu(sys, intervals, terms);
   } else if (!plain_hsu(sys, intervals, terms, *phi)) {
     *phi = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.hsu(intervals, terms)); });
@@ -1279,7 +1283,7 @@ Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, 
 TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps) {
   check_count("steps", steps);
   sys.validate();
-  if (sys.has_varying) return detail::varying_magnus4(sys, steps);
+  if (sys.has_evaluator()) return detail::varying_magnus4(sys, steps);
   const std::vector<Segment> coarse = detail::equal_grid(sys, steps);
   const std::vector<Segment> fine = detail::bisect(coarse);
   Eigen::MatrixXd ph, ph2;
@@ -1303,7 +1307,7 @@ Eigen::MatrixXd transition_matrix_magnus4_level(const PeriodicSystem& sys, int s
         "bisections", std::to_string(bisections),
         "steps * 2^bisections must be at most " + std::to_string(TransitionOptions::kMaxSteps));
   sys.validate();
-  if (sys.has_varying)
+  if (sys.has_evaluator())
     throw InvalidInput("sys", "varying region",
                        "the Magnus levels are for sector systems (transition_magnus4 handles the "
                        "varying region)");

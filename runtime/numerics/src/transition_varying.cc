@@ -29,7 +29,7 @@ class Evaluator {
   explicit Evaluator(const PeriodicSystem& sys) : sys_(sys) {}
   void at(const Piece& p, double psi, Eigen::MatrixXd& out) {
     if (p.set < 0) {
-      sys_.varying(psi, out, f_);
+      evaluator(sys_, p)(psi, out, f_);
       return;
     }
     const HarmonicSet& set = harmonic_set(sys_, p.set);
