@@ -1,11 +1,11 @@
 // flaplag — transition matrix Phi(2 pi, 0) of y' = A(psi) y (paper Section 3.3).
 //
-// Three methods share one grid rule: the period is cut into equal steps, and a step that
-// contains a reversed-flow sector edge is split there into two substeps, so that A(psi) is
-// smooth (a trigonometric polynomial of one region) on every substep.  Each substep uses the
-// harmonics of the region that contains its midpoint; at a substep end that lies on an edge
-// that is the one-sided limit, which is what the integrators need.  A system with a varying
-// region (the exact reversed flow, periodic_system.h) goes to transition_varying.cc instead.
+// Three methods share one grid rule (grid.h, equal_grid): the period is cut into equal steps,
+// and a step that contains a piece edge is split there, so that A(psi) is smooth (a
+// trigonometric polynomial of one harmonic set) on every substep.  Each substep uses the
+// harmonics of the piece that contains its midpoint; at a substep end that lies on an edge
+// that is the one-sided limit, which is what the integrators need.  A system with an evaluator
+// piece (the exact reversed flow, periodic_system.h) goes to transition_varying.cc instead.
 //
 // Speed: the dimension is a template parameter (fixed-size, stack-allocated Eigen matrices for
 // n = 2, 4, 6, 8; dynamic matrices with preallocated temporaries otherwise); only the entries

@@ -1,6 +1,6 @@
-// flaplag — transition matrices with a varying region (exact reversed flow): the methods of
-// transition.cc on dynamic matrices, with A(psi) from the harmonics outside the varying region
-// and from its evaluator inside.
+// flaplag — transition matrices of a system with an evaluator piece (exact reversed flow): the
+// methods of transition.cc on dynamic matrices, with A(psi) from the harmonics of the harmonic
+// pieces and from the evaluator inside its piece.
 //
 // Hsu (eqs 3.21-3.28) needs the mean of A over each substep: exact for the harmonic parts
 // (eqs 4.2-4.5), a 3-point Gauss-Legendre mean inside the varying region (its error O(h^6) is
