@@ -9,12 +9,10 @@
 namespace flaplag::bench {
 
 FixedKernel::FixedKernel(const flaplag::PeriodicSystem& s, int K) {
-  for (int r = 0; r < 2; ++r) {
-    const flaplag::HarmonicSet& set = r == 0 ? s.normal : s.reversed;
-    for (const Eigen::MatrixXd& m : set.A) A[r].push_back(m);
-  }
+  for (std::size_t r = 0; r < s.sets.size() && r < 2; ++r)  // normal and the sector
+    for (const Eigen::MatrixXd& m : s.sets[r].A) A[r].push_back(m);
   auto add = [&](double a, double b) {
-    Interval iv{b - a, s.in_sector(0.5 * (a + b)) ? 1 : 0, {}};
+    Interval iv{b - a, s.pieces[static_cast<std::size_t>(s.piece_at(0.5 * (a + b)))].set, {}};
     for (std::size_t h = 0; h < A[iv.region].size(); ++h)
       iv.weight.push_back((b - a) * flaplag::harmonic_mean(static_cast<int>(h), a, b));
     grid.push_back(iv);

@@ -68,8 +68,8 @@ Mat transition(const flaplag::PeriodicSystem& s, int K, const Candidate& c) {
   const double d = kTwoPi / K;
   auto substep = [&](double a, double b) {
     const double h = b - a, mid = 0.5 * (a + b);
-    const bool reversed = s.has_sector && mid >= s.sector_begin && mid < s.sector_end;
-    const flaplag::HarmonicSet& g = reversed ? s.reversed : s.normal;
+    const flaplag::HarmonicSet& g =
+        s.sets[static_cast<std::size_t>(s.pieces[static_cast<std::size_t>(s.piece_at(mid))].set)];
     Mat B0 = h * Mat(g.A[0]), B1 = Mat::Zero();
     for (std::size_t j = 1; j < g.A.size(); ++j) {
       const int k = static_cast<int>(j + 1) / 2;

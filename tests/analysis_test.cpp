@@ -52,7 +52,7 @@ TEST(Hover, EquilibriumMatchesHandComputedAssumedModeValues) {
 TEST(Hover, ForcingVanishesAtTheEquilibrium) {
   Analysis an(RotorParameters{}, {});
   const auto sys = an.system(0.0);
-  for (const auto& f : sys.normal.f) EXPECT_LT(f.norm(), 1e-14);
+  for (const auto& f : sys.sets.at(0).f) EXPECT_LT(f.norm(), 1e-14);
 }
 
 // Floquet exponents at mu = 0 equal eig(A0) for every method (steps chosen so that each
@@ -162,16 +162,22 @@ TEST(Floquet, HsuErrorInZetaFallsLikeKToTheMinusTwo) {
 // Appendix D: sector centred at 3 pi/2, width pi/2 below mu = 1, eq D.2 above (continuous at 1).
 TEST(ReversedFlow, SectorGeometry) {
   Analysis an(RotorParameters{}, {});
-  const auto s05 = an.system(0.5);
-  ASSERT_TRUE(s05.has_sector);
-  EXPECT_TRUE(AbsClose(1.5 * flaplag::kPi - flaplag::kPi / 4, s05.sector_begin, 1e-15));
-  EXPECT_TRUE(AbsClose(1.5 * flaplag::kPi + flaplag::kPi / 4, s05.sector_end, 1e-15));
-  const auto s2 = an.system(2.0);
+  // normal, sector (the second harmonic set), normal
+  auto sector = [](const flaplag::PeriodicSystem& s) {
+    EXPECT_EQ(3u, s.pieces.size());
+    EXPECT_EQ(2u, s.sets.size());
+    EXPECT_EQ(1, s.pieces.at(1).set);
+    return s.pieces.at(1);
+  };
+  const auto s05 = sector(an.system(0.5));
+  EXPECT_TRUE(AbsClose(1.5 * flaplag::kPi - flaplag::kPi / 4, s05.begin, 1e-15));
+  EXPECT_TRUE(AbsClose(1.5 * flaplag::kPi + flaplag::kPi / 4, s05.end, 1e-15));
+  const auto s2 = sector(an.system(2.0));
   const double a = std::asin(0.5);
   const double alpha = flaplag::kPi - 2 * a + 4 * a - std::sqrt(3.0);
-  EXPECT_TRUE(AbsClose(alpha, s2.sector_end - s2.sector_begin, 1e-14));
-  const auto s1 = an.system(1.0);
-  EXPECT_TRUE(AbsClose(flaplag::kPi / 2, s1.sector_end - s1.sector_begin, 1e-14));
+  EXPECT_TRUE(AbsClose(alpha, s2.end - s2.begin, 1e-14));
+  const auto s1 = sector(an.system(1.0));
+  EXPECT_TRUE(AbsClose(flaplag::kPi / 2, s1.end - s1.begin, 1e-14));
   // mu >= 1: the whole span reversed, so every aerodynamic integral changes sign
   const auto snap = an.snapshot(1.5, 1.5 * flaplag::kPi);
   EXPECT_EQ(snap.region, "reversed");
@@ -180,7 +186,7 @@ TEST(ReversedFlow, SectorGeometry) {
   }
   RotorParameters p;
   p.reversed_flow = false;
-  EXPECT_FALSE(Analysis(p, {}).system(0.5).has_sector);
+  EXPECT_EQ(1u, Analysis(p, {}).system(0.5).pieces.size());
 }
 
 // Outside the sector, at mu < 1 the reversed region does not change the hover constant part.

@@ -433,13 +433,10 @@ TEST(FindCritical, StableUpToMuMaxWhileZetaStillRisesIsNoted) {
 // boundary is computed independently by plain bisection on the largest |multiplier| of a
 // fine Magnus transition matrix, without tracking.
 PeriodicSystem mathieu(double delta, double xi, double mu) {
-  PeriodicSystem s;
-  s.n = 2;
   Eigen::MatrixXd a0(2, 2), a1 = Eigen::MatrixXd::Zero(2, 2);
   a0 << -2 * xi, -delta, 1, 0;
   a1(0, 1) = -mu;
-  s.normal.A = {a0, a1};
-  return s;
+  return PeriodicSystem(HarmonicSet{{a0, a1}, {}});
 }
 
 TEST(FindCritical, MathieuTongueIsPeriodicType) {
@@ -458,7 +455,7 @@ TEST(FindCritical, MathieuTongueIsPeriodicType) {
   ASSERT_GT(max_zeta(hi), 0.0);
   while (hi - lo > 1e-10) (max_zeta(0.5 * (lo + hi)) > 0 ? hi : lo) = 0.5 * (lo + hi);
 
-  const HoverModes hover = label_hover_modes(mathieu(delta, xi, 0.0).normal.A[0], 1, 0);
+  const HoverModes hover = label_hover_modes(mathieu(delta, xi, 0.0).sets[0].A[0], 1, 0);
   const CriticalResult r = find_critical(hover, floquet, {});
   ASSERT_TRUE(r.mu_c.has_value()) << r.message;
   EXPECT_TRUE(AbsClose(lo, *r.mu_c, 1e-5));

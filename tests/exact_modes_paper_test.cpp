@@ -265,10 +265,13 @@ TEST(ElasticCouplingInTheAnalysis, VanishesAtZeroPitch) {
     for (double mu : {0.3, 1.2}) {
       const auto a = on.system(mu);
       const auto b = off.system(mu);
-      ASSERT_EQ(a.normal.A.size(), b.normal.A.size());
-      for (std::size_t h = 0; h < a.normal.A.size(); ++h) {
-        EXPECT_EQ(a.normal.A[h], b.normal.A[h]) << "mu = " << mu << ", harmonic " << h;
-        EXPECT_EQ(a.reversed.A[h], b.reversed.A[h]) << "mu = " << mu << ", harmonic " << h;
+      ASSERT_EQ(2u, a.sets.size());  // normal and the reversed-flow sector
+      ASSERT_EQ(a.sets.size(), b.sets.size());
+      for (std::size_t k = 0; k < a.sets.size(); ++k) {
+        ASSERT_EQ(a.sets[k].A.size(), b.sets[k].A.size());
+        for (std::size_t h = 0; h < a.sets[k].A.size(); ++h)
+          EXPECT_EQ(a.sets[k].A[h], b.sets[k].A[h])
+              << "mu = " << mu << ", set " << k << ", harmonic " << h;
       }
     }
     const auto rc = on.critical({});

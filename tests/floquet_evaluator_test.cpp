@@ -193,7 +193,7 @@ TEST(FloquetEvaluator, SystemNoteMakesAWarningAndOverflowFails) {
   EXPECT_EQ(s.status, Status::Warning);
   EXPECT_NE(s.message.find("approximate"), std::string::npos);
   PeriodicSystem bad = fixtures::rotor_like();
-  bad.normal.A[0](0, 0) = std::numeric_limits<double>::infinity();
+  bad.sets[0].A[0](0, 0) = std::numeric_limits<double>::infinity();
   const FloquetSample f = e->evaluate(bad, 1e-6);
   EXPECT_EQ(f.status, Status::Failed);
   EXPECT_NE(f.message.find("overflows"), std::string::npos);

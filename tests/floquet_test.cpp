@@ -227,14 +227,13 @@ PeriodicSystem random_system(int n, bool sector, std::mt19937& g) {
         for (int j = 0; j < n; ++j) set.A[h](i, j) = 0.5 * uniform(g) / (1 + (h + 1) / 2);
     set.A[0].diagonal().array() -= 0.2;
   };
-  PeriodicSystem s;
-  s.n = n;
-  fill(s.normal);
+  HarmonicSet normal;
+  fill(normal);
+  PeriodicSystem s(normal);
   if (sector) {
-    fill(s.reversed);
-    s.has_sector = true;
-    s.sector_begin = 0.9 * kPi;
-    s.sector_end = 1.6 * kPi + 0.01;
+    HarmonicSet reversed;
+    fill(reversed);
+    s.add_harmonic_piece(0.9 * kPi, 1.6 * kPi + 0.01, reversed);
   }
   return s;
 }
@@ -299,9 +298,7 @@ TEST(Floquet, LiouvilleResidualOfExtremeDeterminants) {
     }
     // The same through an integrator: A = -30 I, Phi = e^{-60 pi} I, int tr A = -60 pi n.
     // Magnus is exact for constant A (Omega = h A, Pade exponential), so only rounding remains.
-    PeriodicSystem s;
-    s.n = n;
-    s.normal.A = {-30.0 * I};
+    const PeriodicSystem s(HarmonicSet{{-30.0 * I}, {}});
     const double tr = s.trace_integral();
     const FloquetResult r = floquet_exponents(transition_matrix_magnus4(s, 10).phi, tr);
     EXPECT_LT(r.liouville_residual, 4.0 * n * std::abs(tr) * eps);

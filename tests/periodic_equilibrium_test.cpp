@@ -51,15 +51,15 @@ TEST(PeriodicEquilibrium, AtHoverItIsTheHoverEquilibriumAndTheHoverA) {
     for (int c = 1; c < eq.coefficients.cols(); ++c) EXPECT_EQ(0.0, eq.coefficients(j, c));
   }
   const PeriodicSystem hover = an.system(0.0);
-  ASSERT_EQ(1u, eq.linearization.normal.A.size());
-  ASSERT_FALSE(eq.linearization.has_sector);
-  const Eigen::MatrixXd& A = eq.linearization.normal.A[0];
+  ASSERT_EQ(1u, eq.linearization.sets.at(0).A.size());
+  ASSERT_EQ(1u, eq.linearization.pieces.size());
+  const Eigen::MatrixXd& A = eq.linearization.sets[0].A[0];
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
-      EXPECT_TRUE(AbsClose(hover.normal.A[0](i, j), A(i, j), 1e-13)) << i << "," << j;
+      EXPECT_TRUE(AbsClose(hover.sets[0].A[0](i, j), A(i, j), 1e-13)) << i << "," << j;
   // The paper's own model gives the same A (paper-nonlinear's linear part is the paper's).
   RotorParameters paper;
-  const Eigen::MatrixXd A_paper = Analysis(paper, {}).system(0.0).normal.A[0];
+  const Eigen::MatrixXd A_paper = Analysis(paper, {}).system(0.0).sets[0].A[0];
   EXPECT_LT((A_paper - A).cwiseAbs().maxCoeff(), 1e-13);
   // The analysis switch: identical exponents at hover.
   RotorParameters pp = p;

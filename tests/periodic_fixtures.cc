@@ -22,8 +22,6 @@ Eigen::MatrixXd rotor_hover_matrix() {
 }
 
 PeriodicSystem rotor_like() {
-  PeriodicSystem s;
-  s.n = 4;
   auto fill = [](HarmonicSet& set, double sign) {
     set.A.assign(9, Eigen::MatrixXd::Zero(4, 4));
     set.A[0] = rotor_hover_matrix();
@@ -39,12 +37,21 @@ PeriodicSystem rotor_like() {
     }
     set.A[1](0, 1) = 3.0;
   };
-  fill(s.normal, 1.0);
-  fill(s.reversed, -1.0);
-  s.has_sector = true;
-  s.sector_begin = 1.25 * kPi;
-  s.sector_end = 1.75 * kPi;
+  HarmonicSet normal, reversed;
+  fill(normal, 1.0);
+  fill(reversed, -1.0);
+  return with_sector(std::move(normal), std::move(reversed), 1.25 * kPi, 1.75 * kPi);
+}
+
+PeriodicSystem with_sector(HarmonicSet normal, HarmonicSet reversed, double begin, double end) {
+  PeriodicSystem s(std::move(normal));
+  s.add_harmonic_piece(begin, end, std::move(reversed));
   return s;
+}
+
+const HarmonicSet& set_at(const PeriodicSystem& s, double psi) {
+  return s.sets.at(
+      static_cast<std::size_t>(s.pieces.at(static_cast<std::size_t>(s.piece_at(psi))).set));
 }
 
 std::vector<Eigen::MatrixXd> harmonics_of(const MatrixFn& F, int n, int degree) {
@@ -72,15 +79,11 @@ PeriodicSystem reducible_system(const Eigen::MatrixXd& B, const Frame& normal, i
       return fr.dP(psi) * Pinv + P * B * Pinv;
     };
   };
-  PeriodicSystem s;
-  s.n = static_cast<int>(B.rows());
-  s.normal.A = harmonics_of(a_of(normal), s.n, degree);
-  if (reversed) {
-    s.reversed.A = harmonics_of(a_of(*reversed), s.n, degree);
-    s.has_sector = true;
-    s.sector_begin = sector_begin;
-    s.sector_end = sector_end;
-  }
+  const int n = static_cast<int>(B.rows());
+  PeriodicSystem s(HarmonicSet{harmonics_of(a_of(normal), n, degree), {}});
+  if (reversed)
+    s.add_harmonic_piece(sector_begin, sector_end,
+                         HarmonicSet{harmonics_of(a_of(*reversed), n, degree), {}});
   return s;
 }
 
@@ -90,7 +93,7 @@ Eigen::MatrixXd reducible_phi(const Eigen::MatrixXd& B, const Frame& normal) {
 }
 
 Eigen::MatrixXd A_rate(const PeriodicSystem& s, double psi) {
-  const HarmonicSet& set = s.region(psi);
+  const HarmonicSet& set = set_at(s, psi);
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(s.n, s.n);
   for (std::size_t h = 1; h < set.A.size(); ++h) {
     const double k = static_cast<double>((h + 1) / 2);
@@ -209,13 +212,12 @@ Eigen::MatrixXd with_eigenvalues(const std::vector<std::pair<double, double>>& p
 }
 
 PeriodicSystem markus_yamabe() {
-  PeriodicSystem s;
-  s.n = 2;
-  s.normal.A.assign(5, Eigen::MatrixXd::Zero(2, 2));
-  s.normal.A[0] << -0.25, 1.0, -1.0, -0.25;
-  s.normal.A[3] << 0.75, 0.0, 0.0, -0.75;   // cos 2 psi
-  s.normal.A[4] << 0.0, -0.75, -0.75, 0.0;  // sin 2 psi
-  return s;
+  HarmonicSet set;
+  set.A.assign(5, Eigen::MatrixXd::Zero(2, 2));
+  set.A[0] << -0.25, 1.0, -1.0, -0.25;
+  set.A[3] << 0.75, 0.0, 0.0, -0.75;   // cos 2 psi
+  set.A[4] << 0.0, -0.75, -0.75, 0.0;  // sin 2 psi
+  return PeriodicSystem(std::move(set));
 }
 
 Frame markus_yamabe_frame() {
@@ -256,38 +258,34 @@ std::vector<ExactCase> exact_cases() {
 }
 
 PeriodicSystem sector_as_varying(const PeriodicSystem& sector) {
-  PeriodicSystem v = sector;
-  v.has_sector = false;
-  v.has_varying = true;
-  v.varying_begin = sector.sector_begin;
-  v.varying_end = sector.sector_end;
-  const HarmonicSet rev = sector.reversed;
+  PeriodicSystem v(sector.sets.at(0));
+  v.n = sector.n;
+  const SystemPiece& piece = sector.pieces.at(1);  // normal, sector, normal
+  const HarmonicSet rev = sector.sets.at(1);
   const int n = sector.n;
-  v.varying = [rev, n](double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) {
-    A.setZero(n, n);
-    f.setZero(n);
-    for (std::size_t h = 0; h < rev.A.size(); ++h)
-      A += harmonic_basis(static_cast<int>(h), psi) * rev.A[h];
-    for (std::size_t h = 0; h < rev.f.size(); ++h)
-      f += harmonic_basis(static_cast<int>(h), psi) * rev.f[h];
-  };
-  v.reversed = HarmonicSet{};
+  v.add_evaluator_piece(piece.begin, piece.end,
+                        [rev, n](double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) {
+                          A.setZero(n, n);
+                          f.setZero(n);
+                          for (std::size_t h = 0; h < rev.A.size(); ++h)
+                            A += harmonic_basis(static_cast<int>(h), psi) * rev.A[h];
+                          for (std::size_t h = 0; h < rev.f.size(); ++h)
+                            f += harmonic_basis(static_cast<int>(h), psi) * rev.f[h];
+                        });
   return v;
 }
 
 PeriodicSystem clipped_scalar(double c) {
-  PeriodicSystem s;
-  s.n = 1;
-  s.normal.A = {Eigen::MatrixXd::Constant(1, 1, -0.05), Eigen::MatrixXd::Constant(1, 1, 0.7)};
-  s.has_varying = true;
-  s.varying_begin = kPi;
-  s.varying_end = kTwoPi;
+  PeriodicSystem s(HarmonicSet{
+      {Eigen::MatrixXd::Constant(1, 1, -0.05), Eigen::MatrixXd::Constant(1, 1, 0.7)}, {}});
   const double a = std::asin(c);
-  s.varying_breaks = {kPi + a, kTwoPi - a};
-  s.varying = [c](double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) {
-    A = Eigen::MatrixXd::Constant(1, 1, 0.3 + 0.9 * std::clamp(-std::sin(psi), 0.0, c));
-    f = Eigen::VectorXd::Zero(1);
-  };
+  s.add_evaluator_piece(kPi, kTwoPi,
+                        [c](double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) {
+                          A = Eigen::MatrixXd::Constant(
+                              1, 1, 0.3 + 0.9 * std::clamp(-std::sin(psi), 0.0, c));
+                          f = Eigen::VectorXd::Zero(1);
+                        },
+                        {kPi + a, kTwoPi - a});
   return s;
 }
 

@@ -34,6 +34,11 @@ Eigen::MatrixXd rotor_hover_matrix();
 // strong 1/rev flap stiffness term 3 cos psi (so that |A(psi)| reaches about 5).
 PeriodicSystem rotor_like();
 
+// The system with `normal` over the period and `reversed` on the sector [begin, end).
+PeriodicSystem with_sector(HarmonicSet normal, HarmonicSet reversed, double begin, double end);
+// The harmonic set of the piece that contains psi (a harmonic piece).
+const HarmonicSet& set_at(const PeriodicSystem& s, double psi);
+
 using MatrixFn = std::function<Eigen::MatrixXd(double)>;
 
 // Harmonic coefficients (index convention of periodic_system.h: 1, cos psi, sin psi, cos 2 psi,

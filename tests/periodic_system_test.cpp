@@ -41,19 +41,22 @@ Eigen::MatrixXd pattern(int n, int seed) {
   return m;
 }
 
+constexpr double kSectorBegin = 1.25 * kPi, kSectorEnd = 1.75 * kPi;
+
 PeriodicSystem sector_system(int n, int harmonics) {
-  PeriodicSystem s;
-  s.n = n;
+  HarmonicSet normal, reversed;
   for (int h = 0; h < harmonics; ++h) {
-    s.normal.A.push_back(pattern(n, h) / (1.0 + h));
-    s.reversed.A.push_back(pattern(n, 100 + h) / (1.0 + h));
-    s.normal.f.push_back(Eigen::VectorXd::Constant(n, 0.5 + h));
-    s.reversed.f.push_back(Eigen::VectorXd::Constant(n, -1.0 - h));
+    normal.A.push_back(pattern(n, h) / (1.0 + h));
+    reversed.A.push_back(pattern(n, 100 + h) / (1.0 + h));
+    normal.f.push_back(Eigen::VectorXd::Constant(n, 0.5 + h));
+    reversed.f.push_back(Eigen::VectorXd::Constant(n, -1.0 - h));
   }
-  s.has_sector = true;
-  s.sector_begin = 1.25 * kPi;
-  s.sector_end = 1.75 * kPi;
-  return s;
+  return fixtures::with_sector(normal, reversed, kSectorBegin, kSectorEnd);
+}
+
+// The set of the piece at psi.
+int set_of(const PeriodicSystem& s, double psi) {
+  return s.pieces[static_cast<std::size_t>(s.piece_at(psi))].set;
 }
 
 TEST(HarmonicBasis, IndexConvention) {
@@ -104,31 +107,57 @@ TEST(HarmonicMean, PaperFormulas42To45) {
 
 TEST(PeriodicSystem, RegionsAndEdges) {
   const PeriodicSystem s = sector_system(2, 3);
-  EXPECT_FALSE(s.in_sector(0.0));
-  EXPECT_TRUE(s.in_sector(s.sector_begin));  // [begin, end)
-  EXPECT_FALSE(s.in_sector(s.sector_end));
-  EXPECT_TRUE(s.in_sector(1.5 * kPi));
-  EXPECT_TRUE(s.in_sector(1.5 * kPi - kTwoPi));  // reduced to [0, 2 pi)
-  EXPECT_TRUE(s.in_sector(1.5 * kPi + 3 * kTwoPi));
-  EXPECT_EQ(&s.reversed, &s.region(1.5 * kPi));
-  EXPECT_EQ(&s.normal, &s.region(0.5 * kPi));
+  // normal [0, begin), sector [begin, end), normal [end, 2 pi)
+  ASSERT_EQ(3u, s.pieces.size());
+  ASSERT_EQ(2u, s.sets.size());
+  EXPECT_EQ(0.0, s.pieces[0].begin);
+  EXPECT_EQ(kSectorBegin, s.pieces[0].end);
+  EXPECT_EQ(kSectorBegin, s.pieces[1].begin);
+  EXPECT_EQ(kSectorEnd, s.pieces[1].end);
+  EXPECT_EQ(kTwoPi, s.pieces[2].end);
+  EXPECT_EQ(0, s.pieces[0].set);
+  EXPECT_EQ(1, s.pieces[1].set);
+  EXPECT_EQ(0, s.pieces[2].set);
+  EXPECT_EQ(0, set_of(s, 0.0));
+  EXPECT_EQ(1, set_of(s, kSectorBegin));  // [begin, end)
+  EXPECT_EQ(0, set_of(s, kSectorEnd));
+  EXPECT_EQ(1, set_of(s, 1.5 * kPi));
+  EXPECT_EQ(1, set_of(s, 1.5 * kPi - kTwoPi));  // reduced to [0, 2 pi)
+  EXPECT_EQ(1, set_of(s, 1.5 * kPi + 3 * kTwoPi));
+  EXPECT_EQ(0, set_of(s, 0.5 * kPi));
+  EXPECT_FALSE(s.has_evaluator());
   const std::vector<double> bp = s.breakpoints();
   ASSERT_EQ(2u, bp.size());
-  EXPECT_EQ(s.sector_begin, bp[0]);
-  EXPECT_EQ(s.sector_end, bp[1]);
+  EXPECT_EQ(kSectorBegin, bp[0]);
+  EXPECT_EQ(kSectorEnd, bp[1]);
 
-  PeriodicSystem t = s;
-  t.sector_begin = 0.0;  // an edge at 0 or 2 pi is no breakpoint
-  t.sector_end = kTwoPi;
+  // A piece from 0 or to 2 pi: the period's ends are no breakpoints.
+  const PeriodicSystem t = fixtures::with_sector(s.sets[0], s.sets[1], 0.0, kTwoPi);
   EXPECT_TRUE(t.breakpoints().empty());
-  t.has_sector = false;
-  EXPECT_FALSE(t.in_sector(1.5 * kPi));
+  ASSERT_EQ(1u, t.pieces.size());
+  EXPECT_EQ(1, set_of(t, 1.5 * kPi));
+  const PeriodicSystem u = fixtures::with_sector(s.sets[0], s.sets[1], 0.0, 1.0);
+  ASSERT_EQ(2u, u.pieces.size());
+  EXPECT_EQ(std::vector<double>{1.0}, u.breakpoints());
+  EXPECT_EQ(1, set_of(u, 0.5));
+  EXPECT_EQ(0, set_of(u, 1.0));
+  // Only inside one piece of the base set.
+  PeriodicSystem w = s;
+  EXPECT_THROW(w.add_harmonic_piece(1.0, 4.5, s.sets[1]), InvalidInput);  // across an edge
+  EXPECT_THROW(w.add_harmonic_piece(4.0, 4.5, s.sets[1]), InvalidInput);  // in the sector
+  EXPECT_THROW(w.add_harmonic_piece(2.0, 1.0, s.sets[1]), InvalidInput);
+  EXPECT_THROW(w.add_harmonic_piece(6.0, 7.0, s.sets[1]), InvalidInput);
+  w.add_harmonic_piece(1.0, 2.0, s.sets[1]);  // a second sector
+  EXPECT_EQ(5u, w.pieces.size());
+  EXPECT_EQ((std::vector<double>{1.0, 2.0, kSectorBegin, kSectorEnd}), w.breakpoints());
+  EXPECT_EQ(2, set_of(w, 1.5));
+  EXPECT_NO_THROW(w.validate());
 }
 
 TEST(PeriodicSystem, EvaluatesHarmonicSums) {
   const PeriodicSystem s = sector_system(3, 5);
   for (double psi : {0.2, 2.0, 1.5 * kPi}) {
-    const HarmonicSet& set = s.region(psi);
+    const HarmonicSet& set = fixtures::set_at(s, psi);
     Eigen::MatrixXd ref = Eigen::MatrixXd::Zero(3, 3);
     Eigen::VectorXd fref = Eigen::VectorXd::Zero(3);
     for (int h = 0; h < 5; ++h) {
@@ -158,13 +187,12 @@ TEST(PeriodicSystem, TraceIntegralWithSector) {
   const PeriodicSystem s = sector_system(3, 9);
   // Quadrature on the three smooth pieces.
   auto tr = [&](double p) { return s.A(p).trace(); };
-  const double ref = quad(tr, 0.0, s.sector_begin) + quad(tr, s.sector_begin, s.sector_end) +
-                     quad(tr, s.sector_end, kTwoPi);
+  const double ref = quad(tr, 0.0, kSectorBegin) + quad(tr, kSectorBegin, kSectorEnd) +
+                     quad(tr, kSectorEnd, kTwoPi);
   EXPECT_TRUE(RelClose(ref, s.trace_integral(), 1e-13, 1.0));
 
-  PeriodicSystem t = s;
-  t.has_sector = false;
-  EXPECT_TRUE(RelClose(kTwoPi * s.normal.A[0].trace(), t.trace_integral(), 1e-15));
+  const PeriodicSystem t(s.sets[0]);
+  EXPECT_TRUE(RelClose(kTwoPi * s.sets[0].A[0].trace(), t.trace_integral(), 1e-15));
 }
 
 // The varying region: A and f from the evaluator inside [begin, end), harmonics outside; its
@@ -172,10 +200,12 @@ TEST(PeriodicSystem, TraceIntegralWithSector) {
 TEST(PeriodicSystem, VaryingRegion) {
   const PeriodicSystem s = fixtures::clipped_scalar(0.6);
   EXPECT_NO_THROW(s.validate());
-  EXPECT_FALSE(s.in_varying(0.5 * kPi));
-  EXPECT_TRUE(s.in_varying(kPi));  // [begin, end)
-  EXPECT_TRUE(s.in_varying(1.5 * kPi - kTwoPi));
-  EXPECT_FALSE(s.in_varying(kTwoPi));
+  EXPECT_TRUE(s.has_evaluator());
+  EXPECT_EQ(0, set_of(s, 0.5 * kPi));
+  EXPECT_EQ(-1, set_of(s, kPi));  // [begin, end)
+  EXPECT_EQ(-1, set_of(s, 1.5 * kPi - kTwoPi));
+  EXPECT_EQ(0, set_of(s, kTwoPi));
+  const std::vector<double>& breaks = s.pieces.at(1).breaks;
   EXPECT_DOUBLE_EQ(0.3 + 0.9 * 0.6, s.A(1.5 * kPi)(0, 0));
   EXPECT_DOUBLE_EQ(0.3 + 0.9 * 0.25, s.A(kPi + std::asin(0.25))(0, 0));
   EXPECT_DOUBLE_EQ(-0.05 + 0.7 * std::cos(1.0), s.A(1.0)(0, 0));
@@ -183,11 +213,11 @@ TEST(PeriodicSystem, VaryingRegion) {
   const std::vector<double> bp = s.breakpoints();
   ASSERT_EQ(3u, bp.size());  // pi, and the two breaks; the end 2 pi is none
   EXPECT_EQ(kPi, bp[0]);
-  EXPECT_EQ(s.varying_breaks[0], bp[1]);
-  EXPECT_EQ(s.varying_breaks[1], bp[2]);
+  EXPECT_EQ(breaks.at(0), bp[1]);
+  EXPECT_EQ(breaks.at(1), bp[2]);
   EXPECT_TRUE(RelClose(fixtures::clipped_log_phi(0.6), s.trace_integral(), 1e-14));
   // The mean inside one smooth piece (between breaks) against quadrature.
-  const double a = kPi + 0.1, b = s.varying_breaks[0];
+  const double a = kPi + 0.1, b = breaks[0];
   const double ref = quad([&](double p) { return s.A(p)(0, 0); }, a, b) / (b - a);
   EXPECT_TRUE(AbsClose(ref, s.A_mean(a, b)(0, 0), 1e-14));
 }
@@ -207,24 +237,28 @@ TEST(PeriodicSystem, VaryingRegionTraceMatchesSector) {
 
 TEST(PeriodicSystem, ValidateRejectsMalformedVaryingRegions) {
   PeriodicSystem s = fixtures::clipped_scalar(0.6);
+  SystemPiece& piece = s.pieces.at(1);  // normal [0, pi), the evaluator [pi, 2 pi)
+  ASSERT_EQ(-1, piece.set);
   PeriodicSystem bad = s;
-  bad.varying = nullptr;
+  bad.pieces[1].evaluator = nullptr;
   EXPECT_THROW(bad.validate(), InvalidInput);
   bad = s;
-  bad.varying_end = bad.varying_begin;
+  bad.pieces[1].end = bad.pieces[1].begin;
   EXPECT_THROW(bad.validate(), InvalidInput);
   bad = s;
-  std::swap(bad.varying_breaks[0], bad.varying_breaks[1]);  // unsorted
+  std::swap(bad.pieces[1].breaks[0], bad.pieces[1].breaks[1]);  // unsorted
   EXPECT_THROW(bad.validate(), InvalidInput);
   bad = s;
-  bad.varying_breaks.push_back(0.5);  // outside the region
+  bad.pieces[1].breaks.push_back(0.5);  // outside the piece
   EXPECT_THROW(bad.validate(), InvalidInput);
   bad = s;
-  bad.has_sector = true;  // never both
-  bad.reversed = bad.normal;
-  bad.sector_begin = 1.0;
-  bad.sector_end = 2.0;
-  EXPECT_THROW(bad.validate(), InvalidInput);
+  EXPECT_THROW(bad.add_evaluator_piece(4.0, 5.0, piece.evaluator), InvalidInput);  // inside it
+  // An evaluator piece inside another base piece is fine (and a harmonic one as well).
+  bad.add_evaluator_piece(1.0, 2.0, piece.evaluator, {1.5});
+  bad.add_harmonic_piece(2.5, 3.0, bad.sets[0]);
+  EXPECT_NO_THROW(bad.validate());
+  EXPECT_EQ((std::vector<double>{1.0, 1.5, 2.0, 2.5, 3.0, kPi, piece.breaks[0], piece.breaks[1]}),
+            bad.breakpoints());
 }
 
 TEST(PeriodicSystem, ValidateRejectsMalformedSystems) {
@@ -234,22 +268,40 @@ TEST(PeriodicSystem, ValidateRejectsMalformedSystems) {
   bad.n = 0;
   EXPECT_THROW(bad.validate(), InvalidInput);
   bad = s;
-  bad.normal.A[1] = Eigen::MatrixXd::Zero(3, 3);
+  bad.sets[0].A[1] = Eigen::MatrixXd::Zero(3, 3);
   EXPECT_THROW(bad.validate(), InvalidInput);
   bad = s;
-  bad.reversed.A.clear();
+  bad.sets[1].A.clear();
   EXPECT_THROW(bad.validate(), InvalidInput);
   bad = s;
-  bad.sector_end = bad.sector_begin;
+  bad.pieces[1].end = bad.pieces[1].begin;
   EXPECT_THROW(bad.validate(), InvalidInput);
   bad = s;
-  bad.sector_end = 7.0;
+  bad.pieces[2].end = 7.0;
   EXPECT_THROW(bad.validate(), InvalidInput);
   bad = s;
-  bad.normal.A[0](0, 0) = std::nan("");
+  bad.pieces[2].end = 6.0;  // a gap at the end
   EXPECT_THROW(bad.validate(), InvalidInput);
   bad = s;
-  bad.normal.f[0] = Eigen::VectorXd::Zero(5);
+  bad.pieces[1].begin = 4.0;  // a gap inside
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.pieces[1].set = 2;  // no such set
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.pieces[1].set = -1;  // no evaluator
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.pieces.clear();
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.sets.clear();
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.sets[0].A[0](0, 0) = std::nan("");
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = s;
+  bad.sets[0].f[0] = Eigen::VectorXd::Zero(5);
   EXPECT_THROW(bad.validate(), InvalidInput);
 }
 
@@ -260,14 +312,14 @@ TEST(PeriodicSystem, ValidateRejectsMalformedSystems) {
 TEST(PeriodicSystem, ExactFixturesReproduceA) {
   for (const fixtures::ExactCase& c : fixtures::exact_cases()) {
     for (double psi : {0.0123, 0.9, 2.2, 2.6, 3.1, 4.0, 5.0, 5.7, 6.25}) {
-      const fixtures::Frame& f = c.sys.in_sector(psi) ? c.reversed : c.frame;
+      const fixtures::Frame& f = set_of(c.sys, psi) != 0 ? c.reversed : c.frame;
       const Eigen::MatrixXd P = f.P(psi), Pinv = fixtures::inverse(P);
       const Eigen::MatrixXd A = f.dP(psi) * Pinv + P * c.B * Pinv;
       EXPECT_LT((c.sys.A(psi) - A).cwiseAbs().maxCoeff(), 1e-13 * A.cwiseAbs().maxCoeff())
           << c.name << ", psi = " << psi;
     }
-    if (c.sys.has_sector) {
-      for (double e : {c.sys.sector_begin, c.sys.sector_end}) {
+    if (c.sys.pieces.size() > 1) {
+      for (double e : c.sys.breakpoints()) {
         EXPECT_LT((c.frame.P(e) - c.reversed.P(e)).cwiseAbs().maxCoeff(), 1e-15) << c.name;
         EXPECT_GT((c.frame.dP(e) - c.reversed.dP(e)).cwiseAbs().maxCoeff(), 0.1) << c.name;
       }

@@ -21,17 +21,16 @@ using testing::RelClose;
 // y1' = -a y1 + cos psi, y2' = -b y2 + sin 2 psi: periodic solutions in closed form,
 //   y1 = (a cos psi + sin psi) / (a^2 + 1),  y2 = (b sin 2psi - 2 cos 2psi) / (b^2 + 4).
 PeriodicSystem forced_decay(double a, double b) {
-  PeriodicSystem s;
-  s.n = 2;
+  HarmonicSet set;
   Eigen::MatrixXd A0 = Eigen::MatrixXd::Zero(2, 2);
   A0(0, 0) = -a;
   A0(1, 1) = -b;
-  s.normal.A = {A0, Eigen::MatrixXd::Zero(2, 2), Eigen::MatrixXd::Zero(2, 2),
-                Eigen::MatrixXd::Zero(2, 2), Eigen::MatrixXd::Zero(2, 2)};
-  s.normal.f.assign(5, Eigen::VectorXd::Zero(2));
-  s.normal.f[1](0) = 1.0;  // cos psi
-  s.normal.f[4](1) = 1.0;  // sin 2 psi
-  return s;
+  set.A = {A0, Eigen::MatrixXd::Zero(2, 2), Eigen::MatrixXd::Zero(2, 2),
+           Eigen::MatrixXd::Zero(2, 2), Eigen::MatrixXd::Zero(2, 2)};
+  set.f.assign(5, Eigen::VectorXd::Zero(2));
+  set.f[1](0) = 1.0;  // cos psi
+  set.f[4](1) = 1.0;  // sin 2 psi
+  return PeriodicSystem(set);
 }
 
 TEST(PeriodicResponse, ClosedFormSolution) {
@@ -67,11 +66,9 @@ TEST(PeriodicResponse, MultiplierAtOneHasNoUniqueSolution) {
 // only when some multiplier lay within 1 of 1, so a = 0.5 (multiplier 23) came back "ok".
 TEST(PeriodicResponse, SamplesThatDoNotCloseAreNoAnswer) {
   auto growing = [](double a) {
-    PeriodicSystem s;
-    s.n = 1;
-    s.normal.A = {Eigen::MatrixXd::Constant(1, 1, a), Eigen::MatrixXd::Zero(1, 1)};
-    s.normal.f = {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 1.0)};  // cos psi
-    return s;
+    return PeriodicSystem(
+        HarmonicSet{{Eigen::MatrixXd::Constant(1, 1, a), Eigen::MatrixXd::Zero(1, 1)},
+                    {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 1.0)}});  // cos psi
   };
   const PeriodicResponse mild = periodic_response(growing(0.5));
   ASSERT_EQ(Status::Warning, mild.status) << mild.message;
@@ -106,7 +103,7 @@ TEST(PeriodicResponse, RotorResponseIsTheLongTimeLimitOfTheSimulation) {
   EXPECT_LT(r.closure, 1e-10);
   const double scale = r.y0.cwiseAbs().maxCoeff();
   for (std::size_t k = 1; k + 1 < r.y.size(); k += 37) {
-    if (sys.in_sector(r.psi[k - 1]) != sys.in_sector(r.psi[k + 1])) continue;  // A jumps
+    if (sys.piece_at(r.psi[k - 1]) != sys.piece_at(r.psi[k + 1])) continue;  // A jumps
     const double h = r.psi[k + 1] - r.psi[k];
     const Eigen::VectorXd dy = (r.y[k + 1] - r.y[k - 1]) / (2 * h);
     const Eigen::VectorXd rhs = sys.A(r.psi[k]) * r.y[k] + sys.f(r.psi[k]);
@@ -158,7 +155,7 @@ TEST(ExactReversedFlow, ResponseAndEnvelopeGrowth) {
   p.exact_reversed_flow = true;
   const Analysis an(p, {});
   const PeriodicSystem sys = an.system(0.9);
-  ASSERT_TRUE(sys.has_varying);
+  ASSERT_TRUE(sys.has_evaluator());
   ResponseOptions ro;
   ro.samples = 360;
   const PeriodicResponse r = periodic_response(sys, ro);
@@ -205,10 +202,10 @@ TEST(Simulation, InvalidOptionsAndOverflow) {
 TEST(NonlinearIntegrator, WithALinearRightHandSideItIsTheLinearSimulation) {
   const Analysis an(RotorParameters{}, {});
   const PeriodicSystem sys = an.system(0.9);  // with the reversed-flow sector
-  ASSERT_TRUE(sys.has_sector);
+  ASSERT_EQ(2u, sys.sets.size());
   const NonlinearRhs rhs = [&sys](double psi, bool reversed, const Eigen::VectorXd& y,
                                   Eigen::VectorXd& F) {
-    const HarmonicSet& set = reversed ? sys.reversed : sys.normal;
+    const HarmonicSet& set = sys.sets[reversed ? 1 : 0];
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(sys.n, sys.n);
     Eigen::VectorXd f = Eigen::VectorXd::Zero(sys.n);
     for (std::size_t h = 0; h < set.A.size(); ++h) {
@@ -237,10 +234,8 @@ TEST(NonlinearIntegrator, WithALinearRightHandSideItIsTheLinearSimulation) {
 // y = 1 / (1 + psi); RK4 with 400 steps per revolution is accurate to ~1e-10 over 2 revs, and
 // the error falls like h^4 (a 2x finer grid: about 16x smaller).
 TEST(NonlinearIntegrator, ClosedFormScalarSolutionAtFourthOrder) {
-  PeriodicSystem grid;
-  grid.n = 1;
-  grid.normal.A = {Eigen::MatrixXd::Constant(1, 1, -1.0)};
-  grid.normal.f = {Eigen::VectorXd::Zero(1)};
+  const PeriodicSystem grid(
+      HarmonicSet{{Eigen::MatrixXd::Constant(1, 1, -1.0)}, {Eigen::VectorXd::Zero(1)}});
   const NonlinearRhs rhs = [](double, bool reversed, const Eigen::VectorXd& y, Eigen::VectorXd& F) {
     EXPECT_FALSE(reversed);  // no sector
     F = -y.cwiseProduct(y);
@@ -294,10 +289,7 @@ TEST(PeriodicMean, MeanOfAQuantityAlongTheClosedFormPeriodicSolution) {
   const PeriodicQuantity cross = [](double, bool, const Eigen::VectorXd& y) { return y(0) * y(1); };
   EXPECT_TRUE(AbsClose(0.0, periodic_mean(s, y0, 256, cross), 2e-9));
   PeriodicSystem sec = s;
-  sec.has_sector = true;
-  sec.sector_begin = 4.0;
-  sec.sector_end = 5.0;
-  sec.reversed = sec.normal;
+  sec.add_harmonic_piece(4.0, 5.0, sec.sets[0]);
   const PeriodicQuantity inside = [](double psi, bool reversed, const Eigen::VectorXd&) {
     // (the edges 4 and 5 belong to a step of either side)
     if (psi > 4.0 && psi < 5.0) {

@@ -79,8 +79,7 @@ TEST(ExactReversedRegion, SameAsTheSectorWithoutReversedSpan) {
   const SystemBuilder sector(p, find_model(p.model)), exact(q, find_model(q.model));
   for (double mu : {0.0, 0.2, 0.32}) {
     const PeriodicSystem a = sector.system(mu), b = exact.system(mu);
-    EXPECT_FALSE(b.has_varying) << mu;
-    EXPECT_FALSE(b.has_sector) << mu;
+    EXPECT_EQ(1u, b.pieces.size()) << mu;  // neither an exact region nor a sector
     for (int k = 0; k < 24; ++k) {
       const double psi = (k + 0.3) * kTwoPi / 24;
       const Eigen::MatrixXd Aa = a.A(psi), Ab = b.A(psi);
@@ -90,8 +89,8 @@ TEST(ExactReversedRegion, SameAsTheSectorWithoutReversedSpan) {
     }
   }
   const PeriodicSystem a0 = sector.system(0.0), b0 = exact.system(0.0);
-  ASSERT_EQ(a0.normal.A.size(), b0.normal.A.size());
-  for (std::size_t h = 0; h < a0.normal.A.size(); ++h) EXPECT_EQ(a0.normal.A[h], b0.normal.A[h]);
+  ASSERT_EQ(a0.sets.at(0).A.size(), b0.sets.at(0).A.size());
+  for (std::size_t h = 0; h < a0.sets[0].A.size(); ++h) EXPECT_EQ(a0.sets[0].A[h], b0.sets[0].A[h]);
 }
 
 // Independent check of the exact region: at each psi, the aerodynamic integrals by Gauss
@@ -115,7 +114,7 @@ TEST_P(ExactRegionGauss, AMatchesGaussQuadratureOfTheSplitIntegrals) {
   const SystemBuilder b(p, find_model(p.model));
   const double mu = GetParam().mu;
   const PeriodicSystem sys = b.system(mu);
-  ASSERT_TRUE(sys.has_varying);
+  ASSERT_TRUE(sys.has_evaluator());
   SpanGeometry g;
   g.e1 = p.root_offset;
   g.lr = p.length_ratio;
@@ -175,15 +174,19 @@ TEST(ExactReversedRegion, FullyReversedBetweenTheBreaks) {
 TEST(SystemBuilder, ReusedSystemIsTheSystemOfItsMu) {
   auto same = [](const PeriodicSystem& a, const PeriodicSystem& b, const std::string& where) {
     EXPECT_EQ(a.n, b.n) << where;
-    EXPECT_EQ(a.has_sector, b.has_sector) << where;
-    EXPECT_EQ(a.sector_begin, b.sector_begin) << where;
-    EXPECT_EQ(a.sector_end, b.sector_end) << where;
-    EXPECT_EQ(a.has_varying, b.has_varying) << where;
-    EXPECT_EQ(a.varying_begin, b.varying_begin) << where;
-    EXPECT_EQ(a.varying_end, b.varying_end) << where;
-    EXPECT_EQ(a.varying_breaks, b.varying_breaks) << where;
-    EXPECT_EQ(static_cast<bool>(a.varying), static_cast<bool>(b.varying)) << where;
-    for (auto [x, y] : {std::pair{&a.normal, &b.normal}, std::pair{&a.reversed, &b.reversed}}) {
+    ASSERT_EQ(a.pieces.size(), b.pieces.size()) << where;
+    for (std::size_t i = 0; i < a.pieces.size(); ++i) {
+      EXPECT_EQ(a.pieces[i].begin, b.pieces[i].begin) << where;
+      EXPECT_EQ(a.pieces[i].end, b.pieces[i].end) << where;
+      EXPECT_EQ(a.pieces[i].set, b.pieces[i].set) << where;
+      EXPECT_EQ(a.pieces[i].breaks, b.pieces[i].breaks) << where;
+      EXPECT_EQ(static_cast<bool>(a.pieces[i].evaluator), static_cast<bool>(b.pieces[i].evaluator))
+          << where;
+    }
+    ASSERT_EQ(a.sets.size(), b.sets.size()) << where;
+    for (std::size_t k = 0; k < a.sets.size(); ++k) {
+      const HarmonicSet* x = &a.sets[k];
+      const HarmonicSet* y = &b.sets[k];
       ASSERT_EQ(x->A.size(), y->A.size()) << where;
       ASSERT_EQ(x->f.size(), y->f.size()) << where;
       for (std::size_t h = 0; h < x->A.size(); ++h) EXPECT_TRUE(x->A[h] == y->A[h]) << where;

@@ -26,10 +26,7 @@ double rel_err(const Eigen::MatrixXd& ref, const Eigen::MatrixXd& x) {
 }
 
 PeriodicSystem constant_system(const Eigen::MatrixXd& A) {
-  PeriodicSystem s;
-  s.n = static_cast<int>(A.rows());
-  s.normal.A = {A};
-  return s;
+  return PeriodicSystem(HarmonicSet{{A}, {}});
 }
 
 // The Taylor polynomial of degree J, sum_{j<=J} X^j / j!, written out independently.
@@ -77,18 +74,18 @@ TEST(Transition, ConstantMatrixAllMethods) {
 // generic and the fixed-size kernels.
 TEST(Transition, DiagonalPeriodicClosedForm) {
   for (int n : {1, 2, 3, 4}) {
-    PeriodicSystem s;
-    s.n = n;
-    s.normal.A.assign(9, Eigen::MatrixXd::Zero(n, n));
+    HarmonicSet set;
+    set.A.assign(9, Eigen::MatrixXd::Zero(n, n));
     Eigen::MatrixXd exact = Eigen::MatrixXd::Zero(n, n);
     for (int i = 0; i < n; ++i) {
       const double a = -0.1 * (i + 1);
-      s.normal.A[0](i, i) = a;
-      s.normal.A[1](i, i) = 0.8 + 0.1 * i;  // cos psi
-      s.normal.A[4](i, i) = -0.6;           // sin 2 psi
-      s.normal.A[7](i, i) = 0.3;            // cos 4 psi
+      set.A[0](i, i) = a;
+      set.A[1](i, i) = 0.8 + 0.1 * i;  // cos psi
+      set.A[4](i, i) = -0.6;           // sin 2 psi
+      set.A[7](i, i) = 0.3;            // cos 4 psi
       exact(i, i) = std::exp(kTwoPi * a);
     }
+    const PeriodicSystem s(set);
     EXPECT_LT(rel_err(exact, transition_matrix_hsu(s, 7, 30)), 1e-13) << "n = " << n;
     EXPECT_LT(rel_err(exact, transition_matrix_magnus4(s, 50).phi), 1e-11) << "n = " << n;
     const double r1 = rel_err(exact, transition_matrix_rk4(s, 200));
@@ -102,16 +99,12 @@ TEST(Transition, DiagonalPeriodicClosedForm) {
 // Phi = exp(int A) with the integral split at the edges.  Without splitting the steps at the
 // edges every method would drop to first order.
 PeriodicSystem switched_scalar(double s0, double s1) {
-  PeriodicSystem s;
-  s.n = 1;
-  s.normal.A = {Eigen::MatrixXd::Constant(1, 1, -0.05), Eigen::MatrixXd::Constant(1, 1, 0.7)};
-  s.reversed.A.assign(7, Eigen::MatrixXd::Zero(1, 1));
-  s.reversed.A[0](0, 0) = 0.4;
-  s.reversed.A[6](0, 0) = 1.1;  // sin 3 psi
-  s.has_sector = true;
-  s.sector_begin = s0;
-  s.sector_end = s1;
-  return s;
+  HarmonicSet normal, reversed;
+  normal.A = {Eigen::MatrixXd::Constant(1, 1, -0.05), Eigen::MatrixXd::Constant(1, 1, 0.7)};
+  reversed.A.assign(7, Eigen::MatrixXd::Zero(1, 1));
+  reversed.A[0](0, 0) = 0.4;
+  reversed.A[6](0, 0) = 1.1;  // sin 3 psi
+  return fixtures::with_sector(normal, reversed, s0, s1);
 }
 
 double switched_exact(double s0, double s1) {
@@ -144,12 +137,11 @@ TEST(Transition, SectorEdgesAreSplit) {
 
 // Damped Mathieu equation y'' + 2 xi y' + (delta + eps cos psi) y = 0, state [y', y].
 PeriodicSystem mathieu(double delta, double eps, double xi) {
-  PeriodicSystem s;
-  s.n = 2;
-  s.normal.A.assign(2, Eigen::MatrixXd::Zero(2, 2));
-  s.normal.A[0] << -2 * xi, -delta, 1, 0;
-  s.normal.A[1](0, 1) = -eps;
-  return s;
+  HarmonicSet set;
+  set.A.assign(2, Eigen::MatrixXd::Zero(2, 2));
+  set.A[0] << -2 * xi, -delta, 1, 0;
+  set.A[1](0, 1) = -eps;
+  return PeriodicSystem(set);
 }
 
 double max_zeta(const Eigen::MatrixXd& phi, double tr) {
@@ -271,13 +263,11 @@ TEST(Transition, MagnusOnManyStatesMatchesTheBlocksItIsMadeOf) {
   for (auto [blocks, with_constant] :
        {std::pair{3, true}, std::pair{5, false}, std::pair{5, true}}) {
     const int n = 4 * blocks + (with_constant ? 2 : 0);
-    PeriodicSystem s;
+    PeriodicSystem s = r;  // the same pieces
     s.n = n;
-    s.has_sector = true;
-    s.sector_begin = r.sector_begin;
-    s.sector_end = r.sector_end;
-    for (auto [set, from] :
-         {std::pair{&s.normal, &r.normal}, std::pair{&s.reversed, &r.reversed}}) {
+    for (std::size_t r_set = 0; r_set < s.sets.size(); ++r_set) {
+      HarmonicSet* set = &s.sets[r_set];
+      const HarmonicSet* from = &r.sets[r_set];
       set->A.assign(from->A.size(), Eigen::MatrixXd::Zero(n, n));
       for (std::size_t h = 0; h < from->A.size(); ++h) {
         for (int k = 0; k < blocks; ++k) {
@@ -396,8 +386,9 @@ PeriodicSystem copies_of_rotor_like(int k) {
   const PeriodicSystem one = rotor_like();
   PeriodicSystem s = one;
   s.n = 4 * k;
-  for (HarmonicSet* set : {&s.normal, &s.reversed}) {
-    const HarmonicSet& src = set == &s.normal ? one.normal : one.reversed;
+  for (std::size_t i = 0; i < s.sets.size(); ++i) {
+    HarmonicSet* set = &s.sets[i];
+    const HarmonicSet& src = one.sets[i];
     for (std::size_t h = 0; h < src.A.size(); ++h) {
       set->A[h] = Eigen::MatrixXd::Zero(4 * k, 4 * k);
       for (int b = 0; b < k; ++b) set->A[h].block(4 * b, 4 * b, 4, 4) = src.A[h];
@@ -457,8 +448,8 @@ PeriodicSystem permuted(const PeriodicSystem& s, const std::vector<int>& perm) {
   PeriodicSystem out = s;
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(s.n, s.n);
   for (int i = 0; i < s.n; ++i) P(i, perm[i]) = 1.0;
-  for (HarmonicSet* set : {&out.normal, &out.reversed})
-    for (Eigen::MatrixXd& a : set->A) a = P * a * P.transpose();
+  for (HarmonicSet& set : out.sets)
+    for (Eigen::MatrixXd& a : set.A) a = P * a * P.transpose();
   return out;
 }
 
@@ -489,19 +480,17 @@ TEST(Transition, HsuPairIsBothGridsInOnePass) {
     int terms;
     bool exact_half;  // no plain kernel: *phi_half is the separate call itself
   };
-  PeriodicSystem six;
+  PeriodicSystem six = one;  // the same pieces
   six.n = 6;
-  for (HarmonicSet* set : {&six.normal, &six.reversed}) {
-    const HarmonicSet& src = set == &six.normal ? one.normal : one.reversed;
+  for (std::size_t i = 0; i < six.sets.size(); ++i) {
+    HarmonicSet* set = &six.sets[i];
+    const HarmonicSet& src = one.sets[i];
     set->A.assign(src.A.size(), Eigen::MatrixXd::Zero(6, 6));
     for (std::size_t h = 0; h < src.A.size(); ++h) {
       set->A[h].topLeftCorner(4, 4) = src.A[h];
       set->A[h].bottomRightCorner(2, 2) = src.A[h].topLeftCorner(2, 2);
     }
   }
-  six.has_sector = true;
-  six.sector_begin = one.sector_begin;
-  six.sector_end = one.sector_end;
   const std::vector<Case> cases{{"rotor_like", one, 4, false},
                                 {"odd rows", permuted(one, {1, 0, 3, 2}), 4, false},
                                 {"8 states", copies_of_rotor_like(2), 4, false},
@@ -556,7 +545,7 @@ TEST(Transition, InvalidArgumentsThrow) {
   EXPECT_THROW(transition_matrix_hsu(s, 50, 0), InvalidInput);
   EXPECT_THROW(transition_matrix_magnus4(s, -1), InvalidInput);
   PeriodicSystem bad = s;
-  bad.normal.A[1] = Eigen::MatrixXd::Zero(3, 3);
+  bad.sets[0].A[1] = Eigen::MatrixXd::Zero(3, 3);
   EXPECT_THROW(transition_matrix_hsu(bad, 50, 4), InvalidInput);
 }
 

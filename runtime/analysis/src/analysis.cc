@@ -547,8 +547,9 @@ SystemSnapshot Analysis::snapshot(double mu, double psi) const {
   s.mu = mu;
   s.psi = psi;
   const PeriodicSystem sys = impl_->builder.system(mu);
-  const bool exact = sys.in_varying(psi);
-  const bool reversed = exact || (sys.has_sector && sys.in_sector(psi));
+  const int set = sys.pieces[static_cast<std::size_t>(sys.piece_at(psi))].set;
+  const bool exact = set < 0;
+  const bool reversed = set != 0;
   s.region = reversed ? "reversed" : "normal";
   s.A = sys.A(psi);
   s.f = sys.f(psi);

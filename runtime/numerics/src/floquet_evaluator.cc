@@ -66,7 +66,7 @@ class Magnus4Evaluator final : public FloquetEvaluator {
   Eigen::MatrixXd transition(const PeriodicSystem& sys, int steps) const override {
     return transition_matrix_magnus4(sys, steps).phi;
   }
-  int level_order(const PeriodicSystem& sys) const override { return sys.has_varying ? 0 : 4; }
+  int level_order(const PeriodicSystem& sys) const override { return sys.has_evaluator() ? 0 : 4; }
   Eigen::MatrixXd level(const PeriodicSystem& sys, int steps, int bisections) const override {
     return transition_matrix_magnus4_level(sys, steps, bisections);
   }
@@ -151,14 +151,14 @@ double condition_number(const Eigen::MatrixXd& phi) {
   return phi.cwiseAbs().colwise().sum().maxCoeff() * inverse.cwiseAbs().colwise().sum().maxCoeff();
 }
 
-// Every harmonic coefficient of sys finite (and A at the middle of a varying region, where the
-// exact reversed flow has its largest values).
+// Every harmonic coefficient of sys finite (and A at the middle of each evaluator piece, where
+// the exact reversed flow has its largest values).
 bool system_finite(const PeriodicSystem& sys) {
   bool finite = true;
-  for (const HarmonicSet* set : {&sys.normal, &sys.reversed})
-    for (const Eigen::MatrixXd& a : set->A) finite = finite && a.allFinite();
-  if (sys.has_varying)
-    finite = finite && sys.A(0.5 * (sys.varying_begin + sys.varying_end)).allFinite();
+  for (const HarmonicSet& set : sys.sets)
+    for (const Eigen::MatrixXd& a : set.A) finite = finite && a.allFinite();
+  for (const SystemPiece& p : sys.pieces)
+    if (p.set < 0) finite = finite && sys.A(0.5 * (p.begin + p.end)).allFinite();
   return finite;
 }
 
@@ -192,11 +192,12 @@ const StartBasis& start_basis() {
 // is tabulated.
 void start_matrix(const PeriodicSystem& sys, double psi, Eigen::MatrixXd* a) {
   psi = reduce_azimuth(psi);
-  if (sys.in_varying(psi)) {
+  const SystemPiece& piece = sys.pieces[static_cast<std::size_t>(sys.piece_at(psi))];
+  if (piece.set < 0) {
     *a = sys.A(psi);
     return;
   }
-  const HarmonicSet& set = sys.region(psi);
+  const HarmonicSet& set = sys.sets[static_cast<std::size_t>(piece.set)];
   const std::vector<double>* table = nullptr;
   for (const auto& [at, values] : start_basis())
     if (at == psi && values.size() >= set.A.size()) table = &values;
@@ -213,12 +214,11 @@ void start_matrix(const PeriodicSystem& sys, double psi, Eigen::MatrixXd* a) {
 // cost).  Without a varying region ||A(psi)||_1 <= sum_h ||A_h||_1 for every psi: when that
 // bound keeps every azimuth below the floor, none is evaluated.
 int automatic_start(const PeriodicSystem& sys, int min_steps, int floor) {
-  if (!sys.has_varying) {
+  if (!sys.has_evaluator()) {
     double bound = 0.0;
-    for (const HarmonicSet* set : {&sys.normal, &sys.reversed}) {
-      if (set == &sys.reversed && !sys.has_sector) continue;
+    for (const HarmonicSet& set : sys.sets) {
       double sum = 0.0;
-      for (const Eigen::MatrixXd& h : set->A) sum += h.cwiseAbs().colwise().sum().maxCoeff();
+      for (const Eigen::MatrixXd& h : set.A) sum += h.cwiseAbs().colwise().sum().maxCoeff();
       bound = std::max(bound, sum);
     }
     if (bound * kTwoPi <= floor - 1) return min_steps;  // as when every one is skipped
@@ -233,8 +233,8 @@ int automatic_start(const PeriodicSystem& sys, int min_steps, int floor) {
     rho = std::max(rho, spectral_radius(a));
   };
   for (int k = 0; k < 8; ++k) add((k + 0.5) * kTwoPi / 8.0);
-  if (sys.has_sector) add(0.5 * (sys.sector_begin + sys.sector_end));
-  if (sys.has_varying) add(0.5 * (sys.varying_begin + sys.varying_end));
+  for (const SystemPiece& p : sys.pieces)  // the middle of each piece of another kind
+    if (p.set != 0) add(0.5 * (p.begin + p.end));
   const double k = std::ceil(rho * kTwoPi / 1.0);
   if (!(k <= kMaxAutomaticSteps)) return kMaxAutomaticSteps;
   // an even count, so that K/2 is a whole number

@@ -10,6 +10,7 @@
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/numerics/gauss_legendre.h"
 
 namespace flaplag {
 namespace {
@@ -33,13 +34,8 @@ double sinc(double x) {
 // Harmonic order k of basis index h: 0 -> 0, 2k-1 and 2k -> k.
 int order(int h) { return (h + 1) / 2; }
 
-// 8-point Gauss-Legendre on [-1, 1] (exact for polynomials of degree 15).
-constexpr double kGaussX[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
-                               -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
-                               0.7966664774136267,  0.9602898564975363};
-constexpr double kGaussW[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
-                               0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
-                               0.2223810344533745, 0.1012285362903763};
+using gauss::kW8;
+using gauss::kX8;
 
 // 0 when every entry is finite, NaN otherwise (x * 0 is NaN exactly for inf and NaN): one
 // vectorizable pass, since validate() runs on every transition-matrix call.
@@ -49,23 +45,24 @@ double nonfinite_probe(const double* x, Eigen::Index count) {
   return acc;
 }
 
-void check_harmonics(const HarmonicSet& set, int n, const char* region) {
+void check_harmonics(const HarmonicSet& set, int n, std::size_t k) {
+  // (the name is built only for an error: validate() runs on every transition-matrix call)
+  auto region = [k] { return "sets[" + std::to_string(k) + "]"; };
   if (set.A.empty())
-    throw InvalidInput(std::string(region) + ".A.size()", "0",
-                       "at least the constant harmonic is required");
+    throw InvalidInput(region() + ".A.size()", "0", "at least the constant harmonic is required");
   for (std::size_t h = 0; h < set.A.size(); ++h) {
     const Eigen::MatrixXd& a = set.A[h];
     if (a.rows() != n || a.cols() != n)
-      throw InvalidInput(std::string(region) + ".A[" + std::to_string(h) + "]",
+      throw InvalidInput(region() + ".A[" + std::to_string(h) + "]",
                          std::to_string(a.rows()) + "x" + std::to_string(a.cols()),
                          "must be n x n with n = " + std::to_string(n));
     if (nonfinite_probe(a.data(), a.size()) != 0.0)
-      throw InvalidInput(std::string(region) + ".A[" + std::to_string(h) + "]", "non-finite",
+      throw InvalidInput(region() + ".A[" + std::to_string(h) + "]", "non-finite",
                          "coefficients must be finite");
   }
   for (std::size_t h = 0; h < set.f.size(); ++h) {
     if (set.f[h].size() != n)
-      throw InvalidInput(std::string(region) + ".f[" + std::to_string(h) + "]",
+      throw InvalidInput(region() + ".f[" + std::to_string(h) + "]",
                          std::to_string(set.f[h].size()),
                          "must have n = " + std::to_string(n) + " entries");
   }
@@ -100,33 +97,6 @@ double harmonic_mean(int h, double a, double b) {
   return ((h % 2 == 1) ? std::cos(k * mid) : std::sin(k * mid)) * s;
 }
 
-void PeriodicSystem::validate() const {
-  if (n < 1) throw InvalidInput("n", std::to_string(n), "state dimension must be >= 1");
-  check_harmonics(normal, n, "normal");
-  if (has_sector) {
-    check_harmonics(reversed, n, "reversed");
-    if (!(sector_begin >= 0.0 && sector_begin < sector_end && sector_end <= kTwoPi))
-      throw InvalidInput("sector", "[" + fmt(sector_begin) + ", " + fmt(sector_end) + ")",
-                         "need 0 <= sector_begin < sector_end <= 2 pi");
-  }
-  if (has_varying) {
-    if (has_sector)
-      throw InvalidInput("varying", "with a sector",
-                         "a varying region replaces the sector; both cannot be set");
-    if (!varying) throw InvalidInput("varying", "empty", "the varying region needs an evaluator");
-    if (!(varying_begin >= 0.0 && varying_begin < varying_end && varying_end <= kTwoPi))
-      throw InvalidInput("varying", "[" + fmt(varying_begin) + ", " + fmt(varying_end) + ")",
-                         "need 0 <= varying_begin < varying_end <= 2 pi");
-    double last = varying_begin;
-    for (double b : varying_breaks) {
-      if (!(b > last && b < varying_end))
-        throw InvalidInput("varying_breaks", fmt(b),
-                           "breaks must be sorted and inside (varying_begin, varying_end)");
-      last = b;
-    }
-  }
-}
-
 double reduce_azimuth(double psi) {
   double p = std::fmod(psi, kTwoPi);
   if (p < 0.0) p += kTwoPi;
@@ -134,32 +104,103 @@ double reduce_azimuth(double psi) {
   return p;
 }
 
-bool PeriodicSystem::in_sector(double psi) const {
-  if (!has_sector) return false;
-  const double p = reduce_azimuth(psi);
-  return p >= sector_begin && p < sector_end;
+PeriodicSystem::PeriodicSystem(HarmonicSet base) {
+  n = base.A.empty() ? 0 : static_cast<int>(base.A[0].rows());
+  sets.push_back(std::move(base));
+  pieces.push_back({0.0, kTwoPi, 0, {}, {}});
 }
 
-bool PeriodicSystem::in_varying(double psi) const {
-  if (!has_varying) return false;
-  const double p = reduce_azimuth(psi);
-  return p >= varying_begin && p < varying_end;
+namespace {
+
+// The index of the base-set piece that holds [begin, end); throws unless there is one.
+std::size_t base_piece(const PeriodicSystem& s, double begin, double end) {
+  if (begin >= 0.0 && begin < end && end <= kTwoPi)
+    for (std::size_t i = 0; i < s.pieces.size(); ++i)
+      if (s.pieces[i].set == 0 && s.pieces[i].begin <= begin && end <= s.pieces[i].end) return i;
+  throw InvalidInput("piece", "[" + fmt(begin) + ", " + fmt(end) + ")",
+                     "need 0 <= begin < end <= 2 pi inside one piece of the base set");
 }
 
-const HarmonicSet& PeriodicSystem::region(double psi) const {
-  return in_sector(psi) ? reversed : normal;
+// pieces[i] split so that [p.begin, p.end) becomes p (base_piece() checked that it fits).
+void insert_piece(std::vector<SystemPiece>& pieces, std::size_t i, SystemPiece p) {
+  const SystemPiece outer = pieces[i];
+  std::vector<SystemPiece> parts;
+  if (outer.begin < p.begin) parts.push_back({outer.begin, p.begin, outer.set, {}, {}});
+  parts.push_back(std::move(p));
+  if (parts.back().end < outer.end)
+    parts.push_back({parts.back().end, outer.end, outer.set, {}, {}});
+  pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(i));
+  pieces.insert(pieces.begin() + static_cast<std::ptrdiff_t>(i), parts.begin(), parts.end());
+}
+
+}  // namespace
+
+void PeriodicSystem::add_harmonic_piece(double begin, double end, HarmonicSet set) {
+  const std::size_t i = base_piece(*this, begin, end);
+  sets.push_back(std::move(set));
+  insert_piece(pieces, i, {begin, end, static_cast<int>(sets.size()) - 1, {}, {}});
+}
+
+void PeriodicSystem::add_evaluator_piece(double begin, double end, Evaluator evaluator,
+                                         std::vector<double> breaks) {
+  const std::size_t i = base_piece(*this, begin, end);
+  insert_piece(pieces, i, {begin, end, -1, std::move(evaluator), std::move(breaks)});
+}
+
+void PeriodicSystem::validate() const {
+  if (n < 1) throw InvalidInput("n", std::to_string(n), "state dimension must be >= 1");
+  if (sets.empty()) throw InvalidInput("sets", "empty", "a base harmonic set is required");
+  for (std::size_t k = 0; k < sets.size(); ++k) check_harmonics(sets[k], n, k);
+  if (pieces.empty()) throw InvalidInput("pieces", "empty", "the pieces must cover [0, 2 pi)");
+  double last = 0.0;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const SystemPiece& p = pieces[i];
+    auto name = [i] { return "pieces[" + std::to_string(i) + "]"; };
+    if (!(p.begin == last && p.begin < p.end && p.end <= kTwoPi))
+      throw InvalidInput(name(), "[" + fmt(p.begin) + ", " + fmt(p.end) + ")",
+                         "the pieces must be sorted and cover [0, 2 pi) without gaps");
+    last = p.end;
+    if (p.set >= static_cast<int>(sets.size()) || p.set < -1)
+      throw InvalidInput(name() + ".set", std::to_string(p.set), "no such harmonic set");
+    if (p.set == -1 && !p.evaluator)
+      throw InvalidInput(name() + ".evaluator", "empty", "a piece without harmonics needs one");
+    double b_last = p.begin;
+    for (double b : p.breaks) {
+      if (!(b > b_last && b < p.end))
+        throw InvalidInput(name() + ".breaks", fmt(b),
+                           "breaks must be sorted and inside the piece");
+      b_last = b;
+    }
+  }
+  if (last != kTwoPi)
+    throw InvalidInput("pieces", "end " + fmt(last), "the pieces must cover [0, 2 pi)");
+}
+
+int PeriodicSystem::piece_at(double psi) const {
+  const double p = reduce_azimuth(psi);
+  const int last = static_cast<int>(pieces.size()) - 1;
+  for (int i = 0; i < last; ++i)
+    if (p < pieces[static_cast<std::size_t>(i)].end) return i;
+  return last;
+}
+
+bool PeriodicSystem::has_evaluator() const {
+  for (const SystemPiece& p : pieces)
+    if (p.set < 0) return true;
+  return false;
 }
 
 Eigen::MatrixXd PeriodicSystem::A(double psi) const {
   // Reduced first: cos(k psi) of a huge psi is NaN (k psi overflows) or meaningless.
   psi = reduce_azimuth(psi);
-  if (in_varying(psi)) {
+  const SystemPiece& piece = pieces[static_cast<std::size_t>(piece_at(psi))];
+  if (piece.set < 0) {
     Eigen::MatrixXd a;
     Eigen::VectorXd f;
-    varying(psi, a, f);
+    piece.evaluator(psi, a, f);
     return a;
   }
-  const HarmonicSet& set = region(psi);
+  const HarmonicSet& set = sets[static_cast<std::size_t>(piece.set)];
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n);
   for (std::size_t h = 0; h < set.A.size(); ++h)
     out += harmonic_basis(static_cast<int>(h), psi) * set.A[h];
@@ -168,13 +209,14 @@ Eigen::MatrixXd PeriodicSystem::A(double psi) const {
 
 Eigen::VectorXd PeriodicSystem::f(double psi) const {
   psi = reduce_azimuth(psi);
-  if (in_varying(psi)) {
+  const SystemPiece& piece = pieces[static_cast<std::size_t>(piece_at(psi))];
+  if (piece.set < 0) {
     Eigen::MatrixXd a;
     Eigen::VectorXd f;
-    varying(psi, a, f);
+    piece.evaluator(psi, a, f);
     return f;
   }
-  const HarmonicSet& set = region(psi);
+  const HarmonicSet& set = sets[static_cast<std::size_t>(piece.set)];
   Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
   for (std::size_t h = 0; h < set.f.size(); ++h)
     out += harmonic_basis(static_cast<int>(h), psi) * set.f[h];
@@ -182,18 +224,19 @@ Eigen::VectorXd PeriodicSystem::f(double psi) const {
 }
 
 Eigen::MatrixXd PeriodicSystem::A_mean(double a, double b) const {
-  // The interval lies inside one region by contract; its midpoint decides which (robust to an
-  // endpoint sitting exactly on a sector edge).
-  if (in_varying(0.5 * (a + b))) {
+  // The interval lies inside one piece by contract; its midpoint decides which (robust to an
+  // endpoint sitting exactly on a piece edge).
+  const SystemPiece& piece = pieces[static_cast<std::size_t>(piece_at(0.5 * (a + b)))];
+  if (piece.set < 0) {
     Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n), x;
     Eigen::VectorXd f;
     for (int i = 0; i < 8; ++i) {
-      varying(0.5 * (a + b) + 0.5 * (b - a) * kGaussX[i], x, f);
-      out += (0.5 * kGaussW[i]) * x;
+      piece.evaluator(0.5 * (a + b) + 0.5 * (b - a) * kX8[i], x, f);
+      out += (0.5 * kW8[i]) * x;
     }
     return out;
   }
-  const HarmonicSet& set = region(0.5 * (a + b));
+  const HarmonicSet& set = sets[static_cast<std::size_t>(piece.set)];
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n);
   for (std::size_t h = 0; h < set.A.size(); ++h)
     out += harmonic_mean(static_cast<int>(h), a, b) * set.A[h];
@@ -202,60 +245,52 @@ Eigen::MatrixXd PeriodicSystem::A_mean(double a, double b) const {
 
 std::vector<double> PeriodicSystem::breakpoints() const {
   std::vector<double> out;
-  if (has_varying) {
-    if (varying_begin > 0.0) out.push_back(varying_begin);
-    for (double b : varying_breaks) out.push_back(b);
-    if (varying_end < kTwoPi) out.push_back(varying_end);
-    return out;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (i > 0) out.push_back(pieces[i].begin);
+    for (double b : pieces[i].breaks) out.push_back(b);
   }
-  if (!has_sector) return out;
-  if (sector_begin > 0.0 && sector_begin < kTwoPi) out.push_back(sector_begin);
-  if (sector_end > 0.0 && sector_end < kTwoPi) out.push_back(sector_end);
   return out;
 }
 
 double PeriodicSystem::trace_integral() const {
-  // int_0^{2pi} phi_h = 2 pi for h = 0 and 0 otherwise; the sector replaces the normal
-  // harmonics by the reversed ones over [begin, end):
-  //   int tr A = sum_h tr(N_h) (int_0^{2pi} phi_h - int_sec phi_h) + sum_h tr(R_h) int_sec phi_h.
-  double total = kTwoPi * normal.A.at(0).trace();
-  if (has_varying) {
-    // Inside the varying region the normal harmonics are replaced by the evaluator: subtract
-    // their exact integral and add the evaluator's by composite Gauss-Legendre, 8 points on
-    // panels of at most pi/16 on each smooth piece (between breaks), where the integrand is
-    // analytic (checked against closed forms in tests/periodic_system_test.cpp, and through
-    // the rotor's Liouville residual below 1e-10 in tests/analysis_test.cpp).
-    const double width = varying_end - varying_begin;
-    for (std::size_t h = 0; h < normal.A.size(); ++h)
-      total -= normal.A[h].trace() *
-               harmonic_mean(static_cast<int>(h), varying_begin, varying_end) * width;
-    std::vector<double> cuts = {varying_begin};
-    for (double b : varying_breaks) cuts.push_back(b);
-    cuts.push_back(varying_end);
+  // int_0^{2pi} phi_h = 2 pi for h = 0 and 0 otherwise.  A piece [b, e) of another set
+  // replaces the base harmonics B_h there:
+  //   int tr A = sum_h tr(B_h) (int_0^{2pi} phi_h - int_b^e phi_h) + int_b^e tr A(piece).
+  const HarmonicSet& base = sets.at(0);
+  double total = kTwoPi * base.A.at(0).trace();
+  for (const SystemPiece& p : pieces) {
+    if (p.set == 0) continue;
+    const double width = p.end - p.begin;
+    for (std::size_t h = 0; h < base.A.size(); ++h)
+      total -= base.A[h].trace() * harmonic_mean(static_cast<int>(h), p.begin, p.end) * width;
+    if (p.set > 0) {
+      const HarmonicSet& set = sets[static_cast<std::size_t>(p.set)];
+      for (std::size_t h = 0; h < set.A.size(); ++h)
+        total += set.A[h].trace() * harmonic_mean(static_cast<int>(h), p.begin, p.end) * width;
+      continue;
+    }
+    // An evaluator piece: composite Gauss-Legendre, 8 points on panels of at most pi/16 on each
+    // smooth part (between breaks), where the integrand is analytic (checked against closed
+    // forms in tests/periodic_system_test.cpp, and through the rotor's Liouville residual below
+    // 1e-10 in tests/analysis_test.cpp).
+    std::vector<double> cuts = {p.begin};
+    for (double b : p.breaks) cuts.push_back(b);
+    cuts.push_back(p.end);
     Eigen::MatrixXd x;
     Eigen::VectorXd f;
     for (std::size_t k = 1; k < cuts.size(); ++k) {
       const double lo = cuts[k - 1], hi = cuts[k];
       const int panels = std::max(2, static_cast<int>(std::ceil((hi - lo) / (kPi / 16.0))));
       const double hp = (hi - lo) / panels;
-      for (int p = 0; p < panels; ++p) {
-        const double c = lo + (p + 0.5) * hp;
+      for (int q = 0; q < panels; ++q) {
+        const double c = lo + (q + 0.5) * hp;
         for (int i = 0; i < 8; ++i) {
-          varying(c + 0.5 * hp * kGaussX[i], x, f);
-          total += 0.5 * hp * kGaussW[i] * x.trace();
+          p.evaluator(c + 0.5 * hp * kX8[i], x, f);
+          total += 0.5 * hp * kW8[i] * x.trace();
         }
       }
     }
-    return total;
   }
-  if (!has_sector) return total;
-  const double width = sector_end - sector_begin;
-  for (std::size_t h = 0; h < normal.A.size(); ++h)
-    total -=
-        normal.A[h].trace() * harmonic_mean(static_cast<int>(h), sector_begin, sector_end) * width;
-  for (std::size_t h = 0; h < reversed.A.size(); ++h)
-    total += reversed.A[h].trace() * harmonic_mean(static_cast<int>(h), sector_begin, sector_end) *
-             width;
   return total;
 }
 

@@ -1,4 +1,4 @@
-// flaplag — periodic forced response and time-domain simulation (RK4 on the sector-split grid).
+// flaplag — periodic forced response and time-domain simulation (RK4 on the grid split at the piece edges).
 #include "flaplag/numerics/response.h"
 
 #include <Eigen/LU>
@@ -10,6 +10,7 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/dense.h"
+#include "grid.h"
 
 namespace flaplag {
 namespace {
@@ -17,28 +18,12 @@ namespace {
 constexpr int kMinSteps = 200;
 constexpr int kMaxSteps = 1 << 20;
 
-struct Segment {
-  double a, b;
-  const HarmonicSet* set;  // nullptr: inside the varying region (A, f from its evaluator)
-};
+using detail::Segment;
 
-// The harmonics of the piece whose midpoint is `mid`, or nullptr in the varying region.
-const HarmonicSet* piece_set(const PeriodicSystem& sys, double mid) {
-  return sys.in_varying(mid) ? nullptr : &sys.region(mid);
-}
-
-// Equal steps over [0, 2 pi], split at the sector edges; each piece in its own region.
+// Equal steps over [0, 2 pi], split at the breakpoints; each piece in its own region.
 std::vector<Segment> grid(const PeriodicSystem& sys, int steps) {
-  std::vector<double> cuts;
-  for (int i = 0; i <= steps; ++i) cuts.push_back(kTwoPi * i / steps);
-  for (double e : sys.breakpoints()) cuts.push_back(e);
-  std::sort(cuts.begin(), cuts.end());
   std::vector<Segment> out;
-  for (std::size_t i = 1; i < cuts.size(); ++i) {
-    if (cuts[i] - cuts[i - 1] <= 1e-14) continue;
-    const double mid = 0.5 * (cuts[i] + cuts[i - 1]);
-    out.push_back({cuts[i - 1], cuts[i], piece_set(sys, mid)});
-  }
+  detail::sampled_grid(sys, 0.0, kTwoPi, steps, out);
   return out;
 }
 
@@ -63,21 +48,21 @@ struct Stepper {
   int n;
   Eigen::MatrixXd A0, A1, A2;
   Eigen::VectorXd f0, f1, f2;
-  Eigen::MatrixXd k1, k2, k3, k4, y2, y3, y4;  // the stages and the states they are taken at
-  bool have_end = false;                       // A2, f2 hold A, f at end_psi in end_set
+  detail::Rk4<Eigen::MatrixXd> rk;  // the stages and the states they are taken at
+  bool have_end = false;            // A2, f2 hold A, f at end_psi in end_set
   double end_psi = 0.0;
-  const HarmonicSet* end_set = nullptr;
+  int end_set = -1;
 
   void at(const Segment& s, double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) const {
-    if (s.set == nullptr) {
-      sys->varying(psi, A, f);
+    if (s.set < 0) {
+      detail::evaluator(*sys, s)(psi, A, f);
     } else {
-      eval(*s.set, psi, n, A, f);
+      eval(detail::harmonic_set(*sys, s.set), psi, n, A, f);
     }
   }
   // A, f at the start, middle and end of s into A0 .. A2, f0 .. f2.
   void coefficients(const Segment& s) {
-    if (have_end && s.set != nullptr && end_set == s.set && end_psi == s.a) {
+    if (have_end && s.set >= 0 && end_set == s.set && end_psi == s.a) {
       A0.swap(A2);
       f0.swap(f2);
     } else {
@@ -85,30 +70,24 @@ struct Stepper {
     }
     at(s, 0.5 * (s.a + s.b), A1, f1);
     at(s, s.b, A2, f2);
-    have_end = s.set != nullptr;
+    have_end = s.set >= 0;
     end_psi = s.b;
     end_set = s.set;
   }
-  // The four stages of the step from Y over s (k1 .. k4, and y2 .. y4 the states of stages 2-4).
+  // The four stages of the step from Y over s (rk.k1 .. k4, and rk.y2 .. y4 the states of
+  // stages 2-4).
   void stages(const Segment& s, const Eigen::MatrixXd& Y, const Eigen::RowVectorXd& c) {
-    const double h = s.b - s.a;
     coefficients(s);
-    k1.noalias() = A0 * Y;
-    k1.noalias() += f0 * c;
-    y2 = Y + 0.5 * h * k1;
-    k2.noalias() = A1 * y2;
-    k2.noalias() += f1 * c;
-    y3 = Y + 0.5 * h * k2;
-    k3.noalias() = A1 * y3;
-    k3.noalias() += f1 * c;
-    y4 = Y + h * k3;
-    k4.noalias() = A2 * y4;
-    k4.noalias() += f2 * c;
+    rk.stages(s.b - s.a, Y, [&](int stage, const Eigen::MatrixXd& y, Eigen::MatrixXd& k) {
+      const Eigen::MatrixXd& A = stage == 0 ? A0 : stage == 3 ? A2 : A1;
+      const Eigen::VectorXd& f = stage == 0 ? f0 : stage == 3 ? f2 : f1;
+      k.noalias() = A * y;
+      k.noalias() += f * c;
+    });
   }
   void step(const Segment& s, Eigen::MatrixXd& Y, const Eigen::RowVectorXd& c) {
     stages(s, Y, c);
-    const double h = s.b - s.a;
-    Y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    rk.advance(s.b - s.a, Y);
   }
 };
 
@@ -207,19 +186,13 @@ Eigen::VectorXd sample_period(const PeriodicSystem& sys, const Eigen::VectorXd& 
   const Eigen::RowVectorXd c = Eigen::RowVectorXd::Ones(1);
   std::vector<double> cuts;
   for (int k = 0; k <= samples; ++k) cuts.push_back(kTwoPi * k / samples);
+  std::vector<Segment> segments;
   for (int k = 0; k < samples; ++k) {
     out.psi.push_back(cuts[k]);
     out.y.push_back(Y.col(0));
-    std::vector<double> pts;
-    for (int i = 0; i <= per; ++i) pts.push_back(cuts[k] + (cuts[k + 1] - cuts[k]) * i / per);
-    for (double e : sys.breakpoints())
-      if (e > cuts[k] && e < cuts[k + 1]) pts.push_back(e);
-    std::sort(pts.begin(), pts.end());
-    for (std::size_t i = 1; i < pts.size(); ++i) {
-      if (pts[i] - pts[i - 1] <= 1e-14) continue;
-      const Segment s{pts[i - 1], pts[i], piece_set(sys, 0.5 * (pts[i] + pts[i - 1]))};
-      st.step(s, Y, c);
-    }
+    segments.clear();
+    detail::sampled_grid(sys, cuts[k], cuts[k + 1], per, segments);
+    for (const Segment& s : segments) st.step(s, Y, c);
   }
   return Y.col(0);
 }
@@ -329,20 +302,15 @@ Simulation sampled_run(const PeriodicSystem& sys, const Eigen::VectorXd& y0,
   Eigen::VectorXd y = y0;
   out.psi.push_back(0.0);
   out.y.push_back(y0);
+  std::vector<Segment> segments;
   for (long k = 0; k < total_samples; ++k) {
     const int j = static_cast<int>(k % options.samples_per_rev);
     const double base = kTwoPi * static_cast<double>(k / options.samples_per_rev);
     const double a = kTwoPi * j / options.samples_per_rev,
                  b = kTwoPi * (j + 1) / options.samples_per_rev;
-    std::vector<double> pts;
-    for (int i = 0; i <= per; ++i) pts.push_back(a + (b - a) * i / per);
-    for (double e : sys.breakpoints())
-      if (e > a && e < b) pts.push_back(e);
-    std::sort(pts.begin(), pts.end());
-    for (std::size_t i = 1; i < pts.size(); ++i) {
-      if (pts[i] - pts[i - 1] <= 1e-14) continue;
-      step(Segment{pts[i - 1], pts[i], piece_set(sys, 0.5 * (pts[i] + pts[i - 1]))}, y);
-    }
+    segments.clear();
+    detail::sampled_grid(sys, a, b, per, segments);
+    for (const Segment& s : segments) step(s, y);
     if (!y.allFinite()) {
       out.status = Status::Failed;
       out.message = "the state overflowed after " +
@@ -377,17 +345,14 @@ Simulation simulate_nonlinear(const PeriodicSystem& grid, const NonlinearRhs& rh
   grid.validate();
   options.Check();
   if (!rhs) throw InvalidInput("rhs", "(empty)", "a right-hand side is required");
-  Eigen::VectorXd k1, k2, k3, k4;
+  detail::Rk4<Eigen::VectorXd> rk;
   return sampled_run(grid, y0, options, [&](const Segment& s, Eigen::VectorXd& y) {
     // The region of the whole segment (its midpoint): a step never straddles a sector edge.
     const double mid = 0.5 * (s.a + s.b);
-    const bool reversed = grid.in_varying(mid) || (grid.has_sector && grid.in_sector(mid));
-    const double h = s.b - s.a;
-    rhs(s.a, reversed, y, k1);
-    rhs(mid, reversed, y + 0.5 * h * k1, k2);
-    rhs(mid, reversed, y + 0.5 * h * k2, k3);
-    rhs(s.b, reversed, y + h * k3, k4);
-    y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    const bool reversed = s.set != 0;
+    rk.step(s.b - s.a, y, [&](int stage, const Eigen::VectorXd& x, Eigen::VectorXd& k) {
+      rhs(stage == 0 ? s.a : stage == 3 ? s.b : mid, reversed, x, k);
+    });
   });
 }
 
@@ -405,13 +370,14 @@ double periodic_mean(const PeriodicSystem& sys, const Eigen::VectorXd& y0, int s
   double integral = 0.0;
   for (const Segment& s : grid(sys, steps)) {
     const double mid = 0.5 * (s.a + s.b), h = s.b - s.a;
-    const bool reversed = sys.in_varying(mid) || (sys.has_sector && sys.in_sector(mid));
+    const bool reversed = s.set != 0;
     // the stages of Stepper::step, with the quantity at each stage's state
     st.stages(s, Y, c);
-    const double t1 = quantity(s.a, reversed, Y.col(0)), t2 = quantity(mid, reversed, st.y2.col(0)),
-                 t3 = quantity(mid, reversed, st.y3.col(0)),
-                 t4 = quantity(s.b, reversed, st.y4.col(0));
-    Y += h / 6.0 * (st.k1 + 2.0 * st.k2 + 2.0 * st.k3 + st.k4);
+    const double t1 = quantity(s.a, reversed, Y.col(0)),
+                 t2 = quantity(mid, reversed, st.rk.y2.col(0)),
+                 t3 = quantity(mid, reversed, st.rk.y3.col(0)),
+                 t4 = quantity(s.b, reversed, st.rk.y4.col(0));
+    st.rk.advance(h, Y);
     integral += h / 6.0 * (t1 + 2.0 * t2 + 2.0 * t3 + t4);
   }
   return std::isfinite(integral) && Y.allFinite() ? integral / kTwoPi

@@ -1,11 +1,11 @@
 // flaplag — transition matrix Phi(2 pi, 0) of y' = A(psi) y (paper Section 3.3).
 //
-// Three methods share one grid rule: the period is cut into equal steps, and a step that
-// contains a reversed-flow sector edge is split there into two substeps, so that A(psi) is
-// smooth (a trigonometric polynomial of one region) on every substep.  Each substep uses the
-// harmonics of the region that contains its midpoint; at a substep end that lies on an edge
-// that is the one-sided limit, which is what the integrators need.  A system with a varying
-// region (the exact reversed flow, periodic_system.h) goes to transition_varying.cc instead.
+// Three methods share one grid rule (grid.h, equal_grid): the period is cut into equal steps,
+// and a step that contains a piece edge is split there, so that A(psi) is smooth (a
+// trigonometric polynomial of one harmonic set) on every substep.  Each substep uses the
+// harmonics of the piece that contains its midpoint; at a substep end that lies on an edge
+// that is the one-sided limit, which is what the integrators need.  A system with an evaluator
+// piece (the exact reversed flow, periodic_system.h) goes to transition_varying.cc instead.
 //
 // Speed: the dimension is a template parameter (fixed-size, stack-allocated Eigen matrices for
 // n = 2, 4, 6, 8; dynamic matrices with preallocated temporaries otherwise); only the entries
@@ -31,10 +31,14 @@
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/dense.h"
 #include "flaplag/numerics/floquet.h"
+#include "flaplag/numerics/gauss_legendre.h"
+#include "grid.h"
 #include "transition_varying.h"
 
 namespace flaplag {
 namespace {
+
+using detail::Segment;
 
 constexpr int kReseed = 32;
 
@@ -50,46 +54,6 @@ double sinc(double x) {
 void check_count(const char* name, int value, int hi = TransitionOptions::kMaxSteps) {
   if (value < 1 || value > hi)
     throw InvalidInput(name, std::to_string(value), "must be 1.." + std::to_string(hi));
-}
-
-// One substep of the grid.  `node` >= 0 marks an unsplit equal step number `node` (its ends
-// are grid points node and node + 1); split substeps have node = -1.
-struct Segment {
-  double a, b;
-  bool reversed;
-  int node;
-};
-
-// N equal steps over [0, 2 pi]; a step containing a sector edge strictly inside is split.
-std::vector<Segment> make_grid(const PeriodicSystem& sys, int steps) {
-  const double d = kTwoPi / steps;
-  double edges[2];
-  int n_edges = 0;
-  for (double e : sys.breakpoints()) edges[n_edges++] = e;
-  // Midpoints lie in (0, 2 pi): no reduction needed (cheaper than in_sector's fmod).
-  auto reversed = [&](double mid) {
-    return sys.has_sector && mid >= sys.sector_begin && mid < sys.sector_end;
-  };
-  // An edge within rounding of a grid point needs no split: the midpoint rule picks the region
-  // of each neighbouring step correctly.
-  const double slack = 1e-12 * kTwoPi;
-  std::vector<Segment> out;
-  out.reserve(static_cast<std::size_t>(steps + n_edges));
-  for (int i = 0; i < steps; ++i) {
-    const double a = i * d;
-    const double b = (i + 1 == steps) ? kTwoPi : (i + 1) * d;
-    double lo = a;
-    bool split = false;
-    for (int k = 0; k < n_edges; ++k) {
-      if (edges[k] > a + slack && edges[k] < b - slack) {
-        out.push_back({lo, edges[k], reversed(0.5 * (lo + edges[k])), -1});
-        lo = edges[k];
-        split = true;
-      }
-    }
-    out.push_back({lo, b, reversed(0.5 * (lo + b)), split ? -1 : i});
-  }
-  return out;
 }
 
 // Unit phasors e^{i psi} = (cos psi, sin psi) are kept as plain doubles rather than
@@ -144,26 +108,28 @@ class Kernel {
   using Mat = Eigen::Matrix<double, N, N>;
 
   explicit Kernel(const PeriodicSystem& sys) : sys_(sys), n_(sys.n) {
-    const HarmonicSet* sets[2] = {&sys.normal, sys.has_sector ? &sys.reversed : nullptr};
     idx_.reserve(static_cast<std::size_t>(n_) * n_);
     for (Eigen::Index l = 0; l < static_cast<Eigen::Index>(n_) * n_; ++l) {
       bool varies = false;
-      for (const HarmonicSet* set : sets)
-        if (set)
-          for (std::size_t h = 1; h < set->A.size(); ++h) varies |= set->A[h](l) != 0.0;
+      for (const HarmonicSet& set : sys.sets)
+        for (std::size_t h = 1; h < set.A.size(); ++h) varies |= set.A[h](l) != 0.0;
       if (varies) idx_.push_back(l);
     }
     const Eigen::Index m = static_cast<Eigen::Index>(idx_.size());
-    for (int r = 0; r < 2; ++r) {
-      if (!sets[r]) continue;
+    region_.resize(sys.sets.size());
+    int max_h = 1;
+    for (std::size_t r = 0; r < sys.sets.size(); ++r) {
+      const HarmonicSet& set = sys.sets[r];
       Region& g = region_[r];
-      g.H = static_cast<int>(sets[r]->A.size());
-      g.A0 = sets[r]->A[0];
+      g.H = static_cast<int>(set.A.size());
+      g.A0 = set.A[0];
       g.V = Eigen::MatrixXd::Zero((m + 3) / 4 * 4, g.H - 1);
       for (int h = 1; h < g.H; ++h)
-        for (Eigen::Index e = 0; e < m; ++e) g.V(e, h - 1) = sets[r]->A[h](idx_[e]);
+        for (Eigen::Index e = 0; e < m; ++e) g.V(e, h - 1) = set.A[h](idx_[e]);
+      max_h = std::max(max_h, g.H);
     }
-    basis_.resize(static_cast<std::size_t>(std::max(region_[0].H, region_[1].H)));
+    max_order_ = max_h / 2;
+    basis_.resize(static_cast<std::size_t>(max_h));
     w_.resize((idx_.size() + 3) / 4 * 4);
     ones_.assign(static_cast<std::size_t>(max_order()) + 1, 1.0);
   }
@@ -173,7 +139,7 @@ class Kernel {
   // Hsu, eqs 3.21-3.28: constant C_k = exact interval mean of A, exp(Delta C_k) by J Taylor
   // terms, H(K) = prod exp(Delta_k C_k) with later intervals multiplied from the left (3.25).
   Mat hsu(int K, int J) {
-    const std::vector<Segment> grid = make_grid(sys_, K);
+    const std::vector<Segment> grid = detail::equal_grid(sys_, K);
     const double d = kTwoPi / K;
     // Means of cos k psi, sin k psi over an equal interval are the midpoint values times
     // sinc(k d / 2) (eqs 4.2-4.5): one damping table for the whole grid.
@@ -186,12 +152,12 @@ class Kernel {
       const double delta = s.b - s.a;
       // X = Delta C_k with C_k the exact mean of A over the substep.
       if (s.node >= 0) {
-        evaluate(s.reversed, mids[2 * s.node], mids[2 * s.node + 1], damp.data(), delta, X);
+        evaluate(s.set, mids[2 * s.node], mids[2 * s.node + 1], damp.data(), delta, X);
       } else {
         // A substep cut at a sector edge: the same formula with its own width.
         sinc_table(0.5 * delta, dsub);
         const Phasor z = phasor(0.5 * (s.a + s.b));
-        evaluate(s.reversed, z.c, z.s, dsub.data(), delta, X);
+        evaluate(s.set, z.c, z.s, dsub.data(), delta, X);
       }
       taylor(X, J, X2, T, E);
       P.noalias() = E * Phi;
@@ -202,50 +168,45 @@ class Kernel {
 
   // Classical RK4 on the matrix ODE Phi' = A Phi (paper 3.3.2, all columns at once).
   Mat rk4(int steps) {
-    const std::vector<Segment> grid = make_grid(sys_, steps);
+    const std::vector<Segment> grid = detail::equal_grid(sys_, steps);
     // A is needed at the start (unless it equals the previous end), the midpoint and the end of
     // every substep; on unsplit steps these are the points psi_j = j d/2.
     const double* damp = ones_.data();
     const std::vector<double> pts = phasor_grid(0.0, 0.5 * kTwoPi / steps, 2 * steps + 1);
-    auto at = [&](int j, Mat& out, bool reversed) {
-      evaluate(reversed, pts[2 * j], pts[2 * j + 1], damp, 1.0, out);
+    auto at = [&](int j, Mat& out, int set) {
+      evaluate(set, pts[2 * j], pts[2 * j + 1], damp, 1.0, out);
     };
-    auto at_psi = [&](double psi, Mat& out, bool reversed) {
+    auto at_psi = [&](double psi, Mat& out, int set) {
       const Phasor z = phasor(psi);
-      evaluate(reversed, z.c, z.s, damp, 1.0, out);
+      evaluate(set, z.c, z.s, damp, 1.0, out);
     };
     Mat Phi = identity();
-    Mat Aa(n_, n_), Am(n_, n_), Ab(n_, n_), Y(n_, n_), k1(n_, n_), k2(n_, n_), k3(n_, n_),
-        k4(n_, n_);
+    Mat Aa(n_, n_), Am(n_, n_), Ab(n_, n_);
+    detail::Rk4<Mat> rk;
     for (std::size_t i = 0; i < grid.size(); ++i) {
       const Segment& s = grid[i];
       const double h = s.b - s.a;
-      const bool reuse = i > 0 && grid[i - 1].reversed == s.reversed;
+      const bool reuse = i > 0 && !s.after_break;  // A at a is the previous end
       if (s.node >= 0) {
         if (reuse) {
           Aa = Ab;
         } else {
-          at(2 * s.node, Aa, s.reversed);
+          at(2 * s.node, Aa, s.set);
         }
-        at(2 * s.node + 1, Am, s.reversed);
-        at(2 * s.node + 2, Ab, s.reversed);
+        at(2 * s.node + 1, Am, s.set);
+        at(2 * s.node + 2, Ab, s.set);
       } else {
         if (reuse) {
           Aa = Ab;
         } else {
-          at_psi(s.a, Aa, s.reversed);
+          at_psi(s.a, Aa, s.set);
         }
-        at_psi(0.5 * (s.a + s.b), Am, s.reversed);
-        at_psi(s.b, Ab, s.reversed);
+        at_psi(0.5 * (s.a + s.b), Am, s.set);
+        at_psi(s.b, Ab, s.set);
       }
-      k1.noalias() = Aa * Phi;
-      Y = Phi + (0.5 * h) * k1;
-      k2.noalias() = Am * Y;
-      Y = Phi + (0.5 * h) * k2;
-      k3.noalias() = Am * Y;
-      Y = Phi + h * k3;
-      k4.noalias() = Ab * Y;
-      Phi += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+      rk.step(h, Phi, [&](int stage, const Mat& y, Mat& k) {
+        k.noalias() = (stage == 0 ? Aa : stage == 3 ? Ab : Am) * y;
+      });
     }
     return Phi;
   }
@@ -254,17 +215,17 @@ class Kernel {
   //   Omega = h/2 (A1 + A2) + sqrt(3) h^2 / 12 [A2, A1],  Phi <- exp(Omega) Phi.
   // The method is symmetric, so its global error expands in h^4, h^6, ...
   Mat magnus(const std::vector<Segment>& grid) {
-    const double g = std::sqrt(3.0) / 6.0;
+    const double g = gauss::kGauss2Offset;
     Mat Phi = identity();
     Mat A1(n_, n_), A2(n_, n_), Om(n_, n_), E(n_, n_), P(n_, n_);
     for (const Segment& s : grid) {
       const double h = s.b - s.a;
-      point(s.reversed, s.a + (0.5 - g) * h, A1);
-      point(s.reversed, s.a + (0.5 + g) * h, A2);
+      point(s.set, s.a + (0.5 - g) * h, A1);
+      point(s.set, s.a + (0.5 + g) * h, A2);
       Om = (0.5 * h) * (A1 + A2);
       P.noalias() = A2 * A1;
       P.noalias() -= A1 * A2;
-      Om += (std::sqrt(3.0) / 12.0 * h * h) * P;
+      Om += (0.5 * gauss::kGauss2Offset * h * h) * P;
       E = matrix_exponential(Om);  // scaling and squaring, Pade approximant (dense.h)
       P.noalias() = E * Phi;
       Phi = P;
@@ -279,7 +240,7 @@ class Kernel {
     Eigen::MatrixXd V;  // m (padded to 4k) x (H-1): coefficients (h >= 1) of varying entries
   };
 
-  int max_order() const { return std::max(region_[0].H, region_[1].H) / 2; }
+  int max_order() const { return max_order_; }
 
   // table[k] = sinc(k x), k = 0 .. max order (a few sin calls per grid, not per interval).
   void sinc_table(double x, std::vector<double>& table) const {
@@ -292,8 +253,8 @@ class Kernel {
   // out = scale * A: the constant harmonic plus the entries that vary with psi, each a dot
   // product of its harmonic coefficients (h >= 1) with the basis of z = e^{i psi} scaled by
   // damp (fill_basis).
-  void evaluate(bool reversed, double zc, double zs, const double* damp, double scale, Mat& out) {
-    const Region& g = region_[reversed];
+  void evaluate(int set, double zc, double zs, const double* damp, double scale, Mat& out) {
+    const Region& g = region_[set];
     out = scale * g.A0;
     const Eigen::Index m = static_cast<Eigen::Index>(idx_.size());
     const int hb = g.H - 1;
@@ -326,9 +287,9 @@ class Kernel {
   }
 
   // A at psi with the harmonics of the given region (one-sided value at an edge).
-  void point(bool reversed, double psi, Mat& out) {
+  void point(int set, double psi, Mat& out) {
     const Phasor z = phasor(psi);
-    evaluate(reversed, z.c, z.s, ones_.data(), 1.0, out);
+    evaluate(set, z.c, z.s, ones_.data(), 1.0, out);
   }
 
   // E = sum_{j=0}^{J} X^j / j!  (eq 3.27).  J <= 4 by Paterson-Stockmeyer (at most two
@@ -372,7 +333,8 @@ class Kernel {
   const PeriodicSystem& sys_;
   int n_;
   std::vector<Eigen::Index> idx_;  // column-major indices of the entries that vary with psi
-  Region region_[2];
+  std::vector<Region> region_;     // per harmonic set of the system
+  int max_order_ = 0;
   std::vector<double> basis_, w_;  // workspace of evaluate()
   std::vector<double> ones_;       // damping factors of point values
 };
@@ -393,13 +355,17 @@ class Kernel {
 // harmonics); beyond, the Eigen kernel is used.
 constexpr int kPlainMaxHarmonics = 64;
 
+// Most pieces (and edges) the plain and wide kernels take; beyond, the Eigen kernel is used.
+constexpr int kPlainMaxPieces = 8;
+
 struct PlainHsuInput {
   int K = 0;
   int n_edges = 0;
-  double edges[2] = {0.0, 0.0};
-  bool has_sector = false;
-  double sector_begin = 0.0, sector_end = 0.0;
-  int H[2] = {0, 0};                                  // harmonics of each region
+  double edges[kPlainMaxPieces] = {};  // the piece edges inside (0, 2 pi)
+  int n_pieces = 0;
+  double piece_end[kPlainMaxPieces] = {};
+  int piece_set[kPlainMaxPieces] = {};
+  int H[2] = {0, 0};                                  // harmonics of each set
   const double* A[2][kPlainMaxHarmonics] = {{}, {}};  // column-major n x n, in place
   double damp[kPlainMaxHarmonics / 2 + 2] = {};       // sinc(k d / 2), the equal-step means
   double ones[kPlainMaxHarmonics / 2 + 2] = {};       // 1: point values
@@ -407,8 +373,11 @@ struct PlainHsuInput {
   bool even_rows_only = false;  // Hsu: only the rows 0, 2, 4, ... of A_h, h >= 1, are nonzero
 };
 
-[[gnu::always_inline]] inline bool plain_reversed(const PlainHsuInput& in, double mid) {
-  return in.has_sector && mid >= in.sector_begin && mid < in.sector_end;
+// The harmonic set of the piece that contains mid (in (0, 2 pi)).
+[[gnu::always_inline]] inline int plain_set(const PlainHsuInput& in, double mid) {
+  int i = 0;
+  while (i + 1 < in.n_pieces && !(mid < in.piece_end[i])) ++i;
+  return in.piece_set[i];
 }
 
 // Matrices of the plain kernel: column-major, each column as N/4 vectors of four doubles (GCC
@@ -556,8 +525,8 @@ template <int N>
     for (int i = 0; i < N; ++i) dst[j * N + i] = Mt.at(j, i);
 }
 
-// The grid rule of make_grid() walked without storing it: step i of K, split at a sector edge
-// strictly inside it (beyond rounding), each substep in the region of its midpoint.
+// The grid rule of detail::equal_grid() walked without storing it: step i of K, split at a sector
+// edge strictly inside it (beyond rounding), each substep in the region of its midpoint.
 //
 // kPair: Phi at K / 2 as well (K even) into out_half.  The exact interval means are additive,
 // so Delta C of an unsplit coarse step is the sum of those of its two fine steps (equal to its
@@ -573,20 +542,16 @@ template <int N, bool kEvenRows, bool kPair>
   const int K = in.K;
   const double d = kTwoPi / K;
   const double dc = kTwoPi / (K / 2);  // the coarse step (kPair)
-  const double slack = 1e-12 * kTwoPi;
   const Phasor step = phasor(d);
   double zc = 1.0, zs = 0.0;  // e^{i mid_i}, the rotation recurrence of phasor_grid()
   double w[kPlainMaxHarmonics], dsub[kPlainMaxHarmonics / 2 + 2];
   auto split_inside = [&](double a, double b) __attribute__((always_inline)) {
-    bool split = false;
-    for (int k = 0; k < in.n_edges; ++k)
-      split |= in.edges[k] > a + slack && in.edges[k] < b - slack;
-    return split;
+    return detail::edge_inside(a, b, in.edges, in.n_edges);
   };
   auto substep = [&](double a, double b, PlainMat<N>& P) __attribute__((always_inline)) {
     const double delta = b - a;
     const double mid = 0.5 * (a + b);
-    const int r = plain_reversed(in, mid) ? 1 : 0;
+    const int r = plain_set(in, mid);
     dsub[0] = 1.0;
     for (int k = 1; k <= in.max_order; ++k) dsub[k] = sinc(k * 0.5 * delta);
     const Phasor z = phasor(mid);
@@ -595,14 +560,10 @@ template <int N, bool kEvenRows, bool kPair>
     plain_taylor4_step_t<N>(Y, P);
   };
   auto split_step = [&](double a, double b, PlainMat<N>& P) __attribute__((always_inline)) {
-    double lo = a;
-    for (int k = 0; k < in.n_edges; ++k) {
-      if (in.edges[k] > a + slack && in.edges[k] < b - slack) {
-        substep(lo, in.edges[k], P);
-        lo = in.edges[k];
-      }
-    }
-    substep(lo, b, P);
+    detail::split_step(
+        a, b, in.edges, in.n_edges, [&](double lo, double hi) __attribute__((always_inline)) {
+          substep(lo, hi, P);
+        });
   };
   for (int i = 0; i < K; ++i) {
     if (i % kReseed == 0) {
@@ -618,7 +579,7 @@ template <int N, bool kEvenRows, bool kPair>
     const double b = (i + 1 == K) ? kTwoPi : (i + 1) * d;
     const bool split = split_inside(a, b);
     if (!split) {
-      const int r = plain_reversed(in, 0.5 * (a + b)) ? 1 : 0;
+      const int r = plain_set(in, 0.5 * (a + b));
       plain_weights(zc, zs, in.H[r], in.damp, b - a, w);
       plain_weighted_sum_t<N, kEvenRows>(in.A[r], in.H[r], w, Y);
       plain_taylor4_step_t<N>(Y, Phi);
@@ -758,19 +719,19 @@ template <int N>
 [[gnu::always_inline]] inline void plain_magnus_impl(const PlainHsuInput& in, const Segment* grid,
                                                      int count, double* out) {
   constexpr int V = N * N / 4;
-  const double g = std::sqrt(3.0) / 6.0;
+  const double g = gauss::kGauss2Offset;
   PlainMat<N> Phi, A1, A2, Om, P, Q;
   plain_identity<N>(Phi);
   double w[kPlainMaxHarmonics];
   for (int i = 0; i < count; ++i) {
     const Segment& sg = grid[i];
     const double h = sg.b - sg.a;
-    const int r = sg.reversed ? 1 : 0;
+    const int r = sg.set;
     plain_point<N>(in, r, sg.a + (0.5 - g) * h, w, A1);
     plain_point<N>(in, r, sg.a + (0.5 + g) * h, w, A2);
     plain_mul<N>(A2, A1, P);
     plain_mul<N>(A1, A2, Q);
-    const double c1 = 0.5 * h, c2 = std::sqrt(3.0) / 12.0 * h * h;
+    const double c1 = 0.5 * h, c2 = 0.5 * gauss::kGauss2Offset * h * h;
     for (int e = 0; e < V; ++e) Om.c[e] = (A1.c[e] + A2.c[e]) * c1 + (P.c[e] - Q.c[e]) * c2;
     plain_expm<N>(Om);
     plain_mul<N>(Om, Phi, P);
@@ -798,23 +759,23 @@ bool plain_size(int n) { return n == 4 || n == 8 || n == 12 || n == 16; }
 // The input of the plain kernels for grids of K equal steps; false when they do not apply
 // (n without a plain kernel, or more than kPlainMaxHarmonics harmonics).
 bool plain_input(const PeriodicSystem& sys, int K, PlainHsuInput& in) {
-  if (!plain_size(sys.n) || sys.has_varying) return false;  // varying: transition_varying.cc
+  // evaluator pieces: transition_varying.cc
+  if (!plain_size(sys.n) || sys.has_evaluator() || sys.sets.size() > 2 ||
+      sys.pieces.size() > static_cast<std::size_t>(kPlainMaxPieces))
+    return false;
   in.K = K;
-  const HarmonicSet* sets[2] = {&sys.normal, sys.has_sector ? &sys.reversed : &sys.normal};
-  for (int r = 0; r < 2; ++r) {
-    const int H = static_cast<int>(sets[r]->A.size());
+  for (std::size_t r = 0; r < sys.sets.size(); ++r) {
+    const HarmonicSet& set = sys.sets[r];
+    const int H = static_cast<int>(set.A.size());
     if (H > kPlainMaxHarmonics) return false;
     in.H[r] = H;
-    for (int h = 0; h < H; ++h) in.A[r][h] = sets[r]->A[h].data();
+    for (int h = 0; h < H; ++h) in.A[r][h] = set.A[static_cast<std::size_t>(h)].data();
     in.max_order = std::max(in.max_order, H / 2);
   }
-  in.has_sector = sys.has_sector;
-  in.sector_begin = sys.sector_begin;
-  in.sector_end = sys.sector_end;
-  if (sys.has_sector) {
-    if (sys.sector_begin > 0.0 && sys.sector_begin < kTwoPi)
-      in.edges[in.n_edges++] = sys.sector_begin;
-    if (sys.sector_end > 0.0 && sys.sector_end < kTwoPi) in.edges[in.n_edges++] = sys.sector_end;
+  for (const SystemPiece& p : sys.pieces) {
+    if (in.n_pieces > 0) in.edges[in.n_edges++] = p.begin;
+    in.piece_end[in.n_pieces] = p.end;
+    in.piece_set[in.n_pieces++] = p.set;
   }
   in.damp[0] = 1.0;
   for (int k = 1; k <= in.max_order; ++k) in.damp[k] = sinc(k * 0.5 * kTwoPi / K);
@@ -828,7 +789,7 @@ bool plain_hsu_input(const PeriodicSystem& sys, int K, std::vector<double>& work
                      PlainHsuInput& in) {
   if (!plain_input(sys, K, in)) return false;
   const int n = sys.n;
-  const bool same = !sys.has_sector;  // region 1 is region 0
+  const bool same = sys.sets.size() == 1;  // set 1 is set 0
   const std::size_t count = static_cast<std::size_t>(in.H[0] + (same ? 0 : in.H[1]));
   if (work.size() < count * n * n) work.resize(count * n * n);
   double* t = work.data();
@@ -953,9 +914,7 @@ class WideBuffer {
 struct WideInput {
   WideShape shape;
   int H[2] = {0, 0};
-  WideBuffer A[2];  // harmonic h of region r at A[r].data() + h * shape.size()
-  bool has_sector = false;
-  double sector_begin = 0.0, sector_end = 0.0;
+  WideBuffer A[2];  // harmonic h of set r at A[r].data() + h * shape.size()
 };
 
 // C = A B on wide matrices: column j of C is sum_k A(:, k) B(k, j), in blocks of B vectors of
@@ -1102,18 +1061,18 @@ __attribute__((target_clones("avx2", "default"))) void wide_magnus_steps(const W
   const std::size_t size = s.size();
   V4 *A1 = work, *A2 = work + size, *P = work + 2 * size, *Q = work + 3 * size;
   V4* t = work + 4 * size;  // five matrices for wide_expm
-  const double g = std::sqrt(3.0) / 6.0;
+  const double g = gauss::kGauss2Offset;
   std::fill(phi, phi + size, V4{0.0, 0.0, 0.0, 0.0});
   wide_add_diagonal(s, phi, 1.0);
   for (int i = 0; i < count; ++i) {
     const Segment& sg = grid[i];
     const double h = sg.b - sg.a;
-    const int r = sg.reversed ? 1 : 0;
+    const int r = sg.set;
     wide_point(in, r, sg.a + (0.5 - g) * h, A1);
     wide_point(in, r, sg.a + (0.5 + g) * h, A2);
     wide_mul(s, A2, A1, P);
     wide_mul(s, A1, A2, Q);
-    const double c1 = 0.5 * h, c2 = std::sqrt(3.0) / 12.0 * h * h;
+    const double c1 = 0.5 * h, c2 = 0.5 * gauss::kGauss2Offset * h * h;
     for (std::size_t e = 0; e < size; ++e) A1[e] = (A1[e] + A2[e]) * c1 + (P[e] - Q[e]) * c2;
     wide_expm(s, A1, t);
     wide_mul(s, A1, phi, P);
@@ -1127,9 +1086,8 @@ __attribute__((target_clones("avx2", "default"))) void wide_magnus_steps(const W
 std::vector<int> balancing_exponents(const PeriodicSystem& sys) {
   const int n = sys.n;
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
-  for (const HarmonicSet* set : {&sys.normal, sys.has_sector ? &sys.reversed : nullptr})
-    if (set != nullptr)
-      for (const Eigen::MatrixXd& a : set->A) m += a.cwiseAbs();
+  for (const HarmonicSet& set : sys.sets)
+    for (const Eigen::MatrixXd& a : set.A) m += a.cwiseAbs();
   std::vector<int> e(static_cast<std::size_t>(n), 0);
   for (int sweep = 0; sweep < 64; ++sweep) {
     bool done = true;
@@ -1165,24 +1123,21 @@ bool wide_input(const PeriodicSystem& sys, const std::vector<int>& e, WideInput&
   s.n = sys.n;
   s.np = (sys.n + 3) / 4 * 4;
   s.q = s.np / 4;
-  const HarmonicSet* sets[2] = {&sys.normal, sys.has_sector ? &sys.reversed : &sys.normal};
-  for (int r = 0; r < 2; ++r) {
-    const int H = static_cast<int>(sets[r]->A.size());
+  if (sys.sets.size() > 2) return false;
+  for (std::size_t r = 0; r < sys.sets.size(); ++r) {
+    const int H = static_cast<int>(sys.sets[r].A.size());
     if (H > kPlainMaxHarmonics) return false;
     in.H[r] = H;
     in.A[r].resize(static_cast<std::size_t>(H) * s.size());
     for (int h = 0; h < H; ++h) {
       V4* dst = in.A[r].data() + static_cast<std::size_t>(h) * s.size();
-      const Eigen::MatrixXd& a = sets[r]->A[static_cast<std::size_t>(h)];
+      const Eigen::MatrixXd& a = sys.sets[r].A[static_cast<std::size_t>(h)];
       for (int j = 0; j < s.n; ++j)
         for (int i = 0; i < s.n; ++i)
           dst[static_cast<std::size_t>(j) * s.q + i / 4][i % 4] =
               std::ldexp(a(i, j), e[static_cast<std::size_t>(j)] - e[static_cast<std::size_t>(i)]);
     }
   }
-  in.has_sector = sys.has_sector;
-  in.sector_begin = sys.sector_begin;
-  in.sector_end = sys.sector_end;
   return true;
 }
 
@@ -1192,7 +1147,7 @@ bool wide_size(int n) { return n > 8 && !plain_size(n); }
 // Magnus on `grid` by the wide kernel when it applies; false otherwise.
 bool wide_magnus(const PeriodicSystem& sys, const std::vector<Segment>& grid,
                  Eigen::MatrixXd& phi) {
-  if (!wide_size(sys.n) || sys.has_varying) return false;
+  if (!wide_size(sys.n) || sys.has_evaluator()) return false;
   const std::vector<int> e = balancing_exponents(sys);
   WideInput in;
   if (!wide_input(sys, e, in)) return false;
@@ -1233,19 +1188,6 @@ Eigen::MatrixXd dispatch(const PeriodicSystem& sys, Fn&& fn) {
       return fn(k);
     }
   }
-}
-
-// The Magnus grid doubled by bisecting every substep, so that the two grids are proportional
-// and Richardson extrapolation removes the h^4 term exactly.
-std::vector<Segment> bisect(const std::vector<Segment>& grid) {
-  std::vector<Segment> out;
-  out.reserve(2 * grid.size());
-  for (const Segment& s : grid) {
-    const double m = 0.5 * (s.a + s.b);
-    out.push_back({s.a, m, s.reversed, -1});
-    out.push_back({m, s.b, s.reversed, -1});
-  }
-  return out;
 }
 
 }  // namespace
@@ -1290,7 +1232,7 @@ std::string method_names() {
 Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps) {
   check_count("steps", steps);
   sys.validate();
-  if (sys.has_varying) return detail::varying_rk4(sys, steps);  // transition_varying.cc
+  if (sys.has_evaluator()) return detail::varying_rk4(sys, steps);  // transition_varying.cc
   return dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.rk4(steps)); });
 }
 
@@ -1300,7 +1242,7 @@ void transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms,
   check_count("intervals", intervals);
   check_count("terms", terms, TransitionOptions::kMaxTerms);
   sys.validate();
-  if (sys.has_varying) {
+  if (sys.has_evaluator()) {
     *phi = detail::varying_hsu(sys, intervals, terms);
   } else if (!plain_hsu(sys, intervals, terms, *phi)) {
     *phi = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.hsu(intervals, terms)); });
@@ -1341,9 +1283,9 @@ Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, 
 TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps) {
   check_count("steps", steps);
   sys.validate();
-  if (sys.has_varying) return detail::varying_magnus4(sys, steps);
-  const std::vector<Segment> coarse = make_grid(sys, steps);
-  const std::vector<Segment> fine = bisect(coarse);
+  if (sys.has_evaluator()) return detail::varying_magnus4(sys, steps);
+  const std::vector<Segment> coarse = detail::equal_grid(sys, steps);
+  const std::vector<Segment> fine = detail::bisect(coarse);
   Eigen::MatrixXd ph, ph2;
   if (!plain_magnus(sys, coarse, ph) && !wide_magnus(sys, coarse, ph))
     ph = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(coarse)); });
@@ -1365,12 +1307,12 @@ Eigen::MatrixXd transition_matrix_magnus4_level(const PeriodicSystem& sys, int s
         "bisections", std::to_string(bisections),
         "steps * 2^bisections must be at most " + std::to_string(TransitionOptions::kMaxSteps));
   sys.validate();
-  if (sys.has_varying)
+  if (sys.has_evaluator())
     throw InvalidInput("sys", "varying region",
                        "the Magnus levels are for sector systems (transition_magnus4 handles the "
                        "varying region)");
-  std::vector<Segment> grid = make_grid(sys, steps);
-  for (int b = 0; b < bisections; ++b) grid = bisect(grid);
+  std::vector<Segment> grid = detail::equal_grid(sys, steps);
+  for (int b = 0; b < bisections; ++b) grid = detail::bisect(grid);
   Eigen::MatrixXd phi;
   if (!plain_magnus(sys, grid, phi) && !wide_magnus(sys, grid, phi))
     phi = dispatch(sys, [&](auto& k) { return Eigen::MatrixXd(k.magnus(grid)); });

@@ -1,6 +1,6 @@
-// flaplag — transition matrices with a varying region (exact reversed flow): the methods of
-// transition.cc on dynamic matrices, with A(psi) from the harmonics outside the varying region
-// and from its evaluator inside.
+// flaplag — transition matrices of a system with an evaluator piece (exact reversed flow): the
+// methods of transition.cc on dynamic matrices, with A(psi) from the harmonics of the harmonic
+// pieces and from the evaluator inside its piece.
 //
 // Hsu (eqs 3.21-3.28) needs the mean of A over each substep: exact for the harmonic parts
 // (eqs 4.2-4.5), a 3-point Gauss-Legendre mean inside the varying region (its error O(h^6) is
@@ -14,40 +14,13 @@
 
 #include "flaplag/core/constants.h"
 #include "flaplag/numerics/dense.h"
+#include "flaplag/numerics/gauss_legendre.h"
+#include "grid.h"
 
 namespace flaplag::detail {
 namespace {
 
-struct Piece {
-  double a, b;
-  bool varying;              // inside the varying region (by the midpoint)
-  bool after_break = false;  // a starts at a breakpoint (A may jump or kink there)
-};
-
-// N equal steps over [0, 2 pi]; a step containing a breakpoint strictly inside is split there
-// (a breakpoint within rounding of a grid point needs no split, as in transition.cc).
-std::vector<Piece> make_grid(const PeriodicSystem& sys, int steps) {
-  const std::vector<double> edges = sys.breakpoints();
-  const double d = kTwoPi / steps;
-  const double slack = 1e-12 * kTwoPi;
-  std::vector<Piece> out;
-  out.reserve(static_cast<std::size_t>(steps) + edges.size());
-  std::size_t k = 0;
-  for (int i = 0; i < steps; ++i) {
-    const double a = i * d;
-    const double b = (i + 1 == steps) ? kTwoPi : (i + 1) * d;
-    double lo = a;
-    bool at_break = false;
-    while (k < edges.size() && edges[k] <= a + slack) at_break |= edges[k++] >= a - slack;
-    while (k < edges.size() && edges[k] < b - slack) {
-      out.push_back({lo, edges[k], sys.in_varying(0.5 * (lo + edges[k])), at_break});
-      lo = edges[k++];
-      at_break = true;
-    }
-    out.push_back({lo, b, sys.in_varying(0.5 * (lo + b)), at_break});
-  }
-  return out;
-}
+using Piece = Segment;
 
 // A at psi on piece p: the evaluator inside the varying region (psi may be a piece end on the
 // region's edge: the one-sided value), else the harmonics of the region of p's midpoint.
@@ -55,11 +28,11 @@ class Evaluator {
  public:
   explicit Evaluator(const PeriodicSystem& sys) : sys_(sys) {}
   void at(const Piece& p, double psi, Eigen::MatrixXd& out) {
-    if (p.varying) {
-      sys_.varying(psi, out, f_);
+    if (p.set < 0) {
+      evaluator(sys_, p)(psi, out, f_);
       return;
     }
-    const HarmonicSet& set = sys_.region(0.5 * (p.a + p.b));
+    const HarmonicSet& set = harmonic_set(sys_, p.set);
     out = set.A[0];
     // cos k psi, sin k psi by the rotation recurrence from one sin/cos pair
     const double c1 = std::cos(psi), s1 = std::sin(psi);
@@ -91,7 +64,7 @@ void taylor(const Eigen::MatrixXd& X, int J, Eigen::MatrixXd& Y, Eigen::MatrixXd
 }
 
 Eigen::MatrixXd magnus(const PeriodicSystem& sys, const std::vector<Piece>& grid) {
-  const double g = std::sqrt(3.0) / 6.0;
+  const double g = gauss::kGauss2Offset;
   Evaluator ev(sys);
   Eigen::MatrixXd Phi = Eigen::MatrixXd::Identity(sys.n, sys.n), A1, A2;
   for (const Piece& p : grid) {
@@ -99,7 +72,7 @@ Eigen::MatrixXd magnus(const PeriodicSystem& sys, const std::vector<Piece>& grid
     ev.at(p, p.a + (0.5 - g) * h, A1);
     ev.at(p, p.a + (0.5 + g) * h, A2);
     Eigen::MatrixXd Om = (0.5 * h) * (A1 + A2);
-    Om += (std::sqrt(3.0) / 12.0 * h * h) * (A2 * A1 - A1 * A2);
+    Om += (0.5 * gauss::kGauss2Offset * h * h) * (A2 * A1 - A1 * A2);
     const Eigen::MatrixXd E = matrix_exponential(Om);
     Phi = E * Phi;
   }
@@ -111,9 +84,9 @@ Eigen::MatrixXd magnus(const PeriodicSystem& sys, const std::vector<Piece>& grid
 Eigen::MatrixXd varying_rk4(const PeriodicSystem& sys, int steps) {
   Evaluator ev(sys);
   const int n = sys.n;
-  Eigen::MatrixXd Phi = Eigen::MatrixXd::Identity(n, n), Aa(n, n), Am(n, n), Ab(n, n), Y(n, n),
-                  k1(n, n), k2(n, n), k3(n, n), k4(n, n);
-  const std::vector<Piece> grid = make_grid(sys, steps);
+  Eigen::MatrixXd Phi = Eigen::MatrixXd::Identity(n, n), Aa(n, n), Am(n, n), Ab(n, n);
+  Rk4<Eigen::MatrixXd> rk;
+  const std::vector<Piece> grid = equal_grid(sys, steps);
   for (std::size_t i = 0; i < grid.size(); ++i) {
     const Piece& p = grid[i];
     const double h = p.b - p.a;
@@ -125,33 +98,26 @@ Eigen::MatrixXd varying_rk4(const PeriodicSystem& sys, int steps) {
     }
     ev.at(p, 0.5 * (p.a + p.b), Am);
     ev.at(p, p.b, Ab);
-    k1.noalias() = Aa * Phi;
-    Y = Phi + (0.5 * h) * k1;
-    k2.noalias() = Am * Y;
-    Y = Phi + (0.5 * h) * k2;
-    k3.noalias() = Am * Y;
-    Y = Phi + h * k3;
-    k4.noalias() = Ab * Y;
-    Phi += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    rk.step(h, Phi, [&](int stage, const Eigen::MatrixXd& y, Eigen::MatrixXd& k) {
+      k.noalias() = (stage == 0 ? Aa : stage == 3 ? Ab : Am) * y;
+    });
   }
   return Phi;
 }
 
 Eigen::MatrixXd varying_hsu(const PeriodicSystem& sys, int intervals, int terms) {
-  // 3-point Gauss-Legendre on [-1, 1]
-  const double gx = std::sqrt(0.6), gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
   Evaluator ev(sys);
   const int n = sys.n;
   Eigen::MatrixXd Phi = Eigen::MatrixXd::Identity(n, n), C(n, n), X(n, n), E(n, n), P(n, n);
-  for (const Piece& p : make_grid(sys, intervals)) {
+  for (const Piece& p : equal_grid(sys, intervals)) {
     // C_k = mean of A over the substep (eq 3.22): exact for the harmonic regions; in the
     // varying region 3-point Gauss (error O(h^6), far below Hsu's own O(h^2)).
-    if (p.varying) {
+    if (p.set < 0) {
       const double m = 0.5 * (p.a + p.b), r = 0.5 * (p.b - p.a);
       C.setZero(sys.n, sys.n);
       for (int i = 0; i < 3; ++i) {
-        ev.at(p, m + (i - 1) * gx * r, X);
-        C += gw[i] * X;
+        ev.at(p, m + gauss::kX3[i] * r, X);
+        C += gauss::kHalfW3[i] * X;
       }
     } else {
       C = sys.A_mean(p.a, p.b);
@@ -166,14 +132,8 @@ Eigen::MatrixXd varying_hsu(const PeriodicSystem& sys, int intervals, int terms)
 
 // As transition_matrix_magnus4: Phi_h and Phi_{h/2} (every piece bisected), Richardson.
 TransitionResult varying_magnus4(const PeriodicSystem& sys, int steps) {
-  const std::vector<Piece> coarse = make_grid(sys, steps);
-  std::vector<Piece> fine;
-  fine.reserve(2 * coarse.size());
-  for (const Piece& p : coarse) {
-    const double m = 0.5 * (p.a + p.b);
-    fine.push_back({p.a, m, p.varying});
-    fine.push_back({m, p.b, p.varying});
-  }
+  const std::vector<Piece> coarse = equal_grid(sys, steps);
+  const std::vector<Piece> fine = bisect(coarse);
   const Eigen::MatrixXd ph = magnus(sys, coarse);
   const Eigen::MatrixXd ph2 = magnus(sys, fine);
   TransitionResult out;

@@ -2,7 +2,7 @@
 // (periodic_system.h), where A(psi) is evaluated point by point instead of from harmonics.
 //
 // Kept apart from the fixed-size harmonic kernels of transition.cc (whose hot path is
-// unchanged): transition.cc dispatches here when sys.has_varying.  Same grid rule (equal steps,
+// unchanged): transition.cc dispatches here when sys.has_evaluator().  Same grid rule (equal steps,
 // a step split at every breakpoint), same methods and orders.
 #pragma once
 

@@ -12,18 +12,15 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/floquet.h"
+#include "flaplag/numerics/gauss_legendre.h"
 #include "flaplag/rotor/system_builder.h"
 
 namespace flaplag {
 namespace {
 
-// 8-point Gauss-Legendre rule on [-1, 1].
-constexpr double kGaussX[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
-                               -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
-                               0.7966664774136267,  0.9602898564975363};
-constexpr double kGaussW[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
-                               0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
-                               0.2223810344533745, 0.1012285362903763};
+// 8-point Gauss-Legendre rule on [-1, 1] (gauss_legendre.h).
+using gauss::kW8;
+using gauss::kX8;
 
 // Smooth pieces of [0, 2 pi]: split at the sector edges; each flagged with its region.
 struct Piece {
@@ -39,7 +36,8 @@ std::vector<Piece> pieces(const PeriodicSystem& s) {
   std::vector<Piece> out;
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
     if (!(cuts[i + 1] > cuts[i])) continue;
-    out.push_back({cuts[i], cuts[i + 1], s.in_sector(0.5 * (cuts[i] + cuts[i + 1]))});
+    const int piece = s.piece_at(0.5 * (cuts[i] + cuts[i + 1]));
+    out.push_back({cuts[i], cuts[i + 1], s.pieces[static_cast<std::size_t>(piece)].set != 0});
   }
   return out;
 }
@@ -97,7 +95,7 @@ std::vector<QuadPoint> quadrature(const PeriodicSystem& s, double omega) {
     for (int i = 0; i < m; ++i) {
       const double mid = pc.a + (i + 0.5) * h;
       for (int g = 0; g < 8; ++g)
-        out.push_back({mid + 0.5 * h * kGaussX[g], 0.5 * h * kGaussW[g], pc.reversed});
+        out.push_back({mid + 0.5 * h * kX8[g], 0.5 * h * kW8[g], pc.reversed});
     }
   }
   return out;
@@ -377,10 +375,12 @@ NonlinearSystem::NonlinearSystem(const detail::SystemBuilder& builder, double mu
   H_ = m.n_nonlinear_harmonics;
   sector_ = builder.system(mu);  // throws InvalidInput("mu", ...) for a bad mu
   normal_ = builder.normal_integrals();
-  if (sector_.has_sector) reversed_ = builder.reversed_integrals(mu);
+  if (sector_.sets.size() > 1) reversed_ = builder.reversed_integrals(mu);
 }
 
-bool NonlinearSystem::reversed(double psi) const { return sector_.in_sector(psi); }
+bool NonlinearSystem::reversed(double psi) const {
+  return sector_.pieces[static_cast<std::size_t>(sector_.piece_at(psi))].set != 0;
+}
 
 void NonlinearSystem::evaluate(double psi, bool in_sector, const Eigen::VectorXd& y,
                                Eigen::VectorXd* F, Eigen::MatrixXd* J) const {
@@ -393,8 +393,8 @@ void NonlinearSystem::evaluate(double psi, bool in_sector, const Eigen::VectorXd
   thread_local Eigen::MatrixXd Jg, D;
   force.assign(static_cast<std::size_t>(H_ * n_), 0.0);
   jac.assign(static_cast<std::size_t>(H_ * n_ * ns_), 0.0);
-  builder_->nonlinear_loads(mu_, in_sector && sector_.has_sector ? reversed_ : normal_, y.data(),
-                            force.data(), jac.data());
+  builder_->nonlinear_loads(mu_, in_sector && sector_.sets.size() > 1 ? reversed_ : normal_,
+                            y.data(), force.data(), jac.data());
   G.setZero(n_);
   if (J != nullptr) Jg.setZero(n_, ns_);
   for (int h = 0; h < H_; ++h) {
@@ -424,8 +424,8 @@ void NonlinearSystem::evaluate(double psi, bool in_sector, const Eigen::VectorXd
 
 double NonlinearSystem::thrust(double psi, bool in_sector, const Eigen::VectorXd& y) const {
   std::vector<double> t(H_);
-  builder_->nonlinear_thrust(mu_, in_sector && sector_.has_sector ? reversed_ : normal_, y.data(),
-                             t.data(), nullptr);
+  builder_->nonlinear_thrust(mu_, in_sector && sector_.sets.size() > 1 ? reversed_ : normal_,
+                             y.data(), t.data(), nullptr);
   double v = 0.0;
   for (int h = 0; h < H_; ++h) v += harmonic_basis(h, psi) * t[h];
   return v;
@@ -450,8 +450,7 @@ std::vector<Eigen::VectorXd> NonlinearSystem::integrate(const Eigen::VectorXd& y
   for (int r = 0; r < revolutions; ++r) {
     for (std::size_t i = 0; i + 1 < grid.size(); ++i) {
       const double a = grid[i], b = grid[i + 1], h = b - a;
-      const bool rev = sector_.has_sector && 0.5 * (a + b) >= sector_.sector_begin &&
-                       0.5 * (a + b) < sector_.sector_end;
+      const bool rev = reversed(0.5 * (a + b));
       evaluate(a, rev, y, &k1, nullptr);
       stage = y + 0.5 * h * k1;
       evaluate(a + 0.5 * h, rev, stage, &k2, nullptr);
@@ -717,8 +716,8 @@ PeriodicEquilibrium periodic_equilibrium(const detail::SystemBuilder& builder, d
   // The linearization: model order (H_nl - 1) / 2 plus 2K.
   const int L = (m.n_nonlinear_harmonics - 1) / 2 + 2 * b.K;
   out.linearization = sys.sector();
-  out.linearization.normal = linear_set(sys, out, false, L);
-  if (out.linearization.has_sector) out.linearization.reversed = linear_set(sys, out, true, L);
+  out.linearization.sets[0] = linear_set(sys, out, false, L);
+  if (out.linearization.sets.size() > 1) out.linearization.sets[1] = linear_set(sys, out, true, L);
 
   Outcome note;  // the problems, in this order
   note.Worsen(Status::Warning, k_note);

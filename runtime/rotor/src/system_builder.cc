@@ -537,41 +537,32 @@ void SystemBuilder::system(double mu, PeriodicSystem* out) const {
   if (!(mu >= 0.0) || !std::isfinite(mu)) {
     throw InvalidInput("mu", round_trip_text(mu), "advance ratio must be finite and >= 0");
   }
-  // Every field as in a new system, the harmonics' storage kept.
-  HarmonicSet normal = std::move(out->normal), reversed = std::move(out->reversed);
-  *out = PeriodicSystem{};
-  out->normal = std::move(normal);
-  out->reversed = std::move(reversed);
-  PeriodicSystem& sys = *out;
+  // A new system, the harmonic sets' storage kept (a sweep rebuilds one system per mu).
+  std::vector<HarmonicSet> sets = std::move(out->sets);
+  sets.resize(2);
+  assemble(mu, aero_.normal(), sets[0]);
+  drop_zero_harmonics(sets[0]);
+  PeriodicSystem sys(std::move(sets[0]));
   sys.n = 2 * n_;
-  assemble(mu, aero_.normal(), sys.normal);
   if (p_.reversed_flow && p_.exact_reversed_flow && mu > 0.0) {
     const ExactReversedRegion r = exact_reversed_region(mu, p_);
     if (r.exists) {
-      sys.has_varying = true;
-      sys.varying_begin = r.begin;
-      sys.varying_end = r.end;
-      sys.varying_breaks = r.breaks;
       // The system may outlive this builder (it is returned by value): the evaluator owns its
       // table.
       auto table = std::make_shared<const ExactTable>(*this, mu);
-      sys.varying = [table](double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) {
-        table->at(psi, A, f);
-      };
+      sys.add_evaluator_piece(
+          r.begin, r.end,
+          [table](double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) { table->at(psi, A, f); },
+          r.breaks);
     }
   } else if (p_.reversed_flow && mu > 0.0) {
+    // The reversed-flow sector of Appendix D, centred on the retreating blade.
     const double alpha = reversed_flow_sector_width(mu);
-    sys.has_sector = true;
-    sys.sector_begin = 1.5 * kPi - 0.5 * alpha;
-    sys.sector_end = 1.5 * kPi + 0.5 * alpha;
-    assemble(mu, reversed_integrals(mu), sys.reversed);
+    assemble(mu, reversed_integrals(mu), sets[1]);
+    drop_zero_harmonics(sets[1]);
+    sys.add_harmonic_piece(1.5 * kPi - 0.5 * alpha, 1.5 * kPi + 0.5 * alpha, std::move(sets[1]));
   }
-  if (!sys.has_sector) {
-    sys.reversed.A.clear();
-    sys.reversed.f.clear();
-  }
-  drop_zero_harmonics(sys.normal);
-  if (sys.has_sector) drop_zero_harmonics(sys.reversed);
+  *out = std::move(sys);
 }
 
 }  // namespace flaplag::detail
