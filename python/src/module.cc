@@ -782,7 +782,7 @@ py::list harmonic_names(std::size_t n) {
 }
 
 // The per-direction tip motions as {direction: {direction, deflection, harmonics, total,
-// growth_rate}}, in the model's state order (flaplag.TipMotion in Python).
+// growth_rate}}, in the model's state order (TipMotion of python/flaplag/_results.py).
 py::dict tip_dicts(const std::vector<TipMotion>& tips) {
   py::dict d;
   for (const TipMotion& t : tips) {
