@@ -585,9 +585,9 @@ class Analysis:
 
         nonlinear=True (``--nonlinear``): the nonlinear equations (every model has the
         nonlinear loads), the full state from the periodic equilibrium
-        q°(psi) plus y0; flap_tip, lag_tip are then the deviation from q°(psi) (their growth
-        rates compare with the largest zeta about it), flap_total, lag_total the total tip
-        deflections.  forced must stay False (the loads are part of the equations).
+        q°(psi) plus y0; each direction's tips[d].deflection is then the deviation from
+        q°(psi) (its growth_rate compares with the largest zeta about it), tips[d].total the
+        total tip deflection.  forced must stay False (the loads are part of the equations).
         memory_limit: as sweep() (default 2 GiB): about five million samples fit in it."""
         n = self._native.state_size()
         if isinstance(y0, numbers.Real) and not isinstance(y0, (bool, np.bool_)):

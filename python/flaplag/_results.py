@@ -6,12 +6,13 @@ transition matrix) are results, never exceptions.  Units: zeta and omega per rev
 speed Omega), advance ratios mu and angles psi nondimensional / in radians.
 """
 
+import collections.abc
 import dataclasses
 import functools
 import math
 import typing
 from dataclasses import dataclass, field
-from typing import Dict, Optional, Tuple
+from typing import Dict, Mapping, Optional, Tuple
 
 import numpy as np
 
@@ -28,6 +29,7 @@ __all__ = [
     "SystemResult",
     "ModeShapes",
     "FloquetSample",
+    "TipMotion",
     "ResponseResult",
     "SimulationResult",
     "PeriodicEquilibriumResult",
@@ -82,6 +84,9 @@ def _convert(hint, value):
         return _convert(args[0], value) if len(args) == 1 else value
     if origin is tuple:
         return tuple(_convert(typing.get_args(hint)[0], v) for v in value)
+    if origin is collections.abc.Mapping:  # Mapping[str, X]: the module's dict, in its order
+        item = typing.get_args(hint)[1]
+        return {key: _convert(item, v) for key, v in value.items()}
     if origin is typing.Annotated:  # _Array[dtype]: a numpy array of that element type
         return np.asarray(value, dtype=typing.get_args(hint)[1])
     if hint is np.ndarray:
@@ -118,7 +123,32 @@ class _Described:
         extra = self.__dict__.get("_extra", {})
         if name in extra:
             return extra[name]
+        tip = _tip_alias(self.__dict__.get("tips"), name)
+        if tip is not None:
+            return getattr(*tip)
         raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+    def __dir__(self):
+        return sorted(set(super().__dir__()) | set(_tip_aliases(self.__dict__.get("tips"))))
+
+
+def _tip_aliases(tips):
+    """The former names of a result's per-direction values: '<direction>_<field>' for each
+    direction of ``tips`` and each field of TipMotion but the direction ('flap_tip' for
+    tips['flap'].deflection, the old name of a deflection being '<direction>_tip')."""
+    if not tips:
+        return {}
+    fields = [f.name for f in dataclasses.fields(TipMotion) if f.name != "direction"]
+    return {
+        f"{direction}_{_TIP_ALIAS.get(f, f)}": (motion, f)
+        for direction, motion in tips.items()
+        for f in fields
+    }
+
+
+def _tip_alias(tips, name):
+    """(tips[direction], field) when ``name`` is one of _tip_aliases(tips), else None."""
+    return _tip_aliases(tips).get(name)
 
 
 @functools.lru_cache(maxsize=None)
@@ -628,6 +658,34 @@ class FloquetSample(_Described):
 
 
 @dataclass(frozen=True, repr=False, eq=False)
+class TipMotion(_Described):
+    """The tip motion of one blade direction (C++ flaplag::TipMotion), an entry of a result's
+    ``tips`` (keyed by the direction, in the model's state order): direction ('flap', 'lag');
+    deflection: the tip deflection by l at the result's psi (flap w/l up, lag v/l positive
+    lag); harmonics (ResponseResult; else empty): value = c[0] + sum_n (c[2n-1] cos n psi +
+    c[2n] sin n psi), n = 1..5; total (nonlinear SimulationResult; else empty): the total
+    deflection, reference included; growth_rate (SimulationResult; else None): the envelope
+    growth rate of deflection per rev over the last 3/4 of the run (None with fewer than 3
+    revolutions there).  A result's ``<direction>_tip`` is tips[direction].deflection, and
+    ``<direction>_<field>`` tips[direction].<field> (``flap_harmonics``, ``lag_growth_rate``)."""
+
+    direction: str
+    deflection: np.ndarray
+    harmonics: np.ndarray
+    total: np.ndarray
+    growth_rate: Optional[float]
+
+    def __repr__(self):
+        return (
+            f"TipMotion({self.direction!r}, {len(self.deflection)} samples, "
+            f"growth_rate={_g(self.growth_rate)})"
+        )
+
+
+_TIP_ALIAS = {"deflection": "tip"}  # a field whose former name is not the field's
+
+
+@dataclass(frozen=True, repr=False, eq=False)
 class ResponseResult(_Described):
     """The periodic forced response at one mu (the command line's ``flaplag response``): the
     2 pi-periodic solution of y' = A(psi) y + f(psi), the Floquet particular solution
@@ -635,10 +693,12 @@ class ResponseResult(_Described):
 
     psi: the sample azimuths [rad] in [0, 2 pi); y: the perturbation state about the hover
     equilibrium at psi (samples x states, the state order of ``Analysis.system``); y0 = y(0);
-    flap_tip, lag_tip: the tip deflections by l at psi, hover equilibrium included (flap w/l
-    up, lag v/l positive lag); flap_harmonics, lag_harmonics: their harmonics, value =
-    c[0] + sum_n (c[2n-1] cos n psi + c[2n] sin n psi), n = 1..5, named by ``harmonic_names``
-    ('const', 'cos psi', 'sin psi', 'cos 2psi', ...); closure: |y(2 pi) - y(0)| / max(1, |y0|);
+    tips: per blade direction of the model ('flap', 'lag', in state order), a TipMotion with
+    the tip deflection by l at psi, hover equilibrium included (flap w/l up, lag v/l positive
+    lag), and its harmonics, value = c[0] + sum_n (c[2n-1] cos n psi + c[2n] sin n psi),
+    n = 1..5, named by ``harmonic_names`` ('const', 'cos psi', 'sin psi', 'cos 2psi', ...);
+    ``flap_tip``, ``lag_harmonics``, ... are tips['flap'].deflection, tips['lag'].harmonics,
+    ... under their former names; closure: |y(2 pi) - y(0)| / max(1, |y0|);
     error_estimate: the estimated error of y0 (relative; ``error`` is its former name);
     min_distance_to_one: min |multiplier - 1| (near 0: no unique periodic solution); steps:
     RK4 steps per period.  status 'failed'
@@ -650,10 +710,7 @@ class ResponseResult(_Described):
     psi: np.ndarray
     y: np.ndarray
     y0: np.ndarray
-    flap_tip: np.ndarray
-    lag_tip: np.ndarray
-    flap_harmonics: np.ndarray
-    lag_harmonics: np.ndarray
+    tips: Mapping[str, TipMotion]
     harmonic_names: Tuple[str, ...]
     closure: float
     error_estimate: Optional[float]
@@ -668,17 +725,17 @@ class ResponseResult(_Described):
         return self.error_estimate
 
     def harmonics(self, which="flap") -> Dict[str, float]:
-        """{'const': ..., 'cos psi': ..., ...} of the flap or the lag tip deflection."""
-        c = {"flap": self.flap_harmonics, "lag": self.lag_harmonics}[which]
+        """{'const': ..., 'cos psi': ..., ...} of the tip deflection of direction ``which``
+        (a key of ``tips``: 'flap', 'lag')."""
+        c = self.tips[which].harmonics
         return {n: float(v) for n, v in zip(self.harmonic_names, c)}
 
     def __repr__(self):
         first = ""
-        if len(self.flap_harmonics) >= 3:
-            first = (
-                f"flap const={_g(self.flap_harmonics[0])}, cos={_g(self.flap_harmonics[1])}, "
-                f"sin={_g(self.flap_harmonics[2])}, "
-            )
+        direction, motion = next(iter(self.tips.items()), ("", None))
+        if motion is not None and len(motion.harmonics) >= 3:
+            c = motion.harmonics
+            first = f"{direction} const={_g(c[0])}, cos={_g(c[1])}, sin={_g(c[2])}, "
         return (
             f"ResponseResult(mu={_g(self.mu)}, {len(self.psi)} samples, {first}"
             f"closure={_g(self.closure)}, {_status(self.status, self.message)})"
@@ -697,29 +754,26 @@ class SimulationResult(_Described):
     'hover equilibrium' (status 'warning').
 
     psi: [rad] from 0; revolutions: psi / 2 pi; y: the state (samples x states): the
-    perturbation (linear) or the full state (nonlinear); flap_tip, lag_tip: the tip deflections
-    by l of the state minus the reference (the perturbation); flap_total, lag_total (nonlinear
-    only, else empty): the total tip deflections; flap_growth_rate, lag_growth_rate: the
-    envelope growth rates of flap_tip, lag_tip per rev over the last 3/4 of the run (None with
-    fewer than 3 revolutions there), to compare with the largest Floquet zeta about the
-    reference; steps_per_rev: RK4 steps per revolution.  status 'failed' on overflow (the state
+    perturbation (linear) or the full state (nonlinear); tips: per blade direction of the model
+    ('flap', 'lag', in state order), a TipMotion with the tip deflection by l of the state
+    minus the reference (the perturbation), the total tip deflection (nonlinear only, else
+    empty) and the envelope growth rate of the deflection per rev over the last 3/4 of the run
+    (None with fewer than 3 revolutions there), to compare with the largest Floquet zeta about
+    the reference; ``flap_tip``, ``lag_total``, ``lag_growth_rate``, ... are
+    tips['flap'].deflection, tips['lag'].total, tips['lag'].growth_rate, ... under their
+    former names; steps_per_rev: RK4 steps per revolution.  status 'failed' on overflow (the state
     is kept up to there).
     """
 
     mu: float
     psi: np.ndarray
     y: np.ndarray
-    flap_tip: np.ndarray
-    lag_tip: np.ndarray
-    flap_growth_rate: Optional[float]
-    lag_growth_rate: Optional[float]
+    tips: Mapping[str, TipMotion]
     steps_per_rev: int
     status: str
     message: str
     nonlinear: bool = False
     reference: str = "hover equilibrium"
-    flap_total: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    lag_total: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def revolutions(self) -> np.ndarray:
@@ -727,10 +781,10 @@ class SimulationResult(_Described):
 
     def __repr__(self):
         kind = "nonlinear, " if self.nonlinear else ""
+        rates = "".join(f"{d}_growth_rate={_g(t.growth_rate)}, " for d, t in self.tips.items())
         return (
-            f"SimulationResult(mu={_g(self.mu)}, {kind}{len(self.psi)} samples, "
-            f"flap_growth_rate={_g(self.flap_growth_rate)}, "
-            f"lag_growth_rate={_g(self.lag_growth_rate)}, {_status(self.status, self.message)})"
+            f"SimulationResult(mu={_g(self.mu)}, {kind}{len(self.psi)} samples, {rates}"
+            f"{_status(self.status, self.message)})"
         )
 
 
@@ -742,7 +796,9 @@ class PeriodicEquilibriumResult(_Described):
     coefficients: the Fourier coefficients of the coordinates q° = [g°_1..g°_M, h°_1..h°_N]
     (modes x 2K+1; column 0 the constant, 2k-1 cos k psi, 2k sin k psi); harmonics: K;
     psi: sample azimuths [rad] in [0, 2 pi); y: the full state y°(psi) = [g°', g°, h°', h°]
-    there (samples x states); flap_tip, lag_tip: the tip deflections w/l, v/l there;
+    there (samples x states); tips: per blade direction of the model ('flap', 'lag', in state
+    order), a TipMotion with the tip deflection (w/l, v/l) there (``flap_tip``, ``lag_tip``:
+    tips['flap'].deflection, tips['lag'].deflection under their former names);
     multiplier_moduli: |Floquet multipliers| of the linearization about it, descending (with
     check_stability; empty otherwise), min_distance_to_one: min |multiplier - 1| (None without
     check_stability); truncation: the size of harmonic K relative to the largest coefficient;
@@ -761,8 +817,7 @@ class PeriodicEquilibriumResult(_Described):
     coefficients: np.ndarray
     psi: np.ndarray
     y: np.ndarray
-    flap_tip: np.ndarray
-    lag_tip: np.ndarray
+    tips: Mapping[str, TipMotion]
     continued_to: float
     iterations: int
     step: float

@@ -834,6 +834,22 @@ py::list harmonic_names(std::size_t n) {
   return l;
 }
 
+// The per-direction tip motions as {direction: {direction, deflection, harmonics, total,
+// growth_rate}}, in the model's state order (TipMotion of python/flaplag/_results.py).
+py::dict tip_dicts(const std::vector<TipMotion>& tips) {
+  py::dict d;
+  for (const TipMotion& t : tips) {
+    py::dict m;
+    m["direction"] = t.direction;
+    m["deflection"] = to_numpy(t.deflection);
+    m["harmonics"] = to_numpy(t.harmonics);
+    m["total"] = to_numpy(t.total);
+    m["growth_rate"] = optional(t.growth_rate);
+    d[t.direction.c_str()] = m;
+  }
+  return d;
+}
+
 py::dict response_dict(const Analysis& a, const ForcedResponse& f) {
   const PeriodicResponse& p = f.periodic;
   py::dict d;
@@ -841,10 +857,7 @@ py::dict response_dict(const Analysis& a, const ForcedResponse& f) {
   d["psi"] = to_numpy(p.psi);
   d["y"] = states_numpy(p.y, a.state_size());
   d["y0"] = to_numpy(p.y0);
-  for (const TipMotion& t : f.tips) {
-    d[(t.direction + "_tip").c_str()] = to_numpy(t.deflection);
-    d[(t.direction + "_harmonics").c_str()] = to_numpy(t.harmonics);
-  }
+  d["tips"] = tip_dicts(f.tips);
   d["harmonic_names"] = harmonic_names(f.tips.empty() ? 0 : f.tips.front().harmonics.size());
   d["closure"] = p.closure;
   d["error_estimate"] = optional(p.error);
@@ -861,11 +874,7 @@ py::dict simulation_dict(const Analysis& a, const TipSimulation& t) {
   d["mu"] = t.mu;
   d["psi"] = to_numpy(s.psi);
   d["y"] = states_numpy(s.y, a.state_size());
-  for (const TipMotion& m : t.tips) {
-    d[(m.direction + "_tip").c_str()] = to_numpy(m.deflection);
-    d[(m.direction + "_growth_rate").c_str()] = optional(m.growth_rate);
-    d[(m.direction + "_total").c_str()] = to_numpy(m.total);
-  }
+  d["tips"] = tip_dicts(t.tips);
   d["steps_per_rev"] = s.steps_per_rev;
   d["nonlinear"] = t.nonlinear;
   d["reference"] = t.reference;
@@ -893,7 +902,7 @@ py::dict equilibrium_dict(const Analysis& a, const PeriodicEquilibrium& e, int s
   d["coefficients"] = to_numpy(e.coefficients);
   d["psi"] = to_numpy(psi);
   d["y"] = states_numpy(y, a.state_size());
-  for (const TipMotion& t : tips) d[(t.direction + "_tip").c_str()] = to_numpy(t.deflection);
+  d["tips"] = tip_dicts(tips);
   return d;
 }
 

@@ -414,17 +414,19 @@ def test_basis_keyword_reaches_the_exact_modes():
 def test_response_is_periodic_and_its_harmonics_rebuild_it():
     r = flaplag.Analysis().response(0.3, samples=72)
     assert r.status == "ok", r.message
-    assert r.psi.shape == r.flap_tip.shape == r.lag_tip.shape == (72,)
+    assert list(r.tips) == ["flap", "lag"]
+    assert r.psi.shape == r.tips["flap"].deflection.shape == r.tips["lag"].deflection.shape == (72,)
     assert r.y.shape == (72, 4) and np.array_equal(r.y[0], r.y0)
     assert r.closure < 1e-10
     assert r.harmonic_names[:3] == ("const", "cos psi", "sin psi")
     assert set(r.harmonics("lag")) == set(r.harmonic_names)
     # five harmonics rebuild the tip deflection to within the higher harmonics left out
-    rebuilt = np.full_like(r.psi, r.flap_harmonics[0])
+    flap = r.tips["flap"]
+    rebuilt = np.full_like(r.psi, flap.harmonics[0])
     for n in range(1, 6):
-        rebuilt += r.flap_harmonics[2 * n - 1] * np.cos(n * r.psi)
-        rebuilt += r.flap_harmonics[2 * n] * np.sin(n * r.psi)
-    assert np.max(np.abs(rebuilt - r.flap_tip)) < 1e-4 * np.max(np.abs(r.flap_tip))
+        rebuilt += flap.harmonics[2 * n - 1] * np.cos(n * r.psi)
+        rebuilt += flap.harmonics[2 * n] * np.sin(n * r.psi)
+    assert np.max(np.abs(rebuilt - flap.deflection)) < 1e-4 * np.max(np.abs(flap.deflection))
 
 
 def test_simulation_growth_rate_is_the_largest_zeta():
@@ -434,11 +436,11 @@ def test_simulation_growth_rate_is_the_largest_zeta():
     zeta = max(e.zeta for e in an.point(0.9).exponents if e.label == "lag")
     assert s.status == "ok", s.message
     assert s.y.shape == (len(s.psi), 4)
-    assert abs(s.lag_growth_rate - zeta) < 0.01 * abs(zeta)
+    assert abs(s.tips["lag"].growth_rate - zeta) < 0.01 * abs(zeta)
     assert np.array_equal(s.revolutions, s.psi / (2 * math.pi))
     # y0 per state: only the lag displacement perturbed
     t = an.simulate(0.9, revolutions=2, y0=[0.0, 0.0, 0.0, 0.02])
-    assert t.lag_tip[0] == 0.02 and t.flap_tip[0] == 0.0
+    assert t.tips["lag"].deflection[0] == 0.02 and t.tips["flap"].deflection[0] == 0.0
     with pytest.raises(ValueError):
         an.simulate(0.9, y0=[0.0, 1.0])
     with pytest.raises(ValueError):
@@ -467,14 +469,15 @@ def test_periodic_equilibrium_arrays_and_its_hover_limit():
     e = an.periodic_equilibrium(0.3, harmonics=8, samples=36)
     assert e.status == "ok", e.message
     assert e.coefficients.shape == (2, 17) and e.harmonics == 8
-    assert e.psi.shape == e.flap_tip.shape == (36,) and e.y.shape == (36, 4)
+    flap_tip = e.tips["flap"].deflection
+    assert e.psi.shape == flap_tip.shape == (36,) and e.y.shape == (36, 4)
     # the samples are the Fourier series of the coefficients (assumed modes: tip value 1)
     g = e.coefficients[0, 0] + sum(
         e.coefficients[0, 2 * k - 1] * np.cos(k * e.psi) + e.coefficients[0, 2 * k] * np.sin(k * e.psi)
         for k in range(1, 9)
     )
-    assert np.max(np.abs(g - e.flap_tip)) < 1e-14
-    assert np.max(np.abs(e.y[:, 1] - e.flap_tip)) == 0.0
+    assert np.max(np.abs(g - flap_tip)) < 1e-14
+    assert np.max(np.abs(e.y[:, 1] - flap_tip)) == 0.0
     assert len(e.multiplier_moduli) == 4 and e.max_zeta < 0.0
     assert e.min_distance_to_one > 0.0
     # at mu = 0 it is the hover equilibrium of eqs 2.29-2.32
@@ -527,16 +530,17 @@ def test_nonlinear_simulation_settles_on_the_periodic_equilibrium():
     s = an.simulate(0.5, nonlinear=True, revolutions=60, samples_per_rev=12)
     assert s.status == "ok", s.message
     assert s.nonlinear and s.reference == "periodic equilibrium"
-    assert s.flap_total.shape == s.flap_tip.shape == s.psi.shape
+    flap = s.tips["flap"]
+    assert flap.total.shape == flap.deflection.shape == s.psi.shape
     scale = np.max(np.abs(e.y))
     last = slice(-13, -1)  # the last whole revolution, psi = 2 pi k / 12 as e.psi
     assert np.allclose(s.psi[last] - 59 * 2 * math.pi, e.psi, atol=1e-12)
     assert np.max(np.abs(s.y[last] - e.y)) < 1e-4 * scale  # (measured 7e-5: q°'s truncation)
-    assert np.max(np.abs(s.flap_total[last] - e.flap_tip)) < 1e-4 * scale
-    assert abs(s.flap_tip[0] - 0.01) < 1e-15
+    assert np.max(np.abs(flap.total[last] - e.tips["flap"].deflection)) < 1e-4 * scale
+    assert abs(flap.deflection[0] - 0.01) < 1e-15
     # the linear simulation has no totals
     lin = flaplag.Analysis().simulate(0.5, revolutions=1)
-    assert not lin.nonlinear and lin.flap_total.shape == (0,)
+    assert not lin.nonlinear and lin.tips["flap"].total.shape == (0,)
 
 
 def test_trim_round_trip_in_hover():

@@ -340,12 +340,13 @@ def test_response(params, mu, options):
     check_parameters(doc, an)
     assert find(doc, "status") == r.status
     assert np.array(find(doc, "psi"), dtype=float).tobytes() == r.psi.tobytes()
-    assert np.array(find(doc, "flap_tip"), dtype=float).tobytes() == r.flap_tip.tobytes()
-    assert np.array(find(doc, "lag_tip"), dtype=float).tobytes() == r.lag_tip.tobytes()
-    for key, values in (("flap_harmonics", r.flap_harmonics), ("lag_harmonics", r.lag_harmonics)):
-        h = find(doc, key)
+    assert list(r.tips) == ["flap", "lag"]
+    for direction, tip in r.tips.items():
+        cli_tip = np.array(find(doc, direction + "_tip"), dtype=float)
+        assert cli_tip.tobytes() == tip.deflection.tobytes(), direction
+        h = find(doc, direction + "_harmonics")
         assert list(h) == list(r.harmonic_names)
-        assert np.array(list(h.values()), dtype=float).tobytes() == values.tobytes()
+        assert np.array(list(h.values()), dtype=float).tobytes() == tip.harmonics.tobytes()
     assert same(find(doc, "closure"), r.closure)
     assert same(find(doc, "error_estimate", default=r.error_estimate), r.error_estimate)
     assert find(doc, "steps") == r.steps
@@ -371,15 +372,18 @@ def test_simulate(params, mu, options):
     check_parameters(doc, an)
     assert find(doc, "status") == s.status
     assert find(doc, "steps_per_rev") == s.steps_per_rev
-    for key, values in (("psi", s.psi), ("flap_tip", s.flap_tip), ("lag_tip", s.lag_tip)):
-        assert np.array(find(doc, key), dtype=float).tobytes() == values.tobytes(), key
-    assert same(find(doc, "flap_growth_rate"), s.flap_growth_rate)
-    assert same(find(doc, "lag_growth_rate"), s.lag_growth_rate)
+    assert np.array(find(doc, "psi"), dtype=float).tobytes() == s.psi.tobytes()
+    assert list(s.tips) == ["flap", "lag"]
+    for direction, tip in s.tips.items():
+        key = direction + "_tip"
+        assert np.array(find(doc, key), dtype=float).tobytes() == tip.deflection.tobytes(), key
+        assert same(find(doc, direction + "_growth_rate"), tip.growth_rate)
     assert find(doc, "nonlinear", default=False) == s.nonlinear
     if s.nonlinear:
         assert find(doc, "reference") == s.reference
-        for key, values in (("flap_total", s.flap_total), ("lag_total", s.lag_total)):
-            assert np.array(find(doc, key), dtype=float).tobytes() == values.tobytes(), key
+        for direction, tip in s.tips.items():
+            key = direction + "_total"
+            assert np.array(find(doc, key), dtype=float).tobytes() == tip.total.tobytes(), key
 
 
 def test_damping_criterion_sweep_and_study():

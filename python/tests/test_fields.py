@@ -3,12 +3,14 @@ the command line's JSON uses: one name per field in every front end."""
 
 import dataclasses
 import math
+import pickle
 
 import numpy as np
 import pytest
 
 import flaplag
 from flaplag import _flaplag
+from flaplag._results import TipMotion
 from conftest import run_cli
 
 # Attributes a class adds of its own (not rows of the C++ struct's field table), by class: the
@@ -18,7 +20,7 @@ PYTHON_ONLY = {
     "SweepResult": {"mu", "labels", "zeta", "omega", "trims"},
     "CriticalResult": {"trim"},
     "TrimResult": {"parameters"},
-    "PeriodicEquilibriumResult": {"coefficients", "psi", "y", "flap_tip", "lag_tip"},
+    "PeriodicEquilibriumResult": {"coefficients", "psi", "y", "tips"},
 }
 
 CLASSES = [
@@ -197,3 +199,90 @@ def test_model_object_is_the_model_info():
     for key, value in doc["model"].items():
         assert getattr(info, key) == value, key
     assert doc["model"]["base"] == "paper" and doc["model"]["flap_modes"] == 2
+
+
+def cli_directions(doc, suffix):
+    """The directions of the command line's per-direction keys '<direction><suffix>', in the
+    order of the document."""
+    found = []
+
+    def walk(node):
+        if isinstance(node, dict):
+            for key, value in node.items():
+                if key.endswith(suffix) and key[: -len(suffix)] not in found:
+                    found.append(key[: -len(suffix)])
+                walk(value)
+        elif isinstance(node, list):
+            for value in node:
+                walk(value)
+
+    walk(doc)
+    return found
+
+
+def test_tips_are_the_directions_of_the_model_in_state_order():
+    """Each result with tip motions holds one TipMotion per blade direction, keyed by its name
+    in the model's state order: the directions the command line's keys name, none missing, and
+    each direction's tip deflection the displacement of its state (1 x 1, assumed modes: tip
+    value 1; the state is [rate, displacement] per direction)."""
+    an = flaplag.Analysis()
+    r = an.response(0.3, samples=12)
+    s = an.simulate(0.3, revolutions=1)
+    e = an.periodic_equilibrium(0.3, samples=12, check_stability=False)
+    assert cli_directions(run_cli("response", "--mu", "0.3", "--samples", "12"), "_tip") == [
+        "flap",
+        "lag",
+    ]
+    for result in (r, s, e):
+        assert list(result.tips) == ["flap", "lag"], type(result).__name__
+        for direction, tip in result.tips.items():
+            assert isinstance(tip, TipMotion)
+            assert tip.direction == direction
+            assert tip.deflection.shape == result.psi.shape
+    for i, tip in enumerate(e.tips.values()):
+        assert np.array_equal(tip.deflection, e.y[:, 2 * i + 1]), tip.direction
+    wide = flaplag.Analysis(modes="exact", flap_modes=2, lag_modes=2).response(0.3, samples=12)
+    assert list(wide.tips) == ["flap", "lag"]
+    assert all(len(t.harmonics) == len(wide.harmonic_names) for t in wide.tips.values())
+
+
+def test_former_names_are_the_tips():
+    """flap_tip, lag_harmonics, lag_growth_rate, ...: read-only names of the tips' fields."""
+    an = flaplag.Analysis()
+    r = an.response(0.3, samples=12)
+    s = an.simulate(0.3, revolutions=4)
+    assert r.flap_tip is r.tips["flap"].deflection
+    assert r.lag_harmonics is r.tips["lag"].harmonics
+    assert s.lag_growth_rate == s.tips["lag"].growth_rate is not None
+    assert s.flap_total is s.tips["flap"].total
+    assert r.harmonics("lag") == {
+        n: float(v) for n, v in zip(r.harmonic_names, r.tips["lag"].harmonics)
+    }
+    assert r.harmonics() == r.harmonics("flap")
+    for result in (r, s):
+        for direction, tip in result.tips.items():
+            assert getattr(result, direction + "_tip") is tip.deflection
+            assert direction + "_tip" in dir(result)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        r.flap_tip = np.zeros(12)
+    for missing in ("torsion_tip", "flap_modes", "flap_direction", "tip"):
+        with pytest.raises(AttributeError):
+            getattr(r, missing)
+    again = pickle.loads(pickle.dumps(r))
+    assert list(again.tips) == list(r.tips) and np.array_equal(again.lag_tip, r.lag_tip)
+
+
+def test_a_direction_the_module_does_not_give_has_no_names():
+    """The names come from the module's directions, none from the class: a result without a
+    'lag' direction has no lag_tip, and one with a third direction has its names too."""
+    tip = {"deflection": np.ones(2), "harmonics": np.zeros(0), "total": np.zeros(0),
+           "growth_rate": 0.5}
+    raw = {"mu": 0.0, "psi": np.zeros(2), "y": np.zeros((2, 2)),
+           "tips": {"flap": dict(tip, direction="flap"), "torsion": dict(tip, direction="torsion")},
+           "steps_per_rev": 1, "status": "ok", "message": ""}
+    s = flaplag.SimulationResult._from(raw)
+    assert list(s.tips) == ["flap", "torsion"]
+    assert s.torsion_growth_rate == 0.5 and s.flap_tip is s.tips["flap"].deflection
+    with pytest.raises(AttributeError):
+        s.lag_tip
+    assert "torsion_growth_rate=0.5" in repr(s)
