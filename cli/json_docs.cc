@@ -290,8 +290,8 @@ std::string json_reference() {
       "The periodic equilibrium q°(psi) of the nonlinear equations at one mu "
       "(`Analysis.periodic_equilibrium`, as `PeriodicEquilibriumResult`).  The Python class also "
       "has the Fourier coefficients of q° (`coefficients`, modes x 2K+1), the sample azimuths "
-      "`psi`, the states `y` there and each direction's tip deflections (`flap_tip`, "
-      "`lag_tip`).");
+      "`psi`, the states `y` there and `tips`, one `TipMotion` per blade direction (its tip "
+      "deflection at `psi`).");
   return out;
 }
 

@@ -40,6 +40,7 @@ from ._results import (
     DampingCrossing,
     SystemResult,
     ThrustResult,
+    TipMotion,
     TrimResult,
 )
 
@@ -92,6 +93,7 @@ __all__ = [
     "PeriodicEquilibriumResult",
     "TrimResult",
     "ThrustResult",
+    "TipMotion",
     "__version__",
     "git_commit",
 ]

@@ -6,7 +6,7 @@
 // (Appendix D), assembled into harmonic matrices of A and f.  With exact_reversed_flow the
 // sector is replaced by the exact circle: on the retreating side the integrals are split at
 // the station where the flow reverses at that psi, so A and f come from a psi-dependent
-// evaluator (PeriodicSystem's varying region) there.
+// evaluator piece of the PeriodicSystem there.
 #pragma once
 
 #include <Eigen/Dense>
