@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -68,12 +69,18 @@ TEST(ParallelFor, CancelStopsClaimingAndTheFinishedTasksAreAPrefix) {
 // The ids of the threads that ran a call's tasks.
 std::set<std::thread::id> threads_of_a_call(std::size_t n, int threads) {
   std::mutex m;
+  std::condition_variable arrived;
   std::set<std::thread::id> ids;
+  // Each task waits until `threads` distinct threads have run one, so that every thread asked
+  // for gets a task however the machine schedules them (a fixed sleep let one thread take every
+  // task on a loaded machine).  A pool with fewer threads fails after the deadline, once.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   parallel_for(n, threads, nullptr, {}, [&](std::size_t) {
-    // Long enough that every thread asked for gets a task.
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    std::lock_guard<std::mutex> lock(m);
+    std::unique_lock<std::mutex> lock(m);
     ids.insert(std::this_thread::get_id());
+    arrived.notify_all();
+    arrived.wait_until(lock, deadline,
+                       [&] { return ids.size() >= static_cast<std::size_t>(threads); });
   });
   return ids;
 }
