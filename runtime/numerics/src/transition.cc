@@ -1192,18 +1192,10 @@ Eigen::MatrixXd dispatch(const PeriodicSystem& sys, Fn&& fn) {
 
 }  // namespace
 
+// The names are the enum's table (floquet.h): written once.
 const char* method_name(TransitionMethod m) {
-  switch (m) {
-    case TransitionMethod::RK4:
-      return "rk4";
-    case TransitionMethod::Hsu:
-      return "hsu";
-    case TransitionMethod::Magnus4:
-      return "magnus";
-    case TransitionMethod::Automatic:
-      return "auto";
-  }
-  return "unknown";
+  const char* name = enum_name(m);
+  return *name != '\0' ? name : "unknown";
 }
 
 TransitionMethod automatic_method(int state_size) {
@@ -1213,19 +1205,13 @@ TransitionMethod automatic_method(int state_size) {
 }
 
 bool method_from_name(const std::string& name, TransitionMethod* method) {
-  for (TransitionMethod m : kTransitionMethods) {
-    if (name == method_name(m)) {
-      *method = m;
-      return true;
-    }
-  }
-  return false;
+  return enum_from_name(name, method);
 }
 
 std::string method_names() {
   std::string names;
-  for (TransitionMethod m : kTransitionMethods)
-    names += (names.empty() ? "" : ", ") + std::string(method_name(m));
+  for (const EnumName<TransitionMethod>& e : describe(Tag<TransitionMethod>{}))
+    names += (names.empty() ? "" : ", ") + std::string(e.name);
   return names;
 }
 

@@ -26,7 +26,7 @@ enum class TransitionMethod {
   Automatic,
 };
 
-// The methods in the order of their names in help texts, and names <-> enum (the one place).
+// The methods in help order, and their names (the table: the one place of names <-> enum).
 inline constexpr TransitionMethod kTransitionMethods[] = {
     TransitionMethod::RK4, TransitionMethod::Hsu, TransitionMethod::Magnus4,
     TransitionMethod::Automatic};
