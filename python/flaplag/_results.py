@@ -10,6 +10,7 @@ import collections.abc
 import dataclasses
 import functools
 import math
+import re
 import typing
 from dataclasses import dataclass, field
 from typing import Dict, Mapping, Optional, Tuple
@@ -54,11 +55,9 @@ def _same_mode(a, b):
     """Whether two labels name one mode: one scheme for every model ("flap", "flap2", "lag"),
     and "lag1", the first lag mode's label in M x N results of older versions, is "lag"."""
 
-    def canonical(label):
-        for name in ("flap", "lag"):
-            if label == name + "1":
-                return name
-        return label
+    def canonical(label):  # a direction's name followed by 1 is its first mode
+        match = re.fullmatch(r"([a-z]+)1", label)
+        return match.group(1) if match else label
 
     return canonical(a) == canonical(b)
 
