@@ -21,8 +21,10 @@
 
 // AddressSanitizer reserves terabytes of virtual address space (its shadow memory): a cap on
 // the address space (RLIMIT_AS, ulimit -v) stops every instrumented run at startup, so tests
-// that cap it run uncapped in sanitizer builds.
-#if defined(__SANITIZE_ADDRESS__)
+// that cap it run uncapped in sanitizer builds.  The binary under test is what counts: the
+// command-line drivers are built uninstrumented, so CMake tells them (FLAPLAG_EXE_ASAN) when the
+// build's flags instrument the binary (tests/cli.cmake).
+#if defined(FLAPLAG_EXE_ASAN) || defined(__SANITIZE_ADDRESS__)
 #define FLAPLAG_TEST_ASAN 1
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
