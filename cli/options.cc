@@ -57,14 +57,6 @@ OptionSpec flag_option(std::string name, std::string help) {
 
 // ---- options of the options structs' tables (core/fields.h) ----------------------------------
 
-// "a|b|c" (sep "|") or "a, b, c" (sep ", "): the names of a described enum.
-template <class E>
-std::string enum_names(const char* sep) {
-  std::string s;
-  for (const EnumName<E>& e : describe(Tag<E>{})) s += (s.empty() ? "" : sep) + std::string(e.name);
-  return s;
-}
-
 template <class V>
 V parse_value(const std::string& spelling, const std::string& text, const Range* range) {
   if constexpr (std::is_same_v<V, double>) {

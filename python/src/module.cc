@@ -347,14 +347,6 @@ py::list field_rows() {
 template <class O>
 O options_from(const py::dict& d, const char* unknown);
 
-template <class E>
-std::string enum_names() {
-  std::string names;
-  for (const EnumName<E>& e : describe(Tag<E>{}))
-    names += (names.empty() ? "" : ", ") + std::string(e.name);
-  return names;
-}
-
 template <class V>
 V option_value(const std::string& key, const py::handle& value) {
   try {

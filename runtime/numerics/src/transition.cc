@@ -1208,12 +1208,7 @@ bool method_from_name(const std::string& name, TransitionMethod* method) {
   return enum_from_name(name, method);
 }
 
-std::string method_names() {
-  std::string names;
-  for (const EnumName<TransitionMethod>& e : describe(Tag<TransitionMethod>{}))
-    names += (names.empty() ? "" : ", ") + std::string(e.name);
-  return names;
-}
+std::string method_names() { return enum_names<TransitionMethod>(); }
 
 Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps) {
   check_count("steps", steps);

@@ -25,6 +25,7 @@
 
 #include <array>
 #include <cstddef>
+#include <string>
 #include <string_view>
 #include <tuple>
 #include <type_traits>
@@ -185,6 +186,17 @@ bool enum_from_name(std::string_view name, E* value) {
     }
   }
   return false;
+}
+
+// The names of a described enum joined by `sep`, in table order ("rk4, hsu" or "rk4|hsu").
+template <class E, std::enable_if_t<is_described_enum_v<E>, int> = 0>
+std::string enum_names(const char* sep = ", ") {
+  std::string names;
+  for (const EnumName<E>& e : describe(Tag<E>{})) {
+    if (!names.empty()) names += sep;
+    names += e.name;
+  }
+  return names;
 }
 
 }  // namespace flaplag
