@@ -178,7 +178,8 @@ std::string case_label(const std::string& file, const Json& j) {
     label += std::string(", ") + trim_kind_name(kind) + " trim";
   }
   // Fixed controls at the momentum inflow (--inflow momentum): the header says it.
-  if (j.contains("inflow") && j["inflow"].is_object() && j["inflow"].value("kind", "") == "momentum")
+  if (j.contains("inflow") && j["inflow"].is_object() &&
+      j["inflow"].value("kind", "") == "momentum")
     label += ", momentum inflow";
   // The resolved parameters say it whether the option or the case file set it.
   const Json& p =
