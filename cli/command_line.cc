@@ -1043,13 +1043,39 @@ void CommandLine::interpret_trim(Request& r) const {
     }
   }
   if (r.trim.kind != TrimKind::None) r.trim.Check();  // errors name the option's field
-  // Without a trim they would be ignored: an answer for another rotor than the one described.
-  if (r.trim.kind == TrimKind::None) {
+  interpret_inflow(r);
+  // Without a trim or the momentum inflow they would be ignored: an answer for another rotor
+  // than the one described.
+  if (r.trim.kind == TrimKind::None && r.inflow.kind != InflowKind::Momentum) {
+    const bool takes_trim = find_option(c, "--trim") != nullptr;
     for (const char* name : {"--thrust-coefficient", "--shaft-angle"}) {
       if (const Given* g = given(name))
-        throw InvalidInput(g->spelling, shown(g->text), "applies only with --trim thrust|moment");
+        throw InvalidInput(g->spelling, shown(g->text),
+                           takes_trim
+                               ? "applies only with --trim thrust|moment or --inflow momentum"
+                               : "applies only with --inflow momentum");
     }
   }
+}
+
+// --inflow (after the trim, which it must not be given with): the momentum inflow of eq 2.25
+// for --thrust-coefficient and --shaft-angle.
+void CommandLine::interpret_inflow(Request& r) const {
+  const Given* g = given("--inflow");
+  if (g == nullptr) return;
+  InflowKind kind = InflowKind::Uniform;
+  if (!enum_from_name(g->text, &kind) || kind == InflowKind::Given)
+    throw InvalidInput(g->spelling, shown(g->text), "must be one of " + inflow_kind_names(", "));
+  if (kind != InflowKind::Momentum) return;
+  if (r.trim.kind != TrimKind::None)
+    throw InvalidInput(g->spelling, shown(g->text),
+                       std::string("not with --trim ") + trim_kind_name(r.trim.kind) +
+                           " (the trim solves eq 2.25 itself, with its own inflow at every mu)");
+  if (given("--thrust-coefficient") == nullptr)
+    throw InvalidInput(g->spelling, shown(g->text),
+                       "needs --thrust-coefficient (the C_T of eq 2.25, not C_T/sigma)");
+  r.inflow = InflowModel::Momentum(r.trim.thrust_coefficient, r.trim.shaft_angle);
+  r.inflow.Check();  // errors name the option's field (thrust_coefficient, shaft_angle)
 }
 
 // The options of any run: --threads, --plot, --report, --damping-criterion, --plot-quantity,

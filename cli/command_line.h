@@ -21,6 +21,7 @@
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/numerics/response.h"
+#include "flaplag/rotor/inflow.h"
 #include "flaplag/rotor/parameters.h"
 #include "flaplag/trim.h"
 #include "options.h"
@@ -94,8 +95,12 @@ struct Request {
   SimulationOptions simulation;
   double perturbation = 0.01;
   bool forced = false;
-  // point, sweep, critical, trim: --trim, --thrust-coefficient, --shaft-angle
+  // point, sweep, critical, study, map, trim: --trim, --thrust-coefficient, --shaft-angle
   TrimOptions trim;
+  // The analyses at fixed controls (point, sweep, critical, study, map, system, response,
+  // simulate, the typical case): --inflow; momentum takes C_T and alpha_R from
+  // --thrust-coefficient and --shaft-angle (trim's fields).  Uniform (eq 2.24) by default.
+  InflowModel inflow;
   // sweep, study, map, response, simulate, merge: --memory-limit (limits.h), checked against
   // the run's estimate by interpret() (merge: by check_merged_output)
   std::uint64_t memory_limit = kDefaultMemoryLimit;
@@ -187,6 +192,7 @@ class CommandLine {
   void interpret_plot(Request& r) const;
   void interpret_campbell(Request& r) const;
   void interpret_trim(Request& r) const;
+  void interpret_inflow(Request& r) const;
   void interpret_batch(Request& r) const;  // --shard, --quiet
   void interpret_run_options(Request& r) const;
   void apply_blade(Request& r) const;        // --blade-table, --blade-csv

@@ -129,7 +129,8 @@ Output run(const Request& r, std::string* warning, RunControl* control) {
   if (cmd::trimmed(r)) {
     if (std::optional<Output> out = run_trimmed(r, w)) return std::move(*out);
   }
-  const Analysis an(r.params, r.transition);
+  // Fixed controls, at the inflow model of --inflow (eq 2.24 by default).
+  const Analysis an(r.params, r.transition, cmd::fixed_controls(r));
   switch (r.command) {
     case Command::Point:
       return cmd::point(r, an);

@@ -211,6 +211,29 @@ std::string blade_table_text(const BladeProperties& b, const RotorParameters& p)
   return t;
 }
 
+OperatingCondition fixed_controls(const Request& r) {
+  OperatingCondition c;
+  c.inflow = r.inflow;
+  return c;
+}
+
+// The momentum inflow (--inflow momentum) by its eq 2.25 inputs; the default eq 2.24 and a
+// trim's given lambda (in the trim's own result) are not written, so that their documents stay
+// as they were.
+std::optional<Json> inflow_json(const Analysis& an) {
+  const InflowModel& m = an.condition().inflow;
+  if (m.kind != InflowKind::Momentum) return std::nullopt;
+  return Json{{"kind", enum_name(m.kind)},
+              {"thrust_coefficient", jnum(m.thrust_coefficient)},
+              {"shaft_angle", jnum(m.shaft_angle)}};
+}
+
+std::optional<double> inflow_at(const Analysis& an, double mu) {
+  const InflowModel& m = an.condition().inflow;
+  if (m.kind != InflowKind::Momentum) return std::nullopt;
+  return m.lambda(an.parameters(), mu);
+}
+
 // The part every analysis output starts with: what was computed, and how.
 Json header_json(const char* command, const Analysis& an, bool with_method) {
   const model::ModelDescriptor& m = an.model();
@@ -222,6 +245,7 @@ Json header_json(const char* command, const Analysis& an, bool with_method) {
   if (with_method) j["method"] = method_json(an.options());
   j["parameters"] = parameters_json(an.parameters());
   if (an.parameters().blade) j["blade_table"] = blade_table_json(*an.parameters().blade);
+  if (std::optional<Json> inflow = inflow_json(an)) j["inflow"] = std::move(*inflow);
   return j;
 }
 
@@ -254,6 +278,11 @@ std::string header_text(const Analysis& an, bool with_method) {
   }
   if (with_method) kv.add("method", method_text(an.options()));
   kv.add("parameters", parameters_text(p));
+  if (const InflowModel& in = an.condition().inflow; in.kind == InflowKind::Momentum) {
+    kv.add("inflow", "momentum (eq 2.25) at every mu for C_T = " + num(in.thrust_coefficient) +
+                         ", alpha_R = " + num(in.shaft_angle) +
+                         " rad; lambda = " + num(in.lambda(p, 0.0)) + " in hover");
+  }
   return kv.render();
 }
 

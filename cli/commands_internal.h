@@ -69,6 +69,12 @@ Json model_json(const model::ModelDescriptor& m);
 // header's `blade_table` and as text.
 Json blade_table_json(const BladeProperties& b);
 std::string blade_table_text(const BladeProperties& b, const RotorParameters& p);
+// The operating condition of fixed controls at the request's inflow model (--inflow).
+OperatingCondition fixed_controls(const Request& r);
+// The header's `inflow` (with --inflow momentum: kind, thrust_coefficient, shaft_angle), and
+// lambda at mu with it; nullopt for the default eq 2.24 and a trim's given inflow.
+std::optional<Json> inflow_json(const Analysis& an);
+std::optional<double> inflow_at(const Analysis& an, double mu);
 Json header_json(const char* command, const Analysis& an, bool with_method = true);
 std::string header_text(const Analysis& an, bool with_method = true);
 Json status_json(Json j, Status status, const std::string& message);

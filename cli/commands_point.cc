@@ -349,6 +349,8 @@ Output point(const Request& r, const Analysis& an) {
   const std::optional<TrimResult>& t = p.trim;
   const auto json = [&] {
     Json j = header_json("point", an);
+    // With the momentum inflow: lambda at this mu (the hover's is hover.inflow).
+    if (const std::optional<double> lam = inflow_at(an, r.mu)) j["inflow"]["lambda"] = jnum(*lam);
     j.update(point_json(r, p));
     j["hover"] = hover_json(r, an);
     if (t) j["trim"] = trim_json(r, *t);
@@ -356,10 +358,13 @@ Output point(const Request& r, const Analysis& an) {
   };
   std::optional<Json> j = result_document(r, json, nullptr);
   if (r.json) return std::move(*j);
-  return text_output(r,
-                     header_text(an) + "\n" + warnings_text(an) +
-                         (t ? trim_text(r, *t) + "\n" : "") + point_text(r, p),
-                     std::move(j));
+  const std::optional<double> lam = inflow_at(an, r.mu);
+  return text_output(
+      r,
+      header_text(an) + "\n" + warnings_text(an) + (t ? trim_text(r, *t) + "\n" : "") +
+          point_text(r, p) +
+          (lam ? "  inflow lambda at mu = " + cell(r.mu) + ": " + cell(*lam) + " (eq 2.25)\n" : ""),
+      std::move(j));
 }
 
 Output sweep(const Request& r, const Analysis& an, std::string& warning) {
@@ -412,14 +417,19 @@ Output critical(const Request& r, const Analysis& an) {
   const std::optional<TrimResult>& t = c.trim;  // trimmed: the trim at mu_c the result rests on
   const auto json = [&] {
     Json j = header_json("critical", an);
+    // With the momentum inflow: lambda at mu_c (null without one).
+    if (j.contains("inflow"))
+      j["inflow"]["lambda_at_mu_c"] = c.mu_c ? jnum(*inflow_at(an, *c.mu_c)) : Json(nullptr);
     j.update(critical_json(r, c));
     if (trimmed(r)) j["trim"] = t ? trim_json(r, *t) : Json(nullptr);
     return j;
   };
   std::optional<Json> j = result_document(r, json, nullptr);
   if (r.json) return std::move(*j);
+  const std::optional<double> lam = c.mu_c ? inflow_at(an, *c.mu_c) : std::nullopt;
   return text_output(r,
                      header_text(an) + "\n" + warnings_text(an) + critical_text(r, c) +
+                         (lam ? "  inflow lambda at mu_c: " + cell(*lam) + " (eq 2.25)\n" : "") +
                          (t ? "\n" + trim_text(r, *t) : ""),
                      std::move(j));
 }

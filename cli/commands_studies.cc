@@ -41,6 +41,7 @@ StudyResult run_study_part(const Request& r, RunControl* control) {
   so.critical = r.critical;
   so.threads = r.threads;
   so.trim = r.trim;
+  so.inflow = r.inflow;
   so.damping_criterion = r.damping_criterion;
   StudyResult s;
   if (!so.values.empty()) {
@@ -161,6 +162,7 @@ MapResult run_map_part(Request& r, RunControl* control) {
   mo.scan_step = r.scan_step;
   mo.threads = r.threads;
   mo.trim = r.trim;
+  mo.inflow = r.inflow;
   MapResult m;
   m.cells.assign(r.y_values.size(), {});
   if (!r.x_values.empty() && !r.y_values.empty()) {
@@ -225,8 +227,9 @@ std::string map_text(const Request& r, const Analysis& base, const MapResult& m)
 }  // namespace
 
 Output study(const Request& request, std::string& warning, RunControl* control) {
-  const Request r = shard_request(request);     // --shard: this part's values only
-  const Analysis base(r.params, r.transition);  // the header, and the base parameters checked
+  const Request r = shard_request(request);  // --shard: this part's values only
+  const Analysis base(r.params, r.transition,
+                      fixed_controls(r));  // the header, and the base parameters checked
   const StudyResult s = run_study_part(r, control);
   std::optional<Json> j = result_document(
       r, [&] { return study_json(r, base, s); }, &warning);
@@ -236,7 +239,7 @@ Output study(const Request& request, std::string& warning, RunControl* control) 
 
 Output map(const Request& request, std::string& warning, RunControl* control) {
   Request r = shard_request(request);  // --shard: this part's lines only
-  const Analysis base(r.params, r.transition);
+  const Analysis base(r.params, r.transition, fixed_controls(r));
   const MapResult m = run_map_part(r, control);
   std::optional<Json> j = result_document(
       r, [&] { return map_json(r, base, m); }, &warning);

@@ -176,6 +176,10 @@ std::string header_section() {
                    "table also radius [m], rotor_speed [rad/s], air_density [kg/m^3], blades, "
                    "reference_chord [m], inertia I_b [kg m^2], gamma, sigma, omega_flap_hz, "
                    "omega_lag_hz");
+  out += table_row("inflow", "object", "",
+                   "only with --inflow momentum: kind, thrust_coefficient, shaft_angle [rad] of "
+                   "eq 2.25; `point` adds lambda (at its mu), `critical` lambda_at_mu_c (null "
+                   "without mu_c)");
   out += "\n### parameters\n\n" + std::string(kTableHead);
   for (const ParameterSpec& s : parameter_table()) {
     const char* type = s.type == ParameterType::Real ? "number"

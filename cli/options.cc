@@ -20,6 +20,7 @@
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
+#include "flaplag/rotor/inflow.h"
 #include "flaplag/trim.h"
 
 namespace flaplag::cli {
@@ -238,15 +239,48 @@ std::vector<OptionSpec> spec_options() {
 
 // Trim (runtime/analysis trim.h): a trimmed rotor at every mu (point, sweep, critical, trim).
 std::vector<OptionSpec> trim_options(bool for_trim_command) {
+  OptionSpec ct = table_option(&Request::trim, "thrust_coefficient");
+  OptionSpec alpha = table_option(&Request::trim, "shaft_angle");
+  if (!for_trim_command) {
+    ct.help += "; with --inflow momentum the C_T of its eq 2.25 (then required)";
+    alpha.help += "; also of --inflow momentum";
+  }
   return {
       value_option("--trim", for_trim_command ? "thrust|moment" : "none|thrust|moment",
                    "trim at each mu: thrust (theta0, lambda of eq 2.25 for --thrust-coefficient) "
                    "or moment (also theta1c, theta1s: no first flap harmonic); with "
                    "--periodic-linearization the periodic equilibrium is trimmed",
                    for_trim_command ? "thrust" : "none", {"trim"}),
-      table_option(&Request::trim, "thrust_coefficient"),
-      table_option(&Request::trim, "shaft_angle"),
+      ct,
+      alpha,
   };
+}
+
+// The commands that analyse fixed controls through an Analysis of the case's rotor: --inflow,
+// and (those without --trim) the C_T and alpha_R of its eq 2.25.
+std::vector<OptionSpec> inflow_options(bool with_trim) {
+  std::vector<OptionSpec> v = {value_option(
+      "--inflow", inflow_kind_names("|"),
+      "the inflow at fixed controls: uniform (eq 2.24, the paper: the hover inflow at --theta, "
+      "held at every mu) or momentum (eq 2.25 at every mu for --thrust-coefficient and "
+      "--shaft-angle: sqrt(C_T/2) in hover); not with --trim thrust|moment, which solves eq "
+      "2.25 itself",
+      "uniform", {"inflow"})};
+  if (!with_trim) {
+    // The trim's rows, read as eq 2.25's inputs: no trim here, and no default C_T (required).
+    OptionSpec ct = table_option(&Request::trim, "thrust_coefficient");
+    ct.help =
+        "with --inflow momentum (required): the thrust coefficient C_T of eq 2.25 (in (0, "
+        "0.1], C_T, not C_T/sigma)";
+    ct.default_text.clear();
+    OptionSpec alpha = table_option(&Request::trim, "shaft_angle");
+    alpha.help =
+        "with --inflow momentum: the shaft angle alpha_R of eq 2.25 (rad; in (-pi/2, "
+        "pi/2))";
+    v.push_back(ct);
+    v.push_back(alpha);
+  }
+  return v;
 }
 
 std::vector<OptionSpec> output_options() {
@@ -471,9 +505,12 @@ std::vector<OptionSpec> build(Command c) {
     case Command::Typical:
       break;
   }
-  if (c == Command::Point || c == Command::Sweep || c == Command::Critical || c == Command::Study ||
-      c == Command::Map)
-    append(v, trim_options(false));
+  const bool with_trim = c == Command::Point || c == Command::Sweep || c == Command::Critical ||
+                         c == Command::Study || c == Command::Map;
+  if (with_trim) append(v, trim_options(false));
+  if (with_trim || c == Command::System || c == Command::Response || c == Command::Simulate ||
+      c == Command::Typical)
+    append(v, inflow_options(with_trim));
   if (c == Command::Study || c == Command::Map) append(v, batch_options());
   if (c == Command::Sweep || c == Command::Study || c == Command::Map || c == Command::Response ||
       c == Command::Simulate)
@@ -490,6 +527,15 @@ std::vector<OptionSpec> build(Command c) {
 }
 
 }  // namespace
+
+// The inflow model at fixed controls (rotor/inflow.h): its kinds but `given` (a given lambda is
+// a trim's, OperatingCondition::At, not an option).
+std::string inflow_kind_names(const char* sep) {
+  std::string s;
+  for (const EnumName<InflowKind>& e : describe(Tag<InflowKind>{}))
+    if (e.value != InflowKind::Given) s += (s.empty() ? "" : sep) + std::string(e.name);
+  return s;
+}
 
 const char* command_name(Command c) {
   switch (c) {

@@ -84,6 +84,9 @@ const OptionSpec* find_any_option(std::string_view name);
 // there is none.
 const OptionSpec* option_for_library_name(Command c, std::string_view library_name);
 
+// The kinds --inflow takes (InflowKind's names but `given`), joined by sep ("|", ", ").
+std::string inflow_kind_names(const char* sep);
+
 // JSON key of a rotor parameter: "omega_lag" -> "omega-lag".
 std::string json_key(const ParameterSpec& spec);
 // "--" + kebab: "omega_lag" -> "--omega-lag".

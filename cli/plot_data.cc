@@ -177,6 +177,10 @@ std::string case_label(const std::string& file, const Json& j) {
       refuse_key(file, "case.trim", c["trim"], "not a trim (none, thrust or moment)");
     label += std::string(", ") + trim_kind_name(kind) + " trim";
   }
+  // Fixed controls at the momentum inflow (--inflow momentum): the header says it.
+  if (j.contains("inflow") && j["inflow"].is_object() &&
+      j["inflow"].value("kind", "") == "momentum")
+    label += ", momentum inflow";
   // The resolved parameters say it whether the option or the case file set it.
   const Json& p =
       j.contains("parameters") && j["parameters"].is_object() ? j["parameters"] : Json::object();

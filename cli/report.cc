@@ -262,6 +262,10 @@ std::string linearization_text(const Json& result) {
     const Json& ct = member(member(result, "case"), "thrust-coefficient");
     if (ct.is_string()) s += ", C<sub>T</sub> = " + esc(ct.get<std::string>());
     s += ")";
+  } else if (string_of(member(result, "case"), "inflow", "uniform") == "momentum") {
+    s += "; fixed controls at the momentum inflow of eq 2.25 at each advance ratio";
+    const Json& ct = member(member(result, "case"), "thrust-coefficient");
+    if (ct.is_string()) s += " (C<sub>T</sub> = " + esc(ct.get<std::string>()) + ")";
   } else {
     s += "; fixed controls (no trim)";
   }

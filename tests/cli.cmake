@@ -54,6 +54,9 @@ flaplag_cli_test(file_fuzz_test nlohmann_json::nlohmann_json)
 # Honest results: statuses that rest on trims, validity, resolution; messages that say so.
 flaplag_cli_test(cli_honest_test nlohmann_json::nlohmann_json)
 
+# --inflow: fixed controls at the momentum inflow, against the library at eq 2.25's lambda.
+flaplag_cli_test(cli_inflow_test flaplag_analysis nlohmann_json::nlohmann_json)
+
 # The memory limit (--memory-limit): large runs refused before they allocate (maintained with
 # cli/ and runtime/analysis limits.h).
 flaplag_cli_test(cli_limits_test flaplag_cli nlohmann_json::nlohmann_json)

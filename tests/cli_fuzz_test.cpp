@@ -187,6 +187,7 @@ class Generator {
                                                 "--trim",
                                                 "--thrust-coefficient",
                                                 "--shaft-angle",
+                                                "--inflow",
                                                 "--memory-limit",
                                                 "--speed-max",
                                                 "--speeds",
@@ -252,6 +253,8 @@ class Generator {
       return chance(0.9) ? "none" : pick(std::vector<std::string>{"thrust", "moment"});
     if (option == "--thrust-coefficient") return in(1e-4, 0.1, true);
     if (option == "--shaft-angle") return in(-0.5, 0.5);
+    // The momentum inflow needs --thrust-coefficient (refused without it) and no trim.
+    if (option == "--inflow") return chance(0.8) ? "uniform" : "momentum";
     if (option == "--omega-flap" || option == "--omega-lag") {
       return chance(0.05) ? "1000" : in(1e-3, 100.0, true);
     }

@@ -15,6 +15,7 @@
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/numerics/response.h"
+#include "flaplag/rotor/inflow.h"
 #include "flaplag/rotor/periodic_equilibrium.h"
 #include "flaplag/trim.h"
 
@@ -45,8 +46,7 @@ V outside(const Interval& i) {
 // Every row with a range: the default is admitted; a value outside is refused by Validate()
 // naming the row, with "must be " + the range's words.  Returns the number of ranged rows.
 template <class O>
-int check_table() {
-  const O defaults;
+int check_table(const O& defaults = O{}) {
   EXPECT_FALSE(defaults.Validate()) << defaults.Validate()->what();
   std::set<std::string> names;
   int ranged = 0;
@@ -82,6 +82,11 @@ TEST(OptionTables, EveryRangedRowIsWhatValidateChecks) {
   EXPECT_EQ(check_table<SimulationOptions>(), 3);
   EXPECT_EQ(check_table<CampbellOptions>(), 5);
   EXPECT_EQ(check_table<PeriodicEquilibriumOptions>(), 4);
+  // The inflow model's C_T and shaft angle are eq 2.25's: checked for the momentum model only.
+  EXPECT_EQ(check_table(InflowModel::Momentum(0.005, 0.0)), 2);
+  InflowModel uniform;
+  uniform.thrust_coefficient = -1.0;
+  EXPECT_FALSE(uniform.Validate());
 }
 
 TEST(OptionTables, RowsReadAndWriteTheirMember) {

@@ -251,5 +251,59 @@ TEST(Study, TrimmedRowsAreTrimmedCriticalSearches) {
   EXPECT_THROW(run_study(p, {}, o), InvalidInput);
 }
 
+// Untrimmed rows and cells at an inflow model are the analyses at that condition; a non-uniform
+// model with a trim is refused naming `inflow`, a bad one naming its field.
+TEST(Study, RowsAndCellsAtTheMomentumInflow) {
+  const RotorParameters p;
+  OperatingCondition at;
+  at.inflow = InflowModel::Momentum(0.005, 0.0);
+  StudyOptions o;
+  o.parameter = "omega_lag";
+  o.values = {1.28303};
+  o.critical.mu_max = 1.0;
+  o.critical.scan_step = 0.1;
+  o.inflow = at.inflow;
+  const StudyResult s = run_study(p, {}, o);
+  ASSERT_EQ(s.rows.size(), 1u);
+  CriticalOptions c = o.critical;
+  c.all_intervals = true;
+  const RotorCritical direct = Analysis(p, {}, at).critical(c);
+  ASSERT_TRUE(direct.mu_c.has_value());
+  EXPECT_TRUE(same(s.rows[0].critical, direct));
+  const RotorCritical uniform = Analysis(p, {}).critical(c);
+  ASSERT_TRUE(uniform.mu_c.has_value());
+  EXPECT_GT(std::abs(*uniform.mu_c - *direct.mu_c), 1e-3);
+  MapOptions m;
+  m.x = {"theta", {0.15}};
+  m.y = {"omega_lag", {1.28303}};
+  m.mu = 0.3;
+  m.scan_step = 0.1;
+  m.inflow = at.inflow;
+  const MapResult map = run_map(p, {}, m);
+  double max_zeta = -1e300;
+  for (const auto& e : Analysis(p, {}, at).point(0.3, 0.1).exponents)
+    max_zeta = std::max(max_zeta, e.zeta);
+  ASSERT_TRUE(map.cells[0][0].max_zeta.has_value());
+  EXPECT_TRUE(same(*map.cells[0][0].max_zeta, max_zeta));
+
+  o.trim.kind = TrimKind::Thrust;
+  try {
+    run_study(p, {}, o);
+    ADD_FAILURE() << "a momentum inflow with a trim was taken";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.name(), "inflow");
+  }
+  m.trim.kind = TrimKind::Moment;
+  EXPECT_FALSE(m.IsValid(nullptr));
+  m.trim.kind = TrimKind::None;
+  m.inflow.thrust_coefficient = 0.2;
+  try {
+    run_map(p, {}, m);
+    ADD_FAILURE() << "C_T = 0.2 was taken";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.name(), "thrust_coefficient");
+  }
+}
+
 }  // namespace
 }  // namespace flaplag

@@ -49,6 +49,18 @@ git_commit = _flaplag.git_commit  # the commit the library was configured from (
 max_advance_ratio = _flaplag.max_advance_ratio
 
 
+def momentum_inflow(thrust_coefficient, mu, shaft_angle=0.0):
+    """The inflow ratio lambda of eq 2.25 for the thrust coefficient C_T (not C_T/sigma) at
+    advance ratio mu and shaft angle alpha_R [rad]: sqrt(C_T/2) in hover; the inflow of
+    Analysis.point(..., inflow='momentum') at that mu (C++ flaplag::momentum_inflow)."""
+    from ._analysis import _real
+
+    return _flaplag.momentum_inflow(
+        _real("thrust_coefficient", thrust_coefficient), _real("mu", mu),
+        _real("shaft_angle", shaft_angle)
+    )
+
+
 def models():
     """The compiled ordering models, one per spec at the spec's mode counts (the command
     line's ``flaplag models``); each also exists as '<name>-<M>x<N>' for any 1 <= M, N <= 12

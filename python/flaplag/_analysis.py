@@ -82,6 +82,15 @@ SIMULATION_DEFAULTS = dict(_flaplag.option_defaults("simulation"))  # Simulation
 EQUILIBRIUM_DEFAULTS = dict(_flaplag.option_defaults("equilibrium"))  # PeriodicEquilibriumOptions
 TRIM_DEFAULTS = dict(_flaplag.option_defaults("trim"))  # TrimOptions (kind "none": untrimmed)
 CAMPBELL_DEFAULTS = dict(_flaplag.option_defaults("campbell"))  # CampbellOptions
+# The inflow models at fixed controls: InflowModel's kinds but 'given' (a given lambda is a
+# trim's), as the command line's --inflow.
+_INFLOW_KINDS = tuple(
+    k
+    for row in _flaplag.inflow_table()
+    if row["field"] == "kind"
+    for k in row["choices"]
+    if k != "given"
+)
 
 _INT_MAX = 2**31 - 1
 
@@ -311,14 +320,40 @@ def _trim_request(trim, thrust_coefficient, shaft_angle):
                              ("shaft_angle", shaft_angle)):
             if value is not None:
                 raise _invalid(InvalidInput, field, value,
-                               "needs trim='thrust' or trim='moment' (without a trim it would be "
-                               "ignored)")
+                               "needs trim='thrust' or trim='moment', or inflow='momentum' "
+                               "(without either it would be ignored)")
         return None
     if not isinstance(trim, str) or trim not in ("thrust", "moment"):
         raise _invalid(InvalidInput, "trim", trim, "must be None, 'none', 'thrust' or 'moment'")
     ct = TRIM_DEFAULTS["thrust_coefficient"] if thrust_coefficient is None else thrust_coefficient
     alpha = TRIM_DEFAULTS["shaft_angle"] if shaft_angle is None else shaft_angle
     return (trim, _real("thrust_coefficient", ct), _real("shaft_angle", alpha))
+
+
+def _inflow_request(inflow, trim, thrust_coefficient, shaft_angle):
+    """(trim request, inflow model): the trim of _trim_request, and None (eq 2.24, the paper)
+    or the InflowModel dict of inflow='momentum': eq 2.25 at every mu for C_T =
+    thrust_coefficient (required) and alpha_R = shaft_angle (default 0), at fixed controls; the
+    command line's --inflow.  Not with a trim, which solves eq 2.25 itself."""
+    if inflow is None or (isinstance(inflow, str) and inflow == "uniform"):
+        return _trim_request(trim, thrust_coefficient, shaft_angle), None
+    if not isinstance(inflow, str) or inflow not in _INFLOW_KINDS:
+        raise _invalid(InvalidInput, "inflow", inflow,
+                       "must be None, " + ", ".join(repr(k) for k in _INFLOW_KINDS))
+    if trim is not None and not (isinstance(trim, str) and trim == "none"):
+        t = _trim_request(trim, thrust_coefficient, shaft_angle)  # a bad trim is named first
+        raise _invalid(InvalidInput, "inflow", inflow,
+                       f"not with trim={t[0]!r} (the trim solves eq 2.25 itself, with its own "
+                       "inflow at every mu)")
+    if thrust_coefficient is None:
+        raise _invalid(InvalidInput, "inflow", inflow,
+                       "needs thrust_coefficient (the C_T of eq 2.25, not C_T/sigma)")
+    alpha = 0.0 if shaft_angle is None else shaft_angle
+    return None, {
+        "kind": inflow,
+        "thrust_coefficient": _real("thrust_coefficient", thrust_coefficient),
+        "shaft_angle": _real("shaft_angle", alpha),
+    }
 
 
 def _memory_limit(value):
@@ -382,8 +417,19 @@ class Analysis:
 
     # -- analyses ------------------------------------------------------------------------------
 
+    def _at(self, inflow_model):
+        """The native analysis at fixed controls with this inflow model (None: this one)."""
+        return self._native if inflow_model is None else self._native.at_inflow(inflow_model)
+
     def point(
-        self, mu, *, scan_step=0.01, trim=None, thrust_coefficient=None, shaft_angle=None
+        self,
+        mu,
+        *,
+        scan_step=0.01,
+        trim=None,
+        thrust_coefficient=None,
+        shaft_angle=None,
+        inflow=None,
     ) -> PointResult:
         """The labelled exponents at advance ratio mu (0 <= mu <= 1000), continued from hover
         in steps of at most scan_step so that each exponent keeps its flap / lag label and its
@@ -391,14 +437,19 @@ class Analysis:
 
         trim='thrust' or 'moment' (the command line's --trim; every model has the thrust and
         the cyclic pitch): the rotor is trimmed to C_T = thrust_coefficient (shaft angle
-        alpha_R [rad]) at every mu the continuation evaluates (C++ OperatingCondition::Trimmed); see trim()."""
-        t = _trim_request(trim, thrust_coefficient, shaft_angle)
+        alpha_R [rad]) at every mu the continuation evaluates (C++ OperatingCondition::Trimmed); see trim().
+
+        inflow='momentum' (the command line's --inflow; not with a trim): the controls stay
+        fixed and the inflow is that of eq 2.25 for C_T = thrust_coefficient (required) and
+        alpha_R = shaft_angle (default 0) at every mu, sqrt(C_T/2) in hover; None or 'uniform'
+        is eq 2.24, the paper's (C++ OperatingCondition::inflow, InflowModel::Momentum)."""
+        t, model = _inflow_request(inflow, trim, thrust_coefficient, shaft_angle)
         if t is not None:
             return PointResult._from(
                 self._native.trimmed_point(_real("mu", mu), _real("scan_step", scan_step), *t)
             )
         return PointResult._from(
-            self._native.point(_real("mu", mu), _real("scan_step", scan_step))
+            self._at(model).point(_real("mu", mu), _real("scan_step", scan_step))
         )
 
     def sweep(
@@ -411,6 +462,7 @@ class Analysis:
         trim=None,
         thrust_coefficient=None,
         shaft_angle=None,
+        inflow=None,
         threads=0,
         progress=None,
         memory_limit=None,
@@ -423,6 +475,7 @@ class Analysis:
         sweep(start, stop, step): at start, start + step, ..., stop inclusive, reported at the
         decimal grid values (C++ Analysis::sweep, the command line's --mu START:STOP:STEP).
         trim, thrust_coefficient, shaft_angle: at fixed C_T, as point().
+        inflow: the inflow model at fixed controls, as point().
         threads: worker threads (0: all cores; the result does not depend on it; a trimmed
         sweep runs on one).
         progress: called as progress(evaluations_done, evaluations_total) from the calling
@@ -434,7 +487,7 @@ class Analysis:
         ``damping_crossings`` give, per mode, the first mu where its damping ratio falls below
         it (interpolated between the sweep points) and a status.
         """
-        t = _trim_request(trim, thrust_coefficient, shaft_angle)
+        t, model = _inflow_request(inflow, trim, thrust_coefficient, shaft_angle)
         dc = None if damping_criterion is None else _real("damping_criterion", damping_criterion)
         threads = _int("threads", threads)
         progress = _progress(progress)
@@ -447,7 +500,7 @@ class Analysis:
         if stop is None and step is None:
             mus = _real_array("mu", mu)
             if t is None:
-                raw = self._native.track(mus, ss, threads, progress, limit, dc)
+                raw = self._at(model).track(mus, ss, threads, progress, limit, dc)
             else:
                 raw = self._native.trimmed_track(mus, ss, *t, progress, limit, dc)
         elif stop is None or step is None:
@@ -462,7 +515,7 @@ class Analysis:
             # START:STOP): the user typed mu and stop.
             with _keywords(mu0="mu", mu1="stop"):
                 if t is None:
-                    raw = self._native.sweep(*grid, threads, progress, limit, dc)
+                    raw = self._at(model).sweep(*grid, threads, progress, limit, dc)
                 else:
                     raw = self._native.trimmed_sweep(*grid, *t, progress, limit, dc)
         return SweepResult._from(raw, self._labels())
@@ -480,6 +533,7 @@ class Analysis:
         trim=None,
         thrust_coefficient=None,
         shaft_angle=None,
+        inflow=None,
     ) -> CriticalResult:
         """The critical advance ratio mu_c: scans mu = scan_step, 2 scan_step, ... up to mu_max,
         continuing the exponents from hover, and refines the first crossing of
@@ -488,8 +542,9 @@ class Analysis:
         periodic_omega_tolerance: |omega - k/2| [per rev] below which a crossing is 'periodic';
         scan_zeta_tolerance: the exponent accuracy asked of the scan [per rev].
         trim, thrust_coefficient, shaft_angle: mu_c at fixed C_T, as point(); the
-        result's trim is the TrimResult at mu_c."""
-        t = _trim_request(trim, thrust_coefficient, shaft_angle)
+        result's trim is the TrimResult at mu_c.
+        inflow: the inflow model at fixed controls, as point()."""
+        t, model = _inflow_request(inflow, trim, thrust_coefficient, shaft_angle)
         opts = {
             "mu_max": _real("mu_max", mu_max),
             "scan_step": _real("scan_step", scan_step),
@@ -501,7 +556,7 @@ class Analysis:
         }
         if t is not None:
             return CriticalResult._from(self._native.trimmed_critical(opts, *t))
-        return CriticalResult._from(self._native.critical(opts))
+        return CriticalResult._from(self._at(model).critical(opts))
 
     def system(self, mu, psi=0.0) -> SystemResult:
         """The periodic system y' = A(psi) y + f(psi) at advance ratio mu and azimuth psi [rad]

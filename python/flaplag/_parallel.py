@@ -24,7 +24,7 @@ from ._analysis import (
     _real,
     _real_array,
     _text,
-    _trim_request,
+    _inflow_request,
     split_parameters,
 )
 from ._results import MapResult, StudyResult
@@ -59,6 +59,16 @@ def _trim_metadata(t):
     if t is None:
         return None
     return {"kind": t[0], "thrust_coefficient": t[1], "shaft_angle": t[2]}
+
+
+def _condition(trim, thrust_coefficient, shaft_angle, inflow):
+    """What the native study and map take as their condition: the trim request (None: fixed
+    controls) or, with inflow='momentum', the InflowModel dict; and the metadata that says it."""
+    t, model = _inflow_request(inflow, trim, thrust_coefficient, shaft_angle)
+    metadata = {"trim": _trim_metadata(t)}
+    if model is not None:
+        metadata["inflow"] = dict(model)
+    return (t if model is None else model), metadata
 
 
 def _distribution(client, chunk_lines):
@@ -142,6 +152,7 @@ def study(
     trim=None,
     thrust_coefficient=None,
     shaft_angle=None,
+    inflow=None,
     threads=0,
     progress=None,
     client=None,
@@ -164,6 +175,8 @@ def study(
     Analysis.critical(trim=...)).  Each row's ``trim`` is then the TrimResult at its mu_c, and
     the result's theta0, theta1c, theta1s, inflow are those controls as arrays (nan without
     mu_c).
+    inflow='momentum': fixed controls at the inflow of eq 2.25 for C_T = thrust_coefficient
+    at every mu (as Analysis.critical(inflow=...); the command line's study --inflow).
 
     threads: worker threads (0: all cores; the result does not depend on it).
     progress: called as progress(values_done, values_total) from the calling thread.
@@ -198,8 +211,8 @@ def study(
     if damping_criterion is not None:
         critical["damping_criterion"] = _real("damping_criterion", damping_criterion)
     threads = _int("threads", threads)
-    t = _trim_request(trim, thrust_coefficient, shaft_angle)
-    metadata = _metadata(parameters, rotor, transition, critical=critical, trim=_trim_metadata(t))
+    t, condition = _condition(trim, thrust_coefficient, shaft_angle, inflow)
+    metadata = _metadata(parameters, rotor, transition, critical=critical, **condition)
     if client is None:
         raw = _flaplag.study(
             rotor, transition, flap_modes, lag_modes, parameter, vals, critical, threads,
@@ -253,6 +266,7 @@ def map(
     trim=None,
     thrust_coefficient=None,
     shaft_angle=None,
+    inflow=None,
     threads=0,
     progress=None,
     client=None,
@@ -270,7 +284,8 @@ def map(
     blade.
 
     trim, thrust_coefficient, shaft_angle: every cell trimmed at its mu to C_T (the command
-    line's map --trim), as study().
+    line's map --trim), as study().  inflow='momentum': every cell at fixed controls with the
+    inflow of eq 2.25 for C_T = thrust_coefficient at its mu, as study().
 
     threads: worker threads (0: all cores; the result does not depend on it).
     progress: called as progress(lines_done, lines_total) from the calling thread.
@@ -291,10 +306,8 @@ def map(
     mu = _real("mu", mu)
     scan_step = _real("scan_step", scan_step)
     threads = _int("threads", threads)
-    t = _trim_request(trim, thrust_coefficient, shaft_angle)
-    metadata = _metadata(
-        parameters, rotor, transition, mu=mu, scan_step=scan_step, trim=_trim_metadata(t)
-    )
+    t, condition = _condition(trim, thrust_coefficient, shaft_angle, inflow)
+    metadata = _metadata(parameters, rotor, transition, mu=mu, scan_step=scan_step, **condition)
     common = (rotor, transition, flap_modes, lag_modes)
     if client is None:
         raw = _flaplag.map(

@@ -417,6 +417,7 @@ auto with_options_struct(const std::string& name, F&& f) {
   if (name == "critical") return f(Tag<CriticalOptions>{});
   if (name == "campbell") return f(Tag<CampbellOptions>{});
   if (name == "trim") return f(Tag<TrimOptions>{});
+  if (name == "inflow") return f(Tag<InflowModel>{});
   if (name == "response") return f(Tag<ResponseOptions>{});
   if (name == "simulation") return f(Tag<SimulationOptions>{});
   if (name == "equilibrium") return f(Tag<PeriodicEquilibriumOptions>{});
@@ -592,6 +593,19 @@ TrimOptions trim_of(const py::object& request) {
   return trim_options(kind, ct, alpha);
 }
 
+// The operating condition of a study or a map into o: None (fixed controls, eq 2.24), a trim
+// (kind, C_T, alpha_R) as trim_of reads it, or an InflowModel dict (fixed controls at that
+// inflow, as Python's _inflow_request gives it).
+template <class O>
+void set_condition(O& o, const py::object& request) {
+  if (py::isinstance<py::dict>(request)) {
+    o.inflow = options_from<InflowModel>(py::reinterpret_borrow<py::dict>(request),
+                                         "unknown inflow option");
+    return;
+  }
+  o.trim = trim_of(request);
+}
+
 // Runs work(cancel, progress) on a thread of its own.  The calling thread (which holds the GIL on
 // entry and exit) waits with the GIL released; every 50 ms, and when the work ends, it takes the
 // GIL to call progress_cb(done, total) when that changed and to check for signals.  A signal
@@ -679,7 +693,7 @@ StudyOptions study_options(const std::string& parameter, const py::handle& value
     }
   }
   o.critical = critical_options(search);
-  o.trim = trim_of(trim);
+  set_condition(o, trim);
   o.threads = threads;
   o.Check();
   return o;
@@ -745,7 +759,7 @@ MapOptions map_options(const std::string& x, const py::handle& x_values, const s
   o.y = MapAxis{y, values_of(y_values)};
   o.mu = mu;
   o.scan_step = scan_step;
-  o.trim = trim_of(trim);
+  set_condition(o, trim);
   o.threads = threads;
   o.Check();
   return o;
@@ -905,7 +919,6 @@ py::dict trim_dict(const TrimResult& t) {
   return d;
 }
 
-
 // ---- tables -------------------------------------------------------------------------------------
 
 const char* type_name(ParameterType t) {
@@ -1058,6 +1071,7 @@ void bind_tables(py::module_& m) {
   m.attr("max_advance_ratio") = kMaxAdvanceRatio;
   m.def("parameter_table", &parameter_rows);
   m.def("transition_table", &table_rows<TransitionOptions>);
+  m.def("inflow_table", &table_rows<InflowModel>);  // InflowModel (kind's choices: the models)
   // The defaults and the rows of an options struct, by name ("critical", "trim", ...).
   m.def("option_defaults", &option_defaults);
   m.def("option_table", &option_rows);
@@ -1090,6 +1104,11 @@ void bind_tables(py::module_& m) {
   });
   m.def("audit_report", [](const std::string& model) {
     return flaplag::spec::audit_report(flaplag::find_model(model).base);
+  });
+  // lambda of eq 2.25 for C_T at mu with the shaft angle alpha_R (rotor/inflow.h).
+  m.def("momentum_inflow", [](double thrust_coefficient, double mu, double shaft_angle) {
+    InflowModel::Momentum(thrust_coefficient, shaft_angle).Check();
+    return momentum_inflow(thrust_coefficient, mu, shaft_angle);
   });
   m.def("study_parameters", [] {
     py::list l;
@@ -1324,9 +1343,17 @@ void bind_trim(py::class_<Analysis>& analysis) {
 }
 
 // Stability at fixed C_T: the rotor trimmed at every mu evaluated (OperatingCondition::Trimmed),
-// with the trims the results rest on.
+// with the trims the results rest on.  And at fixed controls with another inflow model.
 void bind_trimmed_stability(py::class_<Analysis>& analysis) {
   analysis
+      // The analysis of a's rotor at fixed controls with the inflow model {key: value} of
+      // InflowModel's table (kind, thrust_coefficient, shaft_angle; a's options as resolved).
+      .def("at_inflow",
+           [](const Analysis& a, const py::dict& model) {
+             OperatingCondition c;
+             c.inflow = options_from<InflowModel>(model, "unknown inflow option");
+             return Analysis(a.parameters(), a.options(), c);
+           })
       .def("trimmed_point",
            [](const Analysis& a, double mu, double scan_step, const std::string& kind,
               double thrust_coefficient, double shaft_angle) {

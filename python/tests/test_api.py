@@ -607,7 +607,66 @@ def test_trimmed_analyses_bad_inputs_name_the_keyword(call, field):
     assert str(err.value).startswith(field + " = ")
 
 
+@pytest.mark.parametrize("call,field,reason", [
+    (lambda an: an.point(0.3, inflow="momentum"), "inflow", "needs thrust_coefficient"),
+    (lambda an: an.critical(inflow="momentum", trim="thrust", thrust_coefficient=0.005),
+     "inflow", "not with trim='thrust'"),
+    (lambda an: an.sweep([0.1], inflow="momentum", trim="moment", thrust_coefficient=0.005),
+     "inflow", "not with trim='moment'"),
+    (lambda an: an.point(0.3, inflow="momentum", trim="sideways"), "trim", "must be"),
+    (lambda an: an.point(0.3, inflow="given"), "inflow", "must be None, 'uniform', 'momentum'"),
+    (lambda an: an.point(0.3, inflow=True), "inflow", "must be None"),
+    (lambda an: an.point(0.3, inflow="momentum", thrust_coefficient=0.0), "thrust_coefficient",
+     "in (0, 0.1]"),
+    (lambda an: an.point(0.3, inflow="momentum", thrust_coefficient=0.2), "thrust_coefficient",
+     "in (0, 0.1]"),
+    (lambda an: an.point(0.3, inflow="momentum", thrust_coefficient="0.005"),
+     "thrust_coefficient", "must be a real number"),
+    (lambda an: an.critical(inflow="momentum", thrust_coefficient=0.005, shaft_angle=2.0),
+     "shaft_angle", "in (-pi/2, pi/2)"),
+    (lambda an: an.point(0.3, inflow="uniform", thrust_coefficient=0.005), "thrust_coefficient",
+     "or inflow='momentum'"),
+    (lambda an: an.point(0.3, shaft_angle=0.1), "shaft_angle", "or inflow='momentum'"),
+])
+def test_inflow_bad_inputs_name_the_keyword(call, field, reason):
+    """inflow= refuses what the command line's --inflow refuses, naming the keyword."""
+    with pytest.raises(flaplag.InvalidInput) as err:
+        call(flaplag.Analysis())
+    assert err.value.field == field
+    assert str(err.value).startswith(field + " = ")
+    assert reason in err.value.reason, str(err.value)
+    assert "\n" not in str(err.value)
+
+
 _AXES = dict(x=("mu", [0.0, 0.2, 0.4, 0.6]), y=("omega_lag", [0.5, 1.0, 1.5]))
+
+
+@pytest.mark.parametrize("call,field", [
+    (lambda: flaplag.study("omega_lag", [0.5], inflow="momentum"), "inflow"),
+    (lambda: flaplag.study("omega_lag", [0.5], inflow="momentum", trim="thrust",
+                           thrust_coefficient=0.005), "inflow"),
+    (lambda: flaplag.study("omega_lag", [0.5], inflow="momentum", thrust_coefficient=0.5),
+     "thrust_coefficient"),
+    (lambda: flaplag.map(**_AXES, inflow="Momentum"), "inflow"),
+    (lambda: flaplag.map(**_AXES, inflow="momentum", thrust_coefficient=0.005, shaft_angle=2.0),
+     "shaft_angle"),
+])
+def test_inflow_study_and_map_bad_inputs_name_the_keyword(call, field):
+    with pytest.raises(flaplag.InvalidInput) as err:
+        call()
+    assert err.value.field == field
+    assert str(err.value).startswith(field + " = ")
+
+
+def test_momentum_inflow_function():
+    """flaplag.momentum_inflow is eq 2.25: sqrt(C_T/2) in hover, its own root at mu > 0."""
+    assert flaplag.momentum_inflow(0.005, 0.0) == pytest.approx(0.05, abs=1e-16)
+    lam = flaplag.momentum_inflow(0.005, 0.3, 0.05)
+    assert lam == pytest.approx(0.3 * math.tan(0.05) + 0.005 / (2 * math.hypot(0.3, lam)),
+                                abs=1e-15)
+    with pytest.raises(flaplag.InvalidInput) as err:
+        flaplag.momentum_inflow(0.0, 0.3)
+    assert err.value.field == "thrust_coefficient"
 
 
 @pytest.mark.parametrize("call,field", [

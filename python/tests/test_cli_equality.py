@@ -254,6 +254,68 @@ def test_trimmed_study():
                                    "shaft_angle": 0.0}
 
 
+def test_momentum_inflow_point_sweep_critical():
+    """`--inflow momentum` and inflow='momentum': fixed controls at the inflow of eq 2.25, the
+    same exponents and mu_c bit for bit; the header says which inflow."""
+    an = flaplag.Analysis()
+    kw = dict(inflow="momentum", thrust_coefficient=0.005)
+    hover = an.point(0.0, **kw)
+    # eq 2.25 in hover: lambda = sqrt(C_T / 2), not the paper's eq 2.24
+    assert flaplag.momentum_inflow(0.005, 0.0) == math.sqrt(0.0025)
+    doc = run_cli("point", "--mu", "0", "--inflow", "momentum", "--thrust-coefficient", "0.005")
+    check_exponents(find(doc, "exponents", "point.exponents"), hover.exponents)
+    assert same(doc["hover"]["inflow"], math.sqrt(0.0025))
+    assert abs(an.hover.inflow - math.sqrt(0.0025)) > 1e-4
+    point = an.point(0.3, scan_step=0.1, **kw)
+    doc = run_cli("point", "--mu", "0.3", "--scan-step", "0.1", "--inflow", "momentum",
+                  "--thrust-coefficient", "0.005")
+    check_exponents(find(doc, "exponents", "point.exponents"), point.exponents)
+    assert doc["inflow"] == {"kind": "momentum", "thrust_coefficient": 0.005,
+                             "shaft_angle": 0.0,
+                             "lambda": flaplag.momentum_inflow(0.005, 0.3)}
+    uniform = an.point(0.3, scan_step=0.1)
+    assert abs(point.max_zeta - uniform.max_zeta) > 1e-4
+    assert an.point(0.3, scan_step=0.1, inflow="uniform").max_zeta == uniform.max_zeta
+    sweep = an.sweep(0.0, 0.2, 0.1, shaft_angle=0.05, **kw)
+    doc = run_cli("sweep", "--mu", "0:0.2:0.1", "--inflow", "momentum",
+                  "--thrust-coefficient", "0.005", "--shaft-angle", "0.05")
+    rows = find(doc, "rows", "sweep.rows")
+    assert len(rows) == len(sweep.points) == 3
+    for row, p in zip(rows, sweep.points):
+        check_exponents(row["exponents"], p.exponents)
+    crit = an.critical(**kw)
+    doc = run_cli("critical", "--inflow", "momentum", "--thrust-coefficient", "0.005")
+    assert crit.status == "ok", crit.message
+    assert same(find(doc, "mu_c"), crit.mu_c) and crit.mu_c is not None
+    assert abs(crit.mu_c - an.critical().mu_c) > 1e-3
+    assert same(doc["inflow"]["lambda_at_mu_c"], flaplag.momentum_inflow(0.005, crit.mu_c))
+
+
+def test_momentum_inflow_study_and_map():
+    """`study`/`map --inflow momentum` and flaplag.study/map(inflow='momentum'): the same rows
+    and cells bit for bit."""
+    kw = dict(inflow="momentum", thrust_coefficient=0.005)
+    st = flaplag.study("omega_lag", [1.2, 1.4], mu_max=1.0, scan_step=0.1, threads=2, **kw)
+    doc = run_cli("study", "--vary", "omega-lag=1.2,1.4", "--mu-max", "1", "--scan-step", "0.1",
+                  "--inflow", "momentum", "--thrust-coefficient", "0.005")
+    rows = find(doc, "rows", "study.rows")
+    for row, crit in zip(rows, st.rows):
+        assert same(row["mu_c"], crit.mu_c) and row["status"] == crit.status
+    assert st.metadata["inflow"] == {"kind": "momentum", "thrust_coefficient": 0.005,
+                                     "shaft_angle": 0.0}
+    assert st.metadata["trim"] is None
+    # not the rows at the paper's inflow
+    plain = flaplag.study("omega_lag", [1.2, 1.4], mu_max=1.0, scan_step=0.1, threads=2)
+    assert "inflow" not in plain.metadata
+    assert not np.array_equal(st.mu_c, plain.mu_c)
+    m = flaplag.map(x=("mu", [0.0, 0.2, 0.4]), y=("theta", [0.1, 0.15]), scan_step=0.1, **kw)
+    doc = run_cli("map", "--x", "mu=0:0.4:0.2", "--y", "theta=0.1,0.15", "--scan-step", "0.1",
+                  "--inflow", "momentum", "--thrust-coefficient", "0.005")
+    for i, row in enumerate(find(doc, "max_zeta")):
+        for j, z in enumerate(row):
+            assert same(zeta_value(z), m.max_zeta[i, j])
+
+
 def test_trimmed_critical_reports_the_trim_at_mu_c():
     """`critical --trim` and Analysis.critical(trim=...): the same mu_c and the same trim there."""
     an = flaplag.Analysis(omega_lag=0.5)

@@ -115,14 +115,15 @@ CHEAP = {"mu_max": 0.3, "scan_step": 0.1}
 TARGETS = {
     # target: (keywords to fuzz, fixed cheap keywords)
     "Analysis": (None, {}),  # every parameter of the table (filled in the worker)
-    "point": (["mu", "scan_step", "trim", "thrust_coefficient", "shaft_angle"],
+    "point": (["mu", "scan_step", "trim", "thrust_coefficient", "shaft_angle", "inflow"],
               {"mu": 0.3, "scan_step": 0.1}),
-    "sweep": (["mu", "scan_step", "threads", "trim", "thrust_coefficient", "shaft_angle"],
-              {"mu": [0.0, 0.1, 0.2], "scan_step": 0.1}),
+    "sweep": (["mu", "scan_step", "threads", "trim", "thrust_coefficient", "shaft_angle",
+               "inflow"], {"mu": [0.0, 0.1, 0.2], "scan_step": 0.1}),
     "sweep3": (["mu", "stop", "step", "scan_step", "threads"],
                {"mu": 0.0, "stop": 0.2, "step": 0.1}),
     "critical": (["mu_max", "scan_step", "tolerance", "all_intervals", "zeta_threshold",
-                  "periodic_omega_tolerance", "scan_zeta_tolerance", "trim"], dict(CHEAP)),
+                  "periodic_omega_tolerance", "scan_zeta_tolerance", "trim", "inflow"],
+                 dict(CHEAP)),
     "system": (["mu", "psi"], {"mu": 0.3}),
     "modes": (["x", "derivative"], {}),
     "response": (["mu", "samples", "steps", "tolerance"], {"mu": 0.3}),

@@ -12,9 +12,13 @@
 namespace flaplag {
 namespace {
 
-// A study's or map's operating condition: trimmed with its trim options, else fixed controls.
-OperatingCondition condition_of(const TrimOptions& trim) {
-  return trim.kind != TrimKind::None ? OperatingCondition::Trimmed(trim) : OperatingCondition{};
+// A study's or map's operating condition: trimmed with its trim options, else fixed controls at
+// its inflow model (OperatingCondition::Validate refuses a non-uniform one with a trim).
+OperatingCondition condition_of(const TrimOptions& trim, const InflowModel& inflow) {
+  OperatingCondition c =
+      trim.kind != TrimKind::None ? OperatingCondition::Trimmed(trim) : OperatingCondition{};
+  c.inflow = inflow;
+  return c;
 }
 
 std::optional<InvalidInput> bad(const char* name, const std::string& value,
@@ -44,6 +48,7 @@ std::optional<InvalidInput> study_problem(const StudyOptions& o) {
   return Requirements()
       .Include(o.critical.Validate())
       .Include(o.trim.Validate())
+      .Include(condition_of(o.trim, o.inflow).Validate())
       .Include(threads_problem(o.threads))
       .Result();
 }
@@ -70,7 +75,11 @@ std::optional<InvalidInput> map_problem(const MapOptions& o) {
     return bad("mu", round_trip_text(o.mu), "must be in [0, 1000]");
   if (!(std::isfinite(o.scan_step) && o.scan_step > 0.0))
     return bad("scan_step", round_trip_text(o.scan_step), "must be > 0");
-  return Requirements().Include(o.trim.Validate()).Include(threads_problem(o.threads)).Result();
+  return Requirements()
+      .Include(o.trim.Validate())
+      .Include(condition_of(o.trim, o.inflow).Validate())
+      .Include(threads_problem(o.threads))
+      .Result();
 }
 
 // The least stable exponent of a point as a map cell.
@@ -142,7 +151,7 @@ StudyResult run_study(const RotorParameters& base, const TransitionOptions& tran
         row.value = options.values[i];
         try {
           const RotorParameters p = with_parameter(base, options.parameter, row.value);
-          const Analysis an(p, transition, condition_of(options.trim));
+          const Analysis an(p, transition, condition_of(options.trim, options.inflow));
           RotorCritical c = an.critical(crit);
           row.trim = std::move(c.trim);
           row.critical = std::move(c);
@@ -183,8 +192,8 @@ MapResult run_map(const RotorParameters& base, const TransitionOptions& transiti
       };
       try {
         const RotorParameters p = with_parameter(base, other.parameter, other.values[l]);
-        const SweepResult s =
-            Analysis(p, transition, condition_of(options.trim)).track(mus, options.scan_step, 1);
+        const SweepResult s = Analysis(p, transition, condition_of(options.trim, options.inflow))
+                                  .track(mus, options.scan_step, 1);
         for (std::size_t k = 0; k < mus.size(); ++k)
           put(k, k < s.points.size() ? cell_of(s.points[k])
                                      : failed_cell("continuation stopped: " + s.message));
@@ -198,8 +207,9 @@ MapResult run_map(const RotorParameters& base, const TransitionOptions& transiti
         const RotorParameters p =
             with_parameter(with_parameter(base, options.y.parameter, options.y.values[l]),
                            options.x.parameter, options.x.values[j]);
-        out.cells[l][j] = cell_of(Analysis(p, transition, condition_of(options.trim))
-                                      .point(options.mu, options.scan_step));
+        out.cells[l][j] =
+            cell_of(Analysis(p, transition, condition_of(options.trim, options.inflow))
+                        .point(options.mu, options.scan_step));
       } catch (const InvalidInput& e) {
         out.cells[l][j] = failed_cell(e.what());
       }

@@ -37,6 +37,9 @@ struct StudyOptions {
   // OperatingCondition::Trimmed): mu_c at fixed C_T.  The trim replaces theta (and, moment trim,
   // theta1c, theta1s).
   TrimOptions trim;
+  // Untrimmed rows: the inflow at every mu (rotor/inflow.h; the default eq 2.24).  Not with a
+  // trim (InvalidInput "inflow"): a trim has its own.
+  InflowModel inflow;
   int threads = 0;  // 0: as many as the hardware has; else 1..kMaxThreads (core/parallel.h)
   // Given (kDampingCriterionRange, numerics/continuation.h): each row also sweeps mu = 0,
   // scan_step, ..., mu_max (trimmed when the row is) and reports, per mode, the first mu where
@@ -88,6 +91,7 @@ struct MapOptions {
   double mu = 0.0;          // the advance ratio when neither axis is "mu"
   double scan_step = 0.01;  // continuation step in mu
   TrimOptions trim;         // kind != None: every cell trimmed at its mu (trim.h)
+  InflowModel inflow;       // untrimmed cells: the inflow model, as StudyOptions::inflow
   int threads = 0;
 
   std::optional<InvalidInput> Validate() const;

@@ -11,6 +11,8 @@
 
 #include <array>
 #include <optional>
+#include <string>
+#include <tuple>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -61,7 +63,23 @@ struct InflowModel {
   // InvalidInput naming the first bad field: a Given lambda not finite ("inflow"); a Momentum
   // C_T or shaft angle outside the ranges above.
   std::optional<InvalidInput> Validate() const;
+  bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
+  void Check() const { ThrowIfInvalid(Validate()); }
 };
+
+// The model's table: front ends set it by these rows (Python's options_from) and name its
+// fields by them in messages.
+constexpr auto describe(Tag<InflowModel>) {
+  using M = InflowModel;
+  return std::make_tuple(
+      Option{"kind", &M::kind, "",
+             "uniform (eq 2.24, held at every mu), momentum (eq 2.25 at every mu) or given"},
+      Option{"thrust_coefficient", &M::thrust_coefficient, "-",
+             "momentum: the thrust coefficient C_T of eq 2.25", &M::kThrustRange},
+      Option{"shaft_angle", &M::shaft_angle, "rad", "momentum: the shaft angle alpha_R of eq 2.25",
+             &M::kShaftAngleRange},
+      Option{"lambda_given", &M::lambda_given, "-", "given: the inflow ratio lambda"});
+}
 
 // Solves eq 2.25 for lambda given C_T > 0 and mu >= 0 (the root in (mu tan alpha_R, mu tan
 // alpha_R + C_T/(2 mu)] for mu > 0; sqrt(C_T/2) at mu = 0).  NaN when the root is not found.
