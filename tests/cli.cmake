@@ -10,9 +10,16 @@ flaplag_test(parameters_test flaplag_rotor)
 # is the binary and the libraries the driver links (flaplag_cli, compiled with the build's
 # flags), and instrumenting and optimizing the drivers' GoogleTest and JSON code was 40 % of that
 # pass's build for nothing.
+set(FLAPLAG_CLI_DRIVER_OPTIONS -O0 -fno-sanitize=all)
+if(FLAPLAG_TEST_PCH)
+  flaplag_test_pch(flaplag_cli_test_pch ${FLAPLAG_CLI_DRIVER_OPTIONS})
+endif()
 function(flaplag_cli_test name)
   flaplag_test(${name} LABEL runs_flaplag ${ARGN})
-  target_compile_options(${name} PRIVATE -O0 -fno-sanitize=all)
+  target_compile_options(${name} PRIVATE ${FLAPLAG_CLI_DRIVER_OPTIONS})
+  if(FLAPLAG_TEST_PCH)
+    target_precompile_headers(${name} REUSE_FROM flaplag_cli_test_pch)
+  endif()
   if(CMAKE_CXX_FLAGS MATCHES "-fsanitize=[^ ]*address")
     target_compile_definitions(${name} PRIVATE FLAPLAG_EXE_ASAN=1)  # tests/process.h
   endif()
