@@ -386,9 +386,10 @@ V option_value(const std::string& key, const py::handle& value) {
   }
 }
 
+// The rows named in d into o (no check: a struct with fields set by hand as well, a study's or a
+// map's axes, is checked once they are set).
 template <class O>
-O options_from(const py::dict& d, const char* unknown) {
-  O o;
+void set_options(O& o, const py::dict& d, const char* unknown) {
   for (const auto& item : d) {
     const std::string key = py::cast<std::string>(item.first);
     const py::handle value = item.second;
@@ -398,6 +399,12 @@ O options_from(const py::dict& d, const char* unknown) {
     });
     if (!known) throw InvalidInput(key, shown(value), unknown);
   }
+}
+
+template <class O>
+O options_from(const py::dict& d, const char* unknown) {
+  O o;
+  set_options(o, d, unknown);
   o.Check();
   return o;
 }
@@ -421,6 +428,8 @@ auto with_options_struct(const std::string& name, F&& f) {
   if (name == "response") return f(Tag<ResponseOptions>{});
   if (name == "simulation") return f(Tag<SimulationOptions>{});
   if (name == "equilibrium") return f(Tag<PeriodicEquilibriumOptions>{});
+  if (name == "study") return f(Tag<StudyOptions>{});  // its scalar options; axes by hand
+  if (name == "map") return f(Tag<MapOptions>{});
   throw InvalidInput("name", quoted(name), "not a described options struct");
 }
 
@@ -683,18 +692,15 @@ StudyOptions study_options(const std::string& parameter, const py::handle& value
   StudyOptions o;
   o.parameter = parameter;
   o.values = values_of(values);
-  // The damping criterion travels with the search options (Python's study(damping_criterion=)).
-  py::dict search;
-  for (const auto& [key, value] : critical) {
-    if (key.cast<std::string>() == "damping_criterion") {
-      if (!value.is_none()) o.damping_criterion = value.cast<double>();
-    } else {
-      search[key] = value;
-    }
-  }
+  // The damping criterion travels with the search options (Python's study(damping_criterion=));
+  // it and the threads are rows of the study's table.
+  py::dict search, scalars;
+  for (const auto& [key, value] : critical)
+    (key.cast<std::string>() == "damping_criterion" ? scalars : search)[key] = value;
   o.critical = critical_options(search);
   set_condition(o, trim);
-  o.threads = threads;
+  scalars["threads"] = threads;
+  set_options(o, scalars, "unknown study option");
   o.Check();
   return o;
 }
@@ -757,10 +763,12 @@ MapOptions map_options(const std::string& x, const py::handle& x_values, const s
   MapOptions o;
   o.x = MapAxis{x, values_of(x_values)};
   o.y = MapAxis{y, values_of(y_values)};
-  o.mu = mu;
-  o.scan_step = scan_step;
   set_condition(o, trim);
-  o.threads = threads;
+  py::dict scalars;  // the rows of the map's table
+  scalars["mu"] = mu;
+  scalars["scan_step"] = scan_step;
+  scalars["threads"] = threads;
+  set_options(o, scalars, "unknown map option");
   o.Check();
   return o;
 }

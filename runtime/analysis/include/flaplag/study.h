@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "flaplag/analysis.h"
+#include "flaplag/core/fields.h"
 #include "flaplag/core/parallel.h"
+#include "flaplag/core/validation.h"
 #include "flaplag/trim.h"
 
 namespace flaplag {
@@ -28,6 +30,11 @@ bool is_study_parameter(const std::string& name);
 // p with field `name` set to v (InvalidInput("parameter", name) for an unknown name; the value
 // itself is checked when an Analysis is built from p).
 RotorParameters with_parameter(RotorParameters p, const std::string& name, double v);
+
+// Worker threads of a study or a map: threads_problem's (core/parallel.h) words as a Range.
+inline constexpr Range kThreadsRange{{0.0, static_cast<double>(kMaxThreads), false, false},
+                                     "0 (all cores) or 1..256"};
+static_assert(kMaxThreads == 256, "kThreadsRange's words name kMaxThreads");
 
 struct StudyOptions {
   std::string parameter;       // the varied field (not "mu")
@@ -51,6 +58,19 @@ struct StudyOptions {
   bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
   void Check() const { ThrowIfInvalid(Validate()); }
 };
+
+// The scalar options (the axis, the search and the condition are checked by hand in Validate(),
+// in the order of the checks before the table, which the ranged rows keep).
+constexpr auto describe(Tag<StudyOptions>) {
+  using O = StudyOptions;
+  return std::make_tuple(
+      Option{"damping_criterion", &O::damping_criterion, "-",
+             "damping ratio asked of every mode: report the first mu where each mode's damping "
+             "ratio -zeta/|lambda| falls below it",
+             &kDampingCriterionRange},
+      Option{"threads", &O::threads, "",
+             "worker threads; the answer does not depend on their number", &kThreadsRange});
+}
 
 inline constexpr std::size_t kMaxStudyValues = 100000;
 
@@ -87,6 +107,9 @@ struct MapAxis {
 };
 
 struct MapOptions {
+  static constexpr Range kMuRange{{0.0, kMaxAdvanceRatio, false, false}, "in [0, 1000]"};
+  static_assert(kMaxAdvanceRatio == 1000.0, "kMuRange's words name kMaxAdvanceRatio");
+
   MapAxis x, y;             // at most one of them "mu"; each with 1..kMaxMapValues values
   double mu = 0.0;          // the advance ratio when neither axis is "mu"
   double scan_step = 0.01;  // continuation step in mu
@@ -98,6 +121,15 @@ struct MapOptions {
   bool IsValid(std::string* error) const { return IsValidReport(Validate(), error); }
   void Check() const { ThrowIfInvalid(Validate()); }
 };
+
+constexpr auto describe(Tag<MapOptions>) {
+  using O = MapOptions;
+  return std::make_tuple(
+      Option{"mu", &O::mu, "-", "advance ratio when neither axis is mu", &O::kMuRange},
+      Option{"scan_step", &O::scan_step, "-", "continuation step in mu from hover", &kPositive},
+      Option{"threads", &O::threads, "",
+             "worker threads; the answer does not depend on their number", &kThreadsRange});
+}
 
 inline constexpr std::size_t kMaxMapValues = 10000;
 
