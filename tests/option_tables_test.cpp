@@ -10,6 +10,7 @@
 #include <string>
 #include <type_traits>
 
+#include "flaplag/analysis.h"
 #include "flaplag/campbell.h"
 #include "flaplag/core/fields.h"
 #include "flaplag/core/validation.h"
@@ -220,6 +221,38 @@ TEST(OptionTables, DescribedEnumsByName) {
   EXPECT_EQ(m, TransitionMethod::Magnus4);
   EXPECT_FALSE(enum_from_name("Magnus", &m));
   for (TransitionMethod k : kTransitionMethods) EXPECT_STREQ(enum_name(k), method_name(k));
+}
+
+}  // namespace
+}  // namespace flaplag
+
+namespace flaplag {
+namespace {
+
+// The result rows of studies and maps: one snake_case name each, documented, with the units of
+// their quantities; a map document's grids are rows of MapCell, and a study row's own rows do
+// not repeat the search's (CriticalResult's) keys it is written beside.
+TEST(ResultTables, StudyRowAndMapCell) {
+  std::set<std::string> cell, critical;
+  for_each_row<MapCell>([&](const auto& row) {
+    EXPECT_TRUE(snake_case(row.name)) << row.name;
+    EXPECT_TRUE(cell.insert(row.name).second) << row.name;
+    EXPECT_GT(std::string(row.doc).size(), 5u) << row.name;
+  });
+  for (const char* grid : kMapGridRows) EXPECT_EQ(cell.count(grid), 1u) << grid;
+  visit_row<MapCell>("max_zeta", [](const auto& row) {
+    EXPECT_STREQ(row.units, "per rev");
+    EXPECT_TRUE(row.flags & kFieldNegativeInfinity);  // a zero multiplier's zeta
+  });
+  visit_row<MapCell>("omega", [](const auto& row) { EXPECT_STREQ(row.units, "per rev"); });
+  for_each_row<CriticalResult>([&](const auto& row) { critical.insert(row.name); });
+  std::set<std::string> study;
+  for_each_row<StudyRow>([&](const auto& row) {
+    EXPECT_TRUE(snake_case(row.name)) << row.name;
+    EXPECT_TRUE(study.insert(row.name).second) << row.name;
+    EXPECT_EQ(critical.count(row.name), 0u) << row.name << " is a key of the search as well";
+  });
+  EXPECT_EQ(study, (std::set<std::string>{"value", "trim", "damping_crossings"}));
 }
 
 }  // namespace

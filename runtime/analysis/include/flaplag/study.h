@@ -88,6 +88,19 @@ struct StudyRow {
   std::vector<DampingCrossing> damping_crossings;
 };
 
+// A row's own rows; its search (critical) is written in the row itself: a document's row has
+// `value`, the keys of CriticalResult (intervals as [onset, end] pairs; mode, omega, kind null
+// without mu_c), then `trim` (trimmed studies) and `damping_crossings` (with a criterion).
+constexpr auto describe(Tag<StudyRow>) {
+  return std::make_tuple(
+      Field{"value", &StudyRow::value, "", "the value of the varied parameter (in its units)"},
+      Field{"trim", &StudyRow::trim, "",
+            "trimmed studies: the trim at mu_c; null without mu_c (absent untrimmed)"},
+      Field{"damping_crossings", &StudyRow::damping_crossings, "",
+            "with a damping criterion: one crossing per mode (absent without)",
+            kFieldOmitWhenEmpty});
+}
+
 struct StudyResult : Outcome {
   std::vector<StudyRow> rows;  // rows_done of them when cancelled
   std::size_t rows_done = 0;
@@ -140,6 +153,24 @@ struct MapCell : Outcome {
   double omega = 0.0;              // its omega, per rev
   InstabilityKind kind = InstabilityKind::Flutter;  // periodic when omega is locked (0, 1/2, 1)
 };
+
+// The JSON documents (flaplag map --json) write the exponent's rows as grids (kMapGridRows, null
+// where unknown); Python has every row as an array of the map's shape.
+constexpr auto describe(Tag<MapCell>) {
+  return std::tuple_cat(
+      std::make_tuple(
+          Field{"computed", &MapCell::computed, "", "false: not reached (a cancelled run)"},
+          Field{"max_zeta", &MapCell::max_zeta, "per rev",
+                "the largest zeta at the cell; null when unknown (failed)", kFieldNegativeInfinity},
+          Field{"mode", &MapCell::mode, "", "the label of the least stable exponent"},
+          Field{"omega", &MapCell::omega, "per rev", "its omega, >= 0"},
+          Field{"kind", &MapCell::kind, "",
+                "flutter (omega not locked) or periodic (omega locked to 0, 1/2 or 1 per rev)"}),
+      describe(Tag<Outcome>{}));
+}
+
+// The rows of MapCell a map document holds, each as a grid (rows y, columns x).
+inline constexpr const char* kMapGridRows[] = {"max_zeta", "mode", "kind"};
 
 struct MapResult : Outcome {
   // cells[i][j]: y.values[i], x.values[j].  The work is done in lines along the "mu" axis (one
