@@ -190,21 +190,22 @@ Json map_json(const Request& r, const Analysis& base, const MapResult& m) {
   j["x"] = Json{{"name", word(r.x_name)}, {"values", r.x_values}};
   j["y"] = Json{{"name", word(r.y_name)}, {"values", r.y_values}};
   if (r.x_name != "mu" && r.y_name != "mu") j["mu"] = r.mu;
-  Json zeta = Json::array(), mode = Json::array(), kind = Json::array();
-  for (const auto& row : m.cells) {
-    Json a = Json::array(), b = Json::array(), c = Json::array();
-    for (const MapCell& cell : row) {
-      a.push_back(cell.max_zeta ? zeta_json(*cell.max_zeta) : Json(nullptr));
-      b.push_back(cell.max_zeta ? Json(cell.mode) : Json(nullptr));
-      c.push_back(cell.max_zeta ? Json(kind_name(cell.kind)) : Json(nullptr));
-    }
-    zeta.push_back(a);
-    mode.push_back(b);
-    kind.push_back(c);
+  // One grid per row of kMapGridRows, written by the row's type; null where the cell's
+  // exponent is unknown (no max_zeta).
+  const MessageText message = in_vocabulary(r);
+  for (const char* key : kMapGridRows) {
+    visit_row<MapCell>(key, [&](const auto& field) {
+      Json grid = Json::array();
+      for (const auto& row : m.cells) {
+        Json line = Json::array();
+        for (const MapCell& cell : row)
+          line.push_back(cell.max_zeta ? json_detail::value(field.get(cell), field.flags, message)
+                                       : Json(nullptr));
+        grid.push_back(line);
+      }
+      j[key] = grid;
+    });
   }
-  j["max_zeta"] = zeta;
-  j["mode"] = mode;
-  j["kind"] = kind;
   return status_json(j, m.status, vocab(r, m.message));
 }
 

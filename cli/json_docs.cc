@@ -12,6 +12,7 @@
 #include "flaplag/campbell.h"
 #include "flaplag/model_fields.h"
 #include "flaplag/rotor/parameter_table.h"
+#include "flaplag/study.h"
 #include "flaplag/trim.h"
 #include "json_fields.h"
 #include "options.h"
@@ -70,6 +71,15 @@ const char* struct_name<CampbellFrequency>() {
 template <>
 const char* struct_name<CampbellCrossing>() {
   return "CampbellCrossing";
+}
+
+template <>
+const char* struct_name<StudyRow>() {
+  return "StudyRow";
+}
+template <>
+const char* struct_name<MapCell>() {
+  return "MapCell";
 }
 
 template <>
@@ -217,6 +227,14 @@ std::string documents_section() {
          section_link("CriticalResult") + " and, with `--trim`, `trim` (the " +
          section_link("TrimResult") +
          " at mu_c, or null).\n"
+         "- `flaplag study --json`: the header, `vary` (the parameter), `mu_max`, `scan_step`, "
+         "with `--damping-criterion` `damping_criterion`, `rows` (one per value: " +
+         section_link("StudyRow") +
+         "), `status` and `message`.\n"
+         "- `flaplag map --json`: the header, `x` and `y` (`name`, `values`), without a mu axis "
+         "`mu`, the grids `max_zeta`, `mode` and `kind` (rows y, columns x; the keys of " +
+         section_link("MapCell") +
+         ", null where unknown), `status` and `message`.\n"
          "- `flaplag trim --json`: the header (without `method`) and the keys of " +
          section_link("TrimResult") +
          ".\n"
@@ -275,6 +293,17 @@ std::string json_reference() {
       "kind moment, the first flap harmonic vanishes).  The Python module's TrimResult also "
       "has `parameters` (the rotor parameters with the trimmed pitch).");
   out += struct_section<TrimEquilibrium>("The periodic equilibrium a trim about it rests on.");
+  out += struct_section<StudyRow>(
+      "One value of a study: a row of `flaplag study --json` is `value`, the keys of " +
+      section_link("CriticalResult") +
+      " at it (`intervals` as [onset, end] pairs; `mode`, `omega`, `kind` null without mu_c), "
+      "then `trim` and `damping_crossings`.  Python: `StudyResult.rows` (CriticalResult each) "
+      "and its columns.");
+  out += struct_section<MapCell>(
+      "One cell of a stability map: the least stable exponent there.  `flaplag map --json` "
+      "writes `max_zeta`, `mode` and `kind` as grids; Python's `MapResult` has `max_zeta`, "
+      "`omega`, `mode`, `kind` and the cells' `status` and `message` (`cell_status`, "
+      "`cell_message`) as arrays of the map's shape.");
   out += struct_section<CampbellResult>(
       "The Campbell diagram: every mode's frequency against the rotor speed Omega/Omega_0, the "
       "blade's bending stiffness fixed at its value for the nominal speed Omega_0.");

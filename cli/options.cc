@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <system_error>
 #include <type_traits>
@@ -21,6 +22,7 @@
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/rotor/inflow.h"
+#include "flaplag/study.h"
 #include "flaplag/trim.h"
 
 namespace flaplag::cli {
@@ -90,7 +92,8 @@ std::string value_text(const V& v) {
 
 // The option of the row `field` of O's table, which sets (r.*owner).field: "--" + kebab of the
 // field unless `name` is given; metavar REAL, N or the enum's names unless `metavar` is given;
-// help from the row's doc, units and range; default from O{}.
+// help from the row's doc, units and range; default from O{}.  owner nullptr: the help of an
+// option read by hand (a Request member of its own, shared with other subcommands), no setter.
 template <class O>
 OptionSpec table_option(O Request::*owner, std::string_view field, const char* name = nullptr,
                         const char* metavar = nullptr) {
@@ -105,9 +108,18 @@ OptionSpec table_option(O Request::*owner, std::string_view field, const char* n
     o.help = row.doc;
     if constexpr (std::is_same_v<V, bool>) {
       if (!note.empty()) o.help += " (" + note + ")";
-      o.set = [owner, row](Request& r, const std::string&, const std::string&) {
-        row.get(r.*owner) = true;
-      };
+      if (owner != nullptr) {
+        o.set = [owner, row](Request& r, const std::string&, const std::string&) {
+          row.get(r.*owner) = true;
+        };
+      }
+    } else if constexpr (std::is_same_v<V, std::optional<double>>) {
+      // Help only: an optional number is off by default.
+      const Range* range = row_range(row);
+      o.takes_value = true;
+      o.metavar = metavar != nullptr ? metavar : "REAL";
+      if (range != nullptr) note += (note.empty() ? "" : "; ") + std::string(range->words);
+      if (!note.empty()) o.help += " (" + note + ")";
     } else if constexpr (std::is_same_v<V, double> || std::is_same_v<V, int> ||
                          is_described_enum_v<V>) {
       const Range* range = row_range(row);
@@ -124,13 +136,16 @@ OptionSpec table_option(O Request::*owner, std::string_view field, const char* n
       if (range != nullptr) note += (note.empty() ? "" : "; ") + std::string(range->words);
       if (!note.empty()) o.help += " (" + note + ")";
       o.default_text = value_text(row.get(O{}));
-      o.set = [owner, row, range](Request& r, const std::string& spelling,
-                                  const std::string& text) {
-        row.get(r.*owner) = parse_value<V>(spelling, text, range);
-      };
+      if (owner != nullptr) {
+        o.set = [owner, row, range](Request& r, const std::string& spelling,
+                                    const std::string& text) {
+          row.get(r.*owner) = parse_value<V>(spelling, text, range);
+        };
+      }
     }
   });
-  if (!found || !o.set) throw std::logic_error("no option row " + std::string(field));
+  if (!found || (owner != nullptr && !o.set))
+    throw std::logic_error("no option row " + std::string(field));
   return o;
 }
 
@@ -433,11 +448,12 @@ std::vector<OptionSpec> build(Command c) {
                                "", {"parameter", "values"}));
       v.push_back(table_option(&Request::critical, "mu_max"));
       v.push_back(table_option(&Request::critical, "scan_step"));
-      v.push_back(threads);
+      // --threads and --damping-criterion are read for every subcommand (interpret_run_options).
+      v.push_back(table_option<StudyOptions>(nullptr, "threads"));
       v.push_back(value_option("--plot", "FILE.svg|FILE.png",
                                "also draw mu_c and the instability intervals (gnuplot)", "",
                                {"plot"}));
-      v.push_back(damping_criterion);
+      v.push_back(table_option<StudyOptions>(nullptr, "damping_criterion", nullptr, "C"));
       break;
     }
     case Command::Map:
@@ -445,10 +461,10 @@ std::vector<OptionSpec> build(Command c) {
                                "x axis: mu or a numeric rotor parameter", "", {"x"}));
       v.push_back(value_option("--y", "NAME=START:STOP:STEP|NAME=V1,...",
                                "y axis: mu or a numeric rotor parameter", "", {"y"}));
-      v.push_back(
-          value_option("--mu", "REAL", "advance ratio when neither axis is mu", "0", {"mu"}));
-      v.push_back(scan_step);
-      v.push_back(threads);
+      // Read in interpret_map (--mu only without a mu axis) and interpret_run_options.
+      v.push_back(table_option<MapOptions>(nullptr, "mu"));
+      v.push_back(table_option<MapOptions>(nullptr, "scan_step"));
+      v.push_back(table_option<MapOptions>(nullptr, "threads"));
       v.push_back(value_option("--plot", "FILE.svg|FILE.png",
                                "also draw the max-zeta map with the zeta = 0 boundary (gnuplot)",
                                "", {"plot"}));

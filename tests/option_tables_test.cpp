@@ -5,10 +5,12 @@
 
 #include <cctype>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <string>
 #include <type_traits>
 
+#include "flaplag/analysis.h"
 #include "flaplag/campbell.h"
 #include "flaplag/core/fields.h"
 #include "flaplag/core/validation.h"
@@ -17,6 +19,7 @@
 #include "flaplag/numerics/response.h"
 #include "flaplag/rotor/inflow.h"
 #include "flaplag/rotor/periodic_equilibrium.h"
+#include "flaplag/study.h"
 #include "flaplag/trim.h"
 
 namespace flaplag {
@@ -66,6 +69,19 @@ int check_table(const O& defaults = O{}) {
       ASSERT_TRUE(e) << row.name << " = " << row.get(bad) << " admitted";
       EXPECT_EQ(e->name(), row.name);
       EXPECT_EQ(e->reason(), std::string("must be ") + range->words) << row.name;
+    } else if constexpr (std::is_same_v<V, std::optional<double>>) {
+      // Off by default; a value outside the range is refused once given.
+      if (range == nullptr) return;
+      ++ranged;
+      EXPECT_FALSE(value.has_value()) << row.name;
+      O bad = defaults;
+      row.get(bad) = outside<double>(range->interval);
+      const std::optional<InvalidInput> e = bad.Validate();
+      ASSERT_TRUE(e) << row.name << " admitted outside its range";
+      EXPECT_EQ(e->name(), row.name);
+      EXPECT_EQ(e->reason(), std::string("must be ") + range->words) << row.name;
+      row.get(bad) = range->interval.lo;  // in range when given
+      EXPECT_FALSE(bad.Validate()) << row.name;
     } else {
       EXPECT_EQ(range, nullptr) << row.name << ": a range on a value that is not a number";
     }
@@ -87,6 +103,82 @@ TEST(OptionTables, EveryRangedRowIsWhatValidateChecks) {
   InflowModel uniform;
   uniform.thrust_coefficient = -1.0;
   EXPECT_FALSE(uniform.Validate());
+  // A study and a map need their axes; the scalar rows are the table's.
+  StudyOptions study;
+  study.parameter = "omega_lag";
+  study.values = {1.0, 1.3};
+  EXPECT_EQ(check_table(study), 2);
+  MapOptions map;
+  map.x = {"theta", {0.1, 0.2}};
+  map.y = {"omega_lag", {1.0}};
+  EXPECT_EQ(check_table(map), 3);
+}
+
+// The rows of studies and maps: units, docs, the ranges and words Python's and the command
+// line's errors have always had.
+TEST(OptionTables, StudyAndMapRows) {
+  auto words = [](auto tag, const char* name) {
+    std::string w;
+    visit_row<typename decltype(tag)::type>(name, [&](const auto& row) {
+      EXPECT_NE(row.units, nullptr);
+      if (const Range* r = row_range(row)) w = r->words;
+    });
+    return w;
+  };
+  EXPECT_EQ(words(Tag<StudyOptions>{}, "threads"), "0 (all cores) or 1..256");
+  EXPECT_EQ(words(Tag<StudyOptions>{}, "damping_criterion"),
+            ">= 0 and < 1 (a fraction of critical: 0.01 is 1 %)");
+  EXPECT_EQ(words(Tag<MapOptions>{}, "mu"), "in [0, 1000]");
+  EXPECT_EQ(words(Tag<MapOptions>{}, "scan_step"), "> 0");
+  EXPECT_EQ(words(Tag<MapOptions>{}, "threads"), "0 (all cores) or 1..256");
+  visit_row<MapOptions>("mu", [](const auto& row) { EXPECT_STREQ(row.units, "-"); });
+  visit_row<StudyOptions>("damping_criterion",
+                          [](const auto& row) { EXPECT_STREQ(row.units, "-"); });
+  // The messages are threads_problem's and the range checks' of before the tables.
+  StudyOptions s;
+  s.parameter = "omega_lag";
+  s.values = {1.0};
+  s.threads = kMaxThreads + 1;
+  ASSERT_TRUE(s.Validate());
+  EXPECT_STREQ(s.Validate()->what(), threads_problem(kMaxThreads + 1)->what());
+  s.threads = 0;
+  s.damping_criterion = std::nan("");
+  ASSERT_TRUE(s.Validate());
+  EXPECT_STREQ(s.Validate()->what(),
+               "damping_criterion = nan: must be >= 0 and < 1 (a fraction of critical: 0.01 is "
+               "1 %)");
+  MapOptions m;
+  m.x = {"theta", {0.1}};
+  m.y = {"omega_lag", {1.0}};
+  m.mu = INFINITY;
+  ASSERT_TRUE(m.Validate());
+  EXPECT_STREQ(m.Validate()->what(), "mu = inf: must be in [0, 1000]");
+}
+
+// Of several bad fields the one named first is the one named before the tables: the ranged rows
+// are checked where their checks stood, around the nested options' and the condition's.
+TEST(OptionTables, StudyAndMapCheckOrder) {
+  StudyOptions s;
+  s.parameter = "omega_lag";
+  s.values = {1.0};
+  s.threads = -1;
+  s.critical.scan_step = 0.0;
+  ASSERT_TRUE(s.Validate());
+  EXPECT_EQ(s.Validate()->name(), "scan_step");  // the search before the threads
+  s.damping_criterion = 2.0;
+  EXPECT_EQ(s.Validate()->name(), "damping_criterion");  // the criterion before the search
+  MapOptions m;
+  m.x = {"theta", {0.1}};
+  m.y = {"omega_lag", {1.0}};
+  m.threads = -1;
+  m.trim.kind = TrimKind::Thrust;
+  m.trim.thrust_coefficient = -1.0;
+  ASSERT_TRUE(m.Validate());
+  EXPECT_EQ(m.Validate()->name(), "thrust_coefficient");  // the trim before the threads
+  m.scan_step = 0.0;
+  EXPECT_EQ(m.Validate()->name(), "scan_step");
+  m.mu = -1.0;
+  EXPECT_EQ(m.Validate()->name(), "mu");
 }
 
 TEST(OptionTables, RowsReadAndWriteTheirMember) {
@@ -129,6 +221,38 @@ TEST(OptionTables, DescribedEnumsByName) {
   EXPECT_EQ(m, TransitionMethod::Magnus4);
   EXPECT_FALSE(enum_from_name("Magnus", &m));
   for (TransitionMethod k : kTransitionMethods) EXPECT_STREQ(enum_name(k), method_name(k));
+}
+
+}  // namespace
+}  // namespace flaplag
+
+namespace flaplag {
+namespace {
+
+// The result rows of studies and maps: one snake_case name each, documented, with the units of
+// their quantities; a map document's grids are rows of MapCell, and a study row's own rows do
+// not repeat the search's (CriticalResult's) keys it is written beside.
+TEST(ResultTables, StudyRowAndMapCell) {
+  std::set<std::string> cell, critical;
+  for_each_row<MapCell>([&](const auto& row) {
+    EXPECT_TRUE(snake_case(row.name)) << row.name;
+    EXPECT_TRUE(cell.insert(row.name).second) << row.name;
+    EXPECT_GT(std::string(row.doc).size(), 5u) << row.name;
+  });
+  for (const char* grid : kMapGridRows) EXPECT_EQ(cell.count(grid), 1u) << grid;
+  visit_row<MapCell>("max_zeta", [](const auto& row) {
+    EXPECT_STREQ(row.units, "per rev");
+    EXPECT_TRUE(row.flags & kFieldNegativeInfinity);  // a zero multiplier's zeta
+  });
+  visit_row<MapCell>("omega", [](const auto& row) { EXPECT_STREQ(row.units, "per rev"); });
+  for_each_row<CriticalResult>([&](const auto& row) { critical.insert(row.name); });
+  std::set<std::string> study;
+  for_each_row<StudyRow>([&](const auto& row) {
+    EXPECT_TRUE(snake_case(row.name)) << row.name;
+    EXPECT_TRUE(study.insert(row.name).second) << row.name;
+    EXPECT_EQ(critical.count(row.name), 0u) << row.name << " is a key of the search as well";
+  });
+  EXPECT_EQ(study, (std::set<std::string>{"value", "trim", "damping_crossings"}));
 }
 
 }  // namespace

@@ -29,6 +29,10 @@ from ._analysis import (
 )
 from ._results import MapResult, StudyResult
 
+# The scalar options of a study and a map: their tables' defaults (StudyOptions, MapOptions).
+STUDY_DEFAULTS = dict(_flaplag.option_defaults("study"))
+MAP_DEFAULTS = dict(_flaplag.option_defaults("map"))
+
 
 def _metadata(kwargs, rotor, transition, **extra):
     return {
@@ -153,12 +157,12 @@ def study(
     thrust_coefficient=None,
     shaft_angle=None,
     inflow=None,
-    threads=0,
+    threads=STUDY_DEFAULTS["threads"],
     progress=None,
     client=None,
     chunk_lines=None,
     memory_limit=None,
-    damping_criterion=None,
+    damping_criterion=STUDY_DEFAULTS["damping_criterion"],
     **parameters,
 ) -> StudyResult:
     """mu_c and every instability interval versus one rotor parameter.
@@ -261,13 +265,13 @@ def map(
     x,
     y,
     *,
-    mu=0.0,
-    scan_step=0.01,
+    mu=MAP_DEFAULTS["mu"],
+    scan_step=MAP_DEFAULTS["scan_step"],
     trim=None,
     thrust_coefficient=None,
     shaft_angle=None,
     inflow=None,
-    threads=0,
+    threads=MAP_DEFAULTS["threads"],
     progress=None,
     client=None,
     chunk_lines=None,

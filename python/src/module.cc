@@ -386,9 +386,10 @@ V option_value(const std::string& key, const py::handle& value) {
   }
 }
 
+// The rows named in d into o (no check: a struct with fields set by hand as well, a study's or a
+// map's axes, is checked once they are set).
 template <class O>
-O options_from(const py::dict& d, const char* unknown) {
-  O o;
+void set_options(O& o, const py::dict& d, const char* unknown) {
   for (const auto& item : d) {
     const std::string key = py::cast<std::string>(item.first);
     const py::handle value = item.second;
@@ -398,6 +399,12 @@ O options_from(const py::dict& d, const char* unknown) {
     });
     if (!known) throw InvalidInput(key, shown(value), unknown);
   }
+}
+
+template <class O>
+O options_from(const py::dict& d, const char* unknown) {
+  O o;
+  set_options(o, d, unknown);
   o.Check();
   return o;
 }
@@ -421,6 +428,8 @@ auto with_options_struct(const std::string& name, F&& f) {
   if (name == "response") return f(Tag<ResponseOptions>{});
   if (name == "simulation") return f(Tag<SimulationOptions>{});
   if (name == "equilibrium") return f(Tag<PeriodicEquilibriumOptions>{});
+  if (name == "study") return f(Tag<StudyOptions>{});  // its scalar options; axes by hand
+  if (name == "map") return f(Tag<MapOptions>{});
   throw InvalidInput("name", quoted(name), "not a described options struct");
 }
 
@@ -683,18 +692,15 @@ StudyOptions study_options(const std::string& parameter, const py::handle& value
   StudyOptions o;
   o.parameter = parameter;
   o.values = values_of(values);
-  // The damping criterion travels with the search options (Python's study(damping_criterion=)).
-  py::dict search;
-  for (const auto& [key, value] : critical) {
-    if (key.cast<std::string>() == "damping_criterion") {
-      if (!value.is_none()) o.damping_criterion = value.cast<double>();
-    } else {
-      search[key] = value;
-    }
-  }
+  // The damping criterion travels with the search options (Python's study(damping_criterion=));
+  // it and the threads are rows of the study's table.
+  py::dict search, scalars;
+  for (const auto& [key, value] : critical)
+    (key.cast<std::string>() == "damping_criterion" ? scalars : search)[key] = value;
   o.critical = critical_options(search);
   set_condition(o, trim);
-  o.threads = threads;
+  scalars["threads"] = threads;
+  set_options(o, scalars, "unknown study option");
   o.Check();
   return o;
 }
@@ -751,16 +757,70 @@ py::dict study(const py::dict& params, const py::dict& transition, int flap_mode
   return d;
 }
 
+// A map's cells into d, one entry per scalar row of MapCell's table, each of the map's shape
+// (ny, nx): numbers as float arrays (nan where unknown), flags as bool arrays, text and names as
+// nested lists ('' where unknown).  Unknown: a cell not computed, and for the exponent's rows
+// (MapCell's own but `computed`) a cell without max_zeta.
+void map_cells(const std::vector<std::vector<MapCell>>& cells, std::size_t ny, std::size_t nx,
+               py::dict& d) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for_each_row<MapCell>([&](const auto& field) {
+    using Row = std::decay_t<decltype(field)>;
+    using V = typename Row::value_type;
+    const bool exponent =
+        std::is_same_v<typename Row::owner_type, MapCell> && !std::is_same_v<V, bool>;
+    auto known = [&](const MapCell& c) {
+      return c.computed && (!exponent || c.max_zeta.has_value());
+    };
+    if constexpr (std::is_same_v<V, double> || std::is_same_v<V, std::optional<double>> ||
+                  std::is_same_v<V, bool>) {
+      using E = std::conditional_t<std::is_same_v<V, bool>, bool, double>;
+      py::array_t<E> a({static_cast<py::ssize_t>(ny), static_cast<py::ssize_t>(nx)});
+      auto at = a.template mutable_unchecked<2>();
+      for (std::size_t i = 0; i < ny; ++i)
+        for (std::size_t j = 0; j < nx; ++j) {
+          const MapCell& c = cells[i][j];
+          const auto ii = static_cast<py::ssize_t>(i), jj = static_cast<py::ssize_t>(j);
+          if constexpr (std::is_same_v<V, bool>) {
+            at(ii, jj) = field.get(c);
+          } else if constexpr (std::is_same_v<V, double>) {
+            at(ii, jj) = known(c) ? field.get(c) : nan;
+          } else {
+            at(ii, jj) = known(c) && field.get(c) ? *field.get(c) : nan;
+          }
+        }
+      d[field.name] = a;
+    } else if constexpr (std::is_same_v<V, std::string> || is_described_enum_v<V>) {
+      py::list grid;
+      for (std::size_t i = 0; i < ny; ++i) {
+        py::list line;
+        for (std::size_t j = 0; j < nx; ++j) {
+          const MapCell& c = cells[i][j];
+          if constexpr (std::is_same_v<V, std::string>) {
+            line.append(known(c) ? field.get(c) : std::string());
+          } else {
+            line.append(known(c) ? enum_name(field.get(c)) : "");
+          }
+        }
+        grid.append(line);
+      }
+      d[field.name] = grid;
+    }
+  });
+}
+
 MapOptions map_options(const std::string& x, const py::handle& x_values, const std::string& y,
                        const py::handle& y_values, double mu, double scan_step, int threads,
                        const py::object& trim) {
   MapOptions o;
   o.x = MapAxis{x, values_of(x_values)};
   o.y = MapAxis{y, values_of(y_values)};
-  o.mu = mu;
-  o.scan_step = scan_step;
   set_condition(o, trim);
-  o.threads = threads;
+  py::dict scalars;  // the rows of the map's table
+  scalars["mu"] = mu;
+  scalars["scan_step"] = scan_step;
+  scalars["threads"] = threads;
+  set_options(o, scalars, "unknown map option");
   o.Check();
   return o;
 }
@@ -779,43 +839,10 @@ py::dict stability_map(const py::dict& params, const py::dict& transition, int f
         return run_map(base, t, o, cancel, report);
       },
       progress);
-  const auto ny = static_cast<py::ssize_t>(o.y.values.size());
-  const auto nx = static_cast<py::ssize_t>(o.x.values.size());
-  py::array_t<double> max_zeta({ny, nx}), omega({ny, nx});
-  py::array_t<bool> computed({ny, nx});
-  auto z = max_zeta.mutable_unchecked<2>();
-  auto w = omega.mutable_unchecked<2>();
-  auto c = computed.mutable_unchecked<2>();
-  py::list mode, kind, status, message;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (py::ssize_t i = 0; i < ny; ++i) {
-    py::list mode_row, kind_row, status_row, message_row;
-    for (py::ssize_t j = 0; j < nx; ++j) {
-      const MapCell& cell = r.cells[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
-      z(i, j) = cell.computed && cell.max_zeta ? *cell.max_zeta : nan;
-      w(i, j) = cell.computed && cell.max_zeta ? cell.omega : nan;
-      c(i, j) = cell.computed;
-      const bool known = cell.computed && cell.max_zeta.has_value();
-      mode_row.append(known ? cell.mode : std::string());
-      kind_row.append(known ? kind_name(cell.kind) : "");
-      status_row.append(cell.computed ? status_name(cell.status) : "");
-      message_row.append(cell.message);
-    }
-    mode.append(mode_row);
-    kind.append(kind_row);
-    status.append(status_row);
-    message.append(message_row);
-  }
   py::dict d;
   d["x_values"] = to_numpy(o.x.values);
   d["y_values"] = to_numpy(o.y.values);
-  d["max_zeta"] = max_zeta;
-  d["omega"] = omega;
-  d["computed"] = computed;
-  d["mode"] = mode;
-  d["kind"] = kind;
-  d["status"] = status;
-  d["message"] = message;
+  map_cells(r.cells, o.y.values.size(), o.x.values.size(), d);
   d["lines_done"] = r.lines_done;
   d["cancelled"] = r.cancelled;
   d["overall_status"] = status_name(r.status);
@@ -1090,6 +1117,8 @@ void bind_tables(py::module_& m) {
     if (name == "FloquetSample") return field_rows<FloquetSample>();
     if (name == "PeriodicEquilibriumResult") return field_rows<PeriodicEquilibrium>();
     if (name == "ModelInfo") return field_rows<model::ModelDescriptor>();
+    if (name == "StudyRow") return field_rows<StudyRow>();
+    if (name == "MapCell") return field_rows<MapCell>();
     if (name == "CampbellResult") return field_rows<CampbellResult>();
     if (name == "CampbellPoint") return field_rows<CampbellPoint>();
     if (name == "CampbellFrequency") return field_rows<CampbellFrequency>();

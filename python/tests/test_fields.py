@@ -286,3 +286,28 @@ def test_a_direction_the_module_does_not_give_has_no_names():
     with pytest.raises(AttributeError):
         s.lag_tip
     assert "torsion_growth_rate=0.5" in repr(s)
+
+
+def test_study_json_rows_are_the_keys_of_the_tables():
+    # A row: value, trim and damping_crossings (StudyRow's rows) around the search's keys.
+    doc = run_cli("study", "--vary", "omega-lag=1.0,1.3", "--trim", "thrust", "--mu-max", "0.3",
+                  "--damping-criterion", "0.01", "--quiet")
+    critical = set(keys("CriticalResult"))
+    for row in doc["rows"]:
+        assert set(row) - critical == set(keys("StudyRow")), sorted(row)
+    plain = run_cli("study", "--vary", "omega-lag=1.0,1.3", "--mu-max", "0.3", "--quiet")
+    for row in plain["rows"]:
+        assert set(row) - critical == {"value"}, sorted(row)  # trim, crossings: absent
+
+
+def test_map_json_grids_and_python_arrays_are_the_keys_of_the_table():
+    doc = run_cli("map", "--x", "mu=0:0.2:0.1", "--y", "omega-lag=1.0,1.4", "--quiet")
+    grids = {k for k, v in doc.items()
+             if isinstance(v, list) and len(v) == 2 and all(len(line) == 3 for line in v)}
+    assert grids == {"max_zeta", "mode", "kind"}
+    assert grids <= set(keys("MapCell"))
+    raw = _flaplag.map({}, {}, 1, 1, "mu", [0.0, 0.1, 0.2], "omega_lag", [1.0, 1.4], 0.0, 0.01,
+                       1, None, None, 1 << 30)
+    for key in keys("MapCell"):
+        if key != "notes":  # a list per cell: not an array
+            assert np.shape(raw[key]) == (2, 3), key

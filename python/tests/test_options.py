@@ -109,3 +109,27 @@ def test_cli_option_of_a_row_shows_its_range_and_default(command, option, struct
     if words is not None:
         assert words in entry, entry
     assert " ".join(doc.split()) in entry, entry
+
+
+# The scalar options of flaplag.study and flaplag.map (StudyOptions, MapOptions rows).
+@pytest.mark.parametrize("struct,function", [("study", flaplag.study), ("map", flaplag.map)])
+def test_study_and_map_keyword_defaults_are_the_tables(struct, function):
+    rows = {r[0]: r for r in _flaplag.option_table(struct)}
+    params = inspect.signature(function).parameters
+    assert set(rows) <= set(params), struct
+    for key, (name, units, doc, words, default) in rows.items():
+        assert params[key].default == default, (struct, key)
+        assert words is not None, key  # every scalar option has its range
+        assert len(doc) > 5 and units is not None, key
+    assert rows["threads"][3] == "0 (all cores) or 1..256"
+
+
+def test_study_and_map_rows_check_their_ranges_under_their_keys():
+    with pytest.raises(flaplag.InvalidInput, match=r"^threads = 257: must be 0 \(all cores\)"):
+        flaplag.study("omega_lag", [1.0], threads=257)
+    with pytest.raises(flaplag.InvalidInput, match=r"^damping_criterion = 1: must be >= 0 and < 1"):
+        flaplag.study("omega_lag", [1.0], damping_criterion=1.0)
+    with pytest.raises(flaplag.InvalidInput, match=r"^mu = 1001: must be in \[0, 1000\]$"):
+        flaplag.map(("theta", [0.1]), ("omega_lag", [1.0]), mu=1001)
+    with pytest.raises(flaplag.InvalidInput, match=r"^scan_step = -1: must be > 0$"):
+        flaplag.map(("mu", [0.0, 0.1]), ("omega_lag", [1.0]), scan_step=-1)

@@ -42,14 +42,12 @@ std::optional<InvalidInput> study_problem(const StudyOptions& o) {
     return bad("parameter", o.parameter.empty() ? "\"\"" : o.parameter,
                "must name a numeric rotor parameter (not mu: mu_c is what a study finds)");
   if (auto p = check_values("values", o.values, kMaxStudyValues)) return p;
-  if (o.damping_criterion && !kDampingCriterionRange.interval.Contains(*o.damping_criterion))
-    return bad("damping_criterion", round_trip_text(*o.damping_criterion),
-               std::string("must be ") + kDampingCriterionRange.words);
   return Requirements()
+      .InRanges(o, "damping_criterion")
       .Include(o.critical.Validate())
       .Include(o.trim.Validate())
       .Include(condition_of(o.trim, o.inflow).Validate())
-      .Include(threads_problem(o.threads))
+      .InRanges(o, "threads")
       .Result();
 }
 
@@ -71,14 +69,12 @@ std::optional<InvalidInput> map_problem(const MapOptions& o) {
     }
   }
   if (o.x.parameter == o.y.parameter) return bad("y", o.y.parameter, "must differ from the x axis");
-  if (!(std::isfinite(o.mu) && o.mu >= 0.0 && o.mu <= kMaxAdvanceRatio))
-    return bad("mu", round_trip_text(o.mu), "must be in [0, 1000]");
-  if (!(std::isfinite(o.scan_step) && o.scan_step > 0.0))
-    return bad("scan_step", round_trip_text(o.scan_step), "must be > 0");
   return Requirements()
+      .InRanges(o, "mu")
+      .InRanges(o, "scan_step")
       .Include(o.trim.Validate())
       .Include(condition_of(o.trim, o.inflow).Validate())
-      .Include(threads_problem(o.threads))
+      .InRanges(o, "threads")
       .Result();
 }
 

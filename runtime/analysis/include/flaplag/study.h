@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "flaplag/analysis.h"
+#include "flaplag/core/fields.h"
 #include "flaplag/core/parallel.h"
+#include "flaplag/core/validation.h"
 #include "flaplag/trim.h"
 
 namespace flaplag {
@@ -28,6 +30,11 @@ bool is_study_parameter(const std::string& name);
 // p with field `name` set to v (InvalidInput("parameter", name) for an unknown name; the value
 // itself is checked when an Analysis is built from p).
 RotorParameters with_parameter(RotorParameters p, const std::string& name, double v);
+
+// Worker threads of a study or a map: threads_problem's (core/parallel.h) words as a Range.
+inline constexpr Range kThreadsRange{{0.0, static_cast<double>(kMaxThreads), false, false},
+                                     "0 (all cores) or 1..256"};
+static_assert(kMaxThreads == 256, "kThreadsRange's words name kMaxThreads");
 
 struct StudyOptions {
   std::string parameter;       // the varied field (not "mu")
@@ -52,6 +59,19 @@ struct StudyOptions {
   void Check() const { ThrowIfInvalid(Validate()); }
 };
 
+// The scalar options (the axis, the search and the condition are checked by hand in Validate(),
+// in the order of the checks before the table, which the ranged rows keep).
+constexpr auto describe(Tag<StudyOptions>) {
+  using O = StudyOptions;
+  return std::make_tuple(
+      Option{"damping_criterion", &O::damping_criterion, "-",
+             "damping ratio asked of every mode: report the first mu where each mode's damping "
+             "ratio -zeta/|lambda| falls below it",
+             &kDampingCriterionRange},
+      Option{"threads", &O::threads, "",
+             "worker threads; the answer does not depend on their number", &kThreadsRange});
+}
+
 inline constexpr std::size_t kMaxStudyValues = 100000;
 
 struct StudyRow {
@@ -67,6 +87,19 @@ struct StudyRow {
   // sweep's exponents: sorted); empty otherwise or when the row failed before its sweep.
   std::vector<DampingCrossing> damping_crossings;
 };
+
+// A row's own rows; its search (critical) is written in the row itself: a document's row has
+// `value`, the keys of CriticalResult (intervals as [onset, end] pairs; mode, omega, kind null
+// without mu_c), then `trim` (trimmed studies) and `damping_crossings` (with a criterion).
+constexpr auto describe(Tag<StudyRow>) {
+  return std::make_tuple(
+      Field{"value", &StudyRow::value, "", "the value of the varied parameter (in its units)"},
+      Field{"trim", &StudyRow::trim, "",
+            "trimmed studies: the trim at mu_c; null without mu_c (absent untrimmed)"},
+      Field{"damping_crossings", &StudyRow::damping_crossings, "",
+            "with a damping criterion: one crossing per mode (absent without)",
+            kFieldOmitWhenEmpty});
+}
 
 struct StudyResult : Outcome {
   std::vector<StudyRow> rows;  // rows_done of them when cancelled
@@ -87,6 +120,9 @@ struct MapAxis {
 };
 
 struct MapOptions {
+  static constexpr Range kMuRange{{0.0, kMaxAdvanceRatio, false, false}, "in [0, 1000]"};
+  static_assert(kMaxAdvanceRatio == 1000.0, "kMuRange's words name kMaxAdvanceRatio");
+
   MapAxis x, y;             // at most one of them "mu"; each with 1..kMaxMapValues values
   double mu = 0.0;          // the advance ratio when neither axis is "mu"
   double scan_step = 0.01;  // continuation step in mu
@@ -99,6 +135,15 @@ struct MapOptions {
   void Check() const { ThrowIfInvalid(Validate()); }
 };
 
+constexpr auto describe(Tag<MapOptions>) {
+  using O = MapOptions;
+  return std::make_tuple(
+      Option{"mu", &O::mu, "-", "advance ratio when neither axis is mu", &O::kMuRange},
+      Option{"scan_step", &O::scan_step, "-", "continuation step in mu from hover", &kPositive},
+      Option{"threads", &O::threads, "",
+             "worker threads; the answer does not depend on their number", &kThreadsRange});
+}
+
 inline constexpr std::size_t kMaxMapValues = 10000;
 
 struct MapCell : Outcome {
@@ -108,6 +153,24 @@ struct MapCell : Outcome {
   double omega = 0.0;              // its omega, per rev
   InstabilityKind kind = InstabilityKind::Flutter;  // periodic when omega is locked (0, 1/2, 1)
 };
+
+// The JSON documents (flaplag map --json) write the exponent's rows as grids (kMapGridRows, null
+// where unknown); Python has every row as an array of the map's shape.
+constexpr auto describe(Tag<MapCell>) {
+  return std::tuple_cat(
+      std::make_tuple(
+          Field{"computed", &MapCell::computed, "", "false: not reached (a cancelled run)"},
+          Field{"max_zeta", &MapCell::max_zeta, "per rev",
+                "the largest zeta at the cell; null when unknown (failed)", kFieldNegativeInfinity},
+          Field{"mode", &MapCell::mode, "", "the label of the least stable exponent"},
+          Field{"omega", &MapCell::omega, "per rev", "its omega, >= 0"},
+          Field{"kind", &MapCell::kind, "",
+                "flutter (omega not locked) or periodic (omega locked to 0, 1/2 or 1 per rev)"}),
+      describe(Tag<Outcome>{}));
+}
+
+// The rows of MapCell a map document holds, each as a grid (rows y, columns x).
+inline constexpr const char* kMapGridRows[] = {"max_zeta", "mode", "kind"};
 
 struct MapResult : Outcome {
   // cells[i][j]: y.values[i], x.values[j].  The work is done in lines along the "mu" axis (one

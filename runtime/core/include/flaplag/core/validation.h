@@ -18,6 +18,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
 
 #include "flaplag/core/errors.h"
@@ -53,14 +54,20 @@ class Requirements {
   // Reals are quoted in round-trip text, integers in decimal.
   Requirements& InRange(const char* field, double value, const Range& range);
   Requirements& InRange(const char* field, int value, const Range& range);
-  // InRange for every Option row of T's table with a Range (a number: int or double), in order.
+  // InRange for every Option row of T's table with a Range (a number: int or double, or an
+  // optional one, checked when set), in order.
   template <class T>
   Requirements& InRanges(const T& object) {
+    for_each_field(object, [&](const auto& row, const auto& value) { InRangeRow(row, value); });
+    return *this;
+  }
+  // The same for the row called `name` only: a Validate() whose cross-field checks come between
+  // its rows checks each row where it did before it had a table, so that of several bad fields
+  // the same one is named first.
+  template <class T>
+  Requirements& InRanges(const T& object, std::string_view name) {
     for_each_field(object, [&](const auto& row, const auto& value) {
-      using V = std::decay_t<decltype(value)>;
-      if constexpr (std::is_same_v<V, double> || std::is_same_v<V, int>) {
-        if (const Range* range = row_range(row)) InRange(row.name, value, *range);
-      }
+      if (name == row.name) InRangeRow(row, value);
     });
     return *this;
   }
@@ -78,6 +85,16 @@ class Requirements {
   std::optional<InvalidInput> Result() const { return first_; }
 
  private:
+  template <class Row, class V>
+  void InRangeRow(const Row& row, const V& value) {
+    if constexpr (std::is_same_v<V, double> || std::is_same_v<V, int>) {
+      if (const Range* range = row_range(row)) InRange(row.name, value, *range);
+    } else if constexpr (std::is_same_v<V, std::optional<double>>) {
+      if (const Range* range = row_range(row); range != nullptr && value)
+        InRange(row.name, *value, *range);
+    }
+  }
+
   std::optional<InvalidInput> first_;
 };
 
