@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "digest.h"
 #include "process.h"
 #include "read_file.h"
@@ -26,12 +27,9 @@ using Json = nlohmann::json;
 using Ordered = nlohmann::ordered_json;
 
 using flaplag::testing::Outcome;
+using flaplag::testing::run;
 using flaplag::testing::slurp;
 using flaplag::testing::TempDir;
-
-Outcome run(const std::vector<std::string>& args) {
-  return flaplag::testing::run_process(FLAPLAG_EXE, args, std::chrono::seconds(300));
-}
 
 void write(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;

@@ -10,27 +10,15 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "process.h"
-
-#ifndef FLAPLAG_EXE
-#error "FLAPLAG_EXE must name the flaplag executable"
-#endif
 
 namespace {
 
 using Json = nlohmann::json;
 using flaplag::testing::Outcome;
-
-Outcome run(const std::vector<std::string>& args) {
-  return flaplag::testing::run_process(FLAPLAG_EXE, args, std::chrono::seconds(300));
-}
-
-Json run_json(std::vector<std::string> args) {
-  args.push_back("--json");
-  const Outcome o = run(args);
-  EXPECT_EQ(o.exit_code, 0) << o.err;
-  return Json::parse(o.out);
-}
+using flaplag::testing::run;
+using flaplag::testing::run_json;
 
 // A soft-in-plane blade trimmed to C_T/sigma = 0.08: mu_c used to be "ok" next to a trim at
 // mu_c that had not converged (a separate trim from the one the search made) -- and the

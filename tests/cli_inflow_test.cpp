@@ -12,29 +12,17 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "flaplag/analysis.h"
 #include "flaplag/rotor/inflow.h"
 #include "process.h"
-
-#ifndef FLAPLAG_EXE
-#error "FLAPLAG_EXE must name the flaplag executable"
-#endif
 
 namespace {
 
 using Json = nlohmann::json;
 using flaplag::testing::Outcome;
-
-Outcome run(const std::vector<std::string>& args) {
-  return flaplag::testing::run_process(FLAPLAG_EXE, args, std::chrono::seconds(300));
-}
-
-Json run_json(std::vector<std::string> args) {
-  args.push_back("--json");
-  const Outcome o = run(args);
-  EXPECT_EQ(o.exit_code, 0) << o.err;
-  return Json::parse(o.out);
-}
+using flaplag::testing::run;
+using flaplag::testing::run_json;
 
 // The exponents of a point document by label: (zeta, omega).
 std::map<std::string, std::pair<double, double>> exponents_of(const Json& point) {

@@ -11,18 +11,16 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "process.h"
 
 namespace {
 
 using Json = nlohmann::ordered_json;
 using flaplag::testing::Outcome;
+using flaplag::testing::run;
 using flaplag::testing::slurp;
 using flaplag::testing::TempDir;
-
-Outcome run(const std::vector<std::string>& args) {
-  return flaplag::testing::run_process(FLAPLAG_EXE, args, std::chrono::seconds(300));
-}
 
 void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
