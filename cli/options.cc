@@ -698,6 +698,10 @@ std::string shown(const std::string& text) {
   return q + "\"";
 }
 
+void refuse_file(const std::string& file, const std::string& reason) {
+  throw InvalidInput("argument", shown(file), reason);
+}
+
 double parse_real(const std::string& option, const std::string& text) {
   if (text.empty() || is_blank(text.front()) || is_blank(text.back())) {
     throw InvalidInput(option, shown(text), "not a number");

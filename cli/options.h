@@ -99,6 +99,9 @@ std::string in_cli_vocabulary(Command c, const std::string& message);
 
 // The value of an option as shown in an error line: the text as typed, "\"\"" when empty.
 std::string shown(const std::string& text);
+// Refuses a file named on the command line (or in a file it names): throws
+// InvalidInput("argument", shown(file), reason), the one form every file reader uses.
+[[noreturn]] void refuse_file(const std::string& file, const std::string& reason);
 
 // Strict number parsing: the whole text must be one decimal or hexadecimal floating-point
 // literal (no surrounding blanks); "nan", "inf" and magnitudes beyond double are rejected.

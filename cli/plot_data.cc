@@ -22,18 +22,15 @@ namespace flaplag::cli {
 
 namespace {
 
-using Json = nlohmann::json;
-
-[[noreturn]] void refuse(const std::string& file, const std::string& reason) {
-  throw InvalidInput("argument", shown(file), reason);
-}
+// Plots read result files unordered: they look keys up, never write them.
+using PlotJson = nlohmann::json;
 
 // A number of the output; null, "-inf" (the zeta of a zero multiplier) and the like: a gap.
-double number(const Json& v) { return v.is_number() ? v.get<double>() : NAN; }
+double number(const PlotJson& v) { return v.is_number() ? v.get<double>() : NAN; }
 
-std::vector<double> numbers(const Json& a) {
+std::vector<double> numbers(const PlotJson& a) {
   std::vector<double> v;
-  for (const Json& x : a.get<std::vector<Json>>()) v.push_back(number(x));
+  for (const PlotJson& x : a.get<std::vector<PlotJson>>()) v.push_back(number(x));
   return v;
 }
 
@@ -42,13 +39,14 @@ std::vector<double> numbers(const Json& a) {
 // itself writes there (and quoted in the script in any case: plot.cc).  A refusal names the
 // file and the key: "key labels[1] = "...": not a mode label ...".
 
-[[noreturn]] void refuse_key(const std::string& file, const std::string& key, const Json& value,
+[[noreturn]] void refuse_key(const std::string& file, const std::string& key, const PlotJson& value,
                              const std::string& reason) {
-  refuse(file, "key " + key + " = " + value.dump(-1, ' ', false, Json::error_handler_t::replace) +
-                   ": " + reason);
+  refuse_file(file, "key " + key + " = " +
+                        value.dump(-1, ' ', false, PlotJson::error_handler_t::replace) + ": " +
+                        reason);
 }
 
-const std::string& text_at(const std::string& file, const std::string& key, const Json& v) {
+const std::string& text_at(const std::string& file, const std::string& key, const PlotJson& v) {
   if (!v.is_string()) refuse_key(file, key, v, "not a string");
   return v.get_ref<const std::string&>();
 }
@@ -77,7 +75,7 @@ bool is_model_name(const std::string& s) {
   });
 }
 
-std::string model_name(const std::string& file, const Json& j) {
+std::string model_name(const std::string& file, const PlotJson& j) {
   const std::string& name = text_at(file, "model.name", j.at("model").at("name"));
   if (!is_model_name(name))
     refuse_key(file, "model.name", j["model"]["name"],
@@ -86,7 +84,7 @@ std::string model_name(const std::string& file, const Json& j) {
 }
 
 // A varied quantity (study vary, map axis names): a numeric rotor parameter's word, or "mu".
-std::string axis_name(const std::string& file, const std::string& key, const Json& v,
+std::string axis_name(const std::string& file, const std::string& key, const PlotJson& v,
                       bool allow_mu) {
   const std::string& word = text_at(file, key, v);
   std::string field = word;
@@ -109,15 +107,15 @@ void check_label(const std::string& label) {
     const auto u = static_cast<unsigned char>(c);
     if (u < 0x20 || u == 0x7f)
       throw InvalidInput("--label",
-                         Json(label).dump(-1, ' ', false, Json::error_handler_t::replace),
+                         PlotJson(label).dump(-1, ' ', false, PlotJson::error_handler_t::replace),
                          "a control character (newline, tab, ...) cannot be part of a label");
   }
 }
 
 // A result's `labels`, each a mode label and each once: one empty curve per label.
-std::vector<ModeCurve> mode_curves(const std::string& file, const Json& j) {
+std::vector<ModeCurve> mode_curves(const std::string& file, const PlotJson& j) {
   std::vector<ModeCurve> curves;
-  const Json& labels = j.at("labels");
+  const PlotJson& labels = j.at("labels");
   for (std::size_t i = 0; i < labels.size(); ++i) {
     const std::string key = "labels[" + std::to_string(i) + "]";
     const std::string& l = text_at(file, key, labels.at(i));
@@ -131,22 +129,22 @@ std::vector<ModeCurve> mode_curves(const std::string& file, const Json& j) {
 }
 
 // A row's status (a result written before rows had one: ok); only compared, never drawn.
-RowStatus row_status(const Json& row) {
-  const Json* status = row.contains("status") ? &row["status"] : nullptr;
+RowStatus row_status(const PlotJson& row) {
+  const PlotJson* status = row.contains("status") ? &row["status"] : nullptr;
   if (status == nullptr || !status->is_string()) return RowStatus::Ok;
   if (*status == "warning") return RowStatus::Warning;
   if (*status == "failed") return RowStatus::Failed;
   return RowStatus::Ok;
 }
 
-SweepOverlay sweep_data(const std::string& file, const Json& j) {
+SweepOverlay sweep_data(const std::string& file, const PlotJson& j) {
   SweepOverlay s;
   s.modes = mode_curves(file, j);
-  for (const Json& row : j.at("rows")) {
+  for (const PlotJson& row : j.at("rows")) {
     s.mu.push_back(number(row.at("mu")));
     s.status.push_back(row_status(row));
     for (ModeCurve& m : s.modes) {
-      const Json& e = row.at(m.label);
+      const PlotJson& e = row.at(m.label);
       m.zeta.push_back(e.is_object() ? number(e.at("zeta")) : NAN);
       m.omega.push_back(e.is_object() ? number(e.at("omega")) : NAN);
     }
@@ -156,9 +154,9 @@ SweepOverlay sweep_data(const std::string& file, const Json& j) {
 
 // The damping criterion a sweep result holds (only a number in [0, 1) is drawn: anything else
 // is refused).
-std::optional<double> sweep_criterion(const std::string& file, const Json& j) {
+std::optional<double> sweep_criterion(const std::string& file, const PlotJson& j) {
   if (!j.contains("damping_criterion")) return std::nullopt;
-  const Json& c = j["damping_criterion"];
+  const PlotJson& c = j["damping_criterion"];
   if (!c.is_number() || !kDampingCriterionRange.interval.Contains(c.get<double>()))
     refuse_key(
         file, "damping_criterion", c,
@@ -168,9 +166,9 @@ std::optional<double> sweep_criterion(const std::string& file, const Json& j) {
 
 // A short label of a result from its case (the command line behind it): the model, the trim
 // and the periodic linearization, e.g. "paper-2x2, moment trim, periodic".
-std::string case_label(const std::string& file, const Json& j) {
+std::string case_label(const std::string& file, const PlotJson& j) {
   std::string label = model_name(file, j);
-  const Json& c = j.contains("case") && j["case"].is_object() ? j["case"] : Json::object();
+  const PlotJson& c = j.contains("case") && j["case"].is_object() ? j["case"] : PlotJson::object();
   if (c.contains("trim") && c["trim"].is_string() && c["trim"] != "none") {
     TrimKind kind = TrimKind::None;
     if (!trim_kind_from_name(c["trim"].get<std::string>(), &kind))
@@ -182,16 +180,16 @@ std::string case_label(const std::string& file, const Json& j) {
       j["inflow"].value("kind", "") == "momentum")
     label += ", momentum inflow";
   // The resolved parameters say it whether the option or the case file set it.
-  const Json& p =
-      j.contains("parameters") && j["parameters"].is_object() ? j["parameters"] : Json::object();
+  const PlotJson& p = j.contains("parameters") && j["parameters"].is_object() ? j["parameters"]
+                                                                              : PlotJson::object();
   if (p.value("periodic-linearization", false) == true) label += ", periodic linearization";
   return label;
 }
 
 // The linearization of a result in words: "about hover", "moment trim, about hover", "about the
 // periodic equilibrium" (from case.trim and parameters.periodic-linearization, as case_label).
-std::string linearization(const std::string& file, const Json& j) {
-  const Json& c = j.contains("case") && j["case"].is_object() ? j["case"] : Json::object();
+std::string linearization(const std::string& file, const PlotJson& j) {
+  const PlotJson& c = j.contains("case") && j["case"].is_object() ? j["case"] : PlotJson::object();
   std::string words;
   if (c.contains("trim") && c["trim"].is_string() && c["trim"] != "none") {
     TrimKind kind = TrimKind::None;
@@ -199,8 +197,8 @@ std::string linearization(const std::string& file, const Json& j) {
       refuse_key(file, "case.trim", c["trim"], "not a trim (none, thrust or moment)");
     words = std::string(trim_kind_name(kind)) + " trim, ";
   }
-  const Json& p =
-      j.contains("parameters") && j["parameters"].is_object() ? j["parameters"] : Json::object();
+  const PlotJson& p = j.contains("parameters") && j["parameters"].is_object() ? j["parameters"]
+                                                                              : PlotJson::object();
   const bool periodic = p.value("periodic-linearization", false) == true;
   return words +
          (periodic ? "linearized about the periodic equilibrium" : "linearized about hover");
@@ -210,9 +208,10 @@ std::string linearization(const std::string& file, const Json& j) {
 // the collective (not of a trimmed rotor: trimmed at each mu), the two first frequencies, and
 // every other real parameter that differs from the typical case; not the ones the result varies
 // (`varied`, option spelling).  A value that is not a number is left out.
-std::string operating_values(const Json& j, const std::vector<std::string>& varied, bool trimmed) {
-  const Json& p =
-      j.contains("parameters") && j["parameters"].is_object() ? j["parameters"] : Json::object();
+std::string operating_values(const PlotJson& j, const std::vector<std::string>& varied,
+                             bool trimmed) {
+  const PlotJson& p = j.contains("parameters") && j["parameters"].is_object() ? j["parameters"]
+                                                                              : PlotJson::object();
   const RotorParameters typical;
   std::string out;
   for (const ParameterSpec& spec : parameter_table()) {
@@ -233,17 +232,17 @@ std::string operating_values(const Json& j, const std::vector<std::string>& vari
 
 // The thrust coefficient a trimmed result was trimmed to: the target of the first trim it holds
 // (a sweep's trim at each mu, a study row's trim at its mu_c); nullopt when none has one.
-std::optional<double> trim_target(const Json& j) {
-  auto target = [](const Json& t) -> std::optional<double> {
+std::optional<double> trim_target(const PlotJson& j) {
+  auto target = [](const PlotJson& t) -> std::optional<double> {
     if (t.is_object() && t.contains("target") && t["target"].is_number())
       return t["target"].get<double>();
     return std::nullopt;
   };
   if (j.contains("trim") && j["trim"].is_array())
-    for (const Json& t : j["trim"])
+    for (const PlotJson& t : j["trim"])
       if (const auto v = target(t)) return v;
   if (j.contains("rows") && j["rows"].is_array())
-    for (const Json& row : j["rows"])
+    for (const PlotJson& row : j["rows"])
       if (row.is_object() && row.contains("trim"))
         if (const auto v = target(row["trim"])) return v;
   return std::nullopt;
@@ -252,10 +251,10 @@ std::optional<double> trim_target(const Json& j) {
 // A picture's title: the model, the linearization and the operating values, one line, e.g.
 // "paper, linearized about hover: γ = 10, θ = 0.15, ω̄_{F1} = 1.175, ω̄_{L1} = 1.28303"
 // (enhanced text; the model name escaped).  `extra`: more values after them ("μ = 0.3").
-std::string case_title(const std::string& file, const Json& j,
+std::string case_title(const std::string& file, const PlotJson& j,
                        const std::vector<std::string>& varied = {}, const std::string& extra = "",
                        bool nonlinear = false) {
-  const Json& c = j.contains("case") && j["case"].is_object() ? j["case"] : Json::object();
+  const PlotJson& c = j.contains("case") && j["case"].is_object() ? j["case"] : PlotJson::object();
   const bool trimmed = c.contains("trim") && c["trim"].is_string() && c["trim"] != "none";
   std::string values = operating_values(j, varied, trimmed);
   if (trimmed) {
@@ -268,7 +267,7 @@ std::string case_title(const std::string& file, const Json& j,
          (values.empty() ? "" : ": " + values);
 }
 
-std::string sweep_script(const std::string& file, const Json& j, SweepQuantity quantity) {
+std::string sweep_script(const std::string& file, const PlotJson& j, SweepQuantity quantity) {
   const SweepOverlay s = sweep_data(file, j);
   SweepPicture picture;
   picture.quantity = quantity;
@@ -276,10 +275,10 @@ std::string sweep_script(const std::string& file, const Json& j, SweepQuantity q
   return sweep_plot_script(case_title(file, j), s, picture);
 }
 
-std::string study_script(const std::string& file, const Json& j) {
+std::string study_script(const std::string& file, const PlotJson& j) {
   const double mu_max = j.at("mu_max").get<double>();
   std::vector<StudyMark> marks;
-  for (const Json& row : j.at("rows")) {
+  for (const PlotJson& row : j.at("rows")) {
     StudyMark m;
     m.value = row.at("value").get<double>();
     if (row.at("mu_c").is_number()) m.mu_c = row["mu_c"].get<double>();
@@ -287,12 +286,12 @@ std::string study_script(const std::string& file, const Json& j) {
     if (row.contains("omega")) m.omega = number(row["omega"]);
     m.status = row_status(row);
     m.hover_unstable = row.value("hover_unstable", false) == true;
-    for (const Json& iv : row.at("intervals")) {
-      const Json& off = iv.at(1);
+    for (const PlotJson& iv : row.at("intervals")) {
+      const PlotJson& off = iv.at(1);
       m.intervals.emplace_back(number(iv.at(0)), off.is_null() ? mu_max : number(off));
     }
     if (row.contains("damping_crossings")) {
-      for (const Json& d : row["damping_crossings"]) {
+      for (const PlotJson& d : row["damping_crossings"]) {
         const std::string& mode = text_at(file, "damping_crossings.mode", d.at("mode"));
         if (!is_mode_label(mode))
           refuse_key(file, "damping_crossings.mode", d["mode"],
@@ -307,9 +306,9 @@ std::string study_script(const std::string& file, const Json& j) {
                            sweep_criterion(file, j));
 }
 
-std::string map_script(const std::string& file, const Json& j) {
+std::string map_script(const std::string& file, const PlotJson& j) {
   std::vector<std::vector<double>> z;
-  for (const Json& row : j.at("max_zeta")) z.push_back(numbers(row));
+  for (const PlotJson& row : j.at("max_zeta")) z.push_back(numbers(row));
   const std::string x = axis_name(file, "x.name", j.at("x").at("name"), true),
                     y = axis_name(file, "y.name", j.at("y").at("name"), true);
   // The advance ratio of a map over two rotor parameters.
@@ -320,10 +319,10 @@ std::string map_script(const std::string& file, const Json& j) {
                               *parameter_axis_label(y), numbers(j.at("y").at("values")), z);
 }
 
-std::string tip_script(const std::string& file, const std::string& command, const Json& j) {
+std::string tip_script(const std::string& file, const std::string& command, const PlotJson& j) {
   if (!j.contains("psi"))
-    refuse(file, "a flaplag " + command + " result without data (status " +
-                     j.value("status", std::string("unknown")) + "): nothing to draw");
+    refuse_file(file, "a flaplag " + command + " result without data (status " +
+                          j.value("status", std::string("unknown")) + "): nothing to draw");
   const std::vector<double> psi = numbers(j.at("psi"));
   const std::vector<double> flap = numbers(j.at("flap_tip")), lag = numbers(j.at("lag_tip"));
   const double mu = j.at("mu").get<double>();
@@ -344,14 +343,14 @@ std::string tip_script(const std::string& file, const std::string& command, cons
 }
 
 // The mode names are not read from the file: a mode is named by its direction and position.
-std::string modes_script(const Json& j) {
-  auto curves = [](const Json& direction) {
+std::string modes_script(const PlotJson& j) {
+  auto curves = [](const PlotJson& direction) {
     std::vector<ShapeCurves> c;
-    for (const Json& m : direction.at("modes"))
+    for (const PlotJson& m : direction.at("modes"))
       c.push_back({numbers(m.at("value")), numbers(m.at("d1"))});
     return c;
   };
-  const Json& p = j.at("parameters");
+  const PlotJson& p = j.at("parameters");
   auto parameter = [&](const char* field) {
     return number(p.at(json_key(*find_parameter(field))));
   };
@@ -371,39 +370,39 @@ std::string modes_script(const Json& j) {
 
 // The labels are checked as a sweep's; the number of per-rev lines is bounded as the command
 // bounds it (each is a line of the script).
-std::string campbell_script(const std::string& file, const Json& j) {
+std::string campbell_script(const std::string& file, const PlotJson& j) {
   CampbellPicture c;
   c.modes = mode_curves(file, j);
-  const Json& harmonics = j.at("harmonics");
+  const PlotJson& harmonics = j.at("harmonics");
   if (!harmonics.is_number_integer() ||
       !kCampbellHarmonicsRange.interval.Contains(harmonics.get<double>()))
     refuse_key(file, "harmonics", harmonics,
                std::string("must be an integer ") + kCampbellHarmonicsRange.words);
   c.harmonics = harmonics.get<int>();
   c.mu = number(j.at("mu"));
-  for (const Json& pt : j.at("points")) {
+  for (const PlotJson& pt : j.at("points")) {
     c.speed.push_back(number(pt.at("speed")));
-    const Json& modes = pt.at("modes");
+    const PlotJson& modes = pt.at("modes");
     for (std::size_t m = 0; m < c.modes.size(); ++m)
       c.modes[m].omega.push_back(m < modes.size() ? number(modes.at(m).at("frequency")) : NAN);
   }
-  for (const Json& x : j.at("crossings"))
+  for (const PlotJson& x : j.at("crossings"))
     c.crossings.emplace_back(number(x.at("speed")), number(x.at("frequency")));
   return campbell_plot_script("Campbell diagram, " + case_title(file, j, {}, "μ = " + num(c.mu)),
                               c);
 }
 
-Json read_result(const std::string& data, std::uint64_t memory_limit) {
-  Json j;
+PlotJson read_result(const std::string& data, std::uint64_t memory_limit) {
+  PlotJson j;
   std::string error;
   const JsonParse parsed =
       parse_json(read_json_file(data, memory_limit, "result file", "cannot be read"), &j, &error);
   if (parsed == JsonParse::NotJson)
-    refuse(data, "not JSON (flaplag plot draws a --json output of flaplag)");
-  if (parsed == JsonParse::Refused) refuse(data, "not a flaplag --json output: " + error);
+    refuse_file(data, "not JSON (flaplag plot draws a --json output of flaplag)");
+  if (parsed == JsonParse::Refused) refuse_file(data, "not a flaplag --json output: " + error);
   if (!j.is_object() || !j.contains("flaplag") || !j.contains("command") ||
       !j["command"].is_string())
-    refuse(data, "not a flaplag --json output");
+    refuse_file(data, "not a flaplag --json output");
   return j;
 }
 
@@ -419,21 +418,21 @@ std::optional<std::string> result_plot_script(const nlohmann::json& j, const std
     if (command == "response" || command == "simulate") return tip_script(file, command, j);
     if (command == "modes") return modes_script(j);
     if (command == "campbell") return campbell_script(file, j);
-  } catch (const Json::exception&) {
-    refuse(file,
-           "a damaged flaplag " + command + " result (a key is missing or has the wrong type)");
+  } catch (const PlotJson::exception&) {
+    refuse_file(
+        file, "a damaged flaplag " + command + " result (a key is missing or has the wrong type)");
   }
   return std::nullopt;
 }
 
 std::string plot_data_file(const std::string& data, const std::string& plot,
                            std::uint64_t memory_limit, SweepQuantity quantity) {
-  const Json j = read_result(data, memory_limit);
+  const PlotJson j = read_result(data, memory_limit);
   const std::optional<std::string> script = result_plot_script(j, data, quantity);
   if (!script)
-    refuse(data, "a flaplag " + j["command"].get<std::string>() +
-                     " result has no picture (flaplag plot draws sweep, study, map, response, "
-                     "simulate, modes and campbell results)");
+    refuse_file(data, "a flaplag " + j["command"].get<std::string>() +
+                          " result has no picture (flaplag plot draws sweep, study, map, response, "
+                          "simulate, modes and campbell results)");
   const std::string warning = render_plot(*script, plot);
   if (!warning.empty()) throw RendererUnavailable(warning);
   return "";
@@ -451,17 +450,17 @@ std::string plot_data_files(const std::vector<std::string>& data,
   std::vector<SweepOverlay> sweeps;
   std::string first;  // the kind of the first file
   for (std::size_t i = 0; i < data.size(); ++i) {
-    const Json j = read_result(data[i], memory_limit);
+    const PlotJson j = read_result(data[i], memory_limit);
     const std::string command = j["command"].get<std::string>();
     if (i == 0) first = command;
     if (command != first)
-      refuse(data[i], "a flaplag " + command + " result, not a " + first + " like " +
-                          shown(data[0]) + ": one picture draws results of one kind");
+      refuse_file(data[i], "a flaplag " + command + " result, not a " + first + " like " +
+                               shown(data[0]) + ": one picture draws results of one kind");
     if (command != "sweep")
-      refuse(data[i], std::string("a flaplag ") + command + " result: " +
-                          (data.size() > 1 ? "several results in one picture"
-                                           : "--label, --max-zeta and --mode") +
-                          " are for sweep results only");
+      refuse_file(data[i], std::string("a flaplag ") + command + " result: " +
+                               (data.size() > 1 ? "several results in one picture"
+                                                : "--label, --max-zeta and --mode") +
+                               " are for sweep results only");
     try {
       SweepOverlay s = sweep_data(data[i], j);
       picture.add_criterion(sweep_criterion(data[i], j));
@@ -477,8 +476,9 @@ std::string plot_data_files(const std::vector<std::string>& data,
         s.modes = std::move(kept);
       }
       sweeps.push_back(std::move(s));
-    } catch (const Json::exception&) {
-      refuse(data[i], "a damaged flaplag sweep result (a key is missing or has the wrong type)");
+    } catch (const PlotJson::exception&) {
+      refuse_file(data[i],
+                  "a damaged flaplag sweep result (a key is missing or has the wrong type)");
     }
   }
   // Two files of the same case get the same label: number them to tell the curves apart.

@@ -18,10 +18,6 @@ namespace flaplag::cli {
 
 namespace {
 
-[[noreturn]] void refuse(const std::string& path, const std::string& reason) {
-  throw InvalidInput("argument", shown(path), reason);
-}
-
 class Descriptor {
  public:
   explicit Descriptor(int fd) : fd_(fd) {}
@@ -146,14 +142,14 @@ std::string size_text(std::size_t bytes) {
 std::string read_text_file(const std::string& path, std::size_t max_bytes, const std::string& noun,
                            const std::string& cannot_read, const std::string& why) {
   const Descriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY));
-  if (fd.get() < 0) refuse(path, cannot_read);
+  if (fd.get() < 0) refuse_file(path, cannot_read);
   struct stat st {};
-  if (::fstat(fd.get(), &st) != 0) refuse(path, cannot_read);
-  if (S_ISDIR(st.st_mode)) refuse(path, "is a directory, not a " + noun);
+  if (::fstat(fd.get(), &st) != 0) refuse_file(path, cannot_read);
+  if (S_ISDIR(st.st_mode)) refuse_file(path, "is a directory, not a " + noun);
   const std::string too_large =
       "larger than " + size_text(max_bytes) + " (the limit on a " + noun + why + ")";
   if (S_ISREG(st.st_mode) && static_cast<unsigned long long>(st.st_size) > max_bytes)
-    refuse(path, too_large);
+    refuse_file(path, too_large);
   std::string text;
   if (S_ISREG(st.st_mode)) text.reserve(static_cast<std::size_t>(st.st_size));
   std::vector<char> buffer(std::size_t{1} << 16);
@@ -161,11 +157,11 @@ std::string read_text_file(const std::string& path, std::size_t max_bytes, const
     const ssize_t got = ::read(fd.get(), buffer.data(), buffer.size());
     if (got < 0) {
       if (errno == EINTR) continue;
-      if (errno == EISDIR) refuse(path, "is a directory, not a " + noun);
-      refuse(path, cannot_read);
+      if (errno == EISDIR) refuse_file(path, "is a directory, not a " + noun);
+      refuse_file(path, cannot_read);
     }
     if (got == 0) break;
-    if (text.size() + static_cast<std::size_t>(got) > max_bytes) refuse(path, too_large);
+    if (text.size() + static_cast<std::size_t>(got) > max_bytes) refuse_file(path, too_large);
     text.append(buffer.data(), static_cast<std::size_t>(got));
   }
   return text;

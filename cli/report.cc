@@ -138,10 +138,6 @@ std::string parameter_html(const std::string& key) {
 
 // ---- the document ---------------------------------------------------------------------------
 
-[[noreturn]] void refuse(const std::string& source, const std::string& reason) {
-  throw InvalidInput("argument", shown(source), reason);
-}
-
 const Json& member(const Json& j, const char* key) {
   static const Json none;
   return j.is_object() && j.contains(key) ? j[key] : none;
@@ -697,7 +693,7 @@ std::string pictures_section(const Json& result, const std::string& source,
     script =
         result_plot_script(plain, source, zeta ? SweepQuantity::Zeta : SweepQuantity::DampingRatio);
   } catch (const nlohmann::json::exception&) {
-    refuse(source, "a damaged flaplag result (a key is missing or has the wrong type)");
+    refuse_file(source, "a damaged flaplag result (a key is missing or has the wrong type)");
   }
   if (!script) return "";
   std::string svg;
@@ -798,10 +794,10 @@ bool is_report_path(const std::string& path) {
 std::string html_report(const Json& result, const ReportSource& source, std::string* warning) {
   if (!result.is_object() || !result.contains("flaplag") || !result.contains("command") ||
       !result["command"].is_string())
-    refuse(source.input, "not a flaplag --json output");
+    refuse_file(source.input, "not a flaplag --json output");
   const std::string command = result["command"].get<std::string>();
   if (command == "models" || command == "merge")
-    refuse(source.input, "a flaplag " + command + " output is not a result to report on");
+    refuse_file(source.input, "a flaplag " + command + " output is not a result to report on");
   std::vector<Outcome> outcomes;
   collect_outcomes(result, "", outcomes);
   std::vector<std::string> page_warnings;
@@ -853,8 +849,8 @@ std::string html_report_of_text(const std::string& path, const std::string& text
   std::string error;
   const JsonParse parsed = parse_json(text, &j, &error);
   if (parsed == JsonParse::NotJson)
-    refuse(path, "not JSON (flaplag report takes a case file or a --json output of flaplag)");
-  if (parsed == JsonParse::Refused) refuse(path, "not a flaplag --json output: " + error);
+    refuse_file(path, "not JSON (flaplag report takes a case file or a --json output of flaplag)");
+  if (parsed == JsonParse::Refused) refuse_file(path, "not a flaplag --json output: " + error);
   ReportSource source;
   source.title = "result file " + path;
   source.input = path;

@@ -21,10 +21,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-[[noreturn]] void refuse(const std::string& file, const std::string& reason) {
-  throw InvalidInput("argument", shown(file), reason);
-}
-
 // The keys that hold the values of the split lines: they differ from part to part.
 std::vector<std::string> data_keys(const std::string& command) {
   if (command == "study") return {"rows"};
@@ -65,15 +61,16 @@ Json read_json(const std::string& file, std::uint64_t memory_limit, std::size_t*
   *budget -= text.size();
   const JsonParse parsed = parse_json(text, &j, &error);
   if (parsed == JsonParse::NotJson)
-    refuse(file, "not JSON (a part is the --json output of flaplag map or study with --shard)");
-  if (parsed == JsonParse::Refused) refuse(file, "damaged part: " + error);
+    refuse_file(file,
+                "not JSON (a part is the --json output of flaplag map or study with --shard)");
+  if (parsed == JsonParse::Refused) refuse_file(file, "damaged part: " + error);
   return j;
 }
 
 std::size_t count_of(const Json& shard, const char* key, const std::string& file) {
   const auto it = shard.find(key);
   if (it == shard.end() || !it->is_number_unsigned())
-    refuse(file, std::string("damaged part: \"shard\" has no whole number \"") + key + "\"");
+    refuse_file(file, std::string("damaged part: \"shard\" has no whole number \"") + key + "\"");
   return it->get<std::size_t>();
 }
 
@@ -122,7 +119,7 @@ bool number_or_null(const Json& v) { return v.is_null() || v.is_number(); }
 // The part's case as a request: what the part claims to have computed.
 Request request_of(const std::string& file, const Json& j) {
   const auto c = j.find("case");
-  if (c == j.end() || !c->is_object()) refuse(file, "damaged part: no \"case\" object");
+  if (c == j.end() || !c->is_object()) refuse_file(file, "damaged part: no \"case\" object");
   try {
     const CaseArguments a = case_object_arguments(file, *c);
     const CommandLine cl(a.args);
@@ -130,8 +127,8 @@ Request request_of(const std::string& file, const Json& j) {
     r.arguments = a.args;
     return r;
   } catch (const InvalidInput& e) {
-    refuse(file,
-           std::string("damaged part: its case is not a command flaplag takes (") + e.what() + ")");
+    refuse_file(file, std::string("damaged part: its case is not a command flaplag takes (") +
+                          e.what() + ")");
   }
 }
 
@@ -142,12 +139,12 @@ Part read_part(const std::string& file, std::uint64_t memory_limit, std::size_t*
   const Json& j = p.json;
   if (!j.is_object() || !j.contains("flaplag") || !j.contains("command") ||
       !j["command"].is_string())
-    refuse(file, "not a flaplag --json output");
+    refuse_file(file, "not a flaplag --json output");
   const std::string command = j["command"].get<std::string>();
   if (command != "map" && command != "study")
-    refuse(file, "a flaplag " + command + " result, not a part of a map or study");
+    refuse_file(file, "a flaplag " + command + " result, not a part of a map or study");
   if (!j.contains("shard") || !j["shard"].is_object())
-    refuse(file, "a whole flaplag " + command + " result (no \"shard\"), not a part");
+    refuse_file(file, "a whole flaplag " + command + " result (no \"shard\"), not a part");
   const Json& s = j["shard"];
   p.index = count_of(s, "index", file);
   p.count = count_of(s, "count", file);
@@ -158,36 +155,38 @@ Part read_part(const std::string& file, std::uint64_t memory_limit, std::size_t*
   const bool axis_ok = command == "study" ? p.axis == "vary" : (p.axis == "x" || p.axis == "y");
   if (!axis_ok || p.index < 1 || p.index > p.count || p.first > p.last || p.last > p.total ||
       p.count > kMaxCount || p.total > kMaxCount)
-    refuse(file, "damaged part: inconsistent \"shard\" object");
+    refuse_file(file, "damaged part: inconsistent \"shard\" object");
   const auto status = j.find("status");
-  if (status == j.end() || !status->is_string()) refuse(file, "damaged part: no valid \"status\"");
+  if (status == j.end() || !status->is_string())
+    refuse_file(file, "damaged part: no valid \"status\"");
   if (*status == "cancelled")
-    refuse(file, "an interrupted part (status cancelled): run part " + std::to_string(p.index) +
-                     "/" + std::to_string(p.count) + " again");
-  if (!one_of(*status, status_names())) refuse(file, "damaged part: no valid \"status\"");
+    refuse_file(file, "an interrupted part (status cancelled): run part " +
+                          std::to_string(p.index) + "/" + std::to_string(p.count) + " again");
+  if (!one_of(*status, status_names())) refuse_file(file, "damaged part: no valid \"status\"");
   if (j.contains("message") && !j["message"].is_string())
-    refuse(file, "damaged part: \"message\" is not text");
+    refuse_file(file, "damaged part: \"message\" is not text");
   // The digest of what flaplag wrote: any later change to the file shows.
   const auto digest = s.find("digest");
   if (digest == s.end() || !digest->is_string())
-    refuse(file, "a part without a digest (written by another flaplag, or edited): run part " +
-                     std::to_string(p.index) + "/" + std::to_string(p.count) + " again");
+    refuse_file(file, "a part without a digest (written by another flaplag, or edited): run part " +
+                          std::to_string(p.index) + "/" + std::to_string(p.count) + " again");
   if (digest->get<std::string>() != kDigestPrefix + sha256_hex(digested_text(j)))
-    refuse(file,
-           "damaged part: its data do not match its digest (the file was changed after "
-           "flaplag wrote it)");
+    refuse_file(file,
+                "damaged part: its data do not match its digest (the file was changed after "
+                "flaplag wrote it)");
   // What its case asks for, and the block it says it is.
   p.request = request_of(file, j);
   const Request& r = p.request;
   if (command_name(r.command) != command || !r.json || r.shard_index != static_cast<int>(p.index) ||
       r.shard_count != static_cast<int>(p.count))
-    refuse(file, "damaged part: its \"shard\" or \"command\" is not what its case asks for");
+    refuse_file(file, "damaged part: its \"shard\" or \"command\" is not what its case asks for");
   const ShardBlock b = shard_block(r);
   if (b.axis != p.axis || b.first != p.first || b.last != p.last || b.total != p.total)
-    refuse(file, "damaged part: part " + std::to_string(p.index) + "/" + std::to_string(p.count) +
-                     " of its case is lines " + std::to_string(b.first) + ".." +
-                     std::to_string(b.last) + " of " + std::to_string(b.total) + " (" + b.axis +
-                     "), not what its \"shard\" says");
+    refuse_file(file, "damaged part: part " + std::to_string(p.index) + "/" +
+                          std::to_string(p.count) + " of its case is lines " +
+                          std::to_string(b.first) + ".." + std::to_string(b.last) + " of " +
+                          std::to_string(b.total) + " (" + b.axis +
+                          "), not what its \"shard\" says");
   return p;
 }
 
@@ -199,7 +198,7 @@ void check_data(const Part& p, const Json& model) {
   const Request block = shard_request(p.request);
   const std::vector<std::string> labels = mode_labels(model);
   auto fail = [&p](const std::string& what) {
-    refuse(p.file, "damaged part: " + what + " is not what its case computes");
+    refuse_file(p.file, "damaged part: " + what + " is not what its case computes");
   };
   auto same_values = [](const Json& values, const std::vector<double>& expected) {
     if (!values.is_array() || values.size() != expected.size()) return false;
@@ -298,8 +297,8 @@ Json skeleton(const Part& p) {
   try {
     return Json::parse(run_command(r, &warning, nullptr));
   } catch (const InvalidInput& e) {
-    refuse(p.file,
-           std::string("damaged part: its case is not a command flaplag takes (") + e.what() + ")");
+    refuse_file(p.file, std::string("damaged part: its case is not a command flaplag takes (") +
+                            e.what() + ")");
   }
 }
 
@@ -402,31 +401,32 @@ std::string merge_parts(const Request& r) {
       j->erase("case");
     }
     if (exact(got) != exact(expected))
-      refuse(head.file,
-             "damaged part: " + first_difference(expected, got) + " is not what its case computes");
+      refuse_file(head.file, "damaged part: " + first_difference(expected, got) +
+                                 " is not what its case computes");
   }
   std::map<std::size_t, const Part*> by_index;
   for (const Part& p : parts) {
     if (p.count != head.count)
-      refuse(p.file, "part " + part_name(p.index, p.count) + ", but " + head.file +
-                         " is a part of " + std::to_string(head.count));
+      refuse_file(p.file, "part " + part_name(p.index, p.count) + ", but " + head.file +
+                              " is a part of " + std::to_string(head.count));
     if (p.json["command"] != head.json["command"])
-      refuse(p.file, "a part of a " + p.json["command"].get<std::string>() + ", but " + head.file +
-                         " is a part of a " + head.json["command"].get<std::string>());
+      refuse_file(p.file, "a part of a " + p.json["command"].get<std::string>() + ", but " +
+                              head.file + " is a part of a " +
+                              head.json["command"].get<std::string>());
     const Json c = case_part(p.json, p.axis);
     if (exact(c) != exact(reference) || p.total != head.total || p.axis != head.axis)
-      refuse(p.file, "not a part of the same case as " + head.file + " (" +
-                         (p.total != head.total ? std::string("another number of lines")
-                                                : first_difference(reference, c)) +
-                         " differs)");
+      refuse_file(p.file, "not a part of the same case as " + head.file + " (" +
+                              (p.total != head.total ? std::string("another number of lines")
+                                                     : first_difference(reference, c)) +
+                              " differs)");
     const auto [it, fresh] = by_index.emplace(p.index, &p);
     if (!fresh)
-      refuse(p.file,
-             "part " + part_name(p.index, p.count) + " again (also " + it->second->file + ")");
+      refuse_file(p.file,
+                  "part " + part_name(p.index, p.count) + " again (also " + it->second->file + ")");
     try {
       check_data(p, head.json.at("model"));
     } catch (const Json::exception&) {
-      refuse(p.file, "damaged part: a key is missing or has the wrong type");
+      refuse_file(p.file, "damaged part: a key is missing or has the wrong type");
     }
   }
   std::string missing;

@@ -11,6 +11,7 @@
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/numerics/gauss_legendre.h"
+#include "sinc.h"
 
 namespace flaplag {
 namespace {
@@ -22,18 +23,10 @@ std::string fmt(double v) {
   return buf;
 }
 
-// sin(x)/x, accurate near 0 (the series keeps full precision where the quotient cancels).
-double sinc(double x) {
-  if (std::abs(x) < 1e-4) {
-    const double x2 = x * x;
-    return 1.0 - x2 / 6.0 * (1.0 - x2 / 20.0);
-  }
-  return std::sin(x) / x;
-}
-
 // Harmonic order k of basis index h: 0 -> 0, 2k-1 and 2k -> k.
 int order(int h) { return (h + 1) / 2; }
 
+using detail::sinc;
 using gauss::kW8;
 using gauss::kX8;
 

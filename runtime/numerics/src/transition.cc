@@ -33,22 +33,16 @@
 #include "flaplag/numerics/floquet.h"
 #include "flaplag/numerics/gauss_legendre.h"
 #include "grid.h"
+#include "sinc.h"
 #include "transition_varying.h"
 
 namespace flaplag {
 namespace {
 
 using detail::Segment;
+using detail::sinc;
 
 constexpr int kReseed = 32;
-
-double sinc(double x) {
-  if (std::abs(x) < 1e-4) {
-    const double x2 = x * x;
-    return 1.0 - x2 / 6.0 * (1.0 - x2 / 20.0);
-  }
-  return std::sin(x) / x;
-}
 
 // Upper bounds keep memory (one grid segment per step) and time bounded for any caller.
 void check_count(const char* name, int value, int hi = TransitionOptions::kMaxSteps) {
