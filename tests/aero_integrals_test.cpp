@@ -16,7 +16,7 @@
 #include "model_fixtures.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::aero_integrals_test {
 namespace {
 
 using testing::RelClose;
@@ -200,4 +200,4 @@ TEST(AeroIntegrals, RejectsAnEmptySpan) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::aero_integrals_test

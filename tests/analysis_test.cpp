@@ -16,6 +16,8 @@
 #include "flaplag/core/errors.h"
 #include "test_util.h"
 
+namespace analysis_test {
+
 using flaplag::Analysis;
 using flaplag::RotorParameters;
 using flaplag::TransitionMethod;
@@ -998,3 +1000,5 @@ TEST(Honest, MultiModeResultsCarryTheLiouvilleResidual) {
   EXPECT_EQ(r.status, flaplag::Status::Ok) << r.message;
   EXPECT_NE(r.message.find("no Liouville residual"), std::string::npos) << r.message;
 }
+
+}  // namespace analysis_test

@@ -24,6 +24,8 @@
 #include "flaplag/trim.h"
 #include "test_util.h"
 
+namespace basis_test {
+
 using flaplag::Analysis;
 using flaplag::CriticalOptions;
 using flaplag::CriticalResult;
@@ -424,3 +426,5 @@ TEST(Basis, WithoutAReferenceTheResultIsAWarning) {
 }
 
 }  // namespace
+
+}  // namespace basis_test

@@ -19,7 +19,7 @@
 #include "flaplag/core/errors.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::blade_elements_test {
 namespace {
 
 using testing::AbsClose;
@@ -177,4 +177,4 @@ TEST(UniformBladeElements, RefusesWhatTheyCannotGive) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::blade_elements_test

@@ -30,7 +30,7 @@
 #include "flaplag/rotor/parameters.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::blade_properties_test {
 namespace {
 
 using testing::AbsClose;
@@ -1271,4 +1271,4 @@ TEST(Twist, ElasticCouplingAtEachStationsPitch) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::blade_properties_test

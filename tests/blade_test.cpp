@@ -18,7 +18,7 @@
 #include "model_fixtures.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::blade_test {
 namespace {
 
 using model::AeroIntegral;
@@ -351,4 +351,4 @@ TEST(FormatValue, RoundTripAndNonFinite) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::blade_test

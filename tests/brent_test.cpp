@@ -14,7 +14,7 @@
 #include "flaplag/core/errors.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::brent_test {
 namespace {
 
 using testing::AbsClose;
@@ -286,4 +286,4 @@ TEST(Brent, InvalidArgumentsNameTheArgument) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::brent_test

@@ -17,7 +17,7 @@
 #include "flaplag/core/errors.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::campbell_test {
 namespace {
 
 using testing::AbsClose;
@@ -349,4 +349,4 @@ TEST(Campbell, OptionsAreCheckedByName) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::campbell_test

@@ -1,7 +1,6 @@
 # Command-line tests (maintained with cli/): the built `flaplag` binary is run as a user would
 # run it, the option vocabulary of cli/ is checked directly, and the parameter table /
 # validation that the command line relies on.
-flaplag_test(parameters_test flaplag_rotor)
 
 # A test that runs the built flaplag binary (FLAPLAG_EXE), built before it.  Its tests carry the
 # label runs_flaplag, and the target cli_tests builds them all: the sanitizer pass of .ci/run
@@ -17,8 +16,8 @@ if(FLAPLAG_TEST_PCH)
   flaplag_test_pch(flaplag_cli_test_pch ${FLAPLAG_CLI_DRIVER_OPTIONS})
 endif()
 function(flaplag_cli_test name)
-  cmake_parse_arguments(PARSE_ARGV 1 arg "LIBRARY" "" "")
-  flaplag_test(${name} LABEL runs_flaplag ${arg_UNPARSED_ARGUMENTS})
+  cmake_parse_arguments(PARSE_ARGV 1 arg "LIBRARY" "" "UNITS;LIBRARIES")
+  flaplag_test(${name} LABEL runs_flaplag UNITS ${arg_UNITS} LIBRARIES ${arg_LIBRARIES})
   if(arg_LIBRARY)
     if(FLAPLAG_TEST_PCH)
       target_precompile_headers(${name} REUSE_FROM flaplag_test_pch)
@@ -37,56 +36,38 @@ function(flaplag_cli_test name)
   add_dependencies(${name} flaplag)
 endfunction()
 
-flaplag_cli_test(cli_test flaplag_cli nlohmann_json::nlohmann_json)
-
-# docs/json.md is fresh (refresh-docs), and the JSON writer of the field tables.
-flaplag_test(json_docs_test flaplag_cli nlohmann_json::nlohmann_json)
-target_compile_definitions(json_docs_test PRIVATE
-  FLAPLAG_JSON_DOCS="${PROJECT_SOURCE_DIR}/docs/json.md")
-target_compile_definitions(cli_test PRIVATE FLAPLAG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-
-# Generated command lines against the output contract (FLAPLAG_FUZZ_VECTORS, default 1000).
-flaplag_cli_test(cli_fuzz_test flaplag_cli nlohmann_json::nlohmann_json)
-
-# study, map, run (case files), --plot, response, simulate (maintained with cli/).
-flaplag_cli_test(cli_studies_test nlohmann_json::nlohmann_json)
-target_compile_definitions(cli_studies_test PRIVATE FLAPLAG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-
-# What received files and typed texts can make flaplag do (gnuplot, symbolic links, output
-# paths, descriptors, signals).
-flaplag_cli_test(cli_security_test nlohmann_json::nlohmann_json)
-
-# The files flaplag reads: JSON cases never name outputs, bounded nesting and size, keys once
-# per case, merge's checks of a part against its case (maintained with cli/).
-flaplag_cli_test(cli_files_test flaplag_cli nlohmann_json::nlohmann_json)
-
-# Blade tables and imported mode shapes given to the command line and case files.
-flaplag_cli_test(cli_blade_test nlohmann_json::nlohmann_json)
-
-# Generated and mutated files against the output contract: case files (TOML, JSON) to `run`,
-# real results mutated to `run`, `plot` and `merge` (FLAPLAG_FILE_FUZZ_VECTORS per kind).
-flaplag_cli_test(file_fuzz_test nlohmann_json::nlohmann_json)
-
-# Honest results: statuses that rest on trims, validity, resolution; messages that say so.
-flaplag_cli_test(cli_honest_test nlohmann_json::nlohmann_json)
+# The units: cli (the vocabulary of cli/ and the output contract); cli_fuzz (generated command
+# lines, FLAPLAG_FUZZ_VECTORS, default 1000); cli_studies (study, map, run of case files,
+# --plot, response, simulate); cli_security (what received files and typed texts can make
+# flaplag do: gnuplot, symbolic links, output paths, descriptors, signals); cli_files (JSON cases
+# never name outputs, bounded nesting and size, keys once per case, merge's checks of a part
+# against its case); cli_blade (blade tables and imported mode shapes); file_fuzz (generated and
+# mutated case files and results to run, plot and merge, FLAPLAG_FILE_FUZZ_VECTORS per kind);
+# cli_honest (statuses that rest on trims, validity, resolution); cli_limits (--memory-limit:
+# large runs refused before they allocate); cli_spec (--spec FILE.toml, a model derived at run
+# time; needs GiNaC); report (flaplag report and --report, each example's page in headless
+# Chromium).
+set(flaplag_cli_units cli_test cli_fuzz_test cli_studies_test cli_security_test cli_files_test
+                      cli_blade_test file_fuzz_test cli_honest_test cli_limits_test report_test)
+if(TARGET flaplag_derive)
+  list(APPEND flaplag_cli_units cli_spec_test)
+endif()
+flaplag_cli_test(cli_driver_tests UNITS ${flaplag_cli_units}
+                 LIBRARIES flaplag_cli nlohmann_json::nlohmann_json)
+target_compile_definitions(cli_driver_tests PRIVATE
+  FLAPLAG_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+  FLAPLAG_SPEC_DIR="${PROJECT_SOURCE_DIR}/generator/orderings")
 
 # --inflow: fixed controls at the momentum inflow, against the library at eq 2.25's lambda.
-flaplag_cli_test(cli_inflow_test LIBRARY flaplag_analysis nlohmann_json::nlohmann_json)
+flaplag_cli_test(cli_inflow_test LIBRARY UNITS cli_inflow_test
+                 LIBRARIES flaplag_analysis nlohmann_json::nlohmann_json)
 
-# The memory limit (--memory-limit): large runs refused before they allocate (maintained with
-# cli/ and runtime/analysis limits.h).
-flaplag_cli_test(cli_limits_test flaplag_cli nlohmann_json::nlohmann_json)
-
-# --spec FILE.toml: a model derived at run time (runtime_spec/; needs GiNaC).
-if(TARGET flaplag_derive)
-  flaplag_cli_test(cli_spec_test nlohmann_json::nlohmann_json)
-  target_compile_definitions(cli_spec_test PRIVATE
-    FLAPLAG_SPEC_DIR="${PROJECT_SOURCE_DIR}/generator/orderings")
-endif()
-
-# The HTML report: flaplag report and --report, and each example's page in headless Chromium.
-flaplag_cli_test(report_test nlohmann_json::nlohmann_json)
-target_compile_definitions(report_test PRIVATE FLAPLAG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+# The parameter table and validation the command line relies on; docs/json.md is fresh
+# (refresh-docs), and the JSON writer of the field tables.
+flaplag_test(cli_library_tests UNITS parameters_test json_docs_test
+             LIBRARIES flaplag_cli nlohmann_json::nlohmann_json)
+target_compile_definitions(cli_library_tests PRIVATE
+  FLAPLAG_JSON_DOCS="${PROJECT_SOURCE_DIR}/docs/json.md")
 
 # `cmake --build . --target cli_tests`: the flaplag binary and every test that runs it.
 get_property(flaplag_cli_tests GLOBAL PROPERTY FLAPLAG_CLI_TESTS)

@@ -14,6 +14,8 @@
 
 #include "process.h"
 
+namespace cli_blade_test {
+
 namespace {
 
 using Json = nlohmann::json;
@@ -363,3 +365,5 @@ TEST(CliBlade, ExportedModeShapesImportToTheSameCriticalAdvanceRatio) {
 }
 
 }  // namespace
+
+}  // namespace cli_blade_test

@@ -21,6 +21,8 @@
 #include "read_file.h"
 #include "shard.h"
 
+namespace cli_files_test {
+
 namespace {
 
 using Json = nlohmann::json;
@@ -695,3 +697,5 @@ TEST(CliFiles, MutatedResultsGivenToPlotKeepTheContract) {
 }
 
 }  // namespace
+
+}  // namespace cli_files_test

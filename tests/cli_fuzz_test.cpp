@@ -51,6 +51,8 @@
 
 extern char** environ;
 
+namespace cli_fuzz_test {
+
 namespace {
 
 using Json = nlohmann::json;
@@ -911,3 +913,5 @@ TEST(CliFuzz, ContractHoldsForGeneratedCommandLines) {
 }
 
 }  // namespace
+
+}  // namespace cli_fuzz_test

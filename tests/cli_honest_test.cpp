@@ -13,6 +13,8 @@
 #include "cli_run.h"
 #include "process.h"
 
+namespace cli_honest_test {
+
 namespace {
 
 using Json = nlohmann::json;
@@ -222,3 +224,5 @@ TEST(CliHonest, SingularTransitionMatrixIsSaidInWords) {
 }
 
 }  // namespace
+
+}  // namespace cli_honest_test

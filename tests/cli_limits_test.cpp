@@ -16,6 +16,8 @@
 #include "flaplag/limits.h"
 #include "process.h"
 
+namespace cli_limits_test {
+
 namespace {
 
 using flaplag::testing::Outcome;
@@ -211,3 +213,5 @@ TEST(CliLimits, MergeOfAWidePartIsRefusedUnderTheLimit) {
 }
 
 }  // namespace
+
+}  // namespace cli_limits_test

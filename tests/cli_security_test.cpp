@@ -23,6 +23,8 @@
 
 #include "process.h"
 
+namespace cli_security_test {
+
 namespace {
 
 using Json = nlohmann::json;
@@ -644,3 +646,5 @@ TEST(CliSignals, SigtermDuringAStudyKeepsTheValuesFinished) {
 }
 
 }  // namespace
+
+}  // namespace cli_security_test

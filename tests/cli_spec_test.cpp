@@ -13,6 +13,8 @@
 #error "FLAPLAG_EXE must name the flaplag binary"
 #endif
 
+namespace cli_spec_test {
+
 namespace {
 
 using flaplag::testing::Outcome;
@@ -119,3 +121,5 @@ TEST(CliSpec, BadInputIsOneLine) {
 }
 
 }  // namespace
+
+}  // namespace cli_spec_test

@@ -21,6 +21,8 @@
 
 #include "process.h"
 
+namespace cli_studies_test {
+
 namespace {
 
 using Json = nlohmann::json;
@@ -1121,3 +1123,5 @@ TEST(CliResponse, PeriodicTipResponseAndSimulatedGrowth) {
 }
 
 }  // namespace
+
+}  // namespace cli_studies_test

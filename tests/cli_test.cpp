@@ -42,6 +42,8 @@
 #error "FLAPLAG_SOURCE_DIR must name the repository"
 #endif
 
+namespace cli_test {
+
 namespace {
 
 using Json = nlohmann::json;
@@ -1534,3 +1536,5 @@ TEST(CliParse, RotorOptionsSetExactlyTheirOwnField) {
 }
 
 }  // namespace
+
+}  // namespace cli_test

@@ -20,7 +20,7 @@
 #include "flaplag/rotor/hover.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::continuation_test {
 namespace {
 
 using testing::AbsClose;
@@ -959,4 +959,4 @@ TEST(CheckFinite, ANonFiniteMuCIsDroppedAndFails) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::continuation_test

@@ -22,6 +22,8 @@
 #include "flaplag_derive/derive.h"
 #include "flaplag_derive/spec.h"
 
+namespace derivation_numeric_test {
+
 namespace fd = flaplag::derive;
 namespace fm = flaplag::model;
 
@@ -544,3 +546,5 @@ INSTANTIATE_TEST_SUITE_P(Models, NonlinearTruncationOrder,
                            return std::string(tp.param.row == 0 ? "flap" : "lag") +
                                   (tp.param.twist ? "_twist" : "");
                          });
+
+}  // namespace derivation_numeric_test

@@ -27,6 +27,8 @@
 #include "flaplag/blade/rotating_modes.h"
 #include "test_util.h"
 
+namespace exact_modes_paper_test {
+
 using flaplag::Analysis;
 using flaplag::CriticalOptions;
 using flaplag::CriticalResult;
@@ -420,3 +422,5 @@ TEST(FigureSixteen, PreconeMildNegativeDroopStabilizingPositiveDroopDestabilizin
   EXPECT_LT(std::abs(precone_up - base), 0.25 * droop_effect);
   EXPECT_LT(std::abs(precone_down - base), 0.25 * droop_effect);
 }
+
+}  // namespace exact_modes_paper_test

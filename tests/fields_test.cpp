@@ -13,7 +13,7 @@
 #include "flaplag/core/outcome.h"
 #include "flaplag/numerics/continuation.h"
 
-namespace flaplag {
+namespace flaplag::fields_test {
 namespace {
 
 struct Sample : Outcome {
@@ -154,4 +154,4 @@ TEST(Fields, DerivedValuesOfTheResults) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::fields_test

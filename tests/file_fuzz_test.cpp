@@ -65,6 +65,8 @@
 
 extern char** environ;
 
+namespace file_fuzz_test {
+
 namespace {
 
 using Json = nlohmann::ordered_json;
@@ -1595,3 +1597,5 @@ TEST(FileFuzz, ResultFilesToRun) { fuzz("results to run", 200, run_result_vector
 TEST(FileFuzz, ResultFilesToMerge) { fuzz("results to merge", 300, merge_vector); }
 
 }  // namespace
+
+}  // namespace file_fuzz_test

@@ -16,7 +16,7 @@
 #include "flaplag/numerics/dense.h"
 #include "periodic_fixtures.h"
 
-namespace flaplag {
+namespace flaplag::floquet_evaluator_test {
 namespace {
 
 TransitionOptions options_of(TransitionMethod m, int steps, int terms = 4, double tol = 1e-6) {
@@ -257,4 +257,4 @@ TEST(AutomaticMethod, TransitionMatrixUsesTheChosenMethod) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::floquet_evaluator_test

@@ -16,7 +16,7 @@
 #include "periodic_fixtures.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::floquet_test {
 namespace {
 
 using fixtures::with_eigenvalues;
@@ -518,4 +518,4 @@ TEST(Floquet, InvalidArgumentsThrow) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::floquet_test

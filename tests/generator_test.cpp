@@ -24,6 +24,8 @@
 #include "flaplag_derive/paper_print.h"
 #include "flaplag_derive/spec.h"
 
+namespace generator_test {
+
 namespace fd = flaplag::derive;
 namespace fm = flaplag::model;
 
@@ -1124,3 +1126,5 @@ TEST(DeriveTool, BadBaseFailsWithExitCode2) {
   std::getline(in, line);
   EXPECT_NE(line.find("orphan.toml: base = \"gone\""), std::string::npos) << line;
 }
+
+}  // namespace generator_test

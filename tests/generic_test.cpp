@@ -15,6 +15,8 @@
 #include "flaplag_derive/derive.h"
 #include "flaplag_derive/spec.h"
 
+namespace generic_test {
+
 namespace fd = flaplag::derive;
 
 namespace {
@@ -115,3 +117,5 @@ TEST(GenericExtraction, TermsKeepTheirAuditFields) {
     }
   }
 }
+
+}  // namespace generic_test

@@ -21,7 +21,7 @@
 #include "flaplag/analysis.h"
 #include "flaplag/core/errors.h"
 
-namespace flaplag {
+namespace flaplag::imported_modes_test {
 namespace {
 
 std::string text_of(double v) {
@@ -547,4 +547,4 @@ TEST(ImportedModes, NotOrthogonalShapesAreNoted) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::imported_modes_test

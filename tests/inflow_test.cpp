@@ -14,7 +14,7 @@
 #include "flaplag/rotor/system_builder.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::inflow_test {
 namespace {
 
 using detail::SystemBuilder;
@@ -116,4 +116,4 @@ TEST(InflowModel, AnAnalysisTakesItFromItsCondition) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::inflow_test

@@ -16,7 +16,7 @@
 #include "json_fields.h"
 #include "table_fields.h"
 
-namespace flaplag::cli {
+namespace flaplag::cli::json_docs_test {
 namespace {
 
 std::vector<std::string> lines(const std::string& text) {
@@ -125,4 +125,4 @@ TEST(JsonFields, EveryRowUnderItsKeyInTableOrder) {
 }
 
 }  // namespace
-}  // namespace flaplag::cli
+}  // namespace flaplag::cli::json_docs_test

@@ -12,6 +12,8 @@
 #include "flaplag/analysis.h"
 #include "flaplag/model_api.h"
 
+namespace many_modes_test {
+
 using flaplag::Analysis;
 using flaplag::ModeKind;
 using flaplag::RotorParameters;
@@ -185,3 +187,5 @@ TEST(ManyModesCritical, ThreeByThreeMuCAgreesAcrossMethods) {
 }
 
 }  // namespace
+
+}  // namespace many_modes_test

@@ -22,7 +22,7 @@
 #include "flaplag/study.h"
 #include "flaplag/trim.h"
 
-namespace flaplag {
+namespace flaplag::option_tables_test {
 namespace {
 
 bool snake_case(const std::string& s) {
@@ -224,9 +224,9 @@ TEST(OptionTables, DescribedEnumsByName) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::option_tables_test
 
-namespace flaplag {
+namespace flaplag::option_tables_test {
 namespace {
 
 // The result rows of studies and maps: one snake_case name each, documented, with the units of
@@ -256,4 +256,4 @@ TEST(ResultTables, StudyRowAndMapCell) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::option_tables_test

@@ -12,7 +12,7 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/core/validation.h"
 
-namespace flaplag {
+namespace flaplag::outcome_test {
 namespace {
 
 TEST(Outcome, StartsOkAndUsable) {
@@ -209,4 +209,4 @@ TEST(Validation, IncludeReportsANestedStructsProblem) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::outcome_test

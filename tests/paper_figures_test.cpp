@@ -7,6 +7,8 @@
 #include "flaplag/analysis.h"
 #include "test_util.h"
 
+namespace paper_figures_test {
+
 using flaplag::Analysis;
 using flaplag::RotorParameters;
 using flaplag::TransitionMethod;
@@ -151,3 +153,5 @@ TEST(FigureFifteen, LagFrequencyDecidesTheInstability) {
   const auto stiff = crit(1.7);
   EXPECT_TRUE(!stiff.mu_c.has_value() || stiff.mu_c.value_or(-1.0) > worst_mid + 0.3);
 }
+
+}  // namespace paper_figures_test

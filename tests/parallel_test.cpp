@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-namespace flaplag {
+namespace flaplag::parallel_test {
 namespace {
 
 TEST(ParallelFor, RunsEveryTaskOnceOnTheThreadsAskedFor) {
@@ -149,4 +149,4 @@ TEST(ThreadCount, ZeroIsTheHardwareAndTheRangeIsChecked) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::parallel_test

@@ -14,7 +14,7 @@
 #include "flaplag/rotor/parameter_table.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::parameters_test {
 namespace {
 
 using flaplag::testing::RelClose;
@@ -297,4 +297,4 @@ TEST(Validate, AcceptsBoundaryValues) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::parameters_test

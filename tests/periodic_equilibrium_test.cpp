@@ -24,7 +24,7 @@
 #include "flaplag/rotor/system_builder.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::periodic_equilibrium_test {
 namespace {
 
 using testing::AbsClose;
@@ -353,4 +353,4 @@ TEST(PeriodicEquilibrium, CombinationsItCannotAnswerAreRefusedByName) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::periodic_equilibrium_test

@@ -11,7 +11,7 @@
 #include "periodic_fixtures.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::periodic_system_test {
 namespace {
 
 using testing::AbsClose;
@@ -347,4 +347,4 @@ TEST(PeriodicSystem, FixtureDerivativeMatchesDifferences) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::periodic_system_test

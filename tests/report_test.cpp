@@ -14,6 +14,8 @@
 #include "cli_run.h"
 #include "process.h"
 
+namespace report_test {
+
 namespace {
 
 using Json = nlohmann::ordered_json;
@@ -330,3 +332,5 @@ TEST_F(ReportBrowser, HostileResultRunsAndLoadsNothing) {
 }
 
 }  // namespace
+
+}  // namespace report_test

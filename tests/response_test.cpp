@@ -12,7 +12,7 @@
 #include "flaplag/core/errors.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::response_test {
 namespace {
 
 using testing::AbsClose;
@@ -306,4 +306,4 @@ TEST(PeriodicMean, MeanOfAQuantityAlongTheClosedFormPeriodicSolution) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::response_test

@@ -18,7 +18,7 @@
 #include "flaplag/core/format.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::rotating_modes_test {
 namespace {
 
 using model::Factor;
@@ -325,4 +325,4 @@ TEST(RotatingModes, HingeOffsetRaisesTheCentrifugalLimit) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::rotating_modes_test

@@ -18,6 +18,8 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/model_api.h"
 
+namespace runtime_spec_test {
+
 namespace {
 
 namespace fm = flaplag::model;
@@ -232,3 +234,5 @@ TEST(RunTimeSpec, BadSpecIsOneLine) {
 }
 
 }  // namespace
+
+}  // namespace runtime_spec_test

@@ -23,6 +23,8 @@
 #include "flaplag_derive/generic.h"
 #include "flaplag_derive/paper_names.h"
 
+namespace spec_test {
+
 namespace fd = flaplag::derive;
 namespace fm = flaplag::model;
 
@@ -507,3 +509,5 @@ TEST(ExampleSpecs, EveryExampleLoads) {
   }
   EXPECT_EQ(count, 5);
 }
+
+}  // namespace spec_test

@@ -16,7 +16,7 @@
 #include "flaplag/core/errors.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::system_builder_test {
 namespace {
 
 using detail::exact_reversed_region;
@@ -214,4 +214,4 @@ TEST(SystemBuilder, ReusedSystemIsTheSystemOfItsMu) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::system_builder_test

@@ -13,7 +13,7 @@
 #include "periodic_fixtures.h"
 #include "test_util.h"
 
-namespace flaplag {
+namespace flaplag::transition_test {
 namespace {
 
 using fixtures::rotor_hover_matrix;
@@ -550,4 +550,4 @@ TEST(Transition, InvalidArgumentsThrow) {
 }
 
 }  // namespace
-}  // namespace flaplag
+}  // namespace flaplag::transition_test

@@ -14,6 +14,8 @@
 #include "flaplag/core/errors.h"
 #include "test_util.h"
 
+namespace trim_test {
+
 namespace {
 
 using flaplag::InvalidInput;
@@ -585,3 +587,5 @@ TEST(OperatingCondition, BadConditionsNameTheField) {
     EXPECT_EQ(e.name(), "thrust_coefficient") << e.what();
   }
 }
+
+}  // namespace trim_test
