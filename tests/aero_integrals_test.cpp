@@ -19,6 +19,7 @@
 namespace flaplag {
 namespace {
 
+using flaplag::model::Direction;
 using testing::RelClose;
 using namespace testing::fixtures;
 
@@ -164,8 +165,8 @@ TEST(AeroIntegrals, TwistedBladeHoverThrustIsBladeElementTheory) {
       in.mu = 0.0;
       in.g0 = q0.data();
       in.h0 = q0.data() + 1;
-      in.omega_flap = modes.omega_flap.data();
-      in.omega_lag = modes.omega_lag.data();
+      in.omega_flap = modes[Direction::Flap].omega.data();
+      in.omega_lag = modes[Direction::Lag].omega.data();
       in.damping_flap = in.damping_lag = zeros.data();
       in.es_flap = in.es_lag = in.ecs_flap_lag = in.ecs_lag_flap = zeros.data();
       in.aero = ai.normal().data();

@@ -84,22 +84,23 @@ ModeSet imported_blade_modes(const RotorParameters& p, const model::ModelDescrip
     // The blade table's stiffness columns, scaled as its own first modes would need to have
     // the imported first frequencies.
     opt.blade = p.blade;
+    const double first_flap = s[model::Direction::Flap].omega[0];
+    const double first_lag = s[model::Direction::Lag].omega[0];
     const ModeSet own = p.basis == kElementBasis
-                            ? element_rotating_modes(s.omega_flap[0], s.omega_lag[0], opt).modes
-                            : exact_modes(s.omega_flap[0], s.omega_lag[0], opt);
-    s.stiffness_flap = own.stiffness_flap;
-    s.stiffness_lag = own.stiffness_lag;
+                            ? element_rotating_modes(first_flap, first_lag, opt).modes
+                            : exact_modes(first_flap, first_lag, opt);
+    for (const model::Direction d : model::kDirections) s[d].stiffness = own[d].stiffness;
     return s;
   }
-  for (const BendingDirection dir : {BendingDirection::Flap, BendingDirection::Lag}) {
-    const bool flap = dir == BendingDirection::Flap;
-    const double omega = flap ? s.omega_flap[0] : s.omega_lag[0];
+  for (const model::Direction dir : model::kDirections) {
+    const double omega = s[dir].omega[0];
     try {
-      (flap ? s.stiffness_flap : s.stiffness_lag) = stiffness_for_frequency(dir, omega, opt);
+      s[dir].stiffness = stiffness_for_frequency(dir, omega, opt);
     } catch (const InvalidInput& e) {
       throw InvalidInput("mode_shapes", table.source,
-                         std::string(flap ? "flap1" : "lag1") +
-                             " omega = " + round_trip_text(omega) +
+                         // the column of the mode table: flap1, lag1
+                         std::string(model::kDirectionNames[model::index(dir)]) +
+                             "1 omega = " + round_trip_text(omega) +
                              " gives no stiffness of the uniform blade for the elastic "
                              "coupling: " +
                              e.reason());
@@ -237,10 +238,11 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   coupling_ = (p_.modes == ModeKind::Exact && p_.elastic_coupling)
                   ? elastic_coupling(modes_, p_.theta)
                   : no_elastic_coupling(modes_);
-  es_flap_ = row_major(coupling_.es_flap);
-  es_lag_ = row_major(coupling_.es_lag);
-  ecs_flap_lag_ = row_major(coupling_.ecs_flap_lag);
-  ecs_lag_flap_ = row_major(coupling_.ecs_lag_flap);
+  using model::Direction;
+  es_flap_ = row_major(coupling_.block(Direction::Flap, Direction::Flap));
+  es_lag_ = row_major(coupling_.block(Direction::Lag, Direction::Lag));
+  ecs_flap_lag_ = row_major(coupling_.block(Direction::Flap, Direction::Lag));
+  ecs_lag_flap_ = row_major(coupling_.block(Direction::Lag, Direction::Flap));
 
   structural_ = structural_integrals(m, modes_, p_.root_offset / p_.length_ratio);
   aero_ = AeroIntegrals(m, modes_, geometry_);
@@ -282,8 +284,8 @@ model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) co
   in.mu = mu;
   in.g0 = g0_.data();
   in.h0 = h0_.data();
-  in.omega_flap = modes_.omega_flap.data();
-  in.omega_lag = modes_.omega_lag.data();
+  in.omega_flap = modes_[model::Direction::Flap].omega.data();
+  in.omega_lag = modes_[model::Direction::Lag].omega.data();
   in.damping_flap = damping_flap_.data();
   in.damping_lag = damping_lag_.data();
   in.es_flap = es_flap_.data();

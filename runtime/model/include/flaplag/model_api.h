@@ -44,6 +44,11 @@ constexpr int lag_equation_index(int m, int M) { return M + m; }
 
 // What state column col holds.
 enum class Direction : int { Flap = 0, Lag = 1 };
+// The directions, in state order; per-direction data (CoefficientInputs, ModeSet) is indexed by
+// index(d).
+inline constexpr int kDirectionCount = 2;
+inline constexpr Direction kDirections[kDirectionCount] = {Direction::Flap, Direction::Lag};
+constexpr int index(Direction d) { return static_cast<int>(d); }
 struct StateRef {
   Direction direction;
   int mode;   // 0-based mode of that direction
@@ -69,6 +74,7 @@ struct DirectionBlock {
   const char* name;        // "flap", "lag": mode labels and result keys
   const char* coordinate;  // "g", "h": the generalized coordinates (eqs 2.13-2.15)
   const char* deflection;  // "w", "v": the displacement it bends the blade by (eq 2.12)
+  const char* shape;       // "eta", "gamma": its mode shapes (eqs 2.11-2.12)
   int modes;               // M, N
   int first_state;         // the state column of its first rate
   int first_coordinate;    // its first coordinate j of q (and equation row)
@@ -78,8 +84,8 @@ struct DirectionBlock {
 // The directions' names, in state order.
 inline constexpr const char* kDirectionNames[] = {"flap", "lag"};
 inline std::vector<DirectionBlock> direction_blocks(int M, int N) {
-  return {{Direction::Flap, kDirectionNames[0], "g", "w", M, flap_rate_index(0, M, N), 0},
-          {Direction::Lag, kDirectionNames[1], "h", "v", N, lag_rate_index(0, M, N), M}};
+  return {{Direction::Flap, kDirectionNames[0], "g", "w", "eta", M, flap_rate_index(0, M, N), 0},
+          {Direction::Lag, kDirectionNames[1], "h", "v", "gamma", N, lag_rate_index(0, M, N), M}};
 }
 
 // The label of mode k (1-based) of a direction, one scheme for every model: the first mode is the
