@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,9 +39,14 @@ Json jnums(const std::vector<double>& v) {
 struct ModesShown {
   bool table = false;  // a blade table's modes: the stiffnesses are scales of its columns
   ExactModeOptions opt;
-  std::vector<FrequencyPair> flap9, lag9;  // the Fig 9 relation
+  // The directions (model_api.h) with their first rotating frequencies as given.
+  std::vector<model::DirectionBlock> directions;
+  std::vector<double> given;
+  // Per direction, in the order of `directions`: the Fig 9 relation and the Rayleigh quotients
+  // of the shapes.
+  std::vector<std::vector<FrequencyPair>> fig9;
+  std::vector<std::vector<double>> rayleigh;
   ExactModes ex;
-  std::vector<double> rayleigh_flap, rayleigh_lag;
   std::vector<double> x0;  // the stations of the shape table
   bool all_finite = true;
   std::string status, message;
@@ -71,27 +77,22 @@ ExactModeOptions mode_options(const Request& r) {
 
 // Every number shown, checked once.
 bool every_number_finite(const ModesShown& m) {
-  const ModeSet& ms = m.ex.modes;
-  bool all_finite = std::isfinite(m.opt.e1_over_l) && std::isfinite(m.ex.omega_flap_nonrotating) &&
-                    std::isfinite(m.ex.omega_lag_nonrotating) && std::isfinite(ms.stiffness_flap) &&
-                    std::isfinite(ms.stiffness_lag);
-  for (const auto& t : {&m.flap9, &m.lag9}) {
-    for (const FrequencyPair& f : *t) {
-      all_finite = all_finite && std::isfinite(f.nonrotating) && std::isfinite(f.rotating);
+  bool all_finite = std::isfinite(m.opt.e1_over_l);
+  auto check = [&](double x) { all_finite = all_finite && std::isfinite(x); };
+  for (std::size_t i = 0; i < m.directions.size(); ++i) {
+    const model::Direction d = m.directions[i].direction;
+    const DirectionModes& modes = m.ex.modes[d];
+    check(m.ex[d].omega_nonrotating);
+    check(modes.stiffness);
+    for (const FrequencyPair& f : m.fig9[i]) {
+      check(f.nonrotating);
+      check(f.rotating);
     }
-  }
-  const std::vector<const std::vector<double>*> lists = {&m.ex.omega_flap_all, &m.ex.omega_lag_all,
-                                                         &ms.omega_flap,       &ms.omega_lag,
-                                                         &m.rayleigh_flap,     &m.rayleigh_lag};
-  for (const std::vector<double>* v : lists) {
-    for (double x : *v) all_finite = all_finite && std::isfinite(x);
-  }
-  for (const auto& shapes : {&ms.flap, &ms.lag}) {
-    for (const auto& shape : *shapes) {
-      for (int der = 0; der <= 3; ++der) {
-        for (double x : m.x0) all_finite = all_finite && std::isfinite(shape->value(der, x));
-      }
-    }
+    for (const std::vector<double>* v : {&m.ex[d].omega_all, &modes.omega, &m.rayleigh[i]})
+      for (double x : *v) check(x);
+    for (const auto& shape : modes.shapes)
+      for (int der = 0; der <= 3; ++der)
+        for (double x : m.x0) check(shape->value(der, x));
   }
   return all_finite;
 }
@@ -101,24 +102,26 @@ ModesShown compute_modes(const Request& r) {
   ModesShown m;
   m.table = p.blade != nullptr;
   m.opt = mode_options(r);
+  m.directions = model::direction_blocks(m.opt.flap_modes, m.opt.lag_modes);
+  m.given = {p.omega_flap, p.omega_lag};  // the paper's parameters, in direction order
   // fig9_table spaces n points evenly on [lo, hi]: hi is the last multiple of STEP in the range
   // (the command line guarantees at least two points).
   const double hi9 = r.fig9_from + (r.fig9_points - 1) * r.fig9_step;
-  m.flap9 = fig9_table(BendingDirection::Flap, r.fig9_from, hi9, r.fig9_points, m.opt);
-  m.lag9 = fig9_table(BendingDirection::Lag, r.fig9_from, hi9, r.fig9_points, m.opt);
+  for (const model::DirectionBlock& b : m.directions)
+    m.fig9.push_back(fig9_table(b.direction, r.fig9_from, hi9, r.fig9_points, m.opt));
 
   m.ex = exact_rotating_modes(p.omega_flap, p.omega_lag, m.opt);
-  const ModeSet& ms = m.ex.modes;
   // The Rayleigh quotients with the blade's own distributions (the table's, with its tip mass).
   auto rayleigh_of = [&](BendingDirection dir, const ModeShape& shape, double k) {
     return m.table ? rayleigh_frequency(dir, shape, k, m.opt.e1_over_l, *p.blade)
                    : rayleigh_frequency(dir, shape, k, m.opt.e1_over_l, m.opt.mbar);
   };
-  for (const auto& s : ms.flap) {
-    m.rayleigh_flap.push_back(rayleigh_of(BendingDirection::Flap, *s, ms.stiffness_flap));
-  }
-  for (const auto& s : ms.lag) {
-    m.rayleigh_lag.push_back(rayleigh_of(BendingDirection::Lag, *s, ms.stiffness_lag));
+  for (const model::DirectionBlock& b : m.directions) {
+    const DirectionModes& modes = m.ex.modes[b.direction];
+    std::vector<double> rayleigh;
+    for (const auto& s : modes.shapes)
+      rayleigh.push_back(rayleigh_of(b.direction, *s, modes.stiffness));
+    m.rayleigh.push_back(rayleigh);
   }
   m.x0.resize(static_cast<std::size_t>(r.shape_points));
   for (std::size_t i = 0; i < m.x0.size(); ++i) {
@@ -142,22 +145,22 @@ void export_shapes(const Request& r, const ModesShown& m, const OutputTarget& sh
   }
 }
 
-// One direction's frequencies, stiffness and mode shapes (values and derivatives 1..3 at x0).
-Json direction_json(const ModesShown& m, BendingDirection dir, double given) {
-  const bool flap = dir == BendingDirection::Flap;
-  const ModeSet& ms = m.ex.modes;
-  const std::vector<std::shared_ptr<const ModeShape>>& shapes = flap ? ms.flap : ms.lag;
-  const std::vector<double>& returned = flap ? ms.omega_flap : ms.omega_lag;
-  const std::vector<double>& rayleigh = flap ? m.rayleigh_flap : m.rayleigh_lag;
+// Direction i's frequencies, stiffness and mode shapes (values and derivatives 1..3 at x0).
+Json direction_json(const ModesShown& m, std::size_t i) {
+  const model::DirectionBlock& b = m.directions[i];
+  const DirectionModes& dm = m.ex.modes[b.direction];
+  const std::vector<std::shared_ptr<const ModeShape>>& shapes = dm.shapes;
+  const std::vector<double>& returned = dm.omega;
+  const std::vector<double>& rayleigh = m.rayleigh[i];
   Json d;
-  d["rotating_first"] = given;
-  d["nonrotating_first"] = jnum(flap ? m.ex.omega_flap_nonrotating : m.ex.omega_lag_nonrotating);
-  d[m.table ? "stiffness_scale" : "stiffness"] = jnum(flap ? ms.stiffness_flap : ms.stiffness_lag);
-  d["rotating_all"] = jnums(flap ? m.ex.omega_flap_all : m.ex.omega_lag_all);
+  d["rotating_first"] = m.given[i];
+  d["nonrotating_first"] = jnum(m.ex[b.direction].omega_nonrotating);
+  d[m.table ? "stiffness_scale" : "stiffness"] = jnum(dm.stiffness);
+  d["rotating_all"] = jnums(m.ex[b.direction].omega_all);
   Json modes = Json::array();
   for (std::size_t k = 0; k < shapes.size(); ++k) {
     Json mode;
-    mode["name"] = index_name(flap ? "eta" : "gamma", k);
+    mode["name"] = index_name(b.shape, k);
     mode["omega"] = k < returned.size() ? jnum(returned[k]) : Json();
     mode["rayleigh_omega"] = jnum(rayleigh[k]);
     for (int der = 0; der <= 3; ++der) {
@@ -189,16 +192,21 @@ Json modes_json(const Request& r, const ModesShown& m) {
   j["parameters"] = params;
   if (m.table) j["blade_table"] = cmd::blade_table_json(*p.blade);
   j["e1_over_l"] = jnum(m.opt.e1_over_l);
+  // The rows of the first direction's relation, each with every direction's rotating frequency
+  // ("flap_rotating", "lag_rotating").
   Json fig9 = Json::array();
-  for (std::size_t i = 0; i < m.flap9.size(); ++i) {
-    fig9.push_back(Json{{"nonrotating", jnum(m.flap9[i].nonrotating)},
-                        {"flap_rotating", jnum(m.flap9[i].rotating)},
-                        {"lag_rotating", i < m.lag9.size() ? jnum(m.lag9[i].rotating) : Json()}});
+  for (std::size_t i = 0; i < m.fig9.front().size(); ++i) {
+    Json row{{"nonrotating", jnum(m.fig9.front()[i].nonrotating)}};
+    for (std::size_t d = 0; d < m.directions.size(); ++d) {
+      row[std::string(m.directions[d].name) + "_rotating"] =
+          i < m.fig9[d].size() ? jnum(m.fig9[d][i].rotating) : Json();
+    }
+    fig9.push_back(row);
   }
   j["fig9"] = fig9;
   j["x0"] = m.x0;
-  j["flap"] = direction_json(m, BendingDirection::Flap, p.omega_flap);
-  j["lag"] = direction_json(m, BendingDirection::Lag, p.omega_lag);
+  for (std::size_t d = 0; d < m.directions.size(); ++d)
+    j[m.directions[d].name] = direction_json(m, d);
   j["status"] = m.status;
   j["message"] = m.message;
   return j;
@@ -209,40 +217,72 @@ std::string fig9_text(const Request& r, const ModesShown& m) {
                     std::to_string(galerkin_basis(r.params)) +
                     " cantilever functions per direction, e1/l = " + cell(m.opt.e1_over_l) + ")\n";
   if (m.table) out += "blade table " + cmd::blade_table_text(*r.params.blade, r.params) + "\n";
-  TextTable t9({"nonrotating", "flap rotating", "lag rotating"});
-  for (std::size_t i = 0; i < m.flap9.size(); ++i) {
-    t9.add_row({cell(m.flap9[i].nonrotating), cell(m.flap9[i].rotating),
-                i < m.lag9.size() ? cell(m.lag9[i].rotating) : "-"});
+  std::vector<std::string> header{"nonrotating"};
+  for (const model::DirectionBlock& b : m.directions)
+    header.push_back(b.name + std::string(" rotating"));
+  TextTable t9(header);
+  for (std::size_t i = 0; i < m.fig9.front().size(); ++i) {
+    std::vector<std::string> row{cell(m.fig9.front()[i].nonrotating)};
+    for (const std::vector<FrequencyPair>& f : m.fig9)
+      row.push_back(i < f.size() ? cell(f[i].rotating) : "-");
+    t9.add_row(row);
   }
   return out + t9.render() + "\n";
+}
+
+// One row of the frequency table: a heading and a cell per direction (i: the direction's index
+// in m.directions), "-" where value(i) gives none.
+template <class Value>
+std::vector<std::string> direction_row(const ModesShown& m, const std::string& heading,
+                                       const Value& value) {
+  std::vector<std::string> row{heading};
+  for (std::size_t i = 0; i < m.directions.size(); ++i) {
+    const std::optional<double> v = value(i);
+    row.push_back(v ? cell(*v) : "-");
+  }
+  return row;
+}
+
+// The k-th entry of list(i) of each direction, or none past its end.
+template <class List>
+auto entry(std::size_t k, const List& list) {
+  return [k, &list](std::size_t i) -> std::optional<double> {
+    const std::vector<double>& v = list(i);
+    return k < v.size() ? std::optional<double>(v[k]) : std::nullopt;
+  };
 }
 
 // Frequencies, stiffnesses and the Rayleigh check of each shape.
 std::string exact_modes_text(const RotorParameters& p, const ModesShown& m) {
   const ExactModes& ex = m.ex;
-  const ModeSet& ms = ex.modes;
   std::string out = "Exact rotating modes of the blade";
   if (m.opt.paper_1974_shapes)
     out += "\n(1974 sign convention: the shapes are NOT modes of the blade)";
   out += "\n";
-  TextTable tb({"", "flap", "lag"});
-  tb.add_row({"first rotating frequency", cell(p.omega_flap), cell(p.omega_lag)});
-  tb.add_row({"first nonrotating frequency", cell(ex.omega_flap_nonrotating),
-              cell(ex.omega_lag_nonrotating)});
-  tb.add_row({m.table ? "stiffness scale s of the table's EI" : "stiffness EI/(Omega^2 l I_b)",
-              cell(ms.stiffness_flap), cell(ms.stiffness_lag)});
-  const std::size_t n_all = std::max(ex.omega_flap_all.size(), ex.omega_lag_all.size());
-  for (std::size_t k = 0; k < n_all; ++k) {
-    tb.add_row({"rotating frequency " + std::to_string(k + 1),
-                k < ex.omega_flap_all.size() ? cell(ex.omega_flap_all[k]) : "-",
-                k < ex.omega_lag_all.size() ? cell(ex.omega_lag_all[k]) : "-"});
-  }
+  std::vector<std::string> header{""};
+  for (const model::DirectionBlock& b : m.directions) header.push_back(b.name);
+  TextTable tb(header);
+  auto dir = [&](std::size_t i) { return m.directions[i].direction; };
+  tb.add_row(direction_row(m, "first rotating frequency",
+                           [&](std::size_t i) { return std::optional<double>(m.given[i]); }));
+  tb.add_row(direction_row(m, "first nonrotating frequency", [&](std::size_t i) {
+    return std::optional<double>(ex[dir(i)].omega_nonrotating);
+  }));
+  tb.add_row(direction_row(
+      m, m.table ? "stiffness scale s of the table's EI" : "stiffness EI/(Omega^2 l I_b)",
+      [&](std::size_t i) { return std::optional<double>(ex.modes[dir(i)].stiffness); }));
+  auto all = [&](std::size_t i) -> const std::vector<double>& { return ex[dir(i)].omega_all; };
+  std::size_t n_all = 0;
+  for (std::size_t i = 0; i < m.directions.size(); ++i) n_all = std::max(n_all, all(i).size());
+  for (std::size_t k = 0; k < n_all; ++k)
+    tb.add_row(direction_row(m, "rotating frequency " + std::to_string(k + 1), entry(k, all)));
   // The Rayleigh quotient of a true mode is its frequency; a wrong shape shows up here.
-  const std::size_t n_shapes = std::max(m.rayleigh_flap.size(), m.rayleigh_lag.size());
+  auto rayleigh = [&](std::size_t i) -> const std::vector<double>& { return m.rayleigh[i]; };
+  std::size_t n_shapes = 0;
+  for (const std::vector<double>& v : m.rayleigh) n_shapes = std::max(n_shapes, v.size());
   for (std::size_t k = 0; k < n_shapes; ++k) {
-    tb.add_row({"Rayleigh frequency of shape " + std::to_string(k + 1),
-                k < m.rayleigh_flap.size() ? cell(m.rayleigh_flap[k]) : "-",
-                k < m.rayleigh_lag.size() ? cell(m.rayleigh_lag[k]) : "-"});
+    tb.add_row(direction_row(m, "Rayleigh frequency of shape " + std::to_string(k + 1),
+                             entry(k, rayleigh)));
   }
   out += tb.render();
   if (m.table) {
@@ -259,13 +299,14 @@ std::string shapes_text(const ModesShown& m) {
   const ModeSet& ms = m.ex.modes;
   std::string out = "\nMode shapes (tip value 1)\n";
   std::vector<std::string> header{"x0"};
-  for (std::size_t k = 0; k < ms.flap.size(); ++k) header.push_back(index_name("eta", k));
-  for (std::size_t k = 0; k < ms.lag.size(); ++k) header.push_back(index_name("gamma", k));
+  for (const model::DirectionBlock& b : m.directions)
+    for (int k = 0; k < ms[b.direction].count(); ++k)
+      header.push_back(index_name(b.shape, static_cast<std::size_t>(k)));
   TextTable ts(header);
   for (double x : m.x0) {
     std::vector<std::string> row{cell(x)};
-    for (const auto& s : ms.flap) row.push_back(cell(s->value(0, x)));
-    for (const auto& s : ms.lag) row.push_back(cell(s->value(0, x)));
+    for (const model::DirectionBlock& b : m.directions)
+      for (const auto& s : ms.shapes(b.direction)) row.push_back(cell(s->value(0, x)));
     ts.add_row(row);
   }
   return out + ts.render();

@@ -22,6 +22,10 @@ using model::Direction;
 using model::Factor;
 using model::Inner;
 
+// The directions' places in the per-direction inputs (CoefficientInputs).
+constexpr int kFlap = model::index(Direction::Flap);
+constexpr int kLag = model::index(Direction::Lag);
+
 // Aerodynamic integral templates (letters a, b, c: the template's mode variables).
 const model::IntegralTemplate kAero[] = {
     /* 0 */ {"eta_a eta_b' gamma_c'", "etaa_detab_dgamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}, {Factor::GammaPrime, 2}}, Inner::None, 0, 0, {}, "F23_abc"},
@@ -96,8 +100,8 @@ const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; m
 // The integral tensors of in.aero, in.structural and the mode counts.
 struct Tensors {
   explicit Tensors(const model::CoefficientInputs& in)
-      : M(in.flap_modes),
-        N(in.lag_modes),
+      : M(in.modes[kFlap]),
+        N(in.modes[kLag]),
         A(kAero, static_cast<int>(std::size(kAero)), in.aero, M, N),
         S(kStructural, static_cast<int>(std::size(kStructural)), in.structural, M, N) {}
   int M, N;
@@ -180,9 +184,9 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, radial, F23_ijk
       for (int k = 0; k < N; ++k)
-        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[k] * A(0, i, j, k);
+        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][k] * A(0, i, j, k);
       // eps^3, elastic coupling E^s (E.5)
-      v += -in.es_flap[i * M + j];
+      v += -in.elastic[kFlap][kFlap][i * M + j];
       out.force[(0 * n + i) * 2 * n + M + j] += v;
     }
   }
@@ -190,7 +194,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, modal stiffness (A.2), M_Fii
-    v += -in.omega_flap[i] * in.omega_flap[i] * S(2, i);
+    v += -in.omega[kFlap][i] * in.omega[kFlap][i] * S(2, i);
     out.force[(0 * n + i) * 2 * n + M + i] += v;
   }
   // const: flap equation i, coefficient of g_j'
@@ -206,7 +210,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, structural damping (2.16), M_Fii
-    v += -(2.0) * in.damping_flap[i] * in.omega_flap[i] * S(2, i);
+    v += -(2.0) * in.damping[kFlap][i] * in.omega[kFlap][i] * S(2, i);
     out.force[(0 * n + i) * 2 * n + i] += v;
   }
   // const: flap equation i, coefficient of h_j
@@ -215,7 +219,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, radial, F23_ikj
       for (int k = 0; k < M; ++k)
-        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(0, i, k, j);
+        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][k] * A(0, i, k, j);
       // eps^2, L_z: -U_T U_P, radial, F22_ij
       v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(2, i, j);
       // eps^2, L_z: theta_cyclic U_T^2, radial, F21_ij
@@ -223,7 +227,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       // eps^2, L_z: -U_T U_P, radial, F22_ij
       v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(2, i, j);
       // eps^2, elastic coupling E^cs (E.6)
-      v += in.ecs_flap_lag[i * N + j];
+      v += in.elastic[kFlap][kLag][i * N + j];
       out.force[(0 * n + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -233,7 +237,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, tension, Coriolis 2v' (2.4), P_ikj
       for (int k = 0; k < M; ++k)
-        v += (2.0) * in.g0[k] * S(3, i, k, j);
+        v += (2.0) * in.q0[kFlap][k] * S(3, i, k, j);
       // eps^2, tension, Coriolis 2v' (2.4), B3_ij
       v += (2.0) * s.droop * S(4, i, j);
       // eps^2, L_z: -U_T U_P, F11_ij
@@ -255,7 +259,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L24_ijk
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(7, j, k, i);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][k] * A(7, j, k, i);
       // eps^2, L_y: -U_P^2, L11_ij
       v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(8, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
@@ -263,7 +267,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       // eps^2, L_y: -U_P^2, L11_ij
       v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(8, j, i);
       // eps^2, elastic coupling E^cs (E.8)
-      v += in.ecs_lag_flap[i * M + j];
+      v += in.elastic[kLag][kFlap][i * M + j];
       out.force[(0 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -273,7 +277,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, Coriolis 2u' (2.5), Meta_ijk
       for (int k = 0; k < M; ++k)
-        v += -(2.0) * in.g0[k] * S(5, j, k, i);
+        v += -(2.0) * in.q0[kFlap][k] * S(5, j, k, i);
       // eps^2, Coriolis 2u' (2.5), B7_ij
       v += -(2.0) * s.droop * S(6, j, i);
       // eps^2, L_y: -U_P^2, L8_ij
@@ -294,7 +298,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j) {
       double v = 0.0;
       // eps^3, elastic coupling E^s (E.7)
-      v += in.es_lag[i * N + j];
+      v += in.elastic[kLag][kLag][i * N + j];
       out.force[(0 * n + M + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -302,7 +306,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^1, modal stiffness (A.4), M_Lii
-    v += -in.omega_lag[i] * in.omega_lag[i] * S(7, i);
+    v += -in.omega[kLag][i] * in.omega[kLag][i] * S(7, i);
     out.force[(0 * n + M + i) * 2 * n + 2 * M + N + i] += v;
   }
   // const: lag equation i, coefficient of h_j'
@@ -311,10 +315,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, tension, Coriolis 2v' (2.4), S_ikj
       for (int k = 0; k < N; ++k)
-        v += (2.0) * in.h0[k] * S(8, i, k, j);
+        v += (2.0) * in.q0[kLag][k] * S(8, i, k, j);
       // eps^2, Coriolis 2u' (2.5), Mgamma_ijk
       for (int k = 0; k < N; ++k)
-        v += -(2.0) * in.h0[k] * S(9, i, j, k);
+        v += -(2.0) * in.q0[kLag][k] * S(9, i, j, k);
       // eps^3, tension, Coriolis 2v' (2.4), B8_ij
       v += (2.0) * s.droop * s.theta * S(10, i, j);
       out.force[(0 * n + M + i) * 2 * n + 2 * M + j] += v;
@@ -324,7 +328,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^1, structural damping (2.17), M_Lii
-    v += -(2.0) * in.damping_lag[i] * in.omega_lag[i] * S(7, i);
+    v += -(2.0) * in.damping[kLag][i] * in.omega[kLag][i] * S(7, i);
     out.force[(0 * n + M + i) * 2 * n + 2 * M + i] += v;
   }
   // cos psi: flap equation i, coefficient of g_j
@@ -342,7 +346,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, radial, F24_ijk
       for (int k = 0; k < N; ++k)
-        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.h0[k] * A(11, i, j, k);
+        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.q0[kLag][k] * A(11, i, j, k);
       out.force[(1 * n + i) * 2 * n + j] += v;
     }
   }
@@ -367,7 +371,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, F14_ikj
       for (int k = 0; k < M; ++k)
-        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(13, i, k, j);
+        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.q0[kFlap][k] * A(13, i, k, j);
       // eps^2, L_z: -U_T U_P, F11_ij
       v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(4, i, j);
       // eps^2, L_z: -U_T U_P, F11_ij
@@ -398,7 +402,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L17_ikj
       for (int k = 0; k < M; ++k)
-        v += -s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(13, j, k, i);
+        v += -s.lock * s.lr * s.lr * s.lr * s.mu * in.q0[kFlap][k] * A(13, j, k, i);
       // eps^2, L_y: -U_P^2, L8_ij
       v += -s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(4, j, i);
       // eps^2, L_y: -U_P^2, L8_ij
@@ -467,7 +471,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, radial, F23_ijk
       for (int k = 0; k < N; ++k)
-        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[k] * A(0, i, j, k);
+        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][k] * A(0, i, j, k);
       out.force[(3 * n + i) * 2 * n + M + j] += v;
     }
   }
@@ -477,7 +481,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, radial, F23_ikj
       for (int k = 0; k < M; ++k)
-        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(0, i, k, j);
+        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][k] * A(0, i, k, j);
       // eps^2, L_z: -U_T U_P, radial, F22_ij
       v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(2, i, j);
       // eps^2, L_z: theta_cyclic U_T^2, radial, F21_ij
@@ -502,7 +506,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L24_ijk
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(7, j, k, i);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][k] * A(7, j, k, i);
       // eps^2, L_y: -U_P^2, L11_ij
       v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(8, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
@@ -616,22 +620,22 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_z: -U_T U_P, radial, F23_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.h0[k] * A(0, i, j, k);
+        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * in.q0[kLag][k] * A(0, i, j, k);
     // eps^2, L_z: -U_T U_P, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(2, i, j);
+      v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][j] * A(2, i, j);
     // eps^2, L_z: theta_cyclic U_T^2, radial, F21_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.h0[j] * A(3, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.q0[kLag][j] * A(3, i, j);
     // eps^2, L_z: -U_T U_P, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.h0[j] * A(2, i, j);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.q0[kLag][j] * A(2, i, j);
     // eps^2, elastic coupling E^cs (E.6)
     for (int j = 0; j < N; ++j)
-      v += in.ecs_flap_lag[i * N + j] * in.h0[j];
+      v += in.elastic[kFlap][kLag][i * N + j] * in.q0[kLag][j];
     // eps^3, elastic coupling E^s (E.5)
     for (int j = 0; j < M; ++j)
-      v += -in.es_flap[i * M + j] * in.g0[j];
+      v += -in.elastic[kFlap][kFlap][i * M + j] * in.q0[kFlap][j];
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.droop * S(11, i);
     // eps^1, L_z: -U_T U_P, F2_i
@@ -649,7 +653,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.precone * S(11, i);
     // eps^1, modal stiffness (A.2), M_Fii
-    v += -in.g0[i] * in.omega_flap[i] * in.omega_flap[i] * S(2, i);
+    v += -in.q0[kFlap][i] * in.omega[kFlap][i] * in.omega[kFlap][i] * S(2, i);
     out.forcing[0 * n + i] += v;
   }
   // const: lag equation i, state-independent
@@ -658,22 +662,22 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_y: -U_P^2, L24_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(7, j, k, i);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * in.q0[kFlap][k] * A(7, j, k, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(8, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(8, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(9, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.q0[kFlap][j] * A(9, j, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(8, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.q0[kFlap][j] * A(8, j, i);
     // eps^2, elastic coupling E^cs (E.8)
     for (int j = 0; j < M; ++j)
-      v += in.ecs_lag_flap[i * M + j] * in.g0[j];
+      v += in.elastic[kLag][kFlap][i * M + j] * in.q0[kFlap][j];
     // eps^3, elastic coupling E^s (E.7)
     for (int j = 0; j < N; ++j)
-      v += in.es_lag[i * N + j] * in.h0[j];
+      v += in.elastic[kLag][kLag][i * N + j] * in.q0[kLag][j];
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
     v += (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(25, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L4_i
@@ -701,7 +705,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_y: -U_P^2, L2_i
     v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(25, i);
     // eps^1, modal stiffness (A.4), M_Lii
-    v += -in.h0[i] * in.omega_lag[i] * in.omega_lag[i] * S(7, i);
+    v += -in.q0[kLag][i] * in.omega[kLag][i] * in.omega[kLag][i] * S(7, i);
     out.forcing[0 * n + M + i] += v;
   }
   // cos psi: flap equation i, state-independent
@@ -709,19 +713,19 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * in.h0[j] * A(2, i, j);
+      v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * in.q0[kLag][j] * A(2, i, j);
     // eps^2, L_z: theta U_T^2, radial, F21_ij
     for (int j = 0; j < N; ++j)
-      v += -s.lock * s.lr * s.lr * s.mu * s.theta * in.h0[j] * A(3, i, j);
+      v += -s.lock * s.lr * s.lr * s.mu * s.theta * in.q0[kLag][j] * A(3, i, j);
     // eps^1, L_z: -U_T U_P, F6_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(10, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.q0[kFlap][j] * A(10, i, j);
     // eps^2, L_z: theta_tw U_T^2, radial
     for (int j = 0; j < N; ++j)
-      v += -s.lock * s.lr * s.lr * s.mu * in.h0[j] * A(12, i, j);
+      v += -s.lock * s.lr * s.lr * s.mu * in.q0[kLag][j] * A(12, i, j);
     // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(2, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kLag][j] * A(2, i, j);
     // eps^1, L_z: -U_T U_P, F2_i
     v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(20, i);
     // eps^1, L_z: -U_T U_P, F2_i
@@ -737,16 +741,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(8, j, i);
+      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * in.q0[kFlap][j] * A(8, j, i);
     // eps^2, L_y: theta U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * in.g0[j] * A(9, j, i);
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * in.q0[kFlap][j] * A(9, j, i);
     // eps^2, L_y: theta_tw U_P U_T
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(14, j, i);
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.q0[kFlap][j] * A(14, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(8, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kFlap][j] * A(8, j, i);
     // eps^2, L_y: -U_P^2, L2_i
     v += -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(25, i);
     // eps^2, L_y: theta U_P U_T, L1_i
@@ -772,7 +776,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(2, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kLag][j] * A(2, i, j);
     // eps^1, L_z: -U_T U_P, F3_i
     v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(21, i);
     // eps^1, L_z: theta U_T^2, F2_i
@@ -790,7 +794,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(8, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kFlap][j] * A(8, j, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L1_i
     v += s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(27, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
@@ -811,16 +815,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_z: -U_T U_P, radial, F23_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.h0[k] * A(0, i, j, k);
+        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * in.q0[kLag][k] * A(0, i, j, k);
     // eps^2, L_z: -U_T U_P, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(2, i, j);
+      v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][j] * A(2, i, j);
     // eps^2, L_z: theta_cyclic U_T^2, radial, F21_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.h0[j] * A(3, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.q0[kLag][j] * A(3, i, j);
     // eps^2, L_z: -U_T U_P, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.h0[j] * A(2, i, j);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.q0[kLag][j] * A(2, i, j);
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
     v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(20, i);
     // eps^1, L_z: theta U_T^2, F3_i
@@ -835,16 +839,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_y: -U_P^2, L24_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(7, j, k, i);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * in.q0[kFlap][k] * A(7, j, k, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(8, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(8, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(9, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.q0[kFlap][j] * A(9, j, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(8, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.q0[kFlap][j] * A(8, j, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
     v += -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(25, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
@@ -866,16 +870,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial, F21_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.h0[j] * A(3, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.q0[kLag][j] * A(3, i, j);
     // eps^2, L_z: theta U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[j] * A(2, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.q0[kLag][j] * A(2, i, j);
     // eps^1, L_z: -U_T U_P, F7_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(17, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(17, i, j);
     // eps^2, L_z: theta_tw U_T^2, radial
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(18, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][j] * A(18, i, j);
     // eps^1, L_z: -U_T U_P, F3_i
     v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(21, i);
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
@@ -889,13 +893,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.g0[j] * A(9, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.q0[kFlap][j] * A(9, j, i);
     // eps^2, L_y: theta U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * A(8, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.q0[kFlap][j] * A(8, j, i);
     // eps^2, L_y: theta_tw U_P U_T
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(19, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(19, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(27, i);
     // eps^2, L_y: theta U_P U_T, L2_i
@@ -917,7 +921,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(2, i, j);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kLag][j] * A(2, i, j);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(21, i);
     out.forcing[5 * n + i] += v;
@@ -927,7 +931,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(8, j, i);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kFlap][j] * A(8, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(25, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
@@ -939,7 +943,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(2, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kLag][j] * A(2, i, j);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(21, i);
     out.forcing[6 * n + i] += v;
@@ -949,7 +953,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(8, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kFlap][j] * A(8, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(25, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
@@ -977,7 +981,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^3, elastic coupling E^s (E.5)
-      v += in.es_flap[i * M + j];
+      v += in.elastic[kFlap][kFlap][i * M + j];
       out.S[(i) * n + j] += v;
     }
   }
@@ -985,7 +989,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, modal stiffness (A.2), M_Fii
-    v += in.omega_flap[i] * in.omega_flap[i] * S(2, i);
+    v += in.omega[kFlap][i] * in.omega[kFlap][i] * S(2, i);
     out.S[(i) * n + i] += v;
   }
   // flap equation i, coefficient of h0_j
@@ -993,7 +997,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     for (int j = 0; j < N; ++j) {
       double v = 0.0;
       // eps^2, elastic coupling E^cs (E.6)
-      v += -in.ecs_flap_lag[i * N + j];
+      v += -in.elastic[kFlap][kLag][i * N + j];
       out.S[(i) * n + M + j] += v;
     }
   }
@@ -1002,7 +1006,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, elastic coupling E^cs (E.8)
-      v += -in.ecs_lag_flap[i * M + j];
+      v += -in.elastic[kLag][kFlap][i * M + j];
       out.S[(M + i) * n + j] += v;
     }
   }
@@ -1011,7 +1015,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     for (int j = 0; j < N; ++j) {
       double v = 0.0;
       // eps^3, elastic coupling E^s (E.7)
-      v += -in.es_lag[i * N + j];
+      v += -in.elastic[kLag][kLag][i * N + j];
       out.S[(M + i) * n + M + j] += v;
     }
   }
@@ -1019,7 +1023,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^1, modal stiffness (A.4), M_Lii
-    v += in.omega_lag[i] * in.omega_lag[i] * S(7, i);
+    v += in.omega[kLag][i] * in.omega[kLag][i] * S(7, i);
     out.S[(M + i) * n + M + i] += v;
   }
   // flap equation i, hover load
@@ -1075,7 +1079,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.h0[j] * A(31, i, j);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kLag][j] * A(31, i, j);
     out.force[0 * 2 * n + M + i] += v;
   }
   // thrust, const: coefficient of g_i'
@@ -1090,7 +1094,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[j] * A(31, j, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(31, j, i);
     // eps^2, L_z: -U_T U_P, radial
     v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(32, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
@@ -1124,7 +1128,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < N; ++j)
-      v += s.lr * s.lr * s.mu * in.h0[j] * A(2, i, j);
+      v += s.lr * s.lr * s.mu * in.q0[kLag][j] * A(2, i, j);
     out.force[1 * 2 * n + i] += v;
   }
   // thrust, cos psi: coefficient of h_i
@@ -1145,7 +1149,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P
     for (int j = 0; j < M; ++j)
-      v += s.lr * s.lr * s.mu * in.g0[j] * A(8, j, i);
+      v += s.lr * s.lr * s.mu * in.q0[kFlap][j] * A(8, j, i);
     // eps^2, L_z: -U_T U_P
     v += s.droop * s.lr * s.lr * s.mu * A(25, i);
     // eps^2, L_z: -U_T U_P
@@ -1184,7 +1188,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.h0[j] * A(31, i, j);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kLag][j] * A(31, i, j);
     out.force[3 * 2 * n + M + i] += v;
   }
   // thrust, cos 2psi: coefficient of h_i
@@ -1192,7 +1196,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[j] * A(31, j, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(31, j, i);
     // eps^2, L_z: -U_T U_P, radial
     v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(32, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
@@ -1253,16 +1257,16 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
-        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * in.h0[j] * A(31, i, j);
+        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kFlap][i] * in.q0[kLag][j] * A(31, i, j);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.h0[i] * A(32, i);
+      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.q0[kLag][i] * A(32, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.theta1c * in.h0[i] * A(33, i);
+      v += -s.lr * s.mu * s.theta1c * in.q0[kLag][i] * A(33, i);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.h0[i] * A(32, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.q0[kLag][i] * A(32, i);
     // eps^1, L_z: -U_T U_P
     v += -s.inflow * s.lr * A(38);
     // eps^1, L_z: theta_cyclic U_T^2
@@ -1282,19 +1286,19 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += s.inflow * s.lr * s.mu * in.h0[i] * A(32, i);
+      v += s.inflow * s.lr * s.mu * in.q0[kLag][i] * A(32, i);
     // eps^2, L_z: theta U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(2.0) * s.lr * s.mu * s.theta * in.h0[i] * A(33, i);
+      v += -(2.0) * s.lr * s.mu * s.theta * in.q0[kLag][i] * A(33, i);
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
-      v += -s.lr * s.mu * in.g0[i] * A(34, i);
+      v += -s.lr * s.mu * in.q0[kFlap][i] * A(34, i);
     // eps^2, L_z: theta_tw U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(2.0) * s.lr * s.mu * in.h0[i] * A(35, i);
+      v += -(2.0) * s.lr * s.mu * in.q0[kLag][i] * A(35, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.h0[i] * A(32, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.q0[kLag][i] * A(32, i);
     // eps^1, L_z: -U_T U_P
     v += -s.droop * s.lr * s.mu * A(38);
     // eps^1, L_z: -U_T U_P
@@ -1310,7 +1314,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.h0[i] * A(32, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.q0[kLag][i] * A(32, i);
     // eps^1, L_z: -U_T U_P
     v += -s.inflow * s.lr * s.mu * A(39);
     // eps^1, L_z: theta U_T^2
@@ -1329,16 +1333,16 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
-        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * in.h0[j] * A(31, i, j);
+        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kFlap][i] * in.q0[kLag][j] * A(31, i, j);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.h0[i] * A(32, i);
+      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.q0[kLag][i] * A(32, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.theta1c * in.h0[i] * A(33, i);
+      v += -s.lr * s.mu * s.theta1c * in.q0[kLag][i] * A(33, i);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.h0[i] * A(32, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.q0[kLag][i] * A(32, i);
     // eps^1, L_z: theta_cyclic U_T^2
     v += -s.lr * s.mu * s.theta1s * A(38);
     // eps^1, L_z: theta U_T^2
@@ -1352,16 +1356,16 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.theta1s * in.h0[i] * A(33, i);
+      v += -s.lr * s.mu * s.theta1s * in.q0[kLag][i] * A(33, i);
     // eps^2, L_z: theta U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.mu * s.theta * in.h0[i] * A(32, i);
+      v += -s.lr * s.mu * s.mu * s.theta * in.q0[kLag][i] * A(32, i);
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * A(36, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kFlap][i] * A(36, i);
     // eps^2, L_z: theta_tw U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.mu * in.h0[i] * A(37, i);
+      v += -s.lr * s.mu * s.mu * in.q0[kLag][i] * A(37, i);
     // eps^1, L_z: -U_T U_P
     v += -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(39);
     // eps^1, L_z: theta_cyclic U_T^2
@@ -1375,7 +1379,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.h0[i] * A(32, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.q0[kLag][i] * A(32, i);
     // eps^1, L_z: theta_cyclic U_T^2
     v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(39);
     out.forcing[5] += v;
@@ -1385,7 +1389,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.h0[i] * A(32, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.q0[kLag][i] * A(32, i);
     // eps^1, L_z: theta_cyclic U_T^2
     v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(39);
     out.forcing[6] += v;
@@ -1393,7 +1397,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
 }
 
 // Nonlinear generalized loads: mass * q'' = sum_h phi_h(psi) force[h](y), y the full state
-// (not a perturbation; g0, h0 are not read), every product of the coordinates that the
+// (not a perturbation; in.q0 is not read), every product of the coordinates that the
 // ordering keeps; and d force / d y.  H_nl = 7.
 FLAPLAG_GENERATED_NO_UBSAN
 void nonlinear(const model::CoefficientInputs& in, const double* y,
@@ -1516,14 +1520,14 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, elastic coupling E^cs (E.6)
     for (int j = 0; j < N; ++j)
       {
-        const double c = in.ecs_flap_lag[i * N + j];
+        const double c = in.elastic[kFlap][kLag][i * N + j];
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^3, elastic coupling E^s (E.5)
     for (int j = 0; j < M; ++j)
       {
-        const double c = -in.es_flap[i * M + j];
+        const double c = -in.elastic[kFlap][kFlap][i * M + j];
         *f += c * y[M + j];
         jac[M + j] += c;
       }
@@ -1569,13 +1573,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     }
     // eps^1, structural damping (2.16), M_Fii
     {
-      const double c = -(2.0) * in.damping_flap[i] * in.omega_flap[i] * S(2, i);
+      const double c = -(2.0) * in.damping[kFlap][i] * in.omega[kFlap][i] * S(2, i);
       *f += c * y[i];
       jac[i] += c;
     }
     // eps^1, modal stiffness (A.2), M_Fii
     {
-      const double c = -in.omega_flap[i] * in.omega_flap[i] * S(2, i);
+      const double c = -in.omega[kFlap][i] * in.omega[kFlap][i] * S(2, i);
       *f += c * y[M + i];
       jac[M + i] += c;
     }
@@ -1704,14 +1708,14 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, elastic coupling E^cs (E.8)
     for (int j = 0; j < M; ++j)
       {
-        const double c = in.ecs_lag_flap[i * M + j];
+        const double c = in.elastic[kLag][kFlap][i * M + j];
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, elastic coupling E^s (E.7)
     for (int j = 0; j < N; ++j)
       {
-        const double c = in.es_lag[i * N + j];
+        const double c = in.elastic[kLag][kLag][i * N + j];
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
@@ -1782,13 +1786,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     }
     // eps^1, structural damping (2.17), M_Lii
     {
-      const double c = -(2.0) * in.damping_lag[i] * in.omega_lag[i] * S(7, i);
+      const double c = -(2.0) * in.damping[kLag][i] * in.omega[kLag][i] * S(7, i);
       *f += c * y[2 * M + i];
       jac[2 * M + i] += c;
     }
     // eps^1, modal stiffness (A.4), M_Lii
     {
-      const double c = -in.omega_lag[i] * in.omega_lag[i] * S(7, i);
+      const double c = -in.omega[kLag][i] * in.omega[kLag][i] * S(7, i);
       *f += c * y[2 * M + N + i];
       jac[2 * M + N + i] += c;
     }

@@ -22,6 +22,10 @@ using model::Direction;
 using model::Factor;
 using model::Inner;
 
+// The directions' places in the per-direction inputs (CoefficientInputs).
+constexpr int kFlap = model::index(Direction::Flap);
+constexpr int kLag = model::index(Direction::Lag);
+
 // Aerodynamic integral templates (letters a, b, c: the template's mode variables).
 const model::IntegralTemplate kAero[] = {
     /* 0 */ {"x eta_a eta_b", "x1_etaa_etab", 2, {Direction::Flap, Direction::Flap}, 1, 0, 2, {{Factor::Eta, 0}, {Factor::Eta, 1}}, Inner::None, 0, 0, {}, "F8_ab"},
@@ -92,8 +96,8 @@ const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; m
 // The integral tensors of in.aero, in.structural and the mode counts.
 struct Tensors {
   explicit Tensors(const model::CoefficientInputs& in)
-      : M(in.flap_modes),
-        N(in.lag_modes),
+      : M(in.modes[kFlap]),
+        N(in.modes[kLag]),
         A(kAero, static_cast<int>(std::size(kAero)), in.aero, M, N),
         S(kStructural, static_cast<int>(std::size(kStructural)), in.structural, M, N) {}
   int M, N;
@@ -175,7 +179,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^3, elastic coupling E^s (E.5)
-      v += -in.es_flap[i * M + j];
+      v += -in.elastic[kFlap][kFlap][i * M + j];
       out.force[(0 * n + i) * 2 * n + M + j] += v;
     }
   }
@@ -183,7 +187,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, modal stiffness (A.2), M_Fii
-    v += -in.omega_flap[i] * in.omega_flap[i] * S(2, i);
+    v += -in.omega[kFlap][i] * in.omega[kFlap][i] * S(2, i);
     out.force[(0 * n + i) * 2 * n + M + i] += v;
   }
   // const: flap equation i, coefficient of g_j'
@@ -199,7 +203,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, structural damping (2.16), M_Fii
-    v += -(2.0) * in.damping_flap[i] * in.omega_flap[i] * S(2, i);
+    v += -(2.0) * in.damping[kFlap][i] * in.omega[kFlap][i] * S(2, i);
     out.force[(0 * n + i) * 2 * n + i] += v;
   }
   // const: flap equation i, coefficient of h_j
@@ -207,7 +211,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j) {
       double v = 0.0;
       // eps^2, elastic coupling E^cs (E.6)
-      v += in.ecs_flap_lag[i * N + j];
+      v += in.elastic[kFlap][kLag][i * N + j];
       out.force[(0 * n + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -217,7 +221,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, tension, Coriolis 2v' (2.4), P_ikj
       for (int k = 0; k < M; ++k)
-        v += (2.0) * in.g0[k] * S(3, i, k, j);
+        v += (2.0) * in.q0[kFlap][k] * S(3, i, k, j);
       // eps^2, tension, Coriolis 2v' (2.4), B3_ij
       v += (2.0) * s.droop * S(4, i, j);
       // eps^2, L_z: -U_T U_P, F11_ij
@@ -239,7 +243,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L24_ijk
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(4, j, k, i);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][k] * A(4, j, k, i);
       // eps^2, L_y: -U_P^2, L11_ij
       v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(5, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
@@ -247,7 +251,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       // eps^2, L_y: -U_P^2, L11_ij
       v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(5, j, i);
       // eps^2, elastic coupling E^cs (E.8)
-      v += in.ecs_lag_flap[i * M + j];
+      v += in.elastic[kLag][kFlap][i * M + j];
       out.force[(0 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -257,7 +261,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, Coriolis 2u' (2.5), Meta_ijk
       for (int k = 0; k < M; ++k)
-        v += -(2.0) * in.g0[k] * S(5, j, k, i);
+        v += -(2.0) * in.q0[kFlap][k] * S(5, j, k, i);
       // eps^2, Coriolis 2u' (2.5), B7_ij
       v += -(2.0) * s.droop * S(6, j, i);
       // eps^2, L_y: -U_P^2, L8_ij
@@ -278,7 +282,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     for (int j = 0; j < N; ++j) {
       double v = 0.0;
       // eps^3, elastic coupling E^s (E.7)
-      v += in.es_lag[i * N + j];
+      v += in.elastic[kLag][kLag][i * N + j];
       out.force[(0 * n + M + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -286,7 +290,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^1, modal stiffness (A.4), M_Lii
-    v += -in.omega_lag[i] * in.omega_lag[i] * S(7, i);
+    v += -in.omega[kLag][i] * in.omega[kLag][i] * S(7, i);
     out.force[(0 * n + M + i) * 2 * n + 2 * M + N + i] += v;
   }
   // const: lag equation i, coefficient of h_j'
@@ -295,13 +299,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.g0[k] * A(7, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.q0[kFlap][k] * A(7, k, i, j);
       // eps^2, tension, Coriolis 2v' (2.4), S_ikj
       for (int k = 0; k < N; ++k)
-        v += (2.0) * in.h0[k] * S(8, i, k, j);
+        v += (2.0) * in.q0[kLag][k] * S(8, i, k, j);
       // eps^2, Coriolis 2u' (2.5), Mgamma_ijk
       for (int k = 0; k < N; ++k)
-        v += -(2.0) * in.h0[k] * S(9, i, j, k);
+        v += -(2.0) * in.q0[kLag][k] * S(9, i, j, k);
       // eps^3, L_y: (C_Do/a) U_T^2, L14_ij
       v += -s.cdo_a * s.lock * s.lr * s.lr * s.lr * A(8, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
@@ -321,7 +325,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^1, structural damping (2.17), M_Lii
-    v += -(2.0) * in.damping_lag[i] * in.omega_lag[i] * S(7, i);
+    v += -(2.0) * in.damping[kLag][i] * in.omega[kLag][i] * S(7, i);
     out.force[(0 * n + M + i) * 2 * n + 2 * M + i] += v;
   }
   // cos psi: flap equation i, coefficient of g_j
@@ -339,7 +343,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, F14_ikj
       for (int k = 0; k < M; ++k)
-        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(12, i, k, j);
+        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.q0[kFlap][k] * A(12, i, k, j);
       // eps^2, L_z: -U_T U_P, F11_ij
       v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(1, i, j);
       // eps^2, L_z: -U_T U_P, F11_ij
@@ -370,7 +374,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L17_ikj
       for (int k = 0; k < M; ++k)
-        v += -s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(12, j, k, i);
+        v += -s.lock * s.lr * s.lr * s.lr * s.mu * in.q0[kFlap][k] * A(12, j, k, i);
       // eps^2, L_y: -U_P^2, L8_ij
       v += -s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(1, j, i);
       // eps^2, L_y: -U_P^2, L8_ij
@@ -386,10 +390,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * in.g0[k] * A(7, k, i, j);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * in.q0[kFlap][k] * A(7, k, i, j);
       // eps^3, L_y: theta_tw U_P U_T
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(14, k, i, j);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.q0[kFlap][k] * A(14, k, i, j);
       // eps^3, L_y: theta U_P U_T, L13_ij
       v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(9, i, j);
       // eps^3, L_y: theta_tw U_P U_T
@@ -473,7 +477,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_y: -U_P^2, L24_ijk
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(4, j, k, i);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][k] * A(4, j, k, i);
       // eps^2, L_y: -U_P^2, L11_ij
       v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(5, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
@@ -498,7 +502,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.g0[k] * A(7, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.q0[kFlap][k] * A(7, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
       v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(9, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
@@ -552,7 +556,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * in.g0[k] * A(7, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * in.q0[kFlap][k] * A(7, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
       v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(9, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
@@ -583,10 +587,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, elastic coupling E^cs (E.6)
     for (int j = 0; j < N; ++j)
-      v += in.ecs_flap_lag[i * N + j] * in.h0[j];
+      v += in.elastic[kFlap][kLag][i * N + j] * in.q0[kLag][j];
     // eps^3, elastic coupling E^s (E.5)
     for (int j = 0; j < M; ++j)
-      v += -in.es_flap[i * M + j] * in.g0[j];
+      v += -in.elastic[kFlap][kFlap][i * M + j] * in.q0[kFlap][j];
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.droop * S(11, i);
     // eps^1, L_z: -U_T U_P, F2_i
@@ -604,7 +608,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.precone * S(11, i);
     // eps^1, modal stiffness (A.2), M_Fii
-    v += -in.g0[i] * in.omega_flap[i] * in.omega_flap[i] * S(2, i);
+    v += -in.q0[kFlap][i] * in.omega[kFlap][i] * in.omega[kFlap][i] * S(2, i);
     out.forcing[0 * n + i] += v;
   }
   // const: lag equation i, state-independent
@@ -613,22 +617,22 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_y: -U_P^2, L24_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(4, j, k, i);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * in.q0[kFlap][k] * A(4, j, k, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(5, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(5, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(6, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.q0[kFlap][j] * A(6, j, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(5, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.q0[kFlap][j] * A(5, j, i);
     // eps^2, elastic coupling E^cs (E.8)
     for (int j = 0; j < M; ++j)
-      v += in.ecs_lag_flap[i * M + j] * in.g0[j];
+      v += in.elastic[kLag][kFlap][i * M + j] * in.q0[kFlap][j];
     // eps^3, elastic coupling E^s (E.7)
     for (int j = 0; j < N; ++j)
-      v += in.es_lag[i * N + j] * in.h0[j];
+      v += in.elastic[kLag][kLag][i * N + j] * in.q0[kLag][j];
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
     v += (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L4_i
@@ -656,7 +660,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_y: -U_P^2, L2_i
     v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(24, i);
     // eps^1, modal stiffness (A.4), M_Lii
-    v += -in.h0[i] * in.omega_lag[i] * in.omega_lag[i] * S(7, i);
+    v += -in.q0[kLag][i] * in.omega[kLag][i] * in.omega[kLag][i] * S(7, i);
     out.forcing[0 * n + M + i] += v;
   }
   // cos psi: flap equation i, state-independent
@@ -664,7 +668,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^1, L_z: -U_T U_P, F6_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(11, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.q0[kFlap][j] * A(11, i, j);
     // eps^1, L_z: -U_T U_P, F2_i
     v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(19, i);
     // eps^1, L_z: -U_T U_P, F2_i
@@ -680,16 +684,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(5, j, i);
+      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * in.q0[kFlap][j] * A(5, j, i);
     // eps^2, L_y: theta U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * in.g0[j] * A(6, j, i);
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * in.q0[kFlap][j] * A(6, j, i);
     // eps^2, L_y: theta_tw U_P U_T
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(13, j, i);
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.q0[kFlap][j] * A(13, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(5, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kFlap][j] * A(5, j, i);
     // eps^2, L_y: -U_P^2, L2_i
     v += -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(24, i);
     // eps^2, L_y: theta U_P U_T, L1_i
@@ -730,7 +734,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(5, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kFlap][j] * A(5, j, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L1_i
     v += s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(26, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
@@ -762,16 +766,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_y: -U_P^2, L24_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(4, j, k, i);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * in.q0[kFlap][k] * A(4, j, k, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(5, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(5, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(6, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.q0[kFlap][j] * A(6, j, i);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(5, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.q0[kFlap][j] * A(5, j, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
     v += -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(24, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
@@ -793,7 +797,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^1, L_z: -U_T U_P, F7_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(17, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(17, i, j);
     // eps^1, L_z: -U_T U_P, F3_i
     v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(20, i);
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
@@ -807,13 +811,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.g0[j] * A(6, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.q0[kFlap][j] * A(6, j, i);
     // eps^2, L_y: theta U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * A(5, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.q0[kFlap][j] * A(5, j, i);
     // eps^2, L_y: theta_tw U_P U_T
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(18, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(18, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(26, i);
     // eps^2, L_y: theta U_P U_T, L2_i
@@ -842,7 +846,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(5, j, i);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kFlap][j] * A(5, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(24, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
@@ -861,7 +865,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(5, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kFlap][j] * A(5, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(24, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
@@ -889,7 +893,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^3, elastic coupling E^s (E.5)
-      v += in.es_flap[i * M + j];
+      v += in.elastic[kFlap][kFlap][i * M + j];
       out.S[(i) * n + j] += v;
     }
   }
@@ -897,7 +901,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, modal stiffness (A.2), M_Fii
-    v += in.omega_flap[i] * in.omega_flap[i] * S(2, i);
+    v += in.omega[kFlap][i] * in.omega[kFlap][i] * S(2, i);
     out.S[(i) * n + i] += v;
   }
   // flap equation i, coefficient of h0_j
@@ -905,7 +909,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     for (int j = 0; j < N; ++j) {
       double v = 0.0;
       // eps^2, elastic coupling E^cs (E.6)
-      v += -in.ecs_flap_lag[i * N + j];
+      v += -in.elastic[kFlap][kLag][i * N + j];
       out.S[(i) * n + M + j] += v;
     }
   }
@@ -914,7 +918,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, elastic coupling E^cs (E.8)
-      v += -in.ecs_lag_flap[i * M + j];
+      v += -in.elastic[kLag][kFlap][i * M + j];
       out.S[(M + i) * n + j] += v;
     }
   }
@@ -923,7 +927,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     for (int j = 0; j < N; ++j) {
       double v = 0.0;
       // eps^3, elastic coupling E^s (E.7)
-      v += -in.es_lag[i * N + j];
+      v += -in.elastic[kLag][kLag][i * N + j];
       out.S[(M + i) * n + M + j] += v;
     }
   }
@@ -931,7 +935,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^1, modal stiffness (A.4), M_Lii
-    v += in.omega_lag[i] * in.omega_lag[i] * S(7, i);
+    v += in.omega[kLag][i] * in.omega[kLag][i] * S(7, i);
     out.S[(M + i) * n + M + i] += v;
   }
   // flap equation i, hover load
@@ -1014,7 +1018,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P
     for (int j = 0; j < M; ++j)
-      v += s.lr * s.lr * s.mu * in.g0[j] * A(5, j, i);
+      v += s.lr * s.lr * s.mu * in.q0[kFlap][j] * A(5, j, i);
     // eps^2, L_z: -U_T U_P
     v += s.droop * s.lr * s.lr * s.mu * A(24, i);
     // eps^2, L_z: -U_T U_P
@@ -1084,7 +1088,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
-      v += -s.lr * s.mu * in.g0[i] * A(30, i);
+      v += -s.lr * s.mu * in.q0[kFlap][i] * A(30, i);
     // eps^1, L_z: -U_T U_P
     v += -s.droop * s.lr * s.mu * A(32);
     // eps^1, L_z: -U_T U_P
@@ -1126,7 +1130,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * A(31, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kFlap][i] * A(31, i);
     // eps^1, L_z: -U_T U_P
     v += -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(33);
     // eps^1, L_z: theta_cyclic U_T^2
@@ -1152,7 +1156,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
 }
 
 // Nonlinear generalized loads: mass * q'' = sum_h phi_h(psi) force[h](y), y the full state
-// (not a perturbation; g0, h0 are not read), every product of the coordinates that the
+// (not a perturbation; in.q0 is not read), every product of the coordinates that the
 // ordering keeps; and d force / d y.  H_nl = 7.
 FLAPLAG_GENERATED_NO_UBSAN
 void nonlinear(const model::CoefficientInputs& in, const double* y,
@@ -1245,14 +1249,14 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, elastic coupling E^cs (E.6)
     for (int j = 0; j < N; ++j)
       {
-        const double c = in.ecs_flap_lag[i * N + j];
+        const double c = in.elastic[kFlap][kLag][i * N + j];
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^3, elastic coupling E^s (E.5)
     for (int j = 0; j < M; ++j)
       {
-        const double c = -in.es_flap[i * M + j];
+        const double c = -in.elastic[kFlap][kFlap][i * M + j];
         *f += c * y[M + j];
         jac[M + j] += c;
       }
@@ -1298,13 +1302,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     }
     // eps^1, structural damping (2.16), M_Fii
     {
-      const double c = -(2.0) * in.damping_flap[i] * in.omega_flap[i] * S(2, i);
+      const double c = -(2.0) * in.damping[kFlap][i] * in.omega[kFlap][i] * S(2, i);
       *f += c * y[i];
       jac[i] += c;
     }
     // eps^1, modal stiffness (A.2), M_Fii
     {
-      const double c = -in.omega_flap[i] * in.omega_flap[i] * S(2, i);
+      const double c = -in.omega[kFlap][i] * in.omega[kFlap][i] * S(2, i);
       *f += c * y[M + i];
       jac[M + i] += c;
     }
@@ -1495,14 +1499,14 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, elastic coupling E^cs (E.8)
     for (int j = 0; j < M; ++j)
       {
-        const double c = in.ecs_lag_flap[i * M + j];
+        const double c = in.elastic[kLag][kFlap][i * M + j];
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, elastic coupling E^s (E.7)
     for (int j = 0; j < N; ++j)
       {
-        const double c = in.es_lag[i * N + j];
+        const double c = in.elastic[kLag][kLag][i * N + j];
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
@@ -1573,13 +1577,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     }
     // eps^1, structural damping (2.17), M_Lii
     {
-      const double c = -(2.0) * in.damping_lag[i] * in.omega_lag[i] * S(7, i);
+      const double c = -(2.0) * in.damping[kLag][i] * in.omega[kLag][i] * S(7, i);
       *f += c * y[2 * M + i];
       jac[2 * M + i] += c;
     }
     // eps^1, modal stiffness (A.4), M_Lii
     {
-      const double c = -in.omega_lag[i] * in.omega_lag[i] * S(7, i);
+      const double c = -in.omega[kLag][i] * in.omega[kLag][i] * S(7, i);
       *f += c * y[2 * M + N + i];
       jac[2 * M + N + i] += c;
     }

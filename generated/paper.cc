@@ -22,6 +22,10 @@ using model::Direction;
 using model::Factor;
 using model::Inner;
 
+// The directions' places in the per-direction inputs (CoefficientInputs).
+constexpr int kFlap = model::index(Direction::Flap);
+constexpr int kLag = model::index(Direction::Lag);
+
 // Aerodynamic integral templates (letters a, b, c: the template's mode variables).
 const model::IntegralTemplate kAero[] = {
     /* 0 */ {"eta_a eta_b' gamma_c'", "etaa_detab_dgamc", 3, {Direction::Flap, Direction::Flap, Direction::Lag}, 0, 0, 3, {{Factor::Eta, 0}, {Factor::EtaPrime, 1}, {Factor::GammaPrime, 2}}, Inner::None, 0, 0, {}, "F23_abc"},
@@ -110,8 +114,8 @@ const char kSpecText[] = "description = \"NASA CR-132431 model: flap O(eps^2), l
 // The integral tensors of in.aero, in.structural and the mode counts.
 struct Tensors {
   explicit Tensors(const model::CoefficientInputs& in)
-      : M(in.flap_modes),
-        N(in.lag_modes),
+      : M(in.modes[kFlap]),
+        N(in.modes[kLag]),
         A(kAero, static_cast<int>(std::size(kAero)), in.aero, M, N),
         S(kStructural, static_cast<int>(std::size(kStructural)), in.structural, M, N) {}
   int M, N;
@@ -194,9 +198,9 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, radial, F23_ijk
       for (int k = 0; k < N; ++k)
-        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[k] * A(0, i, j, k);
+        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][k] * A(0, i, j, k);
       // eps^3, elastic coupling E^s (E.5)
-      v += -in.es_flap[i * M + j];
+      v += -in.elastic[kFlap][kFlap][i * M + j];
       out.force[(0 * n + i) * 2 * n + M + j] += v;
     }
   }
@@ -204,7 +208,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, modal stiffness (A.2), M_Fii
-    v += -in.omega_flap[i] * in.omega_flap[i] * S(2, i);
+    v += -in.omega[kFlap][i] * in.omega[kFlap][i] * S(2, i);
     out.force[(0 * n + i) * 2 * n + M + i] += v;
   }
   // const: flap equation i, coefficient of g_j'
@@ -220,7 +224,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, structural damping (2.16), M_Fii
-    v += -(2.0) * in.damping_flap[i] * in.omega_flap[i] * S(2, i);
+    v += -(2.0) * in.damping[kFlap][i] * in.omega[kFlap][i] * S(2, i);
     out.force[(0 * n + i) * 2 * n + i] += v;
   }
   // const: flap equation i, coefficient of h_j
@@ -229,7 +233,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, radial, F23_ikj
       for (int k = 0; k < M; ++k)
-        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(0, i, k, j);
+        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][k] * A(0, i, k, j);
       // eps^2, L_z: -U_T U_P, radial, F22_ij
       v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(2, i, j);
       // eps^2, L_z: theta_cyclic U_T^2, radial, F21_ij
@@ -237,7 +241,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       // eps^2, L_z: -U_T U_P, radial, F22_ij
       v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(2, i, j);
       // eps^2, elastic coupling E^cs (E.6)
-      v += in.ecs_flap_lag[i * N + j];
+      v += in.elastic[kFlap][kLag][i * N + j];
       out.force[(0 * n + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -247,7 +251,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, tension, Coriolis 2v' (2.4), P_ikj
       for (int k = 0; k < M; ++k)
-        v += (2.0) * in.g0[k] * S(3, i, k, j);
+        v += (2.0) * in.q0[kFlap][k] * S(3, i, k, j);
       // eps^2, tension, Coriolis 2v' (2.4), B3_ij
       v += (2.0) * s.droop * S(4, i, j);
       // eps^2, L_z: -U_T U_P, F11_ij
@@ -269,13 +273,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, radial, L21_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[k] * A(7, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.q0[kLag][k] * A(7, j, i, k);
       // eps^2, L_y: -U_P^2, L24_ijk
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(8, j, k, i);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][k] * A(8, j, k, i);
       // eps^3, L_y: theta_tw U_P U_T, radial
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[k] * A(9, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][k] * A(9, j, i, k);
       // eps^2, L_y: -U_P^2, L11_ij
       v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(10, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
@@ -283,7 +287,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       // eps^2, L_y: -U_P^2, L11_ij
       v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(10, j, i);
       // eps^2, elastic coupling E^cs (E.8)
-      v += in.ecs_lag_flap[i * M + j];
+      v += in.elastic[kLag][kFlap][i * M + j];
       out.force[(0 * n + M + i) * 2 * n + M + j] += v;
     }
   }
@@ -293,10 +297,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L22_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.h0[k] * A(12, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.q0[kLag][k] * A(12, j, i, k);
       // eps^2, Coriolis 2u' (2.5), Meta_ijk
       for (int k = 0; k < M; ++k)
-        v += -(2.0) * in.g0[k] * S(5, j, k, i);
+        v += -(2.0) * in.q0[kFlap][k] * S(5, j, k, i);
       // eps^2, Coriolis 2u' (2.5), B7_ij
       v += -(2.0) * s.droop * S(6, j, i);
       // eps^2, L_y: -U_P^2, L8_ij
@@ -318,10 +322,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, radial, L21_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[k] * A(7, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.q0[kFlap][k] * A(7, k, i, j);
       // eps^3, L_y: theta_tw U_P U_T, radial
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(9, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][k] * A(9, k, i, j);
       // eps^3, L_y: theta U_P U_T, radial, L20_ij
       v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(13, i, j);
       // eps^3, L_y: theta_tw U_P U_T, radial
@@ -333,7 +337,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       // eps^3, L_y: theta_tw U_P U_T, radial
       v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * A(14, i, j);
       // eps^3, elastic coupling E^s (E.7)
-      v += in.es_lag[i * N + j];
+      v += in.elastic[kLag][kLag][i * N + j];
       out.force[(0 * n + M + i) * 2 * n + 2 * M + N + j] += v;
     }
   }
@@ -341,7 +345,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^1, modal stiffness (A.4), M_Lii
-    v += -in.omega_lag[i] * in.omega_lag[i] * S(7, i);
+    v += -in.omega[kLag][i] * in.omega[kLag][i] * S(7, i);
     out.force[(0 * n + M + i) * 2 * n + 2 * M + N + i] += v;
   }
   // const: lag equation i, coefficient of h_j'
@@ -350,13 +354,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.g0[k] * A(15, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.q0[kFlap][k] * A(15, k, i, j);
       // eps^2, tension, Coriolis 2v' (2.4), S_ikj
       for (int k = 0; k < N; ++k)
-        v += (2.0) * in.h0[k] * S(8, i, k, j);
+        v += (2.0) * in.q0[kLag][k] * S(8, i, k, j);
       // eps^2, Coriolis 2u' (2.5), Mgamma_ijk
       for (int k = 0; k < N; ++k)
-        v += -(2.0) * in.h0[k] * S(9, i, j, k);
+        v += -(2.0) * in.q0[kLag][k] * S(9, i, j, k);
       // eps^3, L_y: (C_Do/a) U_T^2, L14_ij
       v += -s.cdo_a * s.lock * s.lr * s.lr * s.lr * A(16, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
@@ -376,7 +380,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^1, structural damping (2.17), M_Lii
-    v += -(2.0) * in.damping_lag[i] * in.omega_lag[i] * S(7, i);
+    v += -(2.0) * in.damping[kLag][i] * in.omega[kLag][i] * S(7, i);
     out.force[(0 * n + M + i) * 2 * n + 2 * M + i] += v;
   }
   // cos psi: flap equation i, coefficient of g_j
@@ -394,7 +398,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, radial, F24_ijk
       for (int k = 0; k < N; ++k)
-        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.h0[k] * A(20, i, j, k);
+        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.q0[kLag][k] * A(20, i, j, k);
       out.force[(1 * n + i) * 2 * n + j] += v;
     }
   }
@@ -419,7 +423,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, F14_ikj
       for (int k = 0; k < M; ++k)
-        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(22, i, k, j);
+        v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.q0[kFlap][k] * A(22, i, k, j);
       // eps^2, L_z: -U_T U_P, F11_ij
       v += (1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(4, i, j);
       // eps^2, L_z: -U_T U_P, F11_ij
@@ -435,7 +439,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
       for (int k = 0; k < N; ++k)
-        v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[k] * A(7, j, i, k);
+        v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kLag][k] * A(7, j, i, k);
       // eps^2, L_y: -U_P^2, L11_ij
       v += -s.inflow * s.lock * s.lr * s.lr * s.mu * A(10, j, i);
       // eps^2, L_y: theta U_P U_T, L10_ij
@@ -453,13 +457,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, radial, L22_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * in.h0[k] * A(12, j, i, k);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * in.q0[kLag][k] * A(12, j, i, k);
       // eps^2, L_y: -U_P^2, L17_ikj
       for (int k = 0; k < M; ++k)
-        v += -s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(22, j, k, i);
+        v += -s.lock * s.lr * s.lr * s.lr * s.mu * in.q0[kFlap][k] * A(22, j, k, i);
       // eps^3, L_y: theta_tw U_P U_T, radial
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.h0[k] * A(24, j, i, k);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.q0[kLag][k] * A(24, j, i, k);
       // eps^2, L_y: -U_P^2, L8_ij
       v += -s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * A(4, j, i);
       // eps^2, L_y: -U_P^2, L8_ij
@@ -475,7 +479,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ikj
       for (int k = 0; k < M; ++k)
-        v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[k] * A(7, k, i, j);
+        v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kFlap][k] * A(7, k, i, j);
       // eps^3, L_y: (C_Do/a) U_T^2, radial, L23_ij
       v += -s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(25, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
@@ -495,10 +499,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * in.g0[k] * A(15, k, i, j);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * in.q0[kFlap][k] * A(15, k, i, j);
       // eps^3, L_y: theta_tw U_P U_T
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.g0[k] * A(26, k, i, j);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.lr * s.mu * in.q0[kFlap][k] * A(26, k, i, j);
       // eps^3, L_y: theta U_P U_T, L13_ij
       v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta * A(17, i, j);
       // eps^3, L_y: theta_tw U_P U_T
@@ -549,7 +553,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[k] * A(7, j, i, k);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kLag][k] * A(7, j, i, k);
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
       v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(10, j, i);
       out.force[(2 * n + M + i) * 2 * n + M + j] += v;
@@ -574,7 +578,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[k] * A(7, k, i, j);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kFlap][k] * A(7, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
       v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(13, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
@@ -599,7 +603,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, radial, F23_ijk
       for (int k = 0; k < N; ++k)
-        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[k] * A(0, i, j, k);
+        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][k] * A(0, i, j, k);
       out.force[(3 * n + i) * 2 * n + M + j] += v;
     }
   }
@@ -609,7 +613,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^2, L_z: -U_T U_P, radial, F23_ikj
       for (int k = 0; k < M; ++k)
-        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(0, i, k, j);
+        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][k] * A(0, i, k, j);
       // eps^2, L_z: -U_T U_P, radial, F22_ij
       v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(2, i, j);
       // eps^2, L_z: theta_cyclic U_T^2, radial, F21_ij
@@ -634,13 +638,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, radial, L21_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[k] * A(7, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.q0[kLag][k] * A(7, j, i, k);
       // eps^2, L_y: -U_P^2, L24_ijk
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(8, j, k, i);
+        v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][k] * A(8, j, k, i);
       // eps^3, L_y: theta_tw U_P U_T, radial
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[k] * A(9, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][k] * A(9, j, i, k);
       // eps^2, L_y: -U_P^2, L11_ij
       v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(10, j, i);
       // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
@@ -656,7 +660,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L22_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.h0[k] * A(12, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.q0[kLag][k] * A(12, j, i, k);
       // eps^2, L_y: theta_cyclic U_P U_T, L8_ij
       v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(4, j, i);
       out.force[(3 * n + M + i) * 2 * n + j] += v;
@@ -668,10 +672,10 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta U_P U_T, radial, L21_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[k] * A(7, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.q0[kFlap][k] * A(7, k, i, j);
       // eps^3, L_y: theta_tw U_P U_T, radial
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[k] * A(9, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][k] * A(9, k, i, j);
       // eps^3, L_y: theta U_P U_T, radial, L20_ij
       v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * A(13, i, j);
       // eps^3, L_y: theta_tw U_P U_T, radial
@@ -691,7 +695,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.g0[k] * A(15, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * in.q0[kFlap][k] * A(15, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
       v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(17, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
@@ -749,7 +753,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L22_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * in.h0[k] * A(12, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * in.q0[kLag][k] * A(12, j, i, k);
       // eps^2, L_y: theta_cyclic U_P U_T, L8_ij
       v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1c * A(4, j, i);
       out.force[(4 * n + M + i) * 2 * n + j] += v;
@@ -772,7 +776,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, L16_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * in.g0[k] * A(15, k, i, j);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * in.q0[kFlap][k] * A(15, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
       v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.lr * s.mu * s.theta1s * A(17, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, L13_ij
@@ -795,7 +799,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[k] * A(7, j, i, k);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kLag][k] * A(7, j, i, k);
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
       v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(10, j, i);
       out.force[(5 * n + M + i) * 2 * n + M + j] += v;
@@ -807,7 +811,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[k] * A(7, k, i, j);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kFlap][k] * A(7, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
       v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(13, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
@@ -830,7 +834,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[k] * A(7, j, i, k);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kLag][k] * A(7, j, i, k);
       // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
       v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(10, j, i);
       out.force[(6 * n + M + i) * 2 * n + M + j] += v;
@@ -842,7 +846,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
       double v = 0.0;
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ikj
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[k] * A(7, k, i, j);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kFlap][k] * A(7, k, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
       v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(13, i, j);
       // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
@@ -856,22 +860,22 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_z: -U_T U_P, radial, F23_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.h0[k] * A(0, i, j, k);
+        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * in.q0[kLag][k] * A(0, i, j, k);
     // eps^2, L_z: -U_T U_P, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(2, i, j);
+      v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][j] * A(2, i, j);
     // eps^2, L_z: theta_cyclic U_T^2, radial, F21_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.h0[j] * A(3, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.q0[kLag][j] * A(3, i, j);
     // eps^2, L_z: -U_T U_P, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.h0[j] * A(2, i, j);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.q0[kLag][j] * A(2, i, j);
     // eps^2, elastic coupling E^cs (E.6)
     for (int j = 0; j < N; ++j)
-      v += in.ecs_flap_lag[i * N + j] * in.h0[j];
+      v += in.elastic[kFlap][kLag][i * N + j] * in.q0[kLag][j];
     // eps^3, elastic coupling E^s (E.5)
     for (int j = 0; j < M; ++j)
-      v += -in.es_flap[i * M + j] * in.g0[j];
+      v += -in.elastic[kFlap][kFlap][i * M + j] * in.q0[kFlap][j];
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.droop * S(11, i);
     // eps^1, L_z: -U_T U_P, F2_i
@@ -889,7 +893,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^1, tension, centrifugal (2.4), B1_i
     v += -s.precone * S(11, i);
     // eps^1, modal stiffness (A.2), M_Fii
-    v += -in.g0[i] * in.omega_flap[i] * in.omega_flap[i] * S(2, i);
+    v += -in.q0[kFlap][i] * in.omega[kFlap][i] * in.omega[kFlap][i] * S(2, i);
     out.forcing[0 * n + i] += v;
   }
   // const: lag equation i, state-independent
@@ -898,45 +902,45 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^3, L_y: theta U_P U_T, radial, L21_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * in.h0[k] * A(7, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.q0[kFlap][j] * in.q0[kLag][k] * A(7, j, i, k);
     // eps^2, L_y: -U_P^2, L24_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(8, j, k, i);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * in.q0[kFlap][k] * A(8, j, k, i);
     // eps^3, L_y: theta_tw U_P U_T, radial
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.h0[k] * A(9, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * in.q0[kLag][k] * A(9, j, i, k);
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.q0[kLag][j] * A(13, i, j);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(10, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(10, j, i);
     // eps^3, L_y: theta_tw U_P U_T, radial
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(14, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][j] * A(14, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.q0[kLag][j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(11, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.q0[kFlap][j] * A(11, j, i);
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * in.q0[kLag][j] * A(13, i, j);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(10, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.q0[kFlap][j] * A(10, j, i);
     // eps^3, L_y: theta_tw U_P U_T, radial
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.h0[j] * A(14, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.q0[kLag][j] * A(14, i, j);
     // eps^2, elastic coupling E^cs (E.8)
     for (int j = 0; j < M; ++j)
-      v += in.ecs_lag_flap[i * M + j] * in.g0[j];
+      v += in.elastic[kLag][kFlap][i * M + j] * in.q0[kFlap][j];
     // eps^3, elastic coupling E^s (E.7)
     for (int j = 0; j < N; ++j)
-      v += in.es_lag[i * N + j] * in.h0[j];
+      v += in.elastic[kLag][kLag][i * N + j] * in.q0[kLag][j];
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
     v += (1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(37, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L4_i
@@ -964,7 +968,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_y: -U_P^2, L2_i
     v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.precone * A(37, i);
     // eps^1, modal stiffness (A.4), M_Lii
-    v += -in.h0[i] * in.omega_lag[i] * in.omega_lag[i] * S(7, i);
+    v += -in.q0[kLag][i] * in.omega[kLag][i] * in.omega[kLag][i] * S(7, i);
     out.forcing[0 * n + M + i] += v;
   }
   // cos psi: flap equation i, state-independent
@@ -972,19 +976,19 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * in.h0[j] * A(2, i, j);
+      v += (1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * in.q0[kLag][j] * A(2, i, j);
     // eps^2, L_z: theta U_T^2, radial, F21_ij
     for (int j = 0; j < N; ++j)
-      v += -s.lock * s.lr * s.lr * s.mu * s.theta * in.h0[j] * A(3, i, j);
+      v += -s.lock * s.lr * s.lr * s.mu * s.theta * in.q0[kLag][j] * A(3, i, j);
     // eps^1, L_z: -U_T U_P, F6_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(19, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.q0[kFlap][j] * A(19, i, j);
     // eps^2, L_z: theta_tw U_T^2, radial
     for (int j = 0; j < N; ++j)
-      v += -s.lock * s.lr * s.lr * s.mu * in.h0[j] * A(21, i, j);
+      v += -s.lock * s.lr * s.lr * s.mu * in.q0[kLag][j] * A(21, i, j);
     // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(2, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kLag][j] * A(2, i, j);
     // eps^1, L_z: -U_T U_P, F2_i
     v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * A(32, i);
     // eps^1, L_z: -U_T U_P, F2_i
@@ -1001,34 +1005,34 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * in.h0[k] * A(7, j, i, k);
+        v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kFlap][j] * in.q0[kLag][k] * A(7, j, i, k);
     // eps^3, L_y: (C_Do/a) U_T^2, radial, L23_ij
     for (int j = 0; j < N; ++j)
-      v += -s.cdo_a * s.lock * s.lr * s.lr * s.mu * in.h0[j] * A(25, i, j);
+      v += -s.cdo_a * s.lock * s.lr * s.lr * s.mu * in.q0[kLag][j] * A(25, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(3.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(13, i, j);
+      v += -(3.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kLag][j] * A(13, i, j);
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta * in.q0[kLag][j] * A(13, i, j);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(10, j, i);
+      v += -s.inflow * s.lock * s.lr * s.lr * s.mu * in.q0[kFlap][j] * A(10, j, i);
     // eps^3, L_y: theta_tw U_P U_T, radial
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * in.h0[j] * A(14, i, j);
+      v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * in.q0[kLag][j] * A(14, i, j);
     // eps^2, L_y: theta U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * in.g0[j] * A(11, j, i);
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta * in.q0[kFlap][j] * A(11, j, i);
     // eps^2, L_y: theta_tw U_P U_T
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.g0[j] * A(23, j, i);
+      v += (1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * in.q0[kFlap][j] * A(23, j, i);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * in.h0[j] * A(13, i, j);
+      v += -(3.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * in.q0[kLag][j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(10, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kFlap][j] * A(10, j, i);
     // eps^2, L_y: -U_P^2, L2_i
     v += -s.droop * s.inflow * s.lock * s.lr * s.lr * s.mu * A(37, i);
     // eps^2, L_y: theta U_P U_T, L1_i
@@ -1054,7 +1058,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(2, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kLag][j] * A(2, i, j);
     // eps^1, L_z: -U_T U_P, F3_i
     v += -(1.0 / 2.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * A(33, i);
     // eps^1, L_z: theta U_T^2, F2_i
@@ -1073,16 +1077,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * in.h0[k] * A(7, j, i, k);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kFlap][j] * in.q0[kLag][k] * A(7, j, i, k);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kLag][j] * A(13, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * in.q0[kLag][j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(10, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kFlap][j] * A(10, j, i);
     // eps^2, L_y: (C_Do/a) U_T^2, L1_i
     v += s.cdo_a * s.lock * s.lr * s.lr * s.mu * A(39, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
@@ -1103,16 +1107,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^2, L_z: -U_T U_P, radial, F23_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.h0[k] * A(0, i, j, k);
+        v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * in.q0[kLag][k] * A(0, i, j, k);
     // eps^2, L_z: -U_T U_P, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(2, i, j);
+      v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][j] * A(2, i, j);
     // eps^2, L_z: theta_cyclic U_T^2, radial, F21_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.h0[j] * A(3, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.q0[kLag][j] * A(3, i, j);
     // eps^2, L_z: -U_T U_P, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.h0[j] * A(2, i, j);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.q0[kLag][j] * A(2, i, j);
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
     v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(32, i);
     // eps^1, L_z: theta U_T^2, F3_i
@@ -1127,39 +1131,39 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^3, L_y: theta U_P U_T, radial, L21_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * in.h0[k] * A(7, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.q0[kFlap][j] * in.q0[kLag][k] * A(7, j, i, k);
     // eps^2, L_y: -U_P^2, L24_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < M; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.g0[k] * A(8, j, k, i);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * in.q0[kFlap][k] * A(8, j, k, i);
     // eps^3, L_y: theta_tw U_P U_T, radial
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * in.h0[k] * A(9, j, i, k);
+        v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * in.q0[kLag][k] * A(9, j, i, k);
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.q0[kLag][j] * A(13, i, j);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(10, j, i);
+      v += -(1.0 / 2.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(10, j, i);
     // eps^3, L_y: theta_tw U_P U_T, radial
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(14, i, j);
+      v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][j] * A(14, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.q0[kLag][j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.g0[j] * A(11, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1c * in.q0[kFlap][j] * A(11, j, i);
     // eps^3, L_y: theta U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta * in.q0[kLag][j] * A(13, i, j);
     // eps^2, L_y: -U_P^2, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.g0[j] * A(10, j, i);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.q0[kFlap][j] * A(10, j, i);
     // eps^3, L_y: theta_tw U_P U_T, radial
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.h0[j] * A(14, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * in.q0[kLag][j] * A(14, i, j);
     // eps^2, L_y: (C_Do/a) U_T^2, L2_i
     v += -(1.0 / 4.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * A(37, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
@@ -1181,16 +1185,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial, F21_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.h0[j] * A(3, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.q0[kLag][j] * A(3, i, j);
     // eps^2, L_z: theta U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.h0[j] * A(2, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.q0[kLag][j] * A(2, i, j);
     // eps^1, L_z: -U_T U_P, F7_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(29, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(29, i, j);
     // eps^2, L_z: theta_tw U_T^2, radial
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(30, i, j);
+      v += -(1.0 / 2.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][j] * A(30, i, j);
     // eps^1, L_z: -U_T U_P, F3_i
     v += -(1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * A(33, i);
     // eps^1, L_z: theta_cyclic U_T^2, F2_i
@@ -1204,19 +1208,19 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^3, L_y: (C_Do/a) U_T^2, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 2.0) * s.cdo_a * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kLag][j] * A(13, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 4.0) * s.inflow * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.q0[kLag][j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L10_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.g0[j] * A(11, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.theta1s * in.q0[kFlap][j] * A(11, j, i);
     // eps^2, L_y: theta U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.g0[j] * A(10, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta * in.q0[kFlap][j] * A(10, j, i);
     // eps^2, L_y: theta_tw U_P U_T
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.g0[j] * A(31, j, i);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(31, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L1_i
     v += (1.0 / 4.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.theta1s * A(39, i);
     // eps^2, L_y: theta U_P U_T, L2_i
@@ -1238,7 +1242,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(2, i, j);
+      v += (1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kLag][j] * A(2, i, j);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(33, i);
     out.forcing[5 * n + i] += v;
@@ -1249,16 +1253,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * in.h0[k] * A(7, j, i, k);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kFlap][j] * in.q0[kLag][k] * A(7, j, i, k);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kLag][j] * A(13, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * in.q0[kLag][j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * A(10, j, i);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kFlap][j] * A(10, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(37, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
@@ -1270,7 +1274,7 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial, F22_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.h0[j] * A(2, i, j);
+      v += -(1.0 / 4.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kLag][j] * A(2, i, j);
     // eps^1, L_z: theta_cyclic U_T^2, F3_i
     v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * A(33, i);
     out.forcing[6 * n + i] += v;
@@ -1281,16 +1285,16 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L21_ijk
     for (int j = 0; j < M; ++j)
       for (int k = 0; k < N; ++k)
-        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.g0[j] * in.h0[k] * A(7, j, i, k);
+        v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kFlap][j] * in.q0[kLag][k] * A(7, j, i, k);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1s * in.q0[kLag][j] * A(13, i, j);
     // eps^3, L_y: theta_cyclic U_P U_T, radial, L20_ij
     for (int j = 0; j < N; ++j)
-      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * in.h0[j] * A(13, i, j);
+      v += -(1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1s * in.q0[kLag][j] * A(13, i, j);
     // eps^2, L_y: theta_cyclic U_P U_T, L11_ij
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.g0[j] * A(10, j, i);
+      v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * in.q0[kFlap][j] * A(10, j, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
     v += (1.0 / 8.0) * s.droop * s.lock * s.lr * s.lr * s.mu * s.mu * s.theta1c * A(37, i);
     // eps^2, L_y: theta_cyclic U_P U_T, L2_i
@@ -1318,7 +1322,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^3, elastic coupling E^s (E.5)
-      v += in.es_flap[i * M + j];
+      v += in.elastic[kFlap][kFlap][i * M + j];
       out.S[(i) * n + j] += v;
     }
   }
@@ -1326,7 +1330,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
   for (int i = 0; i < M; ++i) {
     double v = 0.0;
     // eps^1, modal stiffness (A.2), M_Fii
-    v += in.omega_flap[i] * in.omega_flap[i] * S(2, i);
+    v += in.omega[kFlap][i] * in.omega[kFlap][i] * S(2, i);
     out.S[(i) * n + i] += v;
   }
   // flap equation i, coefficient of h0_j
@@ -1334,7 +1338,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     for (int j = 0; j < N; ++j) {
       double v = 0.0;
       // eps^2, elastic coupling E^cs (E.6)
-      v += -in.ecs_flap_lag[i * N + j];
+      v += -in.elastic[kFlap][kLag][i * N + j];
       out.S[(i) * n + M + j] += v;
     }
   }
@@ -1343,7 +1347,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     for (int j = 0; j < M; ++j) {
       double v = 0.0;
       // eps^2, elastic coupling E^cs (E.8)
-      v += -in.ecs_lag_flap[i * M + j];
+      v += -in.elastic[kLag][kFlap][i * M + j];
       out.S[(M + i) * n + j] += v;
     }
   }
@@ -1352,7 +1356,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
     for (int j = 0; j < N; ++j) {
       double v = 0.0;
       // eps^3, elastic coupling E^s (E.7)
-      v += -in.es_lag[i * N + j];
+      v += -in.elastic[kLag][kLag][i * N + j];
       out.S[(M + i) * n + M + j] += v;
     }
   }
@@ -1360,7 +1364,7 @@ void equilibrium(const model::CoefficientInputs& in, const model::EquilibriumOut
   for (int i = 0; i < N; ++i) {
     double v = 0.0;
     // eps^1, modal stiffness (A.4), M_Lii
-    v += in.omega_lag[i] * in.omega_lag[i] * S(7, i);
+    v += in.omega[kLag][i] * in.omega[kLag][i] * S(7, i);
     out.S[(M + i) * n + M + i] += v;
   }
   // flap equation i, hover load
@@ -1416,7 +1420,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.h0[j] * A(43, i, j);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kLag][j] * A(43, i, j);
     out.force[0 * 2 * n + M + i] += v;
   }
   // thrust, const: coefficient of g_i'
@@ -1431,7 +1435,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[j] * A(43, j, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(43, j, i);
     // eps^2, L_z: -U_T U_P, radial
     v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(44, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
@@ -1465,7 +1469,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < N; ++j)
-      v += s.lr * s.lr * s.mu * in.h0[j] * A(2, i, j);
+      v += s.lr * s.lr * s.mu * in.q0[kLag][j] * A(2, i, j);
     out.force[1 * 2 * n + i] += v;
   }
   // thrust, cos psi: coefficient of h_i
@@ -1486,7 +1490,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P
     for (int j = 0; j < M; ++j)
-      v += s.lr * s.lr * s.mu * in.g0[j] * A(10, j, i);
+      v += s.lr * s.lr * s.mu * in.q0[kFlap][j] * A(10, j, i);
     // eps^2, L_z: -U_T U_P
     v += s.droop * s.lr * s.lr * s.mu * A(37, i);
     // eps^2, L_z: -U_T U_P
@@ -1525,7 +1529,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < N; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.h0[j] * A(43, i, j);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kLag][j] * A(43, i, j);
     out.force[3 * 2 * n + M + i] += v;
   }
   // thrust, cos 2psi: coefficient of h_i
@@ -1533,7 +1537,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int j = 0; j < M; ++j)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[j] * A(43, j, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kFlap][j] * A(43, j, i);
     // eps^2, L_z: -U_T U_P, radial
     v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(44, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
@@ -1594,16 +1598,16 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
-        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * in.h0[j] * A(43, i, j);
+        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kFlap][i] * in.q0[kLag][j] * A(43, i, j);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.h0[i] * A(44, i);
+      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.q0[kLag][i] * A(44, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.theta1c * in.h0[i] * A(45, i);
+      v += -s.lr * s.mu * s.theta1c * in.q0[kLag][i] * A(45, i);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.h0[i] * A(44, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.q0[kLag][i] * A(44, i);
     // eps^1, L_z: -U_T U_P
     v += -s.inflow * s.lr * A(50);
     // eps^1, L_z: theta_cyclic U_T^2
@@ -1623,19 +1627,19 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += s.inflow * s.lr * s.mu * in.h0[i] * A(44, i);
+      v += s.inflow * s.lr * s.mu * in.q0[kLag][i] * A(44, i);
     // eps^2, L_z: theta U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(2.0) * s.lr * s.mu * s.theta * in.h0[i] * A(45, i);
+      v += -(2.0) * s.lr * s.mu * s.theta * in.q0[kLag][i] * A(45, i);
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
-      v += -s.lr * s.mu * in.g0[i] * A(46, i);
+      v += -s.lr * s.mu * in.q0[kFlap][i] * A(46, i);
     // eps^2, L_z: theta_tw U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(2.0) * s.lr * s.mu * in.h0[i] * A(47, i);
+      v += -(2.0) * s.lr * s.mu * in.q0[kLag][i] * A(47, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.h0[i] * A(44, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.q0[kLag][i] * A(44, i);
     // eps^1, L_z: -U_T U_P
     v += -s.droop * s.lr * s.mu * A(50);
     // eps^1, L_z: -U_T U_P
@@ -1651,7 +1655,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.h0[i] * A(44, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.q0[kLag][i] * A(44, i);
     // eps^1, L_z: -U_T U_P
     v += -s.inflow * s.lr * s.mu * A(51);
     // eps^1, L_z: theta U_T^2
@@ -1670,16 +1674,16 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j)
-        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * in.h0[j] * A(43, i, j);
+        v += (1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kFlap][i] * in.q0[kLag][j] * A(43, i, j);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.h0[i] * A(44, i);
+      v += (1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * in.q0[kLag][i] * A(44, i);
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.theta1c * in.h0[i] * A(45, i);
+      v += -s.lr * s.mu * s.theta1c * in.q0[kLag][i] * A(45, i);
     // eps^2, L_z: -U_T U_P, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.h0[i] * A(44, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.precone * in.q0[kLag][i] * A(44, i);
     // eps^1, L_z: theta_cyclic U_T^2
     v += -s.lr * s.mu * s.theta1s * A(50);
     // eps^1, L_z: theta U_T^2
@@ -1693,16 +1697,16 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.theta1s * in.h0[i] * A(45, i);
+      v += -s.lr * s.mu * s.theta1s * in.q0[kLag][i] * A(45, i);
     // eps^2, L_z: theta U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.mu * s.theta * in.h0[i] * A(44, i);
+      v += -s.lr * s.mu * s.mu * s.theta * in.q0[kLag][i] * A(44, i);
     // eps^1, L_z: -U_T U_P
     for (int i = 0; i < M; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * in.g0[i] * A(48, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * in.q0[kFlap][i] * A(48, i);
     // eps^2, L_z: theta_tw U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -s.lr * s.mu * s.mu * in.h0[i] * A(49, i);
+      v += -s.lr * s.mu * s.mu * in.q0[kLag][i] * A(49, i);
     // eps^1, L_z: -U_T U_P
     v += -(1.0 / 2.0) * s.droop * s.lr * s.mu * s.mu * A(51);
     // eps^1, L_z: theta_cyclic U_T^2
@@ -1716,7 +1720,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.h0[i] * A(44, i);
+      v += (1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1s * in.q0[kLag][i] * A(44, i);
     // eps^1, L_z: theta_cyclic U_T^2
     v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1c * A(51);
     out.forcing[5] += v;
@@ -1726,7 +1730,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
     double v = 0.0;
     // eps^2, L_z: theta_cyclic U_T^2, radial
     for (int i = 0; i < N; ++i)
-      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.h0[i] * A(44, i);
+      v += -(1.0 / 2.0) * s.lr * s.mu * s.mu * s.theta1c * in.q0[kLag][i] * A(44, i);
     // eps^1, L_z: theta_cyclic U_T^2
     v += -(1.0 / 4.0) * s.lr * s.mu * s.mu * s.theta1s * A(51);
     out.forcing[6] += v;
@@ -1734,7 +1738,7 @@ void thrust(const model::CoefficientInputs& in, const model::CoefficientOutputs&
 }
 
 // Nonlinear generalized loads: mass * q'' = sum_h phi_h(psi) force[h](y), y the full state
-// (not a perturbation; g0, h0 are not read), every product of the coordinates that the
+// (not a perturbation; in.q0 is not read), every product of the coordinates that the
 // ordering keeps; and d force / d y.  H_nl = 7.
 FLAPLAG_GENERATED_NO_UBSAN
 void nonlinear(const model::CoefficientInputs& in, const double* y,
@@ -1857,14 +1861,14 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, elastic coupling E^cs (E.6)
     for (int j = 0; j < N; ++j)
       {
-        const double c = in.ecs_flap_lag[i * N + j];
+        const double c = in.elastic[kFlap][kLag][i * N + j];
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
     // eps^3, elastic coupling E^s (E.5)
     for (int j = 0; j < M; ++j)
       {
-        const double c = -in.es_flap[i * M + j];
+        const double c = -in.elastic[kFlap][kFlap][i * M + j];
         *f += c * y[M + j];
         jac[M + j] += c;
       }
@@ -1910,13 +1914,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     }
     // eps^1, structural damping (2.16), M_Fii
     {
-      const double c = -(2.0) * in.damping_flap[i] * in.omega_flap[i] * S(2, i);
+      const double c = -(2.0) * in.damping[kFlap][i] * in.omega[kFlap][i] * S(2, i);
       *f += c * y[i];
       jac[i] += c;
     }
     // eps^1, modal stiffness (A.2), M_Fii
     {
-      const double c = -in.omega_flap[i] * in.omega_flap[i] * S(2, i);
+      const double c = -in.omega[kFlap][i] * in.omega[kFlap][i] * S(2, i);
       *f += c * y[M + i];
       jac[M + i] += c;
     }
@@ -2169,14 +2173,14 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     // eps^2, elastic coupling E^cs (E.8)
     for (int j = 0; j < M; ++j)
       {
-        const double c = in.ecs_lag_flap[i * M + j];
+        const double c = in.elastic[kLag][kFlap][i * M + j];
         *f += c * y[M + j];
         jac[M + j] += c;
       }
     // eps^3, elastic coupling E^s (E.7)
     for (int j = 0; j < N; ++j)
       {
-        const double c = in.es_lag[i * N + j];
+        const double c = in.elastic[kLag][kLag][i * N + j];
         *f += c * y[2 * M + N + j];
         jac[2 * M + N + j] += c;
       }
@@ -2247,13 +2251,13 @@ void nonlinear(const model::CoefficientInputs& in, const double* y,
     }
     // eps^1, structural damping (2.17), M_Lii
     {
-      const double c = -(2.0) * in.damping_lag[i] * in.omega_lag[i] * S(7, i);
+      const double c = -(2.0) * in.damping[kLag][i] * in.omega[kLag][i] * S(7, i);
       *f += c * y[2 * M + i];
       jac[2 * M + i] += c;
     }
     // eps^1, modal stiffness (A.4), M_Lii
     {
-      const double c = -in.omega_lag[i] * in.omega_lag[i] * S(7, i);
+      const double c = -in.omega[kLag][i] * in.omega[kLag][i] * S(7, i);
       *f += c * y[2 * M + N + i];
       jac[2 * M + N + i] += c;
     }

@@ -19,6 +19,7 @@
 namespace flaplag::aero_integrals_test {
 namespace {
 
+using flaplag::model::Direction;
 using testing::RelClose;
 using namespace testing::fixtures;
 
@@ -162,15 +163,15 @@ TEST(AeroIntegrals, TwistedBladeHoverThrustIsBladeElementTheory) {
       in.inflow = c.lambda;
       in.cdo_a = 0.01 / (2.0 * kPi);
       in.mu = 0.0;
-      in.g0 = q0.data();
-      in.h0 = q0.data() + 1;
-      in.omega_flap = modes.omega_flap.data();
-      in.omega_lag = modes.omega_lag.data();
-      in.damping_flap = in.damping_lag = zeros.data();
-      in.es_flap = in.es_lag = in.ecs_flap_lag = in.ecs_lag_flap = zeros.data();
+      for (const Direction dir : model::kDirections) {
+        in.q0[model::index(dir)] = q0.data() + model::index(dir);  // one mode each: g0, h0
+        in.omega[model::index(dir)] = modes[dir].omega.data();
+        in.damping[model::index(dir)] = zeros.data();
+        in.modes[model::index(dir)] = 1;
+        for (const double*& block : in.elastic[model::index(dir)]) block = zeros.data();
+      }
       in.aero = ai.normal().data();
       in.structural = structural.data();
-      in.flap_modes = in.lag_modes = 1;
       // The hover equilibrium S q0 = c of the twisted blade.
       std::vector<double> S(n * n), rhs(n);
       d.equilibrium(in, {S.data(), rhs.data()});

@@ -22,6 +22,7 @@ using flaplag::Analysis;
 using flaplag::RotorParameters;
 using flaplag::TransitionMethod;
 using flaplag::TransitionOptions;
+using flaplag::model::Direction;
 using flaplag::testing::AbsClose;
 using flaplag::testing::RelClose;
 
@@ -645,8 +646,8 @@ TEST(ExactModeBasis, ShapesFollowTheBasisAndConverge) {
     p.basis = basis;
     const Analysis an(p, {});
     EXPECT_EQ(an.parameters().basis, basis);
-    EXPECT_DOUBLE_EQ(an.modes().omega_lag[0], p.omega_lag);
-    return an.modes().lag[0]->value(0, x0);
+    EXPECT_DOUBLE_EQ(an.modes()[Direction::Lag].omega[0], p.omega_lag);
+    return an.modes().shapes(Direction::Lag)[0]->value(0, x0);
   };
   const double x0 = 0.5;
   const double s5 = lag_shape_at(5, x0), s10 = lag_shape_at(10, x0), s12 = lag_shape_at(12, x0);

@@ -22,6 +22,7 @@
 namespace flaplag::blade_elements_test {
 namespace {
 
+using flaplag::model::Direction;
 using testing::AbsClose;
 using testing::RelClose;
 
@@ -98,28 +99,35 @@ TEST_P(UniformBladeElements, AgreeWithTheGalerkinModesToTheirError) {
   o.n_basis = kMaxBasisFunctions;
   const ExactModes g = exact_rotating_modes(kOmegaF, kOmegaL, o);
   std::printf("e1/l = %g: k_y %.3e, k_z %.3e, flap 2 %.3e, flap 3 %.3e, lag 2 %.3e relative\n",
-              GetParam(), el.modes.stiffness_flap / g.modes.stiffness_flap - 1.0,
-              el.modes.stiffness_lag / g.modes.stiffness_lag - 1.0,
-              el.omega_flap_all[1] / g.omega_flap_all[1] - 1.0,
-              el.omega_flap_all[2] / g.omega_flap_all[2] - 1.0,
-              el.omega_lag_all[1] / g.omega_lag_all[1] - 1.0);
-  EXPECT_TRUE(RelClose(g.modes.stiffness_flap, el.modes.stiffness_flap, 1e-4 * scale));
-  EXPECT_TRUE(RelClose(g.modes.stiffness_lag, el.modes.stiffness_lag, 1e-6 * scale));
+              GetParam(),
+              el.modes[Direction::Flap].stiffness / g.modes[Direction::Flap].stiffness - 1.0,
+              el.modes[Direction::Lag].stiffness / g.modes[Direction::Lag].stiffness - 1.0,
+              el[Direction::Flap].omega_all[1] / g[Direction::Flap].omega_all[1] - 1.0,
+              el[Direction::Flap].omega_all[2] / g[Direction::Flap].omega_all[2] - 1.0,
+              el[Direction::Lag].omega_all[1] / g[Direction::Lag].omega_all[1] - 1.0);
+  EXPECT_TRUE(RelClose(g.modes[Direction::Flap].stiffness, el.modes[Direction::Flap].stiffness,
+                       1e-4 * scale));
+  EXPECT_TRUE(RelClose(g.modes[Direction::Lag].stiffness, el.modes[Direction::Lag].stiffness,
+                       1e-6 * scale));
   // The requested first frequencies, to rounding.
-  EXPECT_TRUE(RelClose(kOmegaF, el.modes.omega_flap[0], 1e-14));
-  EXPECT_TRUE(RelClose(kOmegaL, el.modes.omega_lag[0], 1e-14));
+  EXPECT_TRUE(RelClose(kOmegaF, el.modes[Direction::Flap].omega[0], 1e-14));
+  EXPECT_TRUE(RelClose(kOmegaL, el.modes[Direction::Lag].omega[0], 1e-14));
   for (int i = 1; i < 3; ++i) {
-    EXPECT_TRUE(RelClose(g.omega_flap_all[i], el.omega_flap_all[i], 2e-5 * scale))
+    EXPECT_TRUE(
+        RelClose(g[Direction::Flap].omega_all[i], el[Direction::Flap].omega_all[i], 2e-5 * scale))
         << "flap " << i + 1;
-    EXPECT_TRUE(RelClose(g.omega_lag_all[i], el.omega_lag_all[i], 3e-7 * scale)) << "lag " << i + 1;
+    EXPECT_TRUE(
+        RelClose(g[Direction::Lag].omega_all[i], el[Direction::Lag].omega_all[i], 3e-7 * scale))
+        << "lag " << i + 1;
   }
   // The shapes: the same tip-normalised modes.
   for (int i = 0; i < 3; ++i) {
     for (double x = 0.05; x < 1.0; x += 0.1) {
-      EXPECT_TRUE(
-          AbsClose(g.modes.flap[i]->value(0, x), el.modes.flap[i]->value(0, x), 2e-4 * scale))
+      EXPECT_TRUE(AbsClose(g.modes.shapes(Direction::Flap)[i]->value(0, x),
+                           el.modes.shapes(Direction::Flap)[i]->value(0, x), 2e-4 * scale))
           << "flap " << i + 1 << " at " << x;
-      EXPECT_TRUE(AbsClose(g.modes.lag[i]->value(0, x), el.modes.lag[i]->value(0, x), 2e-4 * scale))
+      EXPECT_TRUE(AbsClose(g.modes.shapes(Direction::Lag)[i]->value(0, x),
+                           el.modes.shapes(Direction::Lag)[i]->value(0, x), 2e-4 * scale))
           << "lag " << i + 1 << " at " << x;
     }
   }
@@ -131,10 +139,10 @@ TEST_P(UniformBladeElements, AgreeWithTheGalerkinModesToTheirError) {
 TEST_P(UniformBladeElements, NonrotatingFrequencyIsTheClosedForm) {
   const ExactModes el = element_rotating_modes(kOmegaF, kOmegaL, three_and_three(GetParam()));
   const double b1 = cantilever_root(1);
-  EXPECT_TRUE(RelClose(std::sqrt(el.modes.stiffness_flap / 3.0) * b1 * b1,
-                       el.omega_flap_nonrotating, 1e-9));
-  EXPECT_TRUE(
-      RelClose(std::sqrt(el.modes.stiffness_lag / 3.0) * b1 * b1, el.omega_lag_nonrotating, 1e-9));
+  EXPECT_TRUE(RelClose(std::sqrt(el.modes[Direction::Flap].stiffness / 3.0) * b1 * b1,
+                       el[Direction::Flap].omega_nonrotating, 1e-9));
+  EXPECT_TRUE(RelClose(std::sqrt(el.modes[Direction::Lag].stiffness / 3.0) * b1 * b1,
+                       el[Direction::Lag].omega_nonrotating, 1e-9));
 }
 
 INSTANTIATE_TEST_SUITE_P(RootOffsets, UniformBladeElements, ::testing::Values(0.0, 0.1));
@@ -144,7 +152,7 @@ TEST(UniformBladeElements, ModesAreClampedTipNormalisedAndOrthogonal) {
   const ExactModes el = element_rotating_modes(kOmegaF, kOmegaL, three_and_three(0.0));
   EXPECT_EQ(static_cast<std::size_t>(kElementsPerSpan) - 1, el.modes.mesh.size());
   EXPECT_EQ("exact", el.modes.kind);
-  for (const auto* shapes : {&el.modes.flap, &el.modes.lag}) {
+  for (const auto* shapes : {&el.modes.shapes(Direction::Flap), &el.modes.shapes(Direction::Lag)}) {
     for (std::size_t i = 0; i < shapes->size(); ++i) {
       const ModeShape& s = *(*shapes)[i];
       EXPECT_EQ(0.0, s.value(0, 0.0));

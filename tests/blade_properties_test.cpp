@@ -33,6 +33,7 @@
 namespace flaplag::blade_properties_test {
 namespace {
 
+using flaplag::model::Direction;
 using testing::AbsClose;
 using testing::RelClose;
 
@@ -300,39 +301,52 @@ TEST_P(UniformTable, RotatingFrequenciesAndStiffnessesAreTheUniformModels) {
   const ExactModes uniform = exact_rotating_modes(c.omega_flap, c.omega_lag, o);
   o.blade = shared(uniform_blade());
   const ExactModes tab = exact_rotating_modes(c.omega_flap, c.omega_lag, o);
-  ASSERT_EQ(tab.omega_flap_all.size(), uniform.omega_flap_all.size());
+  ASSERT_EQ(tab[Direction::Flap].omega_all.size(), uniform[Direction::Flap].omega_all.size());
   double worst = 0.0;
-  for (std::size_t i = 0; i < uniform.omega_flap_all.size(); ++i) {
-    EXPECT_TRUE(RelClose(uniform.omega_flap_all[i], tab.omega_flap_all[i], 1e-10)) << "flap " << i;
-    EXPECT_TRUE(RelClose(uniform.omega_lag_all[i], tab.omega_lag_all[i], 1e-10)) << "lag " << i;
-    worst = std::max({worst, std::abs(tab.omega_flap_all[i] / uniform.omega_flap_all[i] - 1.0),
-                      std::abs(tab.omega_lag_all[i] / uniform.omega_lag_all[i] - 1.0)});
+  for (std::size_t i = 0; i < uniform[Direction::Flap].omega_all.size(); ++i) {
+    EXPECT_TRUE(
+        RelClose(uniform[Direction::Flap].omega_all[i], tab[Direction::Flap].omega_all[i], 1e-10))
+        << "flap " << i;
+    EXPECT_TRUE(
+        RelClose(uniform[Direction::Lag].omega_all[i], tab[Direction::Lag].omega_all[i], 1e-10))
+        << "lag " << i;
+    worst = std::max(
+        {worst,
+         std::abs(tab[Direction::Flap].omega_all[i] / uniform[Direction::Flap].omega_all[i] - 1.0),
+         std::abs(tab[Direction::Lag].omega_all[i] / uniform[Direction::Lag].omega_all[i] - 1.0)});
   }
   std::printf("uniform table: %d rotating frequencies per direction within %.2g\n", c.n_basis,
               worst);
   // The column is 1: the scale is the uniform blade's k.
-  EXPECT_TRUE(RelClose(uniform.modes.stiffness_flap, tab.modes.stiffness_flap, 1e-10));
-  EXPECT_TRUE(RelClose(uniform.modes.stiffness_lag, tab.modes.stiffness_lag, 1e-10));
-  EXPECT_TRUE(RelClose(uniform.omega_flap_nonrotating, tab.omega_flap_nonrotating, 1e-10));
-  EXPECT_TRUE(RelClose(uniform.omega_lag_nonrotating, tab.omega_lag_nonrotating, 1e-10));
+  EXPECT_TRUE(RelClose(uniform.modes[Direction::Flap].stiffness,
+                       tab.modes[Direction::Flap].stiffness, 1e-10));
+  EXPECT_TRUE(RelClose(uniform.modes[Direction::Lag].stiffness, tab.modes[Direction::Lag].stiffness,
+                       1e-10));
+  EXPECT_TRUE(RelClose(uniform[Direction::Flap].omega_nonrotating,
+                       tab[Direction::Flap].omega_nonrotating, 1e-10));
+  EXPECT_TRUE(RelClose(uniform[Direction::Lag].omega_nonrotating,
+                       tab[Direction::Lag].omega_nonrotating, 1e-10));
   // The shapes (tip-normalised both).
   for (int k = 0; k < o.flap_modes; ++k) {
     for (double x : {0.2, 0.5, 0.9, 1.0}) {
       for (int d = 0; d <= 2; ++d) {
-        EXPECT_TRUE(AbsClose(uniform.modes.flap[k]->value(d, x), tab.modes.flap[k]->value(d, x),
+        EXPECT_TRUE(AbsClose(uniform.modes.shapes(Direction::Flap)[k]->value(d, x),
+                             tab.modes.shapes(Direction::Flap)[k]->value(d, x),
                              1e-9 * std::pow(10.0, d)));
-        EXPECT_TRUE(AbsClose(uniform.modes.lag[k]->value(d, x), tab.modes.lag[k]->value(d, x),
+        EXPECT_TRUE(AbsClose(uniform.modes.shapes(Direction::Lag)[k]->value(d, x),
+                             tab.modes.shapes(Direction::Lag)[k]->value(d, x),
                              1e-9 * std::pow(10.0, d)));
       }
     }
   }
   // The table's columns as absolute stiffness give the first frequencies back.
-  o.blade = shared(uniform_blade(uniform.modes.stiffness_flap, uniform.modes.stiffness_lag));
+  o.blade = shared(uniform_blade(uniform.modes[Direction::Flap].stiffness,
+                                 uniform.modes[Direction::Lag].stiffness));
   const ExactModes absolute = blade_stiffness_modes(o);
-  EXPECT_TRUE(RelClose(c.omega_flap, absolute.modes.omega_flap[0], 1e-10));
-  EXPECT_TRUE(RelClose(c.omega_lag, absolute.modes.omega_lag[0], 1e-10));
-  EXPECT_EQ(absolute.modes.stiffness_flap, 1.0);
-  EXPECT_EQ(absolute.modes.stiffness_lag, 1.0);
+  EXPECT_TRUE(RelClose(c.omega_flap, absolute.modes[Direction::Flap].omega[0], 1e-10));
+  EXPECT_TRUE(RelClose(c.omega_lag, absolute.modes[Direction::Lag].omega[0], 1e-10));
+  EXPECT_EQ(absolute.modes[Direction::Flap].stiffness, 1.0);
+  EXPECT_EQ(absolute.modes[Direction::Lag].stiffness, 1.0);
 }
 
 // The frequency functions of rotating_modes.h with the uniform table (column 1, mass 3: the scale
@@ -611,8 +625,8 @@ TEST(TaperedBlade, RotatingFrequenciesAgreeWithAFiniteElementModel) {
   for (int n : {6, 8, 10, 12}) galerkin.push_back(tapered_modes(n));
   const ExactModes& g12 = galerkin.back();
   // The blade asked for: flap ~1.1, lag ~0.7 per rev.
-  EXPECT_NEAR(g12.modes.omega_flap[0], 1.1, 0.01);
-  EXPECT_NEAR(g12.modes.omega_lag[0], 0.7, 0.01);
+  EXPECT_NEAR(g12.modes[Direction::Flap].omega[0], 1.1, 0.01);
+  EXPECT_NEAR(g12.modes[Direction::Lag].omega[0], 0.7, 0.01);
   for (const BendingDirection dir : {BendingDirection::Flap, BendingDirection::Lag}) {
     const bool flap = dir == BendingDirection::Flap;
     const int count = flap ? 3 : 2;
@@ -625,12 +639,12 @@ TEST(TaperedBlade, RotatingFrequenciesAgreeWithAFiniteElementModel) {
       // Galerkin on nested bases: upper bounds that decrease toward the reference.
       double previous = std::numeric_limits<double>::infinity();
       for (const ExactModes& g : galerkin) {
-        const double w = (flap ? g.omega_flap_all : g.omega_lag_all)[i];
+        const double w = (flap ? g[Direction::Flap].omega_all : g[Direction::Lag].omega_all)[i];
         EXPECT_GT(w, fe.omega[i] - fe.error[i]);
         EXPECT_LT(w - fe.omega[i], previous);
         previous = w - fe.omega[i];
       }
-      const double w12 = (flap ? g12.omega_flap_all : g12.omega_lag_all)[i];
+      const double w12 = (flap ? g12[Direction::Flap].omega_all : g12[Direction::Lag].omega_all)[i];
       EXPECT_TRUE(RelClose(fe.omega[i], w12, kGalerkinFrequencyTolerance));
     }
   }
@@ -656,8 +670,8 @@ TEST(TaperedBlade, FiniteElementModesAreTheReferenceToTheirOwnError) {
     const Extrapolated fe = fe_frequencies(b, kTaperE, dir, count);
     for (int i = 0; i < count; ++i) {
       SCOPED_TRACE(std::string(flap ? "flap " : "lag ") + std::to_string(i + 1));
-      const double w_el = (flap ? el.omega_flap_all : el.omega_lag_all)[i];
-      const double w_g = (flap ? g12.omega_flap_all : g12.omega_lag_all)[i];
+      const double w_el = (flap ? el[Direction::Flap].omega_all : el[Direction::Lag].omega_all)[i];
+      const double w_g = (flap ? g12[Direction::Flap].omega_all : g12[Direction::Lag].omega_all)[i];
       std::printf("%s %d: reference %.12f, elements %+.2e, 12 functions %+.2e\n",
                   flap ? "flap" : "lag", i + 1, fe.omega[i], w_el / fe.omega[i] - 1.0,
                   w_g / fe.omega[i] - 1.0);
@@ -667,8 +681,8 @@ TEST(TaperedBlade, FiniteElementModesAreTheReferenceToTheirOwnError) {
     }
   }
   // The same stiffness: the scales are 1 (absolute columns) for both.
-  EXPECT_EQ(1.0, el.modes.stiffness_flap);
-  EXPECT_EQ(1.0, el.modes.stiffness_lag);
+  EXPECT_EQ(1.0, el.modes[Direction::Flap].stiffness);
+  EXPECT_EQ(1.0, el.modes[Direction::Lag].stiffness);
 }
 
 // The parts of a shape's Rayleigh quotient with the blade's distributions, by quadrature here:
@@ -703,7 +717,7 @@ TEST(TaperedBlade, ShapesHaveTheirFrequenciesAsRayleighQuotients) {
   double worst = 0.0, worst_orthogonality = 0.0;
   for (const BendingDirection dir : {BendingDirection::Flap, BendingDirection::Lag}) {
     const bool flap = dir == BendingDirection::Flap;
-    const auto& shapes = flap ? g.modes.flap : g.modes.lag;
+    const auto& shapes = flap ? g.modes.shapes(Direction::Flap) : g.modes.shapes(Direction::Lag);
     const std::vector<double>& k = flap ? b.stiffness_flap : b.stiffness_lag;
     auto mass = [&](const ModeShape& u, const ModeShape& v) {
       return gauss_span([&](double x) {
@@ -716,7 +730,8 @@ TEST(TaperedBlade, ShapesHaveTheirFrequenciesAsRayleighQuotients) {
       const Energies e = energies_here(b, k, w);
       const double m = e.mass;
       const double rayleigh = (e.strain + e.pull) / m - (flap ? 0.0 : 1.0);
-      const double omega = (flap ? g.modes.omega_flap : g.modes.omega_lag)[i];
+      const double omega =
+          (flap ? g.modes[Direction::Flap].omega : g.modes[Direction::Lag].omega)[i];
       EXPECT_TRUE(RelClose(omega, std::sqrt(rayleigh), 1e-10)) << (flap ? "flap " : "lag ") << i;
       worst = std::max(worst, std::abs(std::sqrt(rayleigh) / omega - 1.0));
       EXPECT_DOUBLE_EQ(w.value(0, 1.0), 1.0);  // tip-normalised
@@ -744,14 +759,16 @@ TEST(TaperedBlade, ScaledColumnsGiveTheAbsoluteBlade) {
   for (double& k : shape.stiffness_flap) k /= 0.005;
   for (double& k : shape.stiffness_lag) k /= 0.035;
   o.blade = shared(shape);
-  const ExactModes scaled =
-      exact_rotating_modes(absolute.modes.omega_flap[0], absolute.modes.omega_lag[0], o);
-  EXPECT_TRUE(RelClose(0.005, scaled.modes.stiffness_flap, 1e-10));
-  EXPECT_TRUE(RelClose(0.035, scaled.modes.stiffness_lag, 1e-10));
+  const ExactModes scaled = exact_rotating_modes(absolute.modes[Direction::Flap].omega[0],
+                                                 absolute.modes[Direction::Lag].omega[0], o);
+  EXPECT_TRUE(RelClose(0.005, scaled.modes[Direction::Flap].stiffness, 1e-10));
+  EXPECT_TRUE(RelClose(0.035, scaled.modes[Direction::Lag].stiffness, 1e-10));
   for (int i = 0; i < 3; ++i)
-    EXPECT_TRUE(RelClose(absolute.omega_flap_all[i], scaled.omega_flap_all[i], 1e-10));
+    EXPECT_TRUE(RelClose(absolute[Direction::Flap].omega_all[i],
+                         scaled[Direction::Flap].omega_all[i], 1e-10));
   for (int i = 0; i < 2; ++i)
-    EXPECT_TRUE(RelClose(absolute.omega_lag_all[i], scaled.omega_lag_all[i], 1e-10));
+    EXPECT_TRUE(RelClose(absolute[Direction::Lag].omega_all[i], scaled[Direction::Lag].omega_all[i],
+                         1e-10));
 }
 
 // The frequency functions of a table (rotating_modes.h) at rest and at other rotor speeds: the
@@ -836,14 +853,16 @@ TEST(TaperedBlade, AStifferColumnIsTheSameBladeAtASmallerScale) {
 TEST(TaperedBlade, RayleighFrequencyWeighsTheTablesDistributions) {
   const BladeProperties b = tapered_blade();
   const ExactModes g = tapered_modes(kMaxBasisFunctions);
-  for (std::size_t i = 0; i < g.modes.flap.size(); ++i)
-    EXPECT_TRUE(RelClose(
-        g.modes.omega_flap[i],
-        rayleigh_frequency(BendingDirection::Flap, *g.modes.flap[i], 1.0, kTaperE, b), 1e-10));
-  for (std::size_t i = 0; i < g.modes.lag.size(); ++i)
-    EXPECT_TRUE(RelClose(
-        g.modes.omega_lag[i],
-        rayleigh_frequency(BendingDirection::Lag, *g.modes.lag[i], 1.0, kTaperE, b), 1e-10));
+  for (std::size_t i = 0; i < g.modes.shapes(Direction::Flap).size(); ++i)
+    EXPECT_TRUE(RelClose(g.modes[Direction::Flap].omega[i],
+                         rayleigh_frequency(BendingDirection::Flap,
+                                            *g.modes.shapes(Direction::Flap)[i], 1.0, kTaperE, b),
+                         1e-10));
+  for (std::size_t i = 0; i < g.modes.shapes(Direction::Lag).size(); ++i)
+    EXPECT_TRUE(RelClose(g.modes[Direction::Lag].omega[i],
+                         rayleigh_frequency(BendingDirection::Lag,
+                                            *g.modes.shapes(Direction::Lag)[i], 1.0, kTaperE, b),
+                         1e-10));
   const ModalCombination shape({cantilever_mode(1), cantilever_mode(3)},
                                (Eigen::VectorXd(2) << 1.0, -0.2).finished());
   const double scale = 2.5;
@@ -917,7 +936,7 @@ class Grid {
     for (int i = 0; i <= n_; ++i) x_.push_back(static_cast<double>(i) / n_);
     for (int kind = 0; kind < 4; ++kind) {
       const bool flap = kind < 2;
-      const auto& shapes = flap ? modes.flap : modes.lag;
+      const auto& shapes = flap ? modes.shapes(Direction::Flap) : modes.shapes(Direction::Lag);
       for (const auto& s : shapes) {
         std::vector<double> v;
         for (double x : x_) v.push_back(s->value(kind % 2, x));
@@ -1120,8 +1139,8 @@ TEST(ChordTaper, AeroIntegralsWeighTheChord) {
     return s;
   };
   auto chord = [&](double x0) { return linear(c.blade.x0, c.blade.chord, x0); };
-  const ModeShape& eta1 = *c.modes.flap[0];
-  const ModeShape& gamma2 = *c.modes.lag[1];
+  const ModeShape& eta1 = *c.modes.shapes(Direction::Flap)[0];
+  const ModeShape& gamma2 = *c.modes.shapes(Direction::Lag)[1];
   int checked = 0;
   for (int j = 0; j < m.n_aero; ++j) {
     const std::string name = m.aero[j].name;
@@ -1226,12 +1245,12 @@ TEST(Twist, ElasticCouplingAtEachStationsPitch) {
   o.e1_over_l = kTaperE;
   o.blade = shared(b);
   const ModeSet modes = exact_modes(1.12, 0.75, o);
-  ASSERT_NE(modes.stiffness_flap, 1.0);
+  ASSERT_NE(modes[Direction::Flap].stiffness, 1.0);
   const double theta = 0.15;
   const ElasticCoupling e = elastic_coupling(modes, theta);
   auto dk = [&](double x) {
-    return modes.stiffness_lag * linear(b.x0, b.stiffness_lag, x) -
-           modes.stiffness_flap * linear(b.x0, b.stiffness_flap, x);
+    return modes[Direction::Lag].stiffness * linear(b.x0, b.stiffness_lag, x) -
+           modes[Direction::Flap].stiffness * linear(b.x0, b.stiffness_flap, x);
   };
   auto pitch = [&](double x) { return theta + linear(b.x0, b.twist, x); };
   // Simpson on 4000 intervals (0.25 and 0.6 are nodes) of each pair.
@@ -1241,22 +1260,30 @@ TEST(Twist, ElasticCouplingAtEachStationsPitch) {
       return dk(x) * (cross ? s * c : s * s) * u.value(2, x) * v.value(2, x);
     });
   };
-  const double scale = e.es_flap.cwiseAbs().maxCoeff() + e.ecs_flap_lag.cwiseAbs().maxCoeff();
+  const double scale = e.block(Direction::Flap, Direction::Flap).cwiseAbs().maxCoeff() +
+                       e.block(Direction::Flap, Direction::Lag).cwiseAbs().maxCoeff();
   ASSERT_GT(scale, 0.0);
   double worst = 0.0;
   for (int i = 0; i < 2; ++i) {
     for (int k = 0; k < 2; ++k) {
       SCOPED_TRACE(std::to_string(i) + "," + std::to_string(k));
-      const ModeShape &fi = *modes.flap[i], &fk = *modes.flap[k];
-      const ModeShape &li = *modes.lag[i], &lk = *modes.lag[k];
-      EXPECT_TRUE(AbsClose(expected(fi, fk, false), e.es_flap(i, k), 1e-10 * scale));
-      EXPECT_TRUE(AbsClose(expected(li, lk, false), e.es_lag(i, k), 1e-10 * scale));
-      EXPECT_TRUE(AbsClose(expected(fi, lk, true), e.ecs_flap_lag(i, k), 1e-10 * scale));
-      EXPECT_TRUE(AbsClose(expected(li, fk, true), e.ecs_lag_flap(i, k), 1e-10 * scale));
+      const ModeShape &fi = *modes.shapes(Direction::Flap)[i],
+                      &fk = *modes.shapes(Direction::Flap)[k];
+      const ModeShape &li = *modes.shapes(Direction::Lag)[i],
+                      &lk = *modes.shapes(Direction::Lag)[k];
+      EXPECT_TRUE(AbsClose(expected(fi, fk, false), e.block(Direction::Flap, Direction::Flap)(i, k),
+                           1e-10 * scale));
+      EXPECT_TRUE(AbsClose(expected(li, lk, false), e.block(Direction::Lag, Direction::Lag)(i, k),
+                           1e-10 * scale));
+      EXPECT_TRUE(AbsClose(expected(fi, lk, true), e.block(Direction::Flap, Direction::Lag)(i, k),
+                           1e-10 * scale));
+      EXPECT_TRUE(AbsClose(expected(li, fk, true), e.block(Direction::Lag, Direction::Flap)(i, k),
+                           1e-10 * scale));
       for (const double d :
-           {expected(fi, fk, false) - e.es_flap(i, k), expected(li, lk, false) - e.es_lag(i, k),
-            expected(fi, lk, true) - e.ecs_flap_lag(i, k),
-            expected(li, fk, true) - e.ecs_lag_flap(i, k)})
+           {expected(fi, fk, false) - e.block(Direction::Flap, Direction::Flap)(i, k),
+            expected(li, lk, false) - e.block(Direction::Lag, Direction::Lag)(i, k),
+            expected(fi, lk, true) - e.block(Direction::Flap, Direction::Lag)(i, k),
+            expected(li, fk, true) - e.block(Direction::Lag, Direction::Flap)(i, k)})
         worst = std::max(worst, std::abs(d) / scale);
     }
   }
@@ -1266,8 +1293,9 @@ TEST(Twist, ElasticCouplingAtEachStationsPitch) {
   untwisted.twist = {0, 0, 0, 0};
   ModeSet same = modes;
   same.blade = shared(untwisted);
-  EXPECT_GT(std::abs(elastic_coupling(same, theta).es_flap(0, 0) - e.es_flap(0, 0)),
-            0.05 * std::abs(e.es_flap(0, 0)));
+  EXPECT_GT(std::abs(elastic_coupling(same, theta).block(Direction::Flap, Direction::Flap)(0, 0) -
+                     e.block(Direction::Flap, Direction::Flap)(0, 0)),
+            0.05 * std::abs(e.block(Direction::Flap, Direction::Flap)(0, 0)));
 }
 
 }  // namespace

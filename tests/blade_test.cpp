@@ -21,6 +21,7 @@
 namespace flaplag::blade_test {
 namespace {
 
+using flaplag::model::Direction;
 using model::AeroIntegral;
 using model::Factor;
 using model::FactorRef;
@@ -77,12 +78,12 @@ TEST(AssumedMode, MatchesEquation41AndDerivativesAreConsistent) {
 TEST(AssumedMode, ModeSet) {
   const ModeSet m = assumed_modes(1.175, 1.28303);
   EXPECT_EQ("assumed", m.kind);
-  ASSERT_EQ(1u, m.flap.size());
-  ASSERT_EQ(1u, m.lag.size());
-  EXPECT_EQ(1.175, m.omega_flap[0]);
-  EXPECT_EQ(1.28303, m.omega_lag[0]);
-  EXPECT_EQ(0.0, m.stiffness_flap);
-  EXPECT_EQ(0.0, m.stiffness_lag);
+  ASSERT_EQ(1u, m.shapes(Direction::Flap).size());
+  ASSERT_EQ(1u, m.shapes(Direction::Lag).size());
+  EXPECT_EQ(1.175, m[Direction::Flap].omega[0]);
+  EXPECT_EQ(1.28303, m[Direction::Lag].omega[0]);
+  EXPECT_EQ(0.0, m[Direction::Flap].stiffness);
+  EXPECT_EQ(0.0, m[Direction::Lag].stiffness);
   EXPECT_THROW(assumed_modes(-1.0, 1.0), InvalidInput);
   EXPECT_THROW(assumed_modes(1.0, std::nan("")), InvalidInput);
 }
@@ -283,22 +284,26 @@ TEST(StructuralIntegral, InvalidInputs) {
 TEST(ElasticCoupling, ZeroForAssumedModesAndAtZeroPitch) {
   const ModeSet assumed = assumed_modes(1.175, 1.28303);
   const ElasticCoupling a = elastic_coupling(assumed, 0.15);
-  EXPECT_EQ(0.0,
-            a.es_flap.norm() + a.es_lag.norm() + a.ecs_flap_lag.norm() + a.ecs_lag_flap.norm());
+  EXPECT_EQ(0.0, a.block(Direction::Flap, Direction::Flap).norm() +
+                     a.block(Direction::Lag, Direction::Lag).norm() +
+                     a.block(Direction::Flap, Direction::Lag).norm() +
+                     a.block(Direction::Lag, Direction::Flap).norm());
   ExactModeOptions o;
   o.flap_modes = 2;
   o.lag_modes = 3;
   const ModeSet exact = exact_modes(1.175, 1.28303, o);
   const ElasticCoupling z = elastic_coupling(exact, 0.0);
-  EXPECT_EQ(0.0,
-            z.es_flap.norm() + z.es_lag.norm() + z.ecs_flap_lag.norm() + z.ecs_lag_flap.norm());
+  EXPECT_EQ(0.0, z.block(Direction::Flap, Direction::Flap).norm() +
+                     z.block(Direction::Lag, Direction::Lag).norm() +
+                     z.block(Direction::Flap, Direction::Lag).norm() +
+                     z.block(Direction::Lag, Direction::Flap).norm());
   const ElasticCoupling n = no_elastic_coupling(exact);
-  EXPECT_EQ(2, n.es_flap.rows());
-  EXPECT_EQ(3, n.es_lag.rows());
-  EXPECT_EQ(2, n.ecs_flap_lag.rows());
-  EXPECT_EQ(3, n.ecs_flap_lag.cols());
-  EXPECT_EQ(3, n.ecs_lag_flap.rows());
-  EXPECT_EQ(2, n.ecs_lag_flap.cols());
+  EXPECT_EQ(2, n.block(Direction::Flap, Direction::Flap).rows());
+  EXPECT_EQ(3, n.block(Direction::Lag, Direction::Lag).rows());
+  EXPECT_EQ(2, n.block(Direction::Flap, Direction::Lag).rows());
+  EXPECT_EQ(3, n.block(Direction::Flap, Direction::Lag).cols());
+  EXPECT_EQ(3, n.block(Direction::Lag, Direction::Flap).rows());
+  EXPECT_EQ(2, n.block(Direction::Lag, Direction::Flap).cols());
 }
 
 TEST(ElasticCoupling, SymmetryValuesAndSign) {
@@ -308,34 +313,44 @@ TEST(ElasticCoupling, SymmetryValuesAndSign) {
   const ExactModes r = exact_rotating_modes(1.175, 1.28303, o);
   const double theta = 0.15;
   const ElasticCoupling e = elastic_coupling(r.modes, theta);
-  ASSERT_EQ(2, e.es_flap.rows());
-  ASSERT_EQ(3, e.es_lag.cols());
-  EXPECT_LT((e.es_flap - e.es_flap.transpose()).norm(), 1e-12 * e.es_flap.norm());
-  EXPECT_LT((e.es_lag - e.es_lag.transpose()).norm(), 1e-12 * e.es_lag.norm());
-  EXPECT_EQ(0.0, (e.ecs_lag_flap - e.ecs_flap_lag.transpose()).norm());
+  ASSERT_EQ(2, e.block(Direction::Flap, Direction::Flap).rows());
+  ASSERT_EQ(3, e.block(Direction::Lag, Direction::Lag).cols());
+  EXPECT_LT((e.block(Direction::Flap, Direction::Flap) -
+             e.block(Direction::Flap, Direction::Flap).transpose())
+                .norm(),
+            1e-12 * e.block(Direction::Flap, Direction::Flap).norm());
+  EXPECT_LT((e.block(Direction::Lag, Direction::Lag) -
+             e.block(Direction::Lag, Direction::Lag).transpose())
+                .norm(),
+            1e-12 * e.block(Direction::Lag, Direction::Lag).norm());
+  EXPECT_EQ(0.0, (e.block(Direction::Lag, Direction::Flap) -
+                  e.block(Direction::Flap, Direction::Lag).transpose())
+                     .norm());
 
   // Independent value: int eta_i'' gamma_m'' = sum_j c_j d_j beta_j^4 (orthogonality of phi'').
-  const double dk = r.modes.stiffness_lag - r.modes.stiffness_flap;
+  const double dk = r.modes[Direction::Lag].stiffness - r.modes[Direction::Flap].stiffness;
   ASSERT_GT(dk, 0.0);  // lag stiffer than flap for this blade
   for (int i = 0; i < 2; ++i) {
     for (int m = 0; m < 3; ++m) {
       double cc = 0.0;
       for (int j = 0; j < 5; ++j) {
-        cc += r.flap_coefficients(j, i) * r.lag_coefficients(j, m) *
+        cc += r[Direction::Flap].coefficients(j, i) * r[Direction::Lag].coefficients(j, m) *
               std::pow(cantilever_root(j + 1), 4);
       }
-      EXPECT_TRUE(
-          RelClose(dk * std::sin(theta) * std::cos(theta) * cc, e.ecs_flap_lag(i, m), 1e-12, 1e-3))
+      EXPECT_TRUE(RelClose(dk * std::sin(theta) * std::cos(theta) * cc,
+                           e.block(Direction::Flap, Direction::Lag)(i, m), 1e-12, 1e-3))
           << i << "," << m;
     }
   }
   // (EI)_z > (EI)_y: E^s > 0 on the diagonal; E^cs has the sign of theta.
-  EXPECT_GT(e.es_flap(0, 0), 0.0);
-  EXPECT_GT(e.es_lag(0, 0), 0.0);
-  EXPECT_GT(e.ecs_flap_lag(0, 0), 0.0);
+  EXPECT_GT(e.block(Direction::Flap, Direction::Flap)(0, 0), 0.0);
+  EXPECT_GT(e.block(Direction::Lag, Direction::Lag)(0, 0), 0.0);
+  EXPECT_GT(e.block(Direction::Flap, Direction::Lag)(0, 0), 0.0);
   const ElasticCoupling neg = elastic_coupling(r.modes, -theta);
-  EXPECT_TRUE(RelClose(-e.ecs_flap_lag(0, 0), neg.ecs_flap_lag(0, 0), 1e-15));
-  EXPECT_TRUE(RelClose(e.es_flap(0, 0), neg.es_flap(0, 0), 1e-15));
+  EXPECT_TRUE(RelClose(-e.block(Direction::Flap, Direction::Lag)(0, 0),
+                       neg.block(Direction::Flap, Direction::Lag)(0, 0), 1e-15));
+  EXPECT_TRUE(RelClose(e.block(Direction::Flap, Direction::Flap)(0, 0),
+                       neg.block(Direction::Flap, Direction::Flap)(0, 0), 1e-15));
   EXPECT_THROW(elastic_coupling(r.modes, std::nan("")), InvalidInput);
 }
 

@@ -20,6 +20,7 @@
 namespace flaplag::campbell_test {
 namespace {
 
+using flaplag::model::Direction;
 using testing::AbsClose;
 using testing::RelClose;
 
@@ -200,8 +201,8 @@ RotorParameters taper_rotor(const BladeProperties& b, double root_offset) {
   o.e1_over_l = p.root_offset / p.length_ratio;
   o.blade = p.blade;
   const ExactModes m = blade_stiffness_modes(o);
-  p.omega_flap = m.modes.omega_flap[0];
-  p.omega_lag = m.modes.omega_lag[0];
+  p.omega_flap = m.modes[Direction::Flap].omega[0];
+  p.omega_lag = m.modes[Direction::Lag].omega[0];
   return p;
 }
 
@@ -227,8 +228,8 @@ TEST(CampbellTable, AbsoluteColumnsAtEachSpeedWithoutAir) {
     if (s == 0.0) {
       o.blade = p.blade;
       const ExactModes m = blade_stiffness_modes(o);
-      EXPECT_TRUE(RelClose(m.omega_flap_nonrotating, pt.modes[0].frequency, 1e-10));
-      EXPECT_TRUE(RelClose(m.omega_lag_nonrotating, pt.modes[1].frequency, 1e-10));
+      EXPECT_TRUE(RelClose(m[Direction::Flap].omega_nonrotating, pt.modes[0].frequency, 1e-10));
+      EXPECT_TRUE(RelClose(m[Direction::Lag].omega_nonrotating, pt.modes[1].frequency, 1e-10));
       continue;
     }
     BladeProperties at_s = b;
@@ -236,17 +237,17 @@ TEST(CampbellTable, AbsoluteColumnsAtEachSpeedWithoutAir) {
     for (double& k : at_s.stiffness_lag) k /= s * s;
     o.blade = std::make_shared<const BladeProperties>(at_s);
     const ExactModes m = blade_stiffness_modes(o);
-    EXPECT_TRUE(RelClose(m.modes.omega_flap[0], pt.omega_flap, 1e-10));
-    EXPECT_TRUE(RelClose(m.modes.omega_lag[0], pt.omega_lag, 1e-10));
-    EXPECT_TRUE(AbsClose(s * m.modes.omega_flap[0], pt.modes[0].frequency, 1e-4));
-    EXPECT_TRUE(AbsClose(s * m.modes.omega_lag[0], pt.modes[1].frequency, 1e-4));
+    EXPECT_TRUE(RelClose(m.modes[Direction::Flap].omega[0], pt.omega_flap, 1e-10));
+    EXPECT_TRUE(RelClose(m.modes[Direction::Lag].omega[0], pt.omega_lag, 1e-10));
+    EXPECT_TRUE(AbsClose(s * m.modes[Direction::Flap].omega[0], pt.modes[0].frequency, 1e-4));
+    EXPECT_TRUE(AbsClose(s * m.modes[Direction::Lag].omega[0], pt.modes[1].frequency, 1e-4));
     // The analysis at this speed, given those first frequencies, scales the columns by 1 / s^2.
     RotorParameters at = p;
     at.omega_flap = pt.omega_flap;
     at.omega_lag = pt.omega_lag;
     const Analysis an(at, {});
-    EXPECT_TRUE(RelClose(1.0 / (s * s), an.modes().stiffness_flap, 1e-10));
-    EXPECT_TRUE(RelClose(1.0 / (s * s), an.modes().stiffness_lag, 1e-10));
+    EXPECT_TRUE(RelClose(1.0 / (s * s), an.modes()[Direction::Flap].stiffness, 1e-10));
+    EXPECT_TRUE(RelClose(1.0 / (s * s), an.modes()[Direction::Lag].stiffness, 1e-10));
   }
 }
 
@@ -269,7 +270,8 @@ TEST(CampbellTable, TheScaleAtEachSpeedIsTheNominalOneOverTheSpeedSquared) {
   const CampbellResult c = campbell_diagram(p, {}, o);
   ASSERT_TRUE(c.IsUsable()) << c.message;
   const Analysis nominal(p, {});
-  const double s0_flap = nominal.modes().stiffness_flap, s0_lag = nominal.modes().stiffness_lag;
+  const double s0_flap = nominal.modes()[Direction::Flap].stiffness,
+               s0_lag = nominal.modes()[Direction::Lag].stiffness;
   for (std::size_t i = 1; i < c.points.size(); ++i) {
     const CampbellPoint& pt = c.points[i];
     const double s = pt.speed;
@@ -277,8 +279,8 @@ TEST(CampbellTable, TheScaleAtEachSpeedIsTheNominalOneOverTheSpeedSquared) {
     at.omega_flap = pt.omega_flap;
     at.omega_lag = pt.omega_lag;
     const Analysis an(at, {});
-    EXPECT_TRUE(RelClose(s0_flap / (s * s), an.modes().stiffness_flap, 1e-10)) << s;
-    EXPECT_TRUE(RelClose(s0_lag / (s * s), an.modes().stiffness_lag, 1e-10)) << s;
+    EXPECT_TRUE(RelClose(s0_flap / (s * s), an.modes()[Direction::Flap].stiffness, 1e-10)) << s;
+    EXPECT_TRUE(RelClose(s0_lag / (s * s), an.modes()[Direction::Lag].stiffness, 1e-10)) << s;
   }
   const CampbellPoint& last = c.points.back();
   EXPECT_EQ(last.speed, 1.0);
@@ -300,8 +302,10 @@ TEST(CampbellTable, TheScaleAtEachSpeedIsTheNominalOneOverTheSpeedSquared) {
   m.e1_over_l = p.root_offset / p.length_ratio;
   m.blade = std::make_shared<const BladeProperties>(absolute);
   const ExactModes at_rest = blade_stiffness_modes(m);
-  EXPECT_TRUE(RelClose(at_rest.omega_flap_nonrotating, c.points[0].modes[0].frequency, 1e-10));
-  EXPECT_TRUE(RelClose(at_rest.omega_lag_nonrotating, c.points[0].modes[1].frequency, 1e-10));
+  EXPECT_TRUE(
+      RelClose(at_rest[Direction::Flap].omega_nonrotating, c.points[0].modes[0].frequency, 1e-10));
+  EXPECT_TRUE(
+      RelClose(at_rest[Direction::Lag].omega_nonrotating, c.points[0].modes[1].frequency, 1e-10));
 }
 
 // Imported shapes hold at one rotor speed: refused, naming the mode file.

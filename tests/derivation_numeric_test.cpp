@@ -26,6 +26,8 @@ namespace derivation_numeric_test {
 
 namespace fd = flaplag::derive;
 namespace fm = flaplag::model;
+// The directions' places in the per-direction model inputs.
+constexpr int kF = fm::index(fm::Direction::Flap), kL = fm::index(fm::Direction::Lag);
 
 namespace {
 
@@ -201,8 +203,8 @@ LinearAero compiled_aero(const fm::ModelDescriptor& m, const Operating& o, doubl
   const std::vector<double> zeros(64, 0.0), structural(m.n_structural, 0.0);
   const double g0[1] = {o.g0}, h0[1] = {o.h0};
   fm::CoefficientInputs in{};
-  in.flap_modes = m.flap_modes;
-  in.lag_modes = m.lag_modes;
+  in.modes[kF] = m.flap_modes;
+  in.modes[kL] = m.lag_modes;
   in.lock = o.lock;
   in.lr = o.lr;
   in.theta = o.theta;
@@ -211,10 +213,11 @@ LinearAero compiled_aero(const fm::ModelDescriptor& m, const Operating& o, doubl
   in.droop = o.droop;
   in.cdo_a = o.cdo_a;
   in.mu = o.mu;
-  in.g0 = g0;
-  in.h0 = h0;
-  in.omega_flap = in.omega_lag = in.damping_flap = in.damping_lag = zeros.data();
-  in.es_flap = in.es_lag = in.ecs_flap_lag = in.ecs_lag_flap = zeros.data();
+  in.q0[kF] = g0;
+  in.q0[kL] = h0;
+  in.omega[kF] = in.omega[kL] = in.damping[kF] = in.damping[kL] = zeros.data();
+  for (auto& row : in.elastic)
+    for (const double*& block : row) block = zeros.data();
   in.aero = vals.data();
   in.structural = structural.data();
   in.theta1c = o.theta1c;
@@ -442,8 +445,8 @@ NonlinearAero compiled_nonlinear_aero(const fm::ModelDescriptor& m, const Operat
   const std::vector<double> zeros(64, 0.0), structural(m.n_structural, 0.0);
   const double nan[1] = {std::nan("")};  // the nonlinear loads must not read g0, h0
   fm::CoefficientInputs in{};
-  in.flap_modes = m.flap_modes;
-  in.lag_modes = m.lag_modes;
+  in.modes[kF] = m.flap_modes;
+  in.modes[kL] = m.lag_modes;
   in.lock = o.lock;
   in.lr = o.lr;
   in.theta = o.theta;
@@ -452,9 +455,10 @@ NonlinearAero compiled_nonlinear_aero(const fm::ModelDescriptor& m, const Operat
   in.droop = o.droop;
   in.cdo_a = o.cdo_a;
   in.mu = o.mu;
-  in.g0 = in.h0 = nan;
-  in.omega_flap = in.omega_lag = in.damping_flap = in.damping_lag = zeros.data();
-  in.es_flap = in.es_lag = in.ecs_flap_lag = in.ecs_lag_flap = zeros.data();
+  in.q0[kF] = in.q0[kL] = nan;
+  in.omega[kF] = in.omega[kL] = in.damping[kF] = in.damping[kL] = zeros.data();
+  for (auto& row : in.elastic)
+    for (const double*& block : row) block = zeros.data();
   in.aero = vals.data();
   in.structural = structural.data();
   const int H = m.n_nonlinear_harmonics;

@@ -36,6 +36,7 @@ using flaplag::ModeKind;
 using flaplag::RotorParameters;
 using flaplag::TransitionMethod;
 using flaplag::TransitionOptions;
+using flaplag::model::Direction;
 using flaplag::testing::AbsClose;
 
 namespace {
@@ -310,10 +311,10 @@ TEST(Paper1974Shapes, MassAndCouplingRatiosUnchangedAerodynamicIntegralsChanged)
     }
     return s;
   };
-  const auto& fc = *mc.flap[0];
-  const auto& lc = *mc.lag[0];
-  const auto& fs = *ms.flap[0];
-  const auto& ls = *ms.lag[0];
+  const auto& fc = *mc.shapes(Direction::Flap)[0];
+  const auto& lc = *mc.shapes(Direction::Lag)[0];
+  const auto& fs = *ms.shapes(Direction::Flap)[0];
+  const auto& ls = *ms.shapes(Direction::Lag)[0];
   // int eta''^2 / int eta^2, int gamma''^2 / int gamma^2, (int eta'' gamma'')^2 / (...)
   EXPECT_TRUE(flaplag::testing::RelClose(integral(fc, 2, fc, 2) / integral(fc, 0, fc, 0),
                                          integral(fs, 2, fs, 2) / integral(fs, 0, fs, 0), 1e-10));

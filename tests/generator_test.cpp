@@ -28,6 +28,8 @@ namespace generator_test {
 
 namespace fd = flaplag::derive;
 namespace fm = flaplag::model;
+// The directions' places in the per-direction model inputs.
+constexpr int kF = fm::index(fm::Direction::Flap), kL = fm::index(fm::Direction::Lag);
 
 namespace {
 
@@ -165,8 +167,8 @@ struct RandomInputs {
 
   fm::CoefficientInputs inputs() const {
     fm::CoefficientInputs in{};
-    in.flap_modes = flap_modes;
-    in.lag_modes = lag_modes;
+    in.modes[kF] = flap_modes;
+    in.modes[kL] = lag_modes;
     in.lock = value.at("lock");
     in.lr = value.at("lr");
     in.theta = value.at("theta");
@@ -175,16 +177,16 @@ struct RandomInputs {
     in.droop = value.at("droop");
     in.cdo_a = value.at("cdo_a");
     in.mu = value.at("mu");
-    in.g0 = g0.data();
-    in.h0 = h0.data();
-    in.omega_flap = wf.data();
-    in.omega_lag = wl.data();
-    in.damping_flap = zf.data();
-    in.damping_lag = zl.data();
-    in.es_flap = esf.data();
-    in.es_lag = esl.data();
-    in.ecs_flap_lag = ecsfl.data();
-    in.ecs_lag_flap = ecslf.data();
+    in.q0[kF] = g0.data();
+    in.q0[kL] = h0.data();
+    in.omega[kF] = wf.data();
+    in.omega[kL] = wl.data();
+    in.damping[kF] = zf.data();
+    in.damping[kL] = zl.data();
+    in.elastic[kF][kF] = esf.data();
+    in.elastic[kL][kL] = esl.data();
+    in.elastic[kF][kL] = ecsfl.data();
+    in.elastic[kL][kF] = ecslf.data();
     in.aero = compiled_aero.data();
     in.structural = compiled_structural.data();
     if (value.count("theta1c") > 0) in.theta1c = value.at("theta1c");
@@ -266,8 +268,8 @@ TEST_P(GeneratedModel, CompiledCodeEqualsGiNaCEvaluation) {
     only.lock = only.lr = only.theta = only.inflow = nan;
     only.precone = only.droop = only.cdo_a = only.mu = nan;
     only.structural = r.compiled_structural.data();
-    only.flap_modes = cm->flap_modes;
-    only.lag_modes = cm->lag_modes;
+    only.modes[kF] = cm->flap_modes;
+    only.modes[kL] = cm->lag_modes;
     std::vector<double> structural_only(n * n);
     cm->mass(only, structural_only.data());
     EXPECT_EQ(structural_only, mass);
@@ -850,19 +852,20 @@ TEST(AuditReport, ValuesAtTheTypicalCaseAgreeWithTheCompiledModel) {
   const double zero[1] = {0.0}, wf[1] = {1.175}, wl[1] = {1.28303};
   double g0[1] = {0.0}, h0[1] = {0.0};
   fm::CoefficientInputs in{};
-  in.flap_modes = in.lag_modes = 1;
+  in.modes[kF] = in.modes[kL] = 1;
   in.lock = 10.0;
   in.lr = 1.0;
   in.theta = 0.15;
   in.inflow = lambda;
   in.cdo_a = 0.01 / a;
   in.mu = 0.0;
-  in.g0 = g0;
-  in.h0 = h0;
-  in.omega_flap = wf;
-  in.omega_lag = wl;
-  in.damping_flap = in.damping_lag = in.es_flap = in.es_lag = zero;
-  in.ecs_flap_lag = in.ecs_lag_flap = zero;
+  in.q0[kF] = g0;
+  in.q0[kL] = h0;
+  in.omega[kF] = wf;
+  in.omega[kL] = wl;
+  in.damping[kF] = in.damping[kL] = zero;
+  for (auto& row : in.elastic)
+    for (const double*& block : row) block = zero;
   in.aero = aero.data();
   in.structural = structural.data();
   double S[4], c[2];

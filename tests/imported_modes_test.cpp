@@ -24,6 +24,8 @@
 namespace flaplag::imported_modes_test {
 namespace {
 
+using flaplag::model::Direction;
+
 std::string text_of(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", v);
@@ -235,18 +237,18 @@ TEST(ModeTable, ModeSetTakesTheColumnsByNumber) {
   const ImportedModes table = parse_mode_table(joined(l), "fe.csv");
   const ModeSet s = imported_mode_set(table, 2, 1);
   EXPECT_EQ(s.kind, "imported");
-  ASSERT_EQ(s.flap.size(), 2u);
-  ASSERT_EQ(s.lag.size(), 1u);
-  EXPECT_EQ(s.omega_flap, (std::vector<double>{1.1, 3.5}));
-  EXPECT_EQ(s.omega_lag, (std::vector<double>{1.3}));
-  EXPECT_EQ(s.stiffness_flap, 0.0);
-  EXPECT_EQ(s.stiffness_lag, 0.0);
+  ASSERT_EQ(s.shapes(Direction::Flap).size(), 2u);
+  ASSERT_EQ(s.shapes(Direction::Lag).size(), 1u);
+  EXPECT_EQ(s[Direction::Flap].omega, (std::vector<double>{1.1, 3.5}));
+  EXPECT_EQ(s[Direction::Lag].omega, (std::vector<double>{1.3}));
+  EXPECT_EQ(s[Direction::Flap].stiffness, 0.0);
+  EXPECT_EQ(s[Direction::Lag].stiffness, 0.0);
   EXPECT_EQ(s.blade, nullptr);
   // The shapes are the splines of flap1 = eq 4.1 (a quartic: reproduced) and flap2.
   for (double x : {0.0, 0.13, 0.5, 0.77, 1.0}) {
-    EXPECT_NEAR(s.flap[0]->value(0, x), assumed(x), 1e-14);
-    EXPECT_NEAR(s.flap[0]->value(2, x), 4.0 * (1 - x) * (1 - x), 1e-12);
-    EXPECT_NEAR(s.flap[1]->value(1, x), x * (6.0 - 15.0 * x) / -2.0, 1e-12);
+    EXPECT_NEAR(s.shapes(Direction::Flap)[0]->value(0, x), assumed(x), 1e-14);
+    EXPECT_NEAR(s.shapes(Direction::Flap)[0]->value(2, x), 4.0 * (1 - x) * (1 - x), 1e-12);
+    EXPECT_NEAR(s.shapes(Direction::Flap)[1]->value(1, x), x * (6.0 - 15.0 * x) / -2.0, 1e-12);
   }
   try {
     imported_mode_set(table, 3, 1);
@@ -271,11 +273,11 @@ TEST(ModeTable, WrittenTablesReadBack) {
   ASSERT_EQ(m.modes.size(), 5u);
   EXPECT_EQ(m.modes[2].name, "lag1");
   EXPECT_TRUE(m.notes.empty());  // the exact modes have tip value 1 already
-  for (int k = 0; k < 2; ++k) EXPECT_EQ(m.modes[k].omega, ex.omega_flap[k]);
-  for (int k = 0; k < 3; ++k) EXPECT_EQ(m.modes[2 + k].omega, ex.omega_lag[k]);
+  for (int k = 0; k < 2; ++k) EXPECT_EQ(m.modes[k].omega, ex[Direction::Flap].omega[k]);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(m.modes[2 + k].omega, ex[Direction::Lag].omega[k]);
   for (std::size_t i = 0; i + 1 < m.x0.size(); ++i) {
     EXPECT_EQ(m.x0[i], static_cast<double>(i) / 100.0);
-    EXPECT_NEAR(m.modes[1].values[i], ex.flap[1]->value(0, m.x0[i]), 1e-15);
+    EXPECT_NEAR(m.modes[1].values[i], ex.shapes(Direction::Flap)[1]->value(0, m.x0[i]), 1e-15);
   }
   EXPECT_THROW(mode_table_text(ex, kMinModeStations - 1), InvalidInput);
   EXPECT_THROW(mode_table_text(ex, kMaxModeStations + 1), InvalidInput);
@@ -339,7 +341,7 @@ TEST(TabulatedModeShape, ConvergesAtItsOrderToTheExactModes) {
     return e;
   };
   const double bound_401[4] = {1e-11, 3e-8, 5e-5, 5e-2};
-  for (const auto* shapes : {&ex.flap, &ex.lag}) {
+  for (const auto* shapes : {&ex.shapes(Direction::Flap), &ex.shapes(Direction::Lag)}) {
     for (std::size_t m = 0; m < shapes->size(); ++m) {
       const std::vector<double> coarse = errors(*(*shapes)[m], 401);
       const std::vector<double> fine = errors(*(*shapes)[m], 801);
@@ -404,8 +406,8 @@ TEST(MassOrthogonality, ExactModesAreOrthogonal) {
 
 TEST(MassOrthogonality, TwoSimilarShapesAreFarFromOrthogonal) {
   ModeSet s = assumed_modes(1.1, 1.2);
-  s.lag.push_back(cantilever_mode(1));  // lag: eq 4.1 and phi_1 (tip value 2)
-  s.omega_lag.push_back(3.0);
+  s[Direction::Lag].shapes.push_back(cantilever_mode(1));  // lag: eq 4.1 and phi_1 (tip value 2)
+  s[Direction::Lag].omega.push_back(3.0);
   const double ab = simpson([](double x) { return 3.0 * assumed(x) * cantilever1(x); });
   const double aa = simpson([](double x) { return 3.0 * assumed(x) * assumed(x); });
   const double bb = simpson([](double x) { return 3.0 * cantilever1(x) * cantilever1(x); });
@@ -425,8 +427,8 @@ TEST(MassOrthogonality, UsesTheBladeMassAndTipMass) {
   b.mass = {2.4, 2.4};  // int 2.4 x0^2 = 0.8, plus the tip mass 0.2
   b.tip_mass = 0.2;
   weighted.blade = std::make_shared<const BladeProperties>(b);
-  const ModeShape& f1 = *ex.flap[0];
-  const ModeShape& f2 = *ex.flap[1];
+  const ModeShape& f1 = *ex.shapes(Direction::Flap)[0];
+  const ModeShape& f2 = *ex.shapes(Direction::Flap)[1];
   auto mass = [&](const ModeShape& a, const ModeShape& c) {
     return simpson([&](double x) { return 2.4 * a.value(0, x) * c.value(0, x); }) +
            0.2 * a.value(0, 1.0) * c.value(0, 1.0);
@@ -469,15 +471,17 @@ TEST_P(RoundTrip, ImportedExactModesGiveTheSameCriticalAdvanceRatio) {
   const ModeSet& a = computed.modes();
   const ModeSet& b = imported.modes();
   EXPECT_EQ(b.kind, "imported");
-  ASSERT_EQ(a.omega_flap.size(), b.omega_flap.size());
-  ASSERT_EQ(a.omega_lag.size(), b.omega_lag.size());
-  for (std::size_t k = 0; k < a.omega_flap.size(); ++k)
-    EXPECT_NEAR(b.omega_flap[k], a.omega_flap[k], 1e-12);
-  for (std::size_t k = 0; k < a.omega_lag.size(); ++k)
-    EXPECT_NEAR(b.omega_lag[k], a.omega_lag[k], 1e-12);
+  ASSERT_EQ(a[Direction::Flap].omega.size(), b[Direction::Flap].omega.size());
+  ASSERT_EQ(a[Direction::Lag].omega.size(), b[Direction::Lag].omega.size());
+  for (std::size_t k = 0; k < a[Direction::Flap].omega.size(); ++k)
+    EXPECT_NEAR(b[Direction::Flap].omega[k], a[Direction::Flap].omega[k], 1e-12);
+  for (std::size_t k = 0; k < a[Direction::Lag].omega.size(); ++k)
+    EXPECT_NEAR(b[Direction::Lag].omega[k], a[Direction::Lag].omega[k], 1e-12);
   // The elastic coupling's stiffnesses, as the exact modes have them.
-  EXPECT_NEAR(b.stiffness_flap, a.stiffness_flap, 1e-12 * a.stiffness_flap);
-  EXPECT_NEAR(b.stiffness_lag, a.stiffness_lag, 1e-12 * a.stiffness_lag);
+  EXPECT_NEAR(b[Direction::Flap].stiffness, a[Direction::Flap].stiffness,
+              1e-12 * a[Direction::Flap].stiffness);
+  EXPECT_NEAR(b[Direction::Lag].stiffness, a[Direction::Lag].stiffness,
+              1e-12 * a[Direction::Lag].stiffness);
 
   const CriticalResult r = imported.critical({});
   ASSERT_TRUE(r.mu_c.has_value()) << r.message;
@@ -532,7 +536,7 @@ TEST(ImportedModes, NotOrthogonalShapesAreNoted) {
   opt.flap_modes = 2;
   ModeSet s = exact_modes(1.175, 1.28303, opt);
   // flap2 replaced by a shape close to flap1 (eq 4.1): far from orthogonal to it.
-  s.flap[1] = assumed_mode_shape();
+  s[Direction::Flap].shapes[1] = assumed_mode_shape();
   RotorParameters p;
   p.modes = ModeKind::Exact;
   p.model = "paper-2x1";

@@ -21,6 +21,7 @@
 namespace flaplag::rotating_modes_test {
 namespace {
 
+using flaplag::model::Direction;
 using model::Factor;
 using model::FactorRef;
 using model::Inner;
@@ -61,24 +62,25 @@ TEST(RotatingModes, TypicalBlade) {
   const ExactModes r = exact_rotating_modes(kOmegaF, kOmegaL);
   const ModeSet& m = r.modes;
   EXPECT_EQ("exact", m.kind);
-  ASSERT_EQ(1u, m.flap.size());
-  ASSERT_EQ(1u, m.lag.size());
-  EXPECT_TRUE(RelClose(kOmegaF, m.omega_flap[0], 1e-12));
-  EXPECT_TRUE(RelClose(kOmegaL, m.omega_lag[0], 1e-12));
-  EXPECT_GT(m.stiffness_flap, 0.0);
-  EXPECT_GT(m.stiffness_lag, m.stiffness_flap);
+  ASSERT_EQ(1u, m.shapes(Direction::Flap).size());
+  ASSERT_EQ(1u, m.shapes(Direction::Lag).size());
+  EXPECT_TRUE(RelClose(kOmegaF, m[Direction::Flap].omega[0], 1e-12));
+  EXPECT_TRUE(RelClose(kOmegaL, m[Direction::Lag].omega[0], 1e-12));
+  EXPECT_GT(m[Direction::Flap].stiffness, 0.0);
+  EXPECT_GT(m[Direction::Lag].stiffness, m[Direction::Flap].stiffness);
   // Nonrotating frequency from k beta^4 = mbar wbar^2.
   const double b1 = cantilever_root(1);
-  EXPECT_TRUE(
-      RelClose(std::sqrt(m.stiffness_flap / 3.0) * b1 * b1, r.omega_flap_nonrotating, 1e-15));
-  EXPECT_TRUE(RelClose(std::sqrt(m.stiffness_lag / 3.0) * b1 * b1, r.omega_lag_nonrotating, 1e-15));
-  EXPECT_LT(r.omega_flap_nonrotating, kOmegaF);
-  std::cout << "typical blade: k_y = " << round_trip_text(m.stiffness_flap)
-            << ", k_z = " << round_trip_text(m.stiffness_lag)
-            << ", wF1N = " << round_trip_text(r.omega_flap_nonrotating)
-            << ", wL1N = " << round_trip_text(r.omega_lag_nonrotating) << "\n";
-  ::testing::Test::RecordProperty("k_y", round_trip_text(m.stiffness_flap));
-  ::testing::Test::RecordProperty("k_z", round_trip_text(m.stiffness_lag));
+  EXPECT_TRUE(RelClose(std::sqrt(m[Direction::Flap].stiffness / 3.0) * b1 * b1,
+                       r[Direction::Flap].omega_nonrotating, 1e-15));
+  EXPECT_TRUE(RelClose(std::sqrt(m[Direction::Lag].stiffness / 3.0) * b1 * b1,
+                       r[Direction::Lag].omega_nonrotating, 1e-15));
+  EXPECT_LT(r[Direction::Flap].omega_nonrotating, kOmegaF);
+  std::cout << "typical blade: k_y = " << round_trip_text(m[Direction::Flap].stiffness)
+            << ", k_z = " << round_trip_text(m[Direction::Lag].stiffness)
+            << ", wF1N = " << round_trip_text(r[Direction::Flap].omega_nonrotating)
+            << ", wL1N = " << round_trip_text(r[Direction::Lag].omega_nonrotating) << "\n";
+  ::testing::Test::RecordProperty("k_y", round_trip_text(m[Direction::Flap].stiffness));
+  ::testing::Test::RecordProperty("k_z", round_trip_text(m[Direction::Lag].stiffness));
 }
 
 TEST(RotatingModes, RequestedFrequencyIsTheRayleighQuotientOfTheShape) {
@@ -91,13 +93,17 @@ TEST(RotatingModes, RequestedFrequencyIsTheRayleighQuotientOfTheShape) {
         if (wf <= centrifugal_limit(BendingDirection::Flap, o)) continue;
         if (wl <= centrifugal_limit(BendingDirection::Lag, o)) continue;
         const ModeSet m = exact_modes(wf, wl, o);
-        EXPECT_TRUE(RelClose(wf, m.omega_flap[0], 1e-12)) << wf << " e1=" << e1;
-        EXPECT_TRUE(RelClose(wl, m.omega_lag[0], 1e-12)) << wl << " e1=" << e1;
-        EXPECT_TRUE(RelClose(
-            wf, rayleigh_frequency(BendingDirection::Flap, *m.flap[0], m.stiffness_flap, e1),
-            1e-12));
-        EXPECT_TRUE(RelClose(
-            wl, rayleigh_frequency(BendingDirection::Lag, *m.lag[0], m.stiffness_lag, e1), 1e-11));
+        EXPECT_TRUE(RelClose(wf, m[Direction::Flap].omega[0], 1e-12)) << wf << " e1=" << e1;
+        EXPECT_TRUE(RelClose(wl, m[Direction::Lag].omega[0], 1e-12)) << wl << " e1=" << e1;
+        EXPECT_TRUE(
+            RelClose(wf,
+                     rayleigh_frequency(BendingDirection::Flap, *m.shapes(Direction::Flap)[0],
+                                        m[Direction::Flap].stiffness, e1),
+                     1e-12));
+        EXPECT_TRUE(RelClose(wl,
+                             rayleigh_frequency(BendingDirection::Lag, *m.shapes(Direction::Lag)[0],
+                                                m[Direction::Lag].stiffness, e1),
+                             1e-11));
       }
     }
   }
@@ -108,7 +114,7 @@ TEST(RotatingModes, ShapesBoundaryConditionsAndTipNormalisation) {
   o.flap_modes = 3;
   o.lag_modes = 3;
   const ModeSet m = exact_modes(kOmegaF, kOmegaL, o);
-  for (const auto* set : {&m.flap, &m.lag}) {
+  for (const auto* set : {&m.shapes(Direction::Flap), &m.shapes(Direction::Lag)}) {
     for (const auto& s : *set) {
       EXPECT_TRUE(RelClose(1.0, s->value(0, 1.0), 1e-14));
       EXPECT_TRUE(AbsClose(0.0, s->value(0, 0.0), 1e-14));
@@ -120,7 +126,8 @@ TEST(RotatingModes, ShapesBoundaryConditionsAndTipNormalisation) {
   // The first rotating flap mode is close to the first cantilever function (tip-normalised).
   const auto phi1 = cantilever_mode(1);
   for (double x : {0.25, 0.5, 0.75}) {
-    EXPECT_TRUE(AbsClose(phi1->value(0, x) / 2.0, m.flap[0]->value(0, x), 0.05)) << x;
+    EXPECT_TRUE(AbsClose(phi1->value(0, x) / 2.0, m.shapes(Direction::Flap)[0]->value(0, x), 0.05))
+        << x;
   }
 }
 
@@ -132,9 +139,9 @@ TEST(RotatingModes, OrthogonalityRelationsA1ToA4) {
     o.e1_over_l = e1;
     const ModeSet m = exact_modes(kOmegaF, kOmegaL, o);
     for (bool flap : {true, false}) {
-      const auto& s = flap ? m.flap : m.lag;
-      const double k = flap ? m.stiffness_flap : m.stiffness_lag;
-      const auto& w = flap ? m.omega_flap : m.omega_lag;
+      const auto& s = flap ? m.shapes(Direction::Flap) : m.shapes(Direction::Lag);
+      const double k = flap ? m[Direction::Flap].stiffness : m[Direction::Lag].stiffness;
+      const auto& w = flap ? m[Direction::Flap].omega : m[Direction::Lag].omega;
       for (int i = 0; i < 4; ++i) {
         for (int j = 0; j <= i; ++j) {
           // k int s_i'' s_j'' + int s_i' s_j' T  [- int mbar s_i s_j for lag]
@@ -160,7 +167,7 @@ TEST(RotatingModes, OrthogonalityRelationsA1ToA4) {
 TEST(RotatingModes, FrequenciesConvergeWithBasisSize) {
   // Rayleigh-Ritz on nested subspaces: for fixed stiffness every frequency is non-increasing in
   // n_basis, and the first one settles quickly.
-  const double k_y = exact_modes(kOmegaF, kOmegaL).stiffness_flap;
+  const double k_y = exact_modes(kOmegaF, kOmegaL)[Direction::Flap].stiffness;
   std::vector<double> first;
   std::vector<double> prev;
   for (int n = 1; n <= 8; ++n) {
@@ -206,8 +213,8 @@ TEST(RotatingModes, SouthwellCoefficient) {
   const ExactModes r = exact_rotating_modes(kOmegaF, kOmegaL);
   std::cout << "Southwell K_1 (phi_1 Rayleigh) = " << round_trip_text(k1)
             << "; typical blade wF1^2 - wF1N^2 = "
-            << round_trip_text(kOmegaF * kOmegaF -
-                               r.omega_flap_nonrotating * r.omega_flap_nonrotating)
+            << round_trip_text(kOmegaF * kOmegaF - r[Direction::Flap].omega_nonrotating *
+                                                       r[Direction::Flap].omega_nonrotating)
             << "\n";
   // Lag: the in-plane term lowers wbar^2 by exactly 1 at equal stiffness (eq A.4).
   const double wf = rotating_frequency(BendingDirection::Flap, 1.2);
@@ -244,19 +251,20 @@ TEST(RotatingModes, Paper1974ShapesOption) {
   o.paper_1974_shapes = true;
   const ExactModes p = exact_rotating_modes(kOmegaF, kOmegaL, o);
   const ExactModes r = exact_rotating_modes(kOmegaF, kOmegaL);
-  EXPECT_EQ(r.modes.stiffness_flap, p.modes.stiffness_flap);
-  EXPECT_EQ(r.modes.stiffness_lag, p.modes.stiffness_lag);
-  EXPECT_EQ(r.modes.omega_flap, p.modes.omega_flap);
+  EXPECT_EQ(r.modes[Direction::Flap].stiffness, p.modes[Direction::Flap].stiffness);
+  EXPECT_EQ(r.modes[Direction::Lag].stiffness, p.modes[Direction::Lag].stiffness);
+  EXPECT_EQ(r.modes[Direction::Flap].omega, p.modes[Direction::Flap].omega);
   for (int j = 0; j < 5; ++j) {
     const double sign = (j % 2 == 0) ? 1.0 : -1.0;
-    EXPECT_TRUE(RelClose(sign * r.flap_coefficients(j, 0) / (r.flap_coefficients(0, 0)),
-                         p.flap_coefficients(j, 0) / p.flap_coefficients(0, 0), 1e-14));
+    EXPECT_TRUE(RelClose(
+        sign * r[Direction::Flap].coefficients(j, 0) / (r[Direction::Flap].coefficients(0, 0)),
+        p[Direction::Flap].coefficients(j, 0) / p[Direction::Flap].coefficients(0, 0), 1e-14));
   }
-  EXPECT_TRUE(RelClose(1.0, p.modes.flap[0]->value(0, 1.0), 1e-14));
-  const double w74 =
-      rayleigh_frequency(BendingDirection::Flap, *p.modes.flap[0], p.modes.stiffness_flap);
-  const double l74 =
-      rayleigh_frequency(BendingDirection::Lag, *p.modes.lag[0], p.modes.stiffness_lag);
+  EXPECT_TRUE(RelClose(1.0, p.modes.shapes(Direction::Flap)[0]->value(0, 1.0), 1e-14));
+  const double w74 = rayleigh_frequency(BendingDirection::Flap, *p.modes.shapes(Direction::Flap)[0],
+                                        p.modes[Direction::Flap].stiffness);
+  const double l74 = rayleigh_frequency(BendingDirection::Lag, *p.modes.shapes(Direction::Lag)[0],
+                                        p.modes[Direction::Lag].stiffness);
   std::cout << "1974 shapes: Rayleigh flap frequency " << round_trip_text(w74)
             << " (true 1.175), lag " << round_trip_text(l74) << " (true 1.28303)\n";
   ::testing::Test::RecordProperty("rayleigh_flap_1974", round_trip_text(w74));
@@ -292,7 +300,7 @@ TEST(RotatingModes, UnreachableFrequenciesThrow) {
   }
   ExactModeOptions six;
   six.n_basis = 6;
-  EXPECT_TRUE(RelClose(0.2, exact_modes(kOmegaF, 0.2, six).omega_lag[0], 1e-12));
+  EXPECT_TRUE(RelClose(0.2, exact_modes(kOmegaF, 0.2, six)[Direction::Lag].omega[0], 1e-12));
   for (double bad : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
     EXPECT_THROW(exact_modes(bad, kOmegaL), InvalidInput) << bad;
     EXPECT_THROW(exact_modes(kOmegaF, bad), InvalidInput) << bad;

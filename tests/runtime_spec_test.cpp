@@ -23,6 +23,8 @@ namespace runtime_spec_test {
 namespace {
 
 namespace fm = flaplag::model;
+// The directions' places in the per-direction model inputs.
+constexpr int kF = fm::index(fm::Direction::Flap), kL = fm::index(fm::Direction::Lag);
 namespace fs = std::filesystem;
 
 const fm::ModelFamily& compiled(const std::string& name) {
@@ -65,13 +67,14 @@ struct Inputs {
     in.mu = 0.5 + 0.4 * u(rng);
     in.theta1c = 0.1 * u(rng);
     in.theta1s = 0.1 * u(rng);
-    in.g0 = g0.data(), in.h0 = h0.data(), in.omega_flap = omega_flap.data();
-    in.omega_lag = omega_lag.data(), in.damping_flap = damping_flap.data();
-    in.damping_lag = damping_lag.data(), in.es_flap = es_flap.data(), in.es_lag = es_lag.data();
-    in.ecs_flap_lag = ecs_flap_lag.data(), in.ecs_lag_flap = ecs_lag_flap.data();
+    in.q0[kF] = g0.data(), in.q0[kL] = h0.data(), in.omega[kF] = omega_flap.data();
+    in.omega[kL] = omega_lag.data(), in.damping[kF] = damping_flap.data();
+    in.damping[kL] = damping_lag.data(), in.elastic[kF][kF] = es_flap.data();
+    in.elastic[kL][kL] = es_lag.data(), in.elastic[kF][kL] = ecs_flap_lag.data();
+    in.elastic[kL][kF] = ecs_lag_flap.data();
     in.aero = aero.data(), in.structural = structural.data();
-    in.flap_modes = M;
-    in.lag_modes = N;
+    in.modes[kF] = M;
+    in.modes[kL] = N;
   }
   std::vector<double> g0, h0, omega_flap, omega_lag, damping_flap, damping_lag, es_flap, es_lag,
       ecs_flap_lag, ecs_lag_flap, aero, structural, y;

@@ -397,7 +397,7 @@ TEST(PeriodicTrim, ThrustAndFirstFlapHarmonicOfTheEquilibriumAreTrimmed) {
   const flaplag::Analysis an(r.parameters, {}, flaplag::OperatingCondition::At(r));
   const auto eq = an.periodic_equilibrium(mu);
   ASSERT_NE(eq.status, Status::Failed) << eq.message;
-  const double tip = an.modes().flap[0]->value(0, 1.0);
+  const double tip = an.modes().shapes(flaplag::model::Direction::Flap)[0]->value(0, 1.0);
   EXPECT_LT(std::abs(tip * eq.coefficients(0, 1)), 1e-10);
   EXPECT_LT(std::abs(tip * eq.coefficients(0, 2)), 1e-10);
   EXPECT_NEAR(0.5 * r.parameters.sigma * r.parameters.lift_slope * eq.mean_thrust, ct, 1e-10 * ct);

@@ -116,40 +116,40 @@ void Deriver::make_symbols() {
   cdo_ = add_scalar("cdo_a", "in.cdo_a");
   mu_ = add_scalar("mu", "in.mu");
   auto idx1 = [](int i) { return std::to_string(i + 1); };
+  // The per-direction inputs of model_api.h: in.omega[kFlap][k], in.elastic[kFlap][kLag][i].
+  auto input = [](const char* array, const char* dirs, int i) {
+    return std::string("in.") + array + dirs + "[" + std::to_string(i) + "]";
+  };
   for (int k = 0; k < M_; ++k)
-    g0_.push_back(add_scalar("g0_" + idx1(k), "in.g0[" + std::to_string(k) + "]"));
-  for (int m = 0; m < N_; ++m)
-    h0_.push_back(add_scalar("h0_" + idx1(m), "in.h0[" + std::to_string(m) + "]"));
+    g0_.push_back(add_scalar("g0_" + idx1(k), input("q0", "[kFlap]", k)));
+  for (int m = 0; m < N_; ++m) h0_.push_back(add_scalar("h0_" + idx1(m), input("q0", "[kLag]", m)));
   for (int k = 0; k < M_; ++k) {
-    wf_.push_back(add_scalar("omega_flap_" + idx1(k), "in.omega_flap[" + std::to_string(k) + "]"));
-    zf_.push_back(
-        add_scalar("damping_flap_" + idx1(k), "in.damping_flap[" + std::to_string(k) + "]"));
+    wf_.push_back(add_scalar("omega_flap_" + idx1(k), input("omega", "[kFlap]", k)));
+    zf_.push_back(add_scalar("damping_flap_" + idx1(k), input("damping", "[kFlap]", k)));
   }
   for (int m = 0; m < N_; ++m) {
-    wl_.push_back(add_scalar("omega_lag_" + idx1(m), "in.omega_lag[" + std::to_string(m) + "]"));
-    zl_.push_back(
-        add_scalar("damping_lag_" + idx1(m), "in.damping_lag[" + std::to_string(m) + "]"));
+    wl_.push_back(add_scalar("omega_lag_" + idx1(m), input("omega", "[kLag]", m)));
+    zl_.push_back(add_scalar("damping_lag_" + idx1(m), input("damping", "[kLag]", m)));
   }
-  auto flat = [](int r, int c, int cols) { return std::to_string(r * cols + c); };
   esf_.assign(M_, std::vector<int>(M_));
   ecsfl_.assign(M_, std::vector<int>(N_));
   esl_.assign(N_, std::vector<int>(N_));
   ecslf_.assign(N_, std::vector<int>(M_));
   for (int i = 0; i < M_; ++i) {
     for (int k = 0; k < M_; ++k)
-      esf_[i][k] =
-          add_scalar("es_flap_" + idx1(i) + "_" + idx1(k), "in.es_flap[" + flat(i, k, M_) + "]");
+      esf_[i][k] = add_scalar("es_flap_" + idx1(i) + "_" + idx1(k),
+                              input("elastic", "[kFlap][kFlap]", i * M_ + k));
     for (int m = 0; m < N_; ++m)
       ecsfl_[i][m] = add_scalar("ecs_flap_lag_" + idx1(i) + "_" + idx1(m),
-                                "in.ecs_flap_lag[" + flat(i, m, N_) + "]");
+                                input("elastic", "[kFlap][kLag]", i * N_ + m));
   }
   for (int i = 0; i < N_; ++i) {
     for (int m = 0; m < N_; ++m)
-      esl_[i][m] =
-          add_scalar("es_lag_" + idx1(i) + "_" + idx1(m), "in.es_lag[" + flat(i, m, N_) + "]");
+      esl_[i][m] = add_scalar("es_lag_" + idx1(i) + "_" + idx1(m),
+                              input("elastic", "[kLag][kLag]", i * N_ + m));
     for (int k = 0; k < M_; ++k)
       ecslf_[i][k] = add_scalar("ecs_lag_flap_" + idx1(i) + "_" + idx1(k),
-                                "in.ecs_lag_flap[" + flat(i, k, M_) + "]");
+                                input("elastic", "[kLag][kFlap]", i * M_ + k));
   }
   // Appended last, and only when switched on, so that the models without cyclic pitch keep
   // their scalar list (and generated code) unchanged.

@@ -145,7 +145,7 @@ void emit_polynomial(std::ostringstream& os, const DerivedModel& m,
 void emit_nonlinear(std::ostringstream& os, const DerivedModel& m) {
   const int n = m.n(), H = m.H_nonlinear;
   os << "// Nonlinear generalized loads: mass * q'' = sum_h phi_h(psi) force[h](y), y the full "
-        "state\n// (not a perturbation; g0, h0 are not read), every product of the coordinates "
+        "state\n// (not a perturbation; in.q0 is not read), every product of the coordinates "
         "that the\n// ordering keeps; and d force / d y.  H_nl = "
      << H << ".\n"
      << "FLAPLAG_GENERATED_NO_UBSAN\n"
@@ -217,6 +217,9 @@ std::string emit_cpp(const DerivedModel& m) {
      << "#else\n#define FLAPLAG_GENERATED_NO_UBSAN\n#endif\n\n";
   os << "namespace flaplag::generated::" << id << " {\nnamespace {\n\n";
   os << "using model::Factor;\nusing model::Inner;\n\n";
+  os << "// The directions' places in the per-direction inputs (CoefficientInputs).\n"
+     << "constexpr int kFlap = model::index(model::Direction::Flap);\n"
+     << "constexpr int kLag = model::index(model::Direction::Lag);\n\n";
   os << "const model::AeroIntegral kAero[] = {\n";
   for (size_t j = 0; j < m.aero.size(); ++j) {
     const auto& k = m.aero_keys[j];

@@ -48,15 +48,20 @@ std::string state_text(ModeDir d, bool rate, const std::string& v) {
   return std::string(d == ModeDir::Flap ? "g_" : "h_") + v + (rate ? "'" : "");
 }
 
-// Array element of an indexed scalar.
+// The index of a direction in the per-direction inputs (the constants the emitted file defines).
+std::string direction_cpp(ModeDir d) { return d == ModeDir::Flap ? "kFlap" : "kLag"; }
+
+// Array element of an indexed scalar: in.omega[kFlap][i], in.elastic[kFlap][kLag][i * N + j].
 std::string indexed_cpp(const IndexedScalar& s) {
   auto v = [&](size_t a) { return var_name(s.args[a]); };
-  std::string base;
+  const FamilyInput input = family_input(s.family);
+  std::string base = "in." + input.array;
+  for (ModeDir d : input.dirs) base += "[" + direction_cpp(d) + "]";
   if (s.args.size() == 1) {
-    base = "in." + s.family + "[" + v(0) + "]";
+    base += "[" + v(0) + "]";
   } else {
-    const bool second_flap = s.family == "es_flap" || s.family == "ecs_lag_flap";
-    base = "in." + s.family + "[" + v(0) + " * " + (second_flap ? "M" : "N") + " + " + v(1) + "]";
+    const bool second_flap = input.dirs.at(1) == ModeDir::Flap;
+    base += "[" + v(0) + " * " + (second_flap ? "M" : "N") + " + " + v(1) + "]";
   }
   std::string out = base;
   for (int p = 1; p < s.power; ++p) out += " * " + base;
@@ -460,7 +465,10 @@ std::string emit_family_cpp(const GenericModel& g) {
      << "#define FLAPLAG_GENERATED_NO_UBSAN __attribute__((no_sanitize(\"undefined\")))\n"
      << "#else\n#define FLAPLAG_GENERATED_NO_UBSAN\n#endif\n\n"
      << "namespace flaplag::generated::" << id << " {\nnamespace {\n\n"
-     << "using model::Direction;\nusing model::Factor;\nusing model::Inner;\n\n";
+     << "using model::Direction;\nusing model::Factor;\nusing model::Inner;\n\n"
+     << "// The directions' places in the per-direction inputs (CoefficientInputs).\n"
+     << "constexpr int kFlap = model::index(Direction::Flap);\n"
+     << "constexpr int kLag = model::index(Direction::Lag);\n\n";
   for (IntegralRef ref : {IntegralRef::Aero, IntegralRef::Structural}) {
     os << "// " << (ref == IntegralRef::Aero ? "Aerodynamic" : "Structural")
        << " integral templates (letters a, b, c: the template's mode variables).\n"
@@ -488,7 +496,7 @@ std::string emit_family_cpp(const GenericModel& g) {
   os << "// The integral tensors of in.aero, in.structural and the mode counts.\n"
      << "struct Tensors {\n"
      << "  explicit Tensors(const model::CoefficientInputs& in)\n"
-     << "      : M(in.flap_modes),\n        N(in.lag_modes),\n"
+     << "      : M(in.modes[kFlap]),\n        N(in.modes[kLag]),\n"
      << "        A(kAero, static_cast<int>(std::size(kAero)), in.aero, M, N),\n"
      << "        S(kStructural, static_cast<int>(std::size(kStructural)), in.structural, M, N) "
         "{}\n"
@@ -505,7 +513,7 @@ std::string emit_family_cpp(const GenericModel& g) {
   emit_equilibrium(os, g);
   emit_thrust(os, g);
   os << "// Nonlinear generalized loads: mass * q'' = sum_h phi_h(psi) force[h](y), y the full "
-        "state\n// (not a perturbation; g0, h0 are not read), every product of the coordinates "
+        "state\n// (not a perturbation; in.q0 is not read), every product of the coordinates "
         "that the\n// ordering keeps; and d force / d y.  H_nl = "
      << g.H_nonlinear << ".\n"
      << "FLAPLAG_GENERATED_NO_UBSAN\n"

@@ -28,23 +28,25 @@ ModeDir dir_of(FactorKind k) {
 }
 bool has_mode(FactorKind k) { return model::has_mode(static_cast<model::Factor>(k)); }
 
-// Families of indexed scalars and the directions of their indices (derive.cc's names).
+// Families of indexed scalars, the directions of their indices (derive.cc's names) and the
+// per-direction input they read (model_api.h CoefficientInputs).
 struct Family {
   const char* name;
   std::vector<ModeDir> dirs;
+  const char* array;
 };
 const std::vector<Family>& families() {
   static const std::vector<Family> f = {
-      {"g0", {ModeDir::Flap}},
-      {"h0", {ModeDir::Lag}},
-      {"omega_flap", {ModeDir::Flap}},
-      {"damping_flap", {ModeDir::Flap}},
-      {"omega_lag", {ModeDir::Lag}},
-      {"damping_lag", {ModeDir::Lag}},
-      {"es_flap", {ModeDir::Flap, ModeDir::Flap}},
-      {"ecs_flap_lag", {ModeDir::Flap, ModeDir::Lag}},
-      {"es_lag", {ModeDir::Lag, ModeDir::Lag}},
-      {"ecs_lag_flap", {ModeDir::Lag, ModeDir::Flap}},
+      {"g0", {ModeDir::Flap}, "q0"},
+      {"h0", {ModeDir::Lag}, "q0"},
+      {"omega_flap", {ModeDir::Flap}, "omega"},
+      {"damping_flap", {ModeDir::Flap}, "damping"},
+      {"omega_lag", {ModeDir::Lag}, "omega"},
+      {"damping_lag", {ModeDir::Lag}, "damping"},
+      {"es_flap", {ModeDir::Flap, ModeDir::Flap}, "elastic"},
+      {"ecs_flap_lag", {ModeDir::Flap, ModeDir::Lag}, "elastic"},
+      {"es_lag", {ModeDir::Lag, ModeDir::Lag}, "elastic"},
+      {"ecs_lag_flap", {ModeDir::Lag, ModeDir::Flap}, "elastic"},
   };
   return f;
 }
@@ -1012,6 +1014,12 @@ std::vector<std::string> expand_generic(const GenericModel& g, int M, int N) {
   }
   std::sort(out.begin(), out.end());
   return out;
+}
+
+FamilyInput family_input(const std::string& family) {
+  const Family* f = family_of(family);
+  if (f == nullptr) throw std::logic_error("no model input is named " + family);
+  return {f->array, f->dirs};
 }
 
 }  // namespace flaplag::derive

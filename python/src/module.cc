@@ -521,7 +521,8 @@ py::dict modes_dict(const ModeSet& modes, const py::object& stations, int deriva
                     std::uint64_t memory_limit) {
   if (derivative < 0 || derivative > 3)
     throw InvalidInput("derivative", std::to_string(derivative), "must be 0, 1, 2 or 3");
-  const int shapes = static_cast<int>(modes.flap.size() + modes.lag.size());
+  int shapes = 0;
+  for (const DirectionModes& dm : modes.directions) shapes += dm.count();
   py::array_t<double> x;
   if (py::isinstance<py::int_>(stations)) {
     const long long n = stations.cast<long long>();
@@ -564,12 +565,16 @@ py::dict modes_dict(const ModeSet& modes, const py::object& stations, int deriva
   d["kind"] = modes.kind;
   d["x"] = x;
   d["derivative"] = derivative;
-  d["flap"] = sample(modes.flap);
-  d["lag"] = sample(modes.lag);
-  d["omega_flap"] = to_numpy(modes.omega_flap);
-  d["omega_lag"] = to_numpy(modes.omega_lag);
-  d["stiffness_flap"] = modes.stiffness_flap;
-  d["stiffness_lag"] = modes.stiffness_lag;
+  // Per direction (model_api.h names): "flap", "lag"; "omega_flap", ...; "stiffness_flap", ...
+  auto name = [](model::Direction dir) {
+    return std::string(model::kDirectionNames[model::index(dir)]);
+  };
+  for (const model::Direction dir : model::kDirections)
+    d[name(dir).c_str()] = sample(modes.shapes(dir));
+  for (const model::Direction dir : model::kDirections)
+    d[("omega_" + name(dir)).c_str()] = to_numpy(modes[dir].omega);
+  for (const model::Direction dir : model::kDirections)
+    d[("stiffness_" + name(dir)).c_str()] = modes[dir].stiffness;
   return d;
 }
 

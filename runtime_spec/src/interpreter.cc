@@ -37,20 +37,6 @@ double CoefficientInputs::*plain_scalar(const std::string& name) {
   throw std::logic_error("the run-time model has no input named " + name);
 }
 
-const double* CoefficientInputs::*indexed_scalar(const std::string& family) {
-  if (family == "g0") return &CoefficientInputs::g0;
-  if (family == "h0") return &CoefficientInputs::h0;
-  if (family == "omega_flap") return &CoefficientInputs::omega_flap;
-  if (family == "omega_lag") return &CoefficientInputs::omega_lag;
-  if (family == "damping_flap") return &CoefficientInputs::damping_flap;
-  if (family == "damping_lag") return &CoefficientInputs::damping_lag;
-  if (family == "es_flap") return &CoefficientInputs::es_flap;
-  if (family == "es_lag") return &CoefficientInputs::es_lag;
-  if (family == "ecs_flap_lag") return &CoefficientInputs::ecs_flap_lag;
-  if (family == "ecs_lag_flap") return &CoefficientInputs::ecs_lag_flap;
-  throw std::logic_error("the run-time model has no input named " + family);
-}
-
 model::Factor factor_kind(derive::FactorKind k) { return static_cast<model::Factor>(k); }
 
 model::Direction direction(ModeDir d) {
@@ -71,8 +57,8 @@ bool has_col(SlotKind k) {
 struct Program::Context {
   Context(const Program& p, const CoefficientInputs& inputs)
       : in(inputs),
-        M(inputs.flap_modes),
-        N(inputs.lag_modes),
+        M(inputs.modes[model::index(model::Direction::Flap)]),
+        N(inputs.modes[model::index(model::Direction::Lag)]),
         A(p.aero_.data(), static_cast<int>(p.aero_.size()), inputs.aero, M, N),
         S(p.structural_.data(), static_cast<int>(p.structural_.size()), inputs.structural, M, N) {}
   const CoefficientInputs& in;
@@ -141,9 +127,7 @@ Program::Program(const derive::GenericModel& g) : H_(g.H), H_nonlinear_(g.H_nonl
       }
       r.n_scalars = r.factors.size();
       for (const derive::IndexedScalar& x : t.indexed) {
-        Factor f{Factor::Kind::Indexed};
-        f.array = indexed_scalar(x.family);
-        f.second_flap = x.family == "es_flap" || x.family == "ecs_lag_flap";
+        Factor f = indexed_factor(x.family);
         f.n_args = static_cast<int>(x.args.size());
         for (size_t a = 0; a < x.args.size() && a < 2; ++a) f.args[a] = x.args[a];
         for (int p = 0; p < x.power; ++p) r.factors.push_back(f);
@@ -165,6 +149,40 @@ Program::Program(const derive::GenericModel& g) : H_(g.H), H_nonlinear_(g.H_nonl
     }
     slots_.push_back(std::move(out));
   }
+}
+
+Program::Factor Program::indexed_factor(const std::string& family) {
+  const derive::FamilyInput input = derive::family_input(family);
+  Factor f{Factor::Kind::Indexed};
+  if (input.array == "q0") {
+    f.input = Factor::Input::Q0;
+  } else if (input.array == "omega") {
+    f.input = Factor::Input::Omega;
+  } else if (input.array == "damping") {
+    f.input = Factor::Input::Damping;
+  } else if (input.array == "elastic") {
+    f.input = Factor::Input::Elastic;
+  } else {
+    throw std::logic_error("the run-time model has no input named " + input.array);
+  }
+  for (std::size_t d = 0; d < input.dirs.size() && d < 2; ++d)
+    f.dirs[d] = model::index(direction(input.dirs[d]));
+  f.second_flap = input.dirs.size() == 2 && input.dirs[1] == ModeDir::Flap;
+  return f;
+}
+
+const double* Program::indexed_array(const model::CoefficientInputs& in, const Factor& f) {
+  switch (f.input) {
+    case Factor::Input::Q0:
+      return in.q0[f.dirs[0]];
+    case Factor::Input::Omega:
+      return in.omega[f.dirs[0]];
+    case Factor::Input::Damping:
+      return in.damping[f.dirs[0]];
+    case Factor::Input::Elastic:
+      return in.elastic[f.dirs[0]][f.dirs[1]];
+  }
+  return nullptr;
 }
 
 // The emitted product: [coefficient] * scalars * indexed * integral, left to right, the sign on
@@ -193,7 +211,7 @@ double Program::value(const Term& t, const Context& c, Partial pre) const {
         times(c.in.*f.scalar);
         break;
       case Factor::Kind::Indexed: {
-        const double* a = c.in.*f.array;
+        const double* a = indexed_array(c.in, f);
         const int i = c.v[f.args[0]];
         times(f.n_args == 1 ? a[i] : a[i * (f.second_flap ? c.M : c.N) + c.v[f.args[1]]]);
         break;

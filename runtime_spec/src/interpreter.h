@@ -38,13 +38,19 @@ class Program {
   // One factor of a term's product.
   struct Factor {
     enum class Kind { Scalar, Indexed, Aero, Structural } kind;
-    double model::CoefficientInputs::*scalar = nullptr;        // Scalar
-    const double* model::CoefficientInputs::*array = nullptr;  // Indexed
+    double model::CoefficientInputs::*scalar = nullptr;  // Scalar
+    // Indexed: the per-direction input it reads (derive::FamilyInput), in.q0[dirs[0]], ...,
+    // in.elastic[dirs[0]][dirs[1]].
+    enum class Input { Q0, Omega, Damping, Elastic } input = Input::Q0;
+    int dirs[2] = {0, 0};      // model::index() of the directions of its indices
     bool second_flap = false;  // Indexed with two indices: the second is a flap mode
     int index = 0;             // Aero, Structural: template among its kind
     int n_args = 0;
     int args[model::kMaxFactors] = {0, 0, 0, 0};  // term variables of the indices
   };
+  // The Indexed factor of a family's scalar, and the array it reads in `in`.
+  static Factor indexed_factor(const std::string& family);
+  static const double* indexed_array(const model::CoefficientInputs& in, const Factor& f);
   struct State {
     derive::ModeDir dir;
     bool rate;

@@ -75,7 +75,7 @@ struct IntegralInfo {
 // Named scalar inputs of the generated functions.
 struct ScalarInfo {
   std::string name;   // e.g. "theta", "g0_1", "es_flap_1_1"
-  std::string cexpr;  // e.g. "in.theta", "in.g0[0]"
+  std::string cexpr;  // e.g. "in.theta", "in.q0[kFlap][0]"
   GiNaC::symbol sym;
 };
 

@@ -64,6 +64,15 @@ struct IndexedScalar {
   int power = 1;
 };
 
+// The per-direction input of model_api.h's CoefficientInputs a family reads: `array` "q0",
+// "omega", "damping" (one index, a mode of direction dirs[0]) or "elastic" (two indices, the
+// block elastic[dirs[0]][dirs[1]], row-major).  Throws std::logic_error for an unknown family.
+struct FamilyInput {
+  std::string array;
+  std::vector<ModeDir> dirs;
+};
+FamilyInput family_input(const std::string& family);
+
 // A state factor of a nonlinear load: coordinate direction, rate or displacement, variable.
 struct StateFactor {
   ModeDir dir;

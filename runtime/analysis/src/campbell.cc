@@ -22,7 +22,8 @@ namespace {
 // scale of its stiffness columns, rotating_modes.h) and the modes the analysis labels.
 struct Blade {
   ExactModeOptions shape;
-  double stiffness_flap = 0.0, stiffness_lag = 0.0;
+  double stiffness[model::kDirectionCount] = {};  // per direction, model::index(d)
+  double of(BendingDirection d) const { return stiffness[model::index(d)]; }
 };
 
 Blade blade_of(const RotorParameters& p) {
@@ -36,15 +37,21 @@ Blade blade_of(const RotorParameters& p) {
   b.shape.n_basis = galerkin_basis(p);
   b.shape.e1_over_l = p.root_offset / p.length_ratio;
   b.shape.blade = p.blade;
-  b.stiffness_flap = stiffness_for_frequency(BendingDirection::Flap, p.omega_flap, b.shape);
-  b.stiffness_lag = stiffness_for_frequency(BendingDirection::Lag, p.omega_lag, b.shape);
+  const double first[model::kDirectionCount] = {p.omega_flap, p.omega_lag};
+  for (const BendingDirection d : model::kDirections)
+    b.stiffness[model::index(d)] = stiffness_for_frequency(d, first[model::index(d)], b.shape);
   return b;
 }
 
 // Mode k of a label (model_api.h: "flap" and "lag" are mode 1; "flap2" mode 2) and its
 // direction.
 BendingDirection direction_of(const std::string& label) {
-  return label.rfind("lag", 0) == 0 ? BendingDirection::Lag : BendingDirection::Flap;
+  std::string direction;
+  int k = 1;
+  model::parse_mode_label(label, &direction, &k);
+  for (const BendingDirection d : model::kDirections)
+    if (direction == model::kDirectionNames[model::index(d)]) return d;
+  return BendingDirection::Flap;
 }
 int mode_number(const std::string& label) {
   std::string direction;
@@ -56,12 +63,11 @@ int mode_number(const std::string& label) {
 // Omega = 0: the nonrotating cantilever, omega_k / Omega_0 = sqrt(k / mbar) beta_k^2 (a blade
 // table: its k-th nonrotating frequency at the nominal scale).
 CampbellPoint at_rest(const Blade& b, const std::vector<std::string>& labels) {
-  const std::vector<double> flap =
-      nonrotating_frequencies(BendingDirection::Flap, b.stiffness_flap, b.shape);
-  const std::vector<double> lag =
-      nonrotating_frequencies(BendingDirection::Lag, b.stiffness_lag, b.shape);
+  std::vector<double> frequencies[model::kDirectionCount];
+  for (const BendingDirection d : model::kDirections)
+    frequencies[model::index(d)] = nonrotating_frequencies(d, b.of(d), b.shape);
   auto nonrotating = [&](BendingDirection d, int k) {
-    return (d == BendingDirection::Flap ? flap : lag).at(static_cast<std::size_t>(k - 1));
+    return frequencies[model::index(d)].at(static_cast<std::size_t>(k - 1));
   };
   CampbellPoint pt;
   pt.omega_flap = nonrotating(BendingDirection::Flap, 1);
@@ -84,9 +90,11 @@ CampbellPoint at_speed(double s, const RotorParameters& params, const Transition
   CampbellPoint pt;
   pt.speed = s;
   pt.omega_flap =
-      rotating_frequencies(BendingDirection::Flap, b.stiffness_flap / (s * s), b.shape).front();
+      rotating_frequencies(BendingDirection::Flap, b.of(BendingDirection::Flap) / (s * s), b.shape)
+          .front();
   pt.omega_lag =
-      rotating_frequencies(BendingDirection::Lag, b.stiffness_lag / (s * s), b.shape).front();
+      rotating_frequencies(BendingDirection::Lag, b.of(BendingDirection::Lag) / (s * s), b.shape)
+          .front();
   RotorParameters p = params;
   p.omega_flap = pt.omega_flap;
   p.omega_lag = pt.omega_lag;

@@ -182,7 +182,7 @@ inline std::string validity_of(const detail::SystemBuilder& b) {
   if (b.hover().q0.size() == m.flap_modes + m.lag_modes) {
     flap_tip = 0.0;
     for (int k = 0; k < m.flap_modes; ++k)
-      flap_tip += b.modes().flap[k]->value(0, 1.0) * b.hover().q0(k);
+      flap_tip += b.modes().shapes(model::Direction::Flap)[k]->value(0, 1.0) * b.hover().q0(k);
   }
   return validity_warning(b.params(), b.inflow(), flap_tip);
 }

@@ -71,7 +71,7 @@ ThrustResult evaluate_periodic(const RotorParameters& p, const model::ModelDescr
   out.thrust_coefficient = 0.5 * p.sigma * p.lift_slope * eq.mean_thrust;
   // First harmonic of the flap tip deflection of q°: its cos psi and sin psi coefficients.
   for (int k = 0; k < m.flap_modes; ++k) {
-    const double tip = builder.modes().flap[k]->value(0, 1.0);
+    const double tip = builder.modes().shapes(model::Direction::Flap)[k]->value(0, 1.0);
     out.flap_1c += tip * eq.coefficients(k, 1);
     out.flap_1s += tip * eq.coefficients(k, 2);
   }

@@ -135,12 +135,10 @@ ModeSet assumed_modes(double omega_flap, double omega_lag) {
   check_frequency("omega_flap", omega_flap);
   check_frequency("omega_lag", omega_lag);
   ModeSet m;
-  m.flap = {assumed_mode_shape()};
-  m.lag = {assumed_mode_shape()};
-  m.omega_flap = {omega_flap};
-  m.omega_lag = {omega_lag};
-  m.stiffness_flap = 0.0;
-  m.stiffness_lag = 0.0;
+  // One assumed mode (eq 4.1) per direction, with its first rotating frequency.
+  const double omega[model::kDirectionCount] = {omega_flap, omega_lag};
+  for (const model::Direction d : model::kDirections)
+    m[d] = {{assumed_mode_shape()}, {omega[model::index(d)]}, 0.0};
   m.kind = "assumed";
   return m;
 }

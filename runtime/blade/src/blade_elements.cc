@@ -281,26 +281,23 @@ ExactModes element_modes(double omega_flap, double omega_lag, const ExactModeOpt
   r.modes.kind = "exact";
   r.modes.blade = options.blade;
   r.modes.mesh.assign(el.nodes.begin() + 1, el.nodes.end() - 1);
-  auto build = [&](BendingDirection dir, double omega, int count,
-                   std::vector<std::shared_ptr<const ModeShape>>& shapes,
-                   std::vector<double>& omega_out, std::vector<double>& omega_all,
-                   double& nonrotating) {
+  const double first[model::kDirectionCount] = {omega_flap, omega_lag};
+  for (const BendingDirection dir : model::kDirections) {
+    const double omega = first[model::index(dir)];
+    const int count = options.modes(dir);
+    DirectionModes& out = r.modes[dir];
+    ExactDirection& all = r[dir];
     const double scale = std::isnan(omega) ? 1.0 : solve_scale(el, dir, omega);
     const int n = std::min<int>(kMaxBasisFunctions, static_cast<int>(el.size()));
     auto [lambda, v] = el.lowest(dir, scale, n);
-    omega_all.resize(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) omega_all[i] = std::sqrt(std::max(lambda[i], 0.0));
-    omega_out.assign(omega_all.begin(), omega_all.begin() + count);
-    for (int i = 0; i < count; ++i) shapes.push_back(el.shape(v.col(i)));
+    all.omega_all.resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) all.omega_all[i] = std::sqrt(std::max(lambda[i], 0.0));
+    out.omega.assign(all.omega_all.begin(), all.omega_all.begin() + count);
+    for (int i = 0; i < count; ++i) out.shapes.push_back(el.shape(v.col(i)));
     const double nr = el.first(dir, scale, v.col(0), false).lambda;
-    nonrotating = std::sqrt(std::max(nr, 0.0));
-    return scale;
-  };
-  r.modes.stiffness_flap =
-      build(BendingDirection::Flap, omega_flap, options.flap_modes, r.modes.flap,
-            r.modes.omega_flap, r.omega_flap_all, r.omega_flap_nonrotating);
-  r.modes.stiffness_lag = build(BendingDirection::Lag, omega_lag, options.lag_modes, r.modes.lag,
-                                r.modes.omega_lag, r.omega_lag_all, r.omega_lag_nonrotating);
+    all.omega_nonrotating = std::sqrt(std::max(nr, 0.0));
+    out.stiffness = scale;
+  }
   // The uniform blade's stiffness column is 1 (mbar is in M and T): its scale is k itself.
   return r;
 }

@@ -490,12 +490,13 @@ ImportedModes parse_mode_table(std::string_view text, std::string source) {
 ModeSet imported_mode_set(const ImportedModes& modes, int flap_modes, int lag_modes) {
   ModeSet s;
   s.kind = "imported";
-  for (const auto& [dir, count] : {std::pair{BendingDirection::Flap, flap_modes},
-                                   std::pair{BendingDirection::Lag, lag_modes}}) {
-    const bool flap = dir == BendingDirection::Flap;
-    const char* base = flap ? "flap" : "lag";
+  const int counts[model::kDirectionCount] = {flap_modes, lag_modes};
+  for (const model::Direction dir : model::kDirections) {
+    const int count = counts[model::index(dir)];
+    // The table's columns are named by the direction and the mode: flap1, lag2, ...
+    const std::string base = model::kDirectionNames[model::index(dir)];
     if (count < 1) {
-      throw InvalidInput(std::string(base) + " modes", std::to_string(count), "must be >= 1");
+      throw InvalidInput(base + " modes", std::to_string(count), "must be >= 1");
     }
     for (int k = 1; k <= count; ++k) {
       const std::string name = base + std::to_string(k);
@@ -506,13 +507,42 @@ ModeSet imported_mode_set(const ImportedModes& modes, int flap_modes, int lag_mo
                            "the model has " + std::to_string(count) + " " + base +
                                " modes and the mode table no column " + name);
       }
-      auto shape = std::make_shared<TabulatedModeShape>(modes.x0, it->values);
-      (flap ? s.flap : s.lag).push_back(std::move(shape));
-      (flap ? s.omega_flap : s.omega_lag).push_back(it->omega);
+      s[dir].shapes.push_back(std::make_shared<TabulatedModeShape>(modes.x0, it->values));
+      s[dir].omega.push_back(it->omega);
     }
   }
   return s;
 }
+
+namespace {
+
+// The header of a mode table: what it holds and, when known, the stiffnesses.
+std::string mode_table_header(const ModeSet& modes) {
+  const DirectionModes& flap = modes[model::Direction::Flap];
+  const DirectionModes& lag = modes[model::Direction::Lag];
+  std::string out;
+  out += "# flaplag mode shapes: " + std::to_string(flap.count()) + " flap and " +
+         std::to_string(lag.count()) + " lag " + (modes.kind.empty() ? "" : modes.kind + " ") +
+         "modes of the blade, tip value 1\n";
+  out += "# x0: elastic span station by l (0 root, 1 tip); flapK, lagK: the shapes there;\n";
+  out += "# the row omega: each mode's rotating frequency by Omega\n";
+  if (flap.stiffness > 0.0 || lag.stiffness > 0.0) {
+    // With a blade table the stiffnesses are the scales of its columns (rotating_modes.h).
+    out += std::string(modes.blade ? "# stiffness scale s of the blade table's EI columns "
+                                     "(EI/(Omega^2 l I_b) = s x column)"
+                                   : "# stiffness EI/(Omega^2 l I_b)") +
+           ":";
+    for (const model::Direction dir : model::kDirections) {
+      out += std::string(dir == model::kDirections[0] ? " " : ", ") +
+             model::kDirectionNames[model::index(dir)] + " " +
+             round_trip_text(modes[dir].stiffness);
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace
 
 std::string mode_table_text(const ModeSet& modes, int stations) {
   if (stations < kMinModeStations || stations > kMaxModeStations) {
@@ -520,41 +550,32 @@ std::string mode_table_text(const ModeSet& modes, int stations) {
         "stations", std::to_string(stations),
         "must be " + std::to_string(kMinModeStations) + ".." + std::to_string(kMaxModeStations));
   }
-  if (modes.flap.empty() || modes.lag.empty() || modes.omega_flap.size() != modes.flap.size() ||
-      modes.omega_lag.size() != modes.lag.size()) {
+  bool complete = true;
+  for (const DirectionModes& d : modes.directions)
+    complete = complete && d.count() > 0 && d.omega.size() == d.shapes.size();
+  if (!complete) {
     throw InvalidInput("modes",
-                       std::to_string(modes.flap.size()) + " x " + std::to_string(modes.lag.size()),
+                       std::to_string(modes[model::Direction::Flap].count()) + " x " +
+                           std::to_string(modes[model::Direction::Lag].count()),
                        "a mode table needs at least one flap and one lag mode, each with its "
                        "frequency");
   }
-  std::string out;
-  out += "# flaplag mode shapes: " + std::to_string(modes.flap.size()) + " flap and " +
-         std::to_string(modes.lag.size()) + " lag " + (modes.kind.empty() ? "" : modes.kind + " ") +
-         "modes of the blade, tip value 1\n";
-  out += "# x0: elastic span station by l (0 root, 1 tip); flapK, lagK: the shapes there;\n";
-  out += "# the row omega: each mode's rotating frequency by Omega\n";
-  if (modes.stiffness_flap > 0.0 || modes.stiffness_lag > 0.0) {
-    // With a blade table the stiffnesses are the scales of its columns (rotating_modes.h).
-    out += std::string(modes.blade ? "# stiffness scale s of the blade table's EI columns "
-                                     "(EI/(Omega^2 l I_b) = s x column)"
-                                   : "# stiffness EI/(Omega^2 l I_b)") +
-           ": flap " + round_trip_text(modes.stiffness_flap) + ", lag " +
-           round_trip_text(modes.stiffness_lag) + "\n";
-  }
+  std::string out = mode_table_header(modes);
   out += "x0";
-  for (std::size_t k = 0; k < modes.flap.size(); ++k) out += ",flap" + std::to_string(k + 1);
-  for (std::size_t k = 0; k < modes.lag.size(); ++k) out += ",lag" + std::to_string(k + 1);
+  for (const model::Direction dir : model::kDirections)
+    for (int k = 0; k < modes[dir].count(); ++k)
+      out += std::string(",") + model::kDirectionNames[model::index(dir)] + std::to_string(k + 1);
   out += "\n";
   for (int i = 0; i < stations; ++i) {
     const double x = static_cast<double>(i) / (stations - 1);
     out += round_trip_text(x);
-    for (const auto& s : modes.flap) out += "," + round_trip_text(s->value(0, x));
-    for (const auto& s : modes.lag) out += "," + round_trip_text(s->value(0, x));
+    for (const DirectionModes& d : modes.directions)
+      for (const auto& s : d.shapes) out += "," + round_trip_text(s->value(0, x));
     out += "\n";
   }
   out += "omega";
-  for (double w : modes.omega_flap) out += "," + round_trip_text(w);
-  for (double w : modes.omega_lag) out += "," + round_trip_text(w);
+  for (const DirectionModes& d : modes.directions)
+    for (double w : d.omega) out += "," + round_trip_text(w);
   out += "\n";
   return out;
 }
@@ -580,7 +601,8 @@ double mass_orthogonality_defect(const ModeSet& modes) {
     tip_mass = modes.blade->tip_mass;
   }
   double defect = 0.0;
-  for (const auto* shapes : {&modes.flap, &modes.lag}) {
+  for (const DirectionModes& d : modes.directions) {
+    const std::vector<std::shared_ptr<const ModeShape>>* shapes = &d.shapes;
     const std::size_t n = shapes->size();
     std::vector<std::vector<double>> v(n, std::vector<double>(x.size()));
     std::vector<double> tip(n);

@@ -17,6 +17,7 @@
 namespace flaplag {
 namespace {
 
+using model::Direction;
 using model::Factor;
 using model::FactorRef;
 
@@ -118,7 +119,7 @@ class FactorTable {
       for (std::size_t q = 0; q < x0_.size(); ++q) v[q] = x0_[q] + off;
     } else {
       const bool flap = f.kind == Factor::Eta || f.kind == Factor::EtaPrime;
-      const auto& shapes = flap ? modes_.flap : modes_.lag;
+      const auto& shapes = modes_.shapes(flap ? Direction::Flap : Direction::Lag);
       if (mode < 0 || mode >= static_cast<int>(shapes.size())) {
         throw InvalidInput(
             std::string("mode index of ") + factor_name(f.kind) + " in \"" + integral + "\"",
@@ -456,28 +457,46 @@ std::vector<double> structural_integrals(const model::ModelDescriptor& m, const 
 }
 
 ElasticCoupling no_elastic_coupling(const ModeSet& modes) {
-  const Eigen::Index nf = static_cast<Eigen::Index>(modes.flap.size());
-  const Eigen::Index nl = static_cast<Eigen::Index>(modes.lag.size());
   ElasticCoupling e;
-  e.es_flap = Eigen::MatrixXd::Zero(nf, nf);
-  e.es_lag = Eigen::MatrixXd::Zero(nl, nl);
-  e.ecs_flap_lag = Eigen::MatrixXd::Zero(nf, nl);
-  e.ecs_lag_flap = Eigen::MatrixXd::Zero(nl, nf);
+  for (const Direction row : model::kDirections)
+    for (const Direction col : model::kDirections)
+      e.blocks[model::index(row)][model::index(col)] =
+          Eigen::MatrixXd::Zero(modes[row].count(), modes[col].count());
   return e;
 }
+
+namespace {
+
+// The blocks of eqs E.3-E.8 from the curvature products of each pair of directions: products(row,
+// col, diagonal) for a block on (diagonal) or off the diagonal.  The blocks below the diagonal
+// are the transposes of those above (Ecs_LF = Ecs_FL^T, exactly).
+template <class Products>
+ElasticCoupling coupling_blocks(const ModeSet& modes, const Products& products) {
+  ElasticCoupling e = no_elastic_coupling(modes);
+  for (int r = 0; r < model::kDirectionCount; ++r) {
+    for (int c = r; c < model::kDirectionCount; ++c) {
+      e.blocks[r][c] = products(model::kDirections[r], model::kDirections[c], r == c);
+      if (c != r) e.blocks[c][r] = e.blocks[r][c].transpose();
+    }
+  }
+  return e;
+}
+
+}  // namespace
 
 ElasticCoupling elastic_coupling(const ModeSet& modes, double theta) {
   if (!std::isfinite(theta)) {
     throw InvalidInput("theta", round_trip_text(theta), "collective pitch must be finite");
   }
-  ElasticCoupling e = no_elastic_coupling(modes);
-  if (modes.stiffness_flap == 0.0 && modes.stiffness_lag == 0.0) return e;
+  const DirectionModes& flap = modes[Direction::Flap];
+  const DirectionModes& lag = modes[Direction::Lag];
+  if (flap.stiffness == 0.0 && lag.stiffness == 0.0) return no_elastic_coupling(modes);
+  const std::vector<double> corners = blade_corners(modes);
   if (modes.blade) {
     // Eqs E.3-E.8 with the stiffnesses and the pitch theta + theta_tw(x0) of each station.
     const BladeProperties& b = *modes.blade;
     auto dk = [&](double x) {
-      return modes.stiffness_lag * b.at(b.stiffness_lag, x) -
-             modes.stiffness_flap * b.at(b.stiffness_flap, x);
+      return lag.stiffness * b.at(b.stiffness_lag, x) - flap.stiffness * b.at(b.stiffness_flap, x);
     };
     auto s2 = [&](double x) {
       const double s = std::sin(theta + b.twist_at(x));
@@ -487,23 +506,20 @@ ElasticCoupling elastic_coupling(const ModeSet& modes, double theta) {
       const double t = theta + b.twist_at(x);
       return dk(x) * std::sin(t) * std::cos(t);
     };
-    const std::vector<double> corners = blade_corners(modes);
-    e.es_flap = curvature_products(modes.flap, modes.flap, corners, s2);
-    e.es_lag = curvature_products(modes.lag, modes.lag, corners, s2);
-    e.ecs_flap_lag = curvature_products(modes.flap, modes.lag, corners, sc);
-    e.ecs_lag_flap = e.ecs_flap_lag.transpose();
-    return e;
+    return coupling_blocks(modes, [&](Direction row, Direction col, bool diagonal) {
+      return diagonal ? curvature_products(modes.shapes(row), modes.shapes(col), corners, s2)
+                      : curvature_products(modes.shapes(row), modes.shapes(col), corners, sc);
+    });
   }
   // Eqs E.3-E.8 divided by Omega^2 I_b / l: (EI_z - EI_y)/(Omega^2 l I_b) = k_z - k_y.
-  const double dk = modes.stiffness_lag - modes.stiffness_flap;
+  const double dk = lag.stiffness - flap.stiffness;
   const double s = std::sin(theta);
   const double c = std::cos(theta);
-  const std::vector<double> corners = blade_corners(modes);
-  e.es_flap = dk * s * s * curvature_products(modes.flap, modes.flap, corners);
-  e.es_lag = dk * s * s * curvature_products(modes.lag, modes.lag, corners);
-  e.ecs_flap_lag = dk * s * c * curvature_products(modes.flap, modes.lag, corners);
-  e.ecs_lag_flap = e.ecs_flap_lag.transpose();
-  return e;
+  return coupling_blocks(modes, [&](Direction row, Direction col, bool diagonal) {
+    const Eigen::MatrixXd products =
+        curvature_products(modes.shapes(row), modes.shapes(col), corners);
+    return Eigen::MatrixXd((diagonal ? dk * s * s : dk * s * c) * products);
+  });
 }
 
 }  // namespace flaplag

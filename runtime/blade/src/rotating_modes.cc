@@ -342,29 +342,25 @@ ExactModes blade_table_modes(double omega_flap, double omega_lag, const ExactMod
   ExactModes r;
   r.modes.kind = "exact";
   r.modes.blade = options.blade;
-  auto build = [&](BendingDirection dir, double omega, int count,
-                   std::vector<std::shared_ptr<const ModeShape>>& shapes,
-                   std::vector<double>& omega_out, std::vector<double>& omega_all,
-                   Eigen::MatrixXd& coeffs, double& nonrotating) {
+  const double first[model::kDirectionCount] = {omega_flap, omega_lag};
+  for (const BendingDirection dir : model::kDirections) {
+    const double omega = first[model::index(dir)];
+    const int count = options.modes(dir);
+    DirectionModes& out = r.modes[dir];
+    ExactDirection& all = r[dir];
     const double scale = std::isnan(omega) ? 1.0 : solve_scale(gal, dir, omega);
     auto [lambda, v] = gal.solve(dir, scale);
-    omega_all.resize(static_cast<std::size_t>(gal.n));
-    for (int i = 0; i < gal.n; ++i) omega_all[i] = std::sqrt(std::max(lambda[i], 0.0));
-    omega_out.assign(omega_all.begin(), omega_all.begin() + count);
-    coeffs.resize(gal.n, count);
+    all.omega_all.resize(static_cast<std::size_t>(gal.n));
+    for (int i = 0; i < gal.n; ++i) all.omega_all[i] = std::sqrt(std::max(lambda[i], 0.0));
+    out.omega.assign(all.omega_all.begin(), all.omega_all.begin() + count);
+    all.coefficients.resize(gal.n, count);
     for (int i = 0; i < count; ++i) {
-      coeffs.col(i) = tip_normalised(v.col(i), options.paper_1974_shapes);
-      shapes.push_back(std::make_shared<ModalCombination>(gal.basis, coeffs.col(i)));
+      all.coefficients.col(i) = tip_normalised(v.col(i), options.paper_1974_shapes);
+      out.shapes.push_back(std::make_shared<ModalCombination>(gal.basis, all.coefficients.col(i)));
     }
-    nonrotating = std::sqrt(std::max(gal.nonrotating(dir, scale), 0.0));
-    return scale;
-  };
-  r.modes.stiffness_flap =
-      build(BendingDirection::Flap, omega_flap, options.flap_modes, r.modes.flap,
-            r.modes.omega_flap, r.omega_flap_all, r.flap_coefficients, r.omega_flap_nonrotating);
-  r.modes.stiffness_lag =
-      build(BendingDirection::Lag, omega_lag, options.lag_modes, r.modes.lag, r.modes.omega_lag,
-            r.omega_lag_all, r.lag_coefficients, r.omega_lag_nonrotating);
+    all.omega_nonrotating = std::sqrt(std::max(gal.nonrotating(dir, scale), 0.0));
+    out.stiffness = scale;
+  }
   return r;
 }
 
@@ -391,30 +387,24 @@ ExactModes exact_rotating_modes(double omega_flap, double omega_lag,
   ExactModes r;
   r.modes.kind = "exact";
 
-  auto build = [&](BendingDirection dir, double omega, int count,
-                   std::vector<std::shared_ptr<const ModeShape>>& shapes,
-                   std::vector<double>& omega_out, std::vector<double>& omega_all,
-                   Eigen::MatrixXd& coeffs) {
-    const double kappa = solve_kappa(gal, dir, omega);
+  const double first[model::kDirectionCount] = {omega_flap, omega_lag};
+  for (const BendingDirection dir : model::kDirections) {
+    const int count = options.modes(dir);
+    DirectionModes& out = r.modes[dir];
+    ExactDirection& all = r[dir];
+    const double kappa = solve_kappa(gal, dir, first[model::index(dir)]);
     auto [lambda, v] = gal.solve(dir, kappa);
-    omega_all.resize(static_cast<std::size_t>(gal.n));
-    for (int i = 0; i < gal.n; ++i) omega_all[i] = std::sqrt(std::max(lambda[i], 0.0));
-    omega_out.assign(omega_all.begin(), omega_all.begin() + count);
-    coeffs.resize(gal.n, count);
+    all.omega_all.resize(static_cast<std::size_t>(gal.n));
+    for (int i = 0; i < gal.n; ++i) all.omega_all[i] = std::sqrt(std::max(lambda[i], 0.0));
+    out.omega.assign(all.omega_all.begin(), all.omega_all.begin() + count);
+    all.coefficients.resize(gal.n, count);
     for (int i = 0; i < count; ++i) {
-      coeffs.col(i) = tip_normalised(v.col(i), options.paper_1974_shapes);
-      shapes.push_back(std::make_shared<ModalCombination>(gal.basis, coeffs.col(i)));
+      all.coefficients.col(i) = tip_normalised(v.col(i), options.paper_1974_shapes);
+      out.shapes.push_back(std::make_shared<ModalCombination>(gal.basis, all.coefficients.col(i)));
     }
-    return kappa * options.mbar;
-  };
-  r.modes.stiffness_flap =
-      build(BendingDirection::Flap, omega_flap, options.flap_modes, r.modes.flap,
-            r.modes.omega_flap, r.omega_flap_all, r.flap_coefficients);
-  r.modes.stiffness_lag = build(BendingDirection::Lag, omega_lag, options.lag_modes, r.modes.lag,
-                                r.modes.omega_lag, r.omega_lag_all, r.lag_coefficients);
-  r.omega_flap_nonrotating =
-      std::sqrt(r.modes.stiffness_flap / options.mbar) * gal.beta1 * gal.beta1;
-  r.omega_lag_nonrotating = std::sqrt(r.modes.stiffness_lag / options.mbar) * gal.beta1 * gal.beta1;
+    out.stiffness = kappa * options.mbar;
+    all.omega_nonrotating = std::sqrt(out.stiffness / options.mbar) * gal.beta1 * gal.beta1;
+  }
   return r;
 }
 

@@ -417,7 +417,8 @@ std::pair<double, double> stiffness_frequencies(const RotorParameters& p,
   opt.blade = std::move(blade);
   const ExactModes modes =
       p.basis == kElementBasis ? element_stiffness_modes(opt) : blade_stiffness_modes(opt);
-  return {modes.modes.omega_flap[0], modes.modes.omega_lag[0]};
+  return {modes.modes[model::Direction::Flap].omega[0],
+          modes.modes[model::Direction::Lag].omega[0]};
 }
 
 }  // namespace flaplag

@@ -84,28 +84,34 @@ ModeSet imported_blade_modes(const RotorParameters& p, const model::ModelDescrip
     // The blade table's stiffness columns, scaled as its own first modes would need to have
     // the imported first frequencies.
     opt.blade = p.blade;
+    const double first_flap = s[model::Direction::Flap].omega[0];
+    const double first_lag = s[model::Direction::Lag].omega[0];
     const ModeSet own = p.basis == kElementBasis
-                            ? element_rotating_modes(s.omega_flap[0], s.omega_lag[0], opt).modes
-                            : exact_modes(s.omega_flap[0], s.omega_lag[0], opt);
-    s.stiffness_flap = own.stiffness_flap;
-    s.stiffness_lag = own.stiffness_lag;
+                            ? element_rotating_modes(first_flap, first_lag, opt).modes
+                            : exact_modes(first_flap, first_lag, opt);
+    for (const model::Direction d : model::kDirections) s[d].stiffness = own[d].stiffness;
     return s;
   }
-  for (const BendingDirection dir : {BendingDirection::Flap, BendingDirection::Lag}) {
-    const bool flap = dir == BendingDirection::Flap;
-    const double omega = flap ? s.omega_flap[0] : s.omega_lag[0];
+  for (const model::Direction dir : model::kDirections) {
+    const double omega = s[dir].omega[0];
     try {
-      (flap ? s.stiffness_flap : s.stiffness_lag) = stiffness_for_frequency(dir, omega, opt);
+      s[dir].stiffness = stiffness_for_frequency(dir, omega, opt);
     } catch (const InvalidInput& e) {
       throw InvalidInput("mode_shapes", table.source,
-                         std::string(flap ? "flap1" : "lag1") +
-                             " omega = " + round_trip_text(omega) +
+                         // the column of the mode table: flap1, lag1
+                         std::string(model::kDirectionNames[model::index(dir)]) +
+                             "1 omega = " + round_trip_text(omega) +
                              " gives no stiffness of the uniform blade for the elastic "
                              "coupling: " +
                              e.reason());
     }
   }
   return s;
+}
+
+// The structural damping ratio of direction d's modes (the parameters eta_SF, eta_SL).
+double structural_damping(const RotorParameters& p, model::Direction d) {
+  return d == model::Direction::Flap ? p.damping_flap : p.damping_lag;
 }
 
 // The rotating modes of the blade: the assumed mode (eq 4.1) or the exact modes (Galerkin).
@@ -216,9 +222,8 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
                              const InflowModel& inflow)
     : p_(p),
       model_(&m),
-      M_(m.flap_modes),
-      N_(m.lag_modes),
-      n_(M_ + N_),
+      directions_(model::direction_blocks(m.flap_modes, m.lag_modes)),
+      n_(m.flap_modes + m.lag_modes),
       H_(m.n_harmonics),
       inflow_model_(inflow) {
   check_inputs(p_, inflow);
@@ -228,32 +233,37 @@ SystemBuilder::SystemBuilder(const RotorParameters& p, const model::ModelDescrip
   geometry_.tip_loss_a = p_.tip_loss_a;
   geometry_.tip_loss_b = p_.tip_loss_b;
   inflow_ = inflow_model_.lambda(p_, 0.0);
-  // Structural damping ratios apply to every mode of a direction.
-  damping_flap_.assign(M_, p_.damping_flap);
-  damping_lag_.assign(N_, p_.damping_lag);
   cdo_a_ = p_.cdo / p_.lift_slope;
+  for (const model::DirectionBlock& b : directions_) {
+    const int d = model::index(b.direction);
+    // Structural damping ratios apply to every mode of a direction.
+    damping_[d].assign(b.modes, structural_damping(p_, b.direction));
+    q0_[d].assign(b.modes, 0.0);
+    for (int k = 0; k < b.modes; ++k) {
+      rate_col_.push_back(b.rate_index(k));
+      displacement_col_.push_back(b.displacement_index(k));
+    }
+  }
 
   // Appendix E: only with exact modes (paper 4.1(a): neglected with the assumed mode).
   coupling_ = (p_.modes == ModeKind::Exact && p_.elastic_coupling)
                   ? elastic_coupling(modes_, p_.theta)
                   : no_elastic_coupling(modes_);
-  es_flap_ = row_major(coupling_.es_flap);
-  es_lag_ = row_major(coupling_.es_lag);
-  ecs_flap_lag_ = row_major(coupling_.ecs_flap_lag);
-  ecs_lag_flap_ = row_major(coupling_.ecs_lag_flap);
+  for (const model::Direction r : model::kDirections)
+    for (const model::Direction c : model::kDirections)
+      elastic_[model::index(r)][model::index(c)] = row_major(coupling_.block(r, c));
 
   structural_ = structural_integrals(m, modes_, p_.root_offset / p_.length_ratio);
   aero_ = AeroIntegrals(m, modes_, geometry_);
 
   // Hover equilibrium (2.29-2.32): S q0 = c with mu = 0.
-  g0_.assign(M_, 0.0);
-  h0_.assign(N_, 0.0);
   std::vector<double> S(n_ * n_), c(n_);
   m.equilibrium(inputs(0.0, aero_.normal().data()), {S.data(), c.data()});
   hover_.inflow = inflow_;
   solve_hover_equilibrium(S, c, n_, hover_);
-  for (int k = 0; k < M_; ++k) g0_[k] = hover_.q0(k);
-  for (int r = 0; r < N_; ++r) h0_[r] = hover_.q0(M_ + r);
+  for (const model::DirectionBlock& b : directions_)
+    for (int k = 0; k < b.modes; ++k)
+      q0_[model::index(b.direction)][k] = hover_.q0(b.first_coordinate + k);
 
   // The generalized mass depends on the structural integrals only (model_api.h): factor it once.
   std::vector<double> mass(n_ * n_);
@@ -280,22 +290,19 @@ model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) co
   in.droop = p_.droop;
   in.cdo_a = cdo_a_;
   in.mu = mu;
-  in.g0 = g0_.data();
-  in.h0 = h0_.data();
-  in.omega_flap = modes_.omega_flap.data();
-  in.omega_lag = modes_.omega_lag.data();
-  in.damping_flap = damping_flap_.data();
-  in.damping_lag = damping_lag_.data();
-  in.es_flap = es_flap_.data();
-  in.es_lag = es_lag_.data();
-  in.ecs_flap_lag = ecs_flap_lag_.data();
-  in.ecs_lag_flap = ecs_lag_flap_.data();
+  for (const model::DirectionBlock& b : directions_) {
+    const int d = model::index(b.direction);
+    in.q0[d] = q0_[d].data();
+    in.omega[d] = modes_[b.direction].omega.data();
+    in.damping[d] = damping_[d].data();
+    in.modes[d] = b.modes;
+    for (int col = 0; col < model::kDirectionCount; ++col)
+      in.elastic[d][col] = elastic_[d][col].data();
+  }
   in.aero = aero;
   in.structural = structural_.data();
   in.theta1c = p_.theta1c;
   in.theta1s = p_.theta1s;
-  in.flap_modes = model_->flap_modes;
-  in.lag_modes = model_->lag_modes;
   in.context = model_->context;
   return in;
 }
@@ -309,8 +316,8 @@ void SystemBuilder::assemble(double mu, const std::vector<double>& aero, Harmoni
   double* forcing = force + H_ * n * ns;
   model_->coefficients(inputs(mu, aero.data()), {force, forcing});
   // state column of the rate / displacement of coordinate j
-  auto rate_col = [&](int j) { return model::rate_index(j, M_, N_); };
-  auto disp_col = [&](int j) { return model::displacement_index(j, M_, N_); };
+  auto rate_col = [&](int j) { return rate_col_[static_cast<std::size_t>(j)]; };
+  auto disp_col = [&](int j) { return displacement_col_[static_cast<std::size_t>(j)]; };
   // Sized in place: the storage of a reused system is kept.
   out.A.resize(static_cast<std::size_t>(H_));
   out.f.resize(static_cast<std::size_t>(H_));

@@ -44,6 +44,11 @@ constexpr int lag_equation_index(int m, int M) { return M + m; }
 
 // What state column col holds.
 enum class Direction : int { Flap = 0, Lag = 1 };
+// The directions, in state order; per-direction data (CoefficientInputs, ModeSet) is indexed by
+// index(d).
+inline constexpr int kDirectionCount = 2;
+inline constexpr Direction kDirections[kDirectionCount] = {Direction::Flap, Direction::Lag};
+constexpr int index(Direction d) { return static_cast<int>(d); }
 struct StateRef {
   Direction direction;
   int mode;   // 0-based mode of that direction
@@ -69,6 +74,7 @@ struct DirectionBlock {
   const char* name;        // "flap", "lag": mode labels and result keys
   const char* coordinate;  // "g", "h": the generalized coordinates (eqs 2.13-2.15)
   const char* deflection;  // "w", "v": the displacement it bends the blade by (eq 2.12)
+  const char* shape;       // "eta", "gamma": its mode shapes (eqs 2.11-2.12)
   int modes;               // M, N
   int first_state;         // the state column of its first rate
   int first_coordinate;    // its first coordinate j of q (and equation row)
@@ -78,8 +84,8 @@ struct DirectionBlock {
 // The directions' names, in state order.
 inline constexpr const char* kDirectionNames[] = {"flap", "lag"};
 inline std::vector<DirectionBlock> direction_blocks(int M, int N) {
-  return {{Direction::Flap, kDirectionNames[0], "g", "w", M, flap_rate_index(0, M, N), 0},
-          {Direction::Lag, kDirectionNames[1], "h", "v", N, lag_rate_index(0, M, N), M}};
+  return {{Direction::Flap, kDirectionNames[0], "g", "w", "eta", M, flap_rate_index(0, M, N), 0},
+          {Direction::Lag, kDirectionNames[1], "h", "v", "gamma", N, lag_rate_index(0, M, N), M}};
 }
 
 // The label of mode k (1-based) of a direction, one scheme for every model: the first mode is the
@@ -180,34 +186,36 @@ struct StructuralIntegral {
   const char* paper_name;  // Appendix B name ("B3_11", "P_111", "M_F1", ...) or ""
 };
 
-// Inputs of the generated coefficient functions.  Arrays are row-major.
+// Inputs of the generated coefficient functions.  Arrays are row-major.  The data of the blade
+// directions is given per direction, indexed by index(d) (state order: flap, lag), each with
+// modes[index(d)] entries (M, N).
 struct CoefficientInputs {
-  double lock;                 // gamma, Lock number (normal flow)
-  double lr;                   // l/R
-  double theta;                // collective pitch [rad]
-  double inflow;               // lambda, positive down, by Omega R
-  double precone;              // beta_P [rad]
-  double droop;                // beta_D [rad]
-  double cdo_a;                // C_Do / a
-  double mu;                   // advance ratio
-  const double* g0;            // [M] hover static flap amplitudes
-  const double* h0;            // [N] hover static lag amplitudes
-  const double* omega_flap;    // [M] rotating flap frequencies by Omega
-  const double* omega_lag;     // [N] rotating lag frequencies by Omega
-  const double* damping_flap;  // [M] eta_SF, viscous structural damping ratio
-  const double* damping_lag;   // [N] eta_SL
-  const double* es_flap;       // [M*M] Ebar^s_ik   (Appendix E, eq E.5)
-  const double* es_lag;        // [N*N] Ebar^s_im   (eq E.7)
-  const double* ecs_flap_lag;  // [M*N] Ebar^cs_im  (eq E.6), flap row i, lag column m
-  const double* ecs_lag_flap;  // [N*M] Ebar^cs_ik  (eq E.8), lag row i, flap column k
-  const double* aero;          // [n_aero] values of the AeroIntegral list, for one flow region
-  const double* structural;    // [n_structural] values of the StructuralIntegral list
+  double lock;     // gamma, Lock number (normal flow)
+  double lr;       // l/R
+  double theta;    // collective pitch [rad]
+  double inflow;   // lambda, positive down, by Omega R
+  double precone;  // beta_P [rad]
+  double droop;    // beta_D [rad]
+  double cdo_a;    // C_Do / a
+  double mu;       // advance ratio
+  // Per direction: hover static amplitudes (g0, h0), rotating frequencies by Omega, viscous
+  // structural damping ratios (eta_SF, eta_SL).
+  const double* q0[kDirectionCount];
+  const double* omega[kDirectionCount];
+  const double* damping[kDirectionCount];
+  // Elastic coupling (Appendix E) per pair of directions: elastic[r][c], [modes[r] * modes[c]],
+  // row: a mode of direction r's equations, column: a mode of direction c.  (flap, flap)
+  // Ebar^s_ik (eq E.5), (flap, lag) Ebar^cs_im (eq E.6), (lag, flap) Ebar^cs_ik (eq E.8),
+  // (lag, lag) Ebar^s_im (eq E.7).
+  const double* elastic[kDirectionCount][kDirectionCount];
+  const double* aero;        // [n_aero] values of the AeroIntegral list, for one flow region
+  const double* structural;  // [n_structural] values of the StructuralIntegral list
   // Cyclic pitch [rad]: theta(psi) = theta + theta1c cos psi + theta1s sin psi.
   double theta1c;
   double theta1s;
-  // Mode counts M, N: read by the functions of a ModelFamily (instantiate() descriptors).
-  int flap_modes;
-  int lag_modes;
+  // Mode counts per direction (M, N): read by the functions of a ModelFamily (instantiate()
+  // descriptors).
+  int modes[kDirectionCount];
   // The model's ModelDescriptor::context (SystemBuilder copies it): the data of a family made at
   // run time, nullptr for a compiled one (which never reads it).
   const void* context = nullptr;
@@ -230,7 +238,7 @@ struct EquilibriumOutputs {
 
 // Nonlinear generalized loads.  The
 // argument y is the *full* state [g'_1..g'_M, g_1..g_M, h'_1..h'_N, h_1..h_N] (the ordering
-// above, but absolute values: the hover amplitudes in.g0, in.h0 are not read), and
+// above, but absolute values: the hover amplitudes in.q0 are not read), and
 //   mass * q'' = sum_h phi_h(psi) force[h](y)
 // with the same mass, harmonics and flow-region integrals (in.aero) as the linear functions.
 // The polynomials keep every product of the coordinates that the ordering keeps (the eps_D
@@ -287,7 +295,7 @@ struct ModelDescriptor {
 // The generator derives a spec once with variable mode indices (a term of the flap equation of
 // mode i is a coefficient times an integral such as int eta_i eta_k' gamma_j' dx0, summed over
 // k).  A family's functions assemble the outputs above for the M x N given in
-// CoefficientInputs::flap_modes/lag_modes from integral *tensors*: each template below is
+// CoefficientInputs::modes from integral *tensors*: each template below is
 // evaluated for every assignment of its mode variables, and instantiate() lists those concrete
 // integrals in the order the functions read them (template by template, each row-major over
 // its variables, variable 0 slowest, a flap variable ranging over M modes and a lag one over N).
@@ -363,7 +371,7 @@ struct ModelFamily {
   const IntegralTemplate* aero;
   int n_structural;
   const IntegralTemplate* structural;
-  // As in ModelDescriptor, for in.flap_modes x in.lag_modes.
+  // As in ModelDescriptor, for the M x N of in.modes.
   void (*mass)(const CoefficientInputs& in, double* mass);
   void (*coefficients)(const CoefficientInputs&, const CoefficientOutputs&);
   void (*equilibrium)(const CoefficientInputs&, const EquilibriumOutputs&);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,20 +41,27 @@ std::shared_ptr<const ModeShape> cantilever_mode(int j);
 // beta_j, roots of 1 + cos(beta) cosh(beta) = 0 (1.8751, 4.6941, 7.8548, ...), to full precision.
 double cantilever_root(int j);
 
+// The modes of one bending direction (model_api.h Direction): flap (eta_k, (EI)_y) or lag
+// (gamma_m, (EI)_z).
+struct DirectionModes {
+  std::vector<std::shared_ptr<const ModeShape>> shapes;  // mode k = 0..count()-1
+  std::vector<double> omega;                             // rotating frequencies by Omega, per shape
+  // Nondimensional bending stiffness k = EI / (Omega^2 l I_b); 0 when not known (assumed modes).
+  // With a blade table, k(x0) = stiffness times the table's column of the direction at x0.
+  double stiffness = 0.0;
+  int count() const { return static_cast<int>(shapes.size()); }
+};
+
 struct ModeSet {
-  std::vector<std::shared_ptr<const ModeShape>> flap;  // eta_k, k = 0..M-1
-  std::vector<std::shared_ptr<const ModeShape>> lag;   // gamma_m, m = 0..N-1
-  // The shapes of direction d (model_api.h DirectionBlock): flap or lag.
+  // Per direction, indexed by model::index(d): eta_k (k = 0..M-1), gamma_m (m = 0..N-1).
+  std::array<DirectionModes, model::kDirectionCount> directions;
+  DirectionModes& operator[](model::Direction d) { return directions[model::index(d)]; }
+  const DirectionModes& operator[](model::Direction d) const { return directions[model::index(d)]; }
+  // The shapes of direction d.
   const std::vector<std::shared_ptr<const ModeShape>>& shapes(model::Direction d) const {
-    return d == model::Direction::Flap ? flap : lag;
+    return (*this)[d].shapes;
   }
-  std::vector<double> omega_flap;  // rotating frequencies by Omega [M]
-  std::vector<double> omega_lag;   // [N]
-  // Nondimensional bending stiffnesses k = EI / (Omega^2 l I_b); 0 when not known (assumed modes).
-  // With a blade table, k(x0) = stiffness_* times the table's column at x0.
-  double stiffness_flap = 0.0;  // (EI)_y
-  double stiffness_lag = 0.0;   // (EI)_z
-  std::string kind;             // "assumed" or "exact"
+  std::string kind;  // "assumed" or "exact"
   // The blade's spanwise distributions; null for the paper's uniform blade (mbar = 3, chord 1,
   // no twist, no tip mass).  Every integral of blade.h and aero_integrals.h weights by them.
   std::shared_ptr<const BladeProperties> blade;
@@ -118,14 +126,19 @@ double structural_integral(const model::StructuralIntegral& spec, const ModeSet&
 std::vector<double> structural_integrals(const model::ModelDescriptor& m, const ModeSet& modes,
                                          double e1_over_l, double mbar = 3.0);
 
-// Elastic coupling (Appendix E, eqs E.3-E.8) for collective pitch theta:
-//   Es_F[i][k]  = (k_z - k_y) sin^2(theta)         int eta_i'' eta_k''
-//   Es_L[i][m]  = (k_z - k_y) sin^2(theta)         int gamma_i'' gamma_m''
-//   Ecs_FL[i][m] = (k_z - k_y) sin(theta)cos(theta) int eta_i'' gamma_m''
-//   Ecs_LF[i][k] = (k_z - k_y) sin(theta)cos(theta) int gamma_i'' eta_k''
+// Elastic coupling (Appendix E, eqs E.3-E.8) for collective pitch theta, one block per pair of
+// directions (row: the equation's direction, column: the coordinate's):
+//   (flap, flap) Es_F[i][k]  = (k_z - k_y) sin^2(theta)         int eta_i'' eta_k''
+//   (lag, lag)   Es_L[i][m]  = (k_z - k_y) sin^2(theta)         int gamma_i'' gamma_m''
+//   (flap, lag)  Ecs_FL[i][m] = (k_z - k_y) sin(theta)cos(theta) int eta_i'' gamma_m''
+//   (lag, flap)  Ecs_LF[i][k] = (k_z - k_y) sin(theta)cos(theta) int gamma_i'' eta_k''
 // with k = EI / (Omega^2 l I_b).  All zero when the ModeSet carries no stiffness.
 struct ElasticCoupling {
-  Eigen::MatrixXd es_flap, es_lag, ecs_flap_lag, ecs_lag_flap;
+  // blocks[index(row)][index(column)]: count(row) x count(column)
+  std::array<std::array<Eigen::MatrixXd, model::kDirectionCount>, model::kDirectionCount> blocks;
+  const Eigen::MatrixXd& block(model::Direction row, model::Direction column) const {
+    return blocks[model::index(row)][model::index(column)];
+  }
 };
 ElasticCoupling elastic_coupling(const ModeSet& modes, double theta);
 ElasticCoupling no_elastic_coupling(const ModeSet& modes);

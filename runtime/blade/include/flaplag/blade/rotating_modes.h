@@ -17,6 +17,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -24,16 +25,21 @@
 
 namespace flaplag {
 
-enum class BendingDirection { Flap, Lag };
+// The bending directions are the model's (model_api.h): flap and lag.
+using BendingDirection = model::Direction;
 
 // The largest Galerkin basis: the cantilever functions are verified to ~1e-13 for j <= 12
 // (blade.h).
 inline constexpr int kMaxBasisFunctions = 12;
 
 struct ExactModeOptions {
-  int n_basis = 5;         // cantilever functions per direction (paper: 5); 1..kMaxBasisFunctions
-  int flap_modes = 1;      // M rotating flap modes returned, 1..n_basis
-  int lag_modes = 1;       // N rotating lag modes returned, 1..n_basis
+  int n_basis = 5;     // cantilever functions per direction (paper: 5); 1..kMaxBasisFunctions
+  int flap_modes = 1;  // M rotating flap modes returned, 1..n_basis
+  int lag_modes = 1;   // N rotating lag modes returned, 1..n_basis
+  // The modes returned in direction d: flap_modes or lag_modes.
+  int modes(model::Direction d) const {
+    return d == model::Direction::Flap ? flap_modes : lag_modes;
+  }
   double e1_over_l = 0.0;  // root offset from the rotation axis by l, >= 0 (centrifugal arm)
   double mbar = 3.0;       // m l^3 / I_b (frequencies depend on k / mbar only)
   // Compatibility with the 1974 program (docs/validation.md, "1974 shapes"):
@@ -60,19 +66,22 @@ class ModalCombination final : public ModeShape {
   Eigen::VectorXd coefficients_;
 };
 
+// The Galerkin solution of one direction beyond the modes it returns.
+struct ExactDirection {
+  double omega_nonrotating = 0.0;  // first nonrotating frequency, sqrt(k / mbar) beta_1^2
+  std::vector<double> omega_all;   // all n_basis rotating frequencies, ascending
+  // Coefficients of the returned shapes on phi_1..phi_n (n_basis x count), as used in the
+  // ModeSet (i.e. including the 1974 sign flip when that option is set).
+  Eigen::MatrixXd coefficients;
+};
+
 struct ExactModes {
-  // flap/lag: tip-normalised rotating modes (eta(1) = gamma(1) = +1, like eq 4.1), kind "exact";
-  // omega_flap/omega_lag: rotating frequencies of the M / N returned modes;
-  // stiffness_flap/lag: k_y, k_z.
+  // Per direction: tip-normalised rotating modes (eta(1) = gamma(1) = +1, like eq 4.1), kind
+  // "exact", their rotating frequencies and the stiffnesses k_y, k_z.
   ModeSet modes;
-  double omega_flap_nonrotating = 0.0;  // wbar_F1N = sqrt(k_y / mbar) beta_1^2
-  double omega_lag_nonrotating = 0.0;   // wbar_L1N = sqrt(k_z / mbar) beta_1^2
-  std::vector<double> omega_flap_all;   // all n_basis rotating flap frequencies, ascending
-  std::vector<double> omega_lag_all;    // all n_basis rotating lag frequencies, ascending
-  // Coefficients of the returned shapes on phi_1..phi_n (n_basis x M and n_basis x N), as used
-  // in modes.flap / modes.lag (i.e. including the 1974 sign flip when that option is set).
-  Eigen::MatrixXd flap_coefficients;
-  Eigen::MatrixXd lag_coefficients;
+  std::array<ExactDirection, model::kDirectionCount> directions;  // indexed by model::index(d)
+  ExactDirection& operator[](model::Direction d) { return directions[model::index(d)]; }
+  const ExactDirection& operator[](model::Direction d) const { return directions[model::index(d)]; }
 };
 
 // Exact rotating modes with first rotating frequencies omega_flap = wbar_F1 and omega_lag =

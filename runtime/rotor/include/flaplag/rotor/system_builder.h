@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -108,19 +109,24 @@ class SystemBuilder {
   model::CoefficientInputs inputs(double mu, const double* aero) const;
   void assemble(double mu, const std::vector<double>& aero, HarmonicSet& out) const;
 
+  template <class T>
+  using PerDirection = std::array<T, model::kDirectionCount>;  // indexed by model::index(d)
+
   RotorParameters p_;
   const model::ModelDescriptor* model_;
-  int M_, N_, n_, H_;
+  std::vector<model::DirectionBlock> directions_;  // the model's, in state order
+  int n_, H_;
   InflowModel inflow_model_;
   ModeSet modes_;
   SpanGeometry geometry_;
   double inflow_ = 0.0, cdo_a_ = 0.0;
   ElasticCoupling coupling_;
-  std::vector<double> es_flap_, es_lag_, ecs_flap_lag_, ecs_lag_flap_;  // row-major copies
+  PerDirection<PerDirection<std::vector<double>>> elastic_;  // row-major copies of its blocks
   std::vector<double> structural_;
   AeroIntegrals aero_;
-  std::vector<double> g0_, h0_;
-  std::vector<double> damping_flap_, damping_lag_;  // per mode [M], [N]
+  PerDirection<std::vector<double>> q0_;          // hover static amplitudes per mode
+  PerDirection<std::vector<double>> damping_;     // structural damping ratio per mode
+  std::vector<int> rate_col_, displacement_col_;  // the state columns of coordinate j
   Eigen::VectorXd hover_forcing_;  // forcing[0] at mu = 0, normal flow, at the equilibrium
   Eigen::MatrixXd mass_inverse_;   // generalized mass^-1, factored once in the constructor
   HoverResult hover_;
