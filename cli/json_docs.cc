@@ -134,7 +134,8 @@ std::string type_text(unsigned flags) {
     }
     return names;
   } else if constexpr (is_optional<V>::value) {
-    return type_text<typename V::value_type>(flags) + " or null";
+    using Inner = typename V::value_type;  // an optional optional: absent, null or a value
+    return type_text<Inner>(flags) + (is_optional<Inner>::value ? "" : " or null");
   } else if constexpr (is_vector<V>::value) {
     return "array of " + type_text<typename V::value_type>(flags);
   } else {
@@ -294,11 +295,10 @@ std::string json_reference() {
       "has `parameters` (the rotor parameters with the trimmed pitch).");
   out += struct_section<TrimEquilibrium>("The periodic equilibrium a trim about it rests on.");
   out += struct_section<StudyRow>(
-      "One value of a study: a row of `flaplag study --json` is `value`, the keys of " +
+      "One value of a study: a row of `flaplag study --json`, with the keys of " +
       section_link("CriticalResult") +
-      " at it (`intervals` as [onset, end] pairs; `mode`, `omega`, `kind` null without mu_c), "
-      "then `trim` and `damping_crossings`.  Python: `StudyResult.rows` (CriticalResult each) "
-      "and its columns.");
+      " a table of mu_c shows.  Python: `StudyResult.rows` (a CriticalResult each, with `trim` "
+      "and `damping_crossings`) and its columns.");
   out += struct_section<MapCell>(
       "One cell of a stability map: the least stable exponent there.  `flaplag map --json` "
       "writes `max_zeta`, `mode` and `kind` as grids; Python's `MapResult` has `max_zeta`, "

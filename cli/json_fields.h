@@ -4,9 +4,12 @@
 // jnum (a non-finite number is null), except a row that allows -inf (zeta_json: "-inf");
 // optionals null when empty; complex numbers {"re", "im"}; described enums by name; described
 // structs as objects and vectors as arrays of these; message text (kFieldMessage) in the
-// command line's vocabulary.  A kFieldOmitWhenEmpty list or optional is left out when empty.
+// command line's vocabulary.  A kFieldOmitWhenEmpty list or optional is left out when empty,
+// unless the document asks for it (`present`: the keys a command's options call for, written
+// as null or [] when empty).
 #pragma once
 
+#include <algorithm>
 #include <complex>
 #include <functional>
 #include <optional>
@@ -24,7 +27,8 @@ namespace flaplag::cli::cmd {
 using MessageText = std::function<std::string(const std::string&)>;
 
 template <class T>
-Json to_json(const T& object, const MessageText& message);
+Json to_json(const T& object, const MessageText& message,
+             const std::vector<std::string>& present = {});
 
 namespace json_detail {
 
@@ -60,14 +64,16 @@ Json value(const V& v, unsigned flags, const MessageText& message) {
 }  // namespace json_detail
 
 template <class T>
-Json to_json(const T& object, const MessageText& message) {
+Json to_json(const T& object, const MessageText& message, const std::vector<std::string>& present) {
   Json j = Json::object();
   for_each_field(object, [&](const auto& row, const auto& v) {
     using V = std::decay_t<decltype(v)>;
+    const bool omit = (row.flags & kFieldOmitWhenEmpty) &&
+                      std::find(present.begin(), present.end(), row.name) == present.end();
     if constexpr (json_detail::is_vector<V>::value) {
-      if ((row.flags & kFieldOmitWhenEmpty) && v.empty()) return;
+      if (omit && v.empty()) return;
     } else if constexpr (json_detail::is_optional<V>::value) {
-      if ((row.flags & kFieldOmitWhenEmpty) && !v) return;
+      if (omit && !v) return;
     }
     j[row.name] = json_detail::value(v, row.flags, message);
   });

@@ -929,7 +929,7 @@ def _worst(statuses):
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class StudyResult:
+class StudyResult(_Described):
     """mu_c (and every instability interval) versus one rotor parameter.
 
     parameter: the field varied; values: its values (1-D array); rows: a CriticalResult per
@@ -1043,11 +1043,6 @@ class StudyResult:
         )
 
     @classmethod
-    def _from(cls, parameter, d, metadata):
-        rows = tuple(CriticalResult._from(r) for r in d["rows"])
-        return cls(parameter, np.asarray(d["values"]), rows, d["status"], d["message"], metadata)
-
-    @classmethod
     def _concatenate(cls, parameter, parts, metadata):
         """The result of one study from studies of consecutive slices of its values."""
         rows = tuple(CriticalResult._from(r) for d in parts for r in d["rows"])
@@ -1058,7 +1053,7 @@ class StudyResult:
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class MapResult:
+class MapResult(_Described):
     """A stability map: the largest damping exponent over a grid of two parameters.
 
     x, y: the axis names ('mu' or a rotor parameter; at most one of them 'mu'); x_values,

@@ -750,8 +750,6 @@ py::dict study(const py::dict& params, const py::dict& transition, int flap_mode
   py::dict d;
   d["values"] = to_numpy(o.values);
   d["rows"] = rows;
-  d["rows_done"] = r.rows_done;
-  d["cancelled"] = r.cancelled;
   d["status"] = status_name(r.status);
   d["message"] = r.message;
   return d;

@@ -289,15 +289,23 @@ def test_a_direction_the_module_does_not_give_has_no_names():
 
 
 def test_study_json_rows_are_the_keys_of_the_tables():
-    # A row: value, trim and damping_crossings (StudyRow's rows) around the search's keys.
+    # A row: StudyRow's rows in its order; trim and damping_crossings when the study asks for
+    # them, basis_error with exact modes only.
     doc = run_cli("study", "--vary", "omega-lag=1.0,1.3", "--trim", "thrust", "--mu-max", "0.3",
                   "--damping-criterion", "0.01", "--quiet")
-    critical = set(keys("CriticalResult"))
     for row in doc["rows"]:
-        assert set(row) - critical == set(keys("StudyRow")), sorted(row)
+        assert list(row) == [k for k in keys("StudyRow") if k != "basis_error"], list(row)
     plain = run_cli("study", "--vary", "omega-lag=1.0,1.3", "--mu-max", "0.3", "--quiet")
+    asked = {"basis_error", "trim", "damping_crossings"}
     for row in plain["rows"]:
-        assert set(row) - critical == {"value"}, sorted(row)  # trim, crossings: absent
+        assert list(row) == [k for k in keys("StudyRow") if k not in asked], list(row)
+    exact = run_cli("study", "--vary", "omega-lag=1.0", "--mu-max", "0.3", "--modes", "exact",
+                    "--quiet")
+    for row in exact["rows"]:
+        assert list(row) == [k for k in keys("StudyRow") if k not in asked - {"basis_error"}]
+    # The search's keys, each as CriticalResult has it (intervals: [onset, end] pairs).
+    assert set(keys("StudyRow")) - set(keys("CriticalResult")) == {
+        "value", "trim", "damping_crossings"}
 
 
 def test_map_json_grids_and_python_arrays_are_the_keys_of_the_table():
