@@ -135,8 +135,11 @@ std::optional<double> max_liouville(const SweepResult& s) {
   return m;
 }
 
-// A row: the point's mu, the dominant exponent of each mode ({zeta, omega, damping_ratio} or
-// null), then the rest of the point (its table).
+// The rows of a mode's dominant exponent (LabelledExponent's table) in the rows of a sweep.
+const std::vector<const char*> kModeRows = {"zeta", "omega", "damping_ratio"};
+
+// A row: the point's mu, the dominant exponent of each mode (kModeRows, or null), then the rest
+// of the point (its table).
 Json sweep_rows_json(const Request& r, const SweepResult& s,
                      const std::vector<std::string>& labels) {
   Json rows = Json::array();
@@ -145,10 +148,7 @@ Json sweep_rows_json(const Request& r, const SweepResult& s,
     row["mu"] = jnum(p.mu);
     for (const std::string& l : labels) {
       const LabelledExponent* e = dominant(p, l);
-      row[l] = e ? Json{{"zeta", zeta_json(e->zeta)},
-                        {"omega", jnum(e->omega)},
-                        {"damping_ratio", ratio_json(e->zeta, e->omega)}}
-                 : Json(nullptr);
+      row[l] = e ? rows_json(*e, kModeRows, in_vocabulary(r)) : Json(nullptr);
     }
     const Json point = point_json(r, p);
     for (const auto& item : point.items()) {
@@ -192,32 +192,39 @@ std::string sweep_table_text(const Request& r, const SweepResult& s,
 }
 
 // Empty fields for what is not known (no exponent of a label, no residual, unknown stability).
+// Per mode "<label>_<row>" of kModeRows, the damping ratios last: the columns before keep their
+// places.
 std::string sweep_csv(const Request& r, const SweepResult& s,
                       const std::vector<std::string>& labels) {
-  auto field = [](double v) { return finite(v) ? exact_num(v) : std::string(); };
-  std::string out = "mu";
-  for (const std::string& l : labels) out += "," + l + "_zeta," + l + "_omega";
+  const std::vector<const char*> exponent_keys(kModeRows.begin(), kModeRows.end() - 1);
+  const std::vector<const char*> ratio_keys(kModeRows.end() - 1, kModeRows.end());
   // The point's own columns, by its table (core/fields.h).
   const std::vector<const char*> point_keys = {"liouville_residual", "error_estimate", "stable",
                                                "status", "message"};
-  out += "," + csv_fields(std::vector<std::string>(point_keys.begin(), point_keys.end()));
-  // The damping ratios (fractions of critical) last: the columns before keep their places.
-  for (const std::string& l : labels) out += "," + l + "_damping_ratio";
-  out += "\n";
+  auto mode_cells = [&](const PointResult& p, const std::vector<const char*>& keys) {
+    std::vector<std::string> cells;
+    for (const std::string& l : labels) {
+      const LabelledExponent* e = dominant(p, l);
+      const std::vector<std::string> c =
+          e ? described_cells(*e, keys, CellStyle::Csv, {}) : std::vector<std::string>(keys.size());
+      cells.insert(cells.end(), c.begin(), c.end());
+    }
+    return cells;
+  };
+  std::vector<std::string> head{"mu"};
+  for (const std::string& l : labels)
+    for (const char* k : exponent_keys) head.push_back(l + "_" + k);
+  head.insert(head.end(), point_keys.begin(), point_keys.end());
+  for (const std::string& l : labels)
+    for (const char* k : ratio_keys) head.push_back(l + "_" + k);
+  std::string out = csv_fields(head) + "\n";
   for (const PointResult& p : s.points) {
-    out += field(p.mu);
-    for (const std::string& l : labels) {
-      const LabelledExponent* e = dominant(p, l);
-      out += "," + (e && zeta_ok(e->zeta) ? exact_zeta_text(e->zeta) : std::string()) + "," +
-             (e ? field(e->omega) : std::string());
-    }
-    out += "," + csv_fields(described_cells(p, point_keys, CellStyle::Csv, in_vocabulary(r)));
-    for (const std::string& l : labels) {
-      const LabelledExponent* e = dominant(p, l);
-      const std::optional<double> ratio = e ? damping_ratio(e->zeta, e->omega) : std::nullopt;
-      out += "," + (ratio ? field(*ratio) : std::string());
-    }
-    out += "\n";
+    std::vector<std::string> line{finite(p.mu) ? exact_num(p.mu) : std::string()};
+    for (const auto& cells : {mode_cells(p, exponent_keys),
+                              described_cells(p, point_keys, CellStyle::Csv, in_vocabulary(r)),
+                              mode_cells(p, ratio_keys)})
+      line.insert(line.end(), cells.begin(), cells.end());
+    out += csv_fields(line) + "\n";
   }
   return out;
 }
@@ -398,12 +405,16 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
   if (trimmed(r)) {
     trim_table = std::string("\nTrim (") + trim_kind_name(r.trim.kind) +
                  ") at each mu, C_T = " + cell(r.trim.thrust_coefficient) + "\n";
-    TextTable t({"mu", "theta0", "theta1c", "theta1s", "lambda", "C_T", "status"});
-    for (const TrimResult& x : trims) {
-      t.add_row({cell(x.mu), cell(x.theta0), cell(x.theta1c), cell(x.theta1s), cell(x.inflow),
-                 cell(x.thrust_coefficient), status_name(x.status)});
-    }
-    trim_table += t.render();
+    trim_table += described_table(trims,
+                                  {{"mu", "mu"},
+                                   {"theta0", "theta0"},
+                                   {"theta1c", "theta1c"},
+                                   {"theta1s", "theta1s"},
+                                   {"inflow", "lambda"},
+                                   {"thrust_coefficient", "C_T"},
+                                   {"status", "status"}},
+                                  in_vocabulary(r))
+                      .render();
   }
   return text_output(r,
                      header_text(an) + "\n" + warnings_text(an) +

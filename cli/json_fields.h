@@ -13,6 +13,7 @@
 #include <complex>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -77,6 +78,19 @@ Json to_json(const T& object, const MessageText& message, const std::vector<std:
     }
     j[row.name] = json_detail::value(v, row.flags, message);
   });
+  return j;
+}
+
+// The rows `keys` of object's table, in that order (a key the table lacks is a bug of the
+// caller: std::logic_error).
+template <class T>
+Json rows_json(const T& object, const std::vector<const char*>& keys, const MessageText& message) {
+  const Json all = to_json(object, message);
+  Json j = Json::object();
+  for (const char* key : keys) {
+    if (!all.contains(key)) throw std::logic_error(std::string("no row `") + key + "`");
+    j[key] = all[key];
+  }
   return j;
 }
 

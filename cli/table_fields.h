@@ -37,7 +37,8 @@ template <class V>
 std::string cell_text(const V& v, unsigned flags, CellStyle style, const MessageText& message) {
   const bool csv = style == CellStyle::Csv;
   if constexpr (std::is_same_v<V, double>) {
-    if (flags & kFieldNegativeInfinity) return csv ? exact_zeta_text(v) : zeta_cell(v);
+    if (flags & kFieldNegativeInfinity)
+      return csv ? (zeta_ok(v) ? exact_zeta_text(v) : std::string()) : zeta_cell(v);
     if (csv) return std::isfinite(v) ? exact_num(v) : std::string();
     return cell(v);
   } else if constexpr (std::is_same_v<V, int>) {
