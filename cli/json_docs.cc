@@ -83,6 +83,14 @@ const char* struct_name<MapCell>() {
 }
 
 template <>
+const char* struct_name<HoverResult>() {
+  return "HoverResult";
+}
+template <>
+const char* struct_name<HoverExponent>() {
+  return "HoverExponent";
+}
+template <>
 const char* struct_name<ThrustResult>() {
   return "ThrustResult";
 }
@@ -133,6 +141,10 @@ std::string type_text(unsigned flags) {
                ("\"" + std::string(table[i].name) + "\"");
     }
     return names;
+  } else if constexpr (is_named_values_field<V>::value) {
+    return "object of numbers";
+  } else if constexpr (std::is_same_v<V, Eigen::MatrixXd>) {
+    return "array of rows (arrays of numbers)";
   } else if constexpr (is_optional<V>::value) {
     using Inner = typename V::value_type;  // an optional optional: absent, null or a value
     return type_text<Inner>(flags) + (is_optional<Inner>::value ? "" : " or null");
@@ -206,9 +218,8 @@ std::string header_section() {
 std::string documents_section() {
   return "## Documents\n\n"
          "- `flaplag point --json`: the header, the keys of " +
-         section_link("PointResult") +
-         ", `hover` (the hover equilibrium and its exponents) and, with `--trim`, `trim` (a " +
-         section_link("TrimResult") +
+         section_link("PointResult") + ", `hover` (a " + section_link("HoverResult") +
+         ") and, with `--trim`, `trim` (a " + section_link("TrimResult") +
          ").\n"
          "- `flaplag sweep --json`: the header, `mu` (start, stop, step), `labels` (the modes), "
          "`rows`, `max_liouville_residual`, with `--damping-criterion` `damping_criterion` and "
@@ -278,6 +289,12 @@ std::string json_reference() {
   out += struct_section<PointResult>("The labelled exponents at one advance ratio mu.");
   out += struct_section<LabelledExponent>(
       "One characteristic exponent lambda = zeta + i omega with its mode label.");
+  out += struct_section<HoverResult>(
+      "The hover equilibrium (eqs 2.24, 2.29-2.32) and the hover exponents: a document's "
+      "`hover` (`point`, `system`, the typical case) has `inflow`, `equilibrium`, `exponents`, "
+      "`stable`, `status` and `message`; Python's `HoverResult` (`Analysis.hover`) has every "
+      "row but `exponents` (a property made from `eigenvalues` and `labels`).");
+  out += struct_section<HoverExponent>("An eigenvalue of A0 with its mode label.");
   out += struct_section<SweepResult>(
       "Exponents along advance ratios, continued from hover (the Python module's "
       "`SweepResult`; the command line writes its points as `rows`, see above).");

@@ -2,13 +2,15 @@
 //
 // Each row becomes the key of its name, in table order, its value written by type: numbers by
 // jnum (a non-finite number is null), except a row that allows -inf (zeta_json: "-inf");
-// optionals null when empty; complex numbers {"re", "im"}; described enums by name; described
+// optionals null when empty; complex numbers {"re", "im"}; numbers by name an object, a matrix
+// an array of its rows; described enums by name; described
 // structs as objects and vectors as arrays of these; message text (kFieldMessage) in the
 // command line's vocabulary.  A kFieldOmitWhenEmpty list or optional is left out when empty,
 // unless the document asks for it (`present`: the keys a command's options call for, written
 // as null or [] when empty).
 #pragma once
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <complex>
 #include <functional>
@@ -50,6 +52,18 @@ Json value(const V& v, unsigned flags, const MessageText& message) {
     return complex_json(v);
   } else if constexpr (is_described_enum_v<V>) {
     return Json(enum_name(v));
+  } else if constexpr (is_named_values_field<V>::value) {
+    Json o = Json::object();
+    for (const auto& [name, x] : v) o[name] = jnum(x);
+    return o;
+  } else if constexpr (std::is_same_v<V, Eigen::MatrixXd>) {
+    Json rows = Json::array();
+    for (Eigen::Index i = 0; i < v.rows(); ++i) {
+      Json row = Json::array();
+      for (Eigen::Index k = 0; k < v.cols(); ++k) row.push_back(jnum(v(i, k)));
+      rows.push_back(row);
+    }
+    return rows;
   } else if constexpr (is_optional<V>::value) {
     return v ? value(*v, flags, message) : Json(nullptr);
   } else if constexpr (is_vector<V>::value) {

@@ -76,6 +76,19 @@ std::vector<std::string> described_cells(const T& object, const std::vector<cons
   return out;
 }
 
+// The heading of row `key` of T's table: the key, with the row's units in brackets when it has
+// some ("zeta [1/rev]"; a dimensionless "-" is not shown).
+template <class T>
+std::string described_heading(const char* key) {
+  std::string heading;
+  if (!visit_row<T>(key, [&](const auto& row) {
+        const std::string units = row.units;
+        heading = key + (units.empty() || units[0] == '-' ? "" : " [" + units + "]");
+      }))
+    throw std::logic_error(std::string("no row `") + key + "`");
+  return heading;
+}
+
 // One line per element of `lines` under `columns`; the first column left-aligned, the others
 // right-aligned (TextTable).
 template <class T>

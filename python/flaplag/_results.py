@@ -200,7 +200,7 @@ class HoverResult(_Described):
     inflow: float
     equilibrium: Dict[str, float]
     A0: np.ndarray
-    eigenvalues: np.ndarray
+    eigenvalues: _array(complex)
     labels: Tuple[str, ...]
     stable: Optional[bool]
     status: str

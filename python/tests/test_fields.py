@@ -25,6 +25,7 @@ PYTHON_ONLY = {
 
 CLASSES = [
     "Exponent",
+    "HoverResult",
     "PointResult",
     "SweepResult",
     "Interval",
@@ -53,6 +54,7 @@ def results():
     campbell = flaplag.Analysis(omega_lag=0.7).campbell(points=4)
     return {
         "Exponent": point.exponents[0],
+        "HoverResult": an.hover,
         "PointResult": point,
         "SweepResult": an.sweep(0.0, 0.2, 0.1),
         "Interval": crit.intervals[0],
@@ -122,6 +124,20 @@ def test_critical_json_has_the_keys_of_the_table():
             assert key in doc, key
     assert doc["evaluations"] == crit.evaluations
     assert len(doc["intervals"]) == len(crit.intervals)
+
+
+def test_hover_json_and_python_are_the_rows_of_the_table():
+    """The document's hover is HoverResult's rows that a document holds; Python has every row
+    (exponents as the class's own property)."""
+    for modes in ([], ["--modes", "exact", "--flap-modes", "3", "--lag-modes", "2"]):
+        doc = run_cli("point", "--mu", "0.3", *modes)["hover"]
+        assert list(doc) == ["inflow", "equilibrium", "exponents", "stable", "status", "message"]
+        assert set(doc) <= set(keys("HoverResult"))
+        kw = dict(modes="exact", flap_modes=3, lag_modes=2) if modes else {}
+        hover = flaplag.Analysis(**kw).hover
+        assert doc["equilibrium"] == hover.equilibrium
+        assert [e["label"] for e in doc["exponents"]] == list(hover.labels)
+        assert doc["stable"] == hover.stable
 
 
 def test_unknown_struct_is_refused():

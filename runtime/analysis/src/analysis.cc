@@ -152,6 +152,10 @@ struct Analysis::Impl {
       hover.status = hover_modes.status;
       hover.message = hover_modes.message;
     }
+    for (const model::DirectionBlock& b : model::direction_blocks(m.flap_modes, m.lag_modes))
+      for (int k = 0; k < b.modes && b.first_coordinate + k < hover.q0.size(); ++k)
+        hover.equilibrium.emplace_back(std::string(b.coordinate) + "0_" + std::to_string(k + 1),
+                                       hover.q0(b.first_coordinate + k));
     check_finite(hover);
     validity = internal::validity_of(builder);
     if (trim_in_hover)
