@@ -91,6 +91,18 @@ const char* struct_name<HoverExponent>() {
   return "HoverExponent";
 }
 template <>
+const char* struct_name<SystemSnapshot>() {
+  return "SystemSnapshot";
+}
+template <>
+const char* struct_name<AeroIntegral>() {
+  return "AeroIntegral";
+}
+template <>
+const char* struct_name<StructuralIntegral>() {
+  return "StructuralIntegral";
+}
+template <>
 const char* struct_name<ThrustResult>() {
   return "ThrustResult";
 }
@@ -145,6 +157,8 @@ std::string type_text(unsigned flags) {
     return "object of numbers";
   } else if constexpr (std::is_same_v<V, Eigen::MatrixXd>) {
     return "array of rows (arrays of numbers)";
+  } else if constexpr (std::is_same_v<V, Eigen::VectorXd>) {
+    return "array of numbers";
   } else if constexpr (is_optional<V>::value) {
     using Inner = typename V::value_type;  // an optional optional: absent, null or a value
     return type_text<Inner>(flags) + (is_optional<Inner>::value ? "" : " or null");
@@ -321,6 +335,14 @@ std::string json_reference() {
       "writes `max_zeta`, `mode` and `kind` as grids; Python's `MapResult` has `max_zeta`, "
       "`omega`, `mode`, `kind` and the cells' `status` and `message` (`cell_status`, "
       "`cell_message`) as arrays of the map's shape.");
+  out += struct_section<SystemSnapshot>(
+      "The linear periodic system y' = A(psi) y + f(psi) at one (mu, psi) for auditing: "
+      "`flaplag system --json` is the header and these keys, with `hover` (a " +
+      section_link("HoverResult") +
+      ") after `f`.  Python: `Analysis.system` (`SystemResult`: `states`, and the integrals "
+      "as dicts by name).");
+  out += struct_section<AeroIntegral>("One spanwise aerodynamic integral.");
+  out += struct_section<StructuralIntegral>("One generalized mass or structural integral.");
   out += struct_section<CampbellResult>(
       "The Campbell diagram: every mode's frequency against the rotor speed Omega/Omega_0, the "
       "blade's bending stiffness fixed at its value for the nominal speed Omega_0.");

@@ -64,6 +64,10 @@ Json value(const V& v, unsigned flags, const MessageText& message) {
       rows.push_back(row);
     }
     return rows;
+  } else if constexpr (std::is_same_v<V, Eigen::VectorXd>) {
+    Json a = Json::array();
+    for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(jnum(v[i]));
+    return a;
   } else if constexpr (is_optional<V>::value) {
     return v ? value(*v, flags, message) : Json(nullptr);
   } else if constexpr (is_vector<V>::value) {

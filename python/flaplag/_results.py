@@ -577,22 +577,20 @@ class SystemResult:
         )
 
     @classmethod
-    def _from(cls, d):
-        paper = {}
-        for name, pname, _, _ in d["aero_integrals"]:
-            paper[name] = pname
-        for name, pname, _ in d["structural_integrals"]:
-            paper[name] = pname
+    def _from(cls, d):  # the dict of the C++ SystemSnapshot's table
+        aero, structural = d["aero_integrals"], d["structural_integrals"]
+        paper = {a["name"]: a["paper_name"] for a in aero}
+        paper.update({s["name"]: s["paper_name"] for s in structural})
         return cls(
             d["mu"],
             d["psi"],
             d["region"],
             np.asarray(d["A"]),
             np.asarray(d["f"]),
-            tuple(d["states"]),
-            {name: v for name, _, v, _ in d["aero_integrals"]},
-            {name: v for name, _, _, v in d["aero_integrals"]},
-            {name: v for name, _, v in d["structural_integrals"]},
+            tuple(d["state"]),
+            {a["name"]: a["normal"] for a in aero},
+            {a["name"]: math.nan if a["at_psi"] is None else a["at_psi"] for a in aero},
+            {s["name"]: s["value"] for s in structural},
             paper,
         )
 

@@ -306,7 +306,7 @@ py::object to_python(const V& v) {
     py::dict d;
     for (const auto& [name, x] : v) d[py::str(name)] = x;
     return std::move(d);
-  } else if constexpr (std::is_same_v<V, Eigen::MatrixXd>) {
+  } else if constexpr (std::is_same_v<V, Eigen::MatrixXd> || std::is_same_v<V, Eigen::VectorXd>) {
     return to_numpy(v);
   } else if constexpr (is_optional<V>::value) {
     return v ? to_python(*v) : py::object(py::none());
@@ -457,42 +457,6 @@ py::list option_rows(const std::string& name) {
 }
 
 py::dict hover_dict(const Analysis& an) { return to_dict(an.hover()); }
-
-template <typename Integral>
-std::string paper_name(const Integral* list, int n, const std::string& name) {
-  for (int i = 0; i < n; ++i) {
-    if (name == list[i].name) return list[i].paper_name;
-  }
-  return "";
-}
-
-py::dict snapshot_dict(const Analysis& an, const SystemSnapshot& s) {
-  const model::ModelDescriptor& m = an.model();
-  py::list states;
-  for (Eigen::Index col = 0; col < s.A.cols(); ++col)
-    states.append(model::state_name(static_cast<int>(col), m.flap_modes, m.lag_modes));
-  py::list aero;
-  for (std::size_t i = 0; i < s.aero_integrals.size(); ++i) {
-    const std::string& name = s.aero_integrals[i].first;
-    aero.append(py::make_tuple(name, paper_name(m.aero, m.n_aero, name), s.aero_integrals[i].second,
-                               i < s.aero_integrals_region.size()
-                                   ? s.aero_integrals_region[i].second
-                                   : std::numeric_limits<double>::quiet_NaN()));
-  }
-  py::list structural;
-  for (const auto& [name, value] : s.structural_integrals)
-    structural.append(py::make_tuple(name, paper_name(m.structural, m.n_structural, name), value));
-  py::dict d;
-  d["mu"] = s.mu;
-  d["psi"] = s.psi;
-  d["region"] = s.region;
-  d["A"] = to_numpy(s.A);
-  d["f"] = to_numpy(s.f);
-  d["states"] = states;
-  d["aero_integrals"] = aero;
-  d["structural_integrals"] = structural;
-  return d;
-}
 
 // The stations: an array of them, or (an integer n) n equally spaced ones over [0, 1], made
 // here so that no list of n Python floats is built first.  Checked against the memory limit
@@ -1260,7 +1224,7 @@ void bind_time_domain(py::class_<Analysis>& analysis) {
                py::gil_scoped_release release;
                s = a.snapshot(mu, psi);
              }
-             return snapshot_dict(a, s);
+             return to_dict(s);
            })
       .def("response",
            [](const Analysis& a, double mu, const py::dict& options, std::uint64_t memory_limit) {
