@@ -187,6 +187,10 @@ TEST(JsonFields, HoverRowsByType) {
   EXPECT_EQ(true, j["stable"].get<bool>());
   h.neutral = true;
   EXPECT_TRUE(cmd::to_json(h, same)["stable"].is_null());
+  h.neutral = false;
+  h.status = Status::Failed;  // Python's hover too: no stability from a failed analysis
+  EXPECT_TRUE(cmd::to_json(h, same)["stable"].is_null());
+  EXPECT_FALSE(hover_stable(h).has_value());
   const cmd::Json doc = cmd::rows_json(h, {"inflow", "stable"}, same);
   EXPECT_EQ((std::vector<std::string>{"inflow", "stable"}), keys_of(doc));
   EXPECT_THROW(cmd::rows_json(h, {"no_such_row"}, same), std::logic_error);
