@@ -135,7 +135,7 @@ constexpr auto describe(Tag<StudyRow>) {
                    pairs.push_back({i.onset, i.end});
                  return pairs;
                },
-               "-",
+               "",
                "every interval of instability up to mu_max as [onset, end]; end null when still "
                "unstable at mu_max"},
       Field{"trim", &R::trim, "",
