@@ -39,26 +39,6 @@ const char* const kSweepLegend =
     "  -zeta/|lambda| in % of critical; p after omega: locked to 0, 1/2 or 1 per rev (mod 1: the\n"
     "  periodic kind)\n";
 
-// The hover result with its stability as shown: unknown when the hover analysis failed or is
-// neutral.
-struct Hover {
-  HoverResult h;
-  std::optional<bool> stable;
-};
-
-Hover audited_hover(const Analysis& an) {
-  Hover r{an.hover(), an.hover().stable};
-  if (r.h.status == Status::Failed || r.h.neutral) r.stable.reset();
-  return r;
-}
-
-std::vector<std::string> equilibrium_names(int M, int N) {
-  std::vector<std::string> s;
-  for (int k = 1; k <= M; ++k) s.push_back("g0_" + std::to_string(k));
-  for (int k = 1; k <= N; ++k) s.push_back("h0_" + std::to_string(k));
-  return s;
-}
-
 // Mode labels in the order hover reports them, each once.
 std::vector<std::string> mode_labels(const Analysis& an) {
   std::vector<std::string> labels;
@@ -75,17 +55,32 @@ const LabelledExponent* dominant(const PointResult& r, const std::string& label)
 }
 Json point_json(const Request& r, const PointResult& p) { return to_json(p, in_vocabulary(r)); }
 
+// The exponent table of point and hover: the label, zeta and omega (the exponent's rows), the
+// damping ratio in % and the locked frequency; a point's multipliers.
+template <class Exponent>
+std::string exponent_table(const std::vector<Exponent>& exponents) {
+  constexpr bool multipliers = std::is_same_v<Exponent, LabelledExponent>;
+  std::vector<std::string> head{"mode", described_heading<Exponent>("zeta"),
+                                described_heading<Exponent>("omega"), "damping ratio [%]",
+                                "locked"};
+  if (multipliers) head.push_back("multiplier");
+  TextTable t(head);
+  for (const Exponent& e : exponents) {
+    std::vector<std::string> row =
+        described_cells(e, {"label", "zeta", "omega"}, CellStyle::Text, {});
+    const std::string locked = locked_text(e.omega);
+    row.push_back(ratio_cell(e.zeta, e.omega));
+    row.push_back(locked.empty() ? "-" : locked);
+    if constexpr (multipliers) row.push_back(complex_text(e.multiplier));
+    t.add_row(row);
+  }
+  return t.render();
+}
+
 std::string point_text(const Request& r, const PointResult& p) {
   std::string out = "Characteristic exponents at mu = " + cell(p.mu) + " (per rev)\n";
   out += kExponentLegend;
-  TextTable t(
-      {"mode", "zeta [1/rev]", "omega [per rev]", "damping ratio [%]", "locked", "multiplier"});
-  for (const LabelledExponent& e : p.exponents) {
-    const std::string locked = locked_text(e.omega);
-    t.add_row({e.label, zeta_cell(e.zeta), cell(e.omega), ratio_cell(e.zeta, e.omega),
-               locked.empty() ? "-" : locked, complex_text(e.multiplier)});
-  }
-  out += t.render();
+  out += exponent_table(p.exponents);
   KeyValues kv;
   kv.add("stable", stable_text(p.stable));
   kv.add("Liouville residual",
@@ -135,8 +130,11 @@ std::optional<double> max_liouville(const SweepResult& s) {
   return m;
 }
 
-// A row: the point's mu, the dominant exponent of each mode ({zeta, omega, damping_ratio} or
-// null), then the rest of the point (its table).
+// The rows of a mode's dominant exponent (LabelledExponent's table) in the rows of a sweep.
+const std::vector<const char*> kModeRows = {"zeta", "omega", "damping_ratio"};
+
+// A row: the point's mu, the dominant exponent of each mode (kModeRows, or null), then the rest
+// of the point (its table).
 Json sweep_rows_json(const Request& r, const SweepResult& s,
                      const std::vector<std::string>& labels) {
   Json rows = Json::array();
@@ -145,10 +143,7 @@ Json sweep_rows_json(const Request& r, const SweepResult& s,
     row["mu"] = jnum(p.mu);
     for (const std::string& l : labels) {
       const LabelledExponent* e = dominant(p, l);
-      row[l] = e ? Json{{"zeta", zeta_json(e->zeta)},
-                        {"omega", jnum(e->omega)},
-                        {"damping_ratio", ratio_json(e->zeta, e->omega)}}
-                 : Json(nullptr);
+      row[l] = e ? rows_json(*e, kModeRows, in_vocabulary(r)) : Json(nullptr);
     }
     const Json point = point_json(r, p);
     for (const auto& item : point.items()) {
@@ -192,32 +187,39 @@ std::string sweep_table_text(const Request& r, const SweepResult& s,
 }
 
 // Empty fields for what is not known (no exponent of a label, no residual, unknown stability).
+// Per mode "<label>_<row>" of kModeRows, the damping ratios last: the columns before keep their
+// places.
 std::string sweep_csv(const Request& r, const SweepResult& s,
                       const std::vector<std::string>& labels) {
-  auto field = [](double v) { return finite(v) ? exact_num(v) : std::string(); };
-  std::string out = "mu";
-  for (const std::string& l : labels) out += "," + l + "_zeta," + l + "_omega";
+  const std::vector<const char*> exponent_keys(kModeRows.begin(), kModeRows.end() - 1);
+  const std::vector<const char*> ratio_keys(kModeRows.end() - 1, kModeRows.end());
   // The point's own columns, by its table (core/fields.h).
   const std::vector<const char*> point_keys = {"liouville_residual", "error_estimate", "stable",
                                                "status", "message"};
-  out += "," + csv_fields(std::vector<std::string>(point_keys.begin(), point_keys.end()));
-  // The damping ratios (fractions of critical) last: the columns before keep their places.
-  for (const std::string& l : labels) out += "," + l + "_damping_ratio";
-  out += "\n";
+  auto mode_cells = [&](const PointResult& p, const std::vector<const char*>& keys) {
+    std::vector<std::string> cells;
+    for (const std::string& l : labels) {
+      const LabelledExponent* e = dominant(p, l);
+      const std::vector<std::string> c =
+          e ? described_cells(*e, keys, CellStyle::Csv, {}) : std::vector<std::string>(keys.size());
+      cells.insert(cells.end(), c.begin(), c.end());
+    }
+    return cells;
+  };
+  std::vector<std::string> head{"mu"};
+  for (const std::string& l : labels)
+    for (const char* k : exponent_keys) head.push_back(l + "_" + k);
+  head.insert(head.end(), point_keys.begin(), point_keys.end());
+  for (const std::string& l : labels)
+    for (const char* k : ratio_keys) head.push_back(l + "_" + k);
+  std::string out = csv_fields(head) + "\n";
   for (const PointResult& p : s.points) {
-    out += field(p.mu);
-    for (const std::string& l : labels) {
-      const LabelledExponent* e = dominant(p, l);
-      out += "," + (e && zeta_ok(e->zeta) ? exact_zeta_text(e->zeta) : std::string()) + "," +
-             (e ? field(e->omega) : std::string());
-    }
-    out += "," + csv_fields(described_cells(p, point_keys, CellStyle::Csv, in_vocabulary(r)));
-    for (const std::string& l : labels) {
-      const LabelledExponent* e = dominant(p, l);
-      const std::optional<double> ratio = e ? damping_ratio(e->zeta, e->omega) : std::nullopt;
-      out += "," + (ratio ? field(*ratio) : std::string());
-    }
-    out += "\n";
+    std::vector<std::string> line{finite(p.mu) ? exact_num(p.mu) : std::string()};
+    for (const auto& cells : {mode_cells(p, exponent_keys),
+                              described_cells(p, point_keys, CellStyle::Csv, in_vocabulary(r)),
+                              mode_cells(p, ratio_keys)})
+      line.insert(line.end(), cells.begin(), cells.end());
+    out += csv_fields(line) + "\n";
   }
   return out;
 }
@@ -247,56 +249,27 @@ Json crossings_json(const Request& r, const SweepResult& s) {
 }  // namespace
 
 Json hover_json(const Request& r, const Analysis& an) {
-  const Hover hv = audited_hover(an);
-  const HoverResult& h = hv.h;
-  const model::ModelDescriptor& m = an.model();
-  Json j;
-  j["inflow"] = jnum(h.inflow);
-  Json q0 = Json::object();
-  const auto names = equilibrium_names(m.flap_modes, m.lag_modes);
-  for (Eigen::Index i = 0; i < h.q0.size() && i < static_cast<Eigen::Index>(names.size()); ++i) {
-    q0[names[static_cast<std::size_t>(i)]] = jnum(h.q0[i]);
-  }
-  j["equilibrium"] = q0;
-  Json ex = Json::array();
-  for (std::size_t i = 0; i < h.eigenvalues.size(); ++i) {
-    ex.push_back(
-        Json{{"zeta", jnum(h.eigenvalues[i].real())},
-             {"omega", jnum(h.eigenvalues[i].imag())},
-             {"damping_ratio", ratio_json(h.eigenvalues[i].real(), h.eigenvalues[i].imag())},
-             {"label", i < h.labels.size() ? h.labels[i] : ""}});
-  }
-  j["exponents"] = ex;
-  j["stable"] = stable_json(hv.stable);
-  return status_json(j, h.status, vocab(r, h.message));
+  return rows_json(
+      an.hover(),
+      std::vector<const char*>(std::begin(kHoverDocumentRows), std::end(kHoverDocumentRows)),
+      in_vocabulary(r));
 }
 
 std::string hover_text(const Request& r, const Analysis& an) {
-  const Hover hv = audited_hover(an);
-  const HoverResult& h = hv.h;
-  const model::ModelDescriptor& m = an.model();
+  const HoverResult& h = an.hover();
   std::string out = "Hover equilibrium (eqs 2.24, 2.29-2.32)\n";
   KeyValues kv;
   kv.add("inflow lambda", cell(h.inflow));
-  const auto names = equilibrium_names(m.flap_modes, m.lag_modes);
-  for (Eigen::Index i = 0; i < h.q0.size() && i < static_cast<Eigen::Index>(names.size()); ++i) {
-    kv.add(names[static_cast<std::size_t>(i)], cell(h.q0[i]));
-  }
+  for (const auto& [name, q] : h.equilibrium) kv.add(name, cell(q));
   out += kv.render();
   out += "\nHover exponents (eigenvalues of A at mu = 0, per rev)\n";
   out += kExponentLegend;
-  TextTable t({"mode", "zeta [1/rev]", "omega [per rev]", "damping ratio [%]", "locked"});
-  for (std::size_t i = 0; i < h.eigenvalues.size(); ++i) {
-    const double zeta = h.eigenvalues[i].real(), omega = h.eigenvalues[i].imag();
-    const std::string locked = locked_text(omega);
-    t.add_row({i < h.labels.size() ? h.labels[i] : "?", cell(zeta), cell(omega),
-               ratio_cell(zeta, omega), locked.empty() ? "-" : locked});
-  }
-  out += t.render();
+  out += exponent_table(hover_exponents(h));
+  const std::optional<bool> stable = hover_stable(h);
   out += std::string("  hover is ") +
-         (!hv.stable   ? "of unknown stability"
-          : *hv.stable ? "stable"
-                       : "UNSTABLE") +
+         (!stable   ? "of unknown stability"
+          : *stable ? "stable"
+                    : "UNSTABLE") +
          "\n";
   return out + status_text(h.status, vocab(r, h.message));
 }
@@ -398,12 +371,16 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
   if (trimmed(r)) {
     trim_table = std::string("\nTrim (") + trim_kind_name(r.trim.kind) +
                  ") at each mu, C_T = " + cell(r.trim.thrust_coefficient) + "\n";
-    TextTable t({"mu", "theta0", "theta1c", "theta1s", "lambda", "C_T", "status"});
-    for (const TrimResult& x : trims) {
-      t.add_row({cell(x.mu), cell(x.theta0), cell(x.theta1c), cell(x.theta1s), cell(x.inflow),
-                 cell(x.thrust_coefficient), status_name(x.status)});
-    }
-    trim_table += t.render();
+    trim_table += described_table(trims,
+                                  {{"mu", "mu"},
+                                   {"theta0", "theta0"},
+                                   {"theta1c", "theta1c"},
+                                   {"theta1s", "theta1s"},
+                                   {"inflow", "lambda"},
+                                   {"thrust_coefficient", "C_T"},
+                                   {"status", "status"}},
+                                  in_vocabulary(r))
+                      .render();
   }
   return text_output(r,
                      header_text(an) + "\n" + warnings_text(an) +

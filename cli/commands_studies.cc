@@ -25,13 +25,6 @@ void note_cancelled(RunControl* control, std::size_t done, std::size_t all,
                      lines + " finished; the output holds those";
 }
 
-Json interval_json(const InstabilityInterval& iv) {
-  Json j = Json::array();
-  j.push_back(jnum(iv.onset));
-  j.push_back(iv.end ? jnum(*iv.end) : Json(nullptr));
-  return j;
-}
-
 // The study's rows: run_study on this part's values (none: an empty part of a job with more
 // parts than values).
 StudyResult run_study_part(const Request& r, RunControl* control) {
@@ -53,43 +46,19 @@ StudyResult run_study_part(const Request& r, RunControl* control) {
   return s;
 }
 
-// A trimmed study reports each row's trim at its mu_c (theta0, theta1c, theta1s, lambda there),
-// as `critical --trim` and the Python module's study rows do: the trim the row's search made
-// there, whose problems are in the row's status.
-Json study_row_json(const Request& r, const StudyRow& row) {
-  const CriticalResult& c = row.critical;
-  Json x;
-  x["value"] = row.value;
-  x["hover_unstable"] = c.hover_unstable;
-  x["mu_c"] = optional_json(c.mu_c);
-  x["mu_c_error"] = optional_json(c.mu_c_error);
-  // Exact modes: the part of mu_c_error that is the basis's (CriticalResult::basis_error; null
-  // when not estimated, the row's message then says why).  Absent for the assumed mode.
-  if (c.basis) x["basis_error"] = optional_json(c.basis_error);
-  x["mode"] = c.mu_c ? Json(c.mode) : Json(nullptr);
-  x["omega"] = c.mu_c ? jnum(c.omega) : Json(nullptr);
-  x["kind"] = c.mu_c ? Json(kind_name(c.kind)) : Json(nullptr);
-  Json iv = Json::array();
-  for (const InstabilityInterval& i : c.intervals) iv.push_back(interval_json(i));
-  x["intervals"] = iv;
-  if (trimmed(r)) x["trim"] = row.trim ? trim_json(r, *row.trim) : Json(nullptr);
-  if (r.damping_criterion) {
-    Json dc = Json::array();
-    for (const DampingCrossing& d : row.damping_crossings)
-      dc.push_back(to_json(d, in_vocabulary(r)));
-    x["damping_crossings"] = dc;
-  }
-  return status_json(x, c.status, vocab(r, c.message));
-}
-
 Json study_json(const Request& r, const Analysis& base, const StudyResult& s) {
   Json j = header_json("study", base);
   j["vary"] = word(r.vary);
   j["mu_max"] = r.critical.mu_max;
   j["scan_step"] = r.critical.scan_step;
   if (r.damping_criterion) j["damping_criterion"] = jnum(*r.damping_criterion);
+  // A row by StudyRow's table; a trimmed study reports each row's trim at its mu_c (the trim
+  // the row's search made there, whose problems are in the row's status), null without one.
+  std::vector<std::string> present;
+  if (trimmed(r)) present.push_back("trim");
+  if (r.damping_criterion) present.push_back("damping_crossings");
   Json rows = Json::array();
-  for (const StudyRow& row : s.rows) rows.push_back(study_row_json(r, row));
+  for (const StudyRow& row : s.rows) rows.push_back(to_json(row, in_vocabulary(r), present));
   j["rows"] = rows;
   return status_json(j, s.status, vocab(r, s.message));
 }

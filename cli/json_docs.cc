@@ -83,6 +83,26 @@ const char* struct_name<MapCell>() {
 }
 
 template <>
+const char* struct_name<HoverResult>() {
+  return "HoverResult";
+}
+template <>
+const char* struct_name<HoverExponent>() {
+  return "HoverExponent";
+}
+template <>
+const char* struct_name<SystemSnapshot>() {
+  return "SystemSnapshot";
+}
+template <>
+const char* struct_name<AeroIntegral>() {
+  return "AeroIntegral";
+}
+template <>
+const char* struct_name<StructuralIntegral>() {
+  return "StructuralIntegral";
+}
+template <>
 const char* struct_name<ThrustResult>() {
   return "ThrustResult";
 }
@@ -133,8 +153,15 @@ std::string type_text(unsigned flags) {
                ("\"" + std::string(table[i].name) + "\"");
     }
     return names;
+  } else if constexpr (is_named_values_field<V>::value) {
+    return "object of numbers";
+  } else if constexpr (std::is_same_v<V, Eigen::MatrixXd>) {
+    return "array of rows (arrays of numbers)";
+  } else if constexpr (std::is_same_v<V, Eigen::VectorXd>) {
+    return "array of numbers";
   } else if constexpr (is_optional<V>::value) {
-    return type_text<typename V::value_type>(flags) + " or null";
+    using Inner = typename V::value_type;  // an optional optional: absent, null or a value
+    return type_text<Inner>(flags) + (is_optional<Inner>::value ? "" : " or null");
   } else if constexpr (is_vector<V>::value) {
     return "array of " + type_text<typename V::value_type>(flags);
   } else {
@@ -205,9 +232,8 @@ std::string header_section() {
 std::string documents_section() {
   return "## Documents\n\n"
          "- `flaplag point --json`: the header, the keys of " +
-         section_link("PointResult") +
-         ", `hover` (the hover equilibrium and its exponents) and, with `--trim`, `trim` (a " +
-         section_link("TrimResult") +
+         section_link("PointResult") + ", `hover` (a " + section_link("HoverResult") +
+         ") and, with `--trim`, `trim` (a " + section_link("TrimResult") +
          ").\n"
          "- `flaplag sweep --json`: the header, `mu` (start, stop, step), `labels` (the modes), "
          "`rows`, `max_liouville_residual`, with `--damping-criterion` `damping_criterion` and "
@@ -277,6 +303,12 @@ std::string json_reference() {
   out += struct_section<PointResult>("The labelled exponents at one advance ratio mu.");
   out += struct_section<LabelledExponent>(
       "One characteristic exponent lambda = zeta + i omega with its mode label.");
+  out += struct_section<HoverResult>(
+      "The hover equilibrium (eqs 2.24, 2.29-2.32) and the hover exponents: a document's "
+      "`hover` (`point`, `system`, the typical case) has `inflow`, `equilibrium`, `exponents`, "
+      "`stable`, `status` and `message`; Python's `HoverResult` (`Analysis.hover`) has every "
+      "row but `exponents` (a property made from `eigenvalues` and `labels`).");
+  out += struct_section<HoverExponent>("An eigenvalue of A0 with its mode label.");
   out += struct_section<SweepResult>(
       "Exponents along advance ratios, continued from hover (the Python module's "
       "`SweepResult`; the command line writes its points as `rows`, see above).");
@@ -294,16 +326,23 @@ std::string json_reference() {
       "has `parameters` (the rotor parameters with the trimmed pitch).");
   out += struct_section<TrimEquilibrium>("The periodic equilibrium a trim about it rests on.");
   out += struct_section<StudyRow>(
-      "One value of a study: a row of `flaplag study --json` is `value`, the keys of " +
+      "One value of a study: a row of `flaplag study --json`, with the keys of " +
       section_link("CriticalResult") +
-      " at it (`intervals` as [onset, end] pairs; `mode`, `omega`, `kind` null without mu_c), "
-      "then `trim` and `damping_crossings`.  Python: `StudyResult.rows` (CriticalResult each) "
-      "and its columns.");
+      " a table of mu_c shows.  Python: `StudyResult.rows` (a CriticalResult each, with `trim` "
+      "and `damping_crossings`) and its columns.");
   out += struct_section<MapCell>(
       "One cell of a stability map: the least stable exponent there.  `flaplag map --json` "
       "writes `max_zeta`, `mode` and `kind` as grids; Python's `MapResult` has `max_zeta`, "
       "`omega`, `mode`, `kind` and the cells' `status` and `message` (`cell_status`, "
       "`cell_message`) as arrays of the map's shape.");
+  out += struct_section<SystemSnapshot>(
+      "The linear periodic system y' = A(psi) y + f(psi) at one (mu, psi) for auditing: "
+      "`flaplag system --json` is the header and these keys, with `hover` (a " +
+      section_link("HoverResult") +
+      ") after `f`.  Python: `Analysis.system` (`SystemResult`: `states`, and the integrals "
+      "as dicts by name).");
+  out += struct_section<AeroIntegral>("One spanwise aerodynamic integral.");
+  out += struct_section<StructuralIntegral>("One generalized mass or structural integral.");
   out += struct_section<CampbellResult>(
       "The Campbell diagram: every mode's frequency against the rotor speed Omega/Omega_0, the "
       "blade's bending stiffness fixed at its value for the nominal speed Omega_0.");

@@ -37,7 +37,8 @@ template <class V>
 std::string cell_text(const V& v, unsigned flags, CellStyle style, const MessageText& message) {
   const bool csv = style == CellStyle::Csv;
   if constexpr (std::is_same_v<V, double>) {
-    if (flags & kFieldNegativeInfinity) return csv ? exact_zeta_text(v) : zeta_cell(v);
+    if (flags & kFieldNegativeInfinity)
+      return csv ? (zeta_ok(v) ? exact_zeta_text(v) : std::string()) : zeta_cell(v);
     if (csv) return std::isfinite(v) ? exact_num(v) : std::string();
     return cell(v);
   } else if constexpr (std::is_same_v<V, int>) {
@@ -73,6 +74,19 @@ std::vector<std::string> described_cells(const T& object, const std::vector<cons
   for (std::size_t c = 0; c < keys.size(); ++c)
     if (!found[c]) throw std::logic_error(std::string("no row `") + keys[c] + "`");
   return out;
+}
+
+// The heading of row `key` of T's table: the key, with the row's units in brackets when it has
+// some ("zeta [1/rev]"; a dimensionless "-" is not shown).
+template <class T>
+std::string described_heading(const char* key) {
+  std::string heading;
+  if (!visit_row<T>(key, [&](const auto& row) {
+        const std::string units = row.units;
+        heading = key + (units.empty() || units[0] == '-' ? "" : " [" + units + "]");
+      }))
+    throw std::logic_error(std::string("no row `") + key + "`");
+  return heading;
 }
 
 // One line per element of `lines` under `columns`; the first column left-aligned, the others

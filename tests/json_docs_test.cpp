@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <limits>
 #include <optional>
@@ -13,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "flaplag/rotor/hover.h"
+#include "flaplag/study.h"
 #include "json_fields.h"
 #include "table_fields.h"
 
@@ -122,6 +125,84 @@ TEST(JsonFields, EveryRowUnderItsKeyInTableOrder) {
   p.Note("a remark");
   EXPECT_EQ("<a remark>",
             cmd::to_json(p, [](const std::string& m) { return "<" + m + ">"; })["notes"][0]);
+}
+
+std::vector<std::string> keys_of(const cmd::Json& j) {
+  std::vector<std::string> keys;
+  for (const auto& item : j.items()) keys.push_back(item.key());
+  return keys;
+}
+
+std::string same(const std::string& m) { return m; }
+
+// A study document's row is StudyRow's table: every row in order, those a document asks for
+// (trim, damping_crossings) null or [] when empty, basis_error only with exact modes.
+TEST(JsonFields, StudyRowsAreTheRowsOfTheirTable) {
+  StudyRow row;
+  row.value = 1.25;
+  row.critical.mu_c = 0.5;
+  row.critical.mode = "lag";
+  row.critical.intervals = {{0.5, std::nullopt, {}, {}, "lag", 0.0, InstabilityKind::Periodic}};
+  std::vector<std::string> all;
+  for_each_row<StudyRow>([&](const auto& r) { all.push_back(r.name); });
+  auto without = [&](std::vector<std::string> names) {
+    std::vector<std::string> keys;
+    for (const std::string& k : all)
+      if (std::find(names.begin(), names.end(), k) == names.end()) keys.push_back(k);
+    return keys;
+  };
+  const cmd::Json plain = cmd::to_json(row, same);
+  EXPECT_EQ(without({"basis_error", "trim", "damping_crossings"}), keys_of(plain));
+  EXPECT_EQ(0.5, plain["intervals"][0][0].get<double>());
+  EXPECT_TRUE(plain["intervals"][0][1].is_null());
+  EXPECT_EQ("lag", plain["mode"]);
+  const cmd::Json asked = cmd::to_json(row, same, {"trim", "damping_crossings"});
+  EXPECT_EQ(without({"basis_error"}), keys_of(asked));
+  EXPECT_TRUE(asked["trim"].is_null());
+  EXPECT_TRUE(asked["damping_crossings"].empty());
+  row.critical.basis = 8;
+  EXPECT_TRUE(cmd::to_json(row, same)["basis_error"].is_null());
+  row.critical.mu_c.reset();  // mode, omega, kind: null without mu_c
+  EXPECT_TRUE(cmd::to_json(row, same)["mode"].is_null());
+}
+
+// Hover's rows: numbers by name as an object, a matrix as its rows, the exponents as objects;
+// its stability unknown when failed or neutral.
+TEST(JsonFields, HoverRowsByType) {
+  HoverResult h;
+  h.inflow = 0.05;
+  h.equilibrium = {{"g0_1", 0.1}, {"h0_1", 0.01}};
+  h.A0 = Eigen::MatrixXd::Identity(2, 2);
+  h.eigenvalues = {{-0.5, 1.0}};
+  h.labels = {"flap"};
+  const cmd::Json j = cmd::to_json(h, same);
+  std::vector<std::string> rows;
+  for_each_row<HoverResult>([&](const auto& r) { rows.push_back(r.name); });
+  EXPECT_EQ(rows, keys_of(j));
+  EXPECT_EQ((std::vector<std::string>{"g0_1", "h0_1"}), keys_of(j["equilibrium"]));
+  EXPECT_EQ(1.0, j["A0"][1][1].get<double>());
+  EXPECT_EQ(0.0, j["A0"][0][1].get<double>());
+  EXPECT_EQ("flap", j["exponents"][0]["label"]);
+  EXPECT_EQ(1.0, j["exponents"][0]["omega"].get<double>());
+  EXPECT_EQ(true, j["stable"].get<bool>());
+  h.neutral = true;
+  EXPECT_TRUE(cmd::to_json(h, same)["stable"].is_null());
+  h.neutral = false;
+  h.status = Status::Failed;  // Python's hover too: no stability from a failed analysis
+  EXPECT_TRUE(cmd::to_json(h, same)["stable"].is_null());
+  EXPECT_FALSE(hover_stable(h).has_value());
+  const cmd::Json doc = cmd::rows_json(h, {"inflow", "stable"}, same);
+  EXPECT_EQ((std::vector<std::string>{"inflow", "stable"}), keys_of(doc));
+  EXPECT_THROW(cmd::rows_json(h, {"no_such_row"}, same), std::logic_error);
+}
+
+// A text table's heading is the row's key with its units, where the row has units.
+TEST(TableFields, HeadingsCarryTheUnits) {
+  EXPECT_EQ("zeta [1/rev]", cmd::described_heading<LabelledExponent>("zeta"));
+  EXPECT_EQ("omega [per rev]", cmd::described_heading<HoverExponent>("omega"));
+  EXPECT_EQ("label", cmd::described_heading<LabelledExponent>("label"));
+  EXPECT_EQ("damping_ratio", cmd::described_heading<LabelledExponent>("damping_ratio"));
+  EXPECT_THROW(cmd::described_heading<LabelledExponent>("no_such_row"), std::logic_error);
 }
 
 }  // namespace

@@ -222,7 +222,7 @@ def study(
             rotor, transition, flap_modes, lag_modes, parameter, vals, critical, threads,
             progress, t, limit
         )
-        return StudyResult._from(parameter, raw, metadata)
+        return StudyResult._from(raw, parameter=parameter, metadata=metadata)
     # Check the whole study here (a worker sees only its slice).
     _flaplag.check_study(
         rotor, transition, flap_modes, lag_modes, parameter, vals, critical, threads, t, limit

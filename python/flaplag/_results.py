@@ -200,7 +200,7 @@ class HoverResult(_Described):
     inflow: float
     equilibrium: Dict[str, float]
     A0: np.ndarray
-    eigenvalues: np.ndarray
+    eigenvalues: _array(complex)
     labels: Tuple[str, ...]
     stable: Optional[bool]
     status: str
@@ -577,22 +577,20 @@ class SystemResult:
         )
 
     @classmethod
-    def _from(cls, d):
-        paper = {}
-        for name, pname, _, _ in d["aero_integrals"]:
-            paper[name] = pname
-        for name, pname, _ in d["structural_integrals"]:
-            paper[name] = pname
+    def _from(cls, d):  # the dict of the C++ SystemSnapshot's table
+        aero, structural = d["aero_integrals"], d["structural_integrals"]
+        paper = {a["name"]: a["paper_name"] for a in aero}
+        paper.update({s["name"]: s["paper_name"] for s in structural})
         return cls(
             d["mu"],
             d["psi"],
             d["region"],
             np.asarray(d["A"]),
             np.asarray(d["f"]),
-            tuple(d["states"]),
-            {name: v for name, _, v, _ in d["aero_integrals"]},
-            {name: v for name, _, _, v in d["aero_integrals"]},
-            {name: v for name, _, v in d["structural_integrals"]},
+            tuple(d["state"]),
+            {a["name"]: a["normal"] for a in aero},
+            {a["name"]: math.nan if a["at_psi"] is None else a["at_psi"] for a in aero},
+            {s["name"]: s["value"] for s in structural},
             paper,
         )
 
@@ -929,7 +927,7 @@ def _worst(statuses):
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class StudyResult:
+class StudyResult(_Described):
     """mu_c (and every instability interval) versus one rotor parameter.
 
     parameter: the field varied; values: its values (1-D array); rows: a CriticalResult per
@@ -1043,11 +1041,6 @@ class StudyResult:
         )
 
     @classmethod
-    def _from(cls, parameter, d, metadata):
-        rows = tuple(CriticalResult._from(r) for r in d["rows"])
-        return cls(parameter, np.asarray(d["values"]), rows, d["status"], d["message"], metadata)
-
-    @classmethod
     def _concatenate(cls, parameter, parts, metadata):
         """The result of one study from studies of consecutive slices of its values."""
         rows = tuple(CriticalResult._from(r) for d in parts for r in d["rows"])
@@ -1058,7 +1051,7 @@ class StudyResult:
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class MapResult:
+class MapResult(_Described):
     """A stability map: the largest damping exponent over a grid of two parameters.
 
     x, y: the axis names ('mu' or a rotor parameter; at most one of them 'mu'); x_values,

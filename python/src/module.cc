@@ -120,13 +120,6 @@ py::array_t<double> to_numpy(const std::vector<double>& v) {
   return a;
 }
 
-py::array_t<std::complex<double>> to_numpy(const std::vector<std::complex<double>>& v) {
-  py::array_t<std::complex<double>> a(static_cast<py::ssize_t>(v.size()));
-  auto r = a.mutable_unchecked<1>();
-  for (std::size_t i = 0; i < v.size(); ++i) r(static_cast<py::ssize_t>(i)) = v[i];
-  return a;
-}
-
 py::object optional(const std::optional<double>& v) {
   return v ? py::object(py::float_(*v)) : py::object(py::none());
 }
@@ -309,6 +302,12 @@ py::object to_python(const V& v) {
     return py::cast(v);
   } else if constexpr (is_described_enum_v<V>) {
     return py::str(enum_name(v));
+  } else if constexpr (is_named_values_field<V>::value) {
+    py::dict d;
+    for (const auto& [name, x] : v) d[py::str(name)] = x;
+    return std::move(d);
+  } else if constexpr (std::is_same_v<V, Eigen::MatrixXd> || std::is_same_v<V, Eigen::VectorXd>) {
+    return to_numpy(v);
   } else if constexpr (is_optional<V>::value) {
     return v ? to_python(*v) : py::object(py::none());
   } else if constexpr (is_vector<V>::value) {
@@ -457,62 +456,7 @@ py::list option_rows(const std::string& name) {
   });
 }
 
-py::dict hover_dict(const Analysis& an) {
-  const HoverResult& h = an.hover();
-  const model::ModelDescriptor& m = an.model();
-  py::dict eq;
-  for (Eigen::Index i = 0; i < h.q0.size(); ++i) {
-    const bool flap = i < m.flap_modes;
-    const Eigen::Index k = flap ? i : i - m.flap_modes;
-    eq[py::str((flap ? "g0_" : "h0_") + std::to_string(k + 1))] = h.q0[i];
-  }
-  py::dict d;
-  d["inflow"] = h.inflow;
-  d["equilibrium"] = eq;
-  d["A0"] = to_numpy(h.A0);
-  d["eigenvalues"] = to_numpy(h.eigenvalues);
-  d["labels"] = h.labels;
-  d["stable"] = h.neutral ? py::object(py::none()) : py::object(py::bool_(h.stable));
-  d["status"] = status_name(h.status);
-  d["message"] = h.message;
-  return d;
-}
-
-template <typename Integral>
-std::string paper_name(const Integral* list, int n, const std::string& name) {
-  for (int i = 0; i < n; ++i) {
-    if (name == list[i].name) return list[i].paper_name;
-  }
-  return "";
-}
-
-py::dict snapshot_dict(const Analysis& an, const SystemSnapshot& s) {
-  const model::ModelDescriptor& m = an.model();
-  py::list states;
-  for (Eigen::Index col = 0; col < s.A.cols(); ++col)
-    states.append(model::state_name(static_cast<int>(col), m.flap_modes, m.lag_modes));
-  py::list aero;
-  for (std::size_t i = 0; i < s.aero_integrals.size(); ++i) {
-    const std::string& name = s.aero_integrals[i].first;
-    aero.append(py::make_tuple(name, paper_name(m.aero, m.n_aero, name), s.aero_integrals[i].second,
-                               i < s.aero_integrals_region.size()
-                                   ? s.aero_integrals_region[i].second
-                                   : std::numeric_limits<double>::quiet_NaN()));
-  }
-  py::list structural;
-  for (const auto& [name, value] : s.structural_integrals)
-    structural.append(py::make_tuple(name, paper_name(m.structural, m.n_structural, name), value));
-  py::dict d;
-  d["mu"] = s.mu;
-  d["psi"] = s.psi;
-  d["region"] = s.region;
-  d["A"] = to_numpy(s.A);
-  d["f"] = to_numpy(s.f);
-  d["states"] = states;
-  d["aero_integrals"] = aero;
-  d["structural_integrals"] = structural;
-  return d;
-}
+py::dict hover_dict(const Analysis& an) { return to_dict(an.hover()); }
 
 // The stations: an array of them, or (an integer n) n equally spaced ones over [0, 1], made
 // here so that no list of n Python floats is built first.  Checked against the memory limit
@@ -755,8 +699,6 @@ py::dict study(const py::dict& params, const py::dict& transition, int flap_mode
   py::dict d;
   d["values"] = to_numpy(o.values);
   d["rows"] = rows;
-  d["rows_done"] = r.rows_done;
-  d["cancelled"] = r.cancelled;
   d["status"] = status_name(r.status);
   d["message"] = r.message;
   return d;
@@ -1122,6 +1064,7 @@ void bind_tables(py::module_& m) {
     if (name == "FloquetSample") return field_rows<FloquetSample>();
     if (name == "PeriodicEquilibriumResult") return field_rows<PeriodicEquilibrium>();
     if (name == "ModelInfo") return field_rows<model::ModelDescriptor>();
+    if (name == "HoverResult") return field_rows<HoverResult>();
     if (name == "StudyRow") return field_rows<StudyRow>();
     if (name == "MapCell") return field_rows<MapCell>();
     if (name == "CampbellResult") return field_rows<CampbellResult>();
@@ -1286,7 +1229,7 @@ void bind_time_domain(py::class_<Analysis>& analysis) {
                py::gil_scoped_release release;
                s = a.snapshot(mu, psi);
              }
-             return snapshot_dict(a, s);
+             return to_dict(s);
            })
       .def("response",
            [](const Analysis& a, double mu, const py::dict& options, std::uint64_t memory_limit) {

@@ -25,6 +25,7 @@ PYTHON_ONLY = {
 
 CLASSES = [
     "Exponent",
+    "HoverResult",
     "PointResult",
     "SweepResult",
     "Interval",
@@ -53,6 +54,7 @@ def results():
     campbell = flaplag.Analysis(omega_lag=0.7).campbell(points=4)
     return {
         "Exponent": point.exponents[0],
+        "HoverResult": an.hover,
         "PointResult": point,
         "SweepResult": an.sweep(0.0, 0.2, 0.1),
         "Interval": crit.intervals[0],
@@ -122,6 +124,20 @@ def test_critical_json_has_the_keys_of_the_table():
             assert key in doc, key
     assert doc["evaluations"] == crit.evaluations
     assert len(doc["intervals"]) == len(crit.intervals)
+
+
+def test_hover_json_and_python_are_the_rows_of_the_table():
+    """The document's hover is HoverResult's rows that a document holds; Python has every row
+    (exponents as the class's own property)."""
+    for modes in ([], ["--modes", "exact", "--flap-modes", "3", "--lag-modes", "2"]):
+        doc = run_cli("point", "--mu", "0.3", *modes)["hover"]
+        assert list(doc) == ["inflow", "equilibrium", "exponents", "stable", "status", "message"]
+        assert set(doc) <= set(keys("HoverResult"))
+        kw = dict(modes="exact", flap_modes=3, lag_modes=2) if modes else {}
+        hover = flaplag.Analysis(**kw).hover
+        assert doc["equilibrium"] == hover.equilibrium
+        assert [e["label"] for e in doc["exponents"]] == list(hover.labels)
+        assert doc["stable"] == hover.stable
 
 
 def test_unknown_struct_is_refused():
@@ -289,15 +305,23 @@ def test_a_direction_the_module_does_not_give_has_no_names():
 
 
 def test_study_json_rows_are_the_keys_of_the_tables():
-    # A row: value, trim and damping_crossings (StudyRow's rows) around the search's keys.
+    # A row: StudyRow's rows in its order; trim and damping_crossings when the study asks for
+    # them, basis_error with exact modes only.
     doc = run_cli("study", "--vary", "omega-lag=1.0,1.3", "--trim", "thrust", "--mu-max", "0.3",
                   "--damping-criterion", "0.01", "--quiet")
-    critical = set(keys("CriticalResult"))
     for row in doc["rows"]:
-        assert set(row) - critical == set(keys("StudyRow")), sorted(row)
+        assert list(row) == [k for k in keys("StudyRow") if k != "basis_error"], list(row)
     plain = run_cli("study", "--vary", "omega-lag=1.0,1.3", "--mu-max", "0.3", "--quiet")
+    asked = {"basis_error", "trim", "damping_crossings"}
     for row in plain["rows"]:
-        assert set(row) - critical == {"value"}, sorted(row)  # trim, crossings: absent
+        assert list(row) == [k for k in keys("StudyRow") if k not in asked], list(row)
+    exact = run_cli("study", "--vary", "omega-lag=1.0", "--mu-max", "0.3", "--modes", "exact",
+                    "--quiet")
+    for row in exact["rows"]:
+        assert list(row) == [k for k in keys("StudyRow") if k not in asked - {"basis_error"}]
+    # The search's keys, each as CriticalResult has it (intervals: [onset, end] pairs).
+    assert set(keys("StudyRow")) - set(keys("CriticalResult")) == {
+        "value", "trim", "damping_crossings"}
 
 
 def test_map_json_grids_and_python_arrays_are_the_keys_of_the_table():

@@ -152,6 +152,10 @@ struct Analysis::Impl {
       hover.status = hover_modes.status;
       hover.message = hover_modes.message;
     }
+    for (const model::DirectionBlock& b : model::direction_blocks(m.flap_modes, m.lag_modes))
+      for (int k = 0; k < b.modes && b.first_coordinate + k < hover.q0.size(); ++k)
+        hover.equilibrium.emplace_back(std::string(b.coordinate) + "0_" + std::to_string(k + 1),
+                                       hover.q0(b.first_coordinate + k));
     check_finite(hover);
     validity = internal::validity_of(builder);
     if (trim_in_hover)
@@ -561,11 +565,15 @@ SystemSnapshot Analysis::snapshot(double mu, double psi) const {
   for (int j = 0; j < m.n_aero; ++j) {
     s.aero_integrals.emplace_back(m.aero[j].name, normal[j]);
     s.aero_integrals_region.emplace_back(m.aero[j].name, region[j]);
+    s.aero_paper_names.push_back(m.aero[j].paper_name);
   }
   const auto& st = impl_->builder.structural_values();
   for (int j = 0; j < m.n_structural; ++j) {
     s.structural_integrals.emplace_back(m.structural[j].name, st[j]);
+    s.structural_paper_names.push_back(m.structural[j].paper_name);
   }
+  for (Eigen::Index col = 0; col < s.A.cols(); ++col)
+    s.states.push_back(model::state_name(static_cast<int>(col), m.flap_modes, m.lag_modes));
   if (!s.A.allFinite() || !s.f.allFinite())
     s.Worsen(Status::Failed, "non-finite entries of A(psi) or f(psi) (not shown)");
   bool integrals_ok = true;
@@ -573,6 +581,26 @@ SystemSnapshot Analysis::snapshot(double mu, double psi) const {
     for (const auto& [name, value] : *v) integrals_ok = integrals_ok && std::isfinite(value);
   if (!integrals_ok) s.Worsen(Status::Failed, "non-finite spanwise integrals (not shown)");
   return s;
+}
+
+std::vector<AeroIntegral> snapshot_aero_integrals(const SystemSnapshot& s) {
+  std::vector<AeroIntegral> out;
+  for (std::size_t i = 0; i < s.aero_integrals.size(); ++i) {
+    out.push_back({s.aero_integrals[i].first,
+                   i < s.aero_paper_names.size() ? s.aero_paper_names[i] : "",
+                   s.aero_integrals[i].second, std::nullopt});
+    if (i < s.aero_integrals_region.size()) out.back().at_psi = s.aero_integrals_region[i].second;
+  }
+  return out;
+}
+
+std::vector<StructuralIntegral> snapshot_structural_integrals(const SystemSnapshot& s) {
+  std::vector<StructuralIntegral> out;
+  for (std::size_t i = 0; i < s.structural_integrals.size(); ++i)
+    out.push_back({s.structural_integrals[i].first,
+                   i < s.structural_paper_names.size() ? s.structural_paper_names[i] : "",
+                   s.structural_integrals[i].second});
+  return out;
 }
 
 RotorPoint Analysis::point(double mu, double scan_step) const {

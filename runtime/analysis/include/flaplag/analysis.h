@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "flaplag/blade/blade.h"
+#include "flaplag/core/fields.h"
 #include "flaplag/core/outcome.h"
 #include "flaplag/core/parallel.h"
 #include "flaplag/model_api.h"
@@ -98,7 +99,55 @@ struct SystemSnapshot : Outcome {
   std::vector<std::pair<std::string, double>> aero_integrals;         // normal region values
   std::vector<std::pair<std::string, double>> aero_integrals_region;  // values used at psi
   std::vector<std::pair<std::string, double>> structural_integrals;
+  std::vector<std::string> states;  // the name of each state (model::state_name)
+  // The Appendix B name of each integral, in the order above ("" where there is none).
+  std::vector<std::string> aero_paper_names, structural_paper_names;
 };
+
+// One aerodynamic integral of a snapshot: its values in normal flow and at psi.
+struct AeroIntegral {
+  std::string name, paper_name;
+  double normal = 0.0;
+  std::optional<double> at_psi;
+};
+constexpr auto describe(Tag<AeroIntegral>) {
+  return std::make_tuple(
+      Field{"name", &AeroIntegral::name, "", "the integral's name (int x^p ... dx0)"},
+      Field{"paper_name", &AeroIntegral::paper_name, "", "its Appendix B name; \"\" if none"},
+      Field{"normal", &AeroIntegral::normal, "-", "its value in normal flow"},
+      Field{"at_psi", &AeroIntegral::at_psi, "-", "the value used at psi (its flow region's)"});
+}
+// One structural integral or generalized mass of a snapshot (by I_b).
+struct StructuralIntegral {
+  std::string name, paper_name;
+  double value = 0.0;
+};
+constexpr auto describe(Tag<StructuralIntegral>) {
+  return std::make_tuple(
+      Field{"name", &StructuralIntegral::name, "", "the integral's name"},
+      Field{"paper_name", &StructuralIntegral::paper_name, "", "its Appendix B name; \"\" if none"},
+      Field{"value", &StructuralIntegral::value, "-", "its value, by I_b"});
+}
+std::vector<AeroIntegral> snapshot_aero_integrals(const SystemSnapshot& s);
+std::vector<StructuralIntegral> snapshot_structural_integrals(const SystemSnapshot& s);
+
+// A document (`flaplag system --json`) has the rows up to f, the hover, then the rest.
+constexpr auto describe(Tag<SystemSnapshot>) {
+  using S = SystemSnapshot;
+  return std::make_tuple(
+      Field{"mu", &S::mu, "-", "the advance ratio"}, Field{"psi", &S::psi, "rad", "the azimuth"},
+      Field{"region", &S::region, "",
+            "the flow region at psi: normal or reversed (the sector, or the exact circle)"},
+      Field{"state", &S::states, "", "the state's names (dg1', dg1, dh1', dh1 for 1 x 1)"},
+      Field{"A", &S::A, "1/rev", "A(psi) of y' = A(psi) y + f(psi)"},
+      Field{"f", &S::f, "1/rev", "f(psi)"},
+      Computed{"aero_integrals", &snapshot_aero_integrals, "",
+               "the spanwise aerodynamic integrals over the aerodynamic span"},
+      Computed{"structural_integrals", &snapshot_structural_integrals, "",
+               "the generalized masses and structural integrals"},
+      Field{"status", &S::status, "", "failed when an entry or an integral is not finite"},
+      Field{"message", &S::message, "", "what went wrong", kFieldMessage});
+}
 
 // Thrown by Analysis::sweep and track when their cancel flag is set.
 class Cancelled : public std::runtime_error {

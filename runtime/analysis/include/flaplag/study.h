@@ -88,17 +88,67 @@ struct StudyRow {
   std::vector<DampingCrossing> damping_crossings;
 };
 
-// A row's own rows; its search (critical) is written in the row itself: a document's row has
-// `value`, the keys of CriticalResult (intervals as [onset, end] pairs; mode, omega, kind null
-// without mu_c), then `trim` (trimmed studies) and `damping_crossings` (with a criterion).
+// A row as a study document holds it (`flaplag study --json`, docs/json.md): the value, the part
+// of its search's CriticalResult that a table of mu_c shows, the trim and the crossings.  A
+// front end writes trim and damping_crossings when the study asked for them (null or [] when a
+// row has none), and basis_error with exact modes only.
 constexpr auto describe(Tag<StudyRow>) {
+  using R = StudyRow;
+  using Number = std::optional<double>;
   return std::make_tuple(
-      Field{"value", &StudyRow::value, "", "the value of the varied parameter (in its units)"},
-      Field{"trim", &StudyRow::trim, "",
-            "trimmed studies: the trim at mu_c; null without mu_c (absent untrimmed)"},
-      Field{"damping_crossings", &StudyRow::damping_crossings, "",
+      Field{"value", &R::value, "", "the value of the varied parameter (in its units)"},
+      Computed{"hover_unstable", +[](const R& r) { return r.critical.hover_unstable; }, "",
+               "unstable already in hover (then no mu_c)"},
+      Computed{"mu_c", +[](const R& r) { return r.critical.mu_c; }, "-",
+               "the first mu with zeta > 0; null: stable up to mu_max, unstable in hover, or "
+               "the search failed"},
+      Computed{"mu_c_error", +[](const R& r) { return r.critical.mu_c_error; }, "-",
+               "estimated |mu_c error| (CriticalResult's)"},
+      Computed{"basis_error",
+               +[](const R& r) {
+                 return r.critical.basis ? std::optional<Number>(r.critical.basis_error)
+                                         : std::nullopt;
+               },
+               "-",
+               "exact modes: the part of mu_c_error that is the Galerkin basis's; null when not "
+               "estimated (the message says why); absent for the assumed mode",
+               kFieldOmitWhenEmpty},
+      Computed{"mode",
+               +[](const R& r) {
+                 return r.critical.mu_c ? std::optional<std::string>(r.critical.mode)
+                                        : std::nullopt;
+               },
+               "", "the mode that crosses at mu_c; null without mu_c"},
+      Computed{"omega",
+               +[](const R& r) { return r.critical.mu_c ? Number(r.critical.omega) : Number(); },
+               "per rev", "its omega at mu_c, >= 0; null without mu_c"},
+      Computed{"kind",
+               +[](const R& r) {
+                 return r.critical.mu_c ? std::optional<InstabilityKind>(r.critical.kind)
+                                        : std::nullopt;
+               },
+               "", "flutter or periodic (omega locked to 0, 1/2 or 1 per rev); null without mu_c"},
+      Computed{"intervals",
+               +[](const R& r) {
+                 std::vector<std::vector<Number>> pairs;
+                 for (const InstabilityInterval& i : r.critical.intervals)
+                   pairs.push_back({i.onset, i.end});
+                 return pairs;
+               },
+               "",
+               "every interval of instability up to mu_max as [onset, end]; end null when still "
+               "unstable at mu_max"},
+      Field{"trim", &R::trim, "",
+            "trimmed studies: the trim at mu_c (RotorCritical::trim); null without mu_c (absent "
+            "untrimmed)",
+            kFieldOmitWhenEmpty},
+      Field{"damping_crossings", &R::damping_crossings, "",
             "with a damping criterion: one crossing per mode (absent without)",
-            kFieldOmitWhenEmpty});
+            kFieldOmitWhenEmpty},
+      Computed{"status", +[](const R& r) { return r.critical.status; }, "",
+               "the search's status at this value; failed when the value is refused"},
+      Computed{"message", +[](const R& r) { return r.critical.message; }, "",
+               "the search's message (the reason when the value is refused)", kFieldMessage});
 }
 
 struct StudyResult : Outcome {

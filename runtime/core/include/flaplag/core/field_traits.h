@@ -3,7 +3,9 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace flaplag {
@@ -16,5 +18,10 @@ template <class T>
 struct is_vector_field : std::false_type {};
 template <class T>
 struct is_vector_field<std::vector<T>> : std::true_type {};
+// Numbers by name, in order (a JSON object, a Python dict): test before is_vector_field.
+template <class T>
+struct is_named_values_field : std::false_type {};
+template <>
+struct is_named_values_field<std::vector<std::pair<std::string, double>>> : std::true_type {};
 
 }  // namespace flaplag

@@ -4,9 +4,12 @@
 #include <Eigen/Dense>
 #include <complex>
 #include <limits>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "flaplag/core/fields.h"
 #include "flaplag/core/outcome.h"
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
@@ -26,7 +29,64 @@ struct HoverResult : Outcome {
   // (hover_zeta_rounding): its sign, and so the stability of hover, is unknown (status
   // Warning; `stable` then holds only the sign found).
   bool neutral = false;
+  // q0 by the name of its coordinate, direction after direction ("g0_1", ..., "h0_1", ...;
+  // named by Analysis from the model's directions).
+  std::vector<std::pair<std::string, double>> equilibrium;
 };
+
+// A hover exponent as a document lists it: an eigenvalue of A0 with its label.
+struct HoverExponent {
+  double zeta = 0.0;
+  double omega = 0.0;
+  std::string label;
+};
+
+constexpr auto describe(Tag<HoverExponent>) {
+  return std::make_tuple(
+      Field{"zeta", &HoverExponent::zeta, "1/rev", "real part of the eigenvalue (> 0: unstable)"},
+      Field{"omega", &HoverExponent::omega, "per rev", "imaginary part of the eigenvalue"},
+      Computed{"damping_ratio",
+               +[](const HoverExponent& e) { return damping_ratio(e.zeta, e.omega); },
+               "- (fraction of critical)", "-zeta/|lambda|, as an Exponent's"},
+      Field{"label", &HoverExponent::label, "", "the mode: flap, lag (flap2, ...)"});
+}
+
+// The eigenvalues with their labels.
+inline std::vector<HoverExponent> hover_exponents(const HoverResult& h) {
+  std::vector<HoverExponent> e;
+  for (std::size_t i = 0; i < h.eigenvalues.size(); ++i)
+    e.push_back(
+        {h.eigenvalues[i].real(), h.eigenvalues[i].imag(), i < h.labels.size() ? h.labels[i] : ""});
+  return e;
+}
+
+// Hover's stability as shown: unknown when the analysis failed or hover is neutral.
+inline std::optional<bool> hover_stable(const HoverResult& h) {
+  if (h.status == Status::Failed || h.neutral) return std::nullopt;
+  return h.stable;
+}
+
+// Documents (a `hover` object) hold the rows of kHoverDocumentRows; Python has every row.
+constexpr auto describe(Tag<HoverResult>) {
+  using H = HoverResult;
+  return std::make_tuple(
+      Field{"inflow", &H::inflow, "-", "the inflow ratio lambda (eq 2.24)"},
+      Field{"equilibrium", &H::equilibrium, "-",
+            "the static equilibrium q0 by coordinate: g0_1, ... (flap), h0_1, ... (lag)"},
+      Field{"A0", &H::A0, "1/rev", "the constant A at mu = 0"},
+      Field{"eigenvalues", &H::eigenvalues, "1/rev", "eig(A0), per rev"},
+      Field{"labels", &H::labels, "", "the mode label of each eigenvalue"},
+      Computed{"exponents", &hover_exponents, "", "the eigenvalues with their labels"},
+      Computed{"stable", &hover_stable, "",
+               "every zeta <= 0; null when unknown (failed, or the largest zeta is within the "
+               "rounding level of 0)"},
+      Field{"status", &H::status, "", "how it went (as every result's)"},
+      Field{"message", &H::message, "", "what went wrong or was found", kFieldMessage});
+}
+
+// The rows of HoverResult in a document's `hover`.
+inline constexpr const char* kHoverDocumentRows[] = {"inflow", "equilibrium", "exponents",
+                                                     "stable", "status",      "message"};
 
 // Failed, with "non-finite hover equilibrium or eigenvalue (not shown)" in the message, when
 // the inflow, q0 or an eigenvalue is not finite (Analysis checks its hover result so).
