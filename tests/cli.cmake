@@ -12,21 +12,11 @@
 # Analysis, its results) says LIBRARY and keeps the build's flags: under AddressSanitizer Eigen
 # allocates its own way, so a plain driver would free with another rule than the library used.
 set(FLAPLAG_CLI_DRIVER_OPTIONS -O0 -fno-sanitize=all)
-if(FLAPLAG_TEST_PCH)
-  flaplag_test_pch(flaplag_cli_test_pch ${FLAPLAG_CLI_DRIVER_OPTIONS})
-endif()
 function(flaplag_cli_test name)
   cmake_parse_arguments(PARSE_ARGV 1 arg "LIBRARY" "" "UNITS;LIBRARIES")
   flaplag_test(${name} LABEL runs_flaplag UNITS ${arg_UNITS} LIBRARIES ${arg_LIBRARIES})
-  if(arg_LIBRARY)
-    if(FLAPLAG_TEST_PCH)
-      target_precompile_headers(${name} REUSE_FROM flaplag_test_pch)
-    endif()
-  else()
+  if(NOT arg_LIBRARY)
     target_compile_options(${name} PRIVATE ${FLAPLAG_CLI_DRIVER_OPTIONS})
-    if(FLAPLAG_TEST_PCH)
-      target_precompile_headers(${name} REUSE_FROM flaplag_cli_test_pch)
-    endif()
   endif()
   if(CMAKE_CXX_FLAGS MATCHES "-fsanitize=[^ ]*address")
     target_compile_definitions(${name} PRIVATE FLAPLAG_EXE_ASAN=1)  # tests/process.h

@@ -1,2 +1,0 @@
-// The owner of a precompiled header the test drivers share (tests/CMakeLists.txt): it has no
-// tests of its own.
