@@ -223,23 +223,33 @@ void Deriver::canonicalize() {
             });
 }
 
-DerivedModel Deriver::run() {
-  aerodynamic_loads();
-  structural_loads();
-  if (spec_.nonlinear) nonlinear_pass();  // nonlinear.cc
-  canonicalize();
+namespace {
+
+// `count` empty slots; their value is the sum add_term() accumulates.
+std::vector<Slot> zero_slots(int count) {
+  std::vector<Slot> slots(static_cast<size_t>(count));
+  for (auto& s : slots) s.value = 0;
+  return slots;
+}
+
+}  // namespace
+
+void Deriver::allocate_slots() {
   const int n = M_ + N_;
   const int H = model_.H;
-  model_.mass.assign(n * n, Slot{});
-  model_.force.assign(H * n * 2 * n, Slot{});
-  model_.forcing.assign(H * n, Slot{});
-  model_.S.assign(n * n, Slot{});
-  model_.c.assign(n, Slot{});
-  for (auto& s : model_.mass) s.value = 0;
-  for (auto& s : model_.force) s.value = 0;
-  for (auto& s : model_.forcing) s.value = 0;
-  for (auto& s : model_.S) s.value = 0;
-  for (auto& s : model_.c) s.value = 0;
+  model_.mass = zero_slots(n * n);
+  model_.force = zero_slots(H * n * 2 * n);
+  model_.forcing = zero_slots(H * n);
+  model_.S = zero_slots(n * n);
+  model_.c = zero_slots(n);
+  if (spec_.cyclic_pitch) {
+    model_.thrust_force = zero_slots(H * 2 * n);
+    model_.thrust_forcing = zero_slots(H);
+  }
+}
+
+void Deriver::assemble_mass() {
+  const int n = M_ + N_;
   for (const auto& [key, terms] : pending_mass_) {
     for (const auto& t : terms) {
       // The runtime evaluates and factors the mass once per blade (model_api.h): it must be a
@@ -250,12 +260,10 @@ DerivedModel Deriver::run() {
       add_term(model_.mass[key.first * n + key.second], t);
     }
   }
-  if (spec_.cyclic_pitch) {
-    model_.thrust_force.assign(H * 2 * n, Slot{});
-    model_.thrust_forcing.assign(H, Slot{});
-    for (auto& s : model_.thrust_force) s.value = 0;
-    for (auto& s : model_.thrust_forcing) s.value = 0;
-  }
+}
+
+void Deriver::assemble_linear() {
+  const int n = M_ + N_;
   const int thrust_eq = model_.thrust_equation();
   for (const auto& [key, terms] : pending_force_) {
     const auto [h, eq, col] = key;
@@ -271,66 +279,82 @@ DerivedModel Deriver::run() {
       add_term(eq == thrust_eq ? model_.thrust_forcing[h] : model_.forcing[h * n + eq], t);
     }
   }
-  // Hover static equilibrium, eqs 2.27-2.32: the perturbation-free residual at mu = 0 is
-  // c - S q0 and must be linear in q0.
-  std::vector<int> q0_scalar;
-  for (int k = 0; k < M_; ++k) q0_scalar.push_back(g0_[k]);
-  for (int m = 0; m < N_; ++m) q0_scalar.push_back(h0_[m]);
-  for (int eq = 0; eq < n; ++eq) {
+}
+
+void Deriver::assemble_hover_equilibrium() {
+  std::vector<int> q0_scalar(g0_);
+  q0_scalar.insert(q0_scalar.end(), h0_.begin(), h0_.end());
+  for (int eq = 0; eq < M_ + N_; ++eq) {
     auto it = pending_forcing_.find({0, eq});
     if (it == pending_forcing_.end()) continue;
-    for (const auto& t : it->second) {
-      bool has_mu = false;
-      int q_index = -1, q_count = 0;
-      for (const auto& [si, p] : t.scalars) {
-        if (si == mu_) has_mu = true;
-        for (int j = 0; j < n; ++j) {
-          if (q0_scalar[j] == si) {
-            q_index = j;
-            q_count += p;
-          }
-        }
-      }
-      if (has_mu) continue;
-      if (q_count > 1) throw std::logic_error("hover equilibrium is nonlinear in q0");
-      if (q_count == 0) {
-        add_term(model_.c[eq], t);
-      } else {
-        Term s = t;
-        s.coef = -s.coef;
-        s.scalars.erase(std::remove_if(s.scalars.begin(), s.scalars.end(),
-                                       [&](const std::pair<int, int>& sp) {
-                                         return sp.first == q0_scalar[q_index];
-                                       }),
-                        s.scalars.end());
-        add_term(model_.S[eq * n + q_index], s);
+    for (const auto& t : it->second) place_hover_term(t, eq, q0_scalar);
+  }
+}
+
+void Deriver::place_hover_term(const Term& t, int eq, const std::vector<int>& q0_scalar) {
+  const int n = M_ + N_;
+  bool has_mu = false;
+  int q_index = -1, q_count = 0;
+  for (const auto& [si, p] : t.scalars) {
+    if (si == mu_) has_mu = true;
+    for (int j = 0; j < n; ++j) {
+      if (q0_scalar[j] == si) {
+        q_index = j;
+        q_count += p;
       }
     }
   }
-  // Integral paper names: the distinct names of all terms that use each integral.
-  auto collect = [&](const std::vector<Slot>& slots) {
-    for (const auto& s : slots) {
-      for (const auto& t : s.terms) {
-        if (t.paper_name.empty() || t.integral < 0) continue;
-        auto& info =
-            t.ref == IntegralRef::Aero ? model_.aero[t.integral] : model_.structural[t.integral];
-        if (info.paper_name.find(t.paper_name) == std::string::npos) {
-          info.paper_name += (info.paper_name.empty() ? "" : "/") + t.paper_name;
-        }
-      }
+  if (has_mu) return;
+  if (q_count > 1) throw std::logic_error("hover equilibrium is nonlinear in q0");
+  if (q_count == 0) {
+    add_term(model_.c[eq], t);
+    return;
+  }
+  Term s = t;
+  s.coef = -s.coef;
+  s.scalars.erase(
+      std::remove_if(s.scalars.begin(), s.scalars.end(),
+                     [&](const std::pair<int, int>& sp) { return sp.first == q0_scalar[q_index]; }),
+      s.scalars.end());
+  add_term(model_.S[eq * n + q_index], s);
+}
+
+void Deriver::add_paper_names(const Slot& slot) {
+  for (const auto& t : slot.terms) {
+    if (t.paper_name.empty() || t.integral < 0) continue;
+    auto& info =
+        t.ref == IntegralRef::Aero ? model_.aero[t.integral] : model_.structural[t.integral];
+    if (info.paper_name.find(t.paper_name) == std::string::npos) {
+      info.paper_name += (info.paper_name.empty() ? "" : "/") + t.paper_name;
     }
-  };
-  collect(model_.mass);
-  collect(model_.force);
-  collect(model_.forcing);
-  assemble_nonlinear();
-  for (const auto& s : model_.nonlinear) collect({s.slot});
+  }
+}
+
+void Deriver::name_integrals() {
+  for (const auto& s : model_.mass) add_paper_names(s);
+  for (const auto& s : model_.force) add_paper_names(s);
+  for (const auto& s : model_.forcing) add_paper_names(s);
+  for (const auto& s : model_.nonlinear) add_paper_names(s.slot);
+  // An integral that only absorbed terms use still needs a name in the tables and the report.
   for (const auto& a : model_.absorbed) {
     const Term& t = a.term;
     if (t.ref == IntegralRef::Structural && model_.structural[t.integral].paper_name.empty()) {
       model_.structural[t.integral].paper_name = "centrifugal stiffness (absorbed)";
     }
   }
+}
+
+DerivedModel Deriver::run() {
+  aerodynamic_loads();  // physics.cc
+  structural_loads();
+  if (spec_.nonlinear) nonlinear_pass();  // nonlinear.cc
+  canonicalize();
+  allocate_slots();
+  assemble_mass();
+  assemble_linear();
+  assemble_hover_equilibrium();
+  assemble_nonlinear();  // nonlinear.cc
+  name_integrals();
   return model_;
 }
 

@@ -163,6 +163,23 @@ class Deriver {
   // GiNaC visits terms in an address-dependent order: renumber the integrals by their keys and
   // sort every term list so that the output is byte-identical from run to run.
   void canonicalize();
+  // Sizes the model's slots (DerivedModel layout) with value 0; the thrust rows only with
+  // cyclic pitch.
+  void allocate_slots();
+  // The pending acceleration terms into the generalized mass.
+  void assemble_mass();
+  // The pending perturbation terms into force and forcing, the thrust pseudo-equation's into
+  // thrust_force and thrust_forcing.
+  void assemble_linear();
+  // The hover static equilibrium S q0 = c (eqs 2.27-2.32) from the constant harmonic of the
+  // forcing: the perturbation-free residual at mu = 0 is c - S q0.
+  void assemble_hover_equilibrium();
+  // One term of that residual: into c (free of q0) or -S[eq, j] (linear in q0_j); q0_scalar
+  // holds the scalar indices of g0_1..g0_M, h0_1..h0_N.
+  void place_hover_term(const Term& t, int eq, const std::vector<int>& q0_scalar);
+  // Each integral's paper name: the distinct names of all the terms that use it.
+  void name_integrals();
+  void add_paper_names(const Slot& slot);
 
   const OrderingSpec& spec_;
   bool nonlinear_ = false;   // inside nonlinear_pass()
