@@ -1126,6 +1126,8 @@ std::optional<std::string> CommandLine::error_line(const InvalidInput& e) const 
   const Given* g = given(o->name);
   std::string value = e.value();
   if (g != nullptr && o->takes_value) value = shown(g->text);
+  // A flag of the run (not a rotor flag, whose option may turn its field off) is on as given.
+  if (g != nullptr && !o->takes_value && o->rotor == nullptr) value = "true";
   return (g != nullptr ? g->spelling : o->name) + " = " + value + ": " + vocabulary(e.reason());
 }
 

@@ -101,6 +101,8 @@ struct Request {
   // simulate, the typical case): --inflow; momentum takes C_T and alpha_R from
   // --thrust-coefficient and --shaft-angle (trim's fields).  Uniform (eq 2.24) by default.
   InflowModel inflow;
+  // Every analysis: --periodic-linearization, about q°(psi) instead of hover (the paper).
+  Linearization linearization = Linearization::HoverEquilibrium;
   // sweep, study, map, response, simulate, merge: --memory-limit (limits.h), checked against
   // the run's estimate by interpret() (merge: by check_merged_output)
   std::uint64_t memory_limit = kDefaultMemoryLimit;

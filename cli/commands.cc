@@ -109,7 +109,8 @@ std::optional<Output> run_standalone(const Request& r, std::string& w, RunContro
 // theta0 and eq 2.25 lambda); each mu of the analysis is trimmed on its own.
 // (Any other command of a trimmed rotor: nullopt, after the same check of the hover trim.)
 std::optional<Output> run_trimmed(const Request& r, std::string& w) {
-  const Analysis an(r.params, r.transition, OperatingCondition::Trimmed(r.trim));
+  const Analysis an(r.params, r.transition,
+                    OperatingCondition::Trimmed(r.trim).About(r.linearization));
   switch (r.command) {
     case Command::Point:
       return cmd::point(r, an);

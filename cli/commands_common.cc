@@ -214,6 +214,7 @@ std::string blade_table_text(const BladeProperties& b, const RotorParameters& p)
 OperatingCondition fixed_controls(const Request& r) {
   OperatingCondition c;
   c.inflow = r.inflow;
+  c.linearization = r.linearization;
   return c;
 }
 
@@ -246,6 +247,8 @@ Json header_json(const char* command, const Analysis& an, bool with_method) {
   j["parameters"] = parameters_json(an.parameters());
   if (an.parameters().blade) j["blade_table"] = blade_table_json(*an.parameters().blade);
   if (std::optional<Json> inflow = inflow_json(an)) j["inflow"] = std::move(*inflow);
+  // Only about the periodic equilibrium, so that the documents about hover stay as they were.
+  if (an.condition().periodic()) j["linearization"] = enum_name(an.condition().linearization);
   return j;
 }
 
@@ -267,7 +270,7 @@ std::string header_text(const Analysis& an, bool with_method) {
                                     : "on");
   kv.add("blade", blade);
   if (p.blade) kv.add("blade table", blade_table_text(*p.blade, p));
-  if (p.periodic_linearization) {
+  if (an.condition().periodic()) {
     kv.add("linearized",
            "about the periodic equilibrium of the nonlinear equations (harmonic "
            "balance, K automatic: doubled from " +

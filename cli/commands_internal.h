@@ -119,6 +119,9 @@ Output critical(const Request& r, const Analysis& an);
 
 bool trimmed(const Request& r);  // --trim given
 Json trim_json(const Request& r, const TrimResult& t);
+// The periodic equilibrium q° a result at fixed controls rests on (--periodic-linearization): its
+// K and truncation, as a trim's `equilibrium`.
+Json equilibrium_json(const Request& r, const PeriodicEquilibrium& q);
 std::string trim_text(const Request& r, const TrimResult& t);
 Output trim_command(const Request& r);
 

@@ -327,6 +327,7 @@ Output point(const Request& r, const Analysis& an) {
     j.update(point_json(r, p));
     j["hover"] = hover_json(r, an);
     if (t) j["trim"] = trim_json(r, *t);
+    if (p.equilibrium) j["equilibrium"] = equilibrium_json(r, *p.equilibrium);
     return j;
   };
   std::optional<Json> j = result_document(r, json, nullptr);
@@ -399,6 +400,7 @@ Output critical(const Request& r, const Analysis& an) {
       j["inflow"]["lambda_at_mu_c"] = c.mu_c ? jnum(*inflow_at(an, *c.mu_c)) : Json(nullptr);
     j.update(critical_json(r, c));
     if (trimmed(r)) j["trim"] = t ? trim_json(r, *t) : Json(nullptr);
+    if (c.equilibrium) j["equilibrium"] = equilibrium_json(r, *c.equilibrium);
     return j;
   };
   std::optional<Json> j = result_document(r, json, nullptr);

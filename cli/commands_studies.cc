@@ -34,6 +34,7 @@ StudyResult run_study_part(const Request& r, RunControl* control) {
   so.critical = r.critical;
   so.threads = r.threads;
   so.trim = r.trim;
+  so.linearization = r.linearization;
   so.inflow = r.inflow;
   so.damping_criterion = r.damping_criterion;
   StudyResult s;
@@ -131,6 +132,7 @@ MapResult run_map_part(Request& r, RunControl* control) {
   mo.scan_step = r.scan_step;
   mo.threads = r.threads;
   mo.trim = r.trim;
+  mo.linearization = r.linearization;
   mo.inflow = r.inflow;
   MapResult m;
   m.cells.assign(r.y_values.size(), {});

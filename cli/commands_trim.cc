@@ -19,6 +19,10 @@ bool trimmed(const Request& r) { return r.trim.kind != TrimKind::None; }
 // parameters are the header's for `flaplag trim`; alpha_R is the case's shaft_angle.)
 Json trim_json(const Request& r, const TrimResult& t) { return to_json(t, in_vocabulary(r)); }
 
+Json equilibrium_json(const Request& r, const PeriodicEquilibrium& q) {
+  return to_json(TrimEquilibrium{q.harmonics, q.truncation}, in_vocabulary(r));
+}
+
 std::string trim_text(const Request& r, const TrimResult& t) {
   std::string out = std::string("Trim (") + trim_kind_name(t.kind) + ") at mu = " + cell(t.mu) +
                     ", C_T = " + cell(t.target) + ", alpha_R = " + cell(r.trim.shaft_angle) +
@@ -30,7 +34,7 @@ std::string trim_text(const Request& r, const TrimResult& t) {
   kv.add("lambda", cell(t.inflow) + "  (eq 2.25)");
   kv.add("C_T achieved", cell(t.thrust_coefficient) + "  (the model's own lift, azimuth mean)");
   kv.add("flap tip 1st harmonic", cell(t.flap_1c) + " cos psi + " + cell(t.flap_1s) + " sin psi");
-  if (t.parameters.periodic_linearization) {
+  if (t.linearization == Linearization::PeriodicEquilibrium) {
     kv.add("trimmed about",
            "the periodic equilibrium of the nonlinear equations (harmonic "
            "balance, K = " +
@@ -43,7 +47,7 @@ std::string trim_text(const Request& r, const TrimResult& t) {
 }
 
 Output trim_command(const Request& r) {
-  const TrimResult t = trim(r.params, r.mu, r.trim);
+  const TrimResult t = trim(r.params, r.mu, r.trim, nullptr, r.linearization);
   const auto json = [&] {
     Json j =
         header_json("trim", Analysis(t.parameters, r.transition, OperatingCondition::At(t)), false);

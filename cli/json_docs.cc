@@ -217,6 +217,10 @@ std::string header_section() {
                    "only with --inflow momentum: kind, thrust_coefficient, shaft_angle [rad] of "
                    "eq 2.25; `point` adds lambda (at its mu), `critical` lambda_at_mu_c (null "
                    "without mu_c)");
+  out += table_row("linearization", "string", "",
+                   "only with --periodic-linearization: \"periodic\", the operating condition's "
+                   "linearization about the periodic equilibrium q°(psi) (results written before "
+                   "it was part of the condition have parameters.periodic-linearization instead)");
   out += "\n### parameters\n\n" + std::string(kTableHead);
   for (const ParameterSpec& s : parameter_table()) {
     const char* type = s.type == ParameterType::Real ? "number"
@@ -234,7 +238,9 @@ std::string documents_section() {
          "- `flaplag point --json`: the header, the keys of " +
          section_link("PointResult") + ", `hover` (a " + section_link("HoverResult") +
          ") and, with `--trim`, `trim` (a " + section_link("TrimResult") +
-         ").\n"
+         "); with `--periodic-linearization` and no trim, `equilibrium` (a " +
+         section_link("TrimEquilibrium") +
+         ": the q° at mu the exponents rest on; with a trim it is the trim's).\n"
          "- `flaplag sweep --json`: the header, `mu` (start, stop, step), `labels` (the modes), "
          "`rows`, `max_liouville_residual`, with `--damping-criterion` `damping_criterion` and "
          "`damping_crossings` (as in " +
@@ -252,7 +258,9 @@ std::string documents_section() {
          "- `flaplag critical --json`: the header, the keys of " +
          section_link("CriticalResult") + " and, with `--trim`, `trim` (the " +
          section_link("TrimResult") +
-         " at mu_c, or null).\n"
+         " at mu_c, or null); with `--periodic-linearization` and no trim, `equilibrium` (a " +
+         section_link("TrimEquilibrium") +
+         ": the q° at mu_c; absent without mu_c).\n"
          "- `flaplag study --json`: the header, `vary` (the parameter), `mu_max`, `scan_step`, "
          "with `--damping-criterion` `damping_criterion`, `rows` (one per value: " +
          section_link("StudyRow") +

@@ -187,6 +187,17 @@ OptionSpec rotor_option(const ParameterSpec& s) {
 std::vector<OptionSpec> rotor_options() {
   std::vector<OptionSpec> v;
   for (const ParameterSpec& s : parameter_table()) v.push_back(rotor_option(s));
+  // Part of the operating condition (OperatingCondition::linearization), not of the rotor; the
+  // option every command takes, as the rotor's.
+  OptionSpec periodic = flag_option(
+      "--periodic-linearization",
+      "with the linearization about the periodic equilibrium of the nonlinear equations instead "
+      "of hover");
+  periodic.library_names = {"linearization"};
+  periodic.set = [](Request& r, const std::string&, const std::string&) {
+    r.linearization = Linearization::PeriodicEquilibrium;
+  };
+  v.push_back(std::move(periodic));
   // A nonuniform blade: the table's file, or its text (what a JSON result's case records).
   v.push_back(value_option(
       "--blade-table", "TABLE.csv",

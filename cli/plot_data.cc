@@ -164,6 +164,15 @@ std::optional<double> sweep_criterion(const std::string& file, const PlotJson& j
   return c.get<double>();
 }
 
+// About the periodic equilibrium: the header's `linearization`, or (results written before it
+// was part of the operating condition) the parameters' `periodic-linearization`.
+bool about_periodic_equilibrium(const PlotJson& j) {
+  if (j.contains("linearization")) return j["linearization"] == "periodic";
+  const PlotJson& p = j.contains("parameters") && j["parameters"].is_object() ? j["parameters"]
+                                                                              : PlotJson::object();
+  return p.value("periodic-linearization", false) == true;
+}
+
 // A short label of a result from its case (the command line behind it): the model, the trim
 // and the periodic linearization, e.g. "paper-2x2, moment trim, periodic".
 std::string case_label(const std::string& file, const PlotJson& j) {
@@ -179,15 +188,13 @@ std::string case_label(const std::string& file, const PlotJson& j) {
   if (j.contains("inflow") && j["inflow"].is_object() &&
       j["inflow"].value("kind", "") == "momentum")
     label += ", momentum inflow";
-  // The resolved parameters say it whether the option or the case file set it.
-  const PlotJson& p = j.contains("parameters") && j["parameters"].is_object() ? j["parameters"]
-                                                                              : PlotJson::object();
-  if (p.value("periodic-linearization", false) == true) label += ", periodic linearization";
+  // The header says it whether the option or the case file set it.
+  if (about_periodic_equilibrium(j)) label += ", periodic linearization";
   return label;
 }
 
 // The linearization of a result in words: "about hover", "moment trim, about hover", "about the
-// periodic equilibrium" (from case.trim and parameters.periodic-linearization, as case_label).
+// periodic equilibrium" (from case.trim and the header's linearization, as case_label).
 std::string linearization(const std::string& file, const PlotJson& j) {
   const PlotJson& c = j.contains("case") && j["case"].is_object() ? j["case"] : PlotJson::object();
   std::string words;
@@ -197,9 +204,7 @@ std::string linearization(const std::string& file, const PlotJson& j) {
       refuse_key(file, "case.trim", c["trim"], "not a trim (none, thrust or moment)");
     words = std::string(trim_kind_name(kind)) + " trim, ";
   }
-  const PlotJson& p = j.contains("parameters") && j["parameters"].is_object() ? j["parameters"]
-                                                                              : PlotJson::object();
-  const bool periodic = p.value("periodic-linearization", false) == true;
+  const bool periodic = about_periodic_equilibrium(j);
   return words +
          (periodic ? "linearized about the periodic equilibrium" : "linearized about hover");
 }

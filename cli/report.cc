@@ -248,8 +248,9 @@ std::string key_value_table(const std::vector<std::pair<std::string, std::string
 
 // The linearization and trim of the case, in words.
 std::string linearization_text(const Json& result) {
-  const Json& p = member(result, "parameters");
-  const bool periodic = member(p, "periodic-linearization") == true;
+  // The header's linearization, or the parameter of results written before it moved there.
+  const bool periodic = member(result, "linearization") == "periodic" ||
+                        member(member(result, "parameters"), "periodic-linearization") == true;
   const std::string trim = string_of(member(result, "case"), "trim", "none");
   std::string s = periodic ? "about the periodic equilibrium of the nonlinear equations"
                            : "about the hover equilibrium (as in the paper)";

@@ -872,13 +872,13 @@ TEST(NonlinearSimulation, RefusesWhatItCannotAnswerByName) {
   exact.exact_reversed_flow = true;
   const Analysis ex(exact, {});
   EXPECT_EQ("exact_reversed_flow", refused_field([&] { ex.simulate(0.5, y0, false, o); }));
-  // With periodic_linearization it is accepted (no linearization is involved), unlike the
+  // About the periodic equilibrium it is accepted (no linearization is involved), unlike the
   // linear simulation.
-  RotorParameters pl = damped_nonlinear();
-  pl.periodic_linearization = true;
-  const Analysis pa(pl, {});
+  const Analysis pa(
+      damped_nonlinear(), {},
+      flaplag::OperatingCondition{}.About(flaplag::Linearization::PeriodicEquilibrium));
   EXPECT_EQ("(accepted)", refused_field([&] { pa.simulate(0.0, y0, false, o); }));
-  EXPECT_EQ("periodic_linearization",
+  EXPECT_EQ("linearization",
             refused_field([&] { pa.simulate(0.0, y0, false, flaplag::SimulationOptions{}); }));
 }
 

@@ -337,14 +337,15 @@ TEST(Basis, TrimmedSweepsAndThePeriodicEquilibriumIncludeTheBasisError) {
     EXPECT_EQ(*pt.basis, 5);
     EXPECT_GE(pt.error.value_or(0.0), *pt.basis_error);
   }
-  p.periodic_linearization = true;
-  const flaplag::PointResult e = Analysis(p, TransitionOptions{}).point(0.3);
+  const auto about_q0 =
+      flaplag::OperatingCondition{}.About(flaplag::Linearization::PeriodicEquilibrium);
+  const flaplag::PointResult e = Analysis(p, TransitionOptions{}, about_q0).point(0.3);
   ASSERT_NE(e.status, Status::Failed) << e.message;
   ASSERT_TRUE(e.basis && e.basis_error) << e.message;
   const flaplag::PointResult f = [&] {
     RotorParameters q = p;
     q.basis = 6;
-    return Analysis(q, TransitionOptions{}).point(0.3);
+    return Analysis(q, TransitionOptions{}, about_q0).point(0.3);
   }();
   EXPECT_GE(*e.basis_error, largest_zeta_change(e, f) * (1 - 1e-12));
 }

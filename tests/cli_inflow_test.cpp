@@ -41,9 +41,9 @@ std::map<std::string, std::pair<double, double>> exponents_of(const flaplag::Poi
 // The analysis of the typical rotor at fixed controls and one inflow ratio at every mu.
 flaplag::Analysis at_lambda(double lambda, bool periodic = false) {
   flaplag::RotorParameters p;
-  p.periodic_linearization = periodic;
   flaplag::OperatingCondition c;
   c.inflow = flaplag::InflowModel::Given(lambda);
+  if (periodic) c.linearization = flaplag::Linearization::PeriodicEquilibrium;
   return flaplag::Analysis(p, {}, c);
 }
 

@@ -969,6 +969,30 @@ TEST(CliGood, EveryFeatureWithTheDefaultModel) {
   }
 }
 
+// The linearization is part of the operating condition, no longer a rotor parameter: the case
+// file key `periodic-linearization` (the examples' spelling) still sets it as the option does,
+// and a JSON result says it in its header (`linearization`), not among the parameters.
+TEST(CliGood, PeriodicLinearizationKeyOfACaseFileSetsTheCondition) {
+  TempDir dir;
+  const std::string on = dir.file("on.toml"), off = dir.file("off.toml");
+  std::ofstream(on) << "command = \"point\"\nmu = 0.3\njson = true\n"
+                       "periodic-linearization = true\n";
+  std::ofstream(off) << "command = \"point\"\nmu = 0.3\njson = true\n"
+                        "periodic-linearization = false\n";
+  const Json by_case = parse_json(run({"run", on}));
+  const Json by_option =
+      parse_json(run({"--periodic-linearization", "point", "--mu", "0.3", "--json"}));
+  EXPECT_EQ(by_case.value("linearization", ""), "periodic") << by_case;
+  EXPECT_EQ(by_option.value("linearization", ""), "periodic") << by_option;
+  EXPECT_FALSE(by_case.at("parameters").contains("periodic-linearization"));
+  EXPECT_EQ(largest_zeta(by_case), largest_zeta(by_option));
+  // false: about hover, as without the key, and the header has no linearization
+  const Json hover = parse_json(run({"run", off}));
+  EXPECT_FALSE(hover.contains("linearization")) << hover;
+  EXPECT_EQ(largest_zeta(hover), largest_zeta(parse_json(run({"point", "--mu", "0.3", "--json"}))));
+  EXPECT_GT(std::abs(largest_zeta(hover) - largest_zeta(by_case)), 1e-4);
+}
+
 // The trimmed mu_c with the default model: the first crossing of the trimmed exponents, which
 // the trimmed points on either side confirm.
 TEST(CliGood, TrimmedCriticalWithTheDefaultModel) {

@@ -62,9 +62,11 @@ TEST(PeriodicEquilibrium, AtHoverItIsTheHoverEquilibriumAndTheHoverA) {
   const Eigen::MatrixXd A_paper = Analysis(paper, {}).system(0.0).sets[0].A[0];
   EXPECT_LT((A_paper - A).cwiseAbs().maxCoeff(), 1e-13);
   // The analysis switch: identical exponents at hover.
-  RotorParameters pp = p;
-  pp.periodic_linearization = true;
-  const PointResult a = Analysis(p, {}).point(0.0), b = Analysis(pp, {}).point(0.0);
+  const PointResult a = Analysis(p, {}).point(0.0),
+                    b = Analysis(p, {},
+                                 flaplag::OperatingCondition{}.About(
+                                     flaplag::Linearization::PeriodicEquilibrium))
+                            .point(0.0);
   ASSERT_EQ(a.exponents.size(), b.exponents.size());
   for (std::size_t k = 0; k < a.exponents.size(); ++k) {
     EXPECT_TRUE(AbsClose(a.exponents[k].zeta, b.exponents[k].zeta, 1e-12));
@@ -140,11 +142,13 @@ TEST(PeriodicEquilibrium, FloquetMultipliersAreThoseOfPerturbedNonlinearSimulati
   }
   // The analysis with the switch gives the same largest zeta, and it differs from the hover
   // linearization's: the periodic equilibrium matters at this mu.
-  RotorParameters pp = p;
-  pp.periodic_linearization = true;
   TransitionOptions fine;
   fine.zeta_tolerance = 1e-7;
-  const PointResult periodic = Analysis(pp, fine).point(mu, 0.1), hover = an.point(mu, 0.1);
+  const PointResult periodic = Analysis(p, fine,
+                                        flaplag::OperatingCondition{}.About(
+                                            flaplag::Linearization::PeriodicEquilibrium))
+                                   .point(mu, 0.1),
+                    hover = an.point(mu, 0.1);
   ASSERT_NE(Status::Failed, periodic.status) << periodic.message;
   auto max_zeta = [](const PointResult& r) {
     double z = -1e300;
@@ -179,18 +183,25 @@ TEST(PeriodicEquilibrium, BeyondTheFoldOfTheHoverBranchThereIsNone) {
 TEST(PeriodicEquilibrium, CriticalReportsTheFoldAsTheStabilityBoundary) {
   RotorParameters p;
   p.model = "paper-nonlinear";
-  p.periodic_linearization = true;
-  const Analysis an(p, {});
+  const Analysis an(
+      p, {}, flaplag::OperatingCondition{}.About(flaplag::Linearization::PeriodicEquilibrium));
   CriticalOptions o;
   // (cheap: a coarse scan, 0.5 stable and 0.75 past the fold, then the fold search; the fold's
   // position to 1e-5 is in docs/validation.md, and the K = 8 fold is told from the converged one
   // by AutomaticHarmonicsDoNotAcceptACoarseSolutionPastTheFinerFold)
   o.scan_step = 0.25;
   o.tolerance = 1e-3;
-  const CriticalResult c = an.critical(o);
+  const RotorCritical c = an.critical(o);
   ASSERT_TRUE(c.mu_c.has_value()) << c.message;
   EXPECT_EQ(Status::Ok, c.status) << c.message;
   EXPECT_EQ(InstabilityKind::Periodic, c.kind);
+  // it carries q° where it last exists below the fold (within mu_c_error of mu_c), the one the
+  // analysis also finds there on its own
+  ASSERT_TRUE(c.equilibrium.has_value());
+  EXPECT_EQ(c.periodic_equilibrium(), &*c.equilibrium);
+  EXPECT_LT(c.equilibrium->mu, *c.mu_c);
+  EXPECT_GE(c.equilibrium->mu, *c.mu_c - *c.mu_c_error);
+  EXPECT_NE(Status::Failed, c.equilibrium->status) << c.equilibrium->message;
   EXPECT_EQ(0.0, c.omega);
   ASSERT_TRUE(c.mu_c_error.has_value());
   EXPECT_LE(*c.mu_c_error, 1e-3);
@@ -208,13 +219,14 @@ TEST(PeriodicEquilibrium, CriticalReportsTheFoldAsTheStabilityBoundary) {
 TEST(PeriodicEquilibrium, AFailedFoldSearchWithoutMultipliersShowsNoInfinity) {
   RotorParameters p;
   p.model = "paper-cyclic-nonlinear";
-  p.periodic_linearization = true;
   p.tip_loss_a = 0.4048;
   p.lift_slope = 0.01;
   p.cdo = 0.4416;
   p.omega_flap = 0.001;
   p.damping_lag = 8.2681090432109041;
-  const Analysis an(p, TransitionOptions{TransitionMethod::Hsu, 163, 4, 1e-5});
+  const Analysis an(
+      p, TransitionOptions{TransitionMethod::Hsu, 163, 4, 1e-5},
+      flaplag::OperatingCondition{}.About(flaplag::Linearization::PeriodicEquilibrium));
   CriticalOptions o;
   o.mu_max = 0.0742;
   o.scan_step = 0.1;
@@ -321,13 +333,13 @@ TEST(PeriodicEquilibrium, BadOptionsAndModelsWithoutNonlinearLoadsAreRejected) {
   // its own).
   RotorParameters p;
   EXPECT_EQ(Analysis(p, {}).periodic_equilibrium(0.3).status, Status::Ok);
-  p.periodic_linearization = true;
-  EXPECT_NO_THROW(Analysis(p, {}));
+  EXPECT_NO_THROW(Analysis(
+      p, {}, flaplag::OperatingCondition{}.About(flaplag::Linearization::PeriodicEquilibrium)));
 }
 
 // Regression: the harmonic balance integrates the loads with the normal and sector integrals
 // only, so with the exact reversed-flow circle it used to answer for the sector silently; and
-// response/simulate/snapshot, which are of the hover system, ignored periodic_linearization.
+// response/simulate/snapshot, which are of the hover system, ignored the periodic linearization.
 TEST(PeriodicEquilibrium, CombinationsItCannotAnswerAreRefusedByName) {
   RotorParameters p;
   p.model = "paper-nonlinear";
@@ -341,15 +353,54 @@ TEST(PeriodicEquilibrium, CombinationsItCannotAnswerAreRefusedByName) {
     return std::string("(accepted)");
   };
   EXPECT_EQ("exact_reversed_flow", field_of([&] { Analysis(p, {}).periodic_equilibrium(0.5); }));
-  p.periodic_linearization = true;
-  EXPECT_EQ("exact_reversed_flow", field_of([&] { Analysis an(p, {}); }));
+  const auto about_q0 =
+      flaplag::OperatingCondition{}.About(flaplag::Linearization::PeriodicEquilibrium);
+  EXPECT_EQ("exact_reversed_flow", field_of([&] { Analysis an(p, {}, about_q0); }));
   p.exact_reversed_flow = false;
-  const Analysis an(p, {});
-  EXPECT_EQ("periodic_linearization", field_of([&] { an.response(0.3); }));
-  EXPECT_EQ("periodic_linearization",
+  const Analysis an(p, {}, about_q0);
+  EXPECT_EQ("linearization", field_of([&] { an.response(0.3); }));
+  EXPECT_EQ("linearization",
             field_of([&] { an.simulate(0.3, Eigen::VectorXd::Zero(an.state_size()), true); }));
-  EXPECT_EQ("periodic_linearization", field_of([&] { an.snapshot(0.3, 0.0); }));
+  EXPECT_EQ("linearization", field_of([&] { an.snapshot(0.3, 0.0); }));
   EXPECT_EQ("(accepted)", field_of([&] { an.system(0.3); }));  // documented: the hover system
+}
+
+// About the periodic equilibrium a result carries the q° its exponents were computed about: a
+// point and each point of a sweep the q° at its mu, which the analysis finds again on its own
+// (continued from hover, not from the search's cache) to the Newton tolerance; about hover none.
+TEST(PeriodicEquilibrium, ResultsCarryTheEquilibriumTheyWereComputedAbout) {
+  const RotorParameters p;
+  const Analysis an(p, {}, OperatingCondition{}.About(Linearization::PeriodicEquilibrium));
+  const double mu = 0.3;
+  const PeriodicEquilibrium alone = an.periodic_equilibrium(mu);
+  ASSERT_EQ(Status::Ok, alone.status) << alone.message;
+  auto expect_same = [&](const PeriodicEquilibrium& carried) {
+    ASSERT_NE(Status::Failed, carried.status) << carried.message;
+    EXPECT_NEAR(carried.mu, mu, 1e-15);
+    ASSERT_EQ(carried.harmonics, alone.harmonics);
+    ASSERT_EQ(carried.coefficients.rows(), alone.coefficients.rows());
+    ASSERT_EQ(carried.coefficients.cols(), alone.coefficients.cols());
+    EXPECT_LT((carried.coefficients - alone.coefficients).cwiseAbs().maxCoeff(), 1e-9);
+    // the mean flap deflection of q° at mu = 0.3 is not the hover one: a real q°, not a default
+    EXPECT_GT(carried.coefficients.cwiseAbs().maxCoeff(), 1e-3);
+  };
+  const RotorPoint r = an.point(mu);
+  ASSERT_NE(Status::Failed, r.status) << r.message;
+  ASSERT_TRUE(r.equilibrium.has_value());
+  EXPECT_EQ(r.periodic_equilibrium(), &*r.equilibrium);
+  expect_same(*r.equilibrium);
+  const RotorSweep s = an.sweep(0.1, mu, 0.1, 1);
+  ASSERT_EQ(s.points.size(), 3u);
+  ASSERT_EQ(s.equilibria.size(), s.points.size());
+  for (std::size_t k = 0; k < s.points.size(); ++k)
+    EXPECT_NEAR(s.equilibria[k].mu, s.points[k].mu, 1e-12) << k;
+  expect_same(s.equilibria.back());
+  // about hover nothing is carried
+  const Analysis hover(p, {});
+  const RotorPoint h = hover.point(mu);
+  EXPECT_FALSE(h.equilibrium.has_value());
+  EXPECT_EQ(h.periodic_equilibrium(), nullptr);
+  EXPECT_TRUE(hover.sweep(0.1, mu, 0.1, 1).equilibria.empty());
 }
 
 }  // namespace

@@ -351,12 +351,13 @@ TEST(RotorThrust, ExactModesTwoByTwo) {
 
 namespace {
 
+// Trimmed about the periodic equilibrium (trim(..., kPeriodic)).
 RotorParameters periodic_typical() {
   RotorParameters p;
   p.model = "paper-cyclic-nonlinear";
-  p.periodic_linearization = true;
   return p;
 }
+constexpr flaplag::Linearization kPeriodic = flaplag::Linearization::PeriodicEquilibrium;
 
 }  // namespace
 
@@ -364,7 +365,7 @@ RotorParameters periodic_typical() {
 // (paper-cyclic) to rounding, and the round trip of issue 12 holds about q° as well.
 TEST(PeriodicTrim, HoverThrustIsTheHoverModelsAndTheRoundTripHolds) {
   const auto linear = flaplag::rotor_thrust_momentum(cyclic_typical(), 0.0, 0.0);
-  const auto about = flaplag::rotor_thrust_momentum(periodic_typical(), 0.0, 0.0);
+  const auto about = flaplag::rotor_thrust_momentum(periodic_typical(), 0.0, 0.0, {}, kPeriodic);
   ASSERT_EQ(about.status, Status::Ok) << about.message;
   EXPECT_NEAR(about.thrust_coefficient, linear.thrust_coefficient, 1e-15);
   RotorParameters p = periodic_typical();
@@ -372,7 +373,7 @@ TEST(PeriodicTrim, HoverThrustIsTheHoverModelsAndTheRoundTripHolds) {
   TrimOptions o;
   o.kind = TrimKind::Thrust;
   o.thrust_coefficient = about.thrust_coefficient;
-  const auto r = flaplag::trim(p, 0.0, o);
+  const auto r = flaplag::trim(p, 0.0, o, nullptr, kPeriodic);
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   EXPECT_NEAR(r.theta0, 0.15, 1e-12);
   EXPECT_EQ(r.equilibrium.harmonics, 16);
@@ -387,7 +388,7 @@ TEST(PeriodicTrim, ThrustAndFirstFlapHarmonicOfTheEquilibriumAreTrimmed) {
   TrimOptions o;
   o.kind = TrimKind::Moment;
   o.thrust_coefficient = ct;
-  const auto r = flaplag::trim(periodic_typical(), mu, o);
+  const auto r = flaplag::trim(periodic_typical(), mu, o, nullptr, kPeriodic);
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   EXPECT_NEAR(r.thrust_coefficient, ct, 1e-10 * ct);
   EXPECT_LT(std::abs(r.flap_1c), 1e-10);
@@ -408,7 +409,7 @@ TEST(PeriodicTrim, ThrustAndFirstFlapHarmonicOfTheEquilibriumAreTrimmed) {
             1e-5);
   // Thrust trim about q° alone: the target to 1e-10, the flapping left in.
   o.kind = TrimKind::Thrust;
-  const auto t = flaplag::trim(periodic_typical(), mu, o);
+  const auto t = flaplag::trim(periodic_typical(), mu, o, nullptr, kPeriodic);
   ASSERT_EQ(t.status, Status::Ok) << t.message;
   EXPECT_NEAR(t.thrust_coefficient, ct, 1e-10 * ct);
   EXPECT_GT(std::hypot(t.flap_1c, t.flap_1s), 1e-3);
@@ -422,10 +423,11 @@ TEST(PeriodicTrim, TrimmedPointIsTheFloquetAnalysisAboutTheTrimmedEquilibrium) {
   o.kind = TrimKind::Moment;
   o.thrust_coefficient = 0.0042;
   const flaplag::TransitionOptions t;
-  const auto pt = flaplag::Analysis(periodic_typical(), t, flaplag::OperatingCondition::Trimmed(o))
+  const auto pt = flaplag::Analysis(periodic_typical(), t,
+                                    flaplag::OperatingCondition::Trimmed(o).About(kPeriodic))
                       .point(mu, 0.1);
   ASSERT_NE(pt.status, Status::Failed) << pt.message;
-  const auto r = flaplag::trim(periodic_typical(), mu, o);
+  const auto r = flaplag::trim(periodic_typical(), mu, o, nullptr, kPeriodic);
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   const flaplag::Analysis an(r.parameters, t, flaplag::OperatingCondition::At(r));
   const auto direct = an.floquet(mu, t.zeta_tolerance);
@@ -434,11 +436,22 @@ TEST(PeriodicTrim, TrimmedPointIsTheFloquetAnalysisAboutTheTrimmedEquilibrium) {
   for (const auto& e : pt.exponents) zmax_pt = std::max(zmax_pt, e.zeta);
   for (const auto& e : direct.floquet.exponents) zmax_direct = std::max(zmax_direct, e.zeta);
   EXPECT_NEAR(zmax_pt, zmax_direct, 1e-8);
+  // The point carries q° in its trim only (not twice): the trimmed equilibrium, the same as the
+  // one trim() finds on its own at mu.
+  EXPECT_FALSE(pt.equilibrium.has_value());
+  ASSERT_TRUE(pt.trim.has_value());
+  EXPECT_EQ(pt.trim->linearization, kPeriodic);
+  ASSERT_EQ(pt.periodic_equilibrium(), &pt.trim->equilibrium);
+  ASSERT_EQ(pt.trim->equilibrium.coefficients.rows(), r.equilibrium.coefficients.rows());
+  ASSERT_EQ(pt.trim->equilibrium.coefficients.cols(), r.equilibrium.coefficients.cols());
+  EXPECT_LT((pt.trim->equilibrium.coefficients - r.equilibrium.coefficients).cwiseAbs().maxCoeff(),
+            1e-8);
   // and about hover the same trimmed rotor has other exponents (the equilibrium matters)
-  RotorParameters hover_linear = r.parameters;
-  hover_linear.periodic_linearization = false;
   const auto about_hover =
-      flaplag::Analysis(hover_linear, t, flaplag::OperatingCondition::At(r)).floquet(mu, 1e-5);
+      flaplag::Analysis(
+          r.parameters, t,
+          flaplag::OperatingCondition::At(r).About(flaplag::Linearization::HoverEquilibrium))
+          .floquet(mu, 1e-5);
   double zmax_hover = -1e9;
   for (const auto& e : about_hover.floquet.exponents) zmax_hover = std::max(zmax_hover, e.zeta);
   EXPECT_GT(std::abs(zmax_hover - zmax_pt), 1e-4);

@@ -71,10 +71,24 @@ _MODE_COUNTS = (
         "description": "lag modes N (see flap_modes)",
     },
 )
+# What the rotor is linearized about: part of the operating condition (C++
+# OperatingCondition::linearization), not of the rotor; passed to the native layer with the
+# rotor's dict as "linearization" ("hover" or "periodic").
+_CONDITION = (
+    {
+        "field": "periodic_linearization",
+        "type": "flag",
+        "default": False,
+        "description": "linearize about the periodic equilibrium q°(psi) of the nonlinear "
+        "equations instead of the hover equilibrium (the paper); the command line's "
+        "--periodic-linearization",
+    },
+)
 _ROTOR_FIELDS = {r["field"]: r for r in PARAMETERS}
 _TRANSITION_FIELDS = {r["field"]: r for r in TRANSITION}
 _COUNT_FIELDS = {r["field"]: r for r in _MODE_COUNTS}
-_ALL_FIELDS = {**_ROTOR_FIELDS, **_TRANSITION_FIELDS, **_COUNT_FIELDS}
+_CONDITION_FIELDS = {r["field"]: r for r in _CONDITION}
+_ALL_FIELDS = {**_ROTOR_FIELDS, **_CONDITION_FIELDS, **_TRANSITION_FIELDS, **_COUNT_FIELDS}
 # The defaults of the C++ options structs: a default-constructed struct by its field table.
 CRITICAL_DEFAULTS = dict(_flaplag.option_defaults("critical"))  # CriticalOptions
 RESPONSE_DEFAULTS = dict(_flaplag.option_defaults("response"))  # ResponseOptions
@@ -259,6 +273,8 @@ def split_parameters(kwargs):
         v = _coerce(field, value)
         if field in _ROTOR_FIELDS:
             rotor[field] = v
+        elif field == "periodic_linearization":
+            rotor["linearization"] = "periodic" if v else "hover"
         elif field in _TRANSITION_FIELDS:
             transition[field] = v
         else:
@@ -305,6 +321,8 @@ def parameters_doc():
     """The parameter part of the Analysis docstring, from the library's tables."""
     out = ["Rotor and blade (C++ RotorParameters; the paper's typical case by default)"]
     out += [_describe(r) for r in PARAMETERS]
+    out += ["", "Operating condition (C++ OperatingCondition)"]
+    out += [_describe(r) for r in _CONDITION]
     out += ["", "Transition matrix Phi(2 pi) (C++ TransitionOptions)"]
     out += [_describe(r) for r in TRANSITION]
     out += ["", "Number of modes (the command line's --flap-modes, --lag-modes)"]
@@ -809,5 +827,5 @@ Parameters
     + parameters_doc()
 )
 Analysis.__module__ = "flaplag"
-Analysis.__init__.__signature__ = _signature(PARAMETERS + TRANSITION + _MODE_COUNTS)
+Analysis.__init__.__signature__ = _signature(PARAMETERS + _CONDITION + TRANSITION + _MODE_COUNTS)
 Analysis.__init__.__doc__ = "Builds the analysis; see help(flaplag.Analysis) for the parameters."

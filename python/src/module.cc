@@ -155,7 +155,7 @@ RotorParameters rotor_parameters(const py::dict& d) {
     const std::string field = key.cast<std::string>();
     // The blade table and the mode file: below.
     if (field == "blade_csv" || field == "blade_source" || field == "mode_shapes_csv" ||
-        field == "mode_shapes_source")
+        field == "mode_shapes_source" || field == "linearization")
       continue;
     const ParameterSpec* s = find_parameter(field);
     if (s == nullptr) throw InvalidInput(field, shown(value), "unknown parameter");
@@ -257,6 +257,18 @@ void select_mode_counts(RotorParameters& p, int flap_modes, int lag_modes) {
                        "one flap and one lag mode)");
   }
   p.model = find_model(p.model, flap_modes, lag_modes).name;
+}
+
+// What the Python layer's rotor dict says the rotor is linearized about ("linearization":
+// "hover" or "periodic", from periodic_linearization=...; the operating condition's, not a
+// rotor parameter).  The hover equilibrium when absent.
+Linearization linearization_of(const py::dict& params) {
+  Linearization l = Linearization::HoverEquilibrium;
+  if (!params.contains("linearization")) return l;
+  const py::object v = params["linearization"];
+  if (!py::isinstance<py::str>(v) || !enum_from_name(v.cast<std::string>(), &l))
+    throw InvalidInput("periodic_linearization", shown(v), "must be True or False");
+  return l;
 }
 
 RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_modes) {
@@ -678,7 +690,8 @@ py::dict study(const py::dict& params, const py::dict& transition, int flap_mode
                std::uint64_t memory_limit) {
   const RotorParameters base = base_parameters(params, flap_modes, lag_modes);
   const TransitionOptions t = transition_options(transition);
-  const StudyOptions o = study_options(parameter, values, critical, threads, trim_request);
+  StudyOptions o = study_options(parameter, values, critical, threads, trim_request);
+  o.linearization = linearization_of(params);
   check_study_memory(base, o, memory_limit);
   const bool trimmed = o.trim.kind != TrimKind::None;
   // A trimmed row reports the trim at its mu_c (theta0, theta1c, theta1s, lambda there), as
@@ -779,7 +792,8 @@ py::dict stability_map(const py::dict& params, const py::dict& transition, int f
                        const py::object& trim, std::uint64_t memory_limit) {
   const RotorParameters base = base_parameters(params, flap_modes, lag_modes);
   const TransitionOptions t = transition_options(transition);
-  const MapOptions o = map_options(x, x_values, y, y_values, mu, scan_step, threads, trim);
+  MapOptions o = map_options(x, x_values, y, y_values, mu, scan_step, threads, trim);
+  o.linearization = linearization_of(params);
   check_map_memory(o, memory_limit);
   const MapResult r = run_cancellable<MapResult>(
       [&](const std::atomic<bool>* cancel, ProgressFunction report) {
@@ -1004,7 +1018,8 @@ py::dict sweep_dict(const Analysis& a, SweepResult r, const std::optional<double
 
 // The analysis of a's rotor trimmed at every mu with o (a's options as resolved).
 Analysis trimmed(const Analysis& a, const TrimOptions& o) {
-  return Analysis(a.parameters(), a.options(), OperatingCondition::Trimmed(o));
+  return Analysis(a.parameters(), a.options(),
+                  OperatingCondition::Trimmed(o).About(a.condition().linearization));
 }
 
 // A trimmed sweep's dict with the trims of its points (`trims`, one per row).
@@ -1102,8 +1117,9 @@ void bind_construction(py::class_<Analysis>& analysis) {
                        int lag_modes) {
              const RotorParameters p = base_parameters(params, flap_modes, lag_modes);
              const TransitionOptions t = transition_options(transition);
+             const OperatingCondition c = OperatingCondition{}.About(linearization_of(params));
              py::gil_scoped_release release;
-             return Analysis(p, t);
+             return Analysis(p, t, c);
            }),
            py::arg("params"), py::arg("transition"), py::arg("flap_modes") = 1,
            py::arg("lag_modes") = 1)
@@ -1286,7 +1302,7 @@ void bind_trim(py::class_<Analysis>& analysis) {
              TrimResult t;
              {
                py::gil_scoped_release release;
-               t = trim(a.parameters(), mu, o);
+               t = trim(a.parameters(), mu, o, nullptr, a.condition().linearization);
              }
              return trim_dict(t);
            })
@@ -1306,14 +1322,16 @@ void bind_trim(py::class_<Analysis>& analysis) {
                                  round_trip_text(kMaxAdvanceRatio) +
                                  "] (an inflow ratio, bounded as mu is)");
         ThrustResult t;
+        const Linearization about = a.condition().linearization;
         {
           py::gil_scoped_release release;
           if (inflow == "momentum")
-            t = rotor_thrust_momentum(a.parameters(), mu, shaft_angle);
+            t = rotor_thrust_momentum(a.parameters(), mu, shaft_angle, {}, about);
           else if (inflow == "paper")
-            t = rotor_thrust(a.parameters(), mu, std::numeric_limits<double>::quiet_NaN());
+            t = rotor_thrust(a.parameters(), mu, std::numeric_limits<double>::quiet_NaN(), {},
+                             about);
           else
-            t = rotor_thrust(a.parameters(), mu, value);
+            t = rotor_thrust(a.parameters(), mu, value, {}, about);
         }
         return to_dict(t);
       });
@@ -1327,7 +1345,7 @@ void bind_trimmed_stability(py::class_<Analysis>& analysis) {
       // InflowModel's table (kind, thrust_coefficient, shaft_angle; a's options as resolved).
       .def("at_inflow",
            [](const Analysis& a, const py::dict& model) {
-             OperatingCondition c;
+             OperatingCondition c = OperatingCondition{}.About(a.condition().linearization);
              c.inflow = options_from<InflowModel>(model, "unknown inflow option");
              return Analysis(a.parameters(), a.options(), c);
            })

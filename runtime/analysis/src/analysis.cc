@@ -107,11 +107,11 @@ namespace {
 using internal::check_mu;
 using internal::sort_for_output;
 
-// response, simulate and snapshot are of the hover-linearized system: with
-// periodic_linearization they would silently answer another question than the one asked.
-void require_hover_linearization(const RotorParameters& p, const char* what) {
-  if (!p.periodic_linearization) return;
-  throw InvalidInput("periodic_linearization", "true",
+// response, simulate and snapshot are of the hover-linearized system: about the periodic
+// equilibrium they would silently answer another question than the one asked.
+void require_hover_linearization(const OperatingCondition& c, const char* what) {
+  if (!c.periodic()) return;
+  throw InvalidInput("linearization", enum_name(c.linearization),
                      std::string(what) +
                          " is of the system linearized about hover; about the periodic "
                          "equilibrium it is not built (the periodic equilibrium itself is "
@@ -137,11 +137,15 @@ struct Analysis::Impl {
         given_options(o),
         given_params(p),
         condition(checked(c)),
-        trim_in_hover(c.trimmed() ? std::optional<TrimResult>(internal::hover_trim(p, o, c.trim))
+        trim_in_hover(c.trimmed() ? std::optional<TrimResult>(
+                                        internal::hover_trim(p, o, c.trim, c.linearization))
                                   : std::nullopt),
         builder(trim_in_hover ? trim_in_hover->parameters : p, find_model(p.model),
                 trim_in_hover ? InflowModel::Given(trim_in_hover->inflow) : c.inflow),
-        evaluator(FloquetEvaluator::Create(o, builder.state_size())) {
+        // q° has the sector form only: refused after the parameters' own checks (the builder's)
+        // and before the options'.
+        evaluator((internal::require_sector(builder.params(), c.linearization),
+                   FloquetEvaluator::Create(o, builder.state_size()))) {
     options = evaluator->options();  // an automatic method resolved for this model's size
     hover = builder.hover();
     const auto& m = builder.model();
@@ -159,8 +163,8 @@ struct Analysis::Impl {
     check_finite(hover);
     validity = internal::validity_of(builder);
     if (trim_in_hover)
-      trimmed = std::make_shared<const internal::TrimmedContinuation>(p, o, c.trim, *trim_in_hover,
-                                                                      hover_modes);
+      trimmed = std::make_shared<const internal::TrimmedContinuation>(p, o, c.trim, c.linearization,
+                                                                      *trim_in_hover, hover_modes);
     if (with_reference) basis = internal::basis_check(p, m.flap_modes, m.lag_modes);
     if (p.mode_shapes) {
       const double defect = mass_orthogonality_defect(builder.modes());
@@ -209,6 +213,26 @@ struct Analysis::Impl {
   // progress counts both, internal::pass_progress).
   int passes() const { return basis.basis != 0 && reference() != nullptr ? 2 : 1; }
 
+  // About the periodic equilibrium: q° at every mu evaluated (the last one there, without its
+  // linearization; Failed where there is none), for the results to carry.  Shared by the
+  // stretches of a sweep or track.
+  struct Equilibria {
+    std::mutex mutex;
+    std::map<double, PeriodicEquilibrium> by_mu;
+    void add(double mu, const PeriodicEquilibrium& eq) {
+      const std::lock_guard<std::mutex> lock(mutex);
+      by_mu[mu] = internal::without_linearization(eq);
+    }
+    std::optional<PeriodicEquilibrium> at(double mu) {
+      const std::lock_guard<std::mutex> lock(mutex);
+      const auto it = by_mu.find(mu);
+      return it == by_mu.end() ? std::nullopt : std::optional<PeriodicEquilibrium>(it->second);
+    }
+  };
+  std::shared_ptr<Equilibria> recorder() const {
+    return condition.periodic() ? std::make_shared<Equilibria>() : nullptr;
+  }
+
   // What one continuation's evaluations carry from one mu to the next (function()).
   struct Continuation {
     StepsHint hint;
@@ -216,13 +240,15 @@ struct Analysis::Impl {
     // About the periodic equilibrium: the equilibria that were not clean (status Warning), by
     // mu, with their message (what a result at that mu rests on).
     std::map<double, std::string> unclean_equilibria;
+    std::shared_ptr<Equilibria> equilibria;  // null: q° not recorded
   };
 
   FloquetSample floquet(double mu, double zeta_tolerance, Continuation* c = nullptr) const {
     StepsHint* hint = c != nullptr ? &c->hint : nullptr;
     // The linear system about hover (the paper) or about the periodic equilibrium.
-    if (builder.params().periodic_linearization) {
+    if (condition.periodic()) {
       PeriodicEquilibrium eq = equilibrium(mu);
+      if (c != nullptr && c->equilibria) c->equilibria->add(mu, eq);
       if (eq.status == Status::Failed) {
         FloquetSample out;
         out.status = Status::Failed;
@@ -238,31 +264,60 @@ struct Analysis::Impl {
     return evaluator->evaluate(c->system, zeta_tolerance, hint);
   }
 
-  FloquetFunction function(std::shared_ptr<Continuation> c = nullptr) const {
+  FloquetFunction function(std::shared_ptr<Continuation> c = nullptr,
+                           std::shared_ptr<Equilibria> record = nullptr) const {
     if (!c) c = std::make_shared<Continuation>();
+    if (record) c->equilibria = std::move(record);
     return [this, c](double mu, double tol) { return floquet(mu, tol, c.get()); };
   }
 
   // A sweep or track in stretches (Analysis::sweep).  The periodic equilibria of one Analysis
   // share a cache of starts, so their stretches run in order.
+  // About the periodic equilibrium the q° of the points are in *equilibria (one per point, in
+  // order).
   SweepResult track(const std::vector<double>& mus, double step, int threads,
-                    const std::atomic<bool>* cancel = nullptr,
-                    const ProgressFunction& progress = {}) const {
+                    const std::atomic<bool>* cancel, const ProgressFunction& progress,
+                    std::vector<PeriodicEquilibrium>* equilibria) const {
     if (auto p = threads_problem(threads)) throw *p;
-    const int used = builder.params().periodic_linearization ? 1 : threads;
-    if (cancel == nullptr && !progress)
-      return track_exponents(
-          hover_modes, [this] { return function(); }, mus, step, options.zeta_tolerance, used);
-    // Every function of the stretches counts its evaluations into one ticker.
-    auto ticker = std::make_shared<internal::Ticker>(mus, step, cancel, progress);
-    auto make = [this, ticker] { return internal::ticking(function(), ticker); };
-    return track_exponents(hover_modes, make, mus, step, options.zeta_tolerance, used);
+    const int used = condition.periodic() ? 1 : threads;
+    const std::shared_ptr<Equilibria> record = recorder();
+    SweepResult r;
+    if (cancel == nullptr && !progress) {
+      r = track_exponents(
+          hover_modes, [this, record] { return function(nullptr, record); }, mus, step,
+          options.zeta_tolerance, used);
+    } else {
+      // Every function of the stretches counts its evaluations into one ticker.
+      auto ticker = std::make_shared<internal::Ticker>(mus, step, cancel, progress);
+      auto make = [this, ticker, record] {
+        return internal::ticking(function(nullptr, record), ticker);
+      };
+      r = track_exponents(hover_modes, make, mus, step, options.zeta_tolerance, used);
+    }
+    if (record) {
+      for (const PointResult& p : r.points) equilibria->push_back(equilibrium_at(*record, p.mu));
+    }
+    return r;
+  }
+
+  // The recorded q° at mu, or a Failed one saying that there is none.
+  static PeriodicEquilibrium equilibrium_at(Equilibria& record, double mu) {
+    if (std::optional<PeriodicEquilibrium> eq = record.at(mu)) return std::move(*eq);
+    PeriodicEquilibrium none;
+    none.mu = mu;
+    none.status = Status::Failed;
+    none.message = "no periodic equilibrium was evaluated at mu = " + round_trip_text(mu);
+    return none;
   }
 
   // A point with fixed controls: continued from hover, no better than the validity envelope.
   RotorPoint point(double mu, double scan_step) const {
-    RotorPoint r = internal::point_at_end(
-        sweep_exponents(hover_modes, function(), mu, mu, scan_step, options.zeta_tolerance), mu);
+    const std::shared_ptr<Equilibria> record = recorder();
+    RotorPoint r =
+        internal::point_at_end(sweep_exponents(hover_modes, function(nullptr, record), mu, mu,
+                                               scan_step, options.zeta_tolerance),
+                               mu);
+    if (record) r.equilibrium = record->at(mu);
     if (r.status != Status::Failed)
       r.Worsen(validity.empty() ? Status::Ok : Status::Warning, validity);
     sort_for_output(r.exponents);
@@ -307,7 +362,7 @@ struct Analysis::Impl {
   std::unique_ptr<const FloquetEvaluator> evaluator;
   mutable std::mutex cache_mutex;
   mutable std::map<double, PeriodicEquilibrium> cache;
-  // The harmonic balance behind periodic_linearization (stability comes from the analysis).
+  // The harmonic balance behind the periodic linearization (stability from the analysis).
   PeriodicEquilibriumOptions equilibrium_options = internal::equilibrium_options();
   HoverResult hover;
   HoverModes hover_modes;
@@ -346,6 +401,18 @@ const TipMotion& tip_motion(const std::vector<TipMotion>& tips, const std::strin
   for (const TipMotion& t : tips)
     if (t.direction == direction) return t;
   throw InvalidInput("direction", direction, "is not a direction of this result");
+}
+
+const PeriodicEquilibrium* RotorPoint::periodic_equilibrium() const {
+  if (equilibrium) return &*equilibrium;
+  if (trim && trim->linearization == Linearization::PeriodicEquilibrium) return &trim->equilibrium;
+  return nullptr;
+}
+
+const PeriodicEquilibrium* RotorCritical::periodic_equilibrium() const {
+  if (equilibrium) return &*equilibrium;
+  if (trim && trim->linearization == Linearization::PeriodicEquilibrium) return &trim->equilibrium;
+  return nullptr;
 }
 
 std::optional<InvalidInput> OperatingCondition::Validate() const {
@@ -419,7 +486,7 @@ FloquetSample Analysis::floquet(double mu, double zeta_tolerance) const {
 ForcedResponse Analysis::response(double mu, const ResponseOptions& options) const {
   require_fixed_controls("the periodic forced response");
   check_mu(mu, "mu");
-  require_hover_linearization(parameters(), "the periodic forced response");
+  require_hover_linearization(impl_->condition, "the periodic forced response");
   options.Check();
   ForcedResponse out;
   out.mu = mu;
@@ -455,7 +522,7 @@ TipSimulation Analysis::simulate(double mu, const Eigen::VectorXd& y0, bool forc
   require_fixed_controls("the simulation");
   check_mu(mu, "mu");
   if (options.nonlinear) return simulate_nonlinear(mu, y0, forced, options);
-  require_hover_linearization(parameters(), "the time-domain simulation");
+  require_hover_linearization(impl_->condition, "the time-domain simulation");
   TipSimulation out;
   out.mu = mu;
   out.simulation = flaplag::simulate(impl_->builder.system(mu), y0, forced, options);
@@ -545,7 +612,7 @@ std::vector<TipMotion> Analysis::tip_motions() const {
 SystemSnapshot Analysis::snapshot(double mu, double psi) const {
   require_fixed_controls("the system snapshot");
   check_mu(mu, "mu");
-  require_hover_linearization(parameters(), "the system snapshot");
+  require_hover_linearization(impl_->condition, "the system snapshot");
   if (!std::isfinite(psi)) throw InvalidInput("psi", round_trip_text(psi), "must be finite");
   SystemSnapshot s;
   s.mu = mu;
@@ -649,7 +716,7 @@ RotorSweep Analysis::sweep(double mu0, double mu1, double step, int threads,
     r = impl_->trimmed->sweep(mu0, mu1, step, cancel, first);
   } else {
     static_cast<SweepResult&>(r) =
-        impl_->track(sweep_grid(mu0, mu1, step), step, threads, cancel, first);
+        impl_->track(sweep_grid(mu0, mu1, step), step, threads, cancel, first, &r.equilibria);
     for (PointResult& p : r.points) {
       // mu0 + k step accumulates rounding (0.7999999999999999); report the decimal grid value.
       p.mu = snap12(p.mu);
@@ -694,7 +761,8 @@ RotorSweep Analysis::track(const std::vector<double>& mus, double scan_step, int
   if (impl_->trimmed) {
     r = impl_->trimmed->track(mus, scan_step, cancel, first);
   } else {
-    static_cast<SweepResult&>(r) = impl_->track(mus, scan_step, threads, cancel, first);
+    static_cast<SweepResult&>(r) =
+        impl_->track(mus, scan_step, threads, cancel, first, &r.equilibria);
     for (PointResult& p : r.points) sort_for_output(p.exponents);
     impl_->outside_envelope(r);
   }
@@ -719,7 +787,7 @@ RotorCritical Analysis::critical_with_this_basis(const CriticalOptions& opt) con
   CriticalOptions o = opt;
   o.scan_zeta_tolerance = std::min(opt.scan_zeta_tolerance, impl_->options.zeta_tolerance);
   RotorCritical r;
-  if (!parameters().periodic_linearization) {
+  if (!impl_->condition.periodic()) {
     static_cast<CriticalResult&>(r) = find_critical(impl_->hover_modes, impl_->function(), o);
     sort_for_output(r.exponents);
     impl_->outside_envelope(r);
@@ -728,9 +796,11 @@ RotorCritical Analysis::critical_with_this_basis(const CriticalOptions& opt) con
   // About the periodic equilibrium the search can end at a fold of its branch (fold.h).
   const internal::FoldWatch watch;
   const auto continuation = std::make_shared<Impl::Continuation>();
+  continuation->equilibria = std::make_shared<Impl::Equilibria>();
   static_cast<CriticalResult&>(r) =
       find_critical(impl_->hover_modes, watch.wrap(impl_->function(continuation)), o);
   std::optional<PeriodicEquilibrium> last;
+  std::map<double, PeriodicEquilibrium> found;  // the probes' q°, where it exists
   const internal::EquilibriumProbe probe = [&](double mu, PeriodicSystem* lin, double* reached) {
     PeriodicEquilibrium eq = flaplag::periodic_equilibrium(
         impl_->builder, mu, impl_->equilibrium_options, last ? &*last : nullptr);
@@ -746,11 +816,20 @@ RotorCritical Analysis::critical_with_this_basis(const CriticalOptions& opt) con
       return false;
     }
     *lin = eq.linearization;
+    found[mu] = internal::without_linearization(eq);
     last = std::move(eq);
     return true;
   };
   internal::report_fold(r, watch, probe, o);
   sort_for_output(r.exponents);
+  // The q° at mu_c: the search's; at a fold (beyond which there is none) the last one found
+  // below it, at the lower end of the fold's bracket.
+  if (r.mu_c) {
+    r.equilibrium = continuation->equilibria->at(*r.mu_c);
+    const auto below = found.upper_bound(*r.mu_c);
+    if ((!r.equilibrium || r.equilibrium->status == Status::Failed) && below != found.begin())
+      r.equilibrium = std::prev(below)->second;
+  }
   // mu_c (and every interval end) is no better than the periodic equilibrium there.
   if (r.status != Status::Failed) {
     for (const InstabilityInterval& iv : r.intervals) {

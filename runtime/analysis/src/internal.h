@@ -134,12 +134,30 @@ inline void sort_for_output(std::vector<LabelledExponent>& v) {
     for (std::size_t j = i; j > 0 && before(v[j], v[j - 1]); --j) std::swap(v[j], v[j - 1]);
 }
 
-// The harmonic balance behind periodic_linearization, for the analysis and the trim alike (the
-// stability comes from the analysis' own Floquet evaluation, so none here).
+// The harmonic balance behind the linearization about the periodic equilibrium, for the
+// analysis and the trim alike (the stability comes from the analysis' own Floquet evaluation,
+// so none here).
 inline PeriodicEquilibriumOptions equilibrium_options() {
   PeriodicEquilibriumOptions o;
   o.check_stability = false;
   return o;
+}
+
+// About the periodic equilibrium: the harmonic balance integrates the nonlinear loads region
+// by region with the normal and the sector integrals; the exact circle has no such form there
+// (it would silently be left out).  Refused up front, by the analysis and the trim alike.
+inline void require_sector(const RotorParameters& p, Linearization about) {
+  if (about != Linearization::PeriodicEquilibrium || !p.exact_reversed_flow) return;
+  throw InvalidInput("exact_reversed_flow", "true",
+                     "the periodic equilibrium (`linearization`) is built with the "
+                     "Appendix D sector: use the sector (`exact_reversed_flow` = false)");
+}
+
+// A periodic equilibrium as a result keeps it: without its linearization (rebuilt by
+// Analysis::floquet(mu)), which would make a result of many points large.
+inline PeriodicEquilibrium without_linearization(PeriodicEquilibrium eq) {
+  eq.linearization = PeriodicSystem{};
+  return eq;
 }
 
 // The tip deflection by l of each direction (model_api.h DirectionBlock, in state order: flap

@@ -13,11 +13,14 @@ namespace flaplag {
 namespace {
 
 // A study's or map's operating condition: trimmed with its trim options, else fixed controls at
-// its inflow model (OperatingCondition::Validate refuses a non-uniform one with a trim).
-OperatingCondition condition_of(const TrimOptions& trim, const InflowModel& inflow) {
+// its inflow model (OperatingCondition::Validate refuses a non-uniform one with a trim); either
+// linearized about its linearization.
+template <class Options>
+OperatingCondition condition_of(const Options& o) {
   OperatingCondition c =
-      trim.kind != TrimKind::None ? OperatingCondition::Trimmed(trim) : OperatingCondition{};
-  c.inflow = inflow;
+      o.trim.kind != TrimKind::None ? OperatingCondition::Trimmed(o.trim) : OperatingCondition{};
+  c.inflow = o.inflow;
+  c.linearization = o.linearization;
   return c;
 }
 
@@ -46,7 +49,7 @@ std::optional<InvalidInput> study_problem(const StudyOptions& o) {
       .InRanges(o, "damping_criterion")
       .Include(o.critical.Validate())
       .Include(o.trim.Validate())
-      .Include(condition_of(o.trim, o.inflow).Validate())
+      .Include(condition_of(o).Validate())
       .InRanges(o, "threads")
       .Result();
 }
@@ -73,7 +76,7 @@ std::optional<InvalidInput> map_problem(const MapOptions& o) {
       .InRanges(o, "mu")
       .InRanges(o, "scan_step")
       .Include(o.trim.Validate())
-      .Include(condition_of(o.trim, o.inflow).Validate())
+      .Include(condition_of(o).Validate())
       .InRanges(o, "threads")
       .Result();
 }
@@ -147,7 +150,7 @@ StudyResult run_study(const RotorParameters& base, const TransitionOptions& tran
         row.value = options.values[i];
         try {
           const RotorParameters p = with_parameter(base, options.parameter, row.value);
-          const Analysis an(p, transition, condition_of(options.trim, options.inflow));
+          const Analysis an(p, transition, condition_of(options));
           RotorCritical c = an.critical(crit);
           row.trim = std::move(c.trim);
           row.critical = std::move(c);
@@ -188,8 +191,8 @@ MapResult run_map(const RotorParameters& base, const TransitionOptions& transiti
       };
       try {
         const RotorParameters p = with_parameter(base, other.parameter, other.values[l]);
-        const SweepResult s = Analysis(p, transition, condition_of(options.trim, options.inflow))
-                                  .track(mus, options.scan_step, 1);
+        const SweepResult s =
+            Analysis(p, transition, condition_of(options)).track(mus, options.scan_step, 1);
         for (std::size_t k = 0; k < mus.size(); ++k)
           put(k, k < s.points.size() ? cell_of(s.points[k])
                                      : failed_cell("continuation stopped: " + s.message));
@@ -203,9 +206,8 @@ MapResult run_map(const RotorParameters& base, const TransitionOptions& transiti
         const RotorParameters p =
             with_parameter(with_parameter(base, options.y.parameter, options.y.values[l]),
                            options.x.parameter, options.x.values[j]);
-        out.cells[l][j] =
-            cell_of(Analysis(p, transition, condition_of(options.trim, options.inflow))
-                        .point(options.mu, options.scan_step));
+        out.cells[l][j] = cell_of(
+            Analysis(p, transition, condition_of(options)).point(options.mu, options.scan_step));
       } catch (const InvalidInput& e) {
         out.cells[l][j] = failed_cell(e.what());
       }

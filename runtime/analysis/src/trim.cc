@@ -44,16 +44,17 @@ double mean_thrust(const PeriodicSystem& sys, const detail::ThrustSystem& ts,
   });
 }
 
-// About the periodic equilibrium (p.periodic_linearization): thrust and first flap harmonic of
-// the nonlinear periodic equilibrium q°(psi) (the harmonic balance of Analysis, continued in mu
-// from hover on the branch through the hover equilibrium).
-// `warm` (in/out, may be null): a previous evaluation's equilibrium to continue from (a nearby
-// pitch or mu), replaced by this one's when it succeeds.
+// About the periodic equilibrium (Linearization::PeriodicEquilibrium): thrust and first flap
+// harmonic of the nonlinear periodic equilibrium q°(psi) (the harmonic balance of Analysis,
+// continued in mu from hover on the branch through the hover equilibrium). `warm` (in/out, may be
+// null): a previous evaluation's equilibrium to continue from (a nearby pitch or mu), replaced by
+// this one's when it succeeds.
 ThrustResult evaluate_periodic(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
                                double inflow, PeriodicEquilibrium* warm) {
   ThrustResult out;
   out.mu = mu;
   const detail::SystemBuilder builder(p, m, InflowModel::Given(inflow));
+  internal::require_sector(p, Linearization::PeriodicEquilibrium);
   out.inflow = builder.inflow();
   if (builder.hover().status == Status::Failed) {
     out.status = Status::Failed;
@@ -86,12 +87,13 @@ ThrustResult evaluate_periodic(const RotorParameters& p, const model::ModelDescr
   return out;
 }
 
-// One evaluation: thrust and first flap harmonic at (p's pitch, inflow).  response.steps is
-// updated to the steps used, so that later evaluations use the same grid.
+// One evaluation: thrust and first flap harmonic at (p's pitch, inflow), about hover or along
+// q° (periodic).  response.steps is updated to the steps used, so that later evaluations use
+// the same grid.
 ThrustResult evaluate(const RotorParameters& p, const model::ModelDescriptor& m, double mu,
-                      double inflow, ResponseOptions& response,
+                      double inflow, ResponseOptions& response, bool periodic,
                       PeriodicEquilibrium* warm = nullptr) {
-  if (p.periodic_linearization) return evaluate_periodic(p, m, mu, inflow, warm);
+  if (periodic) return evaluate_periodic(p, m, mu, inflow, warm);
   // The emitted thrust has a normal and a sector form only (ModelDescriptor::thrust); with the
   // exact circle the thrust and A(psi) would model different reversed regions.
   if (p.exact_reversed_flow) {
@@ -166,18 +168,19 @@ std::optional<InvalidInput> TrimOptions::Validate() const {
 }
 
 ThrustResult rotor_thrust(const RotorParameters& p, double mu, double inflow,
-                          const ResponseOptions& response) {
+                          const ResponseOptions& response, Linearization about) {
   check_mu(mu);
   response.Check();
   if (std::isnan(inflow)) validate(p);
   validate_except_inflow(p);
   const model::ModelDescriptor& m = find_model(p.model);
   ResponseOptions r = response;
-  return evaluate(p, m, mu, std::isnan(inflow) ? hover_inflow(p) : inflow, r);
+  return evaluate(p, m, mu, std::isnan(inflow) ? hover_inflow(p) : inflow, r,
+                  about == Linearization::PeriodicEquilibrium);
 }
 
 ThrustResult rotor_thrust_momentum(const RotorParameters& p, double mu, double shaft_angle,
-                                   const ResponseOptions& response) {
+                                   const ResponseOptions& response, Linearization about) {
   check_mu(mu);
   response.Check();
   validate(p);
@@ -190,7 +193,7 @@ ThrustResult rotor_thrust_momentum(const RotorParameters& p, double mu, double s
   // lambda_2.25(thrust(lambda)), from eq 2.24's lambda.
   ThrustResult last;
   auto g = [&](double lam) {
-    last = evaluate(p, m, mu, lam, r);
+    last = evaluate(p, m, mu, lam, r, about == Linearization::PeriodicEquilibrium);
     if (last.status == Status::Failed) return std::numeric_limits<double>::quiet_NaN();
     if (!(last.thrust_coefficient > 0.0)) return std::numeric_limits<double>::quiet_NaN();
     return lam - momentum_inflow(last.thrust_coefficient, mu, shaft_angle);
@@ -221,8 +224,10 @@ ThrustResult rotor_thrust_momentum(const RotorParameters& p, double mu, double s
 }
 
 namespace {
-// The thrust evaluations one trim() has made, against TrimOptions::max_evaluations.
+// One trim() call: what it trims (about the periodic equilibrium: q° itself) and the thrust
+// evaluations it has made, against TrimOptions::max_evaluations.
 struct TrimBudget {
+  bool periodic = false;
   int used = 0;
 };
 
@@ -235,8 +240,8 @@ TrimResult trim_continued(const RotorParameters& p, const model::ModelDescriptor
                           const TrimOptions& o, const TrimResult* start, TrimBudget& budget);
 }  // namespace
 
-TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
-                const TrimResult* start) {
+TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o, const TrimResult* start,
+                Linearization about) {
   o.Check();
   check_mu(mu);
   validate_except_inflow(p);
@@ -245,8 +250,10 @@ TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
   }
   const model::ModelDescriptor& m = find_model(p.model);
   TrimBudget budget;
+  budget.periodic = about == Linearization::PeriodicEquilibrium;
   TrimResult out = trim_continued(p, m, mu, o, start, budget);
   out.evaluations = budget.used;
+  out.linearization = about;
   // The trimmed operating point against the validity envelope (rotor/validity.h).
   out.validity.clear();
   if (out.status != Status::Failed) {
@@ -292,7 +299,7 @@ TrimResult trim_continued(const RotorParameters& p, const model::ModelDescriptor
   // hover (steps of kPeriodicTrimStep, each from the previous trim and its q°), since q° at
   // fixed controls, continued from hover, may fold before the trimmed branch does.
   constexpr double kPeriodicTrimStep = 0.1;
-  if (p.periodic_linearization && mu > kPeriodicTrimStep &&
+  if (budget.periodic && mu > kPeriodicTrimStep &&
       (start == nullptr || start->equilibrium.coefficients.size() == 0 ||
        start->status == Status::Failed)) {
     TrimResult chain = trim_continued(p, m, 0.0, o, nullptr, budget);
@@ -314,7 +321,7 @@ TrimResult trim_continued(const RotorParameters& p, const model::ModelDescriptor
   // last converged trim.
   auto settled = [](const TrimResult& t) { return t.status != Status::Failed && t.converged; };
   if (start != nullptr && settled(*start) && start->kind == o.kind &&
-      (!p.periodic_linearization || start->equilibrium.coefficients.size() > 0) &&
+      (!budget.periodic || start->equilibrium.coefficients.size() > 0) &&
       std::abs(mu - start->mu) > 1e-3) {
     TrimResult direct = trim_once(p, m, mu, o, start, budget);
     if (settled(direct)) return direct;
@@ -324,7 +331,7 @@ TrimResult trim_continued(const RotorParameters& p, const model::ModelDescriptor
   }
   // About hover without a start (the thrust trim of a study, from the blade-element controls):
   // when that fails, the same continuation from the hover trim.
-  if (!p.periodic_linearization && start == nullptr && mu > 1e-3) {
+  if (!budget.periodic && start == nullptr && mu > 1e-3) {
     TrimResult direct = trim_once(p, m, mu, o, nullptr, budget);
     if (settled(direct)) return direct;
     const TrimResult hover = trim_once(p, m, 0.0, o, nullptr, budget);
@@ -360,7 +367,7 @@ class TrimNewton {
     out_.parameters = p;
     // About the periodic equilibrium: each evaluation continues from the previous one's q°
     // (a start's, then this trim's), not from hover.
-    if (start != nullptr && p.periodic_linearization) warm_ = start->equilibrium;
+    if (start != nullptr && budget.periodic) warm_ = start->equilibrium;
   }
 
   TrimResult run() {
@@ -467,7 +474,7 @@ class TrimNewton {
       return false;
     }
     ++budget_.used;
-    last_ = evaluate(params_of(v), m_, mu_, out_.inflow, ropt_, &warm_);
+    last_ = evaluate(params_of(v), m_, mu_, out_.inflow, ropt_, budget_.periodic, &warm_);
     if (last_.status == Status::Failed) return false;
     r->resize(nx_);
     (*r)(0) = (last_.thrust_coefficient - o_.thrust_coefficient) / o_.thrust_coefficient;
@@ -492,7 +499,7 @@ class TrimNewton {
   bool jacobian(Eigen::MatrixXd* J) {
     J->resize(nx_, nx_);
     const ThrustResult at_x = last_;
-    const PeriodicEquilibrium warm_at_x = p_.periodic_linearization ? warm_ : PeriodicEquilibrium{};
+    const PeriodicEquilibrium warm_at_x = budget_.periodic ? warm_ : PeriodicEquilibrium{};
     for (int j = 0; j < nx_; ++j) {
       const double h = 1e-6;
       Eigen::VectorXd xp = x_, rp;
@@ -501,7 +508,7 @@ class TrimNewton {
       J->col(j) = (rp - r_) / h;
     }
     last_ = at_x;
-    if (p_.periodic_linearization) warm_ = warm_at_x;
+    if (budget_.periodic) warm_ = warm_at_x;
     return true;
   }
 
@@ -529,7 +536,7 @@ class TrimNewton {
     out_.thrust_coefficient = last_.thrust_coefficient;
     out_.flap_1c = last_.flap_1c;
     out_.flap_1s = last_.flap_1s;
-    if (p_.periodic_linearization) out_.equilibrium = warm_;
+    if (budget_.periodic) out_.equilibrium = warm_;
     out_.status = s;
     out_.message = std::move(msg);
     return out_;

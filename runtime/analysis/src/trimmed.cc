@@ -14,13 +14,14 @@
 
 namespace flaplag::internal {
 
-TrimResult hover_trim(const RotorParameters& p, const TransitionOptions& t, const TrimOptions& o) {
+TrimResult hover_trim(const RotorParameters& p, const TransitionOptions& t, const TrimOptions& o,
+                      Linearization about) {
   t.Check();
   o.Check();
   if (o.kind == TrimKind::None) {
     throw InvalidInput("trim", "none", "nothing to trim: use thrust or moment");
   }
-  TrimResult hover = trim(p, 0.0, o);
+  TrimResult hover = trim(p, 0.0, o, nullptr, about);
   if (hover.status == Status::Failed) {
     throw InvalidInput("thrust_coefficient", round_trip_text(o.thrust_coefficient),
                        "the rotor cannot be trimmed in hover: " + hover.message);
@@ -39,8 +40,14 @@ struct TrimmedContinuation::Evaluations {
 };
 
 TrimmedContinuation::TrimmedContinuation(const RotorParameters& p, const TransitionOptions& t,
-                                         const TrimOptions& o, TrimResult hover, HoverModes modes)
-    : params_(p), transition_(t), options_(o), hover_(std::move(hover)), modes_(std::move(modes)) {}
+                                         const TrimOptions& o, Linearization about,
+                                         TrimResult hover, HoverModes modes)
+    : params_(p),
+      transition_(t),
+      options_(o),
+      periodic_(about == Linearization::PeriodicEquilibrium),
+      hover_(std::move(hover)),
+      modes_(std::move(modes)) {}
 
 FloquetFunction TrimmedContinuation::function(const std::shared_ptr<Evaluations>& e) const {
   // Moment trim: warm start from the previous trim (the continuation moves in small steps of
@@ -50,7 +57,7 @@ FloquetFunction TrimmedContinuation::function(const std::shared_ptr<Evaluations>
   auto previous = std::make_shared<TrimResult>(hover_);
   // About the periodic equilibrium both trims start warm: the previous trim's q° saves the
   // continuation from hover at every evaluation.
-  const bool warm = options_.kind == TrimKind::Moment || params_.periodic_linearization;
+  const bool warm = options_.kind == TrimKind::Moment || periodic_;
   // A cold trim depends on mu alone: the search evaluates some mu more than once (at two zeta
   // tolerances, or again after a scan), and gets the same trim without solving again.
   auto cold = std::make_shared<std::map<double, TrimResult>>();
@@ -60,7 +67,7 @@ FloquetFunction TrimmedContinuation::function(const std::shared_ptr<Evaluations>
     if (const auto it = cold->find(mu); !warm && it != cold->end()) {
       tr = it->second;
     } else {
-      tr = trim(params_, mu, options_, warm ? previous.get() : nullptr);
+      tr = trim(params_, mu, options_, warm ? previous.get() : nullptr, about());
       if (!warm && tr.status != Status::Failed) {
         if (cold->size() > 4096) cold->clear();
         cold->emplace(mu, tr);
@@ -76,8 +83,7 @@ FloquetFunction TrimmedContinuation::function(const std::shared_ptr<Evaluations>
     }
     const Analysis an(tr.parameters, transition_, OperatingCondition::At(tr));
     // About the periodic equilibrium: the trim's own q° (the one whose thrust was trimmed).
-    out = params_.periodic_linearization ? an.floquet(tr.equilibrium, zeta_tolerance)
-                                         : an.floquet(mu, zeta_tolerance);
+    out = periodic_ ? an.floquet(tr.equilibrium, zeta_tolerance) : an.floquet(mu, zeta_tolerance);
     // A sample is never better than its trim: not converged or outside the validity envelope
     // makes it (at least) Warning, whatever its own status (trim_problem; an unstable trimmed
     // system is no problem of the sample: the exponents say so).
@@ -102,6 +108,7 @@ std::vector<TrimResult> TrimmedContinuation::trims_of(const Evaluations& e,
       none.kind = options_.kind;
       none.target = options_.thrust_coefficient;
       none.parameters = params_;
+      none.linearization = about();
       none.status = Status::Failed;
       none.message = "no trim at mu = " + round_trip_text(pt.mu);
       trims.push_back(std::move(none));
@@ -183,7 +190,7 @@ RotorCritical TrimmedContinuation::critical(const CriticalOptions& c) const {
   CriticalOptions co = c;
   co.scan_zeta_tolerance = std::min(c.scan_zeta_tolerance, transition_.zeta_tolerance);
   RotorCritical r;
-  if (!params_.periodic_linearization) {
+  if (!periodic_) {
     static_cast<CriticalResult&>(r) = find_critical(modes_, function(e), co);
     sort_for_output(r.exponents);
     rests_on_trims(*e, r);
@@ -195,7 +202,7 @@ RotorCritical TrimmedContinuation::critical(const CriticalOptions& c) const {
   static_cast<CriticalResult&>(r) = find_critical(modes_, watch.wrap(function(e)), co);
   std::optional<TrimResult> last;
   const EquilibriumProbe probe = [&](double mu, PeriodicSystem* lin, double*) {
-    TrimResult x = trim(params_, mu, options_, last ? &*last : nullptr);
+    TrimResult x = trim(params_, mu, options_, last ? &*last : nullptr, about());
     if (x.status == Status::Failed) return false;
     *lin = x.equilibrium.linearization;
     last = std::move(x);

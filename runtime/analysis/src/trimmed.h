@@ -15,14 +15,15 @@ namespace flaplag::internal {
 // The trim in hover a trimmed analysis starts from (its modes are labelled there).  Checks t and
 // o (o.kind thrust or moment, else InvalidInput "trim"); InvalidInput("thrust_coefficient")
 // when the rotor cannot be trimmed in hover.
-TrimResult hover_trim(const RotorParameters& p, const TransitionOptions& t, const TrimOptions& o);
+TrimResult hover_trim(const RotorParameters& p, const TransitionOptions& t, const TrimOptions& o,
+                      Linearization about);
 
 class TrimmedContinuation {
  public:
   // p: the rotor as given (its controls are replaced by each trim's); hover: hover_trim(p, t, o);
-  // modes: the hover modes of the rotor at that trim.
+  // modes: the hover modes of the rotor at that trim; about: what every trim trims (trim.h).
   TrimmedContinuation(const RotorParameters& p, const TransitionOptions& t, const TrimOptions& o,
-                      TrimResult hover, HoverModes modes);
+                      Linearization about, TrimResult hover, HoverModes modes);
 
   // As Analysis::point, sweep, track and critical with this basis (the caller folds the basis
   // error in); mu, scan_step and the options checked here as there.
@@ -38,10 +39,14 @@ class TrimmedContinuation {
   FloquetFunction function(const std::shared_ptr<Evaluations>& e) const;
   std::vector<TrimResult> trims_of(const Evaluations& e, const SweepResult& r) const;
   void rests_on_trims(const Evaluations& e, RotorCritical& r) const;
+  Linearization about() const {
+    return periodic_ ? Linearization::PeriodicEquilibrium : Linearization::HoverEquilibrium;
+  }
 
   RotorParameters params_;
   TransitionOptions transition_;
   TrimOptions options_;
+  bool periodic_;     // about the periodic equilibrium
   TrimResult hover_;  // the trim at mu = 0
   HoverModes modes_;
 };

@@ -139,10 +139,6 @@ std::vector<ParameterSpec> build_table() {
   t.push_back(flag_row("paper_1974_shapes",
                        "exact modes rebuilt with the 1974 sign slip (reproduces Figs 10-17)",
                        &RotorParameters::paper_1974_shapes));
-  t.push_back(flag_row("periodic_linearization",
-                       "the linearization about the periodic equilibrium of the nonlinear "
-                       "equations instead of hover",
-                       &RotorParameters::periodic_linearization));
   return t;
 }
 

@@ -50,14 +50,6 @@ void check_inputs(const RotorParameters& p, const InflowModel& inflow) {
     validate(p);
   }
   ThrowIfInvalid(inflow.Validate());
-  // The harmonic balance integrates the nonlinear loads region by region with the normal and
-  // the sector integrals; the exact circle has no such form there (it would silently be left
-  // out).
-  if (p.periodic_linearization && p.exact_reversed_flow) {
-    throw InvalidInput("exact_reversed_flow", "true",
-                       "the periodic equilibrium (`periodic_linearization`) is built with the "
-                       "Appendix D sector: use the sector (`exact_reversed_flow` = false)");
-  }
 }
 
 // The modes of p.mode_shapes (imported from a table) for model m.  The table gives shapes and

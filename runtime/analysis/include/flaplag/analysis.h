@@ -46,47 +46,78 @@
 
 namespace flaplag {
 
-// What holds at every advance ratio an Analysis evaluates: the controls and the inflow.
+// What holds at every advance ratio an Analysis evaluates: the controls, the inflow and the
+// solution the equations are linearized about.
 //   - Fixed controls (the default, the paper): RotorParameters' theta, theta1c, theta1s and the
 //     inflow model (rotor/inflow.h): eq 2.24 (the default), eq 2.25 at a given C_T at every mu,
 //     or a given inflow ratio (e.g. a trim's: At()).
 //   - Trimmed (trim.kind thrust or moment, Trimmed()): at every mu the rotor is trimmed first
 //     (trim.h), each trim with its own eq 2.25 inflow, so mu_c is that of the rotor at fixed
 //     C_T; the results carry the trims they rest on.
-// About which solution the system is linearized (hover or the periodic equilibrium) is
-// RotorParameters::periodic_linearization, in either condition.
+//   - Linearization (either condition): about the hover equilibrium (the paper, the default)
+//     or about the periodic equilibrium q°(psi) of the nonlinear equations (About(); trim.h
+//     Linearization).  Results about q° carry it (RotorPoint, RotorCritical; a trimmed one in
+//     its trim).
 struct OperatingCondition {
   TrimOptions trim;    // kind None: fixed controls
   InflowModel inflow;  // fixed controls only (a trim has its own): the default is eq 2.24
+  Linearization linearization = Linearization::HoverEquilibrium;
   // The rotor trimmed at every mu with `o` (o.kind thrust or moment).
   static OperatingCondition Trimmed(const TrimOptions& o) {
     OperatingCondition c;
     c.trim = o;
     return c;
   }
-  // Fixed at a trim's controls and inflow: Analysis(t.parameters, options, At(t)).
+  // Fixed at a trim's controls and inflow, linearized about what the trim was (its q° when it
+  // trimmed the periodic equilibrium): Analysis(t.parameters, options, At(t)).
   static OperatingCondition At(const TrimResult& t) {
     OperatingCondition c;
     c.inflow = InflowModel::Given(t.inflow);
+    c.linearization = t.linearization;
+    return c;
+  }
+  // This condition linearized about `l`: OperatingCondition{}.About(PeriodicEquilibrium),
+  // Trimmed(o).About(PeriodicEquilibrium).
+  OperatingCondition About(Linearization l) const {
+    OperatingCondition c = *this;
+    c.linearization = l;
     return c;
   }
   bool trimmed() const { return trim.kind != TrimKind::None; }
+  bool periodic() const { return linearization == Linearization::PeriodicEquilibrium; }
   // InvalidInput("inflow") for an inflow model other than eq 2.24 given with a trim; the inflow
-  // model's and the trim's problems.
+  // model's and the trim's problems.  (The periodic equilibrium's own requirements, e.g. the
+  // reversed-flow sector, are the Analysis's: InvalidInput "exact_reversed_flow".)
   std::optional<InvalidInput> Validate() const;
 };
 
 // The results of Analysis::point, sweep, track and critical: the numerics' results
 // (numerics/continuation.h, exponents sorted by label, then by omega descending) and, for a
 // trimmed rotor, the trims they rest on (a trim's problems are in the result's status).
+// About the periodic equilibrium, a result carries the q° its exponents were computed about:
+// at fixed controls in `equilibrium` (its coefficients, K, truncation, status and message; its
+// linearization is not kept: Analysis::floquet(mu) rebuilds it), trimmed in its trim's
+// `equilibrium` (not repeated).  periodic_equilibrium() finds it in either place.
 struct RotorPoint : PointResult {
   std::optional<TrimResult> trim;  // trimmed: the trim at mu
+  // Fixed controls about the periodic equilibrium: q° at mu (the last one evaluated there).
+  std::optional<PeriodicEquilibrium> equilibrium;
+  // q° the exponents rest on (equilibrium, or the trim's), or nullptr (about hover; no point).
+  const PeriodicEquilibrium* periodic_equilibrium() const;
 };
 struct RotorSweep : SweepResult {
   std::vector<TrimResult> trims;  // trimmed: one per point, in order; else empty
+  // Fixed controls about the periodic equilibrium: q° at each point, in order (the last one
+  // evaluated at its mu; Failed where there is none); else empty.
+  std::vector<PeriodicEquilibrium> equilibria;
 };
 struct RotorCritical : CriticalResult {
   std::optional<TrimResult> trim;  // trimmed: the trim at mu_c (none without mu_c)
+  // Fixed controls about the periodic equilibrium: q° at mu_c; at a fold, beyond which there is
+  // none, the last one found below it (equilibrium->mu < mu_c, within mu_c_error); none without
+  // mu_c.
+  std::optional<PeriodicEquilibrium> equilibrium;
+  const PeriodicEquilibrium* periodic_equilibrium() const;  // as RotorPoint's
 };
 
 // The numbers an auditor needs at one (mu, psi).  Outcome: Failed when an entry of A or f or an
@@ -209,7 +240,8 @@ struct TipSimulation : Outcome {
 class Analysis {
  public:
   // Checks params (validate()), options (TransitionOptions::Check()) and the condition; throws
-  // InvalidInput.  Trimmed: the rotor is trimmed in hover here (InvalidInput
+  // InvalidInput (about the periodic equilibrium "exact_reversed_flow": q° is built with the
+  // sector).  Trimmed: the rotor is trimmed in hover here (InvalidInput
   // "thrust_coefficient" when it cannot be), and parameters(), hover(), modes() and validity()
   // are those of that trim; system, snapshot, periodic_equilibrium, response, simulate and
   // floquet are of fixed controls and throw InvalidInput("trim") (make an Analysis At() the
@@ -243,18 +275,19 @@ class Analysis {
   // this in their message (every point of a sweep or track).
   const std::string& validity() const;
   // mu in [0, kMaxAdvanceRatio] (else InvalidInput("mu", ...)).  The linear system about the
-  // hover equilibrium (the paper), whatever periodic_linearization says; the system about the
+  // hover equilibrium (the paper), whatever the condition's linearization; the system about the
   // periodic equilibrium is periodic_equilibrium(mu).linearization.
   PeriodicSystem system(double mu) const;
   // The periodic equilibrium of the nonlinear equations at mu and the linearization about it
   // (rotor/periodic_equilibrium.h); needs a model with nonlinear loads (else InvalidInput
-  // "model").  With periodic_linearization, point, sweep, track, critical and floquet use this
-  // linearization (harmonic balance with the default options, K = 16) instead of the hover one.
+  // "model").  About the periodic equilibrium (OperatingCondition::linearization), point,
+  // sweep, track, critical and floquet use this linearization (harmonic balance with the
+  // default options, K = 16) instead of the hover one.
   PeriodicEquilibrium periodic_equilibrium(double mu,
                                            const PeriodicEquilibriumOptions& options = {}) const;
   // psi any finite angle [rad], reduced to [0, 2 pi).  response, simulate and snapshot are of
-  // the hover-linearized system: with periodic_linearization they throw
-  // InvalidInput("periodic_linearization") rather than answer for another system.
+  // the hover-linearized system: about the periodic equilibrium they throw
+  // InvalidInput("linearization") rather than answer for another system.
   SystemSnapshot snapshot(double mu, double psi) const;
 
   // Exponents at mu with labels from continuation (steps of at most scan_step from hover;
@@ -285,7 +318,7 @@ class Analysis {
                    const std::atomic<bool>* cancel, const ProgressFunction& progress) const;
   RotorSweep track(const std::vector<double>& mus, double scan_step, int threads,
                    const std::atomic<bool>* cancel, const ProgressFunction& progress) const;
-  // opt.Check() first.  With periodic_linearization the search can end at a fold of the branch
+  // opt.Check() first.  About the periodic equilibrium the search can end at a fold of the branch
   // of periodic equilibria through hover (a real multiplier reaches +1 and the equilibrium
   // ceases to exist: the blade loses it, a divergence-type loss of stability): mu_c is then the
   // fold, refined by bisection on the existence of q° and by the approach of that multiplier to
@@ -304,8 +337,8 @@ class Analysis {
   // With options.nonlinear: the nonlinear equations y' = F(y, psi) from y_ref(0) + y0 (y_ref the
   // reference equilibrium, TipSimulation::reference), RK4 on the grid of the linearization
   // about it; needs a model with nonlinear loads (else InvalidInput "nonlinear"); `forced` must
-  // be false (the loads are part of the equations; else InvalidInput "forced"); allowed with
-  // periodic_linearization (no linearization is involved).
+  // be false (the loads are part of the equations; else InvalidInput "forced"); allowed about
+  // the periodic equilibrium (no linearization is involved).
   TipSimulation simulate(double mu, const Eigen::VectorXd& y0, bool forced,
                          const SimulationOptions& options = {}) const;
   // The size of the state y: 2 (M + N).

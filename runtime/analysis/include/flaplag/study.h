@@ -47,6 +47,8 @@ struct StudyOptions {
   // Untrimmed rows: the inflow at every mu (rotor/inflow.h; the default eq 2.24).  Not with a
   // trim (InvalidInput "inflow"): a trim has its own.
   InflowModel inflow;
+  // What every row is linearized about (OperatingCondition::linearization, trimmed or not).
+  Linearization linearization = Linearization::HoverEquilibrium;
   int threads = 0;  // 0: as many as the hardware has; else 1..kMaxThreads (core/parallel.h)
   // Given (kDampingCriterionRange, numerics/continuation.h): each row also sweeps mu = 0,
   // scan_step, ..., mu_max (trimmed when the row is) and reports, per mode, the first mu where
@@ -178,6 +180,7 @@ struct MapOptions {
   double scan_step = 0.01;  // continuation step in mu
   TrimOptions trim;         // kind != None: every cell trimmed at its mu (trim.h)
   InflowModel inflow;       // untrimmed cells: the inflow model, as StudyOptions::inflow
+  Linearization linearization = Linearization::HoverEquilibrium;  // as StudyOptions's
   int threads = 0;
 
   std::optional<InvalidInput> Validate() const;

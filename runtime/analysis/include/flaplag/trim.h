@@ -35,6 +35,17 @@ constexpr auto describe(Tag<TrimKind>) {
 // false when `name` is none of them.
 bool trim_kind_from_name(std::string_view name, TrimKind* kind);
 
+// The solution the equations of motion are linearized about (part of an operating condition,
+// analysis.h OperatingCondition): the hover equilibrium q0 (the paper) or the periodic
+// equilibrium q°(psi) of the nonlinear equations (rotor/periodic_equilibrium.h; harmonic balance
+// continued in mu from hover, every model has the nonlinear loads).  A trim about the periodic
+// equilibrium trims q° itself (its thrust and first flap harmonic).
+enum class Linearization { HoverEquilibrium, PeriodicEquilibrium };
+constexpr auto describe(Tag<Linearization>) {
+  return std::array<EnumName<Linearization>, 2>{{{Linearization::HoverEquilibrium, "hover"},
+                                                 {Linearization::PeriodicEquilibrium, "periodic"}}};
+}
+
 struct TrimOptions {
   static constexpr Range kThrustRange = InflowModel::kThrustRange;
   static constexpr Range kShaftAngleRange = InflowModel::kShaftAngleRange;
@@ -105,13 +116,16 @@ constexpr auto describe(Tag<ThrustResult>) {
 }
 
 // C_T at mu with inflow lambda (NaN: eq 2.24) and p's pitch.  p.model must emit the thrust
-// (a cyclic-pitch model), else InvalidInput("model", ...); p is validated.
+// (a cyclic-pitch model), else InvalidInput("model", ...); p is validated.  `about`: the
+// periodic response about hover (the default) or, PeriodicEquilibrium, along q°.
 ThrustResult rotor_thrust(const RotorParameters& p, double mu, double inflow,
-                          const ResponseOptions& response = {});
+                          const ResponseOptions& response = {},
+                          Linearization about = Linearization::HoverEquilibrium);
 // C_T at mu with p's pitch and the inflow of eq 2.25 for that same C_T (solved together):
 // the thrust the rotor actually produces at this pitch.
 ThrustResult rotor_thrust_momentum(const RotorParameters& p, double mu, double shaft_angle,
-                                   const ResponseOptions& response = {});
+                                   const ResponseOptions& response = {},
+                                   Linearization about = Linearization::HoverEquilibrium);
 
 struct TrimResult : Outcome {
   double mu = 0.0;
@@ -124,11 +138,13 @@ struct TrimResult : Outcome {
   int iterations = 0;
   int evaluations = 0;         // thrust evaluations of the whole trim() (at most max_evaluations)
   RotorParameters parameters;  // the input with theta, theta1c, theta1s trimmed
-  bool converged = false;      // the residual met `tolerance`
+  // What was trimmed: the rotor linearized about hover, or (PeriodicEquilibrium) q° itself.
+  Linearization linearization = Linearization::HoverEquilibrium;
+  bool converged = false;  // the residual met `tolerance`
   // Jacobian of the residual [(C_T - target)/target, flap 1c, flap 1s] in (theta0, theta1c,
   // theta1s) at the end (Broyden-updated): a warm start for a neighbouring mu.
   Eigen::MatrixXd jacobian;
-  // With parameters.periodic_linearization: the periodic equilibrium q° at the trim (its
+  // About the periodic equilibrium: the periodic equilibrium q° at the trim (its
   // linearization included), whose thrust and first flap harmonic were trimmed; empty
   // coefficients otherwise.
   PeriodicEquilibrium equilibrium;
@@ -180,7 +196,7 @@ constexpr auto describe(Tag<TrimResult>) {
           Field{"converged", &TrimResult::converged, "", "the residual met the tolerance"},
           Computed{"equilibrium",
                    +[](const TrimResult& t) {
-                     return t.parameters.periodic_linearization
+                     return t.linearization == Linearization::PeriodicEquilibrium
                                 ? std::optional<TrimEquilibrium>(TrimEquilibrium{
                                       t.equilibrium.harmonics, t.equilibrium.truncation})
                                 : std::nullopt;
@@ -201,8 +217,12 @@ std::string trim_problem(const TrimResult& t);
 // "model").  mu in [0, kMaxAdvanceRatio].
 // start: a previous trim (e.g. at a neighbouring mu) whose controls and Jacobian start the
 // Newton iteration; nullptr: blade-element estimate and a finite-difference Jacobian.
+// about: the thrust and flap harmonic of the periodic response about hover (the default), or
+// (PeriodicEquilibrium) of q°, which is then trimmed and kept in the result's `equilibrium`;
+// the sector only (InvalidInput "exact_reversed_flow").
 TrimResult trim(const RotorParameters& p, double mu, const TrimOptions& o,
-                const TrimResult* start = nullptr);
+                const TrimResult* start = nullptr,
+                Linearization about = Linearization::HoverEquilibrium);
 
 // Stability at fixed C_T (every mu trimmed first): Analysis with OperatingCondition::Trimmed
 // (analysis.h); its results carry the trims they rest on.

@@ -56,9 +56,6 @@ struct RotorParameters {
   bool elastic_coupling = true;  // Appendix E; applies to exact modes only (paper 4.1(a))
   bool paper_1974_shapes =
       false;  // exact modes rebuilt with the 1974 sign slip (docs/validation.md)
-  // Linearize about the periodic equilibrium q°(psi) of the nonlinear equations instead of the
-  // hover equilibrium (the paper).
-  bool periodic_linearization = false;
   // A nonuniform blade (mass, stiffness shape, chord, twist, tip mass along the elastic span;
   // blade/blade_properties.h); null: the paper's uniform blade.  Needs `modes` = exact: its
   // stiffness columns are scaled so that the first rotating frequencies are omega_flap and
