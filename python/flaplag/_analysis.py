@@ -827,5 +827,5 @@ Parameters
     + parameters_doc()
 )
 Analysis.__module__ = "flaplag"
-Analysis.__init__.__signature__ = _signature(PARAMETERS + _CONDITION + TRANSITION + _MODE_COUNTS)
+Analysis.__init__.__signature__ = _signature(PARAMETERS + TRANSITION + _MODE_COUNTS)
 Analysis.__init__.__doc__ = "Builds the analysis; see help(flaplag.Analysis) for the parameters."

@@ -85,12 +85,18 @@ std::string one_line(const std::string& text, std::size_t max) {
 
 // The library's InvalidInput as flaplag.InvalidInput: "<field> = <value>: <reason>" on one
 // line, the value bounded (a value the user gave, e.g. a model name, may be any text).
+// The condition's linearization is the keyword periodic_linearization=True here.
 void translate_invalid_input(const InvalidInput& e) {
-  const std::string value = one_line(e.value(), kShownMax);
-  const std::string reason = one_line(e.reason(), 1000);
+  const bool linearization = e.name() == "linearization";
+  const std::string name = linearization ? "periodic_linearization" : e.name();
+  const std::string value = linearization ? "True" : one_line(e.value(), kShownMax);
+  std::string reason = one_line(e.reason(), 1000);
+  for (std::size_t at = reason.find("`linearization`"); at != std::string::npos;
+       at = reason.find("`linearization`", at + 1))
+    reason.replace(at, 15, "`periodic_linearization`");
   py::object type = py::reinterpret_borrow<py::object>(invalid_input_type);
-  py::object exc = type(one_line(e.name(), kShownMax) + " = " + value + ": " + reason);
-  exc.attr("field") = e.name();
+  py::object exc = type(one_line(name, kShownMax) + " = " + value + ": " + reason);
+  exc.attr("field") = name;
   exc.attr("value") = value;
   exc.attr("reason") = reason;
   PyErr_SetObject(invalid_input_type, exc.ptr());

@@ -464,6 +464,26 @@ def test_periodic_linearization_keyword_reaches_the_analysis():
     assert old.max_zeta == periodic.max_zeta
 
 
+def test_periodic_linearization_is_the_conditions_keyword_not_a_parameter():
+    """The linearization moved from the rotor parameters into the operating condition: the
+    keyword stays, named as typed in errors, and it is no longer among the parameters."""
+    assert "periodic_linearization" not in flaplag.Analysis().parameters
+    an = flaplag.Analysis(periodic_linearization=True)
+    assert "periodic_linearization" not in an.parameters
+    with pytest.raises(flaplag.InvalidInput) as e:
+        an.response(0.3)
+    assert e.value.field == "periodic_linearization"
+    assert str(e.value).startswith("periodic_linearization = True: ")
+    with pytest.raises(flaplag.InvalidInput) as e:
+        flaplag.Analysis(periodic_linearization=True, exact_reversed_flow=True)
+    assert e.value.field == "exact_reversed_flow"
+    assert "`periodic_linearization`" in str(e.value)
+    # off is the hover linearization, as without the keyword
+    assert flaplag.Analysis(periodic_linearization=False).point(0.3).max_zeta == (
+        flaplag.Analysis().point(0.3).max_zeta
+    )
+
+
 def test_periodic_equilibrium_arrays_and_its_hover_limit():
     an = flaplag.Analysis()
     e = an.periodic_equilibrium(0.3, harmonics=8, samples=36)
