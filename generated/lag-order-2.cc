@@ -165,11 +165,14 @@ void mass(const model::CoefficientInputs& in, double* out) {
 
 // mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]), H = 7 harmonics, n = M + N
 // equations, 2n states (model_api.h ordering).  A = mass^-1 force, f = mass^-1 forcing (eqs 2.36-2.37).
+// kM, kN: the mode counts when known at compile time (the 1 x 1 blade, so that its loops
+// unroll and its indices fold), 0: in.modes; the same operations in the same order.
+template <int kM, int kN>
 FLAPLAG_GENERATED_NO_UBSAN
-void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
+void coefficients_of(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
   const Tensors T(in);
   const Symbols s(in);
-  const int M = T.M, N = T.N, n = M + N;
+  const int M = kM > 0 ? kM : T.M, N = kN > 0 ? kN : T.N, n = M + N;
   const model::TemplateTensors& A = T.A;
   const model::TemplateTensors& S = T.S;
   (void)A;
@@ -960,6 +963,13 @@ void coefficients(const model::CoefficientInputs& in, const model::CoefficientOu
     v += (1.0 / 8.0) * s.lock * s.lr * s.lr * s.mu * s.mu * s.precone * s.theta1c * A(25, i);
     out.forcing[6 * n + M + i] += v;
   }
+}
+
+void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
+  if (in.modes[kFlap] == 1 && in.modes[kLag] == 1)
+    coefficients_of<1, 1>(in, out);
+  else
+    coefficients_of<0, 0>(in, out);
 }
 
 // Hover static equilibrium S q0 = c (eqs 2.27-2.32).

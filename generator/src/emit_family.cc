@@ -197,11 +197,15 @@ void emit_coefficients(std::ostringstream& os, const GenericModel& g) {
   os << "// mass * q'' = sum_h phi_h(psi) (force[h] y + forcing[h]), H = " << g.H
      << " harmonics, n = M + N\n// equations, 2n states (model_api.h ordering).  A = mass^-1 "
         "force, f = mass^-1 forcing (eqs 2.36-2.37).\n"
+     << "// kM, kN: the mode counts when known at compile time (the 1 x 1 blade, so that its "
+        "loops\n"
+     << "// unroll and its indices fold), 0: in.modes; the same operations in the same order.\n"
+     << "template <int kM, int kN>\n"
      << "FLAPLAG_GENERATED_NO_UBSAN\n"
-     << "void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& "
+     << "void coefficients_of(const model::CoefficientInputs& in, const model::CoefficientOutputs& "
         "out) {\n"
      << "  const Tensors T(in);\n  const Symbols s(in);\n"
-     << "  const int M = T.M, N = T.N, n = M + N;\n"
+     << "  const int M = kM > 0 ? kM : T.M, N = kN > 0 ? kN : T.N, n = M + N;\n"
      << "  const model::TemplateTensors& A = T.A;\n  const model::TemplateTensors& S = T.S;\n"
      << "  (void)A;\n  (void)S;\n  (void)M;\n  (void)N;\n"
      << "  std::fill(out.force, out.force + " << g.H << " * n * 2 * n, 0.0);\n"
@@ -223,7 +227,14 @@ void emit_coefficients(std::ostringstream& os, const GenericModel& g) {
     const std::string t = "out.forcing[" + h + " * n + " + row_cpp(s->eq, "i") + "]";
     emit_linear_slot(os, g, *s, what, t, t);
   }
-  os << "}\n\n";
+  os << "}\n\n"
+     << "void coefficients(const model::CoefficientInputs& in, const model::CoefficientOutputs& "
+        "out) {\n"
+     << "  if (in.modes[kFlap] == 1 && in.modes[kLag] == 1)\n"
+     << "    coefficients_of<1, 1>(in, out);\n"
+     << "  else\n"
+     << "    coefficients_of<0, 0>(in, out);\n"
+     << "}\n\n";
 }
 
 void emit_equilibrium(std::ostringstream& os, const GenericModel& g) {
