@@ -116,6 +116,30 @@ void AeroIntegrals::add_piece(const model::ModelDescriptor& m, const ModeSet& mo
   }
 }
 
+namespace {
+
+// The Clenshaw recurrences for sum_i C_i T_i(t) of m integrals side by side (coefficient i of
+// integral j at coef[i * m + j]): b1 ends as the sums, b2 is scratch; both start at zero.  The
+// same operations per integral as one recurrence at a time.  An AVX2 and a baseline clone
+// (numerics/src/transition.cc explains why both give the same bits: add and multiply only, no
+// FMA contraction).
+__attribute__((target_clones("avx2", "default"))) void clenshaw_sums(const double* coef, int terms,
+                                                                     std::size_t m, double t,
+                                                                     double* __restrict b1,
+                                                                     double* __restrict b2) {
+  for (int i = terms - 1; i >= 1; --i) {
+    const double* C = coef + static_cast<std::size_t>(i) * m;
+    for (std::size_t j = 0; j < m; ++j) {
+      const double b0 = 2.0 * t * b1[j] - b2[j] + C[j];
+      b2[j] = b1[j];
+      b1[j] = b0;
+    }
+  }
+  for (std::size_t j = 0; j < m; ++j) b1[j] = t * b1[j] - b2[j] + coef[j];
+}
+
+}  // namespace
+
 void AeroIntegrals::partial(double s, std::vector<double>& out) const {
   s = std::clamp(s, a_, b_);
   // The piece that holds s (the last whose left end is <= s).
@@ -126,25 +150,13 @@ void AeroIntegrals::partial(double s, std::vector<double>& out) const {
   const std::size_t m = live_.size();
   const bool all = static_cast<int>(m) == count_;
   out.resize(static_cast<std::size_t>(count_));
-  // Clenshaw recurrence for sum_i C_i T_i(t), every live integral at once (b1 in `out`, or in
-  // `b1_` when some integrands vanish, b2 in `b2_`); the same operations per integral as one
-  // recurrence at a time.
+  // b1 in `out`, or in `b1_` when some integrands vanish; b2 in `b2_`.
   thread_local std::vector<double> b1_, b2_;
   b2_.assign(m, 0.0);
   if (!all) b1_.assign(m, 0.0);
   std::fill(out.begin(), out.end(), 0.0);
   double* b1 = all ? out.data() : b1_.data();
-  double* b2 = b2_.data();
-  const double* coef = coef_.data() + piece.offset;
-  for (int i = piece.terms - 1; i >= 1; --i) {
-    const double* C = coef + static_cast<std::size_t>(i) * m;
-    for (std::size_t j = 0; j < m; ++j) {
-      const double b0 = 2.0 * t * b1[j] - b2[j] + C[j];
-      b2[j] = b1[j];
-      b1[j] = b0;
-    }
-  }
-  for (std::size_t j = 0; j < m; ++j) b1[j] = t * b1[j] - b2[j] + coef[j];
+  clenshaw_sums(coef_.data() + piece.offset, piece.terms, m, t, b1, b2_.data());
   if (p > 0)
     for (std::size_t j = 0; j < m; ++j) b1[j] += piece.start[j];
   if (!all)

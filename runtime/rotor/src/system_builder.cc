@@ -300,22 +300,33 @@ model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) co
 }
 
 // A rows: velocity rows get mass^-1 * generalized force; displacement rows the identity.
-void SystemBuilder::assemble(double mu, const std::vector<double>& aero, HarmonicSet& out) const {
+void SystemBuilder::assemble(double mu, const std::vector<double>& aero, HarmonicSet& out,
+                             ZeroTail tail) const {
   const int n = n_, ns = 2 * n_;
   thread_local std::vector<double> buffer;  // scratch of this thread
   buffer.assign(static_cast<std::size_t>(H_ * n * ns + H_ * n), 0.0);
   double* force = buffer.data();
   double* forcing = force + H_ * n * ns;
   model_->coefficients(inputs(mu, aero.data()), {force, forcing});
+  // The harmonics written: harmonic h is exactly zero when its coefficients are.
+  int harmonics = H_;
+  if (tail == ZeroTail::Drop) {
+    auto zero = [](const double* v, int count) {
+      return std::all_of(v, v + count, [](double x) { return x == 0.0; });
+    };
+    while (harmonics > 1 && zero(force + (harmonics - 1) * n * ns, n * ns) &&
+           zero(forcing + (harmonics - 1) * n, n))
+      --harmonics;
+  }
   // state column of the rate / displacement of coordinate j
   auto rate_col = [&](int j) { return rate_col_[static_cast<std::size_t>(j)]; };
   auto disp_col = [&](int j) { return displacement_col_[static_cast<std::size_t>(j)]; };
   // Sized in place: the storage of a reused system is kept.
-  out.A.resize(static_cast<std::size_t>(H_));
-  out.f.resize(static_cast<std::size_t>(H_));
+  out.A.resize(static_cast<std::size_t>(harmonics));
+  out.f.resize(static_cast<std::size_t>(harmonics));
   for (Eigen::MatrixXd& a : out.A) a.setZero(ns, ns);
   for (Eigen::VectorXd& v : out.f) v.setZero(ns);
-  for (int h = 0; h < H_; ++h) {
+  for (int h = 0; h < harmonics; ++h) {
     Eigen::MatrixXd& A = out.A[h];
     Eigen::VectorXd& f = out.f[h];
     for (int i = 0; i < n; ++i) {
@@ -336,8 +347,8 @@ void SystemBuilder::assemble(double mu, const std::vector<double>& aero, Harmoni
 
 namespace {
 
-// Trailing harmonics that are exactly zero (the 3/rev terms of a zero cyclic pitch) would cost
-// every evaluation of A(psi) and add nothing.
+// Trailing harmonics that are exactly zero (assemble() drops those whose coefficients are; a
+// product can still vanish) would cost every evaluation of A(psi) and add nothing.
 void drop_zero_harmonics(HarmonicSet& set) {
   while (set.A.size() > 1 && set.A.back().isZero(0.0) && set.f.back().isZero(0.0)) {
     set.A.pop_back();
@@ -403,7 +414,7 @@ class SystemBuilder::ExactTable {
     const std::vector<double>& normal = b.aero_.normal();
     {
       HarmonicSet set;
-      b.assemble(mu, normal, set);
+      b.assemble(mu, normal, set, ZeroTail::Drop);
       base_ = pack(set);
     }
     std::vector<Eigen::MatrixXd> values(n + 1);
@@ -414,7 +425,7 @@ class SystemBuilder::ExactTable {
       std::vector<double> aero(partial.size());
       for (std::size_t j = 0; j < aero.size(); ++j) aero[j] = normal[j] - 2.0 * partial[j];
       HarmonicSet set;
-      b.assemble(mu, aero, set);
+      b.assemble(mu, aero, set, ZeroTail::Drop);
       values[k] = pack(set) - base_;
     }
     // Chebyshev coefficients (discrete cosine transform over the Lobatto nodes).
@@ -539,7 +550,7 @@ void SystemBuilder::system(double mu, PeriodicSystem* out) const {
   // A new system, the harmonic sets' storage kept (a sweep rebuilds one system per mu).
   std::vector<HarmonicSet> sets = std::move(out->sets);
   sets.resize(2);
-  assemble(mu, aero_.normal(), sets[0]);
+  assemble(mu, aero_.normal(), sets[0], ZeroTail::Drop);
   drop_zero_harmonics(sets[0]);
   PeriodicSystem sys(std::move(sets[0]));
   sys.n = 2 * n_;
@@ -557,7 +568,9 @@ void SystemBuilder::system(double mu, PeriodicSystem* out) const {
   } else if (p_.reversed_flow && mu > 0.0) {
     // The reversed-flow sector of Appendix D, centred on the retreating blade.
     const double alpha = reversed_flow_sector_width(mu);
-    assemble(mu, reversed_integrals(mu), sets[1]);
+    thread_local std::vector<double> reversed;  // scratch of this thread
+    aero_.reversed(mu, reversed);
+    assemble(mu, reversed, sets[1], ZeroTail::Drop);
     drop_zero_harmonics(sets[1]);
     sys.add_harmonic_piece(1.5 * kPi - 0.5 * alpha, 1.5 * kPi + 0.5 * alpha, std::move(sets[1]));
   }

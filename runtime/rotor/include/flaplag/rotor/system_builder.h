@@ -107,7 +107,12 @@ class SystemBuilder {
   class ExactTable;  // the exact region's A, f as Chebyshev series in the split station
 
   model::CoefficientInputs inputs(double mu, const double* aero) const;
-  void assemble(double mu, const std::vector<double>& aero, HarmonicSet& out) const;
+  // Which harmonics assemble() writes: all H, or without the trailing ones whose coefficients
+  // the model gives as exactly zero (the 3/rev terms of a zero cyclic pitch), which would cost
+  // every evaluation of A(psi) and add nothing.
+  enum class ZeroTail { Keep, Drop };
+  void assemble(double mu, const std::vector<double>& aero, HarmonicSet& out,
+                ZeroTail tail = ZeroTail::Keep) const;
 
   template <class T>
   using PerDirection = std::array<T, model::kDirectionCount>;  // indexed by model::index(d)
