@@ -6,6 +6,7 @@
 // See lag-order-2.md (same directory) for the term-by-term audit.
 
 #include <algorithm>
+#include <type_traits>
 
 #include "flaplag/model_api.h"
 
@@ -97,16 +98,19 @@ const model::IntegralTemplate kStructural[] = {
 
 const char kSpecText[] = "# base = \"paper\" (inherited values resolved below; model family \"lag-order-2\")\ndescription = \"Paper model with lag loads only to O(eps^2) (Fig 8)\"\n[modes]\nflap = 1\nlag = 1\n[orders]\ng = 1\nh = 1\ng_dot = 1\nh_dot = 1\ntheta = 1\ninflow = 1\nprecone = 1\ndroop = 1\ncdo_a = 2\n[kept]\nflap = 2\nlag = 2\n[terms]\nradial_flow = true\n";
 
-// The integral tensors of in.aero, in.structural and the mode counts.
-struct Tensors {
-  explicit Tensors(const model::CoefficientInputs& in)
+// The integral tensors of in.aero, in.structural and the mode counts (Tensor:
+// model::TemplateTensors, or model::UnitTensors for the 1 x 1 blade).
+template <class Tensor>
+struct TensorsOf {
+  explicit TensorsOf(const model::CoefficientInputs& in)
       : M(in.modes[kFlap]),
         N(in.modes[kLag]),
         A(kAero, static_cast<int>(std::size(kAero)), in.aero, M, N),
         S(kStructural, static_cast<int>(std::size(kStructural)), in.structural, M, N) {}
   int M, N;
-  model::TemplateTensors A, S;
+  Tensor A, S;
 };
+using Tensors = TensorsOf<model::TemplateTensors>;
 
 // The scalar inputs without mode indices.
 struct Symbols {
@@ -170,11 +174,12 @@ void mass(const model::CoefficientInputs& in, double* out) {
 template <int kM, int kN>
 FLAPLAG_GENERATED_NO_UBSAN
 void coefficients_of(const model::CoefficientInputs& in, const model::CoefficientOutputs& out) {
-  const Tensors T(in);
+  using Tensor = std::conditional_t<kM == 1 && kN == 1, model::UnitTensors, model::TemplateTensors>;
+  const TensorsOf<Tensor> T(in);
   const Symbols s(in);
   const int M = kM > 0 ? kM : T.M, N = kN > 0 ? kN : T.N, n = M + N;
-  const model::TemplateTensors& A = T.A;
-  const model::TemplateTensors& S = T.S;
+  const Tensor& A = T.A;
+  const Tensor& S = T.S;
   (void)A;
   (void)S;
   (void)M;

@@ -204,9 +204,11 @@ void emit_coefficients(std::ostringstream& os, const GenericModel& g) {
      << "FLAPLAG_GENERATED_NO_UBSAN\n"
      << "void coefficients_of(const model::CoefficientInputs& in, const model::CoefficientOutputs& "
         "out) {\n"
-     << "  const Tensors T(in);\n  const Symbols s(in);\n"
+     << "  using Tensor = std::conditional_t<kM == 1 && kN == 1, model::UnitTensors, "
+        "model::TemplateTensors>;\n"
+     << "  const TensorsOf<Tensor> T(in);\n  const Symbols s(in);\n"
      << "  const int M = kM > 0 ? kM : T.M, N = kN > 0 ? kN : T.N, n = M + N;\n"
-     << "  const model::TemplateTensors& A = T.A;\n  const model::TemplateTensors& S = T.S;\n"
+     << "  const Tensor& A = T.A;\n  const Tensor& S = T.S;\n"
      << "  (void)A;\n  (void)S;\n  (void)M;\n  (void)N;\n"
      << "  std::fill(out.force, out.force + " << g.H << " * n * 2 * n, 0.0);\n"
      << "  std::fill(out.forcing, out.forcing + " << g.H << " * n, 0.0);\n";
@@ -471,7 +473,7 @@ std::string emit_family_cpp(const GenericModel& g) {
         "indices\n// (i: equation, j: state or coordinate, k, l, ...: summed) and integral "
         "tensors (model_api.h).\n// See "
      << g.spec.name << ".md (same directory) for the term-by-term audit.\n\n"
-     << "#include <algorithm>\n\n#include \"flaplag/model_api.h\"\n\n"
+     << "#include <algorithm>\n#include <type_traits>\n\n#include \"flaplag/model_api.h\"\n\n"
      << "#if defined(__GNUC__) || defined(__clang__)\n"
      << "#define FLAPLAG_GENERATED_NO_UBSAN __attribute__((no_sanitize(\"undefined\")))\n"
      << "#else\n#define FLAPLAG_GENERATED_NO_UBSAN\n#endif\n\n"
@@ -504,14 +506,16 @@ std::string emit_family_cpp(const GenericModel& g) {
     os << "};\n\n";
   }
   os << "const char kSpecText[] = " << c_string(g.spec.canonical_text()) << ";\n\n";
-  os << "// The integral tensors of in.aero, in.structural and the mode counts.\n"
-     << "struct Tensors {\n"
-     << "  explicit Tensors(const model::CoefficientInputs& in)\n"
+  os << "// The integral tensors of in.aero, in.structural and the mode counts (Tensor:\n"
+     << "// model::TemplateTensors, or model::UnitTensors for the 1 x 1 blade).\n"
+     << "template <class Tensor>\n"
+     << "struct TensorsOf {\n"
+     << "  explicit TensorsOf(const model::CoefficientInputs& in)\n"
      << "      : M(in.modes[kFlap]),\n        N(in.modes[kLag]),\n"
      << "        A(kAero, static_cast<int>(std::size(kAero)), in.aero, M, N),\n"
      << "        S(kStructural, static_cast<int>(std::size(kStructural)), in.structural, M, N) "
         "{}\n"
-     << "  int M, N;\n  model::TemplateTensors A, S;\n};\n\n";
+     << "  int M, N;\n  Tensor A, S;\n};\nusing Tensors = TensorsOf<model::TemplateTensors>;\n\n";
   os << "// The scalar inputs without mode indices.\n"
      << "struct Symbols {\n  explicit Symbols(const model::CoefficientInputs& in)\n      : ";
   for (size_t j = 0; j < g.scalar_names.size(); ++j)

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -356,6 +357,20 @@ class TemplateTensors {
   };
   const double* values_;
   std::vector<Entry> entries_;
+};
+
+// The same read access for the 1 x 1 blade, where every template has one entry, at its own
+// index (the strides and offsets of TemplateTensors are not needed): the generated code's
+// compile-time 1 x 1 instance reads the same values without computing them on every call.
+class UnitTensors {
+ public:
+  UnitTensors(const IntegralTemplate*, int, const double* values, int M, int N) : values_(values) {
+    if (M != 1 || N != 1) throw std::logic_error("UnitTensors: a 1 x 1 blade only");
+  }
+  double operator()(int t, int = 0, int = 0, int = 0, int = 0) const { return values_[t]; }
+
+ private:
+  const double* values_;
 };
 
 struct ModelFamily {
