@@ -1149,7 +1149,8 @@ class TrackPass {
       }
     }
     check_finite(p);
-    out_.Include(p, where(e.mu));
+    // (An Ok point changes neither the status nor the message: its place is not formatted.)
+    if (p.status != Status::Ok) out_.Include(p, where(e.mu));
     out_.points.push_back(std::move(p));
     return true;
   }
