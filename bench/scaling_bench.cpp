@@ -10,9 +10,11 @@
 //   BM_ScalingFloquet_Auto:      Analysis::floquet(0.8) with the default automatic steps
 //                                (counter K: the intervals it settled on).
 //   BM_ScalingCritical_Auto:     the converged mu_c search of `flaplag critical` (the default
-//                                method).
-//   BM_ScalingCritical_HsuAuto:  the same search with Hsu asked for explicitly.
-//   BM_ScalingCritical_MagnusAuto: the same search with Magnus4 asked for explicitly.
+//                                method; the search with six functions for basis_error runs
+//                                beside it on the second core: wall time, CPU of all threads).
+//   BM_ScalingCritical_Auto_OneThread: the same on one thread (the two searches in turn).
+//   BM_ScalingCritical_HsuAuto:  the same search with Hsu asked for explicitly (one thread).
+//   BM_ScalingCritical_MagnusAuto: the same search with Magnus4 asked for explicitly (one thread).
 //   BM_ScalingAnalysis_Setup:    exact modes, spanwise integrals, hover (once per blade).
 //   BM_RotorPointHsu_K50_J4_FixedKernel: the comparison kernel of stability_bench (one 1 x 1
 //                                point's arithmetic, bench/fixed_kernel.h), measured in the same
@@ -83,11 +85,11 @@ void BM_ScalingFloquet_Auto(benchmark::State& state) {
 }
 BENCHMARK(BM_ScalingFloquet_Auto)->DenseRange(1, 5)->Unit(benchmark::kMillisecond);
 
-void critical(benchmark::State& state, const flaplag::TransitionOptions& o) {
+void critical(benchmark::State& state, const flaplag::TransitionOptions& o, int threads = 0) {
   const auto an = exact(size_of(state), o);
   flaplag::CriticalResult r;
   for (auto _ : state) {
-    r = an.critical({});
+    r = an.critical({}, threads);
     benchmark::DoNotOptimize(r);
   }
   label(state);
@@ -105,12 +107,29 @@ flaplag::TransitionOptions with_method(flaplag::TransitionMethod m) {
 // The converged mu_c of `flaplag critical` on 1 x 1 to 5 x 5 exact modes, with the default
 // method and with each of Hsu and Magnus4 asked for.  One search takes a few ms (1 x 1) to
 // seconds (5 x 5 with Hsu): one iteration per repetition from 3 x 3.
+// Wall time (the answer's wait) with the CPU time of every thread beside it.
 void BM_ScalingCritical_Auto(benchmark::State& state) { critical(state, {}); }
-BENCHMARK(BM_ScalingCritical_Auto)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ScalingCritical_Auto)->DenseRange(3, 5)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ScalingCritical_Auto)
+    ->DenseRange(1, 2)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ScalingCritical_Auto)
+    ->DenseRange(3, 5)
+    ->Iterations(1)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+void BM_ScalingCritical_Auto_OneThread(benchmark::State& state) { critical(state, {}, 1); }
+BENCHMARK(BM_ScalingCritical_Auto_OneThread)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ScalingCritical_Auto_OneThread)
+    ->DenseRange(3, 5)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_ScalingCritical_HsuAuto(benchmark::State& state) {
-  critical(state, with_method(flaplag::TransitionMethod::Hsu));
+  critical(state, with_method(flaplag::TransitionMethod::Hsu), 1);
 }
 BENCHMARK(BM_ScalingCritical_HsuAuto)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ScalingCritical_HsuAuto)
@@ -119,7 +138,7 @@ BENCHMARK(BM_ScalingCritical_HsuAuto)
     ->Unit(benchmark::kMillisecond);
 
 void BM_ScalingCritical_MagnusAuto(benchmark::State& state) {
-  critical(state, with_method(flaplag::TransitionMethod::Magnus4));
+  critical(state, with_method(flaplag::TransitionMethod::Magnus4), 1);
 }
 BENCHMARK(BM_ScalingCritical_MagnusAuto)->DenseRange(1, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ScalingCritical_MagnusAuto)

@@ -391,7 +391,7 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
 }
 
 Output critical(const Request& r, const Analysis& an) {
-  const RotorCritical c = an.critical(r.critical);
+  const RotorCritical c = an.critical(r.critical, r.threads);
   const std::optional<TrimResult>& t = c.trim;  // trimmed: the trim at mu_c the result rests on
   const auto json = [&] {
     Json j = header_json("critical", an);

@@ -415,6 +415,7 @@ std::vector<OptionSpec> build(Command c) {
     case Command::Critical:
       v.push_back(table_option(&Request::critical, "mu_max"));
       v.push_back(table_option(&Request::critical, "scan_step"));
+      v.push_back(threads);
       break;
     case Command::System:
       v.push_back(mu);

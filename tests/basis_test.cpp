@@ -426,6 +426,35 @@ TEST(Basis, WithoutAReferenceTheResultIsAWarning) {
   EXPECT_FALSE(r.basis_error.has_value());
 }
 
+// The search with the neighbouring basis may run beside the main one (threads != 1): the
+// result is the same to the bit, with a reference, without one, and for a bad thread count the
+// refusal names `threads`.
+TEST(Basis, TheReferenceSearchBesideTheMainOneGivesTheSameResult) {
+  for (const char* model : {"paper", "paper-12x1"}) {
+    RotorParameters p = typical_exact(flaplag::kPaperBasis);
+    if (std::string(model) == "paper-12x1") p.basis = flaplag::kConvergedBasis;
+    p.model = model;
+    const Analysis an(p, TransitionOptions{});
+    const CriticalResult one = an.critical({}, 1), two = an.critical({}, 2);
+    ASSERT_TRUE(one.mu_c && two.mu_c) << model << ": " << one.message;
+    EXPECT_EQ(*one.mu_c, *two.mu_c) << model;
+    EXPECT_EQ(one.mu_c_error, two.mu_c_error) << model;
+    EXPECT_EQ(one.basis_error, two.basis_error) << model;
+    EXPECT_EQ(one.status, two.status) << model;
+    EXPECT_EQ(one.message, two.message) << model;
+    EXPECT_EQ(one.evaluations, two.evaluations) << model;
+  }
+  const Analysis an(typical_exact(flaplag::kPaperBasis), TransitionOptions{});
+  for (int threads : {-1, flaplag::kMaxThreads + 1}) {
+    try {
+      an.critical({}, threads);
+      ADD_FAILURE() << "threads " << threads << " accepted";
+    } catch (const flaplag::InvalidInput& e) {
+      EXPECT_EQ(e.name(), "threads") << e.what();
+    }
+  }
+}
+
 }  // namespace
 
 }  // namespace basis_test

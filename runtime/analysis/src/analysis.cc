@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <future>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -207,6 +208,30 @@ struct Analysis::Impl {
     internal::BasisCheck c = basis;
     c.tolerance_ = tolerance;
     c.fold(r, other ? &*other : nullptr);
+  }
+
+  // fold_basis for a result computed with `self` (this Impl's Analysis) by compute: the
+  // reference's computation runs on a thread of its own while this one runs when `threads`
+  // (core/parallel.h) gives two or more.  The results are the same either way.
+  template <class Compute>
+  auto with_basis_error(const Analysis& self, double tolerance, int threads,
+                        const Compute& compute) const {
+    using Result = decltype(compute(self));
+    if (basis.basis == 0 || thread_count(threads) < 2) {
+      Result r = compute(self);
+      fold_basis(r, tolerance, compute);
+      return r;
+    }
+    std::future<std::optional<Result>> beside = std::async(std::launch::async, [&] {
+      const Analysis* ref = reference();
+      return ref ? std::optional<Result>(compute(*ref)) : std::nullopt;
+    });
+    Result r = compute(self);
+    const std::optional<Result> other = beside.get();
+    internal::BasisCheck c = basis;
+    c.tolerance_ = tolerance;
+    c.fold(r, other ? &*other : nullptr);
+    return r;
   }
 
   // The passes over a sweep or track: 2 when the reference basis is computed too (their
@@ -773,10 +798,12 @@ RotorSweep Analysis::track(const std::vector<double>& mus, double scan_step, int
   return r;
 }
 
-RotorCritical Analysis::critical(const CriticalOptions& opt) const {
-  RotorCritical r = critical_with_this_basis(opt);
-  impl_->fold_basis(r, opt.tolerance,
-                    [&](const Analysis& ref) { return ref.critical_with_this_basis(opt); });
+RotorCritical Analysis::critical(const CriticalOptions& opt, int threads) const {
+  if (const std::optional<InvalidInput> problem = threads_problem(threads)) throw *problem;
+  opt.Check();
+  RotorCritical r = impl_->with_basis_error(*this, opt.tolerance, threads, [&](const Analysis& an) {
+    return an.critical_with_this_basis(opt);
+  });
   impl_->note_modes(r);
   return r;
 }

@@ -151,7 +151,8 @@ StudyResult run_study(const RotorParameters& base, const TransitionOptions& tran
         try {
           const RotorParameters p = with_parameter(base, options.parameter, row.value);
           const Analysis an(p, transition, condition_of(options));
-          RotorCritical c = an.critical(crit);
+          // (the rows are the parallel work: one thread each)
+          RotorCritical c = an.critical(crit, 1);
           row.trim = std::move(c.trim);
           row.critical = std::move(c);
           if (options.damping_criterion)

@@ -326,7 +326,10 @@ class Analysis {
   // when above opt.tolerance), kind Periodic at omega = 0, and the message says that the branch
   // ends there.  A failure where no multiplier approaches 1 stays Failed.
   // Trimmed, about the periodic equilibrium: the fold is that of the trimmed branch.
-  RotorCritical critical(const CriticalOptions& opt) const;
+  // threads (0 = all cores, else 1..kMaxThreads): with exact modes, the search with the
+  // neighbouring basis (basis_error) runs beside this one when it gives two or more; the
+  // result does not depend on it.
+  RotorCritical critical(const CriticalOptions& opt, int threads = 0) const;
 
   // The periodic forced response at mu; status Failed when there is none (a multiplier at 1),
   // Warning when the system is unstable (the blade does not settle onto it).
