@@ -9,11 +9,18 @@
 
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/documents/read_file.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "options.h"
-#include "read_file.h"
 
 namespace flaplag::cli {
+
+using documents::JsonParse;
+using documents::kMaxCaseBytes;
+using documents::kMaxNesting;
+using documents::parse_json;
+using documents::size_text;
+using documents::toml_too_deep;
 namespace {
 
 // The tables a case file may use to group its keys.
@@ -252,8 +259,8 @@ CaseArguments case_object_arguments(const std::string& name,
 CaseArguments read_case_file(const std::string& path, std::uint64_t memory_limit) {
   // A JSON result (read within the memory limit) or a TOML case (checked against its own,
   // smaller limit after reading).
-  return parse_case_text(
-      path, read_json_file(path, memory_limit, "case file", "case file cannot be read"));
+  return parse_case_text(path, documents::read_json_file(path, memory_limit, "case file",
+                                                         "case file cannot be read", kebab_option));
 }
 
 }  // namespace flaplag::cli

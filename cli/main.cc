@@ -21,13 +21,13 @@
 #include "command_line.h"
 #include "commands.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/documents/read_file.h"
 #include "flaplag/limits.h"
 #include "flaplag/version.h"
 #include "flaplag_spec/runtime_spec.h"
 #include "output.h"
 #include "plot.h"
 #include "progress.h"
-#include "read_file.h"
 #include "report.h"
 
 namespace {
@@ -176,8 +176,9 @@ Expanded expand(const std::vector<std::string>& args) {
   if (e.report) {
     e.typed.assign(args.begin() + 2, args.end());
     e.page = take_page(e.typed);
-    const std::string text = flaplag::cli::read_json_file(e.file, typed_memory_limit(args),
-                                                          "case file", "case file cannot be read");
+    const std::string text =
+        flaplag::documents::read_json_file(e.file, typed_memory_limit(args), "case file",
+                                           "case file cannot be read", flaplag::cli::kebab_option);
     if (flaplag::cli::is_json_text(text)) {
       // A result is shown as computed: nothing here would change it but the memory to read it.
       for (std::size_t i = 0; i < e.typed.size(); ++i) {

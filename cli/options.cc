@@ -653,8 +653,6 @@ const OptionSpec* option_for_library_name(Command c, std::string_view library_na
   return nullptr;
 }
 
-std::string json_key(const ParameterSpec& spec) { return kebab(spec.field); }
-
 std::string kebab_option(std::string_view field) { return "--" + kebab(field); }
 
 std::string in_cli_vocabulary(Command c, const std::string& message) {
@@ -682,36 +680,6 @@ std::string in_cli_vocabulary(Command c, const std::string& message) {
     }
   }
   return out;
-}
-
-std::string shown(const std::string& text) {
-  bool plain = !text.empty() && !is_blank(text.front()) && !is_blank(text.back());
-  for (unsigned char ch : text) plain = plain && ch >= 0x20 && ch != 0x7f;
-  if (plain) return text;
-  // Quoted, with control characters escaped, so that the error stays on one line and shows
-  // blanks the user may not see.
-  std::string q = "\"";
-  for (unsigned char ch : text) {
-    if (ch == '"' || ch == '\\') {
-      q += '\\';
-      q += static_cast<char>(ch);
-    } else if (ch == '\n') {
-      q += "\\n";
-    } else if (ch == '\t') {
-      q += "\\t";
-    } else if (ch < 0x20 || ch == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", ch);
-      q += buf;
-    } else {
-      q += static_cast<char>(ch);
-    }
-  }
-  return q + "\"";
-}
-
-void refuse_file(const std::string& file, const std::string& reason) {
-  throw InvalidInput("argument", shown(file), reason);
 }
 
 double parse_real(const std::string& option, const std::string& text) {

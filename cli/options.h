@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "flaplag/documents/names.h"
 #include "flaplag/rotor/parameter_table.h"
 
 namespace flaplag::cli {
@@ -87,8 +88,6 @@ const OptionSpec* option_for_library_name(Command c, std::string_view library_na
 // The kinds --inflow takes (InflowKind's names but `given`), joined by sep ("|", ", ").
 std::string inflow_kind_names(const char* sep);
 
-// JSON key of a rotor parameter: "omega_lag" -> "omega-lag".
-std::string json_key(const ParameterSpec& spec);
 // "--" + kebab: "omega_lag" -> "--omega-lag".
 std::string kebab_option(std::string_view field);
 
@@ -97,11 +96,10 @@ std::string kebab_option(std::string_view field);
 // "`name` = value" becomes "--option=value".  Other text is unchanged.
 std::string in_cli_vocabulary(Command c, const std::string& message);
 
-// The value of an option as shown in an error line: the text as typed, "\"\"" when empty.
-std::string shown(const std::string& text);
-// Refuses a file named on the command line (or in a file it names): throws
-// InvalidInput("argument", shown(file), reason), the one form every file reader uses.
-[[noreturn]] void refuse_file(const std::string& file, const std::string& reason);
+// The documents layer's forms of a value in an error line, a refused file and a JSON key.
+using documents::json_key;
+using documents::refuse_file;
+using documents::shown;
 
 // Strict number parsing: the whole text must be one decimal or hexadecimal floating-point
 // literal (no surrounding blanks); "nan", "inf" and magnitudes beyond double are rejected.

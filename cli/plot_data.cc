@@ -10,15 +10,19 @@
 #include "flaplag/campbell.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/documents/read_file.h"
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/trim.h"
 #include "options.h"
 #include "plot.h"
-#include "read_file.h"
 
 namespace flaplag::cli {
+
+using documents::JsonParse;
+using documents::parse_json;
+using documents::read_json_file;
 
 namespace {
 
@@ -401,7 +405,8 @@ PlotJson read_result(const std::string& data, std::uint64_t memory_limit) {
   PlotJson j;
   std::string error;
   const JsonParse parsed =
-      parse_json(read_json_file(data, memory_limit, "result file", "cannot be read"), &j, &error);
+      parse_json(read_json_file(data, memory_limit, "result file", "cannot be read", kebab_option),
+                 &j, &error);
   if (parsed == JsonParse::NotJson)
     refuse_file(data, "not JSON (flaplag plot draws a --json output of flaplag)");
   if (parsed == JsonParse::Refused) refuse_file(data, "not a flaplag --json output: " + error);

@@ -13,13 +13,16 @@
 #include <vector>
 
 #include "flaplag/core/errors.h"
+#include "flaplag/documents/read_file.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "options.h"
 #include "output.h"
 #include "plot.h"
-#include "read_file.h"
 
 namespace flaplag::cli {
+
+using documents::JsonParse;
+using documents::parse_json;
 
 namespace {
 

@@ -10,12 +10,17 @@
 #include "digest.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/core/status.h"
+#include "flaplag/documents/read_file.h"
 #include "flaplag/limits.h"
 #include "flaplag/model_api.h"
 #include "options.h"
-#include "read_file.h"
 
 namespace flaplag::cli {
+
+using documents::json_read_limit;
+using documents::JsonParse;
+using documents::parse_json;
+using documents::read_text_file;
 
 namespace {
 

@@ -17,8 +17,8 @@
 
 #include "cli_run.h"
 #include "digest.h"
+#include "flaplag/documents/read_file.h"
 #include "process.h"
-#include "read_file.h"
 #include "shard.h"
 
 namespace cli_files_test {
@@ -259,8 +259,8 @@ TEST(CliFiles, TooLargeOrNotAFileIsRefused) {
 }
 
 TEST(ReadFile, DepthScans) {
-  using flaplag::cli::json_too_deep;
-  using flaplag::cli::toml_too_deep;
+  using flaplag::documents::json_too_deep;
+  using flaplag::documents::toml_too_deep;
   EXPECT_EQ(0u, json_too_deep("{\"a\": [[1, 2], {\"b\": null}]}", 3));
   EXPECT_EQ(1u, json_too_deep("{\"a\": [[1, 2], {\"b\": [null]}]}", 3));
   EXPECT_EQ(2u, json_too_deep("[\n[[[]]]]", 3));
@@ -282,15 +282,17 @@ TEST(ReadFile, DepthScans) {
 TEST(ReadFile, JsonKeyTwiceInOneObjectIsRefused) {
   Json j;
   std::string error;
-  EXPECT_EQ(flaplag::cli::JsonParse::Refused,
-            flaplag::cli::parse_json("{\"case\": {\"theta\": 1, \"mu\": [{}], \"theta\": 2}}", &j,
-                                     &error));
+  EXPECT_EQ(flaplag::documents::JsonParse::Refused,
+            flaplag::documents::parse_json("{\"case\": {\"theta\": 1, \"mu\": [{}], \"theta\": 2}}",
+                                           &j, &error));
   EXPECT_EQ("key \"theta\" given twice in one object (at case.theta)", error);
-  EXPECT_EQ(flaplag::cli::JsonParse::Ok,
-            flaplag::cli::parse_json("{\"a\": {\"x\": 1}, \"b\": {\"x\": 1}, \"c\": [{\"x\": 1}, "
+  EXPECT_EQ(
+      flaplag::documents::JsonParse::Ok,
+      flaplag::documents::parse_json("{\"a\": {\"x\": 1}, \"b\": {\"x\": 1}, \"c\": [{\"x\": 1}, "
                                      "{\"x\": 2}]}",
                                      &j, &error));
-  EXPECT_EQ(flaplag::cli::JsonParse::NotJson, flaplag::cli::parse_json("{", &j, &error));
+  EXPECT_EQ(flaplag::documents::JsonParse::NotJson,
+            flaplag::documents::parse_json("{", &j, &error));
 }
 
 // ---- A key once per case ----------------------------------------------------------------------

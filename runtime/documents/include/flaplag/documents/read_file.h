@@ -1,4 +1,5 @@
-// flaplag CLI — reading the files flaplag is given (case files, results for plot, run and merge)
+// flaplag documents — reading the files flaplag is given (case files, results to plot, run, report
+// and merge)
 // with bounds: a file is read whole only up to a size limit, and its nesting is counted by a
 // flat scan (no recursion) before a parser that recurses sees it.  Every file flaplag reads
 // goes through here.
@@ -11,12 +12,12 @@
 //   together) is read up to json_read_limit(memory limit) = the memory limit / kJsonMemoryFactor
 //   (128 MiB at the default 2 GiB): reading JSON takes about 2.2 times the file in memory for
 //   flaplag's results and about 16 times at the worst (measured: "[0,0,0,...]" of 64 MiB
-//   peaks at 1.05 GB), so a file takes about the memory limit --memory-limit sets (limits.h)
+//   peaks at 1.05 GB), so a file takes about the memory limit (limits.h)
 //   at the most.  flaplag writes about 58 bytes per map cell: 2.3 million cells at the
-//   default; a larger result is read with --memory-limit raised, as it was written.
+//   default; a larger result is read with the memory limit raised, as it was written.
 // - kMaxCaseBytes = 4 MiB for a TOML case file.  A case is a few dozen keys; its longest value,
-//   an explicit list of 100 000 values for --vary, is about 1 MB.  toml++ takes up to ~40
-//   times the text in memory (short array items), ~160 MB at the limit.
+//   an explicit list of 100 000 values of a varied parameter, is about 1 MB.  toml++ takes up to
+//   ~40 times the text in memory (short array items), ~160 MB at the limit.
 #pragma once
 
 #include <cstddef>
@@ -25,7 +26,9 @@
 #include <string>
 #include <string_view>
 
-namespace flaplag::cli {
+#include "flaplag/documents/names.h"
+
+namespace flaplag::documents {
 
 inline constexpr std::size_t kMaxNesting = 64;
 inline constexpr std::uint64_t kJsonMemoryFactor = 16;
@@ -43,9 +46,10 @@ std::string size_text(std::size_t bytes);
 std::string read_text_file(const std::string& path, std::size_t max_bytes, const std::string& noun,
                            const std::string& cannot_read, const std::string& why = "");
 // A JSON file under the memory limit: read_text_file with json_read_limit(memory_limit), the
-// reason naming the limit and how to raise it.
+// reason naming the limit and how to raise it (the field memory_limit as `option` spells it).
 std::string read_json_file(const std::string& path, std::uint64_t memory_limit,
-                           const std::string& noun, const std::string& cannot_read);
+                           const std::string& noun, const std::string& cannot_read,
+                           const Spelling& option);
 
 // The line (1-based) at which the nesting of JSON text first exceeds `limit` levels of [ and {
 // outside strings, or 0 when it never does.  One pass, constant stack.
@@ -67,4 +71,4 @@ enum class JsonParse { Ok, NotJson, Refused };
 JsonParse parse_json(const std::string& text, nlohmann::json* out, std::string* error);
 JsonParse parse_json(const std::string& text, nlohmann::ordered_json* out, std::string* error);
 
-}  // namespace flaplag::cli
+}  // namespace flaplag::documents

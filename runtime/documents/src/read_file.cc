@@ -1,5 +1,5 @@
-// flaplag CLI — bounded reading and parsing of the files flaplag is given.
-#include "read_file.h"
+// flaplag documents — bounded reading and parsing of the files flaplag is given.
+#include "flaplag/documents/read_file.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -12,9 +12,8 @@
 
 #include "flaplag/core/errors.h"
 #include "flaplag/limits.h"
-#include "options.h"
 
-namespace flaplag::cli {
+namespace flaplag::documents {
 
 namespace {
 
@@ -275,9 +274,9 @@ JsonParse parse_json(const std::string& text, nlohmann::ordered_json* out, std::
   return parse_json_as(text, out, error);
 }
 
-}  // namespace flaplag::cli
+}  // namespace flaplag::documents
 
-namespace flaplag::cli {
+namespace flaplag::documents {
 
 std::size_t json_read_limit(std::uint64_t memory_limit) {
   const std::uint64_t bytes = memory_limit / kJsonMemoryFactor;
@@ -287,10 +286,12 @@ std::size_t json_read_limit(std::uint64_t memory_limit) {
 }
 
 std::string read_json_file(const std::string& path, std::uint64_t memory_limit,
-                           const std::string& noun, const std::string& cannot_read) {
+                           const std::string& noun, const std::string& cannot_read,
+                           const Spelling& option) {
+  const std::string limit = option("memory_limit");
   return read_text_file(path, json_read_limit(memory_limit), noun, cannot_read,
-                        " under --memory-limit " + memory_text(memory_limit) +
-                            ", which reading JSON of this size may need: raise --memory-limit");
+                        " under " + limit + " " + memory_text(memory_limit) +
+                            ", which reading JSON of this size may need: raise " + limit);
 }
 
-}  // namespace flaplag::cli
+}  // namespace flaplag::documents
