@@ -7,10 +7,8 @@
 #include "commands_internal.h"
 #include "flaplag/campbell.h"
 #include "flaplag/core/format.h"
-#include "json_fields.h"
-#include "output.h"
+#include "flaplag/documents/output.h"
 #include "plot.h"
-#include "table_fields.h"
 
 namespace flaplag::cli::cmd {
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <complex>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -13,12 +14,48 @@
 #include "command_line.h"
 #include "commands.h"
 #include "flaplag/analysis.h"
+#include "flaplag/documents/numbers.h"
+#include "flaplag/documents/output.h"
+#include "flaplag/documents/table_fields.h"
 #include "flaplag/study.h"
 #include "flaplag/trim.h"
 
 namespace flaplag::cli::cmd {
 
-using Json = nlohmann::ordered_json;
+using documents::Json;
+// The printers and writers of the documents layer (documents/numbers.h, output.h,
+// json_fields.h, table_fields.h).
+using documents::cell;
+using documents::CellStyle;
+using documents::Column;
+using documents::complex_json;
+using documents::complex_text;
+using documents::csv_field;
+using documents::csv_fields;
+using documents::described_cells;
+using documents::described_heading;
+using documents::described_table;
+using documents::exact_num;
+using documents::exact_zeta_text;
+using documents::finite;
+using documents::jnum;
+using documents::KeyValues;
+using documents::locked_text;
+using documents::MessageText;
+using documents::num;
+using documents::optional_json;
+using documents::optional_text;
+using documents::ratio_cell;
+using documents::ratio_json;
+using documents::rows_json;
+using documents::stable_json;
+using documents::stable_text;
+using documents::TextTable;
+using documents::to_json;
+using documents::zeta_cell;
+using documents::zeta_json;
+using documents::zeta_ok;
+using documents::zeta_text;
 
 // What a command produced: a JSON document (json set; the command's `return j;`) or text (the
 // command's `return out;`), taken as they are.  A text output carries the JSON document along
@@ -31,36 +68,15 @@ struct Output {
   std::string text;
 };
 
-// ---- numbers that may not be finite (commands_common.cc) ---------------------------------------
-//
-// The library promises finite results, with two documented exceptions: the zeta of a zero
-// multiplier is -inf, and optional diagnostics are absent rather than NaN; it checks the promise
-// itself and gives a result that breaks it a non-ok status (numerics/continuation.h
-// check_finite).  The printers show such values as "-" (text), an empty field (CSV) or null
-// (JSON).
-
-bool finite(double v);
-bool finite(std::complex<double> z);
-bool zeta_ok(double zeta);  // finite, or the -inf of a zero multiplier
-std::string cell(double v);
-std::string zeta_cell(double zeta);
-Json jnum(double v);
-Json zeta_json(double zeta);  // -inf as the string "-inf"
-Json complex_json(std::complex<double> z);
-std::string complex_text(std::complex<double> z);
-Json optional_json(const std::optional<double>& v);
-std::string optional_text(const std::optional<double>& v);
-std::string locked_text(double omega);  // "0", "1/2", "1", ... or "" when not locked
-// The damping ratio -zeta/|lambda| as text: in percent of critical (JSON and CSV: a fraction).
-std::string ratio_cell(double zeta, double omega);
-Json ratio_json(double zeta, double omega);
-Json stable_json(const std::optional<bool>& v);
-std::string stable_text(const std::optional<bool>& v);
-
 // ---- the parts every output shares (commands_common.cc) ----------------------------------------
 
 // A runtime message in this command line's vocabulary.
 std::string vocab(const Request& r, const std::string& message);
+// Messages in the request's vocabulary (vocab()), for the documents' writers; r must outlive
+// the function.
+inline MessageText in_vocabulary(const Request& r) {
+  return [&r](const std::string& m) { return vocab(r, m); };
+}
 // The word of a field in this command line's vocabulary ("omega_lag" -> "omega-lag").
 std::string word(const std::string& field);
 Json model_json(const model::ModelDescriptor& m);

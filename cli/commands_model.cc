@@ -5,8 +5,7 @@
 
 #include "commands_internal.h"
 #include "flaplag/core/format.h"
-#include "json_fields.h"
-#include "output.h"
+#include "flaplag/documents/output.h"
 
 namespace flaplag::cli::cmd {
 

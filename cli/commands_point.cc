@@ -8,11 +8,9 @@
 
 #include "commands_internal.h"
 #include "flaplag/core/format.h"
+#include "flaplag/documents/output.h"
 #include "flaplag/trim.h"
-#include "json_fields.h"
-#include "output.h"
 #include "plot.h"
-#include "table_fields.h"
 
 namespace flaplag::cli::cmd {
 

@@ -7,8 +7,7 @@
 
 #include "commands_internal.h"
 #include "flaplag/core/format.h"
-#include "json_fields.h"
-#include "output.h"
+#include "flaplag/documents/output.h"
 #include "plot.h"
 #include "shard.h"
 
@@ -170,8 +169,9 @@ Json map_json(const Request& r, const Analysis& base, const MapResult& m) {
       for (const auto& row : m.cells) {
         Json line = Json::array();
         for (const MapCell& cell : row)
-          line.push_back(cell.max_zeta ? json_detail::value(field.get(cell), field.flags, message)
-                                       : Json(nullptr));
+          line.push_back(cell.max_zeta
+                             ? documents::json_detail::value(field.get(cell), field.flags, message)
+                             : Json(nullptr));
         grid.push_back(line);
       }
       j[key] = grid;

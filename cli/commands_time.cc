@@ -8,7 +8,7 @@
 #include "commands_internal.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/format.h"
-#include "output.h"
+#include "flaplag/documents/output.h"
 #include "plot.h"
 
 namespace flaplag::cli::cmd {

@@ -4,9 +4,8 @@
 
 #include "commands_internal.h"
 #include "flaplag/core/format.h"
+#include "flaplag/documents/output.h"
 #include "flaplag/trim.h"
-#include "json_fields.h"
-#include "output.h"
 
 namespace flaplag::cli::cmd {
 

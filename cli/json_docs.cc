@@ -14,7 +14,6 @@
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/study.h"
 #include "flaplag/trim.h"
-#include "json_fields.h"
 #include "options.h"
 
 namespace flaplag::cli {
@@ -131,8 +130,8 @@ std::string section_link(const char* name) {
 
 template <class V>
 std::string type_text(unsigned flags) {
-  using cmd::json_detail::is_optional;
-  using cmd::json_detail::is_vector;
+  using documents::json_detail::is_optional;
+  using documents::json_detail::is_vector;
   if constexpr (std::is_same_v<V, double>) {
     return (flags & kFieldNegativeInfinity) ? "number or \"-inf\"" : "number";
   } else if constexpr (std::is_same_v<V, int>) {

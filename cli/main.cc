@@ -21,11 +21,11 @@
 #include "command_line.h"
 #include "commands.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/documents/output.h"
 #include "flaplag/documents/read_file.h"
 #include "flaplag/limits.h"
 #include "flaplag/version.h"
 #include "flaplag_spec/runtime_spec.h"
-#include "output.h"
 #include "plot.h"
 #include "progress.h"
 #include "report.h"
@@ -66,7 +66,7 @@ int interrupted_exit_code() {
 // Standard output that cannot be written (a full disk) is an output error; a pipe whose reader
 // went away ends flaplag by SIGPIPE, as any filter.
 int write_stdout(const std::string& text) {
-  const std::string reason = flaplag::cli::write_descriptor(1, text, false);
+  const std::string reason = flaplag::documents::write_descriptor(1, text, false);
   if (reason.empty()) return 0;
   std::cerr << "flaplag: error: standard output: " << reason << std::endl;
   return kBadInput;
@@ -224,7 +224,7 @@ std::string with_origin(const Expanded& e, const std::string& line) {
 // flaplag report RESULT.json: the page of a result as it was computed.
 int report_of_result(const Expanded& e) {
   try {
-    const flaplag::cli::OutputTarget page(e.page, "output");
+    const flaplag::documents::OutputTarget page(e.page, "output");
     std::string warning;
     const std::string html = flaplag::cli::html_report_of_text(e.file, e.result, &warning);
     if (e.page.empty()) {
@@ -273,7 +273,7 @@ struct Outputs {
         picture(r.plot, "plot"),
         audit(r.audit, "audit"),
         page(r.report == "-" ? "" : r.report, e.report ? "output" : "report") {}
-  const flaplag::cli::OutputTarget target, picture, audit, page;
+  const flaplag::documents::OutputTarget target, picture, audit, page;
 };
 
 // The command's output text (and *document, its JSON).  A study or map stops at SIGINT or

@@ -12,12 +12,15 @@
 #include "commands_internal.h"
 #include "flaplag/blade/imported_modes.h"
 #include "flaplag/blade/rotating_modes.h"
+#include "flaplag/documents/output.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "options.h"
-#include "output.h"
 #include "plot.h"
 
 namespace flaplag::cli {
+
+using documents::num;
+using documents::TextTable;
 
 namespace {
 

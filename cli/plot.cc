@@ -15,11 +15,11 @@
 
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
+#include "flaplag/documents/output.h"
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "options.h"
-#include "output.h"
 
 extern char** environ;
 

@@ -15,9 +15,13 @@
 #include <utility>
 #include <vector>
 
-#include "output.h"
+#include "flaplag/documents/output.h"
 
 namespace flaplag::cli {
+
+using documents::num;
+using documents::OutputTarget;
+using documents::write_all;
 
 // The extensions --plot accepts (".svg", ".png"); false otherwise.
 bool is_plot_path(const std::string& path);

@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "flaplag/core/errors.h"
+#include "flaplag/documents/output.h"
 #include "flaplag/documents/read_file.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "options.h"
-#include "output.h"
 #include "plot.h"
 
 namespace flaplag::cli {

@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "flaplag/campbell.h"
+#include "flaplag/documents/table_fields.h"
 #include "flaplag/rotor/hover.h"
 #include "flaplag/study.h"
-#include "json_fields.h"
-#include "table_fields.h"
 
 namespace flaplag::cli::json_docs_test {
 namespace {
@@ -73,21 +73,22 @@ TEST(TableFields, CellsOfARowByItsType) {
   const std::vector<const char*> keys = {
       "mu", "liouville_residual", "error_estimate", "stable", "status", "message"};
   EXPECT_EQ((std::vector<std::string>{"0.25", "", "0.5", "true", "warning", "<`steps`, too few>"}),
-            cmd::described_cells(p, keys, cmd::CellStyle::Csv, vocabulary));
+            documents::described_cells(p, keys, documents::CellStyle::Csv, vocabulary));
   EXPECT_EQ((std::vector<std::string>{"0.25", "-", "0.5", "yes", "warning", "<`steps`, too few>"}),
-            cmd::described_cells(p, keys, cmd::CellStyle::Text, vocabulary));
-  EXPECT_EQ("0.25,,\"a \"\"b\"\", c\"", cmd::csv_fields({"0.25", "", "a \"b\", c"}));
+            documents::described_cells(p, keys, documents::CellStyle::Text, vocabulary));
+  EXPECT_EQ("0.25,,\"a \"\"b\"\", c\"", documents::csv_fields({"0.25", "", "a \"b\", c"}));
   p.stable = std::nullopt;
   p.liouville_residual = std::numeric_limits<double>::quiet_NaN();  // not representable
-  EXPECT_EQ(
-      (std::vector<std::string>{"", ""}),
-      cmd::described_cells(p, {"stable", "liouville_residual"}, cmd::CellStyle::Csv, vocabulary));
-  EXPECT_EQ(
-      (std::vector<std::string>{"-", "-"}),
-      cmd::described_cells(p, {"stable", "liouville_residual"}, cmd::CellStyle::Text, vocabulary));
-  EXPECT_THROW(cmd::described_cells(p, {"no_such_row"}, cmd::CellStyle::Csv, vocabulary),
-               std::logic_error);
-  EXPECT_THROW(cmd::described_cells(p, {"exponents"}, cmd::CellStyle::Csv, vocabulary),
+  EXPECT_EQ((std::vector<std::string>{"", ""}),
+            documents::described_cells(p, {"stable", "liouville_residual"},
+                                       documents::CellStyle::Csv, vocabulary));
+  EXPECT_EQ((std::vector<std::string>{"-", "-"}),
+            documents::described_cells(p, {"stable", "liouville_residual"},
+                                       documents::CellStyle::Text, vocabulary));
+  EXPECT_THROW(
+      documents::described_cells(p, {"no_such_row"}, documents::CellStyle::Csv, vocabulary),
+      std::logic_error);
+  EXPECT_THROW(documents::described_cells(p, {"exponents"}, documents::CellStyle::Csv, vocabulary),
                std::logic_error);  // a list is no cell
 }
 
@@ -96,8 +97,9 @@ TEST(TableFields, ATableOfResults) {
   crossings[0] = {"lag", 1, 0.5, 0.5};
   crossings[1] = {"flap", 3, 0.25, 0.75};
   const std::string text =
-      cmd::described_table(crossings, {{"label", "mode"}, {"harmonic", "n"}, {"speed", "speed"}},
-                           [](const std::string& m) { return m; })
+      documents::described_table(crossings,
+                                 {{"label", "mode"}, {"harmonic", "n"}, {"speed", "speed"}},
+                                 [](const std::string& m) { return m; })
           .render();
   EXPECT_EQ("  mode  n  speed\n  lag   1    0.5\n  flap  3   0.25\n", text);
 }
@@ -109,7 +111,8 @@ TEST(JsonFields, EveryRowUnderItsKeyInTableOrder) {
   p.error = 1e-7;
   p.status = Status::Warning;
   p.message = "`steps` too small";
-  const cmd::Json j = cmd::to_json(p, [](const std::string& m) { return "<" + m + ">"; });
+  const documents::Json j =
+      documents::to_json(p, [](const std::string& m) { return "<" + m + ">"; });
   std::vector<std::string> keys, rows;
   for (const auto& item : j.items()) keys.push_back(item.key());
   for_each_row<PointResult>([&](const auto& row) {
@@ -124,10 +127,10 @@ TEST(JsonFields, EveryRowUnderItsKeyInTableOrder) {
   EXPECT_EQ("<`steps` too small>", j["message"]);  // in the front end's vocabulary
   p.Note("a remark");
   EXPECT_EQ("<a remark>",
-            cmd::to_json(p, [](const std::string& m) { return "<" + m + ">"; })["notes"][0]);
+            documents::to_json(p, [](const std::string& m) { return "<" + m + ">"; })["notes"][0]);
 }
 
-std::vector<std::string> keys_of(const cmd::Json& j) {
+std::vector<std::string> keys_of(const documents::Json& j) {
   std::vector<std::string> keys;
   for (const auto& item : j.items()) keys.push_back(item.key());
   return keys;
@@ -151,19 +154,19 @@ TEST(JsonFields, StudyRowsAreTheRowsOfTheirTable) {
       if (std::find(names.begin(), names.end(), k) == names.end()) keys.push_back(k);
     return keys;
   };
-  const cmd::Json plain = cmd::to_json(row, same);
+  const documents::Json plain = documents::to_json(row, same);
   EXPECT_EQ(without({"basis_error", "trim", "damping_crossings"}), keys_of(plain));
   EXPECT_EQ(0.5, plain["intervals"][0][0].get<double>());
   EXPECT_TRUE(plain["intervals"][0][1].is_null());
   EXPECT_EQ("lag", plain["mode"]);
-  const cmd::Json asked = cmd::to_json(row, same, {"trim", "damping_crossings"});
+  const documents::Json asked = documents::to_json(row, same, {"trim", "damping_crossings"});
   EXPECT_EQ(without({"basis_error"}), keys_of(asked));
   EXPECT_TRUE(asked["trim"].is_null());
   EXPECT_TRUE(asked["damping_crossings"].empty());
   row.critical.basis = 8;
-  EXPECT_TRUE(cmd::to_json(row, same)["basis_error"].is_null());
+  EXPECT_TRUE(documents::to_json(row, same)["basis_error"].is_null());
   row.critical.mu_c.reset();  // mode, omega, kind: null without mu_c
-  EXPECT_TRUE(cmd::to_json(row, same)["mode"].is_null());
+  EXPECT_TRUE(documents::to_json(row, same)["mode"].is_null());
 }
 
 // Hover's rows: numbers by name as an object, a matrix as its rows, the exponents as objects;
@@ -175,7 +178,7 @@ TEST(JsonFields, HoverRowsByType) {
   h.A0 = Eigen::MatrixXd::Identity(2, 2);
   h.eigenvalues = {{-0.5, 1.0}};
   h.labels = {"flap"};
-  const cmd::Json j = cmd::to_json(h, same);
+  const documents::Json j = documents::to_json(h, same);
   std::vector<std::string> rows;
   for_each_row<HoverResult>([&](const auto& r) { rows.push_back(r.name); });
   EXPECT_EQ(rows, keys_of(j));
@@ -186,23 +189,23 @@ TEST(JsonFields, HoverRowsByType) {
   EXPECT_EQ(1.0, j["exponents"][0]["omega"].get<double>());
   EXPECT_EQ(true, j["stable"].get<bool>());
   h.neutral = true;
-  EXPECT_TRUE(cmd::to_json(h, same)["stable"].is_null());
+  EXPECT_TRUE(documents::to_json(h, same)["stable"].is_null());
   h.neutral = false;
   h.status = Status::Failed;  // Python's hover too: no stability from a failed analysis
-  EXPECT_TRUE(cmd::to_json(h, same)["stable"].is_null());
+  EXPECT_TRUE(documents::to_json(h, same)["stable"].is_null());
   EXPECT_FALSE(hover_stable(h).has_value());
-  const cmd::Json doc = cmd::rows_json(h, {"inflow", "stable"}, same);
+  const documents::Json doc = documents::rows_json(h, {"inflow", "stable"}, same);
   EXPECT_EQ((std::vector<std::string>{"inflow", "stable"}), keys_of(doc));
-  EXPECT_THROW(cmd::rows_json(h, {"no_such_row"}, same), std::logic_error);
+  EXPECT_THROW(documents::rows_json(h, {"no_such_row"}, same), std::logic_error);
 }
 
 // A text table's heading is the row's key with its units, where the row has units.
 TEST(TableFields, HeadingsCarryTheUnits) {
-  EXPECT_EQ("zeta [1/rev]", cmd::described_heading<LabelledExponent>("zeta"));
-  EXPECT_EQ("omega [per rev]", cmd::described_heading<HoverExponent>("omega"));
-  EXPECT_EQ("label", cmd::described_heading<LabelledExponent>("label"));
-  EXPECT_EQ("damping_ratio", cmd::described_heading<LabelledExponent>("damping_ratio"));
-  EXPECT_THROW(cmd::described_heading<LabelledExponent>("no_such_row"), std::logic_error);
+  EXPECT_EQ("zeta [1/rev]", documents::described_heading<LabelledExponent>("zeta"));
+  EXPECT_EQ("omega [per rev]", documents::described_heading<HoverExponent>("omega"));
+  EXPECT_EQ("label", documents::described_heading<LabelledExponent>("label"));
+  EXPECT_EQ("damping_ratio", documents::described_heading<LabelledExponent>("damping_ratio"));
+  EXPECT_THROW(documents::described_heading<LabelledExponent>("no_such_row"), std::logic_error);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// flaplag CLI — rows of a described struct (core/fields.h) as the cells of a text table or a
+// flaplag documents — rows of a described struct (core/fields.h) as the cells of a text table or a
 // CSV line: one writer for every table whose columns are rows of a result's table.
 //
 // A column names a row of T's table by its key; a text table gives it a heading, CSV heads it
@@ -16,13 +16,13 @@
 #include <type_traits>
 #include <vector>
 
-#include "commands_internal.h"
 #include "flaplag/core/field_traits.h"
 #include "flaplag/core/fields.h"
-#include "json_fields.h"
-#include "output.h"
+#include "flaplag/documents/json_fields.h"
+#include "flaplag/documents/numbers.h"
+#include "flaplag/documents/output.h"
 
-namespace flaplag::cli::cmd {
+namespace flaplag::documents {
 
 struct Column {
   const char* key;      // a row of the struct's table
@@ -120,4 +120,4 @@ inline std::string csv_fields(const std::vector<std::string>& fields) {
   return out;
 }
 
-}  // namespace flaplag::cli::cmd
+}  // namespace flaplag::documents

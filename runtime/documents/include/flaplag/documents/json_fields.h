@@ -1,4 +1,5 @@
-// flaplag CLI — a described struct (core/fields.h) as a JSON object: one writer for every result.
+// flaplag documents — a described struct (core/fields.h) as a JSON object: one writer for every
+// result.
 //
 // Each row becomes the key of its name, in table order, its value written by type: numbers by
 // jnum (a non-finite number is null), except a row that allows -inf (zeta_json: "-inf");
@@ -20,13 +21,14 @@
 #include <type_traits>
 #include <vector>
 
-#include "commands_internal.h"
 #include "flaplag/core/field_traits.h"
 #include "flaplag/core/fields.h"
+#include "flaplag/documents/numbers.h"
 
-namespace flaplag::cli::cmd {
+namespace flaplag::documents {
 
-// How text with field names in backticks is shown (vocab() of the request).
+// How text with field names in backticks is shown: in the vocabulary of the front end (the
+// command line shows `steps` as --steps).
 using MessageText = std::function<std::string(const std::string&)>;
 
 template <class T>
@@ -112,9 +114,4 @@ Json rows_json(const T& object, const std::vector<const char*>& keys, const Mess
   return j;
 }
 
-// Messages in the request's vocabulary (vocab()); r must outlive the function.
-inline MessageText in_vocabulary(const Request& r) {
-  return [&r](const std::string& m) { return vocab(r, m); };
-}
-
-}  // namespace flaplag::cli::cmd
+}  // namespace flaplag::documents

@@ -1,4 +1,4 @@
-#include "output.h"
+#include "flaplag/documents/output.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -17,7 +17,7 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 
-namespace flaplag::cli {
+namespace flaplag::documents {
 
 namespace {
 
@@ -434,4 +434,4 @@ bool write_all(int fd, const std::string& content) {
   return true;
 }
 
-}  // namespace flaplag::cli
+}  // namespace flaplag::documents

@@ -1,11 +1,11 @@
-// flaplag CLI — where results go (stdout, an atomically replaced file, a device or FIFO) and how
-// numbers and tables are written.
+// flaplag documents — where results go (stdout, an atomically replaced file, a device or FIFO) and
+// how numbers and tables are written.
 #pragma once
 
 #include <string>
 #include <vector>
 
-namespace flaplag::cli {
+namespace flaplag::documents {
 
 // Where `-o FILE` (and `--plot FILE`) writes.  Constructed before the analysis, so that a long
 // run does not end in a lost result: it checks that the path can be written and decides how, and
@@ -85,4 +85,4 @@ class KeyValues {
 // write(2) of all of `content` to fd, retried on EINTR; false with errno set on failure.
 bool write_all(int fd, const std::string& content);
 
-}  // namespace flaplag::cli
+}  // namespace flaplag::documents
