@@ -12,10 +12,10 @@
 #include "commands_internal.h"
 #include "flaplag/analysis.h"
 #include "flaplag/core/format.h"
+#include "flaplag/documents/plot.h"
 #include "flaplag/trim.h"
 #include "flaplag/version.h"
 #include "options.h"
-#include "plot.h"
 #include "shard.h"
 
 namespace flaplag::cli {
@@ -95,9 +95,10 @@ std::optional<Output> run_standalone(const Request& r, std::string& w, RunContro
     case Command::Merge:
       return Output(merge_parts(r));
     case Command::Plot:
-      return Output(
-          plot_data_files(r.inputs, r.labels, r.max_zeta, r.mode, r.plot, r.memory_limit,
-                          r.plot_zeta ? SweepQuantity::Zeta : SweepQuantity::DampingRatio));
+      return Output(documents::plot_data_files(
+          {r.inputs, r.labels, r.max_zeta, r.mode, r.plot, r.memory_limit,
+           r.plot_zeta ? documents::SweepQuantity::Zeta : documents::SweepQuantity::DampingRatio},
+          kebab_option));
     case Command::Trim:
       return cmd::trim_command(r);
     default:

@@ -8,7 +8,6 @@
 #include "flaplag/campbell.h"
 #include "flaplag/core/format.h"
 #include "flaplag/documents/output.h"
-#include "plot.h"
 
 namespace flaplag::cli::cmd {
 

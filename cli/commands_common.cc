@@ -13,11 +13,11 @@
 #include "flaplag/core/constants.h"
 #include "flaplag/core/format.h"
 #include "flaplag/documents/output.h"
+#include "flaplag/documents/plot.h"
 #include "flaplag/model_fields.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/trim.h"
 #include "options.h"
-#include "plot.h"
 
 namespace flaplag::cli::cmd {
 

@@ -16,6 +16,7 @@
 #include "flaplag/analysis.h"
 #include "flaplag/documents/numbers.h"
 #include "flaplag/documents/output.h"
+#include "flaplag/documents/plot.h"
 #include "flaplag/documents/table_fields.h"
 #include "flaplag/study.h"
 #include "flaplag/trim.h"
@@ -26,6 +27,10 @@ using documents::Json;
 // The printers and writers of the documents layer (documents/numbers.h, output.h,
 // json_fields.h, table_fields.h).
 using documents::cell;
+using documents::render_plot;
+using documents::result_plot_script;
+using documents::SweepQuantity;
+
 using documents::CellStyle;
 using documents::Column;
 using documents::complex_json;

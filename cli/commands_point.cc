@@ -10,7 +10,6 @@
 #include "flaplag/core/format.h"
 #include "flaplag/documents/output.h"
 #include "flaplag/trim.h"
-#include "plot.h"
 
 namespace flaplag::cli::cmd {
 

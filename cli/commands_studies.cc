@@ -8,7 +8,6 @@
 #include "commands_internal.h"
 #include "flaplag/core/format.h"
 #include "flaplag/documents/output.h"
-#include "plot.h"
 #include "shard.h"
 
 namespace flaplag::cli::cmd {

@@ -9,7 +9,6 @@
 #include "flaplag/core/constants.h"
 #include "flaplag/core/format.h"
 #include "flaplag/documents/output.h"
-#include "plot.h"
 
 namespace flaplag::cli::cmd {
 

@@ -22,11 +22,11 @@
 #include "commands.h"
 #include "flaplag/core/errors.h"
 #include "flaplag/documents/output.h"
+#include "flaplag/documents/plot.h"
 #include "flaplag/documents/read_file.h"
 #include "flaplag/limits.h"
 #include "flaplag/version.h"
 #include "flaplag_spec/runtime_spec.h"
-#include "plot.h"
 #include "progress.h"
 #include "report.h"
 
@@ -342,7 +342,7 @@ int run_request(const Expanded& e, const flaplag::cli::CommandLine& cl) {
   const flaplag::cli::Request request = request_of(e, cl);
   const Outputs out(e, request);
   // The picture is written after the output, so that a run that fails leaves none.
-  flaplag::cli::DeferredPictures pictures;
+  flaplag::documents::DeferredPictures pictures;
   std::string warning;
   flaplag::cli::RunControl control;
   nlohmann::ordered_json document;
@@ -379,7 +379,7 @@ int run(const std::vector<std::string>& raw) {
   }
   try {
     return run_request(e, cl);
-  } catch (const flaplag::cli::RendererUnavailable& error) {
+  } catch (const flaplag::documents::RendererUnavailable& error) {
     std::cerr << "flaplag: error: " << one_line(error.what()) << std::endl;
     return kRendererMissing;
   } catch (const flaplag::InvalidInput& error) {

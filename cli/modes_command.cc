@@ -13,13 +13,17 @@
 #include "flaplag/blade/imported_modes.h"
 #include "flaplag/blade/rotating_modes.h"
 #include "flaplag/documents/output.h"
+#include "flaplag/documents/plot.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "options.h"
-#include "plot.h"
 
 namespace flaplag::cli {
 
+using documents::render_plot;
+using documents::result_plot_script;
+
 using documents::num;
+using documents::OutputTarget;
 using documents::TextTable;
 
 namespace {

@@ -14,12 +14,18 @@
 
 #include "flaplag/core/errors.h"
 #include "flaplag/documents/output.h"
+#include "flaplag/documents/plot.h"
 #include "flaplag/documents/read_file.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "options.h"
-#include "plot.h"
 
 namespace flaplag::cli {
+
+using documents::num;
+using documents::render_svg;
+using documents::RendererUnavailable;
+using documents::result_plot_script;
+using documents::SweepQuantity;
 
 using documents::JsonParse;
 using documents::parse_json;

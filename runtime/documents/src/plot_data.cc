@@ -1,4 +1,4 @@
-// flaplag CLI — `flaplag plot DATA.json`: the picture of an existing result, from the numbers
+// flaplag documents — `flaplag plot DATA.json`: the picture of an existing result, from the numbers
 // its JSON holds, through the same script builders as --plot (plot.h).
 #include <algorithm>
 #include <cctype>
@@ -10,19 +10,14 @@
 #include "flaplag/campbell.h"
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
+#include "flaplag/documents/plot.h"
 #include "flaplag/documents/read_file.h"
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag/trim.h"
-#include "options.h"
-#include "plot.h"
 
-namespace flaplag::cli {
-
-using documents::JsonParse;
-using documents::parse_json;
-using documents::read_json_file;
+namespace flaplag::documents {
 
 namespace {
 
@@ -105,12 +100,12 @@ std::string axis_name(const std::string& file, const std::string& key, const Plo
   return word;
 }
 
-// A label typed with --label: any text but control characters (it is quoted in the script).
-void check_label(const std::string& label) {
+// A label typed: any text but control characters (it is quoted in the script).
+void check_label(const std::string& label, const Spelling& option) {
   for (char c : label) {
     const auto u = static_cast<unsigned char>(c);
     if (u < 0x20 || u == 0x7f)
-      throw InvalidInput("--label",
+      throw InvalidInput(option("label"),
                          PlotJson(label).dump(-1, ' ', false, PlotJson::error_handler_t::replace),
                          "a control character (newline, tab, ...) cannot be part of a label");
   }
@@ -401,18 +396,19 @@ std::string campbell_script(const std::string& file, const PlotJson& j) {
                               c);
 }
 
-PlotJson read_result(const std::string& data, std::uint64_t memory_limit) {
+PlotJson read_result(const std::string& data, std::uint64_t memory_limit, const Spelling& option) {
   PlotJson j;
   std::string error;
-  const JsonParse parsed =
-      parse_json(read_json_file(data, memory_limit, "result file", "cannot be read", kebab_option),
-                 &j, &error);
+  const JsonParse parsed = parse_json(
+      read_json_file(data, memory_limit, "result file", "cannot be read", option), &j, &error);
+  const std::string json = option("json");
   if (parsed == JsonParse::NotJson)
-    refuse_file(data, "not JSON (flaplag plot draws a --json output of flaplag)");
-  if (parsed == JsonParse::Refused) refuse_file(data, "not a flaplag --json output: " + error);
+    refuse_file(data, "not JSON (flaplag plot draws a " + json + " output of flaplag)");
+  if (parsed == JsonParse::Refused)
+    refuse_file(data, "not a flaplag " + json + " output: " + error);
   if (!j.is_object() || !j.contains("flaplag") || !j.contains("command") ||
       !j["command"].is_string())
-    refuse_file(data, "not a flaplag --json output");
+    refuse_file(data, "not a flaplag " + json + " output");
   return j;
 }
 
@@ -436,8 +432,9 @@ std::optional<std::string> result_plot_script(const nlohmann::json& j, const std
 }
 
 std::string plot_data_file(const std::string& data, const std::string& plot,
-                           std::uint64_t memory_limit, SweepQuantity quantity) {
-  const PlotJson j = read_result(data, memory_limit);
+                           std::uint64_t memory_limit, const Spelling& option,
+                           SweepQuantity quantity) {
+  const PlotJson j = read_result(data, memory_limit, option);
   const std::optional<std::string> script = result_plot_script(j, data, quantity);
   if (!script)
     refuse_file(data, "a flaplag " + j["command"].get<std::string>() +
@@ -448,19 +445,20 @@ std::string plot_data_file(const std::string& data, const std::string& plot,
   return "";
 }
 
-std::string plot_data_files(const std::vector<std::string>& data,
-                            const std::vector<std::string>& labels, bool max_zeta,
-                            const std::string& mode, const std::string& plot,
-                            std::uint64_t memory_limit, SweepQuantity quantity) {
+std::string plot_data_files(const PlotFiles& files, const Spelling& option) {
+  const std::vector<std::string>& data = files.data;
+  const std::vector<std::string>& labels = files.labels;
+  const std::string& mode = files.mode;
+  const bool max_zeta = files.max_zeta;
   if (data.size() == 1 && labels.empty() && !max_zeta && mode.empty())
-    return plot_data_file(data[0], plot, memory_limit, quantity);
+    return plot_data_file(data[0], files.plot, files.memory_limit, option, files.quantity);
   SweepPicture picture;
-  picture.quantity = quantity;
-  for (const std::string& l : labels) check_label(l);
+  picture.quantity = files.quantity;
+  for (const std::string& l : labels) check_label(l, option);
   std::vector<SweepOverlay> sweeps;
   std::string first;  // the kind of the first file
   for (std::size_t i = 0; i < data.size(); ++i) {
-    const PlotJson j = read_result(data[i], memory_limit);
+    const PlotJson j = read_result(data[i], files.memory_limit, option);
     const std::string command = j["command"].get<std::string>();
     if (i == 0) first = command;
     if (command != first)
@@ -469,7 +467,8 @@ std::string plot_data_files(const std::vector<std::string>& data,
     if (command != "sweep")
       refuse_file(data[i], std::string("a flaplag ") + command + " result: " +
                                (data.size() > 1 ? "several results in one picture"
-                                                : "--label, --max-zeta and --mode") +
+                                                : option("label") + ", " + option("max_zeta") +
+                                                      " and " + option("mode")) +
                                " are for sweep results only");
     try {
       SweepOverlay s = sweep_data(data[i], j);
@@ -504,9 +503,9 @@ std::string plot_data_files(const std::vector<std::string>& data,
                             : !mode.empty() ? "mode " + literal_text(mode) + " of " + n
                                             : n + " compared";
   const std::string warning =
-      render_plot(sweep_overlay_script(title, sweeps, max_zeta, picture), plot);
+      render_plot(sweep_overlay_script(title, sweeps, max_zeta, picture), files.plot);
   if (!warning.empty()) throw RendererUnavailable(warning);
   return "";
 }
 
-}  // namespace flaplag::cli
+}  // namespace flaplag::documents

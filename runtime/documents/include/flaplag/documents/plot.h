@@ -1,7 +1,7 @@
-// flaplag CLI — pictures of results, rendered by gnuplot (Debian gnuplot-nox: svg and
+// flaplag documents — pictures of results, rendered by gnuplot (Debian gnuplot-nox: svg and
 // pngcairo terminals).  flaplag writes a gnuplot script with the data inline and writes
-// gnuplot's image output to the requested file under the rules of -o (output.h).  Every text in
-// a script (a title, a label, a name read from a result file) is a single-quoted gnuplot string,
+// gnuplot's image output to the requested file under the rules of an output (output.h).  Every text
+// in a script (a title, a label, a name read from a result file) is a single-quoted gnuplot string,
 // never code, and gnuplot is executed directly, without a shell.  Without gnuplot the data is
 // still written and the plot is skipped with one warning line.
 #pragma once
@@ -15,13 +15,10 @@
 #include <utility>
 #include <vector>
 
+#include "flaplag/documents/names.h"
 #include "flaplag/documents/output.h"
 
-namespace flaplag::cli {
-
-using documents::num;
-using documents::OutputTarget;
-using documents::write_all;
+namespace flaplag::documents {
 
 // The extensions --plot accepts (".svg", ".png"); false otherwise.
 bool is_plot_path(const std::string& path);
@@ -171,33 +168,41 @@ struct CampbellPicture {
 };
 std::string campbell_plot_script(const std::string& title, const CampbellPicture& picture);
 
-// `flaplag plot DATA.json --plot FILE`: the picture of a sweep, study, map, response, modes or
-// simulate result written by --json.  Throws InvalidInput("argument", data as typed, reason)
-// for a file that cannot be read, is not JSON or not such a result; RendererUnavailable when
-// gnuplot is missing or fails.  Returns "" (nothing for stdout).  A file is read up to
-// json_read_limit(memory_limit) bytes (read_file.h).
-// A sweep is drawn with `quantity` on its first panel and the damping criterion its file holds
-// (damping_criterion; none in a file written before it).
+// The picture of a result file (a sweep, study, map, response, modes, simulate or campbell result
+// as a front end writes it as JSON).  Throws InvalidInput("argument", data as typed, reason) for
+// a file that cannot be read, is not JSON or not such a result; RendererUnavailable when gnuplot
+// is missing or fails.  Returns "" (nothing for stdout).  A file is read up to
+// json_read_limit(memory_limit) bytes (read_file.h); `option` spells the fields named in
+// refusals.  A sweep is drawn with `quantity` on its first panel and the damping criterion its
+// file holds (damping_criterion; none in a file written before it).
 std::string plot_data_file(const std::string& data, const std::string& plot,
-                           std::uint64_t memory_limit,
+                           std::uint64_t memory_limit, const Spelling& option,
                            SweepQuantity quantity = SweepQuantity::DampingRatio);
-// The picture of a parsed --json result as plot_data_file draws it: its gnuplot script, or
-// nullopt for a result without a picture (point, critical, trim, ...).  `file` names the result
-// in refusals, which are plot_data_file's.
+// The picture of a parsed result as plot_data_file draws it: its gnuplot script, or nullopt for a
+// result without a picture (point, critical, trim, ...).  `file` names the result in refusals,
+// which are plot_data_file's.
 std::optional<std::string> result_plot_script(const nlohmann::json& result, const std::string& file,
                                               SweepQuantity quantity = SweepQuantity::DampingRatio);
-// `flaplag plot A.json B.json ... [--label L]... [--max-zeta | --mode M] --plot FILE`: one file
-// without labels, max_zeta or mode is plot_data_file (the same bytes); otherwise every file must be
-// a sweep result (InvalidInput("argument", the first other file as typed, reason) if not).  labels:
-// empty (each from its file's case: model, trim, periodic linearization) or one per file.
-// mode: "" or the one mode to draw from each file (each file must have it): a label as the files
-// write it, where a mode without a number and the same mode with number 1 are one mode ("lag"
-// of a 1 x 1 model is "lag1" of an M x N model, and either name selects it in either file).
-std::string plot_data_files(const std::vector<std::string>& data,
-                            const std::vector<std::string>& labels, bool max_zeta,
-                            const std::string& mode, const std::string& plot,
-                            std::uint64_t memory_limit,
-                            SweepQuantity quantity = SweepQuantity::DampingRatio);
+
+// Result files drawn in one picture: plain data from the front end (the fields label, max_zeta
+// and mode are named in refusals as `option` spells them).
+struct PlotFiles {
+  std::vector<std::string> data;    // the result files, as typed
+  std::vector<std::string> labels;  // empty (each from its file's case) or one per file
+  bool max_zeta = false;            // the least stable mode of each file
+  std::string mode;                 // "" or the one mode to draw from each file
+  std::string plot;                 // the picture's path (.svg or .png)
+  std::uint64_t memory_limit = 0;   // bytes (limits.h)
+  SweepQuantity quantity = SweepQuantity::DampingRatio;
+};
+
+// One file without labels, max_zeta or mode is plot_data_file (the same bytes); otherwise every
+// file must be a sweep result (InvalidInput("argument", the first other file as typed, reason)
+// if not).  labels: each from its file's case (model, trim, periodic linearization) unless given.
+// mode: a label as the files write it, where a mode without a number and the same mode with
+// number 1 are one mode ("lag" of a 1 x 1 model is "lag1" of an M x N model, and either name
+// selects it in either file); each file must have it.
+std::string plot_data_files(const PlotFiles& files, const Spelling& option);
 
 // gnuplot is not installed or failed (the message is one line).
 struct RendererUnavailable : std::runtime_error {
@@ -233,4 +238,4 @@ class DeferredPictures {
   std::vector<std::pair<OutputTarget, std::string>> pictures_;
 };
 
-}  // namespace flaplag::cli
+}  // namespace flaplag::documents

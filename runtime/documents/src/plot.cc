@@ -1,5 +1,5 @@
-// flaplag CLI — gnuplot scripts and rendering.
-#include "plot.h"
+// flaplag documents — gnuplot scripts and rendering.
+#include "flaplag/documents/plot.h"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -19,11 +19,10 @@
 #include "flaplag/model_api.h"
 #include "flaplag/numerics/continuation.h"
 #include "flaplag/rotor/parameter_table.h"
-#include "options.h"
 
 extern char** environ;
 
-namespace flaplag::cli {
+namespace flaplag::documents {
 namespace {
 
 bool ends_with(const std::string& s, const char* suffix) {
@@ -758,4 +757,4 @@ std::string render_svg(const std::string& script) {
   return image;
 }
 
-}  // namespace flaplag::cli
+}  // namespace flaplag::documents
