@@ -17,16 +17,17 @@
 #include "flaplag/core/parallel.h"
 #include "flaplag/documents/plot.h"
 #include "flaplag/documents/read_file.h"
+#include "flaplag/documents/report.h"
 #include "flaplag/limits.h"
 #include "flaplag/rotor/blade_table.h"
 #include "flaplag/rotor/parameter_table.h"
 #include "flaplag_spec/runtime_spec.h"
-#include "report.h"
 #include "shard.h"
 
 namespace flaplag::cli {
 
 using documents::is_plot_path;
+using documents::is_report_path;
 
 using documents::kMaxCaseBytes;
 using documents::read_text_file;

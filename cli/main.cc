@@ -24,11 +24,11 @@
 #include "flaplag/documents/output.h"
 #include "flaplag/documents/plot.h"
 #include "flaplag/documents/read_file.h"
+#include "flaplag/documents/report.h"
 #include "flaplag/limits.h"
 #include "flaplag/version.h"
 #include "flaplag_spec/runtime_spec.h"
 #include "progress.h"
-#include "report.h"
 
 namespace {
 
@@ -145,7 +145,7 @@ std::string take_page(std::vector<std::string>& typed) {
       ++i;
       continue;
     }
-    if (value != "-" && !flaplag::cli::is_report_path(value))
+    if (value != "-" && !flaplag::documents::is_report_path(value))
       throw flaplag::InvalidInput(a.rfind("--", 0) == 0 ? "--output" : "-o",
                                   flaplag::cli::shown(value),
                                   "must end in .html or .htm (flaplag report writes a page)");
@@ -179,7 +179,7 @@ Expanded expand(const std::vector<std::string>& args) {
     const std::string text =
         flaplag::documents::read_json_file(e.file, typed_memory_limit(args), "case file",
                                            "case file cannot be read", flaplag::cli::kebab_option);
-    if (flaplag::cli::is_json_text(text)) {
+    if (flaplag::documents::is_json_text(text)) {
       // A result is shown as computed: nothing here would change it but the memory to read it.
       for (std::size_t i = 0; i < e.typed.size(); ++i) {
         const std::string& a = e.typed[i];
@@ -226,7 +226,8 @@ int report_of_result(const Expanded& e) {
   try {
     const flaplag::documents::OutputTarget page(e.page, "output");
     std::string warning;
-    const std::string html = flaplag::cli::html_report_of_text(e.file, e.result, &warning);
+    const std::string html = flaplag::documents::html_report_of_text(
+        e.file, e.result, flaplag::cli::kebab_option, flaplag::cli::case_option, &warning);
     if (e.page.empty()) {
       if (const int code = write_stdout(html); code != 0) return code;
     } else {
@@ -301,12 +302,14 @@ std::string compute(const flaplag::cli::Request& request, std::string* warning,
 std::string report_page(const Expanded& e, const flaplag::cli::Request& request,
                         const nlohmann::ordered_json& document, std::string* warning) {
   if (request.report.empty()) return "";
-  flaplag::cli::ReportSource source;
+  flaplag::documents::ReportSource source;
   source.title = e.file.empty() ? "command line" : "case file " + e.file;
+  source.option = flaplag::cli::kebab_option;
+  source.case_option = flaplag::cli::case_option;
   source.warnings = e.from_file.warnings;
   if (!warning->empty()) source.warnings.push_back(*warning);
   std::string page_warning;
-  std::string html = flaplag::cli::html_report(document, source, &page_warning);
+  std::string html = flaplag::documents::html_report(document, source, &page_warning);
   if (!page_warning.empty()) *warning += (warning->empty() ? "" : "; ") + page_warning;
   return html;
 }

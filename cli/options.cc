@@ -655,6 +655,8 @@ const OptionSpec* option_for_library_name(Command c, std::string_view library_na
 
 std::string kebab_option(std::string_view field) { return "--" + kebab(field); }
 
+std::string case_option(std::string_view key) { return "--" + std::string(key); }
+
 std::string in_cli_vocabulary(Command c, const std::string& message) {
   std::string out;
   std::size_t i = 0;

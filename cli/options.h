@@ -90,6 +90,9 @@ std::string inflow_kind_names(const char* sep);
 
 // "--" + kebab: "omega_lag" -> "--omega-lag".
 std::string kebab_option(std::string_view field);
+// The option of a key of a result's case, which holds the command line's options by their
+// words: "--" + key ("omega-lag" -> "--omega-lag").
+std::string case_option(std::string_view key);
 
 // A library message in the command line's vocabulary: every `name` in backticks that names an
 // option of command c becomes that option ("increase `steps`" -> "increase --steps");

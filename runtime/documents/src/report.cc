@@ -1,5 +1,5 @@
-// flaplag CLI — the HTML report of a result (report.h).
-#include "report.h"
+// flaplag documents — the HTML report of a result (report.h).
+#include "flaplag/documents/report.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,18 +17,8 @@
 #include "flaplag/documents/plot.h"
 #include "flaplag/documents/read_file.h"
 #include "flaplag/rotor/parameter_table.h"
-#include "options.h"
 
-namespace flaplag::cli {
-
-using documents::num;
-using documents::render_svg;
-using documents::RendererUnavailable;
-using documents::result_plot_script;
-using documents::SweepQuantity;
-
-using documents::JsonParse;
-using documents::parse_json;
+namespace flaplag::documents {
 
 namespace {
 
@@ -693,7 +683,7 @@ Json picture_document(const Json& result) {
   return sweep;
 }
 
-std::string pictures_section(const Json& result, const std::string& source,
+std::string pictures_section(const Json& result, const std::string& source, const Spelling& option,
                              std::vector<std::string>& page_warnings) {
   const nlohmann::json plain = nlohmann::json::parse(picture_document(result).dump());
   std::optional<std::string> script;
@@ -724,8 +714,8 @@ std::string pictures_section(const Json& result, const std::string& source,
   }
   return section("pictures", "Pictures",
                  "<figure>\n" + svg.substr(start) + "\n<figcaption>The picture of this result " +
-                     "(the same as <code>--plot</code> and <code>flaplag plot</code> draw)." +
-                     "</figcaption>\n</figure>\n");
+                     "(the same as <code>" + esc(option("plot")) +
+                     "</code> and <code>flaplag plot</code> draw)." + "</figcaption>\n</figure>\n");
 }
 
 // The command line of the case, each word quoted for a POSIX shell where it needs it.
@@ -740,16 +730,16 @@ std::string shell_word(const std::string& w) {
   return q + "'";
 }
 
-std::string command_line(const Json& c) {
+std::string command_line(const Json& c, const Spelling& option) {
   std::string s = "flaplag";
   const std::string command = string_of(c, "command");
   if (!command.empty()) s += " " + shell_word(command);
   for (auto it = c.begin(); it != c.end(); ++it) {
     if (it.key() == "command") continue;
     if (it.value() == true) {
-      s += " --" + shell_word(it.key());
+      s += " " + shell_word(option(it.key()));
     } else if (it.value().is_string()) {
-      s += " --" + shell_word(it.key()) + " " + shell_word(it.value().get<std::string>());
+      s += " " + shell_word(option(it.key())) + " " + shell_word(it.value().get<std::string>());
     }
   }
   return s;
@@ -762,8 +752,8 @@ std::string provenance_section(const Json& result, const ReportSource& source) {
   rows.push_back({"flaplag", cell(member(f, "version")) + ", commit <code>" +
                                  cell(member(f, "commit")) + "</code>"});
   const Json& c = member(result, "case");
-  if (c.is_object()) {
-    rows.push_back({"reproduce", "<code>" + esc(command_line(c)) + "</code>"});
+  if (c.is_object() && source.case_option) {
+    rows.push_back({"reproduce", "<code>" + esc(command_line(c, source.case_option)) + "</code>"});
     rows.push_back({"",
                     "or <code>flaplag run RESULT.json</code> on the JSON output, whose "
                     "<code>case</code> holds these options"});
@@ -804,14 +794,14 @@ bool is_report_path(const std::string& path) {
 std::string html_report(const Json& result, const ReportSource& source, std::string* warning) {
   if (!result.is_object() || !result.contains("flaplag") || !result.contains("command") ||
       !result["command"].is_string())
-    refuse_file(source.input, "not a flaplag --json output");
+    refuse_file(source.input, "not a flaplag " + source.option("json") + " output");
   const std::string command = result["command"].get<std::string>();
   if (command == "models" || command == "merge")
     refuse_file(source.input, "a flaplag " + command + " output is not a result to report on");
   std::vector<Outcome> outcomes;
   collect_outcomes(result, "", outcomes);
   std::vector<std::string> page_warnings;
-  const std::string pictures = pictures_section(result, source.input, page_warnings);
+  const std::string pictures = pictures_section(result, source.input, source.option, page_warnings);
   std::vector<std::string> run_warnings = source.warnings;
   run_warnings.insert(run_warnings.end(), page_warnings.begin(), page_warnings.end());
   if (warning != nullptr) {
@@ -854,17 +844,23 @@ bool is_json_text(const std::string& text) {
 }
 
 std::string html_report_of_text(const std::string& path, const std::string& text,
+                                const Spelling& option, const Spelling& case_option,
                                 std::string* warning) {
   Json j;
   std::string error;
   const JsonParse parsed = parse_json(text, &j, &error);
+  const std::string json = option("json");
   if (parsed == JsonParse::NotJson)
-    refuse_file(path, "not JSON (flaplag report takes a case file or a --json output of flaplag)");
-  if (parsed == JsonParse::Refused) refuse_file(path, "not a flaplag --json output: " + error);
+    refuse_file(path,
+                "not JSON (flaplag report takes a case file or a " + json + " output of flaplag)");
+  if (parsed == JsonParse::Refused)
+    refuse_file(path, "not a flaplag " + json + " output: " + error);
   ReportSource source;
   source.title = "result file " + path;
   source.input = path;
+  source.option = option;
+  source.case_option = case_option;
   return html_report(j, source, warning);
 }
 
-}  // namespace flaplag::cli
+}  // namespace flaplag::documents
