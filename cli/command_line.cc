@@ -473,62 +473,10 @@ void check_run_memory(const Request& r) {
   }
 }
 
-// The length of j.dump(2): containers laid out as nlohmann::json does (one element per line,
-// two spaces per level), each scalar as its own dump.  Iterative: no recursion on nesting.
-std::uint64_t json_text_size(const nlohmann::ordered_json& root) {
-  std::uint64_t total = 0;
-  std::vector<std::pair<const nlohmann::ordered_json*, std::uint64_t>> stack{{&root, 0}};
-  while (!stack.empty()) {
-    const auto [j, depth] = stack.back();
-    stack.pop_back();
-    if (!j->is_structured()) {
-      total += j->dump().size();
-      continue;
-    }
-    const std::uint64_t n = j->size();
-    if (n == 0) {
-      total += 2;  // [] or {}
-      continue;
-    }
-    // "[\n", each element on a line of its own indented by 2 (depth + 1) and ended by ",\n"
-    // (the last by "\n"), then the closing bracket indented by 2 depth.
-    total += 2 + n * (2 * (depth + 1) + 2) - 1 + 2 * depth + 1;
-    if (j->is_object()) {
-      for (auto it = j->begin(); it != j->end(); ++it) {
-        total += nlohmann::ordered_json(it.key()).dump().size() + 2;  // "key":
-        stack.emplace_back(&it.value(), depth + 1);
-      }
-    } else {
-      for (const auto& e : *j) stack.emplace_back(&e, depth + 1);
-    }
-  }
-  return total;
-}
-
 }  // namespace
 
 void check_merged_output(const Request& r, const nlohmann::ordered_json& merged) {
-  const std::uint64_t text = json_text_size(merged) + 1;  // and the final newline
-  const MemoryEstimate e = json_output_memory(text);
-  if (e.memory <= r.memory_limit) return;
-  std::uint64_t parts = 0;
-  for (const std::string& file : r.inputs) {
-    std::error_code ec;
-    const std::uintmax_t size = std::filesystem::file_size(file, ec);
-    if (!ec) parts += size;
-  }
-  std::string reason = "the merged output of " + std::to_string(r.inputs.size()) + " part" +
-                       (r.inputs.size() == 1 ? "" : "s") + " (" + memory_text(parts) +
-                       ") would be " + memory_text(text) + " of JSON, needing about " +
-                       memory_text(e.memory) + " of memory, more than the memory limit of " +
-                       memory_text(r.memory_limit) + " (`memory_limit`)";
-  if (text > 4 * parts + 65536)
-    reason +=
-        ": parts written by flaplag are as large as their merge, so a part was not made by "
-        "flaplag; raise `memory_limit` only for parts you trust";
-  else
-    reason += ": raise `memory_limit`";
-  throw InvalidInput("memory_limit", memory_text(r.memory_limit), reason);
+  documents::check_merged_size(r.inputs, r.memory_limit, merged);
 }
 
 CommandLine::CommandLine(const std::vector<std::string>& args) {

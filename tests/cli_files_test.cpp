@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "cli_run.h"
-#include "digest.h"
+#include "flaplag/documents/digest.h"
 #include "flaplag/documents/read_file.h"
 #include "process.h"
 #include "shard.h"
@@ -366,7 +366,7 @@ TEST(CliRunToml, EmptyCommandIsTheTypicalCase) {
 // ---- merge takes only what the case computes --------------------------------------------------
 
 TEST(Digest, Sha256OfTheFips180Examples) {
-  using flaplag::cli::sha256_hex;
+  using flaplag::documents::sha256_hex;
   EXPECT_EQ("ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad", sha256_hex("abc"));
   EXPECT_EQ("e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855", sha256_hex(""));
   EXPECT_EQ("248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1",

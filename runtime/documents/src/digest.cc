@@ -1,10 +1,10 @@
-// flaplag CLI — SHA-256, written from FIPS 180-4 (sections 4.1.2, 4.2.2, 5.1.1, 5.3.3, 6.2).
-#include "digest.h"
+// flaplag documents — SHA-256, written from FIPS 180-4 (sections 4.1.2, 4.2.2, 5.1.1, 5.3.3, 6.2).
+#include "flaplag/documents/digest.h"
 
 #include <array>
 #include <cstdint>
 
-namespace flaplag::cli {
+namespace flaplag::documents {
 
 namespace {
 
@@ -91,4 +91,4 @@ std::string sha256_hex(std::string_view data) {
   return out;
 }
 
-}  // namespace flaplag::cli
+}  // namespace flaplag::documents
