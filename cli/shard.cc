@@ -88,8 +88,13 @@ Json shard_json(const Request& r) {
                                static_cast<std::size_t>(r.shard_count));
 }
 
+const documents::PartCases& command_line_cases() {
+  static const CommandLineCases cases;
+  return cases;
+}
+
 std::string merge_parts(const Request& r) {
-  return documents::merge_parts(r.inputs, r.memory_limit, CommandLineCases(), kebab_option);
+  return documents::merge_parts(r.inputs, r.memory_limit, command_line_cases(), kebab_option);
 }
 
 }  // namespace flaplag::cli

@@ -23,6 +23,9 @@ nlohmann::ordered_json shard_json(const Request& r);
 
 using documents::seal_part;
 
+// A part's case read as this command line reads it (for documents::merge_parts).
+const documents::PartCases& command_line_cases();
+
 // `flaplag merge`: the parts r.inputs (in any order) as the JSON text the command writes without
 // --shard (documents::merge_parts, each part's case read as this command line reads it).
 std::string merge_parts(const Request& r);

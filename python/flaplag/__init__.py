@@ -12,11 +12,14 @@ Analysis takes the C++ field names as keyword arguments (help(flaplag.Analysis) 
 units and ranges).  Results are small classes with numpy arrays, a status ('ok', 'warning',
 'failed') and a message; invalid input raises flaplag.InvalidInput (a ValueError) with the
 library's message '<field> = <value>: <reason>'.  flaplag.map and flaplag.study run on all
-cores, or with client=<dask.distributed.Client> on a Dask cluster.
+cores, or with client=<dask.distributed.Client> on a Dask cluster.  flaplag.report and
+flaplag.merge make the HTML report of a result file and merge the --shard parts of a map or
+study, as the command line's report and merge do.
 """
 
 from . import _flaplag
 from ._analysis import PARAMETERS, TRANSITION, Analysis, InvalidInput, UnknownParameter
+from ._documents import merge, report
 from ._parallel import map, study, study_parameters
 from ._results import (
     CampbellCrossing,
@@ -81,6 +84,8 @@ __all__ = [
     "study",
     "map",
     "study_parameters",
+    "report",
+    "merge",
     "models",
     "parameter_table",
     "CampbellCrossing",

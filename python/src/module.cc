@@ -1484,6 +1484,8 @@ void bind_checks(py::module_& m) {
 }
 
 }  // namespace
+
+void bind_documents(py::module_& m);  // documents.cc
 }  // namespace flaplag::python
 
 PYBIND11_MODULE(_flaplag, m) {
@@ -1495,4 +1497,5 @@ PYBIND11_MODULE(_flaplag, m) {
   bind_analysis(m);
   bind_studies(m);
   bind_checks(m);
+  bind_documents(m);
 }

@@ -5,7 +5,7 @@ set(py_env
     PYTHONDONTWRITEBYTECODE=1
     MPLBACKEND=Agg
     FLAPLAG_CLI=$<TARGET_FILE:flaplag>)
-foreach(suite api cli_equality dask fields limits keywords options)
+foreach(suite api cli_equality dask documents fields limits keywords options)
   add_test(NAME python.${suite}
            COMMAND ${Python3_EXECUTABLE} -m pytest -q -rs -p no:cacheprovider
                    ${CMAKE_CURRENT_SOURCE_DIR}/tests/test_${suite}.py
