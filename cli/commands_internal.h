@@ -14,6 +14,7 @@
 #include "command_line.h"
 #include "commands.h"
 #include "flaplag/analysis.h"
+#include "flaplag/documents/header.h"
 #include "flaplag/documents/numbers.h"
 #include "flaplag/documents/output.h"
 #include "flaplag/documents/plot.h"
@@ -25,11 +26,21 @@ namespace flaplag::cli::cmd {
 
 using documents::Json;
 // The printers and writers of the documents layer (documents/numbers.h, output.h,
-// json_fields.h, table_fields.h).
+// json_fields.h, table_fields.h, header.h).
+using documents::blade_table_json;
+using documents::blade_table_text;
 using documents::cell;
+using documents::header_json;
+using documents::header_text;
+using documents::inflow_at;
+using documents::inflow_json;
+using documents::model_json;
 using documents::render_plot;
 using documents::result_plot_script;
+using documents::status_json;
+using documents::status_text;
 using documents::SweepQuantity;
+using documents::warnings_text;
 
 using documents::CellStyle;
 using documents::Column;
@@ -84,25 +95,10 @@ inline MessageText in_vocabulary(const Request& r) {
 }
 // The word of a field in this command line's vocabulary ("omega_lag" -> "omega-lag").
 std::string word(const std::string& field);
-Json model_json(const model::ModelDescriptor& m);
-// The part every analysis output starts with: what was computed, and how.
-// What a blade table gave (its stations and groups; a dimensional table's SI data), as the
-// header's `blade_table` and as text.
-Json blade_table_json(const BladeProperties& b);
-std::string blade_table_text(const BladeProperties& b, const RotorParameters& p);
 // The operating condition of fixed controls at the request's inflow model (--inflow).
 OperatingCondition fixed_controls(const Request& r);
-// The header's `inflow` (with --inflow momentum: kind, thrust_coefficient, shaft_angle), and
-// lambda at mu with it; nullopt for the default eq 2.24 and a trim's given inflow.
-std::optional<Json> inflow_json(const Analysis& an);
-std::optional<double> inflow_at(const Analysis& an, double mu);
-Json header_json(const char* command, const Analysis& an, bool with_method = true);
-std::string header_text(const Analysis& an, bool with_method = true);
-Json status_json(Json j, Status status, const std::string& message);
-std::string status_text(Status status, const std::string& message);
 // One "  note: ..." line per note of a result (Outcome::notes), in the request's vocabulary.
 std::string notes_text(const Request& r, const std::vector<std::string>& notes);
-std::string warnings_text(const Analysis& an);
 // A plot, if asked for: "" or a warning line for stderr (the data is written in any case).  The
 // picture is `flaplag plot`'s of `result` (the command's --json output: result_plot_script in
 // plot.h), with the case's trim, so that --plot and `flaplag plot DATA.json` draw the same.
