@@ -8,6 +8,7 @@
 #include "commands_internal.h"
 #include "flaplag/core/format.h"
 #include "flaplag/documents/output.h"
+#include "flaplag/documents/studies.h"
 #include "shard.h"
 
 namespace flaplag::cli::cmd {
@@ -45,81 +46,6 @@ StudyResult run_study_part(const Request& r, RunControl* control) {
   return s;
 }
 
-Json study_json(const Request& r, const Analysis& base, const StudyResult& s) {
-  Json j = header_json("study", base);
-  j["vary"] = word(r.vary);
-  j["mu_max"] = r.critical.mu_max;
-  j["scan_step"] = r.critical.scan_step;
-  if (r.damping_criterion) j["damping_criterion"] = jnum(*r.damping_criterion);
-  // A row by StudyRow's table; a trimmed study reports each row's trim at its mu_c (the trim
-  // the row's search made there, whose problems are in the row's status), null without one.
-  std::vector<std::string> present;
-  if (trimmed(r)) present.push_back("trim");
-  if (r.damping_criterion) present.push_back("damping_crossings");
-  Json rows = Json::array();
-  for (const StudyRow& row : s.rows) rows.push_back(to_json(row, in_vocabulary(r), present));
-  j["rows"] = rows;
-  return status_json(j, s.status, vocab(r, s.message));
-}
-
-// One line of the study's table (the trimmed columns: the trim at mu_c [rad; lambda of eq
-// 2.25]).
-std::vector<std::string> study_row_cells(const Request& r, const StudyRow& row) {
-  const CriticalResult& c = row.critical;
-  std::string ivs;
-  for (const InstabilityInterval& i : c.intervals)
-    ivs += (ivs.empty() ? "" : " ") + std::string("(") + short_text(i.onset) + ", " +
-           (i.end ? short_text(*i.end) : std::string("mu-max")) + ")";
-  std::vector<std::string> cells = {
-      num(row.value),
-      c.mu_c ? short_text(*c.mu_c) : (c.hover_unstable ? "hover" : "-"),
-      c.mu_c ? c.mode : "-",
-      c.mu_c ? short_text(c.omega) : "-",
-      c.mu_c ? kind_name(c.kind) : "-",
-      ivs.empty() ? "-" : ivs};
-  if (trimmed(r)) {
-    const std::optional<TrimResult>& x = row.trim;
-    for (double v :
-         {x ? x->theta0 : 0.0, x ? x->theta1c : 0.0, x ? x->theta1s : 0.0, x ? x->inflow : 0.0})
-      cells.push_back(x ? short_text(v) : "-");
-  }
-  if (r.damping_criterion) {
-    // "lag 0.603" per mode that crosses, its status when not crossed cleanly.
-    std::string below;
-    for (const DampingCrossing& d : row.damping_crossings) {
-      if (d.status == CrossingStatus::NotCrossed) continue;
-      below += (below.empty() ? "" : ", ") + d.mode + " " + (d.mu ? short_text(*d.mu) : "-");
-      if (d.status != CrossingStatus::Crossed)
-        below += std::string(" (") + enum_name(d.status) + ")";
-    }
-    cells.push_back(below.empty() ? "-" : below);
-  }
-  cells.push_back(status_name(c.status));
-  return cells;
-}
-
-std::string study_text(const Request& r, const Analysis& base, const StudyResult& s) {
-  std::string out = header_text(base) + "\n";
-  out += "mu_c and instability intervals versus " + word(r.vary) + " (mu up to " +
-         num(r.critical.mu_max) + ")\n";
-  std::vector<std::string> head = {word(r.vary), "mu_c", "mode",
-                                   "omega",      "kind", "unstable for mu in"};
-  if (trimmed(r)) head.insert(head.end(), {"theta0", "theta1c", "theta1s", "lambda"});
-  if (r.damping_criterion)
-    head.push_back("damping < " + num(100.0 * *r.damping_criterion) + " % from mu");
-  head.push_back("status");
-  TextTable t(head);
-  t.left_align(head.size() - 1);
-  t.left_align(5);
-  for (const StudyRow& row : s.rows) t.add_row(study_row_cells(r, row));
-  out += t.render();
-  for (const StudyRow& row : s.rows)
-    if (row.critical.status != Status::Ok)
-      out += "  " + word(r.vary) + " = " + num(row.value) + ": " +
-             status_name(row.critical.status) + ": " + vocab(r, row.critical.message) + "\n";
-  return out;
-}
-
 // The map's cells: run_map on this part's lines (none: an empty part).  A cancelled run keeps
 // the lines finished, and r's values on the cut axis are cut to them.
 MapResult run_map_part(Request& r, RunControl* control) {
@@ -154,45 +80,13 @@ MapResult run_map_part(Request& r, RunControl* control) {
   return m;
 }
 
-Json map_json(const Request& r, const Analysis& base, const MapResult& m) {
-  Json j = header_json("map", base);
-  j["x"] = Json{{"name", word(r.x_name)}, {"values", r.x_values}};
-  j["y"] = Json{{"name", word(r.y_name)}, {"values", r.y_values}};
-  if (r.x_name != "mu" && r.y_name != "mu") j["mu"] = r.mu;
-  // One grid per row of kMapGridRows, written by the row's type; null where the cell's
-  // exponent is unknown (no max_zeta).
-  const MessageText message = in_vocabulary(r);
-  for (const char* key : kMapGridRows) {
-    visit_row<MapCell>(key, [&](const auto& field) {
-      Json grid = Json::array();
-      for (const auto& row : m.cells) {
-        Json line = Json::array();
-        for (const MapCell& cell : row)
-          line.push_back(cell.max_zeta
-                             ? documents::json_detail::value(field.get(cell), field.flags, message)
-                             : Json(nullptr));
-        grid.push_back(line);
-      }
-      j[key] = grid;
-    });
-  }
-  return status_json(j, m.status, vocab(r, m.message));
+// What the study and map documents say about their run, from the request.
+documents::StudyRun study_run(const Request& r) {
+  return {r.vary, r.critical.mu_max, r.critical.scan_step, r.damping_criterion, trimmed(r)};
 }
 
-std::string map_text(const Request& r, const Analysis& base, const MapResult& m) {
-  std::string out = header_text(base) + "\n";
-  out += "Largest zeta (per rev) over " + word(r.y_name) + " (rows) x " + word(r.x_name) +
-         " (columns); * marks an unstable point\n";
-  std::vector<std::string> header{word(r.y_name) + " \\ " + word(r.x_name)};
-  for (double x : r.x_values) header.push_back(short_text(x));
-  TextTable t(header);
-  for (std::size_t i = 0; i < m.cells.size(); ++i) {
-    std::vector<std::string> row{short_text(r.y_values[i])};
-    for (const MapCell& c : m.cells[i])
-      row.push_back(c.max_zeta ? short_text(*c.max_zeta) + (*c.max_zeta > 0 ? "*" : " ") : "-");
-    t.add_row(row);
-  }
-  return out + t.render() + status_text(m.status, vocab(r, m.message));
+documents::MapRun map_run(const Request& r) {
+  return {r.x_name, r.y_name, r.x_values, r.y_values, r.mu};
 }
 
 }  // namespace
@@ -203,9 +97,10 @@ Output study(const Request& request, std::string& warning, RunControl* control) 
                       fixed_controls(r));  // the header, and the base parameters checked
   const StudyResult s = run_study_part(r, control);
   std::optional<Json> j = result_document(
-      r, [&] { return study_json(r, base, s); }, &warning);
+      r, [&] { return documents::study_json(study_run(r), base, s, in_vocabulary(r)); }, &warning);
   if (r.json) return std::move(*j);
-  return text_output(r, study_text(r, base, s), std::move(j));
+  return text_output(r, documents::study_text(study_run(r), base, s, in_vocabulary(r)),
+                     std::move(j));
 }
 
 Output map(const Request& request, std::string& warning, RunControl* control) {
@@ -213,9 +108,9 @@ Output map(const Request& request, std::string& warning, RunControl* control) {
   const Analysis base(r.params, r.transition, fixed_controls(r));
   const MapResult m = run_map_part(r, control);
   std::optional<Json> j = result_document(
-      r, [&] { return map_json(r, base, m); }, &warning);
+      r, [&] { return documents::map_json(map_run(r), base, m, in_vocabulary(r)); }, &warning);
   if (r.json) return std::move(*j);
-  return text_output(r, map_text(r, base, m), std::move(j));
+  return text_output(r, documents::map_text(map_run(r), base, m, in_vocabulary(r)), std::move(j));
 }
 
 }  // namespace flaplag::cli::cmd
