@@ -29,14 +29,6 @@ std::string notes_text(const Request& r, const std::vector<std::string>& notes) 
   return out;
 }
 
-// The word of a field in this command line's vocabulary ("omega_lag" -> "omega-lag").
-std::string word(const std::string& field) {
-  std::string s = field;
-  for (char& c : s)
-    if (c == '_') c = '-';
-  return s;
-}
-
 // A plot, if asked for: "" or a warning line for stderr (the data is written in any case).
 std::string plot_if_asked(const Request& r, Json result) {
   if (r.plot.empty()) return "";

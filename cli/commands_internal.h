@@ -93,8 +93,9 @@ std::string vocab(const Request& r, const std::string& message);
 inline MessageText in_vocabulary(const Request& r) {
   return [&r](const std::string& m) { return vocab(r, m); };
 }
-// The word of a field in this command line's vocabulary ("omega_lag" -> "omega-lag").
-std::string word(const std::string& field);
+// The word of a field in this command line's vocabulary ("omega_lag" -> "omega-lag"): its JSON
+// key.
+inline std::string word(const std::string& field) { return documents::json_word(field); }
 // The operating condition of fixed controls at the request's inflow model (--inflow).
 OperatingCondition fixed_controls(const Request& r);
 // One "  note: ..." line per note of a result (Outcome::notes), in the request's vocabulary.

@@ -31,13 +31,8 @@ namespace {
 
 bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v'; }
 
-std::string kebab(std::string_view field) {
-  std::string s(field);
-  for (char& c : s) {
-    if (c == '_') c = '-';
-  }
-  return s;
-}
+// An option's word is the field's JSON key.
+std::string kebab(std::string_view field) { return documents::json_word(field); }
 
 OptionSpec value_option(std::string name, std::string metavar, std::string help,
                         std::string default_text, std::vector<std::string> library_names) {
