@@ -1,5 +1,5 @@
 // flaplag — what a described field's member type is, for the front ends' generic writers
-// (cli/json_fields.h, the Python module): an optional, a vector, or a value.
+// (documents/json_fields.h, the Python module): an optional, a vector, or a value.
 #pragma once
 
 #include <optional>
