@@ -131,11 +131,13 @@ std::optional<double> max_liouville(const SweepResult& s) {
 const std::vector<const char*> kModeRows = {"zeta", "omega", "damping_ratio"};
 
 // A row: the point's mu, the dominant exponent of each mode (kModeRows, or null), then the rest
-// of the point (its table).
-Json sweep_rows_json(const Request& r, const SweepResult& s,
-                     const std::vector<std::string>& labels) {
+// of the point (its table) and, about the periodic equilibrium at fixed controls, the q° the
+// point rests on (`equilibria`: one per point, or empty; a trim carries its own).
+Json sweep_rows_json(const Request& r, const SweepResult& s, const std::vector<std::string>& labels,
+                     const std::vector<PeriodicEquilibrium>& equilibria) {
   Json rows = Json::array();
-  for (const PointResult& p : s.points) {
+  for (std::size_t k = 0; k < s.points.size(); ++k) {
+    const PointResult& p = s.points[k];
     Json row;
     row["mu"] = jnum(p.mu);
     for (const std::string& l : labels) {
@@ -146,6 +148,7 @@ Json sweep_rows_json(const Request& r, const SweepResult& s,
     for (const auto& item : point.items()) {
       if (item.key() != "mu") row[item.key()] = item.value();
     }
+    if (k < equilibria.size()) row["equilibrium"] = equilibrium_json(r, equilibria[k]);
     rows.push_back(row);
   }
   return rows;
@@ -272,17 +275,19 @@ std::string hover_text(const Request& r, const Analysis& an) {
 }
 
 Output typical(const Request& r, const Analysis& an) {
-  CriticalResult crit = an.critical(CriticalOptions{});
+  const RotorCritical crit = an.critical(CriticalOptions{});
   // One continuation from hover in steps of kTableScan, shown every kTableEvery-th point: the
   // exponents of each row are continued exactly as `flaplag point` continues them, at a tenth of
   // the cost of continuing every row from hover again.
-  const SweepResult all = an.sweep(0.0, kTableStop, kTableScan);
-  SweepResult table;
+  const RotorSweep all = an.sweep(0.0, kTableStop, kTableScan);
+  RotorSweep table;
   table.status = all.status;
   table.message = all.message;
   for (std::size_t i = 0; i < all.points.size(); ++i) {
     // A sweep that stopped early ends with the failed point: show it too.
-    if (i % kTableEvery == 0 || i + 1 == all.points.size()) table.points.push_back(all.points[i]);
+    if (i % kTableEvery != 0 && i + 1 != all.points.size()) continue;
+    table.points.push_back(all.points[i]);
+    if (i < all.equilibria.size()) table.equilibria.push_back(all.equilibria[i]);
   }
   const std::vector<std::string> labels = mode_labels(an);
   const std::optional<double> max_res = max_liouville(table);
@@ -290,9 +295,10 @@ Output typical(const Request& r, const Analysis& an) {
     Json j = header_json("typical", an);
     j["hover"] = hover_json(r, an);
     j["critical"] = critical_json(r, crit);
+    if (crit.equilibrium) j["critical"]["equilibrium"] = equilibrium_json(r, *crit.equilibrium);
     Json t;
     t["labels"] = labels;
-    t["rows"] = sweep_rows_json(r, table, labels);
+    t["rows"] = sweep_rows_json(r, table, labels, table.equilibria);
     t["max_liouville_residual"] = optional_json(max_res);
     j["table"] = status_json(t, table.status, vocab(r, table.message));
     return j;
@@ -349,7 +355,7 @@ Output sweep(const Request& r, const Analysis& an, std::string& warning) {
     Json j = header_json("sweep", an);
     j["mu"] = Json{{"start", r.sweep_start}, {"stop", r.sweep_stop}, {"step", r.sweep_step}};
     j["labels"] = labels;
-    j["rows"] = sweep_rows_json(r, s, labels);
+    j["rows"] = sweep_rows_json(r, s, labels, s.equilibria);
     j["max_liouville_residual"] = optional_json(max_liouville(s));
     if (s.damping_criterion) {
       j["damping_criterion"] = jnum(*s.damping_criterion);

@@ -79,7 +79,9 @@ std::string documents_section() {
          "; null when the point has none), then the "
          "other keys of " +
          section_link("PointResult") +
-         ".\n"
+         " and, with `--periodic-linearization` and no trim, `equilibrium` (a " +
+         section_link("TrimEquilibrium") +
+         ": the q° at the row's mu the point rests on).\n"
          "- `flaplag critical --json`: the header, the keys of " +
          section_link("CriticalResult") + " and, with `--trim`, `trim` (the " +
          section_link("TrimResult") +
@@ -110,7 +112,8 @@ std::string documents_section() {
          "`status`, `message`.\n"
          "- `flaplag` (the typical case) `--json`: the header, `hover`, `critical` (a " +
          section_link("CriticalResult") +
-         ") and `table` (labels, rows as in a sweep, max_liouville_residual, status, message).\n\n"
+         ", with `equilibrium` as `flaplag critical`'s) and `table` (labels, rows as in a sweep, "
+         "max_liouville_residual, status, message).\n\n"
          "A number that is not finite is written as null (the library marks the result that "
          "holds one with a non-ok status); the one exception is a zeta of -inf, written as the "
          "string \"-inf\".\n\n";

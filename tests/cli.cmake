@@ -48,8 +48,9 @@ target_compile_definitions(cli_driver_tests PRIVATE
   FLAPLAG_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
   FLAPLAG_SPEC_DIR="${PROJECT_SOURCE_DIR}/generator/orderings")
 
-# --inflow: fixed controls at the momentum inflow, against the library at eq 2.25's lambda.
-flaplag_cli_test(cli_inflow_test LIBRARY UNITS cli_inflow_test
+# --inflow: fixed controls at the momentum inflow, against the library at eq 2.25's lambda; and
+# cli_equilibrium: the q° of --periodic-linearization documents against the library's.
+flaplag_cli_test(cli_inflow_test LIBRARY UNITS cli_inflow_test cli_equilibrium_test
                  LIBRARIES flaplag_analysis nlohmann_json::nlohmann_json)
 
 # The parameter table and validation the command line relies on; docs/json.md is fresh
