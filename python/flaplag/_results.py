@@ -230,7 +230,9 @@ class PointResult(_Described):
     stable: all zeta <= 0 (None when unknown: status 'failed', or status 'warning' when the
     largest zeta is within its own error estimate of zero); notes: remarks that do not lower
     the status.  trim: at fixed C_T (trim='thrust' or 'moment'), the TrimResult at mu the
-    point rests on; otherwise None.
+    point rests on; otherwise None.  equilibrium: with periodic_linearization=True at fixed
+    controls, the PeriodicEquilibriumResult at mu the exponents were computed about (its state
+    and tips at 72 azimuths; trimmed, the trim's ``equilibrium`` says it); otherwise None.
     """
 
     mu: float
@@ -243,6 +245,7 @@ class PointResult(_Described):
     message: str
     notes: Tuple[str, ...] = ()
     trim: Optional["TrimResult"] = None
+    equilibrium: Optional["PeriodicEquilibriumResult"] = field(default=None, compare=False)
 
     @property
     def zeta(self) -> np.ndarray:
@@ -322,6 +325,9 @@ class SweepResult(_Described):
     damping_crossings: one DampingCrossing per label.  A failed step ends the sweep: then there
     are fewer points than advance ratios asked for, the failed one last.  trims: at fixed C_T
     (trim='thrust' or 'moment'), the TrimResult each point rests on, in order; otherwise ().
+    equilibria: with periodic_linearization=True at fixed controls, the
+    PeriodicEquilibriumResult each point rests on, in order (each point's ``equilibrium``);
+    otherwise ().
     """
 
     mu: np.ndarray
@@ -333,6 +339,7 @@ class SweepResult(_Described):
     damping_criterion: Optional[float] = None
     damping_crossings: Tuple[DampingCrossing, ...] = ()
     trims: Tuple["TrimResult", ...] = ()
+    equilibria: Tuple["PeriodicEquilibriumResult", ...] = field(default=(), compare=False)
     zeta: Dict[str, np.ndarray] = field(init=False)
     omega: Dict[str, np.ndarray] = field(init=False)
 
@@ -385,9 +392,17 @@ class SweepResult(_Described):
 
     @classmethod
     def _from(cls, d, labels):
-        points = tuple(PointResult._from(p) for p in d["points"])
+        equilibria = tuple(PeriodicEquilibriumResult._from(e) for e in d.get("equilibria", ()))
+        points = tuple(
+            PointResult._from(p, equilibrium=equilibria[k] if k < len(equilibria) else None)
+            for k, p in enumerate(d["points"])
+        )
         return super()._from(
-            d, points=points, mu=np.array([p.mu for p in points]), labels=tuple(labels)
+            d,
+            points=points,
+            mu=np.array([p.mu for p in points]),
+            labels=tuple(labels),
+            equilibria=equilibria,
         )
 
 
@@ -510,7 +525,9 @@ class CriticalResult(_Described):
     with all_intervals=True); exponents are those at mu_c, at hover or at the last mu scanned;
     evaluations counts the Floquet analyses.  trim: for a search at fixed C_T (trim='thrust' or
     'moment') that found mu_c, the TrimResult at mu_c (its theta0, theta1c, theta1s, inflow; as
-    ``flaplag critical --trim`` reports it); otherwise None.
+    ``flaplag critical --trim`` reports it); otherwise None.  equilibrium: with
+    periodic_linearization=True at fixed controls, the PeriodicEquilibriumResult at mu_c (at a
+    fold of the branch, beyond which there is none, the last one found below it); otherwise None.
     """
 
     mu_c: Optional[float]
@@ -527,6 +544,7 @@ class CriticalResult(_Described):
     message: str
     notes: Tuple[str, ...] = ()
     trim: Optional["TrimResult"] = None
+    equilibrium: Optional["PeriodicEquilibriumResult"] = field(default=None, compare=False)
 
     def __repr__(self):
         if self.mu_c is not None:

@@ -26,6 +26,7 @@
 #include <limits>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -296,10 +297,25 @@ RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_
 //
 // A struct becomes a dict with one entry per row of its table, under the row's name (the key the
 // command line's JSON uses): numbers and flags as they are (a zeta of -inf included), optionals
-// None when empty, described enums by name, described structs as dicts, vectors as lists.
+// None when empty, described enums by name, described structs as dicts, vectors as lists.  A
+// struct whose Python class holds more than its table (add_extra_keys) gets that from the
+// analysis it was computed with, wherever it is met: alone or as a row of another result.
+
+// The analysis a result was computed with (nullptr: none, for a result that needs none) and the
+// azimuths per revolution at which a periodic equilibrium is sampled.
+struct Context {
+  const Analysis* analysis = nullptr;
+  int samples = 72;  // Analysis.periodic_equilibrium's default
+};
 
 template <class T>
-py::dict to_dict(const T& object);
+py::dict to_dict(const T& object, const Context& context = {});
+
+// What a Python class holds beyond its table: nothing, but for these.
+template <class T>
+void add_extra_keys(py::dict&, const T&, const Context&) {}
+void add_extra_keys(py::dict& d, const PeriodicEquilibrium& e, const Context& context);
+void add_extra_keys(py::dict& d, const TrimResult& t, const Context& context);
 
 template <class T>
 using is_optional = is_optional_field<T>;
@@ -307,7 +323,7 @@ template <class T>
 using is_vector = is_vector_field<T>;
 
 template <class V>
-py::object to_python(const V& v) {
+py::object to_python(const V& v, const Context& context = {}) {
   if constexpr (std::is_same_v<V, double>) {
     return py::float_(v);
   } else if constexpr (std::is_same_v<V, bool>) {
@@ -327,22 +343,23 @@ py::object to_python(const V& v) {
   } else if constexpr (std::is_same_v<V, Eigen::MatrixXd> || std::is_same_v<V, Eigen::VectorXd>) {
     return to_numpy(v);
   } else if constexpr (is_optional<V>::value) {
-    return v ? to_python(*v) : py::object(py::none());
+    return v ? to_python(*v, context) : py::object(py::none());
   } else if constexpr (is_vector<V>::value) {
     py::list l;
-    for (const auto& x : v) l.append(to_python(x));
+    for (const auto& x : v) l.append(to_python(x, context));
     return std::move(l);
   } else {
     static_assert(is_described_struct_v<V>, "a field of a type Python cannot hold");
-    return to_dict(v);
+    return to_dict(v, context);
   }
 }
 
 template <class T>
-py::dict to_dict(const T& object) {
+py::dict to_dict(const T& object, const Context& context) {
   py::dict d;
-  for_each_field(object,
-                 [&](const auto& row, const auto& value) { d[row.name] = to_python(value); });
+  for_each_field(
+      object, [&](const auto& row, const auto& value) { d[row.name] = to_python(value, context); });
+  add_extra_keys(d, object, context);
   return d;
 }
 
@@ -542,8 +559,6 @@ py::dict modes_dict(const ModeSet& modes, const py::object& stations, int deriva
 
 // ---- long runs: studies and maps ----------------------------------------------------------------
 
-py::dict trim_dict(const TrimResult& t);
-
 // The trim of a trimmed computation from {key: value}: kind 'thrust' or 'moment' (not 'none').
 TrimOptions trim_options(const py::dict& d) {
   const std::string kind = d.contains("kind") ? d["kind"].cast<std::string>() : "none";
@@ -711,7 +726,7 @@ py::dict study(const py::dict& params, const py::dict& transition, int flap_mode
   for (std::size_t i = 0; i < r.rows.size(); ++i) {
     py::dict row = to_dict(r.rows[i].critical);
     row["trim"] =
-        trimmed && r.rows[i].trim ? py::object(trim_dict(*r.rows[i].trim)) : py::object(py::none());
+        trimmed && r.rows[i].trim ? py::object(to_dict(*r.rows[i].trim)) : py::object(py::none());
     if (o.damping_criterion) row["damping_crossings"] = to_python(r.rows[i].damping_crossings);
     rows.append(row);
   }
@@ -885,32 +900,32 @@ py::dict simulation_dict(const Analysis& a, const TipSimulation& t) {
 
 // ---- periodic equilibrium and trim -------------------------------------------------------------
 
-py::dict equilibrium_dict(const Analysis& a, const PeriodicEquilibrium& e, int samples) {
+// The coefficients, and the state and the tips sampled at context.samples azimuths (none when
+// the equilibrium failed).
+void add_extra_keys(py::dict& d, const PeriodicEquilibrium& e, const Context& context) {
+  if (context.analysis == nullptr)
+    throw std::logic_error("a periodic equilibrium needs its analysis");
+  const Analysis& a = *context.analysis;
   std::vector<double> psi;
   std::vector<Eigen::VectorXd> y;
   std::vector<TipMotion> tips = a.tip_motions();
   if (e.status != Status::Failed) {
-    for (int k = 0; k < samples; ++k) {
-      psi.push_back(kTwoPi * k / samples);
+    for (int k = 0; k < context.samples; ++k) {
+      psi.push_back(kTwoPi * k / context.samples);
       y.push_back(e.state(psi.back()));
       const std::vector<double> tip = a.tip_deflections(y.back());
       for (std::size_t i = 0; i < tips.size(); ++i) tips[i].deflection.push_back(tip[i]);
     }
   }
-  // The table's numbers, and the arrays: coefficients, samples and tips.
-  py::dict d = to_dict(e);
   d["coefficients"] = to_numpy(e.coefficients);
   d["psi"] = to_numpy(psi);
   d["y"] = states_numpy(y, a.state_size());
   d["tips"] = tip_dicts(tips);
-  return d;
 }
 
-// TrimResult's table, and the trimmed rotor's parameters (Analysis(**parameters)).
-py::dict trim_dict(const TrimResult& t) {
-  py::dict d = to_dict(t);
+// The trimmed rotor's parameters (Analysis(**parameters)).
+void add_extra_keys(py::dict& d, const TrimResult& t, const Context&) {
   d["parameters"] = parameters_dict(t.parameters);
-  return d;
 }
 
 // ---- tables -------------------------------------------------------------------------------------
@@ -1017,23 +1032,15 @@ py::list model_rows() {
 
 // A sweep's dict, with the crossings of the damping criterion when one was asked for (modes in
 // hover order, as the command line's --damping-criterion).
-py::dict sweep_dict(const Analysis& a, SweepResult r, const std::optional<double>& criterion) {
+py::dict sweep_dict(const Analysis& a, RotorSweep r, const std::optional<double>& criterion) {
   if (criterion) apply_damping_criterion(r, distinct_labels(a.hover().labels), *criterion);
-  return to_dict(r);
+  return to_dict(r, Context{&a});
 }
 
 // The analysis of a's rotor trimmed at every mu with o (a's options as resolved).
 Analysis trimmed(const Analysis& a, const TrimOptions& o) {
   return Analysis(a.parameters(), a.options(),
                   OperatingCondition::Trimmed(o).About(a.condition().linearization));
-}
-
-// A trimmed sweep's dict with the trims of its points (`trims`, one per row).
-py::dict with_trims(py::dict d, const RotorSweep& r) {
-  py::list trims;
-  for (const TrimResult& t : r.trims) trims.append(trim_dict(t));
-  d["trims"] = trims;
-  return d;
 }
 
 void check_criterion(const std::optional<double>& criterion) {
@@ -1141,12 +1148,12 @@ void bind_stability(py::class_<Analysis>& analysis) {
   analysis
       .def("point",
            [](const Analysis& a, double mu, double scan_step) {
-             PointResult r;
+             RotorPoint r;
              {
                py::gil_scoped_release release;
                r = a.point(mu, scan_step);
              }
-             return to_dict(r);
+             return to_dict(r, Context{&a});
            })
       // sweep and track: progress(evaluations done, in all) and Ctrl-C as study and map.
       .def("sweep",
@@ -1158,12 +1165,12 @@ void bind_stability(py::class_<Analysis>& analysis) {
              const std::size_t points = sweep_grid(mu0, mu1, step).size();
              check_memory(sweep_memory(points, a.state_size()), memory_limit, "step",
                           round_trip_text(step));
-             const SweepResult r = run_cancellable<SweepResult>(
-                 [&](const std::atomic<bool>* cancel, ProgressFunction report) -> SweepResult {
+             const RotorSweep r = run_cancellable<RotorSweep>(
+                 [&](const std::atomic<bool>* cancel, ProgressFunction report) -> RotorSweep {
                    try {
                      return a.sweep(mu0, mu1, step, threads, cancel, report);
                    } catch (const Cancelled&) {
-                     return SweepResult{};  // run_cancellable raises what cancelled it
+                     return RotorSweep{};  // run_cancellable raises what cancelled it
                    }
                  },
                  progress);
@@ -1177,12 +1184,12 @@ void bind_stability(py::class_<Analysis>& analysis) {
              if (mus.size() <= static_cast<std::size_t>(kMaxContinuationSteps))
                check_memory(sweep_memory(mus.size(), a.state_size()), memory_limit, "mu",
                             std::to_string(mus.size()) + " advance ratios");
-             const SweepResult r = run_cancellable<SweepResult>(
-                 [&](const std::atomic<bool>* cancel, ProgressFunction report) -> SweepResult {
+             const RotorSweep r = run_cancellable<RotorSweep>(
+                 [&](const std::atomic<bool>* cancel, ProgressFunction report) -> RotorSweep {
                    try {
                      return a.track(mus, scan_step, threads, cancel, report);
                    } catch (const Cancelled&) {
-                     return SweepResult{};
+                     return RotorSweep{};
                    }
                  },
                  progress);
@@ -1191,12 +1198,12 @@ void bind_stability(py::class_<Analysis>& analysis) {
       .def("critical",
            [](const Analysis& a, const py::dict& options) {
              const CriticalOptions o = critical_options(options);
-             CriticalResult r;
+             RotorCritical r;
              {
                py::gil_scoped_release release;
                r = a.critical(o);
              }
-             return to_dict(r);
+             return to_dict(r, Context{&a});
            })
       .def("floquet", [](const Analysis& a, double mu, double zeta_tolerance) {
         FloquetSample s;
@@ -1295,7 +1302,7 @@ void bind_time_domain(py::class_<Analysis>& analysis) {
                py::gil_scoped_release release;
                e = a.periodic_equilibrium(mu, o);
              }
-             return equilibrium_dict(a, e, samples);
+             return to_dict(e, Context{&a, samples});
            });
 }
 
@@ -1310,7 +1317,7 @@ void bind_trim(py::class_<Analysis>& analysis) {
                py::gil_scoped_release release;
                t = trim(a.parameters(), mu, o, nullptr, a.condition().linearization);
              }
-             return trim_dict(t);
+             return to_dict(t);
            })
       // inflow: "momentum" (eq 2.25 solved with the thrust), "paper" (eq 2.24) or "given"
       // (lambda = value).
@@ -1364,9 +1371,7 @@ void bind_trimmed_stability(py::class_<Analysis>& analysis) {
                py::gil_scoped_release release;
                r = trimmed(a, o).point(mu, scan_step);
              }
-             py::dict d = to_dict(static_cast<const PointResult&>(r));
-             d["trim"] = r.trim ? py::object(trim_dict(*r.trim)) : py::object(py::none());
-             return d;
+             return to_dict(r, Context{&a});
            })
       .def("trimmed_sweep",
            [](const Analysis& a, double mu0, double mu1, double step, const std::string& kind,
@@ -1386,7 +1391,7 @@ void bind_trimmed_stability(py::class_<Analysis>& analysis) {
                    }
                  },
                  progress);
-             return with_trims(sweep_dict(a, r, damping_criterion), r);
+             return sweep_dict(a, r, damping_criterion);
            })
       .def("trimmed_track",
            [](const Analysis& a, const std::vector<double>& mus, double scan_step,
@@ -1407,7 +1412,7 @@ void bind_trimmed_stability(py::class_<Analysis>& analysis) {
                    }
                  },
                  progress);
-             return with_trims(sweep_dict(a, r, damping_criterion), r);
+             return sweep_dict(a, r, damping_criterion);
            })
       .def("trimmed_critical",
            [](const Analysis& a, const py::dict& options, const std::string& kind,
@@ -1419,10 +1424,9 @@ void bind_trimmed_stability(py::class_<Analysis>& analysis) {
                py::gil_scoped_release release;
                r = trimmed(a, o).critical(c);
              }
-             py::dict d = to_dict(static_cast<const CriticalResult&>(r));
-             // The trim at mu_c the search rests on (as `flaplag critical --trim` reports it).
-             d["trim"] = r.trim ? py::object(trim_dict(*r.trim)) : py::object(py::none());
-             return d;
+             // With the trim at mu_c the search rests on (as `flaplag critical --trim` reports
+             // it).
+             return to_dict(r, Context{&a});
            });
 }
 

@@ -484,6 +484,46 @@ def test_periodic_linearization_is_the_conditions_keyword_not_a_parameter():
     )
 
 
+def _same_equilibrium(carried, alone):
+    """carried (a result's q°) is alone (found on its own, continued from hover) to the Newton
+    tolerance: the same K, coefficients within 1e-9, sampled at the same 72 azimuths."""
+    assert isinstance(carried, flaplag.PeriodicEquilibriumResult)
+    assert carried.status != "failed", carried.message
+    assert carried.mu == alone.mu and carried.harmonics == alone.harmonics
+    assert carried.coefficients.shape == alone.coefficients.shape
+    assert np.max(np.abs(carried.coefficients - alone.coefficients)) < 1e-9
+    assert np.array_equal(carried.psi, alone.psi) and carried.y.shape == alone.y.shape == (72, 4)
+    assert np.max(np.abs(carried.tips["flap"].deflection - alone.tips["flap"].deflection)) < 1e-9
+    # a q° of its own mu, not the hover one or another point's
+    assert np.max(np.abs(carried.coefficients[:, 1:])) > 1e-3
+
+
+def test_results_about_the_periodic_equilibrium_carry_it():
+    """point, each point of a sweep and critical about q° hold the PeriodicEquilibriumResult
+    their exponents were computed about; about hover and with a trim (the trim holds it) None."""
+    an = flaplag.Analysis(periodic_linearization=True)
+    alone = an.periodic_equilibrium(0.3)
+    _same_equilibrium(an.point(0.3).equilibrium, alone)
+    s = an.sweep(0.1, 0.3, 0.1)
+    assert len(s.equilibria) == len(s.points) == 3
+    for p, e in zip(s.points, s.equilibria):
+        assert p.equilibrium is e and e.mu == p.mu
+        _same_equilibrium(e, an.periodic_equilibrium(p.mu))
+    assert an.sweep([0.3]).points[0].equilibrium.mu == 0.3
+    # critical: a lag flutter near mu = 0.3 with a soft lag mode and a higher pitch
+    soft = flaplag.Analysis(periodic_linearization=True, omega_lag=0.8, theta=0.25)
+    c = soft.critical(mu_max=0.5)
+    assert c.mu_c is not None and c.equilibrium is not None, c
+    assert abs(c.equilibrium.mu - c.mu_c) <= c.mu_c_error
+    _same_equilibrium(c.equilibrium, soft.periodic_equilibrium(c.equilibrium.mu))
+    hover = flaplag.Analysis()
+    assert hover.point(0.3).equilibrium is None and hover.critical(mu_max=0.3).equilibrium is None
+    assert hover.sweep(0.1, 0.3, 0.1).equilibria == ()
+    assert all(p.equilibrium is None for p in hover.sweep(0.1, 0.3, 0.1).points)
+    trimmed = an.point(0.3, trim="thrust", thrust_coefficient=0.005)
+    assert trimmed.equilibrium is None and trimmed.trim.equilibrium["harmonics"] == 16
+
+
 def test_periodic_equilibrium_arrays_and_its_hover_limit():
     an = flaplag.Analysis()
     e = an.periodic_equilibrium(0.3, harmonics=8, samples=36)

@@ -14,11 +14,11 @@ from flaplag._results import TipMotion
 from conftest import run_cli
 
 # Attributes a class adds of its own (not rows of the C++ struct's field table), by class: the
-# trims are the analysis' (RotorPoint::trim, RotorSweep::trims, RotorCritical::trim).
+# trims and equilibria are the analysis' (RotorPoint::trim, RotorSweep::trims, ...).
 PYTHON_ONLY = {
-    "PointResult": {"trim"},
-    "SweepResult": {"mu", "labels", "zeta", "omega", "trims"},
-    "CriticalResult": {"trim"},
+    "PointResult": {"trim", "equilibrium"},
+    "SweepResult": {"mu", "labels", "zeta", "omega", "trims", "equilibria"},
+    "CriticalResult": {"trim", "equilibrium"},
     "TrimResult": {"parameters"},
     "PeriodicEquilibriumResult": {"coefficients", "psi", "y", "tips"},
 }

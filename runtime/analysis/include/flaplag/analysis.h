@@ -120,6 +120,37 @@ struct RotorCritical : CriticalResult {
   const PeriodicEquilibrium* periodic_equilibrium() const;  // as RotorPoint's
 };
 
+// Their tables: the numerics' result's rows, then what the analysis adds (a front end that writes
+// the q° otherwise, e.g. the command line's K and truncation, takes the numerics' table).
+constexpr auto describe(Tag<RotorPoint>) {
+  return std::tuple_cat(
+      describe(Tag<PointResult>{}),
+      std::make_tuple(
+          Field{"trim", &RotorPoint::trim, "", "trimmed: the trim at mu", kFieldOmitWhenEmpty},
+          Field{"equilibrium", &RotorPoint::equilibrium, "",
+                "about the periodic equilibrium at fixed controls: the q° at mu",
+                kFieldOmitWhenEmpty}));
+}
+constexpr auto describe(Tag<RotorSweep>) {
+  return std::tuple_cat(
+      describe(Tag<SweepResult>{}),
+      std::make_tuple(Field{"trims", &RotorSweep::trims, "", "trimmed: the trim at each point",
+                            kFieldOmitWhenEmpty},
+                      Field{"equilibria", &RotorSweep::equilibria, "",
+                            "about the periodic equilibrium at fixed controls: the q° at each "
+                            "point",
+                            kFieldOmitWhenEmpty}));
+}
+constexpr auto describe(Tag<RotorCritical>) {
+  return std::tuple_cat(
+      describe(Tag<CriticalResult>{}),
+      std::make_tuple(
+          Field{"trim", &RotorCritical::trim, "", "trimmed: the trim at mu_c", kFieldOmitWhenEmpty},
+          Field{"equilibrium", &RotorCritical::equilibrium, "",
+                "about the periodic equilibrium at fixed controls: the q° at mu_c",
+                kFieldOmitWhenEmpty}));
+}
+
 // The numbers an auditor needs at one (mu, psi).  Outcome: Failed when an entry of A or f or an
 // integral is not finite.
 struct SystemSnapshot : Outcome {
