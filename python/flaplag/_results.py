@@ -100,9 +100,10 @@ def _convert(hint, value):
 class _Described:
     """A result built from the dict of a C++ struct with a field table (core/fields.h): the
     table's keys (``_flaplag.result_fields(name)``) are the attributes, under the names of the
-    command line's JSON.  A key the class declares is converted to its annotated type; a key
-    the class computes itself is a property of the same name; any other key (a row added to
-    the C++ table) is an attribute as the module gives it, until the class declares it."""
+    command line's JSON.  A key the class declares (or _table declares for it) is converted to
+    its annotated type; a key the class computes itself is a property of the same name; any
+    other key (a row of a struct whose class is not built by _table, or a key the module adds)
+    is an attribute as the module gives it."""
 
     @classmethod
     def _from(cls, d, **given):
@@ -153,11 +154,52 @@ def _tip_alias(tips, name):
 @functools.lru_cache(maxsize=None)
 def _init_fields(cls):
     """(name, type hint) of the attributes a result class is constructed with."""
-    hints = typing.get_type_hints(cls, include_extras=True)
+    hints = typing.get_type_hints(cls, globalns=globals(), include_extras=True)
     return tuple((f.name, hints[f.name]) for f in dataclasses.fields(cls) if f.init)
 
 
+def _annotation(words):
+    """The annotation of a row's value from its C++ type (_flaplag.result_types): numbers in a
+    list are a numpy array of their type, other lists tuples, a struct its class (by name) or a
+    dict."""
+    kind, _, rest = words.partition(" ")
+    if kind == "optional":
+        return Optional[_annotation(rest)]
+    if kind == "list":
+        item = _annotation(rest)
+        return _array(item) if item in (float, complex) else Tuple[item, ...]
+    if kind == "struct":
+        return rest or dict
+    simple = {"float": float, "int": int, "bool": bool, "str": str, "complex": complex}
+    arrays = {"dict": Dict[str, float], "matrix": np.ndarray, "vector": _array(float)}
+    return simple.get(kind) or arrays[kind]
+
+
+def _table(name):
+    """A result class's attributes from the C++ table of ``name`` (under @dataclass): one per
+    row, in the table's order, annotated by the row's type, but for a row the class computes (a
+    property); the class declares only a row whose type or default differs and attributes of
+    its own (after the rows, with defaults).  Rows that documents leave out when empty default
+    to empty when they are the last."""
+
+    def build(cls):
+        own = dict(cls.__dict__.get("__annotations__", {}))
+        rows = [r for r in _flaplag.result_types(name)
+                if r[0] in own or not isinstance(getattr(cls, r[0], None), property)]
+        annotations = {}
+        for k, (key, words, optional) in enumerate(rows):
+            annotations[key] = own.pop(key, None) or _annotation(words)
+            trailing = all(r[2] for r in rows[k:])
+            if optional and trailing and key not in cls.__dict__:
+                setattr(cls, key, () if words.startswith("list") else None)
+        cls.__annotations__ = {**annotations, **own}
+        return cls
+
+    return build
+
+
 @dataclass(frozen=True, repr=False)
+@_table("Exponent")
 class Exponent(_Described):
     """One characteristic exponent lambda = zeta + i omega [per rev] with its mode label.
 
@@ -166,10 +208,7 @@ class Exponent(_Described):
     by continuation from hover; zeta = -inf marks a multiplier that underflowed to zero.
     """
 
-    label: str
-    zeta: float
-    omega: float
-    multiplier: Optional[complex] = None
+    multiplier: Optional[complex] = None  # None for the hover eigenvalues
 
     @property
     def damping_ratio(self) -> Optional[float]:
@@ -188,6 +227,7 @@ def _exponent_list(exponents):
 
 
 @dataclass(frozen=True, repr=False)
+@_table("HoverResult")
 class HoverResult(_Described):
     """The hover equilibrium (eqs 2.24, 2.29-2.32) and the hover exponents.
 
@@ -196,15 +236,6 @@ class HoverResult(_Described):
     zeta <= 0 (None when unknown: the largest real part is within the rounding level of zero,
     status 'warning').
     """
-
-    inflow: float
-    equilibrium: Dict[str, float]
-    A0: np.ndarray
-    eigenvalues: _array(complex)
-    labels: Tuple[str, ...]
-    stable: Optional[bool]
-    status: str
-    message: str
 
     @property
     def exponents(self) -> Tuple[Exponent, ...]:
@@ -221,6 +252,7 @@ class HoverResult(_Described):
 
 
 @dataclass(frozen=True, repr=False)
+@_table("PointResult")
 class PointResult(_Described):
     """The labelled exponents at one advance ratio mu.
 
@@ -235,15 +267,6 @@ class PointResult(_Described):
     and tips at 72 azimuths; trimmed, the trim's ``equilibrium`` says it); otherwise None.
     """
 
-    mu: float
-    exponents: Tuple[Exponent, ...]
-    liouville_residual: Optional[float]
-    error_estimate: Optional[float]
-    steps: int
-    stable: Optional[bool]
-    status: str
-    message: str
-    notes: Tuple[str, ...] = ()
     trim: Optional["TrimResult"] = None
     equilibrium: Optional["PeriodicEquilibriumResult"] = field(default=None, compare=False)
 
@@ -293,6 +316,7 @@ class PointResult(_Described):
 
 
 @dataclass(frozen=True, repr=False)
+@_table("DampingCrossing")
 class DampingCrossing(_Described):
     """Where mode ``mode``'s damping ratio -zeta/|lambda| (a fraction of critical) first falls
     below the sweep's damping criterion C.
@@ -302,12 +326,6 @@ class DampingCrossing(_Described):
     has no error estimate or lies within its error of C, or a point between has no ratio; mu
     may be None); 'below_at_start' (mu: the first point); 'not_crossed' (mu None).
     """
-
-    mode: str
-    mu: Optional[float]
-    status: str
-    mu_above: Optional[float]
-    mu_below: Optional[float]
 
     def __repr__(self):
         return f"DampingCrossing({self.mode!r}, mu={_g(self.mu)}, status={self.status!r})"
@@ -407,52 +425,38 @@ class SweepResult(_Described):
 
 
 @dataclass(frozen=True, repr=False)
+@_table("CampbellFrequency")
 class CampbellFrequency(_Described):
     """One mode at one rotor speed: ``frequency`` by the nominal speed Omega_0 (omega Omega /
     Omega_0), ``omega`` per rev at this speed, the damping ratio -zeta/|lambda| (None at
     Omega = 0, where nothing rotates)."""
-
-    label: str
-    frequency: float
-    omega: float
-    damping_ratio: Optional[float]
 
     def __repr__(self):
         return f"CampbellFrequency({self.label!r}, frequency={_g(self.frequency)})"
 
 
 @dataclass(frozen=True, repr=False)
+@_table("CampbellPoint")
 class CampbellPoint(_Described):
     """The modes at one rotor speed Omega/Omega_0, with the blade's first rotating frequencies
     by Omega there (omega_flap, omega_lag)."""
-
-    speed: float
-    omega_flap: float
-    omega_lag: float
-    modes: Tuple[CampbellFrequency, ...]
-    status: str
-    message: str
-    notes: Tuple[str, ...] = ()
 
     def __repr__(self):
         return f"CampbellPoint(speed={_g(self.speed)}, {_status(self.status, self.message)})"
 
 
 @dataclass(frozen=True, repr=False)
+@_table("CampbellCrossing")
 class CampbellCrossing(_Described):
     """Where mode ``label``'s frequency meets the per-rev line n Omega (n = ``harmonic``), at
     the rotor speed ``speed`` = Omega/Omega_0 (linear between the speeds around it)."""
-
-    label: str
-    harmonic: int
-    speed: float
-    frequency: float
 
     def __repr__(self):
         return f"CampbellCrossing({self.label!r}, {self.harmonic}/rev at speed {_g(self.speed)})"
 
 
 @dataclass(frozen=True, repr=False)
+@_table("CampbellResult")
 class CampbellResult(_Described):
     """The Campbell diagram (Analysis.campbell): every mode's frequency by the nominal speed
     against the rotor speed Omega/Omega_0, at the advance ratio mu.
@@ -461,15 +465,6 @@ class CampbellResult(_Described):
     (nan where a point failed); points: one CampbellPoint each; crossings: every crossing of a
     mode with a per-rev line n Omega, n = 1 .. harmonics.
     """
-
-    mu: float
-    harmonics: int
-    labels: Tuple[str, ...]
-    points: Tuple[CampbellPoint, ...]
-    crossings: Tuple[CampbellCrossing, ...]
-    status: str
-    message: str
-    notes: Tuple[str, ...] = ()
 
     @property
     def speed(self) -> np.ndarray:
@@ -492,18 +487,11 @@ class CampbellResult(_Described):
 
 
 @dataclass(frozen=True, repr=False)
+@_table("Interval")
 class Interval(_Described):
     """One interval of instability in mu: max zeta > zeta_threshold for onset < mu < end
     (end None: still unstable at mu_max), with the mode that crosses at the onset, its omega
     [per rev] and kind ('flutter' or 'periodic'); *_error: estimated |error| of onset / end."""
-
-    onset: float
-    end: Optional[float]
-    onset_error: Optional[float]
-    end_error: Optional[float]
-    mode: str
-    omega: float
-    kind: str
 
     def __repr__(self):
         return (
@@ -513,6 +501,7 @@ class Interval(_Described):
 
 
 @dataclass(frozen=True, repr=False)
+@_table("CriticalResult")
 class CriticalResult(_Described):
     """The critical advance ratio mu_c: the first mu in (0, mu_max] where an exponent has
     zeta > zeta_threshold.
@@ -530,19 +519,6 @@ class CriticalResult(_Described):
     fold of the branch, beyond which there is none, the last one found below it); otherwise None.
     """
 
-    mu_c: Optional[float]
-    mu_c_error: Optional[float]
-    mode: Optional[str]
-    omega: Optional[float]
-    kind: Optional[str]
-    hover_unstable: bool
-    mu_max: float
-    exponents: Tuple[Exponent, ...]
-    intervals: Tuple[Interval, ...]
-    evaluations: int
-    status: str
-    message: str
-    notes: Tuple[str, ...] = ()
     trim: Optional["TrimResult"] = None
     equilibrium: Optional["PeriodicEquilibriumResult"] = field(default=None, compare=False)
 
@@ -644,21 +620,11 @@ class ModeShapes(_Described):
 
 
 @dataclass(frozen=True, repr=False)
+@_table("FloquetSample")
 class FloquetSample(_Described):
     """One Floquet analysis at mu, without continuation: multipliers of Phi(2 pi), zeta and
     omega (principal value in (-1/2, 1/2]) [per rev], zeta_errors (estimated, per exponent),
     error_estimate (the largest), steps per period, the Liouville residual."""
-
-    multipliers: _array(complex)
-    zeta: _array(float)
-    omega: _array(float)
-    zeta_errors: _array(float)
-    error_estimate: Optional[float]
-    steps: int
-    liouville_residual: float
-    status: str
-    message: str
-    notes: Tuple[str, ...] = ()
 
     @property
     def error(self) -> Optional[float]:
@@ -804,6 +770,7 @@ class SimulationResult(_Described):
 
 
 @dataclass(frozen=True, repr=False, eq=False)
+@_table("PeriodicEquilibriumResult")
 class PeriodicEquilibriumResult(_Described):
     """The periodic equilibrium q°(psi) of the nonlinear equations at one mu (C++
     Analysis::periodic_equilibrium, harmonic balance + Newton, continued from hover).
@@ -826,25 +793,11 @@ class PeriodicEquilibriumResult(_Described):
     'warning' when unstable or the truncation is not small.
     """
 
-    mu: float
-    harmonics: int
-    flap_modes: int
-    coefficients: np.ndarray
-    psi: np.ndarray
-    y: np.ndarray
-    tips: Mapping[str, TipMotion]
-    continued_to: float
-    iterations: int
-    step: float
-    residual: float
-    truncation: float
-    harmonics_error: float
-    multiplier_moduli: _array(float)
-    min_distance_to_one: Optional[float]
-    status: str
-    message: str
-    mean_thrust: float = math.nan
-    notes: Tuple[str, ...] = ()
+    # The module's arrays beside the table's rows (always given).
+    coefficients: np.ndarray = None
+    psi: np.ndarray = None
+    y: np.ndarray = None
+    tips: Mapping[str, TipMotion] = None
 
     @property
     def max_zeta(self) -> Optional[float]:
@@ -863,6 +816,7 @@ class PeriodicEquilibriumResult(_Described):
 
 
 @dataclass(frozen=True, repr=False)
+@_table("TrimResult")
 class TrimResult(_Described):
     """A trim at one mu (C++ flaplag::trim, the command line's ``flaplag trim``): the controls
     theta0, theta1c, theta1s [rad] and the inflow lambda (eq 2.25) at which the model's own
@@ -875,23 +829,7 @@ class TrimResult(_Described):
     is unstable; 'failed' without a periodic response or when the residual cannot be reduced.
     """
 
-    mu: float
-    kind: str
-    theta0: float
-    theta1c: float
-    theta1s: float
-    inflow: float
-    thrust_coefficient: float
-    target: float
-    flap_1c: float
-    flap_1s: float
-    iterations: int
-    converged: bool
-    parameters: Dict[str, object]
-    status: str
-    message: str
-    equilibrium: Optional[Dict[str, object]] = None
-    notes: Tuple[str, ...] = ()
+    parameters: Dict[str, object] = field(default_factory=dict)
 
     def __repr__(self):
         return (
@@ -903,19 +841,11 @@ class TrimResult(_Described):
 
 
 @dataclass(frozen=True, repr=False)
+@_table("ThrustResult")
 class ThrustResult(_Described):
     """The model's own thrust at one mu (C++ rotor_thrust): thrust_coefficient C_T (not
     C_T / sigma) with the inflow lambda used, and the first flap tip harmonic flap_1c,
     flap_1s (by l).  status 'failed' without a periodic response."""
-
-    mu: float
-    inflow: float
-    thrust_coefficient: float
-    flap_1c: float
-    flap_1s: float
-    status: str
-    message: str
-    notes: Tuple[str, ...] = ()
 
     def __repr__(self):
         return (

@@ -363,11 +363,81 @@ py::dict to_dict(const T& object, const Context& context) {
   return d;
 }
 
-// The keys of T's table with their units and docs, for the Python classes and their tests.
+// The result structs the Python classes are built from, each with its class's name.
+template <class F>
+void for_each_result_struct(F&& f) {
+  f(Tag<LabelledExponent>{}, "Exponent");
+  f(Tag<PointResult>{}, "PointResult");
+  f(Tag<SweepResult>{}, "SweepResult");
+  f(Tag<InstabilityInterval>{}, "Interval");
+  f(Tag<DampingCrossing>{}, "DampingCrossing");
+  f(Tag<CriticalResult>{}, "CriticalResult");
+  f(Tag<TrimResult>{}, "TrimResult");
+  f(Tag<ThrustResult>{}, "ThrustResult");
+  f(Tag<FloquetSample>{}, "FloquetSample");
+  f(Tag<PeriodicEquilibrium>{}, "PeriodicEquilibriumResult");
+  f(Tag<model::ModelDescriptor>{}, "ModelInfo");
+  f(Tag<HoverResult>{}, "HoverResult");
+  f(Tag<StudyRow>{}, "StudyRow");
+  f(Tag<MapCell>{}, "MapCell");
+  f(Tag<CampbellResult>{}, "CampbellResult");
+  f(Tag<CampbellPoint>{}, "CampbellPoint");
+  f(Tag<CampbellFrequency>{}, "CampbellFrequency");
+  f(Tag<CampbellCrossing>{}, "CampbellCrossing");
+}
+
+// The Python class of a described struct ("" for one without: a dict).
 template <class T>
-py::list field_rows() {
+std::string python_class() {
+  std::string name;
+  for_each_result_struct([&](auto tag, const char* n) {
+    if (std::is_same_v<typename decltype(tag)::type, T>) name = n;
+  });
+  return name;
+}
+
+// The type of a row's value in the words the Python layer turns into its annotation:
+// "float", "int", "bool", "str", "complex", "dict" (numbers by name), "matrix", "vector",
+// "optional <type>", "list <type>", "struct <class>" (a dict for a struct without a class).
+template <class V>
+std::string type_words() {
+  if constexpr (std::is_same_v<V, double>) {
+    return "float";
+  } else if constexpr (std::is_same_v<V, bool>) {
+    return "bool";
+  } else if constexpr (std::is_same_v<V, int>) {
+    return "int";
+  } else if constexpr (std::is_same_v<V, std::string> || is_described_enum_v<V>) {
+    return "str";
+  } else if constexpr (std::is_same_v<V, std::complex<double>>) {
+    return "complex";
+  } else if constexpr (is_named_values_field<V>::value) {
+    return "dict";
+  } else if constexpr (std::is_same_v<V, Eigen::MatrixXd>) {
+    return "matrix";
+  } else if constexpr (std::is_same_v<V, Eigen::VectorXd>) {
+    return "vector";
+  } else if constexpr (is_optional<V>::value) {
+    return "optional " + type_words<typename V::value_type>();
+  } else if constexpr (is_vector<V>::value) {
+    return "list " + type_words<typename V::value_type>();
+  } else {
+    static_assert(is_described_struct_v<V>, "a field of a type Python cannot hold");
+    return "struct " + python_class<V>();
+  }
+}
+
+// row(r) for each row r of the table of the struct of the Python class `name`.
+template <class Row>
+py::list result_rows(const std::string& name, Row&& row) {
   py::list l;
-  for_each_row<T>([&](const auto& row) { l.append(py::make_tuple(row.name, row.units, row.doc)); });
+  bool found = false;
+  for_each_result_struct([&](auto tag, const char* n) {
+    if (name != n) return;
+    found = true;
+    for_each_row<typename decltype(tag)::type>([&](const auto& r) { l.append(row(r)); });
+  });
+  if (!found) throw InvalidInput("name", quoted(name), "not a described result");
   return l;
 }
 
@@ -490,8 +560,6 @@ py::list option_rows(const std::string& name) {
     return l;
   });
 }
-
-py::dict hover_dict(const Analysis& an) { return to_dict(an.hover()); }
 
 // The stations: an array of them, or (an integer n) n equally spaced ones over [0, 1], made
 // here so that no list of n Python floats is built first.  Checked against the memory limit
@@ -1079,27 +1147,16 @@ void bind_tables(py::module_& m) {
   m.def("option_table", &option_rows);
   m.def("damping_ratio",
         [](double zeta, double omega) { return optional(damping_ratio(zeta, omega)); });
-  // The rows (key, units, doc) of a result's table, by the Python class's name.
+  // The rows (key, units, doc) of a result's table, by the Python class's name, and (key,
+  // type_words, whether a document leaves it out when empty) for the class's attributes.
   m.def("result_fields", [](const std::string& name) {
-    if (name == "Exponent") return field_rows<LabelledExponent>();
-    if (name == "PointResult") return field_rows<PointResult>();
-    if (name == "SweepResult") return field_rows<SweepResult>();
-    if (name == "Interval") return field_rows<InstabilityInterval>();
-    if (name == "DampingCrossing") return field_rows<DampingCrossing>();
-    if (name == "CriticalResult") return field_rows<CriticalResult>();
-    if (name == "TrimResult") return field_rows<TrimResult>();
-    if (name == "ThrustResult") return field_rows<ThrustResult>();
-    if (name == "FloquetSample") return field_rows<FloquetSample>();
-    if (name == "PeriodicEquilibriumResult") return field_rows<PeriodicEquilibrium>();
-    if (name == "ModelInfo") return field_rows<model::ModelDescriptor>();
-    if (name == "HoverResult") return field_rows<HoverResult>();
-    if (name == "StudyRow") return field_rows<StudyRow>();
-    if (name == "MapCell") return field_rows<MapCell>();
-    if (name == "CampbellResult") return field_rows<CampbellResult>();
-    if (name == "CampbellPoint") return field_rows<CampbellPoint>();
-    if (name == "CampbellFrequency") return field_rows<CampbellFrequency>();
-    if (name == "CampbellCrossing") return field_rows<CampbellCrossing>();
-    throw InvalidInput("name", quoted(name), "not a described result");
+    return result_rows(name, [](const auto& r) { return py::make_tuple(r.name, r.units, r.doc); });
+  });
+  m.def("result_types", [](const std::string& name) {
+    return result_rows(name, [](const auto& r) {
+      using V = typename std::decay_t<decltype(r)>::value_type;
+      return py::make_tuple(r.name, type_words<V>(), (r.flags & kFieldOmitWhenEmpty) != 0);
+    });
   });
   m.def("models", &model_rows);
   // spec="my.toml": derives the spec now and registers its model (runtime_spec.h).
@@ -1139,7 +1196,7 @@ void bind_construction(py::class_<Analysis>& analysis) {
       .def("parameters", [](const Analysis& a) { return parameters_dict(a.parameters()); })
       .def("transition", [](const Analysis& a) { return to_dict(a.options()); })
       .def("model", [](const Analysis& a) { return to_dict(a.model()); })
-      .def("hover", &hover_dict);
+      .def("hover", [](const Analysis& a) { return to_dict(a.hover()); });
 }
 
 // Stability in forward flight: one mu, a grid or track of mu, the critical mu, one Floquet
