@@ -435,8 +435,11 @@ class Analysis:
 
     # -- analyses ------------------------------------------------------------------------------
 
-    def _at(self, inflow_model):
-        """The native analysis at fixed controls with this inflow model (None: this one)."""
+    def _at(self, trim_request, inflow_model):
+        """The native analysis at an operating condition: trimmed by a _trim_request, or at fixed
+        controls with an inflow model (both None: this one)."""
+        if trim_request is not None:
+            return self._native.trimmed(*trim_request)
         return self._native if inflow_model is None else self._native.at_inflow(inflow_model)
 
     def point(
@@ -462,13 +465,8 @@ class Analysis:
         alpha_R = shaft_angle (default 0) at every mu, sqrt(C_T/2) in hover; None or 'uniform'
         is eq 2.24, the paper's (C++ OperatingCondition::inflow, InflowModel::Momentum)."""
         t, model = _inflow_request(inflow, trim, thrust_coefficient, shaft_angle)
-        if t is not None:
-            return PointResult._from(
-                self._native.trimmed_point(_real("mu", mu), _real("scan_step", scan_step), *t)
-            )
-        return PointResult._from(
-            self._at(model).point(_real("mu", mu), _real("scan_step", scan_step))
-        )
+        mu, scan_step = _real("mu", mu), _real("scan_step", scan_step)
+        return PointResult._from(self._at(t, model).point(mu, scan_step))
 
     def sweep(
         self,
@@ -515,12 +513,11 @@ class Analysis:
         ss = _real("scan_step", scan_step)
         if not (math.isfinite(ss) and ss > 0.0):
             raise _invalid(InvalidInput, "scan_step", ss, "must be finite and > 0")
+        if t is not None:
+            threads = 1  # a trimmed sweep runs on one
         if stop is None and step is None:
             mus = _real_array("mu", mu)
-            if t is None:
-                raw = self._at(model).track(mus, ss, threads, progress, limit, dc)
-            else:
-                raw = self._native.trimmed_track(mus, ss, *t, progress, limit, dc)
+            raw = self._at(t, model).track(mus, ss, threads, progress, limit, dc)
         elif stop is None or step is None:
             raise TypeError("sweep(start, stop, step) needs all three, or sweep(mus) an array")
         else:
@@ -532,10 +529,7 @@ class Analysis:
             # The library names the grid mu0, mu1 (its arguments, the command line's
             # START:STOP): the user typed mu and stop.
             with _keywords(mu0="mu", mu1="stop"):
-                if t is None:
-                    raw = self._at(model).sweep(*grid, threads, progress, limit, dc)
-                else:
-                    raw = self._native.trimmed_sweep(*grid, *t, progress, limit, dc)
+                raw = self._at(t, model).sweep(*grid, threads, progress, limit, dc)
         return SweepResult._from(raw, self._labels())
 
     def critical(
@@ -572,9 +566,7 @@ class Analysis:
             "periodic_omega_tolerance": _real("periodic_omega_tolerance", periodic_omega_tolerance),
             "scan_zeta_tolerance": _real("scan_zeta_tolerance", scan_zeta_tolerance),
         }
-        if t is not None:
-            return CriticalResult._from(self._native.trimmed_critical(opts, *t))
-        return CriticalResult._from(self._at(model).critical(opts))
+        return CriticalResult._from(self._at(t, model).critical(opts))
 
     def system(self, mu, psi=0.0) -> SystemResult:
         """The periodic system y' = A(psi) y + f(psi) at advance ratio mu and azimuth psi [rad]

@@ -1407,9 +1407,10 @@ void bind_trim(py::class_<Analysis>& analysis) {
       });
 }
 
-// Stability at fixed C_T: the rotor trimmed at every mu evaluated (OperatingCondition::Trimmed),
-// with the trims the results rest on.  And at fixed controls with another inflow model.
-void bind_trimmed_stability(py::class_<Analysis>& analysis) {
+// The analysis of the same rotor at another operating condition: trimmed at every mu evaluated
+// (OperatingCondition::Trimmed; its results carry the trims they rest on), or at fixed controls
+// with another inflow model.  Their point, sweep, track and critical are the methods above.
+void bind_conditions(py::class_<Analysis>& analysis) {
   analysis
       // The analysis of a's rotor at fixed controls with the inflow model {key: value} of
       // InflowModel's table (kind, thrust_coefficient, shaft_angle; a's options as resolved).
@@ -1419,72 +1420,14 @@ void bind_trimmed_stability(py::class_<Analysis>& analysis) {
              c.inflow = options_from<InflowModel>(model, "unknown inflow option");
              return Analysis(a.parameters(), a.options(), c);
            })
-      .def("trimmed_point",
-           [](const Analysis& a, double mu, double scan_step, const std::string& kind,
-              double thrust_coefficient, double shaft_angle) {
-             const TrimOptions o = trim_options(kind, thrust_coefficient, shaft_angle);
-             RotorPoint r;
-             {
-               py::gil_scoped_release release;
-               r = trimmed(a, o).point(mu, scan_step);
-             }
-             return to_dict(r, Context{&a});
-           })
-      .def("trimmed_sweep",
-           [](const Analysis& a, double mu0, double mu1, double step, const std::string& kind,
-              double thrust_coefficient, double shaft_angle, const py::object& progress,
-              std::uint64_t memory_limit, const std::optional<double>& damping_criterion) {
-             check_criterion(damping_criterion);
-             const TrimOptions o = trim_options(kind, thrust_coefficient, shaft_angle);
-             const std::size_t points = sweep_grid(mu0, mu1, step).size();
-             check_memory(sweep_memory(points, a.state_size()), memory_limit, "step",
-                          round_trip_text(step));
-             const RotorSweep r = run_cancellable<RotorSweep>(
-                 [&](const std::atomic<bool>* cancel, ProgressFunction report) {
-                   try {
-                     return trimmed(a, o).sweep(mu0, mu1, step, 1, cancel, report);
-                   } catch (const Cancelled&) {
-                     return RotorSweep{};
-                   }
-                 },
-                 progress);
-             return sweep_dict(a, r, damping_criterion);
-           })
-      .def("trimmed_track",
-           [](const Analysis& a, const std::vector<double>& mus, double scan_step,
-              const std::string& kind, double thrust_coefficient, double shaft_angle,
-              const py::object& progress, std::uint64_t memory_limit,
-              const std::optional<double>& damping_criterion) {
-             check_criterion(damping_criterion);
-             const TrimOptions o = trim_options(kind, thrust_coefficient, shaft_angle);
-             if (mus.size() <= static_cast<std::size_t>(kMaxContinuationSteps))
-               check_memory(sweep_memory(mus.size(), a.state_size()), memory_limit, "mu",
-                            std::to_string(mus.size()) + " advance ratios");
-             const RotorSweep r = run_cancellable<RotorSweep>(
-                 [&](const std::atomic<bool>* cancel, ProgressFunction report) {
-                   try {
-                     return trimmed(a, o).track(mus, scan_step, 1, cancel, report);
-                   } catch (const Cancelled&) {
-                     return RotorSweep{};
-                   }
-                 },
-                 progress);
-             return sweep_dict(a, r, damping_criterion);
-           })
-      .def("trimmed_critical",
-           [](const Analysis& a, const py::dict& options, const std::string& kind,
-              double thrust_coefficient, double shaft_angle) {
-             const CriticalOptions c = critical_options(options);
-             const TrimOptions o = trim_options(kind, thrust_coefficient, shaft_angle);
-             RotorCritical r;
-             {
-               py::gil_scoped_release release;
-               r = trimmed(a, o).critical(c);
-             }
-             // With the trim at mu_c the search rests on (as `flaplag critical --trim` reports
-             // it).
-             return to_dict(r, Context{&a});
-           });
+      // The analysis of a's rotor trimmed with kind 'thrust' or 'moment' to C_T at the shaft
+      // angle alpha_R (the iteration's options at their defaults, as --trim).
+      .def("trimmed", [](const Analysis& a, const std::string& kind, double thrust_coefficient,
+                         double shaft_angle) {
+        const TrimOptions o = trim_options(kind, thrust_coefficient, shaft_angle);
+        py::gil_scoped_release release;
+        return trimmed(a, o);
+      });
 }
 
 // flaplag._flaplag.Analysis: one rotor's parameters and transition options, and every computation
@@ -1496,7 +1439,7 @@ void bind_analysis(py::module_& m) {
   bind_modes(analysis);
   bind_time_domain(analysis);
   bind_trim(analysis);
-  bind_trimmed_stability(analysis);
+  bind_conditions(analysis);
 }
 
 // Studies and maps over parameters, and the memory limit they run under.
