@@ -191,6 +191,19 @@ def _text(field, value):
     return value
 
 
+def _options(defaults, **values):
+    """The options {keyword: value} of a C++ options struct, each checked as the type of its
+    default (the struct's table): a flag, a whole number, a real number or a name."""
+    def check(default):  # bool before int: a bool is an int
+        if isinstance(default, bool):
+            return _flag
+        if isinstance(default, int):
+            return _int
+        return _real if isinstance(default, float) else _text
+
+    return {key: check(defaults[key])(key, value) for key, value in values.items()}
+
+
 def _real_array_np(field, values):
     """A 1-D float64 numpy array from a scalar or an array-like of real numbers."""
     if isinstance(values, (str, bytes)):
@@ -557,15 +570,10 @@ class Analysis:
         result's trim is the TrimResult at mu_c.
         inflow: the inflow model at fixed controls, as point()."""
         t, model = _inflow_request(inflow, trim, thrust_coefficient, shaft_angle)
-        opts = {
-            "mu_max": _real("mu_max", mu_max),
-            "scan_step": _real("scan_step", scan_step),
-            "tolerance": _real("tolerance", tolerance),
-            "all_intervals": _flag("all_intervals", all_intervals),
-            "zeta_threshold": _real("zeta_threshold", zeta_threshold),
-            "periodic_omega_tolerance": _real("periodic_omega_tolerance", periodic_omega_tolerance),
-            "scan_zeta_tolerance": _real("scan_zeta_tolerance", scan_zeta_tolerance),
-        }
+        opts = _options(CRITICAL_DEFAULTS, mu_max=mu_max, scan_step=scan_step, tolerance=tolerance,
+                        all_intervals=all_intervals, zeta_threshold=zeta_threshold,
+                        periodic_omega_tolerance=periodic_omega_tolerance,
+                        scan_zeta_tolerance=scan_zeta_tolerance)
         return CriticalResult._from(self._at(t, model).critical(opts))
 
     def system(self, mu, psi=0.0) -> SystemResult:
@@ -621,11 +629,7 @@ class Analysis:
         return ResponseResult._from(
             self._native.response(
                 _real("mu", mu),
-                {
-                    "samples": _int("samples", samples),
-                    "steps": _int("steps", steps),
-                    "tolerance": _real("tolerance", tolerance),
-                },
+                _options(RESPONSE_DEFAULTS, samples=samples, steps=steps, tolerance=tolerance),
                 _memory_limit(memory_limit),
             )
         )
@@ -659,12 +663,9 @@ class Analysis:
             start = [float(y0)] * n
         else:
             start = _real_array("y0", y0)
-        options = {
-            "revolutions": _real("revolutions", revolutions),
-            "samples_per_rev": _int("samples_per_rev", samples_per_rev),
-            "steps_per_rev": _int("steps_per_rev", steps_per_rev),
-            "nonlinear": _flag("nonlinear", nonlinear),
-        }
+        options = _options(SIMULATION_DEFAULTS, revolutions=revolutions,
+                           samples_per_rev=samples_per_rev, steps_per_rev=steps_per_rev,
+                           nonlinear=nonlinear)
         raw = self._native.simulate(
             _real("mu", mu), start, _flag("forced", forced), options, _memory_limit(memory_limit)
         )
@@ -691,13 +692,9 @@ class Analysis:
         return PeriodicEquilibriumResult._from(
             self._native.periodic_equilibrium(
                 _real("mu", mu),
-                {
-                    "harmonics": _int("harmonics", harmonics),
-                    "harmonics_tolerance": _real("harmonics_tolerance", harmonics_tolerance),
-                    "max_iterations": _int("max_iterations", max_iterations),
-                    "tolerance": _real("tolerance", tolerance),
-                    "check_stability": _flag("check_stability", check_stability),
-                },
+                _options(EQUILIBRIUM_DEFAULTS, harmonics=harmonics,
+                         harmonics_tolerance=harmonics_tolerance, max_iterations=max_iterations,
+                         tolerance=tolerance, check_stability=check_stability),
                 _int("samples", samples),
             )
         )
@@ -721,14 +718,8 @@ class Analysis:
         depend on it).  Imported mode_shapes are refused (they hold at one rotor speed)."""
         return CampbellResult._from(
             self._native.campbell(
-                {
-                    "speed_max": _real("speed_max", speed_max),
-                    "points": _int("points", points),
-                    "mu": _real("mu", mu),
-                    "scan_step": _real("scan_step", scan_step),
-                    "harmonics": _int("harmonics", harmonics),
-                    "threads": _int("threads", threads),
-                }
+                _options(CAMPBELL_DEFAULTS, speed_max=speed_max, points=points, mu=mu,
+                         scan_step=scan_step, harmonics=harmonics, threads=threads)
             )
         )
 
@@ -750,13 +741,9 @@ class Analysis:
         return TrimResult._from(
             self._native.trim(
                 _real("mu", mu),
-                {
-                    "kind": _text("kind", kind),
-                    "thrust_coefficient": _real("thrust_coefficient", thrust_coefficient),
-                    "shaft_angle": _real("shaft_angle", shaft_angle),
-                    "max_iterations": _int("max_iterations", max_iterations),
-                    "tolerance": _real("tolerance", tolerance),
-                },
+                _options(TRIM_DEFAULTS, kind=kind, thrust_coefficient=thrust_coefficient,
+                         shaft_angle=shaft_angle, max_iterations=max_iterations,
+                         tolerance=tolerance),
             )
         )
 
