@@ -138,7 +138,7 @@ Output critical(const Request& r, const Analysis& an);
 bool trimmed(const Request& r);  // --trim given
 Json trim_json(const Request& r, const TrimResult& t);
 // The periodic equilibrium q° a result at fixed controls rests on (--periodic-linearization): its
-// K and truncation, as a trim's `equilibrium`.
+// K and truncation, as a trim's `equilibrium`; null where there is none (beyond the fold).
 Json equilibrium_json(const Request& r, const PeriodicEquilibrium& q);
 std::string trim_text(const Request& r, const TrimResult& t);
 Output trim_command(const Request& r);

@@ -19,6 +19,8 @@ bool trimmed(const Request& r) { return r.trim.kind != TrimKind::None; }
 Json trim_json(const Request& r, const TrimResult& t) { return to_json(t, in_vocabulary(r)); }
 
 Json equilibrium_json(const Request& r, const PeriodicEquilibrium& q) {
+  // A failed q° has no truncation to report: its K and a 0 would read as a perfect one.
+  if (q.status == Status::Failed) return Json(nullptr);
   return to_json(TrimEquilibrium{q.harmonics, q.truncation}, in_vocabulary(r));
 }
 

@@ -65,7 +65,8 @@ std::string documents_section() {
          ") and, with `--trim`, `trim` (a " + section_link("TrimResult") +
          "); with `--periodic-linearization` and no trim, `equilibrium` (a " +
          section_link("TrimEquilibrium") +
-         ": the q° at mu the exponents rest on; with a trim it is the trim's).\n"
+         ": the q° at mu the exponents rest on, null where there is none; with a trim it is the "
+         "trim's).\n"
          "- `flaplag sweep --json`: the header, `mu` (start, stop, step), `labels` (the modes), "
          "`rows`, `max_liouville_residual`, with `--damping-criterion` `damping_criterion` and "
          "`damping_crossings` (as in " +
@@ -81,7 +82,9 @@ std::string documents_section() {
          section_link("PointResult") +
          " and, with `--periodic-linearization` and no trim, `equilibrium` (a " +
          section_link("TrimEquilibrium") +
-         ": the q° at the row's mu the point rests on).\n"
+         ": the q° at the row's mu the point rests on; null where there is none, beyond the fold "
+         "of "
+         "the branch from hover).\n"
          "- `flaplag critical --json`: the header, the keys of " +
          section_link("CriticalResult") + " and, with `--trim`, `trim` (the " +
          section_link("TrimResult") +

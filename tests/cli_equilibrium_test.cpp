@@ -57,5 +57,22 @@ TEST(CliEquilibrium, NoRowEquilibriumAboutHoverOrWithATrim) {
   for (const Json& t : trimmed["trim"]) EXPECT_TRUE(t.contains("equilibrium")) << t;
 }
 
+// Beyond the fold of the branch from hover (mu = 0.666) there is no q°: the failed row says null,
+// not a K with a truncation of 0 that would read as a perfect q°; the row before has its own.
+TEST(CliEquilibrium, NoEquilibriumBeyondTheFold) {
+  const flaplag::testing::Outcome o =
+      flaplag::testing::run({"--periodic-linearization", "sweep", "--mu", "0.6:0.7:0.1", "--json"});
+  const Json j = Json::parse(o.out);
+  ASSERT_EQ(j["rows"].size(), 2u) << j;
+  const Json& below = j["rows"][0];
+  const Json& beyond = j["rows"][1];
+  EXPECT_EQ(below["status"], "ok") << below;
+  ASSERT_TRUE(below["equilibrium"].is_object()) << below;
+  EXPECT_GT(below["equilibrium"]["truncation"].get<double>(), 0.0) << below;
+  EXPECT_EQ(beyond["status"], "failed") << beyond;
+  ASSERT_TRUE(beyond.contains("equilibrium")) << beyond;
+  EXPECT_TRUE(beyond["equilibrium"].is_null()) << beyond;
+}
+
 }  // namespace
 }  // namespace flaplag::cli_equilibrium_test
