@@ -180,7 +180,7 @@ def _table(name):
     row, in the table's order, annotated by the row's type, but for a row the class computes (a
     property); the class declares only a row whose type or default differs and attributes of
     its own (after the rows, with defaults).  Rows that documents leave out when empty default
-    to empty when they are the last."""
+    to empty when only rows with defaults follow."""
 
     def build(cls):
         own = dict(cls.__dict__.get("__annotations__", {}))
@@ -189,7 +189,7 @@ def _table(name):
         annotations = {}
         for k, (key, words, optional) in enumerate(rows):
             annotations[key] = own.pop(key, None) or _annotation(words)
-            trailing = all(r[2] for r in rows[k:])
+            trailing = all(r[2] or r[0] in cls.__dict__ for r in rows[k:])
             if optional and trailing and key not in cls.__dict__:
                 setattr(cls, key, () if words.startswith("list") else None)
         cls.__annotations__ = {**annotations, **own}
@@ -639,6 +639,7 @@ class FloquetSample(_Described):
 
 
 @dataclass(frozen=True, repr=False, eq=False)
+@_table("TipMotion")
 class TipMotion(_Described):
     """The tip motion of one blade direction (C++ flaplag::TipMotion), an entry of a result's
     ``tips`` (keyed by the direction, in the model's state order): direction ('flap', 'lag');
@@ -649,12 +650,6 @@ class TipMotion(_Described):
     growth rate of deflection per rev over the last 3/4 of the run (None with fewer than 3
     revolutions there).  A result's ``<direction>_tip`` is tips[direction].deflection, and
     ``<direction>_<field>`` tips[direction].<field> (``flap_harmonics``, ``lag_growth_rate``)."""
-
-    direction: str
-    deflection: np.ndarray
-    harmonics: np.ndarray
-    total: np.ndarray
-    growth_rate: Optional[float]
 
     def __repr__(self):
         return (
@@ -667,6 +662,7 @@ _TIP_ALIAS = {"deflection": "tip"}  # a field whose former name is not the field
 
 
 @dataclass(frozen=True, repr=False, eq=False)
+@_table("ResponseResult")
 class ResponseResult(_Described):
     """The periodic forced response at one mu (the command line's ``flaplag response``): the
     2 pi-periodic solution of y' = A(psi) y + f(psi), the Floquet particular solution
@@ -687,18 +683,10 @@ class ResponseResult(_Described):
     solution exists but is not what the blade settles to).
     """
 
-    mu: float
-    psi: np.ndarray
-    y: np.ndarray
-    y0: np.ndarray
-    tips: Mapping[str, TipMotion]
-    harmonic_names: Tuple[str, ...]
-    closure: float
-    error_estimate: Optional[float]
-    min_distance_to_one: float
-    steps: int
-    status: str
-    message: str
+    # The module's arrays beside the table's rows (always given).
+    y: np.ndarray = None
+    tips: Mapping[str, TipMotion] = None
+    harmonic_names: Tuple[str, ...] = ()
 
     @property
     def error(self) -> Optional[float]:
@@ -724,6 +712,7 @@ class ResponseResult(_Described):
 
 
 @dataclass(frozen=True, repr=False, eq=False)
+@_table("SimulationResult")
 class SimulationResult(_Described):
     """A time-domain simulation at one mu (the command line's ``flaplag simulate``).
 
@@ -746,15 +735,11 @@ class SimulationResult(_Described):
     is kept up to there).
     """
 
-    mu: float
-    psi: np.ndarray
-    y: np.ndarray
-    tips: Mapping[str, TipMotion]
-    steps_per_rev: int
-    status: str
-    message: str
     nonlinear: bool = False
     reference: str = "hover equilibrium"
+    # The module's arrays beside the table's rows (always given).
+    y: np.ndarray = None
+    tips: Mapping[str, TipMotion] = None
 
     @property
     def revolutions(self) -> np.ndarray:

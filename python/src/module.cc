@@ -306,6 +306,11 @@ RotorParameters base_parameters(const py::dict& params, int flap_modes, int lag_
 struct Context {
   const Analysis* analysis = nullptr;
   int samples = 72;  // Analysis.periodic_equilibrium's default
+
+  const Analysis& of() const {
+    if (analysis == nullptr) throw std::logic_error("a result's extra keys need its analysis");
+    return *analysis;
+  }
 };
 
 template <class T>
@@ -316,6 +321,8 @@ template <class T>
 void add_extra_keys(py::dict&, const T&, const Context&) {}
 void add_extra_keys(py::dict& d, const PeriodicEquilibrium& e, const Context& context);
 void add_extra_keys(py::dict& d, const TrimResult& t, const Context& context);
+void add_extra_keys(py::dict& d, const ForcedResponse& f, const Context& context);
+void add_extra_keys(py::dict& d, const TipSimulation& t, const Context& context);
 
 template <class T>
 using is_optional = is_optional_field<T>;
@@ -384,6 +391,9 @@ void for_each_result_struct(F&& f) {
   f(Tag<CampbellPoint>{}, "CampbellPoint");
   f(Tag<CampbellFrequency>{}, "CampbellFrequency");
   f(Tag<CampbellCrossing>{}, "CampbellCrossing");
+  f(Tag<TipMotion>{}, "TipMotion");
+  f(Tag<ForcedResponse>{}, "ResponseResult");
+  f(Tag<TipSimulation>{}, "SimulationResult");
 }
 
 // The Python class of a described struct ("" for one without: a dict).
@@ -917,53 +927,24 @@ py::list harmonic_names(std::size_t n) {
   return l;
 }
 
-// The per-direction tip motions as {direction: {direction, deflection, harmonics, total,
-// growth_rate}}, in the model's state order (TipMotion of python/flaplag/_results.py).
+// The per-direction tip motions by direction, in the model's state order (the Python classes'
+// `tips`).
 py::dict tip_dicts(const std::vector<TipMotion>& tips) {
   py::dict d;
-  for (const TipMotion& t : tips) {
-    py::dict m;
-    m["direction"] = t.direction;
-    m["deflection"] = to_numpy(t.deflection);
-    m["harmonics"] = to_numpy(t.harmonics);
-    m["total"] = to_numpy(t.total);
-    m["growth_rate"] = optional(t.growth_rate);
-    d[t.direction.c_str()] = m;
-  }
+  for (const TipMotion& t : tips) d[t.direction.c_str()] = to_dict(t);
   return d;
 }
 
-py::dict response_dict(const Analysis& a, const ForcedResponse& f) {
-  const PeriodicResponse& p = f.periodic;
-  py::dict d;
-  d["mu"] = f.mu;
-  d["psi"] = to_numpy(p.psi);
-  d["y"] = states_numpy(p.y, a.state_size());
-  d["y0"] = to_numpy(p.y0);
+// The states as a samples x states array, the tips by direction and the names of the harmonics.
+void add_extra_keys(py::dict& d, const ForcedResponse& f, const Context& context) {
+  d["y"] = states_numpy(f.periodic.y, context.of().state_size());
   d["tips"] = tip_dicts(f.tips);
   d["harmonic_names"] = harmonic_names(f.tips.empty() ? 0 : f.tips.front().harmonics.size());
-  d["closure"] = p.closure;
-  d["error_estimate"] = optional(p.error);
-  d["min_distance_to_one"] = p.min_distance_to_one;
-  d["steps"] = p.steps;
-  d["status"] = status_name(f.status);
-  d["message"] = f.message;
-  return d;
 }
 
-py::dict simulation_dict(const Analysis& a, const TipSimulation& t) {
-  const Simulation& s = t.simulation;
-  py::dict d;
-  d["mu"] = t.mu;
-  d["psi"] = to_numpy(s.psi);
-  d["y"] = states_numpy(s.y, a.state_size());
+void add_extra_keys(py::dict& d, const TipSimulation& t, const Context& context) {
+  d["y"] = states_numpy(t.simulation.y, context.of().state_size());
   d["tips"] = tip_dicts(t.tips);
-  d["steps_per_rev"] = s.steps_per_rev;
-  d["nonlinear"] = t.nonlinear;
-  d["reference"] = t.reference;
-  d["status"] = status_name(t.status);
-  d["message"] = t.message;
-  return d;
 }
 
 // ---- periodic equilibrium and trim -------------------------------------------------------------
@@ -971,9 +952,7 @@ py::dict simulation_dict(const Analysis& a, const TipSimulation& t) {
 // The coefficients, and the state and the tips sampled at context.samples azimuths (none when
 // the equilibrium failed).
 void add_extra_keys(py::dict& d, const PeriodicEquilibrium& e, const Context& context) {
-  if (context.analysis == nullptr)
-    throw std::logic_error("a periodic equilibrium needs its analysis");
-  const Analysis& a = *context.analysis;
+  const Analysis& a = context.of();
   std::vector<double> psi;
   std::vector<Eigen::VectorXd> y;
   std::vector<TipMotion> tips = a.tip_motions();
@@ -1328,7 +1307,7 @@ void bind_time_domain(py::class_<Analysis>& analysis) {
                py::gil_scoped_release release;
                f = a.response(mu, o);
              }
-             return response_dict(a, f);
+             return to_dict(f, Context{&a});
            })
       .def("state_size", &Analysis::state_size)
       .def("simulate",
@@ -1346,7 +1325,7 @@ void bind_time_domain(py::class_<Analysis>& analysis) {
                py::gil_scoped_release release;
                t = a.simulate(mu, y, forced, o);
              }
-             return simulation_dict(a, t);
+             return to_dict(t, Context{&a});
            })
       .def("periodic_equilibrium",
            [](const Analysis& a, double mu, const py::dict& options, int samples) {

@@ -268,6 +268,59 @@ struct TipSimulation : Outcome {
   // periodic equilibrium.
 };
 
+// The tables of the time-domain results: their numbers (a front end shapes the states and the
+// tips per direction itself).
+constexpr auto describe(Tag<TipMotion>) {
+  return std::make_tuple(
+      Field{"direction", &TipMotion::direction, "", "the blade direction (flap, lag)"},
+      Field{"deflection", &TipMotion::deflection, "- (by l)",
+            "the tip deflection at each psi of the result"},
+      Field{"harmonics", &TipMotion::harmonics, "- (by l)",
+            "forced response: c of value = c[0] + sum_n (c[2n-1] cos n psi + c[2n] sin n psi), "
+            "n = 1..5; else empty"},
+      Field{"total", &TipMotion::total, "- (by l)",
+            "nonlinear simulation: the total deflection, reference included; else empty"},
+      Field{"growth_rate", &TipMotion::growth_rate, "1/rev",
+            "simulation: the envelope growth rate of deflection over the last 3/4 of the run; "
+            "null with fewer than 3 revolutions there"});
+}
+constexpr auto describe(Tag<ForcedResponse>) {
+  using R = ForcedResponse;
+  return std::tuple_cat(
+      std::make_tuple(Field{"mu", &R::mu, "-", "the advance ratio"},
+                      Computed{"psi", +[](const R& r) { return r.periodic.psi; }, "rad",
+                               "the sample azimuths in [0, 2 pi)"},
+                      Computed{"y0", +[](const R& r) { return r.periodic.y0; }, "-",
+                               "the periodic perturbation state at psi = 0"},
+                      Computed{"closure", +[](const R& r) { return r.periodic.closure; }, "-",
+                               "|y(2 pi) - y(0)| / max(1, |y0|)"},
+                      Computed{"error_estimate", +[](const R& r) { return r.periodic.error; }, "-",
+                               "the estimated error of y0, relative; null when not estimated"},
+                      Computed{"min_distance_to_one",
+                               +[](const R& r) { return r.periodic.min_distance_to_one; }, "-",
+                               "min |multiplier - 1| (near 0: no unique periodic solution)"},
+                      Computed{"steps", +[](const R& r) { return r.periodic.steps; }, "",
+                               "RK4 steps per period"}),
+      describe(Tag<Outcome>{}));
+}
+// (A simulation's nonlinear and reference last: the Python class defaults them, to the linear
+// simulation's.)
+constexpr auto describe(Tag<TipSimulation>) {
+  using S = TipSimulation;
+  return std::tuple_cat(
+      std::make_tuple(
+          Field{"mu", &S::mu, "-", "the advance ratio"},
+          Computed{"psi", +[](const S& s) { return s.simulation.psi; }, "rad", "from 0"},
+          Computed{"steps_per_rev", +[](const S& s) { return s.simulation.steps_per_rev; }, "",
+                   "RK4 steps per revolution"}),
+      describe(Tag<Outcome>{}),
+      std::make_tuple(
+          Field{"nonlinear", &S::nonlinear, "", "the nonlinear equations (else the linear system)"},
+          Field{"reference", &S::reference, "",
+                "what the perturbation is measured from: periodic equilibrium or hover "
+                "equilibrium"}));
+}
+
 class Analysis {
  public:
   // Checks params (validate()), options (TransitionOptions::Check()) and the condition; throws
