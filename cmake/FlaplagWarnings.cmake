@@ -10,8 +10,8 @@ function(flaplag_warnings target)
   endif()
 endfunction()
 
-# The front ends (the CLI and the Python module) parse options and write results: none of the
-# numerics is theirs, so an optimized build compiles them at -O1: a third less compile time (a
+# The front ends (the CLI and the Python module) and the documents layer they share parse options,
+# read and write result files: none of the numerics is theirs, so an optimized build compiles them at -O1: a third less compile time (a
 # unit of the CLI library: 11-13 s of CPU against 19-20 s at -O3) and no measurable cost at run
 # time (a 1501-point sweep written as JSON, plotted and reported: 0.55-0.63 s of CPU, 0.54-0.58 s
 # at -O3).  The numbers are the same bits at every level (no -ffast-math, no FMA).
