@@ -203,8 +203,19 @@ struct Analysis::Impl {
   template <class Result, class Compute>
   void fold_basis(Result& r, double tolerance, const Compute& compute) const {
     if (basis.basis == 0) return;
+    fold_reference(r, tolerance, reference_result(compute));
+  }
+
+  // The result of compute with the reference basis, none without a reference.
+  template <class Compute>
+  auto reference_result(const Compute& compute) const {
+    using Result = decltype(compute(*reference()));
     const Analysis* ref = reference();
-    const std::optional<Result> other = ref ? std::optional<Result>(compute(*ref)) : std::nullopt;
+    return ref ? std::optional<Result>(compute(*ref)) : std::nullopt;
+  }
+
+  template <class Result>
+  void fold_reference(Result& r, double tolerance, const std::optional<Result>& other) const {
     internal::BasisCheck c = basis;
     c.tolerance_ = tolerance;
     c.fold(r, other ? &*other : nullptr);
@@ -222,15 +233,10 @@ struct Analysis::Impl {
       fold_basis(r, tolerance, compute);
       return r;
     }
-    std::future<std::optional<Result>> beside = std::async(std::launch::async, [&] {
-      const Analysis* ref = reference();
-      return ref ? std::optional<Result>(compute(*ref)) : std::nullopt;
-    });
+    std::future<std::optional<Result>> beside =
+        std::async(std::launch::async, [&] { return reference_result(compute); });
     Result r = compute(self);
-    const std::optional<Result> other = beside.get();
-    internal::BasisCheck c = basis;
-    c.tolerance_ = tolerance;
-    c.fold(r, other ? &*other : nullptr);
+    fold_reference(r, tolerance, beside.get());
     return r;
   }
 
