@@ -274,14 +274,10 @@ double PeriodicSystem::trace_integral() const {
     for (std::size_t k = 1; k < cuts.size(); ++k) {
       const double lo = cuts[k - 1], hi = cuts[k];
       const int panels = std::max(2, static_cast<int>(std::ceil((hi - lo) / (kPi / 16.0))));
-      const double hp = (hi - lo) / panels;
-      for (int q = 0; q < panels; ++q) {
-        const double c = lo + (q + 0.5) * hp;
-        for (int i = 0; i < 8; ++i) {
-          p.evaluator(c + 0.5 * hp * kX8[i], x, f);
-          total += 0.5 * hp * kW8[i] * x.trace();
-        }
-      }
+      gauss::composite_gauss8(lo, hi, panels, [&](double psi, double weight) {
+        p.evaluator(psi, x, f);
+        total += weight * x.trace();
+      });
     }
   }
   return total;

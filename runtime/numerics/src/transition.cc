@@ -205,21 +205,18 @@ class Kernel {
     return Phi;
   }
 
-  // Fourth-order Magnus with two-point Gauss nodes on every substep:
-  //   Omega = h/2 (A1 + A2) + sqrt(3) h^2 / 12 [A2, A1],  Phi <- exp(Omega) Phi.
-  // The method is symmetric, so its global error expands in h^4, h^6, ...
+  // Fourth-order Magnus (gauss::magnus4_step) on every substep.
   Mat magnus(const std::vector<Segment>& grid) {
-    const double g = gauss::kGauss2Offset;
     Mat Phi = identity();
     Mat A1(n_, n_), A2(n_, n_), Om(n_, n_), E(n_, n_), P(n_, n_);
     for (const Segment& s : grid) {
-      const double h = s.b - s.a;
-      point(s.set, s.a + (0.5 - g) * h, A1);
-      point(s.set, s.a + (0.5 + g) * h, A2);
-      Om = (0.5 * h) * (A1 + A2);
+      const gauss::Magnus4Step st = gauss::magnus4_step(s.a, s.b);
+      point(s.set, st.psi1, A1);
+      point(s.set, st.psi2, A2);
+      Om = st.c1 * (A1 + A2);
       P.noalias() = A2 * A1;
       P.noalias() -= A1 * A2;
-      Om += (0.5 * gauss::kGauss2Offset * h * h) * P;
+      Om += st.c2 * P;
       E = matrix_exponential(Om);  // scaling and squaring, Pade approximant (dense.h)
       P.noalias() = E * Phi;
       Phi = P;
@@ -707,26 +704,22 @@ template <int N>
   plain_weighted_sum<N>(in.A[r], in.H[r], w, X);
 }
 
-// Fourth-order Magnus on the given grid, as Kernel::magnus: two-point Gauss nodes,
-//   Omega = h/2 (A1 + A2) + sqrt(3) h^2 / 12 [A2, A1],  Phi <- exp(Omega) Phi.
+// Fourth-order Magnus (gauss::magnus4_step) on the given grid, as Kernel::magnus.
 template <int N>
 [[gnu::always_inline]] inline void plain_magnus_impl(const PlainHsuInput& in, const Segment* grid,
                                                      int count, double* out) {
   constexpr int V = N * N / 4;
-  const double g = gauss::kGauss2Offset;
   PlainMat<N> Phi, A1, A2, Om, P, Q;
   plain_identity<N>(Phi);
   double w[kPlainMaxHarmonics];
   for (int i = 0; i < count; ++i) {
     const Segment& sg = grid[i];
-    const double h = sg.b - sg.a;
-    const int r = sg.set;
-    plain_point<N>(in, r, sg.a + (0.5 - g) * h, w, A1);
-    plain_point<N>(in, r, sg.a + (0.5 + g) * h, w, A2);
+    const gauss::Magnus4Step st = gauss::magnus4_step(sg.a, sg.b);
+    plain_point<N>(in, sg.set, st.psi1, w, A1);
+    plain_point<N>(in, sg.set, st.psi2, w, A2);
     plain_mul<N>(A2, A1, P);
     plain_mul<N>(A1, A2, Q);
-    const double c1 = 0.5 * h, c2 = 0.5 * gauss::kGauss2Offset * h * h;
-    for (int e = 0; e < V; ++e) Om.c[e] = (A1.c[e] + A2.c[e]) * c1 + (P.c[e] - Q.c[e]) * c2;
+    for (int e = 0; e < V; ++e) Om.c[e] = (A1.c[e] + A2.c[e]) * st.c1 + (P.c[e] - Q.c[e]) * st.c2;
     plain_expm<N>(Om);
     plain_mul<N>(Om, Phi, P);
     Phi = P;
@@ -1045,7 +1038,7 @@ template <int B>
   }
 }
 
-// Fourth-order Magnus on the given grid (Kernel::magnus's step) into phi (a wide matrix);
+// Fourth-order Magnus (gauss::magnus4_step) on the given grid into phi (a wide matrix);
 // work holds nine wide matrices of scratch.
 __attribute__((target_clones("avx2", "default"))) void wide_magnus_steps(const WideInput& in,
                                                                          const Segment* grid,
@@ -1055,19 +1048,16 @@ __attribute__((target_clones("avx2", "default"))) void wide_magnus_steps(const W
   const std::size_t size = s.size();
   V4 *A1 = work, *A2 = work + size, *P = work + 2 * size, *Q = work + 3 * size;
   V4* t = work + 4 * size;  // five matrices for wide_expm
-  const double g = gauss::kGauss2Offset;
   std::fill(phi, phi + size, V4{0.0, 0.0, 0.0, 0.0});
   wide_add_diagonal(s, phi, 1.0);
   for (int i = 0; i < count; ++i) {
     const Segment& sg = grid[i];
-    const double h = sg.b - sg.a;
-    const int r = sg.set;
-    wide_point(in, r, sg.a + (0.5 - g) * h, A1);
-    wide_point(in, r, sg.a + (0.5 + g) * h, A2);
+    const gauss::Magnus4Step st = gauss::magnus4_step(sg.a, sg.b);
+    wide_point(in, sg.set, st.psi1, A1);
+    wide_point(in, sg.set, st.psi2, A2);
     wide_mul(s, A2, A1, P);
     wide_mul(s, A1, A2, Q);
-    const double c1 = 0.5 * h, c2 = 0.5 * gauss::kGauss2Offset * h * h;
-    for (std::size_t e = 0; e < size; ++e) A1[e] = (A1[e] + A2[e]) * c1 + (P[e] - Q[e]) * c2;
+    for (std::size_t e = 0; e < size; ++e) A1[e] = (A1[e] + A2[e]) * st.c1 + (P[e] - Q[e]) * st.c2;
     wide_expm(s, A1, t);
     wide_mul(s, A1, phi, P);
     std::copy(P, P + size, phi);

@@ -63,16 +63,16 @@ void taylor(const Eigen::MatrixXd& X, int J, Eigen::MatrixXd& Y, Eigen::MatrixXd
   }
 }
 
+// Fourth-order Magnus (gauss::magnus4_step) on the given grid.
 Eigen::MatrixXd magnus(const PeriodicSystem& sys, const std::vector<Piece>& grid) {
-  const double g = gauss::kGauss2Offset;
   Evaluator ev(sys);
   Eigen::MatrixXd Phi = Eigen::MatrixXd::Identity(sys.n, sys.n), A1, A2;
   for (const Piece& p : grid) {
-    const double h = p.b - p.a;
-    ev.at(p, p.a + (0.5 - g) * h, A1);
-    ev.at(p, p.a + (0.5 + g) * h, A2);
-    Eigen::MatrixXd Om = (0.5 * h) * (A1 + A2);
-    Om += (0.5 * gauss::kGauss2Offset * h * h) * (A2 * A1 - A1 * A2);
+    const gauss::Magnus4Step st = gauss::magnus4_step(p.a, p.b);
+    ev.at(p, st.psi1, A1);
+    ev.at(p, st.psi2, A2);
+    Eigen::MatrixXd Om = st.c1 * (A1 + A2);
+    Om += st.c2 * (A2 * A1 - A1 * A2);
     const Eigen::MatrixXd E = matrix_exponential(Om);
     Phi = E * Phi;
   }

@@ -18,10 +18,6 @@
 namespace flaplag {
 namespace {
 
-// 8-point Gauss-Legendre rule on [-1, 1] (gauss_legendre.h).
-using gauss::kW8;
-using gauss::kX8;
-
 // Smooth pieces of [0, 2 pi]: split at the sector edges; each flagged with its region.
 struct Piece {
   double a, b;
@@ -91,12 +87,9 @@ std::vector<QuadPoint> quadrature(const PeriodicSystem& s, double omega) {
   std::vector<QuadPoint> out;
   for (const Piece& pc : pieces(s)) {
     const int m = std::max(1, static_cast<int>(std::ceil((pc.b - pc.a) / hmax)));
-    const double h = (pc.b - pc.a) / m;
-    for (int i = 0; i < m; ++i) {
-      const double mid = pc.a + (i + 0.5) * h;
-      for (int g = 0; g < 8; ++g)
-        out.push_back({mid + 0.5 * h * kX8[g], 0.5 * h * kW8[g], pc.reversed});
-    }
+    gauss::composite_gauss8(pc.a, pc.b, m, [&](double psi, double weight) {
+      out.push_back({psi, weight, pc.reversed});
+    });
   }
   return out;
 }
