@@ -84,6 +84,13 @@ std::string point_text(const Request& r, const PointResult& p) {
          optional_text(p.liouville_residual) + "  (|det Phi - exp int tr A|, relative)");
   kv.add("error estimate",
          optional_text(p.error) + "  (largest zeta error, per rev: Richardson from K and K/2)");
+  // The point's other rows (its table), each under its key and units; a row without a value
+  // (an optional not set) is left out of the text.
+  const std::vector<const char*> others = documents::other_cell_keys<PointResult>(
+      {"mu", "stable", "liouville_residual", "error_estimate", "status", "message"});
+  const std::vector<std::string> cells = described_cells(p, others, CellStyle::Text, {});
+  for (std::size_t i = 0; i < others.size(); ++i)
+    if (cells[i] != "-") kv.add(documents::described_heading<PointResult>(others[i]), cells[i]);
   out += kv.render();
   return out + status_text(p.status, vocab(r, p.message));
 }
@@ -187,8 +194,8 @@ std::string sweep_table_text(const Request& r, const SweepResult& s,
 }
 
 // Empty fields for what is not known (no exponent of a label, no residual, unknown stability).
-// Per mode "<label>_<row>" of kModeRows, the damping ratios last: the columns before keep their
-// places.
+// Per mode "<label>_<row>" of kModeRows, then the damping ratios, then the point's other rows
+// (its table): a column added later never moves the columns before it.
 std::string sweep_csv(const Request& r, const SweepResult& s,
                       const std::vector<std::string>& labels) {
   const std::vector<const char*> exponent_keys(kModeRows.begin(), kModeRows.end() - 1);
@@ -212,12 +219,17 @@ std::string sweep_csv(const Request& r, const SweepResult& s,
   head.insert(head.end(), point_keys.begin(), point_keys.end());
   for (const std::string& l : labels)
     for (const char* k : ratio_keys) head.push_back(l + "_" + k);
+  std::vector<const char*> placed = point_keys;
+  placed.push_back("mu");
+  const std::vector<const char*> other_keys = documents::other_cell_keys<PointResult>(placed);
+  head.insert(head.end(), other_keys.begin(), other_keys.end());
   std::string out = csv_fields(head) + "\n";
   for (const PointResult& p : s.points) {
     std::vector<std::string> line{finite(p.mu) ? exact_num(p.mu) : std::string()};
     for (const auto& cells : {mode_cells(p, exponent_keys),
                               described_cells(p, point_keys, CellStyle::Csv, in_vocabulary(r)),
-                              mode_cells(p, ratio_keys)})
+                              mode_cells(p, ratio_keys),
+                              described_cells(p, other_keys, CellStyle::Csv, in_vocabulary(r))})
       line.insert(line.end(), cells.begin(), cells.end());
     out += csv_fields(line) + "\n";
   }

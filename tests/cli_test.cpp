@@ -768,7 +768,7 @@ TEST(CliGood, SweepDampingCriterionCrossings) {
   const std::string header = c.out.substr(0, c.out.find('\n'));
   EXPECT_EQ(header,
             "mu,flap_zeta,flap_omega,lag_zeta,lag_omega,liouville_residual,error_estimate,stable,"
-            "status,message,flap_damping_ratio,lag_damping_ratio");
+            "status,message,flap_damping_ratio,lag_damping_ratio,steps,basis,basis_error");
   std::istringstream lines(c.out);
   std::string line;
   std::getline(lines, line);
@@ -776,7 +776,7 @@ TEST(CliGood, SweepDampingCriterionCrossings) {
   std::vector<std::string> fields;
   std::stringstream fs(line);
   for (std::string f; std::getline(fs, f, ',');) fields.push_back(f);
-  ASSERT_EQ(fields.size(), 12u) << line;
+  ASSERT_EQ(std::count(line.begin(), line.end(), ','), 14) << line;  // 15 fields, the last empty
   EXPECT_EQ(std::stod(fields[11]), j["rows"][0]["lag"]["damping_ratio"].get<double>()) << line;
 }
 
@@ -820,15 +820,83 @@ TEST(CliGood, SweepJsonAndCsv) {
   }
   const Outcome c = run(fast({"sweep", "--mu", "0:0.2:0.1", "--format", "csv"}));
   ASSERT_EQ(c.exit_code, 0) << c.err;
-  // The damping ratios come last, so that every earlier column keeps its place.
+  // The damping ratios and then the point's other rows come last, so that every earlier column
+  // keeps its place.
   EXPECT_EQ(c.out.rfind("mu,flap_zeta,flap_omega,lag_zeta,lag_omega,liouville_residual,"
                         "error_estimate,stable,status,message,flap_damping_ratio,"
-                        "lag_damping_ratio\n",
+                        "lag_damping_ratio,steps,basis,basis_error\n",
                         0),
             0u)
       << c.out;
   EXPECT_EQ(std::count(c.out.begin(), c.out.end(), '\n'), 4);
   expect_clean_text(c.out);
+}
+
+// Every scalar a point's JSON holds (a number, flag, text or null) is a column of the sweep's
+// CSV with the same value, and every one that has a value is a line of the point's text: a row
+// added to the point's table reaches all three without a change to their writers.
+TEST(CliGood, EveryScalarOfAPointIsInItsCsvAndText) {
+  const std::vector<std::string> base = {"--modes", "exact", "--method", "hsu", "--steps", "20"};
+  std::vector<std::string> sweep = base;
+  sweep.insert(sweep.end(), {"sweep", "--mu", "0:0.1:0.1"});
+  std::vector<std::string> json = sweep, csv = sweep;
+  json.push_back("--json");
+  csv.insert(csv.end(), {"--format", "csv"});
+  const Json rows = parse_json(run(json))["rows"];
+  const Outcome c = run(csv);
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  std::istringstream lines(c.out);
+  std::vector<std::vector<std::string>> table;
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<std::string> fields;
+    std::stringstream fs(line);
+    for (std::string f; std::getline(fs, f, ',');) fields.push_back(f);
+    if (!line.empty() && line.back() == ',') fields.push_back("");
+    table.push_back(fields);
+  }
+  ASSERT_EQ(table.size(), rows.size() + 1) << c.out;
+  int scalars = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (const auto& [key, value] : rows[i].items()) {
+      if (value.is_structured()) continue;
+      ++scalars;
+      const auto col = std::find(table[0].begin(), table[0].end(), key);
+      ASSERT_NE(col, table[0].end()) << key << " is not a CSV column: " << table[0].size();
+      const std::string cell = table[i + 1].at(static_cast<std::size_t>(col - table[0].begin()));
+      if (value.is_null())
+        EXPECT_EQ(cell, "") << key;
+      else if (value.is_number())
+        EXPECT_EQ(std::stod(cell), value.get<double>()) << key;
+      else if (value.is_boolean())
+        EXPECT_EQ(cell, value.get<bool>() ? "true" : "false") << key;
+      else
+        EXPECT_EQ(cell, value.get<std::string>()) << key;
+    }
+  }
+  EXPECT_GE(scalars, 2 * 8);  // mu, residual, error, steps, stable, basis, basis_error, status
+  std::vector<std::string> point = base;
+  point.insert(point.end(), {"point", "--mu", "0.1"});
+  std::vector<std::string> point_json = point;
+  point_json.push_back("--json");
+  const Json p = parse_json(run(point_json));
+  const Outcome t = run(point);
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  std::string text = t.out;
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  // The result's own keys (the document's header keys come before mu); an ok point has no status
+  // line and an empty message.
+  bool result = false;
+  for (const auto& [key, value] : p.items()) {
+    result |= key == "mu";
+    if (!result || value.is_structured() || value.is_null() || key == "status" || key == "message")
+      continue;
+    std::string words = key;
+    std::replace(words.begin(), words.end(), '_', ' ');
+    EXPECT_TRUE(text.find(words) != std::string::npos || text.find(key) != std::string::npos)
+        << key << " not in\n"
+        << t.out;
+  }
 }
 
 TEST(CliGood, CriticalJson) {

@@ -56,7 +56,36 @@ std::string cell_text(const V& v, unsigned flags, CellStyle style, const Message
   }
 }
 
+// Whether a cell can hold a value of type V (cell_text): a number, an integer, a flag, text, a
+// described enum, or an optional of one of these.
+template <class V>
+constexpr bool is_cell_value() {
+  if constexpr (is_optional_field<V>::value) {
+    return is_cell_value<typename V::value_type>();
+  } else {
+    return std::is_same_v<V, double> || std::is_same_v<V, int> || std::is_same_v<V, bool> ||
+           std::is_same_v<V, std::string> || is_described_enum_v<V>;
+  }
+}
+
 }  // namespace table_detail
+
+// The keys of T's rows whose values a cell can hold, in table order, without those in `placed`:
+// what a text or CSV table writes after the columns it places itself, so that a row added to a
+// result's table reaches its text and CSV with no change to the writer.
+template <class T>
+std::vector<const char*> other_cell_keys(const std::vector<const char*>& placed) {
+  std::vector<const char*> keys;
+  for_each_row<T>([&](const auto& row) {
+    using V = typename std::decay_t<decltype(row)>::value_type;
+    if constexpr (table_detail::is_cell_value<V>()) {
+      bool seen = false;
+      for (const char* k : placed) seen |= std::string(k) == row.name;
+      if (!seen) keys.push_back(row.name);
+    }
+  });
+  return keys;
+}
 
 // The cells of `object` under the rows `keys`, in their order.
 template <class T>
