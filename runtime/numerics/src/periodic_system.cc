@@ -114,16 +114,16 @@ std::size_t base_piece(const PeriodicSystem& s, double begin, double end) {
                      "need 0 <= begin < end <= 2 pi inside one piece of the base set");
 }
 
-// pieces[i] split so that [p.begin, p.end) becomes p (base_piece() checked that it fits).
+// pieces[i] split so that [p.begin, p.end) becomes p (base_piece() checked that it fits), in
+// place (a system rebuilt at every mu keeps the storage of its pieces).
 void insert_piece(std::vector<SystemPiece>& pieces, std::size_t i, SystemPiece p) {
-  const SystemPiece outer = pieces[i];
-  std::vector<SystemPiece> parts;
-  if (outer.begin < p.begin) parts.push_back({outer.begin, p.begin, outer.set, {}, {}});
-  parts.push_back(std::move(p));
-  if (parts.back().end < outer.end)
-    parts.push_back({parts.back().end, outer.end, outer.set, {}, {}});
-  pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(i));
-  pieces.insert(pieces.begin() + static_cast<std::ptrdiff_t>(i), parts.begin(), parts.end());
+  const double outer_begin = pieces[i].begin, outer_end = pieces[i].end;
+  const int outer_set = pieces[i].set;
+  const double begin = p.begin, end = p.end;
+  pieces[i] = std::move(p);
+  auto at = [&](std::size_t k) { return pieces.begin() + static_cast<std::ptrdiff_t>(k); };
+  if (outer_begin < begin) pieces.insert(at(i++), {outer_begin, begin, outer_set, {}, {}});
+  if (end < outer_end) pieces.insert(at(i + 1), {end, outer_end, outer_set, {}, {}});
 }
 
 }  // namespace
@@ -132,6 +132,17 @@ void PeriodicSystem::add_harmonic_piece(double begin, double end, HarmonicSet se
   const std::size_t i = base_piece(*this, begin, end);
   sets.push_back(std::move(set));
   insert_piece(pieces, i, {begin, end, static_cast<int>(sets.size()) - 1, {}, {}});
+}
+
+void PeriodicSystem::reset_pieces() {
+  pieces.resize(1);
+  pieces[0] = {0.0, kTwoPi, 0, {}, {}};
+}
+
+void PeriodicSystem::add_set_piece(double begin, double end, int set) {
+  if (set < 1 || set >= static_cast<int>(sets.size()))
+    throw InvalidInput("set", std::to_string(set), "must name one of sets[1..] already there");
+  insert_piece(pieces, base_piece(*this, begin, end), {begin, end, set, {}, {}});
 }
 
 void PeriodicSystem::add_evaluator_piece(double begin, double end, Evaluator evaluator,
@@ -251,15 +262,17 @@ double PeriodicSystem::trace_integral() const {
   //   int tr A = sum_h tr(B_h) (int_0^{2pi} phi_h - int_b^e phi_h) + int_b^e tr A(piece).
   const HarmonicSet& base = sets.at(0);
   double total = kTwoPi * base.A.at(0).trace();
+  std::vector<double> means;  // harmonic_mean(h, p.begin, p.end), computed once per piece
   for (const SystemPiece& p : pieces) {
     if (p.set == 0) continue;
+    const HarmonicSet* set = p.set > 0 ? &sets[static_cast<std::size_t>(p.set)] : nullptr;
+    means.resize(std::max(base.A.size(), set != nullptr ? set->A.size() : 0));
+    for (std::size_t h = 0; h < means.size(); ++h)
+      means[h] = harmonic_mean(static_cast<int>(h), p.begin, p.end);
     const double width = p.end - p.begin;
-    for (std::size_t h = 0; h < base.A.size(); ++h)
-      total -= base.A[h].trace() * harmonic_mean(static_cast<int>(h), p.begin, p.end) * width;
-    if (p.set > 0) {
-      const HarmonicSet& set = sets[static_cast<std::size_t>(p.set)];
-      for (std::size_t h = 0; h < set.A.size(); ++h)
-        total += set.A[h].trace() * harmonic_mean(static_cast<int>(h), p.begin, p.end) * width;
+    for (std::size_t h = 0; h < base.A.size(); ++h) total -= base.A[h].trace() * means[h] * width;
+    if (set != nullptr) {
+      for (std::size_t h = 0; h < set->A.size(); ++h) total += set->A[h].trace() * means[h] * width;
       continue;
     }
     // An evaluator piece: composite Gauss-Legendre, 8 points on panels of at most pi/16 on each

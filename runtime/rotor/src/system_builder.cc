@@ -303,8 +303,8 @@ model::CoefficientInputs SystemBuilder::inputs(double mu, const double* aero) co
 void SystemBuilder::assemble(double mu, const std::vector<double>& aero, HarmonicSet& out,
                              ZeroTail tail) const {
   const int n = n_, ns = 2 * n_;
-  thread_local std::vector<double> buffer;  // scratch of this thread
-  buffer.assign(static_cast<std::size_t>(H_ * n * ns + H_ * n), 0.0);
+  thread_local std::vector<double> buffer;  // scratch of this thread, every entry written below
+  buffer.resize(static_cast<std::size_t>(H_ * n * ns + H_ * n));
   double* force = buffer.data();
   double* forcing = force + H_ * n * ns;
   model_->coefficients(inputs(mu, aero.data()), {force, forcing});
@@ -547,13 +547,15 @@ void SystemBuilder::system(double mu, PeriodicSystem* out) const {
   if (!(mu >= 0.0) || !std::isfinite(mu)) {
     throw InvalidInput("mu", round_trip_text(mu), "advance ratio must be finite and >= 0");
   }
-  // A new system, the harmonic sets' storage kept (a sweep rebuilds one system per mu).
-  std::vector<HarmonicSet> sets = std::move(out->sets);
-  sets.resize(2);
-  assemble(mu, aero_.normal(), sets[0], ZeroTail::Drop);
-  drop_zero_harmonics(sets[0]);
-  PeriodicSystem sys(std::move(sets[0]));
+  // The system rebuilt in place, its harmonic sets' and pieces' storage kept (a sweep rebuilds
+  // one system per mu).
+  PeriodicSystem& sys = *out;
+  const bool sector = p_.reversed_flow && !p_.exact_reversed_flow && mu > 0.0;
+  sys.sets.resize(sector ? 2 : 1);
+  assemble(mu, aero_.normal(), sys.sets[0], ZeroTail::Drop);
+  drop_zero_harmonics(sys.sets[0]);
   sys.n = 2 * n_;
+  sys.reset_pieces();
   if (p_.reversed_flow && p_.exact_reversed_flow && mu > 0.0) {
     const ExactReversedRegion r = exact_reversed_region(mu, p_);
     if (r.exists) {
@@ -565,16 +567,15 @@ void SystemBuilder::system(double mu, PeriodicSystem* out) const {
           [table](double psi, Eigen::MatrixXd& A, Eigen::VectorXd& f) { table->at(psi, A, f); },
           r.breaks);
     }
-  } else if (p_.reversed_flow && mu > 0.0) {
+  } else if (sector) {
     // The reversed-flow sector of Appendix D, centred on the retreating blade.
     const double alpha = reversed_flow_sector_width(mu);
     thread_local std::vector<double> reversed;  // scratch of this thread
     aero_.reversed(mu, reversed);
-    assemble(mu, reversed, sets[1], ZeroTail::Drop);
-    drop_zero_harmonics(sets[1]);
-    sys.add_harmonic_piece(1.5 * kPi - 0.5 * alpha, 1.5 * kPi + 0.5 * alpha, std::move(sets[1]));
+    assemble(mu, reversed, sys.sets[1], ZeroTail::Drop);
+    drop_zero_harmonics(sys.sets[1]);
+    sys.add_set_piece(1.5 * kPi - 0.5 * alpha, 1.5 * kPi + 0.5 * alpha, 1);
   }
-  *out = std::move(sys);
 }
 
 }  // namespace flaplag::detail

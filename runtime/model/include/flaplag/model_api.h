@@ -225,7 +225,8 @@ struct CoefficientInputs {
 // Outputs.  n = M + N equations, 2n states, H harmonics.
 // Harmonic index h: 0 -> 1 (constant), 2k-1 -> cos(k psi), 2k -> sin(k psi).
 // The equations of motion are  mass * q'' = sum_h phi_h(psi) (force[h] * y + forcing[h]),
-// with the generalized mass from ModelDescriptor::mass.
+// with the generalized mass from ModelDescriptor::mass.  A function writes every entry of its
+// outputs (the caller need not clear them).
 struct CoefficientOutputs {
   double* force;    // [H*n*2n]  linear coefficient of the state y in the generalized force
   double* forcing;  // [H*n]     state-independent part (evaluated at g0, h0; includes hover load)

@@ -59,6 +59,11 @@ struct PeriodicSystem {
   void add_harmonic_piece(double begin, double end, HarmonicSet set);
   void add_evaluator_piece(double begin, double end, Evaluator evaluator,
                            std::vector<double> breaks = {});
+  // For a system rebuilt in place (its storage kept): reset_pieces() makes sets[0] the one
+  // piece again, add_set_piece() gives [begin, end) to sets[set] (1 <= set < sets.size(), else
+  // InvalidInput; the range as add_harmonic_piece).
+  void reset_pieces();
+  void add_set_piece(double begin, double end, int set);
 
   // Throws InvalidInput unless n >= 1, there is a base set, every harmonic is n x n (f: n or
   // absent) and finite, every set has at least the constant harmonic, the pieces are sorted and
