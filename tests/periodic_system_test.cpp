@@ -154,6 +154,44 @@ TEST(PeriodicSystem, RegionsAndEdges) {
   EXPECT_NO_THROW(w.validate());
 }
 
+// A system rebuilt in place (its storage kept, as SystemBuilder does at every mu) has the pieces
+// of one built afresh; a set index that is not there is refused by name.
+TEST(PeriodicSystem, RebuiltInPlaceHasTheFreshPieces) {
+  PeriodicSystem w = sector_system(2, 3);
+  w.add_harmonic_piece(1.0, 2.0, w.sets[1]);  // three sets, five pieces
+  w.sets.resize(2);
+  w.reset_pieces();
+  ASSERT_EQ(1u, w.pieces.size());
+  EXPECT_EQ(0.0, w.pieces[0].begin);
+  EXPECT_EQ(kTwoPi, w.pieces[0].end);
+  EXPECT_EQ(0, w.pieces[0].set);
+  for (const auto& [begin, end] : {std::pair{kSectorBegin, kSectorEnd}, std::pair{0.0, 1.0},
+                                   std::pair{5.0, kTwoPi}, std::pair{0.0, kTwoPi}}) {
+    PeriodicSystem fresh(w.sets[0]);
+    fresh.add_harmonic_piece(begin, end, w.sets[1]);
+    w.reset_pieces();
+    w.add_set_piece(begin, end, 1);
+    ASSERT_EQ(fresh.pieces.size(), w.pieces.size()) << begin << " " << end;
+    for (std::size_t i = 0; i < w.pieces.size(); ++i) {
+      EXPECT_EQ(fresh.pieces[i].begin, w.pieces[i].begin) << i;
+      EXPECT_EQ(fresh.pieces[i].end, w.pieces[i].end) << i;
+      EXPECT_EQ(fresh.pieces[i].set, w.pieces[i].set) << i;
+    }
+    EXPECT_EQ(fresh.trace_integral(), w.trace_integral());
+    EXPECT_NO_THROW(w.validate());
+  }
+  w.reset_pieces();
+  for (int bad : {0, 2, -1}) {
+    try {
+      w.add_set_piece(1.0, 2.0, bad);
+      ADD_FAILURE() << bad;
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("set"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(w.add_set_piece(2.0, 1.0, 1), InvalidInput);
+}
+
 TEST(PeriodicSystem, EvaluatesHarmonicSums) {
   const PeriodicSystem s = sector_system(3, 5);
   for (double psi : {0.2, 2.0, 1.5 * kPi}) {
