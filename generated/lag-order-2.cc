@@ -2979,6 +2979,8 @@ const flaplag::model::ModelFamily& flaplag_family_lag_order_2() {
       &g::equilibrium,
       &g::thrust,
       &g::nonlinear,
-      &g::nonlinear_thrust};
+      &g::nonlinear_thrust,
+      nullptr,
+      31};
   return f;
 }

@@ -2653,6 +2653,8 @@ const flaplag::model::ModelFamily& flaplag_family_no_radial_flow() {
       &g::equilibrium,
       &g::thrust,
       &g::nonlinear,
-      &g::nonlinear_thrust};
+      &g::nonlinear_thrust,
+      nullptr,
+      30};
   return f;
 }

@@ -3791,6 +3791,8 @@ const flaplag::model::ModelFamily& flaplag_family_paper() {
       &g::equilibrium,
       &g::thrust,
       &g::nonlinear,
-      &g::nonlinear_thrust};
+      &g::nonlinear_thrust,
+      nullptr,
+      43};
   return f;
 }

@@ -128,6 +128,47 @@ INSTANTIATE_TEST_SUITE_P(Blades, ExactModesGauss, ::testing::Values(false, true)
 // The model's thrust (ModelDescriptor::thrust, the flap load L_z of the derivation) with the
 // integrals of the twisted blade, at the hover equilibrium of the same integrals, state y = 0:
 // C_T / (sigma a) = T / 2 with T the azimuth mean of the thrust forcing.
+// The first `count` integrals alone have the bits of the whole list's (the Clenshaw chains are
+// independent), the others are NaN; a count outside the list is refused by name.  A list with
+// an integrand that vanishes (not live) in the middle.
+TEST(AeroIntegrals, ThePrefixHasTheBitsOfTheWholeList) {
+  const ModeSet m = assumed_modes(1.175, 1.28303);
+  SpanGeometry g;
+  g.e1 = 0.05;
+  g.lr = 0.95;
+  g.tip_loss_a = 0.1;
+  g.tip_loss_b = 0.97;
+  const std::vector<AeroIntegral> list = {
+      aero("x^2 eta", 2, {kEta}), aero("x eta gamma", 1, {kEta, kGamma}),
+      aero("x^3 eta eta' gamma' gamma", 3, {kEta, kEtaP, kGammaP, kGamma}),
+      aero("x^2 gamma'", 2, {kGammaP})};
+  const auto d = descriptor(list, {});
+  const AeroIntegrals ai(d, m, g);
+  for (double mu : {0.3, 0.5, 0.9, 1.2}) {
+    const std::vector<double> whole = ai.reversed(mu);
+    for (int count = 0; count <= 4; ++count) {
+      std::vector<double> part;
+      ai.reversed(mu, part, count);
+      ASSERT_EQ(whole.size(), part.size());
+      for (int j = 0; j < 4; ++j) {
+        if (j < count)
+          EXPECT_EQ(whole[j], part[j]) << mu << " " << count << " " << j;
+        else
+          EXPECT_TRUE(std::isnan(part[j])) << mu << " " << count << " " << j;
+      }
+    }
+  }
+  std::vector<double> out;
+  for (int bad : {-1, 5}) {
+    try {
+      ai.reversed(0.5, out, bad);
+      ADD_FAILURE() << bad;
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("count"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(AeroIntegrals, TwistedBladeHoverThrustIsBladeElementTheory) {
   const model::ModelDescriptor& d = *model::registered_models().front();  // paper, 1 x 1
   ASSERT_EQ(1, d.flap_modes);

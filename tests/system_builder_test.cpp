@@ -7,8 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "flaplag/analysis.h"
@@ -211,6 +213,80 @@ TEST(SystemBuilder, ReusedSystemIsTheSystemOfItsMu) {
   const RotorParameters typical;
   const SystemBuilder b(typical, find_model(typical.model));
   EXPECT_THROW(b.system(0.1, nullptr), InvalidInput);
+}
+
+// The contract behind building a system from the first n_linear_aero integrals only (the
+// reversed-flow sector's): mass, coefficients and equilibrium of every compiled family, at
+// several mode counts, give the same bits, all finite, when every later integral is NaN.
+TEST(SystemBuilder, TheLinearFunctionsReadOnlyTheirIntegrals) {
+  for (const model::ModelFamily* f : model::compiled_families()) {
+    for (const auto& [M, N] : {std::pair{1, 1}, std::pair{2, 1}, std::pair{3, 2}}) {
+      const model::ModelDescriptor& d = model::instantiate(*f, M, N);
+      SCOPED_TRACE(d.name);
+      ASSERT_GT(d.n_linear_aero, 0);
+      ASSERT_LE(d.n_linear_aero, d.n_aero);
+      const int n = M + N, H = d.n_harmonics;
+      const int modes[2] = {M, N};
+      std::vector<double> q0[2], omega[2], damping[2], elastic[2][2];
+      model::CoefficientInputs in{};
+      in.lock = 8.0;
+      in.lr = 0.95;
+      in.theta = 0.1;
+      in.inflow = 0.03;
+      in.precone = 0.02;
+      in.droop = 0.01;
+      in.cdo_a = 0.002;
+      in.mu = 0.7;
+      in.theta1c = 0.03;
+      in.theta1s = -0.02;
+      for (int r = 0; r < 2; ++r) {
+        in.modes[r] = modes[r];
+        for (int k = 0; k < modes[r]; ++k) {
+          q0[r].push_back(0.01 * (k + 1 + r));
+          omega[r].push_back(1.1 + 2.0 * k + 0.3 * r);
+          damping[r].push_back(0.002 * (k + 1));
+        }
+        in.q0[r] = q0[r].data();
+        in.omega[r] = omega[r].data();
+        in.damping[r] = damping[r].data();
+        for (int c = 0; c < 2; ++c) {
+          for (int k = 0; k < modes[r] * modes[c]; ++k)
+            elastic[r][c].push_back(0.01 * std::sin(k + r + c));
+          in.elastic[r][c] = elastic[r][c].data();
+        }
+      }
+      std::vector<double> aero(static_cast<std::size_t>(d.n_aero));
+      std::vector<double> structural(static_cast<std::size_t>(d.n_structural));
+      for (std::size_t j = 0; j < aero.size(); ++j)
+        aero[j] = 0.1 + 0.05 * std::sin(1.0 + static_cast<double>(j));
+      for (std::size_t j = 0; j < structural.size(); ++j)
+        structural[j] = 0.2 + 0.1 * std::cos(2.0 + static_cast<double>(j));
+      in.structural = structural.data();
+      auto run = [&](const std::vector<double>& a) {
+        in.aero = a.data();
+        std::vector<double> out(
+            static_cast<std::size_t>(n * n + H * n * 2 * n + H * n + n * n + n));
+        double* mass = out.data();
+        double* force = mass + n * n;
+        double* forcing = force + H * n * 2 * n;
+        double* S = forcing + H * n;
+        d.mass(in, mass);
+        d.coefficients(in, {force, forcing});
+        d.equilibrium(in, {S, S + n * n});
+        return out;
+      };
+      const std::vector<double> full = run(aero);
+      std::vector<double> prefix = aero;
+      for (std::size_t j = static_cast<std::size_t>(d.n_linear_aero); j < prefix.size(); ++j)
+        prefix[j] = std::numeric_limits<double>::quiet_NaN();
+      const std::vector<double> cut = run(prefix);
+      for (std::size_t k = 0; k < full.size(); ++k) {
+        ASSERT_TRUE(std::isfinite(cut[k]))
+            << "output " << k << " reads an integral from " << d.n_linear_aero << " on";
+        ASSERT_EQ(full[k], cut[k]) << k;
+      }
+    }
+  }
 }
 
 }  // namespace

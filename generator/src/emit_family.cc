@@ -554,7 +554,9 @@ std::string emit_family_cpp(const GenericModel& g) {
      << "      static_cast<int>(std::size(g::kAero)), g::kAero,\n"
      << "      static_cast<int>(std::size(g::kStructural)), g::kStructural,\n"
      << "      &g::mass,\n      &g::coefficients,\n      &g::equilibrium,\n      &g::thrust,\n"
-     << "      &g::nonlinear,\n      &g::nonlinear_thrust};\n"
+     << "      &g::nonlinear,\n      &g::nonlinear_thrust,\n"
+     << "      nullptr,\n"
+     << "      " << linear_aero_templates(g) << "};\n"
      << "  return f;\n}\n";
   return os.str();
 }

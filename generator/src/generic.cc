@@ -972,6 +972,25 @@ std::vector<std::string> concrete_terms(const DerivedModel& m) {
   return out;
 }
 
+int linear_aero_templates(const GenericModel& g) {
+  int count = 0;
+  for (const GenericSlot& s : g.slots) {
+    const bool linear = s.kind == SlotKind::Mass || s.kind == SlotKind::Force ||
+                        s.kind == SlotKind::Forcing || s.kind == SlotKind::HoverStiffness ||
+                        s.kind == SlotKind::HoverLoad;
+    if (!linear) continue;
+    for (const GenericTerm& t : s.terms) {
+      if (t.integral < 0 || g.integrals[static_cast<size_t>(t.integral)].ref != IntegralRef::Aero)
+        continue;
+      int idx = 0;  // index among the aerodynamic templates
+      for (int j = 0; j < t.integral; ++j)
+        if (g.integrals[static_cast<size_t>(j)].ref == IntegralRef::Aero) ++idx;
+      count = std::max(count, idx + 1);
+    }
+  }
+  return count;
+}
+
 std::vector<std::string> expand_generic(const GenericModel& g, int M, int N) {
   std::vector<std::string> out;
   for (const auto& s : g.slots) {

@@ -152,6 +152,7 @@ const model::ModelFamily& load_spec(const std::string& path) {
   f.nonlinear = &nonlinear;
   f.nonlinear_thrust = &nonlinear_thrust;
   f.context = r.get();
+  f.n_linear_aero = derive::linear_aero_templates(g);
   try {
     model::register_family(f);
   } catch (const std::invalid_argument& e) {

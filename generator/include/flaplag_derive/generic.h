@@ -137,6 +137,12 @@ struct GenericModel {
 // reproduce the concrete derivation or are not saturated at P.
 GenericModel extract_generic(const OrderingSpec& spec, int P = 4);
 
+// The aerodynamic templates (counted among those of their kind, in order) that the linear
+// functions read, as a prefix: 1 + the largest index a Mass, Force, Forcing, HoverStiffness or
+// HoverLoad term reads (0 when none does).  A system A(psi), f(psi) needs only these integrals of
+// a flow region; the thrust and the nonlinear loads read the rest.
+int linear_aero_templates(const GenericModel& g);
+
 // Patterns from one concrete derivation (no saturation check): for tests.
 GenericModel extract_generic_from(const DerivedModel& concrete);
 

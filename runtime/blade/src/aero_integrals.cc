@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/core/errors.h"
@@ -119,16 +121,18 @@ void AeroIntegrals::add_piece(const model::ModelDescriptor& m, const ModeSet& mo
 namespace {
 
 // The Clenshaw recurrences for sum_i C_i T_i(t) of m integrals side by side (coefficient i of
-// integral j at coef[i * m + j]): b1 ends as the sums, b2 is scratch; both start at zero.  The
-// same operations per integral as one recurrence at a time.  An AVX2 and a baseline clone
+// integral j at coef[i * stride + j], m <= stride): b1 ends as the sums, b2 is scratch; both
+// start at zero.  The same operations per integral as one recurrence at a time, so any m gives
+// the same bits for the integrals it covers.  An AVX2 and a baseline clone
 // (numerics/src/transition.cc explains why both give the same bits: add and multiply only, no
 // FMA contraction).
 __attribute__((target_clones("avx2", "default"))) void clenshaw_sums(const double* coef, int terms,
+                                                                     std::size_t stride,
                                                                      std::size_t m, double t,
                                                                      double* __restrict b1,
                                                                      double* __restrict b2) {
   for (int i = terms - 1; i >= 1; --i) {
-    const double* C = coef + static_cast<std::size_t>(i) * m;
+    const double* C = coef + static_cast<std::size_t>(i) * stride;
     for (std::size_t j = 0; j < m; ++j) {
       const double b0 = 2.0 * t * b1[j] - b2[j] + C[j];
       b2[j] = b1[j];
@@ -140,23 +144,32 @@ __attribute__((target_clones("avx2", "default"))) void clenshaw_sums(const doubl
 
 }  // namespace
 
-void AeroIntegrals::partial(double s, std::vector<double>& out) const {
+void AeroIntegrals::partial(double s, std::vector<double>& out) const { partial(s, out, count_); }
+
+void AeroIntegrals::partial(double s, std::vector<double>& out, int count) const {
+  if (count < 0 || count > count_)
+    throw InvalidInput("count", std::to_string(count),
+                       "must be 0.." + std::to_string(count_) + " (the model's integrals)");
   s = std::clamp(s, a_, b_);
   // The piece that holds s (the last whose left end is <= s).
   std::size_t p = 0;
   while (p + 1 < pieces_.size() && pieces_[p + 1].lo <= s) ++p;
   const Piece& piece = pieces_[p];
   const double t = (2.0 * s - piece.lo - piece.hi) / (piece.hi - piece.lo);
-  const std::size_t m = live_.size();
-  const bool all = static_cast<int>(m) == count_;
+  const std::size_t stride = live_.size();
+  // the live integrals among the first `count` (live_ ascends)
+  const std::size_t m =
+      static_cast<std::size_t>(std::lower_bound(live_.begin(), live_.end(), count) - live_.begin());
+  const bool all = static_cast<int>(m) == count;
   out.resize(static_cast<std::size_t>(count_));
   // b1 in `out`, or in `b1_` when some integrands vanish; b2 in `b2_`.
   thread_local std::vector<double> b1_, b2_;
   b2_.assign(m, 0.0);
   if (!all) b1_.assign(m, 0.0);
-  std::fill(out.begin(), out.end(), 0.0);
+  std::fill(out.begin(), out.begin() + count, 0.0);
+  std::fill(out.begin() + count, out.end(), std::numeric_limits<double>::quiet_NaN());
   double* b1 = all ? out.data() : b1_.data();
-  clenshaw_sums(coef_.data() + piece.offset, piece.terms, m, t, b1, b2_.data());
+  clenshaw_sums(coef_.data() + piece.offset, piece.terms, stride, m, t, b1, b2_.data());
   if (p > 0)
     for (std::size_t j = 0; j < m; ++j) b1[j] += piece.start[j];
   if (!all)
@@ -164,17 +177,26 @@ void AeroIntegrals::partial(double s, std::vector<double>& out) const {
 }
 
 void AeroIntegrals::reversed(double mu, std::vector<double>& out) const {
+  reversed(mu, out, count_);
+}
+
+void AeroIntegrals::reversed(double mu, std::vector<double>& out, int count) const {
   if (!std::isfinite(mu) || mu < 0.0) {
     throw InvalidInput("mu", round_trip_text(mu), "advance ratio must be finite and >= 0");
   }
+  if (count < 0 || count > count_)
+    throw InvalidInput("count", std::to_string(count),
+                       "must be 0.." + std::to_string(count_) + " (the model's integrals)");
+  const std::size_t c = static_cast<std::size_t>(count);
   if (mu >= 1.0) {  // eqs D.5-D.6: the whole span reversed, lift slope negated
     out = normal_;
-    for (double& v : out) v = -v;
+    for (std::size_t j = 0; j < out.size(); ++j)
+      out[j] = j < c ? -out[j] : std::numeric_limits<double>::quiet_NaN();
     return;
   }
   // eqs D.3-D.4: -int_A^{x0(mu)} + int_{x0(mu)}^B = normal - 2 int_A^{x0(mu)}, x0 = (mu - e1)/lr
-  partial((mu - e1_) / lr_, out);
-  for (std::size_t j = 0; j < out.size(); ++j) out[j] = normal_[j] - 2.0 * out[j];
+  partial((mu - e1_) / lr_, out, count);
+  for (std::size_t j = 0; j < c; ++j) out[j] = normal_[j] - 2.0 * out[j];
 }
 
 std::vector<double> AeroIntegrals::reversed(double mu) const {

@@ -122,8 +122,10 @@ std::unique_ptr<Instance> make(const ModelFamily& f, int M, int N) {
                    : std::string(f.name) + "-" + std::to_string(M) + "x" + std::to_string(N);
   in->summary = in->name + ": " + std::to_string(M) + " flap x " + std::to_string(N) +
                 " lag modes; " + f.summary;
+  std::size_t linear_aero = 0;  // concrete integrals of the first f.n_linear_aero templates
   for (int j = 0; j < f.n_aero; ++j) {
     const IntegralTemplate& t = f.aero[j];
+    if (j == f.n_linear_aero) linear_aero = in->aero.size();
     for_each_assignment(t, M, N, [&](const std::vector<int>& modes) {
       AeroIntegral a{};
       a.name = in->keep(concrete_name(t.name, modes));
@@ -174,6 +176,9 @@ std::unique_ptr<Instance> make(const ModelFamily& f, int M, int N) {
   d.nonlinear = f.nonlinear;
   d.nonlinear_thrust = f.nonlinear_thrust;
   d.context = f.context;
+  d.n_linear_aero = f.n_linear_aero > 0 && f.n_linear_aero < f.n_aero
+                        ? static_cast<int>(linear_aero)
+                        : static_cast<int>(in->aero.size());
   return in;
 }
 

@@ -571,7 +571,9 @@ void SystemBuilder::system(double mu, PeriodicSystem* out) const {
     // The reversed-flow sector of Appendix D, centred on the retreating blade.
     const double alpha = reversed_flow_sector_width(mu);
     thread_local std::vector<double> reversed;  // scratch of this thread
-    aero_.reversed(mu, reversed);
+    // Only the integrals the linear coefficients read (the others NaN, never read).
+    const int linear = model_->n_linear_aero > 0 ? model_->n_linear_aero : model_->n_aero;
+    aero_.reversed(mu, reversed, linear);
     assemble(mu, reversed, sys.sets[1], ZeroTail::Drop);
     drop_zero_harmonics(sys.sets[1]);
     sys.add_set_piece(1.5 * kPi - 0.5 * alpha, 1.5 * kPi + 0.5 * alpha, 1);

@@ -290,6 +290,9 @@ struct ModelDescriptor {
   // ModelFamily::context: every caller of the functions above passes it in
   // CoefficientInputs::context.
   const void* context = nullptr;
+  // The first n_linear_aero entries of `aero` hold every integral that mass, coefficients and
+  // equilibrium read (ModelFamily::n_linear_aero); 0: not known, all of them.
+  int n_linear_aero = 0;
 };
 
 // ----- model families: one per ordering spec, for any number of modes ----------------------
@@ -399,6 +402,10 @@ struct ModelFamily {
   // instantiate() copies it into ModelDescriptor::context, the caller into
   // CoefficientInputs::context.  nullptr for a compiled family.
   const void* context = nullptr;
+  // The first n_linear_aero templates of `aero` hold every integral that mass, coefficients and
+  // equilibrium read (thrust and the nonlinear loads read the rest): a caller that builds only
+  // the linear system may leave the others out.
+  int n_linear_aero = 0;
 };
 
 // The largest mode count per direction a family is instantiated for (the Galerkin basis of the

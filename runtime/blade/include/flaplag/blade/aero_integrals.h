@@ -34,9 +34,13 @@ class AeroIntegrals {
   // [A, B] for mu < 1 (eqs D.3-D.4), and -int_A^B for mu >= 1 (eqs D.5-D.6).
   void reversed(double mu, std::vector<double>& out) const;
   std::vector<double> reversed(double mu) const;
+  // The first `count` of them only (0 <= count <= the model's integrals); the others NaN.
+  void reversed(double mu, std::vector<double>& out, int count) const;
 
   // int_A^s of every integrand, s clamped to [A, B].
   void partial(double s, std::vector<double>& out) const;
+  // The first `count` integrals only, the others NaN (the same bits as partial() for those).
+  void partial(double s, std::vector<double>& out, int count) const;
 
  private:
   // A stretch [lo, hi] of the aerodynamic span between corners of the blade's distributions
