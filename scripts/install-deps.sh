@@ -19,9 +19,11 @@ apt-get update
 # tests and bench/.  The Python module (python/) is built with pybind11 for Debian's
 # /usr/bin/python3 and uses numpy; its tests use pytest, dask.distributed (maps on a cluster) and
 # matplotlib (examples/python/).  gnuplot draws the pictures; headless Chromium opens the HTML
-# reports in the tests (tests/report_test.cpp), with DejaVu for their text.
+# reports in the tests (tests/report_test.cpp), with DejaVu for their text.  ccache lets the
+# second sanitizer build of .ci/run reuse the objects of the first instead of recompiling them.
 apt-get install -y --no-install-recommends \
   build-essential \
+  ccache \
   cmake \
   ninja-build \
   pkg-config \
