@@ -23,13 +23,19 @@ using flaplag::model::Direction;
 using testing::RelClose;
 using namespace testing::fixtures;
 
-TEST(AeroIntegrals, ReversedFlowSplitExactValues) {
-  const ModeSet m = assumed_modes(1.175, 1.28303);
+// A span with a root offset, l/R < 1 and both tip-loss limits inside the blade.
+SpanGeometry offset_span() {
   SpanGeometry g;
   g.e1 = 0.05;
   g.lr = 0.95;
   g.tip_loss_a = 0.1;
   g.tip_loss_b = 0.97;
+  return g;
+}
+
+TEST(AeroIntegrals, ReversedFlowSplitExactValues) {
+  const ModeSet m = assumed_modes(1.175, 1.28303);
+  const SpanGeometry g = offset_span();
   const std::vector<AeroIntegral> list = {
       aero("x^2 eta", 2, {kEta}),
       aero("x^3 eta eta' gamma' gamma", 3, {kEta, kEtaP, kGammaP, kGamma})};
@@ -133,11 +139,7 @@ INSTANTIATE_TEST_SUITE_P(Blades, ExactModesGauss, ::testing::Values(false, true)
 // an integrand that vanishes (not live) in the middle.
 TEST(AeroIntegrals, ThePrefixHasTheBitsOfTheWholeList) {
   const ModeSet m = assumed_modes(1.175, 1.28303);
-  SpanGeometry g;
-  g.e1 = 0.05;
-  g.lr = 0.95;
-  g.tip_loss_a = 0.1;
-  g.tip_loss_b = 0.97;
+  const SpanGeometry g = offset_span();
   const std::vector<AeroIntegral> list = {
       aero("x^2 eta", 2, {kEta}), aero("x eta gamma", 1, {kEta, kGamma}),
       aero("x^3 eta eta' gamma' gamma", 3, {kEta, kEtaP, kGammaP, kGamma}),
