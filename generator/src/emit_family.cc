@@ -79,12 +79,8 @@ std::string term_cpp(const GenericModel& g, const GenericTerm& t) {
   for (const auto& x : t.indexed) f.push_back(indexed_cpp(x));
   if (t.integral >= 0) {
     const IntegralTemplate& tp = g.integrals[static_cast<size_t>(t.integral)];
-    // index among the templates of its kind
-    int idx = 0;
-    for (int j = 0; j < t.integral; ++j)
-      if (g.integrals[static_cast<size_t>(j)].ref == tp.ref) ++idx;
-    std::string call =
-        std::string(tp.ref == IntegralRef::Aero ? "A" : "S") + "(" + std::to_string(idx);
+    std::string call = std::string(tp.ref == IntegralRef::Aero ? "A" : "S") + "(" +
+                       std::to_string(index_among_kind(g, t.integral));
     for (int a : t.integral_args) call += ", " + var_name(a);
     f.push_back(call + ")");
   }

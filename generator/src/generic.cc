@@ -972,6 +972,14 @@ std::vector<std::string> concrete_terms(const DerivedModel& m) {
   return out;
 }
 
+int index_among_kind(const GenericModel& g, int integral) {
+  const IntegralRef ref = g.integrals[static_cast<size_t>(integral)].ref;
+  int idx = 0;
+  for (int j = 0; j < integral; ++j)
+    if (g.integrals[static_cast<size_t>(j)].ref == ref) ++idx;
+  return idx;
+}
+
 int linear_aero_templates(const GenericModel& g) {
   int count = 0;
   for (const GenericSlot& s : g.slots) {
@@ -982,10 +990,7 @@ int linear_aero_templates(const GenericModel& g) {
     for (const GenericTerm& t : s.terms) {
       if (t.integral < 0 || g.integrals[static_cast<size_t>(t.integral)].ref != IntegralRef::Aero)
         continue;
-      int idx = 0;  // index among the aerodynamic templates
-      for (int j = 0; j < t.integral; ++j)
-        if (g.integrals[static_cast<size_t>(j)].ref == IntegralRef::Aero) ++idx;
-      count = std::max(count, idx + 1);
+      count = std::max(count, index_among_kind(g, t.integral) + 1);
     }
   }
   return count;

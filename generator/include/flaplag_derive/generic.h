@@ -137,6 +137,10 @@ struct GenericModel {
 // reproduce the concrete derivation or are not saturated at P.
 GenericModel extract_generic(const OrderingSpec& spec, int P = 4);
 
+// The index of g.integrals[integral] among the templates of its kind (aerodynamic or
+// structural), in order: its index in the emitted kAero or kStructural list.
+int index_among_kind(const GenericModel& g, int integral);
+
 // The aerodynamic templates (counted among those of their kind, in order) that the linear
 // functions read, as a prefix: 1 + the largest index a Mass, Force, Forcing, HoverStiffness or
 // HoverLoad term reads (0 when none does).  A system A(psi), f(psi) needs only these integrals of
