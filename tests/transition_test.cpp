@@ -453,10 +453,11 @@ PeriodicSystem permuted(const PeriodicSystem& s, const std::vector<int>& perm) {
   return out;
 }
 
-// The plain kernels sum the harmonics only into the rows of A that vary when those are the
-// even ones (the rotor's y = [q', q, ...]); with varying odd rows they take every row.  The
-// permutation puts rotor_like()'s varying rows 0 and 2 at 1 and 3.
-TEST(Transition, PlainHsuTakesEveryRowThatVaries) {
+// The plain kernel of 4 states sums the harmonics only into the even rows of A, which are the
+// rows that vary in the layout of 1 x 1 modes (y = [g', g, h', h]); a 4-state system whose odd
+// rows vary takes the Eigen kernel.  The permutation puts rotor_like()'s varying rows 0 and 2 at
+// 1 and 3.
+TEST(Transition, HsuTakesEveryRowThatVaries) {
   const PeriodicSystem even = rotor_like();
   const PeriodicSystem odd = permuted(even, {1, 0, 3, 2});
   for (int K : {8, 50, 101}) {
@@ -470,8 +471,8 @@ TEST(Transition, PlainHsuTakesEveryRowThatVaries) {
 // transition_matrix_hsu_pair: Phi at K with the bits of transition_matrix_hsu, Phi at K / 2
 // equal to it to rounding, on grids where a sector edge falls inside a fine interval, on a
 // fine grid point that is a coarse midpoint (K = 8, 24: 1.25 pi = 5 and 15 fine steps) and on
-// a coarse grid point (K = 16); every state size and the fallbacks (6 states, J = 3,
-// a varying region) give the two separate calls.
+// a coarse grid point (K = 16); every state size and the fallbacks (6 states, varying odd
+// rows, J = 3, a varying region) give the two separate calls.
 TEST(Transition, HsuPairIsBothGridsInOnePass) {
   const PeriodicSystem one = rotor_like();
   struct Case {
@@ -492,7 +493,7 @@ TEST(Transition, HsuPairIsBothGridsInOnePass) {
     }
   }
   const std::vector<Case> cases{{"rotor_like", one, 4, false},
-                                {"odd rows", permuted(one, {1, 0, 3, 2}), 4, false},
+                                {"odd rows", permuted(one, {1, 0, 3, 2}), 4, true},
                                 {"8 states", copies_of_rotor_like(2), 4, false},
                                 {"16 states", copies_of_rotor_like(4), 4, false},
                                 {"6 states", six, 4, true},

@@ -361,7 +361,6 @@ struct PlainHsuInput {
   double damp[kPlainMaxHarmonics / 2 + 2] = {};       // sinc(k d / 2), the equal-step means
   double ones[kPlainMaxHarmonics / 2 + 2] = {};       // 1: point values
   int max_order = 0;
-  bool even_rows_only = false;  // Hsu: only the rows 0, 2, 4, ... of A_h, h >= 1, are nonzero
 };
 
 // The harmonic set of the piece that contains mid (in (0, 2 pi)).
@@ -470,7 +469,10 @@ template <int N>
 // layout buys: in the rotor equations (y = [q1', q1, q2', q2, ...]) every second row of A(psi),
 // q' = q', does not vary with psi, and rows of A are whole columns, i.e. whole vectors, of A^T,
 // so the harmonic sum skips them (kEvenRows: only the rows 0, 2, 4, ... take the harmonics
-// h >= 1).
+// h >= 1).  That is the layout of 1 x 1 modes, y = [g', g, h', h]; with more modes the varying
+// rows come in blocks (model_api.h: y = [g'_1..g'_M, g_1..g_M, ...]) and the kernel takes every
+// row.  So 4 states are compiled with kEvenRows only (a 4-state system whose odd rows vary takes
+// the Eigen kernel) and 8, 12, 16 without it: one variant per size and target, not two.
 
 // X^T = sum_h w_h A_h^T over one substep, A_h^T column-major.
 template <int N, bool kEvenRows>
@@ -599,31 +601,24 @@ template <int N, bool kEvenRows, bool kPair>
   if constexpr (kPair) plain_store_transposed<N>(Phic, out_half);
 }
 
-// One clone pair per state size with a plain kernel (plain_size()) and variant: L the rows that
-// take harmonics (kEvenRows or all), P Phi at K / 2 as well.  in.A holds the transposed harmonics
-// (plain_hsu_input()).
-#define FLAPLAG_PLAIN_HSU_VARIANT(N, NAME, L, P)                             \
+// Whether the plain Hsu kernel of n states sums the harmonics into the even rows only (above).
+constexpr bool plain_even_rows(int n) { return n == 4; }
+
+// One clone pair per state size with a plain kernel (plain_size()) and variant: P Phi at K / 2
+// as well.  in.A holds the transposed harmonics (plain_hsu_input()).
+#define FLAPLAG_PLAIN_HSU_VARIANT(N, NAME, P)                                \
   __attribute__((target_clones("avx2", "default"))) void plain_hsu##N##NAME( \
       const PlainHsuInput& in, double* Phi, double* half) {                  \
-    plain_hsu_impl<N, L, P>(in, Phi, half);                                  \
+    plain_hsu_impl<N, plain_even_rows(N), P>(in, Phi, half);                 \
   }
 #define FLAPLAG_PLAIN_HSU(N)                                              \
-  FLAPLAG_PLAIN_HSU_VARIANT(N, _all, false, false)                        \
-  FLAPLAG_PLAIN_HSU_VARIANT(N, _all_pair, false, true)                    \
-  FLAPLAG_PLAIN_HSU_VARIANT(N, _even, true, false)                        \
-  FLAPLAG_PLAIN_HSU_VARIANT(N, _even_pair, true, true)                    \
+  FLAPLAG_PLAIN_HSU_VARIANT(N, _single, false)                            \
+  FLAPLAG_PLAIN_HSU_VARIANT(N, _pair, true)                               \
   void plain_hsu##N(const PlainHsuInput& in, double* Phi, double* half) { \
-    if (in.even_rows_only) {                                              \
-      if (half != nullptr)                                                \
-        plain_hsu##N##_even_pair(in, Phi, half);                          \
-      else                                                                \
-        plain_hsu##N##_even(in, Phi, nullptr);                            \
-    } else {                                                              \
-      if (half != nullptr)                                                \
-        plain_hsu##N##_all_pair(in, Phi, half);                           \
-      else                                                                \
-        plain_hsu##N##_all(in, Phi, nullptr);                             \
-    }                                                                     \
+    if (half != nullptr)                                                  \
+      plain_hsu##N##_pair(in, Phi, half);                                 \
+    else                                                                  \
+      plain_hsu##N##_single(in, Phi, nullptr);                            \
   }
 FLAPLAG_PLAIN_HSU(4)
 FLAPLAG_PLAIN_HSU(8)
@@ -771,7 +766,7 @@ bool plain_input(const PeriodicSystem& sys, int K, PlainHsuInput& in) {
 }
 
 // The plain Hsu kernel's input: plain_input() with the harmonics transposed into `work` (the
-// kernel works on transposes) and the rows of A that vary found.
+// kernel works on transposes); false also for 4 states whose odd rows vary (plain_even_rows()).
 bool plain_hsu_input(const PeriodicSystem& sys, int K, std::vector<double>& work,
                      PlainHsuInput& in) {
   if (!plain_input(sys, K, in)) return false;
@@ -780,21 +775,24 @@ bool plain_hsu_input(const PeriodicSystem& sys, int K, std::vector<double>& work
   const std::size_t count = static_cast<std::size_t>(in.H[0] + (same ? 0 : in.H[1]));
   if (work.size() < count * n * n) work.resize(count * n * n);
   double* t = work.data();
-  bool even = true;
+  if (plain_even_rows(n))
+    for (int r = 0; r < (same ? 1 : 2); ++r)
+      for (int h = 1; h < in.H[r]; ++h) {
+        const double* a = in.A[r][h];
+        for (int j = 0; j < n; ++j)
+          for (int i = 1; i < n; i += 2)
+            if (a[j * n + i] != 0.0) return false;
+      }
   for (int r = 0; r < (same ? 1 : 2); ++r) {
     for (int h = 0; h < in.H[r]; ++h, t += n * n) {
       const double* a = in.A[r][h];
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) t[i * n + j] = a[j * n + i];
-      if (h > 0)
-        for (int j = 0; j < n; ++j)
-          for (int i = 1; i < n; i += 2) even &= a[j * n + i] == 0.0;
       in.A[r][h] = t;
     }
   }
   if (same)
     for (int h = 0; h < in.H[1]; ++h) in.A[1][h] = in.A[0][h];
-  in.even_rows_only = even;
   return true;
 }
 

@@ -104,8 +104,9 @@ struct TransitionResult {
 TransitionResult transition_matrix(const PeriodicSystem& sys, const TransitionOptions& opt);
 Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps);
 Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms);
-// The same into *phi, reusing its storage (nothing allocates once it is n x n, for the state
-// sizes with a plain kernel: 4, 8, 12, 16).
+// The same into *phi, reusing its storage (nothing allocates once it is n x n, for the systems
+// with a plain kernel: 8, 12 and 16 states, and 4 in the layout of 1 x 1 modes, whose odd rows
+// do not vary).
 void transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms,
                            Eigen::MatrixXd* phi);
 // Hsu at `intervals` (even) and at intervals / 2 in one pass, into *phi and *phi_half.  An
@@ -113,7 +114,7 @@ void transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms,
 // two fine intervals (the exact means are additive), so *phi_half costs only its Taylor steps.
 // *phi has the bits of transition_matrix_hsu(sys, intervals, terms); *phi_half equals
 // transition_matrix_hsu(sys, intervals / 2, terms) to rounding.  Systems without a plain kernel
-// (state size, J != 4, a varying region) get the two separate calls.
+// (state size, layout, J != 4, a varying region) get the two separate calls.
 void transition_matrix_hsu_pair(const PeriodicSystem& sys, int intervals, int terms,
                                 Eigen::MatrixXd* phi, Eigen::MatrixXd* phi_half);
 TransitionResult transition_matrix_magnus4(const PeriodicSystem& sys, int steps);
