@@ -74,6 +74,26 @@ AeroIntegrals::AeroIntegrals(const model::ModelDescriptor& m, const ModeSet& mod
   partial(b_, normal_);
 }
 
+namespace {
+
+// cos(pi i k / n), i, k = 0 .. n (row i), for the discrete cosine transform.
+std::vector<double> cosine_table(int n) {
+  std::vector<double> table(static_cast<std::size_t>((n + 1) * (n + 1)));
+  for (int i = 0; i <= n; ++i)
+    for (int k = 0; k <= n; ++k) table[i * (n + 1) + k] = std::cos(kPi * i * k / n);
+  return table;
+}
+
+// The table of a degree; that of kDegree (every smooth blade) made once per process.
+const std::vector<double>& cosines(int n, std::vector<double>& scratch) {
+  static const std::vector<double> common = cosine_table(AeroIntegrals::kDegree);
+  if (n == AeroIntegrals::kDegree) return common;
+  scratch = cosine_table(n);
+  return scratch;
+}
+
+}  // namespace
+
 void AeroIntegrals::add_piece(const model::ModelDescriptor& m, const ModeSet& modes,
                               const SpanGeometry& g, const Piece& piece, int n) {
   const double lo = piece.lo, hi = piece.hi;
@@ -84,30 +104,36 @@ void AeroIntegrals::add_piece(const model::ModelDescriptor& m, const ModeSet& mo
     x0[k] = 0.5 * (lo + hi) + 0.5 * (hi - lo) * t[k];
   }
   const double half = 0.5 * (hi - lo);
-  // cos(pi i k / n) for the discrete cosine transform, shared by every integrand.
-  std::vector<double> cos_table((n + 1) * (n + 1));
-  for (int i = 0; i <= n; ++i)
-    for (int k = 0; k <= n; ++k) cos_table[i * (n + 1) + k] = std::cos(kPi * i * k / n);
+  std::vector<double> scratch;
+  const std::vector<double>& cos_table = cosines(n, scratch);
   const std::vector<std::vector<double>> values = aero_integrands(m, modes, g, x0);
+  const std::size_t nj = static_cast<std::size_t>(m.n_aero);
+  // The Chebyshev coefficients c_i of every interpolant (discrete cosine transform, O(n^2)
+  // once), the integrands side by side: node k's end weight times f_j(x_k) at wf[k nj + j],
+  // c_i of integrand j at c[i nj + j].  Each sum runs over k in order, as one integrand's would.
+  std::vector<double> wf((n + 1) * nj), c((n + 1) * nj), s(nj);
+  for (int k = 0; k <= n; ++k) {
+    const double w = (k == 0 || k == n) ? 0.5 : 1.0;
+    for (std::size_t j = 0; j < nj; ++j) wf[k * nj + j] = w * values[j][k];
+  }
+  for (int i = 0; i <= n; ++i) {
+    std::fill(s.begin(), s.end(), 0.0);
+    for (int k = 0; k <= n; ++k) {
+      const double ct = cos_table[i * (n + 1) + k];
+      const double* f = &wf[k * nj];
+      for (std::size_t j = 0; j < nj; ++j) s[j] += f[j] * ct;
+    }
+    for (std::size_t j = 0; j < nj; ++j)
+      c[i * nj + j] = s[j] * 2.0 / n * ((i == 0 || i == n) ? 0.5 : 1.0);
+  }
   const int terms = n + 2;
   coef_.resize(coef_.size() + static_cast<std::size_t>(terms) * count_, 0.0);
-  std::vector<double> c(n + 1);
-  for (int j = 0; j < m.n_aero; ++j) {
-    const std::vector<double>& f = values[j];
-    // Chebyshev coefficients c_i of the interpolant (discrete cosine transform, O(n^2) once).
-    for (int i = 0; i <= n; ++i) {
-      double s = 0.0;
-      for (int k = 0; k <= n; ++k) {
-        const double w = (k == 0 || k == n) ? 0.5 : 1.0;
-        s += w * f[k] * cos_table[i * (n + 1) + k];
-      }
-      c[i] = s * 2.0 / n * ((i == 0 || i == n) ? 0.5 : 1.0);
-    }
+  std::vector<double> C(n + 2);
+  for (std::size_t j = 0; j < nj; ++j) {
     // Antiderivative in t: C_i = (c_{i-1} - c_{i+1}) / (2 i), i >= 1; C_0 fixes F(-1) = 0.
-    std::vector<double> C(n + 2, 0.0);
     for (int i = 1; i <= n + 1; ++i) {
-      const double cm = i - 1 == 0 ? 2.0 * c[0] : c[i - 1];
-      const double cp = i + 1 <= n ? c[i + 1] : 0.0;
+      const double cm = i - 1 == 0 ? 2.0 * c[j] : c[(i - 1) * nj + j];
+      const double cp = i + 1 <= n ? c[(i + 1) * nj + j] : 0.0;
       C[i] = (cm - cp) / (2.0 * i) * half;
     }
     double at_minus1 = 0.0;

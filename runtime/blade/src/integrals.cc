@@ -66,9 +66,12 @@ void append_interval(double a, double b, std::vector<double>& x, std::vector<dou
   const GaussRule& g = gauss_rule();
   const double half = 0.5 * (b - a);
   const double mid = 0.5 * (a + b);
-  for (int i = 0; i < kGaussPoints; ++i) {
-    x.push_back(mid + half * g.t[i]);
-    w.push_back(half * g.w[i]);
+  const std::size_t at = x.size();
+  x.resize(at + kGaussPoints);
+  w.resize(at + kGaussPoints);
+  for (std::size_t i = 0; i < static_cast<std::size_t>(kGaussPoints); ++i) {
+    x[at + i] = mid + half * g.t[i];
+    w[at + i] = half * g.w[i];
   }
 }
 
@@ -331,6 +334,8 @@ class NestedGrid {
   std::vector<double> partial_points(bool tail, std::vector<double>& w,
                                      std::vector<double>& x) const {
     const int panels = static_cast<int>(edges_.size()) - 1;
+    x.reserve(static_cast<std::size_t>(panels * kGaussPoints * kGaussPoints));
+    w.reserve(x.capacity());
     for (int p = 0; p < panels; ++p) {
       const double a = edges_[p];
       const double b = edges_[p + 1];
