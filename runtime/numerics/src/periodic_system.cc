@@ -135,6 +135,9 @@ void PeriodicSystem::add_harmonic_piece(double begin, double end, HarmonicSet se
 }
 
 void PeriodicSystem::reset_pieces() {
+  // Room for one inserted piece, which splits the base piece in three: a fresh system
+  // allocates its pieces once.
+  pieces.reserve(3);
   pieces.resize(1);
   pieces[0] = {0.0, kTwoPi, 0, {}, {}};
 }
