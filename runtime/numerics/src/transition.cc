@@ -466,13 +466,13 @@ template <int N>
 // transposed harmonics.  Each product is computed as the transpose of the one it stands for,
 // with the same terms summed in the same order (C^T(i, j) = sum_k B^T(i, k) A^T(k, j) against
 // C(j, i) = sum_k A(j, k) B(k, i)), so Phi has the bits of the untransposed product.  What the
-// layout buys: in the rotor equations (y = [q1', q1, q2', q2, ...]) every second row of A(psi),
-// q' = q', does not vary with psi, and rows of A are whole columns, i.e. whole vectors, of A^T,
-// so the harmonic sum skips them (kEvenRows: only the rows 0, 2, 4, ... take the harmonics
-// h >= 1).  That is the layout of 1 x 1 modes, y = [g', g, h', h]; with more modes the varying
-// rows come in blocks (model_api.h: y = [g'_1..g'_M, g_1..g_M, ...]) and the kernel takes every
-// row.  So 4 states are compiled with kEvenRows only (a 4-state system whose odd rows vary takes
-// the Eigen kernel) and 8, 12, 16 without it: one variant per size and target, not two.
+// layout buys: in the rotor equations of 1 x 1 modes (y = [g', g, h', h]) every second row of
+// A(psi), q' = q', does not vary with psi, and rows of A are whole columns, i.e. whole vectors, of
+// A^T, so the harmonic sum skips them (kEvenRows: only the rows 0, 2, 4, ... take the harmonics
+// h >= 1).  With more modes the varying rows come in blocks (model_api.h: y = [g'_1..g'_M,
+// g_1..g_M, ...]) and the kernel takes every row.  So 4 states are compiled with kEvenRows only
+// (a 4-state system whose odd rows vary takes the Eigen kernel) and 8, 12, 16 without it: one
+// variant per size and target, not two.
 
 // X^T = sum_h w_h A_h^T over one substep, A_h^T column-major.
 template <int N, bool kEvenRows>
