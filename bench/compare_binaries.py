@@ -16,6 +16,12 @@ import subprocess
 import sys
 
 
+def fail(message):
+    """One line on stderr and exit 2, as for any bad input."""
+    print("compare_binaries.py: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
 def samples(binary, regex, repetitions):
     """{benchmark: [(time, unit)]} of one run of `binary`."""
     try:
@@ -23,11 +29,15 @@ def samples(binary, regex, repetitions):
             [binary, "--benchmark_filter=" + regex, "--benchmark_repetitions=%d" % repetitions,
              "--benchmark_format=json"], capture_output=True, text=True)
     except OSError as e:
-        sys.exit("%s: %s" % (binary, e.strerror))
+        fail("%s: %s" % (binary, e.strerror))
     if run.returncode != 0:
-        sys.exit("%s failed (exit %d): %s" % (binary, run.returncode, run.stderr.strip()))
+        fail("%s failed (exit %d): %s" % (binary, run.returncode, run.stderr.strip()))
+    try:
+        benchmarks = json.loads(run.stdout)["benchmarks"]
+    except (ValueError, KeyError, TypeError):
+        fail("%s did not print Google Benchmark's JSON" % binary)
     out = {}
-    for b in json.loads(run.stdout)["benchmarks"]:
+    for b in benchmarks:
         if b.get("run_type") != "iteration":
             continue
         time = b["real_time"] if b["run_name"].endswith("/real_time") else b["cpu_time"]
@@ -44,7 +54,7 @@ def main():
     parser.add_argument("--filter", default=".")
     args = parser.parse_args()
     if args.rounds < 1 or args.repetitions < 1:
-        sys.exit("--rounds and --repetitions must be >= 1")
+        fail("--rounds and --repetitions must be >= 1")
     data = {}
     for _ in range(args.rounds):
         for which, binary in (("old", args.old), ("new", args.new)):
