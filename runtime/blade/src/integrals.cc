@@ -334,8 +334,9 @@ class NestedGrid {
   std::vector<double> partial_points(bool tail, std::vector<double>& w,
                                      std::vector<double>& x) const {
     const int panels = static_cast<int>(edges_.size()) - 1;
-    x.reserve(static_cast<std::size_t>(panels * kGaussPoints * kGaussPoints));
-    w.reserve(x.capacity());
+    const std::size_t nodes = static_cast<std::size_t>(panels * kGaussPoints * kGaussPoints);
+    x.reserve(nodes);
+    w.reserve(nodes);
     for (int p = 0; p < panels; ++p) {
       const double a = edges_[p];
       const double b = edges_[p + 1];
