@@ -1,7 +1,7 @@
 # Test code compiled once, shared by the test executables and the benches (included by the
-# top-level CMakeLists.txt when either is built).  Like the test drivers (tests/CMakeLists.txt)
-# it is compiled at -O1 in an optimized build: it is test code, and GCC's x86-64 code gives the
-# same IEEE results at every -O level.
+# top-level CMakeLists.txt when either is built).  It is compiled at -O1 in an optimized build:
+# it is test code, and GCC's x86-64 code gives the same IEEE results at every -O level (at -O0,
+# as the test drivers are, it compiles no faster: its cost is Eigen's decompositions).
 #
 # flaplag_test_fixtures: the periodic systems of periodic_fixtures.h and the dense helpers the
 # numerics tests check with (Eigen instantiations that cost seconds in every unit that makes them).
