@@ -259,9 +259,9 @@ TEST(Transition, MagnusOnManyStatesMatchesTheBlocksItIsMadeOf) {
       Eigen::Vector4d(1.0, 1.0, 1.0, 1.0), Eigen::Vector4d(1e3, 1.0, 3.0, 1e-3),
       Eigen::Vector4d(0.1, 70.0, 1e-2, 5.0), Eigen::Vector4d(1e-3, 1e-3, 1e3, 1e3),
       Eigen::Vector4d(7.0, 0.3, 0.3, 7.0)};
-  // 14, 20 and 22 states (12 and 16 have plain kernels of their own)
+  // 14, 16, 20 and 22 states (12 has a plain kernel of its own)
   for (auto [blocks, with_constant] :
-       {std::pair{3, true}, std::pair{5, false}, std::pair{5, true}}) {
+       {std::pair{3, true}, std::pair{4, false}, std::pair{5, false}, std::pair{5, true}}) {
     const int n = 4 * blocks + (with_constant ? 2 : 0);
     PeriodicSystem s = r;  // the same pieces
     s.n = n;
@@ -415,8 +415,9 @@ Eigen::MatrixXd independent_hsu(const PeriodicSystem& s, int K) {
   return product;
 }
 
-// The fixed-size kernels (4, 8, 12, 16 states: plain arrays with AVX2/baseline clones, Hsu J = 4
-// and Magnus) and the general Eigen kernels (20 states) are different code: on k decoupled
+// The fixed-size kernels (4, 8 and 12 states: plain arrays with AVX2/baseline clones, Hsu J = 4
+// and Magnus), the wide kernel (Magnus at 16 and 20 states) and the general Eigen kernels (Hsu at
+// 16 and 20 states) are different code: on k decoupled
 // copies each diagonal block must reproduce the 4-state result to rounding and the
 // off-diagonal blocks stay exactly zero.
 TEST(Transition, FixedSizeKernelsAgreeWithTheGeneralOnes) {
@@ -471,8 +472,8 @@ TEST(Transition, HsuTakesEveryRowThatVaries) {
 // transition_matrix_hsu_pair: Phi at K with the bits of transition_matrix_hsu, Phi at K / 2
 // equal to it to rounding, on grids where a sector edge falls inside a fine interval, on a
 // fine grid point that is a coarse midpoint (K = 8, 24: 1.25 pi = 5 and 15 fine steps) and on
-// a coarse grid point (K = 16); every state size and the fallbacks (6 states, varying odd
-// rows, J = 3, a varying region) give the two separate calls.
+// a coarse grid point (K = 16); the sizes without a plain kernel and the fallbacks (6 and 16
+// states, varying odd rows, J = 3, a varying region) give the two separate calls.
 TEST(Transition, HsuPairIsBothGridsInOnePass) {
   const PeriodicSystem one = rotor_like();
   struct Case {
@@ -495,7 +496,8 @@ TEST(Transition, HsuPairIsBothGridsInOnePass) {
   const std::vector<Case> cases{{"rotor_like", one, 4, false},
                                 {"odd rows", permuted(one, {1, 0, 3, 2}), 4, true},
                                 {"8 states", copies_of_rotor_like(2), 4, false},
-                                {"16 states", copies_of_rotor_like(4), 4, false},
+                                {"12 states", copies_of_rotor_like(3), 4, false},
+                                {"16 states", copies_of_rotor_like(4), 4, true},
                                 {"6 states", six, 4, true},
                                 {"J = 3", one, 3, true},
                                 {"mathieu", mathieu(1.3, 0.9, 0.05), 4, true},

@@ -14,10 +14,10 @@
 // e^{i(j+1)d} = e^{ijd} e^{id} instead of sin/cos calls (reseeded exactly every kReseed points
 // so that rounding cannot accumulate); Hsu's J = 4 Taylor polynomial takes two matrix products
 // (Paterson-Stockmeyer) plus one for the accumulated product.  Nothing in the interval loops
-// allocates.  Hsu (J = 4) and Magnus at 4, 8, 12 and 16 states run on the plain kernels further
-// down (plain_input() decides; a system that the plain kernels cannot evaluate from harmonic
-// matrices alone must make it return false), Magnus at more than 8 other states on the wide
-// kernel (balanced, any size: wide_magnus()), everything else on Kernel<N>.
+// allocates.  Hsu (J = 4) and Magnus at 4, 8 and 12 states run on the plain kernels further down
+// (plain_input() decides; a system that the plain kernels cannot evaluate from harmonic matrices
+// alone must make it return false), Magnus at more than 8 other states on the wide kernel
+// (balanced, any size: wide_magnus()), everything else on Kernel<N>.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -330,9 +330,9 @@ class Kernel {
   std::vector<double> ones_;       // damping factors of point values
 };
 
-// ---- Hsu and Magnus on plain fixed-size arrays (n = 4, 8, 12, 16) ------------------------------
+// ---- Hsu and Magnus on plain fixed-size arrays (n = 4, 8, 12) ----------------------------------
 //
-// The state sizes of 1x1 .. 4x4 modes (4 .. 16 states) get kernels on plain column-major arrays
+// The state sizes of 1x1 .. 3x3 modes (4 .. 12 states) get kernels on plain column-major arrays
 // whose loops have compile-time bounds, so that GCC unrolls and vectorizes them for the target of
 // each clone: function multi-versioning (target_clones) builds an AVX2 and a baseline x86-64
 // version and the loader picks one per machine, so the binary runs on any x86-64.  Only add and
@@ -471,7 +471,7 @@ template <int N>
 // A^T, so the harmonic sum skips them (kEvenRows: only the rows 0, 2, 4, ... take the harmonics
 // h >= 1).  With more modes the varying rows come in blocks (model_api.h: y = [g'_1..g'_M,
 // g_1..g_M, ...]) and the kernel takes every row.  So 4 states are compiled with kEvenRows only
-// (a 4-state system whose odd rows vary takes the Eigen kernel) and 8, 12, 16 without it: one
+// (a 4-state system whose odd rows vary takes the Eigen kernel) and 8 and 12 without it: one
 // variant per size and target, not two.
 
 // X^T = sum_h w_h A_h^T over one substep, A_h^T column-major.
@@ -623,7 +623,6 @@ constexpr bool plain_even_rows(int n) { return n == 4; }
 FLAPLAG_PLAIN_HSU(4)
 FLAPLAG_PLAIN_HSU(8)
 FLAPLAG_PLAIN_HSU(12)
-FLAPLAG_PLAIN_HSU(16)
 #undef FLAPLAG_PLAIN_HSU_VARIANT
 #undef FLAPLAG_PLAIN_HSU
 
@@ -730,13 +729,14 @@ template <int N>
 FLAPLAG_PLAIN_MAGNUS(4)
 FLAPLAG_PLAIN_MAGNUS(8)
 FLAPLAG_PLAIN_MAGNUS(12)
-FLAPLAG_PLAIN_MAGNUS(16)
 #undef FLAPLAG_PLAIN_MAGNUS
 
-// The state sizes with a plain kernel.
-// (At 20 states the unrolled kernels spill registers and Eigen's blocked products are faster:
-// measured 0.67 vs 0.42 ms for a K = 50 point.)
-bool plain_size(int n) { return n == 4 || n == 8 || n == 12 || n == 16; }
+// The state sizes with a plain kernel.  Not 16: there the wide kernel's Magnus, the default, is a
+// quarter faster than the unrolled one (measured side by side), and the unrolled kernels of 16
+// states were 12 s of the compile time of the numerics; Hsu, not the default there, takes
+// Kernel<N> at 16 states, in about twice the time.  (At 20 states the unrolled kernels spill
+// registers: 0.67 ms against Eigen's 0.42 ms for a K = 50 point.)
+bool plain_size(int n) { return n == 4 || n == 8 || n == 12; }
 
 // The input of the plain kernels for grids of K equal steps; false when they do not apply
 // (n without a plain kernel, or more than kPlainMaxHarmonics harmonics).
@@ -814,11 +814,8 @@ bool plain_hsu(const PeriodicSystem& sys, int K, int J, Eigen::MatrixXd& phi,
     case 8:
       plain_hsu8(in, phi.data(), h);
       break;
-    case 12:
-      plain_hsu12(in, phi.data(), h);
-      break;
     default:
-      plain_hsu16(in, phi.data(), h);
+      plain_hsu12(in, phi.data(), h);
       break;
   }
   return true;
@@ -838,11 +835,8 @@ bool plain_magnus(const PeriodicSystem& sys, const std::vector<Segment>& grid,
     case 8:
       plain_magnus8(in, grid.data(), count, phi.data());
       break;
-    case 12:
-      plain_magnus12(in, grid.data(), count, phi.data());
-      break;
     default:
-      plain_magnus16(in, grid.data(), count, phi.data());
+      plain_magnus12(in, grid.data(), count, phi.data());
       break;
   }
   return true;
@@ -850,11 +844,11 @@ bool plain_magnus(const PeriodicSystem& sys, const std::vector<Segment>& grid,
 
 // ---- Magnus on many states (more than 8, no plain kernel) -------------------------------------
 //
-// The models with many modes (20 states at 5 x 5) have no plain kernel; on Eigen's dynamic
-// matrices a Magnus step costs about 26 us at 20 states (measured), most of it Eigen's Pade
-// exponential (an LU solve and, at the norms of the rotor's Omega, four squarings) and the
-// packing of its blocked products, built for SSE2 in a baseline build.  This kernel takes a few
-// times less (bench/README.md, "Many modes") by three changes:
+// The models with more than 8 states but 12 (4 x 1, 3 x 2, 4 x 4, 5 x 5, ...) have no plain
+// kernel; on Eigen's dynamic matrices a Magnus step costs about 26 us at 20 states (measured), most
+// of it Eigen's Pade exponential (an LU solve and, at the norms of the rotor's Omega, four
+// squarings) and the packing of its blocked products, built for SSE2 in a baseline build.  This
+// kernel takes a few times less (bench/README.md, "Many modes") by three changes:
 // - the state is balanced once per system: D = diag(2^e_i) from the Parlett-Reinsch iteration
 //   (radix 2) on sum_h |A_h| of both regions, so that the exponential works on D^-1 Omega D,
 //   whose norm is set by the frequencies rather than by the stiffness entries (20 states at 436

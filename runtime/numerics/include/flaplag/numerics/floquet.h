@@ -105,8 +105,8 @@ TransitionResult transition_matrix(const PeriodicSystem& sys, const TransitionOp
 Eigen::MatrixXd transition_matrix_rk4(const PeriodicSystem& sys, int steps);
 Eigen::MatrixXd transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms);
 // The same into *phi, reusing its storage (nothing allocates once it is n x n, for the systems
-// with a plain kernel: 8, 12 and 16 states, and 4 in the layout of 1 x 1 modes, whose odd rows
-// do not vary).
+// with a plain kernel: 8 and 12 states, and 4 in the layout of 1 x 1 modes, whose odd rows do
+// not vary).
 void transition_matrix_hsu(const PeriodicSystem& sys, int intervals, int terms,
                            Eigen::MatrixXd* phi);
 // Hsu at `intervals` (even) and at intervals / 2 in one pass, into *phi and *phi_half.  An
