@@ -731,8 +731,8 @@ FLAPLAG_PLAIN_MAGNUS(8)
 FLAPLAG_PLAIN_MAGNUS(12)
 #undef FLAPLAG_PLAIN_MAGNUS
 
-// The state sizes with a plain kernel.  Not 16: there the wide kernel's Magnus, the default, is a
-// quarter faster than the unrolled one (measured side by side), and the unrolled kernels of 16
+// The state sizes with a plain kernel.  Not 16: there the wide kernel's Magnus, the default, is
+// 15-30 % faster than the unrolled one (measured side by side), and the unrolled kernels of 16
 // states were 12 s of the compile time of the numerics; Hsu, not the default there, takes
 // Kernel<N> at 16 states, in about twice the time.  (At 20 states the unrolled kernels spill
 // registers: 0.67 ms against Eigen's 0.42 ms for a K = 50 point.)
