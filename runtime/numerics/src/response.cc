@@ -1,4 +1,5 @@
-// flaplag — periodic forced response and time-domain simulation (RK4 on the grid split at the piece edges).
+// flaplag — periodic forced response and time-domain simulation (RK4 on the grid split at the piece
+// edges).
 #include "flaplag/numerics/response.h"
 
 #include <Eigen/LU>
