@@ -17,6 +17,7 @@
 #include "flaplag/core/format.h"
 #include "flaplag/core/parallel.h"
 #include "flaplag/numerics/brent.h"
+#include "zeta_floor.h"
 
 namespace flaplag {
 namespace {
@@ -30,9 +31,9 @@ constexpr double kIdentificationTolerance = 1e-3;
 // kSignMargin times its error estimate.
 constexpr double kSignFraction = 0.02;
 constexpr double kSignMargin = 10.0;
-// ln of the smallest normal double over 2 pi: a multiplier below it is indistinguishable from 0.
-// Zero multipliers have zeta = -inf; for prediction and matching their zeta is taken as this.
-const double kZetaFloor = std::log(std::numeric_limits<double>::min()) / kTwoPi;
+// Zero multipliers have zeta = -inf; for prediction and matching their zeta is taken as the
+// floor (zeta_floor.h).
+using detail::kZetaFloor;
 // Any mismatch costs at most this: keeps the branch-and-bound's arithmetic finite.
 constexpr double kMaxCost = 1e12;
 

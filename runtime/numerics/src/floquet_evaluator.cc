@@ -16,6 +16,7 @@
 #include "flaplag/core/errors.h"
 #include "flaplag/core/format.h"
 #include "flaplag/numerics/dense.h"
+#include "zeta_floor.h"
 
 namespace flaplag {
 namespace {
@@ -28,8 +29,7 @@ namespace {
 constexpr int kMinAutomaticSteps = 50;
 constexpr int kMinLooseLevelSteps = 24;
 
-// ln of the smallest normal double over 2 pi: zeta of a multiplier that underflowed.
-const double kZetaFloor = std::log(std::numeric_limits<double>::min()) / kTwoPi;
+using detail::kZetaFloor;  // zeta of a multiplier that underflowed (zeta_floor.h)
 
 // ---------------------------------------------------------------------------------------------
 // The methods.
