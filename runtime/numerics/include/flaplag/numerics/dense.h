@@ -34,8 +34,8 @@ double spectral_radius(const Eigen::MatrixXd& a, EigenStorage storage);
 
 // exp(a) by Eigen's scaling and squaring with a Pade approximant (unsupported/MatrixFunctions),
 // for a square matrix of any size (an Eigen expression converts to it), and, as a template
-// instantiated in dense_exp.cc for N = 2 and 4 only, of those fixed sizes (references in the
-// tests and benchmarks; the runtime's kernels have their own exponential).
+// instantiated in dense_exp.cc for N = 2, 4, 6 and 8 only, of those fixed sizes (the Magnus
+// steps of transition.cc's fixed-size kernels, and references in the tests and benchmarks).
 Eigen::MatrixXd matrix_exponential(const Eigen::MatrixXd& a);
 template <int N>
 Eigen::Matrix<double, N, N> matrix_exponential(const Eigen::Matrix<double, N, N>& a);
