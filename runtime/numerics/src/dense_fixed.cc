@@ -1,21 +1,17 @@
-// The fixed-size eigen-solves of dense.h (EigenStorage::FixedWhenSmall): 4 and 8 rows.
+// The fixed-size eigen-solve of dense.h (EigenStorage::FixedWhenSmall): Eigen::EigenSolver<
+// Eigen::Matrix4d>, instantiated once.
 #include "dense_solve.h"
 
-namespace flaplag::dense_detail {
+namespace flaplag {
 
-template <int N>
-RealEigenSystem solve_fixed(const Eigen::MatrixXd& a, bool with_vectors) {
-  return solve(Eigen::Matrix<double, N, N>(a), with_vectors);
+namespace dense_detail {
+
+RealEigenSystem solve_fixed4(const Eigen::MatrixXd& a, bool with_vectors) {
+  return solve(Eigen::Matrix4d(a), with_vectors);
 }
 
-template <int N>
-double radius_fixed(const Eigen::MatrixXd& a) {
-  return radius(Eigen::Matrix<double, N, N>(a));
-}
+double radius_fixed4(const Eigen::MatrixXd& a) { return radius(Eigen::Matrix4d(a)); }
 
-template RealEigenSystem solve_fixed<4>(const Eigen::MatrixXd&, bool);
-template RealEigenSystem solve_fixed<8>(const Eigen::MatrixXd&, bool);
-template double radius_fixed<4>(const Eigen::MatrixXd&);
-template double radius_fixed<8>(const Eigen::MatrixXd&);
+}  // namespace dense_detail
 
-}  // namespace flaplag::dense_detail
+}  // namespace flaplag

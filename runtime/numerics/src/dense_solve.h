@@ -1,5 +1,5 @@
 // The eigen-solve templates behind dense.h, shared by the translation units that instantiate them:
-// dense.cc (dynamic size) and dense_fixed.cc (4 and 8 rows).  Three units instead of one because
+// dense.cc (dynamic size) and dense_fixed.cc (4 rows).  Three units instead of one because
 // GCC's optimizer is superlinear in the size of a unit: split, the same instantiations build in
 // three quarters of the CPU time, and in parallel.
 #pragma once
@@ -27,10 +27,8 @@ double radius(const Mat& a) {
   return es.info() == Eigen::Success ? es.eigenvalues().cwiseAbs().maxCoeff() : 0.0;
 }
 
-// Fixed-size storage, N = 4 or 8 (dense_fixed.cc); a has N rows and columns.
-template <int N>
-RealEigenSystem solve_fixed(const Eigen::MatrixXd& a, bool with_vectors);
-template <int N>
-double radius_fixed(const Eigen::MatrixXd& a);
+// Eigen::Matrix4d storage (dense_fixed.cc); a has 4 rows and columns.
+RealEigenSystem solve_fixed4(const Eigen::MatrixXd& a, bool with_vectors);
+double radius_fixed4(const Eigen::MatrixXd& a);
 
 }  // namespace flaplag::dense_detail

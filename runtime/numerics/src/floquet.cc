@@ -73,7 +73,7 @@ void nan_result(Eigen::Index n, const char* message, FloquetResult* out) {
 
 const char* const kUnconverged = "the eigen-solve of Phi did not converge";
 
-// The eigen-solve of p (fixed 4x4 and 8x8 solvers keep it off the heap), into *out; the
+// The eigen-solve of p (the fixed 4x4 solver for 4 rows), into *out; the
 // Liouville residual on the same Mat type as the solve.
 template <typename Mat>
 void solve(const Mat& p, double trace_integral, bool vectors, FloquetResult* out) {
@@ -128,11 +128,8 @@ void floquet_exponents(const Eigen::MatrixXd& phi, double trace_integral, Floque
   // A diverged integration is a numerical outcome: NaN exponents and Status::Failed.
   if (!phi.allFinite()) return nan_result(phi.rows(), "Phi has non-finite entries", out);
   const bool with_vectors = vectors == FloquetVectors::Compute;
-  // Fixed-size solvers for the common 4x4 and 8x8 cases (1x1 and 2x2 modes) keep the
-  // eigen-solve off the heap.
+  // The fixed-size solver for the most frequent case, 4x4 (1x1 modes).
   if (phi.rows() == 4) return solve(Eigen::Matrix4d(phi), trace_integral, with_vectors, out);
-  if (phi.rows() == 8)
-    return solve(Eigen::Matrix<double, 8, 8>(phi), trace_integral, with_vectors, out);
   solve(phi, trace_integral, with_vectors, out);
 }
 

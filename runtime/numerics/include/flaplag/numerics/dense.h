@@ -10,12 +10,12 @@
 
 namespace flaplag {
 
-// Which EigenSolver instantiation a real eigen-solve uses.  The fixed-size solvers keep the
-// frequent 4 x 4 and 8 x 8 solves (1 x 1 and 2 x 2 modes) off the heap; a caller that has always
-// used the dynamic one keeps it, so that its results keep their last bits.
+// Which EigenSolver instantiation a real eigen-solve uses.  The fixed-size solver serves the
+// frequent 4 x 4 solve (1 x 1 modes, every stability point of the typical case); a caller that
+// has always used the dynamic one keeps it, so that its results keep their last bits.
 enum class EigenStorage {
   Dynamic,         // Eigen::EigenSolver<Eigen::MatrixXd> at every size
-  FixedWhenSmall,  // Eigen::Matrix4d and Eigen::Matrix<double, 8, 8> for 4 and 8 rows
+  FixedWhenSmall,  // Eigen::EigenSolver<Eigen::Matrix4d> for 4 rows, the dynamic one otherwise
 };
 
 // Eigenvalues (and, when with_vectors, the eigenvectors as columns, unnormalized as Eigen gives

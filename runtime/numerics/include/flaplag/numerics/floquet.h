@@ -177,8 +177,8 @@ enum class FloquetVectors {
 
 // With eigenvectors.  phi square and non-empty, trace_integral finite (else InvalidInput).
 FloquetResult floquet_exponents(const Eigen::MatrixXd& phi, double trace_integral);
-// The same into *out, reusing its storage: once *out has held a result of the same size,
-// nothing allocates for 4x4 and 8x8 Phi with OnDemand (the point path of the analysis).
+// The same into *out, reusing its storage: once *out has held a result of the same size, its
+// exponents are overwritten in place (with OnDemand: the point path of the analysis).
 void floquet_exponents(const Eigen::MatrixXd& phi, double trace_integral, FloquetVectors vectors,
                        FloquetResult* out);
 
