@@ -34,7 +34,9 @@ struct FixedKernel {
 
   // Phi(2 pi, 0) of the system.
   Eigen::Matrix4d phi() const;
-  // The eigenvalues of phi() (Eigen::EigenSolver<Eigen::Matrix4d>, no eigenvectors).
+  // The eigenvalues of phi() (Eigen::EigenSolver<Eigen::Matrix4d>, no eigenvectors: the
+  // library's fixed_eigenvalues, the instantiation its 4 x 4 points use, with the same flags).
+  // NaN when the QR iteration does not converge.
   Eigen::Vector4cd eigenvalues() const;
 };
 

@@ -32,6 +32,11 @@ RealEigenSystem real_eigen_system(const Eigen::MatrixXd& a, bool with_vectors,
 // max |eigenvalue| of a real square matrix, 0 when the eigen-solve does not converge.
 double spectral_radius(const Eigen::MatrixXd& a, EigenStorage storage);
 
+// The eigenvalues of a 4 x 4 real matrix by the solver of FixedWhenSmall, without eigenvectors
+// and without a copy to dynamic storage (the comparison kernel of bench/).  false, *values
+// untouched, when the QR iteration does not converge.
+bool fixed_eigenvalues(const Eigen::Matrix4d& a, Eigen::Vector4cd* values);
+
 // exp(a) by Eigen's scaling and squaring with a Pade approximant (unsupported/MatrixFunctions),
 // for a square matrix of any size (an Eigen expression converts to it), and, as a template
 // instantiated in dense_exp.cc for N = 2, 4, 6 and 8 only, of those fixed sizes (the Magnus
