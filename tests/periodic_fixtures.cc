@@ -1,11 +1,12 @@
 // The periodic systems of periodic_fixtures.h, compiled once for the tests and the benches that
-// use them (their Eigen products, inverses and norms cost seconds of compile time in every
-// translation unit that instantiates them).
+// use them.  The dense inverse and the operator norm are written here with Eigen's core
+// operations and the library's eigen-solve: Eigen's decompositions (LU, the self-adjoint
+// eigen-solver) cost more compile time than the rest of the fixtures together.
 #include "periodic_fixtures.h"
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 #include "flaplag/core/constants.h"
 #include "flaplag/numerics/dense.h"
@@ -75,7 +76,7 @@ PeriodicSystem reducible_system(const Eigen::MatrixXd& B, const Frame& normal, i
   auto a_of = [&B](const Frame& fr) {
     return [&B, &fr](double psi) -> Eigen::MatrixXd {
       const Eigen::MatrixXd P = fr.P(psi);
-      const Eigen::MatrixXd Pinv = P.inverse();
+      const Eigen::MatrixXd Pinv = inverse(P);
       return fr.dP(psi) * Pinv + P * B * Pinv;
     };
   };
@@ -89,7 +90,7 @@ PeriodicSystem reducible_system(const Eigen::MatrixXd& B, const Frame& normal, i
 
 Eigen::MatrixXd reducible_phi(const Eigen::MatrixXd& B, const Frame& normal) {
   const Eigen::MatrixXd P0 = normal.P(0.0);
-  return P0 * matrix_exponential(kTwoPi * B) * P0.inverse();
+  return P0 * matrix_exponential(kTwoPi * B) * inverse(P0);
 }
 
 Eigen::MatrixXd A_rate(const PeriodicSystem& s, double psi) {
@@ -107,8 +108,8 @@ SystemScale scale_of(const PeriodicSystem& s) {
   for (int j = 0; j < 2000; ++j) {
     const double psi = kTwoPi * (j + 0.5) / 2000;
     const Eigen::MatrixXd A = s.A(psi), D = A_rate(s, psi);
-    out.L = std::max(out.L, A.operatorNorm());
-    out.C = std::max(out.C, (A * D - D * A).operatorNorm());
+    out.L = std::max(out.L, operator_norm(A));
+    out.C = std::max(out.C, operator_norm(A * D - D * A));
   }
   return out;
 }
@@ -208,7 +209,7 @@ Eigen::MatrixXd with_eigenvalues(const std::vector<std::pair<double, double>>& p
   Eigen::MatrixXd S(n, n);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) S(i, j) = (i == j ? 2.0 : 0.0) + 0.3 * std::sin(1.0 + i + 2.0 * j);
-  return S * D * S.inverse();
+  return S * D * inverse(S);
 }
 
 PeriodicSystem markus_yamabe() {
@@ -294,8 +295,40 @@ double clipped_log_phi(double c) {
   return -0.05 * kPi + 0.3 * kPi + 0.9 * (2.0 * (1.0 - std::cos(a)) + c * (kPi - 2.0 * a));
 }
 
-double operator_norm(const Eigen::MatrixXd& m) { return m.operatorNorm(); }
-Eigen::MatrixXd inverse(const Eigen::MatrixXd& m) { return m.inverse(); }
-Eigen::MatrixXcd inverse(const Eigen::MatrixXcd& m) { return m.inverse(); }
+namespace {
+
+// Gauss-Jordan elimination with partial pivoting (the pivot of largest modulus in each column):
+// [m | I] -> [I | m^-1].  m square and nonsingular.
+template <typename Mat>
+Mat gauss_jordan_inverse(Mat m) {
+  const Eigen::Index n = m.rows();
+  Mat inv = Mat::Identity(n, n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    Eigen::Index p = k;
+    for (Eigen::Index i = k + 1; i < n; ++i)
+      if (std::abs(m(i, k)) > std::abs(m(p, k))) p = i;
+    m.row(k).swap(m.row(p));
+    inv.row(k).swap(inv.row(p));
+    const typename Mat::Scalar d = m(k, k);
+    m.row(k) /= d;
+    inv.row(k) /= d;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (i == k) continue;
+      const typename Mat::Scalar f = m(i, k);
+      m.row(i) -= f * m.row(k);
+      inv.row(i) -= f * inv.row(k);
+    }
+  }
+  return inv;
+}
+
+}  // namespace
+
+double operator_norm(const Eigen::MatrixXd& m) {
+  const Eigen::MatrixXd gram = m.transpose() * m;
+  return std::sqrt(spectral_radius(gram, EigenStorage::Dynamic));
+}
+Eigen::MatrixXd inverse(const Eigen::MatrixXd& m) { return gauss_jordan_inverse(m); }
+Eigen::MatrixXcd inverse(const Eigen::MatrixXcd& m) { return gauss_jordan_inverse(m); }
 
 }  // namespace flaplag::fixtures

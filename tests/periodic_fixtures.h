@@ -149,8 +149,10 @@ PeriodicSystem clipped_scalar(double c = 0.6);
 
 double clipped_log_phi(double c = 0.6);
 
-// m.operatorNorm() (the largest singular value, through Eigen's self-adjoint eigen-solver) and
-// m.inverse() (partial-pivoting LU), exactly as Eigen computes them inline.
+// The operator 2-norm of m (its largest singular value: the square root of the spectral radius
+// of m^T m, by the library's eigen-solve) and the inverse of a square nonsingular m (Gauss-Jordan
+// elimination with partial pivoting).  Both agree with Eigen's operatorNorm() and inverse() to
+// rounding; they are references for the checks, not the code under test.
 double operator_norm(const Eigen::MatrixXd& m);
 Eigen::MatrixXd inverse(const Eigen::MatrixXd& m);
 Eigen::MatrixXcd inverse(const Eigen::MatrixXcd& m);
